@@ -1,0 +1,1 @@
+"""Benchmarks: `situated bench kb|dialogue|http|all` prints measured figures beside baselines."""

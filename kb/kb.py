@@ -1,0 +1,465 @@
+"""``KB``: the knowledge_core-compatible facade (kb-compat §3).
+
+Client code written for ``knowledge_core.api.KB`` runs against it unchanged::
+
+    from kb import KB
+    kb = KB()                       # the default ontology, no server
+    kb += "myself sees cup_abcd"
+    kb["myself sees ?obj"]          # [{"obj": "cup_abcd"}]
+    kb.details("cup_abcd")["label"]["default"]
+
+Every method is thread-safe. Reads see the state between two commits, never half a batch.
+"""
+
+from __future__ import annotations
+
+import inspect
+import re
+import threading
+import time
+from collections.abc import Callable, Iterable, Sequence
+from functools import lru_cache
+from pathlib import Path
+from typing import Any
+
+from rdflib import Variable
+
+from kb import describe
+from kb.errors import KbError
+from kb.events import Callback, event_id
+from kb.query import Query, Row, build_query, holds, rows, solve
+from kb.rdfio import FORMATS, default_ontology, parse_data, parse_location, serialize
+from kb.sparql import execute, to_json
+from kb.store import ALL_MODELS, DEFAULT_MODEL, Model, Models
+from kb.terms import Node, Pattern, TermParser, Triple, as_list, parse_ground, parse_patterns, shorten
+from kb.terms import tokenize as _tokenize
+from kb.writer import ActiveListener, Batch, Commit, CommitListener, Writer
+
+__version__ = "0.1.0"
+_MODEL_NAME = re.compile(r"[A-Za-z0-9_][A-Za-z0-9_.\-]*")
+_ADD_METHODS = frozenset({"add", "safe_add", "update", "safe_update", "revision"})
+_RETRACT_METHODS = frozenset({"retract", "remove", "delete"})
+Models_ = Sequence[str] | str | None
+
+
+@lru_cache(maxsize=2048)
+def _compiled(patterns: tuple[str, ...], vars: tuple[str, ...] | None) -> Query:
+    return build_query(parse_patterns(patterns), list(vars) if vars else None)
+
+
+def _render(query: Query, found: Iterable[Row]) -> list[dict[str, Any]]:
+    names = query.names
+    ordered = sorted(found, key=lambda row: tuple(str(shorten(t)) for t in row))
+    return [dict(zip(names, (shorten(t) for t in row), strict=True)) for row in ordered]
+
+
+class KB:
+    """An in-process OWL/RDF knowledge base with incremental OWL RL reasoning."""
+
+    def __init__(self, ontology: bool | Sequence[str | Path] = True, *,
+                 clock: Callable[[], float] = time.time) -> None:
+        """``ontology``: True for the default ORO-compatible ontology, False for none, or files."""
+        if ontology is True:
+            defaults: tuple[Triple, ...] = default_ontology()
+        elif ontology is False:
+            defaults = ()
+        else:
+            defaults = tuple(t for path in ontology for t in parse_location(str(path)))
+        self._lock = threading.RLock()
+        self._models = Models(defaults)
+        self._writer = Writer(self._lock, self._models, _render, clock)
+        self._clock = clock
+
+    def close(self) -> None:
+        """Stop the expiry thread (if one was started)."""
+        self._writer.close()
+
+    def __enter__(self) -> KB:
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.close()
+
+    @property
+    def revision(self) -> int:
+        """Increases by one with every committed change."""
+        return self._writer.revision
+
+    @property
+    def lock(self) -> threading.RLock:
+        """Held by every read and write; hold it to read several answers from one state."""
+        return self._lock
+
+    # --- models ---------------------------------------------------------------------------
+
+    def models(self) -> list[str]:
+        with self._lock:
+            return self._models.names
+
+    def _read_models(self, models: Models_) -> list[Model]:
+        names = _model_names(models)
+        if not names:
+            return [self._models.default]
+        if ALL_MODELS in names:
+            return [m for n in self._models.names if (m := self._models.get(n)) is not None]
+        found = []
+        for name in names:
+            model = self._models.get(name)
+            if model is None:
+                raise KbError(f"unknown model {name!r}; known models: {', '.join(self._models.names)}")
+            found.append(model)
+        return found
+
+    def _write_models(self, models: Models_) -> list[str]:
+        names = _model_names(models)
+        if not names:
+            return [DEFAULT_MODEL]
+        if ALL_MODELS in names:
+            return self._models.names
+        return names
+
+    def _one_model(self, models: Models_) -> Model:
+        found = self._read_models(models)
+        if len(found) != 1:
+            raise KbError("this call takes exactly one model")
+        return found[0]
+
+    # --- queries --------------------------------------------------------------------------
+
+    def find(self, patterns: str | Sequence[str], vars: Sequence[str] | None = None,
+             models: Models_ = None) -> list[Any]:
+        """Rows of bindings for a conjunction of patterns; for ground patterns, the patterns
+        themselves if they all hold, else ``[]`` (kb-compat §3.2)."""
+        texts = tuple(as_list(patterns))
+        if not texts:
+            raise KbError("find needs at least one pattern")
+        query = _compiled(texts, tuple(vars) if vars else None)
+        self._expire_due()
+        with self._lock:
+            targets = self._read_models(models)
+            if query.ground:
+                return list(texts) if any(holds(m.closure, query) for m in targets) else []
+            found: set[Row] = set()
+            for model in targets:
+                found |= rows(model.closure, query)
+            return _render(query, found)
+
+    def exist(self, patterns: str | Sequence[str], models: Models_ = None) -> bool:
+        texts = tuple(as_list(patterns))
+        if not texts:
+            raise KbError("exist needs at least one pattern")
+        query = _compiled(texts, None)
+        self._expire_due()
+        with self._lock:
+            return any(holds(m.closure, query) for m in self._read_models(models))
+
+    def __getitem__(self, key: str | Sequence[Any]) -> list[Any]:
+        models: Models_ = None
+        if isinstance(key, tuple):
+            if key and isinstance(key[-1], list) and len(key) > 1:
+                key, models = key[:-1], key[-1]
+            parts: list[str] = []
+            for part in key:
+                parts.extend(as_list(part))
+            return self.find(parts, models=models)
+        if isinstance(key, str) and not _is_statement(key):
+            return self.lookup(key)
+        return self.find(key)
+
+    def __contains__(self, item: object) -> bool:
+        if not isinstance(item, str):
+            return False
+        if _is_statement(item):
+            return self.exist(item)
+        return bool(self.lookup(item))
+
+    def lookup(self, query: str, models: Models_ = None) -> list[list[str]]:
+        """``[[name, type], ...]``: exact matches first, then approximate ones (§3.4)."""
+        if not isinstance(query, str):
+            raise KbError(f"lookup takes a string, got {query!r}")
+        self._expire_due()
+        with self._lock:
+            exact: dict[Node, str] = {}
+            approx: dict[Node, str] = {}
+            for model in self._read_models(models):
+                e, a = describe.lookup(model.closure, query)
+                for t in e:
+                    exact.setdefault(t, describe.term_kind(model.closure, t))
+                for t in a:
+                    approx.setdefault(t, describe.term_kind(model.closure, t))
+            for t in exact:
+                approx.pop(t, None)
+            key = describe._sort_key
+            return [[str(shorten(t)), exact[t]] for t in sorted(exact, key=key)] + [
+                [str(shorten(t)), approx[t]] for t in sorted(approx, key=key)
+            ]
+
+    def about(self, term: str, models: Models_ = None) -> list[list[Any]]:
+        node = _optional_term(term)
+        self._expire_due()
+        with self._lock:
+            found: list[list[Any]] = []
+            for model in self._read_models(models):
+                found.extend(st for st in describe.about(model.closure, node, term) if st not in found)
+            return found
+
+    def details(self, term: str, models: Models_ = None) -> dict[str, Any]:
+        node = _term(term)
+        self._expire_due()
+        with self._lock:
+            model = self._one_model(models)
+            return describe.details(model.closure, model.asserted, node)
+
+    def label(self, term: str, lang: str | None = None, models: Models_ = None) -> str:
+        node = _term(term)
+        with self._lock:
+            return describe.label(self._one_model(models).closure, node, lang)
+
+    def classesof(self, term: str, direct: bool = False, models: Models_ = None) -> list[str]:
+        node = _term(term)
+        self._expire_due()
+        with self._lock:
+            found: set[str] = set()
+            for model in self._read_models(models):
+                found.update(describe.classes_of(model.closure, model.asserted, node, direct))
+            return sorted(found)
+
+    def sparql(self, query: str, model: str | Sequence[str] | None = None) -> dict[str, Any]:
+        """Read-only SPARQL 1.1 on one model: W3C JSON results plus the ``query`` (§3.7)."""
+        with self._lock:
+            return to_json(execute(self._one_model(model).closure, query), query)
+
+    def sparql_serialize(self, query: str, fmt: str, model: str | None = None) -> tuple[str, bytes]:
+        """Run a read-only query and serialise its result (``json``, ``xml``, ``csv``, ``tsv``
+        for SELECT/ASK; RDF formats for CONSTRUCT/DESCRIBE); returns (result type, bytes)."""
+        with self._lock:
+            result = execute(self._one_model(model).closure, query)
+            return result.type, result.serialize(format=fmt, encoding="utf-8") or b""
+
+    # --- writes ---------------------------------------------------------------------------
+
+    def update(self, stmts: str | Sequence[str], models: Models_ = None, lifespan: float = 0) -> None:
+        """Add statements; a functional property's new value replaces the old one (§3.5)."""
+        triples = [parse_ground(s) for s in as_list(stmts)]
+        self._writer.commit(Batch(self._write_models(models), add=triples, lifespan=_lifespan(lifespan)))
+
+    add = update
+
+    def remove(self, stmts: str | Sequence[str], models: Models_ = None) -> None:
+        """Retract statements; statements with variables are one conjunction whose every
+        match is retracted (K12). Facts that are only inferred stay (they are derived again)."""
+        ground: list[Triple] = []
+        patterns: list[str] = []
+        for text in as_list(stmts):
+            pattern = parse_patterns([text])[0]
+            if any(isinstance(t, Variable) for t in pattern):
+                patterns.append(text)
+            else:
+                ground.append(pattern)  # type: ignore[arg-type]  # no variables in it
+        names = self._write_models(models)
+        batch = Batch(names, remove=ground, replace_functional=False)
+        if patterns:
+            query = _compiled(tuple(patterns), None)
+            with self._lock:
+                for model in self._read_models(names):
+                    batch.remove_by_model[model.name] = _matches(model, query.patterns)
+                self._writer.commit(batch)
+            return
+        self._writer.commit(batch)
+
+    retract = remove
+
+    def apply(self, add: Sequence[str] = (), remove: Sequence[str] = (), models: Models_ = None,
+              lifespan: float = 0) -> None:
+        """Retract ``remove`` and assert ``add`` (ground statements) as ONE batch: one revision,
+        one reasoning pass, one event evaluation. A perception tick or a scene diff uses this."""
+        added = [parse_ground(s) for s in as_list(add)]
+        removed = [parse_ground(s) for s in as_list(remove)]
+        self._writer.commit(
+            Batch(self._write_models(models), add=added, remove=removed, lifespan=_lifespan(lifespan))
+        )
+
+    def revise(self, stmts: str | Sequence[str], policy: dict[str, Any]) -> None:
+        """``policy``: ``{"method": add|update|retract|..., "models": [...], "lifespan": s}``."""
+        if not isinstance(policy, dict) or "method" not in policy:
+            raise KbError("revise needs a policy with a 'method'")
+        method = str(policy["method"]).lower()
+        if method in _ADD_METHODS:
+            self.update(stmts, policy.get("models"), policy.get("lifespan", 0) or 0)
+        elif method in _RETRACT_METHODS:
+            self.remove(stmts, policy.get("models"))
+        else:
+            raise KbError(f"unknown revise method {policy['method']!r}; use add, update or retract")
+
+    def __iadd__(self, stmts: str | Sequence[str]) -> KB:
+        self.update(stmts)
+        return self
+
+    def __isub__(self, stmts: str | Sequence[str]) -> KB:
+        self.remove(stmts)
+        return self
+
+    def clear(self, keep_defaults: bool = True) -> None:
+        """Drop every model's facts; the default ontology stays unless ``keep_defaults=False``
+        (K5). Subscriptions stay and see the facts disappear."""
+        with self._lock:
+            self._models.reset(keep_defaults)
+            self._writer.expiries.clear()
+            self._writer.revision += 1
+            self._writer.subscriptions.rebaseline(self._writer.current_rows)
+
+    def load(self, uri: str, models: Models_ = None) -> None:
+        """Add the triples of a local RDF file (any rdflib format) as one batch."""
+        self._load(parse_location(uri), models)
+
+    def load_data(self, data: str | bytes, fmt: str = "turtle", models: Models_ = None) -> None:
+        """Add the triples of an RDF document given as text (turtle, xml, json-ld, nt, ...)."""
+        self._load(parse_data(data, fmt), models)
+
+    def _load(self, triples: Sequence[Triple], models: Models_) -> None:
+        self._writer.commit(Batch(self._write_models(models), add=list(triples), replace_functional=False))
+
+    def save(self, path: str | Path, basename: str = "kb", models: Models_ = None) -> list[str]:
+        """Write each model's asserted triples as RDF/XML to ``path/basename-<model>.rdf``."""
+        folder = Path(path)
+        if not folder.is_dir():
+            raise KbError(f"cannot save to {str(path)!r}: not a directory")
+        written = []
+        with self._lock:
+            for model in self._read_models(models):
+                target = folder / f"{basename}-{model.name}.rdf"
+                target.write_bytes(serialize(model.asserted, "xml"))
+                written.append(str(target))
+        return written
+
+    def export(self, fmt: str = "turtle", model: str | None = None, inferred: bool = False) -> bytes:
+        """A model's asserted (or, with ``inferred``, materialised) triples in an RDF format."""
+        if fmt not in FORMATS:
+            raise KbError(f"unknown export format {fmt!r}; use one of {sorted(FORMATS)}")
+        with self._lock:
+            target = self._one_model(model)
+            triples = list(target.closure if inferred else target.asserted)
+        return serialize(triples, fmt)
+
+    # --- events ---------------------------------------------------------------------------
+
+    def subscribe(self, patterns: str | Sequence[str], callback: Callback, one_shot: bool = False,
+                  models: Models_ = None) -> str:
+        """Call ``callback(rows)`` with the new rows after each change; returns ``evt_<md5>``."""
+        texts = as_list(patterns)
+        if not texts:
+            raise KbError("subscribe needs at least one pattern")
+        query = _compiled(tuple(texts), None)
+        names = _model_names(models) or [DEFAULT_MODEL]
+        sub_id = event_id(texts, one_shot, names)
+        with self._lock:
+            if ALL_MODELS not in names:
+                self._read_models(names)  # unknown models are an error here too
+            baseline: set[Row] = set()
+            for model in self._read_models(names):
+                baseline |= rows(model.closure, query)
+            self._writer.subscriptions.add(sub_id, query, names, one_shot, callback, baseline)
+        return sub_id
+
+    def unsubscribe(self, sub_id: str) -> bool:
+        with self._lock:
+            return self._writer.subscriptions.remove(sub_id)
+
+    def on_active_concept(self, callback: ActiveListener) -> None:
+        self._writer.on_active_concept(callback)
+
+    def on_commit(self, listener: CommitListener) -> None:
+        """Called under the lock with every commit (for journals and mirrors)."""
+        self._writer.on_commit(listener)
+
+    def expire(self, now: float | None = None) -> Commit | None:
+        """Retract the statements whose lifespan is over now (the expiry thread calls this)."""
+        return self._writer.expire(now)
+
+    def _expire_due(self) -> None:
+        due = self._writer.expiries.next_due()
+        if due is not None and due <= self._clock():
+            self._writer.expire()
+
+    # --- housekeeping ---------------------------------------------------------------------
+
+    def hello(self) -> str:
+        return f"situated {__version__}"
+
+    def stats(self) -> dict[str, Any]:
+        return {"name": "situated", "version": __version__, "reasoning_enabled": True}
+
+    def methods(self) -> list[str]:
+        names = ["about", "add", "classesof", "clear", "details", "exist", "find", "hello", "label",
+                 "load", "lookup", "remove", "revise", "save", "sparql", "stats", "subscribe", "update"]
+        return [f"{n}{_signature(getattr(self, n))}" for n in names]
+
+    def size(self, model: str | None = None, inferred: bool = True) -> int:
+        with self._lock:
+            target = self._one_model(model)
+            return len(target.closure if inferred else target.asserted)
+
+    def is_asserted(self, stmt: str, model: str | None = None) -> bool:
+        """True if the statement was asserted (not only inferred) in the model."""
+        triple = parse_ground(stmt)
+        with self._lock:
+            return self._one_model(model).is_asserted(triple)
+
+
+def _matches(model: Model, patterns: Sequence[Pattern]) -> list[Triple]:
+    found: set[Triple] = set()
+    for binding in solve(model.closure, patterns):
+        for s, p, o in patterns:
+            found.add(tuple(binding.get(t, t) if isinstance(t, Variable) else t for t in (s, p, o)))  # type: ignore[arg-type]
+    return [t for t in found if t in model.asserted]
+
+
+def _model_names(models: Models_) -> list[str]:
+    if models is None:
+        return []
+    names = [models] if isinstance(models, str) else list(models)
+    for name in names:
+        if not isinstance(name, str) or not _MODEL_NAME.fullmatch(name):
+            raise KbError(f"invalid model name {name!r}")
+    return names
+
+
+def _lifespan(value: Any) -> float:
+    if isinstance(value, bool) or not isinstance(value, int | float) or value < 0:
+        raise KbError(f"lifespan must be a number of seconds >= 0, got {value!r}")
+    return float(value)
+
+
+def _is_statement(text: str) -> bool:
+    try:
+        return len(_tokenize(text)) == 3
+    except KbError:
+        return False
+
+
+def _term(text: str) -> Node:
+    node = _optional_term(text)
+    if node is None:
+        raise KbError(f"{text!r} is not a term")
+    return node
+
+
+def _optional_term(text: str) -> Node | None:
+    if not isinstance(text, str) or not text.strip():
+        raise KbError(f"expected a term, got {text!r}")
+    try:
+        tokens = _tokenize(text.strip())
+    except KbError:
+        return None
+    if len(tokens) != 1:
+        return None
+    try:
+        node = TermParser().term(tokens[0], "term", text)
+    except KbError:
+        return None
+    return None if isinstance(node, Variable) else node
+
+
+def _signature(method: Any) -> str:
+    return str(inspect.signature(method))
+

@@ -1,0 +1,156 @@
+"""Conjunctive pattern matching over a triple index, most selective pattern first.
+
+At every step the join picks, among the patterns left, the one with the fewest matches under
+the bindings made so far (exact counts from the index), so ``?h sees ?o . ?o rdf:type dbr:Cup .
+?h rdf:type Human`` starts from the cups, not from the Human × Cup cross product that rdflib's
+SPARQL engine builds (kb-compat §8.5).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator, Sequence
+from dataclasses import dataclass
+
+from rdflib import BNode, Variable
+
+from kb.errors import KbError
+from kb.index import TripleIndex
+from kb.terms import Node, Pattern, Term, is_anonymous
+
+Row = tuple[Node, ...]
+
+
+@dataclass(frozen=True)
+class Query:
+    """Parsed patterns plus the variables to project, in output order."""
+
+    patterns: tuple[Pattern, ...]
+    projection: tuple[Variable, ...]
+    names: tuple[str, ...]
+
+    @property
+    def ground(self) -> bool:
+        return not any(isinstance(t, Variable) for pattern in self.patterns for t in pattern)
+
+
+def build_query(patterns: Sequence[Pattern], vars: Sequence[str] | None = None) -> Query:
+    """Choose the projected variables as knowledge_core does (kb-compat §1.5, §3.2)."""
+    seen: list[Variable] = []
+    for pattern in patterns:
+        for term in pattern:
+            if isinstance(term, Variable) and term not in seen:
+                seen.append(term)
+    if vars:
+        projection: list[Variable] = []
+        for name in vars:
+            if not isinstance(name, str):
+                raise KbError(f"vars must be variable names, got {name!r}")
+            var = Variable(name[1:] if name.startswith("?") else name)
+            if var not in seen:
+                raise KbError(f"variable ?{var} of vars does not occur in the patterns")
+            projection.append(var)
+        return Query(tuple(patterns), tuple(projection), tuple(str(v) for v in projection))
+    named = [v for v in seen if not is_anonymous(v)]
+    if named:
+        return Query(tuple(patterns), tuple(named), tuple(str(v) for v in named))
+    return Query(tuple(patterns), tuple(seen), tuple(f"var{i}" for i in range(1, len(seen) + 1)))
+
+
+# A compiled pattern: for each position, (constant, -1) or (None, variable slot).
+_Slot = tuple[Node | None, int]
+_Compiled = tuple[_Slot, _Slot, _Slot]
+
+
+def _compile(index: TripleIndex, patterns: Sequence[Pattern], order: Sequence[Variable]) -> list[_Compiled]:
+    slots = {v: i for i, v in enumerate(order)}
+    compiled: list[_Compiled] = []
+    for pattern in patterns:
+        parts: list[_Slot] = []
+        for term in pattern:
+            if isinstance(term, Variable):
+                parts.append((None, slots[term]))
+            else:
+                parts.append((index.canonical(term), -1))  # the index's own object: fast lookups
+        compiled.append((parts[0], parts[1], parts[2]))
+    return compiled
+
+
+def _variables(patterns: Sequence[Pattern]) -> list[Variable]:
+    seen: list[Variable] = []
+    for pattern in patterns:
+        for term in pattern:
+            if isinstance(term, Variable) and term not in seen:
+                seen.append(term)
+    return seen
+
+
+def solve(index: TripleIndex, patterns: Sequence[Pattern]) -> Iterator[dict[Variable, Node]]:
+    """Every binding of the variables that satisfies all patterns (with repetitions)."""
+    order = _variables(patterns)
+    for values in _solutions(index, patterns, order):
+        yield dict(zip(order, values, strict=True))
+
+
+def _solutions(index: TripleIndex, patterns: Sequence[Pattern], order: Sequence[Variable]) -> Iterator[list[Node]]:
+    binding: list[Node | None] = [None] * len(order)
+    yield from _solve(index, _compile(index, patterns, order), binding)  # type: ignore[misc]
+
+
+def _solve(index: TripleIndex, patterns: list[_Compiled], binding: list[Node | None]) -> Iterator[list[Node | None]]:
+    if not patterns:
+        yield binding
+        return
+    best_i, best_count = 0, -1
+    best: tuple[Node | None, Node | None, Node | None] = (None, None, None)
+    for i, ((cs, vs), (cp, vp), (co, vo)) in enumerate(patterns):
+        s = cs if vs < 0 else binding[vs]
+        p = cp if vp < 0 else binding[vp]
+        o = co if vo < 0 else binding[vo]
+        count = index.count(s, p, o)
+        if count == 0:
+            return
+        if best_count < 0 or count < best_count:
+            best_i, best_count, best = i, count, (s, p, o)
+            if count == 1:
+                break
+    (_, vs), (_, vp), (_, vo) = patterns[best_i]
+    rest = patterns[:best_i] + patterns[best_i + 1 :]
+    s, p, o = best
+    # Positions to bind: unbound variables of the chosen pattern.
+    free_s = vs if s is None else -1
+    free_p = vp if p is None else -1
+    free_o = vo if o is None else -1
+    for ts, tp, to in index.scan(s, p, o):
+        # A variable repeated in one pattern (?x knows ?x) must take one value.
+        if free_s >= 0:
+            binding[free_s] = ts
+        if free_p >= 0:
+            if free_p == free_s and tp != ts:
+                continue
+            binding[free_p] = tp
+        if free_o >= 0:
+            if (free_o == free_s and to != ts) or (free_o == free_p and to != tp):
+                continue
+            binding[free_o] = to
+        yield from _solve(index, rest, binding)
+    for slot in (free_s, free_p, free_o):
+        if slot >= 0:
+            binding[slot] = None
+
+
+def rows(index: TripleIndex, query: Query) -> set[Row]:
+    """Distinct projected rows (K1); rows holding a blank node are dropped (K11)."""
+    out: set[Row] = set()
+    order = _variables(query.patterns)
+    slots = [order.index(v) for v in query.projection]
+    for values in _solutions(index, query.patterns, order):
+        row = tuple(values[i] for i in slots)
+        if not any(isinstance(t, BNode) for t in row):
+            out.add(row)
+    return out
+
+
+def holds(index: TripleIndex, query: Query) -> bool:
+    """True when the patterns have at least one solution."""
+    order = _variables(query.patterns)
+    return next(_solutions(index, query.patterns, order), None) is not None

@@ -1,0 +1,149 @@
+"""Incremental OWL RL materialisation: semi-naive insertion and delete-and-rederive (DRed).
+
+The rules are the subset of OWL 2 RL that the ontology uses (kb-compat §7.3), driven by the
+compiled TBox: cax-sco/cax-eqc (through the closed class hierarchy), prp-spo1/prp-eqp, prp-dom,
+prp-rng, prp-inv, prp-symp, prp-trp, cls-hv1, cls-hv2, cls-int1 (cls-int2 and cls-uni are in the
+hierarchy). Every rule has at most one premise besides the triple being processed, so a new
+fact is joined only against the current closure.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Iterator
+
+from rdflib import Literal
+from rdflib.namespace import RDF
+
+from kb.index import TripleIndex
+from kb.tbox import CompiledTBox
+from kb.terms import Triple
+
+TYPE = RDF.type
+
+
+class Reasoner:
+    """Keeps ``closure`` equal to the OWL RL closure of ``asserted`` under ``tbox``."""
+
+    __slots__ = ("asserted", "closure", "tbox")
+
+    def __init__(self, tbox: CompiledTBox, asserted: TripleIndex, closure: TripleIndex) -> None:
+        self.tbox = tbox
+        self.asserted = asserted
+        self.closure = closure
+
+    def materialise(self) -> None:
+        """Recompute the closure from the asserted triples (start-up, TBox change)."""
+        self.closure.clear()
+        self.insert(list(self.asserted))
+        self.insert(list(self.tbox.schema_closure()))
+
+    def insert(self, triples: Iterable[Triple]) -> list[Triple]:
+        """Add triples (already asserted) to the closure; return every triple new to it."""
+        closure = self.closure
+        added = [t for t in triples if closure.add(*t)]
+        queue = list(added)
+        while queue:
+            for derived in self.consequences(queue.pop()):
+                if closure.add(*derived):
+                    added.append(derived)
+                    queue.append(derived)
+        return added
+
+    def delete(self, triples: Iterable[Triple]) -> tuple[list[Triple], list[Triple]]:
+        """Withdraw triples no longer asserted; return (removed, re-added) net of each other.
+
+        Over-deletion removes everything that has a derivation through a withdrawn fact; then
+        each over-deleted fact with another one-step derivation from what is left comes back,
+        and semi-naive insertion restores what follows from it.
+        """
+        closure, asserted = self.closure, self.asserted
+        over: set[Triple] = set()
+        queue = [t for t in triples if t in closure and t not in asserted]
+        while queue:
+            t = queue.pop()
+            if t in over:
+                continue
+            over.add(t)
+            for derived in self.consequences(t):
+                if derived not in over and derived not in asserted and derived in closure:
+                    queue.append(derived)
+        for t in over:
+            closure.remove(*t)
+        back = self.insert([t for t in over if self.derivable(t)])
+        if not back:
+            return list(over), []
+        restored = set(back)
+        return [t for t in over if t not in restored], [t for t in back if t not in over]
+
+    def consequences(self, triple: Triple) -> Iterator[Triple]:
+        """Every triple one rule step derives from ``triple`` and the closure."""
+        s, p, o = triple
+        tb = self.tbox
+        if p == TYPE:
+            for sup in tb.superclasses.get(o, ()):
+                yield (s, TYPE, sup)
+            pv = tb.has_value.get(o)
+            if pv is not None:
+                yield (s, pv[0], pv[1])
+            for cls in tb.intersections_with.get(o, ()):
+                if all((s, TYPE, m) in self.closure for m in tb.members[cls]):
+                    yield (s, TYPE, cls)
+            return
+        for sup in tb.superproperties.get(p, ()):
+            yield (s, sup, o)
+        for cls in tb.domains.get(p, ()):
+            yield (s, TYPE, cls)
+        for restriction in tb.restrictions_for.get((p, o), ()):
+            yield (s, TYPE, restriction)
+        if isinstance(o, Literal):
+            return
+        for cls in tb.ranges.get(p, ()):
+            yield (o, TYPE, cls)
+        for inv in tb.inverses.get(p, ()):
+            yield (o, inv, s)
+        if p in tb.symmetric:
+            yield (o, p, s)
+        if p in tb.transitive:
+            closure = self.closure
+            for z in list(closure.objects(o, p)):
+                yield (s, p, z)
+            for w in list(closure.subjects(p, s)):
+                yield (w, p, o)
+
+    def derivable(self, triple: Triple) -> bool:
+        """True if one rule step derives ``triple`` from the closure without using itself."""
+        if triple in self.asserted:
+            return True
+        s, p, o = triple
+        tb, closure = self.tbox, self.closure
+        if p == TYPE:
+            types = closure.objects(s, TYPE)
+            subs = tb.subclasses.get(o)
+            if subs and types:
+                small, large = (subs, types) if len(subs) < len(types) else (types, subs)
+                if any(c in large for c in small):
+                    return True
+            if any(closure.has_subject_predicate(s, q) for q in tb.domain_of.get(o, ())):
+                return True
+            if any(closure.has_predicate_object(q, s) for q in tb.range_of.get(o, ())):
+                return True
+            pv = tb.has_value.get(o)
+            if pv is not None and (s, pv[0], pv[1]) in closure:
+                return True
+            items = tb.members.get(o)
+            return items is not None and all(m in types for m in items)
+        if any((s, q, o) in closure for q in tb.subproperties.get(p, ())):
+            return True
+        if any(((s, TYPE, r) in closure) for r in tb.restrictions_for.get((p, o), ())):
+            return True
+        if isinstance(o, Literal):
+            return False
+        if any((o, q, s) in closure for q in tb.inverses.get(p, ()) if (o, q, s) != triple):
+            return True
+        if p in tb.symmetric and s != o and (o, p, s) in closure:
+            return True
+        if p in tb.transitive:
+            for z in closure.objects(s, p):
+                if z != o and z != s and (z, p, o) in closure:
+                    return True
+        return False

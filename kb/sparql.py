@@ -1,0 +1,111 @@
+"""Read-only SPARQL over one model's closure, through rdflib, for completeness (kb-compat §3.7).
+
+The model's index is exposed to rdflib as a read-only Store, so no copy of the graph is made.
+This path is not the hot path: pattern queries use kb.query. The knowledge_core prefixes and
+base are declared to the parser as initial namespaces and base IRI, never pasted into the text.
+"""
+
+from __future__ import annotations
+
+import json
+from collections.abc import Iterator
+from typing import Any
+
+from pyparsing import ParseBaseException
+from rdflib import Graph, URIRef
+from rdflib.plugins.sparql import prepareQuery
+from rdflib.query import Result
+from rdflib.store import Store
+from rdflib.term import Node as RdfNode
+
+from kb.errors import KbError
+from kb.index import TripleIndex
+from kb.terms import ORO, PREFIXES, Node
+
+_GRAPH_ID = URIRef(ORO + "sparql")
+# The empty prefix goes last: binding oro: to the same namespace afterwards would unbind it.
+INIT_NS = {**{prefix: ns for prefix, ns in PREFIXES.items() if prefix}, "": ORO}
+
+
+class IndexStore(Store):
+    """rdflib's view of a TripleIndex: triples and length only; writes are refused."""
+
+    context_aware = False
+    formula_aware = False
+    graph_aware = False
+    transaction_aware = False
+
+    def __init__(self, index: TripleIndex) -> None:
+        super().__init__()
+        self._index = index
+        self._ns: dict[str, URIRef] = {}
+
+    def triples(
+        self, triple_pattern: tuple[Any, Any, Any], context: Any = None
+    ) -> Iterator[tuple[tuple[Node, Node, Node], Iterator[Any]]]:
+        s, p, o = triple_pattern
+        if not _plain(s) or not _plain(p) or not _plain(o):
+            # rdflib may pass a Path or a Graph as a pattern term: evaluate it as a wildcard
+            # and let the caller filter (it does for paths).
+            s = s if _plain(s) else None
+            p = p if _plain(p) else None
+            o = o if _plain(o) else None
+        for triple in self._index.triples(s, p, o):
+            yield triple, iter(())
+
+    def __len__(self, context: Any = None) -> int:
+        return len(self._index)
+
+    def add(self, triple: Any, context: Any, quoted: bool = False) -> None:
+        raise KbError("SPARQL access to the KB is read-only: use add/update/remove")
+
+    def remove(self, triple: Any, context: Any = None) -> None:
+        raise KbError("SPARQL access to the KB is read-only: use add/update/remove")
+
+    def bind(self, prefix: str, namespace: URIRef, override: bool = True) -> None:
+        self._ns[prefix] = namespace
+
+    def namespace(self, prefix: str) -> URIRef | None:
+        return self._ns.get(prefix)
+
+    def prefix(self, namespace: URIRef) -> str | None:
+        return next((p for p, ns in self._ns.items() if ns == namespace), None)
+
+    def namespaces(self) -> Iterator[tuple[str, URIRef]]:
+        yield from self._ns.items()
+
+
+def _plain(term: Any) -> bool:
+    return term is None or (isinstance(term, RdfNode) and not isinstance(term, Graph))
+
+
+def execute(index: TripleIndex, query: str) -> Result:
+    """Run a read-only query; a SPARQL Update or a syntax error is a KbError."""
+    if not isinstance(query, str) or not query.strip():
+        raise KbError("a SPARQL query must be a non-empty string")
+    try:
+        prepared = prepareQuery(query, initNs=INIT_NS, base=ORO)
+    except ParseBaseException as exc:
+        raise KbError(f"invalid SPARQL query (only read-only queries are accepted): {exc}") from exc
+    except Exception as exc:
+        if type(exc) is not Exception:  # rdflib raises a bare Exception for an unknown prefix
+            raise
+        raise KbError(f"invalid SPARQL query: {exc}") from exc
+    graph = Graph(store=IndexStore(index), identifier=_GRAPH_ID)
+    result = graph.query(prepared)
+    if result.type == "SELECT":
+        result.bindings  # noqa: B018 - materialise while the caller holds the KB lock
+    return result
+
+
+def to_json(result: Result, query: str) -> dict[str, Any]:
+    """W3C SPARQL 1.1 JSON results with the query added, as knowledge_core returns them."""
+    if result.type in ("SELECT", "ASK"):
+        data: dict[str, Any] = json.loads(result.serialize(format="json") or b"{}")
+    else:
+        graph = result.graph
+        if graph is None:
+            raise KbError("the SPARQL query produced no graph")
+        data = {"head": {}, "graph": json.loads(graph.serialize(format="json-ld"))}
+    data["query"] = query
+    return data

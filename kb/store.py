@@ -1,0 +1,127 @@
+"""Models ("minds"): each keeps its asserted triples apart from its materialised closure.
+
+One model per agent, as in knowledge_core (kb-compat §2); the robot's own is ``default``. A new
+model starts from the default TBox (K15). A batch is applied to one model as one unit: asserted
+changes, reasoning and the resulting closure delta, so readers holding the KB lock never see
+half of it.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Sequence
+from dataclasses import dataclass, field
+
+from kb.index import Interner, TripleIndex
+from kb.reasoner import Reasoner
+from kb.tbox import CompiledTBox, compile_tbox, is_schema_triple
+from kb.terms import Triple
+
+DEFAULT_MODEL = "default"
+ALL_MODELS = "all"
+
+
+@dataclass
+class Delta:
+    """What one batch changed in a model: asserted triples and closure triples."""
+
+    model: str
+    asserted_added: list[Triple] = field(default_factory=list)
+    asserted_removed: list[Triple] = field(default_factory=list)
+    added: list[Triple] = field(default_factory=list)
+    removed: list[Triple] = field(default_factory=list)
+
+    def __bool__(self) -> bool:
+        return bool(self.added or self.removed or self.asserted_added or self.asserted_removed)
+
+
+class Model:
+    """One named graph pair: asserted triples and their materialised closure."""
+
+    __slots__ = ("asserted", "closure", "name", "reasoner", "tbox_revision")
+
+    def __init__(self, name: str, triples: Iterable[Triple] = (), interner: Interner | None = None) -> None:
+        self.name = name
+        interner = interner if interner is not None else Interner()
+        self.asserted = TripleIndex(interner)
+        self.closure = TripleIndex(interner)
+        for t in triples:
+            self.asserted.add(*t)
+        self.reasoner = Reasoner(compile_tbox(self.asserted), self.asserted, self.closure)
+        self.reasoner.materialise()
+        self.tbox_revision = 0
+
+    @property
+    def tbox(self) -> CompiledTBox:
+        return self.reasoner.tbox
+
+    def apply(self, add: Sequence[Triple], remove: Sequence[Triple]) -> Delta:
+        """Retract then assert; reason incrementally, or recompile when the TBox changes."""
+        delta = Delta(self.name)
+        asserted = self.asserted
+        delta.asserted_removed = [t for t in remove if asserted.remove(*t)]
+        delta.asserted_added = [t for t in add if asserted.add(*t)]
+        if not delta.asserted_added and not delta.asserted_removed:
+            return delta
+        changed = delta.asserted_added + delta.asserted_removed
+        if any(is_schema_triple(t) for t in changed):
+            self._recompile(delta)
+            return delta
+        removed, readded = self.reasoner.delete(delta.asserted_removed)
+        added = self.reasoner.insert(delta.asserted_added)
+        # A fact removed by DRed and derived again by the additions is no change at all.
+        if removed and added:
+            gone, new = set(removed), set(added)
+            delta.removed = [t for t in removed if t not in new]
+            delta.added = readded + [t for t in added if t not in gone]
+        else:
+            delta.removed = removed
+            delta.added = readded + added
+        return delta
+
+    def _recompile(self, delta: Delta) -> None:
+        before = set(self.closure)
+        self.reasoner = Reasoner(compile_tbox(self.asserted), self.asserted, self.closure)
+        self.reasoner.materialise()
+        self.tbox_revision += 1
+        after = set(self.closure)
+        delta.added = list(after - before)
+        delta.removed = list(before - after)
+
+    def is_asserted(self, triple: Triple) -> bool:
+        return triple in self.asserted
+
+
+class Models:
+    """The set of models, created on first use from the default TBox."""
+
+    def __init__(self, default_triples: Sequence[Triple]) -> None:
+        self._defaults = list(default_triples)
+        self._interner = Interner()
+        self._models: dict[str, Model] = {DEFAULT_MODEL: Model(DEFAULT_MODEL, self._defaults, self._interner)}
+
+    @property
+    def names(self) -> list[str]:
+        return list(self._models)
+
+    @property
+    def default(self) -> Model:
+        return self._models[DEFAULT_MODEL]
+
+    def get(self, name: str) -> Model | None:
+        return self._models.get(name)
+
+    def create(self, name: str) -> Model:
+        model = self._models.get(name)
+        if model is None:
+            model = self._models[name] = Model(name, self._defaults, self._interner)
+        return model
+
+    def prune_terms(self) -> None:
+        """Forget interned terms no model uses any more (cheap unless many were dropped)."""
+        indexes = [ix for m in self._models.values() for ix in (m.asserted, m.closure)]
+        self._interner.prune_if_large(indexes)
+
+    def reset(self, keep_defaults: bool) -> None:
+        defaults = self._defaults if keep_defaults else []
+        self._interner = Interner()
+        self._models = {DEFAULT_MODEL: Model(DEFAULT_MODEL, defaults, self._interner)}

@@ -1,0 +1,209 @@
+"""The TBox compiled into lookup tables for the incremental reasoner (kb-compat §7.3).
+
+Hierarchies are closed once here (subclass and subproperty closure through equivalences,
+intersections and unions), so that one rule application gives every superclass of a new type
+instead of climbing the hierarchy one step per reasoning round.
+"""
+
+from __future__ import annotations
+
+from collections import defaultdict
+from collections.abc import Iterable, Mapping
+from dataclasses import dataclass, field
+
+from rdflib import BNode, Literal, URIRef
+from rdflib.namespace import OWL, RDF, RDFS
+
+from kb.terms import Node, Triple
+
+# Predicates whose triples change the compiled rules: adding or removing one recompiles.
+SCHEMA_PREDICATES = frozenset(
+    {
+        RDFS.subClassOf, RDFS.subPropertyOf, RDFS.domain, RDFS.range, OWL.equivalentClass,
+        OWL.equivalentProperty, OWL.inverseOf, OWL.intersectionOf, OWL.unionOf, OWL.onProperty,
+        OWL.hasValue, RDF.first, RDF.rest,
+    }
+)
+SCHEMA_TYPES = frozenset({OWL.TransitiveProperty, OWL.SymmetricProperty})
+# Classes every individual belongs to: materialising them is noise (kb-compat §7.4, K11).
+TOP_CLASSES = frozenset({OWL.Thing, RDFS.Resource})
+
+
+def is_schema_triple(triple: Triple) -> bool:
+    _, p, o = triple
+    return p in SCHEMA_PREDICATES or (p == RDF.type and o in SCHEMA_TYPES)
+
+
+@dataclass(frozen=True)
+class CompiledTBox:
+    """Rule tables; every mapping's values exclude the key itself."""
+
+    superclasses: Mapping[Node, frozenset[Node]] = field(default_factory=dict)
+    subclasses: Mapping[Node, frozenset[Node]] = field(default_factory=dict)
+    superproperties: Mapping[Node, frozenset[Node]] = field(default_factory=dict)
+    subproperties: Mapping[Node, frozenset[Node]] = field(default_factory=dict)
+    domains: Mapping[Node, frozenset[Node]] = field(default_factory=dict)
+    ranges: Mapping[Node, frozenset[Node]] = field(default_factory=dict)
+    domain_of: Mapping[Node, frozenset[Node]] = field(default_factory=dict)
+    range_of: Mapping[Node, frozenset[Node]] = field(default_factory=dict)
+    inverses: Mapping[Node, frozenset[Node]] = field(default_factory=dict)
+    symmetric: frozenset[Node] = frozenset()
+    transitive: frozenset[Node] = frozenset()
+    # hasValue restrictions: restriction class → (property, value), and back.
+    has_value: Mapping[Node, tuple[Node, Node]] = field(default_factory=dict)
+    restrictions_for: Mapping[tuple[Node, Node], frozenset[Node]] = field(default_factory=dict)
+    # Intersection classes: class → members, and member → intersections it takes part in.
+    members: Mapping[Node, tuple[Node, ...]] = field(default_factory=dict)
+    intersections_with: Mapping[Node, frozenset[Node]] = field(default_factory=dict)
+
+    def schema_closure(self) -> Iterable[Triple]:
+        """Inferred subClassOf/subPropertyOf links between named terms (useful to queries)."""
+        for cls, sups in self.superclasses.items():
+            if isinstance(cls, URIRef):
+                for sup in sups:
+                    if isinstance(sup, URIRef):
+                        yield (cls, RDFS.subClassOf, sup)
+        for prop, sups in self.superproperties.items():
+            if isinstance(prop, URIRef):
+                for sup in sups:
+                    if isinstance(sup, URIRef):
+                        yield (prop, RDFS.subPropertyOf, sup)
+
+
+def compile_tbox(triples: Iterable[Triple]) -> CompiledTBox:
+    """Build the rule tables from a model's asserted triples (only schema triples are read)."""
+    class_edges: dict[Node, set[Node]] = defaultdict(set)
+    prop_edges: dict[Node, set[Node]] = defaultdict(set)
+    domains: dict[Node, set[Node]] = defaultdict(set)
+    ranges: dict[Node, set[Node]] = defaultdict(set)
+    inverses: dict[Node, set[Node]] = defaultdict(set)
+    symmetric: set[Node] = set()
+    transitive: set[Node] = set()
+    on_property: dict[Node, Node] = {}
+    has_value: dict[Node, Node] = {}
+    intersection_lists: dict[Node, Node] = {}
+    union_lists: dict[Node, Node] = {}
+    first: dict[Node, Node] = {}
+    rest: dict[Node, Node] = {}
+
+    for s, p, o in triples:
+        if p == RDFS.subClassOf:
+            class_edges[s].add(o)
+        elif p == OWL.equivalentClass:
+            class_edges[s].add(o)
+            class_edges[o].add(s)
+        elif p == RDFS.subPropertyOf:
+            prop_edges[s].add(o)
+        elif p == OWL.equivalentProperty:
+            prop_edges[s].add(o)
+            prop_edges[o].add(s)
+        elif p == RDFS.domain:
+            domains[s].add(o)
+        elif p == RDFS.range:
+            ranges[s].add(o)
+        elif p == OWL.inverseOf:
+            inverses[s].add(o)
+            inverses[o].add(s)
+        elif p == RDF.type and o == OWL.SymmetricProperty:
+            symmetric.add(s)
+        elif p == RDF.type and o == OWL.TransitiveProperty:
+            transitive.add(s)
+        elif p == OWL.onProperty:
+            on_property[s] = o
+        elif p == OWL.hasValue:
+            has_value[s] = o
+        elif p == OWL.intersectionOf:
+            intersection_lists[s] = o
+        elif p == OWL.unionOf:
+            union_lists[s] = o
+        elif p == RDF.first:
+            first[s] = o
+        elif p == RDF.rest:
+            rest[s] = o
+
+    members: dict[Node, tuple[Node, ...]] = {}
+    for cls, head in intersection_lists.items():
+        items = _rdf_list(head, first, rest)
+        members[cls] = items
+        class_edges[cls].update(items)  # C ≡ C1 ⊓ … ⊓ Cn ⇒ C ⊑ Ci (scm-int, cls-int2)
+    for cls, head in union_lists.items():
+        for item in _rdf_list(head, first, rest):
+            class_edges[item].add(cls)  # C ≡ C1 ⊔ … ⊔ Cn ⇒ Ci ⊑ C (scm-uni, cls-uni)
+
+    superclasses = _closure(class_edges, drop=TOP_CLASSES)
+    superproperties = _closure(prop_edges, drop=frozenset())
+    restriction_values = {
+        r: (on_property[r], v) for r, v in has_value.items() if r in on_property
+    }
+    restrictions_for: dict[tuple[Node, Node], set[Node]] = defaultdict(set)
+    for r, pv in restriction_values.items():
+        restrictions_for[pv].add(r)
+    intersections_with: dict[Node, set[Node]] = defaultdict(set)
+    for cls, items in members.items():
+        for item in items:
+            intersections_with[item].add(cls)
+
+    return CompiledTBox(
+        superclasses=superclasses,
+        subclasses=_invert(superclasses),
+        superproperties=superproperties,
+        subproperties=_invert(superproperties),
+        domains=_freeze(domains, drop=TOP_CLASSES),
+        ranges=_freeze(ranges, drop=TOP_CLASSES),
+        domain_of=_invert(_freeze(domains, drop=TOP_CLASSES)),
+        range_of=_invert(_freeze(ranges, drop=TOP_CLASSES)),
+        inverses=_freeze(inverses, drop=frozenset()),
+        symmetric=frozenset(symmetric),
+        transitive=frozenset(transitive),
+        has_value=restriction_values,
+        restrictions_for={k: frozenset(v) for k, v in restrictions_for.items()},
+        members=members,
+        intersections_with={k: frozenset(v) for k, v in intersections_with.items()},
+    )
+
+
+def _rdf_list(head: Node, first: Mapping[Node, Node], rest: Mapping[Node, Node]) -> tuple[Node, ...]:
+    items: list[Node] = []
+    seen: set[Node] = set()
+    node = head
+    while node != RDF.nil and node in first and node not in seen:
+        seen.add(node)
+        items.append(first[node])
+        node = rest.get(node, RDF.nil)
+    return tuple(items)
+
+
+def _closure(edges: Mapping[Node, set[Node]], drop: frozenset[Node]) -> dict[Node, frozenset[Node]]:
+    """Reflexive-free transitive closure of a relation given as adjacency sets."""
+    result: dict[Node, frozenset[Node]] = {}
+    for start in edges:
+        seen: set[Node] = set()
+        stack = list(edges[start])
+        while stack:
+            node = stack.pop()
+            if node in seen:
+                continue
+            seen.add(node)
+            stack.extend(edges.get(node, ()))
+        seen.discard(start)
+        seen -= drop
+        seen = {n for n in seen if not isinstance(n, Literal)}
+        if seen:
+            result[start] = frozenset(seen)
+    return result
+
+
+def _invert(table: Mapping[Node, frozenset[Node]]) -> dict[Node, frozenset[Node]]:
+    inverted: dict[Node, set[Node]] = defaultdict(set)
+    for key, values in table.items():
+        for value in values:
+            inverted[value].add(key)
+    return {k: frozenset(v) for k, v in inverted.items()}
+
+
+def _freeze(table: Mapping[Node, set[Node]], drop: frozenset[Node]) -> dict[Node, frozenset[Node]]:
+    return {k: frozenset(v - drop) for k, v in table.items() if v - drop}
+
+
+def is_blank(term: Node) -> bool:
+    return isinstance(term, BNode)

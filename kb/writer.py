@@ -1,0 +1,221 @@
+"""The single write path: batches, functional replacement, lifespans, expiry and events.
+
+Every change to the KB goes through ``Writer.commit`` under the KB lock: the batch is applied to
+each target model, the revision moves on once, subscriptions are evaluated against the result,
+and callbacks run after the lock is released. Lifespan expiry is just another commit, so it
+re-reasons and fires events exactly like an explicit retract (K9).
+"""
+
+from __future__ import annotations
+
+import threading
+import time
+from collections.abc import Callable, Iterable, Sequence
+from dataclasses import dataclass, field
+from typing import Any
+
+from rdflib import URIRef
+from rdflib.namespace import OWL, RDF
+
+from kb.events import Firing, Subscriptions
+from kb.lifespan import Expiries
+from kb.query import Query, Row, rows
+from kb.store import ALL_MODELS, Delta, Models
+from kb.terms import ORO, Triple, shorten
+
+ACTIVE_CONCEPT = URIRef(ORO + "ActiveConcept")
+ACTIVE_CONCEPT_LIFESPAN = 5.0
+
+Render = Callable[[Query, set[Row]], list[dict[str, Any]]]
+
+
+@dataclass
+class Batch:
+    """Validated ground changes for some models; applying it cannot fail."""
+
+    models: Sequence[str]
+    add: list[Triple] = field(default_factory=list)
+    remove: list[Triple] = field(default_factory=list)
+    lifespan: float = 0.0
+    replace_functional: bool = True
+    # Retractions specific to one model (pattern retraction matches per model).
+    remove_by_model: dict[str, list[Triple]] = field(default_factory=dict)
+
+
+@dataclass(frozen=True)
+class Commit:
+    """One committed change, as journal and listeners see it."""
+
+    revision: int
+    deltas: tuple[Delta, ...]
+    expiries: tuple[tuple[str, Triple, float], ...]
+
+
+CommitListener = Callable[[Commit], None]
+ActiveListener = Callable[[list[str]], None]
+
+
+class Writer:
+    """Applies batches to models; owns lifespans, subscriptions and the revision counter."""
+
+    def __init__(self, lock: threading.RLock, models: Models, render: Render,
+                 clock: Callable[[], float] = time.time) -> None:
+        self.lock = lock
+        self.models = models
+        self.subscriptions = Subscriptions()
+        self.expiries = Expiries()
+        self.revision = 0
+        self._render = render
+        self._clock = clock
+        self._commit_listeners: list[CommitListener] = []
+        self._active_listeners: list[ActiveListener] = []
+        self._reaper: threading.Thread | None = None
+        self._wake = threading.Event()
+        self._closed = threading.Event()
+
+    # --- listeners -----------------------------------------------------------------------
+
+    def on_commit(self, listener: CommitListener) -> None:
+        self._commit_listeners.append(listener)
+
+    def on_active_concept(self, listener: ActiveListener) -> None:
+        self._active_listeners.append(listener)
+
+    # --- committing ----------------------------------------------------------------------
+
+    def commit(self, batch: Batch) -> Commit | None:
+        """Apply a batch to its models atomically; return the commit, or None if nothing changed."""
+        with self.lock:
+            firings, commit = self._commit_locked(batch)
+        for firing in firings:
+            firing.deliver()
+        return commit
+
+    def _commit_locked(self, batch: Batch) -> tuple[list[Firing], Commit | None]:
+        now = self._clock()
+        deltas: list[Delta] = []
+        expiries: list[tuple[str, Triple, float]] = []
+        active_before = self._active_concepts()
+        functional = self.functional_properties() if batch.replace_functional else frozenset()
+        for name in batch.models:
+            model = self.models.create(name)
+            remove = list(batch.remove) + batch.remove_by_model.get(name, [])
+            add = _last_functional_wins(batch.add, functional)
+            for s, p, o in add:
+                if p in functional:
+                    remove.extend((s, p, old) for old in model.asserted.objects(s, p) if old != o)
+            delta = model.apply(add, remove)
+            for t in delta.asserted_removed:
+                self.expiries.discard(name, t)
+            for t in add:
+                lifespan = ACTIVE_CONCEPT_LIFESPAN if _is_activation(t) else batch.lifespan
+                if lifespan > 0:
+                    at = now + lifespan
+                    self.expiries.set(name, t, at)
+                    expiries.append((name, t, at))
+                elif self.expiries.expires_at(name, t) is not None:
+                    self.expiries.discard(name, t)
+                    expiries.append((name, t, 0.0))
+            if delta or expiries:
+                deltas.append(delta)
+        if not deltas:
+            return [], None
+        self.models.prune_terms()
+        self.revision += 1
+        commit = Commit(self.revision, tuple(deltas), tuple(expiries))
+        for listener in self._commit_listeners:
+            listener(commit)
+        if expiries:
+            self._ensure_reaper()
+        firings = self._evaluate(deltas)
+        active_after = self._active_concepts()
+        if active_after != active_before:
+            concepts = sorted(active_after)
+            firings.append(Firing("active_concepts", tuple(self._active_listeners), concepts))
+        return firings, commit
+
+    def _evaluate(self, deltas: Iterable[Delta]) -> list[Firing]:
+        touched_models: set[str] = set()
+        predicates: set[Any] = set()
+        for delta in deltas:
+            if delta.added or delta.removed:
+                touched_models.add(delta.model)
+                predicates.update(p for _, p, _ in delta.added)
+                predicates.update(p for _, p, _ in delta.removed)
+        if not touched_models:
+            return []
+        return self.subscriptions.evaluate(touched_models, predicates, self.current_rows, self._render)
+
+    def current_rows(self, sub: Any) -> set[Row]:
+        names = self.models.names if ALL_MODELS in sub.models else sub.models
+        found: set[Row] = set()
+        for name in names:
+            model = self.models.get(name)
+            if model is not None:
+                found |= rows(model.closure, sub.query)
+        return found
+
+    def functional_properties(self) -> frozenset[Any]:
+        """Declared and inferred functional properties of the default model (kb-compat §3.5)."""
+        return frozenset(self.models.default.closure.subjects(RDF.type, OWL.FunctionalProperty))
+
+    def _active_concepts(self) -> frozenset[str]:
+        if not self._active_listeners:
+            return frozenset()
+        subjects = self.models.default.closure.subjects(RDF.type, ACTIVE_CONCEPT)
+        return frozenset(str(shorten(s)) for s in subjects)
+
+    # --- lifespans -----------------------------------------------------------------------
+
+    def expire(self, now: float | None = None) -> Commit | None:
+        """Retract every statement whose lifespan is over, as one commit per call."""
+        with self.lock:
+            due = self.expiries.pop_due(self._clock() if now is None else now)
+            if not due:
+                return None
+            by_model: dict[str, list[Triple]] = {}
+            for model, triple in due:
+                by_model.setdefault(model, []).append(triple)
+            batch = Batch(models=list(by_model), remove_by_model=by_model, replace_functional=False)
+            firings, commit = self._commit_locked(batch)
+        for firing in firings:
+            firing.deliver()
+        return commit
+
+    def _ensure_reaper(self) -> None:
+        if self._reaper is None and not self._closed.is_set():
+            self._reaper = threading.Thread(target=self._reap, name="kb-expiry", daemon=True)
+            self._reaper.start()
+        self._wake.set()
+
+    def _reap(self) -> None:
+        while not self._closed.is_set():
+            with self.lock:
+                due = self.expiries.next_due()
+            delay = 1.0 if due is None else min(1.0, max(0.0, due - self._clock()))
+            self._wake.wait(delay)
+            self._wake.clear()
+            if not self._closed.is_set():
+                self.expire()
+
+    def close(self) -> None:
+        self._closed.set()
+        self._wake.set()
+        if self._reaper is not None:
+            self._reaper.join(timeout=2.0)
+            self._reaper = None
+
+
+def _is_activation(triple: Triple) -> bool:
+    return triple[1] == RDF.type and triple[2] == ACTIVE_CONCEPT
+
+
+def _last_functional_wins(add: Sequence[Triple], functional: frozenset[Any]) -> list[Triple]:
+    """Within one batch, a later value of a functional property replaces an earlier one."""
+    if not functional:
+        return list(add)
+    last: dict[tuple[Any, Any], Triple] = {}
+    for t in add:
+        if t[1] in functional:
+            last[(t[0], t[1])] = t
+    return [t for t in add if t[1] not in functional or last[(t[0], t[1])] == t]
