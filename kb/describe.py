@@ -179,8 +179,10 @@ def lookup(closure: TripleIndex, query: str) -> tuple[list[Node], list[Node]]:
         for subj, preds in closure.in_edges(obj).items():
             for p in preds:
                 match(text, subj if p == RDFS.label else obj)
-    exact = {t for t in exact if not isinstance(t, BNode)} - HIDDEN_CLASSES
-    approx = {t for t in approx if not isinstance(t, BNode)} - HIDDEN_CLASSES - exact
+    exact -= HIDDEN_CLASSES
+    exact -= {t for t in exact if isinstance(t, BNode)}
+    approx -= HIDDEN_CLASSES | exact
+    approx -= {t for t in approx if isinstance(t, BNode)}
     key = _sort_key
     return sorted(exact, key=key), sorted(approx, key=key)
 

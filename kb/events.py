@@ -16,12 +16,14 @@ from typing import Any
 
 from rdflib import Variable
 
-from kb.query import Query, Row
+from kb.query import Query, Row, match_triple
+from kb.store import Delta
 
 ALL = "all"
 Callback = Callable[[list[Any]], None]
 Evaluate = Callable[["Subscription"], set[Row]]
 Render = Callable[[Query, set[Row]], list[dict[str, Any]]]
+StillHolds = Callable[["Subscription", Row], bool]
 
 
 def event_id(patterns: Sequence[str], one_shot: bool, models: Sequence[str]) -> str:
@@ -97,21 +99,50 @@ class Subscriptions:
             sub.last = run(sub)
 
     def evaluate(
-        self, models: set[str], predicates: set[Any], run: Evaluate, render: Render
+        self, deltas: Sequence[Delta], run: Evaluate, still: StillHolds, render: Render
     ) -> list[Firing]:
-        """Re-run the subscriptions a change may affect; return what fires."""
+        """Re-evaluate the subscriptions a change may affect; return what fires.
+
+        A one-pattern subscription is updated from the delta alone (its rows can only appear
+        through added triples and disappear through removed ones), so a broad subscription such
+        as the viewer's ``?s ?p ?o`` costs as much as the change, not as the whole KB.
+        """
         firings: list[Firing] = []
         for sub in list(self._by_id.values()):
-            if ALL not in sub.models and not models.intersection(sub.models):
+            relevant = [d for d in deltas if ALL in sub.models or d.model in sub.models]
+            if sub.predicates is not None:
+                relevant = [d for d in relevant if _touches(d, sub.predicates)]
+            if not relevant:
                 continue
-            if sub.predicates is not None and not sub.predicates & predicates:
-                continue
-            current = run(sub)
-            new = current - sub.last
-            sub.last = current
+            if len(sub.query.patterns) == 1:
+                new = _incremental(sub, relevant, still)
+            else:
+                current = run(sub)
+                new = current - sub.last
+                sub.last = current
             if not new:
                 continue
             firings.append(Firing(sub.id, tuple(sub.callbacks), render(sub.query, new)))
             if sub.one_shot:
                 del self._by_id[sub.id]
         return firings
+
+
+def _touches(delta: Delta, predicates: frozenset[Any]) -> bool:
+    return any(t[1] in predicates for t in delta.added) or any(t[1] in predicates for t in delta.removed)
+
+
+def _incremental(sub: Subscription, deltas: Sequence[Delta], still: StillHolds) -> set[Row]:
+    pattern, projection = sub.query.patterns[0], sub.query.projection
+    new: set[Row] = set()
+    for delta in deltas:
+        for triple in delta.removed:
+            row = match_triple(pattern, projection, triple)
+            if row is not None and row in sub.last and not still(sub, row):
+                sub.last.discard(row)
+        for triple in delta.added:
+            row = match_triple(pattern, projection, triple)
+            if row is not None and row not in sub.last:
+                sub.last.add(row)
+                new.add(row)
+    return new

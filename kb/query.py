@@ -15,7 +15,7 @@ from rdflib import BNode, Variable
 
 from kb.errors import KbError
 from kb.index import TripleIndex
-from kb.terms import Node, Pattern, Term, is_anonymous
+from kb.terms import Node, Pattern, is_anonymous
 
 Row = tuple[Node, ...]
 
@@ -91,12 +91,16 @@ def solve(index: TripleIndex, patterns: Sequence[Pattern]) -> Iterator[dict[Vari
         yield dict(zip(order, values, strict=True))
 
 
-def _solutions(index: TripleIndex, patterns: Sequence[Pattern], order: Sequence[Variable]) -> Iterator[list[Node]]:
+def _solutions(
+    index: TripleIndex, patterns: Sequence[Pattern], order: Sequence[Variable]
+) -> Iterator[list[Node]]:
     binding: list[Node | None] = [None] * len(order)
     yield from _solve(index, _compile(index, patterns, order), binding)  # type: ignore[misc]
 
 
-def _solve(index: TripleIndex, patterns: list[_Compiled], binding: list[Node | None]) -> Iterator[list[Node | None]]:
+def _solve(
+    index: TripleIndex, patterns: list[_Compiled], binding: list[Node | None]
+) -> Iterator[list[Node | None]]:
     if not patterns:
         yield binding
         return
@@ -154,3 +158,25 @@ def holds(index: TripleIndex, query: Query) -> bool:
     """True when the patterns have at least one solution."""
     order = _variables(query.patterns)
     return next(_solutions(index, query.patterns, order), None) is not None
+
+
+def match_triple(
+    pattern: Pattern, projection: Sequence[Variable], triple: tuple[Node, Node, Node]
+) -> Row | None:
+    """The projected row a single triple gives for one pattern, or None if it does not match."""
+    bound: dict[Variable, Node] = {}
+    for term, value in zip(pattern, triple, strict=True):
+        if isinstance(term, Variable):
+            if bound.setdefault(term, value) != value:
+                return None
+        elif term != value:
+            return None
+    row = tuple(bound[v] for v in projection)
+    return None if any(isinstance(t, BNode) for t in row) else row
+
+
+def holds_row(index: TripleIndex, pattern: Pattern, projection: Sequence[Variable], row: Row) -> bool:
+    """True if some triple of the index still gives ``row`` for ``pattern``."""
+    values = dict(zip(projection, row, strict=True))
+    bound = tuple(values.get(t, t) if isinstance(t, Variable) else t for t in pattern)
+    return holds(index, Query((bound,), (), ()))  # type: ignore[arg-type]  # terms may stay variables

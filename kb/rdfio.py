@@ -10,6 +10,7 @@ from urllib.parse import unquote, urlparse
 from xml.sax import SAXParseException
 
 from rdflib import Graph, URIRef
+from rdflib.exceptions import ParserError
 from rdflib.util import guess_format
 
 from kb.errors import KbError
@@ -23,7 +24,10 @@ FORMATS = {
     "json-ld": "application/ld+json",
     "xml": "application/rdf+xml",
 }
-_PARSE_ERRORS: tuple[type[BaseException], ...] = (SyntaxError, ValueError, SAXParseException, KeyError)
+# What rdflib's parsers raise on malformed input (the Turtle parser even raises IndexError).
+_PARSE_ERRORS: tuple[type[BaseException], ...] = (
+    SyntaxError, ValueError, SAXParseException, KeyError, IndexError, ParserError,
+)
 
 
 @lru_cache(maxsize=1)

@@ -13,7 +13,9 @@ from typing import Any
 
 from pyparsing import ParseBaseException
 from rdflib import Graph, URIRef
-from rdflib.plugins.sparql import prepareQuery
+from rdflib.plugins.sparql.algebra import translateQuery, traverse
+from rdflib.plugins.sparql.parser import parseQuery
+from rdflib.plugins.sparql.parserutils import CompValue
 from rdflib.query import Result
 from rdflib.store import Store
 from rdflib.term import Node as RdfNode
@@ -23,8 +25,9 @@ from kb.index import TripleIndex
 from kb.terms import ORO, PREFIXES, Node
 
 _GRAPH_ID = URIRef(ORO + "sparql")
-# The empty prefix goes last: binding oro: to the same namespace afterwards would unbind it.
-INIT_NS = {**{prefix: ns for prefix, ns in PREFIXES.items() if prefix}, "": ORO}
+# rdflib keeps one prefix per namespace, so `:` is declared and `oro:` names are renamed to it in
+# the parse tree (see _alias_oro), unless the query declares its own `oro:`.
+INIT_NS = {**{prefix: ns for prefix, ns in PREFIXES.items() if prefix not in ("", "oro")}, "": ORO}
 
 
 class IndexStore(Store):
@@ -79,12 +82,20 @@ def _plain(term: Any) -> bool:
     return term is None or (isinstance(term, RdfNode) and not isinstance(term, Graph))
 
 
+def _alias_oro(node: Any) -> None:
+    if isinstance(node, CompValue) and node.name == "pname" and node.get("prefix") == "oro":
+        del node["prefix"]
+
+
 def execute(index: TripleIndex, query: str) -> Result:
     """Run a read-only query; a SPARQL Update or a syntax error is a KbError."""
     if not isinstance(query, str) or not query.strip():
         raise KbError("a SPARQL query must be a non-empty string")
     try:
-        prepared = prepareQuery(query, initNs=INIT_NS, base=ORO)
+        tree = parseQuery(query)
+        if not any(getattr(decl, "prefix", None) == "oro" for decl in tree[0]):
+            traverse(tree, visitPost=_alias_oro)
+        prepared = translateQuery(tree, base=ORO, initNs=INIT_NS)
     except ParseBaseException as exc:
         raise KbError(f"invalid SPARQL query (only read-only queries are accepted): {exc}") from exc
     except Exception as exc:

@@ -258,6 +258,8 @@ def parse_statement(statement: str, parser: TermParser | None = None) -> Pattern
 def as_list(statements: str | Iterable[str]) -> list[str]:
     if isinstance(statements, str):
         return [statements]
+    if not isinstance(statements, Iterable):
+        raise KbError(f"expected a statement string or a list of them, got {statements!r}")
     items = list(statements)
     for item in items:
         if not isinstance(item, str):

@@ -19,7 +19,7 @@ from rdflib.namespace import OWL, RDF
 
 from kb.events import Firing, Subscriptions
 from kb.lifespan import Expiries
-from kb.query import Query, Row, rows
+from kb.query import Query, Row, holds_row, rows
 from kb.store import ALL_MODELS, Delta, Models
 from kb.terms import ORO, Triple, shorten
 
@@ -135,16 +135,19 @@ class Writer:
         return firings, commit
 
     def _evaluate(self, deltas: Iterable[Delta]) -> list[Firing]:
-        touched_models: set[str] = set()
-        predicates: set[Any] = set()
-        for delta in deltas:
-            if delta.added or delta.removed:
-                touched_models.add(delta.model)
-                predicates.update(p for _, p, _ in delta.added)
-                predicates.update(p for _, p, _ in delta.removed)
-        if not touched_models:
+        changed = [d for d in deltas if d.added or d.removed]
+        if not changed or not len(self.subscriptions):
             return []
-        return self.subscriptions.evaluate(touched_models, predicates, self.current_rows, self._render)
+        return self.subscriptions.evaluate(changed, self.current_rows, self.still_holds, self._render)
+
+    def still_holds(self, sub: Any, row: Row) -> bool:
+        names = self.models.names if ALL_MODELS in sub.models else sub.models
+        pattern = sub.query.patterns[0]
+        return any(
+            holds_row(model.closure, pattern, sub.query.projection, row)
+            for name in names
+            if (model := self.models.get(name)) is not None
+        )
 
     def current_rows(self, sub: Any) -> set[Row]:
         names = self.models.names if ALL_MODELS in sub.models else sub.models
