@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import hashlib
 import json
+import logging
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from typing import Any
@@ -19,6 +20,7 @@ from rdflib import Variable
 from kb.query import Query, Row, match_triple
 from kb.store import Delta
 
+_log = logging.getLogger(__name__)
 ALL = "all"
 Callback = Callable[[list[Any]], None]
 Evaluate = Callable[["Subscription"], set[Row]]
@@ -53,7 +55,12 @@ class Firing:
 
     def deliver(self) -> None:
         for callback in self.callbacks:
-            callback(self.rows)
+            try:
+                callback(self.rows)
+            except Exception:  # noqa: BLE001 - subscriber code is arbitrary; the batch already committed
+                # One broken subscriber must neither cost the others their rows nor turn a committed
+                # write (or the expiry thread) into an error.
+                _log.exception("subscriber %s raised on %d rows", self.subscription_id, len(self.rows))
 
 
 class Subscriptions:

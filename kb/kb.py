@@ -14,43 +14,38 @@ Every method is thread-safe. Reads see the state between two commits, never half
 from __future__ import annotations
 
 import inspect
-import re
 import threading
 import time
-from collections.abc import Callable, Iterable, Sequence
-from functools import lru_cache
+from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import Any
 
 from rdflib import Variable
 
 from kb import describe
+from kb.arguments import (
+    Models_,
+    compiled,
+    is_statement,
+    lifespan_seconds,
+    matches,
+    model_names,
+    optional_term,
+    parse_term,
+    render,
+)
 from kb.errors import KbError
 from kb.events import Callback, event_id
-from kb.query import Query, Row, build_query, holds, rows, solve
+from kb.query import Row, holds, rows
 from kb.rdfio import FORMATS, default_ontology, parse_data, parse_location, serialize
 from kb.sparql import execute, to_json
 from kb.store import ALL_MODELS, DEFAULT_MODEL, Model, Models
-from kb.terms import Node, Pattern, TermParser, Triple, as_list, parse_ground, parse_patterns, shorten
-from kb.terms import tokenize as _tokenize
+from kb.terms import Node, Triple, as_list, parse_ground, parse_patterns, shorten
 from kb.writer import ActiveListener, Batch, Commit, CommitListener, Writer
 
 __version__ = "0.1.0"
-_MODEL_NAME = re.compile(r"[A-Za-z0-9_][A-Za-z0-9_.\-]*")
 _ADD_METHODS = frozenset({"add", "safe_add", "update", "safe_update", "revision"})
 _RETRACT_METHODS = frozenset({"retract", "remove", "delete"})
-Models_ = Sequence[str] | str | None
-
-
-@lru_cache(maxsize=2048)
-def _compiled(patterns: tuple[str, ...], vars: tuple[str, ...] | None) -> Query:
-    return build_query(parse_patterns(patterns), list(vars) if vars else None)
-
-
-def _render(query: Query, found: Iterable[Row]) -> list[dict[str, Any]]:
-    names = query.names
-    ordered = sorted(found, key=lambda row: tuple(str(shorten(t)) for t in row))
-    return [dict(zip(names, (shorten(t) for t in row), strict=True)) for row in ordered]
 
 
 class KB:
@@ -67,7 +62,7 @@ class KB:
             defaults = tuple(t for path in ontology for t in parse_location(str(path)))
         self._lock = threading.RLock()
         self._models = Models(defaults)
-        self._writer = Writer(self._lock, self._models, _render, clock)
+        self._writer = Writer(self._lock, self._models, render, clock)
         self._clock = clock
 
     def close(self) -> None:
@@ -97,7 +92,7 @@ class KB:
             return self._models.names
 
     def _read_models(self, models: Models_) -> list[Model]:
-        names = _model_names(models)
+        names = model_names(models)
         if not names:
             return [self._models.default]
         if ALL_MODELS in names:
@@ -111,7 +106,7 @@ class KB:
         return found
 
     def _write_models(self, models: Models_) -> list[str]:
-        names = _model_names(models)
+        names = model_names(models)
         if not names:
             return [DEFAULT_MODEL]
         if ALL_MODELS in names:
@@ -133,7 +128,7 @@ class KB:
         texts = tuple(as_list(patterns))
         if not texts:
             raise KbError("find needs at least one pattern")
-        query = _compiled(texts, tuple(vars) if vars else None)
+        query = compiled(texts, vars)
         self._expire_due()
         with self._lock:
             targets = self._read_models(models)
@@ -142,13 +137,13 @@ class KB:
             found: set[Row] = set()
             for model in targets:
                 found |= rows(model.closure, query)
-            return _render(query, found)
+            return render(query, found)
 
     def exist(self, patterns: str | Sequence[str], models: Models_ = None) -> bool:
         texts = tuple(as_list(patterns))
         if not texts:
             raise KbError("exist needs at least one pattern")
-        query = _compiled(texts, None)
+        query = compiled(texts, None)
         self._expire_due()
         with self._lock:
             return any(holds(m.closure, query) for m in self._read_models(models))
@@ -162,14 +157,14 @@ class KB:
             for part in key:
                 parts.extend(as_list(part))
             return self.find(parts, models=models)
-        if isinstance(key, str) and not _is_statement(key):
+        if isinstance(key, str) and not is_statement(key):
             return self.lookup(key)
         return self.find(key)
 
     def __contains__(self, item: object) -> bool:
         if not isinstance(item, str):
             return False
-        if _is_statement(item):
+        if is_statement(item):
             return self.exist(item)
         return bool(self.lookup(item))
 
@@ -195,7 +190,7 @@ class KB:
             ]
 
     def about(self, term: str, models: Models_ = None) -> list[list[Any]]:
-        node = _optional_term(term)
+        node = optional_term(term)
         self._expire_due()
         with self._lock:
             found: list[list[Any]] = []
@@ -204,19 +199,21 @@ class KB:
             return found
 
     def details(self, term: str, models: Models_ = None) -> dict[str, Any]:
-        node = _term(term)
+        node = parse_term(term)
         self._expire_due()
         with self._lock:
             model = self._one_model(models)
             return describe.details(model.closure, model.asserted, node)
 
     def label(self, term: str, lang: str | None = None, models: Models_ = None) -> str:
-        node = _term(term)
+        if lang is not None and not isinstance(lang, str):
+            raise KbError(f"lang must be a language code such as 'en', got {lang!r}")
+        node = parse_term(term)
         with self._lock:
             return describe.label(self._one_model(models).closure, node, lang)
 
     def classesof(self, term: str, direct: bool = False, models: Models_ = None) -> list[str]:
-        node = _term(term)
+        node = parse_term(term)
         self._expire_due()
         with self._lock:
             found: set[str] = set()
@@ -241,7 +238,8 @@ class KB:
     def update(self, stmts: str | Sequence[str], models: Models_ = None, lifespan: float = 0) -> None:
         """Add statements; a functional property's new value replaces the old one (§3.5)."""
         triples = [parse_ground(s) for s in as_list(stmts)]
-        self._writer.commit(Batch(self._write_models(models), add=triples, lifespan=_lifespan(lifespan)))
+        batch = Batch(self._write_models(models), add=triples, lifespan=lifespan_seconds(lifespan))
+        self._writer.commit(batch)
 
     add = update
 
@@ -259,10 +257,10 @@ class KB:
         names = self._write_models(models)
         batch = Batch(names, remove=ground, replace_functional=False)
         if patterns:
-            query = _compiled(tuple(patterns), None)
+            query = compiled(tuple(patterns), None)
             with self._lock:
                 for model in self._read_models(names):
-                    batch.remove_by_model[model.name] = _matches(model, query.patterns)
+                    batch.remove_by_model[model.name] = matches(model, query.patterns)
                 self._writer.commit(batch)
             return
         self._writer.commit(batch)
@@ -276,7 +274,7 @@ class KB:
         added = [parse_ground(s) for s in as_list(add)]
         removed = [parse_ground(s) for s in as_list(remove)]
         self._writer.commit(
-            Batch(self._write_models(models), add=added, remove=removed, lifespan=_lifespan(lifespan))
+            Batch(self._write_models(models), add=added, remove=removed, lifespan=lifespan_seconds(lifespan))
         )
 
     def revise(self, stmts: str | Sequence[str], policy: dict[str, Any]) -> None:
@@ -308,9 +306,11 @@ class KB:
             self._writer.revision += 1
             self._writer.subscriptions.rebaseline(self._writer.current_rows)
 
-    def load(self, uri: str, models: Models_ = None) -> None:
+    def load(self, uri: str | Path, models: Models_ = None) -> None:
         """Add the triples of a local RDF file (any rdflib format) as one batch."""
-        self._load(parse_location(uri), models)
+        if not isinstance(uri, str | Path):
+            raise KbError(f"load takes a file path or file:// URI, got {uri!r}")
+        self._load(parse_location(str(uri)), models)
 
     def load_data(self, data: str | bytes, fmt: str = "turtle", models: Models_ = None) -> None:
         """Add the triples of an RDF document given as text (turtle, xml, json-ld, nt, ...)."""
@@ -349,8 +349,10 @@ class KB:
         texts = as_list(patterns)
         if not texts:
             raise KbError("subscribe needs at least one pattern")
-        query = _compiled(tuple(texts), None)
-        names = _model_names(models) or [DEFAULT_MODEL]
+        if not callable(callback):
+            raise KbError(f"subscribe needs a callable that takes the new rows, got {callback!r}")
+        query = compiled(tuple(texts), None)
+        names = model_names(models) or [DEFAULT_MODEL]
         sub_id = event_id(texts, one_shot, names)
         with self._lock:
             if ALL_MODELS not in names:
@@ -406,60 +408,5 @@ class KB:
             return self._one_model(model).is_asserted(triple)
 
 
-def _matches(model: Model, patterns: Sequence[Pattern]) -> list[Triple]:
-    found: set[Triple] = set()
-    for binding in solve(model.closure, patterns):
-        for s, p, o in patterns:
-            found.add(tuple(binding.get(t, t) if isinstance(t, Variable) else t for t in (s, p, o)))  # type: ignore[arg-type]
-    return [t for t in found if t in model.asserted]
-
-
-def _model_names(models: Models_) -> list[str]:
-    if models is None:
-        return []
-    names = [models] if isinstance(models, str) else list(models)
-    for name in names:
-        if not isinstance(name, str) or not _MODEL_NAME.fullmatch(name):
-            raise KbError(f"invalid model name {name!r}")
-    return names
-
-
-def _lifespan(value: Any) -> float:
-    if isinstance(value, bool) or not isinstance(value, int | float) or value < 0:
-        raise KbError(f"lifespan must be a number of seconds >= 0, got {value!r}")
-    return float(value)
-
-
-def _is_statement(text: str) -> bool:
-    try:
-        return len(_tokenize(text)) == 3
-    except KbError:
-        return False
-
-
-def _term(text: str) -> Node:
-    node = _optional_term(text)
-    if node is None:
-        raise KbError(f"{text!r} is not a term")
-    return node
-
-
-def _optional_term(text: str) -> Node | None:
-    if not isinstance(text, str) or not text.strip():
-        raise KbError(f"expected a term, got {text!r}")
-    try:
-        tokens = _tokenize(text.strip())
-    except KbError:
-        return None
-    if len(tokens) != 1:
-        return None
-    try:
-        node = TermParser().term(tokens[0], "term", text)
-    except KbError:
-        return None
-    return None if isinstance(node, Variable) else node
-
-
 def _signature(method: Any) -> str:
     return str(inspect.signature(method))
-

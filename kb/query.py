@@ -43,9 +43,10 @@ def build_query(patterns: Sequence[Pattern], vars: Sequence[str] | None = None) 
     if vars:
         projection: list[Variable] = []
         for name in vars:
-            if not isinstance(name, str):
-                raise KbError(f"vars must be variable names, got {name!r}")
-            var = Variable(name[1:] if name.startswith("?") else name)
+            bare = name[1:] if isinstance(name, str) and name.startswith("?") else name
+            if not isinstance(bare, str) or not bare.isidentifier():
+                raise KbError(f"vars must be variable names such as '?obj', got {name!r}")
+            var = Variable(bare)
             if var not in seen:
                 raise KbError(f"variable ?{var} of vars does not occur in the patterns")
             projection.append(var)

@@ -9,8 +9,10 @@ from pathlib import Path
 from urllib.parse import unquote, urlparse
 from xml.sax import SAXParseException
 
-from rdflib import Graph, URIRef
+from rdflib import Graph, URIRef, plugin
 from rdflib.exceptions import ParserError
+from rdflib.parser import Parser
+from rdflib.plugin import PluginException
 from rdflib.util import guess_format
 
 from kb.errors import KbError
@@ -40,6 +42,10 @@ def default_ontology() -> tuple[Triple, ...]:
 def parse_data(data: str | bytes, fmt: str, source: str = "data") -> tuple[Triple, ...]:
     """Parse a document; relative IRIs resolve against the ORO namespace, as upstream."""
     graph = Graph()
+    try:
+        plugin.get(fmt, Parser)
+    except PluginException:
+        raise KbError(f"unknown RDF format {fmt!r}; use turtle, xml, json-ld, nt, n3 or trig") from None
     try:
         graph.parse(data=data, format=fmt, publicID=ORO)
     except _PARSE_ERRORS as exc:

@@ -1,0 +1,101 @@
+"""Arguments of the KB's methods: parsing and validation, so that bad input is a KbError.
+
+Every public method of ``KB`` accepts what knowledge_core's clients pass (a string or a list of
+statements, ``models`` as a list, ``vars`` with or without ``?``) and refuses anything else with a
+message that says what is wrong, before anything is written.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from collections.abc import Iterable, Sequence
+from functools import lru_cache
+from typing import Any
+
+from rdflib import Variable
+
+from kb.errors import KbError
+from kb.query import Query, Row, build_query, solve
+from kb.store import Model
+from kb.terms import Node, Pattern, TermParser, Triple, parse_patterns, shorten
+from kb.terms import tokenize as _tokenize
+
+MODEL_NAME = re.compile(r"[A-Za-z0-9_][A-Za-z0-9_.\-]*")
+Models_ = Sequence[str] | str | None
+
+
+def compiled(patterns: tuple[str, ...], vars: Sequence[str] | str | None) -> Query:
+    names: tuple[str, ...] | None
+    if vars is None or isinstance(vars, str):
+        names = (vars,) if vars else None
+    elif isinstance(vars, Sequence):
+        names = tuple(vars) or None
+    else:
+        raise KbError(f"vars must be a list of variable names, got {vars!r}")
+    return compiled_query(patterns, names)
+
+
+@lru_cache(maxsize=2048)
+def compiled_query(patterns: tuple[str, ...], vars: tuple[str, ...] | None) -> Query:
+    return build_query(parse_patterns(patterns), list(vars) if vars else None)
+
+
+def render(query: Query, found: Iterable[Row]) -> list[dict[str, Any]]:
+    names = query.names
+    ordered = sorted(found, key=lambda row: tuple(str(shorten(t)) for t in row))
+    return [dict(zip(names, (shorten(t) for t in row), strict=True)) for row in ordered]
+
+
+def matches(model: Model, patterns: Sequence[Pattern]) -> list[Triple]:
+    found: set[Triple] = set()
+    for binding in solve(model.closure, patterns):
+        for s, p, o in patterns:
+            found.add(tuple(binding.get(t, t) if isinstance(t, Variable) else t for t in (s, p, o)))  # type: ignore[arg-type]
+    return [t for t in found if t in model.asserted]
+
+
+def model_names(models: Models_) -> list[str]:
+    if models is None:
+        return []
+    names = [models] if isinstance(models, str) else list(models)
+    for name in names:
+        if not isinstance(name, str) or not MODEL_NAME.fullmatch(name):
+            raise KbError(f"invalid model name {name!r}")
+    return names
+
+
+def lifespan_seconds(value: Any) -> float:
+    if isinstance(value, bool) or not isinstance(value, int | float) or not math.isfinite(value) or value < 0:
+        raise KbError(f"lifespan must be a number of seconds >= 0, got {value!r}")
+    return float(value)
+
+
+def is_statement(text: str) -> bool:
+    try:
+        return len(_tokenize(text)) == 3
+    except KbError:
+        return False
+
+
+def parse_term(text: str) -> Node:
+    node = optional_term(text)
+    if node is None:
+        raise KbError(f"{text!r} is not a term")
+    return node
+
+
+def optional_term(text: str) -> Node | None:
+    if not isinstance(text, str) or not text.strip():
+        raise KbError(f"expected a term, got {text!r}")
+    try:
+        tokens = _tokenize(text.strip())
+    except KbError:
+        return None
+    if len(tokens) != 1:
+        return None
+    try:
+        node = TermParser().term(tokens[0], "term", text)
+    except KbError:
+        return None
+    return None if isinstance(node, Variable) else node
