@@ -300,11 +300,7 @@ class KB:
     def clear(self, keep_defaults: bool = True) -> None:
         """Drop every model's facts; the default ontology stays unless ``keep_defaults=False``
         (K5). Subscriptions stay and see the facts disappear."""
-        with self._lock:
-            self._models.reset(keep_defaults)
-            self._writer.expiries.clear()
-            self._writer.revision += 1
-            self._writer.subscriptions.rebaseline(self._writer.current_rows)
+        self._writer.clear(keep_defaults)
 
     def load(self, uri: str | Path, models: Models_ = None) -> None:
         """Add the triples of a local RDF file (any rdflib format) as one batch."""
@@ -373,6 +369,11 @@ class KB:
     def on_commit(self, listener: CommitListener) -> None:
         """Called under the lock with every commit (for journals and mirrors)."""
         self._writer.on_commit(listener)
+
+    @property
+    def writer(self) -> Writer:
+        """The write path (state snapshots and replay for the journal)."""
+        return self._writer
 
     def expire(self, now: float | None = None) -> Commit | None:
         """Retract the statements whose lifespan is over now (the expiry thread calls this)."""

@@ -100,6 +100,10 @@ class Models:
         self._models: dict[str, Model] = {DEFAULT_MODEL: Model(DEFAULT_MODEL, self._defaults, self._interner)}
 
     @property
+    def defaults(self) -> list[Triple]:
+        return self._defaults
+
+    @property
     def names(self) -> list[str]:
         return list(self._models)
 

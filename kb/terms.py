@@ -50,6 +50,7 @@ _BY_NAMESPACE: Final = sorted(
 _NAME = re.compile(r"[A-Za-z0-9_](?:[A-Za-z0-9_\-.()~!$&+,;=/%]*[A-Za-z0-9_\-()~!$&+,;=/%])?")
 _LOCAL = re.compile(r"(?:[A-Za-z0-9_](?:[A-Za-z0-9_\-.()~!$&+,;=/%]*[A-Za-z0-9_\-()~!$&+,;=/%])?)?")
 _VARIABLE = re.compile(r"\?([A-Za-z_][A-Za-z0-9_]*)")
+_BRACKETED_IRI = re.compile(r"[A-Za-z][A-Za-z0-9+.\-]*:[^\s<>\"{}|\\^`]*")
 _ABSOLUTE_IRI = re.compile(r"[A-Za-z][A-Za-z0-9+.\-]*://[^\s<>\"{}|\\^`]+")
 _INTEGER = re.compile(r"[+-]?\d+")
 _DECIMAL = re.compile(r"[+-]?\d*\.\d+")
@@ -176,7 +177,7 @@ def parse_name(word: str, where: str) -> URIRef:
     """A bare word, CURIE, <IRI> or absolute IRI to an IRI."""
     if word.startswith("<"):
         iri = word[1:-1]
-        if not iri or not _ABSOLUTE_IRI.fullmatch(iri):
+        if not word.endswith(">") or not _BRACKETED_IRI.fullmatch(iri):
             raise KbError(f"{where}: {word} is not an absolute IRI")
         return URIRef(iri)
     if _ABSOLUTE_IRI.fullmatch(word):
@@ -293,7 +294,9 @@ def shorten_iri(iri: str) -> str:
     """ORO terms without prefix, other known namespaces as CURIEs, anything else in full (K17)."""
     if iri.startswith(ORO):
         local = iri[len(ORO) :]
-        if _NAME.fullmatch(local) and local not in ("a", "true", "false") and not _is_number(local):
+        # "true", "false" and numbers would read back as literals; "a" reads back as the same name
+        # everywhere but in predicate position, where a client writes rdf:type anyway.
+        if _NAME.fullmatch(local) and local not in ("true", "false") and not _is_number(local):
             return local
         if _LOCAL.fullmatch(local):
             return "oro:" + local
@@ -340,7 +343,7 @@ def format_term(term: Node) -> str:
     """A term written back in statement syntax, so it can be reused in a later statement."""
     if isinstance(term, URIRef):
         short = shorten_iri(str(term))
-        return f"<{short}>" if short == str(term) and "://" in short else short
+        return f"<{short}>" if short == str(term) else short
     if isinstance(term, Literal):
         body = str(term).replace("\\", "\\\\").replace('"', '\\"').replace("\n", "\\n")
         if term.language:

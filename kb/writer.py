@@ -49,6 +49,18 @@ class Commit:
     revision: int
     deltas: tuple[Delta, ...]
     expiries: tuple[tuple[str, Triple, float], ...]
+    # Set by clear(): None for an ordinary change, else the keep_defaults flag.
+    cleared: bool | None = None
+
+
+@dataclass(frozen=True)
+class State:
+    """The asserted state of every model as differences from the default ontology, for snapshots."""
+
+    revision: int
+    extra: dict[str, list[Triple]]
+    missing: dict[str, list[Triple]]
+    expiries: list[tuple[str, Triple, float]]
 
 
 CommitListener = Callable[[Commit], None]
@@ -167,6 +179,48 @@ class Writer:
             return frozenset()
         subjects = self.models.default.closure.subjects(RDF.type, ACTIVE_CONCEPT)
         return frozenset(str(shorten(s)) for s in subjects)
+
+    def clear(self, keep_defaults: bool) -> None:
+        with self.lock:
+            self.models.reset(keep_defaults)
+            self.expiries.clear()
+            self.revision += 1
+            commit = Commit(self.revision, (), (), cleared=keep_defaults)
+            for listener in self._commit_listeners:
+                listener(commit)
+            self.subscriptions.rebaseline(self.current_rows)
+
+    def state(self) -> State:
+        with self.lock:
+            defaults = set(self.models.defaults)
+            extra: dict[str, list[Triple]] = {}
+            missing: dict[str, list[Triple]] = {}
+            for name in self.models.names:
+                model = self.models.get(name)
+                if model is None:
+                    continue
+                asserted = set(model.asserted)
+                extra[name] = sorted(asserted - defaults, key=str)
+                missing[name] = sorted(defaults - asserted, key=str)
+            return State(self.revision, extra, missing, self.expiries.items())
+
+    def restore(self, model: str, add: list[Triple], remove: list[Triple],
+                expiries: list[tuple[Triple, float]], revision: int | None = None) -> None:
+        """Replay recorded asserted changes as they were (no functional replacement, explicit
+        expiry times); used by journal recovery before the service starts."""
+        with self.lock:
+            target = self.models.create(model)
+            target.apply(add, remove)
+            for triple in remove:
+                self.expiries.discard(model, triple)
+            for triple, at in expiries:
+                if at > 0:
+                    self.expiries.set(model, triple, at)
+                else:
+                    self.expiries.discard(model, triple)
+            if expiries:
+                self._ensure_reaper()
+            self.revision = revision if revision is not None else self.revision + 1
 
     # --- lifespans -----------------------------------------------------------------------
 

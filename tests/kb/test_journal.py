@@ -1,0 +1,137 @@
+"""Durable KB: journal records, torn tails, snapshots, lifespans across restarts."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from kb import KB
+from kb.journal import JOURNAL, SNAPSHOT, Journal
+
+
+class Clock:
+    def __init__(self) -> None:
+        self.now = 1_000_000.0
+
+    def __call__(self) -> float:
+        return self.now
+
+
+OPEN: list[KB] = []
+
+
+@pytest.fixture(autouse=True)
+def _close_kbs() -> object:
+    yield
+    while OPEN:
+        OPEN.pop().close()
+
+
+def open_kb(directory: Path, clock: Clock | None = None) -> tuple[KB, Journal]:
+    kb = KB(clock=clock or Clock())
+    OPEN.append(kb)
+    journal = Journal(directory)
+    journal.recover(kb)
+    return kb, journal
+
+
+def asserted(kb: KB, model: str | None = None) -> bytes:
+    return kb.export("nt", model=model)
+
+
+def test_every_kind_of_write_survives_a_restart(tmp_path: Path) -> None:
+    kb, journal = open_kb(tmp_path)
+    kb += ["myself sees cup_1", 'cup_1 rdfs:label "red cup, \\"big\\" \\u00e9"', "cup_1 rdf:type dbr:Cup"]
+    kb += "x hasColor red"
+    kb += "x hasColor blue"  # functional replacement is journaled as its real effect
+    kb -= "myself sees ?o"
+    kb.update(["alice sees cup_1"], models=["alice"])
+    kb.load_data("[] a <http://kb.openrobots.org#Mystery> ; <http://kb.openrobots.org#weight> 4.5 .")
+    kb.apply(add=["cup_1 isOn table_1"], remove=["cup_1 rdf:type dbr:Cup"])
+    expected = asserted(kb), asserted(kb, "alice"), kb.find("?x ?p ?o", models=["default"]), kb.revision
+    journal.close()
+
+    again, _ = open_kb(tmp_path)
+    assert (asserted(again), asserted(again, "alice"), again.find("?x ?p ?o", models=["default"]),
+            again.revision) == expected
+    assert again["x hasColor ?c"] == [{"c": "blue"}]
+    assert again["table_1 placeOf ?x"] == [{"x": "cup_1"}]  # inferred facts are recomputed
+
+
+def test_torn_last_record_is_dropped_never_applied_in_part(tmp_path: Path) -> None:
+    kb, journal = open_kb(tmp_path)
+    kb += "a sees b"
+    kb += ["c sees d", "e sees f"]
+    journal.close()
+    path = tmp_path / JOURNAL
+    data = path.read_bytes()
+    path.write_bytes(data[:-7])  # cut inside the last record
+    again, journal = open_kb(tmp_path)
+    assert again["a sees ?x"] == [{"x": "b"}]
+    assert again["c sees ?x"] == [] and again["e sees ?x"] == []
+    again += "g sees h"  # the journal goes on from the last good record
+    journal.close()
+    third, _ = open_kb(tmp_path)
+    assert third["?s sees ?o"] == [{"s": "a", "o": "b"}, {"s": "g", "o": "h"}]
+
+
+def test_corrupt_record_stops_replay_there(tmp_path: Path) -> None:
+    kb, journal = open_kb(tmp_path)
+    kb += "a sees b"
+    kb += "c sees d"
+    journal.close()
+    path = tmp_path / JOURNAL
+    first, second = path.read_bytes().splitlines(keepends=True)
+    path.write_bytes(first + second.replace(b"d>", b"x>"))  # same length, wrong checksum
+    again, _ = open_kb(tmp_path)
+    assert again["?s sees ?o"] == [{"s": "a", "o": "b"}]
+
+
+def test_snapshot_compacts_and_recovery_uses_snapshot_plus_journal(tmp_path: Path) -> None:
+    kb, journal = open_kb(tmp_path)
+    kb += ["a sees b", "c sees d"]
+    kb -= "a sees b"
+    kb -= "rdfs:label rdfs:label ?l"  # even ontology triples may be retracted
+    journal.snapshot(kb)
+    assert (tmp_path / JOURNAL).stat().st_size == 0 and (tmp_path / SNAPSHOT).exists()
+    kb += "e sees f"
+    expected = asserted(kb)
+    journal.close()
+    again, _ = open_kb(tmp_path)
+    assert asserted(again) == expected
+    assert again["?s sees ?o"] == [{"s": "c", "o": "d"}, {"s": "e", "o": "f"}]
+
+
+def test_lifespans_keep_running_across_restarts(tmp_path: Path) -> None:
+    clock = Clock()
+    kb, journal = open_kb(tmp_path, clock)
+    kb.update(["p sees q"], lifespan=10)
+    kb.update(["r sees s"], lifespan=100)
+    journal.close()
+    clock.now += 50  # the process was down for 50 s
+    again, _ = open_kb(tmp_path, clock)
+    again.expire()
+    assert again["?x sees ?y"] == [{"x": "r", "y": "s"}]
+    clock.now += 60
+    again.expire()
+    assert again["?x sees ?y"] == []
+
+
+def test_clear_is_journaled(tmp_path: Path) -> None:
+    kb, journal = open_kb(tmp_path)
+    kb += "a sees b"
+    kb.clear()
+    kb += "c sees d"
+    journal.close()
+    again, _ = open_kb(tmp_path)
+    assert again["?s sees ?o"] == [{"s": "c", "o": "d"}]
+    assert again["a ?p ?o"] == [] and again.size() > 1000  # the ontology is back
+
+
+def test_appending_before_recover_is_an_error(tmp_path: Path) -> None:
+    from kb.errors import KbError
+    from kb.writer import Commit
+
+    with pytest.raises(KbError, match="not open"):
+        Journal(tmp_path).append(Commit(1, (), ()))
