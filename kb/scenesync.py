@@ -21,6 +21,7 @@ from kb.terms import parse_name
 
 ENGAGEMENT_PROPERTY = "engagementLevel"
 _FIELDS = {"id", "kind", "class", "label", "x", "y", "heading", "width", "depth", "z"}
+_OUTPUT_ONLY = {"engagement"}  # in GET /scene answers; ignored when a scene is read back
 
 
 class SceneSync:
@@ -52,6 +53,26 @@ class SceneSync:
                 scene.put(entity)
             self.tracker = EngagementTracker(self.tracker.config)
             return self._commit(scene)
+
+    def adopt(self, entities: Iterable[Entity]) -> Diff:
+        """Take over a scene whose facts a previous run asserted (recovered from a journal): the
+        facts missing from the KB are asserted again, engagement levels start over."""
+        with self._lock:
+            scene = Scene(self.scene.config)
+            for entity in entities:
+                scene.put(entity)
+            facts = scene.facts()
+            diff = Diff(added={f for f in facts if not self.kb.is_asserted(f)})
+            for entity in scene:
+                if entity.kind is Kind.PERSON:
+                    for row in self.kb.find(f"{entity.id} {ENGAGEMENT_PROPERTY} ?level"):
+                        diff.removed.add(f"{entity.id} {ENGAGEMENT_PROPERTY} {row['level']}")
+            if diff:
+                self.kb.apply(sorted(diff.added), sorted(diff.removed))
+            self.scene = scene
+            self._asserted = facts
+            self.tracker = EngagementTracker(self.tracker.config)
+            return diff
 
     def resync(self) -> Diff:
         """Assert the scene's whole fact set again (after a KB clear or a late start)."""
@@ -159,7 +180,7 @@ def entity_from_json(data: Mapping[str, Any]) -> Entity:
     "z"?}``; positions in metres in the robot's frame."""
     if not isinstance(data, Mapping):
         raise KbError(f"a scene entity must be an object, got {data!r}")
-    unknown = set(data) - _FIELDS
+    unknown = set(data) - _FIELDS - _OUTPUT_ONLY
     if unknown:
         raise KbError(f"scene entity {data.get('id')!r}: unknown fields {sorted(unknown)}")
     try:

@@ -47,8 +47,10 @@ _BY_NAMESPACE: Final = sorted(
     ((ns, prefix) for prefix, ns in PREFIXES.items() if prefix not in ("", "oro")),
     key=lambda item: -len(item[0]),
 )
-_NAME = re.compile(r"[A-Za-z0-9_](?:[A-Za-z0-9_\-.()~!$&+,;=/%]*[A-Za-z0-9_\-()~!$&+,;=/%])?")
-_LOCAL = re.compile(r"(?:[A-Za-z0-9_](?:[A-Za-z0-9_\-.()~!$&+,;=/%]*[A-Za-z0-9_\-()~!$&+,;=/%])?)?")
+# Names may use any letter (N3 allows non-ASCII names: pièce_1), digits and the punctuation
+# knowledge_core's producers use, but may not end with a dot (N3's statement terminator).
+_NAME = re.compile(r"\w(?:[\w\-.()~!$&+,;=/%]*[\w\-()~!$&+,;=/%])?")
+_LOCAL = re.compile(r"(?:\w(?:[\w\-.()~!$&+,;=/%]*[\w\-()~!$&+,;=/%])?)?")
 _VARIABLE = re.compile(r"\?([A-Za-z_][A-Za-z0-9_]*)")
 _BRACKETED_IRI = re.compile(r"[A-Za-z][A-Za-z0-9+.\-]*:[^\s<>\"{}|\\^`]*")
 _ABSOLUTE_IRI = re.compile(r"[A-Za-z][A-Za-z0-9+.\-]*://[^\s<>\"{}|\\^`]+")

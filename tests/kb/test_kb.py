@@ -257,6 +257,8 @@ def test_literals_come_back_as_native_values(shared: KB, literal: str, value: An
         "foaf:Agent",
         "v1.2",
         "http://example.org/foo#bar",
+        "pièce_1",
+        "dbr:São_Paulo",
     ],
 )
 def test_names_round_trip(shared: KB, name: str) -> None:

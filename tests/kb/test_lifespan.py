@@ -9,6 +9,8 @@ from collections.abc import Callable, Iterator
 from typing import Any
 
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 from rdflib import URIRef
 
 from kb import KB, KbError
@@ -228,3 +230,49 @@ def test_replaced_value_takes_its_expiry_with_it(kb: KB, clock: FakeClock) -> No
     clock.now += 10
     kb.expire()
     assert kb["cup hasColor ?c"] == [{"c": "red"}]
+
+
+# --- hypothesis: lifespans against a model of expiry times -------------------------------------
+
+lifespan_ops = st.lists(
+    st.one_of(
+        st.tuples(
+            st.just("add"),
+            st.sampled_from(["s1", "s2"]),
+            st.sampled_from(["likes", "hasColor"]),
+            st.sampled_from(["o1", "o2"]),
+            st.sampled_from([0, 0.5, 1, 2.5, 4]),
+        ),
+        st.tuples(st.just("remove"), st.sampled_from(["s1", "s2"]), st.sampled_from(["likes", "hasColor"]),
+                  st.sampled_from(["o1", "o2"]), st.just(0)),
+        st.tuples(st.just("wait"), st.just(""), st.just(""), st.just(""), st.sampled_from([0.5, 1, 2, 3])),
+    ),
+    max_size=20,
+)
+
+
+@settings(max_examples=60, deadline=None)
+@given(lifespan_ops)
+def test_random_lifespans_match_a_model(ops: list[tuple[str, str, str, str, float]]) -> None:
+    clock = FakeClock()
+    expires: dict[tuple[str, str, str], float | None] = {}  # None: permanent
+    with KB(ontology=False, clock=clock) as kb:
+        kb += "hasColor rdf:type owl:FunctionalProperty"
+        for op, s, p, o, value in ops:
+            if op == "add":
+                kb.add(f"{s} {p} {o}", lifespan=value)
+                if p == "hasColor":
+                    for t in [t for t in expires if t[0] == s and t[1] == p and t[2] != o]:
+                        del expires[t]
+                expires[(s, p, o)] = clock.now + value if value else None
+            elif op == "remove":
+                kb.remove(f"{s} {p} {o}")
+                expires.pop((s, p, o), None)
+            else:
+                clock.now += value
+                kb.expire()
+                for t, at in list(expires.items()):
+                    if at is not None and at <= clock.now:
+                        del expires[t]
+            found = {(r["s"], r["p"], r["o"]) for r in kb["?s ?p ?o"] if r["p"] in ("likes", "hasColor")}
+            assert found == set(expires)

@@ -226,7 +226,9 @@ names = st.builds(
     st.text(alphabet=_FIRST + "0123456789()-._", max_size=10),
     st.text(alphabet=_FIRST + "0123456789()-_", max_size=1),
 ).filter(lambda n: n not in ("a", "true", "false") and not n.endswith("."))
-texts = st.text(max_size=30)
+# Any text, with the characters that matter to the tokeniser made frequent.
+_TRICKY = ['"', "\\", "'", "\n", "\r", "\t", '"""', "@en", "^^xsd:integer", "\\u00e9", " ", ".", "?x", "*"]
+texts = st.lists(st.one_of(st.characters(), st.sampled_from(_TRICKY)), max_size=30).map("".join)
 # (what a client writes, what find must return for it)
 written_values = st.one_of(
     names.map(lambda n: (n, n)),

@@ -162,16 +162,21 @@ def test_save_to_a_missing_directory(kb: KB, tmp_path: Path) -> None:
 
 
 @pytest.mark.parametrize("fmt", sorted(FORMATS))
-def test_export(kb: KB, fmt: str) -> None:
-    kb += "alfred rdf:type Human"
-    asserted = Graph().parse(data=kb.export(fmt), format=fmt)
-    inferred = Graph().parse(data=kb.export(fmt, inferred=True), format=fmt)
-    alfred = URIRef(ORO + "alfred")
-    rdf_type = URIRef("http://www.w3.org/1999/02/22-rdf-syntax-ns#type")
-    assert (alfred, rdf_type, URIRef(ORO + "Human")) in asserted
-    assert (alfred, rdf_type, URIRef(ORO + "Agent")) not in asserted
-    assert (alfred, rdf_type, URIRef(ORO + "Agent")) in inferred
-    assert len(asserted) == kb.size(inferred=False)
+def test_export(fmt: str) -> None:
+    with KB(ontology=False) as kb:  # a small TBox keeps the serialisers quick
+        kb += ["Human rdfs:subClassOf Agent", "alfred rdf:type Human", 'alfred rdfs:label "Alfred"@en']
+        kb.add("r2 rdf:type Human", models=["bob"])
+        asserted = Graph().parse(data=kb.export(fmt), format=fmt)
+        inferred = Graph().parse(data=kb.export(fmt, inferred=True), format=fmt)
+        bob = Graph().parse(data=kb.export(fmt, model="bob"), format=fmt)
+        alfred = URIRef(ORO + "alfred")
+        rdf_type = URIRef("http://www.w3.org/1999/02/22-rdf-syntax-ns#type")
+        assert (alfred, rdf_type, URIRef(ORO + "Human")) in asserted
+        assert (alfred, rdf_type, URIRef(ORO + "Agent")) not in asserted
+        assert (alfred, rdf_type, URIRef(ORO + "Agent")) in inferred
+        assert len(asserted) == kb.size(inferred=False) == 3
+        assert (URIRef(ORO + "r2"), rdf_type, URIRef(ORO + "Human")) in bob
+        assert (alfred, rdf_type, URIRef(ORO + "Human")) not in bob
 
 
 def test_export_errors(kb: KB) -> None:

@@ -1,0 +1,57 @@
+"""The application factory: ``create_app(settings, kb=None, model=None)``.
+
+Nothing is built at import time. The lifespan builds the services off the event loop (the KB,
+its scene, the event hub) and stops them at shutdown; a KB passed in stays the caller's.
+"""
+
+from __future__ import annotations
+
+from collections.abc import AsyncIterator
+from contextlib import asynccontextmanager
+
+from fastapi import FastAPI
+from fastapi.middleware.cors import CORSMiddleware
+from starlette.concurrency import run_in_threadpool
+
+from api.errors import install_error_handlers
+from api.limits import BodySizeLimit
+from api.routes import dialogue, events, health, rasa, scene, sparql, viewer
+from api.routes import kb as kb_routes
+from api.routes.health import package_version
+from api.services import start_services
+from api.settings import Settings
+from dialogue.llm.base import ChatModel
+from kb import KB
+
+DESCRIPTION = """Knowledge-grounded dialogue for social robots: a knowledge_core-compatible KB,
+a SPARQL 1.1 endpoint, KB events (SSE, WebSocket) and a dialogue endpoint returning ROS4HRI intents.
+Errors always have the shape `{"status", "code", "message", "details"}`."""
+
+
+def create_app(settings: Settings | None = None, kb: KB | None = None,
+               model: ChatModel | None = None) -> FastAPI:
+    """A new app. ``kb``: use this KB (not closed at shutdown); ``model``: a dialogue model
+    instance to use instead of the one ``settings.llm`` names."""
+    config = settings if settings is not None else Settings()
+
+    @asynccontextmanager
+    async def lifespan(app: FastAPI) -> AsyncIterator[None]:
+        services = await run_in_threadpool(start_services, config, kb, model)
+        app.state.services = services
+        try:
+            yield
+        finally:
+            await run_in_threadpool(services.stop)
+
+    app = FastAPI(title="situated", version=package_version(), description=DESCRIPTION,
+                  lifespan=lifespan, docs_url="/docs", redoc_url=None)
+    install_error_handlers(app)
+    app.add_middleware(BodySizeLimit, max_bytes=config.limits.max_body_bytes)
+    if config.cors_origins:
+        app.add_middleware(CORSMiddleware, allow_origins=config.cors_origins,
+                           allow_methods=["GET", "POST", "DELETE"],
+                           allow_headers=["Authorization", "Content-Type", "Accept"])
+    for router in (kb_routes.router, sparql.router, events.router, dialogue.router, rasa.router,
+                   scene.router, health.router, viewer.router):
+        app.include_router(router)
+    return app

@@ -1,0 +1,259 @@
+"""The ``situated`` command: serve, chat, kb, humans, eval, bench. Thin over the libraries.
+
+``kb``, ``humans`` and ``chat`` work in-process (a fresh KB, loaded with ``--scene``) or against a
+running service with ``--url`` (token from ``--token`` or ``$SITUATED_TOKEN``).
+"""
+
+from __future__ import annotations
+
+import argparse
+import asyncio
+import importlib
+import json
+import os
+import sys
+from collections.abc import Callable, Iterator, Sequence
+from contextlib import contextmanager
+from pathlib import Path
+from typing import Any
+
+from api.client import ClientError, ServiceClient
+from api.humans import known_humans, render
+from api.settings import SettingsError, load_settings
+from api.world import load_any_scene
+from kb import KB, KbError
+
+BENCHES = ("kb", "dialogue", "http")
+EXAMPLES = """examples:
+  situated serve --scene kitchen.txt                 offline service on 127.0.0.1:8000 (docs at /docs)
+  situated serve --llm ollama:gemma3:1b --token T    with a local LLM; writes need 'Bearer T'
+  situated chat --scene kitchen.txt                  talk in-process (one line per turn)
+  situated chat --url http://127.0.0.1:8000 --say "pick up the cup"
+  situated kb query "myself sees ?o" "?o rdf:type dbr:Cup" --scene kitchen.txt
+  situated kb add "cup_1 isOn table_1" --url http://127.0.0.1:8000
+  situated kb retract "?x isOn table_1" --url http://127.0.0.1:8000
+  situated kb details cup_1 --scene kitchen.txt      also: kb lookup TEXT
+  situated humans --url http://127.0.0.1:8000        id, name, seen, engagement
+  situated eval cases.jsonl --llm rules --json       score dialogue cases
+  situated bench http                                also: kb, dialogue, all
+Each command has its own help: situated COMMAND -h.
+Settings also come from SITUATED_* env vars and a TOML/JSON file (SITUATED_CONFIG or --config)."""
+
+
+def _say(text: str) -> None:
+    print(text, file=sys.stderr)
+
+
+def _remote_options(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("--url", help="a running service, e.g. http://127.0.0.1:8000 (default: in-process)")
+    parser.add_argument("--token", help="bearer token for --url (default: $SITUATED_TOKEN)")
+    parser.add_argument("--scene", help="in-process: demo, an .svg/.json scene or a .txt file of statements "
+                                        "to load first")
+
+
+def _parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(prog="situated", description=__doc__, epilog=EXAMPLES,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
+
+    serve = sub.add_parser("serve", help="run the HTTP service (default 127.0.0.1:8000, rules backend)")
+    serve.add_argument("--host", help="interface to bind (default 127.0.0.1)")
+    serve.add_argument("--port", type=int, help="port (default 8000)")
+    serve.add_argument("--data", type=Path, help="data folder: every write journaled, recovered at start")
+    serve.add_argument("--scene", help="demo (default), an .svg environment, a .json scene, a .txt file of "
+                                       "statements, or none")
+    serve.add_argument("--llm", help="model backend: rules (default), ollama:MODEL[@URL], openai:MODEL@URL")
+    serve.add_argument("--token", help="require 'Authorization: Bearer TOKEN' for writes")
+    serve.add_argument("--config", type=Path, help="TOML or JSON settings file (or $SITUATED_CONFIG)")
+
+    chat = sub.add_parser("chat", help="talk to the robot (in-process or --url), showing reply and intents")
+    _remote_options(chat)
+    chat.add_argument("--llm", default="rules", help="in-process model backend (default rules)")
+    chat.add_argument("--user", default="__unknown_agent__", help="speaker id (default __unknown_agent__)")
+    chat.add_argument("--say", action="append", help="say this and exit (repeatable); default: read stdin")
+
+    kb = sub.add_parser("kb", help="query and edit the KB: query, add, retract, details, lookup")
+    kb_sub = kb.add_subparsers(dest="kb_command", required=True, metavar="KB_COMMAND")
+    for name, what, arg in (("query", "rows matching patterns", "patterns"),
+                            ("add", "add statements", "statements"),
+                            ("retract", "retract statements (variables allowed)", "statements"),
+                            ("details", "details of a term", "term"),
+                            ("lookup", "find terms by name or label", "text")):
+        one = kb_sub.add_parser(name, help=what)
+        one.add_argument(arg, nargs="+" if arg in ("patterns", "statements") else None,
+                         help='e.g. "myself sees ?o"' if arg != "text" else None)
+        one.add_argument("--models", nargs="*", help="KB models (default: the robot's own)")
+        _remote_options(one)
+
+    humans = sub.add_parser("humans", help="persons the KB knows: id, name, seen, engagement")
+    _remote_options(humans)
+
+    evaluate = sub.add_parser("eval", help="score dialogue cases (.jsonl); see 'situated eval -h'",
+                              add_help=False)
+    evaluate.add_argument("args", nargs=argparse.REMAINDER, help="passed to the evaluation")
+
+    bench = sub.add_parser("bench", help="run benchmarks: kb, dialogue, http or all")
+    bench.add_argument("which", nargs="?", default="all", choices=[*BENCHES, "all"])
+    bench.add_argument("args", nargs=argparse.REMAINDER, help="passed to the benchmark")
+    return parser
+
+
+# --- serve -----------------------------------------------------------------------------------------
+
+def _serve(args: argparse.Namespace) -> int:
+    import uvicorn
+
+    from api.app import create_app
+    from api.services import backend_of
+
+    settings = load_settings(args.config, host=args.host, port=args.port, data_dir=args.data,
+                             scene=args.scene, llm=args.llm, token=args.token)
+    backend_of(settings)  # a bad backend spec is reported before anything starts
+    _say(f"situated: serving on http://{settings.host}:{settings.port} (model: {settings.llm}; "
+         f"scene: {settings.scene or 'none'}); loading the KB...")
+    uvicorn.run(create_app(settings), host=settings.host, port=settings.port, ws="websockets-sansio",
+                ws_max_size=settings.limits.max_body_bytes, log_level="info")
+    return 0
+
+
+# --- KB access, in-process or remote ----------------------------------------------------------------
+
+@contextmanager
+def _kb(args: argparse.Namespace) -> Iterator[Any]:
+    if args.url:
+        with ServiceClient(args.url, args.token or os.environ.get("SITUATED_TOKEN")) as client:
+            yield client
+        return
+    _say("loading the KB...")
+    with KB() as kb:
+        if args.scene and args.scene != "none":
+            _say(load_any_scene(kb, args.scene))
+        yield kb
+
+
+def _print_json(value: Any) -> None:
+    print(json.dumps(value, indent=2, ensure_ascii=False))
+
+
+def _kb_command(args: argparse.Namespace) -> int:
+    models = args.models or None
+    with _kb(args) as kb:
+        command = args.kb_command
+        if command == "query":
+            _print_json(kb.find(args.patterns, None, models))
+        elif command in ("add", "retract"):
+            kb.revise(args.statements, {"method": "update" if command == "add" else "retract",
+                                        "models": models})
+            _say(f"{command}: {len(args.statements)} statement(s)")
+        elif command == "details":
+            _print_json(kb.details(args.term, models))
+        else:
+            _print_json(kb.lookup(args.text, models))
+    return 0
+
+
+def _humans(args: argparse.Namespace) -> int:
+    with _kb(args) as kb:
+        print(render(known_humans(kb)))
+    return 0
+
+
+# --- chat ------------------------------------------------------------------------------------------
+
+def _show(reply: dict[str, Any]) -> None:
+    print(f"robot: {reply['response']}")
+    for intent in reply["intents"]:
+        print(f"  intent {intent['intent']} {json.dumps(intent['data'], ensure_ascii=False)} "
+              f"(confidence {intent['confidence']})")
+    if reply.get("error_msg"):
+        print(f"  error: {reply['error_msg']}")
+
+
+def _lines(args: argparse.Namespace) -> Iterator[str]:
+    if args.say:
+        yield from args.say
+        return
+    interactive = sys.stdin.isatty()
+    while True:
+        if interactive:
+            print("you: ", end="", flush=True)
+        line = sys.stdin.readline()
+        if not line:
+            return
+        if line.strip():
+            yield line.strip()
+
+
+def _chat(args: argparse.Namespace) -> int:
+    if args.url:
+        with ServiceClient(args.url, args.token or os.environ.get("SITUATED_TOKEN")) as client:
+            dialogue_id = client.start_dialogue()
+            for text in _lines(args):
+                _show(client.interact(dialogue_id, args.user, text))
+        return 0
+    return asyncio.run(_chat_in_process(args))
+
+
+async def _chat_in_process(args: argparse.Namespace) -> int:
+    from api.services import build_dialogues
+
+    settings = load_settings(llm=args.llm, scene=args.scene)
+    with _kb(args) as kb:
+        dialogues = build_dialogues(settings, kb)
+        dialogue = dialogues.start()
+        for text in _lines(args):
+            result = await dialogues.interact(args.user, text, dialogue_id=dialogue.id)
+            _show({"response": result.response, "intents": [i.model_dump() for i in result.intents],
+                   "error_msg": result.error_msg})
+    return 0
+
+
+# --- eval and bench --------------------------------------------------------------------------------
+
+def _eval(args: argparse.Namespace) -> int:
+    from dialogue.evaluation import main as evaluate
+
+    return evaluate(args.args)
+
+
+def _split_eval(argv: Sequence[str] | None) -> list[str] | None:
+    """``eval``'s own arguments (its options included, which argparse's REMAINDER would refuse)."""
+    words = list(sys.argv[1:] if argv is None else argv)
+    return words[1:] if words[:1] == ["eval"] else None
+
+
+def _bench(args: argparse.Namespace) -> int:
+    status = 0
+    for name in BENCHES if args.which == "all" else (args.which,):
+        try:
+            module = importlib.import_module(f"bench.{name}")
+        except ModuleNotFoundError as exc:
+            _say(f"situated bench {name}: benchmark module bench.{name} is not available ({exc})")
+            status = 1
+            continue
+        if hasattr(module, "main"):
+            status |= int(module.main(list(args.args)))
+        else:
+            print(module.run())
+    return status
+
+
+COMMANDS: dict[str, Callable[[argparse.Namespace], int]] = {
+    "serve": _serve, "chat": _chat, "kb": _kb_command, "humans": _humans, "eval": _eval, "bench": _bench,
+}
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    eval_args = _split_eval(argv)
+    if eval_args is not None:
+        return _eval(argparse.Namespace(command="eval", args=eval_args))
+    args = _parser().parse_args(argv)
+    try:
+        return COMMANDS[args.command](args)
+    except (KbError, ClientError, SettingsError) as exc:
+        _say(f"situated {args.command}: {exc}")
+        return 2
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,62 @@
+"""FastAPI dependencies (Annotated): the service's parts and the access checks."""
+
+from __future__ import annotations
+
+from typing import Annotated
+
+from fastapi import Depends, Query
+from fastapi.security import HTTPAuthorizationCredentials
+from starlette.requests import HTTPConnection
+
+from api.auth import authorise, bearer
+from api.services import Services
+from api.settings import Settings
+from api.subscriptions import EventHub
+from kb import KB
+
+
+async def get_services(conn: HTTPConnection) -> Services:
+    services: Services = conn.app.state.services
+    return services
+
+
+ServicesDep = Annotated[Services, Depends(get_services)]
+
+
+async def get_kb(services: ServicesDep) -> KB:
+    return services.kb
+
+
+async def get_settings(services: ServicesDep) -> Settings:
+    return services.settings
+
+
+async def get_hub(services: ServicesDep) -> EventHub:
+    return services.hub
+
+
+KbDep = Annotated[KB, Depends(get_kb)]
+SettingsDep = Annotated[Settings, Depends(get_settings)]
+HubDep = Annotated[EventHub, Depends(get_hub)]
+Credentials = Annotated[HTTPAuthorizationCredentials | None, Depends(bearer)]
+
+
+async def require_read(settings: SettingsDep, credentials: Credentials) -> None:
+    authorise(settings, credentials.credentials if credentials else None, write=False)
+
+
+async def require_write(settings: SettingsDep, credentials: Credentials) -> None:
+    authorise(settings, credentials.credentials if credentials else None, write=True)
+
+
+async def require_read_stream(settings: SettingsDep, credentials: Credentials,
+                        access_token: Annotated[str | None, Query(
+                            description="the token, for clients that cannot send headers")] = None,
+                        ) -> None:
+    presented = credentials.credentials if credentials else access_token
+    authorise(settings, presented, write=False)
+
+
+ReadAccess = Depends(require_read)
+StreamReadAccess = Depends(require_read_stream)
+WriteAccess = Depends(require_write)

@@ -1,0 +1,130 @@
+"""The one JSON error shape of every route: ``{"status", "code", "message", "details"}``.
+
+Every failure goes through here: HTTP errors raised by the framework (404, 405), request
+validation (422), ``KbError`` and ``DialogueError`` (400), the service's own ``ApiError`` (auth,
+limits) and unexpected errors (500 with a generic message; the traceback goes to the log only).
+"""
+
+from __future__ import annotations
+
+import logging
+from collections.abc import Mapping
+from http import HTTPStatus
+from typing import Any
+
+from fastapi import FastAPI, Request
+from fastapi.encoders import jsonable_encoder
+from fastapi.exceptions import RequestValidationError
+from fastapi.responses import JSONResponse
+from pydantic import BaseModel
+from starlette.exceptions import HTTPException as StarletteHTTPException
+
+from dialogue.sessions import DialogueError
+from kb import KbError
+
+log = logging.getLogger("situated.api")
+
+_CODES = {
+    400: "bad_request",
+    401: "unauthorized",
+    403: "forbidden",
+    404: "not_found",
+    405: "method_not_allowed",
+    406: "not_acceptable",
+    413: "too_large",
+    415: "unsupported_media_type",
+    422: "invalid_request",
+    429: "too_many_requests",
+    500: "internal_error",
+    503: "unavailable",
+}
+
+
+class ErrorBody(BaseModel):
+    """What every error response carries."""
+
+    status: int
+    code: str
+    message: str
+    details: Any = None
+
+
+class ApiError(StarletteHTTPException):
+    """A failure the service reports as-is: status, a stable code, a message saying what is wrong.
+
+    An HTTPException, so the framework lets it through where it wraps other errors (body reading).
+    """
+
+    def __init__(self, status: int, code: str, message: str, details: Any = None,
+                 headers: dict[str, str] | None = None) -> None:
+        super().__init__(status, message, headers)
+        self.status = status
+        self.code = code
+        self.message = message
+        self.details = details
+        self.headers = headers
+
+
+def error_body(status: int, code: str | None, message: str, details: Any = None) -> dict[str, Any]:
+    body = ErrorBody(status=status, code=code or _CODES.get(status, "error"), message=message,
+                     details=jsonable_encoder(details))
+    return body.model_dump()
+
+
+def error_response(status: int, code: str | None, message: str, details: Any = None,
+                   headers: Mapping[str, str] | None = None) -> JSONResponse:
+    return JSONResponse(error_body(status, code, message, details), status_code=status,
+                        headers=dict(headers) if headers else None)
+
+
+def _validation_details(exc: RequestValidationError) -> list[dict[str, Any]]:
+    # The offending input is left out on purpose: it may be large or hold secrets.
+    return [{"loc": list(e.get("loc", ())), "msg": e.get("msg", ""), "type": e.get("type", "")}
+            for e in exc.errors()]
+
+
+async def _api_error(request: Request, exc: Exception) -> JSONResponse:
+    assert isinstance(exc, ApiError)
+    return error_response(exc.status, exc.code, exc.message, exc.details, exc.headers)
+
+
+async def _http_error(request: Request, exc: Exception) -> JSONResponse:
+    assert isinstance(exc, StarletteHTTPException)
+    status = exc.status_code
+    message = exc.detail if isinstance(exc.detail, str) else HTTPStatus(status).phrase
+    if status == 404 and message == "Not Found":
+        message = f"no route for {request.method} {request.url.path}"
+    elif status == 405:
+        message = f"method {request.method} is not allowed on {request.url.path}"
+    details = exc.detail if not isinstance(exc.detail, str) else None
+    return error_response(status, None, message, details, getattr(exc, "headers", None))
+
+
+async def _validation_error(request: Request, exc: Exception) -> JSONResponse:
+    assert isinstance(exc, RequestValidationError)
+    details = _validation_details(exc)
+    first = details[0] if details else {"loc": [], "msg": "invalid request"}
+    where = ".".join(str(p) for p in first["loc"]) or "request"
+    return error_response(422, "invalid_request", f"{where}: {first['msg']}", details)
+
+
+async def _kb_error(request: Request, exc: Exception) -> JSONResponse:
+    return error_response(400, "kb_error", str(exc))
+
+
+async def _dialogue_error(request: Request, exc: Exception) -> JSONResponse:
+    return error_response(400, "dialogue_error", str(exc))
+
+
+async def _unexpected(request: Request, exc: Exception) -> JSONResponse:
+    log.error("unhandled error on %s %s", request.method, request.url.path, exc_info=exc)
+    return error_response(500, "internal_error", "internal server error; see the service log")
+
+
+def install_error_handlers(app: FastAPI) -> None:
+    app.add_exception_handler(ApiError, _api_error)
+    app.add_exception_handler(StarletteHTTPException, _http_error)
+    app.add_exception_handler(RequestValidationError, _validation_error)
+    app.add_exception_handler(KbError, _kb_error)
+    app.add_exception_handler(DialogueError, _dialogue_error)
+    app.add_exception_handler(Exception, _unexpected)

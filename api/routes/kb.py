@@ -1,0 +1,146 @@
+"""The KB over REST (kb-compat §3): queries, revisions, details, lookup, load/export, clear."""
+
+from __future__ import annotations
+
+from typing import Annotated, Any, Literal
+
+from fastapi import APIRouter, Query, Request, Response
+from pydantic import BaseModel, ConfigDict, Field
+from starlette.concurrency import run_in_threadpool
+
+from api.deps import KbDep, ReadAccess, ServicesDep, SettingsDep, WriteAccess
+from api.errors import ApiError
+from api.limits import check_count
+from api.negotiation import negotiate
+
+router = APIRouter(prefix="/kb", tags=["kb"])
+
+Models = Annotated[list[str] | None, Query(description="models to use; default: the robot's own")]
+RDF_UPLOAD = {
+    "text/turtle": "turtle",
+    "application/x-turtle": "turtle",
+    "application/rdf+xml": "xml",
+    "application/ld+json": "json-ld",
+    "application/n-triples": "nt",
+    "text/n3": "n3",
+}
+RDF_EXPORT = {
+    "text/turtle": "turtle",
+    "application/ld+json": "json-ld",
+    "application/n-triples": "nt",
+    "application/rdf+xml": "xml",
+}
+
+
+class QueryRequest(BaseModel):
+    model_config = ConfigDict(extra="forbid")
+    patterns: list[str] = Field(min_length=1, description='e.g. ["?o isOn table_1", "?o rdf:type dbr:Cup"]')
+    vars: list[str] | None = Field(default=None, description='variables to return, e.g. ["?o"]')
+    models: list[str] | None = None
+
+
+class ReviseRequest(BaseModel):
+    model_config = ConfigDict(extra="forbid")
+    statements: list[str] = Field(min_length=1, description='e.g. ["cup_1 isOn table_1"]')
+    method: Literal["add", "update", "retract", "remove", "safe_add", "safe_update", "revision"]
+    models: list[str] | None = None
+    lifespan: float | None = Field(default=None, ge=0, description="seconds until expiry; 0: never")
+
+
+class ClearRequest(BaseModel):
+    model_config = ConfigDict(extra="forbid")
+    keep_defaults: bool = Field(True, description="keep the default ontology")
+
+
+class Revision(BaseModel):
+    revision: int = Field(description="the KB revision after the change")
+
+
+@router.post("/query", dependencies=[ReadAccess])
+async def query(body: QueryRequest, kb: KbDep, settings: SettingsDep) -> list[Any]:
+    """Rows of bindings for a conjunction of patterns (kb-compat §3.2)."""
+    check_count(body.patterns, settings.limits.max_patterns, "patterns")
+    return await run_in_threadpool(kb.find, body.patterns, body.vars, body.models)
+
+
+@router.get("/query", dependencies=[ReadAccess])
+async def query_get(kb: KbDep, settings: SettingsDep,
+                    pattern: Annotated[list[str], Query(min_length=1, description="a pattern (repeatable)")],
+                    models: Models = None) -> list[Any]:
+    """Rows of bindings for ``?pattern=...`` (repeat it for a conjunction)."""
+    check_count(pattern, settings.limits.max_patterns, "patterns")
+    return await run_in_threadpool(kb.find, pattern, None, models)
+
+
+@router.post("/revise", dependencies=[WriteAccess])
+async def revise(body: ReviseRequest, kb: KbDep, settings: SettingsDep) -> Revision:
+    """Add, update or retract statements as one batch: all or nothing."""
+    check_count(body.statements, settings.limits.max_statements, "statements")
+    policy = {"method": body.method, "models": body.models, "lifespan": body.lifespan or 0}
+    await run_in_threadpool(kb.revise, body.statements, policy)
+    return Revision(revision=kb.revision)
+
+
+@router.get("/details/{term:path}", dependencies=[ReadAccess])
+async def details(term: str, kb: KbDep, models: Models = None) -> dict[str, Any]:
+    """``{"id", "label", "type", "attributes", "relations"}`` (kb-compat §3.3)."""
+    return await run_in_threadpool(kb.details, term, models)
+
+
+@router.get("/label/{term:path}", dependencies=[ReadAccess])
+async def label(term: str, kb: KbDep, lang: str | None = None, models: Models = None) -> str:
+    """The term's label in ``lang`` (else the default label), as a JSON string."""
+    return await run_in_threadpool(kb.label, term, lang, models)
+
+
+@router.get("/lookup", dependencies=[ReadAccess])
+async def lookup(q: Annotated[str, Query(min_length=1)], kb: KbDep, models: Models = None) -> list[list[str]]:
+    """``[[name, type], ...]``: exact matches first, then approximate ones."""
+    return await run_in_threadpool(kb.lookup, q, models)
+
+
+@router.get("/about/{term:path}", dependencies=[ReadAccess])
+async def about(term: str, kb: KbDep, models: Models = None) -> list[list[Any]]:
+    """``[[s, p, o], ...]`` where the term appears."""
+    return await run_in_threadpool(kb.about, term, models)
+
+
+@router.get("/classesof/{term:path}", dependencies=[ReadAccess])
+async def classesof(term: str, kb: KbDep, direct: bool = False, models: Models = None) -> list[str]:
+    """The term's classes (asserted only with ``direct=true``)."""
+    return await run_in_threadpool(kb.classesof, term, direct, models)
+
+
+@router.post("/load", dependencies=[WriteAccess], openapi_extra={
+    "requestBody": {"required": True, "content": {t: {"schema": {"type": "string"}} for t in RDF_UPLOAD}}})
+async def load(request: Request, kb: KbDep, models: Models = None,
+               format: Annotated[str | None, Query(description="rdflib format, else by Content-Type")] = None,
+               ) -> Revision:
+    """Add an RDF document sent as the body (Turtle, RDF/XML, JSON-LD, N-Triples) as one batch."""
+    fmt = format or RDF_UPLOAD.get(request.headers.get("content-type", "").split(";")[0].strip().lower())
+    if fmt is None:
+        raise ApiError(415, "unsupported_media_type",
+                       f"send the document as one of {', '.join(RDF_UPLOAD)} (or give ?format=)",
+                       {"accepted": list(RDF_UPLOAD)})
+    data = await request.body()
+    if not data.strip():
+        raise ApiError(422, "empty_document", "the request body is empty; send an RDF document")
+    await run_in_threadpool(kb.load_data, data, fmt, models)
+    return Revision(revision=kb.revision)
+
+
+@router.get("/export", dependencies=[ReadAccess], response_class=Response, responses={
+    200: {"content": {t: {} for t in RDF_EXPORT}, "description": "the model's triples"}})
+async def export(request: Request, kb: KbDep, model: str | None = None, inferred: bool = False) -> Response:
+    """A model's asserted (or with ``inferred=true``, materialised) triples, format by Accept."""
+    media = negotiate(request.headers.get("accept"), list(RDF_EXPORT))
+    data = await run_in_threadpool(kb.export, RDF_EXPORT[media], model, inferred)
+    return Response(data, media_type=media)
+
+
+@router.post("/clear", dependencies=[WriteAccess])
+async def clear(services: ServicesDep, body: ClearRequest | None = None) -> Revision:
+    """Drop every model's facts (the default ontology stays unless ``keep_defaults`` is false);
+    the scene's facts are asserted again, since the scene is still there."""
+    await run_in_threadpool(services.clear, body.keep_defaults if body else True)
+    return Revision(revision=services.kb.revision)

@@ -1,0 +1,91 @@
+"""Rasa-compatible facade: the REST channel webhook and ``/model/parse``, so a client written for
+``rasa run`` (port 5005) works when pointed at this service. A token, when configured, may also be
+given as ``?token=`` as Rasa's HTTP API does."""
+
+from __future__ import annotations
+
+import logging
+from typing import Annotated, Any
+
+from fastapi import APIRouter, Depends, Query
+from pydantic import BaseModel, ConfigDict, Field
+from starlette.concurrency import run_in_threadpool
+
+from api import rasa
+from api.auth import authorise
+from api.deps import Credentials, ServicesDep, SettingsDep
+from api.errors import ApiError
+from dialogue.engine import TurnResult
+from dialogue.sessions import DialogueError, DialogueManager
+from kb import KB, KbError
+
+router = APIRouter(tags=["rasa"])
+log = logging.getLogger("situated.api")
+UNKNOWN_AGENT = "__unknown_agent__"
+Token = Annotated[str | None, Query(description="the service token (Rasa style)")]
+
+
+def _rasa_access(write: bool) -> Any:
+    async def check(settings: SettingsDep, credentials: Credentials, token: Token = None) -> None:
+        authorise(settings, credentials.credentials if credentials else token, write=write)
+    return Depends(check)
+
+
+class WebhookMessage(BaseModel):
+    model_config = ConfigDict(extra="ignore")
+    sender: str = Field(min_length=1, description="the conversation id; also the user id")
+    message: str
+    metadata: dict[str, Any] | None = None
+    input_channel: str | None = None
+
+
+class ParseRequest(BaseModel):
+    model_config = ConfigDict(extra="ignore")
+    text: str
+    message_id: str | None = None
+
+
+def _ensure_dialogue(dialogues: DialogueManager, key: str) -> None:
+    try:
+        dialogues.get(key)
+    except DialogueError:
+        try:
+            dialogues.start(dialogue_id=key)
+        except DialogueError:  # started concurrently by another request
+            dialogues.get(key)
+
+
+@router.get("/webhooks/rest/")
+async def webhook_health() -> dict[str, str]:
+    return {"status": "ok"}
+
+
+@router.post("/webhooks/rest/webhook", dependencies=[_rasa_access(write=True)])
+async def webhook(body: WebhookMessage, services: ServicesDep,
+                  stream: bool = False) -> list[dict[str, Any]]:
+    """``[{"recipient_id", "text", "custom": {"intents": [...]}}]``; the sender is the user id."""
+    if stream:
+        raise ApiError(400, "unsupported", "stream=true is not supported; omit it")
+    key = rasa.dialogue_key(body.sender)
+    _ensure_dialogue(services.dialogues, key)
+    result: TurnResult = await services.dialogues.interact(body.sender, body.message, dialogue_id=key)
+    if result.error_msg:
+        log.warning("rasa webhook turn for %s: %s", body.sender, result.error_msg)
+    return rasa.webhook_messages(body.sender, result.response, result.intents)
+
+
+def _labeller(kb: KB) -> Any:
+    def label(term: str) -> str:
+        try:
+            return kb.label(term)
+        except KbError:
+            return term
+    return label
+
+
+@router.post("/model/parse", dependencies=[_rasa_access(write=False)])
+async def parse(body: ParseRequest, services: ServicesDep) -> dict[str, Any]:
+    """NLU only: the turn's intents as Rasa's parse result; nothing is recorded."""
+    result = await services.dialogues.engine.turn(body.text, speaker=UNKNOWN_AGENT)
+    label = _labeller(services.kb)
+    return await run_in_threadpool(rasa.parse_result, body.text, result.intents, label)

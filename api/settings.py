@@ -1,0 +1,130 @@
+"""Service settings: defaults < config file (TOML or JSON) < ``SITUATED_*`` env vars < explicit values.
+
+Nested limits are set from the environment with a double underscore, e.g.
+``SITUATED_LIMITS__MAX_BODY_BYTES=2000000``; lists as JSON, e.g. ``SITUATED_CORS_ORIGINS='["http://a"]'``.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import tomllib
+from pathlib import Path
+from typing import Any, Literal
+
+from pydantic import BaseModel, Field, SecretStr, ValidationError, field_validator
+from pydantic_settings import BaseSettings, SettingsConfigDict
+
+CONFIG_ENV = "SITUATED_CONFIG"
+
+
+class Limits(BaseModel):
+    """Bounds on what one request or client may ask for (exceeding one is a clear 413/429)."""
+
+    max_body_bytes: int = Field(default=1_048_576, ge=1024, description="largest request body accepted")
+    max_statements: int = Field(default=1000, ge=1, description="statements per revise request")
+    max_patterns: int = Field(default=32, ge=1, description="patterns per query or subscription")
+    max_subscribers: int = Field(default=64, ge=1, description="concurrent SSE + WebSocket event subscribers")
+    max_history_turns: int = Field(default=50, ge=1, description="turns of history kept per dialogue")
+    max_dialogues: int = Field(default=1000, ge=1, description="dialogues open at once")
+
+
+class SceneSettings(BaseModel):
+    """The scene's policies (scene-compat S5, S7, S8; defaults as the simulator) and engagement."""
+
+    fov_degrees: float = Field(default=120.0, gt=0, le=360, description="field of view of every agent")
+    range_m: float = Field(default=3.5, gt=0, description="how far agents see, metres")
+    agents_in_zones: bool = Field(default=False, description="state `<agent> isIn <zone>` (off upstream)")
+    zones: Literal["all", "largest"] = Field(default="all", description="zones of a straddling item")
+    supports: Literal["all", "top"] = Field(default="all", description="isOn every item below, or the top")
+    engagement_hz: float = Field(default=10.0, ge=0, le=100, description="engagement ticks per second")
+
+
+class Settings(BaseSettings):
+    """Everything the service reads at start; see the module docstring for precedence."""
+
+    model_config = SettingsConfigDict(env_prefix="SITUATED_", env_nested_delimiter="__", extra="forbid")
+
+    host: str = "127.0.0.1"
+    port: int = Field(default=8000, ge=0, le=65535)
+    data_dir: Path | None = Field(default=None, description="durable KB: journal and snapshots")
+    ontology_files: list[Path] = Field(default_factory=list, description="extra RDF files loaded at start")
+    scene: str | None = Field(default="demo", description="the scene at start: demo (the packaged demo "
+                              "environment), an .svg environment, a .json scene, a .txt file of statements, "
+                              "or none")
+    scene_settings: SceneSettings = Field(default_factory=SceneSettings)
+    llm: str = Field(default="rules", description="dialogue model backend spec, e.g. rules, ollama:MODEL@URL")
+    deadline: float = Field(default=5.0, gt=0, le=600, description="seconds per dialogue turn")
+    token: SecretStr | None = Field(default=None, description="Bearer token required for writes when set")
+    allow_anonymous_reads: bool = True
+    limits: Limits = Field(default_factory=Limits)
+    cors_origins: list[str] = Field(default_factory=list)
+    sparql_update: bool = False
+
+    @field_validator("scene", mode="before")
+    @classmethod
+    def _scene_path(cls, scene: object) -> object:
+        return str(scene) if isinstance(scene, Path) else scene
+
+    @field_validator("cors_origins")
+    @classmethod
+    def _no_wildcard(cls, origins: list[str]) -> list[str]:
+        if "*" in origins:
+            raise ValueError("a wildcard CORS origin is not allowed; list the origins explicitly")
+        return origins
+
+    @field_validator("token")
+    @classmethod
+    def _non_empty_token(cls, token: SecretStr | None) -> SecretStr | None:
+        if token is not None and not token.get_secret_value().strip():
+            return None
+        return token
+
+
+class SettingsError(ValueError):
+    """A config file or setting value that cannot be used; the message says which and why."""
+
+
+def read_config_file(path: Path) -> dict[str, Any]:
+    """The settings in a ``.toml`` or ``.json`` file, as a dict."""
+    try:
+        raw = path.read_bytes()
+    except OSError as exc:
+        raise SettingsError(f"cannot read config file {str(path)!r}: {exc.strerror}") from exc
+    try:
+        if path.suffix.lower() == ".json":
+            data = json.loads(raw)
+        elif path.suffix.lower() == ".toml":
+            data = tomllib.loads(raw.decode("utf-8"))
+        else:
+            raise SettingsError(f"config file {str(path)!r} must end in .toml or .json")
+    except (json.JSONDecodeError, tomllib.TOMLDecodeError, UnicodeDecodeError) as exc:
+        raise SettingsError(f"config file {str(path)!r} is not valid: {exc}") from exc
+    if not isinstance(data, dict):
+        raise SettingsError(f"config file {str(path)!r} must hold an object of settings")
+    return data
+
+
+def _merge(base: dict[str, Any], top: dict[str, Any]) -> dict[str, Any]:
+    merged = dict(base)
+    for key, value in top.items():
+        if isinstance(value, dict) and isinstance(merged.get(key), dict):
+            merged[key] = _merge(merged[key], value)
+        else:
+            merged[key] = value
+    return merged
+
+
+def load_settings(config: Path | None = None, **overrides: Any) -> Settings:
+    """Settings from defaults, the config file (``config`` or ``$SITUATED_CONFIG``), the env and
+    ``overrides`` (None values are ignored, so CLI options left unset do not override)."""
+    path = config or (Path(os.environ[CONFIG_ENV]) if os.environ.get(CONFIG_ENV) else None)
+    from_file = read_config_file(path) if path is not None else {}
+    explicit = {k: v for k, v in overrides.items() if v is not None}
+    try:
+        from_env = Settings().model_dump(exclude_unset=True)
+        return Settings(**_merge(_merge(from_file, from_env), explicit))
+    except ValidationError as exc:
+        problems = "; ".join(f"{'.'.join(map(str, e['loc'])) or 'settings'}: {e['msg']}"
+                             for e in exc.errors())
+        raise SettingsError(f"invalid settings: {problems}") from exc

@@ -1,0 +1,160 @@
+"""KB subscriptions fanned out to SSE and WebSocket clients (the thread → asyncio bridge).
+
+The KB calls a subscription's callback in the writer's thread. Identical subscriptions share
+one KB subscription id (knowledge_core's ``evt_<md5>``), so the hub keeps one KB callback per
+id and fans it out to every listener, each with its own bounded queue on its event loop
+(``loop.call_soon_threadsafe``). The KB subscription is removed when its last listener leaves.
+
+Delivery never takes the hub lock, because a writer may deliver while another thread holds
+the hub lock and waits for the KB lock.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import threading
+from collections import deque
+from collections.abc import Sequence
+from typing import Any
+
+from api.errors import ApiError
+from kb import KB
+from kb.events import event_id
+
+DEFAULT_MODEL = "default"
+
+
+class Listener:
+    """One client's view of a subscription: rows arrive in order; ``None`` ends the stream."""
+
+    def __init__(self, sub_id: str, loop: asyncio.AbstractEventLoop, max_queued: int) -> None:
+        self.sub_id = sub_id
+        self.end_reason: str | None = None
+        self._loop = loop
+        self._max = max_queued
+        self._rows: deque[list[Any]] = deque()
+        self._ready = asyncio.Event()
+
+    def push(self, rows: list[Any], last: bool = False) -> None:
+        """Called from any thread."""
+        try:
+            self._loop.call_soon_threadsafe(self._put, rows, last)
+        except RuntimeError:  # the listener's loop is closed: the client is gone
+            return
+
+    def end(self, reason: str) -> None:
+        try:
+            self._loop.call_soon_threadsafe(self._finish, reason)
+        except RuntimeError:
+            return
+
+    def _put(self, rows: list[Any], last: bool) -> None:
+        if self.end_reason is not None:
+            return
+        if len(self._rows) >= self._max:
+            self._finish("overflow: the client reads events more slowly than they happen")
+            return
+        self._rows.append(rows)
+        if last:
+            self.end_reason = "one_shot"
+        self._ready.set()
+
+    def _finish(self, reason: str) -> None:
+        if self.end_reason is None:
+            self.end_reason = reason
+        self._ready.set()
+
+    async def next_rows(self) -> list[Any] | None:
+        """The next batch of new rows, or None once the stream has ended."""
+        while not self._rows:
+            if self.end_reason is not None:
+                return None
+            self._ready.clear()
+            await self._ready.wait()
+        return self._rows.popleft()
+
+
+class _Entry:
+    """One KB subscription and the listeners it feeds."""
+
+    def __init__(self, key: str, one_shot: bool) -> None:
+        self.key = key
+        self.sub_id = key
+        self.one_shot = one_shot
+        self.listeners: tuple[Listener, ...] = ()  # replaced, never mutated: read without a lock
+        self.alive = True
+
+    def deliver(self, rows: list[Any]) -> None:
+        if self.one_shot:
+            self.alive = False  # the KB has removed it
+        for listener in self.listeners:
+            listener.push(rows, last=self.one_shot)
+
+
+class EventHub:
+    """Bounded set of event listeners over one KB."""
+
+    def __init__(self, kb: KB, max_listeners: int, max_queued: int = 256) -> None:
+        self._kb = kb
+        self._max_listeners = max_listeners
+        self._max_queued = max_queued
+        self._lock = threading.Lock()
+        self._entries: dict[str, _Entry] = {}
+        self._owners: dict[int, _Entry] = {}  # id(listener) -> the entry feeding it
+        self._count = 0
+
+    @property
+    def listener_count(self) -> int:
+        return self._count
+
+    def open(self, patterns: Sequence[str], one_shot: bool, models: Sequence[str] | None,
+             loop: asyncio.AbstractEventLoop) -> Listener:
+        """Subscribe a new listener (blocking: call it off the event loop). 429 past the limit;
+        KbError for bad patterns or unknown models."""
+        names = list(models) if models else [DEFAULT_MODEL]
+        key = event_id(list(patterns), one_shot, names)
+        with self._lock:
+            if self._count >= self._max_listeners:
+                raise ApiError(429, "too_many_subscribers",
+                               f"{self._count} event subscribers are connected; the limit is "
+                               f"{self._max_listeners}", {"limit": self._max_listeners})
+            entry = self._entries.get(key)
+            if entry is None or not entry.alive:
+                entry = _Entry(key, one_shot)
+                entry.sub_id = self._kb.subscribe(list(patterns), entry.deliver, one_shot, names)
+                self._entries[key] = entry
+            listener = Listener(entry.sub_id, loop, self._max_queued)
+            entry.listeners = (*entry.listeners, listener)
+            self._owners[id(listener)] = entry
+            self._count += 1
+            return listener
+
+    def close(self, listener: Listener) -> None:
+        """Remove a listener (blocking); the KB subscription goes with its last listener."""
+        with self._lock:
+            entry = self._owners.pop(id(listener), None)
+            if entry is None:
+                return
+            entry.listeners = tuple(x for x in entry.listeners if x is not listener)
+            self._count -= 1
+            if entry.listeners:
+                return
+            if self._entries.get(entry.key) is entry:
+                del self._entries[entry.key]
+            if entry.alive:
+                entry.alive = False
+                self._kb.unsubscribe(entry.sub_id)
+
+    def shutdown(self) -> None:
+        """End every stream (at service stop) and drop the KB subscriptions."""
+        with self._lock:
+            entries = {id(e): e for e in self._owners.values()}.values()
+            for entry in entries:
+                for listener in entry.listeners:
+                    listener.end("service stopping")
+                if entry.alive:
+                    entry.alive = False
+                    self._kb.unsubscribe(entry.sub_id)
+            self._entries.clear()
+            self._owners.clear()
+            self._count = 0

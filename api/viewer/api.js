@@ -1,0 +1,60 @@
+// The service's HTTP routes, as used by the viewer. The token (if any) lives in sessionStorage so
+// it is forgotten with the tab.
+
+const TOKEN_KEY = "situated.token";
+
+export class ApiError extends Error {
+  constructor(status, code, message) {
+    super(message);
+    this.status = status;
+    this.code = code;
+  }
+}
+
+export function getToken() {
+  return sessionStorage.getItem(TOKEN_KEY) || "";
+}
+
+export function setToken(token) {
+  if (token) sessionStorage.setItem(TOKEN_KEY, token);
+  else sessionStorage.removeItem(TOKEN_KEY);
+}
+
+async function call(method, path, body) {
+  const headers = { Accept: "application/json" };
+  const token = getToken();
+  if (token) headers.Authorization = `Bearer ${token}`;
+  if (body !== undefined) headers["Content-Type"] = "application/json";
+  let response;
+  try {
+    response = await fetch(path, { method, headers, body: body === undefined ? undefined : JSON.stringify(body) });
+  } catch (err) {
+    throw new ApiError(0, "network", `the service did not answer (${err.message})`);
+  }
+  const text = await response.text();
+  let data = null;
+  try { data = text ? JSON.parse(text) : null; } catch { data = text; }
+  if (!response.ok) {
+    // Every route answers errors as {status, code, message, details}.
+    const message = data && typeof data === "object" && data.message ? data.message : `HTTP ${response.status}`;
+    throw new ApiError(response.status, data && data.code ? data.code : "error", message);
+  }
+  return data;
+}
+
+const enc = encodeURIComponent;
+
+export const api = {
+  // origin=true asks for an "asserted" flag per relation; a service without it ignores the flag.
+  details: (term) => call("GET", `/kb/details/${enc(term)}?origin=true`),
+  classesof: (term) => call("GET", `/kb/classesof/${enc(term)}`),
+  query: (patterns) => call("POST", "/kb/query", { patterns }),
+  revise: (statements, method) => call("POST", "/kb/revise", { statements, method }),
+  interact: (userId, input) =>
+    call("POST", "/dialogues/default/interactions", { user_id: userId, input }),
+  eventsUrl(pattern) {
+    const token = getToken();
+    const auth = token ? `&access_token=${enc(token)}` : "";
+    return `/kb/events?pattern=${enc(pattern)}${auth}`;
+  },
+};

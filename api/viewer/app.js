@@ -1,0 +1,287 @@
+// The viewer: graph explorer, concept facts with editing, query box, chat, live KB events.
+
+import { api, getToken, setToken } from "./api.js";
+import { Graph } from "./graph.js";
+import { Concepts } from "./concepts.js";
+import { el, isQuestion, statementOf, termButton } from "./ui.js";
+
+const ROOT = "myself";
+const ALL_FACTS = "?s ?p ?o";
+// Events only announce new rows; this periodic re-read of the shown concepts also catches facts
+// that were removed (or expired) elsewhere.
+const RESYNC_MS = 5000;
+
+const $ = (selector) => document.querySelector(selector);
+
+class Viewer {
+  constructor() {
+    this.graph = new Graph($("#graph"), { onActivate: (id) => this.activate(id) });
+    this.concepts = new Concepts(this.graph, { root: ROOT, onChange: (id) => this.conceptChanged(id) });
+    this.selected = null;
+    this.events = null;
+    this.pending = new Set();
+    this.flushTimer = null;
+  }
+
+  async start() {
+    this.bindControls();
+    this.connectEvents();
+    setInterval(() => { if (!document.hidden) this.resync(); }, RESYNC_MS);
+    await this.activate(ROOT);
+    this.fillHumans();
+  }
+
+  // ---- graph and concept panel ---------------------------------------------------------------
+
+  async activate(id) {
+    this.select(id);
+    try {
+      await this.concepts.expand(id);
+    } catch (err) {
+      this.showConceptError(id, err);
+      return;
+    }
+    this.renderConcept();
+  }
+
+  select(id) {
+    this.selected = id;
+    this.graph.select(id);
+    this.renderConcept();
+  }
+
+  conceptChanged(id) {
+    if (id === this.selected) this.renderConcept();
+    this.updateKnownTerms();
+  }
+
+  showConceptError(id, err) {
+    const box = $("#concept");
+    box.replaceChildren(el("p", { class: "error" }, `${id}: ${err.message}`));
+    $("#facts tbody").replaceChildren();
+  }
+
+  renderConcept() {
+    const id = this.selected;
+    const box = $("#concept");
+    const body = $("#facts tbody");
+    const info = id && this.concepts.info(id);
+    if (!info) {
+      box.replaceChildren(el("p", { class: "muted" }, id ? `Loading ${id}…` : "Select a concept in the graph."));
+      body.replaceChildren();
+      return;
+    }
+    const d = info.details;
+    const chips = [];
+    for (const attribute of d.attributes || []) {
+      if (!attribute.values.length) continue;
+      chips.push(el("div", { class: "attr" },
+        el("span", { class: "attr-name" }, attribute.name),
+        ...attribute.values.slice(0, 40).map((v) => termButton(v.id, v.label && v.label.default, (t) => this.activate(t)))));
+    }
+    box.replaceChildren(
+      el("div", { class: "concept-head" },
+        el("span", { class: `badge cat-${info.category}` }, info.category),
+        el("h3", { id: "concept-label" }, d.label && d.label.default ? d.label.default : d.id),
+        el("code", { class: "concept-id" }, d.id),
+        el("span", { class: "type" }, d.type)),
+      ...chips);
+    const rows = d.relations.map((triple, i) => {
+      const origin = info.origins ? (info.origins[i] ? "asserted" : "inferred") : null;
+      const statement = statementOf(triple, this.concepts.isDatatype(triple[1]));
+      const cells = triple.map((term, j) => el("td", {},
+        j !== 1 && typeof term === "string" && !(j === 2 && this.concepts.isDatatype(triple[1]))
+          ? termButton(term, null, (t) => this.activate(t), term === d.id)
+          : el("span", { class: j === 1 ? "pred" : "literal" }, j === 2 && typeof term === "string" ? JSON.stringify(term) : String(term))));
+      const retract = el("button", { type: "button", class: "small", title: `Put "${statement}" in the form to retract it` }, "retract…");
+      retract.addEventListener("click", () => {
+        $("#statements").value = statement;
+        $("#method").value = "retract";
+        $("#statements").focus();
+      });
+      const actions = el("td", { class: "actions" }, origin === "inferred" ? el("span", { class: "tag inferred" }, "inferred") : retract);
+      return el("tr", { class: origin || "" }, ...cells, actions);
+    });
+    if (!rows.length) rows.push(el("tr", {}, el("td", { colspan: "4", class: "muted" }, "No relations.")));
+    body.replaceChildren(...rows);
+  }
+
+  updateKnownTerms() {
+    const list = $("#known-terms");
+    list.replaceChildren(...[...this.graph.nodes.keys()].sort().map((id) => el("option", { value: id })));
+  }
+
+  // ---- live updates --------------------------------------------------------------------------
+
+  connectEvents() {
+    if (this.events) this.events.close();
+    const live = $("#live");
+    live.dataset.state = "connecting";
+    live.textContent = "connecting…";
+    const source = new EventSource(api.eventsUrl(ALL_FACTS));
+    this.events = source;
+    source.addEventListener("subscribed", () => {
+      live.dataset.state = "live";
+      live.textContent = "live";
+      this.resync();  // whatever happened while disconnected
+    });
+    source.addEventListener("message", (event) => {
+      const rows = JSON.parse(event.data);
+      for (const row of rows) this.noteChange([row.s, row.o, row.p]);
+    });
+    source.addEventListener("error", () => {
+      live.dataset.state = "offline";
+      live.textContent = source.readyState === EventSource.CLOSED ? "events refused (token?)" : "reconnecting…";
+    });
+  }
+
+  // Terms touched by a change: refresh those shown, soon, once per burst of events.
+  noteChange(terms) {
+    for (const term of terms) {
+      if (typeof term === "string" && (this.graph.hasNode(term) || term === this.selected)) this.pending.add(term);
+    }
+    if (this.pending.size && this.flushTimer === null) {
+      this.flushTimer = setTimeout(() => this.flush(), 120);
+    }
+  }
+
+  async flush() {
+    this.flushTimer = null;
+    const ids = [...this.pending];
+    this.pending.clear();
+    await this.concepts.refresh(ids);
+  }
+
+  async resync() {
+    const ids = new Set(this.graph.nodes.keys());
+    if (this.selected) ids.add(this.selected);
+    await this.concepts.refresh([...ids]);
+  }
+
+  // ---- forms ---------------------------------------------------------------------------------
+
+  bindControls() {
+    const token = $("#token");
+    token.value = getToken();
+    token.addEventListener("change", () => { setToken(token.value.trim()); this.connectEvents(); });
+
+    $("#goto").addEventListener("submit", (event) => {
+      event.preventDefault();
+      const term = $("#goto-term").value.trim();
+      if (term) this.activate(term);
+    });
+    $("#zoom-in").addEventListener("click", () => this.graph.zoomBy(1.25));
+    $("#zoom-out").addEventListener("click", () => this.graph.zoomBy(0.8));
+    $("#fit").addEventListener("click", () => this.graph.fit());
+    $("#reset").addEventListener("click", () => {
+      this.graph.clear();
+      this.concepts.forget();
+      this.graph.centreView();
+      this.activate(ROOT);
+    });
+    $("#show-inferred").addEventListener("change", (event) => this.graph.setShowInferred(event.target.checked));
+
+    $("#revise").addEventListener("submit", (event) => { event.preventDefault(); this.revise(); });
+    $("#statements").addEventListener("keydown", (event) => {
+      if (event.key === "Enter" && (event.ctrlKey || event.metaKey)) { event.preventDefault(); this.revise(); }
+    });
+    $("#query").addEventListener("submit", (event) => { event.preventDefault(); this.runQuery(); });
+    $("#patterns").addEventListener("keydown", (event) => {
+      if (event.key === "Enter" && (event.ctrlKey || event.metaKey)) { event.preventDefault(); this.runQuery(); }
+    });
+    $("#chat").addEventListener("submit", (event) => { event.preventDefault(); this.sendChat(); });
+    const user = $("#user-id");
+    user.value = sessionStorage.getItem("situated.user") || user.value;
+    user.addEventListener("change", () => sessionStorage.setItem("situated.user", user.value.trim()));
+  }
+
+  async revise() {
+    const status = $("#revise-status");
+    const statements = $("#statements").value.split("\n").map((s) => s.trim()).filter((s) => s && !s.startsWith("#"));
+    const method = $("#method").value;
+    if (!statements.length) { setStatus(status, "error", "Write at least one statement."); return; }
+    setStatus(status, "busy", "Applying…");
+    try {
+      const answer = await api.revise(statements, method);
+      setStatus(status, "ok", `${method}: ${statements.length} statement${statements.length > 1 ? "s" : ""} · revision ${answer.revision}`);
+      $("#statements").value = "";
+      // Retractions produce no event: re-read what is shown now rather than at the next resync.
+      if (method === "retract") await this.resync();
+    } catch (err) {
+      setStatus(status, "error", err.message);
+    }
+  }
+
+  async runQuery() {
+    const status = $("#query-status");
+    const patterns = $("#patterns").value.split("\n").map((s) => s.trim()).filter(Boolean);
+    const head = $("#results thead");
+    const body = $("#results tbody");
+    if (!patterns.length) { setStatus(status, "error", "Write at least one pattern."); return; }
+    setStatus(status, "busy", "Running…");
+    let rows;
+    try {
+      rows = await api.query(patterns);
+    } catch (err) {
+      setStatus(status, "error", err.message);
+      head.replaceChildren();
+      body.replaceChildren();
+      return;
+    }
+    if (rows.length && typeof rows[0] === "string") {
+      // A ground query answers with the patterns that hold.
+      setStatus(status, "ok", "true: every pattern holds");
+      head.replaceChildren(el("tr", {}, el("th", { scope: "col" }, "holds")));
+      body.replaceChildren(...rows.map((p) => el("tr", {}, el("td", {}, p))));
+      return;
+    }
+    const columns = [...new Set(rows.flatMap((row) => Object.keys(row)))];
+    setStatus(status, "ok", rows.length ? `${rows.length} row${rows.length > 1 ? "s" : ""}` : "no match");
+    head.replaceChildren(el("tr", {}, ...columns.map((c) => el("th", { scope: "col" }, `?${c}`))));
+    body.replaceChildren(...rows.map((row) => el("tr", {}, ...columns.map((c) => el("td", {},
+      typeof row[c] === "string" ? termButton(row[c], null, (t) => this.activate(t)) : String(row[c] ?? "")))));
+  }
+
+  async sendChat() {
+    const input = $("#chat-input");
+    const text = input.value.trim();
+    const userId = $("#user-id").value.trim() || "user";
+    if (!text) return;
+    input.value = "";
+    const log = $("#chat-log");
+    log.appendChild(el("li", { class: "msg user" }, el("span", { class: "who" }, userId), el("p", {}, text)));
+    const waiting = el("li", { class: "msg robot waiting" }, el("span", { class: "who" }, "robot"), el("p", {}, "…"));
+    log.appendChild(waiting);
+    log.scrollTop = log.scrollHeight;
+    try {
+      const answer = await api.interact(userId, text);
+      const question = isQuestion(answer);
+      const parts = [el("span", { class: "who" }, question ? "robot asks" : "robot"), el("p", { class: "reply" }, answer.response || "(no reply)")];
+      if (answer.error_msg) parts.push(el("p", { class: "error" }, answer.error_msg));
+      const intents = el("details", { class: "intents", open: "" },
+        el("summary", {}, `${answer.intents.length} intent${answer.intents.length === 1 ? "" : "s"}`),
+        el("pre", { class: "json" }, JSON.stringify(answer.intents, null, 2)));
+      parts.push(intents);
+      waiting.replaceWith(el("li", { class: `msg robot${question ? " question" : ""}` }, ...parts));
+    } catch (err) {
+      waiting.replaceWith(el("li", { class: "msg system error" }, el("p", {}, err.message)));
+    }
+    log.scrollTop = log.scrollHeight;
+  }
+
+  async fillHumans() {
+    try {
+      const rows = await api.query(["?h rdf:type Human"]);
+      $("#known-humans").replaceChildren(...rows.map((r) => el("option", { value: r.h })));
+    } catch {
+      // Suggestions only; the field still takes any id.
+    }
+  }
+}
+
+function setStatus(node, kind, text) {
+  node.dataset.kind = kind;
+  node.textContent = text;
+}
+
+new Viewer().start();

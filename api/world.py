@@ -1,0 +1,127 @@
+"""The service's scene: loading it, keeping it across restarts, and the engagement ticker.
+
+The scene comes from settings (``demo``: the packaged demo environment; an ``.svg`` in the
+simulator's format; a ``.json`` scene; ``none``). With a data directory, the current scene is
+kept in ``scene.json`` after every change, and at start it takes over the facts the previous
+run's scene left in the (recovered) KB, so a restart leaves nothing stale behind.
+"""
+
+from __future__ import annotations
+
+import json
+import logging
+import os
+import threading
+from importlib.resources import files
+from pathlib import Path
+
+from api.scenefile import load_scene
+from api.settings import SceneSettings
+from kb import KB, KbError
+from kb.engagement import Transition
+from kb.scene import Diff, Entity, Kind, SceneConfig
+from kb.scenesync import SceneSync, scene_from_json, scene_to_json
+from kb.svg import load_svg
+
+log = logging.getLogger("situated.scene")
+SCENE_FILE = "scene.json"
+DEMO = "demo"
+
+
+def read_scene(source: str) -> list[Entity]:
+    """Entities from ``demo``, an ``.svg`` file or a ``.json`` file."""
+    if source == DEMO:
+        return load_svg((files("ontologies") / "demo.svg").read_bytes())
+    path = Path(source)
+    try:
+        data = path.read_bytes()
+    except OSError as exc:
+        raise KbError(f"cannot read scene {source!r}: {exc.strerror}") from exc
+    if path.suffix.lower() == ".svg":
+        return load_svg(data)
+    if path.suffix.lower() == ".json":
+        return scene_from_json(data)
+    raise KbError(f"scene {source!r}: use an .svg environment, a .json scene, 'demo' or 'none'")
+
+
+def load_any_scene(kb: KB, source: str) -> str:
+    """Load a scene of any kind into a KB (the CLI's in-process mode); says what was loaded."""
+    if source.endswith(".txt"):
+        return f"loaded {load_scene(kb, Path(source))} statements from {source}"
+    entities = read_scene(source)
+    SceneSync(kb).replace(entities)
+    return f"loaded {len(entities)} scene entities from {source}"
+
+
+def scene_config(settings: SceneSettings) -> SceneConfig:
+    return SceneConfig(fov_degrees=settings.fov_degrees, range_m=settings.range_m,
+                       agents_in_zones=settings.agents_in_zones, zones=settings.zones,
+                       supports=settings.supports)
+
+
+class World:
+    """A ``SceneSync`` plus persistence and a background engagement ticker."""
+
+    def __init__(self, kb: KB, settings: SceneSettings, data_dir: Path | None) -> None:
+        self.sync = SceneSync(kb, scene_config(settings))
+        self._lock = threading.Lock()
+        self._file = data_dir / SCENE_FILE if data_dir is not None else None
+        self._hz = settings.engagement_hz
+        self._stop = threading.Event()
+        self._thread: threading.Thread | None = None
+        self.transitions: list[Transition] = []
+
+    def start(self, source: str | None) -> None:
+        """Load the persisted scene if there is one, else ``source``; start ticking."""
+        if self._file is not None and self._file.exists():
+            previous = scene_from_json(self._file.read_bytes())
+            self.sync.adopt(previous)
+            log.info("restored the scene from %s (%d entities)", self._file, len(previous))
+        elif source is not None:
+            self.replace(read_scene(source))
+        if self._hz > 0:
+            self._thread = threading.Thread(target=self._tick_loop, name="scene-engagement", daemon=True)
+            self._thread.start()
+
+    def stop(self) -> None:
+        self._stop.set()
+        if self._thread is not None:
+            self._thread.join(timeout=2.0)
+
+    def replace(self, entities: list[Entity]) -> Diff:
+        with self._lock:
+            diff = self.sync.replace(entities)
+            self._save()
+            return diff
+
+    def put(self, entity: Entity) -> Diff:
+        with self._lock:
+            diff = self.sync.put(entity)
+            self._save()
+            return diff
+
+    def remove(self, entity_id: str) -> Diff:
+        with self._lock:
+            diff = self.sync.remove(entity_id)
+            self._save()
+            return diff
+
+    def tick(self) -> Diff:
+        with self._lock:
+            diff, transitions = self.sync.tick()
+            self.transitions.extend(transitions)
+            del self.transitions[:-100]  # only the latest are of interest
+            return diff
+
+    def _tick_loop(self) -> None:
+        period = 1.0 / self._hz
+        while not self._stop.wait(period):
+            if any(e.kind is Kind.PERSON for e in self.sync.scene):
+                self.tick()
+
+    def _save(self) -> None:
+        if self._file is None:
+            return
+        tmp = self._file.with_suffix(".tmp")
+        tmp.write_text(json.dumps(scene_to_json(self.sync)), encoding="utf-8")
+        os.replace(tmp, self._file)

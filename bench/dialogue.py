@@ -1,0 +1,124 @@
+"""Dialogue turn overhead, excluding the model: `python -m bench.dialogue` (or `run()` -> table).
+
+Scene: the kitchen with 100 visible objects. Measured per turn (median over many turns):
+- overhead (warm): grounding from the per-revision snapshot cache, the turn's JSON schema, prompt
+  rendering, then validation and resolution of a model answer;
+- overhead (KB changed): the same when the KB revision changed since the last turn, so that the
+  snapshot is rebuilt from KB queries first;
+- rules fast path: interpreting the utterance with the rules and grounding the result;
+- full rules turn: `await engine.turn(...)` through the event loop.
+Target: <= 2 ms median for the warm overhead and the rules fast path.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import statistics
+import time
+from collections.abc import Callable
+
+from dialogue.engine import DialogueEngine
+from dialogue.schema import parse_answer
+from dialogue.validate import ground_answer
+from kb import KB
+
+SCENE = [
+    "myself rdf:type Robot", "kitchen rdf:type ZoneOfInterest", 'kitchen rdfs:label "kitchen"',
+    "person_alice rdf:type Human", 'person_alice rdfs:label "Alice"', "myself sees person_alice",
+    "table_1 rdf:type dbr:Table_(furniture)", "table_1 isIn kitchen", "myself sees table_1",
+    "shelf_1 rdf:type dbr:Shelf_(storage)", "shelf_1 isIn kitchen", "myself sees shelf_1",
+]  # fmt: skip
+CLASSES = ["dbr:Cup", "dbr:Book", "dbr:Apple", "dbr:Smartphone", "dbr:Pear"]
+COLOURS = ["red", "blue", "green", "white", "black"]
+UTTERANCES = [
+    "pick up the red cup 7",
+    "bring me the green book 12",
+    "put the apple 3 on the shelf",
+    "go to the kitchen",
+    "where is the blue phone 9?",
+    "hello",
+    "what do you see?",
+    "grab the cup",
+]
+ANSWER = '{"verbal_ack": "OK", "user_intent": {"type": "__intent_grab_object__", "object": "obj_042"}}'
+
+
+def scene(n_objects: int = 100) -> KB:
+    kb = KB()
+    facts = list(SCENE)
+    for i in range(n_objects):
+        oid = f"obj_{i:03d}"
+        klass, colour = CLASSES[i % len(CLASSES)], COLOURS[(i // len(CLASSES)) % len(COLOURS)]
+        noun = klass.split(":")[1].lower().replace("smartphone", "phone")
+        facts += [
+            f"{oid} rdf:type {klass}",
+            f'{oid} rdfs:label "{colour} {noun} {i}"',
+            f"{oid} isOn {'table_1' if i % 2 else 'shelf_1'}",
+            f"{oid} isIn kitchen",
+            f"myself sees {oid}",
+        ]
+    kb.update(facts)
+    return kb
+
+
+def median_ms(fn: Callable[[], object], repeat: int) -> float:
+    times = []
+    for _ in range(repeat):
+        start = time.perf_counter()
+        fn()
+        times.append(time.perf_counter() - start)
+    return statistics.median(times) * 1000
+
+
+def run(n_objects: int = 100, repeat: int = 200) -> str:
+    kb = scene(n_objects)
+    engine = DialogueEngine(kb)
+    speaker = "person_alice"
+
+    def overhead() -> None:
+        grounded = engine.ground()
+        turn = engine.prepare(grounded, "grab the cup 42", speaker, (), None)
+        engine.schema_for(grounded[0], speaker)
+        engine.prompts.messages(turn.context)
+        ground_answer(parse_answer(ANSWER), turn.lexicon, speaker)
+
+    counter = iter(range(1, 10**9))
+
+    def overhead_changed() -> None:  # includes the KB write itself (small next to the rebuild)
+        # hasColor is functional: alternating colours changes the KB (and its revision) every time.
+        before = kb.revision
+        kb.update([f"obj_000 hasColor {'yellow' if next(counter) % 2 else 'pink'}"])
+        assert kb.revision != before
+        overhead()
+
+    utterances = iter(UTTERANCES * (repeat * 2))
+
+    def fast_path() -> None:
+        engine.fast_path(engine.prepare(engine.ground(), next(utterances), speaker, (), None))
+
+    async def turns() -> list[float]:
+        times = []
+        for i in range(repeat):
+            start = time.perf_counter()
+            await engine.turn(UTTERANCES[i % len(UTTERANCES)], speaker=speaker)
+            times.append(time.perf_counter() - start)
+        return times
+
+    overhead()  # warm caches
+    rows = [
+        ("overhead, warm (ground+schema+prompt+validate+resolve)", median_ms(overhead, repeat)),
+        (
+            "overhead, KB changed since last turn (snapshot rebuilt)",
+            median_ms(overhead_changed, max(20, repeat // 10)),
+        ),
+        ("rules fast path", median_ms(fast_path, repeat)),
+        ("full rules turn (engine.turn, event loop)", statistics.median(asyncio.run(turns())) * 1000),
+    ]
+    kb.close()
+    lines = [f"dialogue turn overhead, {n_objects} visible objects (median ms; target <= 2 ms)"]
+    lines += [f"  {name:58} {ms:8.3f}" for name, ms in rows]
+    return "\n".join(lines)
+
+
+if __name__ == "__main__":
+    print(run())

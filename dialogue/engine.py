@@ -1,0 +1,200 @@
+"""One dialogue turn: ground -> (rules fast path) -> model -> validate -> resolve -> repair once -> reply.
+
+The whole turn runs under a deadline. When the model is down, slow or twice invalid, the turn still
+answers in time: a polite reply, a `__raw_user_input__` intent and a non-empty `error_msg` (D5).
+Referents in emitted intents are always entities of the KB snapshot (or the speaker).
+"""
+
+from __future__ import annotations
+
+import asyncio
+import logging
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+from dialogue import intents as I
+from dialogue.grounding import Grounder, KnowledgeBase, Snapshot
+from dialogue.history import Utterance
+from dialogue.lexicon import Lexicon, LexiconCache
+from dialogue.llm.base import ChatMessage, ChatModel, ChatRequest, ChatResult, ModelError, TurnContext
+from dialogue.llm.rules import RulesModel, answer_of
+from dialogue.prompts import PromptSet
+from dialogue.schema import AnswerError, SchemaCandidates, parse_answer, turn_schema
+from dialogue.validate import Grounded, ground_answer
+
+log = logging.getLogger(__name__)
+
+MAX_SCHEMA_IDS = 60
+SORRY = "Sorry, I can't answer right now."
+NOT_UNDERSTOOD = "Sorry, I did not understand that."
+
+
+@dataclass(frozen=True)
+class EngineConfig:
+    robot_name: str = "robot"
+    #: Seconds for the whole turn (dialogue_manager waits 5 s).
+    deadline: float = 5.0
+    #: Try the rules first and call the model only when they do not understand (hybrid mode).
+    hybrid: bool = False
+    #: Confidence of intents from a model that gives none.
+    model_confidence: float = 0.7
+    max_snapshot_entities: int = 300
+    lang: str = "en"
+
+
+@dataclass(frozen=True)
+class TurnResult:
+    response: str
+    intents: tuple[I.Intent, ...] = ()
+    error_msg: str = ""
+    #: Which backend produced the answer ("rules", the model's name, or "fallback").
+    backend: str = ""
+    clarify: bool = False
+
+
+@dataclass
+class _Turn:
+    text: str
+    speaker: str
+    locale: str | None
+    context: TurnContext
+    lexicon: Lexicon
+
+
+class DialogueEngine:
+    """Stateless per turn; holds the KB, the model and per-revision caches. Safe for many dialogues."""
+
+    def __init__(
+        self,
+        kb: KnowledgeBase,
+        model: ChatModel | None = None,
+        config: EngineConfig | None = None,
+        prompts: PromptSet | None = None,
+    ) -> None:
+        self.kb = kb
+        self.config = config or EngineConfig()
+        self.rules = RulesModel()
+        self.model: ChatModel = model or self.rules
+        self.prompts = prompts or PromptSet.load()
+        self.grounder = Grounder(self.config.max_snapshot_entities, self.config.lang)
+        self._lexicons = LexiconCache()
+
+    @property
+    def uses_rules_only(self) -> bool:
+        return self.model is self.rules or isinstance(self.model, RulesModel)
+
+    def ground(self) -> tuple[Snapshot, Lexicon]:
+        """The current snapshot and its lexicon (blocking: KB queries on a revision change)."""
+        snapshot = self.grounder.snapshot(self.kb)
+        return snapshot, self._lexicons.get(snapshot)
+
+    async def ground_async(self) -> tuple[Snapshot, Lexicon]:
+        cached = self.grounder.cached(self.kb.revision)
+        if cached is not None:
+            return cached, self._lexicons.get(cached)
+        # rdflib work (and the lexicon rebuild) never runs on the event loop.
+        return await asyncio.to_thread(self.ground)
+
+    async def turn(
+        self, text: str, *, speaker: str, history: Sequence[Utterance] = (), locale: str | None = None
+    ) -> TurnResult:
+        loop = asyncio.get_running_loop()
+        deadline = loop.time() + self.config.deadline
+        try:
+            async with asyncio.timeout_at(deadline):
+                return await self._turn(text, speaker, tuple(history), locale, deadline)
+        except TimeoutError:
+            return self.fallback(
+                text, speaker, locale, f"no answer within the {self.config.deadline:g} s deadline"
+            )
+
+    def fallback(
+        self, text: str, speaker: str, locale: str | None, error: str, reply: str = SORRY
+    ) -> TurnResult:
+        log.warning("dialogue turn fell back to raw user input: %s", error)
+        raw = I.raw_user_input(text, source=speaker, locale=locale)
+        return TurnResult(reply, (raw,), error or "unknown error", backend="fallback")
+
+    def prepare(
+        self,
+        grounded: tuple[Snapshot, Lexicon],
+        text: str,
+        speaker: str,
+        history: tuple[Utterance, ...],
+        locale: str | None,
+    ) -> _Turn:
+        snapshot, lexicon = grounded
+        context = TurnContext(text, speaker, snapshot, history, locale, self.config.robot_name)
+        return _Turn(text, speaker, locale, context, lexicon)
+
+    async def _turn(
+        self, text: str, speaker: str, history: tuple[Utterance, ...], locale: str | None, deadline: float
+    ) -> TurnResult:
+        turn = self.prepare(await self.ground_async(), text, speaker, history, locale)
+        if self.config.hybrid or self.uses_rules_only:
+            fast = self.fast_path(turn)
+            if fast is not None:
+                return fast
+            if self.uses_rules_only:
+                raw = I.raw_user_input(text, source=speaker, locale=locale)
+                return TurnResult(NOT_UNDERSTOOD, (raw,), backend="rules")
+        return await self._ask_model(turn, deadline)
+
+    def fast_path(self, turn: _Turn) -> TurnResult | None:
+        """The rules' answer when they understood the input (synchronous: pure Python, no KB access)."""
+        outcome = self.rules.interpret(turn.context)
+        if not outcome.understood:
+            return None
+        try:
+            grounded = ground_answer(answer_of(outcome), turn.lexicon, turn.speaker)
+        except AnswerError as exc:  # the rules and the contract disagree: let the model (or fallback) answer
+            log.error("rules answer for %r failed validation: %s", turn.text, exc)
+            return None
+        clarify = grounded.clarify or outcome.clarify
+        return TurnResult(grounded.reply, grounded.intents, backend="rules", clarify=clarify)
+
+    def schema_for(self, snapshot: Snapshot, speaker: str) -> dict[str, object]:
+        things = [e.id for e in snapshot.entities.values() if e.kind == "thing"][:MAX_SCHEMA_IDS]
+        people = [e.id for e in snapshot.entities.values() if e.kind == "person"][:MAX_SCHEMA_IDS]
+        zones = [e.id for e in snapshot.entities.values() if e.kind == "zone"][:MAX_SCHEMA_IDS]
+        if speaker not in people:
+            people.insert(0, speaker)
+        return turn_schema(SchemaCandidates(things, [*people, *things], [*zones, *things, *people]))
+
+    async def _ask_model(self, turn: _Turn, deadline: float) -> TurnResult:
+        loop = asyncio.get_running_loop()
+        schema = self.schema_for(turn.context.snapshot, turn.speaker)
+        messages = self.prompts.messages(turn.context)
+        request = ChatRequest(messages, schema, turn.context)
+        errors: list[str] = []
+        for attempt in range(2):
+            try:
+                result = await self.model.chat(request, max(0.01, deadline - loop.time()))
+            except ModelError as exc:
+                return self.fallback(turn.text, turn.speaker, turn.locale, f"{self.model.name}: {exc}")
+            try:
+                grounded = self._validate(result, turn)
+            except AnswerError as exc:
+                errors.append(str(exc))
+                if attempt == 0:
+                    repair = (ChatMessage("assistant", result.content), self.prompts.repair_message(str(exc)))
+                    request = ChatRequest((*messages, *repair), schema, turn.context, repair=True)
+                continue
+            return TurnResult(
+                grounded.reply, grounded.intents, backend=self.model.name, clarify=grounded.clarify
+            )
+        return self.fallback(
+            turn.text,
+            turn.speaker,
+            turn.locale,
+            f"{self.model.name} gave no valid answer twice: " + " | then: ".join(errors),
+            reply=NOT_UNDERSTOOD,
+        )
+
+    def _validate(self, result: ChatResult, turn: _Turn) -> Grounded:
+        if not result.understood:
+            raise AnswerError("the model did not understand the input")
+        answer = parse_answer(result.content)
+        return ground_answer(
+            answer, turn.lexicon, turn.speaker, default_confidence=self.config.model_confidence
+        )

@@ -1,0 +1,59 @@
+"""Dialogue history: utterances with their chat role, bounded by turns and characters (D12)."""
+
+from __future__ import annotations
+
+from collections import deque
+from collections.abc import Iterator
+from dataclasses import dataclass
+from typing import Literal
+
+Role = Literal["user", "assistant", "system"]
+
+SYSTEM_USER_ID = "__system__"
+ASSISTANT_USER_ID = "__assistant__"
+
+
+def role_of(user_id: str) -> Role:
+    """`__assistant__` speaks as the assistant, `__system__` as the system, anyone else as a user (D14)."""
+    if user_id == ASSISTANT_USER_ID:
+        return "assistant"
+    if user_id == SYSTEM_USER_ID:
+        return "system"
+    return "user"
+
+
+@dataclass(frozen=True)
+class Utterance:
+    speaker: str
+    text: str
+
+    @property
+    def role(self) -> Role:
+        return role_of(self.speaker)
+
+
+class History:
+    """The last `max_turns` utterances, further trimmed (oldest first) to `max_chars` characters."""
+
+    def __init__(self, max_turns: int = 20, max_chars: int = 4000) -> None:
+        if max_turns < 1 or max_chars < 1:
+            raise ValueError("history limits must be positive")
+        self.max_chars = max_chars
+        self._items: deque[Utterance] = deque(maxlen=max_turns)
+
+    def add(self, speaker: str, text: str) -> None:
+        self._items.append(Utterance(speaker, text))
+        while len(self._items) > 1 and sum(len(u.text) for u in self._items) > self.max_chars:
+            self._items.popleft()
+
+    def clear(self) -> None:
+        self._items.clear()
+
+    def __iter__(self) -> Iterator[Utterance]:
+        return iter(tuple(self._items))
+
+    def __len__(self) -> int:
+        return len(self._items)
+
+    def snapshot(self) -> tuple[Utterance, ...]:
+        return tuple(self._items)

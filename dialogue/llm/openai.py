@@ -1,0 +1,87 @@
+"""OpenAI-compatible backend (llama.cpp server, vLLM, OpenAI, Ollama's /v1) over httpx.
+
+Only OpenAI fields are sent (D16): `response_format` in the variant the server accepts, with
+explicit `temperature` and `max_tokens` (Ollama's /v1 forces 1.0 when they are absent).
+"""
+
+from __future__ import annotations
+
+import os
+from dataclasses import dataclass
+from typing import Any, Literal
+
+import httpx
+
+from dialogue.llm.base import ChatRequest, ChatResult, ModelError
+
+ResponseFormat = Literal["json_schema", "json_object"]
+DEFAULT_BASE_URL = "http://127.0.0.1:8080/v1"
+
+
+@dataclass(frozen=True)
+class OpenAIOptions:
+    response_format: ResponseFormat = "json_schema"
+    temperature: float = 0.0
+    max_tokens: int = 256
+    api_key_env: str = "OPENAI_API_KEY"
+
+
+class OpenAIModel:
+    def __init__(self, model: str, base_url: str | None = None, options: OpenAIOptions | None = None):
+        if not model:
+            raise ValueError("an OpenAI-compatible model name is required")
+        self.model = model
+        self.base_url = (base_url or DEFAULT_BASE_URL).rstrip("/")
+        self.options = options or OpenAIOptions()
+
+    @property
+    def name(self) -> str:
+        return f"openai:{self.model}@{self.base_url}"
+
+    def payload(self, request: ChatRequest) -> dict[str, Any]:
+        opts = self.options
+        response_format: dict[str, Any]
+        if opts.response_format == "json_schema":
+            # `name` is required by vLLM and OpenAI, ignored by Ollama and llama.cpp: portable.
+            response_format = {
+                "type": "json_schema",
+                "json_schema": {"name": "chatbot_response", "schema": request.schema},
+            }
+        else:
+            response_format = {"type": "json_object", "schema": request.schema}
+        return {
+            "model": self.model,
+            "messages": [m.as_dict() for m in request.messages],
+            "response_format": response_format,
+            "temperature": opts.temperature,
+            "max_tokens": opts.max_tokens,
+            "stream": False,
+        }
+
+    async def chat(self, request: ChatRequest, timeout: float) -> ChatResult:
+        headers = {}
+        key = os.environ.get(self.options.api_key_env)
+        if key:
+            headers["Authorization"] = f"Bearer {key}"
+        url = f"{self.base_url}/chat/completions"
+        try:
+            async with httpx.AsyncClient(timeout=timeout) as client:
+                response = await client.post(url, json=self.payload(request), headers=headers)
+        except httpx.TimeoutException:
+            raise ModelError(f"{url} did not answer within {timeout:.1f} s") from None
+        except httpx.HTTPError as exc:
+            raise ModelError(f"{url} unreachable: {exc}") from None
+        if response.status_code != 200:
+            raise ModelError(f"{url} answered HTTP {response.status_code}: {response.text[:200]}")
+        try:
+            body = response.json()
+            choice = body["choices"][0]
+            content = choice["message"].get("content") or ""
+            reason = choice.get("finish_reason")
+        except (ValueError, KeyError, IndexError, TypeError, AttributeError):
+            raise ModelError(f"{url} answered an unexpected body: {response.text[:200]}") from None
+        if reason == "length":
+            raise ModelError(f"answer truncated at max_tokens={self.options.max_tokens}")
+        if not isinstance(content, str) or not content.strip():
+            raise ModelError("the server returned empty content")
+        return ChatResult(content, reason)

@@ -1,0 +1,46 @@
+"""The offline default model: the rules interpreter behind the ChatModel protocol.
+
+It reads the structured turn context (no prompt parsing) and answers in the same JSON as an LLM, so
+its output goes through the same validation and grounding as any model's. Nouns come from the KB
+lexicon, so it understands objects it was never shown.
+"""
+
+from __future__ import annotations
+
+import json
+
+from dialogue.interpret import Interpreter, Outcome
+from dialogue.lexicon import LexiconCache
+from dialogue.llm.base import ChatRequest, ChatResult, TurnContext
+from dialogue.prompts import FREE_FORM_OBJECT
+from dialogue.schema import ChatbotResponse, UserIntent
+
+
+def answer_of(outcome: Outcome) -> ChatbotResponse:
+    if outcome.intent is None:
+        return ChatbotResponse(verbal_ack=outcome.reply, user_intent=None)
+    roles = dict(outcome.roles)
+    free = roles.pop("object", None) if outcome.intent in FREE_FORM_OBJECT else None
+    return ChatbotResponse(
+        verbal_ack=outcome.reply,
+        user_intent=UserIntent(type=outcome.intent, input=free, confidence=outcome.confidence, **roles),
+    )
+
+
+class RulesModel:
+    def __init__(self) -> None:
+        self._lexicons = LexiconCache()
+
+    @property
+    def name(self) -> str:
+        return "rules"
+
+    def interpret(self, context: TurnContext) -> Outcome:
+        lexicon = self._lexicons.get(context.snapshot)
+        interpreter = Interpreter(lexicon, context.speaker, context.history, context.robot_name)
+        return interpreter.interpret(context.text)
+
+    async def chat(self, request: ChatRequest, timeout: float) -> ChatResult:
+        outcome = self.interpret(request.context)
+        content = json.dumps(answer_of(outcome).model_dump(exclude_none=False))
+        return ChatResult(content, "stop", understood=outcome.understood)

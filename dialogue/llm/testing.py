@@ -1,0 +1,78 @@
+"""Test models: real backends whose answers come from a script or a Python function.
+
+Shipped in the package (not only in tests) so that applications can test their wiring offline.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import json
+from collections import deque
+from collections.abc import Awaitable, Callable, Iterable
+from typing import Any
+
+from dialogue.llm.base import ChatRequest, ChatResult, ModelError
+
+Answer = str | dict[str, Any] | ChatResult | BaseException
+
+
+def _result(answer: Answer) -> ChatResult:
+    if isinstance(answer, BaseException):
+        raise answer
+    if isinstance(answer, ChatResult):
+        return answer
+    if isinstance(answer, dict):
+        return ChatResult(json.dumps(answer))
+    return ChatResult(answer)
+
+
+class ScriptedModel:
+    """Answers from a queue: a JSON string, a dict (dumped), a ChatResult, or an exception to raise.
+
+    Every request is recorded in `requests`. `delay` seconds are slept before each answer (to test
+    deadlines). An exhausted script is a ModelError, never a silent default answer.
+    """
+
+    def __init__(self, answers: Iterable[Answer] = (), *, delay: float = 0.0, name: str = "scripted"):
+        self._answers: deque[Answer] = deque(answers)
+        self.delay = delay
+        self._name = name
+        self.requests: list[ChatRequest] = []
+
+    @property
+    def name(self) -> str:
+        return self._name
+
+    def push(self, *answers: Answer) -> None:
+        self._answers.extend(answers)
+
+    async def chat(self, request: ChatRequest, timeout: float) -> ChatResult:
+        self.requests.append(request)
+        if self.delay:
+            await asyncio.sleep(self.delay)
+        if not self._answers:
+            raise ModelError("scripted model has no answer left")
+        return _result(self._answers.popleft())
+
+
+Responder = Callable[[ChatRequest], Answer | Awaitable[Answer]]
+
+
+class FunctionModel:
+    """Answers computed by a Python callable (sync or async) from the request."""
+
+    def __init__(self, function: Responder, *, name: str = "function") -> None:
+        self.function = function
+        self._name = name
+        self.requests: list[ChatRequest] = []
+
+    @property
+    def name(self) -> str:
+        return self._name
+
+    async def chat(self, request: ChatRequest, timeout: float) -> ChatResult:
+        self.requests.append(request)
+        answer = self.function(request)
+        if isinstance(answer, Awaitable):
+            answer = await answer
+        return _result(answer)

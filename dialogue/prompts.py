@@ -1,0 +1,106 @@
+"""Prompt templates (files in the `prompts` package) and the chat messages of one turn.
+
+Templates use `$placeholders` (string.Template). Rendering is strict both ways: a placeholder without
+a value and a value without a placeholder are errors (D13). The static system prompt comes first,
+the history next, and the per-turn situation with the user's words last, so that a local model's
+prompt cache is reused across turns (D12: the snapshot replaces, never accumulates).
+"""
+
+from __future__ import annotations
+
+import string
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+from importlib import resources
+
+from dialogue.history import Utterance
+from dialogue.intents import CATALOGUE, EXTRACTABLE
+from dialogue.llm.base import ChatMessage, TurnContext
+from dialogue.situation import describe
+
+TEMPLATE_NAMES = ("system", "turn", "repair")
+
+#: Which answer keys each intent uses; free-form roles travel in `input` (see dialogue.schema).
+FREE_FORM_OBJECT = frozenset(
+    {
+        "__intent_say__",
+        "__intent_start_activity__",
+        "__intent_stop_activity__",
+        "__intent_perform_motion__",
+        "__intent_present_content__",
+    }
+)
+
+
+class PromptError(ValueError):
+    """A template cannot be rendered: missing or unexpected placeholder, unknown template."""
+
+
+def load_template(name: str, package: str = "prompts") -> string.Template:
+    try:
+        text = resources.files(package).joinpath(f"{name}.txt").read_text(encoding="utf-8")
+    except FileNotFoundError:
+        raise PromptError(f"no prompt template {name!r} in package {package!r}") from None
+    return string.Template(text)
+
+
+def render(template: string.Template, values: Mapping[str, str]) -> str:
+    expected = set(template.get_identifiers())
+    given = set(values)
+    if expected != given:
+        missing, unused = sorted(expected - given), sorted(given - expected)
+        raise PromptError(f"template placeholders do not match: missing {missing}, unused {unused}")
+    try:
+        return template.substitute(values)
+    except (KeyError, ValueError) as exc:
+        raise PromptError(f"cannot render template: {exc}") from None
+
+
+def intent_list(intents: Sequence[str] = EXTRACTABLE) -> str:
+    lines = []
+    for value in intents:
+        spec = CATALOGUE[value]
+        keys = []
+        for role in spec.roles:
+            if role == "other_data":
+                continue
+            key = "input" if role == "object" and value in FREE_FORM_OBJECT else role
+            optional = "" if role in spec.required else " (optional)"
+            keys.append(key + optional)
+        needs = f" Keys: {', '.join(keys)}." if keys else ""
+        lines.append(f"- {value}: {spec.meaning}.{needs}")
+    return "\n".join(lines)
+
+
+def history_message(utterance: Utterance) -> ChatMessage:
+    if utterance.role == "user":
+        return ChatMessage("user", f'{utterance.speaker} "{utterance.text}"')
+    return ChatMessage(utterance.role, utterance.text)
+
+
+@dataclass
+class PromptSet:
+    """The loaded templates; load once (e.g. per engine), render every turn."""
+
+    system: string.Template
+    turn: string.Template
+    repair: string.Template
+
+    @classmethod
+    def load(cls, package: str = "prompts") -> PromptSet:
+        return cls(*(load_template(name, package) for name in TEMPLATE_NAMES))
+
+    def system_prompt(self, robot_name: str, intents: Sequence[str] = EXTRACTABLE) -> str:
+        return render(self.system, {"robot_name": robot_name, "intent_list": intent_list(intents)})
+
+    def messages(self, context: TurnContext, intents: Sequence[str] = EXTRACTABLE) -> tuple[ChatMessage, ...]:
+        situation = describe(context.snapshot, context.speaker).text
+        turn = render(self.turn, {"situation": situation, "user_id": context.speaker, "input": context.text})
+        return (
+            ChatMessage("system", self.system_prompt(context.robot_name, intents)),
+            *(history_message(u) for u in context.history),
+            ChatMessage("user", turn),
+        )
+
+    def repair_message(self, errors: str) -> ChatMessage:
+        return ChatMessage("user", render(self.repair, {"errors": errors}))

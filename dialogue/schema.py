@@ -1,0 +1,116 @@
+"""The LLM answer: pydantic models (validation) and the per-turn JSON schema (constrained decoding).
+
+The shape follows the ROS4HRI tutorial (`verbal_ack` + `user_intent`), with one change: `input` holds
+the free-form value of an intent (the words to SAY, an activity/motion/content name), so that
+`object`, `recipient` and `goal` are always KB ids and can be enums of the turn's candidate ids.
+Small models ignore enums, so every answer is validated again and resolved against the KB.
+"""
+
+from __future__ import annotations
+
+import json
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import Any
+
+from pydantic import BaseModel, ConfigDict, Field, ValidationError
+
+from dialogue.intents import EXTRACTABLE
+
+#: Referent fields of `user_intent`; their values must be KB entity ids.
+REFERENT_FIELDS = ("object", "recipient", "goal")
+
+
+class UserIntent(BaseModel):
+    """What the model understood the user wants; every field may be null."""
+
+    model_config = ConfigDict(extra="ignore")
+
+    type: str | None = None
+    object: str | None = None
+    recipient: str | None = None
+    goal: str | None = None
+    input: str | None = None
+    #: Not in the JSON schema offered to LLMs (kept small); offline models may set it.
+    confidence: float | None = Field(default=None, ge=0.0, le=1.0)
+
+
+class ChatbotResponse(BaseModel):
+    """The whole answer: a short spoken reply and at most one intent."""
+
+    model_config = ConfigDict(extra="ignore")
+
+    verbal_ack: str | None = None
+    user_intent: UserIntent | None = None
+
+
+class AnswerError(ValueError):
+    """The model's content is not a usable answer; the message says why (it is sent back in a repair)."""
+
+
+def extract_json(content: str) -> Any:
+    """Decode the first JSON value starting at the first `{`, string-aware (D2); text is never rewritten."""
+    start = content.find("{")
+    if start < 0:
+        raise AnswerError("the answer contains no JSON object")
+    try:
+        value, _end = json.JSONDecoder().raw_decode(content, start)
+    except json.JSONDecodeError as exc:
+        raise AnswerError(f"the answer is not valid JSON ({exc.msg} at character {exc.pos})") from None
+    return value
+
+
+def parse_answer(content: str) -> ChatbotResponse:
+    """Validate the raw content into a ChatbotResponse or raise AnswerError (never anything else, D3)."""
+    value = extract_json(content)
+    if not isinstance(value, dict):
+        raise AnswerError("the answer must be a JSON object with keys verbal_ack and user_intent")
+    try:
+        return ChatbotResponse.model_validate(value)
+    except ValidationError as exc:
+        problems = "; ".join(
+            f"{'.'.join(str(p) for p in err['loc']) or 'answer'}: {err['msg']}" for err in exc.errors()
+        )
+        raise AnswerError(f"the answer does not match the schema ({problems})") from None
+
+
+@dataclass(frozen=True)
+class SchemaCandidates:
+    """The ids the model may use this turn, per referent field (already bounded by the grounding)."""
+
+    objects: Sequence[str]
+    recipients: Sequence[str]
+    goals: Sequence[str]
+
+
+def _nullable_enum(values: Sequence[str]) -> dict[str, Any]:
+    if not values:
+        return {"type": "null"}
+    return {"enum": [*values, None]}
+
+
+def _nullable_string() -> dict[str, Any]:
+    return {"anyOf": [{"type": "string"}, {"type": "null"}]}
+
+
+def turn_schema(candidates: SchemaCandidates, intents: Sequence[str] = EXTRACTABLE) -> dict[str, Any]:
+    """The JSON schema of this turn's answer: intent types and referents are closed enums (D10)."""
+    user_intent = {
+        "type": "object",
+        "properties": {
+            "type": {"enum": list(intents)},
+            "object": _nullable_enum(candidates.objects),
+            "recipient": _nullable_enum(candidates.recipients),
+            "goal": _nullable_enum(candidates.goals),
+            "input": _nullable_string(),
+        },
+        "required": ["type", "object", "recipient", "goal", "input"],
+    }
+    return {
+        "type": "object",
+        "properties": {
+            "verbal_ack": _nullable_string(),
+            "user_intent": {"anyOf": [user_intent, {"type": "null"}]},
+        },
+        "required": ["verbal_ack", "user_intent"],
+    }

@@ -1,0 +1,98 @@
+"""The situation as short natural sentences for the prompt: bounded, deterministic, ids in brackets.
+
+Class names are readable labels and things are named by their label when they have one (D17); the
+id in brackets is what the model must use in intent roles.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from dialogue.grounding import Entity, Snapshot
+
+MAX_LINES = 40
+MAX_CHARS = 3000
+
+
+def article(noun: str) -> str:
+    return f"an {noun}" if noun[:1].lower() in "aeiou" else f"a {noun}"
+
+
+def noun_phrase(snapshot: Snapshot, entity: Entity) -> str:
+    """ "the red cup [cup_red], a cup" or "a cup [cup_1]" or "Maria [person_maria]"."""
+    cls = entity.class_names[0] if entity.class_names else None
+    if entity.kind == "person":
+        return f"{entity.name} [{entity.id}]" if entity.labels else f"a person [{entity.id}]"
+    if entity.labels:
+        label = entity.labels[0]
+        head = label if entity.kind == "zone" else f"the {label}"
+        if cls and cls != label.lower() and entity.kind != "zone":
+            return f"{head} [{entity.id}], {article(cls)}"
+        return f"{head} [{entity.id}]"
+    return f"{article(cls or 'thing')} [{entity.id}]"
+
+
+def place_phrase(snapshot: Snapshot, entity: Entity) -> str:
+    parts = []
+    if entity.colour:
+        parts.append(entity.colour)
+    if entity.support:
+        parts.append(f"on the {snapshot.name_of(entity.support)} [{entity.support}]")
+    if entity.zone:
+        parts.append(f"in the {snapshot.name_of(entity.zone)} [{entity.zone}]")
+    return (", " + ", ".join(parts)) if parts else ""
+
+
+@dataclass(frozen=True)
+class Description:
+    lines: tuple[str, ...]
+    truncated: int
+
+    @property
+    def text(self) -> str:
+        tail = [f"({self.truncated} more things are not listed.)"] if self.truncated else []
+        return "\n".join([*self.lines, *tail])
+
+
+def describe(snapshot: Snapshot, speaker: str) -> Description:
+    """Who speaks, who is here, what the robot sees, known places and things not seen now."""
+    lines: list[str] = []
+    speaking = snapshot.get(speaker)
+    if speaking is not None and speaking.kind == "person":
+        lines.append(f"{noun_phrase(snapshot, speaking)} is speaking to you.")
+    else:
+        lines.append(f"The person speaking to you has the id [{speaker}].")
+    robot = snapshot.get(snapshot.robot)
+    if robot is not None and robot.zone:
+        lines.append(f"You are in the {snapshot.name_of(robot.zone)} [{robot.zone}].")
+    people = [e for e in snapshot.of_kind("person") if e.id != speaker]
+    present = [e for e in people if e.seen]
+    absent = [e for e in people if not e.seen]
+    if present:
+        lines.append("You see " + _and([noun_phrase(snapshot, e) for e in present]) + ".")
+    if absent:
+        lines.append("You know " + _and([noun_phrase(snapshot, e) for e in absent]) + ", not here now.")
+    things = [e for e in snapshot.entities.values() if e.kind == "thing"]
+    for e in things:
+        if e.seen:
+            lines.append(f"You see {noun_phrase(snapshot, e)}{place_phrase(snapshot, e)}.")
+    zones = snapshot.of_kind("zone")
+    if zones:
+        lines.append("Places: " + _and([noun_phrase(snapshot, e) for e in zones]) + ".")
+    for e in things:
+        if not e.seen:
+            lines.append(f"You know {noun_phrase(snapshot, e)}{place_phrase(snapshot, e)}, not seen now.")
+    kept: list[str] = []
+    size = 0
+    for line in lines:
+        if len(kept) >= MAX_LINES or size + len(line) + 1 > MAX_CHARS:
+            break
+        kept.append(line)
+        size += len(line) + 1
+    return Description(tuple(kept), len(lines) - len(kept))
+
+
+def _and(items: list[str]) -> str:
+    if len(items) <= 1:
+        return "".join(items)
+    return ", ".join(items[:-1]) + " and " + items[-1]

@@ -1,0 +1,88 @@
+"""From a validated model answer to intents whose referents are KB entities (D3, D7, D8, D9).
+
+Small models ignore schema enums, so every referent is resolved again: an id of the snapshot, or a
+name that resolves to exactly one entity of the right kind. Anything else is an AnswerError whose
+message tells the model what was wrong (it is sent back once in a repair request).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from dialogue import intents as I
+from dialogue.clarify import question as clarifying_question
+from dialogue.lexicon import Lexicon
+from dialogue.prompts import FREE_FORM_OBJECT
+from dialogue.resolution import ROLE_KINDS, resolve_id
+from dialogue.schema import REFERENT_FIELDS, AnswerError, ChatbotResponse, UserIntent
+
+MAX_REPLY_CHARS = 600
+MAX_FREE_TEXT_CHARS = 500
+_SPEAKER_WORDS = frozenset({"me", "user", "speaker", "myself", "the user", "the speaker"})
+#: Required person roles that default to the speaker when the model left them empty (D8 repair).
+_SPEAKER_DEFAULTS = {(I.GREET, "recipient"), (I.BRING_OBJECT, "recipient"), (I.GUIDE, "recipient")}
+
+
+@dataclass(frozen=True)
+class Grounded:
+    reply: str
+    intents: tuple[I.Intent, ...]
+    clarify: bool = False
+
+
+def ground_answer(
+    answer: ChatbotResponse, lexicon: Lexicon, speaker: str, *, default_confidence: float = 0.7
+) -> Grounded:
+    reply = (answer.verbal_ack or "").strip()[:MAX_REPLY_CHARS]
+    wish = answer.user_intent
+    if wish is None or wish.type is None:
+        if not reply:
+            raise AnswerError("both verbal_ack and user_intent are null; say something or give an intent")
+        return Grounded(reply, ())
+    if wish.type not in I.EXTRACTABLE:
+        raise AnswerError(f"user_intent.type {wish.type!r} is not one of {list(I.EXTRACTABLE)}")
+    data, question = _roles(wish, lexicon, speaker)
+    if question is not None:
+        return Grounded(question, (), clarify=True)
+    confidence = wish.confidence if wish.confidence is not None else default_confidence
+    try:
+        intent = I.make_intent(wish.type, data, source=speaker, confidence=confidence)
+    except I.IntentError as exc:
+        raise AnswerError(str(exc)) from None
+    return Grounded(reply or "OK.", (intent,))
+
+
+def _roles(wish: UserIntent, lexicon: Lexicon, speaker: str) -> tuple[dict[str, str | None], str | None]:
+    intent = wish.type or ""
+    kinds = ROLE_KINDS.get(intent, {})
+    data: dict[str, str | None] = {}
+    values = {f: getattr(wish, f) for f in REFERENT_FIELDS}
+    if intent in FREE_FORM_OBJECT:
+        # Free-form value (SAY text, activity name): `input`, or `object` from a model that mixed them up.
+        obj = values.pop("object")
+        text = wish.input if wish.input and wish.input.strip() else obj
+        data["object"] = text.strip()[:MAX_FREE_TEXT_CHARS] if text else None
+    for field in REFERENT_FIELDS:
+        value = values.get(field)
+        if field not in kinds:
+            continue  # a role this intent does not take is dropped, never passed on (D7)
+        if value is None or not value.strip():
+            if (intent, field) in _SPEAKER_DEFAULTS:
+                data[field] = speaker
+            continue
+        kind = kinds[field]
+        if "person" in kind and (value == speaker or value.strip().lower() in _SPEAKER_WORDS):
+            data[field] = speaker
+            continue
+        found = resolve_id(lexicon, value.strip(), kind)
+        if found.one is not None:
+            data[field] = found.one.id
+        elif found.ambiguous:
+            return data, clarifying_question(lexicon.snapshot, found.matches)
+        else:
+            allowed = sorted(e.id for e in lexicon.snapshot.entities.values() if e.kind in kind)[:30]
+            raise AnswerError(
+                f"{field} {value!r} is not the id of a {'/'.join(sorted(kind))} in the situation; "
+                f"use one of {allowed} or null"
+            )
+    return data, None

@@ -1,0 +1,1 @@
+"""Resource package: data files read with importlib.resources."""

@@ -1,0 +1,93 @@
+"""Dialogue routes (chatbot_msgs shapes) end to end, with the rules backend and test models."""
+
+from __future__ import annotations
+
+import json
+
+from api.settings import Limits, Settings
+from dialogue.llm.base import ChatRequest
+from dialogue.llm.testing import FunctionModel, ScriptedModel
+from tests.api.conftest import SCENE, Live
+
+INTENT_KEYS = {"intent", "data", "source", "modality", "priority", "confidence"}
+
+
+def test_start_interact_end(live: Live) -> None:
+    client = live.client
+    started = client.post("/dialogues", json={"role": {"name": "__default__", "configuration": "{}"},
+                                              "locale": "en_GB"})
+    assert started.status_code == 201
+    dialogue_id = started.json()["dialogue_id"]
+    reply = client.post(f"/dialogues/{dialogue_id}/interactions",
+                        json={"user_id": "person_alice", "input": "please pick up the cup"}).json()
+    assert set(reply) == {"response", "intents", "error_msg"}
+    assert reply["error_msg"] == "" and reply["response"]
+    (intent,) = reply["intents"]
+    assert set(intent) == INTENT_KEYS
+    assert intent["intent"] == "__intent_grab_object__" and intent["data"] == {"object": "cup_1"}
+    assert intent["source"] == "person_alice" and intent["priority"] == 128
+    assert intent["modality"] == "__modality_speech__"
+    assert client.delete(f"/dialogues/{dialogue_id}").status_code == 204
+    gone = client.post(f"/dialogues/{dialogue_id}/interactions", json={"user_id": "a", "input": "hi"})
+    assert (gone.status_code, gone.json()["code"]) == (404, "unknown_dialogue")
+
+
+def test_default_dialogue_always_exists_and_records_without_reply(live: Live) -> None:
+    client = live.client
+    recorded = client.post("/dialogues/default/interactions",
+                           json={"user_id": "__assistant__", "input": "Hello!", "response_expected": False})
+    assert recorded.json() == {"response": "", "intents": [], "error_msg": ""}
+    assert client.delete("/dialogues/default").status_code == 204
+    greeting = client.post("/dialogues/default/interactions", json={"user_id": "person_alice", "input": "hi"})
+    assert greeting.json()["intents"][0]["intent"] == "__intent_greet__"
+
+
+def test_unknown_input_falls_back_to_raw_user_input(live: Live) -> None:
+    reply = live.client.post("/dialogues/default/interactions",
+                             json={"user_id": "person_alice", "input": "zorglub frobnicate"}).json()
+    assert reply["intents"][0]["intent"] == "__raw_user_input__"
+    assert reply["intents"][0]["data"]["input"] == "zorglub frobnicate"
+
+
+def test_bad_requests(live: Live) -> None:
+    client = live.client
+    assert client.post("/dialogues", json={"role": {"name": "__ask__"}}).json()["code"] == "dialogue_error"
+    missing = client.post("/dialogues/default/interactions", json={"input": "hi"})
+    assert missing.status_code == 422 and "user_id" in missing.json()["message"]
+
+
+def test_history_limit(live_factory) -> None:  # type: ignore[no-untyped-def]
+    live = live_factory(Settings(scene=SCENE, limits=Limits(max_history_turns=2)))
+    turns = [{"speaker": "person_alice", "text": "hi"}] * 3
+    refused = live.client.post("/dialogues/default/interactions",
+                               json={"user_id": "person_alice", "input": "hi", "history": turns})
+    assert (refused.status_code, refused.json()["code"]) == (413, "too_many_history_turns")
+
+
+def test_a_test_model_answer_is_validated_against_the_kb(live_factory) -> None:  # type: ignore[no-untyped-def]
+    grab = "__intent_grab_object__"
+    answers = [{"verbal_ack": "Taking it.", "user_intent": {"type": grab, "object": "cup_1"}},
+               {"verbal_ack": "Taking it.", "user_intent": {"type": "__intent_grab_object__",
+                                                            "object": "unicorn_9"}},
+               {"verbal_ack": "Still no.", "user_intent": {"type": "__intent_grab_object__",
+                                                           "object": "unicorn_9"}}]
+    model = ScriptedModel(answers)
+    live = live_factory(model=model)
+    ok = live.client.post("/dialogues/default/interactions", json={"user_id": "person_alice",
+                                                                   "input": "the thing, grab it"}).json()
+    assert ok["intents"][0]["data"] == {"object": "cup_1"} and ok["response"] == "Taking it."
+    invented = live.client.post("/dialogues/default/interactions", json={"user_id": "person_alice",
+                                                                         "input": "grab the unicorn"}).json()
+    assert all(i["data"].get("object") != "unicorn_9" for i in invented["intents"])
+    assert len(model.requests) == 3  # one repair request after the invalid answer
+
+
+def test_health_reports_the_model(live_factory) -> None:  # type: ignore[no-untyped-def]
+    def answer(request: ChatRequest) -> str:
+        return json.dumps({"verbal_ack": "ok", "user_intent": None})
+
+    live = live_factory(model=FunctionModel(answer, name="fn"))
+    health = live.client.get("/health").json()
+    assert health["model"] == {"name": "fn", "remote": False, "reachable": True, "detail": "in-process"}
+    assert health["kb"]["size"] > health["kb"]["asserted"] > 0
+    assert live.client.get("/version").json()["name"] == "situated"

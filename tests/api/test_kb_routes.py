@@ -1,0 +1,78 @@
+"""The KB routes end to end, over HTTP against a real server."""
+
+from __future__ import annotations
+
+from rdflib import Graph, URIRef
+
+from tests.api.conftest import Live
+
+ORO = "http://kb.openrobots.org#"
+
+
+def test_query_post_and_get(live: Live) -> None:
+    rows = live.client.post("/kb/query", json={"patterns": ["myself sees ?o", "?o rdf:type dbr:Cup"]}).json()
+    assert rows == [{"o": "cup_1"}]
+    assert live.client.post("/kb/query", json={"patterns": ["?o isOn table_1", "?o rdfs:label ?l"],
+                                               "vars": ["?l"]}).json() == [{"l": "cookbook"}]
+    got = live.client.get("/kb/query", params=[("pattern", "?x isOn table_1"),
+                                               ("pattern", "?x rdf:type dbr:Book")])
+    assert got.json() == [{"x": "book_1"}]
+    ground = live.client.get("/kb/query", params={"pattern": "cup_1 isOn table_1"})
+    assert ground.json() == ["cup_1 isOn table_1"]
+
+
+def test_revise_add_update_retract_and_models(live: Live) -> None:
+    client = live.client
+    first = client.post("/kb/revise", json={"statements": ["cup_1 isOn shelf_1"], "method": "add"}).json()
+    assert client.post("/kb/query", json={"patterns": ["cup_1 isOn ?s"]}).json() == [
+        {"s": "shelf_1"}, {"s": "table_1"}]
+    second = client.post("/kb/revise", json={"statements": ["?c isOn shelf_1"], "method": "retract"}).json()
+    assert second["revision"] > first["revision"]
+    assert client.post("/kb/query", json={"patterns": ["cup_1 isOn ?s"]}).json() == [{"s": "table_1"}]
+    client.post("/kb/revise", json={"statements": ["alice_mind knows cup_1"], "method": "update",
+                                    "models": ["alice"]})
+    assert client.post("/kb/query", json={"patterns": ["?x knows ?y"], "models": ["alice"]}).json() == [
+        {"x": "alice_mind", "y": "cup_1"}]
+    assert client.post("/kb/query", json={"patterns": ["?x knows ?y"]}).json() == []
+
+
+def test_a_bad_statement_writes_nothing(live: Live) -> None:
+    before = live.client.get("/health").json()["kb"]["revision"]
+    response = live.client.post("/kb/revise", json={"statements": ["cup_9 isOn table_1", "broken"],
+                                                    "method": "add"})
+    assert response.status_code == 400
+    assert live.client.get("/kb/query", params={"pattern": "cup_9 ?p ?o"}).json() == []
+    assert live.client.get("/health").json()["kb"]["revision"] == before
+
+
+def test_details_label_lookup_about_classesof(live: Live) -> None:
+    client = live.client
+    details = client.get("/kb/details/cup_1").json()
+    assert details["id"] == "cup_1" and details["type"] == "instance"
+    assert details["attributes"][0]["values"][0]["id"] == "dbr:Cup"
+    assert client.get("/kb/details/dbr:Table_(furniture)").json()["type"] == "class"
+    assert client.get("/kb/label/person_alice").json() == "Alice"
+    assert client.get("/kb/lookup", params={"q": "cookbook"}).json() == [["book_1", "instance"]]
+    assert ["myself", "sees", "cup_1"] in client.get("/kb/about/cup_1").json()
+    assert client.get("/kb/classesof/cup_1", params={"direct": "true"}).json() == ["dbr:Cup"]
+    assert "Artifact" in client.get("/kb/classesof/cup_1").json()
+
+
+def test_load_export_clear(live: Live) -> None:
+    client = live.client
+    turtle = f"@prefix : <{ORO}> .\n:robot_2 :sees :cup_1 ."
+    assert client.post("/kb/load", content=turtle, headers={"content-type": "text/turtle"}).status_code == 200
+    assert client.get("/kb/query", params={"pattern": "?r sees cup_1"}).json() == [
+        {"r": "myself"}, {"r": "robot_2"}]
+    exported = client.get("/kb/export", headers={"accept": "application/n-triples"})
+    assert exported.headers["content-type"].startswith("application/n-triples")
+    graph = Graph().parse(data=exported.text, format="nt")
+    assert (URIRef(ORO + "robot_2"), URIRef(ORO + "sees"), URIRef(ORO + "cup_1")) in graph
+    as_jsonld = client.get("/kb/export", headers={"accept": "application/ld+json"})
+    assert len(Graph().parse(data=as_jsonld.text, format="json-ld")) == len(graph)
+    bad = client.post("/kb/load", content="not turtle at all", headers={"content-type": "text/turtle"})
+    assert bad.status_code == 400
+    assert client.post("/kb/clear").json()["revision"] > 0
+    assert client.get("/kb/query", params={"pattern": "?r sees cup_1"}).json() == []
+    assert client.get("/kb/classesof/Human").status_code == 200  # the ontology stays
+    assert client.get("/kb/query", params={"pattern": "Human rdfs:subClassOf ?c"}).json()

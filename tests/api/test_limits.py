@@ -1,0 +1,47 @@
+"""Request bounds give clear 413 errors (subscriber bounds: see test_events)."""
+
+from __future__ import annotations
+
+import json
+from collections.abc import Iterator
+
+from api.settings import Limits, Settings
+from tests.api.conftest import SCENE, Live
+
+
+def _limited(live_factory) -> Live:  # type: ignore[no-untyped-def]
+    limits = Limits(max_body_bytes=2048, max_statements=2, max_patterns=2)
+    live: Live = live_factory(Settings(scene=SCENE, limits=limits))
+    return live
+
+
+def test_body_size_with_and_without_content_length(live_factory) -> None:  # type: ignore[no-untyped-def]
+    live = _limited(live_factory)
+    big = json.dumps({"statements": ["a b c"] * 400, "method": "add"}).encode()
+    declared = live.client.post("/kb/revise", content=big, headers={"content-type": "application/json"})
+    assert declared.status_code == 413
+    assert declared.json()["code"] == "body_too_large" and "2048" in declared.json()["message"]
+
+    def chunks() -> Iterator[bytes]:
+        for start in range(0, len(big), 512):
+            yield big[start:start + 512]
+
+    streamed = live.client.post("/kb/revise", content=chunks(), headers={"content-type": "application/json"})
+    assert streamed.status_code == 413 and streamed.json()["code"] == "body_too_large"
+    assert live.services.kb.find(["a b c"]) == []
+    small = live.client.post("/kb/revise", json={"statements": ["a b c"], "method": "add"})
+    assert small.status_code == 200
+
+
+def test_statement_and_pattern_counts(live_factory) -> None:  # type: ignore[no-untyped-def]
+    live = _limited(live_factory)
+    many = live.client.post("/kb/revise", json={"statements": ["a b c", "a b d", "a b e"], "method": "add"})
+    assert many.status_code == 413
+    assert many.json() == {"status": 413, "code": "too_many_statements",
+                           "message": "3 statements in one request; the limit is 2",
+                           "details": {"count": 3, "limit": 2}}
+    patterns = ["?a b ?c", "?c d ?e", "?e f ?g"]
+    assert live.client.post("/kb/query", json={"patterns": patterns}).json()["code"] == "too_many_patterns"
+    by_get = live.client.get("/kb/query", params=[("pattern", p) for p in patterns])
+    assert by_get.status_code == 413
+    assert live.client.get("/kb/events", params=[("pattern", p) for p in patterns]).status_code == 413

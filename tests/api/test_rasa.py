@@ -1,0 +1,64 @@
+"""The Rasa-compatible facade: REST channel webhook and /model/parse shapes."""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+
+from pydantic import SecretStr
+
+from api.rasa import webhook_messages
+from api.settings import Settings
+from dialogue.intents import Intent
+from tests.api.conftest import SCENE, Live
+
+
+def test_webhook_reply_with_intents_in_custom(live: Live) -> None:
+    assert live.client.get("/webhooks/rest/").json() == {"status": "ok"}
+    messages = live.client.post("/webhooks/rest/webhook",
+                                json={"sender": "person_alice", "message": "pick up the cookbook"}).json()
+    assert isinstance(messages, list) and len(messages) == 1
+    (message,) = messages
+    assert message["recipient_id"] == "person_alice" and message["text"]
+    (intent,) = message["custom"]["intents"]
+    assert intent["intent"] == "__intent_grab_object__" and intent["data"] == {"object": "book_1"}
+    assert intent["source"] == "person_alice"
+    # the conversation is remembered per sender: "it" refers to the cookbook
+    follow = live.client.post("/webhooks/rest/webhook", json={"sender": "person_alice", "message": "hello",
+                                                              "metadata": {"x": 1}}).json()
+    assert follow[0]["custom"]["intents"][0]["intent"] == "__intent_greet__"
+
+
+def test_webhook_splits_at_blank_lines_and_omits_null_keys() -> None:
+    intent = Intent(intent="__intent_greet__", data={"recipient": "p"}, source="p")
+    assert webhook_messages("u", "Hi.\n\nHow are you?", [intent]) == [
+        {"recipient_id": "u", "text": "Hi."},
+        {"recipient_id": "u", "text": "How are you?", "custom": {"intents": [intent.model_dump()]}},
+    ]
+    assert webhook_messages("u", "", []) == []
+    assert webhook_messages("u", "", [intent]) == [{"recipient_id": "u",
+                                                    "custom": {"intents": [intent.model_dump()]}}]
+
+
+def test_model_parse_shape(live: Live) -> None:
+    parsed = live.client.post("/model/parse", json={"text": "grab the cookbook"}).json()
+    assert set(parsed) == {"text", "intent", "entities", "intent_ranking"}
+    assert parsed["text"] == "grab the cookbook"
+    assert set(parsed["intent"]) == {"name", "confidence"}
+    assert parsed["intent"]["name"] == "__intent_grab_object__"
+    assert 0 < parsed["intent"]["confidence"] <= 1
+    (entity,) = parsed["entities"]
+    assert entity["entity"] == "object" and entity["value"] == "book_1"
+    assert "grab the cookbook"[entity["start"]:entity["end"]] == "cookbook"
+    assert parsed["intent_ranking"][0]["name"] == "__intent_grab_object__"
+    fallback = live.client.post("/model/parse", json={"text": "qwxz plorp"}).json()
+    assert fallback["intent"]["name"] == "__raw_user_input__" and fallback["entities"] == []
+    assert live.client.post("/model/parse", json={}).status_code == 422
+
+
+def test_rasa_style_token_parameter(live_factory: Callable[..., Live]) -> None:
+    live = live_factory(Settings(scene=SCENE, token=SecretStr("rasa-secret")))
+    message = {"sender": "u2", "message": "hello"}
+    assert live.client.post("/webhooks/rest/webhook", json=message).status_code == 401
+    assert live.client.post("/webhooks/rest/webhook?token=nope", json=message).status_code == 403
+    ok = live.client.post("/webhooks/rest/webhook?token=rasa-secret", json=message)
+    assert ok.status_code == 200 and ok.json()[0]["recipient_id"] == "u2"

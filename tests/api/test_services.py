@@ -1,0 +1,53 @@
+"""Start-up and shutdown: scene, extra ontology files, the data-dir snapshot, bad settings."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from api.services import start_services
+from api.settings import Settings, SettingsError
+from kb import KbError
+from tests.api.conftest import SCENE
+
+
+def test_data_dir_journal_survives_a_restart(tmp_path: Path) -> None:
+    settings = Settings(data_dir=tmp_path / "data")
+    first = start_services(settings)
+    first.kb.update(["cup_7 isOn table_1"])
+    first.kb.update(["x believes y"], ["alice"])
+    assert (tmp_path / "data" / "journal.log").stat().st_size > 0  # written before the update returned
+    first.stop()
+    assert (tmp_path / "data" / "snapshot.json").exists()  # a clean stop compacts
+    second = start_services(settings)
+    try:
+        assert second.kb.find(["cup_7 isOn ?t"]) == [{"t": "table_1"}]
+        assert second.kb.find(["x believes ?o"], models=["alice"]) == [{"o": "y"}]
+    finally:
+        second.stop()
+
+
+def test_extra_ontology_and_scene(tmp_path: Path) -> None:
+    extra = tmp_path / "extra.ttl"
+    extra.write_text("@prefix : <http://kb.openrobots.org#> .\n"
+                     "@prefix rdfs: <http://www.w3.org/2000/01/rdf-schema#> .\n"
+                     ":Mug rdfs:subClassOf :Artifact .\n")
+    services = start_services(Settings(ontology_files=[extra], scene=SCENE))
+    try:
+        services.kb.update(["mug_1 rdf:type Mug"])
+        assert "Artifact" in services.kb.classesof("mug_1")
+        assert services.kb.find(["myself sees cup_1"]) == ["myself sees cup_1"]
+    finally:
+        services.stop()
+
+
+def test_bad_scene_and_bad_backend_are_clear_errors(tmp_path: Path) -> None:
+    bad = tmp_path / "bad.txt"
+    bad.write_text("cup_1 isOn table_1\nthis is not a statement at all\n")
+    with pytest.raises(KbError, match=r"bad\.txt"):
+        start_services(Settings(scene=bad))
+    with pytest.raises(KbError, match="cannot read scene file"):
+        start_services(Settings(scene=tmp_path / "missing.txt"))
+    with pytest.raises(SettingsError, match="llm"):
+        start_services(Settings(llm="nonsense"))

@@ -1,0 +1,74 @@
+"""The thread -> asyncio bridge of KB events, without HTTP."""
+
+from __future__ import annotations
+
+import asyncio
+
+import pytest
+
+from api.errors import ApiError
+from api.subscriptions import EventHub
+from kb import KB
+
+
+@pytest.fixture(scope="module")
+def kb() -> KB:
+    return KB()
+
+
+def test_rows_cross_threads_and_the_last_listener_unsubscribes(kb: KB) -> None:
+    async def scenario() -> None:
+        loop = asyncio.get_running_loop()
+        hub = EventHub(kb, max_listeners=2)
+        one = hub.open(["?x isOn shelf_9"], False, None, loop)
+        two = hub.open(["?x isOn shelf_9"], False, None, loop)
+        assert one.sub_id == two.sub_id
+        with pytest.raises(ApiError) as refused:
+            hub.open(["?x isIn room_9"], False, None, loop)
+        assert refused.value.status == 429
+        await asyncio.to_thread(kb.update, ["box_1 isOn shelf_9"])  # delivered from another thread
+        assert await asyncio.wait_for(one.next_rows(), 5) == [{"x": "box_1"}]
+        assert await asyncio.wait_for(two.next_rows(), 5) == [{"x": "box_1"}]
+        hub.close(one)
+        assert hub.listener_count == 1
+        hub.close(two)
+        assert hub.listener_count == 0
+        assert kb.unsubscribe(one.sub_id) is False  # the hub removed it
+
+    asyncio.run(scenario())
+
+
+def test_one_shot_ends_and_a_new_subscription_starts_fresh(kb: KB) -> None:
+    async def scenario() -> None:
+        loop = asyncio.get_running_loop()
+        hub = EventHub(kb, max_listeners=4)
+        first = hub.open(["?x isOn shelf_8"], True, None, loop)
+        await asyncio.to_thread(kb.update, ["box_2 isOn shelf_8"])
+        assert await asyncio.wait_for(first.next_rows(), 5) == [{"x": "box_2"}]
+        assert await asyncio.wait_for(first.next_rows(), 5) is None
+        assert first.end_reason == "one_shot"
+        second = hub.open(["?x isOn shelf_8"], True, None, loop)
+        await asyncio.to_thread(kb.update, ["box_3 isOn shelf_8"])
+        assert await asyncio.wait_for(second.next_rows(), 5) == [{"x": "box_3"}]
+        hub.close(first)
+        hub.close(second)
+        assert hub.listener_count == 0
+
+    asyncio.run(scenario())
+
+
+def test_a_slow_reader_is_ended_not_buffered_forever(kb: KB) -> None:
+    async def scenario() -> None:
+        loop = asyncio.get_running_loop()
+        hub = EventHub(kb, max_listeners=1, max_queued=2)
+        slow = hub.open(["?x isOn shelf_7"], False, None, loop)
+        for i in range(4):
+            await asyncio.to_thread(kb.update, [f"box_{i} isOn shelf_7"])
+        await asyncio.sleep(0.05)
+        rows = [await asyncio.wait_for(slow.next_rows(), 5) for _ in range(3)]
+        assert rows[:2] == [[{"x": "box_0"}], [{"x": "box_1"}]] and rows[2] is None
+        assert slow.end_reason is not None and slow.end_reason.startswith("overflow")
+        hub.shutdown()
+        assert hub.listener_count == 0
+
+    asyncio.run(scenario())

@@ -1,0 +1,66 @@
+import asyncio
+
+import pytest
+
+from dialogue.llm.base import ModelError
+from dialogue.llm.openai import OpenAIModel, OpenAIOptions
+from tests.dialogue.llm.common import ANSWER, SCHEMA, request
+from tests.dialogue.llm.fakeserver import fake_server, free_port_url
+
+
+def reply(content: str | None, finish: str = "stop") -> dict[str, object]:
+    return {
+        "choices": [
+            {"index": 0, "message": {"role": "assistant", "content": content}, "finish_reason": finish}
+        ]
+    }
+
+
+def test_json_schema_response_format_with_explicit_sampling() -> None:
+    with fake_server() as server:
+        server.replies.append((200, reply(ANSWER)))
+        model = OpenAIModel("qwen", server.url + "/v1/")
+        result = asyncio.run(model.chat(request(), timeout=5))
+    assert result.content == ANSWER
+    path, body = server.requests[0]
+    assert path == "/v1/chat/completions"
+    assert body["response_format"] == {
+        "type": "json_schema",
+        "json_schema": {"name": "chatbot_response", "schema": SCHEMA},
+    }
+    assert body["temperature"] == 0 and body["max_tokens"] == 256 and body["stream"] is False
+    assert not {"format", "options", "think", "keep_alive"} & set(body)  # D16
+
+
+def test_json_object_variant() -> None:
+    with fake_server() as server:
+        server.replies.append((200, reply(ANSWER)))
+        model = OpenAIModel("m", server.url + "/v1", OpenAIOptions(response_format="json_object"))
+        asyncio.run(model.chat(request(), timeout=5))
+    assert server.requests[0][1]["response_format"] == {"type": "json_object", "schema": SCHEMA}
+
+
+@pytest.mark.parametrize(
+    ("status", "body", "message"),
+    [
+        (200, reply(ANSWER, "length"), "truncated"),
+        (200, reply(None), "empty content"),
+        (200, {"unexpected": True}, "unexpected body"),
+        (503, {"error": "loading"}, "HTTP 503"),
+    ],
+)
+def test_failures_are_model_errors(status: int, body: dict[str, object], message: str) -> None:
+    with fake_server() as server:
+        server.replies.append((status, body))
+        with pytest.raises(ModelError, match=message):
+            asyncio.run(OpenAIModel("m", server.url + "/v1").chat(request(), timeout=5))
+
+
+def test_unreachable_and_timeout() -> None:
+    with pytest.raises(ModelError, match="unreachable"):
+        asyncio.run(OpenAIModel("m", free_port_url() + "/v1").chat(request(), timeout=2))
+    with fake_server() as server:
+        server.delay = 0.6
+        server.replies.append((200, reply(ANSWER)))
+        with pytest.raises(ModelError, match="within"):
+            asyncio.run(OpenAIModel("m", server.url + "/v1").chat(request(), timeout=0.2))

@@ -1,0 +1,27 @@
+import asyncio
+import json
+
+from dialogue.grounding import build_snapshot
+from dialogue.llm.base import ChatModel, ChatRequest, TurnContext
+from dialogue.llm.rules import RulesModel
+from dialogue.schema import parse_answer
+from kb import KB
+
+
+def test_rules_model_answers_through_the_protocol_in_the_llm_json_shape(kitchen: KB) -> None:
+    model = RulesModel()
+    assert isinstance(model, ChatModel) and model.name == "rules"
+    context = TurnContext("tell Tom that lunch is ready", "person_alice", build_snapshot(kitchen))
+    result = asyncio.run(model.chat(ChatRequest((), {}, context), timeout=1))
+    answer = parse_answer(result.content)
+    assert answer.user_intent is not None
+    assert answer.user_intent.type == "__intent_say__"
+    assert answer.user_intent.input == "lunch is ready" and answer.user_intent.recipient == "person_tom"
+    assert answer.user_intent.object is None
+    assert set(json.loads(result.content)) == {"verbal_ack", "user_intent"}
+
+
+def test_rules_model_says_when_it_did_not_understand(kitchen: KB) -> None:
+    context = TurnContext("the moon is made of cheese", "person_alice", build_snapshot(kitchen))
+    result = asyncio.run(RulesModel().chat(ChatRequest((), {}, context), timeout=1))
+    assert not result.understood and parse_answer(result.content).user_intent is None

@@ -1,0 +1,111 @@
+import pytest
+
+from dialogue import intents as I
+from dialogue.commands import parse
+
+
+@pytest.mark.parametrize(
+    ("text", "intent", "slots"),
+    [
+        ("Pick up the cup", I.GRAB_OBJECT, {"object": ("the", "cup")}),
+        ("pick the mug up, please", I.GRAB_OBJECT, {"object": ("the", "mug")}),
+        ("hand me the towel", I.BRING_OBJECT, {"object": ("the", "towel"), "recipient": ("me",)}),
+        ("get the towel for me", I.BRING_OBJECT, {"object": ("the", "towel"), "recipient": ("me",)}),
+        ("carry the box over to Ann", I.BRING_OBJECT, {"object": ("the", "box"), "recipient": ("ann",)}),
+        (
+            "set the vase on top of the piano",
+            I.PLACE_OBJECT,
+            {"object": ("the", "vase"), "recipient": ("the", "piano")},
+        ),
+        (
+            "move the vase to the piano",
+            I.PLACE_OBJECT,
+            {"object": ("the", "vase"), "recipient": ("the", "piano")},
+        ),
+        ("head over to the garage", I.MOVE_TO, {"goal": ("the", "garage")}),
+        ("come here", I.MOVE_TO, {"goal": ("me",)}),
+        ("walk me to the exit", I.GUIDE, {"recipient": ("me",), "goal": ("the", "exit")}),
+        ("lead the way to the lobby", I.GUIDE, {"recipient": ("me",), "goal": ("lobby",)}),
+        ("engage with Ann", I.ENGAGE_WITH, {"recipient": ("ann",)}),
+    ],
+)
+def test_command_frames(text: str, intent: str, slots: dict[str, tuple[str, ...]]) -> None:
+    p = parse(text)
+    assert (p.act, p.intent) == ("command", intent)
+    for key, value in slots.items():
+        assert p.slots[key] == value
+
+
+@pytest.mark.parametrize(
+    ("text", "intent", "free"),
+    [
+        ('please say "see you later, alligator" to Ann', I.SAY, "see you later, alligator"),
+        ("tell Ann dinner is served", I.SAY, "dinner is served"),
+        ("tell Ann to come downstairs", I.SAY, "please come downstairs"),
+        ("start the memory game", I.START_ACTIVITY, "memory_game"),
+        ("water the plants", I.START_ACTIVITY, "water_plants"),
+        ("stop vacuuming", I.STOP_ACTIVITY, "vacuuming"),
+        ("that's enough", I.STOP_ACTIVITY, None),
+        ("dance for me", I.PERFORM_MOTION, "dance"),
+        ("wake up", I.WAKEUP, None),
+        ("time to go to sleep", I.SUSPEND, None),
+    ],
+)
+def test_free_form_values(text: str, intent: str, free: str | None) -> None:
+    p = parse(text)
+    assert (p.act, p.intent, p.text) == ("command", intent, free)
+
+
+def test_quoted_text_is_kept_verbatim_even_with_to_inside() -> None:
+    p = parse('say "go to bed" to Ann')
+    assert p.text == "go to bed" and p.slots["recipient"] == ("ann",)
+
+
+@pytest.mark.parametrize(
+    ("text", "kind"),
+    [
+        ("what do you see?", "what_see"),
+        ("what is in front of you", "what_see"),
+        ("who is around?", "who_see"),
+        ("who's here", "who_see"),
+        ("where can I find the scissors?", "where"),
+        ("do you know where the keys are", "where"),
+        ("what's on the piano?", "what_on"),
+        ("what do you see on the piano", "what_on"),
+        ("is there a towel in the bathroom?", "can_see"),
+        ("have you seen my keys", "can_see"),
+        ("what's your name", "name"),
+        ("who are you?", "name"),
+        ("tell me what you see", "what_see"),
+    ],
+)
+def test_questions(text: str, kind: str) -> None:
+    p = parse(text)
+    assert (p.act, p.question) == ("question", kind)
+
+
+@pytest.mark.parametrize("text", ["hi", "Hello there!", "good morning", "hey robot", "hi, how are you?"])
+def test_greetings(text: str) -> None:
+    assert parse(text).act == "greeting"
+
+
+def test_greeting_words_match_whole_words_only() -> None:
+    # D11: "hi" must not fire inside "this" or "which".
+    assert parse("this is which").act != "greeting"
+    assert parse("hi, pick up the cup").intent == I.GRAB_OBJECT
+
+
+@pytest.mark.parametrize(
+    "text", ["don't pick up the cup", "please do not go to the kitchen", "never mind", "no"]
+)
+def test_negation(text: str) -> None:
+    assert parse(text).act == "negated"
+
+
+def test_robot_name_is_stripped_as_a_vocative() -> None:
+    assert parse("Ari, grab the cup", robot_name="Ari").intent == I.GRAB_OBJECT
+
+
+def test_unknown_input() -> None:
+    assert parse("the weather is lovely today").act == "unknown"
+    assert parse("").act == "unknown"

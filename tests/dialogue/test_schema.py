@@ -1,0 +1,43 @@
+import pytest
+
+from dialogue.schema import AnswerError, SchemaCandidates, extract_json, parse_answer, turn_schema
+
+
+def test_turn_schema_has_closed_enums_of_candidate_ids() -> None:
+    schema = turn_schema(SchemaCandidates(["cup_1"], ["person_a", "cup_1"], []))
+    user_intent = schema["properties"]["user_intent"]["anyOf"][0]["properties"]
+    assert "__intent_grab_object__" in user_intent["type"]["enum"]
+    assert "__raw_user_input__" not in user_intent["type"]["enum"]
+    assert user_intent["object"] == {"enum": ["cup_1", None]}
+    assert user_intent["recipient"] == {"enum": ["person_a", "cup_1", None]}
+    assert user_intent["goal"] == {"type": "null"}
+    assert schema["required"] == ["verbal_ack", "user_intent"]
+
+
+def test_json_is_extracted_string_aware_from_prose() -> None:
+    content = 'Sure! {"verbal_ack": "it is 10:30, see http://x.org {ok}", "user_intent": null} trailing }'
+    assert extract_json(content)["verbal_ack"] == "it is 10:30, see http://x.org {ok}"
+
+
+def test_parse_answer_validates_and_tolerates_missing_keys() -> None:
+    answer = parse_answer('{"user_intent": {"type": "__intent_greet__", "recipient": "p"}}')
+    assert answer.verbal_ack is None
+    assert answer.user_intent is not None and answer.user_intent.recipient == "p"
+
+
+@pytest.mark.parametrize(
+    ("content", "message"),
+    [
+        ("no json here", "no JSON object"),
+        ('{"verbal_ack": "x",', "not valid JSON"),
+        ('{"verbal_ack": 3, "user_intent": "grab"}', "does not match the schema"),
+    ],
+)
+def test_bad_answers_raise_answer_error_with_reason(content: str, message: str) -> None:
+    with pytest.raises(AnswerError, match=message):
+        parse_answer(content)
+
+
+def test_non_object_json_is_an_answer_error() -> None:
+    with pytest.raises(AnswerError):
+        parse_answer("[1, 2] {3}")

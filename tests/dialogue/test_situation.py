@@ -1,0 +1,40 @@
+from dialogue.grounding import build_snapshot
+from dialogue.situation import MAX_CHARS, MAX_LINES, describe
+from kb import KB
+from tests.dialogue.conftest import scene_kb
+
+
+def test_description_is_natural_with_ids_in_brackets(kitchen: KB) -> None:
+    text = describe(build_snapshot(kitchen), "person_alice").text
+    assert text.splitlines()[0] == "Alice [person_alice] is speaking to you."
+    assert "You see the cookbook [book_1], a book, on the shelf [shelf_1], in the kitchen [kitchen]." in text
+    assert "You see a cup [cup_1], on the table [table_1], in the kitchen [kitchen]." in text
+    assert "You know Tom [person_tom], not here now." in text
+    assert "dbr:" not in text and "rdf:type" not in text
+
+
+def test_description_mentions_unseen_known_things() -> None:
+    kb = scene_kb(
+        "kitchen", "remote_1 rdf:type Remote", 'remote_1 rdfs:label "TV remote"', "remote_1 isIn living_room"
+    )
+    text = describe(build_snapshot(kb), "person_alice").text
+    assert (
+        "You know the TV remote [remote_1], a remote, in the living room [living_room], not seen now." in text
+    )
+
+
+def test_description_is_bounded_and_deterministic() -> None:
+    facts = []
+    for i in range(150):
+        facts += [f"obj_{i:03d} rdf:type dbr:Cup", f"obj_{i:03d} isOn table_1", f"myself sees obj_{i:03d}"]
+    kb = scene_kb("kitchen", *facts)
+    first = describe(build_snapshot(kb), "person_alice")
+    assert len(first.lines) <= MAX_LINES and len(first.text) <= MAX_CHARS + 60
+    assert first.truncated > 100
+    assert "more things are not listed" in first.text
+    assert first == describe(build_snapshot(kb), "person_alice")
+
+
+def test_unknown_speaker_is_still_named_by_id(kitchen: KB) -> None:
+    text = describe(build_snapshot(kitchen), "anonymous_speaker").text
+    assert "[anonymous_speaker]" in text.splitlines()[0]

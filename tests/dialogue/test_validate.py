@@ -1,0 +1,40 @@
+import pytest
+
+from dialogue import intents as I
+from dialogue.grounding import build_snapshot
+from dialogue.lexicon import Lexicon
+from dialogue.schema import AnswerError, ChatbotResponse, UserIntent
+from dialogue.validate import ground_answer
+from kb import KB
+
+
+def answer(**intent: str | None) -> ChatbotResponse:
+    return ChatbotResponse(verbal_ack="ok", user_intent=UserIntent.model_validate(intent))
+
+
+def test_ids_names_and_me_are_grounded(kitchen: KB) -> None:
+    lex = Lexicon(build_snapshot(kitchen))
+    got = ground_answer(answer(type=I.BRING_OBJECT, object="the cookbook", recipient="me"), lex, "person_alice")
+    assert got.intents[0].data == {"object": "book_1", "recipient": "person_alice"}
+    assert got.intents[0].confidence == 0.7 and got.intents[0].source == "person_alice"
+
+
+def test_wrong_kind_is_refused_with_the_allowed_ids(kitchen: KB) -> None:
+    lex = Lexicon(build_snapshot(kitchen))
+    with pytest.raises(AnswerError, match=r"object 'person_tom' is not the id of a thing.*cup_1"):
+        ground_answer(answer(type=I.GRAB_OBJECT, object="person_tom"), lex, "person_alice")
+
+
+def test_free_form_values_and_dropped_roles(kitchen: KB) -> None:
+    lex = Lexicon(build_snapshot(kitchen))
+    got = ground_answer(answer(type=I.START_ACTIVITY, object="clean_table", goal="kitchen"), lex, "p")
+    assert got.intents[0].data == {"object": "clean_table"}
+    with pytest.raises(AnswerError, match="missing required role"):
+        ground_answer(answer(type=I.SAY, recipient="person_tom"), lex, "p")
+
+
+def test_no_intent_needs_a_reply(kitchen: KB) -> None:
+    lex = Lexicon(build_snapshot(kitchen))
+    assert ground_answer(ChatbotResponse(verbal_ack="It is noon."), lex, "p").intents == ()
+    with pytest.raises(AnswerError, match="both verbal_ack and user_intent are null"):
+        ground_answer(ChatbotResponse(), lex, "p")
