@@ -9,11 +9,14 @@ from __future__ import annotations
 
 import re
 import threading
-from collections.abc import Mapping
-from dataclasses import dataclass, field
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, field, replace
 from typing import Any, Literal, Protocol
 
+from rdflib import Literal as RdfLiteral
+
 from kb import KbError
+from kb.terms import shorten
 
 Kind = Literal["person", "zone", "robot", "thing"]
 
@@ -86,6 +89,8 @@ class Snapshot:
     entities: Mapping[str, Entity]
     robot: str = ROBOT_ID
     names: Mapping[str, str] = field(default_factory=dict)
+    #: Terms considered and found not to be entities (schema terms, literals used as places).
+    skipped: frozenset[str] = frozenset()
 
     def get(self, entity_id: str) -> Entity | None:
         return self.entities.get(entity_id)
@@ -117,14 +122,26 @@ def readable_id(term: str) -> str:
     return " ".join(local.lower().split())
 
 
+#: Past this many changed terms between two turns, a full rebuild is cheaper than bookkeeping.
+MAX_DIRTY = 2000
+
+
 class Grounder:
-    """Builds snapshots from a KB and caches the last one per revision (thread-safe)."""
+    """Builds snapshots from a KB and caches the last one per revision (thread-safe).
+
+    With a KB that reports its commits (``kb.KB.on_commit``), the grounder records which terms
+    changed; the next snapshot rebuilds only those entities and reuses the others, so perception
+    writes between turns cost a turn little (a full rebuild asks the KB a few hundred questions).
+    """
 
     def __init__(self, max_entities: int = 300, lang: str = "en") -> None:
         self.max_entities = max_entities
         self.lang = lang
         self._lock = threading.Lock()
         self._cached: Snapshot | None = None
+        self._watched: object | None = None
+        self._unwatch: Callable[[], None] | None = None
+        self._dirty: set[str] | None = None  # None: unknown, rebuild everything
 
     def cached(self, revision: int) -> Snapshot | None:
         """The cached snapshot if it is still current (cheap: callable on an event loop)."""
@@ -136,10 +153,48 @@ class Grounder:
         cached = self.cached(kb.revision)
         if cached is not None:
             return cached
-        snap = build_snapshot(kb, max_entities=self.max_entities, lang=self.lang)
+        with self._lock:
+            if self._watched is not kb:
+                self._watch(kb)
+            dirty, self._dirty = self._dirty, (set() if self._unwatch is not None else None)
+            previous = self._cached if dirty is not None else None
+        snap = build_snapshot(kb, max_entities=self.max_entities, lang=self.lang,
+                              previous=previous, dirty=dirty)
         with self._lock:
             self._cached = snap
         return snap
+
+    def close(self) -> None:
+        with self._lock:
+            if self._unwatch is not None:
+                self._unwatch()
+            self._unwatch, self._watched, self._dirty = None, None, None
+
+    def _watch(self, kb: KnowledgeBase) -> None:
+        if self._unwatch is not None:
+            self._unwatch()
+        self._watched, self._unwatch, self._dirty, self._cached = kb, None, None, None
+        on_commit = getattr(kb, "on_commit", None)
+        if callable(on_commit):
+            self._unwatch = on_commit(self._changed)
+
+    def _changed(self, commit: Any) -> None:
+        """Called by the KB under its lock with every commit: note the terms it touched."""
+        with self._lock:
+            if self._dirty is None:
+                return
+            if getattr(commit, "cleared", None) is not None:
+                self._dirty = None
+                return
+            for delta in commit.deltas:
+                if delta.model != "default":
+                    continue
+                for s, _p, o in (*delta.added, *delta.removed):
+                    self._dirty.add(str(shorten(s)))
+                    if not isinstance(o, RdfLiteral):
+                        self._dirty.add(str(shorten(o)))
+            if len(self._dirty) > MAX_DIRTY:
+                self._dirty = None
 
 
 def _pattern_term(term: str) -> str:
@@ -147,9 +202,15 @@ def _pattern_term(term: str) -> str:
     return f"<{term}>" if "://" in term else term
 
 
-def build_snapshot(kb: KnowledgeBase, max_entities: int = 300, lang: str = "en") -> Snapshot:
-    """A few set-wide queries, then small per-entity ones: cheap even with many visible objects."""
+def build_snapshot(kb: KnowledgeBase, max_entities: int = 300, lang: str = "en",
+                   previous: Snapshot | None = None, dirty: set[str] | None = None) -> Snapshot:
+    """A few set-wide queries, then small per-entity ones: cheap even with many visible objects.
+
+    With the ``previous`` snapshot and the terms that changed since (``dirty``), entities whose
+    own facts did not change are reused, only their place and visibility refreshed."""
     revision = kb.revision
+    if previous is not None and dirty is not None and _classes_changed(previous, dirty):
+        previous = None  # a class's label changed: the names of many entities may have
     seen = {str(r["x"]) for r in kb.find(f"{ROBOT_ID} sees ?x")}
     people = {str(r["x"]) for c in PERSON_CLASSES for r in kb.find(f"?x rdf:type {c}")}
     zones = {str(r["x"]) for c in ZONE_CLASSES for r in kb.find(f"?x rdf:type {c}")}
@@ -171,8 +232,10 @@ def build_snapshot(kb: KnowledgeBase, max_entities: int = 300, lang: str = "en")
 
     labels: dict[str, list[str]] = {}
     display: dict[str, str] = {}
-    # Instance labels in a few joins rather than one query per entity (the per-query cost dominates).
-    for pattern in (
+    reusable = _reusable(previous, dirty)
+    # Instance labels in a few joins rather than one query per entity (the per-query cost dominates);
+    # not needed when most entities are reused.
+    for pattern in () if reusable else (
         f"{ROBOT_ID} sees ?x",
         "?x isIn ?y",
         "?x isOn ?y",
@@ -182,7 +245,7 @@ def build_snapshot(kb: KnowledgeBase, max_entities: int = 300, lang: str = "en")
             values = labels.setdefault(str(row["x"]), [])
             if isinstance(row["l"], str) and row["l"] not in values:
                 values.append(row["l"])
-    for term in terms - labels.keys():
+    for term in () if reusable else terms - labels.keys():
         if term in seen or term in people or term in zones or term in support or term in zone:
             labels[term] = []  # covered by the joins above: no label
 
@@ -199,6 +262,7 @@ def build_snapshot(kb: KnowledgeBase, max_entities: int = 300, lang: str = "en")
         return display[term]
 
     per_class: dict[tuple[str, bool], tuple[str, ...]] = {}
+    skipped: set[str] = set()
 
     def class_words(klass: str, asserted: bool) -> tuple[str, ...]:
         # An unlabelled asserted class still names its instances ("Remote" -> "remote"); unlabelled
@@ -214,12 +278,24 @@ def build_snapshot(kb: KnowledgeBase, max_entities: int = 300, lang: str = "en")
     for _rank, term in candidates:
         if len(entities) >= max_entities:
             break
+        old = reusable.get(term)
+        if old is not None:
+            hue = colour.get(term)
+            entities[term] = replace(
+                old, seen=term in seen, support=support.get(term), zone=zone.get(term),
+                colour=display_name(hue) if hue else None,
+            )
+            continue
+        if previous is not None and dirty is not None and term in previous.skipped and term not in dirty:
+            skipped.add(term)  # not an entity last time, and nothing about it changed
+            continue
         try:
             all_classes = kb.classesof(term)
             labels_of(term)
         except KbError:
             continue  # a literal used as a place ("x isIn 'garden'") is not an entity
         if set(all_classes) & _SCHEMA_TYPES or (not all_classes and term not in seen):
+            skipped.add(term)
             continue
         direct = [c for c in kb.classesof(term, direct=True) if c not in _IGNORED_CLASSES]
         inferred = sorted(c for c in all_classes if c not in _IGNORED_CLASSES and c not in direct)
@@ -245,7 +321,17 @@ def build_snapshot(kb: KnowledgeBase, max_entities: int = 300, lang: str = "en")
             zone=zone.get(term), colour=display_name(hue) if hue else None,
         )  # fmt: skip
     names = {term: display_name(term) for term in {*support.values(), *zone.values()}}
-    return Snapshot(revision=revision, entities=entities, names=names)
+    return Snapshot(revision=revision, entities=entities, names=names, skipped=frozenset(skipped))
+
+
+def _classes_changed(previous: Snapshot, dirty: set[str]) -> bool:
+    return any(c in dirty for e in previous.entities.values() for c in e.classes)
+
+
+def _reusable(previous: Snapshot | None, dirty: set[str] | None) -> dict[str, Entity]:
+    if previous is None or dirty is None:
+        return {}
+    return {term: e for term, e in previous.entities.items() if term not in dirty}
 
 
 def _single(rows: list[dict[str, Any]]) -> dict[str, str]:

@@ -42,9 +42,19 @@ def compiled_query(patterns: tuple[str, ...], vars: tuple[str, ...] | None) -> Q
 
 
 def render(query: Query, found: Iterable[Row]) -> list[dict[str, Any]]:
+    """Rows as dicts of output values, in a deterministic order (sorted by their text)."""
+    cache: dict[Node, Any] = {}
+
+    def short(term: Node) -> Any:
+        value = cache.get(term, cache)
+        if value is cache:
+            value = cache[term] = shorten(term)
+        return value
+
+    values = [tuple(short(t) for t in row) for row in found]
+    values.sort(key=lambda row: tuple(str(v) for v in row))
     names = query.names
-    ordered = sorted(found, key=lambda row: tuple(str(shorten(t)) for t in row))
-    return [dict(zip(names, (shorten(t) for t in row), strict=True)) for row in ordered]
+    return [dict(zip(names, row, strict=True)) for row in values]
 
 
 def matches(model: Model, patterns: Sequence[Pattern]) -> list[Triple]:
@@ -88,6 +98,12 @@ def parse_term(text: str) -> Node:
 def optional_term(text: str) -> Node | None:
     if not isinstance(text, str) or not text.strip():
         raise KbError(f"expected a term, got {text!r}")
+    return _cached_term(text)
+
+
+@lru_cache(maxsize=8192)
+def _cached_term(text: str) -> Node | None:
+    # Dialogue grounding asks about the same few hundred terms on every KB change.
     try:
         tokens = _tokenize(text.strip())
     except KbError:

@@ -366,9 +366,9 @@ class KB:
     def on_active_concept(self, callback: ActiveListener) -> None:
         self._writer.on_active_concept(callback)
 
-    def on_commit(self, listener: CommitListener) -> None:
+    def on_commit(self, listener: CommitListener) -> Callable[[], None]:
         """Called under the lock with every commit (for journals and mirrors)."""
-        self._writer.on_commit(listener)
+        return self._writer.on_commit(listener)
 
     @property
     def writer(self) -> Writer:

@@ -145,12 +145,31 @@ def _solve(
 
 def rows(index: TripleIndex, query: Query) -> set[Row]:
     """Distinct projected rows (K1); rows holding a blank node are dropped (K11)."""
+    if len(query.patterns) == 1:
+        return _one_pattern_rows(index, query)
     out: set[Row] = set()
     order = _variables(query.patterns)
     slots = [order.index(v) for v in query.projection]
     for values in _solutions(index, query.patterns, order):
         row = tuple(values[i] for i in slots)
-        if not any(isinstance(t, BNode) for t in row):
+        if not any(type(t) is BNode for t in row):
+            out.add(row)
+    return out
+
+
+def _one_pattern_rows(index: TripleIndex, query: Query) -> set[Row]:
+    # The most frequent query (`myself sees ?x`) needs no join: scan once, project each triple.
+    pattern = query.patterns[0]
+    constant = [None if isinstance(t, Variable) else index.canonical(t) for t in pattern]
+    positions = [[i for i, t in enumerate(pattern) if t == v] for v in query.projection]
+    variables = [t for t in pattern if isinstance(t, Variable)]
+    repeated = len(set(variables)) < len(variables)
+    out: set[Row] = set()
+    for triple in index.scan(constant[0], constant[1], constant[2]):
+        if repeated and match_triple(pattern, query.projection, triple) is None:
+            continue
+        row = tuple(triple[where[0]] for where in positions)
+        if not any(type(t) is BNode for t in row):
             out.add(row)
     return out
 

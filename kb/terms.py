@@ -334,6 +334,8 @@ def to_python(lit: Literal) -> Value:
 
 def shorten(term: Node) -> Value | None:
     """The output form of a term; ``None`` for blank nodes, which never appear in results."""
+    if type(term) is URIRef:  # the common case, without rdflib's slower isinstance checks
+        return shorten_iri(str(term))
     if isinstance(term, URIRef):
         return shorten_iri(str(term))
     if isinstance(term, Literal):

@@ -87,8 +87,16 @@ class Writer:
 
     # --- listeners -----------------------------------------------------------------------
 
-    def on_commit(self, listener: CommitListener) -> None:
+    def on_commit(self, listener: CommitListener) -> Callable[[], None]:
+        """Register a listener; returns the function that unregisters it."""
         self._commit_listeners.append(listener)
+
+        def remove() -> None:
+            with self.lock:
+                if listener in self._commit_listeners:
+                    self._commit_listeners.remove(listener)
+
+        return remove
 
     def on_active_concept(self, listener: ActiveListener) -> None:
         self._active_listeners.append(listener)

@@ -54,3 +54,38 @@ def test_readable_id() -> None:
     assert readable_id("dbr:Table_(furniture)") == "table"
     assert readable_id("ZoneOfInterest") == "zone of interest"
     assert readable_id("http://example.org/ns#BigBox") == "big box"
+
+
+def test_incremental_snapshots_equal_full_rebuilds_after_random_changes() -> None:
+    import random
+
+    from dialogue.grounding import Grounder, build_snapshot
+    from kb import KB
+
+    rng = random.Random(5)
+    kb = KB()
+    kb.update(["myself rdf:type Robot", "kitchen rdf:type ZoneOfInterest", 'kitchen rdfs:label "kitchen"',
+               "hall rdf:type ZoneOfInterest", "table_1 rdf:type dbr:Table_(furniture)", "table_1 isIn kitchen",
+               "person_ann rdf:type Human", 'person_ann rdfs:label "Ann"'])
+    grounder = Grounder()
+    grounder.snapshot(kb)
+    things = [f"thing_{i}" for i in range(12)]
+    facts = [
+        lambda t: f"{t} rdf:type {rng.choice(['dbr:Cup', 'dbr:Book', 'dbr:Apple', 'Remote'])}",
+        lambda t: f'{t} rdfs:label "{rng.choice(["red", "blue", "old"])} thing"',
+        lambda t: f"{t} isOn table_1",
+        lambda t: f"{t} isIn {rng.choice(['kitchen', 'hall'])}",
+        lambda t: f"myself sees {t}",
+        lambda t: f"{t} hasColor {rng.choice(['red', 'white'])}",
+        lambda t: "dbr:Cup rdfs:label \"mug\"@en",
+    ]
+    for _ in range(60):
+        statement = rng.choice(facts)(rng.choice(things))
+        if rng.random() < 0.35:
+            kb.remove([statement])
+        else:
+            kb.update([statement])
+        incremental = grounder.snapshot(kb)
+        assert incremental == build_snapshot(kb)
+    grounder.close()
+    kb.close()
