@@ -23,9 +23,10 @@ from api.settings import SettingsError, load_settings
 from api.world import load_any_scene
 from kb import KB, KbError
 
-BENCHES = ("kb", "dialogue", "http")
+BENCHES = ("kb", "scene", "dialogue", "http", "load")
 EXAMPLES = """examples:
-  situated serve --scene kitchen.txt                 offline service on 127.0.0.1:8000 (docs at /docs)
+  situated serve                                     offline service on 127.0.0.1:8000 with the demo scene
+  situated serve --scene kitchen.txt --data ./data   a statements file; every write journaled in ./data
   situated serve --llm ollama:gemma3:1b --token T    with a local LLM; writes need 'Bearer T'
   situated chat --scene kitchen.txt                  talk in-process (one line per turn)
   situated chat --url http://127.0.0.1:8000 --say "pick up the cup"
@@ -35,7 +36,7 @@ EXAMPLES = """examples:
   situated kb details cup_1 --scene kitchen.txt      also: kb lookup TEXT
   situated humans --url http://127.0.0.1:8000        id, name, seen, engagement
   situated eval cases.jsonl --llm rules --json       score dialogue cases
-  situated bench http                                also: kb, dialogue, all
+  situated bench kb                                  also: scene, dialogue, http, load, all
 Each command has its own help: situated COMMAND -h.
 Settings also come from SITUATED_* env vars and a TOML/JSON file (SITUATED_CONFIG or --config)."""
 
@@ -47,8 +48,8 @@ def _say(text: str) -> None:
 def _remote_options(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--url", help="a running service, e.g. http://127.0.0.1:8000 (default: in-process)")
     parser.add_argument("--token", help="bearer token for --url (default: $SITUATED_TOKEN)")
-    parser.add_argument("--scene", help="in-process: demo, an .svg/.json scene or a .txt file of statements "
-                                        "to load first")
+    parser.add_argument("--scene", default="demo", help="in-process: the scene to load first: demo "
+                        "(default), an .svg/.json scene, a .txt file of statements, or none")
 
 
 def _parser() -> argparse.ArgumentParser:
@@ -92,7 +93,7 @@ def _parser() -> argparse.ArgumentParser:
                               add_help=False)
     evaluate.add_argument("args", nargs=argparse.REMAINDER, help="passed to the evaluation")
 
-    bench = sub.add_parser("bench", help="run benchmarks: kb, dialogue, http or all")
+    bench = sub.add_parser("bench", help="run benchmarks: kb, scene, dialogue, http, load or all")
     bench.add_argument("which", nargs="?", default="all", choices=[*BENCHES, "all"])
     bench.add_argument("args", nargs=argparse.REMAINDER, help="passed to the benchmark")
     return parser

@@ -14,14 +14,32 @@ from __future__ import annotations
 import asyncio
 import threading
 from collections import deque
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from typing import Any
 
 from api.errors import ApiError
 from kb import KB
+from kb.describe import statements
 from kb.events import event_id
+from kb.writer import Commit
 
 DEFAULT_MODEL = "default"
+CHANGES_ID = "changes"
+#: Past this many statements, a change event only says that much changed (clients reload).
+MAX_CHANGE_STATEMENTS = 500
+
+
+def change_event(commit: Commit) -> dict[str, Any]:
+    """What one commit changed in the robot's model, in the KB's output form."""
+    added = [t for d in commit.deltas if d.model == DEFAULT_MODEL for t in d.added]
+    removed = [t for d in commit.deltas if d.model == DEFAULT_MODEL for t in d.removed]
+    event: dict[str, Any] = {"revision": commit.revision, "cleared": commit.cleared is not None}
+    if len(added) + len(removed) > MAX_CHANGE_STATEMENTS:
+        event["truncated"] = True
+        return event
+    event["added"] = statements(added)
+    event["removed"] = statements(removed)
+    return event
 
 
 class Listener:
@@ -102,6 +120,8 @@ class EventHub:
         self._entries: dict[str, _Entry] = {}
         self._owners: dict[int, _Entry] = {}  # id(listener) -> the entry feeding it
         self._count = 0
+        self._changes: tuple[Listener, ...] = ()  # replaced, never mutated: read without a lock
+        self._unwatch: Callable[[], None] | None = None
 
     @property
     def listener_count(self) -> int:
@@ -114,10 +134,7 @@ class EventHub:
         names = list(models) if models else [DEFAULT_MODEL]
         key = event_id(list(patterns), one_shot, names)
         with self._lock:
-            if self._count >= self._max_listeners:
-                raise ApiError(429, "too_many_subscribers",
-                               f"{self._count} event subscribers are connected; the limit is "
-                               f"{self._max_listeners}", {"limit": self._max_listeners})
+            self._check_limit()
             entry = self._entries.get(key)
             if entry is None or not entry.alive:
                 entry = _Entry(key, one_shot)
@@ -129,9 +146,41 @@ class EventHub:
             self._count += 1
             return listener
 
+    def open_changes(self, loop: asyncio.AbstractEventLoop) -> Listener:
+        """A listener of every commit's changes (blocking: call it off the event loop)."""
+        with self._lock:
+            self._check_limit()
+            listener = Listener(CHANGES_ID, loop, self._max_queued)
+            self._changes = (*self._changes, listener)
+            self._count += 1
+            if self._unwatch is None:
+                self._unwatch = self._kb.on_commit(self._commit)
+            return listener
+
+    def _commit(self, commit: Commit) -> None:
+        # Called by the KB under its lock: build the event once, hand it to the loops.
+        listeners = self._changes
+        if listeners:
+            event = change_event(commit)
+            for listener in listeners:
+                listener.push([event])
+
+    def _check_limit(self) -> None:
+        if self._count >= self._max_listeners:
+            raise ApiError(429, "too_many_subscribers",
+                           f"{self._count} event subscribers are connected; the limit is "
+                           f"{self._max_listeners}", {"limit": self._max_listeners})
+
     def close(self, listener: Listener) -> None:
         """Remove a listener (blocking); the KB subscription goes with its last listener."""
         with self._lock:
+            if listener in self._changes:
+                self._changes = tuple(x for x in self._changes if x is not listener)
+                self._count -= 1
+                if not self._changes and self._unwatch is not None:
+                    self._unwatch()
+                    self._unwatch = None
+                return
             entry = self._owners.pop(id(listener), None)
             if entry is None:
                 return
@@ -155,6 +204,12 @@ class EventHub:
                 if entry.alive:
                     entry.alive = False
                     self._kb.unsubscribe(entry.sub_id)
+            for listener in self._changes:
+                listener.end("service stopping")
+            self._changes = ()
+            if self._unwatch is not None:
+                self._unwatch()
+                self._unwatch = None
             self._entries.clear()
             self._owners.clear()
             self._count = 0

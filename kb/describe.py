@@ -84,7 +84,7 @@ def _values(index: TripleIndex, terms: Iterable[Node], with_name: bool = False) 
     return values
 
 
-def details(closure: TripleIndex, asserted: TripleIndex, term: Node) -> dict[str, Any]:
+def details(closure: TripleIndex, asserted: TripleIndex, term: Node, origin: bool = False) -> dict[str, Any]:
     kind = term_kind(closure, term)
     attributes: list[dict[str, Any]] = []
     if kind == "instance":
@@ -101,16 +101,26 @@ def details(closure: TripleIndex, asserted: TripleIndex, term: Node) -> dict[str
             {"name": "Children", "id": "subClasses", "values": _values(closure, children)},
             {"name": "Instances", "id": "instances", "values": _values(closure, instances)},
         ]
-    return {
+    found = relation_triples(closure, term)
+    result: dict[str, Any] = {
         "id": shorten(term),
         "label": label_dict(closure, term),
         "type": kind,
         "attributes": attributes,
-        "relations": relations(closure, term),
+        "relations": statements(found),
     }
+    if origin:
+        # One flag per relation, in the same order: asserted (True) or only inferred (False).
+        ordered = sorted(_visible(found), key=lambda t: tuple(str(v) for v in _short(t)))
+        result["asserted"] = [t in asserted for t in ordered]
+    return result
 
 
 def relations(closure: TripleIndex, term: Node) -> list[Statement]:
+    return statements(relation_triples(closure, term))
+
+
+def relation_triples(closure: TripleIndex, term: Node) -> set[Triple]:
     found: set[Triple] = set()
     for p, objs in closure.out_edges(term).items():
         if p not in HIDDEN_RELATIONS:
@@ -119,20 +129,25 @@ def relations(closure: TripleIndex, term: Node) -> list[Statement]:
         found.update((s, p, term) for p in preds if p not in HIDDEN_RELATIONS)
     for o, subjects in closure.by_predicate(term).items():
         found.update((s, term, o) for s in subjects)
-    return statements(found)
+    return found
+
+
+def _visible(triples: Iterable[Triple]) -> list[Triple]:
+    """Triples that may appear in results: no blank nodes, literal subjects or ``x sameAs x``."""
+    return [
+        (s, p, o) for s, p, o in triples
+        if not isinstance(s, BNode | Literal) and not isinstance(o, BNode)
+        and not (p == OWL.sameAs and s == o)
+    ]
+
+
+def _short(triple: Triple) -> Statement:
+    return [v for v in (shorten(t) for t in triple) if v is not None]
 
 
 def statements(triples: Iterable[Triple]) -> list[Statement]:
     """Triples as sorted ``[s, p, o]`` lists of output values, blank nodes left out (K11)."""
-    out: list[Statement] = []
-    for s, p, o in triples:
-        if isinstance(s, BNode | Literal) or isinstance(o, BNode):
-            continue
-        if p == OWL.sameAs and s == o:
-            continue
-        ss, sp, so = shorten(s), shorten(p), shorten(o)
-        if ss is not None and sp is not None and so is not None:
-            out.append([ss, sp, so])
+    out = [_short(t) for t in _visible(triples)]
     out.sort(key=lambda st: tuple(str(v) for v in st))
     return out
 

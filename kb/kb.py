@@ -198,12 +198,14 @@ class KB:
                 found.extend(st for st in describe.about(model.closure, node, term) if st not in found)
             return found
 
-    def details(self, term: str, models: Models_ = None) -> dict[str, Any]:
+    def details(self, term: str, models: Models_ = None, origin: bool = False) -> dict[str, Any]:
+        """kb-compat §3.3; with ``origin``, also ``"asserted"``: one flag per relation, true when
+        it is asserted in the model, false when it is only inferred."""
         node = parse_term(term)
         self._expire_due()
         with self._lock:
             model = self._one_model(models)
-            return describe.details(model.closure, model.asserted, node)
+            return describe.details(model.closure, model.asserted, node, origin)
 
     def label(self, term: str, lang: str | None = None, models: Models_ = None) -> str:
         if lang is not None and not isinstance(lang, str):

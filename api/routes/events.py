@@ -93,6 +93,17 @@ async def events(hub: HubDep, settings: SettingsDep,
     return EventStream(hub, listener)
 
 
+@router.get("/changes", dependencies=[StreamReadAccess], response_class=StreamingResponse, responses={
+    200: {"content": {"text/event-stream": {}}, "description": "a stream of committed changes"}})
+async def changes(hub: HubDep) -> StreamingResponse:
+    """Server-Sent Events, one per commit to the robot's model: ``[{"revision", "cleared",
+    "added": [[s, p, o], ...], "removed": [...]}]`` (asserted and inferred), or ``"truncated":
+    true`` instead of the lists when a commit changed more than 500 statements. Unlike
+    ``/kb/events`` it also tells what disappeared (retractions, expiry)."""
+    listener = await run_in_threadpool(hub.open_changes, asyncio.get_running_loop())
+    return EventStream(hub, listener)
+
+
 async def _refuse(websocket: WebSocket, error: ApiError, code: int) -> None:
     await websocket.send_json(error_body(error.status, error.code, error.message, error.details))
     await websocket.close(code=code, reason=error.code)

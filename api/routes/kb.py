@@ -82,9 +82,11 @@ async def revise(body: ReviseRequest, kb: KbDep, settings: SettingsDep) -> Revis
 
 
 @router.get("/details/{term:path}", dependencies=[ReadAccess])
-async def details(term: str, kb: KbDep, models: Models = None) -> dict[str, Any]:
+async def details(term: str, kb: KbDep, models: Models = None,
+                  origin: Annotated[bool, Query(description="add 'asserted': a flag per relation, "
+                                                "false when it is only inferred")] = False) -> dict[str, Any]:
     """``{"id", "label", "type", "attributes", "relations"}`` (kb-compat §3.3)."""
-    return await run_in_threadpool(kb.details, term, models)
+    return await run_in_threadpool(kb.details, term, models, origin)
 
 
 @router.get("/label/{term:path}", dependencies=[ReadAccess])

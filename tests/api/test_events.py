@@ -140,3 +140,20 @@ def test_subscriber_limit_is_429(live_factory) -> None:  # type: ignore[no-untyp
     with connect(live.ws_url + "/kb/events/ws") as ws:
         ws.send(json.dumps({"patterns": ["?a isOn ?b"]}))
         assert "subscribed" in json.loads(ws.recv(timeout=5))
+
+
+def test_changes_stream_reports_additions_and_removals(live: Live) -> None:
+    with httpx.Client(base_url=live.url, timeout=10) as client, \
+            client.stream("GET", "/kb/changes") as stream:
+        lines = stream.iter_lines()
+        assert next(lines) == "event: subscribed"
+        live.client.post("/kb/revise", json={"statements": ["cup_1 isOn shelf_9"], "method": "add"})
+        live.client.post("/kb/revise", json={"statements": ["cup_1 isOn shelf_9"], "method": "retract"})
+        events = []
+        for line in lines:
+            if line.startswith("data: ") and "revision" in line:
+                events.append(json.loads(line[len("data: "):])[0])
+                if len(events) == 2:
+                    break
+    assert ["cup_1", "isOn", "shelf_9"] in events[0]["added"] and ["shelf_9", "placeOf", "cup_1"] in events[0]["added"]
+    assert ["cup_1", "isOn", "shelf_9"] in events[1]["removed"] and events[1]["revision"] > events[0]["revision"]

@@ -443,3 +443,17 @@ def test_term_errors_are_kb_errors(world: KB) -> None:
             call("")
     with pytest.raises(KbError, match="nope"):
         world.details("cup_abcd", models=["nope"])
+
+
+def test_details_origin_flags_asserted_and_inferred_relations() -> None:
+    from kb import KB
+
+    with KB() as kb:
+        kb += ["cup_1 isOn table_1", "cup_1 rdf:type dbr:Cup"]
+        plain = kb.details("cup_1")
+        flagged = kb.details("cup_1", origin=True)
+        assert flagged["relations"] == plain["relations"] and "asserted" not in plain
+        origin = dict(zip(map(tuple, flagged["relations"]), flagged["asserted"], strict=True))
+        assert origin[("cup_1", "isOn", "table_1")] is True
+        assert origin[("cup_1", "isAt", "table_1")] is False
+        assert origin[("cup_1", "isMovable", True)] is False
