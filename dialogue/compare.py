@@ -255,7 +255,8 @@ def compare(
             finally:
                 kb.close()
             side.add(case, result, snapshot)
-    return Comparison(backend.spec + (" (hybrid)" if hybrid and not backend.hybrid else ""), tutorial, situated)
+    label = backend.spec + (" --hybrid" if hybrid and not backend.hybrid else "")
+    return Comparison(label, tutorial, situated)
 
 
 def format_comparison(comparison: Comparison) -> str:

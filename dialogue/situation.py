@@ -70,6 +70,9 @@ def describe(snapshot: Snapshot, speaker: str) -> Description:
     absent = [e for e in people if not e.seen]
     if present:
         lines.append("You see " + _and([noun_phrase(snapshot, e) for e in present]) + ".")
+    engaged = [e for e in snapshot.of_kind("person") if e.engagement in ("engaging", "engaged")]
+    if engaged:
+        lines.append("Engaged with you now: " + _and([noun_phrase(snapshot, e) for e in engaged]) + ".")
     if absent:
         lines.append("You know " + _and([noun_phrase(snapshot, e) for e in absent]) + ", not here now.")
     things = [e for e in snapshot.entities.values() if e.kind == "thing"]

@@ -197,8 +197,6 @@ class LlamaCppModel:
 
     def generate(self, job: _Job) -> ChatResult:
         """One constrained completion (blocking, serialised by the lock)."""
-        from llama_cpp import StoppingCriteriaList
-
         with self._lock:
             llama = self._load_locked()
             grammar = self._grammar(job.schema)
@@ -214,9 +212,12 @@ class LlamaCppModel:
                     f"prompt of {len(prompt)} tokens + max_tokens {self.max_tokens} "
                     f"exceeds n_ctx={self.n_ctx}"
                 )
-            criteria = [lambda _ids, _logits: job.expired()]
-            if formatted.stopping_criteria is not None:
-                criteria.extend(formatted.stopping_criteria)
+            template_stop = formatted.stopping_criteria
+
+            def should_stop(ids: Any, logits: Any) -> bool:
+                # Checked by llama.cpp after every token: this is how a late generation ends.
+                return job.expired() or (template_stop is not None and bool(template_stop(ids, logits)))
+
             try:
                 completion = llama.create_completion(
                     prompt=prompt,
@@ -224,7 +225,7 @@ class LlamaCppModel:
                     temperature=self.temperature,
                     stop=formatted.stop,
                     grammar=grammar,
-                    stopping_criteria=StoppingCriteriaList(criteria),
+                    stopping_criteria=should_stop,
                     stream=False,
                 )
             except (ValueError, RuntimeError) as exc:

@@ -67,6 +67,8 @@ class OllamaModel:
             raise ModelError(message) from None
         except (ConnectionError, httpx.HTTPError) as exc:
             raise ModelError(f"ollama unreachable at {self.host}: {exc}") from None
+        except ValueError as exc:  # the client parses the body: not JSON, or not a chat response
+            raise ModelError(f"ollama at {self.host} answered a body that is not a chat response") from exc
         finally:
             await client._client.aclose()  # AsyncClient.close() is untyped
 
@@ -83,6 +85,9 @@ class OllamaModel:
             raise ModelError(f"ollama error (HTTP {exc.status_code}): {exc.error}") from None
         except (ConnectionError, httpx.HTTPError) as exc:
             raise ModelError(f"ollama unreachable at {self.host}: {exc}") from None
+        except ValueError as exc:  # the client parses the body: not JSON, or not a chat response
+            raise ModelError(f"ollama at {self.host} answered a body that is not a chat response: "
+                             f"{str(exc)[:200]}") from None
         finally:
             await client._client.aclose()  # AsyncClient.close() is untyped
         content = response.message.content or ""

@@ -38,3 +38,12 @@ def test_description_is_bounded_and_deterministic() -> None:
 def test_unknown_speaker_is_still_named_by_id(kitchen: KB) -> None:
     text = describe(build_snapshot(kitchen), "anonymous_speaker").text
     assert "[anonymous_speaker]" in text.splitlines()[0]
+
+
+def test_people_engaged_with_the_robot_are_named() -> None:
+    kb = scene_kb("kitchen", "person_tom engagementLevel engaged", "person_alice engagementLevel disengaged")
+    snapshot = build_snapshot(kb)
+    assert snapshot.get("person_tom").engagement == "engaged"  # type: ignore[union-attr]
+    text = describe(snapshot, "person_alice").text
+    assert "Engaged with you now: Tom [person_tom]." in text
+    assert "Alice [person_alice]." not in text.split("Engaged with you now:")[1]
