@@ -10,6 +10,7 @@ import argparse
 import asyncio
 import importlib
 import json
+import logging
 import os
 import sys
 from collections.abc import Callable, Iterator, Sequence
@@ -110,6 +111,8 @@ def _serve(args: argparse.Namespace) -> int:
     settings = load_settings(args.config, host=args.host, port=args.port, data_dir=args.data,
                              scene=args.scene, llm=args.llm, token=args.token)
     backend_of(settings)  # a bad backend spec is reported before anything starts
+    # Start-up progress (journal recovery, ontology files, the scene) is logged by situated.*.
+    logging.basicConfig(level=logging.INFO, format="%(levelname)s:     %(name)s: %(message)s")
     _say(f"situated: serving on http://{settings.host}:{settings.port} (model: {settings.llm}; "
          f"scene: {settings.scene or 'none'}); loading the KB...")
     uvicorn.run(create_app(settings), host=settings.host, port=settings.port, ws="websockets-sansio",

@@ -78,7 +78,9 @@ class World:
             self.sync.adopt(previous)
             log.info("restored the scene from %s (%d entities)", self._file, len(previous))
         elif source is not None:
-            self.replace(read_scene(source))
+            entities = read_scene(source)
+            diff = self.replace(entities)
+            log.info("loaded the scene %s: %d entities, %d facts", source, len(entities), len(diff.added))
         if self._hz > 0:
             self._thread = threading.Thread(target=self._tick_loop, name="scene-engagement", daemon=True)
             self._thread.start()
