@@ -9,17 +9,14 @@ from __future__ import annotations
 from typing import Any
 
 from pyparsing import ParseBaseException
-from rdflib import Graph, Literal, URIRef
-from rdflib.plugins.sparql.algebra import translateUpdate, traverse
-from rdflib.plugins.sparql.parser import parseQuery, parseUpdate
-from rdflib.plugins.sparql.parserutils import CompValue
+from rdflib import Literal, URIRef
+from rdflib.plugins.sparql.parser import parseQuery
 from rdflib.term import BNode, Node
 
 from api.errors import ApiError
 from api.negotiation import negotiate
 from kb import KB
-from kb.sparql import INIT_NS
-from kb.terms import ORO, format_triple
+from kb.sparql import InvalidSparql, UnsupportedUpdate
 
 RESULTS = {
     "application/sparql-results+json": "json",
@@ -37,13 +34,6 @@ GRAPHS = {
 }
 _FORMS = {"SelectQuery": RESULTS, "AskQuery": BOOLEAN_RESULTS, "ConstructQuery": GRAPHS,
           "DescribeQuery": GRAPHS}
-
-
-def _alias_oro(node: Any) -> None:
-    # As kb.sparql does for queries: rdflib keeps one prefix per namespace, so `oro:` names are
-    # renamed to the predeclared `:` (unless the update declares its own `oro:`).
-    if isinstance(node, CompValue) and node.name == "pname" and node.get("prefix") == "oro":
-        del node["prefix"]
 
 
 def _invalid(kind: str, exc: ParseBaseException) -> ApiError:
@@ -88,39 +78,10 @@ def _tsv(results: dict[str, Any]) -> bytes:
 
 
 def apply_update(kb: KB, update: str, model: str | None) -> None:
-    """Apply INSERT DATA / DELETE DATA operations in order; anything else is refused before any
-    change is made. Inserts add exactly the triples (no functional-property replacement)."""
+    """Apply INSERT DATA / DELETE DATA as one KB batch; anything else is refused unchanged."""
     try:
-        tree = parseUpdate(update)
-        if not any(getattr(d, "prefix", None) == "oro" for prologue in tree["prologue"] for d in prologue):
-            traverse(tree, visitPost=_alias_oro)
-        parsed = translateUpdate(tree, base=ORO, initNs=INIT_NS)
-    except ParseBaseException as exc:
-        raise _invalid("update", exc) from exc
-    except Exception as exc:
-        if type(exc) is not Exception:  # rdflib raises a bare Exception for an unknown prefix
-            raise
-        raise ApiError(400, "invalid_sparql", f"invalid SPARQL update: {exc}") from exc
-    operations = []
-    for op in parsed.algebra:
-        if op.name not in ("InsertData", "DeleteData"):
-            raise ApiError(400, "unsupported_update",
-                           f"only INSERT DATA and DELETE DATA are supported, not {op.name}")
-        if op.quads and any(op.quads.values()):
-            raise ApiError(400, "unsupported_update",
-                           "GRAPH blocks are not supported in updates; use the 'model' parameter")
-        triples = list(op.triples or [])
-        if any(isinstance(t, BNode) for triple in triples for t in triple):
-            raise ApiError(400, "unsupported_update", "blank nodes cannot be written to the KB")
-        operations.append((op.name, triples))
-    models = [model] if model else None
-    for name, triples in operations:
-        if not triples:
-            continue
-        if name == "InsertData":
-            graph = Graph()
-            for triple in triples:
-                graph.add(triple)
-            kb.load_data(graph.serialize(format="nt", encoding="utf-8"), "nt", models)
-        else:
-            kb.remove([format_triple(t) for t in triples], models)
+        kb.sparql_update(update, [model] if model else None)
+    except UnsupportedUpdate as exc:
+        raise ApiError(400, "unsupported_update", str(exc)) from exc
+    except InvalidSparql as exc:
+        raise ApiError(400, "invalid_sparql", str(exc)) from exc

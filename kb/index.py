@@ -184,48 +184,9 @@ class TripleIndex:
     # --- patterns -----------------------------------------------------------------------
 
     def triples(self, s: Node | None, p: Node | None, o: Node | None) -> Iterator[Triple]:
-        """Every triple matching the pattern; ``None`` is a wildcard."""
-        if s is not None:
-            by_p = self._spo.get(s)
-            if by_p is None:
-                return
-            if p is not None:
-                objs = by_p.get(p)
-                if objs is None:
-                    return
-                if o is not None:
-                    if o in objs:
-                        yield (s, p, o)
-                    return
-                for obj in list(objs):
-                    yield (s, p, obj)
-                return
-            if o is not None:
-                for pred in list(self.predicates(s, o)):
-                    yield (s, pred, o)
-                return
-            for pred, objs in list(by_p.items()):
-                for obj in list(objs):
-                    yield (s, pred, obj)
-            return
-        if p is not None:
-            by_o = self._pos.get(p)
-            if by_o is None:
-                return
-            if o is not None:
-                for subj in list(by_o.get(o, ())):
-                    yield (subj, p, o)
-                return
-            for obj, subjs in list(by_o.items()):
-                for subj in list(subjs):
-                    yield (subj, p, obj)
-            return
-        if o is not None:
-            for subj, preds in list(self._osp.get(o, {}).items()):
-                for pred in list(preds):
-                    yield (subj, pred, o)
-            return
-        yield from list(self)
+        """Every triple matching the pattern (``None`` is a wildcard), from a copy: the caller
+        may change the index while iterating."""
+        yield from list(self.scan(s, p, o))
 
     def scan(self, s: Node | None, p: Node | None, o: Node | None) -> Iterator[Triple]:
         """Like ``triples`` but without copying: the index must not change while iterating

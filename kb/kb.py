@@ -38,7 +38,7 @@ from kb.errors import KbError
 from kb.events import Callback, event_id
 from kb.query import Row, holds, rows
 from kb.rdfio import FORMATS, default_ontology, parse_data, parse_location, serialize
-from kb.sparql import execute, to_json
+from kb.sparql import execute, parse_update, to_json
 from kb.store import ALL_MODELS, DEFAULT_MODEL, Model, Models
 from kb.terms import Node, Triple, as_list, parse_ground, parse_patterns, shorten
 from kb.writer import ActiveListener, Batch, Commit, CommitListener, Writer
@@ -234,6 +234,13 @@ class KB:
         with self._lock:
             result = execute(self._one_model(model).closure, query)
             return result.type, result.serialize(format=fmt, encoding="utf-8") or b""
+
+    def sparql_update(self, update: str, models: Models_ = None) -> None:
+        """Apply SPARQL INSERT DATA / DELETE DATA as ONE batch (no functional replacement);
+        other update forms are refused (``kb.sparql.UnsupportedUpdate``) before any change."""
+        added, removed = parse_update(update)
+        self._writer.commit(Batch(self._write_models(models), add=added, remove=removed,
+                                  replace_functional=False))
 
     # --- writes ---------------------------------------------------------------------------
 

@@ -2,10 +2,12 @@
 
 from __future__ import annotations
 
+import json
 from collections.abc import Iterable
 from functools import lru_cache
 from importlib.resources import files
 from pathlib import Path
+from typing import Any
 from urllib.parse import unquote, urlparse
 from xml.sax import SAXParseException
 
@@ -46,10 +48,14 @@ def parse_data(data: str | bytes, fmt: str, source: str = "data") -> tuple[Tripl
         plugin.get(fmt, Parser)
     except PluginException:
         raise KbError(f"unknown RDF format {fmt!r}; use turtle, xml, json-ld, nt, n3 or trig") from None
+    if fmt == "json-ld":
+        _check_json_ld(data, source)
     try:
         graph.parse(data=data, format=fmt, publicID=ORO)
     except _PARSE_ERRORS as exc:
         raise KbError(f"cannot parse {source} as {fmt}: {exc}") from exc
+    except RecursionError:  # rdflib's parsers recurse on nested lists and blank nodes
+        raise KbError(f"cannot parse {source} as {fmt}: it is nested too deeply") from None
     except Exception as exc:
         # rdflib's parsers raise bare Exception (e.g. "Unknown namespace prefix"); anything
         # more specific than that is a bug and propagates.
@@ -57,6 +63,30 @@ def parse_data(data: str | bytes, fmt: str, source: str = "data") -> tuple[Tripl
             raise
         raise KbError(f"cannot parse {source} as {fmt}: {exc}") from exc
     return tuple(graph)  # type: ignore[arg-type]  # rdflib yields (Node, Node, Node) triples
+
+
+def _check_json_ld(data: str | bytes, source: str) -> None:
+    """Refuse what rdflib's JSON-LD parser would crash on or fetch: a document that is not an
+    object or array, and remote contexts (rdflib would download them: nothing is fetched from a
+    network here, and an uploaded document must not make the service call other hosts)."""
+    try:
+        document = json.loads(data)
+    except (ValueError, RecursionError) as exc:
+        raise KbError(f"cannot parse {source} as json-ld: {exc}") from None
+    if not isinstance(document, dict | list):
+        raise KbError(f"cannot parse {source} as json-ld: the document must be a JSON object or array")
+    stack: list[Any] = [document]
+    while stack:
+        node = stack.pop()
+        if isinstance(node, dict):
+            context = node.get("@context")
+            contexts = context if isinstance(context, list) else [context]
+            if any(isinstance(c, str) or (isinstance(c, dict) and "@import" in c) for c in contexts):
+                raise KbError(f"cannot load {source}: it names a remote JSON-LD @context, which would be "
+                              "fetched from the network; inline the context instead")
+            stack.extend(node.values())
+        elif isinstance(node, list):
+            stack.extend(node)
 
 
 def parse_location(uri: str) -> tuple[Triple, ...]:

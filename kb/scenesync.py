@@ -185,7 +185,7 @@ def entity_from_json(data: Mapping[str, Any]) -> Entity:
         raise KbError(f"scene entity {data.get('id')!r}: unknown fields {sorted(unknown)}")
     try:
         kind = Kind(data.get("kind", "object"))
-        return Entity(
+        entity = Entity(
             id=str(data["id"]), kind=kind, cls=str(data.get("class") or ""), label=data.get("label"),
             x=float(data.get("x", 0.0)), y=float(data.get("y", 0.0)),
             heading=float(data.get("heading", 0.0)),
@@ -195,8 +195,12 @@ def entity_from_json(data: Mapping[str, Any]) -> Entity:
         )
     except KeyError as exc:
         raise KbError(f"scene entity {data!r}: missing field {exc}") from None
-    except (TypeError, ValueError) as exc:
+    except (TypeError, ValueError, OverflowError) as exc:
         raise KbError(f"scene entity {data.get('id')!r}: {exc}") from None
+    sizes = (entity.x, entity.y, entity.heading, entity.width or 0.0, entity.depth or 0.0)
+    if not all(math.isfinite(v) for v in sizes):
+        raise KbError(f"scene entity {entity.id!r}: positions and sizes must be finite numbers")
+    return entity
 
 
 def entity_to_json(entity: Entity) -> dict[str, Any]:
@@ -213,11 +217,12 @@ def scene_from_json(data: str | bytes | Mapping[str, Any]) -> list[Entity]:
     if isinstance(data, str | bytes):
         try:
             data = json.loads(data)
-        except json.JSONDecodeError as exc:
+        except (ValueError, RecursionError) as exc:  # also bytes that are not UTF-8, deep nesting
             raise KbError(f"malformed JSON scene: {exc}") from None
     if not isinstance(data, Mapping) or not isinstance(data.get("entities"), list):
         raise KbError('a JSON scene is an object {"entities": [...]}')
-    return [entity_from_json(e) for e in data["entities"] if e.get("id") != ROBOT_ID]
+    return [entity_from_json(e) for e in data["entities"]
+            if not (isinstance(e, Mapping) and e.get("id") == ROBOT_ID)]
 
 
 def scene_to_json(sync: SceneSync) -> dict[str, Any]:

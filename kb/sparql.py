@@ -8,13 +8,13 @@ base are declared to the parser as initial namespaces and base IRI, never pasted
 from __future__ import annotations
 
 import json
-from collections.abc import Iterator
+from collections.abc import Callable, Iterable, Iterator
 from typing import Any
 
 from pyparsing import ParseBaseException
-from rdflib import Graph, URIRef
-from rdflib.plugins.sparql.algebra import translateQuery, traverse
-from rdflib.plugins.sparql.parser import parseQuery
+from rdflib import BNode, Graph, URIRef
+from rdflib.plugins.sparql.algebra import translateQuery, translateUpdate, traverse
+from rdflib.plugins.sparql.parser import parseQuery, parseUpdate
 from rdflib.plugins.sparql.parserutils import CompValue
 from rdflib.query import Result
 from rdflib.store import Store
@@ -22,7 +22,7 @@ from rdflib.term import Node as RdfNode
 
 from kb.errors import KbError
 from kb.index import TripleIndex
-from kb.terms import ORO, PREFIXES, Node
+from kb.terms import ORO, PREFIXES, Node, Triple
 
 _GRAPH_ID = URIRef(ORO + "sparql")
 # rdflib keeps one prefix per namespace, so `:` is declared and `oro:` names are renamed to it in
@@ -87,21 +87,82 @@ def _alias_oro(node: Any) -> None:
         del node["prefix"]
 
 
-def execute(index: TripleIndex, query: str) -> Result:
-    """Run a read-only query; a SPARQL Update or a syntax error is a KbError."""
-    if not isinstance(query, str) or not query.strip():
-        raise KbError("a SPARQL query must be a non-empty string")
+def _refuse_remote(tree: Any) -> None:
+    """SERVICE makes rdflib call the named endpoint, and FROM / FROM NAMED / GRAPH make it load
+    or expect other graphs: a query must not make the service fetch from the network or reach
+    other hosts (nor fail inside rdflib), so these are refused before evaluation."""
+    if "datasetClause" in tree[1]:
+        raise KbError("FROM and FROM NAMED are not supported: each KB model is one dataset; "
+                      "choose it with the model parameter")
+    found: list[CompValue] = []
+
+    def visit(node: Any) -> None:
+        if isinstance(node, CompValue) and node.name in ("ServiceGraphPattern", "GraphGraphPattern"):
+            found.append(node)
+
+    traverse(tree, visitPost=visit)
+    for node in found:
+        if node.name == "ServiceGraphPattern":
+            raise KbError(f"SERVICE is not supported (a federated query would call {node['term']}); "
+                          "situated answers from its own KB only")
+        raise KbError("GRAPH is not supported: each KB model is one graph; choose it with the model "
+                      "parameter")
+
+
+class InvalidSparql(KbError):
+    """Text that does not parse as SPARQL (of the kind expected)."""
+
+
+class UnsupportedUpdate(KbError):
+    """A SPARQL Update other than INSERT DATA / DELETE DATA on the model itself."""
+
+
+def _translate(text: str, kind: str, parse: Callable[[str], Any], translate: Callable[..., Any],
+               prologues: Callable[[Any], Iterable[Any]]) -> Any:
     try:
-        tree = parseQuery(query)
-        if not any(getattr(decl, "prefix", None) == "oro" for decl in tree[0]):
+        tree = parse(text)
+        if kind == "query":
+            _refuse_remote(tree)
+        if not any(getattr(decl, "prefix", None) == "oro" for p in prologues(tree) for decl in p):
             traverse(tree, visitPost=_alias_oro)
-        prepared = translateQuery(tree, base=ORO, initNs=INIT_NS)
+        return translate(tree, base=ORO, initNs=INIT_NS)
     except ParseBaseException as exc:
-        raise KbError(f"invalid SPARQL query (only read-only queries are accepted): {exc}") from exc
+        hint = " (only read-only queries are accepted here)" if kind == "query" else ""
+        raise InvalidSparql(f"invalid SPARQL {kind}{hint}: {exc}") from exc
     except Exception as exc:
         if type(exc) is not Exception:  # rdflib raises a bare Exception for an unknown prefix
             raise
-        raise KbError(f"invalid SPARQL query: {exc}") from exc
+        raise InvalidSparql(f"invalid SPARQL {kind}: {exc}") from exc
+
+
+def parse_update(update: str) -> tuple[list[Triple], list[Triple]]:
+    """The net (added, removed) triples of INSERT DATA / DELETE DATA operations, in order; any
+    other update form is refused before anything changes."""
+    if not isinstance(update, str) or not update.strip():
+        raise InvalidSparql("a SPARQL update must be a non-empty string")
+    parsed = _translate(update, "update", parseUpdate, translateUpdate, lambda tree: tree["prologue"])
+    added: dict[Triple, None] = {}
+    removed: dict[Triple, None] = {}
+    for op in parsed.algebra:
+        if op.name not in ("InsertData", "DeleteData"):
+            raise UnsupportedUpdate(f"only INSERT DATA and DELETE DATA are supported, not {op.name}")
+        if op.quads and any(op.quads.values()):
+            raise UnsupportedUpdate("GRAPH blocks are not supported in updates; choose the model instead")
+        triples = list(op.triples or [])
+        if any(isinstance(t, BNode) for triple in triples for t in triple):
+            raise UnsupportedUpdate("blank nodes cannot be written to the KB")
+        into, out_of = (added, removed) if op.name == "InsertData" else (removed, added)
+        for triple in triples:
+            into[triple] = None
+            out_of.pop(triple, None)
+    return list(added), list(removed)
+
+
+def execute(index: TripleIndex, query: str) -> Result:
+    """Run a read-only query; a SPARQL Update or a syntax error is a KbError."""
+    if not isinstance(query, str) or not query.strip():
+        raise InvalidSparql("a SPARQL query must be a non-empty string")
+    prepared = _translate(query, "query", parseQuery, translateQuery, lambda tree: [tree[0]])
     graph = Graph(store=IndexStore(index), identifier=_GRAPH_ID)
     result = graph.query(prepared)
     if result.type == "SELECT":

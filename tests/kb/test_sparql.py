@@ -149,3 +149,23 @@ def test_execute_and_to_json_on_an_index() -> None:
     data = to_json(execute(index, query), query)
     assert data["results"]["bindings"] == [{"s": {"type": "uri", "value": ORO + "a"}}]
     assert data["query"] == query
+
+
+def test_sparql_update_is_one_batch_with_the_net_effect_of_its_operations() -> None:
+    import pytest
+
+    from kb import KB
+    from kb.sparql import InvalidSparql, UnsupportedUpdate
+
+    with KB() as kb:
+        kb += "cup_1 isOn table_1"
+        revision = kb.revision
+        kb.sparql_update("INSERT DATA { :cup_1 :isOn :shelf_1 . :cup_2 :isOn :shelf_1 } ; "
+                         "DELETE DATA { :cup_1 :isOn :table_1 . :cup_2 :isOn :shelf_1 }")
+        assert kb.revision == revision + 1
+        assert kb["?c isOn ?s"] == [{"c": "cup_1", "s": "shelf_1"}]
+        with pytest.raises(UnsupportedUpdate, match="DeleteWhere"):
+            kb.sparql_update("INSERT DATA { :a :b :c } ; DELETE WHERE { ?x :isOn ?y }")
+        with pytest.raises(InvalidSparql):
+            kb.sparql_update("INSERT NONSENSE")
+        assert kb["a b ?c"] == [] and kb.revision == revision + 1
