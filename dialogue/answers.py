@@ -62,9 +62,9 @@ def location(snapshot: Snapshot, entity: Entity) -> str:
     return " ".join(parts)
 
 
-def what_do_you_see(snapshot: Snapshot) -> str:
+def what_do_you_see(snapshot: Snapshot, speaker: str = "") -> str:
     things = [indefinite(e) for e in snapshot.visible() if e.kind == "thing"]
-    people = [indefinite(e) for e in snapshot.visible() if e.kind == "person"]
+    people = ["you" if e.id == speaker else indefinite(e) for e in snapshot.visible() if e.kind == "person"]
     if not things and not people:
         return "I don't see anything I know right now."
     return f"I see {listing([*things, *people])}."
@@ -74,7 +74,7 @@ def who_do_you_see(snapshot: Snapshot, speaker: str) -> str:
     people = [e for e in snapshot.visible() if e.kind == "person"]
     if not people:
         return "I don't see anyone right now."
-    names = [e.name if e.labels else "someone I don't know" for e in people]
+    names = ["you" if e.id == speaker else e.name if e.labels else "someone I don't know" for e in people]
     return f"I see {listing(names)}."
 
 

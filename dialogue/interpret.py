@@ -98,7 +98,7 @@ class Interpreter:
                 thing = tuple(tokens(ref.id))
         match p.question:
             case "what_see":
-                return Outcome(answers.what_do_you_see(self.snapshot))
+                return Outcome(answers.what_do_you_see(self.snapshot, self.speaker))
             case "who_see":
                 return Outcome(answers.who_do_you_see(self.snapshot, self.speaker))
             case "where":

@@ -240,3 +240,10 @@ def test_a_stale_question_is_not_answered(scenes: dict[str, KB]) -> None:
     history = [("user", "grab the cup"), ("robot", "Which cup do you mean: the blue cup or the red cup?"),
                ("user", "hello"), ("robot", "Hello Nina!")]  # fmt: skip
     assert not say(scenes["two_cups"], "the red one", speaker="person_nina", history=history).understood
+
+
+def test_the_speaker_is_you_in_what_and_who_the_robot_sees() -> None:
+    kb = scene_kb("kitchen")
+    assert say(kb, "what do you see?", speaker="person_alice").reply.endswith("and you.")
+    assert say(kb, "who do you see?", speaker="person_alice").reply == "I see you."
+    assert "Alice" in say(kb, "who do you see?", speaker="person_tom").reply
