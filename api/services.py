@@ -51,9 +51,10 @@ class Services:
             self.kb.close()
 
 
-def _open_journal(kb: KB, folder: Path) -> Journal:
+def _open_journal(kb: KB, folder: Path, snapshot_records: int) -> Journal:
     journal = Journal(folder)
     found = journal.recover(kb)
+    journal.compact_every(kb, snapshot_records)
     torn = f", dropped a torn tail of {found.dropped_bytes} bytes" if found.dropped_bytes else ""
     log.info("recovered the KB from %s: revision %d, %d journal records%s", folder, found.revision,
              found.records, torn)
@@ -88,7 +89,7 @@ def start_services(settings: Settings, kb: KB | None = None, model: ChatModel | 
     try:
         dialogues = build_dialogues(settings, the_kb, model)
         if settings.data_dir is not None:
-            journal = _open_journal(the_kb, settings.data_dir)
+            journal = _open_journal(the_kb, settings.data_dir, settings.snapshot_records)
         for path in settings.ontology_files:
             the_kb.load(str(path))
         world = World(the_kb, settings.scene_settings, settings.data_dir)

@@ -48,6 +48,8 @@ class Settings(BaseSettings):
     host: str = "127.0.0.1"
     port: int = Field(default=8000, ge=0, le=65535)
     data_dir: Path | None = Field(default=None, description="durable KB: journal and snapshots")
+    snapshot_records: int = Field(default=50_000, ge=0, description="with a data directory: snapshot "
+                                  "(compact the journal) every this many writes; 0: only at stop")
     ontology_files: list[Path] = Field(default_factory=list, description="extra RDF files loaded at start")
     scene: str | None = Field(default="demo", description="the scene at start: demo (the packaged demo "
                               "environment), an .svg environment, a .json scene, a .txt file of statements, "

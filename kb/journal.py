@@ -49,6 +49,8 @@ class Journal:
         self._lock = threading.Lock()
         self._file: BinaryIO | None = None
         self.records_since_snapshot = 0
+        self._stop = threading.Event()
+        self._compactor: threading.Thread | None = None
 
     # --- recovery --------------------------------------------------------------------------
 
@@ -127,7 +129,25 @@ class Journal:
             _fsync(self._file)
             self.records_since_snapshot = 0
 
+    def compact_every(self, kb: KB, records: int, check_seconds: float = 5.0) -> None:
+        """Snapshot in the background whenever ``records`` journal records have accumulated, so a
+        steady perception stream neither grows the journal nor the replay at start without bound."""
+        if records <= 0 or self._compactor is not None:
+            return
+
+        def loop() -> None:
+            while not self._stop.wait(check_seconds):
+                if self.records_since_snapshot >= records and self._file is not None:
+                    self.snapshot(kb)
+
+        self._compactor = threading.Thread(target=loop, name="kb-journal-compaction", daemon=True)
+        self._compactor.start()
+
     def close(self) -> None:
+        self._stop.set()
+        if self._compactor is not None:
+            self._compactor.join(timeout=5.0)
+            self._compactor = None
         with self._lock:
             if self._file is not None:
                 self._file.close()

@@ -135,3 +135,21 @@ def test_appending_before_recover_is_an_error(tmp_path: Path) -> None:
 
     with pytest.raises(KbError, match="not open"):
         Journal(tmp_path).append(Commit(1, (), ()))
+
+
+def test_background_compaction_snapshots_after_enough_records(tmp_path: Path) -> None:
+    import time
+
+    kb, journal = open_kb(tmp_path)
+    journal.compact_every(kb, records=5, check_seconds=0.05)
+    for i in range(6):
+        kb += f"a sees b{i}"
+    deadline = time.monotonic() + 5
+    while journal.records_since_snapshot and time.monotonic() < deadline:
+        time.sleep(0.05)
+    assert journal.records_since_snapshot == 0 and (tmp_path / SNAPSHOT).exists()
+    assert (tmp_path / JOURNAL).stat().st_size == 0
+    kb += "a sees c"
+    journal.close()
+    again, _ = open_kb(tmp_path)
+    assert len(again["a sees ?x"]) == 7
