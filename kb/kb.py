@@ -36,7 +36,7 @@ from kb.arguments import (
 )
 from kb.errors import KbError
 from kb.events import Callback, event_id
-from kb.query import Row, holds, rows
+from kb.query import Row, TooManyRows, holds, rows
 from kb.rdfio import FORMATS, default_ontology, parse_data, parse_location, serialize
 from kb.sparql import execute, parse_update, to_json
 from kb.store import ALL_MODELS, DEFAULT_MODEL, Model, Models
@@ -122,9 +122,10 @@ class KB:
     # --- queries --------------------------------------------------------------------------
 
     def find(self, patterns: str | Sequence[str], vars: Sequence[str] | None = None,
-             models: Models_ = None) -> list[Any]:
+             models: Models_ = None, *, max_rows: int | None = None) -> list[Any]:
         """Rows of bindings for a conjunction of patterns; for ground patterns, the patterns
-        themselves if they all hold, else ``[]`` (kb-compat §3.2)."""
+        themselves if they all hold, else ``[]`` (kb-compat §3.2). With ``max_rows``, a query
+        with more rows raises ``kb.query.TooManyRows`` as soon as it finds one too many."""
         texts = tuple(as_list(patterns))
         if not texts:
             raise KbError("find needs at least one pattern")
@@ -136,7 +137,9 @@ class KB:
                 return list(texts) if any(holds(m.closure, query) for m in targets) else []
             found: set[Row] = set()
             for model in targets:
-                found |= rows(model.closure, query)
+                found |= rows(model.closure, query, max_rows)
+                if max_rows is not None and len(found) > max_rows:
+                    raise TooManyRows(max_rows)
             return render(query, found)
 
     def exist(self, patterns: str | Sequence[str], models: Models_ = None) -> bool:

@@ -143,10 +143,19 @@ def _solve(
             binding[slot] = None
 
 
-def rows(index: TripleIndex, query: Query) -> set[Row]:
-    """Distinct projected rows (K1); rows holding a blank node are dropped (K11)."""
+class TooManyRows(KbError):
+    """A query with more distinct rows than the caller allows (evaluation stops there)."""
+
+    def __init__(self, limit: int) -> None:
+        super().__init__(f"the query has more than {limit} rows; make the patterns more specific")
+        self.limit = limit
+
+
+def rows(index: TripleIndex, query: Query, limit: int | None = None) -> set[Row]:
+    """Distinct projected rows (K1); rows holding a blank node are dropped (K11). Past ``limit``
+    distinct rows, ``TooManyRows`` is raised without evaluating the rest."""
     if len(query.patterns) == 1:
-        return _one_pattern_rows(index, query)
+        return _one_pattern_rows(index, query, limit)
     out: set[Row] = set()
     order = _variables(query.patterns)
     slots = [order.index(v) for v in query.projection]
@@ -154,10 +163,12 @@ def rows(index: TripleIndex, query: Query) -> set[Row]:
         row = tuple(values[i] for i in slots)
         if not any(type(t) is BNode for t in row):
             out.add(row)
+            if limit is not None and len(out) > limit:
+                raise TooManyRows(limit)
     return out
 
 
-def _one_pattern_rows(index: TripleIndex, query: Query) -> set[Row]:
+def _one_pattern_rows(index: TripleIndex, query: Query, limit: int | None) -> set[Row]:
     # The most frequent query (`myself sees ?x`) needs no join: scan once, project each triple.
     pattern = query.patterns[0]
     constant = [None if isinstance(t, Variable) else index.canonical(t) for t in pattern]
@@ -171,6 +182,8 @@ def _one_pattern_rows(index: TripleIndex, query: Query) -> set[Row]:
         row = tuple(triple[where[0]] for where in positions)
         if not any(type(t) is BNode for t in row):
             out.add(row)
+            if limit is not None and len(out) > limit:
+                raise TooManyRows(limit)
     return out
 
 

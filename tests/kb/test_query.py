@@ -291,3 +291,18 @@ def test_random_conjunctions_match_brute_force(
     query = build_query(parsed, variables)  # type: ignore[arg-type]
     got = {tuple(str(t)[len(ORO):] for t in row) for row in rows(index, query)}
     assert got == expected
+
+
+def test_max_rows_stops_a_query_with_too_many_rows() -> None:
+    import pytest
+
+    from kb import KB
+    from kb.query import TooManyRows
+
+    with KB() as kb:
+        kb += [f"myself sees thing_{i}" for i in range(20)]
+        assert len(kb.find("myself sees ?x", max_rows=20)) == 20
+        with pytest.raises(TooManyRows, match="more than 19 rows"):
+            kb.find("myself sees ?x", max_rows=19)
+        with pytest.raises(TooManyRows):
+            kb.find(["myself sees ?x", "myself sees ?y"], max_rows=100)
