@@ -10,7 +10,8 @@ optionally the rules-first hybrid).
 
 Both are scored with `evaluation.check`, and every value of a KB-grounded role that is not an entity id
 of the situation (or the speaker) counts as an ungrounded referent. With the `rules` spec, (a) passes
-the rules' answer through the tutorial's mapping, so the comparison runs offline too.
+the rules' answer through the tutorial's mapping, so the comparison runs offline too. With a
+`hybrid:` spec (or `hybrid=True`) only (b) runs the rules first; (a) always asks the model.
 """
 
 from __future__ import annotations
@@ -31,7 +32,7 @@ from dialogue.evaluation import Case, CaseResult, EvalError, Report, check, load
 from dialogue.grounding import Snapshot
 from dialogue.llm.base import ChatMessage, ChatModel, ChatRequest, ModelError, TurnContext
 from dialogue.llm.llamacpp import LlamaCppModel
-from dialogue.llm.spec import parse_spec
+from dialogue.llm.spec import Backend, parse_spec
 from dialogue.prompts import history_message
 from dialogue.schema import REFERENT_FIELDS
 from kb import KB, KbError
@@ -220,16 +221,18 @@ def compare(
     deadline: float = 5.0,
     hybrid: bool = False,
     kb_factory: Callable[[], KB] = KB,
+    backend: Backend | None = None,
 ) -> Comparison:
     """Run the cases with the tutorial's approach, then through the engine, with one model instance.
 
     The two passes run one after the other (not interleaved) so that a local model's prompt-prefix
-    cache serves each approach's static prompt.
+    cache serves each approach's static prompt. `backend` (a model already built from `llm_spec`)
+    lets a caller share a loaded model.
     """
     cases_path = Path(path)
     cases = load_cases(cases_path)
     scenes_dir = cases_path.parent / "scenes"
-    backend = parse_spec(llm_spec)
+    backend = backend or parse_spec(llm_spec)
     config = EngineConfig(deadline=deadline, hybrid=backend.hybrid or hybrid)
     if isinstance(backend.model, LlamaCppModel):
         backend.model.load()  # loading is not what is compared

@@ -89,8 +89,13 @@ def _nullable_enum(values: Sequence[str]) -> dict[str, Any]:
     return {"enum": [*values, None]}
 
 
+#: Longest free text a model may write in one field: a grammar-constrained small model otherwise
+#: runs on ("____...") until max_tokens and the answer is truncated.
+MAX_TEXT = 200
+
+
 def _nullable_string() -> dict[str, Any]:
-    return {"anyOf": [{"type": "string"}, {"type": "null"}]}
+    return {"anyOf": [{"type": "string", "maxLength": MAX_TEXT}, {"type": "null"}]}
 
 
 def turn_schema(candidates: SchemaCandidates, intents: Sequence[str] = EXTRACTABLE) -> dict[str, Any]:

