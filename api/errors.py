@@ -118,7 +118,11 @@ async def _dialogue_error(request: Request, exc: Exception) -> JSONResponse:
 
 async def _unexpected(request: Request, exc: Exception) -> JSONResponse:
     log.error("unhandled error on %s %s", request.method, request.url.path, exc_info=exc)
-    return error_response(500, "internal_error", "internal server error; see the service log")
+    # Starlette re-raises the error after this response, and the server then drops the
+    # connection: saying so lets a keep-alive client open a new one instead of having its next
+    # request reset.
+    return error_response(500, "internal_error", "internal server error; see the service log",
+                          headers={"Connection": "close"})
 
 
 def install_error_handlers(app: FastAPI) -> None:

@@ -46,6 +46,8 @@ def query_form(query: str) -> str:
         return str(parseQuery(query)[1].name)
     except ParseBaseException as exc:
         raise _invalid("query (SPARQL Update goes in an 'update' parameter)", exc) from exc
+    except RecursionError:  # pyparsing recurses on nested groups
+        raise ApiError(400, "invalid_sparql", "invalid SPARQL query: it is nested too deeply") from None
 
 
 def answer(kb: KB, query: str, accept: str | None, model: str | None) -> tuple[str, bytes]:

@@ -12,19 +12,22 @@ import json
 import logging
 import os
 import threading
+from collections.abc import Callable
 from importlib.resources import files
 from pathlib import Path
+from typing import Any
 
 from api.scenefile import load_scene
 from api.settings import SceneSettings
 from kb import KB, KbError
 from kb.engagement import Transition
-from kb.scene import Diff, Entity, Kind, SceneConfig
-from kb.scenesync import SceneSync, scene_from_json, scene_to_json
+from kb.scene import ROBOT_ID, Diff, Entity, Kind, SceneConfig
+from kb.scenesync import SceneSync, entity_from_json, entity_to_json, scene_from_json, scene_to_json
 from kb.svg import load_svg
 
 log = logging.getLogger("situated.scene")
 SCENE_FILE = "scene.json"
+PENDING_FILE = "scene.pending.json"  # a scene change written ahead of its KB commit
 DEMO = "demo"
 
 
@@ -66,13 +69,15 @@ class World:
         self.sync = SceneSync(kb, scene_config(settings))
         self._lock = threading.Lock()
         self._file = data_dir / SCENE_FILE if data_dir is not None else None
+        self._pending = data_dir / PENDING_FILE if data_dir is not None else None
         self._hz = settings.engagement_hz
         self._stop = threading.Event()
         self._thread: threading.Thread | None = None
         self.transitions: list[Transition] = []
 
     def start(self, source: str | None) -> None:
-        """Load the persisted scene if there is one, else ``source``; start ticking."""
+        """Load the persisted scene if there is one, else ``source``; finish a change a crash
+        interrupted; start ticking."""
         if self._file is not None and self._file.exists():
             previous = scene_from_json(self._file.read_bytes())
             self.sync.adopt(previous)
@@ -81,6 +86,7 @@ class World:
             entities = read_scene(source)
             diff = self.replace(entities)
             log.info("loaded the scene %s: %d entities, %d facts", source, len(entities), len(diff.added))
+        self._finish_pending()
         if self._hz > 0:
             self._thread = threading.Thread(target=self._tick_loop, name="scene-engagement", daemon=True)
             self._thread.start()
@@ -91,22 +97,51 @@ class World:
             self._thread.join(timeout=2.0)
 
     def replace(self, entities: list[Entity]) -> Diff:
-        with self._lock:
-            diff = self.sync.replace(entities)
-            self._save()
-            return diff
+        op = {"op": "replace", "entities": [entity_to_json(e) for e in entities]}
+        return self._change(op, lambda: self.sync.replace(entities))
 
     def put(self, entity: Entity) -> Diff:
+        return self._change({"op": "put", "entity": entity_to_json(entity)}, lambda: self.sync.put(entity))
+
+    def remove(self, entity_id: str) -> Diff:
+        return self._change({"op": "remove", "id": entity_id}, lambda: self.sync.remove(entity_id))
+
+    def _change(self, op: dict[str, Any], apply: Callable[[], Diff]) -> Diff:
+        """Apply a change to the KB and save the scene. The change is written ahead: a crash
+        between the KB commit and the save is finished at the next start, instead of leaving KB
+        facts about an entity the saved scene does not know (which nothing would retract)."""
         with self._lock:
-            diff = self.sync.put(entity)
+            self._write(self._pending, op)
+            try:
+                diff = apply()
+            except KbError:
+                self._drop_pending()
+                raise
             self._save()
             return diff
 
-    def remove(self, entity_id: str) -> Diff:
-        with self._lock:
-            diff = self.sync.remove(entity_id)
-            self._save()
-            return diff
+    def _finish_pending(self) -> None:
+        """Bring the KB and the scene to the state after the change written ahead, whether or
+        not its KB commit happened before the crash."""
+        if self._pending is None or not self._pending.exists():
+            return
+        current = [e for e in self.sync.scene if e.id != ROBOT_ID]
+        try:
+            op = json.loads(self._pending.read_bytes())
+            if op["op"] == "put":
+                entity = entity_from_json(op["entity"])
+                target = [e for e in current if e.id != entity.id] + [entity]
+            elif op["op"] == "remove":
+                target = [e for e in current if e.id != op["id"]]
+            else:
+                target = scene_from_json({"entities": op["entities"]})
+            with self._lock:
+                self.sync.adopt(target, previous=current)
+                self._save()
+            log.info("finished the scene change a stop interrupted (%s)", op["op"])
+        except (ValueError, KeyError, TypeError, KbError) as exc:
+            log.warning("dropped an unreadable interrupted scene change: %s", exc)
+            self._drop_pending()
 
     def tick(self) -> Diff:
         with self._lock:
@@ -122,8 +157,21 @@ class World:
                 self.tick()
 
     def _save(self) -> None:
-        if self._file is None:
+        self._write(self._file, scene_to_json(self.sync))
+        self._drop_pending()
+
+    def _drop_pending(self) -> None:
+        if self._pending is not None:
+            self._pending.unlink(missing_ok=True)
+
+    @staticmethod
+    def _write(path: Path | None, data: dict[str, Any]) -> None:
+        """Replace ``path`` with ``data`` whole (a new file renamed over it), durably."""
+        if path is None:
             return
-        tmp = self._file.with_suffix(".tmp")
-        tmp.write_text(json.dumps(scene_to_json(self.sync)), encoding="utf-8")
-        os.replace(tmp, self._file)
+        tmp = path.with_suffix(".tmp")
+        with tmp.open("wb") as handle:
+            handle.write(json.dumps(data).encode())
+            handle.flush()
+            os.fsync(handle.fileno())
+        os.replace(tmp, path)

@@ -78,6 +78,7 @@ class DialogueEngine:
         self.prompts = prompts or PromptSet.load()
         self.grounder = Grounder(self.config.max_snapshot_entities, self.config.lang)
         self._lexicons = LexiconCache()
+        self._rebuilds: dict[int, asyncio.Task[tuple[Snapshot, Lexicon]]] = {}
 
     @property
     def uses_rules_only(self) -> bool:
@@ -89,11 +90,20 @@ class DialogueEngine:
         return snapshot, self._lexicons.get(snapshot)
 
     async def ground_async(self) -> tuple[Snapshot, Lexicon]:
-        cached = self.grounder.cached(self.kb.revision)
+        revision = self.kb.revision
+        cached = self.grounder.cached(revision)
         if cached is not None:
             return cached, self._lexicons.get(cached)
-        # rdflib work (and the lexicon rebuild) never runs on the event loop.
-        return await asyncio.to_thread(self.ground)
+        # rdflib work (and the lexicon rebuild) never runs on the event loop. One rebuild per
+        # revision, shared by every turn that waits for it: with many dialogues, each KB change
+        # would otherwise start as many identical rebuilds, all contending for the KB and the GIL.
+        loop = asyncio.get_running_loop()
+        pending = self._rebuilds.get(revision)
+        if pending is None or pending.get_loop() is not loop:
+            pending = loop.create_task(asyncio.to_thread(self.ground))
+            self._rebuilds = {revision: pending}  # older revisions' rebuilds are of no more use
+        # Shielded: a turn that hits its deadline must not cancel the rebuild the others await.
+        return await asyncio.shield(pending)
 
     async def turn(
         self, text: str, *, speaker: str, history: Sequence[Utterance] = (), locale: str | None = None

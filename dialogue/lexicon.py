@@ -101,11 +101,13 @@ class Lexicon:
 
     def names_at(self, words: Sequence[str], start: int) -> list[Name]:
         """Every name that occurs in `words` starting at `start` (longest first)."""
-        normed = norm(words)
+        # Only the words a candidate name spans are normalised: normalising the whole utterance
+        # at every start made a long utterance cost quadratic time.
         found = []
-        for name in self._by_first.get(normed[start], ()):
+        for name in self._by_first.get(singular(words[start]), ()):
             end = start + len(name.words)
-            if end <= len(normed) and normed[start:end] == name.words:
+            span = words[start:end]
+            if end <= len(words) and all(singular(w) == n for w, n in zip(span, name.words, strict=True)):
                 found.append(name)
         return found
 

@@ -19,6 +19,8 @@ from kb.kb import KB
 from kb.scene import ROBOT_ID, Diff, Entity, Kind, Scene, SceneConfig
 from kb.terms import parse_name
 
+MAX_METRES = 1e6  # far beyond any room; squared distances of larger values overflow
+
 ENGAGEMENT_PROPERTY = "engagementLevel"
 _FIELDS = {"id", "kind", "class", "label", "x", "y", "heading", "width", "depth", "z"}
 _OUTPUT_ONLY = {"engagement"}  # in GET /scene answers; ignored when a scene is read back
@@ -54,15 +56,22 @@ class SceneSync:
             self.tracker = EngagementTracker(self.tracker.config)
             return self._commit(scene)
 
-    def adopt(self, entities: Iterable[Entity]) -> Diff:
+    def adopt(self, entities: Iterable[Entity], previous: Iterable[Entity] = ()) -> Diff:
         """Take over a scene whose facts a previous run asserted (recovered from a journal): the
-        facts missing from the KB are asserted again, engagement levels start over."""
+        facts missing from the KB are asserted again, engagement levels start over. With
+        ``previous`` (the scene before a change a crash may have cut off), the facts of that
+        scene which this one does not make are retracted too, so the KB ends as this scene."""
         with self._lock:
             scene = Scene(self.scene.config)
             for entity in entities:
                 scene.put(entity)
             facts = scene.facts()
-            diff = Diff(added={f for f in facts if not self.kb.is_asserted(f)})
+            before = Scene(self.scene.config)
+            for entity in previous:
+                before.put(entity)
+            stale = before.facts() - facts if previous else set()
+            diff = Diff(added={f for f in facts if not self.kb.is_asserted(f)},
+                        removed={f for f in stale if self.kb.is_asserted(f)})
             for entity in scene:
                 if entity.kind is Kind.PERSON:
                     for row in self.kb.find(f"{entity.id} {ENGAGEMENT_PROPERTY} ?level"):
@@ -155,6 +164,9 @@ class SceneSync:
         for size in (entity.width, entity.depth):
             if size is not None and not (math.isfinite(size) and size > 0):
                 raise KbError(f"{where}: width and depth must be positive")
+        if any(abs(v) > MAX_METRES for v in (entity.x, entity.y, entity.width or 0, entity.depth or 0)):
+            raise KbError(f"{where}: positions and sizes are at most {MAX_METRES:g} m (the geometry "
+                          "overflows beyond)")
         self._check_class(entity.cls, where)
         if entity.id not in self.scene and self._mentioned(entity.id):
             raise KbError(f"{where}: the KB already has facts about {entity.id!r} that the scene did not "
@@ -185,7 +197,7 @@ def entity_from_json(data: Mapping[str, Any]) -> Entity:
         raise KbError(f"scene entity {data.get('id')!r}: unknown fields {sorted(unknown)}")
     try:
         kind = Kind(data.get("kind", "object"))
-        entity = Entity(
+        return Entity(
             id=str(data["id"]), kind=kind, cls=str(data.get("class") or ""), label=data.get("label"),
             x=float(data.get("x", 0.0)), y=float(data.get("y", 0.0)),
             heading=float(data.get("heading", 0.0)),
@@ -197,10 +209,6 @@ def entity_from_json(data: Mapping[str, Any]) -> Entity:
         raise KbError(f"scene entity {data!r}: missing field {exc}") from None
     except (TypeError, ValueError, OverflowError) as exc:
         raise KbError(f"scene entity {data.get('id')!r}: {exc}") from None
-    sizes = (entity.x, entity.y, entity.heading, entity.width or 0.0, entity.depth or 0.0)
-    if not all(math.isfinite(v) for v in sizes):
-        raise KbError(f"scene entity {entity.id!r}: positions and sizes must be finite numbers")
-    return entity
 
 
 def entity_to_json(entity: Entity) -> dict[str, Any]:

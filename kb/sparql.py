@@ -129,6 +129,8 @@ def _translate(text: str, kind: str, parse: Callable[[str], Any], translate: Cal
     except ParseBaseException as exc:
         hint = " (only read-only queries are accepted here)" if kind == "query" else ""
         raise InvalidSparql(f"invalid SPARQL {kind}{hint}: {exc}") from exc
+    except RecursionError:  # pyparsing and the algebra recurse on nested groups
+        raise InvalidSparql(f"invalid SPARQL {kind}: it is nested too deeply") from None
     except Exception as exc:
         if type(exc) is not Exception:  # rdflib raises a bare Exception for an unknown prefix
             raise

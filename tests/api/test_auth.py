@@ -33,14 +33,25 @@ def _call(live: Live, path: str, method: str, headers: dict[str, str] | None = N
 
 
 def test_every_write_route_needs_the_token(live_factory) -> None:  # type: ignore[no-untyped-def]
-    live = live_factory(Settings(scene=SCENE, token=SecretStr(TOKEN)))
+    live = live_factory(Settings(scene=SCENE, token=SecretStr(TOKEN), sparql_update=True))
     writes = [(p, m) for p, m in _operations(live) if m != "get" and (p, m) not in READ_POSTS]
     assert ("/kb/clear", "post") in writes and ("/kb/load", "post") in writes
+    assert {("/scene", "put"), ("/scene/entities/x", "put"), ("/scene/entities/x", "delete")} <= set(writes)
     for path, method in writes:
         assert _call(live, path, method) == 401, (path, method)
         assert _call(live, path, method, {"authorization": "Bearer wrong"}) == 403, (path, method)
         authorised = _call(live, path, method, {"authorization": f"Bearer {TOKEN}"})
         assert authorised not in (401, 403), (path, method)
+    # SPARQL Update is a write on the read route /sparql
+    update = {"update": "INSERT DATA { <http://kb.openrobots.org#a> <http://kb.openrobots.org#b> "
+                        "<http://kb.openrobots.org#c> }"}
+    assert live.client.post("/sparql", data=update).status_code == 401
+    assert live.client.post("/sparql", data=update, headers={"authorization": "Bearer wrong"}).status_code == 403
+    assert live.client.post("/sparql", data=update, headers={"authorization": f"Bearer {TOKEN}"}).status_code == 204
+    # the Rasa facade also takes ?token=, as Rasa's HTTP API does; a wrong one is refused
+    hook = {"sender": "person_alice", "message": "hello"}
+    assert live.client.post("/webhooks/rest/webhook", json=hook, params={"token": "wrong"}).status_code == 403
+    assert live.client.post("/webhooks/rest/webhook", json=hook, params={"token": TOKEN}).status_code == 200
     # reads stay open by default
     assert live.client.get("/kb/query", params={"pattern": "myself sees ?o"}).status_code == 200
     assert live.services.kb.find(["myself sees ?o"]) == []  # the authorised /kb/clear above ran
