@@ -77,3 +77,11 @@ def check_count(items: Sized, limit: int, what: str) -> None:
     if len(items) > limit:
         raise ApiError(413, f"too_many_{what}", f"{len(items)} {what} in one request; the limit is {limit}",
                        {"count": len(items), "limit": limit})
+
+
+def check_length(text: str, limit: int, what: str) -> None:
+    """413 ``<what>_too_long`` for a text longer than the configured limit."""
+    if len(text) > limit:
+        raise ApiError(413, f"{what}_too_long",
+                       f"the {what} has {len(text)} characters; the limit is {limit}",
+                       {"length": len(text), "limit": limit})

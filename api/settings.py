@@ -27,6 +27,8 @@ class Limits(BaseModel):
     max_subscribers: int = Field(default=64, ge=1, description="concurrent SSE + WebSocket event subscribers")
     max_history_turns: int = Field(default=50, ge=1, description="turns of history kept per dialogue")
     max_dialogues: int = Field(default=1000, ge=1, description="dialogues open at once")
+    max_rows: int = Field(default=10_000, ge=1, description="rows a /kb/query answer may have")
+    max_input_chars: int = Field(default=4000, ge=1, description="characters in one utterance")
 
 
 class SceneSettings(BaseModel):

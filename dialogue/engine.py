@@ -13,7 +13,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 
 from dialogue import intents as I
-from dialogue.grounding import Grounder, KnowledgeBase, Snapshot
+from dialogue.grounding import Entity, Grounder, KnowledgeBase, Snapshot
 from dialogue.history import Utterance
 from dialogue.lexicon import Lexicon, LexiconCache
 from dialogue.llm.base import ChatMessage, ChatModel, ChatRequest, ChatResult, ModelError, TurnContext
@@ -27,6 +27,14 @@ log = logging.getLogger(__name__)
 MAX_SCHEMA_IDS = 60
 SORRY = "Sorry, I can't answer right now."
 NOT_UNDERSTOOD = "Sorry, I did not understand that."
+
+
+_SUPPORT_CLASSES = frozenset({"PhysicalSupport", "cyc:FurniturePiece", "cyc:Object-SupportingFurniture"})
+
+
+def _is_support(entity: Entity, held: set[str]) -> bool:
+    """Furniture, or anything something else stands on."""
+    return entity.id in held or bool(_SUPPORT_CLASSES.intersection(entity.classes))
 
 
 @dataclass(frozen=True)
@@ -169,7 +177,11 @@ class DialogueEngine:
         zones = [e.id for e in snapshot.entities.values() if e.kind == "zone"][:MAX_SCHEMA_IDS]
         if speaker not in people:
             people.insert(0, speaker)
-        return turn_schema(SchemaCandidates(things, [*people, *things], [*zones, *things, *people]))
+        # A recipient is a person (bring, greet, guide, say) or a support to put a thing on
+        # (place): offering every thing lets small models name an apple as the recipient.
+        held = {e.support for e in snapshot.entities.values() if e.support}
+        supports = [e.id for e in snapshot.entities.values() if e.kind == "thing" and _is_support(e, held)]
+        return turn_schema(SchemaCandidates(things, [*people, *supports], [*zones, *things, *people]))
 
     async def _ask_model(self, turn: _Turn, deadline: float) -> TurnResult:
         loop = asyncio.get_running_loop()

@@ -9,7 +9,7 @@ from pydantic import BaseModel, ConfigDict, Field
 
 from api.deps import ServicesDep, WriteAccess
 from api.errors import ApiError
-from api.limits import check_count
+from api.limits import check_count, check_length
 from dialogue.history import Utterance
 from dialogue.intents import Intent
 from dialogue.sessions import DEFAULT_ROLE, DialogueError, DialogueManager
@@ -82,6 +82,7 @@ async def interact(dialogue_id: str, body: InteractionRequest, dialogues: Dialog
                    services: ServicesDep) -> InteractionResponse:
     """One DialogueInteraction: the reply and the validated intents, most relevant first."""
     _existing(dialogues, dialogue_id)
+    check_length(body.input, services.settings.limits.max_input_chars, "input")
     history = None
     if body.history is not None:
         check_count(body.history, services.settings.limits.max_history_turns, "history_turns")

@@ -12,6 +12,9 @@ from api.deps import KbDep, ReadAccess, ServicesDep, SettingsDep, WriteAccess
 from api.errors import ApiError
 from api.limits import check_count
 from api.negotiation import negotiate
+from api.settings import Settings
+from kb import KB
+from kb.query import TooManyRows
 
 router = APIRouter(prefix="/kb", tags=["kb"])
 
@@ -60,7 +63,16 @@ class Revision(BaseModel):
 async def query(body: QueryRequest, kb: KbDep, settings: SettingsDep) -> list[Any]:
     """Rows of bindings for a conjunction of patterns (kb-compat §3.2)."""
     check_count(body.patterns, settings.limits.max_patterns, "patterns")
-    return await run_in_threadpool(kb.find, body.patterns, body.vars, body.models)
+    return await _find(kb, settings, body.patterns, body.vars, body.models)
+
+
+async def _find(kb: KB, settings: Settings, patterns: list[str], vars: list[str] | None,
+                models: list[str] | None) -> list[Any]:
+    limit = settings.limits.max_rows
+    try:
+        return await run_in_threadpool(lambda: kb.find(patterns, vars, models, max_rows=limit))
+    except TooManyRows as exc:
+        raise ApiError(413, "too_many_rows", f"{exc} (the service's limit)", {"limit": limit}) from exc
 
 
 @router.get("/query", dependencies=[ReadAccess])
@@ -69,7 +81,7 @@ async def query_get(kb: KbDep, settings: SettingsDep,
                     models: Models = None) -> list[Any]:
     """Rows of bindings for ``?pattern=...`` (repeat it for a conjunction)."""
     check_count(pattern, settings.limits.max_patterns, "patterns")
-    return await run_in_threadpool(kb.find, pattern, None, models)
+    return await _find(kb, settings, pattern, None, models)
 
 
 @router.post("/revise", dependencies=[WriteAccess])

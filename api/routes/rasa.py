@@ -15,6 +15,7 @@ from api import rasa
 from api.auth import authorise
 from api.deps import Credentials, ServicesDep, SettingsDep
 from api.errors import ApiError
+from api.limits import check_length
 from dialogue.engine import TurnResult
 from dialogue.sessions import DialogueError, DialogueManager
 from kb import KB, KbError
@@ -66,6 +67,7 @@ async def webhook(body: WebhookMessage, services: ServicesDep,
     """``[{"recipient_id", "text", "custom": {"intents": [...]}}]``; the sender is the user id."""
     if stream:
         raise ApiError(400, "unsupported", "stream=true is not supported; omit it")
+    check_length(body.message, services.settings.limits.max_input_chars, "message")
     key = rasa.dialogue_key(body.sender)
     _ensure_dialogue(services.dialogues, key)
     result: TurnResult = await services.dialogues.interact(body.sender, body.message, dialogue_id=key)
@@ -86,6 +88,7 @@ def _labeller(kb: KB) -> Any:
 @router.post("/model/parse", dependencies=[_rasa_access(write=False)])
 async def parse(body: ParseRequest, services: ServicesDep) -> dict[str, Any]:
     """NLU only: the turn's intents as Rasa's parse result; nothing is recorded."""
+    check_length(body.text, services.settings.limits.max_input_chars, "text")
     result = await services.dialogues.engine.turn(body.text, speaker=UNKNOWN_AGENT)
     label = _labeller(services.kb)
     return await run_in_threadpool(rasa.parse_result, body.text, result.intents, label)

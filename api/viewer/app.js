@@ -172,10 +172,11 @@ class Viewer {
     });
     $("#zoom-in").addEventListener("click", () => this.graph.zoomBy(1.25));
     $("#zoom-out").addEventListener("click", () => this.graph.zoomBy(0.8));
-    $("#fit").addEventListener("click", () => this.graph.fit());
+    $("#fit").addEventListener("click", () => { this.graph.autoFit = true; this.graph.fit(); });
     $("#reset").addEventListener("click", () => {
       this.graph.clear();
       this.concepts.forget();
+      this.graph.autoFit = true;
       this.graph.centreView();
       this.activate(ROOT);
     });
@@ -239,7 +240,7 @@ class Viewer {
     setStatus(status, "ok", rows.length ? `${rows.length} row${rows.length > 1 ? "s" : ""}` : "no match");
     head.replaceChildren(el("tr", {}, ...columns.map((c) => el("th", { scope: "col" }, `?${c}`))));
     body.replaceChildren(...rows.map((row) => el("tr", {}, ...columns.map((c) => el("td", {},
-      typeof row[c] === "string" ? termButton(row[c], null, (t) => this.activate(t)) : String(row[c] ?? "")))));
+      typeof row[c] === "string" ? termButton(row[c], null, (t) => this.activate(t)) : String(row[c] ?? ""))))));
   }
 
   async sendChat() {
@@ -262,6 +263,8 @@ class Viewer {
         el("summary", {}, `${answer.intents.length} intent${answer.intents.length === 1 ? "" : "s"}`),
         el("pre", { class: "json" }, JSON.stringify(answer.intents, null, 2)));
       parts.push(intents);
+      // Only the latest answer keeps its intents open; earlier ones fold away.
+      for (const open of log.querySelectorAll("details.intents[open]")) open.removeAttribute("open");
       waiting.replaceWith(el("li", { class: `msg robot${question ? " question" : ""}` }, ...parts));
     } catch (err) {
       waiting.replaceWith(el("li", { class: "msg system error" }, el("p", {}, err.message)));

@@ -3,8 +3,10 @@
 
 const SVG_NS = "http://www.w3.org/2000/svg";
 const NODE_RADIUS = { class: 25, default: 21 };
-const LINK_DISTANCE = 120;
-const CHARGE = 5200;
+const LINK_DISTANCE = 135;
+const CHARGE = 9000;
+// Room kept free for the legend (top) and the hint line (bottom) when fitting the view.
+const INSET = { top: 46, bottom: 24, side: 10 };
 
 function svgEl(name, attrs = {}, parent = null) {
   const el = document.createElementNS(SVG_NS, name);
@@ -31,9 +33,11 @@ export class Graph {
     this.alpha = 0;
     this.frame = null;
     this.showInferred = true;
+    // The view follows the layout until the user pans or zooms.
+    this.autoFit = true;
     this.centreView();
     this.installPanZoom();
-    new ResizeObserver(() => this.applyView()).observe(svg);
+    new ResizeObserver(() => (this.autoFit ? this.fit() : this.applyView())).observe(svg);
   }
 
   // ---- model -------------------------------------------------------------------------------
@@ -161,7 +165,8 @@ export class Graph {
   }
 
   styleEdge(edge) {
-    edge.el.setAttribute("class", `edge ${edge.kind}`);
+    const near = this.selected !== null && (edge.s === this.selected || edge.o === this.selected);
+    edge.el.setAttribute("class", `edge ${edge.kind}${near ? " near" : ""}`);
     edge.el.dataset.kind = edge.kind;
     const marker = edge.kind === "isa" ? "arrow-isa" : edge.kind === "inferred" ? "arrow-inferred" : "arrow";
     edge.path.setAttribute("marker-end", `url(#${marker})`);
@@ -242,6 +247,14 @@ export class Graph {
       const d = depth.has(node.id) ? depth.get(node.id) : 3;
       node.el.dataset.depth = String(Math.min(d, 3));
     }
+    this.markNear(this.selected, "near");
+  }
+
+  // Edge labels are shown for the selected concept's edges and the hovered one's, not all at once.
+  markNear(id, cls) {
+    for (const edge of this.edges.values()) {
+      edge.el.classList.toggle(cls, id !== null && (edge.s === id || edge.o === id));
+    }
   }
 
   // ---- layout ------------------------------------------------------------------------------
@@ -271,12 +284,18 @@ export class Graph {
         b.vx += (dx / d) * f; b.vy += (dy / d) * f;
       }
     }
-    const degree = new Map();
+    // One spring per linked pair, however many relations the pair has.
+    const pairs = new Map();
     for (const edge of this.edges.values()) {
+      const key = edge.s < edge.o ? `${edge.s}\u0000${edge.o}` : `${edge.o}\u0000${edge.s}`;
+      pairs.set(key, edge);
+    }
+    const degree = new Map();
+    for (const edge of pairs.values()) {
       degree.set(edge.s, (degree.get(edge.s) || 0) + 1);
       degree.set(edge.o, (degree.get(edge.o) || 0) + 1);
     }
-    for (const edge of this.edges.values()) {
+    for (const edge of pairs.values()) {
       const a = this.nodes.get(edge.s);
       const b = this.nodes.get(edge.o);
       if (!a || !b || a === b) continue;
@@ -301,6 +320,7 @@ export class Graph {
       node.y += Math.max(-40, Math.min(40, node.vy));
     }
     this.render();
+    if (this.autoFit) this.fit();
     this.alpha *= 0.975;
     if (this.alpha > 0.004) this.frame = requestAnimationFrame(() => this.tick());
     else this.alpha = 0;
@@ -320,6 +340,7 @@ export class Graph {
   }
 
   zoomBy(factor, cx, cy) {
+    this.autoFit = false;
     const rect = this.svg.getBoundingClientRect();
     const px = cx === undefined ? rect.width / 2 : cx;
     const py = cy === undefined ? rect.height / 2 : cy;
@@ -333,16 +354,20 @@ export class Graph {
 
   fit() {
     if (!this.nodes.size) { this.centreView(); return; }
+    if (this.svg.getBoundingClientRect().width === 0) return;
     const xs = [...this.nodes.values()].map((n) => n.x);
     const ys = [...this.nodes.values()].map((n) => n.y);
-    const pad = 60;
+    const pad = 48;
     const minX = Math.min(...xs) - pad;
     const maxX = Math.max(...xs) + pad;
     const minY = Math.min(...ys) - pad;
     const maxY = Math.max(...ys) + pad;
     const rect = this.svg.getBoundingClientRect();
-    const k = Math.max(0.2, Math.min(1.6, rect.width / (maxX - minX), rect.height / (maxY - minY)));
-    this.view = { k, x: rect.width / 2 - k * (minX + maxX) / 2, y: rect.height / 2 - k * (minY + maxY) / 2 };
+    const width = rect.width - 2 * INSET.side;
+    const height = rect.height - INSET.top - INSET.bottom;
+    const k = Math.max(0.2, Math.min(1.4, width / (maxX - minX), height / (maxY - minY)));
+    this.view = { k, x: rect.width / 2 - k * (minX + maxX) / 2,
+      y: INSET.top + height / 2 - k * (minY + maxY) / 2 };
     this.applyView();
   }
 
@@ -361,6 +386,7 @@ export class Graph {
     this.svg.addEventListener("pointerdown", (event) => {
       if (event.target.closest(".node")) return;
       pan = { x: event.clientX, y: event.clientY, vx: this.view.x, vy: this.view.y };
+      this.autoFit = false;
       this.svg.setPointerCapture(event.pointerId);
       this.svg.classList.add("panning");
     });
@@ -398,6 +424,7 @@ export class Graph {
       if (!drag) return;
       if (!drag.moved && Math.hypot(event.clientX - drag.x, event.clientY - drag.y) < 4) return;
       drag.moved = true;
+      this.autoFit = false;
       const p = this.toGraph(event.clientX, event.clientY);
       node.fx = p.x; node.fy = p.y; node.x = p.x; node.y = p.y;
       this.styleNode(node);
@@ -408,6 +435,10 @@ export class Graph {
       drag = null;
       if (clicked) this.onActivate(node.id);
     });
+    el.addEventListener("pointerenter", () => this.markNear(node.id, "hover"));
+    el.addEventListener("pointerleave", () => this.markNear(null, "hover"));
+    el.addEventListener("focus", () => this.markNear(node.id, "hover"));
+    el.addEventListener("blur", () => this.markNear(null, "hover"));
     el.addEventListener("dblclick", () => {
       node.fx = null; node.fy = null; this.styleNode(node); this.reheat(0.3);
     });

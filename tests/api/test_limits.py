@@ -45,3 +45,16 @@ def test_statement_and_pattern_counts(live_factory) -> None:  # type: ignore[no-
     by_get = live.client.get("/kb/query", params=[("pattern", p) for p in patterns])
     assert by_get.status_code == 413
     assert live.client.get("/kb/events", params=[("pattern", p) for p in patterns]).status_code == 413
+
+
+def test_query_rows_and_utterance_length_are_bounded(live_factory) -> None:  # type: ignore[no-untyped-def]
+    from api.settings import Limits, Settings
+    from tests.api.conftest import SCENE
+
+    live = live_factory(Settings(scene=SCENE, limits=Limits(max_rows=3, max_input_chars=50)))
+    many = live.client.post("/kb/query", json={"patterns": ["?s ?p ?o"]})
+    assert many.status_code == 413 and many.json()["code"] == "too_many_rows"
+    assert len(live.client.post("/kb/query", json={"patterns": ["myself sees ?o", "?o rdf:type dbr:Cup"]}).json()) == 1
+    long = live.client.post("/dialogues/default/interactions", json={"user_id": "u", "input": "x" * 51})
+    assert long.status_code == 413 and long.json()["code"] == "input_too_long"
+    assert live.client.post("/webhooks/rest/webhook", json={"sender": "u", "message": "y" * 51}).status_code == 413

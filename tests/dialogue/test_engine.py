@@ -233,3 +233,15 @@ def test_rules_never_crash_and_only_emit_grounded_intents(kitchen: KB, words: li
         spec = I.CATALOGUE[intent.intent]
         assert all(intent.data[role] in known for role in spec.grounded if role in intent.data)
         assert all(role in intent.data for role in spec.required) and None not in intent.data.values()
+
+
+def test_schema_recipients_are_people_and_supports_not_every_thing() -> None:
+    from dialogue.engine import DialogueEngine
+    from tests.dialogue.conftest import scene_kb
+
+    engine = DialogueEngine(scene_kb("kitchen"))
+    snapshot, _ = engine.ground()
+    recipients = engine.schema_for(snapshot, "person_alice")["properties"]["user_intent"]["anyOf"][0]["properties"]["recipient"]  # type: ignore[index]
+    allowed = set(recipients["enum"])
+    assert {"person_alice", "person_tom", "table_1", "shelf_1"} <= allowed
+    assert not {"apple_1", "cup_1"} & allowed
