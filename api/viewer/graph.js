@@ -15,6 +15,13 @@ function svgEl(name, attrs = {}, parent = null) {
   return el;
 }
 
+// A stable pseudo-random number in [0, 1) per concept, so a page reload lays out alike.
+function unitHash(text) {
+  let h = 2166136261;
+  for (let i = 0; i < text.length; i++) h = Math.imul(h ^ text.charCodeAt(i), 16777619);
+  return ((h >>> 0) % 10007) / 10007;
+}
+
 function shorten(text, max) {
   return text.length > max ? text.slice(0, max - 1) + "…" : text;
 }
@@ -48,8 +55,8 @@ export class Graph {
     let node = this.nodes.get(id);
     if (!node) {
       const anchor = near && this.nodes.get(near);
-      const angle = Math.random() * 2 * Math.PI;
-      const spread = anchor ? 60 + Math.random() * 40 : 30 * Math.sqrt(this.nodes.size);
+      const angle = unitHash(id) * 2 * Math.PI;
+      const spread = anchor ? 60 + unitHash(id + "/") * 40 : 30 * Math.sqrt(this.nodes.size);
       node = {
         id, label: id, category: "other", expanded: false,
         x: (anchor ? anchor.x : 0) + Math.cos(angle) * spread,
@@ -309,8 +316,9 @@ export class Graph {
       b.vx -= dx * k * wb; b.vy -= dy * k * wb;
     }
     for (const node of nodes) {
-      node.vx -= node.x * 0.012 * alpha;
-      node.vy -= node.y * 0.012 * alpha;
+      // Pulled harder vertically than sideways, so the layout fits the wide panel.
+      node.vx -= node.x * 0.005 * alpha;
+      node.vy -= node.y * 0.026 * alpha;
       if (node.fx !== null) {
         node.x = node.fx; node.y = node.fy; node.vx = 0; node.vy = 0;
         continue;
