@@ -28,14 +28,14 @@ from pydantic import BaseModel, ValidationError
 
 from dialogue import intents as I
 from dialogue.engine import DialogueEngine, EngineConfig, TurnResult
-from dialogue.evaluation import Case, CaseResult, EvalError, Report, check, load_cases, scene_statements
+from dialogue.evaluation import Case, CaseResult, Report, case_kb, check, load_cases
 from dialogue.grounding import Snapshot
 from dialogue.llm.base import ChatMessage, ChatModel, ChatRequest, ModelError, TurnContext
 from dialogue.llm.llamacpp import LlamaCppModel
 from dialogue.llm.spec import Backend, parse_spec
 from dialogue.prompts import history_message
 from dialogue.schema import REFERENT_FIELDS
-from kb import KB, KbError
+from kb import KB
 
 TUTORIAL_INTENTS = (
     I.BRING_OBJECT,
@@ -190,18 +190,6 @@ class Side:
         }
 
 
-def case_kb(case: Case, scenes_dir: Path, kb_factory: Callable[[], KB]) -> KB:
-    statements = scene_statements(scenes_dir, case.scene) if case.scene else []
-    kb = kb_factory()
-    try:
-        if statements:
-            kb.update(statements)
-        if case.facts:
-            kb.update(list(case.facts))
-    except KbError as exc:
-        kb.close()
-        raise EvalError(f"case {case.id!r}: bad scene or facts: {exc}") from None
-    return kb
 
 
 @dataclass

@@ -175,6 +175,21 @@ def check(case: Case, result: TurnResult) -> list[str]:
     return problems
 
 
+def case_kb(case: Case, scenes_dir: Path, kb_factory: Callable[[], KB]) -> KB:
+    """A KB with the case's scene and facts (closed again if they do not load)."""
+    statements = scene_statements(scenes_dir, case.scene) if case.scene else []
+    kb = kb_factory()
+    try:
+        if statements:
+            kb.update(statements)
+        if case.facts:
+            kb.update(list(case.facts))
+    except KbError as exc:
+        kb.close()
+        raise EvalError(f"case {case.id!r}: bad scene or facts: {exc}") from None
+    return kb
+
+
 def run(
     path: str | Path, llm_spec: str = "rules", *, deadline: float = 5.0, kb_factory: Callable[[], KB] = KB
 ) -> Report:
@@ -185,16 +200,8 @@ def run(
     config = EngineConfig(deadline=deadline, hybrid=backend.hybrid)
     report = Report()
     for case in cases:
-        kb = kb_factory()
+        kb = case_kb(case, scenes_dir, kb_factory)
         try:
-            statements = scene_statements(scenes_dir, case.scene) if case.scene else []
-            try:
-                if statements:
-                    kb.update(statements)
-                if case.facts:
-                    kb.update(list(case.facts))
-            except KbError as exc:
-                raise EvalError(f"case {case.id!r}: bad scene or facts: {exc}") from None
             engine = DialogueEngine(kb, backend.model, config)
             result = asyncio.run(engine.turn(case.input, speaker=case.speaker, history=case.history))
         finally:

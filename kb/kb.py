@@ -363,8 +363,6 @@ class KB:
         names = model_names(models) or [DEFAULT_MODEL]
         sub_id = event_id(texts, one_shot, names)
         with self._lock:
-            if ALL_MODELS not in names:
-                self._read_models(names)  # unknown models are an error here too
             baseline: set[Row] = set()
             for model in self._read_models(names):
                 baseline |= rows(model.closure, query)
