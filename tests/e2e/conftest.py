@@ -49,7 +49,9 @@ class PageWatch:
             self.foreign.append(url)
 
 
-@pytest.fixture(scope="session")
+# Module scope: the sync Playwright API keeps an event loop running in this thread while open,
+# which would break asyncio.run() in the tests collected after these.
+@pytest.fixture(scope="module")
 def browser() -> Iterator[Any]:
     from playwright.sync_api import sync_playwright
 
