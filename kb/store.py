@@ -120,6 +120,11 @@ class Models:
             model = self._models[name] = Model(name, self._defaults, self._interner)
         return model
 
+    def drop(self, name: str) -> None:
+        """Forget a model (undoing the batch that created it); the default model stays."""
+        if name != DEFAULT_MODEL:
+            self._models.pop(name, None)
+
     def prune_terms(self) -> None:
         """Forget interned terms no model uses any more (cheap unless many were dropped)."""
         indexes = [ix for m in self._models.values() for ix in (m.asserted, m.closure)]

@@ -8,6 +8,7 @@ re-reasons and fires events exactly like an explicit retract (K9).
 
 from __future__ import annotations
 
+import logging
 import threading
 import time
 from collections.abc import Callable, Iterable, Sequence
@@ -17,11 +18,14 @@ from typing import Any
 from rdflib import URIRef
 from rdflib.namespace import OWL, RDF
 
+from kb.errors import KbError
 from kb.events import Firing, Subscriptions
 from kb.lifespan import Expiries
 from kb.query import Query, Row, holds_row, rows
 from kb.store import ALL_MODELS, Delta, Models
 from kb.terms import ORO, Triple, shorten
+
+log = logging.getLogger(__name__)
 
 ACTIVE_CONCEPT = URIRef(ORO + "ActiveConcept")
 ACTIVE_CONCEPT_LIFESPAN = 5.0
@@ -117,6 +121,7 @@ class Writer:
         expiries: list[tuple[str, Triple, float]] = []
         active_before = self._active_concepts()
         functional = self.functional_properties() if batch.replace_functional else frozenset()
+        undo = _Undo(new_models=[n for n in batch.models if self.models.get(n) is None])
         for name in batch.models:
             model = self.models.create(name)
             remove = list(batch.remove) + batch.remove_by_model.get(name, [])
@@ -124,6 +129,8 @@ class Writer:
             for s, p, o in add:
                 if p in functional:
                     remove.extend((s, p, old) for old in model.asserted.objects(s, p) if old != o)
+            for t in (*add, *remove):
+                undo.expiries.setdefault((name, t), self.expiries.expires_at(name, t))
             delta = model.apply(add, remove)
             for t in delta.asserted_removed:
                 self.expiries.discard(name, t)
@@ -140,11 +147,10 @@ class Writer:
                 deltas.append(delta)
         if not deltas:
             return [], None
-        self.models.prune_terms()
         self.revision += 1
         commit = Commit(self.revision, tuple(deltas), tuple(expiries))
-        for listener in self._commit_listeners:
-            listener(commit)
+        self._publish(commit, undo)
+        self.models.prune_terms()
         if expiries:
             self._ensure_reaper()
         firings = self._evaluate(deltas)
@@ -153,6 +159,45 @@ class Writer:
             concepts = sorted(active_after)
             firings.append(Firing("active_concepts", tuple(self._active_listeners), concepts))
         return firings, commit
+
+    def _publish(self, commit: Commit, undo: _Undo) -> None:
+        """Hand the commit to the listeners (store mirror, journal). If one refuses it (the store
+        is unreachable, the disk is full), the batch is undone in memory and the error raised:
+        nothing of it stays. Listeners that already took it get the undoing commit."""
+        accepted: list[CommitListener] = []
+        try:
+            for listener in self._commit_listeners:
+                listener(commit)
+                accepted.append(listener)
+        except (KbError, OSError):
+            self._undo(commit, undo, accepted)
+            raise
+
+    def _undo(self, commit: Commit, undo: _Undo, accepted: list[CommitListener]) -> None:
+        deltas = []
+        for delta in commit.deltas:
+            model = self.models.get(delta.model)
+            if model is not None:
+                deltas.append(model.apply(delta.asserted_removed, delta.asserted_added))
+        restored: list[tuple[str, Triple, float]] = []
+        for (name, triple), at in undo.expiries.items():
+            if at is None:
+                self.expiries.discard(name, triple)
+            else:
+                self.expiries.set(name, triple, at)
+            restored.append((name, triple, at or 0.0))
+        for name in undo.new_models:
+            self.models.drop(name)
+        if not accepted:
+            self.revision -= 1  # nobody saw the refused revision
+            return
+        self.revision += 1
+        undoing = Commit(self.revision, tuple(deltas), tuple(restored))
+        for listener in accepted:
+            try:
+                listener(undoing)
+            except (KbError, OSError):
+                log.exception("a commit listener could not take the undoing of a refused commit")
 
     def _evaluate(self, deltas: Iterable[Delta]) -> list[Firing]:
         changed = [d for d in deltas if d.added or d.removed]
@@ -235,14 +280,20 @@ class Writer:
     def expire(self, now: float | None = None) -> Commit | None:
         """Retract every statement whose lifespan is over, as one commit per call."""
         with self.lock:
-            due = self.expiries.pop_due(self._clock() if now is None else now)
+            at = self._clock() if now is None else now
+            due = self.expiries.pop_due(at)
             if not due:
                 return None
             by_model: dict[str, list[Triple]] = {}
             for model, triple in due:
                 by_model.setdefault(model, []).append(triple)
             batch = Batch(models=list(by_model), remove_by_model=by_model, replace_functional=False)
-            firings, commit = self._commit_locked(batch)
+            try:
+                firings, commit = self._commit_locked(batch)
+            except (KbError, OSError):
+                for model, triple in due:  # still due: the next attempt retracts them
+                    self.expiries.set(model, triple, at)
+                raise
         for firing in firings:
             firing.deliver()
         return commit
@@ -261,7 +312,11 @@ class Writer:
             self._wake.wait(delay)
             self._wake.clear()
             if not self._closed.is_set():
-                self.expire()
+                try:
+                    self.expire()
+                except (KbError, OSError):
+                    log.exception("expired statements could not be retracted; retrying in 1 s")
+                    self._closed.wait(1.0)
 
     def close(self) -> None:
         self._closed.set()
@@ -269,6 +324,14 @@ class Writer:
         if self._reaper is not None:
             self._reaper.join(timeout=2.0)
             self._reaper = None
+
+
+@dataclass
+class _Undo:
+    """What undoing a batch needs besides its deltas: the models it created, earlier expiries."""
+
+    new_models: list[str]
+    expiries: dict[tuple[str, Triple], float | None] = field(default_factory=dict)
 
 
 def _is_activation(triple: Triple) -> bool:

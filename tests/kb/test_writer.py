@@ -399,3 +399,28 @@ def test_all_models_subscription_fires_for_rows_new_to_the_union(
             got = [(r["s"], r["o"]) for call in fired for r in call]
             fired.clear()
             assert sorted(got) == sorted(union - union_before)
+
+
+def test_a_listener_that_refuses_a_commit_undoes_it_and_earlier_listeners_see_the_undoing() -> None:
+    with KB() as kb:
+        kb += ["myself sees cup_1"]
+        seen: list[Commit] = []
+        kb.on_commit(seen.append)
+
+        def refuse(commit: Commit) -> None:
+            raise KbError("refused by the test")
+
+        unregister = kb.on_commit(refuse)
+        revision = kb.revision
+        with pytest.raises(KbError, match="refused"):
+            kb.apply(add=["myself sees apple_1"], remove=["myself sees cup_1"], models=["default", "person_x"],
+                     lifespan=30)
+        assert kb["myself sees ?x"] == [{"x": "cup_1"}]
+        assert kb.models() == ["default"] and not kb.writer.expiries.items()
+        # the first listener took revision+1, then got revision+2 putting everything back
+        assert [c.revision for c in seen] == [revision + 1, revision + 2] and kb.revision == revision + 2
+        undone = {d.model: d for d in seen[1].deltas}
+        assert undone["default"].asserted_added and undone["default"].asserted_removed
+        unregister()
+        kb += ["myself sees apple_1"]
+        assert kb["myself sees ?x"] == [{"x": "apple_1"}, {"x": "cup_1"}]

@@ -1,0 +1,115 @@
+"""A SPARQL 1.1 Protocol client: the connection to the store a scaled-out KB lives in.
+
+The store is named by one URL, ``sparql+http://HOST:PORT[/BASE][?query=..&update=..&dataset=..]``.
+By default queries go to ``BASE/query`` and updates to ``BASE/update`` (Oxigraph's layout, and
+Fuseki's with ``BASE`` the dataset path); ``query=`` and ``update=`` give other paths or URLs
+(GraphDB: ``/repositories/R`` and ``/repositories/R/statements``; Virtuoso: ``/sparql`` for
+both). ``dataset=`` chooses the graphs of kb.layout (default ``situated``).
+
+One keep-alive HTTP connection pool serves every thread; each call is one request.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+from urllib.parse import parse_qs, urljoin, urlsplit, urlunsplit
+
+import httpx
+from rdflib import BNode, Literal, URIRef
+
+from kb.errors import KbError
+from kb.layout import Layout, unskolem
+from kb.terms import Node
+
+RESULTS_JSON = "application/sparql-results+json"
+
+
+class StoreUnavailable(KbError):
+    """The SPARQL store could not be reached or failed the request; nothing was changed by it."""
+
+
+@dataclass(frozen=True)
+class StoreSpec:
+    query_url: str
+    update_url: str
+    layout: Layout
+
+    @classmethod
+    def parse(cls, spec: str) -> StoreSpec:
+        parts = urlsplit(spec)
+        if parts.scheme not in ("sparql+http", "sparql+https") or not parts.netloc:
+            raise KbError(f"store {spec!r} must look like sparql+http://HOST:PORT[/BASE]")
+        options = parse_qs(parts.query)
+        unknown = set(options) - {"query", "update", "dataset"}
+        if unknown:
+            raise KbError(f"store {spec!r}: unknown option(s) {sorted(unknown)}; use query, update, dataset")
+        scheme = parts.scheme.removeprefix("sparql+")
+        base = urlunsplit((scheme, parts.netloc, parts.path.rstrip("/"), "", ""))
+
+        def endpoint(name: str) -> str:
+            given = options.get(name, [""])[-1]
+            return urljoin(base + "/", given) if given else f"{base}/{name}"
+
+        return cls(endpoint("query"), endpoint("update"), Layout(options.get("dataset", ["situated"])[-1]))
+
+
+class SparqlEndpoint:
+    """Queries and updates against one SPARQL 1.1 server."""
+
+    def __init__(self, spec: StoreSpec | str, timeout: float = 30.0) -> None:
+        self.spec = spec if isinstance(spec, StoreSpec) else StoreSpec.parse(spec)
+        self._http = httpx.Client(timeout=timeout, limits=httpx.Limits(max_keepalive_connections=16))
+
+    @property
+    def layout(self) -> Layout:
+        return self.spec.layout
+
+    def close(self) -> None:
+        self._http.close()
+
+    def select(self, query: str) -> list[dict[str, Node]]:
+        """The rows of a SELECT query, as rdflib terms (unbound variables left out)."""
+        body = self._query(query, RESULTS_JSON).json()
+        return [{name: _node(value) for name, value in row.items()} for row in body["results"]["bindings"]]
+
+    def ask(self, query: str) -> bool:
+        return bool(self._query(query, RESULTS_JSON).json()["boolean"])
+
+    def raw(self, query: str, accept: str, default_graphs: list[str]) -> tuple[str, bytes]:
+        """Any query, answered in the format ``accept`` names, over the given default graphs
+        (SPARQL Protocol ``default-graph-uri``); returns (content type, body)."""
+        response = self._query(query, accept, default_graphs)
+        return response.headers.get("content-type", accept), response.content
+
+    def update(self, update: str) -> None:
+        """One update request: the store applies all of it or none of it."""
+        self._send("POST", self.spec.update_url, content=update.encode(),
+                   headers={"content-type": "application/sparql-update"})
+
+    def _query(self, query: str, accept: str, default_graphs: list[str] | None = None) -> httpx.Response:
+        form: dict[str, str | list[str]] = {"query": query}
+        if default_graphs:
+            form["default-graph-uri"] = default_graphs
+        return self._send("POST", self.spec.query_url, data=form, headers={"accept": accept})
+
+    def _send(self, method: str, url: str, **kwargs: Any) -> httpx.Response:
+        try:
+            response = self._http.request(method, url, **kwargs)
+        except httpx.HTTPError as exc:
+            raise StoreUnavailable(f"the SPARQL store at {url} cannot be reached: {exc}") from exc
+        if response.is_error:
+            raise StoreUnavailable(f"the SPARQL store at {url} answered {response.status_code}: "
+                                   f"{response.text[:300]}")
+        return response
+
+
+def _node(value: dict[str, str]) -> Node:
+    kind = value["type"]
+    if kind == "uri":
+        return unskolem(value["value"])
+    if kind == "bnode":
+        return BNode(value["value"])
+    datatype = value.get("datatype")
+    return Literal(value["value"], lang=value.get("xml:lang"),
+                   datatype=URIRef(datatype) if datatype else None)
