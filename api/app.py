@@ -14,6 +14,7 @@ from fastapi.middleware.cors import CORSMiddleware
 from starlette.concurrency import run_in_threadpool
 
 from api.errors import install_error_handlers
+from api.forward import WriterProxy
 from api.limits import BodySizeLimit
 from api.routes import dialogue, events, health, rasa, scene, sparql, viewer
 from api.routes import kb as kb_routes
@@ -46,7 +47,9 @@ def create_app(settings: Settings | None = None, kb: KB | None = None,
     app = FastAPI(title="situated", version=package_version(), description=DESCRIPTION,
                   lifespan=lifespan, docs_url="/docs", redoc_url=None)
     install_error_handlers(app)
-    app.add_middleware(BodySizeLimit, max_bytes=config.limits.max_body_bytes)
+    if config.writer_url is not None:  # a reader: the scene and the commit feed are the writer's
+        app.add_middleware(WriterProxy, writer_url=config.writer_url)
+    app.add_middleware(BodySizeLimit, max_bytes=config.limits.max_body_bytes)  # outermost
     if config.cors_origins:
         app.add_middleware(CORSMiddleware, allow_origins=config.cors_origins,
                            allow_methods=["GET", "POST", "DELETE"],

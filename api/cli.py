@@ -24,7 +24,7 @@ from api.settings import SettingsError, load_settings
 from api.world import load_any_scene
 from kb import KB, KbError
 
-BENCHES = ("kb", "scene", "dialogue", "http", "load")
+BENCHES = ("kb", "scene", "dialogue", "http", "load", "store")
 EXAMPLES = """examples:
   situated serve                                     offline service on 127.0.0.1:8000 with the demo scene
   situated serve --scene kitchen.txt --data ./data   a statements file; every write journaled in ./data
@@ -67,6 +67,9 @@ def _parser() -> argparse.ArgumentParser:
     serve.add_argument("--llm", help="model backend: rules (default), ollama:MODEL[@URL], openai:MODEL@URL")
     serve.add_argument("--token", help="require 'Authorization: Bearer TOKEN' for writes")
     serve.add_argument("--config", type=Path, help="TOML or JSON settings file (or $SITUATED_CONFIG)")
+    serve.add_argument("--store", help="keep the KB in a SPARQL 1.1 store, e.g. "
+                                       "sparql+http://127.0.0.1:7878 (the writer, unless --writer is given)")
+    serve.add_argument("--writer", help="with --store: be a reader; writes go to the writer service here")
 
     chat = sub.add_parser("chat", help="talk to the robot (in-process or --url), showing reply and intents")
     _remote_options(chat)
@@ -109,12 +112,14 @@ def _serve(args: argparse.Namespace) -> int:
     from api.services import backend_of
 
     settings = load_settings(args.config, host=args.host, port=args.port, data_dir=args.data,
-                             scene=args.scene, llm=args.llm, token=args.token)
+                             scene=args.scene, llm=args.llm, token=args.token, store=args.store,
+                             writer_url=args.writer)
     backend_of(settings)  # a bad backend spec is reported before anything starts
     # Start-up progress (journal recovery, ontology files, the scene) is logged by situated.*.
     logging.basicConfig(level=logging.INFO, format="%(levelname)s:     %(name)s: %(message)s")
+    role = "" if settings.role == "standalone" else f"; {settings.role} of {settings.store}"
     _say(f"situated: serving on http://{settings.host}:{settings.port} (model: {settings.llm}; "
-         f"scene: {settings.scene or 'none'}); loading the KB...")
+         f"scene: {settings.scene or 'none'}{role}); loading the KB...")
     uvicorn.run(create_app(settings), host=settings.host, port=settings.port, ws="websockets-sansio",
                 ws_max_size=settings.limits.max_body_bytes, log_level="info")
     return 0

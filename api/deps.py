@@ -9,10 +9,12 @@ from fastapi.security import HTTPAuthorizationCredentials
 from starlette.requests import HTTPConnection
 
 from api.auth import authorise, bearer
+from api.errors import ApiError
+from api.kbtypes import AnyKB
 from api.services import Services
 from api.settings import Settings
 from api.subscriptions import EventHub
-from kb import KB
+from api.world import World
 
 
 async def get_services(conn: HTTPConnection) -> Services:
@@ -23,8 +25,14 @@ async def get_services(conn: HTTPConnection) -> Services:
 ServicesDep = Annotated[Services, Depends(get_services)]
 
 
-async def get_kb(services: ServicesDep) -> KB:
+async def get_kb(services: ServicesDep) -> AnyKB:
     return services.kb
+
+
+async def get_world(services: ServicesDep) -> World:
+    if services.world is None:  # a reader forwards /scene to the writer before routing
+        raise ApiError(503, "scene_elsewhere", "the scene is kept by the writer service")
+    return services.world
 
 
 async def get_settings(services: ServicesDep) -> Settings:
@@ -35,7 +43,8 @@ async def get_hub(services: ServicesDep) -> EventHub:
     return services.hub
 
 
-KbDep = Annotated[KB, Depends(get_kb)]
+KbDep = Annotated[AnyKB, Depends(get_kb)]
+WorldDep = Annotated[World, Depends(get_world)]
 SettingsDep = Annotated[Settings, Depends(get_settings)]
 HubDep = Annotated[EventHub, Depends(get_hub)]
 Credentials = Annotated[HTTPAuthorizationCredentials | None, Depends(bearer)]

@@ -21,6 +21,7 @@ from starlette.exceptions import HTTPException as StarletteHTTPException
 
 from dialogue.sessions import DialogueError
 from kb import KbError
+from kb.endpoint import StoreUnavailable
 
 log = logging.getLogger("situated.api")
 
@@ -112,6 +113,10 @@ async def _kb_error(request: Request, exc: Exception) -> JSONResponse:
     return error_response(400, "kb_error", str(exc))
 
 
+async def _store_unavailable(request: Request, exc: Exception) -> JSONResponse:
+    return error_response(503, "store_unavailable", str(exc))
+
+
 async def _dialogue_error(request: Request, exc: Exception) -> JSONResponse:
     return error_response(400, "dialogue_error", str(exc))
 
@@ -130,5 +135,6 @@ def install_error_handlers(app: FastAPI) -> None:
     app.add_exception_handler(StarletteHTTPException, _http_error)
     app.add_exception_handler(RequestValidationError, _validation_error)
     app.add_exception_handler(KbError, _kb_error)
+    app.add_exception_handler(StoreUnavailable, _store_unavailable)
     app.add_exception_handler(DialogueError, _dialogue_error)
     app.add_exception_handler(Exception, _unexpected)

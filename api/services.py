@@ -9,6 +9,8 @@ import logging
 from dataclasses import dataclass
 from pathlib import Path
 
+from api.forward import WriterClient
+from api.kbtypes import AnyKB
 from api.scenefile import load_scene
 from api.settings import Settings, SettingsError
 from api.subscriptions import EventHub
@@ -17,8 +19,12 @@ from dialogue.engine import DialogueEngine, EngineConfig
 from dialogue.llm.base import ChatModel
 from dialogue.llm.spec import SpecError, parse_spec
 from dialogue.sessions import DialogueManager
+from dialogue.sparqlsessions import SparqlSessions
 from kb import KB, KbError
+from kb.endpoint import SparqlEndpoint
 from kb.journal import Journal
+from kb.mirror import SparqlMirror
+from kb.remote import RemoteKB
 
 log = logging.getLogger("situated.api")
 
@@ -26,12 +32,13 @@ log = logging.getLogger("situated.api")
 @dataclass
 class Services:
     settings: Settings
-    kb: KB
+    kb: AnyKB
     hub: EventHub
     dialogues: DialogueManager
-    world: World
+    world: World | None  # None on a reader: the writer keeps the scene
     journal: Journal | None
     owns_kb: bool
+    store: Store | None = None
 
     @property
     def model(self) -> ChatModel:
@@ -39,16 +46,41 @@ class Services:
 
     def clear(self, keep_defaults: bool) -> None:
         self.kb.clear(keep_defaults)
-        self.world.sync.resync()
+        if self.world is not None:
+            self.world.sync.resync()
 
     def stop(self) -> None:
-        self.world.stop()
+        if self.world is not None:
+            self.world.stop()
         self.hub.shutdown()
         if self.journal is not None:
-            self.journal.snapshot(self.kb)  # a clean stop leaves a compact data directory
+            if isinstance(self.kb, KB):  # only a writer keeps a journal
+                self.journal.snapshot(self.kb)  # a clean stop leaves a compact data directory
             self.journal.close()
         if self.owns_kb:
             self.kb.close()
+        if self.store is not None:
+            self.store.close()
+
+
+@dataclass
+class Store:
+    """The shared SPARQL store of a scaled-out service: the writer's mirror or the reader's link."""
+
+    endpoint: SparqlEndpoint
+    mirror: SparqlMirror | None = None
+    writer: WriterClient | None = None
+
+    @property
+    def role(self) -> str:
+        return "writer" if self.mirror is not None else "reader"
+
+    def close(self) -> None:
+        if self.mirror is not None:
+            self.mirror.detach()
+        if self.writer is not None:
+            self.writer.close()
+        self.endpoint.close()
 
 
 def _open_journal(kb: KB, folder: Path, snapshot_records: int) -> Journal:
@@ -70,26 +102,36 @@ def backend_of(settings: Settings) -> tuple[ChatModel, bool]:
     return backend.model, backend.hybrid
 
 
-def build_dialogues(settings: Settings, kb: KB, model: ChatModel | None = None) -> DialogueManager:
-    """The dialogue engine on this KB, with ``model`` or the backend ``settings.llm`` names."""
+def build_dialogues(settings: Settings, kb: AnyKB, model: ChatModel | None = None,
+                    endpoint: SparqlEndpoint | None = None) -> DialogueManager:
+    """The dialogue engine on this KB, with ``model`` or the backend ``settings.llm`` names;
+    with a shared store, the dialogue sessions live in it (every process sees every dialogue)."""
     hybrid = False
     if model is None:
         model, hybrid = backend_of(settings)
     engine = DialogueEngine(kb, model, EngineConfig(deadline=settings.deadline, hybrid=hybrid))
-    return DialogueManager(engine, max_dialogues=settings.limits.max_dialogues,
-                           max_turns=settings.limits.max_history_turns)
+    limits = settings.limits
+    store = SparqlSessions(endpoint, max_dialogues=limits.max_dialogues) if endpoint is not None else None
+    return DialogueManager(engine, max_dialogues=limits.max_dialogues, max_turns=limits.max_history_turns,
+                           store=store)
 
 
 def start_services(settings: Settings, kb: KB | None = None, model: ChatModel | None = None) -> Services:
-    """Build the services (blocking): the KB (recovered from the data directory), extra
-    ontologies, the scene and its engagement ticker, the event hub and the dialogues."""
+    """Build the services (blocking) for the process's role (Settings.role)."""
+    if settings.role == "reader":
+        return _start_reader(settings, model)
     owns_kb = kb is None
     the_kb = kb if kb is not None else KB()
     journal: Journal | None = None
+    store: Store | None = None
     try:
-        dialogues = build_dialogues(settings, the_kb, model)
+        if settings.store is not None:
+            store = Store(SparqlEndpoint(settings.store), mirror=None)
+        dialogues = build_dialogues(settings, the_kb, model, store.endpoint if store else None)
         if settings.data_dir is not None:
             journal = _open_journal(the_kb, settings.data_dir, settings.snapshot_records)
+        if store is not None:
+            store.mirror = _mirror(the_kb, store.endpoint, recover=owns_kb and journal is None)
         for path in settings.ontology_files:
             the_kb.load(str(path))
         world = World(the_kb, settings.scene_settings, settings.data_dir)
@@ -102,9 +144,44 @@ def start_services(settings: Settings, kb: KB | None = None, model: ChatModel | 
     except (KbError, SettingsError):
         if journal is not None:
             journal.close()
+        if store is not None:
+            store.close()
         if owns_kb:
             the_kb.close()
         raise
     hub = EventHub(the_kb, settings.limits.max_subscribers)
     return Services(settings=settings, kb=the_kb, hub=hub, dialogues=dialogues, world=world,
-                    journal=journal, owns_kb=owns_kb)
+                    journal=journal, owns_kb=owns_kb, store=store)
+
+
+def _mirror(kb: KB, endpoint: SparqlEndpoint, recover: bool) -> SparqlMirror:
+    """The writer's mirror. Without a journal, the store is the durable copy: what it holds is
+    loaded first. Then the store is rewritten from the KB and follows every commit."""
+    mirror = SparqlMirror(endpoint)
+    if recover:
+        revision = mirror.recover(kb)
+        if revision is not None:
+            log.info("recovered the KB from the store %s: revision %d", endpoint.spec.query_url, revision)
+    mirror.attach(kb)
+    return mirror
+
+
+def _start_reader(settings: Settings, model: ChatModel | None) -> Services:
+    """A reader: queries answered from the store, writes and the scene handed to the writer."""
+    assert settings.store is not None and settings.writer_url is not None  # Settings.role says so
+    if settings.ontology_files or settings.scene not in (None, "", "none", "demo"):
+        log.info("ontology files and the scene are the writer's; this reader ignores them")
+    endpoint = SparqlEndpoint(settings.store)
+    token = settings.token.get_secret_value() if settings.token else None
+    writer = WriterClient(settings.writer_url, token)
+    store = Store(endpoint, writer=writer)
+    kb = RemoteKB(endpoint, writes=writer)
+    try:
+        dialogues = build_dialogues(settings, kb, model, endpoint)
+    except SettingsError:
+        kb.close()
+        store.close()
+        raise
+    hub = EventHub(kb, settings.limits.max_subscribers)
+    return Services(settings=settings, kb=kb, hub=hub, dialogues=dialogues, world=None, journal=None,
+                    owns_kb=True, store=store)

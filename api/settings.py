@@ -12,8 +12,11 @@ import tomllib
 from pathlib import Path
 from typing import Any, Literal
 
-from pydantic import BaseModel, Field, SecretStr, ValidationError, field_validator
+from pydantic import BaseModel, Field, SecretStr, ValidationError, field_validator, model_validator
 from pydantic_settings import BaseSettings, SettingsConfigDict
+
+from kb.endpoint import StoreSpec
+from kb.errors import KbError
 
 CONFIG_ENV = "SITUATED_CONFIG"
 
@@ -64,6 +67,43 @@ class Settings(BaseSettings):
     limits: Limits = Field(default_factory=Limits)
     cors_origins: list[str] = Field(default_factory=list)
     sparql_update: bool = False
+    store: str | None = Field(default=None, description="keep the KB in a SPARQL 1.1 store, e.g. "
+                              "sparql+http://127.0.0.1:7878 (see the README's scale-out section); without "
+                              "writer_url this process is the one writer")
+    writer_url: str | None = Field(default=None, description="with store: this process is a reader that "
+                                   "answers from the store and forwards writes to the writer service here")
+
+    @field_validator("store")
+    @classmethod
+    def _store_spec(cls, store: str | None) -> str | None:
+        if store is not None:
+            try:
+                StoreSpec.parse(store)
+            except KbError as exc:
+                raise ValueError(str(exc)) from None
+        return store
+
+    @field_validator("writer_url")
+    @classmethod
+    def _http_url(cls, url: str | None) -> str | None:
+        if url is not None and not url.startswith(("http://", "https://")):
+            raise ValueError("writer_url must be the writer service's http:// or https:// URL")
+        return url.rstrip("/") if url else None
+
+    @model_validator(mode="after")
+    def _roles(self) -> Settings:
+        if self.writer_url is not None and self.store is None:
+            raise ValueError("writer_url needs store: a reader answers from the shared SPARQL store")
+        if self.writer_url is not None and self.data_dir is not None:
+            raise ValueError("data_dir is the writer's journal; a reader (writer_url set) keeps none")
+        return self
+
+    @property
+    def role(self) -> Literal["standalone", "writer", "reader"]:
+        """standalone: the in-process KB alone; writer: mirrored to the store; reader: from the store."""
+        if self.store is None:
+            return "standalone"
+        return "reader" if self.writer_url is not None else "writer"
 
     @field_validator("scene", mode="before")
     @classmethod

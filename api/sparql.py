@@ -14,8 +14,8 @@ from rdflib.plugins.sparql.parser import parseQuery
 from rdflib.term import BNode, Node
 
 from api.errors import ApiError
+from api.kbtypes import AnyKB
 from api.negotiation import negotiate
-from kb import KB
 from kb.sparql import InvalidSparql, UnsupportedUpdate
 
 RESULTS = {
@@ -50,7 +50,7 @@ def query_form(query: str) -> str:
         raise ApiError(400, "invalid_sparql", "invalid SPARQL query: it is nested too deeply") from None
 
 
-def answer(kb: KB, query: str, accept: str | None, model: str | None) -> tuple[str, bytes]:
+def answer(kb: AnyKB, query: str, accept: str | None, model: str | None) -> tuple[str, bytes]:
     """Run a read-only query; returns (media type, body) in the format the client accepts."""
     offers = _FORMS[query_form(query)]
     media = negotiate(accept, list(offers))
@@ -79,7 +79,7 @@ def _tsv(results: dict[str, Any]) -> bytes:
     return ("\n".join(lines) + "\n").encode("utf-8")
 
 
-def apply_update(kb: KB, update: str, model: str | None) -> None:
+def apply_update(kb: AnyKB, update: str, model: str | None) -> None:
     """Apply INSERT DATA / DELETE DATA as one KB batch; anything else is refused unchanged."""
     try:
         kb.sparql_update(update, [model] if model else None)

@@ -18,6 +18,7 @@ from collections.abc import Callable, Sequence
 from typing import Any
 
 from api.errors import ApiError
+from api.kbtypes import AnyKB
 from kb import KB
 from kb.describe import statements
 from kb.events import event_id
@@ -112,7 +113,7 @@ class _Entry:
 class EventHub:
     """Bounded set of event listeners over one KB."""
 
-    def __init__(self, kb: KB, max_listeners: int, max_queued: int = 256) -> None:
+    def __init__(self, kb: AnyKB, max_listeners: int, max_queued: int = 256) -> None:
         self._kb = kb
         self._max_listeners = max_listeners
         self._max_queued = max_queued
@@ -154,6 +155,8 @@ class EventHub:
             self._changes = (*self._changes, listener)
             self._count += 1
             if self._unwatch is None:
+                if not isinstance(self._kb, KB):
+                    raise ApiError(503, "changes_elsewhere", "the commit feed is served by the writer")
                 self._unwatch = self._kb.on_commit(self._commit)
             return listener
 

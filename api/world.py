@@ -154,7 +154,10 @@ class World:
         period = 1.0 / self._hz
         while not self._stop.wait(period):
             if any(e.kind is Kind.PERSON for e in self.sync.scene):
-                self.tick()
+                try:
+                    self.tick()
+                except KbError as exc:  # the store refused: the next tick writes the levels again
+                    log.warning("engagement levels not written: %s", exc)
 
     def _save(self) -> None:
         self._write(self._file, scene_to_json(self.sync))

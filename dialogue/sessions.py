@@ -3,60 +3,102 @@
 `default` always exists. `__assistant__` and `__system__` utterances are recorded with the assistant
 and system roles (D14); `response_expected=False` only records. A turn on a dialogue sees that
 dialogue's history, and the answer (with the user's words) is appended after the turn.
+
+The dialogues live in a `SessionStore` (dialogue.sessionstore): in this process's memory by default,
+or in a store several service processes share (dialogue.sparqlsessions), so a dialogue started on
+one process continues on another, a clarifying question asked by one included. Each turn loads the
+dialogue's state when it starts and saves it when it ends. The per-dialogue asyncio.Lock serialises
+the turns of one dialogue within one process only: two processes running turns on the same dialogue
+at once both load the same state and the last save wins (the other turn's utterances are lost from
+the history; its reply and intents were still returned). A dialogue ended while a turn runs stays
+ended: the turn's save does not store it again.
 """
 
 from __future__ import annotations
 
 import asyncio
+import time
 import uuid
-from collections import OrderedDict
-from collections.abc import Sequence
-from dataclasses import dataclass, field
+import weakref
+from collections.abc import Callable, Sequence
+from dataclasses import replace
+from typing import ParamSpec, TypeVar
 
 from dialogue.engine import DialogueEngine, TurnResult
 from dialogue.history import ASSISTANT_USER_ID, History, Utterance
+from dialogue.sessionstore import (
+    DEFAULT_DIALOGUE,
+    DEFAULT_ROLE,
+    DialogueState,
+    MemorySessions,
+    SessionStore,
+    StateError,
+    check_bound,
+)
 
-DEFAULT_DIALOGUE = "default"
-DEFAULT_ROLE = "__default__"
+__all__ = [
+    "DEFAULT_DIALOGUE",
+    "DEFAULT_ROLE",
+    "SUPPORTED_ROLES",
+    "DialogueError",
+    "DialogueManager",
+    "DialogueState",
+]
+
 SUPPORTED_ROLES = frozenset({DEFAULT_ROLE})
+
+P = ParamSpec("P")
+T = TypeVar("T")
 
 
 class DialogueError(ValueError):
     """Unknown dialogue id, unsupported role, or a request that cannot be served; message says which."""
 
 
-@dataclass
-class Dialogue:
-    id: str
-    role: str = DEFAULT_ROLE
-    locale: str | None = None
-    configuration: str = ""
-    history: History = field(default_factory=History)
-    lock: asyncio.Lock = field(default_factory=asyncio.Lock, repr=False)
+def _check_id(dialogue_id: str) -> None:
+    try:
+        dialogue_id.encode("utf-8")
+    except UnicodeEncodeError:
+        raise DialogueError(f"dialogue id {dialogue_id!r} is not valid Unicode text") from None
 
 
 class DialogueManager:
-    """Keeps dialogues by id (least recently used ones beyond `max_dialogues` are dropped)."""
+    """Keeps dialogues by id in `store` (default: `MemorySessions(max_dialogues)`); the least
+    recently used ones beyond the store's bound are dropped, never `default`.
+
+    `start`, `get`, `end` and `ids` may block on the store: async code calls their `*_async` forms.
+    States returned are copies: changing one changes nothing stored.
+    """
 
     def __init__(
-        self, engine: DialogueEngine, *, max_dialogues: int = 256, max_turns: int = 20, max_chars: int = 4000
+        self,
+        engine: DialogueEngine,
+        *,
+        max_dialogues: int = 256,
+        max_turns: int = 20,
+        max_chars: int = 4000,
+        store: SessionStore | None = None,
     ) -> None:
-        if max_dialogues < 1:
-            raise ValueError("max_dialogues must be at least 1")
+        check_bound(max_dialogues)
+        History(max_turns, max_chars)  # refuses bad limits now, not at the first turn
         self.engine = engine
-        self.max_dialogues = max_dialogues
+        self.store: SessionStore = store if store is not None else MemorySessions(max_dialogues)
+        self.max_dialogues = self.store.max_dialogues
         self.max_turns = max_turns
         self.max_chars = max_chars
-        self._dialogues: OrderedDict[str, Dialogue] = OrderedDict()
-        self._new(DEFAULT_DIALOGUE, DEFAULT_ROLE, None, "")
+        # One lock per dialogue with a turn under way; gone once no turn holds or waits for it.
+        self._locks: weakref.WeakValueDictionary[str, asyncio.Lock] = weakref.WeakValueDictionary()
 
-    def _new(self, dialogue_id: str, role: str, locale: str | None, configuration: str) -> Dialogue:
-        dialogue = Dialogue(dialogue_id, role, locale, configuration, History(self.max_turns, self.max_chars))
-        self._dialogues[dialogue_id] = dialogue
-        while len(self._dialogues) > self.max_dialogues:
-            oldest = next(d for d in self._dialogues if d != DEFAULT_DIALOGUE)
-            del self._dialogues[oldest]
-        return dialogue
+    # -- the store, synchronously ------------------------------------------------------------------
+    def _find(self, dialogue_id: str) -> DialogueState | None:
+        _check_id(dialogue_id)
+        try:
+            state = self.store.load(dialogue_id)
+        except StateError as exc:
+            raise DialogueError(f"dialogue {dialogue_id!r} cannot be read from the store: {exc}") from None
+        if state is None and dialogue_id == DEFAULT_DIALOGUE:
+            return DialogueState(DEFAULT_DIALOGUE)
+        return state
 
     def start(
         self,
@@ -64,31 +106,70 @@ class DialogueManager:
         locale: str | None = None,
         configuration: str = "",
         dialogue_id: str | None = None,
-    ) -> Dialogue:
+    ) -> DialogueState:
         if role not in SUPPORTED_ROLES:
             raise DialogueError(f"unsupported dialogue role {role!r}; supported: {sorted(SUPPORTED_ROLES)}")
-        if dialogue_id is not None and dialogue_id in self._dialogues:
+        if dialogue_id and self._find(dialogue_id) is not None:
             raise DialogueError(f"dialogue {dialogue_id!r} already exists")
-        return self._new(dialogue_id or str(uuid.uuid4()), role, locale, configuration)
+        state = DialogueState(dialogue_id or str(uuid.uuid4()), role, locale, configuration, (), time.time())
+        self.store.save(state, create=True)
+        return state
 
-    def get(self, dialogue_id: str) -> Dialogue:
-        try:
-            dialogue = self._dialogues[dialogue_id]
-        except KeyError:
-            raise DialogueError(f"unknown dialogue {dialogue_id!r}; start it first") from None
-        self._dialogues.move_to_end(dialogue_id)
-        return dialogue
+    def get(self, dialogue_id: str) -> DialogueState:
+        state = self._find(dialogue_id)
+        if state is None:
+            raise DialogueError(f"unknown dialogue {dialogue_id!r}; start it first")
+        return state
 
     def end(self, dialogue_id: str) -> None:
         """Forget a dialogue; ending `default` only clears its history (it always exists)."""
-        dialogue = self.get(dialogue_id)
+        state = self.get(dialogue_id)
         if dialogue_id == DEFAULT_DIALOGUE:
-            dialogue.history.clear()
+            self.store.save(replace(state, history=(), last_used=time.time()), create=True)
         else:
-            del self._dialogues[dialogue_id]
+            self.store.delete(dialogue_id)
 
     def ids(self) -> list[str]:
-        return list(self._dialogues)
+        """The dialogues, least recently used first (`default` first when it was never used)."""
+        stored = self.store.ids()
+        return stored if DEFAULT_DIALOGUE in stored else [DEFAULT_DIALOGUE, *stored]
+
+    # -- the same from async code -------------------------------------------------------------------
+    async def _off_loop(self, call: Callable[P, T], *args: P.args, **kwargs: P.kwargs) -> T:
+        if self.store.blocking:
+            return await asyncio.to_thread(call, *args, **kwargs)
+        return call(*args, **kwargs)
+
+    async def start_async(
+        self,
+        role: str = DEFAULT_ROLE,
+        locale: str | None = None,
+        configuration: str = "",
+        dialogue_id: str | None = None,
+    ) -> DialogueState:
+        return await self._off_loop(self.start, role, locale, configuration, dialogue_id)
+
+    async def get_async(self, dialogue_id: str) -> DialogueState:
+        return await self._off_loop(self.get, dialogue_id)
+
+    async def end_async(self, dialogue_id: str) -> None:
+        await self._off_loop(self.end, dialogue_id)
+
+    async def ids_async(self) -> list[str]:
+        return await self._off_loop(self.ids)
+
+    # -- turns ------------------------------------------------------------------------------------
+    def _lock(self, dialogue_id: str) -> asyncio.Lock:
+        lock = self._locks.get(dialogue_id)
+        if lock is None:
+            lock = asyncio.Lock()
+            self._locks[dialogue_id] = lock
+        return lock
+
+    def _save(self, state: DialogueState, history: History) -> None:
+        # Only `default` is stored anew: any other dialogue ended during the turn stays ended.
+        saved = replace(state, history=history.snapshot(), last_used=time.time())
+        self.store.save(saved, create=state.id == DEFAULT_DIALOGUE)
 
     async def interact(
         self,
@@ -103,19 +184,20 @@ class DialogueManager:
         """One DialogueInteraction. `history` (the 4.0.0 stateless shape) replaces the stored one."""
         if not user_id:
             raise DialogueError("user_id is required")
-        dialogue = self.get(dialogue_id)
-        async with dialogue.lock:
-            if history is not None:
-                dialogue.history.clear()
-                for utterance in history:
-                    dialogue.history.add(utterance.speaker, utterance.text)
+        async with self._lock(dialogue_id):
+            state = await self._off_loop(self.get, dialogue_id)
+            kept = History(self.max_turns, self.max_chars)
+            for utterance in state.history if history is None else history:
+                kept.add(utterance.speaker, utterance.text)
             if not response_expected:
-                dialogue.history.add(user_id, text)
+                kept.add(user_id, text)
+                await self._off_loop(self._save, state, kept)
                 return TurnResult("", (), backend="recorded")
             result = await self.engine.turn(
-                text, speaker=user_id, history=dialogue.history.snapshot(), locale=locale or dialogue.locale
+                text, speaker=user_id, history=kept.snapshot(), locale=locale or state.locale
             )
-            dialogue.history.add(user_id, text)
+            kept.add(user_id, text)
             if result.response:
-                dialogue.history.add(ASSISTANT_USER_ID, result.response)
+                kept.add(ASSISTANT_USER_ID, result.response)
+            await self._off_loop(self._save, state, kept)
             return result

@@ -91,14 +91,20 @@ def _check_json_ld(data: str | bytes, source: str) -> None:
 
 def parse_location(uri: str) -> tuple[Triple, ...]:
     """Parse a local file given as a path or a file:// URI. Nothing is fetched from a network."""
+    data, fmt, source = read_location(uri)
+    return parse_data(data, fmt, source=source)
+
+
+def read_location(uri: str) -> tuple[bytes, str, str]:
+    """The bytes of a local file given as a path or a file:// URI, its RDF format (guessed from
+    the name, Turtle by default) and its name for messages."""
     parsed = urlparse(uri)
     if parsed.scheme in ("http", "https", "ftp"):
         raise KbError(f"cannot load {uri!r}: situated loads local files only (offline by default)")
     path = Path(unquote(parsed.path) if parsed.scheme == "file" else uri)
     if not path.is_file():
         raise KbError(f"cannot load {uri!r}: no such file")
-    fmt = guess_format(str(path)) or "turtle"
-    return parse_data(path.read_bytes(), fmt, source=str(path))
+    return path.read_bytes(), guess_format(str(path)) or "turtle", str(path)
 
 
 def to_graph(triples: Iterable[Triple]) -> Graph:

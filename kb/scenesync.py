@@ -37,6 +37,7 @@ class SceneSync:
         self._lock = threading.RLock()
         self._known_classes: set[str] = set()
         self._asserted: set[str] = set()
+        self._levels_unwritten = False
 
     # --- whole scene -----------------------------------------------------------------------
 
@@ -125,7 +126,11 @@ class SceneSync:
                 level = change.after.individual
                 facts = [f"{change.person} {ENGAGEMENT_PROPERTY} {level}"] if level else []
                 self.scene.set_extra(change.person, facts)
-            diff = self._commit(self.scene) if transitions else Diff()
+            if not transitions and not self._levels_unwritten:
+                return Diff(), transitions
+            self._levels_unwritten = True  # until the KB takes them (a store may refuse)
+            diff = self._commit(self.scene)
+            self._levels_unwritten = False
             return diff, transitions
 
     # --- internals -------------------------------------------------------------------------

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import json
 from collections.abc import Callable, Iterable, Iterator
+from dataclasses import dataclass
 from typing import Any
 
 from pyparsing import ParseBaseException
@@ -118,14 +119,18 @@ class UnsupportedUpdate(KbError):
 
 
 def _translate(text: str, kind: str, parse: Callable[[str], Any], translate: Callable[..., Any],
-               prologues: Callable[[Any], Iterable[Any]]) -> Any:
+               prologues: Callable[[Any], Iterable[Any]]) -> tuple[Any, frozenset[str]]:
+    """The translated query or update, and the prefixes it declares itself."""
     try:
         tree = parse(text)
         if kind == "query":
             _refuse_remote(tree)
-        if not any(getattr(decl, "prefix", None) == "oro" for p in prologues(tree) for decl in p):
+        # CompValue.get takes no default (its second argument means something else): use dict's.
+        declared = frozenset(dict.get(decl, "prefix", "")
+                             for p in prologues(tree) for decl in p if decl.name == "PrefixDecl")
+        if "oro" not in declared:
             traverse(tree, visitPost=_alias_oro)
-        return translate(tree, base=ORO, initNs=INIT_NS)
+        return translate(tree, base=ORO, initNs=INIT_NS), declared
     except ParseBaseException as exc:
         hint = " (only read-only queries are accepted here)" if kind == "query" else ""
         raise InvalidSparql(f"invalid SPARQL {kind}{hint}: {exc}") from exc
@@ -142,7 +147,7 @@ def parse_update(update: str) -> tuple[list[Triple], list[Triple]]:
     other update form is refused before anything changes."""
     if not isinstance(update, str) or not update.strip():
         raise InvalidSparql("a SPARQL update must be a non-empty string")
-    parsed = _translate(update, "update", parseUpdate, translateUpdate, lambda tree: tree["prologue"])
+    parsed, _ = _translate(update, "update", parseUpdate, translateUpdate, lambda tree: tree["prologue"])
     added: dict[Triple, None] = {}
     removed: dict[Triple, None] = {}
     for op in parsed.algebra:
@@ -160,11 +165,31 @@ def parse_update(update: str) -> tuple[list[Triple], list[Triple]]:
     return list(added), list(removed)
 
 
-def execute(index: TripleIndex, query: str) -> Result:
-    """Run a read-only query; a SPARQL Update or a syntax error is a KbError."""
+@dataclass(frozen=True)
+class CheckedQuery:
+    """A read-only query that passed the checks of ``execute``, not yet run."""
+
+    prepared: Any  # rdflib's translated query
+    form: str  # SELECT, ASK, CONSTRUCT or DESCRIBE
+    declared: frozenset[str]  # the prefixes the query declares itself ("" for ':')
+
+
+_FORMS = {"SelectQuery": "SELECT", "AskQuery": "ASK", "ConstructQuery": "CONSTRUCT",
+          "DescribeQuery": "DESCRIBE"}
+
+
+def check_query(query: str) -> CheckedQuery:
+    """Parse a read-only query and refuse what ``execute`` refuses (updates, SERVICE, FROM,
+    GRAPH, syntax errors), with the same errors; the query is not run."""
     if not isinstance(query, str) or not query.strip():
         raise InvalidSparql("a SPARQL query must be a non-empty string")
-    prepared = _translate(query, "query", parseQuery, translateQuery, lambda tree: [tree[0]])
+    prepared, declared = _translate(query, "query", parseQuery, translateQuery, lambda tree: [tree[0]])
+    return CheckedQuery(prepared, _FORMS[prepared.algebra.name], declared)
+
+
+def execute(index: TripleIndex, query: str) -> Result:
+    """Run a read-only query; a SPARQL Update or a syntax error is a KbError."""
+    prepared = check_query(query).prepared
     graph = Graph(store=IndexStore(index), identifier=_GRAPH_ID)
     result = graph.query(prepared)
     if result.type == "SELECT":

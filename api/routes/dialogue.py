@@ -61,9 +61,9 @@ async def get_dialogues(services: ServicesDep) -> DialogueManager:
 Dialogues = Annotated[DialogueManager, Depends(get_dialogues)]
 
 
-def _existing(dialogues: DialogueManager, dialogue_id: str) -> None:
+async def _existing(dialogues: DialogueManager, dialogue_id: str) -> None:
     try:
-        dialogues.get(dialogue_id)
+        await dialogues.get_async(dialogue_id)
     except DialogueError as exc:
         raise ApiError(404, "unknown_dialogue", str(exc)) from exc
 
@@ -73,7 +73,7 @@ async def start(dialogues: Dialogues, body: StartRequest | None = None) -> Start
     """Start a dialogue with a role; the id is a new UUID (``default`` always exists)."""
     request = body or StartRequest()
     role = request.role or Role()
-    dialogue = dialogues.start(role.name, request.locale, role.configuration)
+    dialogue = await dialogues.start_async(role.name, request.locale, role.configuration)
     return Started(dialogue_id=dialogue.id)
 
 
@@ -81,7 +81,7 @@ async def start(dialogues: Dialogues, body: StartRequest | None = None) -> Start
 async def interact(dialogue_id: str, body: InteractionRequest, dialogues: Dialogues,
                    services: ServicesDep) -> InteractionResponse:
     """One DialogueInteraction: the reply and the validated intents, most relevant first."""
-    _existing(dialogues, dialogue_id)
+    await _existing(dialogues, dialogue_id)
     check_length(body.input, services.settings.limits.max_input_chars, "input")
     history = None
     if body.history is not None:
@@ -96,6 +96,6 @@ async def interact(dialogue_id: str, body: InteractionRequest, dialogues: Dialog
 @router.delete("/{dialogue_id}", status_code=204, dependencies=[WriteAccess])
 async def end(dialogue_id: str, dialogues: Dialogues) -> Response:
     """Forget a dialogue (``default`` is only cleared)."""
-    _existing(dialogues, dialogue_id)
-    dialogues.end(dialogue_id)
+    await _existing(dialogues, dialogue_id)
+    await dialogues.end_async(dialogue_id)
     return Response(status_code=204)

@@ -10,8 +10,9 @@ from starlette.concurrency import run_in_threadpool
 
 from api.deps import ServicesDep
 from api.probe import probe
-from kb import KB
+from api.services import Services
 from kb import __version__ as kb_version
+from kb.endpoint import StoreUnavailable
 
 router = APIRouter(tags=["service"])
 
@@ -23,18 +24,34 @@ def package_version() -> str:
         return kb_version
 
 
-def _kb_state(kb: KB) -> dict[str, Any]:
+def _kb_state(services: Services) -> dict[str, Any]:
+    kb = services.kb
     with kb.lock:
-        return {"revision": kb.revision, "size": kb.size(), "asserted": kb.size(inferred=False),
-                "models": kb.models()}
+        state: dict[str, Any] = {"revision": kb.revision, "size": kb.size(),
+                                 "asserted": kb.size(inferred=False), "models": kb.models(),
+                                 "role": services.settings.role}
+    if services.store is not None:
+        state["store"] = services.store.endpoint.spec.query_url
+        if services.store.mirror is not None:
+            state["store_in_sync"] = not services.store.mirror.stale
+    return state
+
+
+def _kb_health(services: Services) -> dict[str, Any]:
+    try:
+        return _kb_state(services)
+    except StoreUnavailable as exc:
+        return {"role": services.settings.role, "reachable": False, "error": str(exc)}
 
 
 @router.get("/health")
 async def health(services: ServicesDep) -> dict[str, Any]:
-    """KB size and revision, and whether the dialogue model backend is reachable."""
-    state = await run_in_threadpool(_kb_state, services.kb)
+    """KB size, revision and role (standalone, or the writer or a reader of a shared store),
+    and whether the dialogue model backend and the store are reachable."""
+    state = await run_in_threadpool(_kb_health, services)
     model = await probe(services.model)
-    return {"status": "ok" if model["reachable"] else "degraded", "kb": state, "model": model,
+    healthy = model["reachable"] and state.get("reachable", True) and state.get("store_in_sync", True)
+    return {"status": "ok" if healthy else "degraded", "kb": state, "model": model,
             "events": {"subscribers": services.hub.listener_count}}
 
 

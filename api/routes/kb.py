@@ -10,10 +10,10 @@ from starlette.concurrency import run_in_threadpool
 
 from api.deps import KbDep, ReadAccess, ServicesDep, SettingsDep, WriteAccess
 from api.errors import ApiError
+from api.kbtypes import AnyKB
 from api.limits import check_count
 from api.negotiation import negotiate
 from api.settings import Settings
-from kb import KB
 from kb.query import TooManyRows
 
 router = APIRouter(prefix="/kb", tags=["kb"])
@@ -50,6 +50,14 @@ class ReviseRequest(BaseModel):
     lifespan: float | None = Field(default=None, ge=0, description="seconds until expiry; 0: never")
 
 
+class ApplyRequest(BaseModel):
+    model_config = ConfigDict(extra="forbid")
+    add: list[str] = Field(default_factory=list, description='e.g. ["cup_1 isOn shelf_1"]')
+    remove: list[str] = Field(default_factory=list, description='e.g. ["cup_1 isOn table_1"]')
+    models: list[str] | None = None
+    lifespan: float | None = Field(default=None, ge=0, description="seconds until the added facts expire")
+
+
 class ClearRequest(BaseModel):
     model_config = ConfigDict(extra="forbid")
     keep_defaults: bool = Field(True, description="keep the default ontology")
@@ -66,7 +74,7 @@ async def query(body: QueryRequest, kb: KbDep, settings: SettingsDep) -> list[An
     return await _find(kb, settings, body.patterns, body.vars, body.models)
 
 
-async def _find(kb: KB, settings: Settings, patterns: list[str], vars: list[str] | None,
+async def _find(kb: AnyKB, settings: Settings, patterns: list[str], vars: list[str] | None,
                 models: list[str] | None) -> list[Any]:
     limit = settings.limits.max_rows
     try:
@@ -90,6 +98,16 @@ async def revise(body: ReviseRequest, kb: KbDep, settings: SettingsDep) -> Revis
     check_count(body.statements, settings.limits.max_statements, "statements")
     policy = {"method": body.method, "models": body.models, "lifespan": body.lifespan or 0}
     await run_in_threadpool(kb.revise, body.statements, policy)
+    return Revision(revision=kb.revision)
+
+
+@router.post("/apply", dependencies=[WriteAccess])
+async def apply(body: ApplyRequest, kb: KbDep, settings: SettingsDep) -> Revision:
+    """Retract ``remove`` and assert ``add`` (ground statements) as ONE batch: one revision, one
+    reasoning pass, one round of events: a perception tick. ``add`` replaces a functional
+    property's old value as ``update`` does."""
+    check_count([*body.add, *body.remove], settings.limits.max_statements, "statements")
+    await run_in_threadpool(kb.apply, body.add, body.remove, body.models, body.lifespan or 0)
     return Revision(revision=kb.revision)
 
 

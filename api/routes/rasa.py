@@ -15,10 +15,11 @@ from api import rasa
 from api.auth import authorise
 from api.deps import Credentials, ServicesDep, SettingsDep
 from api.errors import ApiError
+from api.kbtypes import AnyKB
 from api.limits import check_length
 from dialogue.engine import TurnResult
 from dialogue.sessions import DialogueError, DialogueManager
-from kb import KB, KbError
+from kb import KbError
 
 router = APIRouter(tags=["rasa"])
 log = logging.getLogger("situated.api")
@@ -46,14 +47,14 @@ class ParseRequest(BaseModel):
     message_id: str | None = None
 
 
-def _ensure_dialogue(dialogues: DialogueManager, key: str) -> None:
+async def _ensure_dialogue(dialogues: DialogueManager, key: str) -> None:
     try:
-        dialogues.get(key)
+        await dialogues.get_async(key)
     except DialogueError:
         try:
-            dialogues.start(dialogue_id=key)
+            await dialogues.start_async(dialogue_id=key)
         except DialogueError:  # started concurrently by another request
-            dialogues.get(key)
+            await dialogues.get_async(key)
 
 
 @router.get("/webhooks/rest/")
@@ -69,17 +70,17 @@ async def webhook(body: WebhookMessage, services: ServicesDep,
         raise ApiError(400, "unsupported", "stream=true is not supported; omit it")
     check_length(body.message, services.settings.limits.max_input_chars, "message")
     key = rasa.dialogue_key(body.sender)
-    _ensure_dialogue(services.dialogues, key)
+    await _ensure_dialogue(services.dialogues, key)
     result: TurnResult = await services.dialogues.interact(body.sender, body.message, dialogue_id=key)
     if result.error_msg:
         log.warning("rasa webhook turn for %s: %s", body.sender, result.error_msg)
     return rasa.webhook_messages(body.sender, result.response, result.intents)
 
 
-def _labeller(kb: KB) -> Any:
+def _labeller(kb: AnyKB) -> Any:
     def label(term: str) -> str:
         try:
-            return kb.label(term)
+            return str(kb.label(term))
         except KbError:
             return term
     return label

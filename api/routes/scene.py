@@ -9,7 +9,7 @@ from fastapi import APIRouter, Body, Request
 from pydantic import BaseModel, ConfigDict, Field
 from starlette.concurrency import run_in_threadpool
 
-from api.deps import ReadAccess, ServicesDep, WriteAccess
+from api.deps import ReadAccess, WorldDep, WriteAccess
 from api.errors import ApiError
 from kb.scenesync import entity_from_json, scene_from_json, scene_to_json
 from kb.svg import load_svg
@@ -40,15 +40,15 @@ class EntityBody(BaseModel):
 
 
 @router.get("", dependencies=[ReadAccess])
-async def get_scene(services: ServicesDep) -> dict[str, Any]:
+async def get_scene(world: WorldDep) -> dict[str, Any]:
     """The entities (with each person's engagement level) and the scene's policies."""
-    return await run_in_threadpool(scene_to_json, services.world.sync)
+    return await run_in_threadpool(scene_to_json, world.sync)
 
 
 @router.put("", dependencies=[WriteAccess], openapi_extra={"requestBody": {"required": True, "content": {
     "image/svg+xml": {"schema": {"type": "string"}},
     "application/json": {"schema": {"type": "object", "properties": {"entities": {"type": "array"}}}}}}})
-async def put_scene(request: Request, services: ServicesDep) -> FactDiff:
+async def put_scene(request: Request, world: WorldDep) -> FactDiff:
     """Replace the scene: the simulator's SVG environment, or ``{"entities": [...]}``."""
     media = request.headers.get("content-type", "").split(";")[0].strip().lower()
     data = await request.body()
@@ -59,23 +59,23 @@ async def put_scene(request: Request, services: ServicesDep) -> FactDiff:
     else:
         raise ApiError(415, "unsupported_media_type", "send the scene as image/svg+xml or application/json",
                        {"accepted": [*SVG_TYPES, *JSON_TYPES]})
-    diff = await run_in_threadpool(services.world.replace, entities)
+    diff = await run_in_threadpool(world.replace, entities)
     return FactDiff(**diff.as_dict())
 
 
 @router.put("/entities/{entity_id}", dependencies=[WriteAccess])
-async def put_entity(entity_id: str, body: Annotated[EntityBody, Body()], services: ServicesDep) -> FactDiff:
+async def put_entity(entity_id: str, body: Annotated[EntityBody, Body()], world: WorldDep) -> FactDiff:
     """Create or move one entity."""
     data = body.model_dump(by_alias=True, exclude_none=True)
     entity = entity_from_json({"id": entity_id, **data})
-    diff = await run_in_threadpool(services.world.put, entity)
+    diff = await run_in_threadpool(world.put, entity)
     return FactDiff(**diff.as_dict())
 
 
 @router.delete("/entities/{entity_id}", dependencies=[WriteAccess])
-async def delete_entity(entity_id: str, services: ServicesDep) -> FactDiff:
+async def delete_entity(entity_id: str, world: WorldDep) -> FactDiff:
     """Remove one entity and every fact about it (what it saw, where it was)."""
-    if entity_id not in services.world.sync.scene:
+    if entity_id not in world.sync.scene:
         raise ApiError(404, "not_found", f"no entity {entity_id!r} in the scene")
-    diff = await run_in_threadpool(services.world.remove, entity_id)
+    diff = await run_in_threadpool(world.remove, entity_id)
     return FactDiff(**diff.as_dict())

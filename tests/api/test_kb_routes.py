@@ -76,3 +76,19 @@ def test_load_export_clear(live: Live) -> None:
     assert client.get("/kb/query", params={"pattern": "?r sees cup_1"}).json() == []
     assert client.get("/kb/classesof/Human").status_code == 200  # the ontology stays
     assert client.get("/kb/query", params={"pattern": "Human rdfs:subClassOf ?c"}).json()
+
+
+def test_apply_retracts_and_asserts_as_one_batch(live: Live) -> None:
+    client = live.client
+    client.post("/kb/revise", json={"statements": ["cup_9 isOn table_1", "myself sees cup_9"], "method": "add"})
+    before = client.get("/health").json()["kb"]["revision"]
+    done = client.post("/kb/apply", json={"add": ["cup_9 isOn shelf_1"],
+                                          "remove": ["myself sees cup_9", "cup_9 isOn table_1"]})
+    assert done.status_code == 200 and done.json()["revision"] == before + 1
+    assert client.post("/kb/query", json={"patterns": ["cup_9 isOn ?s"]}).json() == [{"s": "shelf_1"}]
+    assert client.post("/kb/query", json={"patterns": ["myself sees cup_9"]}).json() == []
+    bad = client.post("/kb/apply", json={"add": ["cup_9 isIn kitchen"], "remove": ["not a statement at all"]})
+    assert bad.status_code == 400 and bad.json()["code"] == "kb_error"
+    assert client.post("/kb/query", json={"patterns": ["cup_9 isIn ?z"]}).json() == []  # nothing of it
+    too_many = client.post("/kb/apply", json={"add": ["a b c"] * 600, "remove": ["a b d"] * 600})
+    assert too_many.status_code == 413

@@ -57,3 +57,18 @@ def test_bad_config_is_a_clear_error(tmp_path: Path, name: str, text: str, messa
 def test_missing_config_file(tmp_path: Path) -> None:
     with pytest.raises(SettingsError, match="cannot read config file"):
         load_settings(tmp_path / "nope.toml")
+
+
+def test_the_role_follows_store_and_writer_url(tmp_path: Path) -> None:
+    assert Settings().role == "standalone"
+    assert Settings(store="sparql+http://127.0.0.1:7878").role == "writer"
+    reader = Settings(store="sparql+http://127.0.0.1:7878", writer_url="http://127.0.0.1:8000/")
+    assert reader.role == "reader" and reader.writer_url == "http://127.0.0.1:8000"
+    with pytest.raises(SettingsError, match="writer_url needs store"):
+        load_settings(writer_url="http://127.0.0.1:8000")
+    with pytest.raises(SettingsError, match=r"a reader .* keeps none"):
+        load_settings(store="sparql+http://h:1", writer_url="http://127.0.0.1:8000", data_dir=tmp_path)
+    with pytest.raises(SettingsError, match="writer_url must be"):
+        load_settings(store="sparql+http://h:1", writer_url="ftp://x")
+    with pytest.raises(SettingsError, match="must look like sparql"):
+        load_settings(store="http://127.0.0.1:7878")

@@ -10,6 +10,7 @@ from typing import Any
 import pytest
 
 from kb import KB, KbError
+from tests.conftest import VARIANTS, kb_variant
 
 HIDDEN_RELATION_PREDICATES = {
     "rdf:type", "rdfs:subClassOf", "rdfs:label", "rdfs:comment", "rdfs:domain", "rdfs:range",
@@ -17,10 +18,14 @@ HIDDEN_RELATION_PREDICATES = {
 }
 
 
-@pytest.fixture(scope="module")
-def bare() -> Iterator[KB]:
+# The fixtures run every test against the in-process KB and against a RemoteKB reading a mirror
+# of one from a SPARQL store (tests that build a KB themselves stay in-process).
+
+
+@pytest.fixture(scope="module", params=VARIANTS)
+def bare(request: pytest.FixtureRequest) -> Iterator[KB]:
     """A KB without ontology, so that whole details() answers can be compared exactly."""
-    with KB(ontology=False) as k:
+    with kb_variant(request, ontology=False) as k:
         k += [
             "cup1 rdf:type Cup",
             'Cup rdfs:label "cup"@en',
@@ -40,10 +45,10 @@ def bare() -> Iterator[KB]:
         yield k
 
 
-@pytest.fixture(scope="module")
-def world() -> Iterator[KB]:
+@pytest.fixture(scope="module", params=VARIANTS)
+def world(request: pytest.FixtureRequest) -> Iterator[KB]:
     """The default ontology plus a small tutorial world."""
-    with KB() as k:
+    with kb_variant(request) as k:
         k += [
             "myself sees cup_abcd",
             "cup_abcd rdf:type dbr:Cup",

@@ -14,6 +14,7 @@ import pytest
 
 from kb import KB, KbError
 from kb.events import event_id
+from tests.conftest import VARIANTS, kb_variant
 
 
 class Recorder:
@@ -50,10 +51,12 @@ def wait_until(condition: Callable[[], bool], timeout: float = 3.0) -> bool:
     return condition()
 
 
-@pytest.fixture
-def kb() -> Iterator[KB]:
-    with KB() as k:
-        yield k
+@pytest.fixture(params=VARIANTS)
+def kb(request: pytest.FixtureRequest) -> Iterator[KB]:
+    """The in-process KB, and a RemoteKB reading a mirror of one from a SPARQL store: its
+    subscriptions poll the store, and a write made through it returns once they saw it."""
+    with kb_variant(request) as k:
+        yield k  # type: ignore[misc]
 
 
 @pytest.fixture

@@ -11,12 +11,17 @@ from typing import Any
 import pytest
 
 from kb import KB, KbError, __version__
+from tests.conftest import VARIANTS, kb_variant
+
+# The conformance fixtures run every test against the in-process KB and against a RemoteKB
+# reading a mirror of one from a SPARQL store (tests that build a KB with special arguments
+# stay in-process).
 
 
-@pytest.fixture
-def kb() -> Iterator[KB]:
-    with KB() as k:
-        yield k
+@pytest.fixture(params=VARIANTS)
+def kb(request: pytest.FixtureRequest) -> Iterator[KB]:
+    with kb_variant(request) as k:
+        yield k  # type: ignore[misc]
 
 
 TUTORIAL = [
@@ -32,18 +37,18 @@ TUTORIAL = [
 ]
 
 
-@pytest.fixture(scope="module")
-def shared() -> Iterator[KB]:
+@pytest.fixture(scope="module", params=VARIANTS)
+def shared(request: pytest.FixtureRequest) -> Iterator[KB]:
     """One KB for tests that only touch their own subjects (or write nothing), to keep the suite fast."""
-    with KB() as k:
-        yield k
+    with kb_variant(request) as k:
+        yield k  # type: ignore[misc]
 
 
-@pytest.fixture(scope="module")
-def world() -> Iterator[KB]:
-    with KB() as k:
+@pytest.fixture(scope="module", params=VARIANTS)
+def world(request: pytest.FixtureRequest) -> Iterator[KB]:
+    with kb_variant(request) as k:
         k += TUTORIAL
-        yield k
+        yield k  # type: ignore[misc]
 
 
 # --- §3.1 summary: every call and the type it returns -----------------------------------------

@@ -1,0 +1,152 @@
+"""A reader process's way to the writer: KB writes over the writer's REST API, and a proxy for
+what only the writer holds (the scene, the commit feed).
+
+With a shared SPARQL store, exactly one service process (the writer) holds the reasoner. A
+reader answers queries from the store (kb.remote.RemoteKB) and hands every write to the writer
+through ``WriterClient``; the writer updates the store before it answers, so the reader's next
+read sees the write. The writer's refusals come back unchanged (same status, code and message);
+when the writer cannot be reached the request fails with 503 and nothing is written.
+"""
+
+from __future__ import annotations
+
+import json
+from collections.abc import Sequence
+from typing import Any
+
+import httpx
+from starlette.types import ASGIApp, Message, Receive, Scope, Send
+
+from api.errors import ApiError, error_body
+from kb.terms import as_list
+
+#: The RDF formats KB.load_data takes, as the media types of POST /kb/load.
+_UPLOAD_TYPES = {"turtle": "text/turtle", "xml": "application/rdf+xml", "json-ld": "application/ld+json",
+                 "nt": "application/n-triples", "n3": "text/n3"}
+#: Paths a reader forwards as they are: the scene lives in the writer, and so does the commit feed.
+FORWARDED = ("/scene", "/kb/changes")
+
+
+class WriterClient:
+    """The write half of the KB API (kb.remote.WriteTarget), carried out by the writer service."""
+
+    def __init__(self, url: str, token: str | None = None, timeout: float = 30.0) -> None:
+        headers = {"authorization": f"Bearer {token}"} if token else {}
+        self.url = url.rstrip("/")
+        self._http = httpx.Client(base_url=self.url, headers=headers, timeout=timeout)
+
+    def close(self) -> None:
+        self._http.close()
+
+    def update(self, stmts: str | Sequence[str], models: str | Sequence[str] | None = None,
+               lifespan: float = 0) -> None:
+        self._post("/kb/revise", json={"statements": as_list(stmts), "method": "update",
+                                       "models": _models(models), "lifespan": lifespan or None})
+
+    def remove(self, stmts: str | Sequence[str], models: str | Sequence[str] | None = None) -> None:
+        self._post("/kb/revise", json={"statements": as_list(stmts), "method": "retract",
+                                       "models": _models(models)})
+
+    def apply(self, add: Sequence[str] = (), remove: Sequence[str] = (),
+              models: str | Sequence[str] | None = None, lifespan: float = 0) -> None:
+        self._post("/kb/apply", json={"add": as_list(add), "remove": as_list(remove),
+                                      "models": _models(models), "lifespan": lifespan or None})
+
+    def clear(self, keep_defaults: bool = True) -> None:
+        self._post("/kb/clear", json={"keep_defaults": keep_defaults})
+
+    def load_data(self, data: str | bytes, fmt: str = "turtle",
+                  models: str | Sequence[str] | None = None) -> None:
+        media = _UPLOAD_TYPES.get(fmt)
+        if media is None:
+            raise ApiError(400, "kb_error", f"unknown RDF format {fmt!r}; use one of {sorted(_UPLOAD_TYPES)}")
+        body = data.encode() if isinstance(data, str) else data
+        self._post("/kb/load", content=body, headers={"content-type": media},
+                   params={"models": _models(models) or []})
+
+    def sparql_update(self, update: str, models: str | Sequence[str] | None = None) -> None:
+        names = _models(models) or []
+        self._post("/sparql", data={"update": update}, params={"model": names[0]} if names else None)
+
+    def _post(self, path: str, **kwargs: Any) -> None:
+        try:
+            response = self._http.post(path, **kwargs)
+        except httpx.HTTPError as exc:
+            raise ApiError(503, "writer_unavailable", f"the writer service at {self.url} cannot be "
+                           f"reached: {exc}; nothing was written") from exc
+        if response.is_error:
+            raise _writer_error(response)
+
+
+def _models(models: str | Sequence[str] | None) -> list[str] | None:
+    return as_list(models) if models else None
+
+
+def _writer_error(response: httpx.Response) -> ApiError:
+    """The writer's own error, passed on as it is (its JSON error shape, or its status)."""
+    try:
+        body = response.json()
+    except ValueError:
+        body = None
+    if isinstance(body, dict) and isinstance(body.get("message"), str):
+        return ApiError(response.status_code, str(body.get("code") or "writer_error"), body["message"],
+                        body.get("details"))
+    return ApiError(response.status_code, "writer_error",
+                    f"the writer answered {response.status_code}: {response.text[:300]}")
+
+
+class WriterProxy:
+    """ASGI middleware of a reader: requests under ``FORWARDED`` paths go to the writer as they
+    are (method, query, headers, body), and its answer comes back streamed (SSE included)."""
+
+    def __init__(self, app: ASGIApp, writer_url: str) -> None:
+        self.app = app
+        self.writer_url = writer_url.rstrip("/")
+        self._http: httpx.AsyncClient | None = None
+
+    async def __call__(self, scope: Scope, receive: Receive, send: Send) -> None:
+        if scope["type"] != "http" or not _forwarded(scope["path"]):
+            await self.app(scope, receive, send)
+            return
+        if self._http is None:
+            # No read timeout: the commit feed is a stream that stays open.
+            self._http = httpx.AsyncClient(base_url=self.writer_url, timeout=httpx.Timeout(30.0, read=None))
+        body = b""
+        more = True
+        while more:
+            message = await receive()
+            body += message.get("body", b"")
+            more = message.get("more_body", False)
+        headers = [(k.decode("latin-1"), v.decode("latin-1")) for k, v in scope["headers"]
+                   if k.lower() not in (b"host", b"content-length", b"connection")]
+        request = self._http.build_request(scope["method"], scope["path"], headers=headers, content=body,
+                                           params=scope["query_string"].decode())
+        try:
+            response = await self._http.send(request, stream=True)
+        except httpx.HTTPError as exc:
+            await _send_error(send, f"the writer service at {self.writer_url} cannot be reached: {exc}")
+            return
+        try:
+            hop = ("content-length", "transfer-encoding", "connection")
+            await send({"type": "http.response.start", "status": response.status_code,
+                        "headers": [(k.encode("latin-1"), v.encode("latin-1"))
+                                    for k, v in response.headers.items() if k.lower() not in hop]})
+            async for chunk in response.aiter_raw():
+                await send({"type": "http.response.body", "body": chunk, "more_body": True})
+            await send({"type": "http.response.body", "body": b"", "more_body": False})
+        except httpx.HTTPError:
+            await send({"type": "http.response.body", "body": b"", "more_body": False})
+        finally:
+            await response.aclose()
+
+
+def _forwarded(path: str) -> bool:
+    return any(path == p or path.startswith(p + "/") for p in FORWARDED)
+
+
+async def _send_error(send: Send, message: str) -> None:
+    payload = json.dumps(error_body(503, "writer_unavailable", message)).encode()
+    start: Message = {"type": "http.response.start", "status": 503,
+                      "headers": [(b"content-type", b"application/json")]}
+    await send(start)
+    await send({"type": "http.response.body", "body": payload})
