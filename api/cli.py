@@ -37,7 +37,7 @@ EXAMPLES = """examples:
   situated kb details cup_1 --scene kitchen.txt      also: kb lookup TEXT
   situated humans --url http://127.0.0.1:8000        id, name, seen, engagement
   situated eval cases.jsonl --llm rules --json       score dialogue cases
-  situated bench kb                                  also: scene, dialogue, http, load, all
+  situated bench kb                                  also: scene, dialogue, http, load, store, all
 Each command has its own help: situated COMMAND -h.
 Settings also come from SITUATED_* env vars and a TOML/JSON file (SITUATED_CONFIG or --config)."""
 
@@ -97,7 +97,7 @@ def _parser() -> argparse.ArgumentParser:
                               add_help=False)
     evaluate.add_argument("args", nargs=argparse.REMAINDER, help="passed to the evaluation")
 
-    bench = sub.add_parser("bench", help="run benchmarks: kb, scene, dialogue, http, load or all")
+    bench = sub.add_parser("bench", help="run benchmarks: kb, scene, dialogue, http, load, store or all")
     bench.add_argument("which", nargs="?", default="all", choices=[*BENCHES, "all"])
     bench.add_argument("args", nargs=argparse.REMAINDER, help="passed to the benchmark")
     return parser

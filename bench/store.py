@@ -65,7 +65,8 @@ class CountingEndpoint(SparqlEndpoint):
 
 @dataclass
 class Checks:
-    """Reads answered by both sides; a difference is a failure of the replica, not noise."""
+    """Reads answered by both sides (and the mirror's one-update-per-commit promise); a
+    difference is a failure of the replica or the mirror, not noise."""
 
     compared: int = 0
     failures: list[str] = field(default_factory=list)
@@ -112,6 +113,10 @@ def _ratio(local: Sequence[float], remote: Sequence[float]) -> str:
 
 def _kilobytes(sizes: Sequence[int]) -> str:
     return f"{statistics.median(sizes) / 1000:.1f} kB" if sizes else "none"
+
+
+def _requests(count: int) -> str:
+    return f"{count} request{'s' if count != 1 else ''}"
 
 
 def _label(size: int) -> str:
@@ -191,7 +196,7 @@ def bench_queries(rows: list[Row], checks: Checks, server: OxigraphServer, size:
     reader = RemoteKB(reader_endpoint)
     first = _seconds(lambda: reader.find(QUERY))
     rows.append((f"{_label(size)} replica's first query (new connection)", "—", f"{first * 1000:.2f} ms",
-                 f"{reader_endpoint.requests} request"))
+                 _requests(reader_endpoint.requests)))
     for what, read in query_reads():
         reader_endpoint.requests = 0
         answer = read(reader)
@@ -204,7 +209,7 @@ def bench_queries(rows: list[Row], checks: Checks, server: OxigraphServer, size:
         remote = _samples(partial(read, reader), rounds)
         count = f"{len(answer)} rows" if isinstance(answer, list) else f"{len(answer)} keys"
         rows.append((f"{_label(size)} {what} → {count}", _figures(local), _figures(remote),
-                     f"{_ratio(local, remote)}; {requests} request{'s' if requests != 1 else ''}"))
+                     f"{_ratio(local, remote)}; {_requests(requests)}"))
     reader.close()
     reader_endpoint.close()
     mirror.detach()
@@ -284,7 +289,7 @@ def main(argv: list[str] | None = None) -> int:
         print(f"situated bench store: skipped, {exc}", file=sys.stderr)
         return 2
     verdict = "all equal" if not checks.failures else f"{len(checks.failures)} DIFFER"
-    rows.append((f"consistency: {checks.compared} reads compared, in-process vs RemoteKB", "", "", verdict))
+    rows.append((f"consistency: {checks.compared} checks, in-process vs RemoteKB", "", "", verdict))
     print(render(rows))
     for failure in checks.failures:
         print(f"situated bench store: INCONSISTENT {failure}", file=sys.stderr)

@@ -57,21 +57,40 @@ class StoreSpec:
 class SparqlEndpoint:
     """Queries and updates against one SPARQL 1.1 server."""
 
-    def __init__(self, spec: StoreSpec | str, timeout: float = 30.0) -> None:
+    def __init__(self, spec: StoreSpec | str, timeout: float = 30.0, *,
+                 http: httpx.Client | None = None) -> None:
+        """``http``: a client (connection pool) to share with other endpoints of the same server;
+        it stays the caller's to close."""
         self.spec = spec if isinstance(spec, StoreSpec) else StoreSpec.parse(spec)
-        self._http = httpx.Client(timeout=timeout, limits=httpx.Limits(max_keepalive_connections=16))
+        self._own_http = http is None
+        self._http = http if http is not None else httpx.Client(
+            timeout=timeout, limits=httpx.Limits(max_keepalive_connections=16))
 
     @property
     def layout(self) -> Layout:
         return self.spec.layout
 
     def close(self) -> None:
-        self._http.close()
+        if self._own_http:
+            self._http.close()
 
     def select(self, query: str) -> list[dict[str, Node]]:
         """The rows of a SELECT query, as rdflib terms (unbound variables left out)."""
         body = self._query(query, RESULTS_JSON).json()
-        return [{name: _node(value) for name, value in row.items()} for row in body["results"]["bindings"]]
+        # Large answers repeat a few terms many times (a graph name, a predicate, a class):
+        # building each rdflib term once costs less than looking the JSON value up.
+        seen: dict[tuple[str | None, ...], Node] = {}
+        rows = []
+        for row in body["results"]["bindings"]:
+            out = {}
+            for name, value in row.items():
+                key = (value["type"], value["value"], value.get("datatype"), value.get("xml:lang"))
+                node = seen.get(key)
+                if node is None:
+                    node = seen[key] = _node(value)
+                out[name] = node
+            rows.append(out)
+        return rows
 
     def ask(self, query: str) -> bool:
         return bool(self._query(query, RESULTS_JSON).json()["boolean"])
@@ -94,6 +113,8 @@ class SparqlEndpoint:
         return self._send("POST", self.spec.query_url, data=form, headers={"accept": accept})
 
     def _send(self, method: str, url: str, **kwargs: Any) -> httpx.Response:
+        if self._http.is_closed:  # httpx would raise a bare RuntimeError
+            raise StoreUnavailable(f"the connection to the SPARQL store at {url} was closed")
         try:
             response = self._http.request(method, url, **kwargs)
         except httpx.HTTPError as exc:

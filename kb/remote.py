@@ -12,6 +12,18 @@ kb.remotedescribe, kb.remotesparql)::
 Writes are checked exactly as ``KB`` checks them and forwarded to ``writes`` (kb.writetarget);
 the writer updates the store before acknowledging, so a read after a write sees it. Subscriptions
 are evaluated by polling the store's revision (kb.remoteevents).
+
+Where a replica cannot be the in-process KB exactly:
+
+- the store keeps typed literals in canonical form (``"4.50"^^xsd:decimal`` is ``4.5``): rendered
+  values are the same, but the lexical text searched by ``lookup``/``about`` is the canonical one,
+  and two literals differing only in form are one;
+- blank nodes are skolem IRIs in the store: results give them back as blank nodes, but inside a
+  ``sparql()`` query ``isBlank``, ``STR`` and ``ORDER BY`` see IRIs;
+- ``models()`` lists ``default`` first, then the others by name (the store keeps no creation order);
+- lifespans are expired by the writer's reaper thread, not at the moment of the read;
+- a call that needs several requests (several models, ``lookup``) may straddle a commit, and
+  ``lock`` only serialises this process's callers: it does not freeze the store.
 """
 
 from __future__ import annotations
@@ -54,11 +66,14 @@ class RemoteKB:
         if (isinstance(poll_interval, bool) or not isinstance(poll_interval, int | float)
                 or not poll_interval > 0):
             raise KbError(f"poll_interval must be a number of seconds > 0, got {poll_interval!r}")
+        # The write target is checked before a connection pool exists that would need closing.
+        name = (f"{store.spec.query_url} (dataset {store.layout.dataset})"
+                if isinstance(store, SparqlEndpoint) else store)
+        self._writes = ReplicaWrites(writes, name)
         self._own_endpoint = not isinstance(store, SparqlEndpoint)
         self._endpoint = store if isinstance(store, SparqlEndpoint) else SparqlEndpoint(store)
         self._queries = StoreQueries(self._endpoint)
         self._describer = StoreDescriber(self._endpoint)
-        self._writes = ReplicaWrites(writes, self._endpoint.spec.query_url)
         self._events = Poller(self._queries, float(poll_interval))
         self._lock = threading.RLock()
 
@@ -302,6 +317,12 @@ class RemoteKB:
 
     def unsubscribe(self, sub_id: str) -> bool:
         return self._events.unsubscribe(sub_id)
+
+    def settle(self, timeout: float = 30.0) -> None:
+        """Return once the subscriptions were evaluated against the store as it is now (writes
+        made through this replica do it themselves; commits of other processes are seen at the
+        next poll otherwise)."""
+        self._events.sync(timeout)
 
     def on_active_concept(self, callback: ActiveListener) -> None:
         """Call ``callback(concepts)`` when the set of active concepts changes (polled)."""

@@ -21,11 +21,14 @@ from kb import sparqltext as text
 from kb.endpoint import SparqlEndpoint
 from kb.index import TripleIndex
 from kb.remotequery import Graphs
+from kb.tbox import TOP_CLASSES
 from kb.terms import PREFIXES, Node, Pattern, shorten
 
 _G, _S, _P, _O, _T = (Variable(v) for v in ("g", "s", "p", "o", "t"))
 _X, _Y, _N = Variable("x"), Variable("y"), Variable("n")
 _CLASS_LINKS = f"({text.term(RDF.type)}|{text.term(RDFS.subClassOf)})"
+# The terms kb.reasoner may write into a closure without their being in any asserted triple.
+REASONER_TERMS = frozenset({RDF.type, RDFS.subClassOf, RDFS.subPropertyOf, *TOP_CLASSES})
 
 
 def _bind(var: Variable, node: Node) -> str:
@@ -102,8 +105,14 @@ def objects_text(term: Node, predicate: URIRef, models: Sequence[Graphs], inferr
 
 def lookup_text(query: str, models: Sequence[Graphs]) -> str:
     """Names and literals that may match ``query`` (a superset: the exact test is
-    describe.lookup's): IRIs whose text or shortened form holds it, case-insensitively, and the
-    triples whose literal object holds it."""
+    describe.lookup's): IRIs whose text or shortened form holds it, case-insensitively, and every
+    triple whose literal object holds it.
+
+    Only the asserted graph is scanned for terms: the reasoner derives triples between terms it
+    was given (asserted ones, the ontology included) and writes no others except the few of
+    REASONER_TERMS, which are looked for in the inferred graph by name. The triples of the
+    matching literals then come from both graphs, found by the literal (test_remotedescribe.py
+    checks that invariant of kb.reasoner)."""
     needle = query.lower()
     n = text.term(Literal(needle))
     names = [f"CONTAINS(LCASE(STR(?t)), {n})"]
@@ -116,13 +125,18 @@ def lookup_text(query: str, models: Sequence[Graphs]) -> str:
             names.append(f"(STRSTARTS(STR(?t), {ns}) && "
                          f"CONTAINS(LCASE(CONCAT({short}, STRAFTER(STR(?t), {ns}))), {n}))")
     name_filter = f"FILTER (isIRI(?t) && ({' || '.join(names)}))"
-    literal_filter = f"FILTER (isLiteral(?o) && CONTAINS(LCASE(STR(?o)), {n}))"
     positions = " UNION ".join(f"{{ {text.triple(*p)} }}" for p in ((_T, _X, _Y), (_X, _T, _Y), (_X, _Y, _T)))
+    reasoner_terms = text.values(_T, sorted(REASONER_TERMS))
     branches = []
     for graphs in models:
-        for g in graphs.closure():
-            branches.append(f"{{ GRAPH {text.term(g)} {{ {positions} }} {name_filter} {_bind(_G, g)} }}")
-            branches.append(_tagged(g, [(_S, _P, _O)], where=literal_filter))
+        a, i = text.term(graphs.asserted), text.term(graphs.inferred)
+        branches.append(f"{{ GRAPH {a} {{ {positions} }} {name_filter} {_bind(_G, graphs.asserted)} }}")
+        branches.append(f"{{ {reasoner_terms} {name_filter} FILTER EXISTS {{ GRAPH {i} {{ {positions} }} }} "
+                        f"{_bind(_G, graphs.inferred)} }}")
+        literals = (f"{{ SELECT DISTINCT ?o WHERE {{ GRAPH {a} {{ ?x ?y ?o }} "
+                    f"FILTER (isLiteral(?o) && CONTAINS(LCASE(STR(?o)), {n})) }} }}")
+        in_either = " UNION ".join(_tagged(g, [(_S, _P, _O)]) for g in graphs.closure())
+        branches.append(f"{{ {literals} {in_either} }}")
     return _select(branches, "?g ?t ?s ?p ?o")
 
 

@@ -65,6 +65,7 @@ class Poller:
     def subscribe(self, sub_id: str, query: Query, models: Sequence[str], one_shot: bool,
                   callback: Callback, baseline: set[Row], revision: int | None) -> None:
         """Register a subscription whose ``baseline`` rows were read at ``revision`` (or later)."""
+        self._require_open()
         with self._lock:
             existing = self._subscriptions.get(sub_id)
             if existing is not None:
@@ -81,6 +82,7 @@ class Poller:
             return self._subscriptions.pop(sub_id, None) is not None
 
     def on_active_concept(self, callback: ActiveListener) -> None:
+        self._require_open()
         with self._lock:
             first = not self._active_listeners
         if first:
@@ -91,6 +93,10 @@ class Poller:
                 self._active, self._active_seen = active, revision
             self._active_listeners.append(callback)
         self._start()
+
+    def _require_open(self) -> None:
+        if self._closed:
+            raise KbError("this RemoteKB is closed: it evaluates no subscriptions any more")
 
     def _start(self) -> None:
         with self._lock:

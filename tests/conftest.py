@@ -9,6 +9,7 @@ from contextlib import AbstractContextManager, contextmanager
 from dataclasses import dataclass
 from typing import Any
 
+import httpx
 import pytest
 
 from bench.oxigraph import OxigraphServer, oxigraph_command
@@ -27,6 +28,14 @@ def oxigraph() -> Iterator[OxigraphServer]:
         yield server
 
 
+@pytest.fixture(scope="session")
+def oxigraph_http(oxigraph: OxigraphServer) -> Iterator[httpx.Client]:
+    """One connection pool for the replicas' endpoints: Oxigraph 0.5 grows slower with every new
+    connection that sends it a large update, and each replica starts with one."""
+    with httpx.Client(timeout=30.0) as client:
+        yield client
+
+
 @pytest.fixture
 def store(oxigraph: OxigraphServer) -> Callable[[], str]:
     """A store URL with a fresh dataset each call: ``sparql+http://...?dataset=t<hex>``."""
@@ -43,12 +52,12 @@ class Replica:
 
 
 @contextmanager
-def replica_of(server: OxigraphServer, **writer_options: Any) -> Iterator[Replica]:
+def replica_of(server: OxigraphServer, http: httpx.Client | None = None, **writer_options: Any) -> Iterator[Replica]:
     """``KB(**writer_options)`` + ``SparqlMirror`` on a new dataset + ``RemoteKB`` reading it
     (through the same connection pool, as a service's reader shares it); the dataset is dropped
     afterwards."""
     url = server.store("t" + uuid.uuid4().hex[:12])
-    endpoint = SparqlEndpoint(url)
+    endpoint = SparqlEndpoint(url, http=http)
     writer = KB(**writer_options)
     mirror = SparqlMirror(endpoint)
     mirror.attach(writer)
@@ -66,9 +75,9 @@ def replica_of(server: OxigraphServer, **writer_options: Any) -> Iterator[Replic
 
 
 @pytest.fixture(scope="session")
-def replicas(oxigraph: OxigraphServer) -> Callable[..., AbstractContextManager[Replica]]:
+def replicas(oxigraph: OxigraphServer, oxigraph_http: httpx.Client) -> Callable[..., AbstractContextManager[Replica]]:
     """``with replicas(ontology=False) as r: r.reader[...]``: a fresh writer/reader pair per use."""
-    return lambda **options: replica_of(oxigraph, **options)
+    return lambda **options: replica_of(oxigraph, oxigraph_http, **options)
 
 
 @contextmanager

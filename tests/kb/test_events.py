@@ -56,7 +56,7 @@ def kb(request: pytest.FixtureRequest) -> Iterator[KB]:
     """The in-process KB, and a RemoteKB reading a mirror of one from a SPARQL store: its
     subscriptions poll the store, and a write made through it returns once they saw it."""
     with kb_variant(request) as k:
-        yield k  # type: ignore[misc]
+        yield k
 
 
 @pytest.fixture

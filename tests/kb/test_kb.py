@@ -21,7 +21,7 @@ from tests.conftest import VARIANTS, kb_variant
 @pytest.fixture(params=VARIANTS)
 def kb(request: pytest.FixtureRequest) -> Iterator[KB]:
     with kb_variant(request) as k:
-        yield k  # type: ignore[misc]
+        yield k
 
 
 TUTORIAL = [
@@ -41,14 +41,14 @@ TUTORIAL = [
 def shared(request: pytest.FixtureRequest) -> Iterator[KB]:
     """One KB for tests that only touch their own subjects (or write nothing), to keep the suite fast."""
     with kb_variant(request) as k:
-        yield k  # type: ignore[misc]
+        yield k
 
 
 @pytest.fixture(scope="module", params=VARIANTS)
 def world(request: pytest.FixtureRequest) -> Iterator[KB]:
     with kb_variant(request) as k:
         k += TUTORIAL
-        yield k  # type: ignore[misc]
+        yield k
 
 
 # --- §3.1 summary: every call and the type it returns -----------------------------------------

@@ -1,13 +1,12 @@
 """RemoteKB, the read replica over a SPARQL store (issue 9): what the conformance tables of
-test_kb / test_describe / test_events (run against it too) do not show. Same answers as the
-writer's KB, writes checked like KB's and forwarded, read-only without a writer, several models,
-max_rows, blank nodes, lookup by CURIE fragments, SPARQL passthrough, hostile literals, polling
-subscriptions, and the number of requests each read costs."""
+test_kb / test_describe / test_events (run against it too) do not show. The same answers as the
+writer's KB (several models, lookup by CURIE fragments, SPARQL passthrough), reads that see the
+writer at once, max_rows, blank nodes, hostile literals, the number of requests each read costs,
+an unreachable or closed store. Writes: test_writetarget.py; polling: test_remoteevents.py."""
 
 from __future__ import annotations
 
 import json
-import threading
 from collections.abc import Callable, Iterator
 from contextlib import AbstractContextManager
 from pathlib import Path
@@ -16,12 +15,11 @@ from typing import Any
 import pytest
 from rdflib import Graph
 
-from kb import KB, KbError
+from kb import KbError
 from kb.endpoint import SparqlEndpoint, StoreUnavailable
 from kb.query import TooManyRows
 from kb.remote import RemoteKB
 from tests.conftest import Replica
-from tests.kb.test_events import Recorder, wait_until
 
 Replicas = Callable[..., AbstractContextManager[Replica]]
 
@@ -140,99 +138,6 @@ def test_unknown_models_and_one_model_calls(pair: Replica) -> None:
             kb.details("r2", models=["all"])
 
 
-# --- writes: checked like KB, made by the writer -------------------------------------------
-
-
-class RecordingTarget:
-    """A write target that records what reaches it (nothing must, when a write is refused)."""
-
-    def __init__(self) -> None:
-        self.calls: list[tuple[str, tuple[Any, ...]]] = []
-
-    def __getattr__(self, name: str) -> Any:
-        if name not in ("update", "remove", "apply", "clear", "load_data", "sparql_update"):
-            raise AttributeError(name)
-        return lambda *args: self.calls.append((name, args))
-
-
-BAD_WRITES: dict[str, Callable[[Any], Any]] = {
-    "three terms": lambda k: k.add(["x sees"]),
-    "variable": lambda k: k.update("x sees ?y"),
-    "prefix": lambda k: k.remove("?x zz:p ?y"),
-    "model": lambda k: k.add("x sees y", models=["bad name"]),
-    "lifespan": lambda k: k.update("x sees y", lifespan=-1),
-    "apply": lambda k: k.apply(add=["x sees y"], remove=["x sees"]),
-    "policy": lambda k: k.revise("x sees y", {"method": "frobnicate"}),
-    "load": lambda k: k.load("/no/such/file.ttl"),
-    "load type": lambda k: k.load(None),
-    "data": lambda k: k.load_data("@prefix : <x> . :a :b", "turtle"),
-    "format": lambda k: k.load_data("", "nonsensefmt"),
-    "sparql update": lambda k: k.sparql_update("DELETE WHERE { ?s ?p ?o }"),
-    "statements": lambda k: k.add(["x sees y", None]),
-}
-
-
-@pytest.mark.parametrize("call", list(BAD_WRITES.values()), ids=list(BAD_WRITES))
-def test_bad_writes_get_the_errors_of_kb_and_reach_nobody(store: Callable[[], str], call: Callable[[Any], Any]) -> None:
-    target = RecordingTarget()
-    with KB() as local, RemoteKB(store(), writes=target) as remote:  # type: ignore[arg-type]
-        with pytest.raises(KbError) as expected:
-            call(local)
-        with pytest.raises(KbError) as got:
-            call(remote)
-    assert type(got.value) is type(expected.value)
-    assert str(got.value) == str(expected.value)
-    assert target.calls == []
-
-
-def test_good_writes_are_forwarded_as_given(store: Callable[[], str], tmp_path: Path) -> None:
-    target = RecordingTarget()
-    document = tmp_path / "extra.ttl"
-    document.write_text("@prefix : <http://kb.openrobots.org#> .\n:a :sees :b .\n")
-    with RemoteKB(store(), writes=target) as remote:  # type: ignore[arg-type]
-        remote += "x sees y"
-        remote.revise(["x sees ?y"], {"method": "retract", "models": ["bob"]})
-        remote.apply(add=["x sees z"], remove=["x sees y"], lifespan=5)
-        remote.load(document, models=["bob"])
-        remote.sparql_update("INSERT DATA { oro:x oro:sees oro:w }")
-        remote.clear(keep_defaults=False)
-    assert target.calls == [
-        ("update", (["x sees y"], None, 0)),
-        ("remove", (["x sees ?y"], ["bob"])),
-        ("apply", (["x sees z"], ["x sees y"], None, 5)),
-        ("load_data", (document.read_bytes(), "turtle", ["bob"])),
-        ("sparql_update", ("INSERT DATA { oro:x oro:sees oro:w }", None)),
-        ("clear", (False,)),
-    ]
-
-
-def test_without_a_writer_the_replica_is_read_only(replicas: Replicas, tmp_path: Path) -> None:
-    with replicas() as replica, RemoteKB(replica.store) as reader:
-        replica.writer.add("myself sees cup_1")
-        revision = replica.writer.revision
-        writes: list[Callable[[], Any]] = [
-            lambda: reader.add("myself sees cup_2"), lambda: reader.remove("myself sees ?x"),
-            lambda: reader.apply(add=["a sees b"]), lambda: reader.clear(),
-            lambda: reader.load_data("<http://a> <http://b> <http://c> .", "nt"),
-            lambda: reader.sparql_update("INSERT DATA { oro:a oro:b oro:c }"),
-            lambda: reader.revise("a sees b", {"method": "add"}), lambda: reader.load(tmp_path / "x.ttl"),
-        ]
-        for write in writes:
-            with pytest.raises(KbError, match="read-only replica"):
-                write()
-        with pytest.raises(KbError, match="read-only replica"):
-            reader += "myself sees cup_3"
-        assert replica.writer.revision == revision
-        assert reader["myself sees ?x"] == [{"x": "cup_1"}]
-
-
-def test_a_write_target_must_have_the_write_methods(store: Callable[[], str]) -> None:
-    with pytest.raises(KbError, match="write target"):
-        RemoteKB(store(), writes=object())  # type: ignore[arg-type]
-    with pytest.raises(KbError, match="poll_interval"):
-        RemoteKB(store(), poll_interval=0)
-
-
 def test_reads_see_the_writer_at_once_and_the_revision_follows(replicas: Replicas) -> None:
     with replicas() as replica:
         writer, reader = replica.writer, replica.reader
@@ -307,24 +212,23 @@ HOSTILE = [
 
 
 @pytest.mark.parametrize("literal", HOSTILE)
-def test_hostile_literals_round_trip_and_inject_nothing(replicas: Replicas, literal: str) -> None:
-    with replicas() as replica:
-        reader, writer = replica.reader, replica.writer
-        reader += f"note_1 says {literal}"
-        size = writer.size()
-        found = reader[f"?x says {literal}"]
-        assert found == writer[f"?x says {literal}"] == [{"x": "note_1"}]
-        value = reader["note_1 says ?v"]
-        assert value == writer["note_1 says ?v"] and len(value) == 1
-        text = value[0]["v"]
-        assert reader.lookup(text) == writer.lookup(text)
-        assert reader.about(text) == writer.about(text)
-        assert reader.details(literal) == writer.details(literal)
-        assert reader.exist(f"note_1 says {literal}")
-        reader -= f"note_1 says {literal}"
-        assert reader["note_1 says ?v"] == []
-        assert reader.size() == writer.size() == size - 1  # nothing else changed, nothing added
-        assert not reader.sparql("ASK { <urn:x> ?p ?o }")["boolean"]
+def test_hostile_literals_round_trip_and_inject_nothing(pair: Replica, literal: str) -> None:
+    reader, writer = pair.reader, pair.writer
+    reader += f"note_1 says {literal}"
+    size = writer.size()
+    found = reader[f"?x says {literal}"]
+    assert found == writer[f"?x says {literal}"] == [{"x": "note_1"}]
+    value = reader["note_1 says ?v"]
+    assert value == writer["note_1 says ?v"] and len(value) == 1
+    text = value[0]["v"]
+    assert reader.lookup(text) == writer.lookup(text)
+    assert reader.about(text) == writer.about(text)
+    assert reader.details(literal) == writer.details(literal)
+    assert reader.exist(f"note_1 says {literal}")
+    reader -= f"note_1 says {literal}"
+    assert reader["note_1 says ?v"] == []
+    assert reader.size() == writer.size() == size - 1  # nothing else changed, nothing added
+    assert not reader.sparql("ASK { <urn:x> ?p ?o }")["boolean"]
 
 
 def test_sparql_is_checked_like_in_process(pair: Replica) -> None:
@@ -337,45 +241,6 @@ def test_sparql_is_checked_like_in_process(pair: Replica) -> None:
     ]:
         with pytest.raises(KbError, match=message):
             pair.reader.sparql(query)
-
-
-# --- subscriptions by polling ----------------------------------------------------------------
-
-
-def test_polling_sees_commits_made_by_the_writer(replicas: Replicas) -> None:
-    with replicas() as replica:
-        reader, writer = replica.reader, replica.writer
-        assert not _poll_threads(reader)
-        rec, once = Recorder(), Recorder()
-        reader.subscribe("?x sees cup", rec)
-        sid = reader.subscribe("?x sees ?y", once, one_shot=True)
-        assert len(_poll_threads(reader)) == 1
-        writer.add("alfred sees cup")  # another process's write: the reader polls for it
-        assert wait_until(lambda: rec.calls == [[{"x": "alfred"}]])
-        assert wait_until(lambda: once.calls == [[{"x": "alfred", "y": "cup"}]])
-        assert reader.unsubscribe(sid) is False  # the one-shot went after firing
-        writer.remove("alfred sees cup")
-        writer.add("alfred sees cup")
-        reader.update("bob sees cup")  # a write through the reader returns once it was evaluated
-        calls = rec.take()
-        assert calls[-1] == [{"x": "bob"}] and [{"x": "alfred"}] in calls
-        reader.close()
-        assert not _poll_threads(reader)
-
-
-def _poll_threads(reader: RemoteKB) -> list[threading.Thread]:
-    return [t for t in threading.enumerate() if t.name == "kb-remote-poll" and t.is_alive()
-            and getattr(reader._events, "_thread", None) is t]
-
-
-def test_active_concepts_are_polled(replicas: Replicas) -> None:
-    with replicas() as replica:
-        seen: list[list[str]] = []
-        replica.reader.on_active_concept(seen.append)
-        replica.reader.add(["cup_1 rdf:type ActiveConcept", "cup_1 rdf:type dbr:Cup"])
-        assert seen == [["cup_1"]]
-        replica.reader.remove("cup_1 rdf:type ActiveConcept")
-        assert seen == [["cup_1"], []]
 
 
 # --- the store ------------------------------------------------------------------------------
@@ -424,3 +289,11 @@ def test_an_unreachable_store_is_a_kb_error() -> None:
             reader["myself sees ?x"]
         with pytest.raises(StoreUnavailable):
             reader.models()
+
+
+def test_a_closed_replica_says_so(pair: Replica) -> None:
+    reader = RemoteKB(pair.store)
+    assert reader["myself sees ?o"] == pair.writer["myself sees ?o"]
+    reader.close()
+    with pytest.raises(StoreUnavailable, match="closed"):
+        reader["myself sees ?o"]
