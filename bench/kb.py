@@ -143,7 +143,11 @@ def bench_rss(rows: list[Row], size: int) -> None:
 
 
 def render(rows: list[Row]) -> str:
-    header = ("measure", "situated", "baseline (same run)", "target")
+    return markdown_table(("measure", "situated", "baseline (same run)", "target"), rows)
+
+
+def markdown_table(header: Row, rows: list[Row]) -> str:
+    """Four columns, padded so the table also reads as plain text."""
     widths = [max(len(r[i]) for r in [header, *rows]) for i in range(4)]
     lines = ["| " + " | ".join(h.ljust(w) for h, w in zip(header, widths, strict=True)) + " |",
              "|" + "|".join("-" * (w + 2) for w in widths) + "|"]

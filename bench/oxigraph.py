@@ -28,7 +28,8 @@ def oxigraph_command() -> str | None:
     return str(beside) if beside.exists() else shutil.which("oxigraph")
 
 
-def _free_port() -> int:
+def free_port() -> int:
+    """A loopback port nothing listens on now (the tests' servers use it too)."""
     with socket.socket(socket.AF_INET, socket.SOCK_STREAM) as sock:
         sock.bind(("127.0.0.1", 0))
         port: int = sock.getsockname()[1]
@@ -47,7 +48,7 @@ class OxigraphServer:
         self.in_memory = in_memory
         self._own_dir = location is None
         self.location = location if location is not None else Path(tempfile.mkdtemp(prefix="oxigraph-"))
-        self.port = _free_port()
+        self.port = free_port()
         self.url = f"http://127.0.0.1:{self.port}"
         self._proc: subprocess.Popen[bytes] | None = None
 

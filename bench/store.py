@@ -22,7 +22,7 @@ from dataclasses import dataclass, field
 from functools import partial
 from typing import Any
 
-from bench.kb import _build, _median_ms
+from bench.kb import _build, _median_ms, markdown_table
 from bench.oxigraph import OxigraphServer, OxigraphUnavailable, oxigraph_command
 from bench.worlds import QUERY, PerceptionWorld, QueryWorld
 from kb import KB
@@ -218,12 +218,7 @@ def bench_queries(rows: list[Row], checks: Checks, server: OxigraphServer, size:
 
 
 def render(rows: list[Row]) -> str:
-    header = ("measure", "in-process KB", "Oxigraph (mirror / RemoteKB)", "notes")
-    widths = [max(len(r[i]) for r in [header, *rows]) for i in range(4)]
-    lines = ["| " + " | ".join(h.ljust(w) for h, w in zip(header, widths, strict=True)) + " |",
-             "|" + "|".join("-" * (w + 2) for w in widths) + "|"]
-    lines += ["| " + " | ".join(c.ljust(w) for c, w in zip(r, widths, strict=True)) + " |" for r in rows]
-    return "\n".join(lines)
+    return markdown_table(("measure", "in-process KB", "Oxigraph (mirror / RemoteKB)", "notes"), rows)
 
 
 def _size(text: str) -> int:

@@ -4,6 +4,7 @@
 """
 
 from kb.errors import KbError
-from kb.kb import KB, __version__
+from kb.kb import KB
+from kb.sugar import __version__
 
 __all__ = ["KB", "KbError", "__version__"]

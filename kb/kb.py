@@ -13,7 +13,6 @@ Every method is thread-safe. Reads see the state between two commits, never half
 
 from __future__ import annotations
 
-import inspect
 import threading
 import time
 from collections.abc import Callable, Sequence
@@ -26,7 +25,6 @@ from kb import describe
 from kb.arguments import (
     Models_,
     compiled,
-    is_statement,
     lifespan_seconds,
     matches,
     model_names,
@@ -40,15 +38,12 @@ from kb.query import Row, TooManyRows, holds, rows
 from kb.rdfio import FORMATS, default_ontology, parse_data, parse_location, serialize
 from kb.sparql import execute, parse_update, to_json
 from kb.store import ALL_MODELS, DEFAULT_MODEL, Model, Models
+from kb.sugar import KnowledgeCoreSugar
 from kb.terms import Node, Triple, as_list, parse_ground, parse_patterns, shorten
 from kb.writer import ActiveListener, Batch, Commit, CommitListener, Writer
 
-__version__ = "0.1.0"
-_ADD_METHODS = frozenset({"add", "safe_add", "update", "safe_update", "revision"})
-_RETRACT_METHODS = frozenset({"retract", "remove", "delete"})
 
-
-class KB:
+class KB(KnowledgeCoreSugar):
     """An in-process OWL/RDF knowledge base with incremental OWL RL reasoning."""
 
     def __init__(self, ontology: bool | Sequence[str | Path] = True, *,
@@ -150,26 +145,6 @@ class KB:
         self._expire_due()
         with self._lock:
             return any(holds(m.closure, query) for m in self._read_models(models))
-
-    def __getitem__(self, key: str | Sequence[Any]) -> list[Any]:
-        models: Models_ = None
-        if isinstance(key, tuple):
-            if key and isinstance(key[-1], list) and len(key) > 1:
-                key, models = key[:-1], key[-1]
-            parts: list[str] = []
-            for part in key:
-                parts.extend(as_list(part))
-            return self.find(parts, models=models)
-        if isinstance(key, str) and not is_statement(key):
-            return self.lookup(key)
-        return self.find(key)
-
-    def __contains__(self, item: object) -> bool:
-        if not isinstance(item, str):
-            return False
-        if is_statement(item):
-            return self.exist(item)
-        return bool(self.lookup(item))
 
     def lookup(self, query: str, models: Models_ = None) -> list[list[str]]:
         """``[[name, type], ...]``: exact matches first, then approximate ones (§3.4)."""
@@ -289,26 +264,6 @@ class KB:
             Batch(self._write_models(models), add=added, remove=removed, lifespan=lifespan_seconds(lifespan))
         )
 
-    def revise(self, stmts: str | Sequence[str], policy: dict[str, Any]) -> None:
-        """``policy``: ``{"method": add|update|retract|..., "models": [...], "lifespan": s}``."""
-        if not isinstance(policy, dict) or "method" not in policy:
-            raise KbError("revise needs a policy with a 'method'")
-        method = str(policy["method"]).lower()
-        if method in _ADD_METHODS:
-            self.update(stmts, policy.get("models"), policy.get("lifespan", 0) or 0)
-        elif method in _RETRACT_METHODS:
-            self.remove(stmts, policy.get("models"))
-        else:
-            raise KbError(f"unknown revise method {policy['method']!r}; use add, update or retract")
-
-    def __iadd__(self, stmts: str | Sequence[str]) -> KB:
-        self.update(stmts)
-        return self
-
-    def __isub__(self, stmts: str | Sequence[str]) -> KB:
-        self.remove(stmts)
-        return self
-
     def clear(self, keep_defaults: bool = True) -> None:
         """Drop every model's facts; the default ontology stays unless ``keep_defaults=False``
         (K5). Subscriptions stay and see the facts disappear."""
@@ -396,17 +351,6 @@ class KB:
 
     # --- housekeeping ---------------------------------------------------------------------
 
-    def hello(self) -> str:
-        return f"situated {__version__}"
-
-    def stats(self) -> dict[str, Any]:
-        return {"name": "situated", "version": __version__, "reasoning_enabled": True}
-
-    def methods(self) -> list[str]:
-        names = ["about", "add", "classesof", "clear", "details", "exist", "find", "hello", "label",
-                 "load", "lookup", "remove", "revise", "save", "sparql", "stats", "subscribe", "update"]
-        return [f"{n}{_signature(getattr(self, n))}" for n in names]
-
     def size(self, model: str | None = None, inferred: bool = True) -> int:
         with self._lock:
             target = self._one_model(model)
@@ -418,6 +362,3 @@ class KB:
         with self._lock:
             return self._one_model(model).is_asserted(triple)
 
-
-def _signature(method: Any) -> str:
-    return str(inspect.signature(method))

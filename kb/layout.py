@@ -47,10 +47,10 @@ class Layout:
         return URIRef(f"urn:situated:{self.dataset}")
 
     def asserted(self, model: str) -> URIRef:
-        return URIRef(f"urn:situated:{self.dataset}/asserted/{quote(model, safe='')}")
+        return self._named("asserted", model)
 
     def inferred(self, model: str) -> URIRef:
-        return URIRef(f"urn:situated:{self.dataset}/inferred/{quote(model, safe='')}")
+        return self._named("inferred", model)
 
     def graphs(self, model: str) -> tuple[URIRef, URIRef]:
         """The asserted and inferred graphs: their merge is the model's closure."""
@@ -65,7 +65,10 @@ class Layout:
         return URIRef(f"urn:situated:{self.dataset}/dialogues")
 
     def dialogue(self, dialogue_id: str) -> URIRef:
-        return URIRef(f"urn:situated:{self.dataset}/dialogue/{quote(dialogue_id, safe='')}")
+        return self._named("dialogue", dialogue_id)
+
+    def _named(self, kind: str, name: str) -> URIRef:
+        return URIRef(f"urn:situated:{self.dataset}/{kind}/{quote(name, safe='')}")
 
     def model_of(self, graph: str) -> str | None:
         """The model an asserted or inferred graph belongs to, else None."""

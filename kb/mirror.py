@@ -21,6 +21,7 @@ from rdflib import Literal, Variable
 from kb import sparqltext as text
 from kb.endpoint import SparqlEndpoint, StoreUnavailable
 from kb.layout import MODEL, REVISION
+from kb.remotequery import StoreQueries
 from kb.store import Delta, Model
 from kb.terms import Triple
 from kb.writer import Commit, Writer
@@ -37,6 +38,7 @@ class SparqlMirror:
     def __init__(self, endpoint: SparqlEndpoint) -> None:
         self.endpoint = endpoint
         self.layout = endpoint.layout
+        self._queries = StoreQueries(endpoint)
         self._writer: Writer | None = None
         self._unregister: Callable[[], None] | None = None
         self._stale = True
@@ -49,40 +51,27 @@ class SparqlMirror:
 
     def stored_models(self) -> list[str]:
         """The models the dataset holds now (from its meta graph)."""
-        rows = self.endpoint.select(
-            f"SELECT ?m WHERE {{ GRAPH {text.term(self.layout.meta)} {{ "
-            f"{text.triple(self.layout.root, MODEL, Variable('m'))} }} }}")
-        return sorted(str(r["m"]) for r in rows)
+        return sorted(self._queries.meta().models)
 
     def stored_revision(self) -> int | None:
-        rows = self.endpoint.select(
-            f"SELECT ?r WHERE {{ GRAPH {text.term(self.layout.meta)} {{ "
-            f"{text.triple(self.layout.root, REVISION, Variable('r'))} }} }}")
-        return int(rows[0]["r"].toPython()) if rows else None
-
-    def stored_asserted(self, model: str) -> list[Triple]:
-        s, p, o = Variable("s"), Variable("p"), Variable("o")
-        rows = self.endpoint.select(
-            f"SELECT ?s ?p ?o WHERE {{ GRAPH {text.term(self.layout.asserted(model))} "
-            f"{{ {text.triple(s, p, o)} }} }}")
-        return [(r["s"], r["p"], r["o"]) for r in rows]
+        return self._queries.meta().revision
 
     def recover(self, kb: KB) -> int | None:
         """Load the asserted triples the store holds into an empty writer (the store as the
         durable copy when no journal is kept); returns the stored revision, None if the dataset
         is empty. Inferred triples are derived again; lifespans are not stored."""
-        revision = self.stored_revision()
-        if revision is None:
+        meta = self._queries.meta()
+        if meta.revision is None:
             return None
         writer = kb.writer
-        for model in self.stored_models():
-            stored = set(self.stored_asserted(model))
+        for model in meta.models:
+            stored = set(self._queries.triples(self._queries.graphs(model), inferred=False))
             with writer.lock:
                 current = writer.models.get(model)
                 have = set(current.asserted) if current is not None else set()
                 writer.restore(model, sorted(stored - have, key=str), sorted(have - stored, key=str), [],
-                               revision=revision)
-        return revision
+                               revision=meta.revision)
+        return meta.revision
 
     def attach(self, kb: KB) -> None:
         """Rewrite the dataset from the KB, then mirror every commit."""

@@ -28,17 +28,15 @@ Where a replica cannot be the in-process KB exactly:
 
 from __future__ import annotations
 
-import inspect
 import threading
 from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
-from kb.arguments import Models_, compiled, is_statement, model_names, optional_term, parse_term, render
+from kb.arguments import Models_, compiled, model_names, optional_term, parse_term, render
 from kb.endpoint import SparqlEndpoint
 from kb.errors import KbError
 from kb.events import Callback, event_id
-from kb.kb import __version__
 from kb.query import Row, TooManyRows
 from kb.rdfio import FORMATS, serialize
 from kb.remotedescribe import StoreDescriber
@@ -46,16 +44,15 @@ from kb.remoteevents import ActiveListener, Poller
 from kb.remotequery import Graphs, Meta, StoreQueries
 from kb.remotesparql import answer, run
 from kb.store import ALL_MODELS, DEFAULT_MODEL
+from kb.sugar import KnowledgeCoreSugar
 from kb.terms import as_list, parse_ground
 from kb.writetarget import ReplicaWrites, WriteTarget
 
 __all__ = ["RemoteKB", "WriteTarget"]
 
-_ADD_METHODS = frozenset({"add", "safe_add", "update", "safe_update", "revision"})
-_RETRACT_METHODS = frozenset({"retract", "remove", "delete"})
 
 
-class RemoteKB:
+class RemoteKB(KnowledgeCoreSugar):
     """The ``KB`` API over a dataset of a SPARQL store; reads are requests, writes go to ``writes``."""
 
     def __init__(self, store: str | SparqlEndpoint, writes: WriteTarget | None = None, *,
@@ -158,26 +155,6 @@ class RemoteKB:
         query = compiled(texts, None)
         return any(self._queries.holds(query, g) for g in self._read_models(models))
 
-    def __getitem__(self, key: str | Sequence[Any]) -> list[Any]:
-        models: Models_ = None
-        if isinstance(key, tuple):
-            if key and isinstance(key[-1], list) and len(key) > 1:
-                key, models = key[:-1], key[-1]
-            parts: list[str] = []
-            for part in key:
-                parts.extend(as_list(part))
-            return self.find(parts, models=models)
-        if isinstance(key, str) and not is_statement(key):
-            return self.lookup(key)
-        return self.find(key)
-
-    def __contains__(self, item: object) -> bool:
-        if not isinstance(item, str):
-            return False
-        if is_statement(item):
-            return self.exist(item)
-        return bool(self.lookup(item))
-
     def lookup(self, query: str, models: Models_ = None) -> list[list[str]]:
         """``[[name, type], ...]``: exact matches first, then approximate ones (§3.4)."""
         if not isinstance(query, str):
@@ -241,26 +218,6 @@ class RemoteKB:
         """Retract ``remove`` and assert ``add`` (ground statements) as ONE batch."""
         self._writes.apply(add, remove, models, lifespan)
         self._events.sync()
-
-    def revise(self, stmts: str | Sequence[str], policy: dict[str, Any]) -> None:
-        """``policy``: ``{"method": add|update|retract|..., "models": [...], "lifespan": s}``."""
-        if not isinstance(policy, dict) or "method" not in policy:
-            raise KbError("revise needs a policy with a 'method'")
-        method = str(policy["method"]).lower()
-        if method in _ADD_METHODS:
-            self.update(stmts, policy.get("models"), policy.get("lifespan", 0) or 0)
-        elif method in _RETRACT_METHODS:
-            self.remove(stmts, policy.get("models"))
-        else:
-            raise KbError(f"unknown revise method {policy['method']!r}; use add, update or retract")
-
-    def __iadd__(self, stmts: str | Sequence[str]) -> RemoteKB:
-        self.update(stmts)
-        return self
-
-    def __isub__(self, stmts: str | Sequence[str]) -> RemoteKB:
-        self.remove(stmts)
-        return self
 
     def clear(self, keep_defaults: bool = True) -> None:
         """Drop every model's facts; the default ontology stays unless ``keep_defaults=False``."""
@@ -329,17 +286,6 @@ class RemoteKB:
         self._events.on_active_concept(callback)
 
     # --- housekeeping ---------------------------------------------------------------------
-
-    def hello(self) -> str:
-        return f"situated {__version__}"
-
-    def stats(self) -> dict[str, Any]:
-        return {"name": "situated", "version": __version__, "reasoning_enabled": True}
-
-    def methods(self) -> list[str]:
-        names = ["about", "add", "classesof", "clear", "details", "exist", "find", "hello", "label",
-                 "load", "lookup", "remove", "revise", "save", "sparql", "stats", "subscribe", "update"]
-        return [f"{n}{inspect.signature(getattr(self, n))}" for n in names]
 
     def size(self, model: str | None = None, inferred: bool = True) -> int:
         return self._queries.size(self._one_model(model), inferred)

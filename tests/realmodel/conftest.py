@@ -8,7 +8,6 @@ from __future__ import annotations
 
 import importlib.util
 import os
-import socket
 import subprocess
 import sys
 import time
@@ -18,6 +17,7 @@ from pathlib import Path
 import httpx
 import pytest
 
+from bench.oxigraph import free_port
 from dialogue.llm.llamacpp import INSTALL_HINT, LlamaCppModel, LocalModelUnavailable, smollm2_path
 
 SERVER_START_TIMEOUT = 60.0
@@ -54,13 +54,6 @@ def local_model(model_path: Path) -> Iterator[LlamaCppModel]:
     model.load()
     yield model
     model.close()
-
-
-def free_port() -> int:
-    with socket.socket(socket.AF_INET, socket.SOCK_STREAM) as sock:
-        sock.bind(("127.0.0.1", 0))
-        port: int = sock.getsockname()[1]
-        return port
 
 
 @pytest.fixture(scope="session")
