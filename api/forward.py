@@ -105,6 +105,9 @@ class WriterProxy:
         self._http: httpx.AsyncClient | None = None
 
     async def __call__(self, scope: Scope, receive: Receive, send: Send) -> None:
+        if scope["type"] == "lifespan":
+            await self.app(scope, receive, self._closing(send))
+            return
         if scope["type"] != "http" or not _forwarded(scope["path"]):
             await self.app(scope, receive, send)
             return
@@ -138,6 +141,16 @@ class WriterProxy:
             await send({"type": "http.response.body", "body": b"", "more_body": False})
         finally:
             await response.aclose()
+
+
+    def _closing(self, send: Send) -> Send:
+        """``send`` that closes the pooled connections to the writer once the app has shut down."""
+        async def closing_send(message: Message) -> None:
+            if message["type"] == "lifespan.shutdown.complete" and self._http is not None:
+                await self._http.aclose()
+                self._http = None
+            await send(message)
+        return closing_send
 
 
 def _forwarded(path: str) -> bool:

@@ -52,9 +52,9 @@ export const api = {
   revise: (statements, method) => call("POST", "/kb/revise", { statements, method }),
   interact: (userId, input) =>
     call("POST", "/dialogues/default/interactions", { user_id: userId, input }),
-  eventsUrl(pattern) {
+  // The commit feed: what each write added and removed, so removals show without polling.
+  changesUrl() {
     const token = getToken();
-    const auth = token ? `&access_token=${enc(token)}` : "";
-    return `/kb/events?pattern=${enc(pattern)}${auth}`;
+    return token ? `/kb/changes?access_token=${enc(token)}` : "/kb/changes";
   },
 };

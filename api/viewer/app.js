@@ -6,10 +6,6 @@ import { Concepts } from "./concepts.js";
 import { el, isQuestion, statementOf, termButton } from "./ui.js";
 
 const ROOT = "myself";
-const ALL_FACTS = "?s ?p ?o";
-// Events only announce new rows; this periodic re-read of the shown concepts also catches facts
-// that were removed (or expired) elsewhere.
-const RESYNC_MS = 5000;
 
 const $ = (selector) => document.querySelector(selector);
 
@@ -26,7 +22,6 @@ class Viewer {
   async start() {
     this.bindControls();
     this.connectEvents();
-    setInterval(() => { if (!document.hidden) this.resync(); }, RESYNC_MS);
     await this.activate(ROOT);
     this.fillHumans();
   }
@@ -118,7 +113,7 @@ class Viewer {
     const live = $("#live");
     live.dataset.state = "connecting";
     live.textContent = "connecting…";
-    const source = new EventSource(api.eventsUrl(ALL_FACTS));
+    const source = new EventSource(api.changesUrl());
     this.events = source;
     source.addEventListener("subscribed", () => {
       live.dataset.state = "live";
@@ -126,8 +121,11 @@ class Viewer {
       this.resync();  // whatever happened while disconnected
     });
     source.addEventListener("message", (event) => {
-      const rows = JSON.parse(event.data);
-      for (const row of rows) this.noteChange([row.s, row.o, row.p]);
+      for (const commit of JSON.parse(event.data)) {
+        // A clear or a commit too large to list: re-read everything shown.
+        if (commit.cleared || commit.truncated) { this.resync(); continue; }
+        for (const [s, p, o] of [...commit.added, ...commit.removed]) this.noteChange([s, o, p]);
+      }
     });
     source.addEventListener("error", () => {
       live.dataset.state = "offline";

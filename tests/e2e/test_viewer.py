@@ -108,7 +108,7 @@ def test_facts_added_elsewhere_and_here_appear_live_and_removals_too(service: Se
     expect(page.locator("#facts tbody tr", has_text="plant_1")).to_have_count(1)
     assert ["myself", "sees", "plant_1"] in fact_rows(page)
 
-    # Retract from the table's row action, then a removal made elsewhere (no event: resync).
+    # Retract from the table's row action, then a removal made elsewhere (from the commit feed).
     page.locator("#facts tbody tr", has_text="plant_1").get_by_role("button", name="retract…").click()
     assert page.input_value("#statements") == "myself sees plant_1"
     assert page.input_value("#method") == "retract"
@@ -116,7 +116,7 @@ def test_facts_added_elsewhere_and_here_appear_live_and_removals_too(service: Se
     node(page, "plant_1").wait_for(state="detached")
     expect(page.locator("#facts tbody tr", has_text="plant_1")).to_have_count(0)
     service.revise(["myself sees person_bob"], "retract")
-    edge(page, "myself", "sees", "person_bob").wait_for(state="detached", timeout=12000)
+    edge(page, "myself", "sees", "person_bob").wait_for(state="detached")
     expect(page.locator("#facts tbody tr", has_text="person_bob")).to_have_count(0)
 
 
