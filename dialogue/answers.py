@@ -190,3 +190,22 @@ def colour_of(lexicon: Lexicon, words: Sequence[str], speaker: str) -> str:
         else:
             parts.append(f"I don't know the colour of {name}.")
     return " ".join(parts)
+
+
+def whose(lexicon: Lexicon, words: Sequence[str], speaker: str) -> str:
+    """ "Whose phone is on the bookcase?": the owner (`belongsTo`) of each thing the phrase names."""
+    snapshot = lexicon.snapshot
+    found = resolve(lexicon, words, frozenset({"thing"}))
+    if not found.matches:
+        return f"Sorry, I don't know any {' '.join(content_words(words)) or 'such thing'}."
+    parts = []
+    for e in found.matches[:3]:
+        name = the(snapshot, e, speaker)
+        owner = snapshot.get(e.owner) if e.owner else None
+        if owner is None:
+            parts.append(f"I don't know whose {name} is.")
+            continue
+        whom = "yours" if owner.id == speaker else f"{the(snapshot, owner, speaker)}'s"
+        where = f" {location(snapshot, e)}" if len(found.matches) > 1 and location(snapshot, e) else ""
+        parts.append(f"{name[:1].upper()}{name[1:]}{where} is {whom}.")
+    return " ".join(parts)

@@ -29,11 +29,13 @@ from dialogue.words import (
     STOP_FILLER,
     Parse,
     Words,
+    base_verb,
     normalise,
     original_text,
     split_at,
     starts,
     strip_politeness,
+    word_set,
 )  # fmt: skip
 
 __all__ = ["LOCATIVE", "ME", "Parse", "Words", "parse"]
@@ -48,6 +50,15 @@ _WANTS: tuple[Words, ...] = tuple(
 )  # fmt: skip
 
 
+_GOAL_MARKERS = (
+    "to", "towards", "into", "inside", "onto", "on", "in", "near", "next to", "over to", "by", "beside"
+)  # fmt: skip
+#: Words between a motion verb and its goal: "go back to", "head over to", "go down to the cellar".
+_PARTICLES = word_set(
+    "back over there straight right down up ahead across along out around round on and stand wait"
+)
+
+
 class _Cmd(Protocol):
     def __call__(
         self, intent: str, text: str | None = None, double: bool = False, **slots: Words
@@ -58,6 +69,7 @@ def parse(text: str, robot_name: str = "") -> Parse:
     words = strip_politeness(normalise(text), robot_name)
     if not words:
         return Parse("unknown", words=())
+    words[0] = base_verb(words[0])  # "(would you mind) picking up the cup"
     if words[0] == "no" and len(words) > 1 and words[1] not in {"need", "more", "thanks", "thank"}:
         words = strip_politeness(words[1:], robot_name)
     if words and (words[0] in {"don't", "never", "no"} or starts(words, ["do", "not"])):
@@ -69,7 +81,8 @@ def parse(text: str, robot_name: str = "") -> Parse:
     if tuple(words) in SOCIAL and words[:1] != ["how"]:
         return Parse("greeting", words=tuple(words))
     for g in sorted(GREETINGS, key=len, reverse=True):
-        if starts(words, g):
+        welcoming = g == ("welcome",) and words[1:] and words[1] not in {"back", "home", "to", "everyone"}
+        if starts(words, g) and not welcoming:  # "welcome Lucia" asks the robot to greet her
             rest = strip_politeness(words[len(g) :], robot_name)
             if tuple(rest) in SOCIAL:
                 return Parse("greeting", words=tuple(words))
@@ -80,6 +93,10 @@ def parse(text: str, robot_name: str = "") -> Parse:
 
 
 def _command(original: str, words: list[str]) -> Parse:
+    if words[:3] == ["make", "your", "way"] or words[:3] == ["find", "your", "way"]:
+        words = ["go", *words[3:]]
+    if words[1:3] == ["hold", "of"] and words[0] in GRAB | {"catch"}:  # "get hold of the mug"
+        words = ["grab", *words[3:]]
     verb, rest = words[0], tuple(words[1:])
     w = tuple(words)
 
@@ -118,8 +135,9 @@ def _command(original: str, words: list[str]) -> Parse:
         return cmd(I.STOP_ACTIVITY, text="_".join(activity) or None)
     if verb == "greet" and rest in _EVERYONE:
         return Parse("greeting", words=w, slots={"everyone": rest})
-    if verb == "greet" or (verb in {"say", "wave"} and rest[:2] in {("hello", "to"), ("hi", "to")}):
-        return cmd(I.GREET, recipient=rest if verb == "greet" else rest[2:])
+    greeting_verb = verb in {"greet", "welcome"}
+    if greeting_verb or (verb in {"say", "wave"} and rest[:2] in {("hello", "to"), ("hi", "to")}):
+        return cmd(I.GREET, recipient=rest if greeting_verb else rest[2:])
     if verb in {"engage", "talk", "speak", "interact"} and rest[:1] in {("with",), ("to",)}:
         return cmd(I.ENGAGE_WITH, recipient=rest[1:])
     if verb in MOTIONS:
@@ -140,11 +158,11 @@ def _command(original: str, words: list[str]) -> Parse:
             return cmd(I.GUIDE, recipient=rest)
         return cmd(I.GUIDE, recipient=found[0] or ("me",), goal=found[2])
     if verb in MOVE:
-        if rest[:1] == ("up",) or (rest[:1] == ("back",) and len(rest) == 1):
+        if rest in {("up",), ("back",), ("down",)}:
             return Parse("unknown", words=w)
         found = split_at(
             ("x", *rest),
-            ["to", "towards", "into", "inside", "onto", "on", "in", "near", "next to", "over to"],
+            _GOAL_MARKERS,
         )
         if rest in {("here",), ("over", "here"), ("closer",), ("back", "here")}:
             return cmd(I.MOVE_TO, goal=("me",))
@@ -152,7 +170,7 @@ def _command(original: str, words: list[str]) -> Parse:
             return cmd(I.MOVE_TO, goal=("there",))
         if found is None:
             return Parse("unknown", words=w)
-        if found[0] == ("x",) or set(found[0][1:]) <= {"back", "over", "there", "straight", "right"}:
+        if found[0] == ("x",) or set(found[0][1:]) <= _PARTICLES:
             return cmd(I.MOVE_TO, goal=found[2])
         return cmd(I.PLACE_OBJECT, object=found[0][1:], recipient=found[2])
     if verb in PLACE:

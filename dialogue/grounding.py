@@ -79,6 +79,8 @@ class Entity:
     support: str | None = None
     zone: str | None = None
     colour: str | None = None
+    #: Whose it is (`belongsTo`): lets "my phone" and "Ines's phone" tell two phones apart.
+    owner: str | None = None
     #: A person's engagement with the robot (`engaging`, `engaged`, `disengaging`, `disengaged`).
     engagement: str | None = None
 
@@ -219,6 +221,7 @@ def build_snapshot(kb: KnowledgeBase, max_entities: int = 300, lang: str = "en",
     support = _single(kb.find("?x isOn ?y"))
     zone = _single(kb.find("?x isIn ?y"))
     colour = _single(kb.find("?x hasColor ?y"))
+    owner = _single(kb.find("?x belongsTo ?y"))
     engagement = _single(kb.find("?x engagementLevel ?y"))
 
     def rank(term: str) -> int:
@@ -287,6 +290,7 @@ def build_snapshot(kb: KnowledgeBase, max_entities: int = 300, lang: str = "en",
             entities[term] = replace(
                 old, seen=term in seen, support=support.get(term), zone=zone.get(term),
                 colour=display_name(hue) if hue else None, engagement=engagement.get(term),
+                owner=owner.get(term),
             )
             continue
         if previous is not None and dirty is not None and term in previous.skipped and term not in dirty:
@@ -322,7 +326,7 @@ def build_snapshot(kb: KnowledgeBase, max_entities: int = 300, lang: str = "en",
             id=term, name=name, labels=own_labels, classes=(*direct, *inferred),
             class_names=class_names, kind=kind, seen=term in seen, support=support.get(term),
             zone=zone.get(term), colour=display_name(hue) if hue else None,
-            engagement=engagement.get(term),
+            engagement=engagement.get(term), owner=owner.get(term),
         )  # fmt: skip
     names = {term: display_name(term) for term in {*support.values(), *zone.values()}}
     return Snapshot(revision=revision, entities=entities, names=names, skipped=frozenset(skipped))

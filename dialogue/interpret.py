@@ -7,6 +7,7 @@ answering the robot's last question ("the red one") completes the request found 
 
 from __future__ import annotations
 
+import re
 from collections.abc import Collection, Sequence
 from dataclasses import dataclass, field, replace
 
@@ -21,6 +22,7 @@ from dialogue.prompts import FREE_FORM_OBJECT
 from dialogue.resolution import (
     ANYWHERE,
     PERSON,
+    POSSESSIVES,
     ROLE_KINDS,
     antecedent,
     content_words,
@@ -30,6 +32,7 @@ from dialogue.resolution import (
 from dialogue.words import word_set
 
 _ONE = frozenset({"one", "ones"})
+_CLAUSE_BREAK = re.compile(r"[.;!?,]+(?:\s+|$)|\s+(?:-|\u2013|\u2014)\s+")
 #: Spatial or comparative qualifiers the KB does not model (dropped when they block a match).
 RELATIONAL = word_set(
     "left right front back behind near nearest closest far farthest big bigger biggest small smaller "
@@ -70,9 +73,29 @@ class Interpreter:
 
     def interpret(self, text: str) -> Outcome:
         p = parse(text, self.robot_name)
-        if p.act == "unknown":
-            return self._follow_up(p, text) or Outcome("Sorry, I did not understand that.", understood=False)
-        return self.act(p)
+        not_understood = Outcome("Sorry, I did not understand that.", understood=False)
+        outcome = (self._follow_up(p, text) or not_understood) if p.act == "unknown" else self.act(p)
+        ungrounded = p.act == "command" and outcome.intent is None and not outcome.clarify
+        failed = not outcome.understood or ungrounded
+        return self._clause_by_clause(text, outcome) if failed else outcome
+
+    def _clause_by_clause(self, text: str, whole: Outcome) -> Outcome:
+        """ "The denim jacket. Pick it up." or "Felix wants the remote, can you hand it to him?": when
+        the whole utterance is not one request, the last clause that is one is read with the clauses
+        before it as context for its pronouns."""
+        clauses = [c for c in _CLAUSE_BREAK.split(text) if c.strip()]
+        if len(clauses) < 2:
+            return whole
+        for i in range(len(clauses) - 1, -1, -1):
+            context = tuple(Utterance(self.speaker, c) for c in clauses[:i])
+            reader = Interpreter(self.lexicon, self.speaker, (*self.history, *context), self.robot_name)
+            p = parse(clauses[i], self.robot_name)
+            if p.act in {"command", "question"}:
+                outcome = reader.act(p)
+                answered = p.act == "question" and outcome.understood
+                if outcome.intent is not None or outcome.clarify or answered:
+                    return outcome
+        return whole
 
     def act(self, p: Parse, overrides: dict[str, Words] | None = None) -> Outcome:
         if p.act == "greeting" and "everyone" in p.slots:  # no single recipient: greet verbally only
@@ -92,7 +115,7 @@ class Interpreter:
     # -- questions -------------------------------------------------------------------------------
     def _answer(self, p: Parse) -> Outcome:
         thing = p.slots.get("thing", ()) or p.slots.get("place", ())
-        if p.question in {"where", "can_see", "what_is", "what_on"} and is_pronoun(thing):
+        if p.question in {"where", "can_see", "what_is", "what_on", "whose"} and is_pronoun(thing):
             ref = antecedent(self.lexicon, [u.text for u in self.history], ANYWHERE)
             if ref is not None:
                 thing = tuple(tokens(ref.id))
@@ -116,6 +139,8 @@ class Interpreter:
                 return Outcome(answers.how_many(self.lexicon, thing))
             case "colour":
                 return Outcome(answers.colour_of(self.lexicon, thing, self.speaker))
+            case "whose":
+                return Outcome(answers.whose(self.lexicon, thing, self.speaker))
             case "name":
                 return Outcome(f"My name is {self.robot_name}.")
             case "how_are_you":
@@ -141,7 +166,8 @@ class Interpreter:
                 if role in spec.required:
                     return self._missing(intent, role, p)
                 continue
-            ref = self._ground(words, kinds, role)
+            words, owner = self._possessive(words, slots) if role == "object" else (words, None)
+            ref = self._ground(words, kinds, role, owner)
             if ref.problem is not None:
                 return ref.problem
             refs[role] = ref
@@ -172,7 +198,26 @@ class Interpreter:
             return None
         return resolve(self.lexicon, words, PERSON).one
 
-    def _ground(self, words: Words, kinds: frozenset[Kind], role: str) -> _Ref:
+    def _possessive(self, words: Words, slots: dict[str, Words]) -> tuple[Words, str | None]:
+        """ "my phone", "give Ines her phone": the phrase without the possessive, and whose it is."""
+        rest = tuple(w for w in words if w not in POSSESSIVES)
+        said = [w for w in words if w in POSSESSIVES]
+        if not said or not content_words(rest):
+            return words, None
+        if said[0] in {"my", "our"}:
+            return rest, self.speaker
+        if said[0] == "your":
+            return rest, self.snapshot.robot
+        # "his/her/their": the person the same request names, else the one the conversation last named.
+        other = slots.get("recipient", ())
+        if content_words(other) and not set(other) & (ME | POSSESSIVES | {"him", "her", "them"}):
+            person = resolve(self.lexicon, other, PERSON).one
+            if person is not None:
+                return rest, person.id
+        found = antecedent(self.lexicon, [u.text for u in self.history], PERSON)
+        return rest, found.id if found is not None else None
+
+    def _ground(self, words: Words, kinds: frozenset[Kind], role: str, owner: str | None = None) -> _Ref:
         content = content_words(words)
         if "person" in kinds and content and set(content) <= ME | {"here"}:
             return _Ref(speaker=True)
@@ -190,7 +235,7 @@ class Interpreter:
                     )
                 )
             return _Ref(entity=found)
-        res = resolve(self.lexicon, words, kinds)
+        res = resolve(self.lexicon, words, kinds, owner=owner)
         if res.one is not None:
             return _Ref(entity=res.one)
         if res.ambiguous:
@@ -200,7 +245,7 @@ class Interpreter:
         if loose != tuple(words) and content_words(loose):
             # "the cup on the left": spatial relations are not in the KB; if the rest of the phrase
             # names one thing, that is it, else ask which one.
-            res = resolve(self.lexicon, loose, kinds)
+            res = resolve(self.lexicon, loose, kinds, owner=owner)
             if res.one is not None:
                 return _Ref(entity=res.one)
             if res.ambiguous:

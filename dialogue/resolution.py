@@ -2,8 +2,9 @@
 
 A phrase matches an entity when one of the entity's names occurs in it and every other content word
 qualifies the entity: a word of its labels or class names ("red" for the "red cup"), its colour
-(`hasColor white`), or a name of its support or zone ("the cup on the table", "the kitchen table").
-Visible entities are preferred to known but unseen ones.
+(`hasColor white`), a name of its support or zone ("the cup on the table", "the kitchen table"), or
+of its owner ("Ines's phone", `belongsTo`). Visible entities are preferred to known but unseen ones,
+and, when the caller knows whose thing is meant ("my phone"), that person's things.
 """
 
 from __future__ import annotations
@@ -18,6 +19,8 @@ from dialogue.lexicon import DETERMINERS, Lexicon, norm, tokens
 from dialogue.words import word_set
 
 PRONOUNS = frozenset({"it", "them", "that", "this", "those", "these"})
+#: Possessive determiners whose owner comes from the conversation rather than from the phrase.
+POSSESSIVES = frozenset({"my", "your", "our", "his", "her", "their"})
 #: Words allowed inside a phrase without qualifying anything ("the cup that is on the table").
 _GLUE = DETERMINERS | word_set(
     "on in at of from off near inside onto into top which is are with colour color called named labelled "
@@ -70,9 +73,12 @@ def is_pronoun(words: Sequence[str]) -> bool:
     return len(content) == 1 and content[0] in PRONOUNS
 
 
-def resolve(lexicon: Lexicon, words: Sequence[str], kinds: Collection[Kind] = ALL_KINDS) -> Resolution:
+def resolve(
+    lexicon: Lexicon, words: Sequence[str], kinds: Collection[Kind] = ALL_KINDS, *, owner: str | None = None
+) -> Resolution:
     """Entities of the given kinds that the phrase names (see the module docstring)."""
     phrase = " ".join(words)
+    words = [w[:-2] if w.endswith("'s") and len(w) > 2 else w for w in words]  # "ines's" names Ines
     normed = norm(words)
     cover: dict[str, set[int]] = defaultdict(set)
     for start in range(len(words)):
@@ -88,7 +94,7 @@ def resolve(lexicon: Lexicon, words: Sequence[str], kinds: Collection[Kind] = AL
         if not any(i in own for i in content):
             continue
         context = set()
-        for other in (entity.support, entity.zone):
+        for other in (entity.support, entity.zone, entity.owner):
             if other is not None:
                 context |= cover.get(other, set())
         attrs = lexicon.attributes.get(entity_id, frozenset())
@@ -96,6 +102,9 @@ def resolve(lexicon: Lexicon, words: Sequence[str], kinds: Collection[Kind] = AL
             matches.append(entity)
     order = {eid: n for n, eid in enumerate(snapshot.entities)}
     matches.sort(key=lambda e: order[e.id])
+    # Ownership only narrows: "my cup" still means the cup when nobody's cups are recorded.
+    owned = [e for e in matches if owner is not None and e.owner == owner]
+    matches = owned or matches
     seen = [e for e in matches if e.seen]
     return Resolution(phrase, tuple(seen or matches))
 

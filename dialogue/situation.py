@@ -40,6 +40,9 @@ def place_phrase(snapshot: Snapshot, entity: Entity) -> str:
         parts.append(f"on the {snapshot.name_of(entity.support)} [{entity.support}]")
     if entity.zone:
         parts.append(f"in the {snapshot.name_of(entity.zone)} [{entity.zone}]")
+    owner = snapshot.get(entity.owner) if entity.owner else None
+    if owner is not None:  # the model needs it to read "my phone" or "Ines's phone"
+        parts.append(f"belongs to {noun_phrase(snapshot, owner)}")
     return (", " + ", ".join(parts)) if parts else ""
 
 

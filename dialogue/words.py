@@ -36,11 +36,12 @@ POLITE_PREFIXES = _phrases(
     "would you mind|do you mind|i would like you to|i want you to|i need you to|i wish you would|"
     "go ahead and|go and|come and|could you|can you|would you|will you|please|kindly|just|now|ok|okay|"
     "so|and|then|also|well|robot|let us|try to|you should|you can|you could|be so kind and|be so kind as to|"
-    "time to|maybe"
+    "time to|maybe|hold on|hang on|wait a moment|wait a second|one moment|actually|oh|um|umm|uh|er|erm|"
+    "great|alright|all right|cool|perfect|excellent|sorry|excuse me"
 )
 POLITE_SUFFIXES = _phrases(
     "please|thanks|thank you|now|right now|if you can|if you could|for a moment|again|quickly|"
-    "immediately|ok|okay"
+    "immediately|ok|okay|would you|will you|could you|can you|won't you|for a sec|for a second"
 )
 GREETINGS = _phrases(
     "good morning|good afternoon|good evening|good day|hello|hi|hey|hiya|howdy|greetings|yo|"
@@ -56,7 +57,7 @@ ME = word_set("me myself us")
 GRAB = word_set("grab take pick get collect lift grasp seize hold")
 BRING = word_set("bring hand give pass fetch deliver carry")
 PLACE = word_set("put place set lay drop leave stick stack")
-MOVE = word_set("go move navigate drive walk head come return proceed roll")
+MOVE = word_set("go move navigate drive walk head come return proceed roll stand")
 GUIDE = word_set("guide lead escort accompany show direct")
 SAY = word_set("say tell announce repeat inform remind")
 START = word_set("start begin launch run resume do perform commence")
@@ -84,6 +85,22 @@ class Parse:
     words: Words = ()
     #: BRING/give without "to": the recipient and the object are both in `slots["rest"]`.
     double_object: bool = False
+
+
+#: Every verb the grammar knows, to read "would you mind picking up..." as "pick up...".
+VERBS = GRAB | BRING | PLACE | MOVE | GUIDE | SAY | START | STOP | MOTIONS
+VERBS |= word_set("greet welcome approach")
+
+
+def base_verb(word: str) -> str:
+    """ "picking" -> "pick", "taking" -> "take", "putting" -> "put"; other words unchanged."""
+    if word in VERBS or not word.endswith("ing") or len(word) < 5:
+        return word
+    stem = word[:-3]
+    for candidate in (stem, stem + "e", stem[:-1]):
+        if candidate in VERBS:
+            return candidate
+    return word
 
 
 def normalise(text: str) -> list[str]:

@@ -27,8 +27,18 @@ from dialogue.commands import parse
         ("walk me to the exit", I.GUIDE, {"recipient": ("me",), "goal": ("the", "exit")}),
         ("lead the way to the lobby", I.GUIDE, {"recipient": ("me",), "goal": ("lobby",)}),
         ("engage with Ann", I.ENGAGE_WITH, {"recipient": ("ann",)}),
+        ("would you mind picking up the vase", I.GRAB_OBJECT, {"object": ("the", "vase")}),
+        ("do you mind putting the vase on the piano", I.PLACE_OBJECT,
+         {"object": ("the", "vase"), "recipient": ("the", "piano")}),
+        ("please get hold of the vase", I.GRAB_OBJECT, {"object": ("the", "vase")}),
+        ("make your way to the garage", I.MOVE_TO, {"goal": ("the", "garage")}),
+        ("go down to the cellar", I.MOVE_TO, {"goal": ("the", "cellar")}),
+        ("go and stand by the piano", I.MOVE_TO, {"goal": ("the", "piano")}),
+        ("could you welcome Ann", I.GREET, {"recipient": ("ann",)}),
+        ("fetch me the vase, would you?", I.BRING_OBJECT, {"object": ("the", "vase"), "recipient": ("me",)}),
+        ("um great bring it to me", I.BRING_OBJECT, {"object": ("it",), "recipient": ("me",)}),
     ],
-)
+)  # fmt: skip
 def test_command_frames(text: str, intent: str, slots: dict[str, tuple[str, ...]]) -> None:
     p = parse(text)
     assert (p.act, p.intent) == ("command", intent)
@@ -77,6 +87,12 @@ def test_quoted_text_is_kept_verbatim_even_with_to_inside() -> None:
         ("what's your name", "name"),
         ("who are you?", "name"),
         ("tell me what you see", "what_see"),
+        ("any idea where the keys are?", "where"),
+        ("where did Ann go", "where"),
+        ("whose keys are these", "whose"),
+        ("who owns the vase", "whose"),
+        ("is there anything on the piano", "what_on"),
+        ("do you see anything to drink", "can_see"),
     ],
 )
 def test_questions(text: str, kind: str) -> None:
@@ -84,7 +100,9 @@ def test_questions(text: str, kind: str) -> None:
     assert (p.act, p.question) == ("question", kind)
 
 
-@pytest.mark.parametrize("text", ["hi", "Hello there!", "good morning", "hey robot", "hi, how are you?"])
+@pytest.mark.parametrize(
+    "text", ["hi", "Hello there!", "good morning", "good day", "hey robot", "hi, how are you?", "welcome back"]
+)
 def test_greetings(text: str) -> None:
     assert parse(text).act == "greeting"
 

@@ -247,3 +247,73 @@ def test_the_speaker_is_you_in_what_and_who_the_robot_sees() -> None:
     assert say(kb, "what do you see?", speaker="person_alice").reply.endswith("and you.")
     assert say(kb, "who do you see?", speaker="person_alice").reply == "I see you."
     assert "Alice" in say(kb, "who do you see?", speaker="person_tom").reply
+
+
+# Ownership (`belongsTo`): two mugs told apart only by whose they are.
+OWNED = ("mug_green belongsTo person_bob", "mug_yellow belongsTo person_carol")
+
+
+@pytest.mark.parametrize(
+    ("text", "speaker", "roles"),
+    [
+        ("pick up my mug", BOB, {"object": "mug_green"}),
+        ("pick up my mug", "person_carol", {"object": "mug_yellow"}),
+        ("grab Carol's mug", BOB, {"object": "mug_yellow"}),
+        ("give Carol her mug", BOB, {"object": "mug_yellow", "recipient": "person_carol"}),
+    ],
+)
+def test_possessives_pick_the_owners_thing(text: str, speaker: str, roles: dict[str, str]) -> None:
+    out = say(scene_kb("office", *OWNED), text, speaker=speaker)
+    assert out.roles == roles, out.reply
+
+
+def test_a_possessive_without_recorded_owners_still_names_the_thing(office: KB) -> None:
+    assert say(office, "grab my laptop").roles == {"object": "laptop_1"}
+    assert say(office, "grab my mug").clarify  # nobody's mugs are recorded: still two mugs
+
+
+def test_a_named_owner_who_owns_nothing_of_the_kind_matches_nothing(office: KB) -> None:
+    out = say(scene_kb("office", *OWNED), "grab Dan's mug")
+    assert out.intent is None and not out.clarify
+
+
+def test_whose_names_the_owner() -> None:
+    kb = scene_kb("office", *OWNED)
+    assert "Carol's" in say(kb, "whose mug is the yellow one?").reply
+    assert "yours" in say(kb, "who does the green mug belong to?").reply
+    assert "don't know whose" in say(kb, "whose is the laptop").reply
+
+
+@pytest.mark.parametrize(
+    ("text", "history", "intent", "roles"),
+    [
+        ("The stapler. Pick it up, please.", [], I.GRAB_OBJECT, {"object": "stapler_1"}),
+        ("Carol wants the pear, can you hand it to her?", [], I.BRING_OBJECT,
+         {"object": "pear_1", "recipient": "person_carol"}),
+        ("hold on, stop vacuuming", [], I.STOP_ACTIVITY, {"object": "vacuuming"}),
+    ],
+)  # fmt: skip
+def test_a_request_after_context_clauses_uses_them_for_its_pronouns(
+    office: KB, text: str, history: list[tuple[str, str]], intent: str, roles: dict[str, str]
+) -> None:
+    out = say(office, text, history=history)
+    assert (out.intent, out.roles) == (intent, roles), out.reply
+
+
+def test_a_question_after_a_greeting_is_still_answered_not_greeted(office: KB) -> None:
+    out = say(office, "hello Ari, what is on the desk?")
+    assert out.intent is None and "stapler" in out.reply
+
+
+@pytest.mark.parametrize(
+    ("text", "mentions"),
+    [
+        ("is there anything to eat on the desk?", "pear"),
+        ("is there anything on the shelf", "notebook"),
+        ("any idea where the umbrella is?", "umbrella"),
+        ("where did Carol go?", "Carol"),
+    ],
+)
+def test_indirect_and_open_questions(office: KB, text: str, mentions: str) -> None:
+    out = say(office, text)
+    assert out.intent is None and mentions.lower() in out.reply.lower(), out.reply

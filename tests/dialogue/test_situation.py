@@ -23,6 +23,12 @@ def test_description_mentions_unseen_known_things() -> None:
     )
 
 
+def test_description_says_whose_things_are() -> None:
+    kb = scene_kb("kitchen", "cup_1 belongsTo person_tom")
+    text = describe(build_snapshot(kb), "person_alice").text
+    assert "a cup [cup_1], on the table [table_1], in the kitchen [kitchen], belongs to Tom [person_tom]." in text
+
+
 def test_description_is_bounded_and_deterministic() -> None:
     facts = []
     for i in range(150):
