@@ -46,7 +46,8 @@ _ERRAND_VERBS = GRAB | BRING | PLACE | SAY | {"greet", "check", "clean", "see"}
 #: "I want X" and friends ask for X to be brought.
 _WANTS: tuple[Words, ...] = tuple(
     tuple(p.split()) for p in ("i want", "i need", "i would like", "can i have", "could i have", "may i have",
-                               "can i get", "could i get", "i will have", "give me")
+                               "can i get", "could i get", "i will have", "give me", "i could use",
+                               "i could do with", "i would love", "i would really like")
 )  # fmt: skip
 
 
@@ -57,6 +58,9 @@ _GOAL_MARKERS = (
 _PARTICLES = word_set(
     "back over there straight right down up ahead across along out around round on and stand wait"
 )
+
+
+_WANT_VERBS = word_set("want wants need needs")
 
 
 class _Cmd(Protocol):
@@ -77,7 +81,11 @@ def parse(text: str, robot_name: str = "") -> Parse:
     if not words:
         return Parse("unknown", words=())
     if words[0] in {"thanks", "thank"} or words == ["cheers"]:
-        return Parse("thanks", words=tuple(words))
+        # "thanks, now put it on the shelf": the thanks is a preamble to the request
+        tail = strip_politeness(words[2:] if words[:2] == ["thank", "you"] else words[1:], robot_name)
+        request = (_question(tail) or _command(text, tail)) if tail else None
+        thanks = Parse("thanks", words=tuple(words))
+        return request if request is not None and request.act != "unknown" else thanks
     if tuple(words) in SOCIAL and words[:1] != ["how"]:
         return Parse("greeting", words=tuple(words))
     for g in sorted(GREETINGS, key=len, reverse=True):
@@ -103,6 +111,9 @@ def _command(original: str, words: list[str]) -> Parse:
     def cmd(intent: str, text: str | None = None, double: bool = False, **slots: Words) -> Parse:
         return Parse("command", intent, dict(slots), text=text, words=w, double_object=double)
 
+    going = _wants_to_go(w)
+    if going is not None:  # "Ellen needs to get to the utility room": take her there
+        return cmd(I.GUIDE, recipient=going[0], goal=going[1])
     for lead in _WANTS:
         if starts(w, lead) and len(w) > len(lead):
             wanted = w[len(lead) :]
@@ -137,7 +148,10 @@ def _command(original: str, words: list[str]) -> Parse:
         return Parse("greeting", words=w, slots={"everyone": rest})
     greeting_verb = verb in {"greet", "welcome"}
     if greeting_verb or (verb in {"say", "wave"} and rest[:2] in {("hello", "to"), ("hi", "to")}):
-        return cmd(I.GREET, recipient=rest if greeting_verb else rest[2:])
+        recipient = rest if greeting_verb else rest[2:]
+        if recipient[-2:] in {("for", "me"), ("from", "me"), ("for", "us"), ("from", "us")}:
+            recipient = recipient[:-2]  # "say hi to Ahmed for me": still Ahmed
+        return cmd(I.GREET, recipient=recipient)
     if verb in {"engage", "talk", "speak", "interact"} and rest[:1] in {("with",), ("to",)}:
         return cmd(I.ENGAGE_WITH, recipient=rest[1:])
     if verb in MOTIONS:
@@ -205,6 +219,18 @@ def _command(original: str, words: list[str]) -> Parse:
     return Parse("unknown", words=w)
 
 
+def _wants_to_go(w: Words) -> tuple[Words, Words] | None:
+    """ "I want to go to X", "Ellen needs to get to X": (who, where)."""
+    for i in range(len(w) - 4):
+        wants = w[i] in _WANT_VERBS or w[i : i + 2] in {("would", "like"), ("has", "to"), ("have", "to")}
+        at = i + (2 if w[i] == "would" else 1)
+        going = w[at : at + 1] == ("to",) and w[at + 1 : at + 2] in {("go",), ("get",)}
+        if wants and going and w[at + 2 : at + 3] == ("to",) and w[at + 3 :]:
+            who = w[:i]
+            return (("me",) if who in {(), ("i",), ("we",)} else who), w[at + 3 :]
+    return None
+
+
 def _say(original: str, verb: str, rest: Words, cmd: _Cmd) -> Parse:
     quoted = QUOTED.search(original)
     if quoted:
@@ -239,7 +265,7 @@ def _say(original: str, verb: str, rest: Words, cmd: _Cmd) -> Parse:
 
 
 def _bring(verb: str, rest: Words, cmd: _Cmd) -> Parse:
-    dropped = {"over", "back", "up"} if verb == "pick" else {"over", "back"}
+    dropped = {"over", "back", "up", "down", "along", "round", "around"}
     rest = tuple(x for x in rest if x not in dropped)
     if rest[-2:] in {("for", "me"), ("for", "us")}:
         return cmd(I.BRING_OBJECT, object=rest[:-2], recipient=("me",))

@@ -32,7 +32,10 @@ from dialogue.resolution import (
 from dialogue.words import word_set
 
 _ONE = frozenset({"one", "ones"})
-_CLAUSE_BREAK = re.compile(r"[.;!?,]+(?:\s+|$)|\s+(?:-|\u2013|\u2014)\s+")
+#: Punctuation, dashes, and (for unpunctuated speech) a polite request starting mid-utterance.
+_CLAUSE_BREAK = re.compile(
+    r"[.;!?,]+(?:\s+|$)|\s+(?:-|\u2013|\u2014)\s+|\s+(?=(?:could|can|would|will)\s+you\b|please\b)", re.I
+)
 #: Spatial or comparative qualifiers the KB does not model (dropped when they block a match).
 RELATIONAL = word_set(
     "left right front back behind near nearest closest far farthest big bigger biggest small smaller "
@@ -86,16 +89,19 @@ class Interpreter:
         clauses = [c for c in _CLAUSE_BREAK.split(text) if c.strip()]
         if len(clauses) < 2:
             return whole
+        question: Outcome | None = None
         for i in range(len(clauses) - 1, -1, -1):
             context = tuple(Utterance(self.speaker, c) for c in clauses[:i])
             reader = Interpreter(self.lexicon, self.speaker, (*self.history, *context), self.robot_name)
             p = parse(clauses[i], self.robot_name)
             if p.act in {"command", "question"}:
                 outcome = reader.act(p)
-                answered = p.act == "question" and outcome.understood
-                if outcome.intent is not None or outcome.clarify or answered:
+                if outcome.intent is not None:
                     return outcome
-        return whole
+                # A complete request in an earlier clause beats asking about an incomplete later one.
+                if question is None and (outcome.clarify or (p.act == "question" and outcome.understood)):
+                    question = outcome
+        return question or whole
 
     def act(self, p: Parse, overrides: dict[str, Words] | None = None) -> Outcome:
         if p.act == "greeting" and "everyone" in p.slots:  # no single recipient: greet verbally only

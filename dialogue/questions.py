@@ -16,7 +16,9 @@ _WHERE_LEADS: tuple[Words, ...] = tuple(
     tuple(p.split()) for p in ("is", "are", "can i find", "did you see", "did i put", "do you see", "was",
                                "were", "have you seen", "did i leave", "should i look for", "i put", "i left")
 )  # fmt: skip
-_ON_GLUE = word_set("is are do you see can lying there objects things thing stuff placed sitting kept")
+_ON_GLUE = word_set(
+    "is are do you see can lying there objects things thing stuff placed sitting kept have has we got"
+)
 _WHO_NOT_A_NAME = word_set("here there around in with present speaking talking at near next else")
 _SEE_WORDS = frozenset({"see", "notice", "around", "front", "here", "there"})
 _COLOUR_WORDS = frozenset({"colour", "color"})

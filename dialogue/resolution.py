@@ -102,11 +102,27 @@ def resolve(
             matches.append(entity)
     order = {eid: n for n, eid in enumerate(snapshot.entities)}
     matches.sort(key=lambda e: order[e.id])
+    if not matches and content:
+        matches = _by_label_words(lexicon, [normed[i] for i in content], kinds)
     # Ownership only narrows: "my cup" still means the cup when nobody's cups are recorded.
     owned = [e for e in matches if owner is not None and e.owner == owner]
     matches = owned or matches
     seen = [e for e in matches if e.seen]
     return Resolution(phrase, tuple(seen or matches))
+
+
+def _by_label_words(lexicon: Lexicon, content: Sequence[str], kinds: Collection[Kind]) -> list[Entity]:
+    """ "the teddy" for the "teddy bear", "the flathead" for the "flathead screwdriver": when no name
+    occurs, a part of a label still names the thing if every other word qualifies it."""
+    out = []
+    for entity in lexicon.snapshot.entities.values():
+        if entity.kind not in kinds or not entity.labels:
+            continue
+        label_words = {w for label in entity.labels for w in norm(tokens(label))}
+        attrs = lexicon.attributes.get(entity.id, frozenset())
+        if all(w in attrs for w in content) and any(w in label_words for w in content):
+            out.append(entity)
+    return out
 
 
 def resolve_id(lexicon: Lexicon, value: str, kinds: Collection[Kind] = ALL_KINDS) -> Resolution:

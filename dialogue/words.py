@@ -37,7 +37,8 @@ POLITE_PREFIXES = _phrases(
     "go ahead and|go and|come and|could you|can you|would you|will you|please|kindly|just|now|ok|okay|"
     "so|and|then|also|well|robot|let us|try to|you should|you can|you could|be so kind and|be so kind as to|"
     "time to|maybe|hold on|hang on|wait a moment|wait a second|one moment|actually|oh|um|umm|uh|er|erm|"
-    "great|alright|all right|cool|perfect|excellent|sorry|excuse me"
+    "great|alright|all right|cool|perfect|excellent|sorry|excuse me|can we|could we|shall we|should we|"
+    "why don't we|how about we"
 )
 POLITE_SUFFIXES = _phrases(
     "please|thanks|thank you|now|right now|if you can|if you could|for a moment|again|quickly|"
@@ -57,7 +58,7 @@ ME = word_set("me myself us")
 GRAB = word_set("grab take pick get collect lift grasp seize hold")
 BRING = word_set("bring hand give pass fetch deliver carry")
 PLACE = word_set("put place set lay drop leave stick stack")
-MOVE = word_set("go move navigate drive walk head come return proceed roll stand")
+MOVE = word_set("go move navigate drive walk head come return proceed roll stand pop nip hop")
 GUIDE = word_set("guide lead escort accompany show direct")
 SAY = word_set("say tell announce repeat inform remind")
 START = word_set("start begin launch run resume do perform commence")

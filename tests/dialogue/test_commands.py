@@ -127,3 +127,37 @@ def test_robot_name_is_stripped_as_a_vocative() -> None:
 def test_unknown_input() -> None:
     assert parse("the weather is lovely today").act == "unknown"
     assert parse("").act == "unknown"
+
+
+@pytest.mark.parametrize(
+    ("text", "recipient", "goal"),
+    [
+        ("I want to go to the garage", ("me",), ("the", "garage")),
+        ("Ann needs to get to the lobby", ("ann",), ("the", "lobby")),
+        ("my mother has to go to the exit", ("my", "mother"), ("the", "exit")),
+        ("we would like to go to the garden", ("me",), ("the", "garden")),
+    ],
+)
+def test_someone_needing_to_go_somewhere_is_guided(
+    text: str, recipient: tuple[str, ...], goal: tuple[str, ...]
+) -> None:
+    p = parse(text)
+    assert (p.intent, p.slots["recipient"], p.slots["goal"]) == (I.GUIDE, recipient, goal)
+
+
+@pytest.mark.parametrize(
+    ("text", "act", "intent"),
+    [
+        ("thanks, now put the vase on the piano", "command", I.PLACE_OBJECT),
+        ("thank you so much", "thanks", None),
+        ("could you say hi to Ann for me", "command", I.GREET),
+        ("I could use the vase", "command", I.BRING_OBJECT),
+        ("can we play a quiz", "command", I.START_ACTIVITY),
+        ("pop over to the garage", "command", I.MOVE_TO),
+    ],
+)
+def test_preambles_and_indirect_requests(text: str, act: str, intent: str | None) -> None:
+    p = parse(text)
+    assert (p.act, p.intent) == (act, intent)
+    if intent == I.GREET:
+        assert p.slots["recipient"] == ("ann",)

@@ -317,3 +317,21 @@ def test_a_question_after_a_greeting_is_still_answered_not_greeted(office: KB) -
 def test_indirect_and_open_questions(office: KB, text: str, mentions: str) -> None:
     out = say(office, text)
     assert out.intent is None and mentions.lower() in out.reply.lower(), out.reply
+
+
+def test_unpunctuated_speech_splits_before_a_polite_request(office: KB) -> None:
+    out = say(office, "the laptop could you bring it over to me")
+    assert (out.intent, out.roles) == (I.BRING_OBJECT, {"object": "laptop_1", "recipient": BOB})
+
+
+def test_a_complete_request_beats_a_question_about_a_later_clause(office: KB) -> None:
+    out = say(office, "Carol needs to get to the bathroom could you lead the way")
+    assert (out.intent, out.roles) == (I.GUIDE, {"recipient": "person_carol", "goal": "bathroom"})
+
+
+def test_part_of_a_label_names_the_thing_when_no_name_occurs(office: KB) -> None:
+    kb = scene_kb("office", 'stapler_1 rdfs:label "heavy-duty stapler"')
+    assert say(kb, "grab the heavy-duty").roles == {"object": "stapler_1"}
+    assert say(kb, "grab the heavy duty thing").roles == {"object": "stapler_1"}
+    assert say(kb, "grab the heavy violin").intent is None  # every word must fit the thing
+    assert say(office, "grab the green").roles == {"object": "mug_green"}
