@@ -88,14 +88,18 @@ class Lexicon:
         self.snapshot = snapshot
         self._by_first: dict[str, list[Name]] = defaultdict(list)
         self.attributes: dict[str, frozenset[str]] = {}
-        self._entries: dict[Entity, tuple[list[Name], frozenset[str]]] = {}
+        #: Entities by each (singular) word of their own labels, for "the teddy" ("teddy bear").
+        self.by_label_word: dict[str, list[str]] = defaultdict(list)
+        self._entries: dict[Entity, tuple[list[Name], frozenset[str], frozenset[str]]] = {}
         old = previous._entries if previous is not None else {}
         for entity in snapshot.entities.values():
-            entry = old.get(entity) or (_names(entity), _attribute_words(entity))
+            entry = old.get(entity) or (_names(entity), _attribute_words(entity), _label_words(entity))
             self._entries[entity] = entry
             for name in entry[0]:
                 self._by_first[name.words[0]].append(name)
             self.attributes[entity.id] = entry[1]
+            for word in entry[2]:
+                self.by_label_word[word].append(entity.id)
         for names in self._by_first.values():
             names.sort(key=lambda n: -len(n.words))
 
@@ -152,6 +156,10 @@ def _names(entity: Entity) -> list[Name]:
         if len(words) > 1:
             add(words[-1], "head")
     return out
+
+
+def _label_words(entity: Entity) -> frozenset[str]:
+    return frozenset(w for label in entity.labels for w in norm(tokens(label)))
 
 
 def _attribute_words(entity: Entity) -> frozenset[str]:

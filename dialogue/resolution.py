@@ -114,13 +114,12 @@ def resolve(
 def _by_label_words(lexicon: Lexicon, content: Sequence[str], kinds: Collection[Kind]) -> list[Entity]:
     """ "the teddy" for the "teddy bear", "the flathead" for the "flathead screwdriver": when no name
     occurs, a part of a label still names the thing if every other word qualifies it."""
+    candidates = dict.fromkeys(e for w in content for e in lexicon.by_label_word.get(w, ()))
     out = []
-    for entity in lexicon.snapshot.entities.values():
-        if entity.kind not in kinds or not entity.labels:
-            continue
-        label_words = {w for label in entity.labels for w in norm(tokens(label))}
-        attrs = lexicon.attributes.get(entity.id, frozenset())
-        if all(w in attrs for w in content) and any(w in label_words for w in content):
+    for entity_id in candidates:
+        entity = lexicon.snapshot.get(entity_id)
+        attrs = lexicon.attributes.get(entity_id, frozenset())
+        if entity is not None and entity.kind in kinds and all(w in attrs for w in content):
             out.append(entity)
     return out
 
