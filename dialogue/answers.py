@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from collections import Counter
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 
 from dialogue.clarify import question as clarifying_question
 from dialogue.grounding import Entity, Snapshot
@@ -178,34 +178,35 @@ def how_many(lexicon: Lexicon, words: Sequence[str]) -> str:
 
 
 def colour_of(lexicon: Lexicon, words: Sequence[str], speaker: str) -> str:
-    snapshot = lexicon.snapshot
-    found = resolve(lexicon, words, frozenset({"thing"}))
-    if not found.matches:
-        return f"Sorry, I don't know any {' '.join(content_words(words)) or 'such thing'}."
-    parts = []
-    for e in found.matches[:3]:
-        name = the(snapshot, e, speaker)
+    def sentence(e: Entity, several: bool) -> str:
         if e.colour:
-            parts.append(f"{'One' if len(found.matches) > 1 else 'The'} {e.name} is {e.colour}.")
-        else:
-            parts.append(f"I don't know the colour of {name}.")
-    return " ".join(parts)
+            return f"{'One' if several else 'The'} {e.name} is {e.colour}."
+        return f"I don't know the colour of {the(lexicon.snapshot, e, speaker)}."
+
+    return _about_each_thing(lexicon, words, sentence)
 
 
 def whose(lexicon: Lexicon, words: Sequence[str], speaker: str) -> str:
     """ "Whose phone is on the bookcase?": the owner (`belongsTo`) of each thing the phrase names."""
     snapshot = lexicon.snapshot
-    found = resolve(lexicon, words, frozenset({"thing"}))
-    if not found.matches:
-        return f"Sorry, I don't know any {' '.join(content_words(words)) or 'such thing'}."
-    parts = []
-    for e in found.matches[:3]:
+
+    def sentence(e: Entity, several: bool) -> str:
         name = the(snapshot, e, speaker)
         owner = snapshot.get(e.owner) if e.owner else None
         if owner is None:
-            parts.append(f"I don't know whose {name} is.")
-            continue
+            return f"I don't know whose {name} is."
         whom = "yours" if owner.id == speaker else f"{the(snapshot, owner, speaker)}'s"
-        where = f" {location(snapshot, e)}" if len(found.matches) > 1 and location(snapshot, e) else ""
-        parts.append(f"{name[:1].upper()}{name[1:]}{where} is {whom}.")
-    return " ".join(parts)
+        where = location(snapshot, e) if several else ""
+        return f"{name[:1].upper()}{name[1:]}{' ' + where if where else ''} is {whom}."
+
+    return _about_each_thing(lexicon, words, sentence)
+
+
+def _about_each_thing(lexicon: Lexicon, words: Sequence[str], sentence: Callable[[Entity, bool], str]) -> str:
+    """One sentence about each of (at most three) things the phrase names; `sentence` is told
+    whether there are several, to tell them apart."""
+    found = resolve(lexicon, words, frozenset({"thing"}))
+    if not found.matches:
+        return f"Sorry, I don't know any {' '.join(content_words(words)) or 'such thing'}."
+    several = len(found.matches) > 1
+    return " ".join(sentence(e, several) for e in found.matches[:3])

@@ -49,8 +49,6 @@ _WANTS: tuple[Words, ...] = tuple(
                                "can i get", "could i get", "i will have", "give me", "i could use",
                                "i could do with", "i would love", "i would really like")
 )  # fmt: skip
-
-
 _GOAL_MARKERS = (
     "to", "towards", "into", "inside", "onto", "on", "in", "near", "next to", "over to", "by", "beside"
 )  # fmt: skip
@@ -58,8 +56,6 @@ _GOAL_MARKERS = (
 _PARTICLES = word_set(
     "back over there straight right down up ahead across along out around round on and stand wait"
 )
-
-
 _WANT_VERBS = word_set("want wants need needs")
 
 
@@ -83,21 +79,27 @@ def parse(text: str, robot_name: str = "") -> Parse:
     if words[0] in {"thanks", "thank"} or words == ["cheers"]:
         # "thanks, now put it on the shelf": the thanks is a preamble to the request
         tail = strip_politeness(words[2:] if words[:2] == ["thank", "you"] else words[1:], robot_name)
-        request = (_question(tail) or _command(text, tail)) if tail else None
-        thanks = Parse("thanks", words=tuple(words))
-        return request if request is not None and request.act != "unknown" else thanks
+        return _request(text, tail) or Parse("thanks", words=tuple(words))
     if tuple(words) in SOCIAL and words[:1] != ["how"]:
         return Parse("greeting", words=tuple(words))
-    for g in sorted(GREETINGS, key=len, reverse=True):
-        welcoming = g == ("welcome",) and words[1:] and words[1] not in {"back", "home", "to", "everyone"}
-        if starts(words, g) and not welcoming:  # "welcome Lucia" asks the robot to greet her
+    # "welcome Lucia" asks the robot to greet her; "welcome back" is a greeting.
+    welcoming = words[0] == "welcome" and words[1:] and words[1] not in {"back", "home", "to", "everyone"}
+    for g in () if welcoming else sorted(GREETINGS, key=len, reverse=True):
+        if starts(words, g):
             rest = strip_politeness(words[len(g) :], robot_name)
             if tuple(rest) in SOCIAL:
                 return Parse("greeting", words=tuple(words))
-            after = _question(rest) or _command(text, rest)
             # "Good morning Maria" is still a greeting; "hi, grab the cup" is a request.
-            return after if after.act != "unknown" else Parse("greeting", words=tuple(words))
+            return _request(text, rest) or Parse("greeting", words=tuple(words))
     return _question(words) or _command(text, words)
+
+
+def _request(text: str, words: list[str]) -> Parse | None:
+    """What follows a greeting or thanks, if it is a question or command."""
+    if not words:
+        return None
+    after = _question(words) or _command(text, words)
+    return after if after.act != "unknown" else None
 
 
 def _command(original: str, words: list[str]) -> Parse:
@@ -174,10 +176,7 @@ def _command(original: str, words: list[str]) -> Parse:
     if verb in MOVE:
         if rest in {("up",), ("back",), ("down",)}:
             return Parse("unknown", words=w)
-        found = split_at(
-            ("x", *rest),
-            _GOAL_MARKERS,
-        )
+        found = split_at(("x", *rest), _GOAL_MARKERS)
         if rest in {("here",), ("over", "here"), ("closer",), ("back", "here")}:
             return cmd(I.MOVE_TO, goal=("me",))
         if rest in {("there",), ("over", "there")}:

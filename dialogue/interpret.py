@@ -216,12 +216,9 @@ class Interpreter:
             return rest, self.snapshot.robot
         # "his/her/their": the person the same request names, else the one the conversation last named.
         other = slots.get("recipient", ())
-        if content_words(other) and not set(other) & (ME | POSSESSIVES | {"him", "her", "them"}):
-            person = resolve(self.lexicon, other, PERSON).one
-            if person is not None:
-                return rest, person.id
-        found = antecedent(self.lexicon, [u.text for u in self.history], PERSON)
-        return rest, found.id if found is not None else None
+        person = None if set(other) & ME else self._person_as_object(other)
+        person = person or antecedent(self.lexicon, [u.text for u in self.history], PERSON)
+        return rest, person.id if person is not None else None
 
     def _ground(self, words: Words, kinds: frozenset[Kind], role: str, owner: str | None = None) -> _Ref:
         content = content_words(words)

@@ -93,7 +93,7 @@ class Lexicon:
         self._entries: dict[Entity, tuple[list[Name], frozenset[str], frozenset[str]]] = {}
         old = previous._entries if previous is not None else {}
         for entity in snapshot.entities.values():
-            entry = old.get(entity) or (_names(entity), _attribute_words(entity), _label_words(entity))
+            entry = old.get(entity) or _entry(entity)
             self._entries[entity] = entry
             for name in entry[0]:
                 self._by_first[name.words[0]].append(name)
@@ -158,20 +158,15 @@ def _names(entity: Entity) -> list[Name]:
     return out
 
 
-def _label_words(entity: Entity) -> frozenset[str]:
-    return frozenset(w for label in entity.labels for w in norm(tokens(label)))
-
-
-def _attribute_words(entity: Entity) -> frozenset[str]:
-    """Words that may qualify the entity: its label words ("red" in "red cup") and its colour."""
-    words: set[str] = set()
-    for label in entity.labels:
-        words.update(norm(tokens(label)))
+def _entry(entity: Entity) -> tuple[list[Name], frozenset[str], frozenset[str]]:
+    """Names, qualifying words (label words, colour, class names: "red" in "red cup") and label words."""
+    label_words = frozenset(w for label in entity.labels for w in norm(tokens(label)))
+    words: set[str] = set(label_words)
     if entity.colour:
         words.update(norm(tokens(entity.colour)))
     for class_name in entity.class_names:
         words.update(norm(tokens(class_name)))
-    return frozenset(words)
+    return _names(entity), frozenset(words), label_words
 
 
 class LexiconCache:
