@@ -53,6 +53,8 @@ class BuildCheck:
     #: What happened, and when not ok, what the build and the CPU have and how to fix it.
     message: str
     build: str
+    #: The worker died (a build this CPU cannot run): the fix is the portable reinstall.
+    crashed: bool = False
 
 
 async def check_build(model: LlamaCppModel, timeout: float = 120.0) -> BuildCheck:
@@ -64,7 +66,7 @@ async def check_build(model: LlamaCppModel, timeout: float = 120.0) -> BuildChec
     try:
         result = await model.complete(PROBE_MESSAGES, PROBE_SCHEMA, timeout)
     except WorkerCrashed as exc:
-        return BuildCheck(False, _crash_report(str(exc), build), build)
+        return BuildCheck(False, _crash_report(str(exc), build), build, crashed=True)
     except ModelError as exc:
         return BuildCheck(False, f"{model.name} did not complete: {exc}", build)
     return BuildCheck(True, f"{model.name} answered {result.content.strip()[:60]!r}", build)
