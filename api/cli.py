@@ -1,4 +1,4 @@
-"""The ``situated`` command: serve, chat, kb, humans, eval, bench. Thin over the libraries.
+"""The ``situated`` command: serve, chat, kb, humans, eval, bench, doctor. Thin over the libraries.
 
 ``kb``, ``humans`` and ``chat`` work in-process (a fresh KB, loaded with ``--scene``) or against a
 running service with ``--url`` (token from ``--token`` or ``$SITUATED_TOKEN``).
@@ -38,6 +38,7 @@ EXAMPLES = """examples:
   situated humans --url http://127.0.0.1:8000        id, name, seen, engagement
   situated eval cases.jsonl --llm rules --json       score dialogue cases
   situated bench kb                                  also: scene, dialogue, http, load, store, all
+  situated doctor --llm llamacpp:smollm2             check the setup; says what is wrong and how to fix it
 Each command has its own help: situated COMMAND -h.
 Settings also come from SITUATED_* env vars and a TOML/JSON file (SITUATED_CONFIG or --config)."""
 
@@ -96,6 +97,15 @@ def _parser() -> argparse.ArgumentParser:
     evaluate = sub.add_parser("eval", help="score dialogue cases (.jsonl); see 'situated eval -h'",
                               add_help=False)
     evaluate.add_argument("args", nargs=argparse.REMAINDER, help="passed to the evaluation")
+
+    doctor = sub.add_parser("doctor", help="check the setup (KB, data folder, model backend, Chromium, "
+                                           "port); exit 1 on a problem")
+    for option in ("--llm", "--scene", "--host"):
+        doctor.add_argument(option, help=f"as for serve (default: the settings' {option[2:]})")
+    doctor.add_argument("--port", type=int, help="as for serve (default: the settings' port)")
+    doctor.add_argument("--data", type=Path, help="as for serve (default: the settings' data folder)")
+    doctor.add_argument("--config", type=Path, help="TOML or JSON settings file (or $SITUATED_CONFIG)")
+    doctor.add_argument("--strict", action="store_true", help="warnings (no Chromium) also exit 1")
 
     bench = sub.add_parser("bench", help="run benchmarks: kb, scene, dialogue, http, load, store or all")
     bench.add_argument("which", nargs="?", default="all", choices=[*BENCHES, "all"])
@@ -247,8 +257,19 @@ def _bench(args: argparse.Namespace) -> int:
     return status
 
 
+def _doctor(args: argparse.Namespace) -> int:
+    from api.doctor import Doctor, exit_status, render
+
+    settings = load_settings(args.config, host=args.host, port=args.port, data_dir=args.data,
+                             scene=args.scene, llm=args.llm)
+    findings = Doctor(settings).run()
+    print(render(findings))
+    return exit_status(findings, args.strict)
+
+
 COMMANDS: dict[str, Callable[[argparse.Namespace], int]] = {
     "serve": _serve, "chat": _chat, "kb": _kb_command, "humans": _humans, "eval": _eval, "bench": _bench,
+    "doctor": _doctor,
 }
 
 

@@ -1,7 +1,9 @@
 """Is the dialogue model backend reachable? A cheap request to the server a backend talks to.
 
 In-process backends (rules, test models) are always reachable. A backend may also offer its own
-``async ping(timeout) -> bool``, which is used when present.
+``async ping(timeout) -> bool``, which is used when present, or a ``health() -> dict`` of its own
+state (``reachable``, ``detail`` and whatever else it reports: the llama.cpp worker process's
+crashes and restarts), which is merged in.
 """
 
 from __future__ import annotations
@@ -20,6 +22,9 @@ async def probe(model: ChatModel, timeout: float = 1.0) -> dict[str, Any]:
     ping = getattr(model, "ping", None)
     if callable(ping):
         return {"name": model.name, "remote": True, "reachable": bool(await ping(timeout)), "detail": ""}
+    own_health = getattr(model, "health", None)
+    if callable(own_health):
+        return {"name": model.name, "remote": False, "reachable": True, "detail": "", **own_health()}
     if isinstance(model, OllamaModel):
         url = model.host.rstrip("/") + "/api/tags"
     elif isinstance(model, OpenAIModel):

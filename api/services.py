@@ -39,6 +39,8 @@ class Services:
     journal: Journal | None
     owns_kb: bool
     store: Store | None = None
+    #: The model was built from the settings (not passed in): stopping closes it (a worker process).
+    owns_model: bool = False
 
     @property
     def model(self) -> ChatModel:
@@ -61,6 +63,9 @@ class Services:
             self.kb.close()
         if self.store is not None:
             self.store.close()
+        close_model = getattr(self.model, "close", None)
+        if self.owns_model and callable(close_model):
+            close_model()
 
 
 @dataclass
@@ -151,7 +156,7 @@ def start_services(settings: Settings, kb: KB | None = None, model: ChatModel | 
         raise
     hub = EventHub(the_kb, settings.limits.max_subscribers)
     return Services(settings=settings, kb=the_kb, hub=hub, dialogues=dialogues, world=world,
-                    journal=journal, owns_kb=owns_kb, store=store)
+                    journal=journal, owns_kb=owns_kb, store=store, owns_model=model is None)
 
 
 def _mirror(kb: KB, endpoint: SparqlEndpoint, recover: bool) -> SparqlMirror:
@@ -184,4 +189,4 @@ def _start_reader(settings: Settings, model: ChatModel | None) -> Services:
         raise
     hub = EventHub(kb, settings.limits.max_subscribers)
     return Services(settings=settings, kb=kb, hub=hub, dialogues=dialogues, world=None, journal=None,
-                    owns_kb=True, store=store)
+                    owns_kb=True, store=store, owns_model=model is None)

