@@ -150,10 +150,13 @@ def _kb_command(args: argparse.Namespace) -> int:
         command = args.kb_command
         if command == "query":
             _print_json(kb.find(args.patterns, None, models))
-        elif command in ("add", "retract"):
-            kb.revise(args.statements, {"method": "update" if command == "add" else "retract",
-                                        "models": models})
-            _say(f"{command}: {len(args.statements)} statement(s)")
+        elif command == "add":
+            kb.revise(args.statements, {"method": "update", "models": models})
+            _say(f"add: {len(args.statements)} statement(s)")
+        elif command == "retract":
+            # One pattern may match many triples: say what went, not what was asked.
+            removed = kb.revise(args.statements, {"method": "retract", "models": models})
+            _say(f"retract: {removed} triple(s) removed")
         elif command == "details":
             _print_json(kb.details(args.term, models))
         else:

@@ -54,6 +54,17 @@ def test_kb_and_humans_against_a_running_service(live: Live, capsys: pytest.Capt
     assert "HTTP 400" in capsys.readouterr().err
 
 
+def test_kb_retract_reports_the_triples_removed_not_the_patterns(live: Live,
+                                                                 capsys: pytest.CaptureFixture[str]) -> None:
+    # The scene has cup_1 and book_1 on table_1: one pattern, two triples.
+    assert main(["kb", "retract", "?x isOn table_1", "--scene", str(SCENE)]) == 0
+    assert "retract: 2 triple(s) removed" in capsys.readouterr().err
+    assert main(["kb", "retract", "?x isOn table_1", "--url", live.url]) == 0
+    assert "retract: 2 triple(s) removed" in capsys.readouterr().err
+    assert main(["kb", "retract", "?x isOn table_1", "--url", live.url]) == 0
+    assert "retract: 0 triple(s) removed" in capsys.readouterr().err
+
+
 def test_chat_in_process_and_remote(live: Live, capsys: pytest.CaptureFixture[str]) -> None:
     assert main(["chat", "--scene", str(SCENE), "--user", "person_alice", "--say", "pick up the cup"]) == 0
     out = capsys.readouterr().out
