@@ -11,6 +11,7 @@ from contextlib import asynccontextmanager
 
 from fastapi import FastAPI
 from fastapi.middleware.cors import CORSMiddleware
+from fastapi_offline import FastAPIOffline
 from starlette.concurrency import run_in_threadpool
 
 from api.errors import install_error_handlers
@@ -44,8 +45,10 @@ def create_app(settings: Settings | None = None, kb: KB | None = None,
         finally:
             await run_in_threadpool(services.stop)
 
-    app = FastAPI(title="situated", version=package_version(), description=DESCRIPTION,
-                  lifespan=lifespan, docs_url="/docs", redoc_url=None)
+    # /docs must work offline: Swagger UI's script, style and icon come from fastapi-offline's
+    # package (under /static-offline-docs), not from the CDN FastAPI's own page would load.
+    app = FastAPIOffline(title="situated", version=package_version(), description=DESCRIPTION,
+                         lifespan=lifespan, docs_url="/docs", redoc_url=None)
     install_error_handlers(app)
     if config.writer_url is not None:  # a reader: the scene and the commit feed are the writer's
         app.add_middleware(WriterProxy, writer_url=config.writer_url)

@@ -25,22 +25,38 @@ from api.world import load_any_scene
 from kb import KB, KbError
 
 BENCHES = ("kb", "scene", "dialogue", "http", "load", "store")
-EXAMPLES = """examples:
+# tests/api/test_cli.py runs every example below, so they cannot drift from what works.
+KITCHEN = "tests/dialogue/eval/scenes/kitchen.txt"
+EXAMPLES = f"""examples (file paths are those of a clone of the repository):
   situated serve                                     offline service on 127.0.0.1:8000 with the demo scene
-  situated serve --scene kitchen.txt --data ./data   a statements file; every write journaled in ./data
+  situated serve --scene {KITCHEN} --data ./data
+                                                     a statements file; every write journaled in ./data
   situated serve --llm ollama:gemma3:1b --token T    with a local LLM; writes need 'Bearer T'
-  situated chat --scene kitchen.txt                  talk in-process (one line per turn)
+  situated chat --scene {KITCHEN}
+                                                     talk in-process (one line per turn)
   situated chat --url http://127.0.0.1:8000 --say "pick up the cup"
-  situated kb query "myself sees ?o" "?o rdf:type dbr:Cup" --scene kitchen.txt
+  situated kb query "myself sees ?o" "?o rdf:type dbr:Cup" --scene {KITCHEN}
   situated kb add "cup_1 isOn table_1" --url http://127.0.0.1:8000
   situated kb retract "?x isOn table_1" --url http://127.0.0.1:8000
-  situated kb details cup_1 --scene kitchen.txt      also: kb lookup TEXT
+  situated kb details cup_1 --scene {KITCHEN}
+  situated kb lookup cookbook --scene {KITCHEN}
   situated humans --url http://127.0.0.1:8000        id, name, seen, engagement
-  situated eval cases.jsonl --llm rules --json       score dialogue cases
-  situated bench kb                                  also: scene, dialogue, http, load, store, all
-  situated doctor --llm llamacpp:smollm2             check the setup; says what is wrong and how to fix it
+  situated eval tests/dialogue/eval/dev.jsonl --llm rules --json
+                                                     score dialogue cases
+  situated bench kb --quick                          small sizes; also scene, dialogue, http, load, store, all
+  situated doctor                                    check the setup (also --llm SPEC); says what is wrong and how to fix it
 Each command has its own help: situated COMMAND -h.
 Settings also come from SITUATED_* env vars and a TOML/JSON file (SITUATED_CONFIG or --config)."""
+
+
+# kb subcommand: what it does, its argument, an example of the argument (run by the tests).
+KB_COMMANDS = {
+    "query": ("rows matching patterns (a conjunction)", "patterns", '"myself sees ?o" "?o rdf:type dbr:Cup"'),
+    "add": ("add statements (no variables)", "statements", '"cup_1 isOn shelf_1"'),
+    "retract": ("retract statements (variables allowed)", "statements", '"?x isOn table_1"'),
+    "details": ("details of a term", "term", "cup_1"),
+    "lookup": ("find terms by name or label", "text", "cookbook"),
+}
 
 
 def _say(text: str) -> None:
@@ -65,7 +81,10 @@ def _parser() -> argparse.ArgumentParser:
     serve.add_argument("--data", type=Path, help="data folder: every write journaled, recovered at start")
     serve.add_argument("--scene", help="demo (default), an .svg environment, a .json scene, a .txt file of "
                                        "statements, or none")
-    serve.add_argument("--llm", help="model backend: rules (default), ollama:MODEL[@URL], openai:MODEL@URL")
+    serve.add_argument("--llm", help="model backend: rules (default), ollama:MODEL[@URL], openai:MODEL@URL, "
+                                     "openai-json:MODEL@URL (llama.cpp's server), llamacpp:PATH.gguf or "
+                                     "llamacpp:smollm2 (the 'local' extra), hybrid:SPEC (rules first, the "
+                                     "model SPEC only when they do not understand)")
     serve.add_argument("--token", help="require 'Authorization: Bearer TOKEN' for writes")
     serve.add_argument("--config", type=Path, help="TOML or JSON settings file (or $SITUATED_CONFIG)")
     serve.add_argument("--store", help="keep the KB in a SPARQL 1.1 store, e.g. "
@@ -74,20 +93,16 @@ def _parser() -> argparse.ArgumentParser:
 
     chat = sub.add_parser("chat", help="talk to the robot (in-process or --url), showing reply and intents")
     _remote_options(chat)
-    chat.add_argument("--llm", default="rules", help="in-process model backend (default rules)")
+    chat.add_argument("--llm", default="rules", help="in-process model backend, as for serve (default rules)")
     chat.add_argument("--user", default="__unknown_agent__", help="speaker id (default __unknown_agent__)")
     chat.add_argument("--say", action="append", help="say this and exit (repeatable); default: read stdin")
 
     kb = sub.add_parser("kb", help="query and edit the KB: query, add, retract, details, lookup")
     kb_sub = kb.add_subparsers(dest="kb_command", required=True, metavar="KB_COMMAND")
-    for name, what, arg in (("query", "rows matching patterns", "patterns"),
-                            ("add", "add statements", "statements"),
-                            ("retract", "retract statements (variables allowed)", "statements"),
-                            ("details", "details of a term", "term"),
-                            ("lookup", "find terms by name or label", "text")):
+    for name, (what, arg, example) in KB_COMMANDS.items():
         one = kb_sub.add_parser(name, help=what)
-        one.add_argument(arg, nargs="+" if arg in ("patterns", "statements") else None,
-                         help='e.g. "myself sees ?o"' if arg != "text" else None)
+        many = "+" if arg in ("patterns", "statements") else None
+        one.add_argument(arg, nargs=many, help=f"e.g. {example}")
         one.add_argument("--models", nargs="*", help="KB models (default: the robot's own)")
         _remote_options(one)
 
@@ -160,10 +175,13 @@ def _kb_command(args: argparse.Namespace) -> int:
         command = args.kb_command
         if command == "query":
             _print_json(kb.find(args.patterns, None, models))
-        elif command in ("add", "retract"):
-            kb.revise(args.statements, {"method": "update" if command == "add" else "retract",
-                                        "models": models})
-            _say(f"{command}: {len(args.statements)} statement(s)")
+        elif command == "add":
+            kb.revise(args.statements, {"method": "update", "models": models})
+            _say(f"add: {len(args.statements)} statement(s)")
+        elif command == "retract":
+            # One pattern may match many triples: say what went, not what was asked.
+            removed = kb.revise(args.statements, {"method": "retract", "models": models})
+            _say(f"retract: {removed} triple(s) removed")
         elif command == "details":
             _print_json(kb.details(args.term, models))
         else:
@@ -204,6 +222,18 @@ def _lines(args: argparse.Namespace) -> Iterator[str]:
 
 
 def _chat(args: argparse.Namespace) -> int:
+    if not args.say:
+        where = args.url or f"an in-process KB (scene: {args.scene})"
+        _say(f"situated chat: talking to {where} as {args.user}; one line per turn; "
+             "Ctrl-D (end of input) or Ctrl-C to leave")
+    try:
+        return _converse(args)
+    except KeyboardInterrupt:
+        _say("")  # leave the terminal on a fresh line after the prompt
+        return 0
+
+
+def _converse(args: argparse.Namespace) -> int:
     if args.url:
         with ServiceClient(args.url, args.token or os.environ.get("SITUATED_TOKEN")) as client:
             dialogue_id = client.start_dialogue()

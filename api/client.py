@@ -51,8 +51,11 @@ class ServiceClient:
                                        json={"patterns": patterns, "vars": vars, "models": models})
         return result
 
-    def revise(self, stmts: list[str], policy: dict[str, Any]) -> None:
-        self._call("POST", "/kb/revise", json={"statements": stmts, **policy})
+    def revise(self, stmts: list[str], policy: dict[str, Any]) -> int | None:
+        """Returns the number of asserted triples a retraction removed (None for an addition)."""
+        answer = self._call("POST", "/kb/revise", json={"statements": stmts, **policy})
+        removed: int | None = answer["removed"]
+        return removed
 
     def details(self, term: str, models: list[str] | None = None) -> dict[str, Any]:
         result: dict[str, Any] = self._call("GET", f"/kb/details/{term}", params={"models": models or []})

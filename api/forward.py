@@ -43,9 +43,10 @@ class WriterClient:
         self._post("/kb/revise", json={"statements": as_list(stmts), "method": "update",
                                        "models": _models(models), "lifespan": lifespan or None})
 
-    def remove(self, stmts: str | Sequence[str], models: str | Sequence[str] | None = None) -> None:
-        self._post("/kb/revise", json={"statements": as_list(stmts), "method": "retract",
-                                       "models": _models(models)})
+    def remove(self, stmts: str | Sequence[str], models: str | Sequence[str] | None = None) -> int:
+        answer = self._post("/kb/revise", json={"statements": as_list(stmts), "method": "retract",
+                                                "models": _models(models)})
+        return int(answer.json()["removed"])
 
     def apply(self, add: Sequence[str] = (), remove: Sequence[str] = (),
               models: str | Sequence[str] | None = None, lifespan: float = 0) -> None:
@@ -68,7 +69,7 @@ class WriterClient:
         names = _models(models) or []
         self._post("/sparql", data={"update": update}, params={"model": names[0]} if names else None)
 
-    def _post(self, path: str, **kwargs: Any) -> None:
+    def _post(self, path: str, **kwargs: Any) -> httpx.Response:
         try:
             response = self._http.post(path, **kwargs)
         except httpx.HTTPError as exc:
@@ -76,6 +77,7 @@ class WriterClient:
                            f"reached: {exc}; nothing was written") from exc
         if response.is_error:
             raise _writer_error(response)
+        return response
 
 
 def _models(models: str | Sequence[str] | None) -> list[str] | None:

@@ -17,6 +17,7 @@ import statistics
 import time
 from collections.abc import Callable
 
+from bench.progress import step
 from dialogue.engine import DialogueEngine
 from dialogue.schema import parse_answer
 from dialogue.validate import ground_answer
@@ -71,6 +72,7 @@ def median_ms(fn: Callable[[], object], repeat: int) -> float:
 
 
 def run(n_objects: int = 100, repeat: int = 200) -> str:
+    step("dialogue", f"a scene of {n_objects} visible objects")
     kb = scene(n_objects)
     engine = DialogueEngine(kb)
     speaker = "person_alice"
@@ -105,15 +107,15 @@ def run(n_objects: int = 100, repeat: int = 200) -> str:
         return times
 
     overhead()  # warm caches
-    rows = [
-        ("overhead, warm (ground+schema+prompt+validate+resolve)", median_ms(overhead, repeat)),
-        (
-            "overhead, KB changed since last turn (snapshot rebuilt)",
-            median_ms(overhead_changed, max(20, repeat // 10)),
-        ),
-        ("rules fast path", median_ms(fast_path, repeat)),
-        ("full rules turn (engine.turn, event loop)", statistics.median(asyncio.run(turns())) * 1000),
-    ]
+    step("dialogue", f"turn overhead, {repeat} rounds")
+    rows = [("overhead, warm (ground+schema+prompt+validate+resolve)", median_ms(overhead, repeat))]
+    step("dialogue", "turn overhead right after a KB change")
+    rows.append(("overhead, KB changed since last turn (snapshot rebuilt)",
+                 median_ms(overhead_changed, max(20, repeat // 10))))
+    step("dialogue", "rules fast path")
+    rows.append(("rules fast path", median_ms(fast_path, repeat)))
+    step("dialogue", "full rules turns through the event loop")
+    rows.append(("full rules turn (engine.turn, event loop)", statistics.median(asyncio.run(turns())) * 1000))
     kb.close()
     lines = [f"dialogue turn overhead, {n_objects} visible objects (median ms; target <= 2 ms)"]
     lines += [f"  {name:58} {ms:8.3f}" for name, ms in rows]

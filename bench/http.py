@@ -23,6 +23,7 @@ from fastapi import FastAPI
 from api.app import create_app
 from api.server import serve_in_thread
 from api.settings import Settings
+from bench.progress import step
 from dialogue.llm.base import ChatRequest
 from dialogue.llm.testing import FunctionModel
 from kb import KB
@@ -75,6 +76,7 @@ def _no_delay() -> httpx.HTTPTransport:
 
 
 def measure(name: str, call: Callable[[], httpx.Response], count: int, seconds: float) -> Result:
+    step("http", f"{name}: up to {count} requests or {seconds:g} s")
     for _ in range(min(20, count)):  # warm-up: connections, caches
         call().raise_for_status()
     latencies: list[float] = []

@@ -20,6 +20,7 @@ import owlrl
 from rdflib import Graph
 from rdflib.plugins.sparql import prepareQuery
 
+from bench.progress import step
 from bench.worlds import QUERY, SPARQL_QUERY, PerceptionWorld, QueryWorld
 from kb import KB
 from kb.rdfio import DEFAULT_ONTOLOGY, parse_data
@@ -71,6 +72,7 @@ def _owlrl_seconds(kb: KB) -> float:
 
 
 def bench_ontology(rows: list[Row]) -> None:
+    step("kb", "ontology load and full closure, then owlrl's closure of it")
     text = (files("ontologies") / DEFAULT_ONTOLOGY).read_text(encoding="utf-8")
     parse = _timed(lambda: parse_data(text, "turtle"), 5)
     triples = parse_data(text, "turtle")
@@ -87,6 +89,7 @@ def bench_ontology(rows: list[Row]) -> None:
 
 
 def bench_ticks(rows: list[Row], objects: int, target: str, with_owlrl: bool) -> None:
+    step("kb", f"perception ticks in a world of {objects:,} objects")
     world = PerceptionWorld(objects)
     kb = _build(world.statements())
     ticks = list(world.ticks(400))
@@ -98,6 +101,8 @@ def bench_ticks(rows: list[Row], objects: int, target: str, with_owlrl: bool) ->
         start = time.perf_counter()
         kb.apply(add, remove)
         samples.append(time.perf_counter() - start)
+    if with_owlrl:
+        step("kb", "owlrl's re-closure of the same world")
     baseline = f"owlrl re-closure: {_owlrl_seconds(kb):.2f} s" if with_owlrl else "owlrl: not run (--full)"
     rows.append((f"perception tick +3/−3, {kb.size():,} materialised ({kb.size(inferred=False):,} asserted)",
                  f"{_median_ms(samples):.2f} ms median", baseline, target))
@@ -105,6 +110,7 @@ def bench_ticks(rows: list[Row], objects: int, target: str, with_owlrl: bool) ->
 
 
 def bench_query(rows: list[Row], size: int, target: str, sparql_rounds: int) -> None:
+    step("kb", f"grounding query in a world of {size:,} asserted, then rdflib SPARQL on it")
     kb = _build(QueryWorld(size).statements())
     for _ in range(20):
         kb.find(QUERY)
@@ -124,6 +130,7 @@ def bench_query(rows: list[Row], size: int, target: str, sparql_rounds: int) -> 
 
 
 def bench_rss(rows: list[Row], size: int) -> None:
+    step("kb", f"memory of a process holding {size:,} asserted")
     code = (
         "import resource, sys\n"
         "from bench.kb import _build\nfrom bench.worlds import QueryWorld\n"

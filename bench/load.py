@@ -28,6 +28,7 @@ from typing import Any
 
 import httpx
 
+from bench.progress import step
 from dialogue.llm.base import ChatRequest
 
 HOST = "127.0.0.1"
@@ -290,11 +291,14 @@ def run(seconds: float = 60.0, dialogues: int = 50, hz: float = 30.0,
     port = _free_port()
     url = f"http://{HOST}:{port}"
     process = multiprocessing.get_context("spawn").Process(target=_serve, args=(port,), daemon=True)
+    step("load", "starting the service in its own process")
     process.start()
     try:
         _wait_ready(url, process)
+        step("load", f"{dialogues} dialogues and a {hz:g} Hz perception writer for {seconds:g} s")
         load = Load(url, seconds, dialogues, hz, max_requests)
         elapsed = asyncio.run(load.run())
+        step("load", "checking the KB's closure against a recomputation")
         report = Report(elapsed, load.routes, load.ticks, load.late_ticks, hz)
         with httpx.Client(base_url=url, timeout=60) as client:
             check_kb(client, report, load.live)

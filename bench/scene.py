@@ -12,6 +12,7 @@ import random
 import statistics
 import time
 
+from bench.progress import step
 from kb import KB
 from kb.scene import Entity, Kind, Scene
 from kb.scenesync import SceneSync
@@ -42,6 +43,7 @@ def main(argv: list[str] | None = None) -> int:
     rng = random.Random(4)
     movers = [e for e in entities if e.kind in (Kind.OBJECT, Kind.PERSON)]
 
+    step("scene", f"{args.moves} incremental moves, then 5 recomputations from scratch")
     scene = Scene()
     for entity in entities:
         scene.put(entity)
@@ -61,6 +63,7 @@ def main(argv: list[str] | None = None) -> int:
         fresh.facts()
         scratch.append(time.perf_counter() - start)
 
+    step("scene", f"{args.moves} moves applied to a KB")
     kb = KB()
     sync = SceneSync(kb)
     sync.replace(entities)

@@ -24,6 +24,7 @@ from typing import Any
 
 from bench.kb import _build, _median_ms, markdown_table
 from bench.oxigraph import OxigraphServer, OxigraphUnavailable, oxigraph_command
+from bench.progress import step
 from bench.worlds import QUERY, PerceptionWorld, QueryWorld
 from kb import KB
 from kb.endpoint import SparqlEndpoint
@@ -145,6 +146,7 @@ def _tick_samples(kb: KB, plan: Sequence[tuple[list[str], list[str]]]) -> list[f
 
 def bench_ticks(rows: list[Row], checks: Checks, server: OxigraphServer, size: int, ticks: int) -> None:
     name = _label(size)
+    step("store", f"perception ticks, world of {size:,} statements, in-process and mirrored")
     world = perception_world(size)
     plan = list(world.ticks(ticks))
     local = _build(world.statements())
@@ -184,6 +186,7 @@ def query_reads() -> list[tuple[str, Read]]:
 
 
 def bench_queries(rows: list[Row], checks: Checks, server: OxigraphServer, size: int, rounds: int) -> None:
+    step("store", f"reads, world of {size:,} statements, in-process and from the store")
     kb = _build(QueryWorld(size).statements())
     store = server.store(f"query{size}")
     endpoint = CountingEndpoint(store)

@@ -230,9 +230,10 @@ class KB(KnowledgeCoreSugar):
 
     add = update
 
-    def remove(self, stmts: str | Sequence[str], models: Models_ = None) -> None:
+    def remove(self, stmts: str | Sequence[str], models: Models_ = None) -> int:
         """Retract statements; statements with variables are one conjunction whose every
-        match is retracted (K12). Facts that are only inferred stay (they are derived again)."""
+        match is retracted (K12). Facts that are only inferred stay (they are derived again).
+        Returns the number of asserted triples removed, over all the models written."""
         ground: list[Triple] = []
         patterns: list[str] = []
         for text in as_list(stmts):
@@ -248,9 +249,8 @@ class KB(KnowledgeCoreSugar):
             with self._lock:
                 for model in self._read_models(names):
                     batch.remove_by_model[model.name] = matches(model, query.patterns)
-                self._writer.commit(batch)
-            return
-        self._writer.commit(batch)
+                return _asserted_removed(self._writer.commit(batch))
+        return _asserted_removed(self._writer.commit(batch))
 
     retract = remove
 
@@ -362,3 +362,6 @@ class KB(KnowledgeCoreSugar):
         with self._lock:
             return self._one_model(model).is_asserted(triple)
 
+
+def _asserted_removed(commit: Commit | None) -> int:
+    return 0 if commit is None else sum(len(delta.asserted_removed) for delta in commit.deltas)

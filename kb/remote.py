@@ -205,11 +205,13 @@ class RemoteKB(KnowledgeCoreSugar):
 
     add = update
 
-    def remove(self, stmts: str | Sequence[str], models: Models_ = None) -> None:
+    def remove(self, stmts: str | Sequence[str], models: Models_ = None) -> int:
         """Retract statements; statements with variables are one conjunction whose every match is
-        retracted (K12). Facts that are only inferred stay (they are derived again)."""
-        self._writes.remove(stmts, models)
+        retracted (K12). Facts that are only inferred stay (they are derived again). Returns the
+        number of asserted triples the writer removed."""
+        removed = self._writes.remove(stmts, models)
         self._events.sync()
+        return removed
 
     retract = remove
 

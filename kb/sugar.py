@@ -34,7 +34,7 @@ class Primitives(Protocol):
 
     def update(self, stmts: str | Sequence[str], models: Models_ = None, lifespan: float = 0) -> None: ...
 
-    def remove(self, stmts: str | Sequence[str], models: Models_ = None) -> None: ...
+    def remove(self, stmts: str | Sequence[str], models: Models_ = None) -> int: ...
 
 
 Self = TypeVar("Self", bound=Primitives)
@@ -63,17 +63,18 @@ class KnowledgeCoreSugar:
             return self.exist(item)
         return bool(self.lookup(item))
 
-    def revise(self: Primitives, stmts: str | Sequence[str], policy: dict[str, Any]) -> None:
-        """``policy``: ``{"method": add|update|retract|..., "models": [...], "lifespan": s}``."""
+    def revise(self: Primitives, stmts: str | Sequence[str], policy: dict[str, Any]) -> int | None:
+        """``policy``: ``{"method": add|update|retract|..., "models": [...], "lifespan": s}``.
+        A retraction returns the number of asserted triples it removed; an addition None."""
         if not isinstance(policy, dict) or "method" not in policy:
             raise KbError("revise needs a policy with a 'method'")
         method = str(policy["method"]).lower()
         if method in _ADD_METHODS:
             self.update(stmts, policy.get("models"), policy.get("lifespan", 0) or 0)
-        elif method in _RETRACT_METHODS:
-            self.remove(stmts, policy.get("models"))
-        else:
-            raise KbError(f"unknown revise method {policy['method']!r}; use add, update or retract")
+            return None
+        if method in _RETRACT_METHODS:
+            return self.remove(stmts, policy.get("models"))
+        raise KbError(f"unknown revise method {policy['method']!r}; use add, update or retract")
 
     def __iadd__(self: Self, stmts: str | Sequence[str]) -> Self:
         self.update(stmts)

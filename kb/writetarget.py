@@ -27,7 +27,8 @@ class WriteTarget(Protocol):
 
     def update(self, stmts: str | Sequence[str], models: Models_ = None, lifespan: float = 0) -> None: ...
 
-    def remove(self, stmts: str | Sequence[str], models: Models_ = None) -> None: ...
+    def remove(self, stmts: str | Sequence[str], models: Models_ = None) -> int:
+        """Returns the number of asserted triples removed."""
 
     def apply(self, add: Sequence[str] = (), remove: Sequence[str] = (), models: Models_ = None,
               lifespan: float = 0) -> None: ...
@@ -67,14 +68,14 @@ class ReplicaWrites:
         lifespan_seconds(lifespan)
         target.update(texts, models, lifespan)
 
-    def remove(self, stmts: str | Sequence[str], models: Models_) -> None:
+    def remove(self, stmts: str | Sequence[str], models: Models_) -> int:
         target = self._require()
         texts = as_list(stmts)
         patterns = [text for text in texts if _has_variables(text)]
         model_names(models)
         if patterns:
             compiled(tuple(patterns), None)
-        target.remove(texts, models)
+        return target.remove(texts, models)
 
     def apply(self, add: Sequence[str], remove: Sequence[str], models: Models_, lifespan: float) -> None:
         target = self._require()

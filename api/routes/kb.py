@@ -67,6 +67,11 @@ class Revision(BaseModel):
     revision: int = Field(description="the KB revision after the change")
 
 
+class Revised(Revision):
+    removed: int | None = Field(None, description="a retraction: the number of asserted triples it "
+                                "removed (a pattern may match many; facts only inferred stay)")
+
+
 @router.post("/query", dependencies=[ReadAccess])
 async def query(body: QueryRequest, kb: KbDep, settings: SettingsDep) -> list[Any]:
     """Rows of bindings for a conjunction of patterns (kb-compat §3.2)."""
@@ -93,12 +98,12 @@ async def query_get(kb: KbDep, settings: SettingsDep,
 
 
 @router.post("/revise", dependencies=[WriteAccess])
-async def revise(body: ReviseRequest, kb: KbDep, settings: SettingsDep) -> Revision:
+async def revise(body: ReviseRequest, kb: KbDep, settings: SettingsDep) -> Revised:
     """Add, update or retract statements as one batch: all or nothing."""
     check_count(body.statements, settings.limits.max_statements, "statements")
     policy = {"method": body.method, "models": body.models, "lifespan": body.lifespan or 0}
-    await run_in_threadpool(kb.revise, body.statements, policy)
-    return Revision(revision=kb.revision)
+    removed = await run_in_threadpool(kb.revise, body.statements, policy)
+    return Revised(revision=kb.revision, removed=removed)
 
 
 @router.post("/apply", dependencies=[WriteAccess])

@@ -14,6 +14,26 @@ const CATEGORY_RULES = [
   ["object", ["Artifact", "cyc:PartiallyTangible", "PhysicalEntity", "cyc:SpatialThing-Localized"]],
 ];
 
+// An object's icon: the first kind whose class it has (directly or by inference); an object of
+// no listed kind gets the generic object icon, any other concept its category's icon.
+const OBJECT_ICONS = [
+  ["cup", ["dbr:Cup"]],
+  ["bottle", ["dbr:Bottle"]],
+  ["fruit", ["dbr:Fruit"]],
+  ["book", ["dbr:Book"]],
+  ["phone", ["dbr:Smartphone"]],
+  ["plant", ["dbr:Plant"]],
+  ["utensil", ["dbr:Kitchen_utensil"]],
+  ["bin", ["dbr:Waste_container"]],
+];
+
+export function iconOf(category, classes) {
+  if (category !== "object") return category;
+  const all = new Set(classes);
+  const kind = OBJECT_ICONS.find(([, names]) => names.some((name) => all.has(name)));
+  return kind ? kind[0] : "object";
+}
+
 function directClasses(details) {
   const entry = (details.attributes || []).find((a) => a.id === "classes");
   return entry ? entry.values.map((v) => v.id) : [];
@@ -71,7 +91,7 @@ export class Concepts {
       const info = await this.load(id);
       if (!exists(info.details)) throw new Error("the KB knows nothing about this term");
       this.expanded.add(id);
-      this.graph.upsertNode(id, { label: info.details.label.default, category: info.category });
+      this.graph.upsertNode(id, { label: info.details.label.default, category: info.category, icon: info.icon });
       this.graph.setExpanded(id, true);
       await this.sync(id, info);
       this.prune();
@@ -92,7 +112,7 @@ export class Concepts {
           this.expanded.delete(id);
           this.graph.removeNode(id);
         } else {
-          this.graph.upsertNode(id, { label: info.details.label.default, category: info.category });
+          this.graph.upsertNode(id, { label: info.details.label.default, category: info.category, icon: info.icon });
           await this.sync(id, info);
         }
         this.onChange(id);
@@ -108,7 +128,8 @@ export class Concepts {
     let classes = previous && previous.direct.join() === direct.join() ? previous.classes : null;
     if (classes === null) classes = details.type === "instance" ? await api.classesof(id) : [];
     const origins = Array.isArray(details.asserted) ? details.asserted : null;
-    const info = { details, classes, direct, origins, category: categoryOf(details, classes) };
+    const category = categoryOf(details, classes);
+    const info = { details, classes, direct, origins, category, icon: iconOf(category, classes) };
     this.cache.set(id, info);
     await this.learnPredicates(details.relations.map((r) => r[1]));
     return info;
@@ -157,7 +178,10 @@ export class Concepts {
         if (!this.expanded.has(id) || added >= MAX_NEW_NEIGHBOURS) continue;
         added += 1;
         const cached = this.cache.get(other);
-        this.graph.upsertNode(other, { near: id, label: cached ? cached.details.label.default : other, category: cached ? cached.category : "other" });
+        this.graph.upsertNode(other, {
+          near: id, label: cached ? cached.details.label.default : other,
+          category: cached ? cached.category : "other", icon: cached ? cached.icon : "other",
+        });
         fresh.push(other);
       }
       this.graph.setEdge(e.s, e.p, e.o, e.kind);
@@ -166,7 +190,7 @@ export class Concepts {
     const loaded = await Promise.all(fresh.map((n) => this.load(n).then((i) => [n, i], () => [n, null])));
     for (const [n, neighbour] of loaded) {
       if (!neighbour || !this.graph.hasNode(n)) continue;
-      this.graph.upsertNode(n, { label: neighbour.details.label.default, category: neighbour.category });
+      this.graph.upsertNode(n, { label: neighbour.details.label.default, category: neighbour.category, icon: neighbour.icon });
       for (const e of this.edgesFrom(n, neighbour)) {
         const other = e.s === n ? e.o : e.s;
         if (this.graph.hasNode(other)) this.graph.setEdge(e.s, e.p, e.o, e.kind);

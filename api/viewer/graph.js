@@ -51,14 +51,14 @@ export class Graph {
 
   hasNode(id) { return this.nodes.has(id); }
 
-  upsertNode(id, { label, category, near } = {}) {
+  upsertNode(id, { label, category, icon, near } = {}) {
     let node = this.nodes.get(id);
     if (!node) {
       const anchor = near && this.nodes.get(near);
       const angle = unitHash(id) * 2 * Math.PI;
       const spread = anchor ? 60 + unitHash(id + "/") * 40 : 30 * Math.sqrt(this.nodes.size);
       node = {
-        id, label: id, category: "other", expanded: false,
+        id, label: id, category: "other", glyph: "other", expanded: false,
         x: (anchor ? anchor.x : 0) + Math.cos(angle) * spread,
         y: (anchor ? anchor.y : 0) + Math.sin(angle) * spread,
         vx: 0, vy: 0, fx: null, fy: null,
@@ -69,6 +69,7 @@ export class Graph {
     }
     if (label !== undefined) node.label = label;
     if (category !== undefined) node.category = category;
+    if (icon !== undefined) node.glyph = icon;  // node.icon is the drawn <use> element
     this.styleNode(node);
     return node;
   }
@@ -154,7 +155,7 @@ export class Graph {
     if (node.fx !== null) classes.push("pinned");
     node.el.setAttribute("class", classes.join(" "));
     node.shape.setAttribute("r", this.radius(node));
-    node.icon.setAttribute("href", `#icon-${node.category}`);
+    node.icon.setAttribute("href", `#icon-${node.glyph}`);
     node.text.setAttribute("y", this.radius(node) + 15);
     node.text.textContent = shorten(node.label, 22);
     const state = node.expanded ? "expanded" : "not expanded yet";

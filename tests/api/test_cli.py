@@ -3,15 +3,25 @@ and bench delegation."""
 
 from __future__ import annotations
 
+import io
 import json
+import re
+import shlex
+import socket
 import subprocess
 import sys
+import time
 from pathlib import Path
 
+import httpx
 import pytest
 
 from api.cli import main
+from dialogue.llm.spec import SPEC_HELP
 from tests.api.conftest import SCENE, Live
+
+REPO = Path(__file__).parents[2]
+EXAMPLE_URL = "http://127.0.0.1:8000"
 
 COMMANDS = ("serve", "chat", "kb", "humans", "eval", "bench")
 
@@ -54,6 +64,17 @@ def test_kb_and_humans_against_a_running_service(live: Live, capsys: pytest.Capt
     assert "HTTP 400" in capsys.readouterr().err
 
 
+def test_kb_retract_reports_the_triples_removed_not_the_patterns(live: Live,
+                                                                 capsys: pytest.CaptureFixture[str]) -> None:
+    # The scene has cup_1 and book_1 on table_1: one pattern, two triples.
+    assert main(["kb", "retract", "?x isOn table_1", "--scene", str(SCENE)]) == 0
+    assert "retract: 2 triple(s) removed" in capsys.readouterr().err
+    assert main(["kb", "retract", "?x isOn table_1", "--url", live.url]) == 0
+    assert "retract: 2 triple(s) removed" in capsys.readouterr().err
+    assert main(["kb", "retract", "?x isOn table_1", "--url", live.url]) == 0
+    assert "retract: 0 triple(s) removed" in capsys.readouterr().err
+
+
 def test_chat_in_process_and_remote(live: Live, capsys: pytest.CaptureFixture[str]) -> None:
     assert main(["chat", "--scene", str(SCENE), "--user", "person_alice", "--say", "pick up the cup"]) == 0
     out = capsys.readouterr().out
@@ -68,7 +89,122 @@ def test_eval_and_bench_delegate(capsys: pytest.CaptureFixture[str]) -> None:
     assert done.value.code == 0
     assert "situated eval" in capsys.readouterr().out
     status = main(["bench", "http", "--count", "40", "--seconds", "2"])
-    out = capsys.readouterr().out
+    out, err = capsys.readouterr()
     assert status in (0, 1)  # the verdict depends on the machine; the table must be there
     assert "POST /echo (bare FastAPI)" in out and "POST /kb/query" in out
     assert "POST /dialogues/default/interactions" in out and "target >= 50%" in out
+    # While it runs, each measure is announced on stderr; stdout is the table alone.
+    assert [line.split(":")[1].strip() for line in err.splitlines()] == [
+        "POST /echo (bare FastAPI)", "POST /kb/query", "POST /dialogues/default/interactions"]
+    assert "situated bench" not in out
+
+
+def _help(*command: str) -> str:
+    done = subprocess.run([sys.executable, "-m", "api.cli", *command, "--help"], capture_output=True,
+                          text=True, check=True, cwd=REPO)
+    return done.stdout
+
+
+def _free_port() -> int:
+    with socket.socket() as sock:
+        sock.bind(("127.0.0.1", 0))
+        port: int = sock.getsockname()[1]
+        return port
+
+
+def _serve_example(words: list[str], cwd: Path) -> None:
+    """Run a ``serve`` example on a free port until it answers /health, then stop it."""
+    port = _free_port()
+    process = subprocess.Popen([sys.executable, "-m", "api.cli", *words, "--port", str(port)], cwd=cwd,
+                               stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    try:
+        deadline = time.monotonic() + 120
+        while True:
+            assert process.poll() is None, f"{words} stopped: {process.stderr.read() if process.stderr else ''}"
+            try:
+                if httpx.get(f"http://127.0.0.1:{port}/health", timeout=5).status_code == 200:
+                    return
+            except httpx.TransportError:
+                pass
+            assert time.monotonic() < deadline, f"{words} did not start serving"
+            time.sleep(0.3)
+    finally:
+        process.terminate()
+        process.wait(30)
+
+
+def test_every_example_of_the_help_works(live: Live, tmp_path: Path, monkeypatch: pytest.MonkeyPatch,
+                                         capsys: pytest.CaptureFixture[str]) -> None:
+    """Each example line of ``situated --help`` runs as printed; the only changes are the port of
+    a served or checked example and the URL of a running service (the live test service's)."""
+    examples = re.findall(r"^  situated (.+?)(?: {2,}.*)?$", _help(), flags=re.MULTILINE)
+    assert len(examples) >= 12
+    # The examples' paths are those of a clone; the working folder is a scratch one (./data).
+    (tmp_path / "tests").symlink_to(REPO / "tests")
+    monkeypatch.chdir(tmp_path)
+    ran: set[str] = set()
+    for example in examples:
+        words = [live.url if word == EXAMPLE_URL else word for word in shlex.split(example)]
+        ran.add(words[0] if words[0] != "kb" else f"kb {words[1]}")
+        if words[0] == "serve":
+            _serve_example(words, tmp_path)
+            continue
+        if words[0] == "doctor":  # its port check must not depend on what else this machine runs
+            words += ["--port", str(_free_port())]
+        if words[0] == "chat" and "--say" not in words:
+            monkeypatch.setattr(sys, "stdin", io.StringIO("pick up the cup\n"))
+        assert main(words) == 0, example
+        out, err = capsys.readouterr()
+        assert out.strip() or err.strip(), f"{example} said nothing"
+        if words[0] == "chat":
+            assert "robot: " in out, example
+        if words[0] == "bench":
+            assert "situated bench kb: " in err and "perception tick" in out
+    assert (tmp_path / "data").is_dir()  # the --data example journaled there
+    assert ran >= {"serve", "chat", "kb query", "kb add", "kb retract", "kb details", "kb lookup", "humans",
+                   "eval", "bench", "doctor"}
+
+
+@pytest.mark.parametrize("command", ["query", "add", "retract", "details", "lookup"])
+def test_each_kb_command_help_example_works(command: str, capsys: pytest.CaptureFixture[str]) -> None:
+    """The e.g. of ``situated kb COMMAND -h`` is an argument that command takes, and does something."""
+    found = re.search(r"\be\.g\. (.+)$", _help("kb", command), flags=re.MULTILINE)
+    assert found, f"kb {command} -h gives no example"
+    scene = str(REPO / "tests/dialogue/eval/scenes/kitchen.txt")
+    assert main(["kb", command, *shlex.split(found.group(1)), "--scene", scene]) == 0
+    out, err = capsys.readouterr()
+    if command in ("query", "lookup"):
+        assert json.loads(out), f"kb {command} example found nothing"
+    elif command == "details":
+        assert json.loads(out)["type"] == "instance"
+    elif command == "retract":
+        assert re.search(r"retract: [1-9]\d* triple\(s\) removed", err), err
+    else:
+        assert "add: " in err
+
+
+def test_serve_help_names_every_backend_kind() -> None:
+    kinds = set(re.findall(r"'([a-z-]+)[:']", SPEC_HELP))
+    assert {"rules", "ollama", "openai", "openai-json", "llamacpp", "hybrid"} <= kinds
+    text = " ".join(_help("serve").split())
+    for kind in kinds - {"rules"}:
+        assert f"{kind}:" in text, f"serve --help does not mention {kind}:"
+
+
+def test_chat_greets_with_where_and_how_to_leave(monkeypatch: pytest.MonkeyPatch,
+                                                capsys: pytest.CaptureFixture[str]) -> None:
+    monkeypatch.setattr(sys, "stdin", io.StringIO("hello\n"))
+    assert main(["chat", "--scene", str(SCENE), "--user", "person_alice"]) == 0
+    out, err = capsys.readouterr()
+    assert "situated chat: talking to an in-process KB" in err and "person_alice" in err
+    assert "Ctrl-D" in err
+    assert out.startswith("robot: ")  # the banner stays off stdout
+
+
+def test_chat_leaves_quietly_on_ctrl_c(monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]) -> None:
+    class Interrupted(io.StringIO):
+        def readline(self, *args: object) -> str:
+            raise KeyboardInterrupt
+
+    monkeypatch.setattr(sys, "stdin", Interrupted())
+    assert main(["chat", "--scene", "none"]) == 0

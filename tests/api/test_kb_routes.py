@@ -36,6 +36,16 @@ def test_revise_add_update_retract_and_models(live: Live) -> None:
     assert client.post("/kb/query", json={"patterns": ["?x knows ?y"]}).json() == []
 
 
+def test_a_retraction_says_how_many_asserted_triples_it_removed(live: Live) -> None:
+    client = live.client
+    added = client.post("/kb/revise", json={"statements": ["cup_1 isOn shelf_1"], "method": "add"}).json()
+    assert "removed" not in added or added["removed"] is None
+    done = client.post("/kb/revise", json={"statements": ["?x isOn table_1"], "method": "retract"}).json()
+    assert done["removed"] == 2  # cup_1 and book_1: one pattern, two triples
+    again = client.post("/kb/revise", json={"statements": ["?x isOn table_1"], "method": "remove"}).json()
+    assert again["removed"] == 0
+
+
 def test_a_bad_statement_writes_nothing(live: Live) -> None:
     before = live.client.get("/health").json()["kb"]["revision"]
     response = live.client.post("/kb/revise", json={"statements": ["cup_9 isOn table_1", "broken"],

@@ -69,6 +69,11 @@ def test_a_write_through_either_is_read_through_both(pair: tuple[httpx.Client, h
     assert reader.get("/kb/classesof/table").json() == writer.get("/kb/classesof/table").json()
     assert query(reader, "?s ?p mug_r") == query(writer, "?s ?p mug_r")
     assert query(reader, "mug_r rdf:type ?c") == query(writer, "mug_r rdf:type ?c")
+    # a retraction through the reader reports what the writer removed
+    gone = reader.post("/kb/revise", headers=AUTH, json={"statements": ["?m rdf:type dbr:Mug"], "method": "retract"})
+    assert gone.status_code == 200, gone.text
+    assert gone.json()["removed"] == 2
+    assert query(writer, "?m rdf:type dbr:Mug") == []
 
 
 def test_the_writers_refusals_come_back_through_the_reader(pair: tuple[httpx.Client, httpx.Client]) -> None:

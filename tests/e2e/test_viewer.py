@@ -179,3 +179,33 @@ def test_inferred_edges_are_drawn_apart_from_asserted_ones(service: Service, ope
     page.uncheck("#show-inferred")
     expect(inferred).to_be_hidden()
     expect(asserted).to_be_visible()
+
+
+def test_the_query_box_starts_empty_with_an_example_as_placeholder(service: Service, open_viewer: Opener) -> None:
+    page, _ = open_viewer(service)
+    assert page.input_value("#patterns") == ""
+    assert "?" in (page.get_attribute("#patterns", "placeholder") or "")
+    page.click("#patterns")
+    page.keyboard.type("myself sees ?o")
+    assert page.input_value("#patterns") == "myself sees ?o"  # typed text is the query, nothing before it
+    page.press("#patterns", "Control+Enter")
+    page.wait_for_selector('#query-status[data-kind="ok"]')
+    assert ["cup_1"] in results(page)[1]
+
+
+def test_objects_get_the_icon_of_their_kind(service: Service, open_viewer: Opener) -> None:
+    service.revise(["book_9 rdf:type dbr:Book", "myself sees book_9", "apple_9 rdf:type dbr:Apple",
+                    "myself sees apple_9", "fork_9 rdf:type dbr:Fork", "myself sees fork_9",
+                    "thing_9 rdf:type Artifact", "myself sees thing_9"])
+    page, _ = open_viewer(service)
+    icons = [("cup_1", "cup"), ("book_9", "book"), ("apple_9", "fruit"), ("fork_9", "utensil"),
+             ("thing_9", "object"), ("table_1", "furniture"), ("person_alice", "person"), ("myself", "robot")]
+    for term, icon in icons:
+        expect(node(page, term).locator("use.node-icon")).to_have_attribute("href", f"#icon-{icon}")
+    expect(node(page, "thing_9")).to_have_class(re.compile(r"\bcat-object\b"))
+    # Every icon a node names is drawn, and the generic object is not one of the kinds.
+    for _, icon in icons:
+        assert page.locator(f"symbol#icon-{icon}").count() == 1, icon
+    generic = page.locator("symbol#icon-object").inner_html()
+    kinds = ["cup", "book", "fruit", "utensil", "bottle", "plant", "phone", "bin"]
+    assert all(page.locator(f"symbol#icon-{kind}").inner_html() != generic for kind in kinds)

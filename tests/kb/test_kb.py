@@ -493,6 +493,17 @@ def test_retracting_an_inferred_only_triple_has_no_effect(kb: KB) -> None:
     assert kb["alfred rdf:type Human"] == ["alfred rdf:type Human"]
 
 
+def test_a_retraction_returns_the_number_of_asserted_triples_it_removed(kb: KB) -> None:
+    kb += ["r1 rdf:type Robot", "r1 sees ball", "r1 sees bat", "r2 sees ball", "alfred rdf:type Human"]
+    assert kb.remove("?x sees ball") == 2  # one pattern, two triples
+    assert kb.remove(["r1 sees bat", "r1 sees nothing"]) == 1  # only what was asserted counts
+    assert kb.remove("alfred rdf:type Agent") == 0  # inferred only: stays, nothing removed
+    assert kb.revise(["?x rdf:type Robot"], {"method": "retract"}) == 1
+    assert kb.revise(["r3 sees ball"], {"method": "add"}) is None
+    kb += "r1 sees ball"
+    assert kb.remove("r1 sees ball", models=["all"]) == 1
+
+
 @pytest.mark.parametrize("method", ["add", "safe_add", "update", "safe_update", "revision", "ADD", "UPDATE"])
 def test_revise_adding_methods(kb: KB, method: str) -> None:
     kb += "cup hasColor red"
