@@ -10,6 +10,7 @@ from __future__ import annotations
 import threading
 import time
 from collections.abc import Callable, Iterator
+from http.server import BaseHTTPRequestHandler, ThreadingHTTPServer
 from typing import Any
 
 import pytest
@@ -17,6 +18,7 @@ import pytest
 from kb import KB, KbError
 from kb.deadline import QueryTimeout
 from kb.query import TooManyRows
+from kb.remote import RemoteKB
 from kb.sparqlregex import InvalidRegex
 
 GENEROUS = 30.0  # seconds; the unbounded queries below run for minutes
@@ -141,3 +143,47 @@ def test_a_write_is_not_held_back_past_the_budget() -> None:
 def test_a_budget_must_be_positive(kb: KB) -> None:
     with pytest.raises(KbError, match="positive number of seconds"):
         kb.sparql("ASK {}", timeout=0)
+
+
+class _EndlessStore(BaseHTTPRequestHandler):
+    """A SPARQL store whose answer never ends: one more row every 20 ms."""
+
+    def do_POST(self) -> None:
+        self.rfile.read(int(self.headers.get("content-length", 0)))
+        self.send_response(200)
+        self.send_header("content-type", "application/sparql-results+json")
+        self.end_headers()
+        row = b'{"x": {"type": "literal", "value": "again"}},'
+        try:
+            self.wfile.write(b'{"head": {"vars": ["x"]}, "results": {"bindings": [')
+            for _ in range(3000):  # a minute at most
+                self.wfile.write(row)
+                self.wfile.flush()
+                time.sleep(0.02)
+        except OSError:  # the reader hung up: what the test wants
+            return
+
+    def log_message(self, format: str, *args: Any) -> None:
+        pass
+
+
+@pytest.fixture
+def endless_store() -> Iterator[str]:
+    server = ThreadingHTTPServer(("127.0.0.1", 0), _EndlessStore)
+    server.daemon_threads = True
+    thread = threading.Thread(target=server.serve_forever)
+    thread.start()
+    try:
+        yield f"sparql+http://127.0.0.1:{server.server_address[1]}"
+    finally:
+        server.shutdown()
+        server.server_close()
+        thread.join()
+
+
+def test_a_reader_stops_reading_the_store_at_its_budget(endless_store: str) -> None:
+    with RemoteKB(endless_store) as reader:
+        error, took = timed(lambda: reader.sparql("SELECT ?x WHERE { ?x ?p ?o }", timeout=0.5))
+        assert isinstance(error, QueryTimeout), error
+        assert took < GENEROUS
+        assert isinstance(timed(lambda: reader.find(["?x isOn ?y"], timeout=0.5))[0], QueryTimeout)
