@@ -174,7 +174,7 @@ def _kb_command(args: argparse.Namespace) -> int:
     with _kb(args) as kb:
         command = args.kb_command
         if command == "query":
-            _print_json(kb.find(args.patterns, None, models))
+            _print_json(_find(kb, args.patterns, models))
         elif command == "add":
             kb.revise(args.statements, {"method": "update", "models": models})
             _say(f"add: {len(args.statements)} statement(s)")
@@ -187,6 +187,13 @@ def _kb_command(args: argparse.Namespace) -> int:
         else:
             _print_json(kb.lookup(args.text, models))
     return 0
+
+
+def _find(kb: KB | ServiceClient, patterns: list[str], models: list[str] | None) -> list[Any]:
+    if isinstance(kb, ServiceClient):  # the service applies its own limits
+        return kb.find(patterns, None, models)
+    limits = load_settings().limits  # in-process, the same limits as the service's settings
+    return kb.find(patterns, None, models, max_rows=limits.max_rows, timeout=limits.query_timeout)
 
 
 def _humans(args: argparse.Namespace) -> int:

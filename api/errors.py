@@ -21,7 +21,9 @@ from starlette.exceptions import HTTPException as StarletteHTTPException
 
 from dialogue.sessions import DialogueError
 from kb import KbError
+from kb.deadline import QueryTimeout
 from kb.endpoint import StoreUnavailable
+from kb.query import TooManyRows
 
 log = logging.getLogger("situated.api")
 
@@ -117,6 +119,17 @@ async def _store_unavailable(request: Request, exc: Exception) -> JSONResponse:
     return error_response(503, "store_unavailable", str(exc))
 
 
+async def _too_many_rows(request: Request, exc: Exception) -> JSONResponse:
+    assert isinstance(exc, TooManyRows)
+    return error_response(413, "too_many_rows", f"{exc} (the service's limit)", {"limit": exc.limit})
+
+
+async def _query_timeout(request: Request, exc: Exception) -> JSONResponse:
+    assert isinstance(exc, QueryTimeout)
+    # 503 as other SPARQL servers answer a cancelled query; the service itself stays available.
+    return error_response(503, "query_timeout", f"{exc} (the service's limit)", {"timeout": exc.seconds})
+
+
 async def _dialogue_error(request: Request, exc: Exception) -> JSONResponse:
     return error_response(400, "dialogue_error", str(exc))
 
@@ -136,5 +149,7 @@ def install_error_handlers(app: FastAPI) -> None:
     app.add_exception_handler(RequestValidationError, _validation_error)
     app.add_exception_handler(KbError, _kb_error)
     app.add_exception_handler(StoreUnavailable, _store_unavailable)
+    app.add_exception_handler(TooManyRows, _too_many_rows)
+    app.add_exception_handler(QueryTimeout, _query_timeout)
     app.add_exception_handler(DialogueError, _dialogue_error)
     app.add_exception_handler(Exception, _unexpected)

@@ -16,6 +16,7 @@ from rdflib.term import BNode, Node
 from api.errors import ApiError
 from api.kbtypes import AnyKB
 from api.negotiation import negotiate
+from api.settings import Limits
 from kb.sparql import InvalidSparql, UnsupportedUpdate
 
 RESULTS = {
@@ -50,13 +51,15 @@ def query_form(query: str) -> str:
         raise ApiError(400, "invalid_sparql", "invalid SPARQL query: it is nested too deeply") from None
 
 
-def answer(kb: AnyKB, query: str, accept: str | None, model: str | None) -> tuple[str, bytes]:
-    """Run a read-only query; returns (media type, body) in the format the client accepts."""
+def answer(kb: AnyKB, query: str, accept: str | None, model: str | None, limits: Limits) -> tuple[str, bytes]:
+    """Run a read-only query within the service's time budget and row cap; returns (media type,
+    body) in the format the client accepts."""
     offers = _FORMS[query_form(query)]
     media = negotiate(accept, list(offers))
+    timeout, max_rows = limits.query_timeout, limits.max_rows
     if offers[media] == "tsv":  # rdflib has no TSV results serialiser
-        return media, _tsv(kb.sparql(query, model))
-    _, body = kb.sparql_serialize(query, offers[media], model)
+        return media, _tsv(kb.sparql(query, model, timeout=timeout, max_rows=max_rows))
+    _, body = kb.sparql_serialize(query, offers[media], model, timeout=timeout, max_rows=max_rows)
     return media, body
 
 

@@ -27,6 +27,7 @@ from bench.oxigraph import OxigraphServer, OxigraphUnavailable, oxigraph_command
 from bench.progress import step
 from bench.worlds import QUERY, PerceptionWorld, QueryWorld
 from kb import KB
+from kb.deadline import Deadline
 from kb.endpoint import SparqlEndpoint
 from kb.mirror import SparqlMirror
 from kb.remote import RemoteKB
@@ -46,17 +47,18 @@ class CountingEndpoint(SparqlEndpoint):
         self.requests = 0
         self.update_bytes: list[int] = []
 
-    def select(self, query: str) -> list[dict[str, Node]]:
+    def select(self, query: str, deadline: Deadline | None = None) -> list[dict[str, Node]]:
         self.requests += 1
-        return super().select(query)
+        return super().select(query, deadline)
 
-    def ask(self, query: str) -> bool:
+    def ask(self, query: str, deadline: Deadline | None = None) -> bool:
         self.requests += 1
-        return super().ask(query)
+        return super().ask(query, deadline)
 
-    def raw(self, query: str, accept: str, default_graphs: list[str]) -> tuple[str, bytes]:
+    def raw(self, query: str, accept: str, default_graphs: list[str],
+            deadline: Deadline | None = None) -> tuple[str, bytes]:
         self.requests += 1
-        return super().raw(query, accept, default_graphs)
+        return super().raw(query, accept, default_graphs, deadline)
 
     def update(self, update: str) -> None:
         self.requests += 1

@@ -11,6 +11,9 @@ One keep-alive HTTP connection pool serves every thread; each call is one reques
 
 from __future__ import annotations
 
+import json
+from collections.abc import Callable
+from contextlib import closing
 from dataclasses import dataclass
 from typing import Any
 from urllib.parse import parse_qs, urljoin, urlsplit, urlunsplit
@@ -18,6 +21,7 @@ from urllib.parse import parse_qs, urljoin, urlsplit, urlunsplit
 import httpx
 from rdflib import BNode, Literal, URIRef
 
+from kb.deadline import Deadline, QueryTimeout
 from kb.errors import KbError
 from kb.layout import Layout, unskolem
 from kb.terms import Node
@@ -74,9 +78,9 @@ class SparqlEndpoint:
         if self._own_http:
             self._http.close()
 
-    def select(self, query: str) -> list[dict[str, Node]]:
+    def select(self, query: str, deadline: Deadline | None = None) -> list[dict[str, Node]]:
         """The rows of a SELECT query, as rdflib terms (unbound variables left out)."""
-        body = self._query(query, RESULTS_JSON).json()
+        body = json.loads(self._query(query, RESULTS_JSON, deadline=deadline)[1])
         # Large answers repeat a few terms many times (a graph name, a predicate, a class):
         # building each rdflib term once costs less than looking the JSON value up.
         seen: dict[tuple[str | None, ...], Node] = {}
@@ -92,36 +96,67 @@ class SparqlEndpoint:
             rows.append(out)
         return rows
 
-    def ask(self, query: str) -> bool:
-        return bool(self._query(query, RESULTS_JSON).json()["boolean"])
+    def ask(self, query: str, deadline: Deadline | None = None) -> bool:
+        return bool(json.loads(self._query(query, RESULTS_JSON, deadline=deadline)[1])["boolean"])
 
-    def raw(self, query: str, accept: str, default_graphs: list[str]) -> tuple[str, bytes]:
+    def raw(self, query: str, accept: str, default_graphs: list[str],
+            deadline: Deadline | None = None) -> tuple[str, bytes]:
         """Any query, answered in the format ``accept`` names, over the given default graphs
         (SPARQL Protocol ``default-graph-uri``); returns (content type, body)."""
-        response = self._query(query, accept, default_graphs)
-        return response.headers.get("content-type", accept), response.content
+        return self._query(query, accept, default_graphs, deadline)
 
     def update(self, update: str) -> None:
         """One update request: the store applies all of it or none of it."""
         self._send("POST", self.spec.update_url, content=update.encode(),
                    headers={"content-type": "application/sparql-update"})
 
-    def _query(self, query: str, accept: str, default_graphs: list[str] | None = None) -> httpx.Response:
+    def _query(self, query: str, accept: str, default_graphs: list[str] | None = None,
+               deadline: Deadline | None = None) -> tuple[str, bytes]:
+        """The answer's content type and body; with a deadline, the request and the reading of the answer stop
+        there (``QueryTimeout``; the store itself may go on with the query: SPARQL has no way
+        to cancel one)."""
         form: dict[str, str | list[str]] = {"query": query}
         if default_graphs:
             form["default-graph-uri"] = default_graphs
-        return self._send("POST", self.spec.query_url, data=form, headers={"accept": accept})
+        if deadline is None:
+            response = self._send("POST", self.spec.query_url, data=form, headers={"accept": accept})
+            return response.headers.get("content-type", accept), response.content
+        request = self._http.build_request("POST", self.spec.query_url, data=form, headers={"accept": accept},
+                                           timeout=deadline.remaining())
+        try:
+            response = self._checked(self.spec.query_url, lambda: self._http.send(request, stream=True))
+            with closing(response):
+                if response.is_error:
+                    response.read()
+                    self._refuse(self.spec.query_url, response)
+                chunks = []
+                for chunk in response.iter_bytes():
+                    deadline.check()
+                    chunks.append(chunk)
+                return response.headers.get("content-type", accept), b"".join(chunks)
+        except httpx.TimeoutException:
+            raise QueryTimeout(deadline.seconds) from None
+        except httpx.HTTPError as exc:
+            raise StoreUnavailable(f"the SPARQL store at {self.spec.query_url} cannot be reached: "
+                                   f"{exc}") from exc
 
-    def _send(self, method: str, url: str, **kwargs: Any) -> httpx.Response:
+    def _checked(self, url: str, send: Callable[[], httpx.Response]) -> httpx.Response:
         if self._http.is_closed:  # httpx would raise a bare RuntimeError
             raise StoreUnavailable(f"the connection to the SPARQL store at {url} was closed")
+        return send()
+
+    @staticmethod
+    def _refuse(url: str, response: httpx.Response) -> None:
+        raise StoreUnavailable(f"the SPARQL store at {url} answered {response.status_code}: "
+                               f"{response.text[:300]}")
+
+    def _send(self, method: str, url: str, **kwargs: Any) -> httpx.Response:
         try:
-            response = self._http.request(method, url, **kwargs)
+            response = self._checked(url, lambda: self._http.request(method, url, **kwargs))
         except httpx.HTTPError as exc:
             raise StoreUnavailable(f"the SPARQL store at {url} cannot be reached: {exc}") from exc
         if response.is_error:
-            raise StoreUnavailable(f"the SPARQL store at {url} answered {response.status_code}: "
-                                   f"{response.text[:300]}")
+            self._refuse(url, response)
         return response
 
 

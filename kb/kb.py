@@ -32,6 +32,7 @@ from kb.arguments import (
     parse_term,
     render,
 )
+from kb.deadline import Deadline, TimedIndex, holding
 from kb.errors import KbError
 from kb.events import Callback, event_id
 from kb.query import Row, TooManyRows, holds, rows
@@ -117,22 +118,26 @@ class KB(KnowledgeCoreSugar):
     # --- queries --------------------------------------------------------------------------
 
     def find(self, patterns: str | Sequence[str], vars: Sequence[str] | None = None,
-             models: Models_ = None, *, max_rows: int | None = None) -> list[Any]:
+             models: Models_ = None, *, max_rows: int | None = None,
+             timeout: float | None = None) -> list[Any]:
         """Rows of bindings for a conjunction of patterns; for ground patterns, the patterns
         themselves if they all hold, else ``[]`` (kb-compat §3.2). With ``max_rows``, a query
-        with more rows raises ``kb.query.TooManyRows`` as soon as it finds one too many."""
+        with more rows raises ``kb.query.TooManyRows`` as soon as it finds one too many; with
+        ``timeout`` (seconds, waiting for the KB included), ``kb.deadline.QueryTimeout``."""
         texts = tuple(as_list(patterns))
         if not texts:
             raise KbError("find needs at least one pattern")
         query = compiled(texts, vars)
+        deadline = Deadline.after(timeout)
         self._expire_due()
-        with self._lock:
+        with holding(self._lock, deadline):
             targets = self._read_models(models)
+            indexes = [m.closure if deadline is None else TimedIndex(m.closure, deadline) for m in targets]
             if query.ground:
-                return list(texts) if any(holds(m.closure, query) for m in targets) else []
+                return list(texts) if any(holds(index, query) for index in indexes) else []
             found: set[Row] = set()
-            for model in targets:
-                found |= rows(model.closure, query, max_rows)
+            for index in indexes:
+                found |= rows(index, query, max_rows)
                 if max_rows is not None and len(found) > max_rows:
                     raise TooManyRows(max_rows)
             return render(query, found)
@@ -201,17 +206,26 @@ class KB(KnowledgeCoreSugar):
                 found.update(describe.classes_of(model.closure, model.asserted, node, direct))
             return sorted(found)
 
-    def sparql(self, query: str, model: str | Sequence[str] | None = None) -> dict[str, Any]:
-        """Read-only SPARQL 1.1 on one model: W3C JSON results plus the ``query`` (§3.7)."""
-        with self._lock:
-            return to_json(execute(self._one_model(model).closure, query), query)
+    def sparql(self, query: str, model: str | Sequence[str] | None = None, *,
+               timeout: float | None = None, max_rows: int | None = None) -> dict[str, Any]:
+        """Read-only SPARQL 1.1 on one model: W3C JSON results plus the ``query`` (§3.7).
+        ``timeout`` (seconds, waiting for the KB included) stops it with
+        ``kb.deadline.QueryTimeout``; more than ``max_rows`` rows (or triples of a graph) is
+        ``kb.query.TooManyRows``."""
+        deadline = Deadline.after(timeout)
+        with holding(self._lock, deadline):
+            result = execute(self._one_model(model).closure, query, deadline, max_rows)
+        return to_json(result, query)  # the result no longer reads the KB: no lock needed
 
-    def sparql_serialize(self, query: str, fmt: str, model: str | None = None) -> tuple[str, bytes]:
+    def sparql_serialize(self, query: str, fmt: str, model: str | None = None, *,
+                         timeout: float | None = None, max_rows: int | None = None) -> tuple[str, bytes]:
         """Run a read-only query and serialise its result (``json``, ``xml``, ``csv``, ``tsv``
-        for SELECT/ASK; RDF formats for CONSTRUCT/DESCRIBE); returns (result type, bytes)."""
-        with self._lock:
-            result = execute(self._one_model(model).closure, query)
-            return result.type, result.serialize(format=fmt, encoding="utf-8") or b""
+        for SELECT/ASK; RDF formats for CONSTRUCT/DESCRIBE); returns (result type, bytes).
+        ``timeout`` and ``max_rows`` as for ``sparql``."""
+        deadline = Deadline.after(timeout)
+        with holding(self._lock, deadline):
+            result = execute(self._one_model(model).closure, query, deadline, max_rows)
+        return result.type, result.serialize(format=fmt, encoding="utf-8") or b""
 
     def sparql_update(self, update: str, models: Models_ = None) -> None:
         """Apply SPARQL INSERT DATA / DELETE DATA as ONE batch (no functional replacement);

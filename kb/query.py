@@ -10,14 +10,24 @@ from __future__ import annotations
 
 from collections.abc import Iterator, Sequence
 from dataclasses import dataclass
+from typing import Protocol
 
 from rdflib import BNode, Variable
 
 from kb.errors import KbError
-from kb.index import TripleIndex
 from kb.terms import Node, Pattern, is_anonymous
 
 Row = tuple[Node, ...]
+
+
+class JoinIndex(Protocol):
+    """What the join reads: a ``TripleIndex``, or a ``kb.deadline.TimedIndex`` over one."""
+
+    def canonical(self, term: Node) -> Node: ...
+
+    def count(self, s: Node | None, p: Node | None, o: Node | None) -> int: ...
+
+    def scan(self, s: Node | None, p: Node | None, o: Node | None) -> Iterator[tuple[Node, Node, Node]]: ...
 
 
 @dataclass(frozen=True)
@@ -62,7 +72,7 @@ _Slot = tuple[Node | None, int]
 _Compiled = tuple[_Slot, _Slot, _Slot]
 
 
-def _compile(index: TripleIndex, patterns: Sequence[Pattern], order: Sequence[Variable]) -> list[_Compiled]:
+def _compile(index: JoinIndex, patterns: Sequence[Pattern], order: Sequence[Variable]) -> list[_Compiled]:
     slots = {v: i for i, v in enumerate(order)}
     compiled: list[_Compiled] = []
     for pattern in patterns:
@@ -85,7 +95,7 @@ def _variables(patterns: Sequence[Pattern]) -> list[Variable]:
     return seen
 
 
-def solve(index: TripleIndex, patterns: Sequence[Pattern]) -> Iterator[dict[Variable, Node]]:
+def solve(index: JoinIndex, patterns: Sequence[Pattern]) -> Iterator[dict[Variable, Node]]:
     """Every binding of the variables that satisfies all patterns (with repetitions)."""
     order = _variables(patterns)
     for values in _solutions(index, patterns, order):
@@ -93,14 +103,14 @@ def solve(index: TripleIndex, patterns: Sequence[Pattern]) -> Iterator[dict[Vari
 
 
 def _solutions(
-    index: TripleIndex, patterns: Sequence[Pattern], order: Sequence[Variable]
+    index: JoinIndex, patterns: Sequence[Pattern], order: Sequence[Variable]
 ) -> Iterator[list[Node]]:
     binding: list[Node | None] = [None] * len(order)
     yield from _solve(index, _compile(index, patterns, order), binding)  # type: ignore[misc]
 
 
 def _solve(
-    index: TripleIndex, patterns: list[_Compiled], binding: list[Node | None]
+    index: JoinIndex, patterns: list[_Compiled], binding: list[Node | None]
 ) -> Iterator[list[Node | None]]:
     if not patterns:
         yield binding
@@ -151,7 +161,7 @@ class TooManyRows(KbError):
         self.limit = limit
 
 
-def rows(index: TripleIndex, query: Query, limit: int | None = None) -> set[Row]:
+def rows(index: JoinIndex, query: Query, limit: int | None = None) -> set[Row]:
     """Distinct projected rows (K1); rows holding a blank node are dropped (K11). Past ``limit``
     distinct rows, ``TooManyRows`` is raised without evaluating the rest."""
     if len(query.patterns) == 1:
@@ -168,7 +178,7 @@ def rows(index: TripleIndex, query: Query, limit: int | None = None) -> set[Row]
     return out
 
 
-def _one_pattern_rows(index: TripleIndex, query: Query, limit: int | None) -> set[Row]:
+def _one_pattern_rows(index: JoinIndex, query: Query, limit: int | None) -> set[Row]:
     # The most frequent query (`myself sees ?x`) needs no join: scan once, project each triple.
     pattern = query.patterns[0]
     constant = [None if isinstance(t, Variable) else index.canonical(t) for t in pattern]
@@ -187,7 +197,7 @@ def _one_pattern_rows(index: TripleIndex, query: Query, limit: int | None) -> se
     return out
 
 
-def holds(index: TripleIndex, query: Query) -> bool:
+def holds(index: JoinIndex, query: Query) -> bool:
     """True when the patterns have at least one solution."""
     order = _variables(query.patterns)
     return next(_solutions(index, query.patterns, order), None) is not None
@@ -208,7 +218,7 @@ def match_triple(
     return None if any(isinstance(t, BNode) for t in row) else row
 
 
-def holds_row(index: TripleIndex, pattern: Pattern, projection: Sequence[Variable], row: Row) -> bool:
+def holds_row(index: JoinIndex, pattern: Pattern, projection: Sequence[Variable], row: Row) -> bool:
     """True if some triple of the index still gives ``row`` for ``pattern``."""
     values = dict(zip(projection, row, strict=True))
     bound = tuple(values.get(t, t) if isinstance(t, Variable) else t for t in pattern)

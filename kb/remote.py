@@ -34,6 +34,7 @@ from pathlib import Path
 from typing import Any
 
 from kb.arguments import Models_, compiled, model_names, optional_term, parse_term, render
+from kb.deadline import Deadline
 from kb.endpoint import SparqlEndpoint
 from kb.errors import KbError
 from kb.events import Callback, event_id
@@ -129,21 +130,24 @@ class RemoteKB(KnowledgeCoreSugar):
     # --- queries --------------------------------------------------------------------------
 
     def find(self, patterns: str | Sequence[str], vars: Sequence[str] | None = None,
-             models: Models_ = None, *, max_rows: int | None = None) -> list[Any]:
+             models: Models_ = None, *, max_rows: int | None = None,
+             timeout: float | None = None) -> list[Any]:
         """Rows of bindings for a conjunction of patterns; for ground patterns, the patterns
         themselves if they all hold, else ``[]`` (kb-compat §3.2). With ``max_rows``, a query
-        with more rows raises ``kb.query.TooManyRows``. One request per model."""
+        with more rows raises ``kb.query.TooManyRows``; past ``timeout`` seconds,
+        ``kb.deadline.QueryTimeout``. One request per model."""
         texts = tuple(as_list(patterns))
         if not texts:
             raise KbError("find needs at least one pattern")
         query = compiled(texts, vars)
+        deadline = Deadline.after(timeout)
         targets = self._read_models(models)
         if query.ground:
-            return list(texts) if any(self._queries.holds(query, g) for g in targets) else []
+            return list(texts) if any(self._queries.holds(query, g, deadline) for g in targets) else []
         found: set[Row] = set()
         limit = None if max_rows is None else max_rows + 1
         for graphs in targets:
-            found |= self._queries.rows(query, graphs, limit)
+            found |= self._queries.rows(query, graphs, limit, deadline)
             if max_rows is not None and len(found) > max_rows:
                 raise TooManyRows(max_rows)
         return render(query, found)
@@ -181,14 +185,18 @@ class RemoteKB(KnowledgeCoreSugar):
         node = parse_term(term)
         return self._describer.classes_of(node, direct, self._read_models(models))
 
-    def sparql(self, query: str, model: str | Sequence[str] | None = None) -> dict[str, Any]:
-        """Read-only SPARQL 1.1 on one model: W3C JSON results plus the ``query`` (§3.7)."""
-        return answer(self._endpoint, query, self._one_model(model))
+    def sparql(self, query: str, model: str | Sequence[str] | None = None, *,
+               timeout: float | None = None, max_rows: int | None = None) -> dict[str, Any]:
+        """Read-only SPARQL 1.1 on one model: W3C JSON results plus the ``query`` (§3.7).
+        ``timeout`` and ``max_rows`` as for ``KB.sparql``; the store is asked for the whole
+        answer, read until the deadline, and its rows are counted once read."""
+        return answer(self._endpoint, query, self._one_model(model), Deadline.after(timeout), max_rows)
 
-    def sparql_serialize(self, query: str, fmt: str, model: str | None = None) -> tuple[str, bytes]:
+    def sparql_serialize(self, query: str, fmt: str, model: str | None = None, *,
+                         timeout: float | None = None, max_rows: int | None = None) -> tuple[str, bytes]:
         """Run a read-only query and serialise its result (``json``, ``xml``, ``csv``, ``tsv``
         for SELECT/ASK; RDF formats for CONSTRUCT/DESCRIBE); returns (result type, bytes)."""
-        result = run(self._endpoint, query, self._one_model(model))
+        result = run(self._endpoint, query, self._one_model(model), Deadline.after(timeout), max_rows)
         return result.type, result.serialize(format=fmt, encoding="utf-8") or b""
 
     # --- writes (checked here, made by the writer) ----------------------------------------

@@ -15,6 +15,7 @@ from dataclasses import dataclass
 from rdflib import Literal, URIRef, Variable
 
 from kb import sparqltext as text
+from kb.deadline import Deadline
 from kb.endpoint import SparqlEndpoint
 from kb.errors import KbError
 from kb.layout import GENID, MODEL, REVISION, Layout
@@ -114,15 +115,16 @@ class StoreQueries:
                 models.add(str(row["m"]))
         return Meta(revision, model_order(models))
 
-    def rows(self, query: Query, graphs: Graphs, limit: int | None = None) -> set[Row]:
+    def rows(self, query: Query, graphs: Graphs, limit: int | None = None,
+             deadline: Deadline | None = None) -> set[Row]:
         if not query.projection:  # a ground query has one empty row when it holds (kb.query.rows)
-            return {()} if self.holds(query, graphs) else set()
-        found = self.endpoint.select(select_text(query, graphs, limit))
+            return {()} if self.holds(query, graphs, deadline) else set()
+        found = self.endpoint.select(select_text(query, graphs, limit), deadline)
         names = [str(v) for v in query.projection]
         return {tuple(row[name] for name in names) for row in found}
 
-    def holds(self, query: Query, graphs: Graphs) -> bool:
-        return self.endpoint.ask(ask_text(query, graphs))
+    def holds(self, query: Query, graphs: Graphs, deadline: Deadline | None = None) -> bool:
+        return self.endpoint.ask(ask_text(query, graphs), deadline)
 
     def size(self, graphs: Graphs, inferred: bool) -> int:
         rows = self.endpoint.select(count_text(graphs, inferred))

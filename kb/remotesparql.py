@@ -17,10 +17,12 @@ from rdflib import Graph, URIRef
 from rdflib.query import Result
 
 from kb import sparqltext as text
+from kb.deadline import Deadline
 from kb.endpoint import RESULTS_JSON, SparqlEndpoint
 from kb.layout import unskolem
 from kb.remotequery import Graphs
 from kb.sparql import check_query, to_json
+from kb.sparqlbudget import check_size
 from kb.terms import ORO, PREFIXES
 
 N_TRIPLES = "application/n-triples"
@@ -32,26 +34,31 @@ def full_text(query: str, declared: frozenset[str]) -> str:
     return f"{text.prologue(URIRef(ORO), missing)}\n{query}"
 
 
-def run(endpoint: SparqlEndpoint, query: str, graphs: Graphs) -> Result:
-    """One request: the query's result, as rdflib would have given it in-process."""
+def run(endpoint: SparqlEndpoint, query: str, graphs: Graphs, deadline: Deadline | None = None,
+        max_rows: int | None = None) -> Result:
+    """One request: the query's result, as rdflib would have given it in-process. The deadline
+    bounds the request and the reading of the answer; the row cap is checked on the answer."""
     checked = check_query(query)
     default_graphs = [str(g) for g in graphs.closure()]
     body = full_text(query, checked.declared)
     if checked.form in ("SELECT", "ASK"):
-        _, answer = endpoint.raw(body, RESULTS_JSON, default_graphs)
-        return _restore_bindings(Result.parse(io.BytesIO(answer), format="json"))
-    _, answer = endpoint.raw(body, N_TRIPLES, default_graphs)
-    parsed = Graph().parse(data=answer, format="nt")
-    graph = Graph()
-    for s, p, o in parsed:
-        graph.add((_restore(s), p, _restore(o)))
-    result = Result(checked.form)
-    result.graph = graph
+        _, answer = endpoint.raw(body, RESULTS_JSON, default_graphs, deadline)
+        result = _restore_bindings(Result.parse(io.BytesIO(answer), format="json"))
+    else:
+        _, answer = endpoint.raw(body, N_TRIPLES, default_graphs, deadline)
+        parsed = Graph().parse(data=answer, format="nt")
+        graph = Graph()
+        for s, p, o in parsed:
+            graph.add((_restore(s), p, _restore(o)))
+        result = Result(checked.form)
+        result.graph = graph
+    check_size(result, max_rows)
     return result
 
 
-def answer(endpoint: SparqlEndpoint, query: str, graphs: Graphs) -> dict[str, Any]:
-    return to_json(run(endpoint, query, graphs), query)
+def answer(endpoint: SparqlEndpoint, query: str, graphs: Graphs, deadline: Deadline | None = None,
+           max_rows: int | None = None) -> dict[str, Any]:
+    return to_json(run(endpoint, query, graphs, deadline, max_rows), query)
 
 
 def _restore(node: Any) -> Any:

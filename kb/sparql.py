@@ -21,8 +21,10 @@ from rdflib.query import Result
 from rdflib.store import Store
 from rdflib.term import Node as RdfNode
 
+from kb.deadline import Deadline, TimedIndex
 from kb.errors import KbError
 from kb.index import TripleIndex
+from kb.sparqlbudget import bound, check_size
 from kb.terms import ORO, PREFIXES, Node, Triple
 
 _GRAPH_ID = URIRef(ORO + "sparql")
@@ -39,7 +41,7 @@ class IndexStore(Store):
     graph_aware = False
     transaction_aware = False
 
-    def __init__(self, index: TripleIndex) -> None:
+    def __init__(self, index: TripleIndex | TimedIndex) -> None:
         super().__init__()
         self._index = index
         self._ns: dict[str, URIRef] = {}
@@ -187,13 +189,18 @@ def check_query(query: str) -> CheckedQuery:
     return CheckedQuery(prepared, _FORMS[prepared.algebra.name], declared)
 
 
-def execute(index: TripleIndex, query: str) -> Result:
-    """Run a read-only query; a SPARQL Update or a syntax error is a KbError."""
+def execute(index: TripleIndex, query: str, deadline: Deadline | None = None,
+            max_rows: int | None = None) -> Result:
+    """Run a read-only query; a SPARQL Update or a syntax error is a KbError. Past the
+    ``deadline`` it stops with ``kb.deadline.QueryTimeout``; a SELECT with more than
+    ``max_rows`` rows (a graph with more triples) is ``kb.query.TooManyRows``."""
     prepared = check_query(query).prepared
-    graph = Graph(store=IndexStore(index), identifier=_GRAPH_ID)
-    result = graph.query(prepared)
+    bound(prepared, deadline, max_rows)
+    store = IndexStore(index if deadline is None else TimedIndex(index, deadline))
+    result = Graph(store=store, identifier=_GRAPH_ID).query(prepared)
     if result.type == "SELECT":
         result.bindings  # noqa: B018 - materialise while the caller holds the KB lock
+    check_size(result, max_rows)
     return result
 
 

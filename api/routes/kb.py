@@ -14,7 +14,6 @@ from api.kbtypes import AnyKB
 from api.limits import check_count
 from api.negotiation import negotiate
 from api.settings import Settings
-from kb.query import TooManyRows
 
 router = APIRouter(prefix="/kb", tags=["kb"])
 
@@ -81,11 +80,9 @@ async def query(body: QueryRequest, kb: KbDep, settings: SettingsDep) -> list[An
 
 async def _find(kb: AnyKB, settings: Settings, patterns: list[str], vars: list[str] | None,
                 models: list[str] | None) -> list[Any]:
-    limit = settings.limits.max_rows
-    try:
-        return await run_in_threadpool(lambda: kb.find(patterns, vars, models, max_rows=limit))
-    except TooManyRows as exc:
-        raise ApiError(413, "too_many_rows", f"{exc} (the service's limit)", {"limit": limit}) from exc
+    limits = settings.limits
+    return await run_in_threadpool(lambda: kb.find(patterns, vars, models, max_rows=limits.max_rows,
+                                                   timeout=limits.query_timeout))
 
 
 @router.get("/query", dependencies=[ReadAccess])

@@ -29,8 +29,9 @@ def _reject_datasets(params: dict[str, list[str]]) -> None:
                        f"{', '.join(used)} is not supported: each KB model is one dataset; use ?model=")
 
 
-async def _query(kb: AnyKB, text: str, request: Request, model: str | None) -> Response:
-    media, body = await run_in_threadpool(sparql.answer, kb, text, request.headers.get("accept"), model)
+async def _query(kb: AnyKB, settings: Settings, text: str, request: Request, model: str | None) -> Response:
+    media, body = await run_in_threadpool(sparql.answer, kb, text, request.headers.get("accept"), model,
+                                          settings.limits)
     return Response(body, media_type=media)
 
 
@@ -44,12 +45,13 @@ async def _update(kb: AnyKB, settings: Settings, text: str, token: str | None, m
 
 
 @router.get("/sparql", dependencies=[ReadAccess], response_class=Response)
-async def sparql_get(request: Request, kb: KbDep, query: str | None = None, model: Model = None) -> Response:
+async def sparql_get(request: Request, kb: KbDep, settings: SettingsDep, query: str | None = None,
+                     model: Model = None) -> Response:
     """A read-only query in ``?query=``; the result format follows the Accept header."""
     _reject_datasets(parse_qs(request.url.query))
     if not query:
         raise ApiError(400, "missing_query", "give the SPARQL query in the 'query' parameter")
-    return await _query(kb, query, request, model)
+    return await _query(kb, settings, query, request, model)
 
 
 _TEXT = {"schema": {"type": "string"}}
@@ -71,7 +73,7 @@ async def sparql_post(request: Request, kb: KbDep, settings: SettingsDep, creden
     except UnicodeDecodeError as exc:
         raise ApiError(400, "invalid_encoding", "the request body must be UTF-8") from exc
     if media == "application/sparql-query":
-        return await _query(kb, text, request, model)
+        return await _query(kb, settings, text, request, model)
     if media == "application/sparql-update":
         return await _update(kb, settings, text, token, model)
     if media != "application/x-www-form-urlencoded":
@@ -84,5 +86,5 @@ async def sparql_post(request: Request, kb: KbDep, settings: SettingsDep, creden
     if len(queries) + len(updates) != 1:
         raise ApiError(400, "missing_query", "give exactly one 'query' or one 'update' form field")
     if queries:
-        return await _query(kb, queries[0], request, model)
+        return await _query(kb, settings, queries[0], request, model)
     return await _update(kb, settings, updates[0], token, model)

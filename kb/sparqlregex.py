@@ -1,0 +1,79 @@
+"""SPARQL's REGEX and REPLACE under a query's deadline.
+
+rdflib evaluates them with Python's ``re``, whose backtracking is exponential on patterns such
+as ``(a|aa)+$`` and cannot be interrupted: one FILTER holds the GIL and the KB lock for minutes.
+Refusing "dangerous" patterns cannot be done reliably (nested quantifiers are only one way to
+backtrack exponentially; overlapping alternatives and backreferences are others), and bounding
+the text does not help (40 characters suffice). So the functions are evaluated here with the
+``regex`` package instead: the same syntax as ``re``, a ``timeout`` that stops a match in the
+middle, and the GIL released while it matches. The timeout is what is left of the query's
+budget, so a regex cannot outlive the query.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from functools import reduce
+from operator import or_
+from types import MethodType
+from typing import Any
+
+import regex
+from rdflib import Literal
+from rdflib.plugins.sparql.operators import string
+from rdflib.plugins.sparql.parserutils import Expr
+
+from kb.deadline import Deadline, QueryTimeout
+from kb.errors import KbError
+
+# The XPath flags SPARQL defines that rdflib maps (others are ignored, as rdflib does).
+_FLAGS = {"i": regex.IGNORECASE, "s": regex.DOTALL, "m": regex.MULTILINE}
+# SPARQL writes group references in a replacement as $1; Python as \1.
+_GROUP_REF = regex.compile(r"\$([0-9]*)")
+
+
+class InvalidRegex(KbError):
+    """A REGEX or REPLACE pattern that is not a valid regular expression."""
+
+
+def _flags(flags: Any) -> int:
+    return reduce(or_, (_FLAGS.get(f, 0) for f in str(flags)), 0) if flags else 0
+
+
+def _run(deadline: Deadline, pattern: str, call: Callable[..., Any], *args: Any) -> Any:
+    try:
+        return call(*args, timeout=deadline.remaining(), concurrent=True)
+    except TimeoutError:
+        raise QueryTimeout(deadline.seconds) from None
+    except regex.error as exc:
+        raise InvalidRegex(f"invalid regular expression {pattern!r} in the query: {exc}") from None
+
+
+def _regex(deadline: Deadline) -> Callable[[Expr, Any], Literal]:
+    def evaluate(expr: Expr, ctx: Any) -> Literal:
+        text, pattern = string(expr.text), str(string(expr.pattern))
+        found = _run(deadline, pattern, regex.search, pattern, str(text), _flags(expr.flags))
+        return Literal(found is not None)
+
+    return evaluate
+
+
+def _replace(deadline: Deadline) -> Callable[[Expr, Any], Literal]:
+    def evaluate(expr: Expr, ctx: Any) -> Literal:
+        text, pattern = string(expr.arg), str(string(expr.pattern))
+        replacement = _GROUP_REF.sub(r"\\\1", str(string(expr.replacement)))
+        replaced = _run(deadline, pattern, regex.sub, pattern, replacement, str(text), 0, _flags(expr.flags))
+        return Literal(replaced, datatype=text.datatype, lang=text.language)
+
+    return evaluate
+
+
+_EVALUATORS = {"Builtin_REGEX": _regex, "Builtin_REPLACE": _replace}
+
+
+def bound_regex(node: Any, deadline: Deadline) -> None:
+    """Make a REGEX or REPLACE expression node of a parsed query evaluate under ``deadline``
+    (rdflib binds each expression node to its function when it parses the query)."""
+    make = _EVALUATORS.get(getattr(node, "name", ""))
+    if make is not None and isinstance(node, Expr):
+        node._evalfn = MethodType(make(deadline), node)
