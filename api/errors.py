@@ -1,7 +1,8 @@
 """The one JSON error shape of every route: ``{"status", "code", "message", "details"}``.
 
 Every failure goes through here: HTTP errors raised by the framework (404, 405), request
-validation (422), ``KbError`` and ``DialogueError`` (400), the service's own ``ApiError`` (auth,
+validation (422), ``KbError`` and ``DialogueError`` (400), a full or failing data directory
+(507 ``storage_full``, 503 ``storage_unavailable``), the service's own ``ApiError`` (auth,
 limits) and unexpected errors (500 with a generic message; the traceback goes to the log only).
 """
 
@@ -22,6 +23,7 @@ from starlette.exceptions import HTTPException as StarletteHTTPException
 from dialogue.sessions import DialogueError
 from kb import KbError
 from kb.endpoint import StoreUnavailable
+from kb.errors import StorageError, StorageFull
 
 log = logging.getLogger("situated.api")
 
@@ -38,6 +40,7 @@ _CODES = {
     429: "too_many_requests",
     500: "internal_error",
     503: "unavailable",
+    507: "storage_full",
 }
 
 
@@ -117,6 +120,14 @@ async def _store_unavailable(request: Request, exc: Exception) -> JSONResponse:
     return error_response(503, "store_unavailable", str(exc))
 
 
+async def _storage_full(request: Request, exc: Exception) -> JSONResponse:
+    return error_response(507, "storage_full", str(exc))
+
+
+async def _storage_error(request: Request, exc: Exception) -> JSONResponse:
+    return error_response(503, "storage_unavailable", str(exc))
+
+
 async def _dialogue_error(request: Request, exc: Exception) -> JSONResponse:
     return error_response(400, "dialogue_error", str(exc))
 
@@ -136,5 +147,7 @@ def install_error_handlers(app: FastAPI) -> None:
     app.add_exception_handler(RequestValidationError, _validation_error)
     app.add_exception_handler(KbError, _kb_error)
     app.add_exception_handler(StoreUnavailable, _store_unavailable)
+    app.add_exception_handler(StorageFull, _storage_full)  # before KbError's 400: more specific
+    app.add_exception_handler(StorageError, _storage_error)
     app.add_exception_handler(DialogueError, _dialogue_error)
     app.add_exception_handler(Exception, _unexpected)

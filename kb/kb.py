@@ -331,9 +331,10 @@ class KB(KnowledgeCoreSugar):
     def on_active_concept(self, callback: ActiveListener) -> None:
         self._writer.on_active_concept(callback)
 
-    def on_commit(self, listener: CommitListener) -> Callable[[], None]:
-        """Called under the lock with every commit (for journals and mirrors)."""
-        return self._writer.on_commit(listener)
+    def on_commit(self, listener: CommitListener, durable: bool = False) -> Callable[[], None]:
+        """Called under the lock with every commit (for journals and mirrors); a ``durable``
+        listener may refuse the commit by raising, which undoes it (see ``Writer.on_commit``)."""
+        return self._writer.on_commit(listener, durable)
 
     @property
     def writer(self) -> Writer:
