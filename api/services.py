@@ -169,6 +169,7 @@ def start_services(settings: Settings, kb: KB | None = None, model: ChatModel | 
     if journal is not None:
         services.components.register("storage", journal.storage_status)
         services.components.register("compaction", journal.compaction.get)
+    services.components.register("expiry", the_kb.writer.expiry_status.get)
     return services
 
 

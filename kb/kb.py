@@ -16,6 +16,7 @@ from __future__ import annotations
 import threading
 import time
 from collections.abc import Callable, Sequence
+from contextlib import suppress
 from pathlib import Path
 from typing import Any
 
@@ -32,7 +33,7 @@ from kb.arguments import (
     parse_term,
     render,
 )
-from kb.errors import KbError
+from kb.errors import KbError, StorageError
 from kb.events import Callback, event_id
 from kb.query import Row, TooManyRows, holds, rows
 from kb.rdfio import FORMATS, default_ontology, parse_data, parse_location, serialize
@@ -348,7 +349,10 @@ class KB(KnowledgeCoreSugar):
     def _expire_due(self) -> None:
         due = self._writer.expiries.next_due()
         if due is not None and due <= self._clock():
-            self._writer.expire()
+            # A read still answers on a full disk: the statements stay until their retraction
+            # is durable; the expiry thread retries it and reports the failure in /health.
+            with suppress(StorageError):
+                self._writer.expire()
 
     # --- housekeeping ---------------------------------------------------------------------
 

@@ -18,10 +18,11 @@ from typing import Any
 from rdflib import URIRef
 from rdflib.namespace import OWL, RDF
 
-from kb.errors import KbError
+from kb.errors import KbError, StorageFull
 from kb.events import Firing, Subscriptions
 from kb.lifespan import Expiries
 from kb.query import Query, Row, holds_row, rows
+from kb.status import StatusCell
 from kb.store import ALL_MODELS, Delta, Models, ModelsState
 from kb.terms import ORO, Triple, shorten
 
@@ -29,6 +30,7 @@ log = logging.getLogger(__name__)
 
 ACTIVE_CONCEPT = URIRef(ORO + "ActiveConcept")
 ACTIVE_CONCEPT_LIFESPAN = 5.0
+MAX_EXPIRY_BACKOFF = 30.0  # seconds between attempts to retract expired statements that keep failing
 
 Render = Callable[[Query, set[Row]], list[dict[str, Any]]]
 
@@ -89,6 +91,7 @@ class Writer:
         self._reaper: threading.Thread | None = None
         self._wake = threading.Event()
         self._closed = threading.Event()
+        self.expiry_status = StatusCell()  # the lifespan reaper's, for /health
 
     # --- listeners -----------------------------------------------------------------------
 
@@ -359,9 +362,16 @@ class Writer:
             if not self._closed.is_set():
                 try:
                     self.expire()
-                except (KbError, OSError):
-                    log.exception("expired statements could not be retracted; retrying in 1 s")
-                    self._closed.wait(1.0)
+                except (KbError, OSError) as exc:  # e.g. a full disk: the statements stay due
+                    delay = min(MAX_EXPIRY_BACKOFF, 2.0 ** self.expiry_status.get().failures)
+                    code = "storage_full" if isinstance(exc, StorageFull) else "expiry_failed"
+                    self.expiry_status.failed(code, f"expired statements could not be retracted "
+                                                    f"({exc}); retrying in {delay:g} s", retry_in=delay)
+                    log.warning("expired statements could not be retracted; retrying in %g s: %s", delay, exc)
+                    self._closed.wait(delay)
+                else:
+                    if not self.expiry_status.get().ok:
+                        self.expiry_status.succeeded()
 
     def close(self) -> None:
         self._closed.set()

@@ -489,3 +489,27 @@ def test_a_clear_refused_after_the_journal_took_it_is_undone_in_the_journal_too(
 
 def _nt(kb: KB, model: str | None = None) -> set[bytes]:
     return set(kb.export("nt", model=model).splitlines())  # the order of export is not fixed
+
+
+def test_the_expiry_reaper_survives_refusals_reports_them_and_retries() -> None:
+    from kb.errors import StorageFull
+
+    refusing = [True]
+
+    def gate(commit: Commit) -> None:
+        if refusing[0]:
+            raise StorageFull("the disk of the data directory is full (test)")
+
+    with KB() as kb:
+        kb.update(["p sees q"], lifespan=0.2)
+        kb.on_commit(gate, durable=True)
+        deadline = time.monotonic() + 20
+        while kb.writer.expiry_status.get().ok and time.monotonic() < deadline:
+            time.sleep(0.02)
+        status = kb.writer.expiry_status.get()
+        assert status.code == "storage_full" and "full" in status.reason and status.retry_in
+        assert kb["p sees ?x"] == [{"x": "q"}]  # not retracted, still due
+        refusing[0] = False
+        while (kb["p sees ?x"] or not kb.writer.expiry_status.get().ok) and time.monotonic() < deadline:
+            time.sleep(0.05)
+        assert kb["p sees ?x"] == [] and kb.writer.expiry_status.get().ok
