@@ -13,7 +13,7 @@ import pytest
 from api.cli import main
 from tests.api.conftest import SCENE, Live
 
-COMMANDS = ("serve", "chat", "kb", "humans", "eval", "bench")
+COMMANDS = ("serve", "chat", "kb", "humans", "eval", "bench", "data")
 
 
 def test_help_documents_every_command() -> None:
@@ -21,7 +21,7 @@ def test_help_documents_every_command() -> None:
                           check=True, cwd=Path(__file__).parents[2])
     for command in COMMANDS:
         assert f"    {command} " in done.stdout
-    assert "situated kb query" in done.stdout
+    assert "situated kb query" in done.stdout and "situated data repair" in done.stdout
 
 
 def test_kb_query_in_process(capsys: pytest.CaptureFixture[str]) -> None:
