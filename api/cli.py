@@ -1,4 +1,4 @@
-"""The ``situated`` command: serve, chat, kb, humans, eval, bench, doctor. Thin over the libraries.
+"""The ``situated`` command: serve, chat, kb, humans, eval, bench, doctor, data. Thin over the libraries.
 
 ``kb``, ``humans`` and ``chat`` work in-process (a fresh KB, loaded with ``--scene``) or against a
 running service with ``--url`` (token from ``--token`` or ``$SITUATED_TOKEN``).
@@ -23,6 +23,9 @@ from api.humans import known_humans, render
 from api.settings import SettingsError, load_settings
 from api.world import load_any_scene
 from kb import KB, KbError
+from kb.datadir import check as check_data
+from kb.datadir import repair as repair_data
+from kb.errors import DataCorrupt
 
 BENCHES = ("kb", "scene", "dialogue", "http", "load", "store")
 # tests/api/test_cli.py runs every example below, so they cannot drift from what works.
@@ -45,6 +48,8 @@ EXAMPLES = f"""examples (file paths are those of a clone of the repository):
                                                      score dialogue cases
   situated bench kb --quick                          small sizes; also scene, dialogue, http, load, store, all
   situated doctor                                    check the setup (also --llm SPEC); says what is wrong and how to fix it
+  situated data check ./data                         is the journal/snapshot intact? (exit 1 if damaged)
+  situated data repair ./data                        keep every intact record; damaged files kept beside
 Each command has its own help: situated COMMAND -h.
 Settings also come from SITUATED_* env vars and a TOML/JSON file (SITUATED_CONFIG or --config)."""
 
@@ -121,6 +126,10 @@ def _parser() -> argparse.ArgumentParser:
     doctor.add_argument("--data", type=Path, help="as for serve (default: the settings' data folder)")
     doctor.add_argument("--config", type=Path, help="TOML or JSON settings file (or $SITUATED_CONFIG)")
     doctor.add_argument("--strict", action="store_true", help="warnings (no Chromium) also exit 1")
+    data = sub.add_parser("data", help="check or repair a data folder (--data): journal and snapshot")
+    data.add_argument("action", choices=["check", "repair"], help="check: report, exit 1 if damaged; "
+                      "repair (service stopped): keep every intact record, the damaged files beside them")
+    data.add_argument("dir", type=Path, help="the data folder")
 
     bench = sub.add_parser("bench", help="run benchmarks: kb, scene, dialogue, http, load, store or all")
     bench.add_argument("which", nargs="?", default="all", choices=[*BENCHES, "all"])
@@ -140,6 +149,10 @@ def _serve(args: argparse.Namespace) -> int:
                              scene=args.scene, llm=args.llm, token=args.token, store=args.store,
                              writer_url=args.writer)
     backend_of(settings)  # a bad backend spec is reported before anything starts
+    if settings.data_dir is not None and settings.data_dir.is_dir():
+        report = check_data(settings.data_dir)  # damage is reported plainly, not as a traceback
+        if report.damaged:
+            raise DataCorrupt(report.render())
     # Start-up progress (journal recovery, ontology files, the scene) is logged by situated.*.
     logging.basicConfig(level=logging.INFO, format="%(levelname)s:     %(name)s: %(message)s")
     role = "" if settings.role == "standalone" else f"; {settings.role} of {settings.store}"
@@ -264,6 +277,14 @@ async def _chat_in_process(args: argparse.Namespace) -> int:
     return 0
 
 
+# --- data ------------------------------------------------------------------------------------------
+
+def _data(args: argparse.Namespace) -> int:
+    report = repair_data(args.dir) if args.action == "repair" else check_data(args.dir)
+    print(report.render())
+    return 1 if report.damaged and args.action == "check" else 0
+
+
 # --- eval and bench --------------------------------------------------------------------------------
 
 def _eval(args: argparse.Namespace) -> int:
@@ -307,6 +328,7 @@ def _doctor(args: argparse.Namespace) -> int:
 COMMANDS: dict[str, Callable[[argparse.Namespace], int]] = {
     "serve": _serve, "chat": _chat, "kb": _kb_command, "humans": _humans, "eval": _eval, "bench": _bench,
     "doctor": _doctor,
+    "data": _data,
 }
 
 

@@ -1,7 +1,8 @@
 """The one JSON error shape of every route: ``{"status", "code", "message", "details"}``.
 
 Every failure goes through here: HTTP errors raised by the framework (404, 405), request
-validation (422), ``KbError`` and ``DialogueError`` (400), the service's own ``ApiError`` (auth,
+validation (422), ``KbError`` and ``DialogueError`` (400), a full or failing data directory
+(507 ``storage_full``, 503 ``storage_unavailable``), the service's own ``ApiError`` (auth,
 limits) and unexpected errors (500 with a generic message; the traceback goes to the log only).
 """
 
@@ -23,6 +24,7 @@ from dialogue.sessions import DialogueError
 from kb import KbError
 from kb.deadline import QueryTimeout
 from kb.endpoint import StoreUnavailable
+from kb.errors import StorageError, StorageFull
 from kb.query import TooManyRows
 
 log = logging.getLogger("situated.api")
@@ -40,6 +42,7 @@ _CODES = {
     429: "too_many_requests",
     500: "internal_error",
     503: "unavailable",
+    507: "storage_full",
 }
 
 
@@ -128,6 +131,12 @@ async def _query_timeout(request: Request, exc: Exception) -> JSONResponse:
     assert isinstance(exc, QueryTimeout)
     # 503 as other SPARQL servers answer a cancelled query; the service itself stays available.
     return error_response(503, "query_timeout", f"{exc} (the service's limit)", {"timeout": exc.seconds})
+async def _storage_full(request: Request, exc: Exception) -> JSONResponse:
+    return error_response(507, "storage_full", str(exc))
+
+
+async def _storage_error(request: Request, exc: Exception) -> JSONResponse:
+    return error_response(503, "storage_unavailable", str(exc))
 
 
 async def _dialogue_error(request: Request, exc: Exception) -> JSONResponse:
@@ -151,5 +160,7 @@ def install_error_handlers(app: FastAPI) -> None:
     app.add_exception_handler(StoreUnavailable, _store_unavailable)
     app.add_exception_handler(TooManyRows, _too_many_rows)
     app.add_exception_handler(QueryTimeout, _query_timeout)
+    app.add_exception_handler(StorageFull, _storage_full)  # before KbError's 400: more specific
+    app.add_exception_handler(StorageError, _storage_error)
     app.add_exception_handler(DialogueError, _dialogue_error)
     app.add_exception_handler(Exception, _unexpected)

@@ -6,7 +6,7 @@ Built by the app's lifespan (blocking work, run off the event loop) and stopped 
 from __future__ import annotations
 
 import logging
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 
 from api.forward import WriterClient
@@ -22,9 +22,11 @@ from dialogue.sessions import DialogueManager
 from dialogue.sparqlsessions import SparqlSessions
 from kb import KB, KbError
 from kb.endpoint import SparqlEndpoint
+from kb.errors import StorageError
 from kb.journal import Journal
 from kb.mirror import SparqlMirror
 from kb.remote import RemoteKB
+from kb.status import Components
 
 log = logging.getLogger("situated.api")
 
@@ -41,15 +43,22 @@ class Services:
     store: Store | None = None
     #: The model was built from the settings (not passed in): stopping closes it (a worker process).
     owns_model: bool = False
+    # Named statuses of I/O and background work, rendered by /health (journal, compaction...).
+    components: Components = field(default_factory=Components)
 
     @property
     def model(self) -> ChatModel:
         return self.dialogues.engine.model
 
     def clear(self, keep_defaults: bool) -> None:
-        self.kb.clear(keep_defaults)
+        self.kb.clear(keep_defaults)  # refused whole, or done and durable
         if self.world is not None:
-            self.world.sync.resync()
+            try:
+                self.world.sync.resync()
+            except StorageError as exc:
+                # The clear is acknowledged; the scene's facts come back with the next scene
+                # change (the sync asserts every fact it no longer has) or at the next start.
+                log.warning("the scene's facts were not asserted again after a clear: %s", exc)
 
     def stop(self) -> None:
         if self.world is not None:
@@ -57,7 +66,10 @@ class Services:
         self.hub.shutdown()
         if self.journal is not None:
             if isinstance(self.kb, KB):  # only a writer keeps a journal
-                self.journal.snapshot(self.kb)  # a clean stop leaves a compact data directory
+                try:
+                    self.journal.snapshot(self.kb)  # a clean stop leaves a compact data directory
+                except StorageError as exc:  # the journal alone is complete
+                    log.warning("no snapshot at stop, the journal is kept as it is: %s", exc)
             self.journal.close()
         if self.owns_kb:
             self.kb.close()
@@ -92,9 +104,11 @@ def _open_journal(kb: KB, folder: Path, snapshot_records: int) -> Journal:
     journal = Journal(folder)
     found = journal.recover(kb)
     journal.compact_every(kb, snapshot_records)
-    torn = f", dropped a torn tail of {found.dropped_bytes} bytes" if found.dropped_bytes else ""
-    log.info("recovered the KB from %s: revision %d, %d journal records%s", folder, found.revision,
-             found.records, torn)
+    log.info("recovered the KB from %s: revision %d, %d journal records", folder, found.revision,
+             found.records)
+    if found.dropped_bytes:
+        log.warning("dropped an incomplete last journal record (%d bytes): a write that was never "
+                    "acknowledged, cut off by a crash", found.dropped_bytes)
     return journal
 
 
@@ -146,7 +160,7 @@ def start_services(settings: Settings, kb: KB | None = None, model: ChatModel | 
             log.info("loaded %d scene statements from %s", count, source)
             source = None
         world.start(source)
-    except (KbError, SettingsError):
+    except (KbError, SettingsError):  # DataCorrupt included: a damaged data directory
         if journal is not None:
             journal.close()
         if store is not None:
@@ -155,8 +169,13 @@ def start_services(settings: Settings, kb: KB | None = None, model: ChatModel | 
             the_kb.close()
         raise
     hub = EventHub(the_kb, settings.limits.max_subscribers)
-    return Services(settings=settings, kb=the_kb, hub=hub, dialogues=dialogues, world=world,
-                    journal=journal, owns_kb=owns_kb, store=store, owns_model=model is None)
+    services = Services(settings=settings, kb=the_kb, hub=hub, dialogues=dialogues, world=world,
+                        journal=journal, owns_kb=owns_kb, store=store, owns_model=model is None)
+    if journal is not None:
+        services.components.register("storage", journal.storage_status)
+        services.components.register("compaction", journal.compaction.get)
+    services.components.register("expiry", the_kb.writer.expiry_status.get)
+    return services
 
 
 def _mirror(kb: KB, endpoint: SparqlEndpoint, recover: bool) -> SparqlMirror:

@@ -21,6 +21,7 @@ from api.scenefile import load_scene
 from api.settings import SceneSettings
 from kb import KB, KbError
 from kb.engagement import Transition
+from kb.errors import StorageError, storage_error
 from kb.scene import ROBOT_ID, Diff, Entity, Kind, SceneConfig
 from kb.scenesync import SceneSync, entity_from_json, entity_to_json, scene_from_json, scene_to_json
 from kb.svg import load_svg
@@ -74,6 +75,7 @@ class World:
         self._stop = threading.Event()
         self._thread: threading.Thread | None = None
         self.transitions: list[Transition] = []
+        self._unsaved = False  # a change is in the pending file only (its save failed)
 
     def start(self, source: str | None) -> None:
         """Load the persisted scene if there is one, else ``source``; finish a change a crash
@@ -111,13 +113,21 @@ class World:
         between the KB commit and the save is finished at the next start, instead of leaving KB
         facts about an entity the saved scene does not know (which nothing would retract)."""
         with self._lock:
+            if self._unsaved:  # the last change is only in the pending file: save it before
+                self._save()   # writing ahead another, or refuse this one (nothing changed)
             self._write(self._pending, op)
             try:
                 diff = apply()
-            except KbError:
+            except KbError:  # StorageError included: the KB refused it whole
                 self._drop_pending()
                 raise
-            self._save()
+            try:
+                self._save()
+            except StorageError as exc:
+                # The change is durable (journal + pending file, which a start finishes), so
+                # it is acknowledged; the save is retried before the next change.
+                self._unsaved = True
+                log.warning("scene saved only as a pending change: %s", exc)
             return diff
 
     def _finish_pending(self) -> None:
@@ -162,6 +172,7 @@ class World:
     def _save(self) -> None:
         self._write(self._file, scene_to_json(self.sync))
         self._drop_pending()
+        self._unsaved = False
 
     def _drop_pending(self) -> None:
         if self._pending is not None:
@@ -173,8 +184,12 @@ class World:
         if path is None:
             return
         tmp = path.with_suffix(".tmp")
-        with tmp.open("wb") as handle:
-            handle.write(json.dumps(data).encode())
-            handle.flush()
-            os.fsync(handle.fileno())
-        os.replace(tmp, path)
+        try:
+            with tmp.open("wb") as handle:
+                handle.write(json.dumps(data).encode())
+                handle.flush()
+                os.fsync(handle.fileno())
+            os.replace(tmp, path)
+        except OSError as exc:
+            tmp.unlink(missing_ok=True)
+            raise storage_error(exc, path.parent, "the scene change") from exc

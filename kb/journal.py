@@ -1,34 +1,51 @@
 """A crash-safe KB: an append-only journal of asserted changes, snapshots, and recovery.
 
 Every commit becomes one journal record, written and fsync'd before the write call returns, so
-an acknowledged write survives a crash. A record is ``<length> <crc32> <json>\\n``; a torn last
-record (short, or with a bad checksum) is detected at start, dropped and cut off, never applied
-in part. ``snapshot()`` writes the whole asserted state (as differences from the default
-ontology, with lifespans) to a new file, renames it into place and starts an empty journal.
-Inferred triples are never stored: recovery replays asserted changes and the reasoner derives
-the rest. Lifespans are wall-clock expiry times, so they keep running across restarts.
+an acknowledged write survives a crash. A write the disk refuses (full, I/O error) is cut off
+again, so the file ends at the last acknowledged record, and the commit is undone in memory: a
+refused write changes nothing and consumes no revision. Records carry a checksum
+(``kb.records``); at start a torn last record is dropped, while damage with intact records after
+it stops the start (``DataCorrupt``), since going on would silently lose acknowledged writes:
+``situated data check|repair DIR`` (``kb.datadir``) deals with it. ``snapshot()`` writes the
+whole asserted state (as differences from the default ontology, with lifespans) to a new file,
+renames it into place and starts an empty journal; background compaction survives its errors,
+retries with backoff and reports them in ``compaction`` (a ``StatusCell``), as appends do in
+``storage``. Inferred triples are never stored: recovery replays asserted changes and the
+reasoner derives the rest. Lifespans are wall-clock expiry times, so they keep running across
+restarts.
 """
 
 from __future__ import annotations
 
-import json
+import logging
 import os
+import shutil
 import threading
-import zlib
-from collections.abc import Iterator
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, BinaryIO
 
-from rdflib import BNode, Literal, URIRef
+from rdflib import BNode
 
-from kb.errors import KbError
+from kb.errors import DataCorrupt, KbError, StorageError, StorageFull, storage_error
 from kb.kb import KB
-from kb.terms import Node, Token, Triple, parse_literal, parse_name, tokenize
+from kb.records import frame, nt, parse_nt, read_snapshot, scan
+from kb.status import ComponentStatus, StatusCell
+from kb.terms import Triple
 from kb.writer import Commit
+
+log = logging.getLogger(__name__)
 
 JOURNAL = "journal.log"
 SNAPSHOT = "snapshot.json"
+SNAPSHOT_TMP = SNAPSHOT + ".tmp"
+LOW_SPACE = 256 * 1024  # bytes free under which storage is reported degraded before writes fail
+MAX_BACKOFF = 300.0  # seconds between compaction attempts that keep failing
+
+
+def repair_hint(directory: Path) -> str:
+    return (f"run 'situated data check {directory}' to see what is damaged, and 'situated data "
+            f"repair {directory}' to keep every intact record (the damaged files are kept beside them)")
 
 
 @dataclass
@@ -47,98 +64,160 @@ class Journal:
         self.directory = Path(directory)
         self.directory.mkdir(parents=True, exist_ok=True)
         self._lock = threading.Lock()
-        self._file: BinaryIO | None = None
+        self._fd: int | None = None
+        self._size = 0  # bytes of acknowledged records in the journal file
+        self._dirty = False  # a refused append may have left bytes past _size
         self.records_since_snapshot = 0
+        self.storage = StatusCell()
+        self.compaction = StatusCell()
         self._stop = threading.Event()
         self._compactor: threading.Thread | None = None
 
     # --- recovery --------------------------------------------------------------------------
 
     def recover(self, kb: KB) -> Recovery:
-        """Load the snapshot and replay the journal into a fresh KB, then start journaling it."""
+        """Load the snapshot and replay the journal into a fresh KB, then start journaling it.
+        ``DataCorrupt`` if the snapshot or a record before the journal's end is damaged."""
+        (self.directory / SNAPSHOT_TMP).unlink(missing_ok=True)  # a snapshot a crash cut short
         result = Recovery()
         snapshot = self.directory / SNAPSHOT
         if snapshot.exists():
-            result.revision = _restore_snapshot(kb, json.loads(snapshot.read_text(encoding="utf-8")))
+            try:
+                result.revision = _restore_snapshot(kb, read_snapshot(snapshot.read_bytes()))
+            except (ValueError, KeyError, TypeError, KbError) as exc:
+                raise DataCorrupt(f"{snapshot} cannot be read ({exc}); not starting without the "
+                                  f"state it holds: {repair_hint(self.directory)}") from exc
         path = self.directory / JOURNAL
-        good = 0
         if path.exists():
             data = path.read_bytes()
-            for end, record in _records(data):
+            found = scan(data)
+            if found.damage:
+                raise DataCorrupt(f"{found.describe_damage(str(path))}; not starting, since that would "
+                                  f"lose them: {repair_hint(self.directory)}")
+            for _start, _end, record in found.records:
                 if record["revision"] > result.revision:
                     _replay(kb, record)
                     result.revision = record["revision"]
                     result.records += 1
-                good = end
-            result.dropped_bytes = len(data) - good
-            if result.dropped_bytes:
+            result.dropped_bytes = found.torn_bytes
+            if found.torn_bytes:
                 with path.open("r+b") as handle:
-                    handle.truncate(good)
+                    handle.truncate(found.torn_at)
                     _fsync(handle)
         self.records_since_snapshot = result.records
-        self._file = path.open("ab")
-        kb.on_commit(self.append)
+        self._fd = os.open(path, os.O_WRONLY | os.O_APPEND | os.O_CREAT, 0o644)
+        self._size = os.fstat(self._fd).st_size
+        kb.on_commit(self.append, durable=True)
         return result
 
     # --- writing ---------------------------------------------------------------------------
 
     def append(self, commit: Commit) -> None:
-        """Write one commit durably (called under the KB lock, before the write returns)."""
-        record: dict[str, Any] = {"revision": commit.revision}
-        if commit.cleared is not None:
-            record["clear"] = {"keep_defaults": commit.cleared}
-        changes = [
-            {"model": d.model, "add": [_nt(t) for t in d.asserted_added],
-             "remove": [_nt(t) for t in d.asserted_removed]}
-            for d in commit.deltas if d.asserted_added or d.asserted_removed
-        ]
-        if changes:
-            record["changes"] = changes
-        if commit.expiries:
-            record["expiries"] = [[m, _nt(t), at] for m, t, at in commit.expiries]
-        line = _frame(json.dumps(record, separators=(",", ":")))
+        """Write one commit durably (called under the KB lock, before the write returns). On an
+        OS error the file is cut back to its last acknowledged record and ``StorageError``
+        (``StorageFull`` for a full disk) raised, so the KB undoes the commit."""
+        line = frame(_record(commit))
         with self._lock:
-            if self._file is None:
+            if self._fd is None:
                 raise KbError("the journal is not open: call recover() first")
-            self._file.write(line)
-            _fsync(self._file)
+            try:
+                if self._dirty:
+                    self._cut_back()
+                _write_all(self._fd, line)
+                os.fsync(self._fd)
+            except OSError as exc:
+                self._dirty = True
+                self._try_cut_back()
+                error = storage_error(exc, self.directory, "the write")
+                self.storage.failed(_code(error), str(error))
+                raise error from exc
+            self._size += len(line)
             self.records_since_snapshot += 1
+        self.storage.succeeded()
+
+    def _cut_back(self) -> None:
+        """Remove what a refused append left after the last acknowledged record."""
+        assert self._fd is not None
+        os.ftruncate(self._fd, self._size)
+        os.fsync(self._fd)
+        self._dirty = False
+
+    def _try_cut_back(self) -> None:
+        try:
+            self._cut_back()
+        except OSError:  # the next append tries again before writing, and refuses if it cannot
+            log.exception("could not cut the journal back to its last acknowledged record")
+
+    def storage_status(self) -> ComponentStatus:
+        """The journal's disk: degraded while writes fail for want of space (until space is
+        free again) or for another I/O error (until one succeeds), or while space runs low."""
+        status = self.storage.get()
+        free = _free_bytes(self.directory)
+        if not status.ok and (status.code != "storage_full" or free is None or free < LOW_SPACE):
+            return status
+        if free is not None and free < LOW_SPACE:
+            return ComponentStatus(ok=False, code="storage_low",
+                                   reason=f"the disk of the data directory {self.directory} has "
+                                          f"{free} bytes free; writes fail when it is full")
+        return ComponentStatus()
 
     def snapshot(self, kb: KB) -> None:
-        """Write the whole asserted state and start a new, empty journal."""
+        """Write the whole asserted state and start a new, empty journal. ``StorageError`` if
+        the snapshot cannot be written; the journal is then left as it was."""
         with kb.lock, self._lock:
             state = kb.writer.state()
             data = {
                 "revision": state.revision,
                 "models": {
-                    name: {"add": [_nt(t) for t in state.extra[name]],
-                           "remove": [_nt(t) for t in state.missing.get(name, [])]}
+                    name: {"add": [nt(t) for t in state.extra[name]],
+                           "remove": [nt(t) for t in state.missing.get(name, [])]}
                     for name in state.extra
                 },
-                "expiries": [[m, _nt(t), at] for m, t, at in state.expiries],
+                "expiries": [[m, nt(t), at] for m, t, at in state.expiries],
             }
-            tmp = self.directory / (SNAPSHOT + ".tmp")
-            with tmp.open("wb") as handle:
-                handle.write(json.dumps(data).encode())
-                _fsync(handle)
-            os.replace(tmp, self.directory / SNAPSHOT)
-            _fsync_dir(self.directory)
-            if self._file is not None:
-                self._file.close()
-            self._file = (self.directory / JOURNAL).open("wb")
-            _fsync(self._file)
+            tmp = self.directory / SNAPSHOT_TMP
+            try:
+                with tmp.open("wb") as handle:
+                    handle.write(frame(data))
+                    _fsync(handle)
+                os.replace(tmp, self.directory / SNAPSHOT)
+                _fsync_dir(self.directory)
+            except OSError as exc:
+                tmp.unlink(missing_ok=True)
+                raise storage_error(exc, self.directory, "the snapshot") from exc
             self.records_since_snapshot = 0
+            if self._fd is not None:  # the snapshot holds every record: the journal starts over
+                try:
+                    os.ftruncate(self._fd, 0)
+                    os.fsync(self._fd)
+                    self._size, self._dirty = 0, False
+                except OSError:  # harmless: replay skips records the snapshot already holds
+                    log.exception("the snapshot is written but the journal could not be emptied")
 
-    def compact_every(self, kb: KB, records: int, check_seconds: float = 5.0) -> None:
+    def compact_every(self, kb: KB, records: int, check_seconds: float = 5.0,
+                      max_backoff: float = MAX_BACKOFF) -> None:
         """Snapshot in the background whenever ``records`` journal records have accumulated, so a
-        steady perception stream neither grows the journal nor the replay at start without bound."""
+        steady perception stream neither grows the journal nor the replay at start without bound.
+        A snapshot that fails is retried after a growing delay (up to ``max_backoff``) and
+        reported in ``compaction`` until one succeeds."""
         if records <= 0 or self._compactor is not None:
             return
 
         def loop() -> None:
-            while not self._stop.wait(check_seconds):
-                if self.records_since_snapshot >= records and self._file is not None:
+            delay = check_seconds
+            while not self._stop.wait(delay):
+                delay = check_seconds
+                if self.records_since_snapshot < records or self._fd is None:
+                    continue
+                try:
                     self.snapshot(kb)
+                except StorageError as exc:
+                    delay = min(max_backoff, check_seconds * 2 ** (self.compaction.get().failures + 1))
+                    self.compaction.failed(_code(exc), f"compaction failed: {exc}; retrying in "
+                                                       f"{delay:g} s", retry_in=delay)
+                    log.warning("journal compaction failed, retrying in %g s: %s", delay, exc)
+                else:
+                    self.compaction.succeeded()
 
         self._compactor = threading.Thread(target=loop, name="kb-journal-compaction", daemon=True)
         self._compactor.start()
@@ -149,37 +228,42 @@ class Journal:
             self._compactor.join(timeout=5.0)
             self._compactor = None
         with self._lock:
-            if self._file is not None:
-                self._file.close()
-                self._file = None
+            if self._fd is not None:
+                os.close(self._fd)
+                self._fd = None
 
 
-# --- records ---------------------------------------------------------------------------------
+def _record(commit: Commit) -> dict[str, Any]:
+    record: dict[str, Any] = {"revision": commit.revision}
+    if commit.cleared is not None:
+        record["clear"] = {"keep_defaults": commit.cleared}
+    changes = [
+        {"model": d.model, "add": [nt(t) for t in d.asserted_added],
+         "remove": [nt(t) for t in d.asserted_removed]}
+        for d in commit.deltas if d.asserted_added or d.asserted_removed
+    ]
+    if changes:
+        record["changes"] = changes
+    if commit.expiries:
+        record["expiries"] = [[m, nt(t), at] for m, t, at in commit.expiries]
+    return record
 
 
-def _frame(payload: str) -> bytes:
-    body = payload.encode()
-    return b"%d %08x " % (len(body), zlib.crc32(body)) + body + b"\n"
+def _code(error: StorageError) -> str:
+    return "storage_full" if isinstance(error, StorageFull) else "storage_error"
 
 
-def _records(data: bytes) -> Iterator[tuple[int, dict[str, Any]]]:
-    """Complete, intact records with the offset where each ends; stops at the first bad one."""
-    pos = 0
-    while pos < len(data):
-        head_end = data.find(b" ", pos)
-        crc_end = data.find(b" ", head_end + 1) if head_end >= 0 else -1
-        if crc_end < 0:
-            return
-        try:
-            length, crc = int(data[pos:head_end]), int(data[head_end + 1 : crc_end], 16)
-        except ValueError:
-            return
-        body = data[crc_end + 1 : crc_end + 1 + length]
-        end = crc_end + 1 + length + 1
-        if len(body) != length or data[end - 1 : end] != b"\n" or zlib.crc32(body) != crc:
-            return
-        yield end, json.loads(body)
-        pos = end
+def _write_all(fd: int, data: bytes) -> None:
+    view = memoryview(data)
+    while view:
+        view = view[os.write(fd, view):]
+
+
+def _free_bytes(directory: Path) -> int | None:
+    try:
+        return shutil.disk_usage(directory).free
+    except OSError:
+        return None
 
 
 def _replay(kb: KB, record: dict[str, Any]) -> None:
@@ -189,14 +273,14 @@ def _replay(kb: KB, record: dict[str, Any]) -> None:
     bnodes: dict[str, BNode] = {}
     expiries: dict[str, list[tuple[Triple, float]]] = {}
     for model, statement, at in record.get("expiries", []):
-        expiries.setdefault(model, []).append((_parse_nt(statement, bnodes), at))
+        expiries.setdefault(model, []).append((parse_nt(statement, bnodes), at))
     changes = {c["model"]: c for c in record.get("changes", [])}
     for model in sorted(set(changes) | set(expiries)):
         change = changes.get(model, {})
         kb.writer.restore(
             model,
-            add=[_parse_nt(s, bnodes) for s in change.get("add", [])],
-            remove=[_parse_nt(s, bnodes) for s in change.get("remove", [])],
+            add=[parse_nt(s, bnodes) for s in change.get("add", [])],
+            remove=[parse_nt(s, bnodes) for s in change.get("remove", [])],
             expiries=expiries.get(model, []),
             revision=revision,
         )
@@ -207,54 +291,17 @@ def _restore_snapshot(kb: KB, data: dict[str, Any]) -> int:
     bnodes: dict[str, BNode] = {}
     expiries: dict[str, list[tuple[Triple, float]]] = {}
     for model, statement, at in data.get("expiries", []):
-        expiries.setdefault(model, []).append((_parse_nt(statement, bnodes), at))
+        expiries.setdefault(model, []).append((parse_nt(statement, bnodes), at))
     for model, change in data["models"].items():
         kb.writer.restore(
             model,
-            add=[_parse_nt(s, bnodes) for s in change["add"]],
-            remove=[_parse_nt(s, bnodes) for s in change["remove"]],
+            add=[parse_nt(s, bnodes) for s in change["add"]],
+            remove=[parse_nt(s, bnodes) for s in change["remove"]],
             expiries=expiries.get(model, []),
             revision=data["revision"],
         )
     kb.writer.revision = data["revision"]
     return int(data["revision"])
-
-
-# --- N-Triples terms (blank nodes included, unlike the KB's statement syntax) -----------------
-
-
-def _nt(triple: Triple) -> str:
-    return " ".join(_nt_term(t) for t in triple)
-
-
-def _nt_term(term: Node) -> str:
-    if isinstance(term, URIRef):
-        return f"<{term}>"
-    if isinstance(term, BNode):
-        return f"_:{term}"
-    body = json.dumps(str(term), ensure_ascii=False)  # a JSON string is a valid N-Triples string
-    if term.language:
-        return f"{body}@{term.language}"
-    if term.datatype is not None:
-        return f"{body}^^<{term.datatype}>"
-    return body
-
-
-def _parse_nt(statement: str, bnodes: dict[str, BNode]) -> Triple:
-    tokens = tokenize(statement)
-    if len(tokens) != 3:
-        raise KbError(f"corrupt journal statement {statement!r}")
-    return (_node(tokens[0], bnodes), _node(tokens[1], bnodes), _node(tokens[2], bnodes))
-
-
-def _node(token: Token, bnodes: dict[str, BNode]) -> Node:
-    if token.literal:
-        lit: Literal = parse_literal(token.text)
-        return lit
-    if token.text.startswith("_:"):
-        label = token.text[2:]
-        return bnodes.setdefault(label, BNode(label))
-    return parse_name(token.text, "journal")
 
 
 def _fsync(handle: BinaryIO) -> None:

@@ -16,6 +16,7 @@ from __future__ import annotations
 import threading
 import time
 from collections.abc import Callable, Sequence
+from contextlib import suppress
 from pathlib import Path
 from typing import Any
 
@@ -33,7 +34,7 @@ from kb.arguments import (
     render,
 )
 from kb.deadline import Deadline, TimedIndex, holding
-from kb.errors import KbError
+from kb.errors import KbError, StorageError
 from kb.events import Callback, event_id
 from kb.query import Row, TooManyRows, holds, rows
 from kb.rdfio import FORMATS, default_ontology, parse_data, parse_location, serialize
@@ -345,9 +346,10 @@ class KB(KnowledgeCoreSugar):
     def on_active_concept(self, callback: ActiveListener) -> None:
         self._writer.on_active_concept(callback)
 
-    def on_commit(self, listener: CommitListener) -> Callable[[], None]:
-        """Called under the lock with every commit (for journals and mirrors)."""
-        return self._writer.on_commit(listener)
+    def on_commit(self, listener: CommitListener, durable: bool = False) -> Callable[[], None]:
+        """Called under the lock with every commit (for journals and mirrors); a ``durable``
+        listener may refuse the commit by raising, which undoes it (see ``Writer.on_commit``)."""
+        return self._writer.on_commit(listener, durable)
 
     @property
     def writer(self) -> Writer:
@@ -361,7 +363,10 @@ class KB(KnowledgeCoreSugar):
     def _expire_due(self) -> None:
         due = self._writer.expiries.next_due()
         if due is not None and due <= self._clock():
-            self._writer.expire()
+            # A read still answers on a full disk: the statements stay until their retraction
+            # is durable; the expiry thread retries it and reports the failure in /health.
+            with suppress(StorageError):
+                self._writer.expire()
 
     # --- housekeeping ---------------------------------------------------------------------
 

@@ -79,7 +79,7 @@ class SparqlMirror:
         with writer.lock:
             self._writer = writer
             self.push_all()
-            self._unregister = writer.on_commit(self._on_commit)
+            self._unregister = writer.on_commit(self._on_commit, durable=True)
 
     def detach(self) -> None:
         if self._unregister is not None:

@@ -130,7 +130,22 @@ class Models:
         indexes = [ix for m in self._models.values() for ix in (m.asserted, m.closure)]
         self._interner.prune_if_large(indexes)
 
-    def reset(self, keep_defaults: bool) -> None:
+    def reset(self, keep_defaults: bool) -> ModelsState:
+        """Start over with only the default model; returns what ``restore`` puts back."""
+        saved = ModelsState(self._interner, self._models)
         defaults = self._defaults if keep_defaults else []
         self._interner = Interner()
         self._models = {DEFAULT_MODEL: Model(DEFAULT_MODEL, defaults, self._interner)}
+        return saved
+
+    def restore(self, saved: ModelsState) -> None:
+        """Put back the models a ``reset`` replaced (its change was refused)."""
+        self._interner, self._models = saved.interner, saved.models
+
+
+@dataclass(frozen=True)
+class ModelsState:
+    """The models and their interner as they were before a ``reset``."""
+
+    interner: Interner
+    models: dict[str, Model]

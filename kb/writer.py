@@ -18,17 +18,19 @@ from typing import Any
 from rdflib import URIRef
 from rdflib.namespace import OWL, RDF
 
-from kb.errors import KbError
+from kb.errors import KbError, StorageFull
 from kb.events import Firing, Subscriptions
 from kb.lifespan import Expiries
 from kb.query import Query, Row, holds_row, rows
-from kb.store import ALL_MODELS, Delta, Models
+from kb.status import StatusCell
+from kb.store import ALL_MODELS, Delta, Models, ModelsState
 from kb.terms import ORO, Triple, shorten
 
 log = logging.getLogger(__name__)
 
 ACTIVE_CONCEPT = URIRef(ORO + "ActiveConcept")
 ACTIVE_CONCEPT_LIFESPAN = 5.0
+MAX_EXPIRY_BACKOFF = 30.0  # seconds between attempts to retract expired statements that keep failing
 
 Render = Callable[[Query, set[Row]], list[dict[str, Any]]]
 
@@ -83,21 +85,32 @@ class Writer:
         self.revision = 0
         self._render = render
         self._clock = clock
-        self._commit_listeners: list[CommitListener] = []
+        self._commit_listeners: list[CommitListener] = []  # the durable ones first
+        self._durable_count = 0
         self._active_listeners: list[ActiveListener] = []
         self._reaper: threading.Thread | None = None
         self._wake = threading.Event()
         self._closed = threading.Event()
+        self.expiry_status = StatusCell()  # the lifespan reaper's, for /health
 
     # --- listeners -----------------------------------------------------------------------
 
-    def on_commit(self, listener: CommitListener) -> Callable[[], None]:
-        """Register a listener; returns the function that unregisters it."""
-        self._commit_listeners.append(listener)
+    def on_commit(self, listener: CommitListener, durable: bool = False) -> Callable[[], None]:
+        """Register a listener; returns the function that unregisters it. A ``durable`` listener
+        (journal, store mirror) may refuse a commit by raising; durable listeners are called
+        before the others, so a refused commit reaches no observer and consumes no revision."""
+        with self.lock:
+            if durable:
+                self._durable_count += 1
+                self._commit_listeners.insert(self._durable_count - 1, listener)
+            else:
+                self._commit_listeners.append(listener)
 
         def remove() -> None:
             with self.lock:
                 if listener in self._commit_listeners:
+                    if self._commit_listeners.index(listener) < self._durable_count:
+                        self._durable_count -= 1
                     self._commit_listeners.remove(listener)
 
         return remove
@@ -234,14 +247,49 @@ class Writer:
         return frozenset(str(shorten(s)) for s in subjects)
 
     def clear(self, keep_defaults: bool) -> None:
+        """Drop every model's facts. If a listener refuses (the disk is full, the store is down),
+        the models and lifespans are put back and the error raised: nothing changed."""
         with self.lock:
-            self.models.reset(keep_defaults)
+            saved, expiries = self.models.reset(keep_defaults), self.expiries.items()
             self.expiries.clear()
             self.revision += 1
             commit = Commit(self.revision, (), (), cleared=keep_defaults)
-            for listener in self._commit_listeners:
-                listener(commit)
+            accepted: list[CommitListener] = []
+            try:
+                for listener in self._commit_listeners:
+                    listener(commit)
+                    accepted.append(listener)
+            except (KbError, OSError):
+                self._undo_clear(saved, expiries, accepted)
+                raise
             self.subscriptions.rebaseline(self.current_rows)
+
+    def _undo_clear(self, saved: ModelsState, expiries: list[tuple[str, Triple, float]],
+                    accepted: list[CommitListener]) -> None:
+        cleared = {name: set(m.asserted) for name in self.models.names if (m := self.models.get(name))}
+        self.models.restore(saved)
+        for name, triple, at in expiries:
+            self.expiries.set(name, triple, at)
+        if not accepted:
+            self.revision -= 1  # nobody saw the refused revision
+            return
+        # Listeners that took the clear get the state back as one commit; a model the clear
+        # removed counts as the default ontology, as a model a commit creates does.
+        defaults = set(self.models.defaults)
+        deltas = []
+        for name in self.models.names:
+            model = self.models.get(name)
+            if model is not None:
+                before, after = cleared.get(name, defaults), set(model.asserted)
+                deltas.append(Delta(name, asserted_added=sorted(after - before, key=str),
+                                    asserted_removed=sorted(before - after, key=str)))
+        self.revision += 1
+        undoing = Commit(self.revision, tuple(deltas), tuple(expiries))
+        for listener in accepted:
+            try:
+                listener(undoing)
+            except (KbError, OSError):
+                log.exception("a commit listener could not take the undoing of a refused clear")
 
     def state(self) -> State:
         with self.lock:
@@ -314,9 +362,16 @@ class Writer:
             if not self._closed.is_set():
                 try:
                     self.expire()
-                except (KbError, OSError):
-                    log.exception("expired statements could not be retracted; retrying in 1 s")
-                    self._closed.wait(1.0)
+                except (KbError, OSError) as exc:  # e.g. a full disk: the statements stay due
+                    delay = min(MAX_EXPIRY_BACKOFF, 2.0 ** self.expiry_status.get().failures)
+                    code = "storage_full" if isinstance(exc, StorageFull) else "expiry_failed"
+                    self.expiry_status.failed(code, f"expired statements could not be retracted "
+                                                    f"({exc}); retrying in {delay:g} s", retry_in=delay)
+                    log.warning("expired statements could not be retracted; retrying in %g s: %s", delay, exc)
+                    self._closed.wait(delay)
+                else:
+                    if not self.expiry_status.get().ok:
+                        self.expiry_status.succeeded()
 
     def close(self) -> None:
         self._closed.set()

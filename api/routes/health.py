@@ -6,13 +6,10 @@ from importlib.metadata import PackageNotFoundError, version
 from typing import Any
 
 from fastapi import APIRouter
-from starlette.concurrency import run_in_threadpool
 
-from api.deps import ServicesDep
-from api.probe import probe
-from api.services import Services
+from api.deps import Credentials, ServicesDep
+from api.healthreport import health_report, may_read_details
 from kb import __version__ as kb_version
-from kb.endpoint import StoreUnavailable
 
 router = APIRouter(tags=["service"])
 
@@ -24,35 +21,12 @@ def package_version() -> str:
         return kb_version
 
 
-def _kb_state(services: Services) -> dict[str, Any]:
-    kb = services.kb
-    with kb.lock:
-        state: dict[str, Any] = {"revision": kb.revision, "size": kb.size(),
-                                 "asserted": kb.size(inferred=False), "models": kb.models(),
-                                 "role": services.settings.role}
-    if services.store is not None:
-        state["store"] = services.store.endpoint.spec.query_url
-        if services.store.mirror is not None:
-            state["store_in_sync"] = not services.store.mirror.stale
-    return state
-
-
-def _kb_health(services: Services) -> dict[str, Any]:
-    try:
-        return _kb_state(services)
-    except StoreUnavailable as exc:
-        return {"role": services.settings.role, "reachable": False, "error": str(exc)}
-
-
 @router.get("/health")
-async def health(services: ServicesDep) -> dict[str, Any]:
-    """KB size, revision and role (standalone, or the writer or a reader of a shared store),
-    and whether the dialogue model backend and the store are reachable."""
-    state = await run_in_threadpool(_kb_health, services)
-    model = await probe(services.model)
-    healthy = model["reachable"] and state.get("reachable", True) and state.get("store_in_sync", True)
-    return {"status": "ok" if healthy else "degraded", "kb": state, "model": model,
-            "events": {"subscribers": services.hub.listener_count}}
+async def health(services: ServicesDep, credentials: Credentials) -> dict[str, Any]:
+    """``ok`` or ``degraded``; to callers allowed to read, also why (``reasons``), the KB's size,
+    revision and role, the model backend, the store, and each component (storage, compaction)."""
+    presented = credentials.credentials if credentials else None
+    return await health_report(services, may_read_details(services, presented))
 
 
 @router.get("/version")

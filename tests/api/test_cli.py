@@ -23,7 +23,7 @@ from tests.api.conftest import SCENE, Live
 REPO = Path(__file__).parents[2]
 EXAMPLE_URL = "http://127.0.0.1:8000"
 
-COMMANDS = ("serve", "chat", "kb", "humans", "eval", "bench")
+COMMANDS = ("serve", "chat", "kb", "humans", "eval", "bench", "doctor", "data")
 
 
 def test_help_documents_every_command() -> None:
@@ -31,7 +31,7 @@ def test_help_documents_every_command() -> None:
                           check=True, cwd=Path(__file__).parents[2])
     for command in COMMANDS:
         assert f"    {command} " in done.stdout
-    assert "situated kb query" in done.stdout
+    assert "situated kb query" in done.stdout and "situated data repair" in done.stdout
 
 
 def test_kb_query_in_process(capsys: pytest.CaptureFixture[str]) -> None:

@@ -7,6 +7,7 @@ from pathlib import Path
 import pytest
 
 from kb import KB
+from kb.errors import DataCorrupt
 from kb.journal import JOURNAL, SNAPSHOT, Journal
 
 
@@ -76,7 +77,7 @@ def test_torn_last_record_is_dropped_never_applied_in_part(tmp_path: Path) -> No
     assert third["?s sees ?o"] == [{"s": "a", "o": "b"}, {"s": "g", "o": "h"}]
 
 
-def test_corrupt_record_stops_replay_there(tmp_path: Path) -> None:
+def test_a_damaged_last_record_is_a_torn_tail(tmp_path: Path) -> None:
     kb, journal = open_kb(tmp_path)
     kb += "a sees b"
     kb += "c sees d"
@@ -86,6 +87,54 @@ def test_corrupt_record_stops_replay_there(tmp_path: Path) -> None:
     path.write_bytes(first + second.replace(b"d>", b"x>"))  # same length, wrong checksum
     again, _ = open_kb(tmp_path)
     assert again["?s sees ?o"] == [{"s": "a", "o": "b"}]
+    assert path.read_bytes() == first
+
+
+def test_a_flipped_byte_mid_journal_stops_recovery_and_changes_nothing(tmp_path: Path) -> None:
+    kb, journal = open_kb(tmp_path)
+    for i in range(200):
+        kb += f"s{i} sees o{i}"
+    journal.close()
+    path = tmp_path / JOURNAL
+    lines = path.read_bytes().splitlines(keepends=True)
+    flipped = bytearray(lines[99])
+    flipped[len(flipped) // 2] ^= 0x01
+    damaged = b"".join(lines[:99]) + bytes(flipped) + b"".join(lines[100:])
+    path.write_bytes(damaged)
+    with pytest.raises(DataCorrupt) as caught:
+        open_kb(tmp_path)
+    message = str(caught.value)
+    offset = len(b"".join(lines[:99]))
+    assert f"damaged at byte {offset}" in message and "100 intact record(s) follow" in message
+    assert f"situated data repair {tmp_path}" in message
+    assert path.read_bytes() == damaged  # nothing cut off
+
+
+@pytest.mark.parametrize("damage", ["empty", "cut short", "flipped byte", "not a snapshot"])
+def test_a_damaged_snapshot_stops_recovery_with_a_clear_error(tmp_path: Path, damage: str) -> None:
+    kb, journal = open_kb(tmp_path)
+    kb += ["a sees b", "c sees d"]
+    journal.snapshot(kb)
+    journal.close()
+    path = tmp_path / SNAPSHOT
+    data = path.read_bytes()
+    changed = {"empty": b"", "cut short": data[: len(data) // 2], "not a snapshot": b'{"x": 1}',
+               "flipped byte": data.replace(b"sees", b"seeS", 1)}[damage]
+    path.write_bytes(changed)
+    with pytest.raises(DataCorrupt, match=f"{SNAPSHOT} cannot be read .*situated data check"):
+        open_kb(tmp_path)
+    assert path.read_bytes() == changed
+
+
+def test_a_snapshot_written_before_checksums_is_still_read(tmp_path: Path) -> None:
+    import json
+
+    (tmp_path / SNAPSHOT).write_text(json.dumps({
+        "revision": 3, "expiries": [],
+        "models": {"default": {"add": ["<http://kb.openrobots.org#a> <http://kb.openrobots.org#sees> "
+                                       "<http://kb.openrobots.org#b>"], "remove": []}}}))
+    again, _ = open_kb(tmp_path)
+    assert again["a sees ?x"] == [{"x": "b"}] and again.revision == 3
 
 
 def test_snapshot_compacts_and_recovery_uses_snapshot_plus_journal(tmp_path: Path) -> None:

@@ -424,3 +424,92 @@ def test_a_listener_that_refuses_a_commit_undoes_it_and_earlier_listeners_see_th
         unregister()
         kb += ["myself sees apple_1"]
         assert kb["myself sees ?x"] == [{"x": "apple_1"}, {"x": "cup_1"}]
+
+
+def _refuse(commit: Commit) -> None:
+    raise KbError("refused by the test")
+
+
+def test_a_durable_listener_refusing_reaches_no_observer_and_consumes_no_revision() -> None:
+    with KB() as kb:
+        kb += ["myself sees cup_1"]
+        seen: list[Commit] = []
+        kb.on_commit(seen.append)  # an observer, registered first
+        unregister = kb.on_commit(_refuse, durable=True)  # but a durable listener is called before it
+        revision = kb.revision
+        with pytest.raises(KbError, match="refused"):
+            kb += ["myself sees apple_1"]
+        assert seen == [] and kb.revision == revision
+        assert kb["myself sees ?x"] == [{"x": "cup_1"}]
+        unregister()
+        kb += ["myself sees apple_1"]
+        assert [c.revision for c in seen] == [revision + 1]
+
+
+def test_a_refused_clear_changes_nothing() -> None:
+    with KB() as kb:
+        kb += ["myself sees cup_1"]
+        kb.update(["alice sees book_1"], models=["alice"], lifespan=600)
+        before = (kb.export("nt"), kb.export("nt", model="alice"), kb.models(), kb.writer.expiries.items(),
+                  kb.revision, kb.size())
+        seen: list[Commit] = []
+        kb.on_commit(seen.append)
+        unregister = kb.on_commit(_refuse, durable=True)
+        for keep_defaults in (True, False):
+            with pytest.raises(KbError, match="refused"):
+                kb.clear(keep_defaults)
+            assert (kb.export("nt"), kb.export("nt", model="alice"), kb.models(), kb.writer.expiries.items(),
+                    kb.revision, kb.size()) == before
+            assert kb["myself sees ?x"] == [{"x": "cup_1"}] and kb["table_1 placeOf ?x"] == []
+        assert seen == []
+        unregister()
+        kb.clear()
+        assert kb["myself sees ?x"] == [] and kb.models() == ["default"] and kb.revision == before[4] + 1
+
+
+def test_a_clear_refused_after_the_journal_took_it_is_undone_in_the_journal_too(tmp_path: Any) -> None:
+    from kb.journal import Journal
+
+    with KB() as kb:
+        journal = Journal(tmp_path)
+        journal.recover(kb)
+        kb += ["myself sees cup_1"]
+        kb -= ["rdfs:label rdfs:label ?l"]
+        kb.update(["alice sees book_1"], models=["alice"])
+        expected = _nt(kb), _nt(kb, "alice"), kb.models()
+        kb.on_commit(_refuse, durable=True)  # after the journal: the journal has taken the clear
+        with pytest.raises(KbError, match="refused"):
+            kb.clear(keep_defaults=False)
+        assert (_nt(kb), _nt(kb, "alice"), kb.models()) == expected
+        journal.close()
+    with KB() as again:
+        Journal(tmp_path).recover(again)
+        assert (_nt(again), _nt(again, "alice"), again.models()) == expected
+
+
+def _nt(kb: KB, model: str | None = None) -> set[bytes]:
+    return set(kb.export("nt", model=model).splitlines())  # the order of export is not fixed
+
+
+def test_the_expiry_reaper_survives_refusals_reports_them_and_retries() -> None:
+    from kb.errors import StorageFull
+
+    refusing = [True]
+
+    def gate(commit: Commit) -> None:
+        if refusing[0]:
+            raise StorageFull("the disk of the data directory is full (test)")
+
+    with KB() as kb:
+        kb.update(["p sees q"], lifespan=0.2)
+        kb.on_commit(gate, durable=True)
+        deadline = time.monotonic() + 20
+        while kb.writer.expiry_status.get().ok and time.monotonic() < deadline:
+            time.sleep(0.02)
+        status = kb.writer.expiry_status.get()
+        assert status.code == "storage_full" and "full" in status.reason and status.retry_in
+        assert kb["p sees ?x"] == [{"x": "q"}]  # not retracted, still due
+        refusing[0] = False
+        while (kb["p sees ?x"] or not kb.writer.expiry_status.get().ok) and time.monotonic() < deadline:
+            time.sleep(0.05)
+        assert kb["p sees ?x"] == [] and kb.writer.expiry_status.get().ok

@@ -1,0 +1,67 @@
+"""What ``/health`` says: up or degraded, and, to a caller allowed to read, why.
+
+Degraded when the model backend or the store is unreachable, the store mirror is out of sync,
+or a registered component (``Services.components``: the journal's storage, compaction, ...) is
+not ok; each gives a reason. With ``allow_anonymous_reads=false`` an anonymous caller learns
+only the status: model names, sizes and reasons are for callers with the token.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from starlette.concurrency import run_in_threadpool
+
+from api.auth import authorise
+from api.errors import ApiError
+from api.probe import probe
+from api.services import Services
+from kb.endpoint import StoreUnavailable
+
+
+def may_read_details(services: Services, presented: str | None) -> bool:
+    try:
+        authorise(services.settings, presented, write=False)
+    except ApiError:
+        return False
+    return True
+
+
+def _kb_state(services: Services) -> dict[str, Any]:
+    kb = services.kb
+    with kb.lock:
+        state: dict[str, Any] = {"revision": kb.revision, "size": kb.size(),
+                                 "asserted": kb.size(inferred=False), "models": kb.models(),
+                                 "role": services.settings.role}
+    if services.store is not None:
+        state["store"] = services.store.endpoint.spec.query_url
+        if services.store.mirror is not None:
+            state["store_in_sync"] = not services.store.mirror.stale
+    return state
+
+
+def _kb_health(services: Services) -> dict[str, Any]:
+    try:
+        return _kb_state(services)
+    except StoreUnavailable as exc:
+        return {"role": services.settings.role, "reachable": False, "error": str(exc)}
+
+
+async def health_report(services: Services, details: bool) -> dict[str, Any]:
+    """``{"status"}``, and with ``details`` the KB, model, events, components and reasons."""
+    state = await run_in_threadpool(_kb_health, services)
+    model = await probe(services.model)
+    components = await run_in_threadpool(services.components.report)
+    reasons = [f"{name}: {status.reason}" for name, status in components.items() if not status.ok]
+    if not model["reachable"]:
+        reasons.append(f"model: {model['name']} is not reachable ({model['detail']})")
+    if not state.get("reachable", True):
+        reasons.append(f"store: {state.get('error', 'not reachable')}")
+    if not state.get("store_in_sync", True):
+        reasons.append("store: the mirror is out of sync; the next commit rewrites it")
+    status = "degraded" if reasons else "ok"
+    if not details:
+        return {"status": status}
+    return {"status": status, "reasons": reasons, "kb": state, "model": model,
+            "events": {"subscribers": services.hub.listener_count},
+            "components": {name: s.as_dict() for name, s in components.items()}}

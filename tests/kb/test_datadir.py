@@ -1,0 +1,98 @@
+"""``situated data check|repair``'s library: what is intact, what is damaged, and a repair that
+keeps the damaged files and recovers every record it can."""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+from pathlib import Path
+
+import pytest
+
+from kb import KB
+from kb.datadir import check, repair
+from kb.journal import JOURNAL, SNAPSHOT, SNAPSHOT_TMP, Journal
+
+
+@pytest.fixture
+def kbs() -> Iterator[list[KB]]:
+    opened: list[KB] = []
+    yield opened
+    for kb in opened:
+        kb.close()
+
+
+def _open(directory: Path, kbs: list[KB]) -> tuple[KB, Journal]:
+    kb = KB()
+    kbs.append(kb)
+    journal = Journal(directory)
+    journal.recover(kb)
+    return kb, journal
+
+
+def _write(directory: Path, kbs: list[KB], count: int, snapshot_after: int | None = None) -> None:
+    kb, journal = _open(directory, kbs)
+    for i in range(count):
+        kb += f"s{i} sees o{i}"
+        if snapshot_after == i:
+            journal.snapshot(kb)
+    journal.close()
+
+
+
+def test_check_tells_intact_harmless_and_damaged_apart(tmp_path: Path, kbs: list[KB]) -> None:
+    _write(tmp_path, kbs, 10, snapshot_after=4)
+    report = check(tmp_path)
+    assert not report.damaged
+    assert "snapshot.json: ok: revision 5" in report.render()
+    assert "journal.log: ok: 5 intact record(s), revisions 6..10" in report.render()
+    path = tmp_path / JOURNAL
+    path.write_bytes(path.read_bytes()[:-5])  # a crash in the middle of the last append
+    (tmp_path / SNAPSHOT_TMP).write_bytes(b"{")
+    report = check(tmp_path)
+    assert not report.damaged
+    assert "journal.log: harmless:" in report.render() and "snapshot.json.tmp: harmless" in report.render()
+
+
+def test_repair_of_a_flipped_byte_keeps_the_original_and_every_intact_record(tmp_path: Path,
+                                                                             kbs: list[KB]) -> None:
+    _write(tmp_path, kbs, 200)
+    path = tmp_path / JOURNAL
+    lines = path.read_bytes().splitlines(keepends=True)
+    flipped = bytearray(lines[99])
+    flipped[20] ^= 0x40
+    damaged = b"".join(lines[:99]) + bytes(flipped) + b"".join(lines[100:])
+    path.write_bytes(damaged)
+    assert check(tmp_path).damaged
+    report = repair(tmp_path)
+    assert "199 intact record(s)" in report.render()
+    originals = list(tmp_path.glob(f"{JOURNAL}.damaged-*"))
+    assert len(originals) == 1 and originals[0].read_bytes() == damaged
+    assert path.read_bytes() == b"".join(lines[:99] + lines[100:])
+    assert not check(tmp_path).damaged
+    again, _ = _open(tmp_path, kbs)
+    assert {r["s"] for r in again["?s sees ?o"]} == {f"s{i}" for i in range(200) if i != 99}
+
+
+def test_repair_of_a_snapshot_with_a_bad_checksum_keeps_what_still_reads(tmp_path: Path, kbs: list[KB]) -> None:
+    _write(tmp_path, kbs, 6, snapshot_after=5)
+    path = tmp_path / SNAPSHOT
+    original = path.read_bytes()
+    damaged = original.replace(b"#s3>", b"#s3", 1)  # s3's statement no longer parses; still JSON
+    path.write_bytes(damaged)
+    assert check(tmp_path).damaged
+    report = repair(tmp_path)
+    assert "1 unreadable statement(s) dropped" in report.render()
+    assert next(tmp_path.glob(f"{SNAPSHOT}.damaged-*")).read_bytes() == damaged
+    assert not check(tmp_path).damaged
+    again, _ = _open(tmp_path, kbs)
+    assert {r["s"] for r in again["?s sees ?o"]} == {"s0", "s1", "s2", "s4", "s5"} and again.revision == 6
+
+
+def test_repair_of_an_unreadable_snapshot_keeps_the_journal(tmp_path: Path, kbs: list[KB]) -> None:
+    _write(tmp_path, kbs, 6, snapshot_after=2)
+    (tmp_path / SNAPSHOT).write_bytes(b"")
+    report = repair(tmp_path)
+    assert "could not be read at all" in report.render() and not (tmp_path / SNAPSHOT).exists()
+    assert next(tmp_path.glob(f"{SNAPSHOT}.damaged-*")).read_bytes() == b""
+    again, _ = _open(tmp_path, kbs)
+    assert {r["s"] for r in again["?s sees ?o"]} == {"s3", "s4", "s5"}  # what the journal held
