@@ -34,8 +34,9 @@ from kb.arguments import (
 )
 from kb.errors import KbError
 from kb.events import Callback, event_id
+from kb.formats import export_format
 from kb.query import Row, TooManyRows, holds, rows
-from kb.rdfio import FORMATS, default_ontology, parse_data, parse_location, serialize
+from kb.rdfio import default_ontology, parse_data, parse_location, serialize
 from kb.sparql import execute, parse_update, to_json
 from kb.store import ALL_MODELS, DEFAULT_MODEL, Model, Models
 from kb.sugar import KnowledgeCoreSugar
@@ -297,8 +298,7 @@ class KB(KnowledgeCoreSugar):
 
     def export(self, fmt: str = "turtle", model: str | None = None, inferred: bool = False) -> bytes:
         """A model's asserted (or, with ``inferred``, materialised) triples in an RDF format."""
-        if fmt not in FORMATS:
-            raise KbError(f"unknown export format {fmt!r}; use one of {sorted(FORMATS)}")
+        fmt = export_format(fmt).name
         with self._lock:
             target = self._one_model(model)
             triples = list(target.closure if inferred else target.asserted)

@@ -12,27 +12,15 @@ from api.deps import KbDep, ReadAccess, ServicesDep, SettingsDep, WriteAccess
 from api.errors import ApiError
 from api.kbtypes import AnyKB
 from api.limits import check_count
-from api.negotiation import negotiate
+from api.negotiation import RDF_UPLOAD_TYPES, negotiate, upload_format
 from api.settings import Settings
+from kb.formats import EXPORTS
 from kb.query import TooManyRows
 
 router = APIRouter(prefix="/kb", tags=["kb"])
 
 Models = Annotated[list[str] | None, Query(description="models to use; default: the robot's own")]
-RDF_UPLOAD = {
-    "text/turtle": "turtle",
-    "application/x-turtle": "turtle",
-    "application/rdf+xml": "xml",
-    "application/ld+json": "json-ld",
-    "application/n-triples": "nt",
-    "text/n3": "n3",
-}
-RDF_EXPORT = {
-    "text/turtle": "turtle",
-    "application/ld+json": "json-ld",
-    "application/n-triples": "nt",
-    "application/rdf+xml": "xml",
-}
+RDF_EXPORT = {fmt.media_type: fmt.name for fmt in EXPORTS}
 
 
 class QueryRequest(BaseModel):
@@ -144,16 +132,15 @@ async def classesof(term: str, kb: KbDep, direct: bool = False, models: Models =
 
 
 @router.post("/load", dependencies=[WriteAccess], openapi_extra={
-    "requestBody": {"required": True, "content": {t: {"schema": {"type": "string"}} for t in RDF_UPLOAD}}})
+    "requestBody": {"required": True,
+                    "content": {t: {"schema": {"type": "string"}} for t in RDF_UPLOAD_TYPES}}})
 async def load(request: Request, kb: KbDep, models: Models = None,
-               format: Annotated[str | None, Query(description="rdflib format, else by Content-Type")] = None,
+               format: Annotated[str | None, Query(description="RDF format (a name or media type), "
+                                                   "else by Content-Type")] = None,
                ) -> Revision:
-    """Add an RDF document sent as the body (Turtle, RDF/XML, JSON-LD, N-Triples) as one batch."""
-    fmt = format or RDF_UPLOAD.get(request.headers.get("content-type", "").split(";")[0].strip().lower())
-    if fmt is None:
-        raise ApiError(415, "unsupported_media_type",
-                       f"send the document as one of {', '.join(RDF_UPLOAD)} (or give ?format=)",
-                       {"accepted": list(RDF_UPLOAD)})
+    """Add an RDF document sent as the body (Turtle, RDF/XML, JSON-LD, N-Triples, N3, TriG,
+    N-Quads, TriX) as one batch."""
+    fmt = upload_format(format, request.headers.get("content-type"))
     data = await request.body()
     if not data.strip():
         raise ApiError(422, "empty_document", "the request body is empty; send an RDF document")

@@ -21,6 +21,7 @@ from api.settings import Limits, Settings
 from dialogue.llm.base import ChatRequest
 from dialogue.llm.testing import FunctionModel
 from tests.api.conftest import SCENE, Live
+from tests.kb.test_formats import NAMES, RDF_BODY, TRIX_BODY, entity_bomb
 from tests.reliability.fake_llm import GOOD_ANSWER
 from tests.reliability.server import ServerProcess
 
@@ -103,6 +104,37 @@ def test_an_upload_cannot_make_the_service_fetch_a_remote_context(
     inline = {"@context": {"name": "http://example.org/name"}, "@id": "http://example.org/d", "name": "ok"}
     assert live.client.post("/kb/load", content=json.dumps(inline),
                             headers={"content-type": "application/ld+json"}).status_code == 200
+
+
+def test_no_name_of_json_ld_lets_an_upload_fetch_a_remote_context(
+        live: Live, listener: tuple[str, list[str]]) -> None:
+    """The format may be named by ?format= or the Content-Type, in any spelling: each is the same
+    JSON-LD parser, so each gets the same refusal (the red team's SSRF used ?format=application/ld+json)."""
+    url, hits = listener
+    document = json.dumps({"@context": f"{url}/context.jsonld", "@id": "http://example.org/a", "name": "x"})
+    for name in sorted(NAMES["json-ld"]):
+        for params, media in (({"format": name}, "text/turtle"), ({"format": name.upper()}, "text/plain"),
+                              ({}, f"{name}; charset=utf-8")):
+            if "/" not in media.split(";")[0]:
+                continue  # only media types name a format in a Content-Type
+            response = live.client.post("/kb/load", params=params, content=document,
+                                        headers={"content-type": media})
+            assert response.status_code == 400, (name, params, media, response.text)
+            assert "remote JSON-LD @context" in response.json()["message"]
+    assert hits == []
+    assert live.client.get("/kb/query", params={"pattern": "?s <http://schema.org/name> ?o"}).json() == []
+
+
+@pytest.mark.parametrize(("media", "root", "body"), [("application/rdf+xml", "rdf:RDF", RDF_BODY),
+                                                      ("application/trix", "TriX", TRIX_BODY)])
+def test_an_xml_entity_bomb_upload_is_refused_at_once(live: Live, media: str, root: str, body: str) -> None:
+    before = live.services.kb.revision
+    for params, content_type in (({}, media), ({"format": media}, "text/turtle")):
+        response = live.client.post("/kb/load", params=params, content=entity_bomb(root, body, 9),
+                                    headers={"content-type": content_type}, timeout=60)
+        assert response.status_code == 400, response.text
+        assert "DTD or entity declarations are refused" in response.json()["message"]
+    assert live.services.kb.revision == before
 
 
 def test_a_sparql_query_cannot_reach_another_host(live: Live, listener: tuple[str, list[str]]) -> None:
