@@ -32,6 +32,8 @@ class Limits(BaseModel):
     max_dialogues: int = Field(default=1000, ge=1, description="dialogues open at once")
     max_rows: int = Field(default=10_000, ge=1, description="rows a /kb/query answer may have")
     max_input_chars: int = Field(default=4000, ge=1, description="characters in one utterance")
+    max_models: int = Field(default=16, ge=1, description="models named in one write or query (each new "
+                            "model is a copy of the ontology's closure)")
 
 
 class SceneSettings(BaseModel):

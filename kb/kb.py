@@ -43,13 +43,23 @@ from kb.sugar import KnowledgeCoreSugar
 from kb.terms import Node, Triple, as_list, parse_ground, parse_patterns, shorten
 from kb.writer import ActiveListener, Batch, Commit, CommitListener, Writer
 
+DEFAULT_MAX_MODELS_PER_WRITE = 16
+
 
 class KB(KnowledgeCoreSugar):
     """An in-process OWL/RDF knowledge base with incremental OWL RL reasoning."""
 
     def __init__(self, ontology: bool | Sequence[str | Path] = True, *,
-                 clock: Callable[[], float] = time.time) -> None:
-        """``ontology``: True for the default ORO-compatible ontology, False for none, or files."""
+                 clock: Callable[[], float] = time.time,
+                 max_models_per_write: int = DEFAULT_MAX_MODELS_PER_WRITE) -> None:
+        """``ontology``: True for the default ORO-compatible ontology, False for none, or files.
+        ``max_models_per_write``: the most models one write may name (each new model starts with
+        a copy of the ontology's closure, so one write naming thousands would take minutes and
+        gigabytes under the KB lock)."""
+        if isinstance(max_models_per_write, bool) or not isinstance(max_models_per_write, int) \
+                or max_models_per_write < 1:
+            raise KbError(f"max_models_per_write must be a positive integer, got {max_models_per_write!r}")
+        self._max_models_per_write = max_models_per_write
         if ontology is True:
             defaults: tuple[Triple, ...] = default_ontology()
         elif ontology is False:
@@ -103,6 +113,9 @@ class KB(KnowledgeCoreSugar):
 
     def _write_models(self, models: Models_) -> list[str]:
         names = model_names(models)
+        if len(names) > self._max_models_per_write:
+            raise KbError(f"{len(names)} models in one write; the limit is {self._max_models_per_write} "
+                          "(KB's max_models_per_write)")
         if not names:
             return [DEFAULT_MODEL]
         if ALL_MODELS in names:

@@ -59,6 +59,7 @@ class Revision(BaseModel):
 async def query(body: QueryRequest, kb: KbDep, settings: SettingsDep) -> list[Any]:
     """Rows of bindings for a conjunction of patterns (kb-compat §3.2)."""
     check_count(body.patterns, settings.limits.max_patterns, "patterns")
+    check_count(body.models or [], settings.limits.max_models, "models")
     return await _find(kb, settings, body.patterns, body.vars, body.models)
 
 
@@ -77,6 +78,7 @@ async def query_get(kb: KbDep, settings: SettingsDep,
                     models: Models = None) -> list[Any]:
     """Rows of bindings for ``?pattern=...`` (repeat it for a conjunction)."""
     check_count(pattern, settings.limits.max_patterns, "patterns")
+    check_count(models or [], settings.limits.max_models, "models")
     return await _find(kb, settings, pattern, None, models)
 
 
@@ -84,6 +86,7 @@ async def query_get(kb: KbDep, settings: SettingsDep,
 async def revise(body: ReviseRequest, kb: KbDep, settings: SettingsDep) -> Revision:
     """Add, update or retract statements as one batch: all or nothing."""
     check_count(body.statements, settings.limits.max_statements, "statements")
+    check_count(body.models or [], settings.limits.max_models, "models")
     policy = {"method": body.method, "models": body.models, "lifespan": body.lifespan or 0}
     await run_in_threadpool(kb.revise, body.statements, policy)
     return Revision(revision=kb.revision)
@@ -95,6 +98,7 @@ async def apply(body: ApplyRequest, kb: KbDep, settings: SettingsDep) -> Revisio
     reasoning pass, one round of events: a perception tick. ``add`` replaces a functional
     property's old value as ``update`` does."""
     check_count([*body.add, *body.remove], settings.limits.max_statements, "statements")
+    check_count(body.models or [], settings.limits.max_models, "models")
     await run_in_threadpool(kb.apply, body.add, body.remove, body.models, body.lifespan or 0)
     return Revision(revision=kb.revision)
 
@@ -134,13 +138,14 @@ async def classesof(term: str, kb: KbDep, direct: bool = False, models: Models =
 @router.post("/load", dependencies=[WriteAccess], openapi_extra={
     "requestBody": {"required": True,
                     "content": {t: {"schema": {"type": "string"}} for t in RDF_UPLOAD_TYPES}}})
-async def load(request: Request, kb: KbDep, models: Models = None,
+async def load(request: Request, kb: KbDep, settings: SettingsDep, models: Models = None,
                format: Annotated[str | None, Query(description="RDF format (a name or media type), "
                                                    "else by Content-Type")] = None,
                ) -> Revision:
     """Add an RDF document sent as the body (Turtle, RDF/XML, JSON-LD, N-Triples, N3, TriG,
     N-Quads, TriX) as one batch."""
     fmt = upload_format(format, request.headers.get("content-type"))
+    check_count(models or [], settings.limits.max_models, "models")
     data = await request.body()
     if not data.strip():
         raise ApiError(422, "empty_document", "the request body is empty; send an RDF document")
