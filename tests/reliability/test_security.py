@@ -218,6 +218,33 @@ def test_the_served_cli_bounds_bodies_and_websocket_messages(tmp_path: Path) -> 
         server.stop()
 
 
+def test_tokens_in_urls_are_redacted_from_the_access_log(tmp_path: Path) -> None:
+    """Issue 19, item 11: ``?token=`` (Rasa routes) and ``?access_token=`` (event streams) reach
+    uvicorn's request log (HTTP lines and WebSocket handshakes); their values must not."""
+    secret = "tok-7f3a9c-do-not-log"
+    log = tmp_path / "server.log"
+    server = ServerProcess(["--scene", "none"], log,
+                           env={"SITUATED_TOKEN": secret, "SITUATED_ALLOW_ANONYMOUS_READS": "false"})
+    try:
+        server.wait_ready()
+        hook = httpx.post(f"{server.url}/webhooks/rest/webhook?token={secret}",
+                          json={"sender": "person_alice", "message": "hello"}, timeout=30)
+        assert hook.status_code == 200, hook.text
+        wrong = httpx.get(f"{server.url}/kb/events?pattern=%3Fs%20%3Fp%20%3Fo&access_token={secret}x&TOKEN={secret}")
+        assert wrong.status_code == 403
+        ws_url = "ws" + server.url[len("http"):] + f"/kb/events/ws?access_token={secret}"
+        with connect(ws_url) as ws:
+            ws.send(json.dumps({"patterns": ["?s isOn ?o"]}))
+            assert "status" not in json.loads(ws.recv(timeout=10))
+    finally:
+        server.stop()
+    text = log.read_text(errors="replace")
+    assert secret not in text
+    assert "POST /webhooks/rest/webhook?token=[redacted] HTTP/1.1\" 200" in text
+    assert "&access_token=[redacted]&TOKEN=[redacted] HTTP/1.1\" 403" in text
+    assert '"WebSocket /kb/events/ws?access_token=[redacted]" [accepted]' in text
+
+
 def test_closed_by_default() -> None:
     settings = Settings()
     assert settings.host == "127.0.0.1" and settings.cors_origins == [] and settings.sparql_update is False
