@@ -22,6 +22,7 @@ from api.routes import kb as kb_routes
 from api.routes.health import package_version
 from api.services import start_services
 from api.settings import Settings
+from api.validtext import ValidText
 from dialogue.llm.base import ChatModel
 from kb import KB
 
@@ -52,6 +53,7 @@ def create_app(settings: Settings | None = None, kb: KB | None = None,
     install_error_handlers(app)
     if config.writer_url is not None:  # a reader: the scene and the commit feed are the writer's
         app.add_middleware(WriterProxy, writer_url=config.writer_url)
+    app.add_middleware(ValidText)  # invalid Unicode in the URL or body: 400 before any route
     app.add_middleware(BodySizeLimit, max_bytes=config.limits.max_body_bytes)  # outermost
     if config.cors_origins:
         app.add_middleware(CORSMiddleware, allow_origins=config.cors_origins,

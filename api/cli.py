@@ -142,6 +142,7 @@ def _parser() -> argparse.ArgumentParser:
 def _serve(args: argparse.Namespace) -> int:
     import uvicorn
 
+    from api.accesslog import log_config
     from api.app import create_app
     from api.services import backend_of
 
@@ -159,7 +160,7 @@ def _serve(args: argparse.Namespace) -> int:
     _say(f"situated: serving on http://{settings.host}:{settings.port} (model: {settings.llm}; "
          f"scene: {settings.scene or 'none'}{role}); loading the KB...")
     uvicorn.run(create_app(settings), host=settings.host, port=settings.port, ws="websockets-sansio",
-                ws_max_size=settings.limits.max_body_bytes, log_level="info")
+                ws_max_size=settings.limits.max_body_bytes, log_level="info", log_config=log_config())
     return 0
 
 

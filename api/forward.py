@@ -18,11 +18,9 @@ import httpx
 from starlette.types import ASGIApp, Message, Receive, Scope, Send
 
 from api.errors import ApiError, error_body
+from kb.formats import rdf_format
 from kb.terms import as_list
 
-#: The RDF formats KB.load_data takes, as the media types of POST /kb/load.
-_UPLOAD_TYPES = {"turtle": "text/turtle", "xml": "application/rdf+xml", "json-ld": "application/ld+json",
-                 "nt": "application/n-triples", "n3": "text/n3"}
 #: Paths a reader forwards as they are: the scene lives in the writer, and so does the commit feed.
 FORWARDED = ("/scene", "/kb/changes")
 
@@ -58,9 +56,7 @@ class WriterClient:
 
     def load_data(self, data: str | bytes, fmt: str = "turtle",
                   models: str | Sequence[str] | None = None) -> None:
-        media = _UPLOAD_TYPES.get(fmt)
-        if media is None:
-            raise ApiError(400, "kb_error", f"unknown RDF format {fmt!r}; use one of {sorted(_UPLOAD_TYPES)}")
+        media = rdf_format(fmt).media_type
         body = data.encode() if isinstance(data, str) else data
         self._post("/kb/load", content=body, headers={"content-type": media},
                    params={"models": _models(models) or []})

@@ -5,6 +5,10 @@ from __future__ import annotations
 from collections.abc import Sequence
 
 from api.errors import ApiError
+from kb.formats import TABLE, find_format, rdf_format
+
+#: The media types an RDF document may be sent as (POST /kb/load).
+RDF_UPLOAD_TYPES = tuple(fmt.media_type for fmt in TABLE)
 
 
 def _ranges(accept: str) -> list[tuple[str, float]]:
@@ -55,3 +59,17 @@ def negotiate(accept: str | None, offers: Sequence[str]) -> str:
                        f"cannot answer with {accept!r}; available: {', '.join(offers)}",
                        {"available": list(offers)})
     return offer
+
+
+def upload_format(format: str | None, content_type: str | None) -> str:
+    """The canonical RDF format of an uploaded document: ``?format=`` (any name of a format; an
+    unknown one is the KB's error) or else its Content-Type (415 when it names no RDF format)."""
+    if format:
+        return rdf_format(format).name
+    # Only media types name a format in a Content-Type (not "turtle" or "json").
+    found = find_format(content_type or "") if "/" in (content_type or "") else None
+    if found is not None:
+        return found.name
+    raise ApiError(415, "unsupported_media_type",
+                   f"send the document as one of {', '.join(RDF_UPLOAD_TYPES)} (or give ?format=)",
+                   {"accepted": list(RDF_UPLOAD_TYPES)})

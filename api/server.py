@@ -11,6 +11,8 @@ from typing import Any
 
 import uvicorn
 
+from api.accesslog import log_config
+
 
 @contextmanager
 def serve_in_thread(app: Any, host: str = "127.0.0.1", start_timeout: float = 30.0) -> Iterator[str]:
@@ -21,7 +23,8 @@ def serve_in_thread(app: Any, host: str = "127.0.0.1", start_timeout: float = 30
     sock.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
     sock.bind((host, 0))
     port = sock.getsockname()[1]
-    config = uvicorn.Config(app, log_level="warning", lifespan="on", ws="websockets-sansio")
+    config = uvicorn.Config(app, log_level="warning", lifespan="on", ws="websockets-sansio",
+                            log_config=log_config())
     server = uvicorn.Server(config)
     thread = threading.Thread(target=server.run, kwargs={"sockets": [sock]}, daemon=True,
                               name=f"uvicorn-{port}")

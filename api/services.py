@@ -140,7 +140,7 @@ def start_services(settings: Settings, kb: KB | None = None, model: ChatModel | 
     if settings.role == "reader":
         return _start_reader(settings, model)
     owns_kb = kb is None
-    the_kb = kb if kb is not None else KB()
+    the_kb = kb if kb is not None else KB(max_models_per_write=settings.limits.max_models)
     journal: Journal | None = None
     store: Store | None = None
     try:

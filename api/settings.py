@@ -36,6 +36,8 @@ class Limits(BaseModel):
                                  "query may take, waiting for the KB included; a write waits at most this "
                                  "long behind one")
     max_input_chars: int = Field(default=4000, ge=1, description="characters in one utterance")
+    max_models: int = Field(default=16, ge=1, description="models named in one write or query (each new "
+                            "model is a copy of the ontology's closure)")
 
 
 class SceneSettings(BaseModel):

@@ -21,6 +21,7 @@ from dialogue.llm.rules import RulesModel, answer_of
 from dialogue.prompts import PromptSet
 from dialogue.schema import AnswerError, SchemaCandidates, parse_answer, turn_schema
 from dialogue.validate import Grounded, ground_answer
+from kb.unicode import check_text
 
 log = logging.getLogger(__name__)
 
@@ -116,6 +117,10 @@ class DialogueEngine:
     async def turn(
         self, text: str, *, speaker: str, history: Sequence[Utterance] = (), locale: str | None = None
     ) -> TurnResult:
+        """One turn; text that is not valid Unicode (a lone surrogate) is refused with
+        ``kb.unicode.InvalidUnicode`` before anything is asked or recorded."""
+        check_text(text, "the utterance")
+        check_text(speaker, "the speaker")
         loop = asyncio.get_running_loop()
         deadline = loop.time() + self.config.deadline
         try:

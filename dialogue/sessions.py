@@ -35,6 +35,7 @@ from dialogue.sessionstore import (
     StateError,
     check_bound,
 )
+from kb.unicode import InvalidUnicode, check_text
 
 __all__ = [
     "DEFAULT_DIALOGUE",
@@ -60,6 +61,18 @@ def _check_id(dialogue_id: str) -> None:
         dialogue_id.encode("utf-8")
     except UnicodeEncodeError:
         raise DialogueError(f"dialogue id {dialogue_id!r} is not valid Unicode text") from None
+
+
+def _check_texts(user_id: str, text: str, locale: str | None, history: Sequence[Utterance] | None) -> None:
+    """Refuse a turn holding text that is not valid Unicode before anything is recorded."""
+    fields = [("user_id", user_id), ("input", text), ("locale", locale or "")]
+    fields += [(f"history turn {i}", part) for i, turn in enumerate(history or ())
+               for part in (turn.speaker, turn.text)]
+    try:
+        for name, value in fields:
+            check_text(value, f"the {name}")
+    except InvalidUnicode as exc:
+        raise DialogueError(str(exc)) from None
 
 
 class DialogueManager:
@@ -184,6 +197,7 @@ class DialogueManager:
         """One DialogueInteraction. `history` (the 4.0.0 stateless shape) replaces the stored one."""
         if not user_id:
             raise DialogueError("user_id is required")
+        _check_texts(user_id, text, locale, history)
         async with self._lock(dialogue_id):
             state = await self._off_loop(self.get, dialogue_id)
             kept = History(self.max_turns, self.max_chars)

@@ -36,21 +36,32 @@ from kb.arguments import (
 from kb.deadline import Deadline, TimedIndex, holding
 from kb.errors import KbError, StorageError
 from kb.events import Callback, event_id
+from kb.formats import export_format
 from kb.query import Row, TooManyRows, holds, rows
-from kb.rdfio import FORMATS, default_ontology, parse_data, parse_location, serialize
+from kb.rdfio import default_ontology, parse_data, parse_location, serialize
 from kb.sparql import execute, parse_update, to_json
 from kb.store import ALL_MODELS, DEFAULT_MODEL, Model, Models
 from kb.sugar import KnowledgeCoreSugar
 from kb.terms import Node, Triple, as_list, parse_ground, parse_patterns, shorten
 from kb.writer import ActiveListener, Batch, Commit, CommitListener, Writer
 
+DEFAULT_MAX_MODELS_PER_WRITE = 16
+
 
 class KB(KnowledgeCoreSugar):
     """An in-process OWL/RDF knowledge base with incremental OWL RL reasoning."""
 
     def __init__(self, ontology: bool | Sequence[str | Path] = True, *,
-                 clock: Callable[[], float] = time.time) -> None:
-        """``ontology``: True for the default ORO-compatible ontology, False for none, or files."""
+                 clock: Callable[[], float] = time.time,
+                 max_models_per_write: int = DEFAULT_MAX_MODELS_PER_WRITE) -> None:
+        """``ontology``: True for the default ORO-compatible ontology, False for none, or files.
+        ``max_models_per_write``: the most models one write may name (each new model starts with
+        a copy of the ontology's closure, so one write naming thousands would take minutes and
+        gigabytes under the KB lock)."""
+        if isinstance(max_models_per_write, bool) or not isinstance(max_models_per_write, int) \
+                or max_models_per_write < 1:
+            raise KbError(f"max_models_per_write must be a positive integer, got {max_models_per_write!r}")
+        self._max_models_per_write = max_models_per_write
         if ontology is True:
             defaults: tuple[Triple, ...] = default_ontology()
         elif ontology is False:
@@ -104,6 +115,9 @@ class KB(KnowledgeCoreSugar):
 
     def _write_models(self, models: Models_) -> list[str]:
         names = model_names(models)
+        if len(names) > self._max_models_per_write:
+            raise KbError(f"{len(names)} models in one write; the limit is {self._max_models_per_write} "
+                          "(KB's max_models_per_write)")
         if not names:
             return [DEFAULT_MODEL]
         if ALL_MODELS in names:
@@ -312,8 +326,7 @@ class KB(KnowledgeCoreSugar):
 
     def export(self, fmt: str = "turtle", model: str | None = None, inferred: bool = False) -> bytes:
         """A model's asserted (or, with ``inferred``, materialised) triples in an RDF format."""
-        if fmt not in FORMATS:
-            raise KbError(f"unknown export format {fmt!r}; use one of {sorted(FORMATS)}")
+        fmt = export_format(fmt).name
         with self._lock:
             target = self._one_model(model)
             triples = list(target.closure if inferred else target.asserted)

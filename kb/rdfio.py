@@ -3,31 +3,29 @@
 from __future__ import annotations
 
 import json
-from collections.abc import Iterable
+from collections.abc import Callable, Iterable
 from functools import lru_cache
 from importlib.resources import files
+from io import BytesIO, StringIO
 from pathlib import Path
 from typing import Any
 from urllib.parse import unquote, urlparse
-from xml.sax import SAXParseException
+from xml.sax import InputSource, SAXParseException
+from xml.sax.handler import ContentHandler
 
-from rdflib import Graph, URIRef, plugin
+from defusedxml import DefusedXmlException
+from defusedxml.sax import parse as defused_sax_parse
+from rdflib import Dataset, Graph, URIRef
 from rdflib.exceptions import ParserError
-from rdflib.parser import Parser
-from rdflib.plugin import PluginException
-from rdflib.util import guess_format
 
 from kb.errors import KbError
+from kb.formats import EXPORTS, Syntax, export_format, format_of_path, rdf_format
 from kb.terms import ORO, PREFIXES, Triple
+from kb.unicode import check_terms
 
 DEFAULT_ONTOLOGY = "oro.ttl"
 # Export formats by name, with their media types.
-FORMATS = {
-    "turtle": "text/turtle",
-    "nt": "application/n-triples",
-    "json-ld": "application/ld+json",
-    "xml": "application/rdf+xml",
-}
+FORMATS = {fmt.name: fmt.media_type for fmt in EXPORTS}
 # What rdflib's parsers raise on malformed input (the Turtle parser even raises IndexError).
 _PARSE_ERRORS: tuple[type[BaseException], ...] = (
     SyntaxError, ValueError, SAXParseException, KeyError, IndexError, ParserError,
@@ -42,14 +40,13 @@ def default_ontology() -> tuple[Triple, ...]:
 
 
 def parse_data(data: str | bytes, fmt: str, source: str = "data") -> tuple[Triple, ...]:
-    """Parse a document; relative IRIs resolve against the ORO namespace, as upstream."""
-    graph = Graph()
-    try:
-        plugin.get(fmt, Parser)
-    except PluginException:
-        raise KbError(f"unknown RDF format {fmt!r}; use turtle, xml, json-ld, nt, n3 or trig") from None
-    if fmt == "json-ld":
-        _check_json_ld(data, source)
+    """Parse a document; relative IRIs resolve against the ORO namespace, as upstream. ``fmt`` is
+    any name of a format (kb.formats); what its syntax could make rdflib fetch or expand is
+    refused first, and a document of named graphs is merged into one set of triples."""
+    rdf = rdf_format(fmt)
+    fmt = rdf.name
+    _REFUSALS[rdf.syntax](data, source)
+    graph = Dataset(default_union=True) if rdf.quads else Graph()
     try:
         graph.parse(data=data, format=fmt, publicID=ORO)
     except _PARSE_ERRORS as exc:
@@ -62,7 +59,29 @@ def parse_data(data: str | bytes, fmt: str, source: str = "data") -> tuple[Tripl
         if type(exc) is not Exception:
             raise
         raise KbError(f"cannot parse {source} as {fmt}: {exc}") from exc
-    return tuple(graph)  # type: ignore[arg-type]  # rdflib yields (Node, Node, Node) triples
+    triples = tuple(graph.triples((None, None, None)))
+    for triple in triples:
+        check_terms(triple, f"a term of {source}")
+    return triples  # type: ignore[return-value]  # rdflib yields (Node, Node, Node) triples
+
+
+def _check_xml(data: str | bytes, source: str) -> None:
+    """Refuse a DTD before rdflib's expat parser sees it: its entity declarations expand (a
+    billion-laughs document of 1 kB costs minutes of CPU) and may name local files. Without a DTD
+    no entity can be declared, so none can be expanded or fetched."""
+    document = InputSource(source)
+    if isinstance(data, str):
+        document.setCharacterStream(StringIO(data))
+    else:
+        document.setByteStream(BytesIO(data))
+    try:
+        defused_sax_parse(document, ContentHandler(), forbid_dtd=True, forbid_entities=True,
+                          forbid_external=True)
+    except DefusedXmlException as exc:
+        raise KbError(f"cannot load {source}: XML documents with a DTD or entity declarations are "
+                      f"refused ({type(exc).__name__})") from None
+    except SAXParseException as exc:
+        raise KbError(f"cannot parse {source} as xml: {exc}") from None
 
 
 def _check_json_ld(data: str | bytes, source: str) -> None:
@@ -104,7 +123,7 @@ def read_location(uri: str) -> tuple[bytes, str, str]:
     path = Path(unquote(parsed.path) if parsed.scheme == "file" else uri)
     if not path.is_file():
         raise KbError(f"cannot load {uri!r}: no such file")
-    return path.read_bytes(), guess_format(str(path)) or "turtle", str(path)
+    return path.read_bytes(), format_of_path(path).name, str(path)
 
 
 def to_graph(triples: Iterable[Triple]) -> Graph:
@@ -117,6 +136,16 @@ def to_graph(triples: Iterable[Triple]) -> Graph:
 
 
 def serialize(triples: Iterable[Triple], fmt: str) -> bytes:
-    if fmt not in FORMATS:
-        raise KbError(f"unknown export format {fmt!r}; use one of {sorted(FORMATS)}")
-    return to_graph(triples).serialize(format=fmt, encoding="utf-8")
+    return to_graph(triples).serialize(format=export_format(fmt).name, encoding="utf-8")
+
+
+def _nothing_to_refuse(data: str | bytes, source: str) -> None:
+    return None
+
+
+# What each syntax must be checked for before rdflib parses it.
+_REFUSALS: dict[Syntax, Callable[[str | bytes, str], None]] = {
+    Syntax.TEXT: _nothing_to_refuse,
+    Syntax.XML: _check_xml,
+    Syntax.JSON_LD: _check_json_ld,
+}

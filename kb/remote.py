@@ -38,8 +38,9 @@ from kb.deadline import Deadline
 from kb.endpoint import SparqlEndpoint
 from kb.errors import KbError
 from kb.events import Callback, event_id
+from kb.formats import export_format
 from kb.query import Row, TooManyRows
-from kb.rdfio import FORMATS, serialize
+from kb.rdfio import serialize
 from kb.remotedescribe import StoreDescriber
 from kb.remoteevents import ActiveListener, Poller
 from kb.remotequery import Graphs, Meta, StoreQueries
@@ -258,8 +259,7 @@ class RemoteKB(KnowledgeCoreSugar):
 
     def export(self, fmt: str = "turtle", model: str | None = None, inferred: bool = False) -> bytes:
         """A model's asserted (or, with ``inferred``, materialised) triples in an RDF format."""
-        if fmt not in FORMATS:
-            raise KbError(f"unknown export format {fmt!r}; use one of {sorted(FORMATS)}")
+        fmt = export_format(fmt).name
         return serialize(self._queries.triples(self._one_model(model), inferred), fmt)
 
     # --- events ---------------------------------------------------------------------------

@@ -19,6 +19,7 @@ from rdflib import Literal as RdfLiteral
 
 from kb.geometry import Box, Sector
 from kb.terms import format_term
+from kb.unicode import check_text
 
 ROBOT_ID = "myself"
 
@@ -55,6 +56,9 @@ class Entity:
     z: int | None = None
 
     def __post_init__(self) -> None:
+        for name, text in (("id", self.id), ("class", self.cls), ("label", self.label)):
+            if isinstance(text, str):
+                check_text(text, f"the {name} of scene entity {self.id!r}")
         if not self.cls:
             object.__setattr__(self, "cls", DEFAULT_CLASS[self.kind])
 

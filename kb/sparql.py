@@ -15,7 +15,7 @@ from typing import Any
 from pyparsing import ParseBaseException
 from rdflib import BNode, Graph, URIRef
 from rdflib.plugins.sparql.algebra import translateQuery, translateUpdate, traverse
-from rdflib.plugins.sparql.parser import parseQuery, parseUpdate
+from rdflib.plugins.sparql.parser import expandUnicodeEscapes, parseQuery, parseUpdate
 from rdflib.plugins.sparql.parserutils import CompValue
 from rdflib.query import Result
 from rdflib.store import Store
@@ -26,6 +26,7 @@ from kb.errors import KbError
 from kb.index import TripleIndex
 from kb.sparqlbudget import bound, check_size
 from kb.terms import ORO, PREFIXES, Node, Triple
+from kb.unicode import check_text
 
 _GRAPH_ID = URIRef(ORO + "sparql")
 # rdflib keeps one prefix per namespace, so `:` is declared and `oro:` names are renamed to it in
@@ -123,6 +124,12 @@ class UnsupportedUpdate(KbError):
 def _translate(text: str, kind: str, parse: Callable[[str], Any], translate: Callable[..., Any],
                prologues: Callable[[Any], Iterable[Any]]) -> tuple[Any, frozenset[str]]:
     """The translated query or update, and the prefixes it declares itself."""
+    try:
+        # SPARQL's \u escapes apply to the whole text before parsing; a lone surrogate one would
+        # put text that is not Unicode into the results (or, for an update, into the KB).
+        check_text(expandUnicodeEscapes(text), f"the SPARQL {kind}")
+    except ValueError as exc:  # an escape beyond U+10FFFF
+        raise InvalidSparql(f"invalid SPARQL {kind}: {exc}") from None
     try:
         tree = parse(text)
         if kind == "query":

@@ -18,6 +18,7 @@ from rdflib import BNode, Literal, URIRef, Variable
 from rdflib.namespace import RDF, XSD
 
 from kb.errors import KbError
+from kb.unicode import check_terms
 
 ORO: Final = "http://kb.openrobots.org#"
 
@@ -205,6 +206,11 @@ class TermParser:
         self._anonymous = 0
 
     def term(self, token: Token, position: str, statement: str) -> Term:
+        term = self._term(token, position, statement)
+        check_terms((term,), f"the {position} of {statement!r}")
+        return term
+
+    def _term(self, token: Token, position: str, statement: str) -> Term:
         where = f"{position} of {statement!r}"
         if token.literal:
             try:

@@ -12,26 +12,14 @@ from api.deps import KbDep, ReadAccess, ServicesDep, SettingsDep, WriteAccess
 from api.errors import ApiError
 from api.kbtypes import AnyKB
 from api.limits import check_count
-from api.negotiation import negotiate
+from api.negotiation import RDF_UPLOAD_TYPES, negotiate, upload_format
 from api.settings import Settings
+from kb.formats import EXPORTS
 
 router = APIRouter(prefix="/kb", tags=["kb"])
 
 Models = Annotated[list[str] | None, Query(description="models to use; default: the robot's own")]
-RDF_UPLOAD = {
-    "text/turtle": "turtle",
-    "application/x-turtle": "turtle",
-    "application/rdf+xml": "xml",
-    "application/ld+json": "json-ld",
-    "application/n-triples": "nt",
-    "text/n3": "n3",
-}
-RDF_EXPORT = {
-    "text/turtle": "turtle",
-    "application/ld+json": "json-ld",
-    "application/n-triples": "nt",
-    "application/rdf+xml": "xml",
-}
+RDF_EXPORT = {fmt.media_type: fmt.name for fmt in EXPORTS}
 
 
 class QueryRequest(BaseModel):
@@ -75,6 +63,7 @@ class Revised(Revision):
 async def query(body: QueryRequest, kb: KbDep, settings: SettingsDep) -> list[Any]:
     """Rows of bindings for a conjunction of patterns (kb-compat §3.2)."""
     check_count(body.patterns, settings.limits.max_patterns, "patterns")
+    check_count(body.models or [], settings.limits.max_models, "models")
     return await _find(kb, settings, body.patterns, body.vars, body.models)
 
 
@@ -91,6 +80,7 @@ async def query_get(kb: KbDep, settings: SettingsDep,
                     models: Models = None) -> list[Any]:
     """Rows of bindings for ``?pattern=...`` (repeat it for a conjunction)."""
     check_count(pattern, settings.limits.max_patterns, "patterns")
+    check_count(models or [], settings.limits.max_models, "models")
     return await _find(kb, settings, pattern, None, models)
 
 
@@ -98,6 +88,7 @@ async def query_get(kb: KbDep, settings: SettingsDep,
 async def revise(body: ReviseRequest, kb: KbDep, settings: SettingsDep) -> Revised:
     """Add, update or retract statements as one batch: all or nothing."""
     check_count(body.statements, settings.limits.max_statements, "statements")
+    check_count(body.models or [], settings.limits.max_models, "models")
     policy = {"method": body.method, "models": body.models, "lifespan": body.lifespan or 0}
     removed = await run_in_threadpool(kb.revise, body.statements, policy)
     return Revised(revision=kb.revision, removed=removed)
@@ -109,6 +100,7 @@ async def apply(body: ApplyRequest, kb: KbDep, settings: SettingsDep) -> Revisio
     reasoning pass, one round of events: a perception tick. ``add`` replaces a functional
     property's old value as ``update`` does."""
     check_count([*body.add, *body.remove], settings.limits.max_statements, "statements")
+    check_count(body.models or [], settings.limits.max_models, "models")
     await run_in_threadpool(kb.apply, body.add, body.remove, body.models, body.lifespan or 0)
     return Revision(revision=kb.revision)
 
@@ -146,16 +138,16 @@ async def classesof(term: str, kb: KbDep, direct: bool = False, models: Models =
 
 
 @router.post("/load", dependencies=[WriteAccess], openapi_extra={
-    "requestBody": {"required": True, "content": {t: {"schema": {"type": "string"}} for t in RDF_UPLOAD}}})
-async def load(request: Request, kb: KbDep, models: Models = None,
-               format: Annotated[str | None, Query(description="rdflib format, else by Content-Type")] = None,
+    "requestBody": {"required": True,
+                    "content": {t: {"schema": {"type": "string"}} for t in RDF_UPLOAD_TYPES}}})
+async def load(request: Request, kb: KbDep, settings: SettingsDep, models: Models = None,
+               format: Annotated[str | None, Query(description="RDF format (a name or media type), "
+                                                   "else by Content-Type")] = None,
                ) -> Revision:
-    """Add an RDF document sent as the body (Turtle, RDF/XML, JSON-LD, N-Triples) as one batch."""
-    fmt = format or RDF_UPLOAD.get(request.headers.get("content-type", "").split(";")[0].strip().lower())
-    if fmt is None:
-        raise ApiError(415, "unsupported_media_type",
-                       f"send the document as one of {', '.join(RDF_UPLOAD)} (or give ?format=)",
-                       {"accepted": list(RDF_UPLOAD)})
+    """Add an RDF document sent as the body (Turtle, RDF/XML, JSON-LD, N-Triples, N3, TriG,
+    N-Quads, TriX) as one batch."""
+    fmt = upload_format(format, request.headers.get("content-type"))
+    check_count(models or [], settings.limits.max_models, "models")
     data = await request.body()
     if not data.strip():
         raise ApiError(422, "empty_document", "the request body is empty; send an RDF document")

@@ -7,7 +7,7 @@ from dialogue.engine import DialogueEngine
 from dialogue.history import ASSISTANT_USER_ID, SYSTEM_USER_ID, Utterance
 from dialogue.llm.testing import ScriptedModel
 from dialogue.sessions import DEFAULT_DIALOGUE, DialogueError, DialogueManager
-from kb import KB
+from kb import KB, KbError
 
 
 def test_default_dialogue_always_exists(kitchen: KB) -> None:
@@ -97,3 +97,16 @@ def test_errors_and_bounds(kitchen: KB) -> None:
     for _ in range(5):
         asyncio.run(manager.interact("p", "hi", response_expected=False))
     assert len(manager.get(DEFAULT_DIALOGUE).history) == 4
+
+
+def test_a_turn_holding_a_lone_surrogate_is_refused_and_not_recorded(kitchen: KB) -> None:
+    manager = DialogueManager(DialogueEngine(kitchen))
+    for user_id, text, history in [("person_alice", "\ud800 cup", None), ("person\udc00", "hi", None),
+                                   ("person_alice", "hi", [Utterance("person_alice", "x\ud800")])]:
+        with pytest.raises(DialogueError, match="not valid Unicode"):
+            asyncio.run(manager.interact(user_id, text, history=history))
+        with pytest.raises(DialogueError, match="not valid Unicode"):
+            asyncio.run(manager.interact(user_id, text, history=history, response_expected=False))
+    assert len(manager.get(DEFAULT_DIALOGUE).history) == 0
+    with pytest.raises(KbError, match="the utterance is not valid Unicode"):
+        asyncio.run(manager.engine.turn("\udc00 cup", speaker="person_alice"))

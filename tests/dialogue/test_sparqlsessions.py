@@ -165,10 +165,12 @@ def test_hostile_ids_and_text_round_trip(dialogue_id: str, kitchen: KB, shared: 
     assert s.b.ids() == [DEFAULT_DIALOGUE]
 
 
-def test_text_with_lone_surrogates_round_trips_and_such_ids_are_refused(kitchen: KB, shared: Callable[..., Shared]) -> None:
+def test_text_with_lone_surrogates_and_such_ids_are_refused(kitchen: KB, shared: Callable[..., Shared]) -> None:
     s = shared(kitchen)
-    asyncio.run(s.a.interact("p", "broken \ud800 text", response_expected=False))
-    assert s.b.get(DEFAULT_DIALOGUE).history[0].text == "broken \ud800 text"
+    # Not valid Unicode (issue 19, item 7): refused before anything is recorded in the store.
+    with pytest.raises(DialogueError, match="not valid Unicode"):
+        asyncio.run(s.a.interact("p", "broken \ud800 text", response_expected=False))
+    assert s.b.get(DEFAULT_DIALOGUE).history == ()
     with pytest.raises(DialogueError, match="not valid Unicode text"):
         s.a.start(dialogue_id="bad \udcff id")
 

@@ -664,3 +664,21 @@ def test_is_asserted_and_size(kb: KB) -> None:
     assert not kb.is_asserted("alfred rdf:type Agent")
     assert kb.size(inferred=False) == asserted + 1
     assert kb.size() > size + 1
+
+
+def test_a_write_naming_too_many_models_is_refused_and_creates_none() -> None:
+    """Issue 19, item 9: the KB bounds the models one write names (each new one copies the closure)."""
+    with KB(ontology=False, max_models_per_write=3) as kb:
+        many = [f"m{i}" for i in range(4)]
+        for write in (lambda: kb.add("a b c", models=many), lambda: kb.apply(["a b c"], [], many),
+                      lambda: kb.remove("a b c", models=many), lambda: kb.load_data("<http://a> <http://b> <http://c> .", "nt", many),
+                      lambda: kb.sparql_update("INSERT DATA { <http://a> <http://b> <http://c> }", many),
+                      lambda: kb.revise(["a b c"], {"method": "add", "models": many})):
+            with pytest.raises(KbError, match="4 models in one write; the limit is 3"):
+                write()
+        assert kb.models() == ["default"] and kb.revision == 0
+        kb.add("a b c", models=many[:3])
+        assert sorted(kb.models()) == ["default", "m0", "m1", "m2"]
+    assert KB(ontology=False)._max_models_per_write == 16  # the default bounds library users too
+    with pytest.raises(KbError, match="positive integer"):
+        KB(ontology=False, max_models_per_write=0)

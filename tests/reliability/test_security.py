@@ -21,6 +21,7 @@ from api.settings import Limits, Settings
 from dialogue.llm.base import ChatRequest
 from dialogue.llm.testing import FunctionModel
 from tests.api.conftest import SCENE, Live
+from tests.kb.test_formats import NAMES, RDF_BODY, TRIX_BODY, entity_bomb
 from tests.reliability.fake_llm import GOOD_ANSWER
 from tests.reliability.server import ServerProcess
 
@@ -105,6 +106,37 @@ def test_an_upload_cannot_make_the_service_fetch_a_remote_context(
                             headers={"content-type": "application/ld+json"}).status_code == 200
 
 
+def test_no_name_of_json_ld_lets_an_upload_fetch_a_remote_context(
+        live: Live, listener: tuple[str, list[str]]) -> None:
+    """The format may be named by ?format= or the Content-Type, in any spelling: each is the same
+    JSON-LD parser, so each gets the same refusal (the red team's SSRF used ?format=application/ld+json)."""
+    url, hits = listener
+    document = json.dumps({"@context": f"{url}/context.jsonld", "@id": "http://example.org/a", "name": "x"})
+    for name in sorted(NAMES["json-ld"]):
+        for params, media in (({"format": name}, "text/turtle"), ({"format": name.upper()}, "text/plain"),
+                              ({}, f"{name}; charset=utf-8")):
+            if "/" not in media.split(";")[0]:
+                continue  # only media types name a format in a Content-Type
+            response = live.client.post("/kb/load", params=params, content=document,
+                                        headers={"content-type": media})
+            assert response.status_code == 400, (name, params, media, response.text)
+            assert "remote JSON-LD @context" in response.json()["message"]
+    assert hits == []
+    assert live.client.get("/kb/query", params={"pattern": "?s <http://schema.org/name> ?o"}).json() == []
+
+
+@pytest.mark.parametrize(("media", "root", "body"), [("application/rdf+xml", "rdf:RDF", RDF_BODY),
+                                                      ("application/trix", "TriX", TRIX_BODY)])
+def test_an_xml_entity_bomb_upload_is_refused_at_once(live: Live, media: str, root: str, body: str) -> None:
+    before = live.services.kb.revision
+    for params, content_type in (({}, media), ({"format": media}, "text/turtle")):
+        response = live.client.post("/kb/load", params=params, content=entity_bomb(root, body, 9),
+                                    headers={"content-type": content_type}, timeout=60)
+        assert response.status_code == 400, response.text
+        assert "DTD or entity declarations are refused" in response.json()["message"]
+    assert live.services.kb.revision == before
+
+
 def test_a_sparql_query_cannot_reach_another_host(live: Live, listener: tuple[str, list[str]]) -> None:
     url, hits = listener
     queries = [f"SELECT * WHERE {{ SERVICE <{url}/sparql> {{ ?s ?p ?o }} }}",
@@ -184,6 +216,33 @@ def test_the_served_cli_bounds_bodies_and_websocket_messages(tmp_path: Path) -> 
         assert httpx.get(server.url + "/health").status_code == 200
     finally:
         server.stop()
+
+
+def test_tokens_in_urls_are_redacted_from_the_access_log(tmp_path: Path) -> None:
+    """Issue 19, item 11: ``?token=`` (Rasa routes) and ``?access_token=`` (event streams) reach
+    uvicorn's request log (HTTP lines and WebSocket handshakes); their values must not."""
+    secret = "tok-7f3a9c-do-not-log"
+    log = tmp_path / "server.log"
+    server = ServerProcess(["--scene", "none"], log,
+                           env={"SITUATED_TOKEN": secret, "SITUATED_ALLOW_ANONYMOUS_READS": "false"})
+    try:
+        server.wait_ready()
+        hook = httpx.post(f"{server.url}/webhooks/rest/webhook?token={secret}",
+                          json={"sender": "person_alice", "message": "hello"}, timeout=30)
+        assert hook.status_code == 200, hook.text
+        wrong = httpx.get(f"{server.url}/kb/events?pattern=%3Fs%20%3Fp%20%3Fo&access_token={secret}x&TOKEN={secret}")
+        assert wrong.status_code == 403
+        ws_url = "ws" + server.url[len("http"):] + f"/kb/events/ws?access_token={secret}"
+        with connect(ws_url) as ws:
+            ws.send(json.dumps({"patterns": ["?s isOn ?o"]}))
+            assert "status" not in json.loads(ws.recv(timeout=10))
+    finally:
+        server.stop()
+    text = log.read_text(errors="replace")
+    assert secret not in text
+    assert "POST /webhooks/rest/webhook?token=[redacted] HTTP/1.1\" 200" in text
+    assert "&access_token=[redacted]&TOKEN=[redacted] HTTP/1.1\" 403" in text
+    assert '"WebSocket /kb/events/ws?access_token=[redacted]" [accepted]' in text
 
 
 def test_closed_by_default() -> None:
