@@ -47,7 +47,7 @@ EXAMPLES = f"""examples (file paths are those of a clone of the repository):
   situated eval tests/dialogue/eval/dev.jsonl --llm rules --json
                                                      score dialogue cases
   situated bench kb --quick                          small sizes; also scene, dialogue, http, load, store, all
-  situated doctor                                    check the setup (also --llm SPEC): what is wrong, how to fix it
+  situated doctor                                    check the setup (also --llm SPEC); exit 1 on a problem
   situated data check ./data                         is the journal/snapshot intact? (exit 1 if damaged)
   situated data repair ./data                        keep every intact record; damaged files kept beside
 Each command has its own help: situated COMMAND -h.
