@@ -91,3 +91,16 @@ def test_health_reports_the_model(live_factory) -> None:  # type: ignore[no-unty
     assert health["model"] == {"name": "fn", "remote": False, "reachable": True, "detail": "in-process"}
     assert health["kb"]["size"] > health["kb"]["asserted"] > 0
     assert live.client.get("/version").json()["name"] == "situated"
+
+
+def test_an_empty_or_blank_input_is_refused_and_not_recorded(live: Live) -> None:
+    dialogues = live.services.dialogues
+    for text in ("", "   ", "\n\t"):
+        for expected in (True, False):
+            refused = live.client.post("/dialogues/default/interactions", json={
+                "user_id": "person_alice", "input": text, "response_expected": expected})
+            assert refused.status_code == 422, refused.text
+            body = refused.json()
+            assert body["code"] == "invalid_request" and "input" in body["message"]
+            assert "empty or blank" in body["message"]
+    assert dialogues.get("default").history == ()
