@@ -172,3 +172,32 @@ def test_empty_or_blank_utterances_are_refused_and_nothing_is_recorded(kitchen: 
         with pytest.raises(DialogueError, match="empty or blank"):
             asyncio.run(manager.interact("person_alice", text, response_expected=False))
     assert manager.get(DEFAULT_DIALOGUE).history == ()
+
+
+def test_a_turn_cancelled_while_it_waits_leaves_the_queue_working(kitchen: KB) -> None:
+    """A client that goes away while its turn waits (the HTTP request is cancelled) must not hold
+    the dialogue: the turns after it run, and its words are not recorded."""
+    calls = 0
+
+    async def slow_first(request: ChatRequest) -> dict[str, Any]:
+        nonlocal calls
+        calls += 1
+        if calls == 1:
+            await asyncio.sleep(3600)
+        return {"verbal_ack": "OK.", "user_intent": {"type": I.GRAB_OBJECT, "object": "cup_1"}}
+
+    manager = DialogueManager(DialogueEngine(kitchen, FunctionModel(slow_first), EngineConfig(deadline=1.0)))
+
+    async def scenario() -> TurnResult:
+        first = asyncio.ensure_future(manager.interact("person_alice", "grab it"))
+        await asyncio.sleep(0)
+        gone = asyncio.ensure_future(manager.interact("person_alice", "never mind"))
+        await asyncio.sleep(0.1)
+        gone.cancel()
+        await first
+        return await manager.interact("person_alice", "grab the cup")
+
+    last = asyncio.run(scenario())
+    assert last.intents[0].data == {"object": "cup_1"}
+    said = [u.text for u in manager.get(DEFAULT_DIALOGUE).history if u.speaker == "person_alice"]
+    assert said == ["grab it", "grab the cup"]
