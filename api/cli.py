@@ -228,8 +228,8 @@ def _show(reply: dict[str, Any]) -> None:
 
 
 def _lines(args: argparse.Namespace) -> Iterator[str]:
-    if args.say:
-        yield from args.say
+    if args.say:  # blank ones are no turn, as blank lines are not
+        yield from (text.strip() for text in args.say if text.strip())
         return
     interactive = sys.stdin.isatty()
     while True:

@@ -5,7 +5,9 @@ process (uvicorn on 127.0.0.1, an instant test model, so the service itself is m
 process drives it with asyncio + httpx: each dialogue task opens its own dialogue (``POST
 /dialogues``) and sends turns back to back, while a perception writer adds a batch of facts
 (``POST /kb/revise``) and retracts the batch of a second ago, 30 times a second. Bounded in time
-(``--seconds``) and count (``--max-requests``); loopback only.
+(``--seconds``) and count (``--max-requests``); loopback only. With ``--turns N`` each dialogue sends
+exactly N turns and the writer stops once they are done (after two windows of ticks at least), so a
+run does the same work however fast the machine is: ``--seconds`` is then only a safety limit.
 
 Reports requests, throughput and p50/p99 latency per route and every error (target: none), then
 checks the KB afterwards: the writer's live facts are exactly there, and the materialised closure
@@ -124,9 +126,12 @@ class Report:
 
 
 class Load:
-    def __init__(self, url: str, seconds: float, dialogues: int, hz: float, max_requests: int) -> None:
+    def __init__(self, url: str, seconds: float, dialogues: int, hz: float, max_requests: int,
+                 turns: int | None = None) -> None:
         self.url, self.seconds, self.dialogues, self.hz = url, seconds, dialogues, hz
         self.max_requests = max_requests
+        self.turns = turns
+        self.talking = dialogues  # dialogue tasks still sending turns
         self.routes = {name: Route() for name in (START, TURN, ADD, RETRACT)}
         self.sent = 0
         self.ticks = self.late_ticks = 0
@@ -164,8 +169,17 @@ class Load:
                 return
             path = f"/dialogues/{started.json()['dialogue_id']}/interactions"
             turn = {"user_id": f"person_{n}", "input": "please take the cup"}
-            while self._more():
+            sent = 0
+            while self._more() and (self.turns is None or sent < self.turns):
                 await self._timed(TURN, lambda: client.post(path, json=turn), _check_turn)
+                sent += 1
+        self.talking -= 1
+
+    def _perceiving(self) -> bool:
+        if self.turns is None:
+            return self._more()
+        # Counted: until the dialogues are done, and long enough for batches to be retracted.
+        return self._more() and (self.talking > 0 or self.ticks < 2 * WINDOW_TICKS)
 
     async def perception(self) -> None:
         """Open loop, like a perception node: a tick every 1/hz s whether or not the previous
@@ -174,7 +188,7 @@ class Load:
         async with _client(self.url) as client:
             ticks: set[asyncio.Task[None]] = set()
             next_tick = time.monotonic()
-            while self._more():
+            while self._perceiving():
                 task = asyncio.create_task(self._tick(client, self.ticks))
                 ticks.add(task)
                 task.add_done_callback(ticks.discard)
@@ -211,7 +225,7 @@ class Load:
 def _client(url: str) -> httpx.AsyncClient:
     # TCP_NODELAY: without it Nagle + delayed ACK add ~40 ms to requests sent in two writes.
     transport = httpx.AsyncHTTPTransport(socket_options=[(socket.IPPROTO_TCP, socket.TCP_NODELAY, 1)])
-    return httpx.AsyncClient(base_url=url, timeout=30, transport=transport)
+    return httpx.AsyncClient(base_url=url, timeout=60, transport=transport)
 
 
 def _check_started(response: httpx.Response) -> str | None:
@@ -287,7 +301,7 @@ def _wait_ready(url: str, process: Any, timeout: float = 60.0) -> None:
 
 
 def run(seconds: float = 60.0, dialogues: int = 50, hz: float = 30.0,
-        max_requests: int = 2_000_000) -> Report:
+        max_requests: int = 2_000_000, turns: int | None = None) -> Report:
     port = _free_port()
     url = f"http://{HOST}:{port}"
     process = multiprocessing.get_context("spawn").Process(target=_serve, args=(port,), daemon=True)
@@ -296,7 +310,7 @@ def run(seconds: float = 60.0, dialogues: int = 50, hz: float = 30.0,
     try:
         _wait_ready(url, process)
         step("load", f"{dialogues} dialogues and a {hz:g} Hz perception writer for {seconds:g} s")
-        load = Load(url, seconds, dialogues, hz, max_requests)
+        load = Load(url, seconds, dialogues, hz, max_requests, turns)
         elapsed = asyncio.run(load.run())
         step("load", "checking the KB's closure against a recomputation")
         report = Report(elapsed, load.routes, load.ticks, load.late_ticks, hz)
@@ -321,10 +335,14 @@ def main(argv: list[str] | None = None) -> int:
                         help="perception writer ticks per second (default 30)")
     parser.add_argument("--max-requests", type=int, default=2_000_000,
                         help="stop after this many requests in all (default 2000000)")
+    parser.add_argument("--turns", type=int, default=None,
+                        help="turns per dialogue; the run ends when they are done (--seconds: a limit)")
     args = parser.parse_args(argv)
     if args.seconds <= 0 or args.dialogues < 1 or args.hz <= 0 or args.max_requests < 1:
         parser.error("--seconds, --dialogues, --hz and --max-requests must be positive")
-    report = run(args.seconds, args.dialogues, args.hz, args.max_requests)
+    if args.turns is not None and args.turns < 1:
+        parser.error("--turns must be positive")
+    report = run(args.seconds, args.dialogues, args.hz, args.max_requests, args.turns)
     print(report.table())
     return 0 if report.ok else 1
 

@@ -13,14 +13,16 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 
 from dialogue import intents as I
-from dialogue.grounding import Entity, Grounder, KnowledgeBase, Snapshot
+from dialogue.grounding import Entity, Grounder, Snapshot
 from dialogue.history import Utterance
 from dialogue.lexicon import Lexicon, LexiconCache
 from dialogue.llm.base import ChatMessage, ChatModel, ChatRequest, ChatResult, ModelError, TurnContext
 from dialogue.llm.rules import RulesModel, answer_of
 from dialogue.prompts import PromptSet
 from dialogue.schema import AnswerError, SchemaCandidates, parse_answer, turn_schema
+from dialogue.speakers import WritableKB, admit
 from dialogue.validate import Grounded, ground_answer
+from kb import KbError
 from kb.unicode import check_text
 
 log = logging.getLogger(__name__)
@@ -75,7 +77,7 @@ class DialogueEngine:
 
     def __init__(
         self,
-        kb: KnowledgeBase,
+        kb: WritableKB,
         model: ChatModel | None = None,
         config: EngineConfig | None = None,
         prompts: PromptSet | None = None,
@@ -115,14 +117,23 @@ class DialogueEngine:
         return await asyncio.shield(pending)
 
     async def turn(
-        self, text: str, *, speaker: str, history: Sequence[Utterance] = (), locale: str | None = None
+        self,
+        text: str,
+        *,
+        speaker: str,
+        history: Sequence[Utterance] = (),
+        locale: str | None = None,
+        deadline: float | None = None,
     ) -> TurnResult:
-        """One turn; text that is not valid Unicode (a lone surrogate) is refused with
-        ``kb.unicode.InvalidUnicode`` before anything is asked or recorded."""
+        """One turn, answered by `deadline` (the event loop's clock; default: `config.deadline` s from
+        now). A caller that queued the turn passes the deadline counted from its arrival. Text that is
+        not valid Unicode (a lone surrogate) is refused with ``kb.unicode.InvalidUnicode`` before
+        anything is asked or recorded."""
         check_text(text, "the utterance")
         check_text(speaker, "the speaker")
         loop = asyncio.get_running_loop()
-        deadline = loop.time() + self.config.deadline
+        if deadline is None:
+            deadline = loop.time() + self.config.deadline
         try:
             async with asyncio.timeout_at(deadline):
                 return await self._turn(text, speaker, tuple(history), locale, deadline)
@@ -153,7 +164,15 @@ class DialogueEngine:
     async def _turn(
         self, text: str, speaker: str, history: tuple[Utterance, ...], locale: str | None, deadline: float
     ) -> TurnResult:
-        turn = self.prepare(await self.ground_async(), text, speaker, history, locale)
+        grounded = await self.ground_async()
+        if grounded[0].get(speaker) is None:
+            try:
+                added = await asyncio.to_thread(admit, self.kb, speaker)
+            except KbError as exc:
+                return self.fallback(text, speaker, locale, f"speaker {speaker!r} cannot join the KB: {exc}")
+            if added:  # the speaker is a person of the KB from now on
+                grounded = await self.ground_async()
+        turn = self.prepare(grounded, text, speaker, history, locale)
         if self.config.hybrid or self.uses_rules_only:
             fast = self.fast_path(turn)
             if fast is not None:

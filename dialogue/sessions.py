@@ -8,7 +8,10 @@ The dialogues live in a `SessionStore` (dialogue.sessionstore): in this process'
 or in a store several service processes share (dialogue.sparqlsessions), so a dialogue started on
 one process continues on another, a clarifying question asked by one included. Each turn loads the
 dialogue's state when it starts and saves it when it ends. The per-dialogue asyncio.Lock serialises
-the turns of one dialogue within one process only: two processes running turns on the same dialogue
+the turns of one dialogue in arrival order, yet each turn answers by its own deadline counted from its
+arrival: a turn whose deadline passes while earlier ones run gets the engine's polite fallback at
+once, and is recorded (its words and that reply) when its place in the queue comes. This holds within
+one process only: two processes running turns on the same dialogue
 at once both load the same state and the last save wins (the other turn's utterances are lost from
 the history; its reply and intents were still returned). A dialogue ended while a turn runs stays
 ended: the turn's save does not store it again.
@@ -17,12 +20,13 @@ ended: the turn's save does not store it again.
 from __future__ import annotations
 
 import asyncio
+import logging
 import time
 import uuid
 import weakref
 from collections.abc import Callable, Sequence
 from dataclasses import replace
-from typing import ParamSpec, TypeVar
+from typing import Literal, ParamSpec, TypeVar
 
 from dialogue.engine import DialogueEngine, TurnResult
 from dialogue.history import ASSISTANT_USER_ID, History, Utterance
@@ -44,16 +48,37 @@ __all__ = [
     "DialogueError",
     "DialogueManager",
     "DialogueState",
+    "check_utterance",
 ]
 
 SUPPORTED_ROLES = frozenset({DEFAULT_ROLE})
 
 P = ParamSpec("P")
 T = TypeVar("T")
+log = logging.getLogger(__name__)
 
 
 class DialogueError(ValueError):
     """Unknown dialogue id, unsupported role, or a request that cannot be served; message says which."""
+
+
+def check_utterance(text: str) -> str:
+    """`text` when it has something to say; an empty or blank utterance is no turn (DialogueError,
+    a ValueError, so request models may use this as a validator)."""
+    if not text.strip():
+        raise DialogueError("the utterance is empty or blank; say something")
+    return text
+
+
+def _give_up(place: asyncio.Future[Literal[True]], lock: asyncio.Lock) -> None:
+    """Leave the queue: a place not reached yet is withdrawn, a lock already acquired is released."""
+    if not place.cancel():
+        lock.release()
+
+
+def _log_failure(task: asyncio.Task[None]) -> None:
+    if not task.cancelled() and task.exception() is not None:
+        log.error("recording a late dialogue turn failed", exc_info=task.exception())
 
 
 def _check_id(dialogue_id: str) -> None:
@@ -101,6 +126,8 @@ class DialogueManager:
         self.max_chars = max_chars
         # One lock per dialogue with a turn under way; gone once no turn holds or waits for it.
         self._locks: weakref.WeakValueDictionary[str, asyncio.Lock] = weakref.WeakValueDictionary()
+        # Recordings of turns answered late, waiting for their place in their dialogue's queue.
+        self._late: set[asyncio.Task[None]] = set()
 
     # -- the store, synchronously ------------------------------------------------------------------
     def _find(self, dialogue_id: str) -> DialogueState | None:
@@ -194,24 +221,103 @@ class DialogueManager:
         response_expected: bool = True,
         history: Sequence[Utterance] | None = None,
     ) -> TurnResult:
-        """One DialogueInteraction. `history` (the 4.0.0 stateless shape) replaces the stored one."""
+        """One DialogueInteraction. `history` (the 4.0.0 stateless shape) replaces the stored one.
+
+        Answered within the engine's deadline from now, however many turns of the dialogue are
+        queued before this one."""
         if not user_id:
             raise DialogueError("user_id is required")
+        check_utterance(text)
         _check_texts(user_id, text, locale, history)
-        async with self._lock(dialogue_id):
-            state = await self._off_loop(self.get, dialogue_id)
-            kept = History(self.max_turns, self.max_chars)
-            for utterance in state.history if history is None else history:
-                kept.add(utterance.speaker, utterance.text)
-            if not response_expected:
-                kept.add(user_id, text)
-                await self._off_loop(self._save, state, kept)
-                return TurnResult("", (), backend="recorded")
-            result = await self.engine.turn(
-                text, speaker=user_id, history=kept.snapshot(), locale=locale or state.locale
-            )
+        loop = asyncio.get_running_loop()
+        deadline = loop.time() + self.engine.config.deadline
+        lock = self._lock(dialogue_id)
+        # The place is taken now, so turns keep their arrival order whatever happens to each.
+        place = asyncio.ensure_future(lock.acquire())
+        try:
+            await asyncio.wait((place,), timeout=max(0.0, deadline - loop.time()))
+        except asyncio.CancelledError:
+            _give_up(place, lock)
+            raise
+        if not place.done():
+            if response_expected:
+                late = self.engine.fallback(
+                    text, user_id, locale,
+                    f"no answer within the {self.engine.config.deadline:g} s deadline: "
+                    "earlier turns of this dialogue were still running",
+                )
+            else:
+                late = TurnResult("", (), backend="recorded")
+            self._record_in_turn(place, lock, dialogue_id, user_id, text, late.response, history)
+            return late
+        try:
+            return await self._run(dialogue_id, user_id, text, locale, response_expected, history, deadline)
+        finally:
+            lock.release()
+
+    def _kept(self, state: DialogueState, history: Sequence[Utterance] | None) -> History:
+        kept = History(self.max_turns, self.max_chars)
+        for utterance in state.history if history is None else history:
+            kept.add(utterance.speaker, utterance.text)
+        return kept
+
+    async def _run(
+        self,
+        dialogue_id: str,
+        user_id: str,
+        text: str,
+        locale: str | None,
+        response_expected: bool,
+        history: Sequence[Utterance] | None,
+        deadline: float,
+    ) -> TurnResult:
+        """The turn, holding its dialogue's lock."""
+        state = await self._off_loop(self.get, dialogue_id)
+        kept = self._kept(state, history)
+        if not response_expected:
             kept.add(user_id, text)
-            if result.response:
-                kept.add(ASSISTANT_USER_ID, result.response)
             await self._off_loop(self._save, state, kept)
-            return result
+            return TurnResult("", (), backend="recorded")
+        result = await self.engine.turn(
+            text, speaker=user_id, history=kept.snapshot(), locale=locale or state.locale, deadline=deadline
+        )
+        kept.add(user_id, text)
+        if result.response:
+            kept.add(ASSISTANT_USER_ID, result.response)
+        await self._off_loop(self._save, state, kept)
+        return result
+
+    def _record_in_turn(
+        self,
+        place: asyncio.Future[Literal[True]],
+        lock: asyncio.Lock,
+        dialogue_id: str,
+        user_id: str,
+        text: str,
+        reply: str,
+        history: Sequence[Utterance] | None,
+    ) -> None:
+        """Record a turn answered late once its place in the queue comes, keeping the order."""
+
+        async def record() -> None:
+            try:
+                await asyncio.shield(place)
+            except asyncio.CancelledError:
+                _give_up(place, lock)
+                raise
+            try:
+                state = await self._off_loop(self.get, dialogue_id)
+                kept = self._kept(state, history)
+                kept.add(user_id, text)
+                if reply:
+                    kept.add(ASSISTANT_USER_ID, reply)
+                await self._off_loop(self._save, state, kept)
+            except DialogueError as exc:  # ended meanwhile, or unreadable: nothing to add to
+                log.warning("late turn of dialogue %r not recorded: %s", dialogue_id, exc)
+            finally:
+                lock.release()
+
+        task = asyncio.get_running_loop().create_task(record())
+        self._late.add(task)
+        task.add_done_callback(self._late.discard)
+        task.add_done_callback(_log_failure)

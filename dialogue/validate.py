@@ -17,6 +17,8 @@ from dialogue.resolution import ROLE_KINDS, resolve_id
 from dialogue.schema import REFERENT_FIELDS, AnswerError, ChatbotResponse, UserIntent
 
 MAX_REPLY_CHARS = 600
+#: The reply when the intent would name a speaker who is not a KB entity (see dialogue.speakers).
+UNKNOWN_SPEAKER = "Sorry, I don't know who you are."
 MAX_FREE_TEXT_CHARS = 500
 _SPEAKER_WORDS = frozenset({"me", "user", "speaker", "myself", "the user", "the speaker"})
 #: Required person roles that default to the speaker when the model left them empty (D8 repair).
@@ -44,6 +46,8 @@ def ground_answer(
     data, question = _roles(wish, lexicon, speaker)
     if question is not None:
         return Grounded(question, (), clarify=True)
+    if speaker in data.values() and lexicon.snapshot.get(speaker) is None:
+        return Grounded(UNKNOWN_SPEAKER, ())  # no intent names what is not a KB entity
     confidence = wish.confidence if wish.confidence is not None else default_confidence
     try:
         intent = I.make_intent(wish.type, data, source=speaker, confidence=confidence)

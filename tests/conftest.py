@@ -10,6 +10,7 @@ from dataclasses import dataclass
 from typing import Any
 
 import httpx
+import hypothesis
 import pytest
 
 from bench.oxigraph import OxigraphServer, oxigraph_command
@@ -17,6 +18,13 @@ from kb import KB, sparqltext
 from kb.endpoint import SparqlEndpoint
 from kb.mirror import SparqlMirror
 from kb.remote import RemoteKB
+
+
+def pytest_configure(config: pytest.Config) -> None:
+    # No time limit per Hypothesis example (200 ms by default): the suite asserts behaviour, and a
+    # busy machine must not fail it. Speed is the benchmarks' (situated bench).
+    hypothesis.settings.register_profile("situated", deadline=None)
+    hypothesis.settings.load_profile("situated")
 
 
 @pytest.fixture(scope="session")

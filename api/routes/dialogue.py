@@ -5,14 +5,14 @@ from __future__ import annotations
 from typing import Annotated
 
 from fastapi import APIRouter, Depends, Response
-from pydantic import BaseModel, ConfigDict, Field
+from pydantic import AfterValidator, BaseModel, ConfigDict, Field
 
 from api.deps import ServicesDep, WriteAccess
 from api.errors import ApiError
 from api.limits import check_count, check_length
 from dialogue.history import Utterance
 from dialogue.intents import Intent
-from dialogue.sessions import DEFAULT_ROLE, DialogueError, DialogueManager
+from dialogue.sessions import DEFAULT_ROLE, DialogueError, DialogueManager, check_utterance
 
 router = APIRouter(prefix="/dialogues", tags=["dialogue"])
 
@@ -42,7 +42,7 @@ class Turn(BaseModel):
 class InteractionRequest(BaseModel):
     model_config = ConfigDict(extra="forbid")
     user_id: str = Field(min_length=1, description="the speaker's person id, or __system__ / __assistant__")
-    input: str
+    input: Annotated[str, AfterValidator(check_utterance)] = Field(description="what was said; not blank")
     response_expected: bool = True
     locale: str | None = None
     history: list[Turn] | None = Field(default=None, description="4.0.0 shape: replaces the stored history")

@@ -8,7 +8,7 @@ import logging
 from typing import Annotated, Any
 
 from fastapi import APIRouter, Depends, Query
-from pydantic import BaseModel, ConfigDict, Field
+from pydantic import AfterValidator, BaseModel, ConfigDict, Field
 from starlette.concurrency import run_in_threadpool
 
 from api import rasa
@@ -18,7 +18,7 @@ from api.errors import ApiError
 from api.kbtypes import AnyKB
 from api.limits import check_length
 from dialogue.engine import TurnResult
-from dialogue.sessions import DialogueError, DialogueManager
+from dialogue.sessions import DialogueError, DialogueManager, check_utterance
 from kb import KbError
 
 router = APIRouter(tags=["rasa"])
@@ -36,14 +36,14 @@ def _rasa_access(write: bool) -> Any:
 class WebhookMessage(BaseModel):
     model_config = ConfigDict(extra="ignore")
     sender: str = Field(min_length=1, description="the conversation id; also the user id")
-    message: str
+    message: Annotated[str, AfterValidator(check_utterance)] = Field(description="what was said; not blank")
     metadata: dict[str, Any] | None = None
     input_channel: str | None = None
 
 
 class ParseRequest(BaseModel):
     model_config = ConfigDict(extra="ignore")
-    text: str
+    text: Annotated[str, AfterValidator(check_utterance)] = Field(description="the utterance; not blank")
     message_id: str | None = None
 
 

@@ -21,7 +21,7 @@ class Live:
     def __init__(self, url: str, app: Any) -> None:
         self.url = url
         self.app = app
-        self.client = httpx.Client(base_url=url, timeout=10)
+        self.client = httpx.Client(base_url=url, timeout=60)  # generous: a busy machine
 
     @property
     def ws_url(self) -> str:

@@ -77,14 +77,14 @@ def test_closed_reads_need_the_token_everywhere_but_health(live_factory) -> None
 def test_websocket_reads_need_the_token_when_closed(live_factory) -> None:  # type: ignore[no-untyped-def]
     live = live_factory(Settings(scene=SCENE, token=SecretStr(TOKEN), allow_anonymous_reads=False))
     with connect(live.ws_url + "/kb/events/ws") as ws:
-        error = json.loads(ws.recv(timeout=5))
+        error = json.loads(ws.recv(timeout=30))
         assert error["status"] == 401
         with pytest.raises(ConnectionClosed):
-            ws.recv(timeout=5)
+            ws.recv(timeout=30)
     headers = {"Authorization": f"Bearer {TOKEN}"}
     with connect(live.ws_url + "/kb/events/ws", additional_headers=headers) as ws:
         ws.send(json.dumps({"patterns": ["?a sees ?b"]}))
-        assert "subscribed" in json.loads(ws.recv(timeout=5))
+        assert "subscribed" in json.loads(ws.recv(timeout=30))
 
 
 def test_cors_is_closed_unless_configured(live_factory) -> None:  # type: ignore[no-untyped-def]

@@ -83,6 +83,12 @@ def test_chat_in_process_and_remote(live: Live, capsys: pytest.CaptureFixture[st
     assert '__intent_greet__ {"recipient": "person_alice"}' in capsys.readouterr().out
 
 
+def test_chat_ignores_blank_utterances(capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["chat", "--scene", str(SCENE), "--user", "person_alice", "--say", "  ", "--say", "hello"]) == 0
+    out = capsys.readouterr().out
+    assert out.count("robot: ") == 1 and "__intent_greet__" in out
+
+
 def test_eval_and_bench_delegate(capsys: pytest.CaptureFixture[str]) -> None:
     with pytest.raises(SystemExit) as done:
         main(["eval", "--help"])

@@ -91,3 +91,48 @@ def test_health_reports_the_model(live_factory) -> None:  # type: ignore[no-unty
     assert health["model"] == {"name": "fn", "remote": False, "reachable": True, "detail": "in-process"}
     assert health["kb"]["size"] > health["kb"]["asserted"] > 0
     assert live.client.get("/version").json()["name"] == "situated"
+
+
+def test_an_empty_or_blank_input_is_refused_and_not_recorded(live: Live) -> None:
+    dialogues = live.services.dialogues
+    for text in ("", "   ", "\n\t"):
+        for expected in (True, False):
+            refused = live.client.post("/dialogues/default/interactions", json={
+                "user_id": "person_alice", "input": text, "response_expected": expected})
+            assert refused.status_code == 422, refused.text
+            body = refused.json()
+            assert body["code"] == "invalid_request" and "input" in body["message"]
+            assert "empty or blank" in body["message"]
+    assert dialogues.get("default").history == ()
+
+
+def test_concurrent_turns_on_one_dialogue_each_answer_by_their_own_deadline(live_factory) -> None:  # type: ignore[no-untyped-def]
+    """Twelve turns sent at once to `default` with a model that never answers: each is answered
+    within one deadline (plus a generous margin) of when it was sent, not after the ones queued
+    before it, and every one is recorded in the history."""
+    import asyncio
+    import time
+    from concurrent.futures import ThreadPoolExecutor
+
+    async def hang(request: ChatRequest) -> str:
+        await asyncio.sleep(3600)
+        raise AssertionError("the hanging model answered")
+
+    deadline, margin, turns = 1.0, 4.0, 12
+    live = live_factory(Settings(scene=SCENE, deadline=deadline), model=FunctionModel(hang, name="hanging"))
+
+    def send(n: int) -> tuple[int, dict[str, object], float]:
+        started = time.monotonic()
+        response = live.client.post("/dialogues/default/interactions",
+                                    json={"user_id": "person_alice", "input": f"fetch thing {n}"})
+        return response.status_code, response.json(), time.monotonic() - started
+
+    with ThreadPoolExecutor(turns) as pool:
+        answers = list(pool.map(send, range(turns)))
+    for status, reply, elapsed in answers:
+        assert status == 200 and elapsed < deadline + margin, (reply, elapsed)
+        assert [i["intent"] for i in reply["intents"]] == ["__raw_user_input__"]  # type: ignore[attr-defined]
+    live.client.post("/dialogues/default/interactions",
+                     json={"user_id": "person_alice", "input": "that is all", "response_expected": False})
+    said = [u.text for u in live.services.dialogues.get("default").history if u.speaker == "person_alice"]
+    assert sorted(said[:-1]) == sorted(f"fetch thing {n}" for n in range(turns)) and said[-1] == "that is all"

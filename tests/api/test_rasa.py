@@ -62,3 +62,28 @@ def test_rasa_style_token_parameter(live_factory: Callable[..., Live]) -> None:
     assert live.client.post("/webhooks/rest/webhook?token=nope", json=message).status_code == 403
     ok = live.client.post("/webhooks/rest/webhook?token=rasa-secret", json=message)
     assert ok.status_code == 200 and ok.json()[0]["recipient_id"] == "u2"
+
+
+def test_blank_messages_are_refused(live: Live) -> None:
+    for text in ("", "  ", "\n"):
+        refused = live.client.post("/webhooks/rest/webhook", json={"sender": "person_alice", "message": text})
+        assert refused.status_code == 422 and "empty or blank" in refused.json()["message"]
+        parsed = live.client.post("/model/parse", json={"text": text})
+        assert parsed.status_code == 422 and "empty or blank" in parsed.json()["message"]
+    assert "rasa:person_alice" not in live.services.dialogues.ids()
+
+
+def test_a_sender_the_kb_does_not_know_becomes_a_person_of_it(live: Live) -> None:
+    """Every referent of an intent is a KB entity, the speaker included: a Rasa sender the KB has
+    never heard of is a person of the KB after its first message, and only then named."""
+    assert live.client.get("/kb/query", params={"pattern": "u rdf:type ?c"}).json() == []
+    messages = live.client.post("/webhooks/rest/webhook", json={"sender": "u", "message": "hello"}).json()
+    (intent,) = messages[-1]["custom"]["intents"]
+    assert intent["intent"] == "__intent_greet__" and intent["data"] == {"recipient": "u"}
+    people = live.client.get("/kb/query", params={"pattern": "?p rdf:type Human"}).json()
+    assert {"p": "u"} in people
+    # /model/parse has no speaker: nothing names one, and the KB gains nobody
+    parsed = live.client.post("/model/parse", json={"text": "bring me the cookbook"}).json()
+    assert all(entity["value"] != "__unknown_agent__" for entity in parsed["entities"])
+    people_after = live.client.get("/kb/query", params={"pattern": "?p rdf:type Human"}).json()
+    assert sorted(p["p"] for p in people_after) == sorted(p["p"] for p in people)

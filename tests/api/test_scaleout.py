@@ -5,7 +5,6 @@ read through both; dialogues started on one continue on the other."""
 from __future__ import annotations
 
 import json
-import time
 from collections.abc import Iterator
 from pathlib import Path
 
@@ -104,7 +103,9 @@ def test_events_on_the_reader_see_writes_made_on_the_writer(pair: tuple[httpx.Cl
     with reader.stream("GET", "/kb/events", params={"pattern": "?x isOn shelf"}, timeout=20) as events:
         assert events.status_code == 200
         lines = events.iter_lines()
-        time.sleep(0.3)  # the subscription is registered before the write
+        # The write comes after the subscription is registered (its "subscribed" event), not after
+        # a pause that a busy machine may outlast.
+        assert next(line for line in lines if line.startswith("event:")) == "event: subscribed"
         writer.post("/kb/revise", headers=AUTH, json={"statements": ["vase_1 isOn shelf"], "method": "add"})
         payloads = (json.loads(line[len("data:"):]) for line in lines if line.startswith("data:"))
         rows = next(p for p in payloads if isinstance(p, list))  # after the "subscribed" event

@@ -1,11 +1,13 @@
 import asyncio
+from typing import Any
 
 import pytest
 
 from dialogue import intents as I
-from dialogue.engine import DialogueEngine
+from dialogue.engine import SORRY, DialogueEngine, EngineConfig, TurnResult
 from dialogue.history import ASSISTANT_USER_ID, SYSTEM_USER_ID, Utterance
-from dialogue.llm.testing import ScriptedModel
+from dialogue.llm.base import ChatRequest
+from dialogue.llm.testing import FunctionModel, ScriptedModel
 from dialogue.sessions import DEFAULT_DIALOGUE, DialogueError, DialogueManager
 from kb import KB, KbError
 
@@ -110,3 +112,103 @@ def test_a_turn_holding_a_lone_surrogate_is_refused_and_not_recorded(kitchen: KB
     assert len(manager.get(DEFAULT_DIALOGUE).history) == 0
     with pytest.raises(KbError, match="the utterance is not valid Unicode"):
         asyncio.run(manager.engine.turn("\udc00 cup", speaker="person_alice"))
+def test_each_queued_turn_answers_within_its_own_deadline_and_in_order(kitchen: KB) -> None:
+    """Turns of one dialogue run one at a time, yet none waits past its own deadline for the ones
+    before it: with a model that never answers, twelve turns sent at once all answer (politely,
+    with the raw input) within one deadline of their arrival, and the history keeps their order."""
+    deadline, margin = 1.0, 4.0  # 12 turns one after the other would take 12 s
+
+    async def hang(request: ChatRequest) -> str:
+        await asyncio.sleep(3600)
+        raise AssertionError("the hanging model answered")
+
+    engine = DialogueEngine(kitchen, FunctionModel(hang, name="hanging"), EngineConfig(deadline=deadline))
+    manager = DialogueManager(engine, max_turns=40)
+    texts = [f"fetch the thing number {n}" for n in range(12)]
+
+    async def timed(text: str) -> tuple[TurnResult, float]:
+        loop = asyncio.get_running_loop()
+        arrived = loop.time()
+        result = await manager.interact("person_alice", text)
+        return result, loop.time() - arrived
+
+    async def scenario() -> list[tuple[TurnResult, float]]:
+        answers = await asyncio.gather(*(timed(text) for text in texts))
+        # A later turn is queued behind every earlier one, so it sees all of them recorded.
+        await manager.interact("person_alice", "that is all", response_expected=False)
+        return answers
+
+    answers = asyncio.run(scenario())
+    for text, (result, elapsed) in zip(texts, answers, strict=True):
+        assert elapsed < deadline + margin, f"{text!r} answered after {elapsed:.2f} s"
+        assert result.response == SORRY and "deadline" in result.error_msg
+        (raw,) = result.intents
+        assert raw.intent == I.RAW_USER_INPUT and raw.data["input"] == text
+    history = manager.get(DEFAULT_DIALOGUE).history
+    assert [u.text for u in history if u.speaker == "person_alice"] == [*texts, "that is all"]
+    assert [u.text for u in history if u.speaker == ASSISTANT_USER_ID] == [SORRY] * len(texts)
+
+
+def test_a_queued_turn_still_gets_the_time_left_of_its_deadline(kitchen: KB) -> None:
+    """A turn that waited for the one before it is answered by the model when it is its turn
+    and its own deadline has not passed."""
+    calls = 0
+
+    async def slow_first(request: ChatRequest) -> dict[str, Any]:
+        nonlocal calls
+        calls += 1
+        if calls == 1:
+            await asyncio.sleep(3600)
+        return {"verbal_ack": "OK.", "user_intent": {"type": I.GRAB_OBJECT, "object": "cup_1"}}
+
+    engine = DialogueEngine(kitchen, FunctionModel(slow_first), EngineConfig(deadline=2.0))
+    manager = DialogueManager(engine)
+
+    async def scenario() -> tuple[TurnResult, TurnResult]:
+        first = asyncio.ensure_future(manager.interact("person_alice", "grab it"))
+        await asyncio.sleep(1.0)  # the first turn gives up at 2 s; the second's deadline is at 3 s
+        second = await manager.interact("person_alice", "grab the cup")
+        return await first, second
+
+    first, second = asyncio.run(scenario())
+    assert [i.intent for i in first.intents] == [I.RAW_USER_INPUT]
+    assert second.intents[0].data == {"object": "cup_1"} and second.error_msg == ""
+
+
+def test_empty_or_blank_utterances_are_refused_and_nothing_is_recorded(kitchen: KB) -> None:
+    manager = DialogueManager(DialogueEngine(kitchen))
+    for text in ("", "   ", "\n\t"):
+        with pytest.raises(DialogueError, match="empty or blank"):
+            asyncio.run(manager.interact("person_alice", text))
+        with pytest.raises(DialogueError, match="empty or blank"):
+            asyncio.run(manager.interact("person_alice", text, response_expected=False))
+    assert manager.get(DEFAULT_DIALOGUE).history == ()
+
+
+def test_a_turn_cancelled_while_it_waits_leaves_the_queue_working(kitchen: KB) -> None:
+    """A client that goes away while its turn waits (the HTTP request is cancelled) must not hold
+    the dialogue: the turns after it run, and its words are not recorded."""
+    calls = 0
+
+    async def slow_first(request: ChatRequest) -> dict[str, Any]:
+        nonlocal calls
+        calls += 1
+        if calls == 1:
+            await asyncio.sleep(3600)
+        return {"verbal_ack": "OK.", "user_intent": {"type": I.GRAB_OBJECT, "object": "cup_1"}}
+
+    manager = DialogueManager(DialogueEngine(kitchen, FunctionModel(slow_first), EngineConfig(deadline=1.0)))
+
+    async def scenario() -> TurnResult:
+        first = asyncio.ensure_future(manager.interact("person_alice", "grab it"))
+        await asyncio.sleep(0)
+        gone = asyncio.ensure_future(manager.interact("person_alice", "never mind"))
+        await asyncio.sleep(0.1)
+        gone.cancel()
+        await first
+        return await manager.interact("person_alice", "grab the cup")
+
+    last = asyncio.run(scenario())
+    assert last.intents[0].data == {"object": "cup_1"}
+    said = [u.text for u in manager.get(DEFAULT_DIALOGUE).history if u.speaker == "person_alice"]
+    assert said == ["grab it", "grab the cup"]

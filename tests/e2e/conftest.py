@@ -91,7 +91,7 @@ def open_viewer(browser: Any) -> Iterator[Callable[[Service], tuple[Any, PageWat
         context = browser.new_context(viewport={"width": 1440, "height": 900})
         contexts.append(context)
         page = context.new_page()
-        page.set_default_timeout(8000)
+        page.set_default_timeout(30_000)  # generous: a busy machine
         watch = PageWatch(service.url)
         watches.append(watch)
         page.on("console", lambda msg: watch.errors.append(msg.text) if msg.type == "error" else None)

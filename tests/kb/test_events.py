@@ -42,7 +42,7 @@ class FakeClock:
         return self.now
 
 
-def wait_until(condition: Callable[[], bool], timeout: float = 3.0) -> bool:
+def wait_until(condition: Callable[[], bool], timeout: float = 30.0) -> bool:
     deadline = time.monotonic() + timeout
     while time.monotonic() < deadline:
         if condition():
@@ -283,7 +283,7 @@ def test_callbacks_run_after_the_lock_is_released(kb: KB) -> None:
         acquired: list[bool] = []
 
         def probe() -> None:
-            got = kb.lock.acquire(timeout=1.0)
+            got = kb.lock.acquire(timeout=10.0)
             acquired.append(got)
             if got:
                 kb.lock.release()

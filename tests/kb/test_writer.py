@@ -348,7 +348,7 @@ def test_a_batch_with_a_lifespan_expires_as_a_whole_under_concurrent_reads() -> 
         try:
             for _ in range(15):
                 kb.add(batch, lifespan=0.01)  # expired by reads and by the expiry thread
-                deadline = time.monotonic() + 2.0
+                deadline = time.monotonic() + 30.0
                 while kb["?c isIn hangar"] and time.monotonic() < deadline:
                     time.sleep(0.002)
         finally:

@@ -21,7 +21,7 @@ GOOD_ANSWER = {"verbal_ack": "Sure, I take the cup.",
                "user_intent": {"type": "__intent_grab_object__", "object": "cup_1", "recipient": None,
                                "goal": None, "input": None}}
 INJECTED = "master_key"  # the object an injected instruction names; the KB has no such entity
-HANG_SECONDS = 6.0
+HANG_SECONDS = 20.0
 
 # mode -> HTTP status, or the content of a 200 answer and its stop reason
 MODES: dict[str, Any] = {
