@@ -6,6 +6,7 @@ Built by the app's lifespan (blocking work, run off the event loop) and stopped 
 from __future__ import annotations
 
 import logging
+import time
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -23,7 +24,7 @@ from dialogue.sparqlsessions import SparqlSessions
 from kb import KB, KbError
 from kb.endpoint import SparqlEndpoint
 from kb.journal import Journal
-from kb.mirror import SparqlMirror
+from kb.mirror import MirrorStatus, SparqlMirror
 from kb.remote import RemoteKB
 
 log = logging.getLogger("situated.api")
@@ -44,6 +45,13 @@ class Services:
     def model(self) -> ChatModel:
         return self.dialogues.engine.model
 
+    def components(self) -> dict[str, ComponentStatus]:
+        """The parts of the service that can be degraded while it runs, by name (for /health)."""
+        found: dict[str, ComponentStatus] = {}
+        if self.store is not None and self.store.mirror is not None:
+            found["store_mirror"] = _mirror_status(self.store.mirror.status())
+        return found
+
     def clear(self, keep_defaults: bool) -> None:
         self.kb.clear(keep_defaults)
         if self.world is not None:
@@ -61,6 +69,22 @@ class Services:
             self.kb.close()
         if self.store is not None:
             self.store.close()
+
+
+@dataclass(frozen=True)
+class ComponentStatus:
+    """How one part of the service is doing: ``ok``, else a message saying what is wrong."""
+
+    ok: bool
+    message: str = ""
+
+
+def _mirror_status(status: MirrorStatus) -> ComponentStatus:
+    if status.in_sync:
+        return ComponentStatus(True, f"{status.refused} writes refused since start")
+    since = time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime(status.since)) if status.since else "start"
+    return ComponentStatus(False, f"store unreachable or being reconciled since {since}: {status.refused} "
+                                  f"writes refused since start; last error: {status.error}")
 
 
 @dataclass
@@ -126,7 +150,7 @@ def start_services(settings: Settings, kb: KB | None = None, model: ChatModel | 
     store: Store | None = None
     try:
         if settings.store is not None:
-            store = Store(SparqlEndpoint(settings.store), mirror=None)
+            store = Store(SparqlEndpoint(settings.store, settings.store_timeout), mirror=None)
         dialogues = build_dialogues(settings, the_kb, model, store.endpoint if store else None)
         if settings.data_dir is not None:
             journal = _open_journal(the_kb, settings.data_dir, settings.snapshot_records)
@@ -171,7 +195,7 @@ def _start_reader(settings: Settings, model: ChatModel | None) -> Services:
     assert settings.store is not None and settings.writer_url is not None  # Settings.role says so
     if settings.ontology_files or settings.scene not in (None, "", "none", "demo"):
         log.info("ontology files and the scene are the writer's; this reader ignores them")
-    endpoint = SparqlEndpoint(settings.store)
+    endpoint = SparqlEndpoint(settings.store, settings.store_timeout)
     token = settings.token.get_secret_value() if settings.token else None
     writer = WriterClient(settings.writer_url, token)
     store = Store(endpoint, writer=writer)

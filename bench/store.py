@@ -57,10 +57,10 @@ class CountingEndpoint(SparqlEndpoint):
         self.requests += 1
         return super().raw(query, accept, default_graphs)
 
-    def update(self, update: str) -> None:
+    def update(self, update: str, timeout: float | None = None) -> None:
         self.requests += 1
         self.update_bytes.append(len(update.encode()))
-        super().update(update)
+        super().update(update, timeout)
 
 
 @dataclass

@@ -17,6 +17,7 @@ ended: the turn's save does not store it again.
 from __future__ import annotations
 
 import asyncio
+import logging
 import time
 import uuid
 import weakref
@@ -24,7 +25,7 @@ from collections.abc import Callable, Sequence
 from dataclasses import replace
 from typing import ParamSpec, TypeVar
 
-from dialogue.engine import DialogueEngine, TurnResult
+from dialogue.engine import SORRY, DialogueEngine, TurnResult
 from dialogue.history import ASSISTANT_USER_ID, History, Utterance
 from dialogue.sessionstore import (
     DEFAULT_DIALOGUE,
@@ -35,6 +36,7 @@ from dialogue.sessionstore import (
     StateError,
     check_bound,
 )
+from kb.endpoint import StoreUnavailable
 
 __all__ = [
     "DEFAULT_DIALOGUE",
@@ -46,6 +48,8 @@ __all__ = [
 ]
 
 SUPPORTED_ROLES = frozenset({DEFAULT_ROLE})
+
+log = logging.getLogger(__name__)
 
 P = ParamSpec("P")
 T = TypeVar("T")
@@ -185,19 +189,32 @@ class DialogueManager:
         if not user_id:
             raise DialogueError("user_id is required")
         async with self._lock(dialogue_id):
-            state = await self._off_loop(self.get, dialogue_id)
+            try:
+                state = await self._off_loop(self.get, dialogue_id)
+            except StoreUnavailable as exc:  # the turn still answers, politely, in its time
+                return self.engine.fallback(text, user_id, locale, f"the dialogue cannot be read: {exc}",
+                                            reply=SORRY if response_expected else "")
             kept = History(self.max_turns, self.max_chars)
             for utterance in state.history if history is None else history:
                 kept.add(utterance.speaker, utterance.text)
             if not response_expected:
                 kept.add(user_id, text)
-                await self._off_loop(self._save, state, kept)
-                return TurnResult("", (), backend="recorded")
+                return await self._saved(state, kept, TurnResult("", (), backend="recorded"))
             result = await self.engine.turn(
                 text, speaker=user_id, history=kept.snapshot(), locale=locale or state.locale
             )
             kept.add(user_id, text)
             if result.response:
                 kept.add(ASSISTANT_USER_ID, result.response)
+            return await self._saved(state, kept, result)
+
+    async def _saved(self, state: DialogueState, kept: History, result: TurnResult) -> TurnResult:
+        """The turn's result once its history is saved; when the store cannot take it, the result
+        still, with an error saying the turn is not in the history."""
+        try:
             await self._off_loop(self._save, state, kept)
-            return result
+        except StoreUnavailable as exc:
+            log.warning("dialogue %s: the turn is not saved: %s", state.id, exc)
+            error = f"the turn is not in the dialogue's history: {exc}"
+            return replace(result, error_msg=f"{result.error_msg}; {error}" if result.error_msg else error)
+        return result

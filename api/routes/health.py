@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from dataclasses import asdict
 from importlib.metadata import PackageNotFoundError, version
 from typing import Any
 
@@ -50,9 +51,12 @@ async def health(services: ServicesDep) -> dict[str, Any]:
     and whether the dialogue model backend and the store are reachable."""
     state = await run_in_threadpool(_kb_health, services)
     model = await probe(services.model)
-    healthy = model["reachable"] and state.get("reachable", True) and state.get("store_in_sync", True)
+    components = services.components()
+    healthy = (model["reachable"] and state.get("reachable", True) and state.get("store_in_sync", True)
+               and all(c.ok for c in components.values()))
     return {"status": "ok" if healthy else "degraded", "kb": state, "model": model,
-            "events": {"subscribers": services.hub.listener_count}}
+            "events": {"subscribers": services.hub.listener_count},
+            "components": {name: asdict(c) for name, c in components.items()}}
 
 
 @router.get("/version")
