@@ -45,9 +45,9 @@ class CountingEndpoint(SparqlEndpoint):
         self.requests = 0
         self.update_bytes: list[int] = []
 
-    def select(self, query: str) -> list[dict[str, Node]]:
+    def select(self, query: str, timeout: float | None = None) -> list[dict[str, Node]]:
         self.requests += 1
-        return super().select(query)
+        return super().select(query, timeout)
 
     def ask(self, query: str) -> bool:
         self.requests += 1

@@ -85,9 +85,10 @@ class SparqlEndpoint:
         if self._own_http:
             self._http.close()
 
-    def select(self, query: str) -> list[dict[str, Node]]:
-        """The rows of a SELECT query, as rdflib terms (unbound variables left out)."""
-        body = self._query(query, RESULTS_JSON).json()
+    def select(self, query: str, timeout: float | None = None) -> list[dict[str, Node]]:
+        """The rows of a SELECT query, as rdflib terms (unbound variables left out); ``timeout``
+        for this query (default: the endpoint's)."""
+        body = self._query(query, RESULTS_JSON, timeout=timeout).json()
         # Large answers repeat a few terms many times (a graph name, a predicate, a class):
         # building each rdflib term once costs less than looking the JSON value up.
         seen: dict[tuple[str | None, ...], Node] = {}
@@ -118,11 +119,12 @@ class SparqlEndpoint:
         self._send("POST", self.spec.update_url, timeout=timeout, changes=True, content=update.encode(),
                    headers={"content-type": "application/sparql-update"})
 
-    def _query(self, query: str, accept: str, default_graphs: list[str] | None = None) -> httpx.Response:
+    def _query(self, query: str, accept: str, default_graphs: list[str] | None = None, *,
+               timeout: float | None = None) -> httpx.Response:
         form: dict[str, str | list[str]] = {"query": query}
         if default_graphs:
             form["default-graph-uri"] = default_graphs
-        return self._send("POST", self.spec.query_url, data=form, headers={"accept": accept})
+        return self._send("POST", self.spec.query_url, timeout=timeout, data=form, headers={"accept": accept})
 
     def _send(self, method: str, url: str, *, timeout: float | None = None, changes: bool = False,
               **kwargs: Any) -> httpx.Response:

@@ -106,7 +106,8 @@ class SparqlMirror:
             return None
         writer = kb.writer
         for model in meta.models:
-            stored = set(self._queries.triples(self._queries.graphs(model), inferred=False))
+            stored = set(self._queries.triples(self._queries.graphs(model), inferred=False,
+                                               timeout=self._rewrite_timeout()))
             with writer.lock:
                 current = writer.models.get(model)
                 have = set(current.asserted) if current is not None else set()
@@ -122,7 +123,7 @@ class SparqlMirror:
             try:
                 write = _new_id()
                 update = self._rewrite(None, write, self.stored_models())
-                self.endpoint.update(update, max(REWRITE_TIMEOUT, self.endpoint.timeout))
+                self.endpoint.update(update, self._rewrite_timeout())
             except StoreUnavailable:
                 self._writer = None  # not attached: the caller gives up or tries again
                 raise
@@ -278,7 +279,7 @@ class SparqlMirror:
                 update, timeout = mirrortext.fence(self.layout, seen, write), None
             else:  # the refused update (or someone else's) got there, or the KB moved: rewrite
                 update = self._rewrite(seen, write, stored)
-                timeout = max(REWRITE_TIMEOUT, self.endpoint.timeout)
+                timeout = self._rewrite_timeout()
             self._sent[write] = revision
         self.endpoint.update(update, timeout)
         seen, _ = self._store_state()
@@ -303,6 +304,9 @@ class SparqlMirror:
             if "m" in row:
                 models.add(str(row["m"]))
         return write, models
+
+    def _rewrite_timeout(self) -> float:
+        return max(REWRITE_TIMEOUT, self.endpoint.timeout)
 
     def _require_token(self) -> str:
         if self._token is None:

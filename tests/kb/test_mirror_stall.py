@@ -19,7 +19,7 @@ import pytest
 
 from bench.oxigraph import OxigraphServer, oxigraph_command
 from kb import KB, sparqltext
-from kb.endpoint import SparqlEndpoint, StoreUnavailable
+from kb.endpoint import OutcomeUnknown, SparqlEndpoint, StoreUnavailable
 from kb.mirror import SparqlMirror
 from kb.terms import parse_ground
 from tests.kb.test_mirror import assert_same
@@ -251,3 +251,29 @@ def test_reads_do_not_wait_on_a_stalled_store_beyond_one_timeout(stallable: Oxig
         mirror.detach()
         kb.close()
         endpoint.close()
+
+
+def test_an_unanswered_update_is_told_apart_from_a_refused_one(stallable: OxigraphServer) -> None:
+    """Only an update that was sent and got no answer may still be applied: that one is
+    ``OutcomeUnknown``; a store that cannot be reached, or answers a query late, is not."""
+    endpoint = SparqlEndpoint(stallable.store("kinds"), timeout=0.5)
+    nowhere = SparqlEndpoint("sparql+http://127.0.0.1:9", timeout=0.5)
+    try:
+        with pytest.raises(StoreUnavailable) as refused:
+            nowhere.update("INSERT DATA { <urn:a> <urn:b> <urn:c> }")
+        assert not isinstance(refused.value, OutcomeUnknown)
+        with pytest.raises(StoreUnavailable) as bad:
+            endpoint.update("INSERT DATA { this is not SPARQL }")
+        assert not isinstance(bad.value, OutcomeUnknown)  # the store's own refusal of all of it
+        stallable.pause()
+        try:
+            with pytest.raises(OutcomeUnknown, match=r"did not answer within 0\.5 s"):
+                endpoint.update("INSERT DATA { <urn:a> <urn:b> <urn:c> }")
+            with pytest.raises(StoreUnavailable) as late:
+                endpoint.ask("ASK { ?s ?p ?o }")
+            assert not isinstance(late.value, OutcomeUnknown)
+        finally:
+            stallable.resume()
+    finally:
+        endpoint.close()
+        nowhere.close()
