@@ -1,8 +1,8 @@
 """What ``/health`` says: up or degraded, and, to a caller allowed to read, why.
 
-Degraded when the model backend or the store is unreachable, the store mirror is out of sync,
-or a registered component (``Services.components``: the journal's storage, compaction, ...) is
-not ok; each gives a reason. With ``allow_anonymous_reads=false`` an anonymous caller learns
+Degraded when the model backend or the store is unreachable, or a registered component
+(``Services.components``: the journal's storage, compaction, expiry, the store mirror...) is not
+ok; each gives a reason. With ``allow_anonymous_reads=false`` an anonymous caller learns
 only the status: model names, sizes and reasons are for callers with the token.
 """
 
@@ -57,8 +57,6 @@ async def health_report(services: Services, details: bool) -> dict[str, Any]:
         reasons.append(f"model: {model['name']} is not reachable ({model['detail']})")
     if not state.get("reachable", True):
         reasons.append(f"store: {state.get('error', 'not reachable')}")
-    if not state.get("store_in_sync", True):
-        reasons.append("store: the mirror is out of sync; the next commit rewrites it")
     status = "degraded" if reasons else "ok"
     if not details:
         return {"status": status}

@@ -26,7 +26,7 @@ from kb.errors import StorageError
 from kb.journal import Journal
 from kb.mirror import SparqlMirror
 from kb.remote import RemoteKB
-from kb.status import Components
+from kb.status import Components, ComponentStatus
 
 log = logging.getLogger("situated.api")
 
@@ -78,6 +78,17 @@ class Services:
         close_model = getattr(self.model, "close", None)
         if self.owns_model and callable(close_model):
             close_model()
+
+
+def mirror_status(mirror: SparqlMirror) -> ComponentStatus:
+    """The store mirror as a /health component: degraded while the store is unreachable or the
+    mirror reconciles after a write whose outcome is unknown."""
+    status = mirror.status()
+    if status.in_sync:
+        return ComponentStatus()
+    return ComponentStatus(ok=False, code="store_out_of_sync", since=status.since,
+                           reason=f"store unreachable or being reconciled: {status.refused} writes refused "
+                                  f"since start; last error: {status.error}")
 
 
 @dataclass
@@ -145,7 +156,7 @@ def start_services(settings: Settings, kb: KB | None = None, model: ChatModel | 
     store: Store | None = None
     try:
         if settings.store is not None:
-            store = Store(SparqlEndpoint(settings.store), mirror=None)
+            store = Store(SparqlEndpoint(settings.store, settings.store_timeout), mirror=None)
         dialogues = build_dialogues(settings, the_kb, model, store.endpoint if store else None)
         if settings.data_dir is not None:
             journal = _open_journal(the_kb, settings.data_dir, settings.snapshot_records)
@@ -175,6 +186,9 @@ def start_services(settings: Settings, kb: KB | None = None, model: ChatModel | 
         services.components.register("storage", journal.storage_status)
         services.components.register("compaction", journal.compaction.get)
     services.components.register("expiry", the_kb.writer.expiry_status.get)
+    if store is not None and store.mirror is not None:
+        mirror = store.mirror
+        services.components.register("store_mirror", lambda: mirror_status(mirror))
     return services
 
 
@@ -195,7 +209,7 @@ def _start_reader(settings: Settings, model: ChatModel | None) -> Services:
     assert settings.store is not None and settings.writer_url is not None  # Settings.role says so
     if settings.ontology_files or settings.scene not in (None, "", "none", "demo"):
         log.info("ontology files and the scene are the writer's; this reader ignores them")
-    endpoint = SparqlEndpoint(settings.store)
+    endpoint = SparqlEndpoint(settings.store, settings.store_timeout)
     token = settings.token.get_secret_value() if settings.token else None
     writer = WriterClient(settings.writer_url, token)
     store = Store(endpoint, writer=writer)

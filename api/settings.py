@@ -78,6 +78,9 @@ class Settings(BaseSettings):
                               "writer_url this process is the one writer")
     writer_url: str | None = Field(default=None, description="with store: this process is a reader that "
                                    "answers from the store and forwards writes to the writer service here")
+    store_timeout: float = Field(default=2.0, gt=0, le=60, description="with store: seconds one request "
+                                 "to the store may take; shorter than deadline, so a stalled store cannot "
+                                 "hold a dialogue turn past it")
 
     @field_validator("store")
     @classmethod
@@ -102,6 +105,9 @@ class Settings(BaseSettings):
             raise ValueError("writer_url needs store: a reader answers from the shared SPARQL store")
         if self.writer_url is not None and self.data_dir is not None:
             raise ValueError("data_dir is the writer's journal; a reader (writer_url set) keeps none")
+        if self.store is not None and self.store_timeout >= self.deadline:
+            raise ValueError(f"store_timeout ({self.store_timeout:g} s) must be shorter than deadline "
+                             f"({self.deadline:g} s): a dialogue turn waits on the store")
         return self
 
     @property

@@ -7,6 +7,7 @@ free loopback port and keeps its data in a directory of its own.
 from __future__ import annotations
 
 import shutil
+import signal
 import socket
 import subprocess
 import sys
@@ -79,8 +80,30 @@ class OxigraphServer:
         self.stop()
         raise OxigraphUnavailable(f"oxigraph did not answer within {timeout} s on {self.url}")
 
+    def pause(self) -> None:
+        """SIGSTOP: the server stalls (connections are still accepted by the kernel, nothing is
+        answered) until ``resume``; how the tests simulate a store that hangs."""
+        self._signal(signal.SIGSTOP)
+        assert self._proc is not None
+        # Stopping every thread of the process is asynchronous: a request sent right away could
+        # still be served. On Linux, wait until /proc shows every thread stopped.
+        tasks = Path(f"/proc/{self._proc.pid}/task")
+        deadline = time.monotonic() + 5.0
+        while tasks.is_dir() and time.monotonic() < deadline and not all(
+                _stopped(task / "stat") for task in tasks.iterdir()):
+            time.sleep(0.01)
+
+    def resume(self) -> None:
+        self._signal(signal.SIGCONT)
+
+    def _signal(self, signum: int) -> None:
+        if self._proc is None or self._proc.poll() is not None:
+            raise OxigraphUnavailable("the oxigraph server is not running")
+        self._proc.send_signal(signum)
+
     def stop(self) -> None:
         if self._proc is not None and self._proc.poll() is None:
+            self._proc.send_signal(signal.SIGCONT)  # a paused server cannot act on SIGTERM
             self._proc.terminate()
             try:
                 self._proc.wait(10)
@@ -97,3 +120,11 @@ class OxigraphServer:
     def __exit__(self, kind: type[BaseException] | None, exc: BaseException | None,
                  tb: TracebackType | None) -> None:
         self.stop()
+
+
+def _stopped(stat: Path) -> bool:
+    """Whether a /proc/PID/task/TID/stat says the thread is stopped (state T), or is gone."""
+    try:
+        return stat.read_text().rsplit(")", 1)[1].split()[0] in ("T", "t")
+    except (OSError, IndexError):
+        return True

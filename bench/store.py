@@ -47,9 +47,10 @@ class CountingEndpoint(SparqlEndpoint):
         self.requests = 0
         self.update_bytes: list[int] = []
 
-    def select(self, query: str, deadline: Deadline | None = None) -> list[dict[str, Node]]:
+    def select(self, query: str, deadline: Deadline | None = None, *,
+               timeout: float | None = None) -> list[dict[str, Node]]:
         self.requests += 1
-        return super().select(query, deadline)
+        return super().select(query, deadline, timeout=timeout)
 
     def ask(self, query: str, deadline: Deadline | None = None) -> bool:
         self.requests += 1
@@ -60,10 +61,10 @@ class CountingEndpoint(SparqlEndpoint):
         self.requests += 1
         return super().raw(query, accept, default_graphs, deadline)
 
-    def update(self, update: str) -> None:
+    def update(self, update: str, timeout: float | None = None) -> None:
         self.requests += 1
         self.update_bytes.append(len(update.encode()))
-        super().update(update)
+        super().update(update, timeout)
 
 
 @dataclass

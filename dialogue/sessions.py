@@ -28,7 +28,7 @@ from collections.abc import Callable, Sequence
 from dataclasses import replace
 from typing import Literal, ParamSpec, TypeVar
 
-from dialogue.engine import DialogueEngine, TurnResult
+from dialogue.engine import SORRY, DialogueEngine, TurnResult
 from dialogue.history import ASSISTANT_USER_ID, History, Utterance
 from dialogue.sessionstore import (
     DEFAULT_DIALOGUE,
@@ -39,6 +39,7 @@ from dialogue.sessionstore import (
     StateError,
     check_bound,
 )
+from kb.endpoint import StoreUnavailable
 from kb.unicode import InvalidUnicode, check_text
 
 __all__ = [
@@ -52,6 +53,8 @@ __all__ = [
 ]
 
 SUPPORTED_ROLES = frozenset({DEFAULT_ROLE})
+
+log = logging.getLogger(__name__)
 
 P = ParamSpec("P")
 T = TypeVar("T")
@@ -272,19 +275,32 @@ class DialogueManager:
         deadline: float,
     ) -> TurnResult:
         """The turn, holding its dialogue's lock."""
-        state = await self._off_loop(self.get, dialogue_id)
+        try:
+            state = await self._off_loop(self.get, dialogue_id)
+        except StoreUnavailable as exc:  # the turn still answers, politely, in its time
+            return self.engine.fallback(text, user_id, locale, f"the dialogue cannot be read: {exc}",
+                                        reply=SORRY if response_expected else "")
         kept = self._kept(state, history)
         if not response_expected:
             kept.add(user_id, text)
-            await self._off_loop(self._save, state, kept)
-            return TurnResult("", (), backend="recorded")
+            return await self._saved(state, kept, TurnResult("", (), backend="recorded"))
         result = await self.engine.turn(
             text, speaker=user_id, history=kept.snapshot(), locale=locale or state.locale, deadline=deadline
         )
         kept.add(user_id, text)
         if result.response:
             kept.add(ASSISTANT_USER_ID, result.response)
-        await self._off_loop(self._save, state, kept)
+        return await self._saved(state, kept, result)
+
+    async def _saved(self, state: DialogueState, kept: History, result: TurnResult) -> TurnResult:
+        """The turn's result once its history is saved; when the store cannot take it, the result
+        still, with an error saying the turn is not in the history."""
+        try:
+            await self._off_loop(self._save, state, kept)
+        except StoreUnavailable as exc:
+            log.warning("dialogue %s: the turn is not saved: %s", state.id, exc)
+            error = f"the turn is not in the dialogue's history: {exc}"
+            return replace(result, error_msg=f"{result.error_msg}; {error}" if result.error_msg else error)
         return result
 
     def _record_in_turn(
@@ -312,7 +328,7 @@ class DialogueManager:
                 if reply:
                     kept.add(ASSISTANT_USER_ID, reply)
                 await self._off_loop(self._save, state, kept)
-            except DialogueError as exc:  # ended meanwhile, or unreadable: nothing to add to
+            except (DialogueError, StoreUnavailable) as exc:  # ended meanwhile, or unreadable
                 log.warning("late turn of dialogue %r not recorded: %s", dialogue_id, exc)
             finally:
                 lock.release()

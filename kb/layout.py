@@ -6,7 +6,9 @@ One store may hold several datasets (one per site or per test). For dataset ``D`
 - ``urn:situated:D/asserted/M``: the model's asserted triples;
 - ``urn:situated:D/inferred/M``: what the reasoner derived that is not asserted (so the two
   graphs are disjoint and their merge is the model's closure);
-- ``urn:situated:D/meta``: ``<urn:situated:D> sit:revision N`` and one ``sit:model "M"`` per model;
+- ``urn:situated:D/meta``: ``<urn:situated:D> sit:revision N``, one ``sit:model "M"`` per model and
+  ``sit:write "ID"``, the id of the writer's last update (each update applies only where the store
+  still holds the id it follows: kb.mirrortext);
 - ``urn:situated:D/dialogues``: dialogue sessions shared by the service processes.
 
 Blank nodes cannot cross SPARQL requests (``INSERT DATA`` mints new ones, ``DELETE DATA`` refuses
@@ -28,6 +30,7 @@ from kb.errors import KbError
 SIT: Final = "urn:situated:vocab#"
 REVISION: Final = URIRef(SIT + "revision")
 MODEL: Final = URIRef(SIT + "model")
+WRITE: Final = URIRef(SIT + "write")
 GENID: Final = "urn:situated:/.well-known/genid/"
 _DATASET = re.compile(r"[A-Za-z0-9][A-Za-z0-9_.\-]{0,63}")
 

@@ -130,8 +130,8 @@ class StoreQueries:
         rows = self.endpoint.select(count_text(graphs, inferred))
         return _integer(rows[0]["n"]) if rows else 0
 
-    def triples(self, graphs: Graphs, inferred: bool) -> list[Triple]:
-        rows = self.endpoint.select(triples_text(graphs, inferred))
+    def triples(self, graphs: Graphs, inferred: bool, timeout: float | None = None) -> list[Triple]:
+        rows = self.endpoint.select(triples_text(graphs, inferred), timeout=timeout)
         return [(row["s"], row["p"], row["o"]) for row in rows]
 
     def is_asserted(self, triple: Triple, graphs: Graphs) -> bool:

@@ -81,14 +81,17 @@ async def start(dialogues: Dialogues, body: StartRequest | None = None) -> Start
 async def interact(dialogue_id: str, body: InteractionRequest, dialogues: Dialogues,
                    services: ServicesDep) -> InteractionResponse:
     """One DialogueInteraction: the reply and the validated intents, most relevant first."""
-    await _existing(dialogues, dialogue_id)
     check_length(body.input, services.settings.limits.max_input_chars, "input")
     history = None
     if body.history is not None:
         check_count(body.history, services.settings.limits.max_history_turns, "history_turns")
         history = [Utterance(turn.speaker, turn.text) for turn in body.history]
-    result = await dialogues.interact(body.user_id, body.input, dialogue_id=dialogue_id, locale=body.locale,
-                                      response_expected=body.response_expected, history=history)
+    try:  # the turn reads the dialogue once: an unknown one is refused, an unreadable store answered
+        result = await dialogues.interact(body.user_id, body.input, dialogue_id=dialogue_id,
+                                          locale=body.locale, response_expected=body.response_expected,
+                                          history=history)
+    except DialogueError as exc:
+        raise ApiError(404, "unknown_dialogue", str(exc)) from exc
     return InteractionResponse(response=result.response, intents=list(result.intents),
                                error_msg=result.error_msg)
 

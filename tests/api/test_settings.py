@@ -72,3 +72,14 @@ def test_the_role_follows_store_and_writer_url(tmp_path: Path) -> None:
         load_settings(store="sparql+http://h:1", writer_url="ftp://x")
     with pytest.raises(SettingsError, match="must look like sparql"):
         load_settings(store="http://127.0.0.1:7878")
+
+
+def test_the_store_timeout_is_bounded_and_shorter_than_the_turn_deadline() -> None:
+    """A stalled store must not hold a dialogue turn past its deadline (issue 19, item 13)."""
+    default = load_settings(store="sparql+http://h:1")
+    assert 0 < default.store_timeout < default.deadline
+    assert load_settings(store="sparql+http://h:1", store_timeout=0.5, deadline=1).store_timeout == 0.5
+    with pytest.raises(SettingsError, match=r"store_timeout \(5 s\) must be shorter than deadline \(5 s\)"):
+        load_settings(store="sparql+http://h:1", store_timeout=5, deadline=5)
+    with pytest.raises(SettingsError, match="store_timeout"):
+        load_settings(store="sparql+http://h:1", store_timeout=0)

@@ -214,8 +214,10 @@ def test_an_unreachable_store_is_an_error_not_an_empty_store(kitchen: KB) -> Non
     try:
         with pytest.raises(StoreUnavailable, match="cannot be reached"):
             manager.get(DEFAULT_DIALOGUE)
-        with pytest.raises(StoreUnavailable):
-            asyncio.run(manager.interact("p", "hello"))
+        # a turn still answers, politely, saying why (issue 19, item 13)
+        turn = asyncio.run(manager.interact("p", "hello"))
+        assert turn.response and turn.backend == "fallback"
+        assert "the dialogue cannot be read" in turn.error_msg and "cannot be reached" in turn.error_msg
     finally:
         endpoint.close()
 
