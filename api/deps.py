@@ -14,7 +14,7 @@ from api.kbtypes import AnyKB
 from api.services import Services
 from api.settings import Settings
 from api.subscriptions import EventHub
-from api.world import World
+from scene.world import World
 
 
 async def get_services(conn: HTTPConnection) -> Services:

@@ -23,9 +23,9 @@ from starlette.exceptions import HTTPException as StarletteHTTPException
 from dialogue.sessions import DialogueError
 from kb import KbError
 from kb.deadline import QueryTimeout
-from kb.endpoint import StoreUnavailable
 from kb.errors import StorageError, StorageFull
 from kb.query import TooManyRows
+from kb.sparqlstore.endpoint import StoreUnavailable
 
 log = logging.getLogger("situated.api")
 

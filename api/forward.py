@@ -2,7 +2,7 @@
 what only the writer holds (the scene, the commit feed).
 
 With a shared SPARQL store, exactly one service process (the writer) holds the reasoner. A
-reader answers queries from the store (kb.remote.RemoteKB) and hands every write to the writer
+reader answers queries from the store (kb.sparqlstore.remote.RemoteKB) and hands every write to the writer
 through ``WriterClient``; the writer updates the store before it answers, so the reader's next
 read sees the write. The writer's refusals come back unchanged (same status, code and message);
 when the writer cannot be reached the request fails with 503 and nothing is written.
@@ -26,7 +26,7 @@ FORWARDED = ("/scene", "/kb/changes")
 
 
 class WriterClient:
-    """The write half of the KB API (kb.remote.WriteTarget), carried out by the writer service."""
+    """The write half of the KB API (kb.sparqlstore.remote.WriteTarget), carried out by the writer service."""
 
     def __init__(self, url: str, token: str | None = None, timeout: float = 30.0) -> None:
         headers = {"authorization": f"Bearer {token}"} if token else {}

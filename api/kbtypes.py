@@ -6,6 +6,6 @@ from __future__ import annotations
 from typing import TypeAlias
 
 from kb import KB
-from kb.remote import RemoteKB
+from kb.sparqlstore.remote import RemoteKB
 
 AnyKB: TypeAlias = KB | RemoteKB

@@ -11,22 +11,22 @@ from pathlib import Path
 
 from api.forward import WriterClient
 from api.kbtypes import AnyKB
-from api.scenefile import load_scene
 from api.settings import Settings, SettingsError
 from api.subscriptions import EventHub
-from api.world import World
 from dialogue.engine import DialogueEngine, EngineConfig
 from dialogue.llm.base import ChatModel
 from dialogue.llm.spec import SpecError, parse_spec
 from dialogue.sessions import DialogueManager
 from dialogue.sparqlsessions import SparqlSessions
 from kb import KB, KbError
-from kb.endpoint import SparqlEndpoint
 from kb.errors import StorageError
 from kb.journal import Journal
-from kb.mirror import SparqlMirror
-from kb.remote import RemoteKB
+from kb.sparqlstore.endpoint import SparqlEndpoint
+from kb.sparqlstore.mirror import SparqlMirror
+from kb.sparqlstore.remote import RemoteKB
 from kb.status import Components, ComponentStatus
+from scene.textfile import load_scene
+from scene.world import World
 
 log = logging.getLogger("situated.api")
 

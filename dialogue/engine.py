@@ -13,12 +13,12 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 
 from dialogue import intents as I
-from dialogue.grounding import Entity, Grounder, Snapshot
 from dialogue.history import Utterance
-from dialogue.lexicon import Lexicon, LexiconCache
 from dialogue.llm.base import ChatMessage, ChatModel, ChatRequest, ChatResult, ModelError, TurnContext
 from dialogue.llm.rules import RulesModel, answer_of
 from dialogue.prompts import PromptSet
+from dialogue.reference.grounding import Entity, Grounder, Snapshot
+from dialogue.reference.lexicon import Lexicon, LexiconCache
 from dialogue.schema import AnswerError, SchemaCandidates, parse_answer, turn_schema
 from dialogue.speakers import WritableKB, admit
 from dialogue.validate import Grounded, ground_answer

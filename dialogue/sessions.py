@@ -39,7 +39,7 @@ from dialogue.sessionstore import (
     StateError,
     check_bound,
 )
-from kb.endpoint import StoreUnavailable
+from kb.sparqlstore.endpoint import StoreUnavailable
 from kb.unicode import InvalidUnicode, check_text
 
 __all__ = [

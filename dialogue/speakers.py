@@ -14,9 +14,9 @@ from typing import Protocol
 
 from rdflib import RDF, URIRef
 
-from dialogue.grounding import KnowledgeBase
 from dialogue.history import ASSISTANT_USER_ID, SYSTEM_USER_ID
 from dialogue.intents import SOURCES
+from dialogue.reference.grounding import KnowledgeBase
 from kb import KbError
 from kb.terms import ORO, format_triple, parse_name
 

@@ -37,10 +37,10 @@ from kb.deadline import Deadline, TimedIndex, holding
 from kb.errors import KbError, StorageError
 from kb.events import Callback, event_id
 from kb.formats import export_format
+from kb.models import ALL_MODELS, DEFAULT_MODEL, Model, Models
 from kb.query import Row, TooManyRows, holds, rows
 from kb.rdfio import default_ontology, parse_data, parse_location, serialize
 from kb.sparql import execute, parse_update, to_json
-from kb.store import ALL_MODELS, DEFAULT_MODEL, Model, Models
 from kb.sugar import KnowledgeCoreSugar
 from kb.terms import Node, Triple, as_list, parse_ground, parse_patterns, shorten
 from kb.writer import ActiveListener, Batch, Commit, CommitListener, Writer

@@ -9,8 +9,8 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Any, Literal, Protocol, runtime_checkable
 
-from dialogue.grounding import Snapshot
 from dialogue.history import Utterance
+from dialogue.reference.grounding import Snapshot
 
 MessageRole = Literal["system", "user", "assistant"]
 

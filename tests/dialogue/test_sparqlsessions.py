@@ -21,8 +21,9 @@ from dialogue.llm.testing import FunctionModel
 from dialogue.sessions import DEFAULT_DIALOGUE, DialogueError, DialogueManager
 from dialogue.sessionstore import DialogueState
 from dialogue.sparqlsessions import STATE, TOUCHED, SparqlSessions
-from kb import KB, sparqltext
-from kb.endpoint import SparqlEndpoint, StoreUnavailable
+from kb import KB
+from kb.sparqlstore import text as sparqltext
+from kb.sparqlstore.endpoint import SparqlEndpoint, StoreUnavailable
 
 HOSTILE_IDS = [
     'quote"d',

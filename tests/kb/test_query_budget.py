@@ -18,8 +18,8 @@ import pytest
 from kb import KB, KbError
 from kb.deadline import QueryTimeout
 from kb.query import TooManyRows
-from kb.remote import RemoteKB
 from kb.sparqlregex import InvalidRegex
+from kb.sparqlstore.remote import RemoteKB
 
 GENEROUS = 30.0  # seconds; the unbounded queries below run for minutes
 CARTESIAN_COUNT = "SELECT (COUNT(*) AS ?n) WHERE { ?a ?b ?c . ?d ?e ?f }"
