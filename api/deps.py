@@ -10,10 +10,10 @@ from starlette.requests import HTTPConnection
 
 from api.auth import authorise, bearer
 from api.errors import ApiError
-from api.kbtypes import AnyKB
 from api.services import Services
 from api.settings import Settings
 from api.subscriptions import EventHub
+from kb.protocol import KnowledgeBase
 from scene.world import World
 
 
@@ -25,7 +25,7 @@ async def get_services(conn: HTTPConnection) -> Services:
 ServicesDep = Annotated[Services, Depends(get_services)]
 
 
-async def get_kb(services: ServicesDep) -> AnyKB:
+async def get_kb(services: ServicesDep) -> KnowledgeBase:
     return services.kb
 
 
@@ -43,7 +43,7 @@ async def get_hub(services: ServicesDep) -> EventHub:
     return services.hub
 
 
-KbDep = Annotated[AnyKB, Depends(get_kb)]
+KbDep = Annotated[KnowledgeBase, Depends(get_kb)]
 WorldDep = Annotated[World, Depends(get_world)]
 SettingsDep = Annotated[Settings, Depends(get_settings)]
 HubDep = Annotated[EventHub, Depends(get_hub)]

@@ -1,9 +1,10 @@
 """The one JSON error shape of every route: ``{"status", "code", "message", "details"}``.
 
 Every failure goes through here: HTTP errors raised by the framework (404, 405), request
-validation (422), ``KbError`` and ``DialogueError`` (400), a full or failing data directory
-(507 ``storage_full``, 503 ``storage_unavailable``), the service's own ``ApiError`` (auth,
-limits) and unexpected errors (500 with a generic message; the traceback goes to the log only).
+validation (422), ``KbError`` and ``DialogueError`` (400; a failing model is 503), a full or
+failing data directory (507 ``storage_full``, 503 ``storage_unavailable``), the service's own
+``ApiError`` (auth, limits) and unexpected errors (500 with a generic message; the traceback
+goes to the log only).
 """
 
 from __future__ import annotations
@@ -20,12 +21,10 @@ from fastapi.responses import JSONResponse
 from pydantic import BaseModel
 from starlette.exceptions import HTTPException as StarletteHTTPException
 
-from dialogue.sessions import DialogueError
+from dialogue.errors import DialogueError
+from dialogue.llm.base import ModelError
 from kb import KbError
-from kb.deadline import QueryTimeout
-from kb.errors import StorageError, StorageFull
-from kb.query import TooManyRows
-from kb.sparqlstore.endpoint import StoreUnavailable
+from kb.errors import QueryTimeout, StorageError, StorageFull, StoreUnavailable, TooManyRows
 
 log = logging.getLogger("situated.api")
 
@@ -143,6 +142,10 @@ async def _dialogue_error(request: Request, exc: Exception) -> JSONResponse:
     return error_response(400, "dialogue_error", str(exc))
 
 
+async def _model_error(request: Request, exc: Exception) -> JSONResponse:
+    return error_response(503, "model_unavailable", str(exc))
+
+
 async def _unexpected(request: Request, exc: Exception) -> JSONResponse:
     log.error("unhandled error on %s %s", request.method, request.url.path, exc_info=exc)
     # Starlette re-raises the error after this response, and the server then drops the
@@ -163,4 +166,5 @@ def install_error_handlers(app: FastAPI) -> None:
     app.add_exception_handler(StorageFull, _storage_full)  # before KbError's 400: more specific
     app.add_exception_handler(StorageError, _storage_error)
     app.add_exception_handler(DialogueError, _dialogue_error)
+    app.add_exception_handler(ModelError, _model_error)  # more specific than DialogueError's 400
     app.add_exception_handler(Exception, _unexpected)

@@ -20,9 +20,10 @@ from dialogue.prompts import PromptSet
 from dialogue.reference.grounding import Entity, Grounder, Snapshot
 from dialogue.reference.lexicon import Lexicon, LexiconCache
 from dialogue.schema import AnswerError, SchemaCandidates, parse_answer, turn_schema
-from dialogue.speakers import WritableKB, admit
+from dialogue.speakers import admit
 from dialogue.validate import Grounded, ground_answer
 from kb import KbError
+from kb.protocol import KnowledgeBase
 from kb.unicode import check_text
 
 log = logging.getLogger(__name__)
@@ -77,7 +78,7 @@ class DialogueEngine:
 
     def __init__(
         self,
-        kb: WritableKB,
+        kb: KnowledgeBase,
         model: ChatModel | None = None,
         config: EngineConfig | None = None,
         prompts: PromptSet | None = None,

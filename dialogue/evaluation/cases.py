@@ -15,6 +15,7 @@ from pathlib import Path
 from typing import Any
 
 from dialogue.engine import DialogueEngine, EngineConfig, TurnResult
+from dialogue.errors import DialogueError
 from dialogue.history import ASSISTANT_USER_ID, Utterance
 from dialogue.intents import RAW_USER_INPUT, SAY
 from dialogue.llm.spec import parse_spec
@@ -25,7 +26,7 @@ _CASE_KEYS = {"id", "scene", "facts", "speaker", "history", "input", "expect"}
 _EXPECT_KEYS = {"intent", "roles", "clarify", "reply_mentions"}
 
 
-class EvalError(ValueError):
+class EvalError(DialogueError, ValueError):
     """A cases file or scene that is not in the expected format; the message names file and line."""
 
 

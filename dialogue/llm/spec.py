@@ -16,6 +16,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from pathlib import Path
 
+from dialogue.errors import DialogueError
 from dialogue.llm.base import ChatModel
 from dialogue.llm.llamacpp import (
     INSTALL_HINT,
@@ -34,7 +35,7 @@ SPEC_HELP = (
 )
 
 
-class SpecError(ValueError):
+class SpecError(DialogueError, ValueError):
     """A backend spec string that cannot be understood."""
 
 

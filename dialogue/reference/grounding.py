@@ -11,11 +11,12 @@ import re
 import threading
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field, replace
-from typing import Any, Literal, Protocol
+from typing import Any, Literal
 
 from rdflib import Literal as RdfLiteral
 
 from kb import KbError
+from kb.protocol import KnowledgeBase
 from kb.terms import shorten
 
 Kind = Literal["person", "zone", "robot", "thing"]
@@ -50,19 +51,6 @@ _SCHEMA_TYPES = frozenset(
 _IGNORED_CLASSES = frozenset(
     {"owl:Thing", "rdfs:Resource", "owl:NamedIndividual", "ActiveConcept", "owl:Nothing"}
 )
-
-
-class KnowledgeBase(Protocol):
-    """The part of the `kb.KB` API the grounding needs (kept narrow so tests can reason about it)."""
-
-    @property
-    def revision(self) -> int: ...
-
-    def find(self, patterns: str | list[str]) -> list[Any]: ...
-
-    def classesof(self, term: str, direct: bool = False) -> list[str]: ...
-
-    def label(self, term: str, lang: str | None = None) -> str: ...
 
 
 @dataclass(frozen=True)

@@ -233,21 +233,9 @@ class StoreDescriber:
     def lookup(self, query: str, models: Sequence[Graphs]) -> list[list[Any]]:
         """kb-compat §3.4, merged over models as KB.lookup merges them."""
         candidates = self._candidates(query, models)
-        exact: dict[Node, Graphs] = {}
-        approx: dict[Node, Graphs] = {}
-        for graphs in models:
-            e, a = describe.lookup(candidates[graphs.model], query)
-            for t in e:
-                exact.setdefault(t, graphs)
-            for t in a:
-                approx.setdefault(t, graphs)
-        for t in exact:
-            approx.pop(t, None)
-        kinds = self._kinds([(g, t) for t, g in (*exact.items(), *approx.items())])
-        key = describe._sort_key
-        return [[str(shorten(t)), kinds[exact[t].model, t]] for t in sorted(exact, key=key)] + [
-            [str(shorten(t)), kinds[approx[t].model, t]] for t in sorted(approx, key=key)
-        ]
+        found = describe.merged((g, *describe.lookup(candidates[g.model], query)) for g in models)
+        kinds = self._kinds([(g, t) for t, g in found])
+        return [[str(shorten(t)), kinds[g.model, t]] for t, g in found]
 
     def _candidates(self, query: str, models: Sequence[Graphs]) -> dict[str, TripleIndex]:
         near = Neighbourhood(models)

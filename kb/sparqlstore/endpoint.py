@@ -24,20 +24,12 @@ from urllib.parse import parse_qs, urljoin, urlsplit, urlunsplit
 import httpx
 from rdflib import BNode, Literal, URIRef
 
-from kb.deadline import Deadline, QueryTimeout
-from kb.errors import KbError
+from kb.deadline import Deadline
+from kb.errors import KbError, OutcomeUnknown, QueryTimeout, StoreUnavailable
 from kb.sparqlstore.layout import Layout, unskolem
 from kb.terms import Node
 
 RESULTS_JSON = "application/sparql-results+json"
-
-
-class StoreUnavailable(KbError):
-    """The SPARQL store could not be reached, did not answer in time or failed the request."""
-
-
-class OutcomeUnknown(StoreUnavailable):
-    """An update was sent and no answer came: the store may have applied it, or apply it later."""
 
 
 @dataclass(frozen=True)

@@ -29,9 +29,10 @@ from typing import TYPE_CHECKING
 
 from rdflib import Literal
 
+from kb.errors import OutcomeUnknown, StoreUnavailable
 from kb.models import Delta, Model
 from kb.sparqlstore import mirrortext, text
-from kb.sparqlstore.endpoint import OutcomeUnknown, SparqlEndpoint, StoreUnavailable
+from kb.sparqlstore.endpoint import SparqlEndpoint
 from kb.sparqlstore.query import StoreQueries
 from kb.terms import Triple
 from kb.writer import Commit, Writer

@@ -29,32 +29,30 @@ Where a replica cannot be the in-process KB exactly:
 from __future__ import annotations
 
 import threading
-from collections.abc import Sequence
-from pathlib import Path
+from collections.abc import Iterator, Sequence
 from typing import Any
 
-from kb.arguments import Models_, compiled, model_names, optional_term, parse_term, render
+from rdflib.query import Result
+
+from kb.arguments import Models_, model_names, render
 from kb.deadline import Deadline
-from kb.errors import KbError
-from kb.events import Callback, event_id
-from kb.formats import export_format
+from kb.errors import KbError, TooManyRows
+from kb.events import Callback
+from kb.facade import Facade
 from kb.models import ALL_MODELS, DEFAULT_MODEL
-from kb.query import Row, TooManyRows
-from kb.rdfio import serialize
+from kb.query import Query, Row
 from kb.sparqlstore.describe import StoreDescriber
 from kb.sparqlstore.endpoint import SparqlEndpoint
 from kb.sparqlstore.events import ActiveListener, Poller
 from kb.sparqlstore.query import Graphs, Meta, StoreQueries
-from kb.sparqlstore.sparql import answer, run
+from kb.sparqlstore.sparql import run
 from kb.sparqlstore.writetarget import ReplicaWrites, WriteTarget
-from kb.sugar import KnowledgeCoreSugar
-from kb.terms import as_list, parse_ground
+from kb.terms import Node, Triple
 
 __all__ = ["RemoteKB", "WriteTarget"]
 
 
-
-class RemoteKB(KnowledgeCoreSugar):
+class RemoteKB(Facade):
     """The ``KB`` API over a dataset of a SPARQL store; reads are requests, writes go to ``writes``."""
 
     def __init__(self, store: str | SparqlEndpoint, writes: WriteTarget | None = None, *,
@@ -81,12 +79,6 @@ class RemoteKB(KnowledgeCoreSugar):
         self._events.close()
         if self._own_endpoint:
             self._endpoint.close()
-
-    def __enter__(self) -> RemoteKB:
-        return self
-
-    def __exit__(self, *exc: object) -> None:
-        self.close()
 
     @property
     def endpoint(self) -> SparqlEndpoint:
@@ -128,159 +120,100 @@ class RemoteKB(KnowledgeCoreSugar):
             raise KbError("this call takes exactly one model")
         return found[0]
 
-    # --- queries --------------------------------------------------------------------------
+    # --- the primitives of kb.facade.Facade (arguments already checked) --------------
 
-    def find(self, patterns: str | Sequence[str], vars: Sequence[str] | None = None,
-             models: Models_ = None, *, max_rows: int | None = None,
-             timeout: float | None = None) -> list[Any]:
-        """Rows of bindings for a conjunction of patterns; for ground patterns, the patterns
-        themselves if they all hold, else ``[]`` (kb-compat §3.2). With ``max_rows``, a query
-        with more rows raises ``kb.query.TooManyRows``; past ``timeout`` seconds,
-        ``kb.deadline.QueryTimeout``. One request per model."""
-        texts = tuple(as_list(patterns))
-        if not texts:
-            raise KbError("find needs at least one pattern")
-        query = compiled(texts, vars)
-        deadline = Deadline.after(timeout)
+    def _find(self, texts: tuple[str, ...], query: Query, models: Models_, max_rows: int | None,
+              deadline: Deadline | None) -> list[Any]:
         targets = self._read_models(models)
         if query.ground:
             return list(texts) if any(self._queries.holds(query, g, deadline) for g in targets) else []
         found: set[Row] = set()
         limit = None if max_rows is None else max_rows + 1
-        for graphs in targets:
+        for graphs in targets:  # one request per model
             found |= self._queries.rows(query, graphs, limit, deadline)
             if max_rows is not None and len(found) > max_rows:
                 raise TooManyRows(max_rows)
         return render(query, found)
 
-    def exist(self, patterns: str | Sequence[str], models: Models_ = None) -> bool:
-        texts = tuple(as_list(patterns))
-        if not texts:
-            raise KbError("exist needs at least one pattern")
-        query = compiled(texts, None)
+    def _exist(self, query: Query, models: Models_) -> bool:
         return any(self._queries.holds(query, g) for g in self._read_models(models))
 
-    def lookup(self, query: str, models: Models_ = None) -> list[list[str]]:
-        """``[[name, type], ...]``: exact matches first, then approximate ones (§3.4)."""
-        if not isinstance(query, str):
-            raise KbError(f"lookup takes a string, got {query!r}")
+    def _lookup(self, query: str, models: Models_) -> list[list[str]]:
         return self._describer.lookup(query, self._read_models(models))
 
-    def about(self, term: str, models: Models_ = None) -> list[list[Any]]:
-        node = optional_term(term)
-        return self._describer.about(node, term, self._read_models(models))
+    def _about(self, node: Node | None, raw: str, models: Models_) -> list[list[Any]]:
+        return self._describer.about(node, raw, self._read_models(models))
 
-    def details(self, term: str, models: Models_ = None, origin: bool = False) -> dict[str, Any]:
-        """kb-compat §3.3; with ``origin``, also ``"asserted"``: one flag per relation, true when
-        it is asserted in the model, false when it is only inferred."""
-        node = parse_term(term)
+    def _details(self, node: Node, models: Models_, origin: bool) -> dict[str, Any]:
         return self._describer.details(node, self._one_model(models), origin)
 
-    def label(self, term: str, lang: str | None = None, models: Models_ = None) -> str:
-        if lang is not None and not isinstance(lang, str):
-            raise KbError(f"lang must be a language code such as 'en', got {lang!r}")
-        node = parse_term(term)
+    def _label(self, node: Node, lang: str | None, models: Models_) -> str:
         return self._describer.label(node, lang, self._one_model(models))
 
-    def classesof(self, term: str, direct: bool = False, models: Models_ = None) -> list[str]:
-        node = parse_term(term)
+    def _classes_of(self, node: Node, direct: bool, models: Models_) -> list[str]:
         return self._describer.classes_of(node, direct, self._read_models(models))
 
-    def sparql(self, query: str, model: str | Sequence[str] | None = None, *,
-               timeout: float | None = None, max_rows: int | None = None) -> dict[str, Any]:
-        """Read-only SPARQL 1.1 on one model: W3C JSON results plus the ``query`` (§3.7).
-        ``timeout`` and ``max_rows`` as for ``KB.sparql``; the store is asked for the whole
-        answer, read until the deadline, and its rows are counted once read."""
-        return answer(self._endpoint, query, self._one_model(model), Deadline.after(timeout), max_rows)
+    def _sparql_result(self, query: str, model: Models_, deadline: Deadline | None,
+                       max_rows: int | None) -> Result:
+        # The store is asked for the whole answer, read until the deadline; rows counted once read.
+        return run(self._endpoint, query, self._one_model(model), deadline, max_rows)
 
-    def sparql_serialize(self, query: str, fmt: str, model: str | None = None, *,
-                         timeout: float | None = None, max_rows: int | None = None) -> tuple[str, bytes]:
-        """Run a read-only query and serialise its result (``json``, ``xml``, ``csv``, ``tsv``
-        for SELECT/ASK; RDF formats for CONSTRUCT/DESCRIBE); returns (result type, bytes)."""
-        result = run(self._endpoint, query, self._one_model(model), Deadline.after(timeout), max_rows)
-        return result.type, result.serialize(format=fmt, encoding="utf-8") or b""
+    def _triples(self, model: str | None, inferred: bool) -> list[Triple]:
+        return list(self._queries.triples(self._one_model(model), inferred))
 
-    # --- writes (checked here, made by the writer) ----------------------------------------
+    def _asserted_by_model(self, models: Models_) -> Iterator[tuple[str, list[Triple]]]:
+        for graphs in self._read_models(models):
+            yield graphs.model, list(self._queries.triples(graphs, inferred=False))
 
-    def sparql_update(self, update: str, models: Models_ = None) -> None:
-        """SPARQL INSERT DATA / DELETE DATA as ONE batch, made by the writer."""
-        self._writes.sparql_update(update, models)
+    def _size(self, model: str | None, inferred: bool) -> int:
+        return self._queries.size(self._one_model(model), inferred)
+
+    def _is_asserted(self, triple: Triple, model: str | None) -> bool:
+        return self._queries.is_asserted(triple, self._one_model(model))
+
+    # Writes: checked by the facade, made by the writer (which updates the store before it
+    # acknowledges, so a read after a write sees it); then the subscriptions are evaluated.
+
+    def _writable(self) -> None:
+        self._writes.require()
+
+    def _update(self, texts: list[str], triples: list[Triple], models: Models_, lifespan: float) -> None:
+        self._writes.require().update(texts, models, lifespan)
         self._events.sync()
 
-    def update(self, stmts: str | Sequence[str], models: Models_ = None, lifespan: float = 0) -> None:
-        """Add statements; a functional property's new value replaces the old one (§3.5)."""
-        self._writes.update(stmts, models, lifespan)
-        self._events.sync()
-
-    add = update
-
-    def remove(self, stmts: str | Sequence[str], models: Models_ = None) -> int:
-        """Retract statements; statements with variables are one conjunction whose every match is
-        retracted (K12). Facts that are only inferred stay (they are derived again). Returns the
-        number of asserted triples the writer removed."""
-        removed = self._writes.remove(stmts, models)
+    def _remove(self, texts: list[str], ground: list[Triple], patterns: Query | None,
+                models: Models_) -> int:
+        removed = self._writes.require().remove(texts, models)
         self._events.sync()
         return removed
 
-    retract = remove
-
-    def apply(self, add: Sequence[str] = (), remove: Sequence[str] = (), models: Models_ = None,
-              lifespan: float = 0) -> None:
-        """Retract ``remove`` and assert ``add`` (ground statements) as ONE batch."""
-        self._writes.apply(add, remove, models, lifespan)
+    def _apply(self, add: tuple[list[str], list[Triple]], remove: tuple[list[str], list[Triple]],
+               models: Models_, lifespan: float) -> None:
+        self._writes.require().apply(add[0], remove[0], models, lifespan)
         self._events.sync()
 
-    def clear(self, keep_defaults: bool = True) -> None:
-        """Drop every model's facts; the default ontology stays unless ``keep_defaults=False``."""
-        self._writes.clear(keep_defaults)
+    def _clear(self, keep_defaults: bool) -> None:
+        self._writes.require().clear(keep_defaults)
         self._events.sync()
 
-    def load(self, uri: str | Path, models: Models_ = None) -> None:
-        """Add the triples of a local RDF file (read here, sent to the writer) as one batch."""
-        self._writes.load(uri, models)
+    def _load(self, data: str | bytes, fmt: str, triples: Sequence[Triple], models: Models_) -> None:
+        self._writes.require().load_data(data, fmt, models)
         self._events.sync()
 
-    def load_data(self, data: str | bytes, fmt: str = "turtle", models: Models_ = None) -> None:
-        """Add the triples of an RDF document given as text (turtle, xml, json-ld, nt, ...)."""
-        self._writes.load_data(data, fmt, models)
+    def _sparql_update(self, update: str, added: Sequence[Triple], removed: Sequence[Triple],
+                       models: Models_) -> None:
+        self._writes.require().sparql_update(update, models)
         self._events.sync()
 
-    def save(self, path: str | Path, basename: str = "kb", models: Models_ = None) -> list[str]:
-        """Write each model's asserted triples as RDF/XML to ``path/basename-<model>.rdf``."""
-        folder = Path(path)
-        if not folder.is_dir():
-            raise KbError(f"cannot save to {str(path)!r}: not a directory")
-        written = []
-        for graphs in self._read_models(models):
-            target = folder / f"{basename}-{graphs.model}.rdf"
-            target.write_bytes(serialize(self._queries.triples(graphs, inferred=False), "xml"))
-            written.append(str(target))
-        return written
-
-    def export(self, fmt: str = "turtle", model: str | None = None, inferred: bool = False) -> bytes:
-        """A model's asserted (or, with ``inferred``, materialised) triples in an RDF format."""
-        fmt = export_format(fmt).name
-        return serialize(self._queries.triples(self._one_model(model), inferred), fmt)
-
-    # --- events ---------------------------------------------------------------------------
-
-    def subscribe(self, patterns: str | Sequence[str], callback: Callback, one_shot: bool = False,
-                  models: Models_ = None) -> str:
-        """Call ``callback(rows)`` with the new rows after each change; returns ``evt_<md5>``.
-        Callbacks run on the polling thread."""
-        texts = as_list(patterns)
-        if not texts:
-            raise KbError("subscribe needs at least one pattern")
-        if not callable(callback):
-            raise KbError(f"subscribe needs a callable that takes the new rows, got {callback!r}")
-        query = compiled(tuple(texts), None)
-        names = model_names(models) or [DEFAULT_MODEL]
-        sub_id = event_id(texts, one_shot, names)
+    def _subscribe(self, sub_id: str, query: Query, names: list[str], one_shot: bool,
+                   callback: Callback) -> None:
+        # Callbacks run on the polling thread.
         meta = self._queries.meta()  # read before the baseline: a later commit is evaluated again
         self._known(names, meta)
         baseline = self._events.rows(query, names, meta.models)
         self._events.subscribe(sub_id, query, names, one_shot, callback, baseline, meta.revision)
-        return sub_id
+
+    # --- events ---------------------------------------------------------------------------
 
     def unsubscribe(self, sub_id: str) -> bool:
         return self._events.unsubscribe(sub_id)
@@ -294,13 +227,3 @@ class RemoteKB(KnowledgeCoreSugar):
     def on_active_concept(self, callback: ActiveListener) -> None:
         """Call ``callback(concepts)`` when the set of active concepts changes (polled)."""
         self._events.on_active_concept(callback)
-
-    # --- housekeeping ---------------------------------------------------------------------
-
-    def size(self, model: str | None = None, inferred: bool = True) -> int:
-        return self._queries.size(self._one_model(model), inferred)
-
-    def is_asserted(self, stmt: str, model: str | None = None) -> bool:
-        """True if the statement was asserted (not only inferred) in the model."""
-        triple = parse_ground(stmt)
-        return self._queries.is_asserted(triple, self._one_model(model))

@@ -16,9 +16,7 @@ from typing import Any
 import pytest
 
 from kb import KB, KbError
-from kb.deadline import QueryTimeout
-from kb.query import TooManyRows
-from kb.sparqlregex import InvalidRegex
+from kb.errors import InvalidRegex, QueryTimeout, TooManyRows
 from kb.sparqlstore.remote import RemoteKB
 
 GENEROUS = 30.0  # seconds; the unbounded queries below run for minutes

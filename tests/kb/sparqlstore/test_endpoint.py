@@ -5,7 +5,8 @@ from __future__ import annotations
 import pytest
 
 from kb import KbError
-from kb.sparqlstore.endpoint import SparqlEndpoint, StoreSpec, StoreUnavailable
+from kb.errors import StoreUnavailable
+from kb.sparqlstore.endpoint import SparqlEndpoint, StoreSpec
 from kb.sparqlstore.layout import Layout
 
 

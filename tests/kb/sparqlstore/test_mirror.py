@@ -10,8 +10,9 @@ import pytest
 from rdflib import Literal, Variable
 
 from kb import KB
+from kb.errors import OutcomeUnknown, StoreUnavailable
 from kb.sparqlstore import text as sparqltext
-from kb.sparqlstore.endpoint import OutcomeUnknown, SparqlEndpoint, StoreUnavailable
+from kb.sparqlstore.endpoint import SparqlEndpoint
 from kb.sparqlstore.mirror import SparqlMirror
 from kb.terms import Triple
 

@@ -19,8 +19,9 @@ import pytest
 
 from bench.oxigraph import OxigraphServer, oxigraph_command
 from kb import KB
+from kb.errors import OutcomeUnknown, StoreUnavailable
 from kb.sparqlstore import text as sparqltext
-from kb.sparqlstore.endpoint import OutcomeUnknown, SparqlEndpoint, StoreUnavailable
+from kb.sparqlstore.endpoint import SparqlEndpoint
 from kb.sparqlstore.mirror import SparqlMirror
 from kb.terms import parse_ground
 from tests.kb.sparqlstore.test_mirror import assert_same

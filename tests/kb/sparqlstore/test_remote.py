@@ -16,8 +16,8 @@ import pytest
 from rdflib import Graph
 
 from kb import KbError
-from kb.query import TooManyRows
-from kb.sparqlstore.endpoint import SparqlEndpoint, StoreUnavailable
+from kb.errors import StoreUnavailable, TooManyRows
+from kb.sparqlstore.endpoint import SparqlEndpoint
 from kb.sparqlstore.remote import RemoteKB
 from tests.conftest import Replica
 
