@@ -8,7 +8,8 @@ Public API (exported here, see ``__all__``; nothing is done at import time):
 - `dialogue.sessions.DialogueManager(engine, store=None)`: `start(role, locale)`, `get(id)`, `end(id)`,
   `ids()` (and their `*_async` forms for async code), `await interact(user_id, text,
   dialogue_id="default", locale=None, response_expected=True, history=None)`; errors are
-  `SessionError` (every error of the package is a `DialogueError`); `store` is a `dialogue.sessionstore.SessionStore`: `MemorySessions` (default) or
+  `SessionError` (every error of the package is a `DialogueError`); `store` is a
+  `dialogue.sessionstore.SessionStore`: `MemorySessions` (default) or
   `dialogue.sparqlsessions.SparqlSessions(endpoint)` (shared by processes on one SPARQL store);
 - `dialogue.llm.spec.parse_spec("rules" | "ollama:gemma3:1b[@URL]" | "openai:MODEL[@URL]" |
   "openai-json:MODEL[@URL]" | "hybrid:<llm spec>") -> Backend(model, hybrid)`; errors are `SpecError`;
