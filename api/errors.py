@@ -21,6 +21,7 @@ from fastapi.responses import JSONResponse
 from pydantic import BaseModel
 from starlette.exceptions import HTTPException as StarletteHTTPException
 
+from api.client import ClientError
 from dialogue.errors import DialogueError
 from dialogue.llm.base import ModelError
 from kb import KbError
@@ -113,6 +114,12 @@ async def _validation_error(request: Request, exc: Exception) -> JSONResponse:
     return error_response(422, "invalid_request", f"{where}: {first['msg']}", details)
 
 
+async def _client_error(request: Request, exc: Exception) -> JSONResponse:
+    # A reader's write refused by the writer (or the writer unreachable): passed on unchanged.
+    assert isinstance(exc, ClientError)
+    return error_response(exc.status, exc.code, exc.message, exc.details)
+
+
 async def _kb_error(request: Request, exc: Exception) -> JSONResponse:
     return error_response(400, "kb_error", str(exc))
 
@@ -160,6 +167,7 @@ def install_error_handlers(app: FastAPI) -> None:
     app.add_exception_handler(StarletteHTTPException, _http_error)
     app.add_exception_handler(RequestValidationError, _validation_error)
     app.add_exception_handler(KbError, _kb_error)
+    app.add_exception_handler(ClientError, _client_error)
     app.add_exception_handler(StoreUnavailable, _store_unavailable)
     app.add_exception_handler(TooManyRows, _too_many_rows)
     app.add_exception_handler(QueryTimeout, _query_timeout)

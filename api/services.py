@@ -9,7 +9,7 @@ import logging
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from api.forward import WriterClient
+from api.client import ServiceClient
 from api.settings import Settings, SettingsError
 from api.subscriptions import EventHub
 from dialogue.engine import DialogueEngine, EngineConfig
@@ -100,7 +100,7 @@ class Store:
 
     endpoint: SparqlEndpoint
     mirror: SparqlMirror | None = None
-    writer: WriterClient | None = None
+    writer: ServiceClient | None = None
 
     @property
     def role(self) -> str:
@@ -215,7 +215,7 @@ def _start_reader(settings: Settings, model: ChatModel | None) -> Services:
         log.info("ontology files and the scene are the writer's; this reader ignores them")
     endpoint = SparqlEndpoint(settings.store, settings.store_timeout)
     token = settings.token.get_secret_value() if settings.token else None
-    writer = WriterClient(settings.writer_url, token)
+    writer = ServiceClient(settings.writer_url, token, name="writer")
     store = Store(endpoint, writer=writer)
     kb = RemoteKB(endpoint, writes=writer)
     try:

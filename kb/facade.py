@@ -13,7 +13,7 @@ import threading
 from abc import ABC, abstractmethod
 from collections.abc import Iterable, Sequence
 from pathlib import Path
-from typing import Any, Self
+from typing import Any, Generic, Self, TypeVar
 
 from rdflib import Variable
 from rdflib.query import Result
@@ -30,8 +30,11 @@ from kb.sparql import parse_update, to_json
 from kb.sugar import KnowledgeCoreSugar
 from kb.terms import Node, Triple, as_list, parse_ground, parse_patterns
 
+#: What a backend reads one model through (``kb.models.Model``, or a replica's named graphs).
+M = TypeVar("M")
 
-class Facade(KnowledgeCoreSugar, ABC):
+
+class Facade(KnowledgeCoreSugar, ABC, Generic[M]):
     """The API of kb-compat §3 with its argument checks; subclasses answer the primitives."""
 
     @property
@@ -237,6 +240,17 @@ class Facade(KnowledgeCoreSugar, ABC):
         """Stop a subscription; False if there was none of that id."""
 
     # --- the primitives -------------------------------------------------------------------
+
+    @abstractmethod
+    def _read_models(self, models: Models_) -> list[M]:
+        """The models a read names (none: the default model; ``"all"``: every one); an unknown
+        name is a ``KbError``."""
+
+    def _one_model(self, models: Models_) -> M:
+        found = self._read_models(models)
+        if len(found) != 1:
+            raise KbError("this call takes exactly one model")
+        return found[0]
 
     def _writable(self) -> None:
         """Raise ``KbError`` when this KB takes no writes (a read replica without a writer):

@@ -43,7 +43,7 @@ from kb.writer import ActiveListener, Batch, Commit, CommitListener, Writer
 DEFAULT_MAX_MODELS_PER_WRITE = 16
 
 
-class KB(Facade):
+class KB(Facade[Model]):
     """An in-process OWL/RDF knowledge base with incremental OWL RL reasoning."""
 
     def __init__(self, ontology: bool | Sequence[str | Path] = True, *,
@@ -112,12 +112,6 @@ class KB(Facade):
         if ALL_MODELS in names:
             return self._models.names
         return names
-
-    def _one_model(self, models: Models_) -> Model:
-        found = self._read_models(models)
-        if len(found) != 1:
-            raise KbError("this call takes exactly one model")
-        return found[0]
 
     # --- the primitives of kb.facade.Facade (arguments already checked) --------------
 

@@ -52,7 +52,7 @@ from kb.terms import Node, Triple
 __all__ = ["RemoteKB", "WriteTarget"]
 
 
-class RemoteKB(Facade):
+class RemoteKB(Facade[Graphs]):
     """The ``KB`` API over a dataset of a SPARQL store; reads are requests, writes go to ``writes``."""
 
     def __init__(self, store: str | SparqlEndpoint, writes: WriteTarget | None = None, *,
@@ -113,12 +113,6 @@ class RemoteKB(Facade):
             if name not in meta.models and name != DEFAULT_MODEL:
                 raise KbError(f"unknown model {name!r}; known models: {', '.join(meta.models)}")
         return [self._queries.graphs(n) for n in names]
-
-    def _one_model(self, models: Models_) -> Graphs:
-        found = self._read_models(models)
-        if len(found) != 1:
-            raise KbError("this call takes exactly one model")
-        return found[0]
 
     # --- the primitives of kb.facade.Facade (arguments already checked) --------------
 
