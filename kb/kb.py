@@ -1,12 +1,14 @@
 """``KB``: the knowledge_core-compatible facade (kb-compat §3).
 
-Client code written for ``knowledge_core.api.KB`` runs against it unchanged::
+Client code written for ``knowledge_core.api.KB`` runs against it unchanged:
 
-    from kb import KB
-    kb = KB()                       # the default ontology, no server
-    kb += "myself sees cup_abcd"
-    kb["myself sees ?obj"]          # [{"obj": "cup_abcd"}]
-    kb.details("cup_abcd")["label"]["default"]
+>>> from kb import KB
+>>> kb = KB()                       # the default ontology, no server
+>>> kb += "myself sees cup_abcd"
+>>> kb["myself sees ?obj"]
+[{'obj': 'cup_abcd'}]
+>>> kb.details("cup_abcd")["label"]["default"]
+'cup_abcd'
 
 Every method is thread-safe. Reads see the state between two commits, never half a batch.
 """
