@@ -6,6 +6,7 @@ from typing import Annotated
 
 from fastapi import Depends, Query
 from fastapi.security import HTTPAuthorizationCredentials
+from fastapi.security.utils import get_authorization_scheme_param
 from starlette.requests import HTTPConnection
 
 from api.auth import authorise, bearer
@@ -48,6 +49,16 @@ WorldDep = Annotated[World, Depends(get_world)]
 SettingsDep = Annotated[Settings, Depends(get_settings)]
 HubDep = Annotated[EventHub, Depends(get_hub)]
 Credentials = Annotated[HTTPAuthorizationCredentials | None, Depends(bearer)]
+
+
+def presented_token(connection: HTTPConnection) -> str | None:
+    """The bearer token of a request, if any, for a public route that tells more to a reader: unlike
+    ``Credentials`` it declares no security scheme, so the API description says the route is open."""
+    scheme, token = get_authorization_scheme_param(connection.headers.get("authorization"))
+    return token if scheme.lower() == "bearer" and token else None
+
+
+PresentedToken = Annotated[str | None, Depends(presented_token)]
 
 
 async def require_read(settings: SettingsDep, credentials: Credentials) -> None:
