@@ -18,7 +18,12 @@ from dialogue.llm.openai import OpenAIModel
 
 
 async def probe(model: ChatModel, timeout: float = 1.0) -> dict[str, Any]:
-    """``{"name", "remote", "reachable", "detail"}`` for /health."""
+    """``{"name", "remote", "reachable", "detail"}`` for /health: of the model that reads prompts (the
+    one behind the rules in a hybrid model)."""
+    llm = model.llm
+    if llm is None:
+        return {"name": model.name, "remote": False, "reachable": True, "detail": "in-process"}
+    model = llm
     ping = getattr(model, "ping", None)
     if callable(ping):
         return {"name": model.name, "remote": True, "reachable": bool(await ping(timeout)), "detail": ""}

@@ -1,7 +1,8 @@
 """OpenAI-compatible backend (llama.cpp server, vLLM, OpenAI, Ollama's /v1) over httpx.
 
 Only OpenAI fields are sent (D16): `response_format` in the variant the server accepts, with
-explicit `temperature` and `max_tokens` (Ollama's /v1 forces 1.0 when they are absent).
+explicit `temperature` and `max_tokens` (Ollama's /v1 forces 1.0 when they are absent). One client
+per model, made on the first turn and kept (dialogue.llm.connection), closed by `aclose()`.
 """
 
 from __future__ import annotations
@@ -12,7 +13,8 @@ from typing import Any, Literal
 
 import httpx
 
-from dialogue.llm.base import ChatRequest, ChatResult, ModelError
+from dialogue.llm.base import ChatModel, ChatRequest, ChatResult, ModelError
+from dialogue.llm.connection import LoopClient
 
 ResponseFormat = Literal["json_schema", "json_object"]
 DEFAULT_BASE_URL = "http://127.0.0.1:8080/v1"
@@ -26,17 +28,35 @@ class OpenAIOptions:
     api_key_env: str = "OPENAI_API_KEY"
 
 
-class OpenAIModel:
-    def __init__(self, model: str, base_url: str | None = None, options: OpenAIOptions | None = None):
+class OpenAIModel(ChatModel):
+    """`transport` replaces httpx's network transport (tests: `httpx.MockTransport`)."""
+
+    def __init__(
+        self,
+        model: str,
+        base_url: str | None = None,
+        options: OpenAIOptions | None = None,
+        *,
+        transport: httpx.AsyncBaseTransport | None = None,
+    ) -> None:
         if not model:
             raise ValueError("an OpenAI-compatible model name is required")
         self.model = model
         self.base_url = (base_url or DEFAULT_BASE_URL).rstrip("/")
         self.options = options or OpenAIOptions()
+        self.client = LoopClient(lambda: httpx.AsyncClient(transport=transport), self.name)
 
     @property
     def name(self) -> str:
         return f"openai:{self.model}@{self.base_url}"
+
+    @property
+    def setup_hint(self) -> str:
+        return (f"start the OpenAI-compatible server at {self.base_url} serving {self.model!r}, or fix "
+                "the model name or URL in --llm")
+
+    async def aclose(self) -> None:
+        await self.client.aclose()
 
     def payload(self, request: ChatRequest) -> dict[str, Any]:
         opts = self.options
@@ -65,8 +85,9 @@ class OpenAIModel:
             headers["Authorization"] = f"Bearer {key}"
         url = f"{self.base_url}/chat/completions"
         try:
-            async with httpx.AsyncClient(timeout=timeout) as client:
-                response = await client.post(url, json=self.payload(request), headers=headers)
+            response = await self.client.get().post(
+                url, json=self.payload(request), headers=headers, timeout=timeout
+            )
         except httpx.TimeoutException:
             raise ModelError(f"{url} did not answer within {timeout:.1f} s") from None
         except httpx.HTTPError as exc:

@@ -77,7 +77,7 @@ def test_compare_counts_what_resolution_fixes(cases: Path) -> None:
         }
 
     model = FunctionModel(answer, name="words")
-    comparison = compare(cases, "words", backend=Backend(model, False, "words"))
+    comparison = compare(cases, "words", backend=Backend(model, "words"))
     tutorial, situated = comparison.tutorial, comparison.situated
     assert (tutorial.report.passed, tutorial.ungrounded, tutorial.referents) == (0, 3, 3)
     assert situated.ungrounded == 0

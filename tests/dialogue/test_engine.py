@@ -9,6 +9,7 @@ from dialogue import intents as I
 from dialogue.engine import DialogueEngine, EngineConfig, TurnResult
 from dialogue.history import ASSISTANT_USER_ID, Utterance
 from dialogue.llm.base import ChatRequest, ModelError
+from dialogue.llm.hybrid import HybridModel
 from dialogue.llm.testing import FunctionModel, ScriptedModel
 from kb import KB
 from tests.dialogue.conftest import scene_kb
@@ -166,7 +167,7 @@ def test_any_model_output_yields_only_kb_referents(kitchen: KB, kind: str, value
 
 def test_hybrid_uses_rules_first_and_the_model_for_the_rest(kitchen: KB) -> None:
     model = ScriptedModel([{"verbal_ack": "It is sunny.", "user_intent": None}])
-    engine = DialogueEngine(kitchen, model, EngineConfig(hybrid=True))
+    engine = DialogueEngine(kitchen, HybridModel(model))
     assert turn(engine, "pick up the apple").intents[0].data == {"object": "apple_1"}
     assert model.requests == []
     result = turn(engine, "how is the weather today?")

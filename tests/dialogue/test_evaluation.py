@@ -53,6 +53,7 @@ def test_main_prints_table_and_one_json_line(capsys: pytest.CaptureFixture[str],
         "total": 2,
         "passed": 1,
         "score": 0.5,
+        "rules_claims": {"claimed": 2, "right": 1, "precision": 0.5},
         "by_intent": {GRAB_OBJECT: {"total": 2, "passed": 1, "score": 0.5}},
         "failures": ["b"],
     }
