@@ -21,7 +21,7 @@ import asyncio
 import logging
 import string
 import time
-from collections.abc import Awaitable, Callable, Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Literal
@@ -30,7 +30,7 @@ from pydantic import BaseModel, ValidationError
 
 from dialogue import intents as I
 from dialogue.engine import DialogueEngine, EngineConfig, TurnResult
-from dialogue.evaluation import Case, CaseResult, Report, case_kb, check, load_cases
+from dialogue.evaluation import Case, CaseResult, Report, case_kb, check, closing, load_cases
 from dialogue.grounding import Snapshot
 from dialogue.llm.base import ChatMessage, ChatModel, ChatRequest, ModelError, TurnContext
 from dialogue.llm.spec import Backend, parse_spec, rules_first
@@ -229,15 +229,8 @@ def compare(
         backend = rules_first(backend)
     comparison = Comparison(label, Side("tutorial", Report()), Side("situated", Report()))
     run = _passes(comparison, cases, cases_path.parent / "scenes", backend.model, deadline, kb_factory)
-    asyncio.run(_closing(run, backend.model) if owned else run)
+    asyncio.run(closing(run, backend.model) if owned else run)
     return comparison
-
-
-async def _closing(work: Awaitable[None], model: ChatModel) -> None:
-    try:
-        await work
-    finally:
-        await model.aclose()
 
 
 async def _passes(

@@ -15,10 +15,10 @@ import argparse
 import asyncio
 import json
 import sys
-from collections.abc import Callable, Sequence
+from collections.abc import Awaitable, Callable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import Any, TypeVar
 
 from dialogue.engine import DialogueEngine, EngineConfig, TurnResult
 from dialogue.history import ASSISTANT_USER_ID, Utterance
@@ -28,6 +28,7 @@ from dialogue.llm.rules import RULES
 from dialogue.llm.spec import parse_spec
 from kb import KB, KbError
 
+T = TypeVar("T")
 DEFAULT_SPEAKER = "user1"
 _CASE_KEYS = {"id", "scene", "facts", "speaker", "history", "input", "expect"}
 _EXPECT_KEYS = {"intent", "roles", "clarify", "reply_mentions"}
@@ -214,12 +215,30 @@ def case_kb(case: Case, scenes_dir: Path, kb_factory: Callable[[], KB]) -> KB:
 
 
 def run(
-    path: str | Path, llm_spec: str = "rules", *, deadline: float = 5.0, kb_factory: Callable[[], KB] = KB
+    path: str | Path,
+    llm_spec: str = "rules",
+    *,
+    deadline: float = 5.0,
+    kb_factory: Callable[[], KB] = KB,
+    model: ChatModel | None = None,
 ) -> Report:
+    """Score the cases of `path` with the backend `llm_spec` names (closed at the end), or with
+    `model` (left open: its owner closes it)."""
     cases_path = Path(path)
     cases = load_cases(cases_path)
-    model = parse_spec(llm_spec).model
-    return asyncio.run(_run(cases, cases_path.parent / "scenes", model, deadline, kb_factory))
+    scenes = cases_path.parent / "scenes"
+    if model is not None:
+        return asyncio.run(_run(cases, scenes, model, deadline, kb_factory))
+    built = parse_spec(llm_spec).model
+    return asyncio.run(closing(_run(cases, scenes, built, deadline, kb_factory), built))
+
+
+async def closing(work: Awaitable[T], model: ChatModel) -> T:
+    """`work`'s result, `model` closed after it (on the same loop: its HTTP client lives there)."""
+    try:
+        return await work
+    finally:
+        await model.aclose()
 
 
 async def _run(
@@ -227,18 +246,15 @@ async def _run(
 ) -> Report:
     config = EngineConfig(deadline=deadline)
     report = Report()
-    try:
-        for case in cases:
-            kb = await asyncio.to_thread(case_kb, case, scenes_dir, kb_factory)
-            try:
-                engine = DialogueEngine(kb, model, config)
-                result = await engine.turn(case.input, speaker=case.speaker, history=case.history)
-            finally:
-                await asyncio.to_thread(kb.close)
-            problems = check(case, result)
-            report.results.append(CaseResult(case, not problems, problems, result))
-    finally:
-        await model.aclose()
+    for case in cases:
+        kb = await asyncio.to_thread(case_kb, case, scenes_dir, kb_factory)
+        try:
+            engine = DialogueEngine(kb, model, config)
+            result = await engine.turn(case.input, speaker=case.speaker, history=case.history)
+        finally:
+            await asyncio.to_thread(kb.close)
+        problems = check(case, result)
+        report.results.append(CaseResult(case, not problems, problems, result))
     return report
 
 

@@ -4,8 +4,10 @@ from pathlib import Path
 import pytest
 
 from dialogue.engine import TurnResult
-from dialogue.evaluation import EvalError, check, load_cases, main, run
+from dialogue.evaluation import EvalError, check, format_report, load_cases, main, run
 from dialogue.intents import GRAB_OBJECT, SAY, make_intent, raw_user_input
+from dialogue.llm.hybrid import HybridModel
+from dialogue.llm.testing import ScriptedModel
 from tests.dialogue.conftest import EVAL_DIR
 
 
@@ -83,3 +85,41 @@ def test_check_rules() -> None:
     raw = raw_user_input("x", source="p")
     assert check(clarify, TurnResult("Which one?", (raw,))) == []
     assert check(clarify, TurnResult("Which one.", ())) == ["expected a clarifying question and no intent"]
+
+
+def write_cases(tmp_path: Path, *cases: dict[str, object]) -> Path:
+    (tmp_path / "scenes").mkdir(exist_ok=True)
+    (tmp_path / "scenes" / "kitchen.txt").write_text((EVAL_DIR / "scenes" / "kitchen.txt").read_text())
+    path = tmp_path / "cases.jsonl"
+    path.write_text("".join(json.dumps({"scene": "kitchen", "speaker": "person_alice", **c}) + "\n" for c in cases))
+    return path
+
+
+GRAB_CUP = {"id": "right", "input": "grab the cup", "expect": {"intent": GRAB_OBJECT, "roles": {"object": "cup_1"}}}
+WRONG = {"id": "wrong", "input": "grab the cup", "expect": {"intent": GRAB_OBJECT, "roles": {"object": "apple_1"}}}
+WEATHER = {"id": "weather", "input": "how is the weather today?", "expect": {"intent": None}}
+
+
+def test_rules_claims_are_the_turns_the_rules_answered(tmp_path: Path) -> None:
+    report = run(write_cases(tmp_path, GRAB_CUP, WRONG, WEATHER), "rules")
+    # The weather is not understood (a pass: no intent expected, none given) and so is no claim.
+    assert report.passed == 2 and [r.case.id for r in report.claims] == ["right", "wrong"]
+    assert report.claim_precision == 0.5
+    assert report.summary()["rules_claims"] == {"claimed": 2, "right": 1, "precision": 0.5}
+    (overall,) = [line for line in format_report(report).splitlines() if line.startswith("all ")]
+    assert overall.split()[1:4] == ["2", "3", "0.67"] and overall.endswith("rules' claims: 1/2 right (precision 0.50)")
+
+
+def test_turns_the_model_answered_behind_the_rules_are_not_claims(tmp_path: Path) -> None:
+    model = HybridModel(ScriptedModel([{"verbal_ack": "It is sunny.", "user_intent": None}]))
+    report = run(write_cases(tmp_path, GRAB_CUP, WEATHER), model=model)
+    assert report.passed == 2 and [r.case.id for r in report.claims] == ["right"]
+    assert report.claim_precision == 1.0
+
+
+def test_a_model_alone_makes_no_claims(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    model = ScriptedModel([{"verbal_ack": "It is sunny.", "user_intent": None}])
+    report = run(write_cases(tmp_path, WEATHER), model=model)
+    assert report.passed == 1 and report.claims == [] and report.claim_precision is None
+    assert report.summary()["rules_claims"] == {"claimed": 0, "right": 0, "precision": None}
+    assert "rules' claims: none" in format_report(report)
