@@ -5,7 +5,8 @@ structured turn context so that offline models (`rules`, the test models) work w
 
 Callers never test a model's class: they ask the model. `prescreen` answers from the structured
 context before any prompt is built (the rules' fast path), `llm` names the model that reads prompts
-(None when nothing behind this model does), and `aclose` releases what the model holds (its HTTP
+(None when nothing behind this model does), `probe` says whether it can answer (/health), and
+`aclose` releases what the model holds (its HTTP
 client, its worker process). Backends subclass `ChatModel` explicitly to inherit the defaults.
 """
 
@@ -121,6 +122,11 @@ class ChatModel(Protocol):
     async def self_check(self, timeout: float) -> SelfCheck | None:
         """A check of the setup by the backend itself; None: a real turn request checks it."""
         return None
+
+    async def probe(self, timeout: float) -> dict[str, Any]:
+        """For /health: ``{"remote", "reachable", "detail"}`` and whatever else the backend reports
+        of its own state. A remote backend sends one cheap request to its server."""
+        return {"remote": False, "reachable": True, "detail": "in-process"}
 
     async def preload(self) -> None:
         """Get ready for the first turn (load the model), so that it does not pay for it."""

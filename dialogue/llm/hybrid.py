@@ -9,6 +9,8 @@ is the inner model's.
 
 from __future__ import annotations
 
+from typing import Any
+
 from dialogue.llm.base import ChatModel, ChatRequest, ChatResult, EarlyAnswer, SelfCheck, TurnContext
 from dialogue.llm.rules import RulesModel
 
@@ -46,6 +48,9 @@ class HybridModel(ChatModel):
 
     async def self_check(self, timeout: float) -> SelfCheck | None:
         return await self.inner.self_check(timeout)
+
+    async def probe(self, timeout: float) -> dict[str, Any]:
+        return await self.inner.probe(timeout)
 
     async def preload(self) -> None:
         await self.inner.preload()

@@ -158,6 +158,9 @@ class LlamaCppModel(ChatModel):
                 "worker": {"state": state, "pid": pid, "crashes": self._worker.crashes,
                            "last_crash": self._worker.last_crash, "restart_error": self._down}}
 
+    async def probe(self, timeout: float) -> dict[str, Any]:
+        return {"remote": False, "reachable": True, "detail": "", **self.health()}
+
     # --- loading ------------------------------------------------------------------------------------
 
     def load(self) -> None:

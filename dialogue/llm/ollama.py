@@ -63,6 +63,21 @@ class OllamaModel(ChatModel):
     async def aclose(self) -> None:
         await self.client.aclose()
 
+    async def probe(self, timeout: float) -> dict[str, Any]:
+        """Lists the server's models: any answer but a server error means it is up."""
+        url = self.host.rstrip("/") + "/api/tags"
+        try:
+            async with asyncio.timeout(timeout):
+                await self.client.get().list()
+        except ollama.ResponseError as exc:
+            status = exc.status_code
+            return {"remote": True, "reachable": status < 500, "detail": f"{url}: HTTP {status}"}
+        except (TimeoutError, ConnectionError, httpx.HTTPError) as exc:
+            return {"remote": True, "reachable": False, "detail": f"{url}: {exc!r}"}
+        except ValueError:  # an answer, but not a model list: something else listens there
+            return {"remote": True, "reachable": True, "detail": f"{url}: not a model list"}
+        return {"remote": True, "reachable": True, "detail": f"{url}: HTTP 200"}
+
     def payload(self, request: ChatRequest) -> dict[str, Any]:
         opts = self.options
         payload: dict[str, Any] = {

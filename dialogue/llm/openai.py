@@ -58,6 +58,20 @@ class OpenAIModel(ChatModel):
     async def aclose(self) -> None:
         await self.client.aclose()
 
+    def _headers(self) -> dict[str, str]:
+        key = os.environ.get(self.options.api_key_env)
+        return {"Authorization": f"Bearer {key}"} if key else {}
+
+    async def probe(self, timeout: float) -> dict[str, Any]:
+        """Lists the server's models: any answer but a server error means it is up."""
+        url = self.base_url + "/models"
+        try:
+            response = await self.client.get().get(url, headers=self._headers(), timeout=timeout)
+        except httpx.HTTPError as exc:
+            return {"remote": True, "reachable": False, "detail": f"{url}: {exc!r}"}
+        return {"remote": True, "reachable": response.status_code < 500,
+                "detail": f"{url}: HTTP {response.status_code}"}
+
     def payload(self, request: ChatRequest) -> dict[str, Any]:
         opts = self.options
         response_format: dict[str, Any]
@@ -79,10 +93,7 @@ class OpenAIModel(ChatModel):
         }
 
     async def chat(self, request: ChatRequest, timeout: float) -> ChatResult:
-        headers = {}
-        key = os.environ.get(self.options.api_key_env)
-        if key:
-            headers["Authorization"] = f"Bearer {key}"
+        headers = self._headers()
         url = f"{self.base_url}/chat/completions"
         try:
             response = await self.client.get().post(

@@ -116,3 +116,29 @@ def test_turns_share_one_connection_to_the_server() -> None:
 
         asyncio.run(turns())
     assert len(server.peers) == 3 and len(set(server.peers)) == 1
+
+
+@pytest.mark.parametrize(("status", "reachable"), [(200, True), (404, True), (500, False)])
+def test_probe_lists_the_models_with_the_turns_client(status: int, reachable: bool) -> None:
+    def answer(req: httpx.Request) -> httpx.Response:
+        if req.url.path == "/api/tags":
+            return httpx.Response(status, json={"models": []} if status == 200 else {"error": "no"})
+        return httpx.Response(200, json=reply(ANSWER))
+
+    model = OllamaModel("gemma3:1b", "http://ollama.test:11434", transport=httpx.MockTransport(answer))
+
+    async def probe_and_turn() -> dict[str, object]:
+        health = await model.probe(1.0)
+        await model.chat(request(), timeout=5)
+        await model.aclose()
+        return health
+
+    health = asyncio.run(probe_and_turn())
+    assert health == {"remote": True, "reachable": reachable,
+                      "detail": f"http://ollama.test:11434/api/tags: HTTP {status}"}
+    assert model.client.made == 1
+
+
+def test_probe_of_an_unreachable_server() -> None:
+    health = asyncio.run(OllamaModel("gemma3:1b", free_port_url()).probe(1.0))
+    assert health["remote"] is True and health["reachable"] is False and "/api/tags" in str(health["detail"])

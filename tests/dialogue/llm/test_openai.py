@@ -100,3 +100,28 @@ def test_turns_share_one_connection_to_the_server() -> None:
 
         asyncio.run(turns())
     assert len(server.peers) == 3 and len(set(server.peers)) == 1
+
+
+@pytest.mark.parametrize(("status", "reachable"), [(200, True), (404, True), (503, False)])
+def test_probe_lists_the_models_with_the_turns_client(status: int, reachable: bool) -> None:
+    def answer(req: httpx.Request) -> httpx.Response:
+        if req.url.path == "/v1/models":
+            return httpx.Response(status, json={"data": []})
+        return httpx.Response(200, json=reply(ANSWER))
+
+    model = OpenAIModel("m", "http://llm.test/v1", transport=httpx.MockTransport(answer))
+
+    async def probe_and_turn() -> dict[str, object]:
+        health = await model.probe(1.0)
+        await model.chat(request(), timeout=5)
+        await model.aclose()
+        return health
+
+    health = asyncio.run(probe_and_turn())
+    assert health == {"remote": True, "reachable": reachable, "detail": f"http://llm.test/v1/models: HTTP {status}"}
+    assert model.client.made == 1
+
+
+def test_probe_of_an_unreachable_server() -> None:
+    health = asyncio.run(OpenAIModel("m", free_port_url() + "/v1").probe(1.0))
+    assert health["remote"] is True and health["reachable"] is False and "/v1/models" in str(health["detail"])
