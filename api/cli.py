@@ -270,11 +270,14 @@ async def _chat_in_process(args: argparse.Namespace) -> int:
     settings = load_settings(llm=args.llm, scene=args.scene)
     with _kb(args) as kb:
         dialogues = build_dialogues(settings, kb)
-        dialogue = dialogues.start()
-        for text in _lines(args):
-            result = await dialogues.interact(args.user, text, dialogue_id=dialogue.id)
-            _show({"response": result.response, "intents": [i.model_dump() for i in result.intents],
-                   "error_msg": result.error_msg})
+        try:
+            dialogue = dialogues.start()
+            for text in _lines(args):
+                result = await dialogues.interact(args.user, text, dialogue_id=dialogue.id)
+                _show({"response": result.response, "intents": [i.model_dump() for i in result.intents],
+                       "error_msg": result.error_msg})
+        finally:
+            await dialogues.engine.model.aclose()  # its HTTP client or worker process
     return 0
 
 
