@@ -7,8 +7,11 @@ from dialogue.engine import TurnResult
 from dialogue.evaluation import EvalError, check, format_report, load_cases, main, run
 from dialogue.intents import GRAB_OBJECT, SAY, make_intent, raw_user_input
 from dialogue.llm.hybrid import HybridModel
+from dialogue.llm.openai import OpenAIModel
 from dialogue.llm.testing import ScriptedModel
 from tests.dialogue.conftest import EVAL_DIR
+from tests.dialogue.llm.fakeserver import fake_server
+from tests.dialogue.llm.test_openai import reply as openai_reply
 
 
 def test_dev_set_with_rules_scores_at_least_95_percent() -> None:
@@ -123,3 +126,22 @@ def test_a_model_alone_makes_no_claims(tmp_path: Path, capsys: pytest.CaptureFix
     assert report.passed == 1 and report.claims == [] and report.claim_precision is None
     assert report.summary()["rules_claims"] == {"claimed": 0, "right": 0, "precision": None}
     assert "rules' claims: none" in format_report(report)
+
+
+def test_a_set_runs_on_one_client_closed_at_the_end(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    closed: list[str] = []
+    close = OpenAIModel.aclose
+
+    async def recorded(self: OpenAIModel) -> None:
+        closed.append(self.name)
+        await close(self)
+
+    monkeypatch.setattr(OpenAIModel, "aclose", recorded)
+    sunny = openai_reply(json.dumps({"verbal_ack": "It is sunny.", "user_intent": None}))
+    with fake_server(keep_alive=True) as server:
+        server.replies.extend([(200, sunny)] * 2)
+        cases = write_cases(tmp_path, WEATHER, {**WEATHER, "id": "again"})
+        report = run(cases, f"hybrid:openai:m@{server.url}/v1")
+    assert report.passed == 2 and report.claims == []
+    assert len(server.peers) == 2 and len(set(server.peers)) == 1
+    assert closed == [f"openai:m@{server.url}/v1"]
