@@ -11,8 +11,11 @@ Public API (import from the submodules; nothing is done at import time):
   `DialogueError`; `store` is a `dialogue.sessionstore.SessionStore`: `MemorySessions` (default) or
   `dialogue.sparqlsessions.SparqlSessions(endpoint)` (shared by processes on one SPARQL store);
 - `dialogue.llm.spec.parse_spec("rules" | "ollama:gemma3:1b[@URL]" | "openai:MODEL[@URL]" |
-  "openai-json:MODEL[@URL]" | "hybrid:<llm spec>") -> Backend(model, hybrid)`; errors are `SpecError`;
-- `dialogue.evaluation.run(path, llm_spec) -> Report` and `main(argv)` (the `situated eval` command).
+  "openai-json:MODEL[@URL]" | "hybrid:<llm spec>") -> Backend(model, spec)`; errors are `SpecError`;
+  `dialogue.llm.hybrid.HybridModel(inner)` is what a `hybrid:` spec builds; `await model.aclose()`
+  when done with a model;
+- `dialogue.evaluation.run(path, llm_spec) -> Report` (`score`, `claim_precision`) and `main(argv)`
+  (the `situated eval` command).
 
 Modules: intents (Intent.msg catalogue), schema (answer models, per-turn JSON schema), grounding
 (KB snapshot), situation (snapshot as sentences), lexicon / resolution / clarify (referents), words /
