@@ -5,9 +5,10 @@ structured turn context so that offline models (`rules`, the test models) work w
 
 Callers never test a model's class: they ask the model. `prescreen` answers from the structured
 context before any prompt is built (the rules' fast path), `llm` names the model that reads prompts
-(None when nothing behind this model does), `probe` says whether it can answer (/health), and
-`aclose` releases what the model holds (its HTTP
-client, its worker process). Backends subclass `ChatModel` explicitly to inherit the defaults.
+(None when nothing behind this model does), `probe` says whether it can answer (/health),
+`self_check` and `setup_hint` serve `situated doctor`, and `aclose` releases what the model holds
+(its HTTP client, its worker process). Backends subclass `ChatModel` explicitly to inherit the
+defaults.
 """
 
 from __future__ import annotations
@@ -133,5 +134,5 @@ class ChatModel(Protocol):
         return None
 
     async def aclose(self) -> None:
-        """Release what the model holds. Called once, at shutdown, on the loop that used it."""
+        """Release what the model holds, at shutdown, on the event loop that used it."""
         return None
