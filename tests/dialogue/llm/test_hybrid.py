@@ -105,3 +105,18 @@ def test_engine_falls_back_when_the_model_behind_the_rules_is_down(kitchen: KB) 
     assert turn(engine, "pick up the apple").backend == "rules"  # the rules need no server
     result = turn(engine, "how is the weather today?")
     assert result.backend == "fallback" and "connection refused" in result.error_msg
+
+
+def test_the_rules_fast_path_builds_no_prompt(kitchen: KB, monkeypatch: pytest.MonkeyPatch) -> None:
+    engine = DialogueEngine(kitchen, HybridModel(Recording(SUNNY)))
+    built: list[str] = []
+    messages = engine.prompts.messages
+
+    def counted(context: TurnContext) -> tuple[ChatMessage, ...]:
+        built.append(context.text)
+        return messages(context)
+
+    monkeypatch.setattr(engine.prompts, "messages", counted)
+    assert turn(engine, "pick up the apple").backend == "rules" and built == []
+    assert turn(engine, "how is the weather today?").backend == "inner"
+    assert built == ["how is the weather today?"]
