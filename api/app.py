@@ -62,4 +62,5 @@ def create_app(settings: Settings | None = None, kb: KB | None = None,
     for router in (kb_routes.router, sparql.router, events.router, dialogue.router, rasa.router,
                    scene.router, health.router, viewer.router):
         app.include_router(router)
+    app.mount(viewer.ASSETS_PATH, viewer.assets(), name="viewer-assets")
     return app

@@ -21,11 +21,11 @@ from typing import Any
 from api.client import ClientError, ServiceClient
 from api.humans import known_humans, render
 from api.settings import SettingsError, load_settings
-from api.world import load_any_scene
 from kb import KB, KbError
 from kb.datadir import check as check_data
 from kb.datadir import repair as repair_data
 from kb.errors import DataCorrupt
+from scene.world import load_any_scene
 
 BENCHES = ("kb", "scene", "dialogue", "http", "load", "store", "backend")
 # tests/api/test_cli.py runs every example below, so they cannot drift from what works.
@@ -292,7 +292,7 @@ def _data(args: argparse.Namespace) -> int:
 # --- eval and bench --------------------------------------------------------------------------------
 
 def _eval(args: argparse.Namespace) -> int:
-    from dialogue.evaluation import main as evaluate
+    from dialogue.evaluation.command import main as evaluate
 
     return evaluate(args.args)
 

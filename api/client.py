@@ -1,24 +1,46 @@
-"""A small synchronous client of a running service, for the CLI's ``--url`` mode.
+"""The one client of a running service's REST API, synchronous.
 
-Its methods mirror the library's (``KB.find``, ``KB.revise``...), so CLI commands run the same
-code against an in-process KB or a remote service.
+The CLI's ``--url`` mode reads and writes through it, and a reader process hands its writes to the
+writer service through it (it is a ``kb.sparqlstore.writetarget.WriteTarget``). Its methods mirror
+the library's (``KB.find``, ``KB.update``...), so the same code runs against an in-process KB or a
+service. A refusal comes back as ``ClientError`` with the service's own status, code, message and
+details, so a reader passes the writer's refusal on unchanged.
 """
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from typing import Any
 
 import httpx
 
+from kb.formats import rdf_format
+from kb.terms import as_list
+
+Models = str | Sequence[str] | None
+
 
 class ClientError(RuntimeError):
-    """The service refused the request or could not be reached; the message says why."""
+    """The service refused the request (its status, code, message and details) or could not be
+    reached (503, ``<name>_unavailable``); ``str()`` says which."""
+
+    def __init__(self, status: int, code: str, message: str, details: Any = None) -> None:
+        super().__init__(f"HTTP {status}: {message}")
+        self.status = status
+        self.code = code
+        self.message = message
+        self.details = details
 
 
 class ServiceClient:
-    def __init__(self, url: str, token: str | None = None, timeout: float = 30.0) -> None:
+    """``name`` says what the service is to this process ("service", "writer") in messages."""
+
+    def __init__(self, url: str, token: str | None = None, timeout: float = 30.0, *,
+                 name: str = "service", transport: httpx.BaseTransport | None = None) -> None:
         headers = {"authorization": f"Bearer {token}"} if token else {}
-        self._http = httpx.Client(base_url=url.rstrip("/"), headers=headers, timeout=timeout)
+        self.url = url.rstrip("/")
+        self.name = name
+        self._http = httpx.Client(base_url=self.url, headers=headers, timeout=timeout, transport=transport)
 
     def close(self) -> None:
         self._http.close()
@@ -29,33 +51,24 @@ class ServiceClient:
     def __exit__(self, *exc: object) -> None:
         self.close()
 
-    def _call(self, method: str, path: str, **kwargs: Any) -> Any:
+    def _call(self, method: str, path: str, *, writes: bool = False, **kwargs: Any) -> Any:
         try:
             response = self._http.request(method, path, **kwargs)
         except httpx.HTTPError as exc:
-            raise ClientError(f"cannot reach {self._http.base_url}: {exc}") from exc
+            after = "; nothing was written" if writes else ""
+            raise ClientError(503, f"{self.name}_unavailable", f"the {self.name} service at {self.url} "
+                              f"cannot be reached: {exc}{after}") from exc
         if response.is_error:
-            try:
-                body = response.json()
-                message = body["message"] if isinstance(body, dict) and "message" in body else response.text
-            except ValueError:
-                message = response.text
-            raise ClientError(f"HTTP {response.status_code}: {message}")
+            raise _refusal(response, self.name)
         return response.json() if response.content else None
 
-    # --- the KB methods the CLI uses -------------------------------------------------------------
+    # --- reads ---------------------------------------------------------------------------------
 
     def find(self, patterns: list[str], vars: list[str] | None = None,
              models: list[str] | None = None) -> list[Any]:
         result: list[Any] = self._call("POST", "/kb/query",
                                        json={"patterns": patterns, "vars": vars, "models": models})
         return result
-
-    def revise(self, stmts: list[str], policy: dict[str, Any]) -> int | None:
-        """Returns the number of asserted triples a retraction removed (None for an addition)."""
-        answer = self._call("POST", "/kb/revise", json={"statements": stmts, **policy})
-        removed: int | None = answer["removed"]
-        return removed
 
     def details(self, term: str, models: list[str] | None = None) -> dict[str, Any]:
         result: dict[str, Any] = self._call("GET", f"/kb/details/{term}", params={"models": models or []})
@@ -64,6 +77,44 @@ class ServiceClient:
     def lookup(self, query: str, models: list[str] | None = None) -> list[list[str]]:
         result: list[list[str]] = self._call("GET", "/kb/lookup", params={"q": query, "models": models or []})
         return result
+
+    # --- writes (the write half of the KB API) -------------------------------------------------
+
+    def revise(self, stmts: list[str], policy: dict[str, Any]) -> int | None:
+        """Returns the number of asserted triples a retraction removed (None for an addition)."""
+        answer = self._call("POST", "/kb/revise", writes=True, json={"statements": stmts, **policy})
+        removed: int | None = answer["removed"]
+        return removed
+
+    def update(self, stmts: str | Sequence[str], models: Models = None, lifespan: float = 0) -> None:
+        self._call("POST", "/kb/revise", writes=True, json={
+            "statements": as_list(stmts), "method": "update", "models": _models(models),
+            "lifespan": lifespan or None})
+
+    def remove(self, stmts: str | Sequence[str], models: Models = None) -> int:
+        answer = self._call("POST", "/kb/revise", writes=True, json={
+            "statements": as_list(stmts), "method": "retract", "models": _models(models)})
+        return int(answer["removed"])
+
+    def apply(self, add: Sequence[str] = (), remove: Sequence[str] = (), models: Models = None,
+              lifespan: float = 0) -> None:
+        self._call("POST", "/kb/apply", writes=True, json={
+            "add": as_list(add), "remove": as_list(remove), "models": _models(models),
+            "lifespan": lifespan or None})
+
+    def clear(self, keep_defaults: bool = True) -> None:
+        self._call("POST", "/kb/clear", writes=True, json={"keep_defaults": keep_defaults})
+
+    def load_data(self, data: str | bytes, fmt: str = "turtle", models: Models = None) -> None:
+        body = data.encode() if isinstance(data, str) else data
+        self._call("POST", "/kb/load", writes=True, content=body,
+                   headers={"content-type": rdf_format(fmt).media_type},
+                   params={"models": _models(models) or []})
+
+    def sparql_update(self, update: str, models: Models = None) -> None:
+        names = _models(models) or []
+        self._call("POST", "/sparql", writes=True, data={"update": update},
+                   params={"model": names[0]} if names else None)
 
     # --- dialogue ------------------------------------------------------------------------------
 
@@ -75,3 +126,20 @@ class ServiceClient:
         result: dict[str, Any] = self._call("POST", f"/dialogues/{dialogue_id}/interactions",
                                             json={"user_id": user_id, "input": text})
         return result
+
+
+def _models(models: Models) -> list[str] | None:
+    return as_list(models) if models else None
+
+
+def _refusal(response: httpx.Response, name: str) -> ClientError:
+    """The service's own error, as it is (its JSON error shape, or its status)."""
+    try:
+        body = response.json()
+    except ValueError:
+        body = None
+    if isinstance(body, dict) and isinstance(body.get("message"), str):
+        return ClientError(response.status_code, str(body.get("code") or f"{name}_error"), body["message"],
+                           body.get("details"))
+    return ClientError(response.status_code, f"{name}_error",
+                       f"the {name} answered {response.status_code}: {response.text[:300]}")

@@ -6,15 +6,16 @@ from typing import Annotated
 
 from fastapi import Depends, Query
 from fastapi.security import HTTPAuthorizationCredentials
+from fastapi.security.utils import get_authorization_scheme_param
 from starlette.requests import HTTPConnection
 
 from api.auth import authorise, bearer
 from api.errors import ApiError
-from api.kbtypes import AnyKB
 from api.services import Services
 from api.settings import Settings
 from api.subscriptions import EventHub
-from api.world import World
+from kb.protocol import KnowledgeBase
+from scene.world import World
 
 
 async def get_services(conn: HTTPConnection) -> Services:
@@ -25,7 +26,7 @@ async def get_services(conn: HTTPConnection) -> Services:
 ServicesDep = Annotated[Services, Depends(get_services)]
 
 
-async def get_kb(services: ServicesDep) -> AnyKB:
+async def get_kb(services: ServicesDep) -> KnowledgeBase:
     return services.kb
 
 
@@ -43,11 +44,21 @@ async def get_hub(services: ServicesDep) -> EventHub:
     return services.hub
 
 
-KbDep = Annotated[AnyKB, Depends(get_kb)]
+KbDep = Annotated[KnowledgeBase, Depends(get_kb)]
 WorldDep = Annotated[World, Depends(get_world)]
 SettingsDep = Annotated[Settings, Depends(get_settings)]
 HubDep = Annotated[EventHub, Depends(get_hub)]
 Credentials = Annotated[HTTPAuthorizationCredentials | None, Depends(bearer)]
+
+
+def presented_token(connection: HTTPConnection) -> str | None:
+    """The bearer token of a request, if any, for a public route that tells more to a reader: unlike
+    ``Credentials`` it declares no security scheme, so the API description says the route is open."""
+    scheme, token = get_authorization_scheme_param(connection.headers.get("authorization"))
+    return token if scheme.lower() == "bearer" and token else None
+
+
+PresentedToken = Annotated[str | None, Depends(presented_token)]
 
 
 async def require_read(settings: SettingsDep, credentials: Credentials) -> None:

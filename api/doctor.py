@@ -20,11 +20,11 @@ from pathlib import Path
 from typing import Literal
 
 from api.settings import Settings
-from api.world import load_any_scene
 from dialogue.engine import DialogueEngine, EngineConfig
 from dialogue.llm.base import ChatModel, ChatRequest, ModelError
 from dialogue.llm.spec import SpecError, parse_spec
 from kb import KB, KbError
+from scene.world import load_any_scene
 
 Status = Literal["ok", "warn", "fail"]
 #: Where the browser tests look for Chromium (tests/e2e/conftest.py).

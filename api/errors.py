@@ -1,9 +1,10 @@
 """The one JSON error shape of every route: ``{"status", "code", "message", "details"}``.
 
 Every failure goes through here: HTTP errors raised by the framework (404, 405), request
-validation (422), ``KbError`` and ``DialogueError`` (400), a full or failing data directory
-(507 ``storage_full``, 503 ``storage_unavailable``), the service's own ``ApiError`` (auth,
-limits) and unexpected errors (500 with a generic message; the traceback goes to the log only).
+validation (422), ``KbError`` and ``DialogueError`` (400; a failing model is 503), a full or
+failing data directory (507 ``storage_full``, 503 ``storage_unavailable``), the service's own
+``ApiError`` (auth, limits) and unexpected errors (500 with a generic message; the traceback
+goes to the log only).
 """
 
 from __future__ import annotations
@@ -20,12 +21,11 @@ from fastapi.responses import JSONResponse
 from pydantic import BaseModel
 from starlette.exceptions import HTTPException as StarletteHTTPException
 
-from dialogue.sessions import DialogueError
+from api.client import ClientError
+from dialogue.errors import DialogueError
+from dialogue.llm.base import ModelError
 from kb import KbError
-from kb.deadline import QueryTimeout
-from kb.endpoint import StoreUnavailable
-from kb.errors import StorageError, StorageFull
-from kb.query import TooManyRows
+from kb.errors import QueryTimeout, StorageError, StorageFull, StoreUnavailable, TooManyRows
 
 log = logging.getLogger("situated.api")
 
@@ -114,6 +114,12 @@ async def _validation_error(request: Request, exc: Exception) -> JSONResponse:
     return error_response(422, "invalid_request", f"{where}: {first['msg']}", details)
 
 
+async def _client_error(request: Request, exc: Exception) -> JSONResponse:
+    # A reader's write refused by the writer (or the writer unreachable): passed on unchanged.
+    assert isinstance(exc, ClientError)
+    return error_response(exc.status, exc.code, exc.message, exc.details)
+
+
 async def _kb_error(request: Request, exc: Exception) -> JSONResponse:
     return error_response(400, "kb_error", str(exc))
 
@@ -143,6 +149,10 @@ async def _dialogue_error(request: Request, exc: Exception) -> JSONResponse:
     return error_response(400, "dialogue_error", str(exc))
 
 
+async def _model_error(request: Request, exc: Exception) -> JSONResponse:
+    return error_response(503, "model_unavailable", str(exc))
+
+
 async def _unexpected(request: Request, exc: Exception) -> JSONResponse:
     log.error("unhandled error on %s %s", request.method, request.url.path, exc_info=exc)
     # Starlette re-raises the error after this response, and the server then drops the
@@ -157,10 +167,12 @@ def install_error_handlers(app: FastAPI) -> None:
     app.add_exception_handler(StarletteHTTPException, _http_error)
     app.add_exception_handler(RequestValidationError, _validation_error)
     app.add_exception_handler(KbError, _kb_error)
+    app.add_exception_handler(ClientError, _client_error)
     app.add_exception_handler(StoreUnavailable, _store_unavailable)
     app.add_exception_handler(TooManyRows, _too_many_rows)
     app.add_exception_handler(QueryTimeout, _query_timeout)
     app.add_exception_handler(StorageFull, _storage_full)  # before KbError's 400: more specific
     app.add_exception_handler(StorageError, _storage_error)
     app.add_exception_handler(DialogueError, _dialogue_error)
+    app.add_exception_handler(ModelError, _model_error)  # more specific than DialogueError's 400
     app.add_exception_handler(Exception, _unexpected)

@@ -2,95 +2,23 @@
 what only the writer holds (the scene, the commit feed).
 
 With a shared SPARQL store, exactly one service process (the writer) holds the reasoner. A
-reader answers queries from the store (kb.remote.RemoteKB) and hands every write to the writer
-through ``WriterClient``; the writer updates the store before it answers, so the reader's next
-read sees the write. The writer's refusals come back unchanged (same status, code and message);
-when the writer cannot be reached the request fails with 503 and nothing is written.
+reader answers queries from the store (kb.sparqlstore.remote.RemoteKB) and hands every write to
+the writer through ``api.client.ServiceClient``; the writer updates the store before it answers, so
+the reader's next read sees the write. The writer's refusals come back unchanged (same status, code
+and message); when the writer cannot be reached the request fails with 503 and nothing is written.
 """
 
 from __future__ import annotations
 
 import json
-from collections.abc import Sequence
-from typing import Any
 
 import httpx
 from starlette.types import ASGIApp, Message, Receive, Scope, Send
 
-from api.errors import ApiError, error_body
-from kb.formats import rdf_format
-from kb.terms import as_list
+from api.errors import error_body
 
 #: Paths a reader forwards as they are: the scene lives in the writer, and so does the commit feed.
 FORWARDED = ("/scene", "/kb/changes")
-
-
-class WriterClient:
-    """The write half of the KB API (kb.remote.WriteTarget), carried out by the writer service."""
-
-    def __init__(self, url: str, token: str | None = None, timeout: float = 30.0) -> None:
-        headers = {"authorization": f"Bearer {token}"} if token else {}
-        self.url = url.rstrip("/")
-        self._http = httpx.Client(base_url=self.url, headers=headers, timeout=timeout)
-
-    def close(self) -> None:
-        self._http.close()
-
-    def update(self, stmts: str | Sequence[str], models: str | Sequence[str] | None = None,
-               lifespan: float = 0) -> None:
-        self._post("/kb/revise", json={"statements": as_list(stmts), "method": "update",
-                                       "models": _models(models), "lifespan": lifespan or None})
-
-    def remove(self, stmts: str | Sequence[str], models: str | Sequence[str] | None = None) -> int:
-        answer = self._post("/kb/revise", json={"statements": as_list(stmts), "method": "retract",
-                                                "models": _models(models)})
-        return int(answer.json()["removed"])
-
-    def apply(self, add: Sequence[str] = (), remove: Sequence[str] = (),
-              models: str | Sequence[str] | None = None, lifespan: float = 0) -> None:
-        self._post("/kb/apply", json={"add": as_list(add), "remove": as_list(remove),
-                                      "models": _models(models), "lifespan": lifespan or None})
-
-    def clear(self, keep_defaults: bool = True) -> None:
-        self._post("/kb/clear", json={"keep_defaults": keep_defaults})
-
-    def load_data(self, data: str | bytes, fmt: str = "turtle",
-                  models: str | Sequence[str] | None = None) -> None:
-        media = rdf_format(fmt).media_type
-        body = data.encode() if isinstance(data, str) else data
-        self._post("/kb/load", content=body, headers={"content-type": media},
-                   params={"models": _models(models) or []})
-
-    def sparql_update(self, update: str, models: str | Sequence[str] | None = None) -> None:
-        names = _models(models) or []
-        self._post("/sparql", data={"update": update}, params={"model": names[0]} if names else None)
-
-    def _post(self, path: str, **kwargs: Any) -> httpx.Response:
-        try:
-            response = self._http.post(path, **kwargs)
-        except httpx.HTTPError as exc:
-            raise ApiError(503, "writer_unavailable", f"the writer service at {self.url} cannot be "
-                           f"reached: {exc}; nothing was written") from exc
-        if response.is_error:
-            raise _writer_error(response)
-        return response
-
-
-def _models(models: str | Sequence[str] | None) -> list[str] | None:
-    return as_list(models) if models else None
-
-
-def _writer_error(response: httpx.Response) -> ApiError:
-    """The writer's own error, passed on as it is (its JSON error shape, or its status)."""
-    try:
-        body = response.json()
-    except ValueError:
-        body = None
-    if isinstance(body, dict) and isinstance(body.get("message"), str):
-        return ApiError(response.status_code, str(body.get("code") or "writer_error"), body["message"],
-                        body.get("details"))
-    return ApiError(response.status_code, "writer_error",
-                    f"the writer answered {response.status_code}: {response.text[:300]}")
 
 
 class WriterProxy:

@@ -16,7 +16,7 @@ from api.auth import authorise
 from api.errors import ApiError
 from api.probe import probe
 from api.services import Services
-from kb.endpoint import StoreUnavailable
+from kb.errors import StoreUnavailable
 
 
 def may_read_details(services: Services, presented: str | None) -> bool:

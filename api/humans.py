@@ -4,12 +4,9 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Any, Protocol
+from typing import Any
 
-
-class Finder(Protocol):
-    def find(self, patterns: list[str], vars: list[str] | None = None,
-             models: list[str] | None = None) -> Sequence[Any]: ...
+from kb.protocol import KnowledgeBase
 
 
 @dataclass(frozen=True)
@@ -27,7 +24,7 @@ def _by_person(rows: Sequence[Any], key: str) -> dict[str, str]:
     return found
 
 
-def known_humans(kb: Finder) -> list[Human]:
+def known_humans(kb: KnowledgeBase) -> list[Human]:
     """Every ``Human`` in the robot's model, sorted by id (one conjunctive query per aspect)."""
     people = sorted({str(row["p"]) for row in kb.find(["?p rdf:type Human"])})
     names = _by_person(kb.find(["?p rdf:type Human", "?p rdfs:label ?name"]), "name")

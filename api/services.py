@@ -10,24 +10,24 @@ import logging
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from api.forward import WriterClient
-from api.kbtypes import AnyKB
-from api.scenefile import load_scene
+from api.client import ServiceClient
 from api.settings import Settings, SettingsError
 from api.subscriptions import EventHub
-from api.world import World
 from dialogue.engine import DialogueEngine, EngineConfig
 from dialogue.llm.base import ChatModel
 from dialogue.llm.spec import SpecError, parse_spec
 from dialogue.sessions import DialogueManager
 from dialogue.sparqlsessions import SparqlSessions
 from kb import KB, KbError
-from kb.endpoint import SparqlEndpoint
 from kb.errors import StorageError
 from kb.journal import Journal
-from kb.mirror import SparqlMirror
-from kb.remote import RemoteKB
+from kb.protocol import KnowledgeBase
+from kb.sparqlstore.endpoint import SparqlEndpoint
+from kb.sparqlstore.mirror import SparqlMirror
+from kb.sparqlstore.remote import RemoteKB
 from kb.status import Components, ComponentStatus
+from scene.textfile import load_scene
+from scene.world import World
 
 log = logging.getLogger("situated.api")
 
@@ -35,7 +35,7 @@ log = logging.getLogger("situated.api")
 @dataclass
 class Services:
     settings: Settings
-    kb: AnyKB
+    kb: KnowledgeBase
     hub: EventHub
     dialogues: DialogueManager
     world: World | None  # None on a reader: the writer keeps the scene
@@ -47,6 +47,9 @@ class Services:
     owns_model: bool = False
     # Named statuses of I/O and background work, rendered by /health (journal, compaction...).
     components: Components = field(default_factory=Components)
+    #: The in-process KB of a standalone service or a writer (None on a reader): the one the
+    #: journal snapshots.
+    local_kb: KB | None = None
 
     @property
     def model(self) -> ChatModel:
@@ -77,9 +80,9 @@ class Services:
             self.world.stop()
         self.hub.shutdown()
         if self.journal is not None:
-            if isinstance(self.kb, KB):  # only a writer keeps a journal
+            if self.local_kb is not None:
                 try:
-                    self.journal.snapshot(self.kb)  # a clean stop leaves a compact data directory
+                    self.journal.snapshot(self.local_kb)  # a clean stop leaves a compact data directory
                 except StorageError as exc:  # the journal alone is complete
                     log.warning("no snapshot at stop, the journal is kept as it is: %s", exc)
             self.journal.close()
@@ -106,7 +109,7 @@ class Store:
 
     endpoint: SparqlEndpoint
     mirror: SparqlMirror | None = None
-    writer: WriterClient | None = None
+    writer: ServiceClient | None = None
 
     @property
     def role(self) -> str:
@@ -140,7 +143,7 @@ def backend_of(settings: Settings) -> ChatModel:
         raise SettingsError(f"llm: {exc}") from exc
 
 
-def build_dialogues(settings: Settings, kb: AnyKB, model: ChatModel | None = None,
+def build_dialogues(settings: Settings, kb: KnowledgeBase, model: ChatModel | None = None,
                     endpoint: SparqlEndpoint | None = None) -> DialogueManager:
     """The dialogue engine on this KB, with ``model`` or the backend ``settings.llm`` names;
     with a shared store, the dialogue sessions live in it (every process sees every dialogue)."""
@@ -184,9 +187,10 @@ def start_services(settings: Settings, kb: KB | None = None, model: ChatModel | 
         if owns_kb:
             the_kb.close()
         raise
-    hub = EventHub(the_kb, settings.limits.max_subscribers)
+    hub = EventHub(the_kb, settings.limits.max_subscribers, commits=the_kb.on_commit)
     services = Services(settings=settings, kb=the_kb, hub=hub, dialogues=dialogues, world=world,
-                        journal=journal, owns_kb=owns_kb, store=store, owns_model=model is None)
+                        journal=journal, owns_kb=owns_kb, store=store, owns_model=model is None,
+                        local_kb=the_kb)
     if journal is not None:
         services.components.register("storage", journal.storage_status)
         services.components.register("compaction", journal.compaction.get)
@@ -216,7 +220,7 @@ def _start_reader(settings: Settings, model: ChatModel | None) -> Services:
         log.info("ontology files and the scene are the writer's; this reader ignores them")
     endpoint = SparqlEndpoint(settings.store, settings.store_timeout)
     token = settings.token.get_secret_value() if settings.token else None
-    writer = WriterClient(settings.writer_url, token)
+    writer = ServiceClient(settings.writer_url, token, name="writer")
     store = Store(endpoint, writer=writer)
     kb = RemoteKB(endpoint, writes=writer)
     try:

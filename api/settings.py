@@ -15,8 +15,9 @@ from typing import Any, Literal
 from pydantic import BaseModel, Field, SecretStr, ValidationError, field_validator, model_validator
 from pydantic_settings import BaseSettings, SettingsConfigDict
 
-from kb.endpoint import StoreSpec
 from kb.errors import KbError
+from kb.sparqlstore.endpoint import StoreSpec
+from scene.settings import SceneSettings
 
 CONFIG_ENV = "SITUATED_CONFIG"
 
@@ -38,17 +39,6 @@ class Limits(BaseModel):
     max_input_chars: int = Field(default=4000, ge=1, description="characters in one utterance")
     max_models: int = Field(default=16, ge=1, description="models named in one write or query (each new "
                             "model is a copy of the ontology's closure)")
-
-
-class SceneSettings(BaseModel):
-    """The scene's policies (scene-compat S5, S7, S8; defaults as the simulator) and engagement."""
-
-    fov_degrees: float = Field(default=120.0, gt=0, le=360, description="field of view of every agent")
-    range_m: float = Field(default=3.5, gt=0, description="how far agents see, metres")
-    agents_in_zones: bool = Field(default=False, description="state `<agent> isIn <zone>` (off upstream)")
-    zones: Literal["all", "largest"] = Field(default="all", description="zones of a straddling item")
-    supports: Literal["all", "top"] = Field(default="all", description="isOn every item below, or the top")
-    engagement_hz: float = Field(default=10.0, ge=0, le=100, description="engagement ticks per second")
 
 
 class Settings(BaseSettings):

@@ -14,10 +14,10 @@ from rdflib.plugins.sparql.parser import parseQuery
 from rdflib.term import BNode, Node
 
 from api.errors import ApiError
-from api.kbtypes import AnyKB
 from api.negotiation import negotiate
 from api.settings import Limits
-from kb.sparql import InvalidSparql, UnsupportedUpdate
+from kb.errors import InvalidSparql, UnsupportedUpdate
+from kb.protocol import KnowledgeBase
 
 RESULTS = {
     "application/sparql-results+json": "json",
@@ -51,7 +51,8 @@ def query_form(query: str) -> str:
         raise ApiError(400, "invalid_sparql", "invalid SPARQL query: it is nested too deeply") from None
 
 
-def answer(kb: AnyKB, query: str, accept: str | None, model: str | None, limits: Limits) -> tuple[str, bytes]:
+def answer(kb: KnowledgeBase, query: str, accept: str | None, model: str | None,
+           limits: Limits) -> tuple[str, bytes]:
     """Run a read-only query within the service's time budget and row cap; returns (media type,
     body) in the format the client accepts."""
     offers = _FORMS[query_form(query)]
@@ -82,7 +83,7 @@ def _tsv(results: dict[str, Any]) -> bytes:
     return ("\n".join(lines) + "\n").encode("utf-8")
 
 
-def apply_update(kb: AnyKB, update: str, model: str | None) -> None:
+def apply_update(kb: KnowledgeBase, update: str, model: str | None) -> None:
     """Apply INSERT DATA / DELETE DATA as one KB batch; anything else is refused unchanged."""
     try:
         kb.sparql_update(update, [model] if model else None)

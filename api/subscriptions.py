@@ -18,11 +18,10 @@ from collections.abc import Callable, Sequence
 from typing import Any
 
 from api.errors import ApiError
-from api.kbtypes import AnyKB
-from kb import KB
 from kb.describe import statements
 from kb.events import event_id
-from kb.writer import Commit
+from kb.protocol import KnowledgeBase
+from kb.writer import Commit, CommitListener
 
 DEFAULT_MODEL = "default"
 CHANGES_ID = "changes"
@@ -113,8 +112,12 @@ class _Entry:
 class EventHub:
     """Bounded set of event listeners over one KB."""
 
-    def __init__(self, kb: AnyKB, max_listeners: int, max_queued: int = 256) -> None:
+    def __init__(self, kb: KnowledgeBase, max_listeners: int, max_queued: int = 256, *,
+                 commits: Callable[[CommitListener], Callable[[], None]] | None = None) -> None:
+        """``commits``: how to follow every commit (the writer's ``KB.on_commit``); a reader, which
+        sees no commits, has none and refuses the commit feed."""
         self._kb = kb
+        self._commits = commits
         self._max_listeners = max_listeners
         self._max_queued = max_queued
         self._lock = threading.Lock()
@@ -155,9 +158,9 @@ class EventHub:
             self._changes = (*self._changes, listener)
             self._count += 1
             if self._unwatch is None:
-                if not isinstance(self._kb, KB):
+                if self._commits is None:
                     raise ApiError(503, "changes_elsewhere", "the commit feed is served by the writer")
-                self._unwatch = self._kb.on_commit(self._commit)
+                self._unwatch = self._commits(self._commit)
             return listener
 
     def _commit(self, commit: Commit) -> None:

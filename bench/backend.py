@@ -19,10 +19,10 @@ from fastapi import FastAPI
 
 from api.server import serve_in_thread
 from bench.progress import step
-from dialogue.grounding import Snapshot
 from dialogue.llm.base import ChatMessage, ChatModel, ChatRequest, TurnContext
 from dialogue.llm.ollama import OllamaModel
 from dialogue.llm.openai import OpenAIModel
+from dialogue.reference.grounding import Snapshot
 
 ANSWER = json.dumps({"verbal_ack": "OK", "user_intent": None})
 REQUEST = ChatRequest((ChatMessage("user", "hello"),), {"type": "object"},

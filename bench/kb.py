@@ -23,9 +23,9 @@ from rdflib.plugins.sparql import prepareQuery
 from bench.progress import step
 from bench.worlds import QUERY, SPARQL_QUERY, PerceptionWorld, QueryWorld
 from kb import KB
+from kb.models import Model
 from kb.rdfio import DEFAULT_ONTOLOGY, parse_data
 from kb.sparql import INIT_NS
-from kb.store import Model
 from kb.terms import ORO
 
 Row = tuple[str, str, str, str]

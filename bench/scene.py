@@ -14,8 +14,8 @@ import time
 
 from bench.progress import step
 from kb import KB
-from kb.scene import Entity, Kind, Scene
-from kb.scenesync import SceneSync
+from scene.scene import Entity, Kind, Scene
+from scene.sync import SceneSync
 
 
 def world(agents: int, objects: int, seed: int = 3) -> list[Entity]:

@@ -2,9 +2,9 @@
 
 One run starts ``oxigraph serve`` (bench.oxigraph) and, for each size, measures side by side:
 the perception tick on an in-process KB alone and on a writer whose every commit is mirrored to
-the store (kb.mirror: the tick includes its one update request); the grounding query, a
+the store (kb.sparqlstore.mirror: the tick includes its one update request); the grounding query, a
 one-pattern query, ``details`` and ``lookup`` on the in-process KB and on a read replica
-(kb.remote.RemoteKB) answering by SPARQL requests; the initial push (attach) and the replica's
+(kb.sparqlstore.remote.RemoteKB) answering by SPARQL requests; the initial push (attach) and the replica's
 first query on a new connection. Every read compared is also checked for equal answers between
 the two; any difference fails the run (exit 1), after the table.
 """
@@ -28,9 +28,9 @@ from bench.progress import step
 from bench.worlds import QUERY, PerceptionWorld, QueryWorld
 from kb import KB
 from kb.deadline import Deadline
-from kb.endpoint import SparqlEndpoint
-from kb.mirror import SparqlMirror
-from kb.remote import RemoteKB
+from kb.sparqlstore.endpoint import SparqlEndpoint
+from kb.sparqlstore.mirror import SparqlMirror
+from kb.sparqlstore.remote import RemoteKB
 from kb.terms import Node
 
 Row = tuple[str, str, str, str]

@@ -1,6 +1,6 @@
 """situated's dialogue engine: one grounded turn from words and the KB to a reply and ROS4HRI intents.
 
-Public API (import from the submodules; nothing is done at import time):
+Public API (exported here, see ``__all__``; nothing is done at import time):
 
 - `dialogue.engine.DialogueEngine(kb, model=None, config=EngineConfig(...))`, then
   `await engine.turn(text, speaker=user_id, history=[Utterance...], locale=None) -> TurnResult`
@@ -8,18 +8,44 @@ Public API (import from the submodules; nothing is done at import time):
 - `dialogue.sessions.DialogueManager(engine, store=None)`: `start(role, locale)`, `get(id)`, `end(id)`,
   `ids()` (and their `*_async` forms for async code), `await interact(user_id, text,
   dialogue_id="default", locale=None, response_expected=True, history=None)`; errors are
-  `DialogueError`; `store` is a `dialogue.sessionstore.SessionStore`: `MemorySessions` (default) or
+  `SessionError` (every error of the package is a `DialogueError`); `store` is a
+  `dialogue.sessionstore.SessionStore`: `MemorySessions` (default) or
   `dialogue.sparqlsessions.SparqlSessions(endpoint)` (shared by processes on one SPARQL store);
 - `dialogue.llm.spec.parse_spec("rules" | "ollama:gemma3:1b[@URL]" | "openai:MODEL[@URL]" |
   "openai-json:MODEL[@URL]" | "hybrid:<llm spec>") -> Backend(model, spec)`; errors are `SpecError`;
   `dialogue.llm.hybrid.HybridModel(inner)` is what a `hybrid:` spec builds; `await model.aclose()`
   when done with a model;
-- `dialogue.evaluation.run(path, llm_spec) -> Report` (`score`, `claim_precision`) and `main(argv)`
-  (the `situated eval` command).
+- `dialogue.evaluation.cases.run(path, llm_spec) -> Report` (`score`, `claim_precision`);
+  `dialogue.evaluation.command.main(argv)` is the `situated eval` command.
 
-Modules: intents (Intent.msg catalogue), schema (answer models, per-turn JSON schema), grounding
-(KB snapshot), situation (snapshot as sentences), lexicon / resolution / clarify (referents), words /
-commands / questions (the rules grammar), interpret + answers (the rules interpreter), validate (model
-answer -> grounded intents), prompts, history, engine, sessions (+ sessionstore, sparqlsessions: where
-dialogue state lives), evaluation, llm/ (backends).
+Modules: intents (Intent.msg catalogue), schema (answer models, per-turn JSON schema), situation
+(snapshot as sentences), validate (model answer -> grounded intents), prompts, history, engine,
+sessions (+ sessionstore, sparqlsessions: where dialogue state lives), speakers, errors; reference/
+(grounding: the KB snapshot; lexicon / resolution / clarify: referents), rules/ (words, commands,
+questions, answers, interpret: the offline grammar), llm/ (backends), evaluation/ (the eval tool).
 """
+
+from dialogue.engine import DialogueEngine, EngineConfig, TurnResult
+from dialogue.errors import DialogueError, SessionError
+from dialogue.history import Utterance
+from dialogue.intents import Intent
+from dialogue.llm.base import ChatModel, ModelError
+from dialogue.llm.hybrid import HybridModel
+from dialogue.llm.spec import SpecError, parse_spec
+from dialogue.sessions import DialogueManager
+
+__all__ = [
+    "ChatModel",
+    "DialogueEngine",
+    "DialogueError",
+    "DialogueManager",
+    "EngineConfig",
+    "HybridModel",
+    "Intent",
+    "ModelError",
+    "SessionError",
+    "SpecError",
+    "TurnResult",
+    "Utterance",
+    "parse_spec",
+]

@@ -17,16 +17,17 @@ from collections.abc import Sequence
 from dataclasses import dataclass, replace
 
 from dialogue import intents as I
-from dialogue.grounding import Entity, Grounder, Snapshot
 from dialogue.history import Utterance
-from dialogue.lexicon import Lexicon, LexiconCache
 from dialogue.llm.base import ChatMessage, ChatModel, ChatRequest, ChatResult, ModelError, TurnContext
 from dialogue.llm.rules import RulesModel
 from dialogue.prompts import PromptSet
+from dialogue.reference.grounding import Entity, Grounder, Snapshot
+from dialogue.reference.lexicon import Lexicon, LexiconCache
 from dialogue.schema import AnswerError, SchemaCandidates, parse_answer, turn_schema
-from dialogue.speakers import WritableKB, admit
+from dialogue.speakers import admit
 from dialogue.validate import Grounded, ground_answer
 from kb import KbError
+from kb.protocol import KnowledgeBase
 from kb.unicode import check_text
 
 log = logging.getLogger(__name__)
@@ -81,7 +82,7 @@ class DialogueEngine:
 
     def __init__(
         self,
-        kb: WritableKB,
+        kb: KnowledgeBase,
         model: ChatModel | None = None,
         config: EngineConfig | None = None,
         prompts: PromptSet | None = None,

@@ -13,6 +13,8 @@ from typing import Annotated
 
 from pydantic import BaseModel, ConfigDict, Field, field_validator
 
+from dialogue.errors import DialogueError
+
 RAW_USER_INPUT = "__raw_user_input__"
 ENGAGE_WITH = "__intent_engage_with__"
 MOVE_TO = "__intent_move_to__"
@@ -131,7 +133,7 @@ CATALOGUE: dict[str, IntentSpec] = {
 EXTRACTABLE: tuple[str, ...] = tuple(v for v in CATALOGUE if v != RAW_USER_INPUT)
 
 
-class IntentError(ValueError):
+class IntentError(DialogueError, ValueError):
     """An intent that violates the Intent.msg contract (unknown role, missing required role...)."""
 
 

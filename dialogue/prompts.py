@@ -13,6 +13,7 @@ from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from importlib import resources
 
+from dialogue.errors import DialogueError
 from dialogue.history import Utterance
 from dialogue.intents import CATALOGUE, EXTRACTABLE
 from dialogue.llm.base import ChatMessage, TurnContext
@@ -32,7 +33,7 @@ FREE_FORM_OBJECT = frozenset(
 )
 
 
-class PromptError(ValueError):
+class PromptError(DialogueError, ValueError):
     """A template cannot be rendered: missing or unexpected placeholder, unknown template."""
 
 

@@ -15,6 +15,7 @@ from typing import Any
 
 from pydantic import BaseModel, ConfigDict, Field, ValidationError
 
+from dialogue.errors import DialogueError
 from dialogue.intents import EXTRACTABLE
 
 #: Referent fields of `user_intent`; their values must be KB entity ids.
@@ -44,7 +45,7 @@ class ChatbotResponse(BaseModel):
     user_intent: UserIntent | None = None
 
 
-class AnswerError(ValueError):
+class AnswerError(DialogueError, ValueError):
     """The model's content is not a usable answer; the message says why (it is sent back in a repair)."""
 
 

@@ -29,6 +29,7 @@ from dataclasses import replace
 from typing import Literal, ParamSpec, TypeVar
 
 from dialogue.engine import SORRY, DialogueEngine, TurnResult
+from dialogue.errors import SessionError
 from dialogue.history import ASSISTANT_USER_ID, History, Utterance
 from dialogue.sessionstore import (
     DEFAULT_DIALOGUE,
@@ -39,16 +40,16 @@ from dialogue.sessionstore import (
     StateError,
     check_bound,
 )
-from kb.endpoint import StoreUnavailable
-from kb.unicode import InvalidUnicode, check_text
+from kb.errors import InvalidUnicode, StoreUnavailable
+from kb.unicode import check_text
 
 __all__ = [
     "DEFAULT_DIALOGUE",
     "DEFAULT_ROLE",
     "SUPPORTED_ROLES",
-    "DialogueError",
     "DialogueManager",
     "DialogueState",
+    "SessionError",
     "check_utterance",
 ]
 
@@ -61,15 +62,12 @@ T = TypeVar("T")
 log = logging.getLogger(__name__)
 
 
-class DialogueError(ValueError):
-    """Unknown dialogue id, unsupported role, or a request that cannot be served; message says which."""
-
 
 def check_utterance(text: str) -> str:
-    """`text` when it has something to say; an empty or blank utterance is no turn (DialogueError,
+    """`text` when it has something to say; an empty or blank utterance is no turn (SessionError,
     a ValueError, so request models may use this as a validator)."""
     if not text.strip():
-        raise DialogueError("the utterance is empty or blank; say something")
+        raise SessionError("the utterance is empty or blank; say something")
     return text
 
 
@@ -88,7 +86,7 @@ def _check_id(dialogue_id: str) -> None:
     try:
         dialogue_id.encode("utf-8")
     except UnicodeEncodeError:
-        raise DialogueError(f"dialogue id {dialogue_id!r} is not valid Unicode text") from None
+        raise SessionError(f"dialogue id {dialogue_id!r} is not valid Unicode text") from None
 
 
 def _check_texts(user_id: str, text: str, locale: str | None, history: Sequence[Utterance] | None) -> None:
@@ -100,7 +98,7 @@ def _check_texts(user_id: str, text: str, locale: str | None, history: Sequence[
         for name, value in fields:
             check_text(value, f"the {name}")
     except InvalidUnicode as exc:
-        raise DialogueError(str(exc)) from None
+        raise SessionError(str(exc)) from None
 
 
 class DialogueManager:
@@ -138,7 +136,7 @@ class DialogueManager:
         try:
             state = self.store.load(dialogue_id)
         except StateError as exc:
-            raise DialogueError(f"dialogue {dialogue_id!r} cannot be read from the store: {exc}") from None
+            raise SessionError(f"dialogue {dialogue_id!r} cannot be read from the store: {exc}") from None
         if state is None and dialogue_id == DEFAULT_DIALOGUE:
             return DialogueState(DEFAULT_DIALOGUE)
         return state
@@ -151,9 +149,9 @@ class DialogueManager:
         dialogue_id: str | None = None,
     ) -> DialogueState:
         if role not in SUPPORTED_ROLES:
-            raise DialogueError(f"unsupported dialogue role {role!r}; supported: {sorted(SUPPORTED_ROLES)}")
+            raise SessionError(f"unsupported dialogue role {role!r}; supported: {sorted(SUPPORTED_ROLES)}")
         if dialogue_id and self._find(dialogue_id) is not None:
-            raise DialogueError(f"dialogue {dialogue_id!r} already exists")
+            raise SessionError(f"dialogue {dialogue_id!r} already exists")
         state = DialogueState(dialogue_id or str(uuid.uuid4()), role, locale, configuration, (), time.time())
         self.store.save(state, create=True)
         return state
@@ -161,7 +159,7 @@ class DialogueManager:
     def get(self, dialogue_id: str) -> DialogueState:
         state = self._find(dialogue_id)
         if state is None:
-            raise DialogueError(f"unknown dialogue {dialogue_id!r}; start it first")
+            raise SessionError(f"unknown dialogue {dialogue_id!r}; start it first")
         return state
 
     def end(self, dialogue_id: str) -> None:
@@ -229,7 +227,7 @@ class DialogueManager:
         Answered within the engine's deadline from now, however many turns of the dialogue are
         queued before this one."""
         if not user_id:
-            raise DialogueError("user_id is required")
+            raise SessionError("user_id is required")
         check_utterance(text)
         _check_texts(user_id, text, locale, history)
         loop = asyncio.get_running_loop()
@@ -328,7 +326,7 @@ class DialogueManager:
                 if reply:
                     kept.add(ASSISTANT_USER_ID, reply)
                 await self._off_loop(self._save, state, kept)
-            except (DialogueError, StoreUnavailable) as exc:  # ended meanwhile, or unreadable
+            except (SessionError, StoreUnavailable) as exc:  # ended meanwhile, or unreadable
                 log.warning("late turn of dialogue %r not recorded: %s", dialogue_id, exc)
             finally:
                 lock.release()

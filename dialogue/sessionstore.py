@@ -17,6 +17,7 @@ from collections import OrderedDict
 from dataclasses import dataclass
 from typing import Any, ClassVar, Protocol
 
+from dialogue.errors import DialogueError
 from dialogue.history import Utterance
 
 DEFAULT_DIALOGUE = "default"
@@ -25,7 +26,7 @@ DEFAULT_ROLE = "__default__"
 STATE_FORMAT = 1
 
 
-class StateError(ValueError):
+class StateError(DialogueError, ValueError):
     """A stored dialogue state that cannot be read; the message says what is wrong with it."""
 
 

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from dialogue.grounding import Entity, Snapshot
+from dialogue.reference.grounding import Entity, Snapshot
 
 MAX_LINES = 40
 MAX_CHARS = 3000

@@ -4,7 +4,7 @@ In the graph ``layout.dialogues`` each dialogue ``layout.dialogue(id)`` has two 
 as one JSON literal (``sit:dialogueState``, see dialogue.sessionstore.DialogueState) and when it
 was last saved (``sit:touched``, an ``xsd:dateTime``) that orders the eviction. A load is one
 SELECT; a save, a delete, an id listing are one request each. Every request is written with
-kb.sparqltext from rdflib terms, so no id or text can break out of its term.
+kb.sparqlstore.text from rdflib terms, so no id or text can break out of its term.
 
 Each update request is applied whole or not at all by the store; concurrent saves of one dialogue
 from different processes are not merged: the last one wins (see dialogue.sessions).
@@ -19,9 +19,9 @@ from urllib.parse import unquote
 from rdflib import Literal, URIRef, Variable
 
 from dialogue.sessionstore import DEFAULT_DIALOGUE, DialogueState, StateError, check_bound
-from kb.endpoint import SparqlEndpoint
-from kb.layout import SIT
-from kb.sparqltext import term
+from kb.sparqlstore.endpoint import SparqlEndpoint
+from kb.sparqlstore.layout import SIT
+from kb.sparqlstore.text import term
 
 STATE: Final = URIRef(SIT + "dialogueState")
 TOUCHED: Final = URIRef(SIT + "touched")

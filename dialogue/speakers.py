@@ -9,23 +9,16 @@ no KB name are nobody to ground: they are never added, and no intent names them.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
-from typing import Protocol
-
 from rdflib import RDF, URIRef
 
-from dialogue.grounding import KnowledgeBase
 from dialogue.history import ASSISTANT_USER_ID, SYSTEM_USER_ID
 from dialogue.intents import SOURCES
 from kb import KbError
+from kb.protocol import KnowledgeBase
 from kb.terms import ORO, format_triple, parse_name
 
 NOT_PEOPLE = SOURCES | {SYSTEM_USER_ID, ASSISTANT_USER_ID}
 PERSON_CLASS = URIRef(ORO + "Human")  # one of grounding.PERSON_CLASSES
-
-
-class WritableKB(KnowledgeBase, Protocol):
-    def update(self, stmts: str | Sequence[str], models: None = None, lifespan: float = 0) -> None: ...
 
 
 def person_statement(speaker: str) -> str | None:
@@ -40,7 +33,7 @@ def person_statement(speaker: str) -> str | None:
     return format_triple((term, RDF.type, PERSON_CLASS))
 
 
-def admit(kb: WritableKB, speaker: str) -> bool:
+def admit(kb: KnowledgeBase, speaker: str) -> bool:
     """Make `speaker` a person of the KB unless the KB knows it or it cannot be one; True when it
     was added. Blocking (a KB query, maybe a write); KbError when the KB refuses the write."""
     statement = person_statement(speaker)

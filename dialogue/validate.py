@@ -10,10 +10,10 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from dialogue import intents as I
-from dialogue.clarify import question as clarifying_question
-from dialogue.lexicon import Lexicon
 from dialogue.prompts import FREE_FORM_OBJECT
-from dialogue.resolution import ROLE_KINDS, resolve_id
+from dialogue.reference.clarify import question as clarifying_question
+from dialogue.reference.lexicon import Lexicon
+from dialogue.reference.resolution import ROLE_KINDS, resolve_id
 from dialogue.schema import REFERENT_FIELDS, AnswerError, ChatbotResponse, UserIntent
 
 MAX_REPLY_CHARS = 600

@@ -16,8 +16,8 @@ from typing import Any
 from rdflib import Variable
 
 from kb.errors import KbError
+from kb.models import Model
 from kb.query import Query, Row, build_query, solve
-from kb.store import Model
 from kb.terms import Node, Pattern, TermParser, Triple, parse_patterns, shorten
 from kb.terms import tokenize as _tokenize
 

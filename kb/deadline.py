@@ -14,22 +14,12 @@ import time
 from collections.abc import Iterator
 from contextlib import contextmanager
 
-from kb.errors import KbError
+from kb.errors import KbError, QueryTimeout
 from kb.index import TripleIndex
 from kb.terms import Node, Triple
 
 # Reading the clock costs about as much as producing one triple: look every this many triples.
 _CHECK_EVERY = 256
-
-
-class QueryTimeout(KbError):
-    """A query that did not finish within its time budget (it was stopped, nothing changed)."""
-
-    def __init__(self, seconds: float, waiting: bool = False) -> None:
-        what = ("waited for the KB longer than" if waiting else "ran longer than")
-        super().__init__(f"the query {what} its time budget of {seconds:g} s and was stopped; "
-                         "make it more specific")
-        self.seconds = seconds
 
 
 class Deadline:

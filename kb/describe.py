@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from collections.abc import Iterable
-from typing import Any
+from typing import Any, TypeVar
 
 from rdflib import BNode, Literal, URIRef
 from rdflib.namespace import OWL, RDF, RDFS
@@ -198,7 +198,7 @@ def lookup(closure: TripleIndex, query: str) -> tuple[list[Node], list[Node]]:
     exact -= {t for t in exact if isinstance(t, BNode)}
     approx -= HIDDEN_CLASSES | exact
     approx -= {t for t in approx if isinstance(t, BNode)}
-    key = _sort_key
+    key = sort_key
     return sorted(exact, key=key), sorted(approx, key=key)
 
 
@@ -209,5 +209,26 @@ def _names(closure: TripleIndex) -> set[Node]:
     return names
 
 
-def _sort_key(term: Node) -> tuple[int, str]:
+def sort_key(term: Node) -> tuple[int, str]:
+    """The order of lookup's answers: names before literals, then by text."""
     return (1 if isinstance(term, Literal) else 0, str(shorten(term)))
+
+
+M = TypeVar("M")
+
+
+def merged(found: Iterable[tuple[M, list[Node], list[Node]]]) -> list[tuple[Node, M]]:
+    """``lookup`` over several models (each ``(model, exact, approximate)``): exact matches first,
+    then approximate ones that are exact nowhere, each with the first model that has it."""
+    exact: dict[Node, M] = {}
+    approx: dict[Node, M] = {}
+    for model, e, a in found:
+        for t in e:
+            exact.setdefault(t, model)
+        for t in a:
+            approx.setdefault(t, model)
+    for t in exact:
+        approx.pop(t, None)
+    return [(t, exact[t]) for t in sorted(exact, key=sort_key)] + [
+        (t, approx[t]) for t in sorted(approx, key=sort_key)
+    ]

@@ -1,4 +1,4 @@
-"""The error types of the knowledge base: knowledge_core's ``KbError`` and the storage errors."""
+"""Every error type of the knowledge base, each a ``KbError``: bad input, queries over budget, storage."""
 
 from __future__ import annotations
 
@@ -27,6 +27,48 @@ class StorageFull(StorageError):
 
 class DataCorrupt(KbError):
     """The data directory holds damaged records; starting would lose acknowledged writes."""
+
+
+class InvalidUnicode(KbError):
+    """Text holding a code point that is not a Unicode scalar value."""
+
+
+class InvalidRegex(KbError):
+    """A REGEX or REPLACE pattern that is not a valid regular expression."""
+
+
+class InvalidSparql(KbError):
+    """Text that does not parse as SPARQL (of the kind expected)."""
+
+
+class UnsupportedUpdate(KbError):
+    """A SPARQL Update other than INSERT DATA / DELETE DATA on the model itself."""
+
+
+class TooManyRows(KbError):
+    """A query with more distinct rows than the caller allows (evaluation stops there)."""
+
+    def __init__(self, limit: int) -> None:
+        super().__init__(f"the query has more than {limit} rows; make the patterns more specific")
+        self.limit = limit
+
+
+class QueryTimeout(KbError):
+    """A query that did not finish within its time budget (it was stopped, nothing changed)."""
+
+    def __init__(self, seconds: float, waiting: bool = False) -> None:
+        what = ("waited for the KB longer than" if waiting else "ran longer than")
+        super().__init__(f"the query {what} its time budget of {seconds:g} s and was stopped; "
+                         "make it more specific")
+        self.seconds = seconds
+
+
+class StoreUnavailable(KbError):
+    """The SPARQL store could not be reached, did not answer in time or failed the request."""
+
+
+class OutcomeUnknown(StoreUnavailable):
+    """An update was sent and no answer came: the store may have applied it, or apply it later."""
 
 
 # Errors that mean "no space", whatever the filesystem calls it.

@@ -17,8 +17,8 @@ from typing import Any
 
 from rdflib import Variable
 
+from kb.models import Delta
 from kb.query import Query, Row, match_triple
-from kb.store import Delta
 
 _log = logging.getLogger(__name__)
 ALL = "all"

@@ -14,7 +14,7 @@ from typing import Protocol
 
 from rdflib import BNode, Variable
 
-from kb.errors import KbError
+from kb.errors import KbError, TooManyRows
 from kb.terms import Node, Pattern, is_anonymous
 
 Row = tuple[Node, ...]
@@ -151,14 +151,6 @@ def _solve(
     for slot in (free_s, free_p, free_o):
         if slot >= 0:
             binding[slot] = None
-
-
-class TooManyRows(KbError):
-    """A query with more distinct rows than the caller allows (evaluation stops there)."""
-
-    def __init__(self, limit: int) -> None:
-        super().__init__(f"the query has more than {limit} rows; make the patterns more specific")
-        self.limit = limit
 
 
 def rows(index: JoinIndex, query: Query, limit: int | None = None) -> set[Row]:

@@ -22,7 +22,7 @@ from rdflib.store import Store
 from rdflib.term import Node as RdfNode
 
 from kb.deadline import Deadline, TimedIndex
-from kb.errors import KbError
+from kb.errors import InvalidSparql, KbError, UnsupportedUpdate
 from kb.index import TripleIndex
 from kb.sparqlbudget import bound, check_size
 from kb.terms import ORO, PREFIXES, Node, Triple
@@ -111,14 +111,6 @@ def _refuse_remote(tree: Any) -> None:
                           "situated answers from its own KB only")
         raise KbError("GRAPH is not supported: each KB model is one graph; choose it with the model "
                       "parameter")
-
-
-class InvalidSparql(KbError):
-    """Text that does not parse as SPARQL (of the kind expected)."""
-
-
-class UnsupportedUpdate(KbError):
-    """A SPARQL Update other than INSERT DATA / DELETE DATA on the model itself."""
 
 
 def _translate(text: str, kind: str, parse: Callable[[str], Any], translate: Callable[..., Any],

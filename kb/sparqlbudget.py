@@ -20,7 +20,7 @@ from rdflib.plugins.sparql.parserutils import CompValue, Expr
 from rdflib.query import Result
 
 from kb.deadline import Deadline
-from kb.query import TooManyRows
+from kb.errors import TooManyRows
 from kb.sparqlregex import bound_regex
 
 # The algebra nodes that make solutions without reading the store.

@@ -23,17 +23,13 @@ from rdflib import Literal
 from rdflib.plugins.sparql.operators import string
 from rdflib.plugins.sparql.parserutils import Expr
 
-from kb.deadline import Deadline, QueryTimeout
-from kb.errors import KbError
+from kb.deadline import Deadline
+from kb.errors import InvalidRegex, QueryTimeout
 
 # The XPath flags SPARQL defines that rdflib maps (others are ignored, as rdflib does).
 _FLAGS = {"i": regex.IGNORECASE, "s": regex.DOTALL, "m": regex.MULTILINE}
 # SPARQL writes group references in a replacement as $1; Python as \1.
 _GROUP_REF = regex.compile(r"\$([0-9]*)")
-
-
-class InvalidRegex(KbError):
-    """A REGEX or REPLACE pattern that is not a valid regular expression."""
 
 
 def _flags(flags: Any) -> int:

@@ -13,13 +13,9 @@ from collections.abc import Iterable
 
 from rdflib import Literal
 
-from kb.errors import KbError
+from kb.errors import InvalidUnicode
 
 _SURROGATE = re.compile("[\ud800-\udfff]")
-
-
-class InvalidUnicode(KbError):
-    """Text holding a code point that is not a Unicode scalar value."""
 
 
 def surrogate_at(text: str) -> int | None:

@@ -21,9 +21,9 @@ from rdflib.namespace import OWL, RDF
 from kb.errors import KbError, StorageFull
 from kb.events import Firing, Subscriptions
 from kb.lifespan import Expiries
+from kb.models import ALL_MODELS, Delta, Models, ModelsState
 from kb.query import Query, Row, holds_row, rows
 from kb.status import StatusCell
-from kb.store import ALL_MODELS, Delta, Models, ModelsState
 from kb.terms import ORO, Triple, shorten
 
 log = logging.getLogger(__name__)

@@ -1,5 +1,5 @@
 """Fixtures shared by the test packages: a local Oxigraph SPARQL server for the scale-out tests,
-and read replicas (kb.remote.RemoteKB) of a writer KB mirrored to it."""
+and read replicas (kb.sparqlstore.remote.RemoteKB) of a writer KB mirrored to it."""
 
 from __future__ import annotations
 
@@ -14,10 +14,11 @@ import hypothesis
 import pytest
 
 from bench.oxigraph import OxigraphServer, oxigraph_command
-from kb import KB, sparqltext
-from kb.endpoint import SparqlEndpoint
-from kb.mirror import SparqlMirror
-from kb.remote import RemoteKB
+from kb import KB
+from kb.sparqlstore import text as sparqltext
+from kb.sparqlstore.endpoint import SparqlEndpoint
+from kb.sparqlstore.mirror import SparqlMirror
+from kb.sparqlstore.remote import RemoteKB
 
 
 def pytest_configure(config: pytest.Config) -> None:

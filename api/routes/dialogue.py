@@ -12,7 +12,7 @@ from api.errors import ApiError
 from api.limits import check_count, check_length
 from dialogue.history import Utterance
 from dialogue.intents import Intent
-from dialogue.sessions import DEFAULT_ROLE, DialogueError, DialogueManager, check_utterance
+from dialogue.sessions import DEFAULT_ROLE, DialogueManager, SessionError, check_utterance
 
 router = APIRouter(prefix="/dialogues", tags=["dialogue"])
 
@@ -64,7 +64,7 @@ Dialogues = Annotated[DialogueManager, Depends(get_dialogues)]
 async def _existing(dialogues: DialogueManager, dialogue_id: str) -> None:
     try:
         await dialogues.get_async(dialogue_id)
-    except DialogueError as exc:
+    except SessionError as exc:
         raise ApiError(404, "unknown_dialogue", str(exc)) from exc
 
 
@@ -90,7 +90,7 @@ async def interact(dialogue_id: str, body: InteractionRequest, dialogues: Dialog
         result = await dialogues.interact(body.user_id, body.input, dialogue_id=dialogue_id,
                                           locale=body.locale, response_expected=body.response_expected,
                                           history=history)
-    except DialogueError as exc:
+    except SessionError as exc:
         raise ApiError(404, "unknown_dialogue", str(exc)) from exc
     return InteractionResponse(response=result.response, intents=list(result.intents),
                                error_msg=result.error_msg)

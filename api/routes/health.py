@@ -7,7 +7,7 @@ from typing import Any
 
 from fastapi import APIRouter
 
-from api.deps import Credentials, ServicesDep
+from api.deps import PresentedToken, ServicesDep
 from api.healthreport import health_report, may_read_details
 from kb import __version__ as kb_version
 
@@ -22,11 +22,11 @@ def package_version() -> str:
 
 
 @router.get("/health")
-async def health(services: ServicesDep, credentials: Credentials) -> dict[str, Any]:
-    """``ok`` or ``degraded``; to callers allowed to read, also why (``reasons``), the KB's size,
-    revision and role, the model backend, the store, and each component (storage, compaction)."""
-    presented = credentials.credentials if credentials else None
-    return await health_report(services, may_read_details(services, presented))
+async def health(services: ServicesDep, token: PresentedToken) -> dict[str, Any]:
+    """``ok`` or ``degraded``, to anyone (a monitor needs no token); to callers allowed to read,
+    also why (``reasons``), the KB's size, revision and role, the model backend, the store, and each
+    component (storage, compaction)."""
+    return await health_report(services, may_read_details(services, token))
 
 
 @router.get("/version")

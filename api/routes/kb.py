@@ -10,11 +10,11 @@ from starlette.concurrency import run_in_threadpool
 
 from api.deps import KbDep, ReadAccess, ServicesDep, SettingsDep, WriteAccess
 from api.errors import ApiError
-from api.kbtypes import AnyKB
 from api.limits import check_count
 from api.negotiation import RDF_UPLOAD_TYPES, negotiate, upload_format
 from api.settings import Settings
 from kb.formats import EXPORTS
+from kb.protocol import KnowledgeBase
 
 router = APIRouter(prefix="/kb", tags=["kb"])
 
@@ -67,7 +67,7 @@ async def query(body: QueryRequest, kb: KbDep, settings: SettingsDep) -> list[An
     return await _find(kb, settings, body.patterns, body.vars, body.models)
 
 
-async def _find(kb: AnyKB, settings: Settings, patterns: list[str], vars: list[str] | None,
+async def _find(kb: KnowledgeBase, settings: Settings, patterns: list[str], vars: list[str] | None,
                 models: list[str] | None) -> list[Any]:
     limits = settings.limits
     return await run_in_threadpool(lambda: kb.find(patterns, vars, models, max_rows=limits.max_rows,

@@ -15,11 +15,11 @@ from api import rasa
 from api.auth import authorise
 from api.deps import Credentials, ServicesDep, SettingsDep
 from api.errors import ApiError
-from api.kbtypes import AnyKB
 from api.limits import check_length
 from dialogue.engine import TurnResult
-from dialogue.sessions import DialogueError, DialogueManager, check_utterance
+from dialogue.sessions import DialogueManager, SessionError, check_utterance
 from kb import KbError
+from kb.protocol import KnowledgeBase
 
 router = APIRouter(tags=["rasa"])
 log = logging.getLogger("situated.api")
@@ -50,10 +50,10 @@ class ParseRequest(BaseModel):
 async def _ensure_dialogue(dialogues: DialogueManager, key: str) -> None:
     try:
         await dialogues.get_async(key)
-    except DialogueError:
+    except SessionError:
         try:
             await dialogues.start_async(dialogue_id=key)
-        except DialogueError:  # started concurrently by another request
+        except SessionError:  # started concurrently by another request
             await dialogues.get_async(key)
 
 
@@ -77,7 +77,7 @@ async def webhook(body: WebhookMessage, services: ServicesDep,
     return rasa.webhook_messages(body.sender, result.response, result.intents)
 
 
-def _labeller(kb: AnyKB) -> Any:
+def _labeller(kb: KnowledgeBase) -> Any:
     def label(term: str) -> str:
         try:
             return str(kb.label(term))

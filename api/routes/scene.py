@@ -11,8 +11,8 @@ from starlette.concurrency import run_in_threadpool
 
 from api.deps import ReadAccess, WorldDep, WriteAccess
 from api.errors import ApiError
-from kb.scenesync import entity_from_json, scene_from_json, scene_to_json
-from kb.svg import load_svg
+from scene.svg import load_svg
+from scene.sync import entity_from_json, scene_from_json, scene_to_json
 
 router = APIRouter(prefix="/scene", tags=["scene"])
 SVG_TYPES = ("image/svg+xml",)

@@ -14,8 +14,8 @@ from api import sparql
 from api.auth import authorise
 from api.deps import Credentials, KbDep, ReadAccess, SettingsDep
 from api.errors import ApiError
-from api.kbtypes import AnyKB
 from api.settings import Settings
+from kb.protocol import KnowledgeBase
 
 router = APIRouter(tags=["sparql"])
 _DATASET_PARAMS = ("default-graph-uri", "named-graph-uri", "using-graph-uri", "using-named-graph-uri")
@@ -29,13 +29,15 @@ def _reject_datasets(params: dict[str, list[str]]) -> None:
                        f"{', '.join(used)} is not supported: each KB model is one dataset; use ?model=")
 
 
-async def _query(kb: AnyKB, settings: Settings, text: str, request: Request, model: str | None) -> Response:
+async def _query(kb: KnowledgeBase, settings: Settings, text: str, request: Request,
+                 model: str | None) -> Response:
     media, body = await run_in_threadpool(sparql.answer, kb, text, request.headers.get("accept"), model,
                                           settings.limits)
     return Response(body, media_type=media)
 
 
-async def _update(kb: AnyKB, settings: Settings, text: str, token: str | None, model: str | None) -> Response:
+async def _update(kb: KnowledgeBase, settings: Settings, text: str, token: str | None,
+                  model: str | None) -> Response:
     if not settings.sparql_update:
         raise ApiError(403, "sparql_update_disabled",
                        "SPARQL Update is disabled on this service (settings: sparql_update)")

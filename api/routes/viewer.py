@@ -1,25 +1,21 @@
 """The web KB viewer: a static page (graph explorer, query box, fact editor, chat) at ``/`` and
-``/viewer``, its assets under ``/viewer/assets/``. No build step, nothing fetched from elsewhere:
-the page only talks to this service's own routes."""
+``/viewer``, its assets under ``/viewer/assets/`` (Starlette's ``StaticFiles`` over the package's
+``api/viewer`` folder). No build step, nothing fetched from elsewhere: the page only talks to this
+service's own routes."""
 
 from __future__ import annotations
 
 from importlib.resources import files
-from importlib.resources.abc import Traversable
+from typing import Any
 
 from fastapi import APIRouter
 from fastapi.responses import Response
-
-from api.errors import ApiError
+from starlette.staticfiles import StaticFiles
 
 router = APIRouter(tags=["viewer"], include_in_schema=False)
 
-MEDIA_TYPES = {
-    ".html": "text/html; charset=utf-8",
-    ".js": "text/javascript; charset=utf-8",
-    ".css": "text/css; charset=utf-8",
-    ".svg": "image/svg+xml",
-}
+#: Where the assets are mounted (``api.app`` mounts ``assets()`` there).
+ASSETS_PATH = "/viewer/assets"
 # The page may only load from and connect to this service: a CDN reference would fail loudly
 # instead of silently needing the network.
 SECURITY_HEADERS = {
@@ -30,33 +26,32 @@ SECURITY_HEADERS = {
 }
 
 
-def _viewer_dir() -> Traversable:
-    return files("api").joinpath("viewer")
+class ViewerFiles(StaticFiles):
+    """The viewer's files, each with the headers that keep the page on this service. A name that
+    is not a file of the folder is 404 in the service's error shape (HTTPException)."""
+
+    def file_response(self, *args: Any, **kwargs: Any) -> Response:
+        response = super().file_response(*args, **kwargs)
+        response.headers.update(SECURITY_HEADERS)
+        return response
 
 
-def _asset(name: str) -> Response:
-    suffix = "." + name.rsplit(".", 1)[-1] if "." in name else ""
-    media = MEDIA_TYPES.get(suffix)
-    source = _viewer_dir().joinpath(name)
-    # Names are single file names of known kinds: no sub-paths, so nothing outside the folder.
-    if media is None or "/" in name or "\\" in name or name.startswith(".") or not source.is_file():
-        raise ApiError(404, "not_found", f"the viewer has no asset named {name!r}")
-    return Response(source.read_bytes(), media_type=media, headers=SECURITY_HEADERS)
+def assets() -> ViewerFiles:
+    return ViewerFiles(packages=[("api", "viewer")])
+
+
+def _page() -> Response:
+    page = files("api").joinpath("viewer", "index.html")
+    return Response(page.read_bytes(), media_type="text/html; charset=utf-8", headers=SECURITY_HEADERS)
 
 
 @router.get("/")
 async def root() -> Response:
     """The viewer page."""
-    return _asset("index.html")
+    return _page()
 
 
 @router.get("/viewer")
 async def viewer() -> Response:
     """The viewer page (same as ``/``)."""
-    return _asset("index.html")
-
-
-@router.get("/viewer/assets/{name}")
-async def asset(name: str) -> Response:
-    """A script, style sheet or image of the viewer."""
-    return _asset(name)
+    return _page()

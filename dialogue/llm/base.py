@@ -16,8 +16,9 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Any, Literal, Protocol, runtime_checkable
 
-from dialogue.grounding import Snapshot
+from dialogue.errors import DialogueError
 from dialogue.history import Utterance
+from dialogue.reference.grounding import Snapshot
 from dialogue.schema import ChatbotResponse
 
 MessageRole = Literal["system", "user", "assistant"]
@@ -67,7 +68,7 @@ class ChatResult:
     extra: dict[str, Any] = field(default_factory=dict)
 
 
-class ModelError(Exception):
+class ModelError(DialogueError):
     """The backend failed: unreachable, HTTP error, truncated or empty output. Message says which."""
 
 

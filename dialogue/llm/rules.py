@@ -9,10 +9,10 @@ from __future__ import annotations
 
 import json
 
-from dialogue.interpret import Interpreter, Outcome
-from dialogue.lexicon import LexiconCache
 from dialogue.llm.base import ChatModel, ChatRequest, ChatResult, EarlyAnswer, TurnContext
 from dialogue.prompts import FREE_FORM_OBJECT
+from dialogue.reference.lexicon import LexiconCache
+from dialogue.rules.interpret import Interpreter, Outcome
 from dialogue.schema import ChatbotResponse, UserIntent
 
 

@@ -18,6 +18,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 
+from dialogue.errors import DialogueError
 from dialogue.llm.base import ChatModel
 from dialogue.llm.hybrid import HybridModel
 from dialogue.llm.llamacpp import (
@@ -37,7 +38,7 @@ SPEC_HELP = (
 )
 
 
-class SpecError(ValueError):
+class SpecError(DialogueError, ValueError):
     """A backend spec string that cannot be understood."""
 
 

@@ -19,8 +19,8 @@ import httpx
 import pytest
 
 from bench.oxigraph import OxigraphServer, oxigraph_command
-from kb import sparqltext
-from kb.endpoint import SparqlEndpoint
+from kb.sparqlstore import text as sparqltext
+from kb.sparqlstore.endpoint import SparqlEndpoint
 from kb.terms import parse_ground
 from tests.reliability.server import ServerProcess
 

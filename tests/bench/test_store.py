@@ -10,7 +10,7 @@ import bench.store
 from api.cli import main as cli
 from bench.oxigraph import oxigraph_command
 from kb import KB
-from kb.remote import RemoteKB
+from kb.sparqlstore.remote import RemoteKB
 
 SHORT = ["--sizes", "200", "--rounds", "2", "--ticks", "55"]
 needs_oxigraph = pytest.mark.skipif(oxigraph_command() is None, reason="the `oxigraph` command is not installed")

@@ -7,8 +7,8 @@ from pathlib import Path
 
 import pytest
 
-from dialogue.grounding import Snapshot, build_snapshot
-from dialogue.lexicon import Lexicon
+from dialogue.reference.grounding import Snapshot, build_snapshot
+from dialogue.reference.lexicon import Lexicon
 from kb import KB
 
 EVAL_DIR = Path(__file__).parent / "eval"

@@ -3,10 +3,10 @@ from pathlib import Path
 
 import pytest
 
-from dialogue.grounding import build_snapshot
 from dialogue.history import ASSISTANT_USER_ID, SYSTEM_USER_ID, Utterance
 from dialogue.llm.base import ChatMessage, TurnContext
 from dialogue.prompts import PromptError, PromptSet, intent_list, load_template, render
+from dialogue.reference.grounding import build_snapshot
 from kb import KB
 
 SNAPSHOTS = Path(__file__).parent / "snapshots"

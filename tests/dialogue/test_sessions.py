@@ -8,7 +8,7 @@ from dialogue.engine import SORRY, DialogueEngine, EngineConfig, TurnResult
 from dialogue.history import ASSISTANT_USER_ID, SYSTEM_USER_ID, Utterance
 from dialogue.llm.base import ChatRequest
 from dialogue.llm.testing import FunctionModel, ScriptedModel
-from dialogue.sessions import DEFAULT_DIALOGUE, DialogueError, DialogueManager
+from dialogue.sessions import DEFAULT_DIALOGUE, DialogueManager, SessionError
 from kb import KB, KbError
 
 
@@ -84,17 +84,17 @@ def test_stateless_history_replaces_the_stored_one(cups: KB) -> None:
 
 def test_errors_and_bounds(kitchen: KB) -> None:
     manager = DialogueManager(DialogueEngine(kitchen, ScriptedModel()), max_dialogues=3, max_turns=4)
-    with pytest.raises(DialogueError, match="unknown dialogue 'nope'"):
+    with pytest.raises(SessionError, match="unknown dialogue 'nope'"):
         manager.get("nope")
-    with pytest.raises(DialogueError, match="unsupported dialogue role"):
+    with pytest.raises(SessionError, match="unsupported dialogue role"):
         manager.start(role="__ask__")
     first = manager.start(dialogue_id="one").id
-    with pytest.raises(DialogueError, match="already exists"):
+    with pytest.raises(SessionError, match="already exists"):
         manager.start(dialogue_id="one")
     manager.start()
     manager.start()
     assert first not in manager.ids() and DEFAULT_DIALOGUE in manager.ids() and len(manager.ids()) == 3
-    with pytest.raises(DialogueError, match="user_id is required"):
+    with pytest.raises(SessionError, match="user_id is required"):
         asyncio.run(manager.interact("", "hi"))
     for _ in range(5):
         asyncio.run(manager.interact("p", "hi", response_expected=False))
@@ -105,9 +105,9 @@ def test_a_turn_holding_a_lone_surrogate_is_refused_and_not_recorded(kitchen: KB
     manager = DialogueManager(DialogueEngine(kitchen))
     for user_id, text, history in [("person_alice", "\ud800 cup", None), ("person\udc00", "hi", None),
                                    ("person_alice", "hi", [Utterance("person_alice", "x\ud800")])]:
-        with pytest.raises(DialogueError, match="not valid Unicode"):
+        with pytest.raises(SessionError, match="not valid Unicode"):
             asyncio.run(manager.interact(user_id, text, history=history))
-        with pytest.raises(DialogueError, match="not valid Unicode"):
+        with pytest.raises(SessionError, match="not valid Unicode"):
             asyncio.run(manager.interact(user_id, text, history=history, response_expected=False))
     assert len(manager.get(DEFAULT_DIALOGUE).history) == 0
     with pytest.raises(KbError, match="the utterance is not valid Unicode"):
@@ -178,9 +178,9 @@ def test_a_queued_turn_still_gets_the_time_left_of_its_deadline(kitchen: KB) -> 
 def test_empty_or_blank_utterances_are_refused_and_nothing_is_recorded(kitchen: KB) -> None:
     manager = DialogueManager(DialogueEngine(kitchen))
     for text in ("", "   ", "\n\t"):
-        with pytest.raises(DialogueError, match="empty or blank"):
+        with pytest.raises(SessionError, match="empty or blank"):
             asyncio.run(manager.interact("person_alice", text))
-        with pytest.raises(DialogueError, match="empty or blank"):
+        with pytest.raises(SessionError, match="empty or blank"):
             asyncio.run(manager.interact("person_alice", text, response_expected=False))
     assert manager.get(DEFAULT_DIALOGUE).history == ()
 

@@ -1,4 +1,4 @@
-from dialogue.grounding import build_snapshot
+from dialogue.reference.grounding import build_snapshot
 from dialogue.situation import MAX_CHARS, MAX_LINES, describe
 from kb import KB
 from tests.dialogue.conftest import scene_kb

@@ -1,8 +1,8 @@
 import pytest
 
 from dialogue import intents as I
-from dialogue.grounding import build_snapshot
-from dialogue.lexicon import Lexicon
+from dialogue.reference.grounding import build_snapshot
+from dialogue.reference.lexicon import Lexicon
 from dialogue.schema import AnswerError, ChatbotResponse, UserIntent
 from dialogue.validate import ground_answer
 from kb import KB

@@ -297,7 +297,7 @@ def test_max_rows_stops_a_query_with_too_many_rows() -> None:
     import pytest
 
     from kb import KB
-    from kb.query import TooManyRows
+    from kb.errors import TooManyRows
 
     with KB() as kb:
         kb += [f"myself sees thing_{i}" for i in range(20)]

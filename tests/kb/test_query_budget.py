@@ -16,10 +16,8 @@ from typing import Any
 import pytest
 
 from kb import KB, KbError
-from kb.deadline import QueryTimeout
-from kb.query import TooManyRows
-from kb.remote import RemoteKB
-from kb.sparqlregex import InvalidRegex
+from kb.errors import InvalidRegex, QueryTimeout, TooManyRows
+from kb.sparqlstore.remote import RemoteKB
 
 GENEROUS = 30.0  # seconds; the unbounded queries below run for minutes
 CARTESIAN_COUNT = "SELECT (COUNT(*) AS ?n) WHERE { ?a ?b ?c . ?d ?e ?f }"

@@ -19,8 +19,8 @@ from hypothesis import strategies as st
 from rdflib import BNode, Graph, Literal, URIRef
 from rdflib.namespace import OWL, RDF, RDFS, XSD
 
+from kb.models import Model
 from kb.rdfio import parse_data
-from kb.store import Model
 from kb.terms import ORO, Triple
 
 NOISE_NAMESPACES = (str(OWL), str(RDF), str(RDFS), str(XSD))

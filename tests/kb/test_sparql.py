@@ -155,7 +155,7 @@ def test_sparql_update_is_one_batch_with_the_net_effect_of_its_operations() -> N
     import pytest
 
     from kb import KB
-    from kb.sparql import InvalidSparql, UnsupportedUpdate
+    from kb.errors import InvalidSparql, UnsupportedUpdate
 
     with KB() as kb:
         kb += "cup_1 isOn table_1"

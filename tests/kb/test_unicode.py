@@ -8,9 +8,10 @@ from collections.abc import Callable, Iterator
 import pytest
 
 from kb import KB, KbError
-from kb.scene import Entity, Kind
-from kb.scenesync import entity_from_json, scene_from_json
-from kb.unicode import InvalidUnicode, check_text
+from kb.errors import InvalidUnicode
+from kb.unicode import check_text
+from scene.scene import Entity, Kind
+from scene.sync import entity_from_json, scene_from_json
 
 LONE = "\ud800"
 

@@ -5,8 +5,8 @@ from __future__ import annotations
 from typing import Any
 
 from dialogue.engine import TurnResult
-from dialogue.grounding import Snapshot
 from dialogue.intents import RAW_USER_INPUT
+from dialogue.reference.grounding import Snapshot
 from dialogue.schema import REFERENT_FIELDS
 
 

@@ -6,7 +6,7 @@ import json
 import shutil
 from pathlib import Path
 
-from dialogue.compare import compare, format_comparison
+from dialogue.evaluation.compare import compare, format_comparison
 from dialogue.llm.llamacpp import LlamaCppModel
 from dialogue.llm.spec import Backend
 from tests.dialogue.conftest import EVAL_DIR

@@ -290,11 +290,11 @@ class _Crash(BaseException):
 
 def test_a_scene_change_cut_off_after_its_kb_commit_is_finished_at_the_next_start(
         tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
-    from api.settings import SceneSettings
-    from api.world import World
     from kb import KB
     from kb.journal import Journal
-    from kb.scenesync import entity_from_json
+    from scene.settings import SceneSettings
+    from scene.sync import entity_from_json
+    from scene.world import World
 
     def start() -> tuple[KB, Journal, World]:
         kb = KB()

@@ -1,5 +1,5 @@
-from dialogue.grounding import Snapshot
 from dialogue.llm.base import ChatMessage, ChatRequest, TurnContext
+from dialogue.reference.grounding import Snapshot
 from dialogue.schema import SchemaCandidates, turn_schema
 
 SCHEMA = turn_schema(SchemaCandidates(["cup_1"], ["person_a"], ["kitchen"]))

@@ -5,11 +5,11 @@ from typing import Any
 import pytest
 
 from dialogue.engine import DialogueEngine, TurnResult
-from dialogue.grounding import build_snapshot
 from dialogue.llm.base import ChatMessage, ChatModel, ChatRequest, ModelError, SelfCheck, TurnContext
 from dialogue.llm.hybrid import HybridModel
 from dialogue.llm.rules import RulesModel
 from dialogue.llm.testing import ScriptedModel
+from dialogue.reference.grounding import build_snapshot
 from dialogue.schema import parse_answer
 from kb import KB
 

@@ -1,9 +1,9 @@
 import asyncio
 import json
 
-from dialogue.grounding import build_snapshot
 from dialogue.llm.base import ChatModel, ChatRequest, TurnContext
 from dialogue.llm.rules import RulesModel
+from dialogue.reference.grounding import build_snapshot
 from dialogue.schema import parse_answer
 from kb import KB
 

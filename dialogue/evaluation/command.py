@@ -1,0 +1,53 @@
+"""`situated eval`: score a case file, or compare the tutorial's approach with the engine.
+
+It sits above `cases` and `compare` (both import `cases`), so neither imports the other's command.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+from collections.abc import Sequence
+
+from dialogue.evaluation.cases import EvalError, format_report, run
+from dialogue.evaluation.compare import compare, format_comparison
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(prog="situated eval", description="Score dialogue cases (.jsonl).")
+    parser.add_argument("cases", nargs="?", help="cases file; scenes are read from scenes/ next to it")
+    parser.add_argument("--llm", default="rules", help="backend spec (default: rules)")
+    parser.add_argument("--deadline", type=float, default=5.0, help="seconds per turn (default 5)")
+    parser.add_argument("--json", action="store_true", help="end with one JSON line of results")
+    parser.add_argument(
+        "--compare",
+        metavar="FILE",
+        help="run FILE's cases with the reference tutorial's approach and with situated's engine, "
+        "same model, and print both scores and ungrounded referents side by side",
+    )
+    parser.add_argument("--hybrid", action="store_true", help="with --compare: the engine runs rules first")
+    args = parser.parse_args(argv)
+    if (args.cases is None) == (args.compare is None):
+        parser.error("give a cases file, or --compare FILE")
+    if args.hybrid and args.compare is None:
+        parser.error("--hybrid goes with --compare (use a 'hybrid:' spec to evaluate hybrid mode)")
+    if args.compare is not None:
+        try:
+            comparison = compare(args.compare, args.llm, deadline=args.deadline, hybrid=args.hybrid)
+        except (EvalError, ValueError) as exc:
+            print(f"error: {exc}", file=sys.stderr)
+            return 2
+        print(format_comparison(comparison))
+        if args.json:
+            print(json.dumps(comparison.summary()))
+        return 0
+    try:
+        report = run(args.cases, args.llm, deadline=args.deadline)
+    except (EvalError, ValueError) as exc:
+        print(f"error: {exc}", file=sys.stderr)
+        return 2
+    print(format_report(report))
+    if args.json:
+        print(json.dumps(report.summary()))
+    return 0

@@ -1,0 +1,1 @@
+"""Reference resolution: from words to KB entities, shared by the rules and model answers."""

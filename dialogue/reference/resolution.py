@@ -1,0 +1,159 @@
+"""Referent resolution: a noun phrase (or an id an LLM gave) to exactly one KB entity, none, or several.
+
+A phrase matches an entity when one of the entity's names occurs in it and every other content word
+qualifies the entity: a word of its labels or class names ("red" for the "red cup"), its colour
+(`hasColor white`), a name of its support or zone ("the cup on the table", "the kitchen table"), or
+of its owner ("Ines's phone", `belongsTo`). Visible entities are preferred to known but unseen ones,
+and, when the caller knows whose thing is meant ("my phone"), that person's things.
+"""
+
+from __future__ import annotations
+
+from collections import defaultdict
+from collections.abc import Collection, Sequence
+from dataclasses import dataclass
+
+from dialogue import intents as I
+from dialogue.reference.grounding import Entity, Kind
+from dialogue.reference.lexicon import DETERMINERS, Lexicon, norm, tokens
+from dialogue.rules.words import word_set
+
+PRONOUNS = frozenset({"it", "them", "that", "this", "those", "these"})
+#: Possessive determiners whose owner comes from the conversation rather than from the phrase.
+POSSESSIVES = frozenset({"my", "your", "our", "his", "her", "their"})
+#: Words allowed inside a phrase without qualifying anything ("the cup that is on the table").
+_GLUE = DETERMINERS | word_set(
+    "on in at of from off near inside onto into top which is are with colour color called named labelled "
+    "labeled kind type next to and"
+)
+_LOCATIVE = frozenset({"on", "in", "at", "from", "near", "inside", "onto", "into", "under", "by", "to"})
+
+ALL_KINDS: frozenset[Kind] = frozenset({"person", "zone", "robot", "thing"})
+
+PERSON: frozenset[Kind] = frozenset({"person"})
+THING: frozenset[Kind] = frozenset({"thing"})
+PLACE: frozenset[Kind] = frozenset({"zone", "thing"})
+ANYWHERE: frozenset[Kind] = frozenset({"person", "zone", "thing"})
+
+#: Which kinds of entity may fill each grounded role, per intent.
+ROLE_KINDS: dict[str, dict[str, frozenset[Kind]]] = {
+    I.GRAB_OBJECT: {"object": THING},
+    I.BRING_OBJECT: {"object": THING, "recipient": ANYWHERE},
+    I.PLACE_OBJECT: {"object": THING, "recipient": PLACE},
+    I.MOVE_TO: {"goal": ANYWHERE},
+    I.GUIDE: {"recipient": PERSON, "goal": PLACE},
+    I.GREET: {"recipient": PERSON},
+    I.ENGAGE_WITH: {"recipient": PERSON},
+    I.SAY: {"recipient": PERSON},
+    I.PERFORM_MOTION: {"recipient": PERSON},
+    I.PRESENT_CONTENT: {"recipient": PERSON},
+}
+
+
+@dataclass(frozen=True)
+class Resolution:
+    phrase: str
+    matches: tuple[Entity, ...]
+
+    @property
+    def one(self) -> Entity | None:
+        return self.matches[0] if len(self.matches) == 1 else None
+
+    @property
+    def ambiguous(self) -> bool:
+        return len(self.matches) > 1
+
+
+def content_words(words: Sequence[str]) -> list[str]:
+    return [w for w in words if w not in _GLUE]
+
+
+def is_pronoun(words: Sequence[str]) -> bool:
+    content = [w for w in words if w not in {"the", "please", "again", "too"}]
+    return len(content) == 1 and content[0] in PRONOUNS
+
+
+def resolve(
+    lexicon: Lexicon, words: Sequence[str], kinds: Collection[Kind] = ALL_KINDS, *, owner: str | None = None
+) -> Resolution:
+    """Entities of the given kinds that the phrase names (see the module docstring)."""
+    phrase = " ".join(words)
+    words = [w[:-2] if w.endswith("'s") and len(w) > 2 else w for w in words]  # "ines's" names Ines
+    normed = norm(words)
+    cover: dict[str, set[int]] = defaultdict(set)
+    for start in range(len(words)):
+        for name in lexicon.names_at(words, start):
+            cover[name.entity].update(range(start, start + len(name.words)))
+    snapshot = lexicon.snapshot
+    content = [i for i, w in enumerate(words) if w not in _GLUE]
+    matches: list[Entity] = []
+    for entity_id, own in cover.items():
+        entity = snapshot.get(entity_id)
+        if entity is None or entity.kind not in kinds:
+            continue
+        if not any(i in own for i in content):
+            continue
+        context = set()
+        for other in (entity.support, entity.zone, entity.owner):
+            if other is not None:
+                context |= cover.get(other, set())
+        attrs = lexicon.attributes.get(entity_id, frozenset())
+        if all(i in own or i in context or normed[i] in attrs for i in content):
+            matches.append(entity)
+    order = {eid: n for n, eid in enumerate(snapshot.entities)}
+    matches.sort(key=lambda e: order[e.id])
+    if not matches and content:
+        matches = _by_label_words(lexicon, [normed[i] for i in content], kinds)
+    # Ownership only narrows: "my cup" still means the cup when nobody's cups are recorded.
+    owned = [e for e in matches if owner is not None and e.owner == owner]
+    matches = owned or matches
+    seen = [e for e in matches if e.seen]
+    return Resolution(phrase, tuple(seen or matches))
+
+
+def _by_label_words(lexicon: Lexicon, content: Sequence[str], kinds: Collection[Kind]) -> list[Entity]:
+    """ "the teddy" for the "teddy bear", "the flathead" for the "flathead screwdriver": when no name
+    occurs, a part of a label still names the thing if every other word qualifies it."""
+    candidates = dict.fromkeys(e for w in content for e in lexicon.by_label_word.get(w, ()))
+    out = []
+    for entity_id in candidates:
+        entity = lexicon.snapshot.get(entity_id)
+        attrs = lexicon.attributes.get(entity_id, frozenset())
+        if entity is not None and entity.kind in kinds and all(w in attrs for w in content):
+            out.append(entity)
+    return out
+
+
+def resolve_id(lexicon: Lexicon, value: str, kinds: Collection[Kind] = ALL_KINDS) -> Resolution:
+    """An id (or, from a model that ignored the enum, a name) to entities of the snapshot."""
+    entity = lexicon.snapshot.get(value)
+    if entity is not None:
+        return Resolution(value, (entity,) if entity.kind in kinds else ())
+    words = tokens(value)
+    if not content_words(words):
+        return Resolution(value, ())
+    return resolve(lexicon, words, kinds)
+
+
+def antecedent(
+    lexicon: Lexicon, history: Sequence[str], kinds: Collection[Kind], *, place: bool = False
+) -> Entity | None:
+    """The entity a pronoun refers to: the latest turn's first non-locative unambiguous mention.
+
+    For "there" (`place=True`) mentions after a locative preposition ("on the shelf") come first.
+    """
+    for text in reversed(history):
+        words = tokens(text)
+        found: list[tuple[bool, int, Entity]] = []
+        for mention in lexicon.mentions(words):
+            ents = [lexicon.snapshot.get(e) for e in mention.entities]
+            typed = [e for e in ents if e is not None and e.kind in kinds]
+            if len(typed) != 1:
+                continue
+            prev = words[max(0, mention.start - 2) : mention.start]
+            locative = any(w in _LOCATIVE for w in prev)
+            found.append((locative, mention.start, typed[0]))
+        if found:
+            found.sort(key=lambda f: (f[0] != place, f[1]))
+            return found[0][2]
+    return None

@@ -1,0 +1,1 @@
+"""The offline rules grammar: utterances to intents without a model."""

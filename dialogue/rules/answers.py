@@ -1,0 +1,212 @@
+"""Verbal answers to questions about the situation, computed from the snapshot (no intent, D19)."""
+
+from __future__ import annotations
+
+from collections import Counter
+from collections.abc import Callable, Sequence
+
+from dialogue.reference.clarify import question as clarifying_question
+from dialogue.reference.grounding import Entity, Snapshot
+from dialogue.reference.lexicon import Lexicon
+from dialogue.reference.resolution import ALL_KINDS, content_words, resolve
+from dialogue.situation import article
+
+MAX_LISTED = 12
+
+
+def the(snapshot: Snapshot, entity: Entity, speaker: str = "") -> str:
+    """How to name an entity in a sentence: "you", "Maria", "the cookbook", "the cup"."""
+    if entity.id == speaker:
+        return "you"
+    if entity.kind == "person":
+        return entity.name if entity.labels else "a person"
+    if entity.colour and not entity.labels and entity.colour not in entity.name:
+        return f"the {entity.colour} {entity.name}"
+    return f"the {entity.name}"
+
+
+def indefinite(entity: Entity) -> str:
+    if entity.kind == "person":
+        return entity.name if entity.labels else "a person"
+    if entity.labels:
+        return f"the {entity.labels[0]}"
+    return article(entity.class_names[0] if entity.class_names else "thing")
+
+
+def listing(items: Sequence[str]) -> str:
+    counts = Counter(items)
+    parts: list[str] = []
+    for item, n in counts.items():
+        if n > 1 and item.startswith(("a ", "an ")):
+            parts.append(f"{_number(n)} {item.split(' ', 1)[1]}s")
+        else:
+            parts.append(item)
+    if len(parts) > MAX_LISTED:
+        parts = [*parts[:MAX_LISTED], f"{len(parts) - MAX_LISTED} more things"]
+    if len(parts) == 1:
+        return parts[0]
+    return ", ".join(parts[:-1]) + " and " + parts[-1]
+
+
+def _number(n: int) -> str:
+    words = ["zero", "one", "two", "three", "four", "five", "six", "seven", "eight", "nine", "ten"]
+    return words[n] if n < len(words) else str(n)
+
+
+def location(snapshot: Snapshot, entity: Entity) -> str:
+    parts = []
+    if entity.support:
+        parts.append(f"on the {snapshot.name_of(entity.support)}")
+    if entity.zone:
+        parts.append(f"in the {snapshot.name_of(entity.zone)}")
+    return " ".join(parts)
+
+
+def what_do_you_see(snapshot: Snapshot, speaker: str = "") -> str:
+    things = [indefinite(e) for e in snapshot.visible() if e.kind == "thing"]
+    people = ["you" if e.id == speaker else indefinite(e) for e in snapshot.visible() if e.kind == "person"]
+    if not things and not people:
+        return "I don't see anything I know right now."
+    return f"I see {listing([*things, *people])}."
+
+
+def who_do_you_see(snapshot: Snapshot, speaker: str) -> str:
+    people = [e for e in snapshot.visible() if e.kind == "person"]
+    if not people:
+        return "I don't see anyone right now."
+    names = ["you" if e.id == speaker else e.name if e.labels else "someone I don't know" for e in people]
+    return f"I see {listing(names)}."
+
+
+def where_is(lexicon: Lexicon, words: Sequence[str], speaker: str) -> str:
+    snapshot = lexicon.snapshot
+    if tuple(words) in {("me",), ("you",)}:
+        me = words[0] == "me"
+        entity = snapshot.get(speaker if me else snapshot.robot)
+        where = location(snapshot, entity) if entity is not None else ""
+        if where:
+            return f"{'You are' if me else 'I am'} {where}."
+        return f"Sorry, I don't know where {'you are' if me else 'I am'}."
+    found = resolve(lexicon, words, ALL_KINDS)
+    phrase = " ".join(content_words(words)) or "that"
+    if not found.matches:
+        return f"Sorry, I don't know where the {phrase} is: I don't know any {phrase}."
+    sentences = []
+    for e in found.matches[:3]:
+        name = the(snapshot, e, speaker)
+        where = location(snapshot, e)
+        if e.id == speaker:
+            sentences.append("You are right here, talking to me.")
+        elif where:
+            tail = "" if e.seen else " I don't see it right now."
+            sentences.append(f"{name[:1].upper()}{name[1:]} is {where}.{tail}")
+        elif e.seen and e.kind == "person":
+            sentences.append(f"{name} is here, I can see {name}.")
+        elif e.seen:
+            sentences.append(f"I can see {name}, but I don't know exactly where it is.")
+        else:
+            sentences.append(f"I don't know where {name} is right now.")
+    return " ".join(sentences)
+
+
+def what_is_on(lexicon: Lexicon, words: Sequence[str]) -> tuple[str, bool]:
+    """The answer, and whether it is a clarifying question."""
+    snapshot = lexicon.snapshot
+    found = resolve(lexicon, words, frozenset({"thing", "zone"}))
+    phrase = " ".join(content_words(words)) or "that"
+    if found.ambiguous:
+        return clarifying_question(snapshot, found.matches), True
+    place = found.one
+    if place is None:
+        return f"Sorry, I don't know any {phrase}.", False
+    prep = "in" if place.kind == "zone" else "on"
+    items = [
+        indefinite(e)
+        for e in snapshot.entities.values()
+        if e.kind == "thing" and (e.support == place.id or (prep == "in" and e.zone == place.id))
+    ]
+    if not items:
+        return f"I don't know of anything {prep} the {place.name}.", False
+    return f"{prep.capitalize()} the {place.name}, there is {listing(items)}.", False
+
+
+def can_you_see(lexicon: Lexicon, words: Sequence[str], speaker: str) -> str:
+    snapshot = lexicon.snapshot
+    found = resolve(lexicon, words, ALL_KINDS)
+    phrase = " ".join(content_words(words)) or "that"
+    if not found.matches:
+        return f"No, I don't see any {phrase}."
+    seen = [e for e in found.matches if e.seen]
+    if seen:
+        described = [f"{indefinite(e)} {location(snapshot, e)}".strip() for e in seen]
+        return f"Yes, I see {listing(described)}."
+    e = found.matches[0]
+    where = location(snapshot, e)
+    known = f" The last I know, {the(snapshot, e, speaker)} is {where}." if where else ""
+    return f"No, I don't see {the(snapshot, e, speaker)} right now.{known}"
+
+
+def what_is(lexicon: Lexicon, words: Sequence[str], speaker: str) -> str:
+    snapshot = lexicon.snapshot
+    found = resolve(lexicon, words, ALL_KINDS)
+    phrase = " ".join(content_words(words)) or "that"
+    if not found.matches:
+        return f"Sorry, I don't know what {phrase} is."
+    e = found.matches[0]
+    kind = e.class_names[0] if e.class_names else "thing"
+    where = location(snapshot, e)
+    name = the(snapshot, e, speaker)
+    return f"{name[:1].upper()}{name[1:]} is {article(kind)}{', ' + where if where else ''}."
+
+
+def which_do_you_see(lexicon: Lexicon, words: Sequence[str]) -> str:
+    found = resolve(lexicon, words, frozenset({"thing", "person"}))
+    seen = [e for e in found.matches if e.seen]
+    if not seen:
+        return f"I don't see any {' '.join(content_words(words)) or 'such thing'}."
+    snapshot = lexicon.snapshot
+    return f"I see {listing([f'{indefinite(e)} {location(snapshot, e)}'.strip() for e in seen])}."
+
+
+def how_many(lexicon: Lexicon, words: Sequence[str]) -> str:
+    found = resolve(lexicon, words, frozenset({"thing", "person"}))
+    phrase = " ".join(content_words(words)) or "things"
+    seen = [e for e in found.matches if e.seen]
+    if not seen:
+        return f"I don't see any {phrase}."
+    return f"I see {_number(len(seen))}: {listing([indefinite(e) for e in seen])}."
+
+
+def colour_of(lexicon: Lexicon, words: Sequence[str], speaker: str) -> str:
+    def sentence(e: Entity, several: bool) -> str:
+        if e.colour:
+            return f"{'One' if several else 'The'} {e.name} is {e.colour}."
+        return f"I don't know the colour of {the(lexicon.snapshot, e, speaker)}."
+
+    return _about_each_thing(lexicon, words, sentence)
+
+
+def whose(lexicon: Lexicon, words: Sequence[str], speaker: str) -> str:
+    """ "Whose phone is on the bookcase?": the owner (`belongsTo`) of each thing the phrase names."""
+    snapshot = lexicon.snapshot
+
+    def sentence(e: Entity, several: bool) -> str:
+        name = the(snapshot, e, speaker)
+        owner = snapshot.get(e.owner) if e.owner else None
+        if owner is None:
+            return f"I don't know whose {name} is."
+        whom = "yours" if owner.id == speaker else f"{the(snapshot, owner, speaker)}'s"
+        where = location(snapshot, e) if several else ""
+        return f"{name[:1].upper()}{name[1:]}{' ' + where if where else ''} is {whom}."
+
+    return _about_each_thing(lexicon, words, sentence)
+
+
+def _about_each_thing(lexicon: Lexicon, words: Sequence[str], sentence: Callable[[Entity, bool], str]) -> str:
+    """One sentence about each of (at most three) things the phrase names; `sentence` is told
+    whether there are several, to tell them apart."""
+    found = resolve(lexicon, words, frozenset({"thing"}))
+    if not found.matches:
+        return f"Sorry, I don't know any {' '.join(content_words(words)) or 'such thing'}."
+    several = len(found.matches) > 1
+    return " ".join(sentence(e, several) for e in found.matches[:3])

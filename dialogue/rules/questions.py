@@ -1,0 +1,164 @@
+"""Questions about the situation ("what do you see", "where is X"...), on whole words.
+
+The result is a `Parse` with `act="question"`, a question kind and the phrase it is about; the
+answer is computed from the KB snapshot in dialogue.rules.answers.
+"""
+
+from __future__ import annotations
+
+from dialogue.rules.words import WH, Parse, Words, split_at, starts, word_set
+
+_SEES: tuple[Words, ...] = tuple(
+    tuple(p.split()) for p in ("do you see", "can you see", "could you see", "have you seen", "did you see",
+                               "are you seeing", "do you have", "is there", "are there")
+)  # fmt: skip
+_WHERE_LEADS: tuple[Words, ...] = tuple(
+    tuple(p.split()) for p in ("is", "are", "can i find", "did you see", "did i put", "do you see", "was",
+                               "were", "have you seen", "did i leave", "should i look for", "i put", "i left")
+)  # fmt: skip
+_ON_GLUE = word_set(
+    "is are do you see can lying there objects things thing stuff placed sitting kept have has we got"
+)
+_WHO_NOT_A_NAME = word_set("here there around in with present speaking talking at near next else")
+_SEE_WORDS = frozenset({"see", "notice", "around", "front", "here", "there"})
+_COLOUR_WORDS = frozenset({"colour", "color"})
+_LOCATIVES = ("on top of", "on", "in", "inside", "under", "at")
+#: Leads of an indirect question: "do you know where the keys are", "any idea where the toolbox is".
+_INDIRECT: tuple[Words, ...] = tuple(
+    tuple(p.split()) for p in ("do you know", "do you have any idea", "any idea", "have you any idea",
+                               "can you tell me", "could you tell me", "i wonder", "i am wondering",
+                               "i was wondering")
+)  # fmt: skip
+_BE = frozenset({"is", "are", "was", "were"})
+#: "something to eat" is food: the purpose names the ontology's class (labelled "food", "drink").
+_PURPOSES: dict[Words, str] = {("to", "eat"): "food", ("to", "drink"): "drink"}
+
+
+def _q(kind: str, w: Words, **slots: Words) -> Parse:
+    return Parse("question", question=kind, slots=dict(slots), words=w)
+
+
+def _strip_ends(thing: Words, lead: frozenset[str], tail: frozenset[str]) -> Words:
+    while thing[:1] and thing[0] in lead:
+        thing = thing[1:]
+    while thing[-1:] and thing[-1] in tail:
+        thing = thing[:-1]
+    return thing
+
+
+def question(words: list[str]) -> Parse | None:
+    w = tuple(words)
+    if w[:2] in {("tell", "me"), ("show", "me")} and len(w) > 2 and w[2] in WH | {"about"}:
+        if w[2] == "about":
+            return _q("what_is", w, thing=w[3:])
+        w = w[2:]
+    for lead in _INDIRECT:
+        if starts(w, lead) and w[len(lead) : len(lead) + 1] and w[len(lead)] in WH:
+            w = w[len(lead) :]
+            break
+    head = w[:1]
+    if head == ("whose",) or (head == ("who",) and (w[-2:] == ("belong", "to") or w[1:2] == ("owns",))):
+        return _q("whose", w, thing=_owned_thing(w))
+    if head in {("what",), ("which",)}:
+        return _what(w)
+    if head == ("who",):
+        if "you" in w and "are" in w and "see" not in w:
+            return _q("name", w)
+        if w[1:2] == ("is",) and w[2:] and w[2] not in _WHO_NOT_A_NAME:
+            return _q("what_is", w, thing=w[2:])
+        return _q("who_see", w)
+    if head == ("where",):
+        return _where(w)
+    if starts(w, ("how", "many")):
+        thing = tuple(x for x in w[2:] if x not in {"do", "you", "see", "can", "are", "there", "is"})
+        return _q("how_many", w, thing=thing)
+    for lead in _SEES:
+        if starts(w, lead):
+            thing = w[len(lead) :]
+            if thing[:1] in {("anything",), ("something",)}:
+                return _anything(w, thing[1:])
+            return _q("can_see", w, thing=thing)
+    if head in {("is",), ("are",)} and len(w) > 2 and w[-1] in {"here", "there", "around", "present"}:
+        return _q("can_see", w, thing=w[1:-1])  # "is Maria here?"
+    if head in {("is",), ("are",)} and split_at(w, _LOCATIVES) is not None:
+        return _q("can_see", w, thing=w[1:])  # "is the cup on the table?"
+    if head == ("how",):
+        social = starts(w, ("how", "are", "you")) or starts(w, ("how", "is", "it", "going"))
+        return _q("how_are_you" if social else "other", w)
+    if head and head[0] in WH:
+        return _q("other", w)
+    return None
+
+
+def _what(w: Words) -> Parse:
+    rest = w[1:]
+    if "front" in rest or "around" in rest:
+        return _q("what_see", w)
+    if rest[:1] and rest[0] in _COLOUR_WORDS:
+        return _q(
+            "colour", w, thing=_strip_ends(rest[1:], frozenset({"is", "are"}), frozenset({"is", "are"}))
+        )
+    for sep in _LOCATIVES:
+        found = split_at(("x", *rest), [sep])
+        if found and not set(found[0][1:]) - _ON_GLUE:
+            return _q("what_on", w, place=found[2])
+    for i, word in enumerate(rest):  # "which cups do you see", "what fruit can you see"
+        seeing = word in {"do", "can", "could"} and rest[i + 1 : i + 3] == ("you", "see")
+        if seeing and i > 0 and not set(rest[:i]) & {"is", "are", "else"}:
+            return _q("which_see", w, thing=rest[:i])
+    if set(rest) & _SEE_WORDS and "name" not in rest:
+        return _q("what_see", w)
+    if rest[:1] in {("is",), ("are",)} and set(rest) & {"name", "called"}:
+        return _q("name", w)
+    if (
+        rest[:1] in {("is",), ("are",)}
+        and len(rest) > 1
+        and not set(rest) & {"you", "your", "time", "weather"}
+    ):
+        return _q("what_is", w, thing=rest[1:])
+    return _q("other", w)
+
+
+def _anything(w: Words, rest: Words) -> Parse:
+    """ "is there anything on the table", "do you see anything to eat", "can you see anything"."""
+    purpose = _PURPOSES.get(rest[:2])
+    if purpose is not None:
+        return _q("can_see", w, thing=(purpose, *rest[2:]))
+    found = split_at(("x", *rest), _LOCATIVES)
+    if found is not None and found[0] == ("x",):
+        return _q("what_on", w, place=found[2])
+    return _q("what_see", w)
+
+
+def _owned_thing(w: Words) -> Words:
+    """The thing of "whose phone is this", "whose is the mug", "who does the cup belong to", "who owns it"."""
+    rest = w[1:]
+    if rest[:1] in {("does",), ("do",)} and rest[-2:] == ("belong", "to"):
+        return rest[1:-2]
+    if rest[:1] == ("owns",):
+        return rest[1:]
+    if rest[:1] and rest[0] in _BE:  # "whose is the mug"
+        return rest[1:]
+    # "whose phone is on the bookcase": the verb drops out, the place stays a qualifier.
+    thing = tuple(x for x in rest if x not in _BE)
+    return thing if [x for x in thing if x not in {"this", "that", "these", "those"}] else ("it",)
+
+
+def _where(w: Words) -> Parse:
+    rest = w[1:]
+    if rest[-1:] and rest[-1] in {"go", "gone", "went"} and rest[:1] and rest[0] in {"did", "has", "have"}:
+        return _q("where", w, thing=rest[1:-1])  # "where did Uma go?"
+    if len(rest) > 1 and rest[-1] in _BE and rest[0] not in _BE:
+        return _q("where", w, thing=rest[:-1])  # the indirect order: "(do you know) where the keys are"
+    if rest in {("am", "i"), ("are", "we")}:
+        return _q("where", w, thing=("me",))
+    if rest == ("are", "you"):
+        return _q("where", w, thing=("you",))
+    for lead in _WHERE_LEADS:
+        if starts(rest, lead):
+            thing = _strip_ends(
+                rest[len(lead) :], frozenset(), frozenset({"located", "now", "placed", "kept"})
+            )
+            if thing:
+                return _q("where", w, thing=thing)
+    return _q("other", w)

@@ -1,0 +1,162 @@
+"""Shared vocabulary of the rules grammar: normalisation, politeness, verb classes, phrase splitting.
+
+Only function words and verbs live here; nouns always come from the KB (dialogue.reference.lexicon).
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from typing import Literal
+
+Act = Literal["command", "question", "greeting", "negated", "thanks", "unknown"]
+Words = tuple[str, ...]
+
+_TOKEN = re.compile(r"[a-z0-9]+(?:'[a-z]+)?")
+QUOTED = re.compile(r"[\"\u201c\u201d]([^\"\u201c\u201d]+)[\"\u201c\u201d]")
+
+
+def _phrases(text: str) -> tuple[Words, ...]:
+    """ "a b|c" -> (("a", "b"), ("c",)): compact phrase lists."""
+    return tuple(tuple(p.split()) for p in text.split("|"))
+
+
+def word_set(text: str) -> frozenset[str]:
+    return frozenset(text.split())
+
+
+CONTRACTIONS: dict[str, Words] = {
+    "what's": ("what", "is"), "where's": ("where", "is"), "who's": ("who", "is"), "that's": ("that", "is"),
+    "it's": ("it", "is"), "there's": ("there", "is"), "let's": ("let", "us"), "i'd": ("i", "would"),
+    "can't": ("cannot",), "i'm": ("i", "am"), "you're": ("you", "are"), "here's": ("here", "is"),
+    "dont": ("don't",), "doesn't": ("don't",), "won't": ("don't",),
+}  # fmt: skip
+POLITE_PREFIXES = _phrases(
+    "would you mind|do you mind|i would like you to|i want you to|i need you to|i wish you would|"
+    "go ahead and|go and|come and|could you|can you|would you|will you|please|kindly|just|now|ok|okay|"
+    "so|and|then|also|well|robot|let us|try to|you should|you can|you could|be so kind and|be so kind as to|"
+    "time to|maybe|hold on|hang on|wait a moment|wait a second|one moment|actually|oh|um|umm|uh|er|erm|"
+    "great|alright|all right|cool|perfect|excellent|sorry|excuse me|can we|could we|shall we|should we|"
+    "why don't we|how about we"
+)
+POLITE_SUFFIXES = _phrases(
+    "please|thanks|thank you|now|right now|if you can|if you could|for a moment|again|quickly|"
+    "immediately|ok|okay|would you|will you|could you|can you|won't you|for a sec|for a second"
+)
+GREETINGS = _phrases(
+    "good morning|good afternoon|good evening|good day|hello|hi|hey|hiya|howdy|greetings|yo|"
+    "hello there|hi there|hey there|welcome|morning|evening|afternoon"
+)
+SOCIAL = frozenset(
+    _phrases(
+        "nice to see you|nice to meet you|good to see you|glad to see you|how are you|how are you doing|"
+        "how is it going|there|robot|everyone|again|friend||how do you do"
+    )
+)
+ME = word_set("me myself us")
+GRAB = word_set("grab take pick get collect lift grasp seize hold")
+BRING = word_set("bring hand give pass fetch deliver carry")
+PLACE = word_set("put place set lay drop leave stick stack")
+MOVE = word_set("go move navigate drive walk head come return proceed roll stand pop nip hop")
+GUIDE = word_set("guide lead escort accompany show direct")
+SAY = word_set("say tell announce repeat inform remind")
+START = word_set("start begin launch run resume do perform commence")
+STOP = word_set("stop cancel halt abort quit cease end pause interrupt")
+ACTIVITY_VERBS = word_set(
+    "clean tidy vacuum hoover sweep mop wash dust cook water iron fold patrol charge sing exercise wipe "
+    "organise organize prepare make cleaning vacuuming tidying play"
+)
+MOTIONS = word_set("dance wave nod bow clap point shake spin jump salute")
+STOP_FILLER = word_set(
+    "what you are doing it that this everything all the current activity task now please immediately "
+    "right there your whatever am is enough shut up"
+)
+LOCATIVE = ("on top of", "onto", "on", "into", "inside", "in", "at", "to", "under", "next to", "near")
+WH = word_set("what where who which how why when whose whom")
+
+
+@dataclass(frozen=True)
+class Parse:
+    act: Act
+    intent: str | None = None
+    slots: dict[str, Words] = field(default_factory=dict)
+    text: str | None = None
+    question: str | None = None
+    words: Words = ()
+    #: BRING/give without "to": the recipient and the object are both in `slots["rest"]`.
+    double_object: bool = False
+
+
+#: Every verb the grammar knows, to read "would you mind picking up..." as "pick up...".
+VERBS = GRAB | BRING | PLACE | MOVE | GUIDE | SAY | START | STOP | MOTIONS
+VERBS |= word_set("greet welcome approach")
+
+
+def base_verb(word: str) -> str:
+    """ "picking" -> "pick", "taking" -> "take", "putting" -> "put"; other words unchanged."""
+    if word in VERBS or not word.endswith("ing") or len(word) < 5:
+        return word
+    stem = word[:-3]
+    for candidate in (stem, stem + "e", stem[:-1]):
+        if candidate in VERBS:
+            return candidate
+    return word
+
+
+def normalise(text: str) -> list[str]:
+    words: list[str] = []
+    for w in _TOKEN.findall(text.lower().replace("\u2019", "'")):
+        words.extend(CONTRACTIONS.get(w, (w,)))
+    return words
+
+
+def original_text(text: str, words: Sequence[str]) -> str:
+    """The part of the original text that the (normalised) words came from, with its casing."""
+    lowered = text.lower().replace("\u2019", "'")
+    if len(lowered) != len(text) or not words:
+        return " ".join(words)
+    spans = [
+        (w, m.start(), m.end())
+        for m in _TOKEN.finditer(lowered)
+        for w in CONTRACTIONS.get(m.group(), (m.group(),))
+    ]
+    n = len(words)
+    for i in range(len(spans) - n + 1):
+        if all(spans[i + k][0] == words[k] for k in range(n)):
+            return text[spans[i][1] : spans[i + n - 1][2]]
+    return " ".join(words)
+
+
+def starts(words: Sequence[str], prefix: Sequence[str]) -> bool:
+    return len(prefix) <= len(words) and tuple(words[: len(prefix)]) == tuple(prefix)
+
+
+def strip_politeness(words: list[str], robot_name: str = "") -> list[str]:
+    name = tuple(normalise(robot_name)) if robot_name else ()
+    prefixes = (*POLITE_PREFIXES, *((name,) if name else ()))
+    changed = True
+    while changed and words:
+        changed = False
+        for p in prefixes:
+            # "can you see" is a question, not a polite request: keep it.
+            if p and starts(words, p) and not (p[-1] == "you" and words[len(p) : len(p) + 1] == ["see"]):
+                words = words[len(p) :]
+                changed = True
+                break
+        for s in POLITE_SUFFIXES:
+            if s and len(words) > len(s) and tuple(words[-len(s) :]) == s:
+                words = words[: -len(s)]
+                changed = True
+                break
+    return words
+
+
+def split_at(words: Sequence[str], separators: Sequence[str]) -> tuple[Words, str, Words] | None:
+    """First occurrence (after position 0) of any separator phrase: (before, separator, after)."""
+    seps = [tuple(s.split()) for s in separators]
+    for i in range(1, len(words)):
+        for sep in seps:
+            if tuple(words[i : i + len(sep)]) == sep:
+                return tuple(words[:i]), " ".join(sep), tuple(words[i + len(sep) :])
+    return None

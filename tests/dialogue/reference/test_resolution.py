@@ -1,0 +1,81 @@
+import pytest
+
+from dialogue.reference.grounding import Kind
+from dialogue.reference.lexicon import tokens
+from dialogue.reference.resolution import antecedent, resolve, resolve_id
+from kb import KB
+from tests.dialogue.conftest import lexicon_of, scene_kb
+
+THING: frozenset[Kind] = frozenset({"thing"})
+PERSON: frozenset[Kind] = frozenset({"person"})
+ZONE: frozenset[Kind] = frozenset({"zone"})
+
+
+def ids(kb: KB, phrase: str, kinds: frozenset[Kind] = THING) -> list[str]:
+    return [e.id for e in resolve(lexicon_of(kb), tokens(phrase), kinds).matches]
+
+
+@pytest.mark.parametrize(
+    ("phrase", "expected"),
+    [
+        ("the cup", ["cup_1"]),  # class label
+        ("the cookbook", ["book_1"]),  # instance label
+        ("a book", ["book_1"]),  # class of a labelled instance
+        ("some fruit", ["apple_1"]),  # hypernym through the class hierarchy
+        ("the sponge", ["sponge_1"]),  # label of an instance of an unlabelled class
+        ("cup_1", ["cup_1"]),  # id
+        ("the cup on the table", ["cup_1"]),  # support
+        ("the kitchen table", ["table_1"]),  # zone as a qualifier
+        ("the cups", ["cup_1"]),  # plural
+        ("the banana", []),
+        ("the cup on the shelf", []),  # wrong support rules it out
+    ],
+)
+def test_kitchen_phrases(kitchen: KB, phrase: str, expected: list[str]) -> None:
+    assert ids(kitchen, phrase) == expected
+
+
+def test_adjectives_from_labels_and_colour_properties(cups: KB) -> None:
+    assert ids(cups, "the red cup") == ["cup_red"]
+    assert ids(cups, "the blue one cup") == ["cup_blue"]
+    assert ids(cups, "the white phone") == ["phone_b"]
+    assert ids(cups, "the green phone") == []
+    assert set(ids(cups, "the cup")) == {"cup_red", "cup_blue"}
+
+
+def test_whole_words_only() -> None:
+    kb = scene_kb(
+        "kitchen",
+        "cupboard_1 rdf:type Artifact",
+        'cupboard_1 rdfs:label "cupboard"',
+        "myself sees cupboard_1",
+    )
+    assert ids(kb, "the cup") == ["cup_1"]
+    assert ids(kb, "the cupboard") == ["cupboard_1"]
+
+
+def test_head_noun_of_a_label_names_the_thing(office: KB) -> None:
+    assert set(ids(office, "the mug")) == {"mug_green", "mug_yellow"}
+    assert ids(office, "the yellow mug") == ["mug_yellow"]
+
+
+def test_visible_entities_are_preferred() -> None:
+    kb = scene_kb("kitchen", "cup_9 rdf:type dbr:Cup", "cup_9 isIn bedroom")
+    assert ids(kb, "the cup") == ["cup_1"]
+    assert ids(kb, "the cup in the bedroom") == ["cup_9"]
+
+
+def test_kinds_filter_people_and_places(kitchen: KB) -> None:
+    lex = lexicon_of(kitchen)
+    assert resolve(lex, ["tom"], PERSON).one is not None
+    assert resolve(lex, ["tom"], THING).matches == ()
+    assert resolve_id(lex, "kitchen", ZONE).one is not None
+    assert resolve_id(lex, "evil_1", THING).matches == ()
+    assert resolve_id(lex, "person_alice", THING).matches == ()
+
+
+def test_pronoun_antecedent_skips_locative_mentions(kitchen: KB) -> None:
+    lex = lexicon_of(kitchen)
+    found = antecedent(lex, ["do you see a book?", "Yes, I see a cookbook on the shelf."], THING)
+    assert found is not None and found.id == "book_1"
+    assert antecedent(lex, ["hello"], THING) is None

@@ -1,0 +1,163 @@
+import pytest
+
+from dialogue import intents as I
+from dialogue.rules.commands import parse
+
+
+@pytest.mark.parametrize(
+    ("text", "intent", "slots"),
+    [
+        ("Pick up the cup", I.GRAB_OBJECT, {"object": ("the", "cup")}),
+        ("pick the mug up, please", I.GRAB_OBJECT, {"object": ("the", "mug")}),
+        ("hand me the towel", I.BRING_OBJECT, {"object": ("the", "towel"), "recipient": ("me",)}),
+        ("get the towel for me", I.BRING_OBJECT, {"object": ("the", "towel"), "recipient": ("me",)}),
+        ("carry the box over to Ann", I.BRING_OBJECT, {"object": ("the", "box"), "recipient": ("ann",)}),
+        (
+            "set the vase on top of the piano",
+            I.PLACE_OBJECT,
+            {"object": ("the", "vase"), "recipient": ("the", "piano")},
+        ),
+        (
+            "move the vase to the piano",
+            I.PLACE_OBJECT,
+            {"object": ("the", "vase"), "recipient": ("the", "piano")},
+        ),
+        ("head over to the garage", I.MOVE_TO, {"goal": ("the", "garage")}),
+        ("come here", I.MOVE_TO, {"goal": ("me",)}),
+        ("walk me to the exit", I.GUIDE, {"recipient": ("me",), "goal": ("the", "exit")}),
+        ("lead the way to the lobby", I.GUIDE, {"recipient": ("me",), "goal": ("lobby",)}),
+        ("engage with Ann", I.ENGAGE_WITH, {"recipient": ("ann",)}),
+        ("would you mind picking up the vase", I.GRAB_OBJECT, {"object": ("the", "vase")}),
+        ("do you mind putting the vase on the piano", I.PLACE_OBJECT,
+         {"object": ("the", "vase"), "recipient": ("the", "piano")}),
+        ("please get hold of the vase", I.GRAB_OBJECT, {"object": ("the", "vase")}),
+        ("make your way to the garage", I.MOVE_TO, {"goal": ("the", "garage")}),
+        ("go down to the cellar", I.MOVE_TO, {"goal": ("the", "cellar")}),
+        ("go and stand by the piano", I.MOVE_TO, {"goal": ("the", "piano")}),
+        ("could you welcome Ann", I.GREET, {"recipient": ("ann",)}),
+        ("fetch me the vase, would you?", I.BRING_OBJECT, {"object": ("the", "vase"), "recipient": ("me",)}),
+        ("um great bring it to me", I.BRING_OBJECT, {"object": ("it",), "recipient": ("me",)}),
+    ],
+)  # fmt: skip
+def test_command_frames(text: str, intent: str, slots: dict[str, tuple[str, ...]]) -> None:
+    p = parse(text)
+    assert (p.act, p.intent) == ("command", intent)
+    for key, value in slots.items():
+        assert p.slots[key] == value
+
+
+@pytest.mark.parametrize(
+    ("text", "intent", "free"),
+    [
+        ('please say "see you later, alligator" to Ann', I.SAY, "see you later, alligator"),
+        ("tell Ann dinner is served", I.SAY, "dinner is served"),
+        ("tell Ann to come downstairs", I.SAY, "please come downstairs"),
+        ("start the memory game", I.START_ACTIVITY, "memory_game"),
+        ("water the plants", I.START_ACTIVITY, "water_plants"),
+        ("stop vacuuming", I.STOP_ACTIVITY, "vacuuming"),
+        ("that's enough", I.STOP_ACTIVITY, None),
+        ("dance for me", I.PERFORM_MOTION, "dance"),
+        ("wake up", I.WAKEUP, None),
+        ("time to go to sleep", I.SUSPEND, None),
+    ],
+)
+def test_free_form_values(text: str, intent: str, free: str | None) -> None:
+    p = parse(text)
+    assert (p.act, p.intent, p.text) == ("command", intent, free)
+
+
+def test_quoted_text_is_kept_verbatim_even_with_to_inside() -> None:
+    p = parse('say "go to bed" to Ann')
+    assert p.text == "go to bed" and p.slots["recipient"] == ("ann",)
+
+
+@pytest.mark.parametrize(
+    ("text", "kind"),
+    [
+        ("what do you see?", "what_see"),
+        ("what is in front of you", "what_see"),
+        ("who is around?", "who_see"),
+        ("who's here", "who_see"),
+        ("where can I find the scissors?", "where"),
+        ("do you know where the keys are", "where"),
+        ("what's on the piano?", "what_on"),
+        ("what do you see on the piano", "what_on"),
+        ("is there a towel in the bathroom?", "can_see"),
+        ("have you seen my keys", "can_see"),
+        ("what's your name", "name"),
+        ("who are you?", "name"),
+        ("tell me what you see", "what_see"),
+        ("any idea where the keys are?", "where"),
+        ("where did Ann go", "where"),
+        ("whose keys are these", "whose"),
+        ("who owns the vase", "whose"),
+        ("is there anything on the piano", "what_on"),
+        ("do you see anything to drink", "can_see"),
+    ],
+)
+def test_questions(text: str, kind: str) -> None:
+    p = parse(text)
+    assert (p.act, p.question) == ("question", kind)
+
+
+@pytest.mark.parametrize(
+    "text", ["hi", "Hello there!", "good morning", "good day", "hey robot", "hi, how are you?", "welcome back"]
+)
+def test_greetings(text: str) -> None:
+    assert parse(text).act == "greeting"
+
+
+def test_greeting_words_match_whole_words_only() -> None:
+    # D11: "hi" must not fire inside "this" or "which".
+    assert parse("this is which").act != "greeting"
+    assert parse("hi, pick up the cup").intent == I.GRAB_OBJECT
+
+
+@pytest.mark.parametrize(
+    "text", ["don't pick up the cup", "please do not go to the kitchen", "never mind", "no"]
+)
+def test_negation(text: str) -> None:
+    assert parse(text).act == "negated"
+
+
+def test_robot_name_is_stripped_as_a_vocative() -> None:
+    assert parse("Ari, grab the cup", robot_name="Ari").intent == I.GRAB_OBJECT
+
+
+def test_unknown_input() -> None:
+    assert parse("the weather is lovely today").act == "unknown"
+    assert parse("").act == "unknown"
+
+
+@pytest.mark.parametrize(
+    ("text", "recipient", "goal"),
+    [
+        ("I want to go to the garage", ("me",), ("the", "garage")),
+        ("Ann needs to get to the lobby", ("ann",), ("the", "lobby")),
+        ("my mother has to go to the exit", ("my", "mother"), ("the", "exit")),
+        ("we would like to go to the garden", ("me",), ("the", "garden")),
+    ],
+)
+def test_someone_needing_to_go_somewhere_is_guided(
+    text: str, recipient: tuple[str, ...], goal: tuple[str, ...]
+) -> None:
+    p = parse(text)
+    assert (p.intent, p.slots["recipient"], p.slots["goal"]) == (I.GUIDE, recipient, goal)
+
+
+@pytest.mark.parametrize(
+    ("text", "act", "intent"),
+    [
+        ("thanks, now put the vase on the piano", "command", I.PLACE_OBJECT),
+        ("thank you so much", "thanks", None),
+        ("could you say hi to Ann for me", "command", I.GREET),
+        ("I could use the vase", "command", I.BRING_OBJECT),
+        ("can we play a quiz", "command", I.START_ACTIVITY),
+        ("pop over to the garage", "command", I.MOVE_TO),
+    ],
+)
+def test_preambles_and_indirect_requests(text: str, act: str, intent: str | None) -> None:
+    p = parse(text)
+    assert (p.act, p.intent) == (act, intent)
+    if intent == I.GREET:
+        assert p.slots["recipient"] == ("ann",)

@@ -1,0 +1,45 @@
+"""Examples in the docs run: the README's Python examples and every docstring example (doctest)."""
+
+from __future__ import annotations
+
+import doctest
+import importlib
+import pkgutil
+import re
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).parents[1]
+PACKAGES = ("kb", "scene", "dialogue", "api", "bench")
+_PYTHON_BLOCK = re.compile(r"```python\n(.*?)```", re.S)
+
+
+def _modules() -> list[str]:
+    names: list[str] = []
+    for package in PACKAGES:
+        module = importlib.import_module(package)
+        names.append(package)
+        names.extend(info.name for info in pkgutil.walk_packages(module.__path__, package + "."))
+    return names
+
+
+def test_every_python_block_of_the_readme_is_an_example_that_runs() -> None:
+    readme = (ROOT / "README.md").read_text()
+    blocks = _PYTHON_BLOCK.findall(readme)
+    assert blocks, "the README has Python examples"
+    parser = doctest.DocTestParser()
+    runner = doctest.DocTestRunner(optionflags=doctest.ELLIPSIS)
+    for number, block in enumerate(blocks, 1):
+        # A block that is not written as a session would never be checked: refuse it.
+        assert block.lstrip().startswith(">>>"), f"README Python block {number} is not a doctest"
+        test = parser.get_doctest(block, {}, f"README block {number}", "README.md", 0)
+        runner.run(test)
+    assert runner.failures == 0, f"{runner.failures} README example(s) failed; see the output above"
+
+
+@pytest.mark.parametrize("name", [n for n in _modules() if not n.endswith("__main__")])
+def test_docstring_examples_run(name: str) -> None:
+    module = importlib.import_module(name)
+    result = doctest.testmod(module, optionflags=doctest.ELLIPSIS, verbose=False)
+    assert result.failed == 0
