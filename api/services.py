@@ -5,6 +5,7 @@ Built by the app's lifespan (blocking work, run off the event loop) and stopped 
 
 from __future__ import annotations
 
+import asyncio
 import logging
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -41,7 +42,8 @@ class Services:
     journal: Journal | None
     owns_kb: bool
     store: Store | None = None
-    #: The model was built from the settings (not passed in): stopping closes it (a worker process).
+    #: The model was built from the settings (not passed in): `aclose` closes it (its HTTP client,
+    #: its worker process).
     owns_model: bool = False
     # Named statuses of I/O and background work, rendered by /health (journal, compaction...).
     components: Components = field(default_factory=Components)
@@ -63,7 +65,17 @@ class Services:
                 # change (the sync asserts every fact it no longer has) or at the next start.
                 log.warning("the scene's facts were not asserted again after a clear: %s", exc)
 
+    async def aclose(self) -> None:
+        """Stop: the model on the event loop that used it (its HTTP client belongs to that loop),
+        then the rest off the loop."""
+        try:
+            if self.owns_model:
+                await self.model.aclose()
+        finally:
+            await asyncio.to_thread(self.stop)
+
     def stop(self) -> None:
+        """Stop everything but the model (blocking), which `aclose` closes first."""
         if self.world is not None:
             self.world.stop()
         self.hub.shutdown()
@@ -78,9 +90,6 @@ class Services:
             self.kb.close()
         if self.store is not None:
             self.store.close()
-        close_model = getattr(self.model, "close", None)
-        if self.owns_model and callable(close_model):
-            close_model()
 
 
 def mirror_status(mirror: SparqlMirror) -> ComponentStatus:
@@ -126,23 +135,19 @@ def _open_journal(kb: KB, folder: Path, snapshot_records: int) -> Journal:
     return journal
 
 
-def backend_of(settings: Settings) -> tuple[ChatModel, bool]:
-    """The model ``settings.llm`` names and whether it runs behind the rules (hybrid)."""
+def backend_of(settings: Settings) -> ChatModel:
+    """The model ``settings.llm`` names."""
     try:
-        backend = parse_spec(settings.llm)
+        return parse_spec(settings.llm).model
     except SpecError as exc:
         raise SettingsError(f"llm: {exc}") from exc
-    return backend.model, backend.hybrid
 
 
 def build_dialogues(settings: Settings, kb: KnowledgeBase, model: ChatModel | None = None,
                     endpoint: SparqlEndpoint | None = None) -> DialogueManager:
     """The dialogue engine on this KB, with ``model`` or the backend ``settings.llm`` names;
     with a shared store, the dialogue sessions live in it (every process sees every dialogue)."""
-    hybrid = False
-    if model is None:
-        model, hybrid = backend_of(settings)
-    engine = DialogueEngine(kb, model, EngineConfig(deadline=settings.deadline, hybrid=hybrid))
+    engine = DialogueEngine(kb, model or backend_of(settings), EngineConfig(deadline=settings.deadline))
     limits = settings.limits
     store = SparqlSessions(endpoint, max_dialogues=limits.max_dialogues) if endpoint is not None else None
     return DialogueManager(engine, max_dialogues=limits.max_dialogues, max_turns=limits.max_history_turns,

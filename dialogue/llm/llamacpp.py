@@ -35,7 +35,8 @@ from functools import partial
 from pathlib import Path
 from typing import Any, TypeVar
 
-from dialogue.llm.base import ChatRequest, ChatResult, ModelError
+from dialogue.llm.base import ChatModel, ChatRequest, ChatResult, ModelError, SelfCheck
+from dialogue.llm.llamabuild import REINSTALL, check_build
 from dialogue.llm.llamarunner import INSTALL_HINT, LlamaRunner, LocalModelUnavailable
 from dialogue.llm.worker import Completion, ProcessWorker, WorkerCrashed
 
@@ -86,7 +87,7 @@ class _Job:
         return self.cancel.is_set() or time.monotonic() >= self.deadline
 
 
-class LlamaCppModel:
+class LlamaCppModel(ChatModel):
     """A GGUF model run by llama.cpp in a worker process. `max_tokens` bounds the answer (JSON answers
     need ~40-120). `worker_setup` is a picklable callable run first in every worker process (the
     tests install a fake llama_cpp with it)."""
@@ -157,6 +158,9 @@ class LlamaCppModel:
                 "worker": {"state": state, "pid": pid, "crashes": self._worker.crashes,
                            "last_crash": self._worker.last_crash, "restart_error": self._down}}
 
+    async def probe(self, timeout: float) -> dict[str, Any]:
+        return {"remote": False, "reachable": True, "detail": "", **self.health()}
+
     # --- loading ------------------------------------------------------------------------------------
 
     def load(self) -> None:
@@ -207,6 +211,22 @@ class LlamaCppModel:
         except ModelError as exc:
             self._down = str(exc)
             log.error("%s: the worker could not be restarted: %s", self.name, exc)
+
+    @property
+    def setup_hint(self) -> str:
+        return f"check the model file; {INSTALL_HINT}"
+
+    async def self_check(self, timeout: float) -> SelfCheck:
+        """One tiny completion in the worker: does this llama.cpp build run on this CPU?"""
+        started = time.monotonic()
+        check = await check_build(self, timeout)
+        if not check.ok:
+            return SelfCheck(False, check.message, REINSTALL if check.crashed else self.setup_hint)
+        return SelfCheck(True, f"{check.message} in {time.monotonic() - started:.1f} s "
+                               f"(worker process; build: {check.build})")
+
+    async def aclose(self) -> None:
+        await asyncio.to_thread(self.close)
 
     def close(self) -> None:
         """Stop a running generation, let the queue drain, stop the worker."""

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import json
 
-from dialogue.llm.base import ChatRequest, ChatResult, TurnContext
+from dialogue.llm.base import ChatModel, ChatRequest, ChatResult, EarlyAnswer, TurnContext
 from dialogue.prompts import FREE_FORM_OBJECT
 from dialogue.reference.lexicon import LexiconCache
 from dialogue.rules.interpret import Interpreter, Outcome
@@ -27,13 +27,29 @@ def answer_of(outcome: Outcome) -> ChatbotResponse:
     )
 
 
-class RulesModel:
+#: The rules' name, the `backend` of the turns they answer.
+RULES = "rules"
+
+
+class RulesModel(ChatModel):
+    """Answers every turn it understands in `prescreen`, without a prompt; reads no prompt itself."""
+
     def __init__(self) -> None:
         self._lexicons = LexiconCache()
 
     @property
     def name(self) -> str:
-        return "rules"
+        return RULES
+
+    @property
+    def llm(self) -> ChatModel | None:
+        return None
+
+    def prescreen(self, context: TurnContext) -> EarlyAnswer | None:
+        outcome = self.interpret(context)
+        if not outcome.understood:
+            return None
+        return EarlyAnswer(answer_of(outcome), RULES, clarify=outcome.clarify)
 
     def interpret(self, context: TurnContext) -> Outcome:
         lexicon = self._lexicons.get(context.snapshot)

@@ -11,7 +11,7 @@ from collections import deque
 from collections.abc import Awaitable, Callable, Iterable
 from typing import Any
 
-from dialogue.llm.base import ChatRequest, ChatResult, ModelError
+from dialogue.llm.base import ChatModel, ChatRequest, ChatResult, ModelError
 
 Answer = str | dict[str, Any] | ChatResult | BaseException
 
@@ -26,7 +26,7 @@ def _result(answer: Answer) -> ChatResult:
     return ChatResult(answer)
 
 
-class ScriptedModel:
+class ScriptedModel(ChatModel):
     """Answers from a queue: a JSON string, a dict (dumped), a ChatResult, or an exception to raise.
 
     Every request is recorded in `requests`. `delay` seconds are slept before each answer (to test
@@ -58,7 +58,7 @@ class ScriptedModel:
 Responder = Callable[[ChatRequest], Answer | Awaitable[Answer]]
 
 
-class FunctionModel:
+class FunctionModel(ChatModel):
     """Answers computed by a Python callable (sync or async) from the request."""
 
     def __init__(self, function: Responder, *, name: str = "function") -> None:

@@ -25,6 +25,7 @@ from dialogue.engine import DialogueEngine, EngineConfig
 from dialogue.intents import GRAB_OBJECT, RAW_USER_INPUT
 from dialogue.llm import llamacpp, spec
 from dialogue.llm.base import ChatModel, ModelError
+from dialogue.llm.hybrid import HybridModel
 from dialogue.llm.llamacpp import LlamaCppModel, LocalModelUnavailable
 from dialogue.llm.spec import SpecError, parse_spec
 from tests.dialogue.conftest import scene_kb
@@ -72,10 +73,10 @@ def test_llamacpp_path_spec_is_parsed_without_loading(gguf: Path, monkeypatch: p
     monkeypatch.setattr(spec, "llama_cpp_available", lambda: True)
     backend = parse_spec(f"llamacpp:{gguf}")
     assert isinstance(backend.model, LlamaCppModel) and isinstance(backend.model, ChatModel)
-    assert backend.model.path == gguf and not backend.model.loaded and not backend.hybrid
+    assert backend.model.path == gguf and not backend.model.loaded and backend.model.llm is backend.model
     assert backend.model.name == "llamacpp:model.gguf"
     hybrid = parse_spec(f"hybrid:llamacpp:{gguf}")
-    assert hybrid.hybrid and isinstance(hybrid.model, LlamaCppModel)
+    assert isinstance(hybrid.model, HybridModel) and isinstance(hybrid.model.inner, LlamaCppModel)
 
 
 def test_smollm2_spec_finds_the_packaged_file(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
@@ -87,9 +88,10 @@ def test_smollm2_spec_finds_the_packaged_file(tmp_path: Path, monkeypatch: pytes
     monkeypatch.setattr(llamacpp, "SMOLLM2_PACKAGE", "fake_smollm_pkg")
     monkeypatch.setattr(spec, "llama_cpp_available", lambda: True)
     backend = parse_spec("hybrid:llamacpp:smollm2")
-    assert isinstance(backend.model, LlamaCppModel) and backend.hybrid
-    assert backend.model.path == package / llamacpp.SMOLLM2_FILE
-    assert backend.model.name == "llamacpp:smollm2"
+    assert isinstance(backend.model, HybridModel)
+    inner = backend.model.inner
+    assert isinstance(inner, LlamaCppModel) and inner.path == package / llamacpp.SMOLLM2_FILE
+    assert inner.name == "llamacpp:smollm2"
 
 
 @pytest.mark.parametrize(
@@ -366,5 +368,5 @@ def test_stopping_the_service_stops_the_worker_of_the_model_it_built(
     services = start_services(Settings(scene="none", llm=f"llamacpp:{gguf}"))
     model = services.model
     assert isinstance(model, LlamaCppModel) and services.owns_model
-    services.stop()
+    asyncio.run(services.aclose())
     assert model.health()["worker"]["state"] == "closed"
