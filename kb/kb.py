@@ -42,6 +42,7 @@ from kb.rdfio import default_ontology, parse_data, parse_location, serialize
 from kb.sparql import execute, parse_update, to_json
 from kb.store import ALL_MODELS, DEFAULT_MODEL, Model, Models
 from kb.sugar import KnowledgeCoreSugar
+from kb.summary import Summary
 from kb.terms import Node, Triple, as_list, parse_ground, parse_patterns, shorten
 from kb.writer import ActiveListener, Batch, Commit, CommitListener, Writer
 
@@ -92,6 +93,11 @@ class KB(KnowledgeCoreSugar):
     def lock(self) -> threading.RLock:
         """Held by every read and write; hold it to read several answers from one state."""
         return self._lock
+
+    def summary(self) -> Summary:
+        """Revision, sizes of the default model and model names after the last change, without
+        waiting for the KB lock (``/health`` answers while a long query runs)."""
+        return self._writer.summary
 
     # --- models ---------------------------------------------------------------------------
 

@@ -47,6 +47,7 @@ from kb.remotequery import Graphs, Meta, StoreQueries
 from kb.remotesparql import answer, run
 from kb.store import ALL_MODELS, DEFAULT_MODEL
 from kb.sugar import KnowledgeCoreSugar
+from kb.summary import Summary
 from kb.terms import as_list, parse_ground
 from kb.writetarget import ReplicaWrites, WriteTarget
 
@@ -102,6 +103,12 @@ class RemoteKB(KnowledgeCoreSugar):
         """A lock of this process only, for callers that group several calls. It does NOT freeze
         the store: the writer may commit between two reads made under it."""
         return self._lock
+
+    def summary(self) -> Summary:
+        """Revision, sizes of the default model and model names, as the store holds them (one
+        request each: they may straddle a commit)."""
+        meta = self._queries.meta()
+        return Summary(meta.revision or 0, self.size(), self.size(inferred=False), tuple(meta.models))
 
     # --- models ---------------------------------------------------------------------------
 

@@ -24,6 +24,7 @@ from kb.lifespan import Expiries
 from kb.query import Query, Row, holds_row, rows
 from kb.status import StatusCell
 from kb.store import ALL_MODELS, Delta, Models, ModelsState
+from kb.summary import Summary, summarise
 from kb.terms import ORO, Triple, shorten
 
 log = logging.getLogger(__name__)
@@ -92,6 +93,7 @@ class Writer:
         self._wake = threading.Event()
         self._closed = threading.Event()
         self.expiry_status = StatusCell()  # the lifespan reaper's, for /health
+        self.summary: Summary = summarise(0, models)  # replaced at each change; read without the lock
 
     # --- listeners -----------------------------------------------------------------------
 
@@ -123,7 +125,10 @@ class Writer:
     def commit(self, batch: Batch) -> Commit | None:
         """Apply a batch to its models atomically; return the commit, or None if nothing changed."""
         with self.lock:
-            firings, commit = self._commit_locked(batch)
+            try:
+                firings, commit = self._commit_locked(batch)
+            finally:
+                self._summarise()
         for firing in firings:
             firing.deliver()
         return commit
@@ -262,6 +267,8 @@ class Writer:
             except (KbError, OSError):
                 self._undo_clear(saved, expiries, accepted)
                 raise
+            finally:
+                self._summarise()
             self.subscriptions.rebaseline(self.current_rows)
 
     def _undo_clear(self, saved: ModelsState, expiries: list[tuple[str, Triple, float]],
@@ -290,6 +297,9 @@ class Writer:
                 listener(undoing)
             except (KbError, OSError):
                 log.exception("a commit listener could not take the undoing of a refused clear")
+
+    def _summarise(self) -> None:
+        self.summary = summarise(self.revision, self.models)
 
     def state(self) -> State:
         with self.lock:
@@ -322,6 +332,7 @@ class Writer:
             if expiries:
                 self._ensure_reaper()
             self.revision = revision if revision is not None else self.revision + 1
+            self._summarise()
 
     # --- lifespans -----------------------------------------------------------------------
 
@@ -342,6 +353,8 @@ class Writer:
                 for model, triple in due:  # still due: the next attempt retracts them
                     self.expiries.set(model, triple, at)
                 raise
+            finally:
+                self._summarise()
         for firing in firings:
             firing.deliver()
         return commit
