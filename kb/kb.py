@@ -33,9 +33,9 @@ from kb.arguments import (
     parse_term,
     render,
 )
-from kb.deadline import Deadline, TimedIndex, holding
+from kb.deadline import Budget, Deadline, TimedIndex, holding
 from kb.errors import KbError, StorageError
-from kb.events import Callback, event_id
+from kb.events import Callback, ErrorCallback, event_id
 from kb.formats import export_format
 from kb.query import Row, TooManyRows, holds, rows
 from kb.rdfio import default_ontology, parse_data, parse_location, serialize
@@ -341,21 +341,35 @@ class KB(KnowledgeCoreSugar):
     # --- events ---------------------------------------------------------------------------
 
     def subscribe(self, patterns: str | Sequence[str], callback: Callback, one_shot: bool = False,
-                  models: Models_ = None) -> str:
-        """Call ``callback(rows)`` with the new rows after each change; returns ``evt_<md5>``."""
+                  models: Models_ = None, *, timeout: float | None = None, max_rows: int | None = None,
+                  on_error: ErrorCallback | None = None) -> str:
+        """Call ``callback(rows)`` with the new rows after each change; returns ``evt_<md5>``.
+        With ``timeout`` (seconds) or ``max_rows``, every evaluation is bounded: the first one
+        (waiting for the KB included) raises ``QueryTimeout`` or ``TooManyRows`` and nothing is
+        subscribed; a later one past them ends the subscription and calls ``on_error(error)``
+        (kb.events)."""
         texts = as_list(patterns)
         if not texts:
             raise KbError("subscribe needs at least one pattern")
         if not callable(callback):
             raise KbError(f"subscribe needs a callable that takes the new rows, got {callback!r}")
+        if on_error is not None and not callable(on_error):
+            raise KbError(f"on_error must be a callable that takes the error, got {on_error!r}")
+        budget = Budget(timeout, max_rows)
         query = compiled(tuple(texts), None)
         names = model_names(models) or [DEFAULT_MODEL]
         sub_id = event_id(texts, one_shot, names)
-        with self._lock:
+        deadline = Deadline.after(timeout)
+        with holding(self._lock, deadline):
+            started = time.monotonic()
             baseline: set[Row] = set()
             for model in self._read_models(names):
-                baseline |= rows(model.closure, query)
-            self._writer.subscriptions.add(sub_id, query, names, one_shot, callback, baseline)
+                index = model.closure if deadline is None else TimedIndex(model.closure, deadline)
+                baseline |= rows(index, query, max_rows)
+                if max_rows is not None and len(baseline) > max_rows:
+                    raise TooManyRows(max_rows)
+            self._writer.subscriptions.add(sub_id, query, names, one_shot, callback, baseline, budget,
+                                           on_error, cost=time.monotonic() - started)
         return sub_id
 
     def unsubscribe(self, sub_id: str) -> bool:

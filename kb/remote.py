@@ -34,10 +34,10 @@ from pathlib import Path
 from typing import Any
 
 from kb.arguments import Models_, compiled, model_names, optional_term, parse_term, render
-from kb.deadline import Deadline
+from kb.deadline import Budget, Deadline
 from kb.endpoint import SparqlEndpoint
 from kb.errors import KbError
-from kb.events import Callback, event_id
+from kb.events import Callback, ErrorCallback, event_id
 from kb.formats import export_format
 from kb.query import Row, TooManyRows
 from kb.rdfio import serialize
@@ -272,21 +272,28 @@ class RemoteKB(KnowledgeCoreSugar):
     # --- events ---------------------------------------------------------------------------
 
     def subscribe(self, patterns: str | Sequence[str], callback: Callback, one_shot: bool = False,
-                  models: Models_ = None) -> str:
+                  models: Models_ = None, *, timeout: float | None = None, max_rows: int | None = None,
+                  on_error: ErrorCallback | None = None) -> str:
         """Call ``callback(rows)`` with the new rows after each change; returns ``evt_<md5>``.
-        Callbacks run on the polling thread."""
+        Callbacks run on the polling thread. ``timeout``, ``max_rows`` and ``on_error`` as for
+        ``KB.subscribe``: the first evaluation past them raises, a later one ends the
+        subscription (it no longer holds up the polling of the others)."""
         texts = as_list(patterns)
         if not texts:
             raise KbError("subscribe needs at least one pattern")
         if not callable(callback):
             raise KbError(f"subscribe needs a callable that takes the new rows, got {callback!r}")
+        if on_error is not None and not callable(on_error):
+            raise KbError(f"on_error must be a callable that takes the error, got {on_error!r}")
+        budget = Budget(timeout, max_rows)
         query = compiled(tuple(texts), None)
         names = model_names(models) or [DEFAULT_MODEL]
         sub_id = event_id(texts, one_shot, names)
         meta = self._queries.meta()  # read before the baseline: a later commit is evaluated again
         self._known(names, meta)
-        baseline = self._events.rows(query, names, meta.models)
-        self._events.subscribe(sub_id, query, names, one_shot, callback, baseline, meta.revision)
+        baseline = self._events.rows(query, names, meta.models, budget)
+        self._events.subscribe(sub_id, query, names, one_shot, callback, baseline, meta.revision, budget,
+                               on_error)
         return sub_id
 
     def unsubscribe(self, sub_id: str) -> bool:

@@ -17,9 +17,10 @@ import threading
 from collections.abc import Callable, Sequence
 
 from kb.arguments import compiled, render
+from kb.deadline import UNBOUNDED, Budget, Deadline, QueryTimeout
 from kb.errors import KbError
-from kb.events import ALL, Callback, Firing, Subscription
-from kb.query import Query, Row
+from kb.events import ALL, Callback, Delivery, Ending, ErrorCallback, Firing, Subscription
+from kb.query import Query, Row, TooManyRows
 from kb.remotequery import Meta, StoreQueries
 from kb.store import DEFAULT_MODEL
 from kb.terms import shorten
@@ -54,26 +55,35 @@ class Poller:
 
     # --- registration ----------------------------------------------------------------------
 
-    def rows(self, query: Query, models: Sequence[str], known: Sequence[str]) -> set[Row]:
-        """The query's rows over the given models (``all``: every known one) that exist."""
+    def rows(self, query: Query, models: Sequence[str], known: Sequence[str],
+             budget: Budget = UNBOUNDED) -> set[Row]:
+        """The query's rows over the given models (``all``: every known one) that exist;
+        ``QueryTimeout`` or ``TooManyRows`` past the budget."""
         names = known if ALL in models else [m for m in models if m in known]
+        deadline = Deadline.after(budget.timeout)
+        limit = None if budget.max_rows is None else budget.max_rows + 1
         found: set[Row] = set()
         for name in names:
-            found |= self._queries.rows(query, self._queries.graphs(name))
+            found |= self._queries.rows(query, self._queries.graphs(name), limit, deadline)
+            if budget.max_rows is not None and len(found) > budget.max_rows:
+                raise TooManyRows(budget.max_rows)
         return found
 
     def subscribe(self, sub_id: str, query: Query, models: Sequence[str], one_shot: bool,
-                  callback: Callback, baseline: set[Row], revision: int | None) -> None:
-        """Register a subscription whose ``baseline`` rows were read at ``revision`` (or later)."""
+                  callback: Callback, baseline: set[Row], revision: int | None,
+                  budget: Budget = UNBOUNDED, on_error: ErrorCallback | None = None) -> None:
+        """Register a subscription whose ``baseline`` rows were read at ``revision`` (or later);
+        an evaluation past its ``budget`` ends it and calls ``on_error``."""
         self._require_open()
         with self._lock:
             existing = self._subscriptions.get(sub_id)
-            if existing is not None:
-                existing.callbacks.append(callback)
-            else:
-                self._subscriptions[sub_id] = Subscription(
-                    sub_id, query, tuple(models), one_shot, [callback], None, set(baseline))
+            if existing is None:
+                existing = self._subscriptions[sub_id] = Subscription(
+                    sub_id, query, tuple(models), one_shot, [], None, set(baseline), budget)
                 self._seen[sub_id] = revision
+            existing.callbacks.append(callback)
+            if on_error is not None:
+                existing.on_error.append(on_error)
         self._start()
 
     def unsubscribe(self, sub_id: str) -> bool:
@@ -150,7 +160,7 @@ class Poller:
                 self._done = max(self._done, serving)
                 self._progress.notify_all()
 
-    def _cycle(self) -> list[Firing]:
+    def _cycle(self) -> list[Delivery]:
         meta = self._queries.meta()
         firings = self._evaluate(meta)
         with self._lock:
@@ -163,12 +173,20 @@ class Poller:
             self._active_seen = meta.revision
         return firings
 
-    def _evaluate(self, meta: Meta) -> list[Firing]:
+    def _evaluate(self, meta: Meta) -> list[Delivery]:
         with self._lock:
             due = [sub for sub in self._subscriptions.values() if self._seen.get(sub.id) != meta.revision]
-        firings = []
+        firings: list[Delivery] = []
         for sub in due:
-            current = self.rows(sub.query, sub.models, meta.models)
+            try:
+                current = self.rows(sub.query, sub.models, meta.models, sub.budget)
+            except (QueryTimeout, TooManyRows) as exc:
+                with self._lock:
+                    if self._subscriptions.get(sub.id) is sub:
+                        del self._subscriptions[sub.id]
+                        del self._seen[sub.id]
+                        firings.append(Ending(sub.id, tuple(sub.on_error), exc))
+                continue
             with self._lock:
                 if self._subscriptions.get(sub.id) is not sub:
                     continue  # unsubscribed meanwhile

@@ -18,8 +18,9 @@ from typing import Any
 from rdflib import URIRef
 from rdflib.namespace import OWL, RDF
 
+from kb.deadline import Deadline, TimedIndex
 from kb.errors import KbError, StorageFull
-from kb.events import Firing, Subscriptions
+from kb.events import Delivery, Firing, Subscriptions
 from kb.lifespan import Expiries
 from kb.query import Query, Row, holds_row, rows
 from kb.status import StatusCell
@@ -133,7 +134,7 @@ class Writer:
             firing.deliver()
         return commit
 
-    def _commit_locked(self, batch: Batch) -> tuple[list[Firing], Commit | None]:
+    def _commit_locked(self, batch: Batch) -> tuple[list[Delivery], Commit | None]:
         now = self._clock()
         deltas: list[Delta] = []
         expiries: list[tuple[str, Triple, float]] = []
@@ -217,7 +218,7 @@ class Writer:
             except (KbError, OSError):
                 log.exception("a commit listener could not take the undoing of a refused commit")
 
-    def _evaluate(self, deltas: Iterable[Delta]) -> list[Firing]:
+    def _evaluate(self, deltas: Iterable[Delta]) -> list[Delivery]:
         changed = [d for d in deltas if d.added or d.removed]
         if not changed or not len(self.subscriptions):
             return []
@@ -232,13 +233,18 @@ class Writer:
             if (model := self.models.get(name)) is not None
         )
 
-    def current_rows(self, sub: Any) -> set[Row]:
+    def current_rows(self, sub: Any, deadline: Deadline | None = None) -> set[Row]:
+        """The subscription's rows now; past the deadline ``QueryTimeout``, past its row cap
+        ``TooManyRows``."""
         names = self.models.names if ALL_MODELS in sub.models else sub.models
+        limit = sub.budget.max_rows
         found: set[Row] = set()
         for name in names:
             model = self.models.get(name)
             if model is not None:
-                found |= rows(model.closure, sub.query)
+                index = model.closure if deadline is None else TimedIndex(model.closure, deadline)
+                found |= rows(index, sub.query, limit)
+                sub.check_rows(found)
         return found
 
     def functional_properties(self) -> frozenset[Any]:
@@ -269,7 +275,9 @@ class Writer:
                 raise
             finally:
                 self._summarise()
-            self.subscriptions.rebaseline(self.current_rows)
+            endings = self.subscriptions.rebaseline(self.current_rows)
+        for ending in endings:
+            ending.deliver()
 
     def _undo_clear(self, saved: ModelsState, expiries: list[tuple[str, Triple, float]],
                     accepted: list[CommitListener]) -> None:
