@@ -111,6 +111,12 @@ class Store:
         self.endpoint.close()
 
 
+def event_hub(kb: AnyKB, settings: Settings) -> EventHub:
+    """Event subscribers of the service, each held to its query limits."""
+    limits = settings.limits
+    return EventHub(kb, limits.max_subscribers, query_timeout=limits.query_timeout, max_rows=limits.max_rows)
+
+
 def _open_journal(kb: KB, folder: Path, snapshot_records: int) -> Journal:
     journal = Journal(folder)
     found = journal.recover(kb)
@@ -179,7 +185,7 @@ def start_services(settings: Settings, kb: KB | None = None, model: ChatModel | 
         if owns_kb:
             the_kb.close()
         raise
-    hub = EventHub(the_kb, settings.limits.max_subscribers)
+    hub = event_hub(the_kb, settings)
     services = Services(settings=settings, kb=the_kb, hub=hub, dialogues=dialogues, world=world,
                         journal=journal, owns_kb=owns_kb, store=store, owns_model=model is None)
     if journal is not None:
@@ -220,6 +226,6 @@ def _start_reader(settings: Settings, model: ChatModel | None) -> Services:
         kb.close()
         store.close()
         raise
-    hub = EventHub(kb, settings.limits.max_subscribers)
+    hub = event_hub(kb, settings)
     return Services(settings=settings, kb=kb, hub=hub, dialogues=dialogues, world=None, journal=None,
                     owns_kb=True, store=store, owns_model=model is None)
