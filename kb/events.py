@@ -12,7 +12,7 @@ import hashlib
 import json
 import logging
 import time
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -142,7 +142,7 @@ class Subscriptions:
         """Take the current rows as every subscription's baseline (after a clear); returns the
         endings of those that went past their budget."""
         endings: list[Delivery] = []
-        commit = _CommitBudget()
+        commit = SharedBudget()
         for sub in self._in_order():
             try:
                 current = commit.run(sub, run)
@@ -163,7 +163,7 @@ class Subscriptions:
         as the viewer's ``?s ?p ?o`` costs as much as the change, not as the whole KB.
         """
         firings: list[Delivery] = []
-        commit = _CommitBudget()
+        commit = SharedBudget()
         for sub in self._in_order():
             relevant = [d for d in deltas if ALL in sub.models or d.model in sub.models]
             if sub.predicates is not None:
@@ -191,17 +191,15 @@ class Subscriptions:
         return firings
 
     def _in_order(self) -> list[Subscription]:
-        """Unbounded subscriptions (the process's own) first, then the bounded ones: those a
-        commit's budget left for later first, then the cheapest (as last measured) first."""
-        return sorted(self._by_id.values(), key=_cost_order)
+        return in_cost_order(self._by_id.values())
 
     def _end(self, sub: Subscription, error: KbError) -> Ending:
         del self._by_id[sub.id]
         return Ending(sub.id, tuple(sub.on_error), error)
 
 
-class _CommitBudget:
-    """One commit's full evaluations of bounded subscriptions, under one shared deadline: that
+class SharedBudget:
+    """One commit's (or poll's) full evaluations of bounded subscriptions, under one shared deadline: that
     of the first one evaluated. Each stops at the earlier of its own budget and the shared one.
     A subscription stopped by the shared deadline (others spent the commit's budget) is left
     for the next commit, first in line; it is ended once its stopped evaluations add up to its
@@ -232,6 +230,12 @@ class _CommitBudget:
         sub.cost, sub.spent, sub.pending = time.monotonic() - started, 0.0, False
         sub.check_rows(current)
         return current
+
+
+def in_cost_order(subs: Iterable[Subscription]) -> list[Subscription]:
+    """Unbounded subscriptions (the process's own) first, then the bounded ones: those a
+    commit's budget left for later first, then the cheapest (as last measured) first."""
+    return sorted(subs, key=_cost_order)
 
 
 def _cost_order(sub: Subscription) -> tuple[bool, bool, float]:

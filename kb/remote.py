@@ -291,7 +291,7 @@ class RemoteKB(KnowledgeCoreSugar):
         sub_id = event_id(texts, one_shot, names)
         meta = self._queries.meta()  # read before the baseline: a later commit is evaluated again
         self._known(names, meta)
-        baseline = self._events.rows(query, names, meta.models, budget)
+        baseline = self._events.rows(query, names, meta.models, max_rows, Deadline.after(timeout))
         self._events.subscribe(sub_id, query, names, one_shot, callback, baseline, meta.revision, budget,
                                on_error)
         return sub_id

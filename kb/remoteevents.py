@@ -19,7 +19,17 @@ from collections.abc import Callable, Sequence
 from kb.arguments import compiled, render
 from kb.deadline import UNBOUNDED, Budget, Deadline, QueryTimeout
 from kb.errors import KbError
-from kb.events import ALL, Callback, Delivery, Ending, ErrorCallback, Firing, Subscription
+from kb.events import (
+    ALL,
+    Callback,
+    Delivery,
+    Ending,
+    ErrorCallback,
+    Firing,
+    SharedBudget,
+    Subscription,
+    in_cost_order,
+)
 from kb.query import Query, Row, TooManyRows
 from kb.remotequery import Meta, StoreQueries
 from kb.store import DEFAULT_MODEL
@@ -56,17 +66,16 @@ class Poller:
     # --- registration ----------------------------------------------------------------------
 
     def rows(self, query: Query, models: Sequence[str], known: Sequence[str],
-             budget: Budget = UNBOUNDED) -> set[Row]:
+             max_rows: int | None = None, deadline: Deadline | None = None) -> set[Row]:
         """The query's rows over the given models (``all``: every known one) that exist;
-        ``QueryTimeout`` or ``TooManyRows`` past the budget."""
+        ``QueryTimeout`` past the deadline, ``TooManyRows`` past ``max_rows``."""
         names = known if ALL in models else [m for m in models if m in known]
-        deadline = Deadline.after(budget.timeout)
-        limit = None if budget.max_rows is None else budget.max_rows + 1
+        limit = None if max_rows is None else max_rows + 1
         found: set[Row] = set()
         for name in names:
             found |= self._queries.rows(query, self._queries.graphs(name), limit, deadline)
-            if budget.max_rows is not None and len(found) > budget.max_rows:
-                raise TooManyRows(budget.max_rows)
+            if max_rows is not None and len(found) > max_rows:
+                raise TooManyRows(max_rows)
         return found
 
     def subscribe(self, sub_id: str, query: Query, models: Sequence[str], one_shot: bool,
@@ -177,9 +186,14 @@ class Poller:
         with self._lock:
             due = [sub for sub in self._subscriptions.values() if self._seen.get(sub.id) != meta.revision]
         firings: list[Delivery] = []
-        for sub in due:
+        poll = SharedBudget()  # one budget for the bounded subscriptions of this poll, as a commit
+
+        def run(sub: Subscription, deadline: Deadline | None) -> set[Row]:
+            return self.rows(sub.query, sub.models, meta.models, sub.budget.max_rows, deadline)
+
+        for sub in in_cost_order(due):
             try:
-                current = self.rows(sub.query, sub.models, meta.models, sub.budget)
+                current = poll.run(sub, run)
             except (QueryTimeout, TooManyRows) as exc:
                 with self._lock:
                     if self._subscriptions.get(sub.id) is sub:
@@ -187,6 +201,8 @@ class Poller:
                         del self._seen[sub.id]
                         firings.append(Ending(sub.id, tuple(sub.on_error), exc))
                 continue
+            if current is None:
+                continue  # the poll's budget is spent: evaluated at the next poll
             with self._lock:
                 if self._subscriptions.get(sub.id) is not sub:
                     continue  # unsubscribed meanwhile

@@ -17,8 +17,11 @@ from typing import Any
 import pytest
 
 from kb import KB, KbError
-from kb.deadline import QueryTimeout
-from kb.query import TooManyRows
+from kb.arguments import compiled, parse_term, render
+from kb.deadline import Budget, Deadline, QueryTimeout
+from kb.events import Subscription, Subscriptions
+from kb.query import Row, TooManyRows
+from kb.store import Delta
 from tests.kb.test_summary import lock_held_elsewhere
 
 GENEROUS = 30.0
@@ -161,3 +164,64 @@ def test_subscribing_and_committing_from_many_threads_stays_consistent() -> None
             thread.join()
         kb.add([f"thing_{n} isOn shelf_{n}" for n in range(len(subs))])
         assert all(len(sub.rows) == 1 and not sub.errors for sub in subs)
+
+
+# --- the policy of one commit's budget (kb.events.Subscriptions), with evaluations made to order ---
+
+ISON = parse_term("isOn")
+TRIGGER = (parse_term("trigger"), ISON, parse_term("shelf_1"))
+
+
+def _budgeted(subs: Subscriptions, sub_id: str, seconds: float, cost: float) -> Subscriber:
+    sub = Subscriber()
+    subs.add(sub_id, compiled(("trigger isOn ?s", f"?s isOn ?{sub_id}"), None), ["default"], False, sub,
+             set(), Budget(seconds), sub.error, cost=cost)
+    return sub
+
+
+def _commit(subs: Subscriptions, slow: set[str], takes: dict[str, float] | None = None) -> list[Any]:
+    """Evaluate after a change that touches every subscription: those named in ``slow`` never
+    finish (they stop at their deadline), those in ``takes`` answer after so many seconds (or
+    stop at their deadline), the others answer one row at once."""
+    def run(sub: Subscription, deadline: Deadline | None) -> set[Row]:
+        done = time.monotonic() + (takes or {}).get(sub.id, 0.0)
+        while sub.id in slow or time.monotonic() < done:
+            assert deadline is not None
+            deadline.check()
+            time.sleep(0.005)
+        return {(parse_term("shelf_1"), parse_term(f"{sub.id}_place"))}
+
+    deliveries = subs.evaluate([Delta("default", added=[TRIGGER])], run, lambda sub, row: True, render)
+    for delivery in deliveries:
+        delivery.deliver()
+    return deliveries
+
+
+def test_a_commit_gives_the_bounded_subscriptions_one_budget_and_defers_the_rest() -> None:
+    subs = Subscriptions()
+    budget = 0.5
+    hostile = _budgeted(subs, "hostile", budget, cost=0.0)  # looked cheapest: evaluated first
+    late = [_budgeted(subs, f"late{n}", budget, cost=0.1) for n in range(3)]
+    start = time.monotonic()
+    _commit(subs, slow={"hostile"})
+    assert time.monotonic() - start < 3 * budget  # three more budgets if each had its own
+    assert len(hostile.errors) == 1 and isinstance(hostile.errors[0], QueryTimeout)
+    assert all(sub.rows == [] and not sub.errors for sub in late)  # not evaluated, not ended
+    assert "hostile" not in subs and all(f"late{n}" in subs for n in range(3))
+    _commit(subs, slow=set())  # the next commit evaluates them first
+    assert all(len(sub.rows) == 1 and not sub.errors for sub in late)
+
+
+def test_a_subscription_stopped_by_others_spending_the_budget_is_deferred_then_ended() -> None:
+    subs = Subscriptions()
+    budget = 0.6
+    first = _budgeted(subs, "first", budget, cost=0.0)
+    second = _budgeted(subs, "second", budget, cost=0.1)
+    _commit(subs, slow={"second"}, takes={"first": budget / 2})
+    # first answered within the commit's budget; second ran in what was left, was stopped by the
+    # commit's deadline before its own, and waits for the next commit...
+    assert len(first.rows) == 1 and second.errors == [] and "second" in subs
+    _commit(subs, slow={"second"})
+    # ... where it goes first, with its whole budget: past it, it is ended.
+    assert len(second.errors) == 1 and "second" not in subs and second.rows == []
+    assert not first.errors and "first" in subs
