@@ -96,6 +96,11 @@ def holding(lock: threading.RLock, deadline: Deadline | None) -> Iterator[None]:
         lock.release()
 
 
+def timed(index: TripleIndex, deadline: Deadline | None) -> TripleIndex | TimedIndex:
+    """The index, read through ``TimedIndex`` when there is a deadline."""
+    return index if deadline is None else TimedIndex(index, deadline)
+
+
 class TimedIndex:
     """The read paths of a ``TripleIndex`` that the join and the SPARQL store use, checking the
     deadline as they go."""

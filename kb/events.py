@@ -4,6 +4,15 @@ The semantics are knowledge_core's (kb-compat §3.6) without its defects: the ro
 subscription time are the baseline and do not fire; each later change fires exactly once per
 new row (K9), whatever caused it (a write, functional replacement, lifespan expiry); one-shot
 subscriptions are removed after the first evaluation that fires, not the first evaluation (K8).
+
+A subscription may have a ``Budget`` (the service gives every subscriber its query limits): its
+every evaluation then stops past the time budget or the row cap, and the subscription is ended
+with the error, delivered to its ``on_error`` callbacks. A commit evaluates bounded subscriptions
+after the others, cheapest (as last measured) first, under one shared deadline of one budget
+(``SharedBudget``): however many there are, they hold a commit back about one budget. Those the
+commit had no time left for are not ended but evaluated first at the next commit, against the
+rows they had (so their new rows fire late, and a row that came and went in between is missed;
+after a clear, they keep their rows from before it until then).
 """
 
 from __future__ import annotations
@@ -199,9 +208,9 @@ class Subscriptions:
 
 
 class SharedBudget:
-    """One commit's (or poll's) full evaluations of bounded subscriptions, under one shared deadline: that
-    of the first one evaluated. Each stops at the earlier of its own budget and the shared one.
-    A subscription stopped by the shared deadline (others spent the commit's budget) is left
+    """One commit's (or poll's) full evaluations of bounded subscriptions, under one shared
+    deadline: that of the first one evaluated. Each stops at the earlier of its own budget and
+    the shared one. One stopped by the shared deadline (others spent the commit's budget) is left
     for the next commit, first in line; it is ended once its stopped evaluations add up to its
     own budget, as one stopped by its own budget is at once."""
 

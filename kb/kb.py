@@ -33,11 +33,11 @@ from kb.arguments import (
     parse_term,
     render,
 )
-from kb.deadline import Budget, Deadline, TimedIndex, holding
+from kb.deadline import Budget, Deadline, holding, timed
 from kb.errors import KbError, StorageError
 from kb.events import Callback, ErrorCallback, event_id
 from kb.formats import export_format
-from kb.query import Row, TooManyRows, holds, rows
+from kb.query import holds, rows_in
 from kb.rdfio import default_ontology, parse_data, parse_location, serialize
 from kb.sparql import execute, parse_update, to_json
 from kb.store import ALL_MODELS, DEFAULT_MODEL, Model, Models
@@ -153,15 +153,10 @@ class KB(KnowledgeCoreSugar):
         self._expire_due()
         with holding(self._lock, deadline):
             targets = self._read_models(models)
-            indexes = [m.closure if deadline is None else TimedIndex(m.closure, deadline) for m in targets]
+            indexes = [timed(m.closure, deadline) for m in targets]
             if query.ground:
                 return list(texts) if any(holds(index, query) for index in indexes) else []
-            found: set[Row] = set()
-            for index in indexes:
-                found |= rows(index, query, max_rows)
-                if max_rows is not None and len(found) > max_rows:
-                    raise TooManyRows(max_rows)
-            return render(query, found)
+            return render(query, rows_in(indexes, query, max_rows))
 
     def exist(self, patterns: str | Sequence[str], models: Models_ = None) -> bool:
         texts = tuple(as_list(patterns))
@@ -362,12 +357,8 @@ class KB(KnowledgeCoreSugar):
         deadline = Deadline.after(timeout)
         with holding(self._lock, deadline):
             started = time.monotonic()
-            baseline: set[Row] = set()
-            for model in self._read_models(names):
-                index = model.closure if deadline is None else TimedIndex(model.closure, deadline)
-                baseline |= rows(index, query, max_rows)
-                if max_rows is not None and len(baseline) > max_rows:
-                    raise TooManyRows(max_rows)
+            indexes = [timed(m.closure, deadline) for m in self._read_models(names)]
+            baseline = rows_in(indexes, query, max_rows)
             self._writer.subscriptions.add(sub_id, query, names, one_shot, callback, baseline, budget,
                                            on_error, cost=time.monotonic() - started)
         return sub_id

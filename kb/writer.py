@@ -18,11 +18,11 @@ from typing import Any
 from rdflib import URIRef
 from rdflib.namespace import OWL, RDF
 
-from kb.deadline import Deadline, TimedIndex
+from kb.deadline import Deadline, timed
 from kb.errors import KbError, StorageFull
 from kb.events import Delivery, Firing, Subscriptions
 from kb.lifespan import Expiries
-from kb.query import Query, Row, holds_row, rows
+from kb.query import Query, Row, holds_row, rows_in
 from kb.status import StatusCell
 from kb.store import ALL_MODELS, Delta, Models, ModelsState
 from kb.summary import Summary, summarise
@@ -237,15 +237,8 @@ class Writer:
         """The subscription's rows now; past the deadline ``QueryTimeout``, past its row cap
         ``TooManyRows``."""
         names = self.models.names if ALL_MODELS in sub.models else sub.models
-        limit = sub.budget.max_rows
-        found: set[Row] = set()
-        for name in names:
-            model = self.models.get(name)
-            if model is not None:
-                index = model.closure if deadline is None else TimedIndex(model.closure, deadline)
-                found |= rows(index, sub.query, limit)
-                sub.check_rows(found)
-        return found
+        models = [model for name in names if (model := self.models.get(name)) is not None]
+        return rows_in((timed(model.closure, deadline) for model in models), sub.query, sub.budget.max_rows)
 
     def functional_properties(self) -> frozenset[Any]:
         """Declared and inferred functional properties of the default model (kb-compat §3.5)."""
