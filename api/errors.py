@@ -134,6 +134,8 @@ def over_budget(exc: QueryTimeout | TooManyRows) -> ApiError:
 async def _over_budget(request: Request, exc: Exception) -> JSONResponse:
     assert isinstance(exc, QueryTimeout | TooManyRows)
     return await _api_error(request, over_budget(exc))
+
+
 async def _storage_full(request: Request, exc: Exception) -> JSONResponse:
     return error_response(507, "storage_full", str(exc))
 

@@ -122,6 +122,7 @@ class _Entry:
         self.one_shot = one_shot
         self.listeners: tuple[Listener, ...] = ()  # replaced, never mutated: read without a lock
         self.alive = True
+        self.failure: dict[str, Any] | None = None  # why the KB ended it, if it did
 
     def deliver(self, rows: list[Any]) -> None:
         if self.one_shot:
@@ -136,6 +137,7 @@ class _Entry:
             body = error_body(failure.status, failure.code, failure.message, failure.details)
         else:
             body = error_body(400, "kb_error", str(error))
+        self.failure = body  # before reading the listeners: one joining now sees one or the other
         for listener in self.listeners:
             listener.fail(body)
 
@@ -179,6 +181,8 @@ class EventHub:
                 self._entries[key] = entry
             listener = Listener(entry.sub_id, loop, self._max_queued)
             entry.listeners = (*entry.listeners, listener)
+            if entry.failure is not None:  # ended by a commit while it was being opened
+                listener.fail(entry.failure)
             self._owners[id(listener)] = entry
             self._count += 1
             return listener
