@@ -5,11 +5,13 @@ from __future__ import annotations
 import threading
 from collections.abc import Iterator
 from contextlib import contextmanager
+from pathlib import Path
 
 import pytest
 
 from kb import KB
 from kb.errors import StorageError
+from kb.journal import Journal
 from kb.writer import Commit
 
 GENEROUS = 30.0
@@ -66,3 +68,25 @@ def test_a_refused_commit_leaves_the_summary_as_it_was() -> None:
         with pytest.raises(StorageError):
             kb.clear()
         assert kb.summary() == before
+
+
+@pytest.mark.parametrize("last", ["write", "clear", "snapshot"])
+def test_a_recovered_kb_summarises_what_it_recovered(tmp_path: Path, last: str) -> None:
+    with KB() as kb:
+        journal = Journal(tmp_path)
+        journal.recover(kb)
+        kb.add(["cup_1 isOn table_1"])
+        kb.add(["cup_1 rdf:type Cup"], models=["robot_b"])
+        if last == "clear":
+            kb.clear()
+        if last == "snapshot":
+            journal.snapshot(kb)
+        expected = kb.summary()
+        journal.close()
+    with KB() as again:
+        journal = Journal(tmp_path)
+        journal.recover(again)
+        journal.close()
+        assert again.summary().revision == again.revision == expected.revision
+        assert (again.summary().size, again.summary().asserted) == (again.size(), again.size(inferred=False))
+        assert again.summary().asserted == expected.asserted
