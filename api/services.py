@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import asyncio
 import logging
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -26,6 +27,7 @@ from kb.sparqlstore.endpoint import SparqlEndpoint
 from kb.sparqlstore.mirror import SparqlMirror
 from kb.sparqlstore.remote import RemoteKB
 from kb.status import Components, ComponentStatus
+from kb.writer import CommitListener
 from scene.textfile import load_scene
 from scene.world import World
 
@@ -123,6 +125,15 @@ class Store:
         self.endpoint.close()
 
 
+def event_hub(kb: KnowledgeBase, settings: Settings,
+              commits: Callable[[CommitListener], Callable[[], None]] | None = None) -> EventHub:
+    """Event subscribers of the service, each held to its query limits; ``commits`` follows the
+    writer's commits (None on a reader, which has no commit feed)."""
+    limits = settings.limits
+    return EventHub(kb, limits.max_subscribers, query_timeout=limits.query_timeout, max_rows=limits.max_rows,
+                    commits=commits)
+
+
 def _open_journal(kb: KB, folder: Path, snapshot_records: int) -> Journal:
     journal = Journal(folder)
     found = journal.recover(kb)
@@ -187,7 +198,7 @@ def start_services(settings: Settings, kb: KB | None = None, model: ChatModel | 
         if owns_kb:
             the_kb.close()
         raise
-    hub = EventHub(the_kb, settings.limits.max_subscribers, commits=the_kb.on_commit)
+    hub = event_hub(the_kb, settings, commits=the_kb.on_commit)
     services = Services(settings=settings, kb=the_kb, hub=hub, dialogues=dialogues, world=world,
                         journal=journal, owns_kb=owns_kb, store=store, owns_model=model is None,
                         local_kb=the_kb)
@@ -229,6 +240,6 @@ def _start_reader(settings: Settings, model: ChatModel | None) -> Services:
         kb.close()
         store.close()
         raise
-    hub = EventHub(kb, settings.limits.max_subscribers)
+    hub = event_hub(kb, settings)
     return Services(settings=settings, kb=kb, hub=hub, dialogues=dialogues, world=None, journal=None,
                     owns_kb=True, store=store, owns_model=model is None)
