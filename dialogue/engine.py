@@ -13,6 +13,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 
 from dialogue import intents as I
+from dialogue.earlyack import ask
 from dialogue.grounding import Entity, Grounder, Snapshot
 from dialogue.history import Utterance
 from dialogue.lexicon import Lexicon, LexiconCache
@@ -215,7 +216,7 @@ class DialogueEngine:
         errors: list[str] = []
         for attempt in range(2):
             try:
-                result = await self.model.chat(request, max(0.01, deadline - loop.time()))
+                result = await ask(self.model, request, max(0.01, deadline - loop.time()))
             except ModelError as exc:
                 return self.fallback(turn.text, turn.speaker, turn.locale, f"{self.model.name}: {exc}")
             try:
