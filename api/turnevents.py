@@ -37,7 +37,10 @@ T = TypeVar("T")
 
 
 def wants_events(accept: str | None) -> bool:
-    """True when the client prefers ``text/event-stream`` to JSON."""
+    """True when the client names ``text/event-stream`` and prefers it to JSON (``text/*`` is not
+    asking for a stream: such a client has always had JSON)."""
+    if not accept or EVENT_STREAM not in accept.lower():
+        return False
     try:
         return negotiate(accept, _OFFERS) == EVENT_STREAM
     except ApiError:  # accepts neither: the route answers JSON, as it always has
