@@ -91,7 +91,8 @@ class LlamaCppModel:
     """A GGUF model run by llama.cpp in a worker process. `max_tokens` bounds the answer (JSON answers
     need ~40-120). `worker_setup` is a picklable callable run first in every worker process (the
     tests install a fake llama_cpp with it). `prefix_cache` and `constrained` are on in service; the
-    benchmark turns them off for its baselines. It streams (`chat_stream`, dialogue.llm.stream)."""
+    benchmark turns them off for its baselines. `chat_template` (Jinja) is for a GGUF that has none
+    (a base model). It streams (`chat_stream`, dialogue.llm.stream)."""
 
     def __init__(
         self,
@@ -106,6 +107,7 @@ class LlamaCppModel:
         hang_grace: float = 30.0,
         prefix_cache: bool = True,
         constrained: bool = True,
+        chat_template: str | None = None,
     ) -> None:
         self.path = Path(path)
         if self.path.suffix != ".gguf":
@@ -120,7 +122,7 @@ class LlamaCppModel:
         self._label = label or self.path.name
         runner = partial(LlamaRunner, str(self.path), n_ctx=n_ctx, n_threads=n_threads,
                          max_tokens=max_tokens, temperature=temperature, prefix_cache=prefix_cache,
-                         constrained=constrained)  # fmt: skip
+                         constrained=constrained, chat_template=chat_template)  # fmt: skip
         self._worker = ProcessWorker(runner, setup=worker_setup, name="llama.cpp worker")
         self._executor = ThreadPoolExecutor(max_workers=1, thread_name_prefix="llamacpp")
         self._ids = itertools.count(1)

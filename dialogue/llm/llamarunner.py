@@ -38,6 +38,7 @@ class LlamaRunner:
         temperature: float,
         prefix_cache: bool = True,
         constrained: bool = True,
+        chat_template: str | None = None,
     ) -> None:
         self.path = Path(path)
         self.n_ctx = n_ctx
@@ -46,6 +47,8 @@ class LlamaRunner:
         self.temperature = temperature
         self.prefix_cache = prefix_cache
         self.constrained = constrained
+        #: A Jinja chat template for a GGUF that carries none (a base model); None: the file's own.
+        self.chat_template = chat_template
         self._llama: Any = None
         self._formatter: Any = None
         self._template_error: type[Exception] = ValueError
@@ -83,7 +86,7 @@ class LlamaRunner:
             )
         except (ValueError, RuntimeError, OSError) as exc:
             raise ModelError(f"llama.cpp cannot load {self.path}: {exc}") from None
-        template = llama.metadata.get("tokenizer.chat_template")
+        template = self.chat_template or llama.metadata.get("tokenizer.chat_template")
         if not template:
             llama.close()
             raise ModelError(f"{self.path.name} has no chat template in its metadata (not a chat model?)")
