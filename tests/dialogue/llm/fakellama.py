@@ -150,6 +150,7 @@ def install(folder_name: str) -> None:
     class FakeFormatter:
         def __init__(self, **kwargs: Any) -> None:
             self.kwargs = kwargs
+            _record(folder, "formatter", template=kwargs["template"])
 
         def __call__(self, *, messages: list[dict[str, str]]) -> Any:
             prompt = " ".join(m["content"] for m in messages)

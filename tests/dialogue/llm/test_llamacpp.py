@@ -420,3 +420,13 @@ def test_free_decoding_baseline_uses_no_grammar(gguf: Path, fake: FakeControl) -
     finally:
         free.close()
     assert fake.events("grammar") == [] and fake.events("completion")[0]["grammar"] is False
+
+
+def test_a_chat_template_can_be_given_for_a_gguf_without_one(gguf: Path, fake: FakeControl) -> None:
+    fake.set(metadata_template=None)
+    base = fake_model(gguf, fake, chat_template="{% for m in messages %}{{ m.content }}{% endfor %}")
+    try:
+        assert asyncio.run(base.chat(request(), 30)).content == GOOD
+    finally:
+        base.close()
+    assert fake.events("formatter")[0]["template"] == "{% for m in messages %}{{ m.content }}{% endfor %}"
