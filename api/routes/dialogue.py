@@ -86,7 +86,7 @@ def _response(result: TurnResult) -> InteractionResponse:
 
 
 def _body(result: TurnResult) -> dict[str, Any]:
-    return _response(result).model_dump(mode="json")
+    return _response(result).model_dump(mode="json", by_alias=True)  # as FastAPI serialises it
 
 
 @router.post("/{dialogue_id}/interactions", dependencies=[WriteAccess], response_model=InteractionResponse,

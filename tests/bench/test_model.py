@@ -42,14 +42,15 @@ def test_repairs_and_fallbacks_are_counted_and_reported() -> None:
     assert [len(t.requests) for t in turns] == [1, 2] and [t.fell_back for t in turns] == [False, True]
     assert all(t.first_word is None and t.ack is None for t in turns)
     report = bench.Report(threads=1)
-    report.add("scripted", bench.CONFIGS[0], turns)
+    report.add("scripted", bench.CONFIGS["service"], turns)
     table = report.table((1.0, 2.0, 3.0), (1.5, 2.0, 3.0))
     assert "load average (1/5/15 min) before 1.00 2.00 3.00, after 1.50 2.00 3.00" in table
     row = table.splitlines()[-1]
-    assert row.startswith("| scripted | service: prefix cached, grammar |") and "| 1/2 | 1 |" in row
+    assert row.startswith("| scripted | service: prefix cached, grammar |") and "| 1/2 | 1 | — | — |" in row
 
 
-@pytest.mark.parametrize("argv", [["--models", "gpt-9"], ["--turns", "0"], ["--threads", "0"], ["--models", ","]])
+@pytest.mark.parametrize("argv", [["--models", "gpt-9"], ["--turns", "0"], ["--threads", "0"], ["--models", ","],
+                                  ["--runs", "service,fast"]])
 def test_bad_options_are_refused(argv: list[str]) -> None:
     with pytest.raises(SystemExit) as exit_:
         bench.main(argv)
