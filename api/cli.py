@@ -28,6 +28,8 @@ from kb.errors import DataCorrupt
 from scene.world import load_any_scene
 
 BENCHES = ("kb", "scene", "dialogue", "http", "load", "store", "backend")
+#: Not in `all`: it needs the optional local model (the `local` extra) and takes minutes.
+OPTIONAL_BENCHES = ("model",)
 # tests/api/test_cli.py runs every example below, so they cannot drift from what works.
 KITCHEN = "tests/dialogue/eval/scenes/kitchen.txt"
 EXAMPLES = f"""examples (file paths are those of a clone of the repository):
@@ -131,8 +133,9 @@ def _parser() -> argparse.ArgumentParser:
                       "repair (service stopped): keep every intact record, the damaged files beside them")
     data.add_argument("dir", type=Path, help="the data folder")
 
-    bench = sub.add_parser("bench", help="run benchmarks: " + ", ".join(BENCHES) + " or all")
-    bench.add_argument("which", nargs="?", default="all", choices=[*BENCHES, "all"])
+    bench = sub.add_parser("bench", help="run benchmarks: " + ", ".join(BENCHES) + ", all (those), or "
+                                         "model (the local LLM path; the local extra)")
+    bench.add_argument("which", nargs="?", default="all", choices=[*BENCHES, *OPTIONAL_BENCHES, "all"])
     bench.add_argument("args", nargs=argparse.REMAINDER, help="passed to the benchmark")
     return parser
 

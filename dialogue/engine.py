@@ -17,6 +17,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass, replace
 
 from dialogue import intents as I
+from dialogue.earlyack import ask
 from dialogue.history import Utterance
 from dialogue.llm.base import ChatMessage, ChatModel, ChatRequest, ChatResult, ModelError, TurnContext
 from dialogue.llm.rules import RulesModel
@@ -215,7 +216,7 @@ class DialogueEngine:
         errors: list[str] = []
         for attempt in range(2):
             try:
-                result = await model.chat(request, max(0.01, deadline - loop.time()))
+                result = await ask(model, request, max(0.01, deadline - loop.time()))
             except ModelError as exc:
                 return self.fallback(turn.text, turn.speaker, turn.locale, f"{model.name}: {exc}")
             try:
