@@ -12,6 +12,9 @@ import threading
 from collections import defaultdict
 from collections.abc import Sequence
 from dataclasses import dataclass
+from functools import lru_cache
+
+from lemminflect import getLemma
 
 from dialogue.grounding import Entity, Snapshot
 
@@ -49,14 +52,17 @@ def tokens(text: str) -> list[str]:
     return _WORD.findall(text)
 
 
+#: Function words ending in -s that a noun lemmatiser would "singularise" ("was" -> "wa").
+_NOT_PLURAL = frozenset("is was has does this his us yes its as thus plus whereas always sometimes".split())
+
+
+@lru_cache(maxsize=65536)
 def singular(word: str) -> str:
-    if len(word) > 3 and word.endswith("ies"):
-        return word[:-3] + "y"
-    if len(word) > 3 and word.endswith(("ches", "shes", "xes", "sses")):
-        return word[:-2]
-    if len(word) > 2 and word.endswith("s") and not word.endswith("ss"):
-        return word[:-1]
-    return word
+    """The noun lemma of a word ("knives" -> "knife", "buses" -> "bus", "glasses" -> "glass")."""
+    if len(word) < 3 or not word.endswith("s") or word in _NOT_PLURAL or "'" in word:
+        return word
+    lemmas = getLemma(word, "NOUN", lemmatize_oov=True)
+    return lemmas[0] if lemmas else word
 
 
 def norm(words: Sequence[str]) -> tuple[str, ...]:

@@ -73,6 +73,10 @@ STOP_FILLER = word_set(
     "right there your whatever am is enough shut up"
 )
 LOCATIVE = ("on top of", "onto", "on", "into", "inside", "in", "at", "to", "under", "next to", "near")
+COLOURS = word_set(
+    "red green blue yellow orange purple violet pink brown black white grey gray silver gold golden beige "
+    "navy turquoise cyan magenta maroon cream tan teal"
+)
 WH = word_set("what where who which how why when whose whom")
 
 
