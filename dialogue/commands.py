@@ -35,6 +35,7 @@ from dialogue.words import (
     split_at,
     starts,
     strip_politeness,
+    strip_vocative,
     word_set,
 )  # fmt: skip
 
@@ -66,7 +67,7 @@ class _Cmd(Protocol):
 
 
 def parse(text: str, robot_name: str = "") -> Parse:
-    words = strip_politeness(normalise(text), robot_name)
+    words = strip_vocative(strip_politeness(normalise(text), robot_name), robot_name)
     if not words:
         return Parse("unknown", words=())
     words[0] = base_verb(words[0])  # "(would you mind) picking up the cup"
@@ -127,7 +128,7 @@ def _command(original: str, words: list[str]) -> Parse:
         return _command(original, list(rest))
     if verb == "let" and "know" in rest:  # "let Tom know that..." is "tell Tom that..."
         return _say(original, "tell", tuple(x for x in rest if x != "know"), cmd)
-    if verb == "approach" and rest:
+    if verb in {"approach", "enter"} and rest:
         return cmd(I.MOVE_TO, goal=rest)
     if w[:2] in {("look", "at"), ("turn", "to"), ("turn", "towards")} or verb == "face":
         return cmd(I.ENGAGE_WITH, recipient=rest[1:] if verb != "face" else rest)

@@ -36,7 +36,9 @@ _QUALIFIERS = word_set(
     "smallest large larger largest little other first second third last middle top bottom hand down up "
     "upper lower main"
 )
-_SKIP = DETERMINERS | word_set("please and or either")
+_SKIP = (DETERMINERS - _BOUNDARY) | word_set("please either is are was were be being it")
+#: Coordinated phrases name several things: never one by its head ("the cereals and the milk").
+_COORDINATION = word_set("and or")
 
 
 @dataclass(frozen=True)
@@ -51,7 +53,7 @@ def _split(words: Sequence[str]) -> _Phrase:
     core: list[str] = []
     i = 0
     while i < len(words) and (words[i] not in _BOUNDARY or not core):
-        if words[i] not in _BOUNDARY:
+        if words[i] not in _BOUNDARY and words[i] not in DETERMINERS:
             core.append(words[i])
         i += 1
     mods: list[tuple[str, tuple[str, ...]]] = []
@@ -89,6 +91,8 @@ def _named(lexicon: Lexicon, np: Sequence[str]) -> set[str]:
 
 def resolve_head(lexicon: Lexicon, words: Sequence[str], kinds: Collection[Kind]) -> list[Entity]:
     """Entities of `kinds` the phrase's head noun names that no modifier contradicts, best first."""
+    if _COORDINATION & set(words):
+        return []
     phrase = _split(words)
     if not phrase.core:
         return []

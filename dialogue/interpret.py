@@ -15,6 +15,7 @@ from dialogue import answers
 from dialogue import intents as I
 from dialogue.clarify import question as clarifying_question
 from dialogue.commands import LOCATIVE, ME, Parse, Words, parse
+from dialogue.compound import Part, conjuncts
 from dialogue.grounding import Entity, Kind
 from dialogue.history import Utterance
 from dialogue.lexicon import Lexicon, tokens
@@ -55,6 +56,18 @@ class Outcome:
     #: For a follow-up turn: the role whose phrase was ambiguous (or missing), and that phrase.
     open_role: str | None = None
     open_phrase: Words = ()
+    #: The intents that follow this one in a compound request, in order.
+    more: tuple[Outcome, ...] = ()
+
+    def steps(self) -> tuple[Outcome, ...]:
+        """This outcome and the ones that follow it."""
+        return (self, *self.more)
+
+
+def _unprefixed(reply: str) -> str:
+    """ "OK, I will pick up the plate." -> "I will pick up the plate." """
+    rest = reply.removeprefix("OK, ").removeprefix("OK: ")
+    return rest[:1].upper() + rest[1:] if rest == reply else rest
 
 
 @dataclass(frozen=True)
@@ -75,6 +88,39 @@ class Interpreter:
         self.robot_name = robot_name
 
     def interpret(self, text: str) -> Outcome:
+        parts = conjuncts(text)
+        if parts:
+            combined = self._compound(parts)
+            if combined is not None:
+                return combined
+        return self._single(text)
+
+    def _compound(self, parts: Sequence[Part]) -> Outcome | None:
+        """ "go to the kitchen and take the plate": every part read in order, each with the parts
+        before it as context for its pronouns ("take the book and put it in the oven")."""
+        done: list[Outcome] = []
+        cannot: list[str] = []
+        for n, part in enumerate(parts):
+            context = tuple(Utterance(self.speaker, p.text) for p in parts[:n])
+            reader = Interpreter(self.lexicon, self.speaker, (*self.history, *context), self.robot_name)
+            outcome = reader._single(part.text)
+            if outcome.intent is not None:
+                done.append(outcome)
+            elif outcome.clarify:
+                return outcome  # ask about this part first: nothing is done until it is clear
+            elif n == 0 and part.verb is None and outcome.understood:
+                continue  # a preamble: "thanks, now put it on the shelf"
+            elif part.no_intent:
+                cannot.append(part.text)
+            else:  # a part that fails says why; one not understood makes the whole not understood
+                return outcome if outcome.understood else None
+        if not done:
+            return None
+        acks = [done[0].reply] + [f"Then {_unprefixed(o.reply)}" for o in done[1:]]
+        acks += [f"I can't {c} myself." for c in cannot]
+        return replace(done[0], reply=" ".join(acks), more=tuple(done[1:]))
+
+    def _single(self, text: str) -> Outcome:
         p = parse(text, self.robot_name)
         not_understood = Outcome("Sorry, I did not understand that.", understood=False)
         outcome = (self._follow_up(p, text) or not_understood) if p.act == "unknown" else self.act(p)

@@ -94,7 +94,15 @@ class Parse:
 
 #: Every verb the grammar knows, to read "would you mind picking up..." as "pick up...".
 VERBS = GRAB | BRING | PLACE | MOVE | GUIDE | SAY | START | STOP | MOTIONS
-VERBS |= word_set("greet welcome approach")
+VERBS |= word_set("greet welcome approach enter")
+#: Verbs that start a command (a part of a compound request starts with one of these).
+COMMAND_VERBS = VERBS | ACTIVITY_VERBS
+#: Actions the robot has no intent for: a part of a compound request with one of these is kept in
+#: the reply ("I can't find the newspaper myself"), never silently dropped.
+NO_INTENT_VERBS = word_set(
+    "find search look open close turn switch remove control check wait stay watch heat boil pour fill "
+    "empty plug unplug lock unlock answer call fix feed throw follow serve"
+)
 
 
 def base_verb(word: str) -> str:
@@ -153,6 +161,29 @@ def strip_politeness(words: list[str], robot_name: str = "") -> list[str]:
                 words = words[: -len(s)]
                 changed = True
                 break
+    return words
+
+
+#: Words that never address someone by name at the start of an utterance.
+_NOT_VOCATIVE = word_set(
+    "i you we he she it they there this that these those do does did is are was can could would will "
+    "shall should may might must please let what where who which how why when whose the a an my your "
+    "his her our their no not yes if and or but so then me us him them"
+)
+#: Filler words at the start of an utterance ("listen, go to the kitchen").
+_LEAD_FILLERS = word_set("listen look hey see")
+
+
+def strip_vocative(words: list[str], robot_name: str = "") -> list[str]:
+    """ "john can you go to the bathroom", "michael go to the kitchen": the addressee's name (one
+    word before a request) is not part of the request."""
+    while len(words) > 2 and words[0] in _LEAD_FILLERS and base_verb(words[1]) in COMMAND_VERBS:
+        words = words[1:]
+    if len(words) < 3 or words[0] in _NOT_VOCATIVE or words[0] in COMMAND_VERBS or not words[0].isalpha():
+        return words
+    polite = any(starts(words[1:], p) and p[-1:] == ("you",) for p in POLITE_PREFIXES)
+    if polite or base_verb(words[1]) in COMMAND_VERBS:
+        return strip_politeness(words[1:], robot_name)
     return words
 
 
