@@ -58,6 +58,7 @@ _PARTICLES = word_set(
     "back over there straight right down up ahead across along out around round on and stand wait"
 )
 _WANT_VERBS = word_set("want wants need needs")
+_SUBJECTS = word_set("you i we they he she it robots people anyone anybody everyone plants")
 
 
 class _Cmd(Protocol):
@@ -87,7 +88,7 @@ def parse(text: str, robot_name: str = "") -> Parse:
     welcoming = words[0] == "welcome" and words[1:] and words[1] not in {"back", "home", "to", "everyone"}
     for g in () if welcoming else sorted(GREETINGS, key=len, reverse=True):
         if starts(words, g):
-            rest = strip_politeness(words[len(g) :], robot_name)
+            rest = strip_vocative(strip_politeness(words[len(g) :], robot_name), robot_name)
             if tuple(rest) in SOCIAL:
                 return Parse("greeting", words=tuple(words))
             # "Good morning Maria" is still a greeting; "hi, grab the cup" is a request.
@@ -210,6 +211,8 @@ def _command(original: str, words: list[str]) -> Parse:
         elif obj[-1:] == ("up",):
             obj = obj[:-1]
         return cmd(I.GRAB_OBJECT, object=obj)
+    if verb in {"do", "does", "did"} and rest[:1] and rest[0] in _SUBJECTS:
+        return Parse("unknown", words=w)  # "do you like music": a yes/no question, not an activity
     if verb in START or verb in ACTIVITY_VERBS:
         activity = rest if verb in START else w
         if verb in START and rest[:1] and rest[0] in {"to"}:
