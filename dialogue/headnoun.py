@@ -14,7 +14,8 @@ from collections.abc import Collection, Sequence
 from dataclasses import dataclass
 
 from dialogue.grounding import Entity, Kind
-from dialogue.lexicon import DETERMINERS, Lexicon, norm, tokens
+from dialogue.lexicon import DETERMINERS, Lexicon, norm, phrase, tokens
+from dialogue.synonyms import synonyms
 from dialogue.words import COLOURS, word_set
 
 #: Words that end the core noun phrase and start a modifier ("the box *on* the table", "the coke
@@ -80,12 +81,16 @@ def _colours(entity: Entity) -> frozenset[str]:
 
 
 def _named(lexicon: Lexicon, np: Sequence[str]) -> set[str]:
-    """Entities whose name ends the noun phrase (its head), whatever their kind."""
+    """Entities whose name ends the noun phrase (its head), whatever their kind; failing that, those
+    a more general word for the head names ("the paperback": a book)."""
     found: set[str] = set()
     for start in range(len(np)):
         for name in lexicon.names_at(np, start):
             if start + len(name.words) == len(np):
                 found.add(name.entity)
+    if not found and np:
+        for general in synonyms(phrase).kind_of(phrase(np[-1])):
+            found |= _named(lexicon, general)
     return found
 
 

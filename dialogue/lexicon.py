@@ -17,6 +17,7 @@ from functools import lru_cache
 from lemminflect import getLemma
 
 from dialogue.grounding import Entity, Snapshot
+from dialogue.synonyms import synonyms
 
 _WORD = re.compile(r"[a-z0-9]+(?:'[a-z]+)?")
 
@@ -67,6 +68,11 @@ def singular(word: str) -> str:
 
 def norm(words: Sequence[str]) -> tuple[str, ...]:
     return tuple(singular(w) for w in words)
+
+
+def phrase(text: str) -> tuple[str, ...]:
+    """A text as normalised words (the form names are indexed in)."""
+    return norm(tokens(text))
 
 
 @dataclass(frozen=True)
@@ -161,6 +167,16 @@ def _names(entity: Entity) -> list[Name]:
         words = tokens(text)
         if len(words) > 1:
             add(words[-1], "head")
+    # Other ways of saying a name or its ending ("cell phone" for the "mobile phone", "the fridge"
+    # for the "kitchen refrigerator").
+    syn = synonyms(phrase)
+    for text in (*entity.labels, *entity.class_names):
+        words = phrase(text)
+        for k in range(len(words)):
+            for other in syn.of(words[k:]):
+                add(" ".join((*words[:k], *other)), "synonym")
+                if k:
+                    add(" ".join(other), "head")
     return out
 
 
@@ -172,6 +188,8 @@ def _entry(entity: Entity) -> tuple[list[Name], frozenset[str], frozenset[str]]:
         words.update(norm(tokens(entity.colour)))
     for class_name in entity.class_names:
         words.update(norm(tokens(class_name)))
+    syn = synonyms(phrase)
+    words.update(o[0] for w in tuple(words) for o in syn.of((w,)) if len(o) == 1)
     return _names(entity), frozenset(words), label_words
 
 
