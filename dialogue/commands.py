@@ -16,7 +16,9 @@ from dialogue.words import (
     GRAB,
     GREETINGS,
     GUIDE,
+    INTENSIFIERS,
     LOCATIVE,
+    NEEDS,
     ME,
     MOTIONS,
     MOVE,
@@ -55,7 +57,8 @@ _GOAL_MARKERS = (
 )  # fmt: skip
 #: Words between a motion verb and its goal: "go back to", "head over to", "go down to the cellar".
 _PARTICLES = word_set(
-    "back over there straight right down up ahead across along out around round on and stand wait"
+    "back over there straight right down up ahead across along out around round on and stand wait close "
+    "closer quickly slowly carefully quietly safely directly"
 )
 _WANT_VERBS = word_set("want wants need needs")
 _SUBJECTS = word_set("you i we they he she it robots people anyone anybody everyone plants")
@@ -115,6 +118,9 @@ def _command(original: str, words: list[str]) -> Parse:
     def cmd(intent: str, text: str | None = None, double: bool = False, **slots: Words) -> Parse:
         return Parse("command", intent, dict(slots), text=text, words=w, double_object=double)
 
+    need = _need(w)
+    if need is not None:  # "I'm parched": something to drink
+        return cmd(I.BRING_OBJECT, object=(need,), recipient=("me",))
     going = _wants_to_go(w)
     if going is not None:  # "Ellen needs to get to the utility room": take her there
         return cmd(I.GUIDE, recipient=going[0], goal=going[1])
@@ -220,6 +226,14 @@ def _command(original: str, words: list[str]) -> Parse:
         name = "_".join(x for x in activity if x not in {"the", "a", "an", "some", "with", "me", "us", "of"})
         return cmd(I.START_ACTIVITY, text=name or None)
     return Parse("unknown", words=w)
+
+
+def _need(w: Words) -> str | None:
+    """ "I'm absolutely parched", "we are starving": the class of what would meet the need."""
+    if w[:2] not in {("i", "am"), ("we", "are")}:
+        return None
+    rest = [x for x in w[2:] if x not in INTENSIFIERS]
+    return NEEDS.get(rest[0]) if len(rest) == 1 else None
 
 
 def _wants_to_go(w: Words) -> tuple[Words, Words] | None:

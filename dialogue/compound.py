@@ -30,7 +30,7 @@ _OBJECT_START = word_set("the a an my your his her this that these those it them
 #: Words after which a verb continues the same command ("you take", "to take", "go get").
 _NO_CUT_AFTER = word_set(
     "to you i we and then please can could would will go come let just also should must not don't never "
-    "us me robot or but if when while before after so and"
+    "us me robot or but if when while before after so and the a an my your his her this that some"
 ) | COMMAND_VERBS
 
 

@@ -30,7 +30,7 @@ from dialogue.resolution import (
     is_pronoun,
     resolve,
 )  # fmt: skip
-from dialogue.words import word_set
+from dialogue.words import cleaned, word_set
 
 _ONE = frozenset({"one", "ones"})
 #: Punctuation, dashes, and (for unpunctuated speech) a polite request starting mid-utterance.
@@ -64,6 +64,22 @@ class Outcome:
         return (self, *self.more)
 
 
+def _coordinated(words: Words) -> list[Words]:
+    """ "the cereals and the milk" -> ["the cereals", "the milk"]; [] when there is no "and"."""
+    if "and" not in words:
+        return []
+    out: list[Words] = []
+    current: list[str] = []
+    for w in words:
+        if w == "and":
+            out.append(tuple(current))
+            current = []
+        else:
+            current.append(w)
+    out.append(tuple(current))
+    return out if all(content_words(t) for t in out) else []
+
+
 def _unprefixed(reply: str) -> str:
     """ "OK, I will pick up the plate." -> "I will pick up the plate." """
     rest = reply.removeprefix("OK, ").removeprefix("OK: ")
@@ -88,6 +104,7 @@ class Interpreter:
         self.robot_name = robot_name
 
     def interpret(self, text: str) -> Outcome:
+        text = cleaned(text)
         parts = conjuncts(text)
         if parts:
             combined = self._compound(parts)
@@ -201,6 +218,18 @@ class Interpreter:
 
     # -- commands --------------------------------------------------------------------------------
     def _command(self, p: Parse, overrides: dict[str, Words]) -> Outcome:
+        whole = self._one_command(p, overrides)
+        things = _coordinated(p.slots.get("object", ())) if "object" not in overrides else []
+        if whole.intent is not None or whole.clarify or len(things) < 2:
+            return whole
+        # "bring me the cereals and the milk": one intent per thing, in order.
+        each = [self._one_command(p, {**overrides, "object": t}) for t in things]
+        if any(o.intent is None for o in each):
+            return next(o for o in each if o.intent is None)
+        acks = [each[0].reply] + [f"Then {_unprefixed(o.reply)}" for o in each[1:]]
+        return replace(each[0], reply=" ".join(acks), more=tuple(each[1:]))
+
+    def _one_command(self, p: Parse, overrides: dict[str, Words]) -> Outcome:
         intent = p.intent or ""
         slots = {**p.slots, **overrides}
         if p.double_object and "rest" in slots:

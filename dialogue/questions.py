@@ -146,6 +146,10 @@ def _owned_thing(w: Words) -> Words:
 
 def _where(w: Words) -> Parse:
     rest = w[1:]
+    if rest[-2:] in {("got", "to"), ("get", "to"), ("gone", "to")}:  # "where's my cup got to"
+        rest = rest[:-2]
+        if rest[:1] in {("did",), ("has",), ("have",)}:
+            rest = ("is", *rest[1:])
     if rest[-1:] and rest[-1] in {"go", "gone", "went"} and rest[:1] and rest[0] in {"did", "has", "have"}:
         return _q("where", w, thing=rest[1:-1])  # "where did Uma go?"
     if len(rest) > 1 and rest[-1] in _BE and rest[0] not in _BE:

@@ -93,6 +93,12 @@ COLOURS = word_set(
     "navy turquoise cyan magenta maroon cream tan teal"
 )
 WH = word_set("what where who which how why when whose whom")
+#: "I'm parched": a need names the ontology class of what would meet it.
+NEEDS: dict[str, str] = {
+    "thirsty": "drink", "parched": "drink", "dehydrated": "drink",
+    "hungry": "food", "starving": "food", "peckish": "food", "famished": "food", "ravenous": "food",
+}  # fmt: skip
+INTENSIFIERS = word_set("so very really absolutely quite a bit little totally getting rather pretty bloody")
 _ASKING = word_set("do did don't if would as you that whether about him her them it")
 
 
@@ -153,6 +159,15 @@ def _without_filler_pairs(words: list[str]) -> list[str]:
         ):
             drop.update((i, i + 1))
     return [w for i, w in enumerate(words) if i not in drop]
+
+
+def cleaned(text: str) -> str:
+    """The text with stutters and self-repairs resolved, when it has any (else unchanged, so that
+    quoted words and casing survive): what a compound request is cut in."""
+    plain = [x for w in _TOKEN.findall(text.lower().replace("\u2019", "'")) for x in CONTRACTIONS.get(w, (w,))]
+    words = [w for w in plain if w not in FILLERS]
+    fixed = _repaired(_unrepeated(words))
+    return text if fixed == words else " ".join(fixed)
 
 
 def _unrepeated(words: list[str]) -> list[str]:
