@@ -67,7 +67,7 @@ def conjuncts(text: str) -> list[Part]:
                 j += 1
             if j < len(toks) and (not cuts or cuts[-1][1] <= i):
                 cuts.append((i, j))
-        elif word in _BARE_VERBS and toks[i - 1][0] not in _NO_CUT_AFTER and toks[i - 1][0] not in _CONJUNCTIONS:
+        elif word in _BARE_VERBS and toks[i - 1][0] not in _NO_CUT_AFTER | _CONJUNCTIONS:
             nxt = toks[i + 1][0] if i + 1 < len(toks) else ""
             if nxt in _OBJECT_START:
                 cuts.append((i, i))

@@ -38,8 +38,9 @@ _QUALIFIERS = word_set(
     "upper lower main"
 )
 _SKIP = (DETERMINERS - _BOUNDARY) | word_set("please either is are was were be being it")
-#: Coordinated phrases name several things: never one by its head ("the cereals and the milk").
-_COORDINATION = word_set("and or")
+#: Coordinated or quantified phrases name several things: never one by its head ("the cereals and
+#: the milk", "both cups").
+_SEVERAL = word_set("and or both all every each")
 
 
 @dataclass(frozen=True)
@@ -94,9 +95,13 @@ def _named(lexicon: Lexicon, np: Sequence[str]) -> set[str]:
     return found
 
 
+def _entities(lexicon: Lexicon, np: Sequence[str]) -> list[Entity]:
+    return [e for eid in _named(lexicon, np) if (e := lexicon.snapshot.get(eid)) is not None]
+
+
 def resolve_head(lexicon: Lexicon, words: Sequence[str], kinds: Collection[Kind]) -> list[Entity]:
     """Entities of `kinds` the phrase's head noun names that no modifier contradicts, best first."""
-    if _COORDINATION & set(words):
+    if _SEVERAL & set(words):
         return []
     phrase = _split(words)
     if not phrase.core:
@@ -123,14 +128,19 @@ def _evidence(lexicon: Lexicon, entity: Entity, phrase: _Phrase) -> int | None:
     colours = _colours(entity)
     score = 0
     for word in norm(phrase.core[:-1]):
+        people = {e.id for e in _entities(lexicon, (word,)) if e.kind == "person"}
         if word in attrs:
             score += 1
         elif word in COLOURS and colours:
             return None  # "the green cup" when the cup is known to be red
+        elif people and entity.owner is not None:
+            if entity.owner not in people:
+                return None  # "Dan's mug" when the mug is known to be Bob's
+            score += 1
     for prep, np in phrase.modifiers:
         if prep not in _LOCATED:
             continue
-        places = {e for eid in _named(lexicon, np) if (e := lexicon.snapshot.get(eid)) is not None}
+        places = _entities(lexicon, np)
         if not places:
             continue  # a place the KB does not know: nothing to check
         known = {p.id for p in places if p.kind != "zone"}, {p.id for p in places if p.kind == "zone"}

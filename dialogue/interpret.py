@@ -120,13 +120,13 @@ class Interpreter:
         for n, part in enumerate(parts):
             context = tuple(Utterance(self.speaker, p.text) for p in parts[:n])
             reader = Interpreter(self.lexicon, self.speaker, (*self.history, *context), self.robot_name)
+            if n == 0 and part.verb is None:
+                continue  # a preamble ("hey there", "thanks", "the denim jacket"): context for the rest
             outcome = reader._single(part.text)
             if outcome.intent is not None:
                 done.append(outcome)
             elif outcome.clarify:
                 return outcome  # ask about this part first: nothing is done until it is clear
-            elif n == 0 and part.verb is None and outcome.understood:
-                continue  # a preamble: "thanks, now put it on the shelf"
             elif part.no_intent:
                 cannot.append(part.text)
             else:  # a part that fails says why; one not understood makes the whole not understood

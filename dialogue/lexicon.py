@@ -18,6 +18,7 @@ from lemminflect import getLemma
 
 from dialogue.grounding import Entity, Snapshot
 from dialogue.synonyms import synonyms
+from dialogue.words import word_set
 
 _WORD = re.compile(r"[a-z0-9]+(?:'[a-z]+)?")
 
@@ -54,7 +55,7 @@ def tokens(text: str) -> list[str]:
 
 
 #: Function words ending in -s that a noun lemmatiser would "singularise" ("was" -> "wa").
-_NOT_PLURAL = frozenset("is was has does this his us yes its as thus plus whereas always sometimes".split())
+_NOT_PLURAL = word_set("is was has does this his us yes its as thus plus whereas always sometimes perhaps")
 
 
 @lru_cache(maxsize=65536)
@@ -171,10 +172,10 @@ def _names(entity: Entity) -> list[Name]:
     # for the "kitchen refrigerator").
     syn = synonyms(phrase)
     for text in (*entity.labels, *entity.class_names):
-        words = phrase(text)
-        for k in range(len(words)):
-            for other in syn.of(words[k:]):
-                add(" ".join((*words[:k], *other)), "synonym")
+        said = phrase(text)
+        for k in range(len(said)):
+            for other in syn.of(said[k:]):
+                add(" ".join((*said[:k], *other)), "synonym")
                 if k:
                     add(" ".join(other), "head")
     return out

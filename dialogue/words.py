@@ -51,7 +51,8 @@ POLITE_PREFIXES = _phrases(
     "so|and|then|also|well|robot|let us|try to|you should|you can|you could|be so kind and|be so kind as to|"
     "time to|maybe|hold on|hang on|wait a moment|wait a second|one moment|actually|oh|um|umm|uh|er|erm|"
     "great|alright|all right|cool|perfect|excellent|sorry|excuse me|can we|could we|shall we|should we|"
-    "why don't we|how about we|i was wondering if you could|i wonder if you could|i was wondering whether you could|"
+    "why don't we|how about we|i was wondering if you could|i wonder if you could|"
+    "i was wondering whether you could|"
     "be a dear and|be an angel and|do me a favour and|do me a favor and|you know what|off you|listen|"
     "would you be so kind as to|would you be able to|are you able to|if you could|if you can"
 )
@@ -164,7 +165,8 @@ def _without_filler_pairs(words: list[str]) -> list[str]:
 def cleaned(text: str) -> str:
     """The text with stutters and self-repairs resolved, when it has any (else unchanged, so that
     quoted words and casing survive): what a compound request is cut in."""
-    plain = [x for w in _TOKEN.findall(text.lower().replace("\u2019", "'")) for x in CONTRACTIONS.get(w, (w,))]
+    lowered = text.lower().replace("\u2019", "'")
+    plain = [x for w in _TOKEN.findall(lowered) for x in CONTRACTIONS.get(w, (w,))]
     words = [w for w in plain if w not in FILLERS]
     fixed = _repaired(_unrepeated(words))
     return text if fixed == words else " ".join(fixed)
@@ -188,7 +190,8 @@ def _repaired(words: list[str]) -> list[str]:
         for marker in REPAIRS:
             if tuple(words[i : i + len(marker)]) == marker:
                 after = words[i + len(marker) :]
-                if after and base_verb(strip_politeness(after)[0] if strip_politeness(after) else "") in VERBS:
+                request = strip_politeness(after)
+                if request and base_verb(request[0]) in VERBS:
                     return after
     return words
 
