@@ -61,7 +61,9 @@ _PARTICLES = word_set(
     "closer quickly slowly carefully quietly safely directly"
 )
 _WANT_VERBS = word_set("want wants need needs")
-_SUBJECTS = word_set("you i we they he she it robots people anyone anybody everyone plants")
+#: What follows "do" in a request ("do the dishes", "do some exercise"); anything else after "do"
+#: is a yes/no question ("do you like music", "do robots ever get tired").
+_DONE = word_set("the a an some my your our this that these those exercise exercises yoga stretches")
 
 
 class _Cmd(Protocol):
@@ -107,7 +109,14 @@ def _request(text: str, words: list[str]) -> Parse | None:
     return after if after.act != "unknown" else None
 
 
+#: Two-word prepositions read as one, so that their "to" is never taken for a recipient's.
+_PREPOSITIONS = {("next", "to"): "beside", ("close", "to"): "near", ("nearest", "to"): "near"}
+
+
 def _command(original: str, words: list[str]) -> Parse:
+    for i in range(len(words) - 2, 0, -1):
+        if (words[i], words[i + 1]) in _PREPOSITIONS:
+            words[i : i + 2] = [_PREPOSITIONS[(words[i], words[i + 1])]]
     if words[:3] == ["make", "your", "way"] or words[:3] == ["find", "your", "way"]:
         words = ["go", *words[3:]]
     if words[1:3] == ["hold", "of"] and words[0] in GRAB | {"catch"}:  # "get hold of the mug"
@@ -217,7 +226,7 @@ def _command(original: str, words: list[str]) -> Parse:
         elif obj[-1:] == ("up",):
             obj = obj[:-1]
         return cmd(I.GRAB_OBJECT, object=obj)
-    if verb in {"do", "does", "did"} and rest[:1] and rest[0] in _SUBJECTS:
+    if verb in {"does", "did"} or (verb == "do" and rest[:1] and rest[0] not in _DONE):
         return Parse("unknown", words=w)  # "do you like music": a yes/no question, not an activity
     if verb in START or verb in ACTIVITY_VERBS:
         activity = rest if verb in START else w
