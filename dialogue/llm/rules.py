@@ -47,5 +47,7 @@ class RulesModel:
 
     async def chat(self, request: ChatRequest, timeout: float) -> ChatResult:
         outcome = self.interpret(request.context)
-        content = json.dumps(answer_of(outcome).model_dump(exclude_none=False))
+        answer = answer_of(outcome)
+        # The tutorial's two keys, and the list only when there is more than one intent.
+        content = json.dumps(answer.model_dump(exclude={"user_intents"} if answer.user_intents is None else None))
         return ChatResult(content, "stop", understood=outcome.understood)
