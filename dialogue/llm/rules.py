@@ -49,5 +49,6 @@ class RulesModel:
         outcome = self.interpret(request.context)
         answer = answer_of(outcome)
         # The tutorial's two keys, and the list only when there is more than one intent.
-        content = json.dumps(answer.model_dump(exclude={"user_intents"} if answer.user_intents is None else None))
+        single = answer.user_intents is None
+        content = json.dumps(answer.model_dump(exclude={"user_intents"} if single else None))
         return ChatResult(content, "stop", understood=outcome.understood)
