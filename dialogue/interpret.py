@@ -266,7 +266,10 @@ class Interpreter:
             if not content_words(tail):
                 continue
             people = content_words(head)
-            if people and (set(people) <= ME or resolve(self.lexicon, head, PERSON).one is not None):
+            named = set(people) <= ME or resolve(self.lexicon, head, PERSON).one is not None
+            # "bring him the bottle": a person pronoun the conversation resolves.
+            said = set(people) <= {"him", "her", "them"} and self._person_as_object(head) is not None
+            if people and (named or said):
                 return {"object": tail, "recipient": head}
         return {"object": rest, "recipient": ("me",)}
 
