@@ -30,7 +30,7 @@ from dialogue.resolution import (
     is_pronoun,
     resolve,
 )  # fmt: skip
-from dialogue.words import cleaned, word_set
+from dialogue.words import COLOURS, cleaned, word_set
 
 _ONE = frozenset({"one", "ones"})
 #: Punctuation, dashes, and (for unpunctuated speech) a polite request starting mid-utterance.
@@ -43,6 +43,10 @@ RELATIONAL = word_set(
     "smallest large larger largest little other first second third last middle top bottom"
 )
 _MANY = word_set("and both all every each")
+#: Words that need no name in the KB to be understood in a phrase.
+_ACCOUNTED = RELATIONAL | COLOURS | ME | word_set(
+    "it them him her here there over something anything around nearby about"
+)
 
 
 @dataclass(frozen=True)
@@ -62,6 +66,19 @@ class Outcome:
     def steps(self) -> tuple[Outcome, ...]:
         """This outcome and the ones that follow it."""
         return (self, *self.more)
+
+
+def _alternatives(words: Words) -> list[Words]:
+    """ "an apple or an orange" -> ["an apple", "an orange"]; [] without "or"."""
+    if "or" not in words:
+        return []
+    out: list[Words] = [()]
+    for w in words:
+        if w == "or":
+            out.append(())
+        else:
+            out[-1] = (*out[-1], w)
+    return out if all(content_words(t) for t in out) else []
 
 
 def _coordinated(words: Words) -> list[Words]:
@@ -188,6 +205,9 @@ class Interpreter:
             ref = antecedent(self.lexicon, [u.text for u in self.history], ANYWHERE)
             if ref is not None:
                 thing = tuple(tokens(ref.id))
+        content = content_words(thing)
+        if content and self._half_known(content) and not resolve(self.lexicon, thing, ANYWHERE).matches:
+            return Outcome("Sorry, I don't know how to answer that.", understood=False)
         match p.question:
             case "what_see":
                 return Outcome(answers.what_do_you_see(self.snapshot, self.speaker))
@@ -334,7 +354,21 @@ class Interpreter:
                 return _Ref(problem=Outcome(q, clarify=True, open_role=role, open_phrase=loose))
         if set(words) & _MANY:  # "the cup and the apple", "both cups": more than one intent can carry
             return _Ref(problem=Outcome("Sorry, one thing at a time, please.", understood=False))
+        alternatives = _alternatives(words)
+        for alternative in alternatives:  # "an apple or an orange": either will do
+            ref = self._ground(alternative, kinds, role, owner)
+            if ref.entity is not None or ref.speaker:
+                return ref
+        if self._half_known(content):
+            # Names the KB knows among words it does not ("mr ito back", "the trousers out"): the
+            # phrase was not understood, which is not the same as "there is no such thing".
+            return _Ref(problem=Outcome("Sorry, I did not understand that.", understood=False))
         return _Ref(problem=Outcome(self._unknown(content, kinds)))
+
+    def _half_known(self, content: Sequence[str]) -> bool:
+        """Whether some words of a phrase are names of the KB and others are words it does not know."""
+        unknown = [w for w in content if not self.lexicon.knows(w) and w not in _ACCOUNTED]
+        return 0 < len(unknown) < len(content)
 
     def _unknown(self, content: Sequence[str], kinds: Collection[Kind]) -> str:
         phrase = " ".join(content)

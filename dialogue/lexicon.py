@@ -103,6 +103,8 @@ class Lexicon:
         self.attributes: dict[str, frozenset[str]] = {}
         #: Entities by each (singular) word of their own labels, for "the teddy" ("teddy bear").
         self.by_label_word: dict[str, list[str]] = defaultdict(list)
+        #: Every (singular) word of every name and qualifier: what the KB can account for.
+        self.vocabulary: set[str] = set()
         self._entries: dict[Entity, tuple[list[Name], frozenset[str], frozenset[str]]] = {}
         old = previous._entries if previous is not None else {}
         for entity in snapshot.entities.values():
@@ -110,6 +112,8 @@ class Lexicon:
             self._entries[entity] = entry
             for name in entry[0]:
                 self._by_first[name.words[0]].append(name)
+                self.vocabulary.update(name.words)
+            self.vocabulary.update(entry[1])
             self.attributes[entity.id] = entry[1]
             for word in entry[2]:
                 self.by_label_word[word].append(entity.id)
@@ -145,6 +149,11 @@ class Lexicon:
 
     def knows_word(self, word: str) -> bool:
         return singular(word) in self._by_first
+
+    def knows(self, word: str) -> bool:
+        """Whether the word is part of any name or qualifier of the snapshot ("'s" ignored)."""
+        word = word[:-2] if word.endswith("'s") else word
+        return word.isdigit() or singular(word) in self.vocabulary
 
 
 def _names(entity: Entity) -> list[Name]:

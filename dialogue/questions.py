@@ -30,6 +30,7 @@ _INDIRECT: tuple[Words, ...] = tuple(
                                "i was wondering")
 )  # fmt: skip
 _BE = frozenset({"is", "are", "was", "were"})
+_NEARBY = word_set("around nearby here about")
 #: "something to eat" is food: the purpose names the ontology's class (labelled "food", "drink").
 _PURPOSES: dict[Words, str] = {("to", "eat"): "food", ("to", "drink"): "drink"}
 
@@ -74,7 +75,7 @@ def question(words: list[str]) -> Parse | None:
         return _q("how_many", w, thing=thing)
     for lead in _SEES:
         if starts(w, lead):
-            thing = w[len(lead) :]
+            thing = _strip_ends(w[len(lead) :], frozenset(), _NEARBY)  # "is there any fruit around"
             if thing[:1] in {("anything",), ("something",)}:
                 return _anything(w, thing[1:])
             return _q("can_see", w, thing=thing)

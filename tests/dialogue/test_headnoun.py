@@ -69,3 +69,21 @@ def test_several_things_are_never_one_by_their_head(office: KB) -> None:
     lex = lexicon_of(office)
     assert resolve(lex, ["both", "heavy", "mugs"], THING).matches == ()
     assert resolve_head(lex, ["the", "stapler", "and", "the", "laptop"], THING) == []
+
+
+@pytest.mark.parametrize(
+    "text", ["walk Carol back home to the hallway right now ok", "take the stapler out of the whatsit", "where is carol's floppy"]
+)
+def test_a_phrase_mixing_known_names_and_unknown_words_is_not_understood(office: KB, text: str) -> None:
+    out = say(office, text)
+    assert out.intent is None and not out.understood, out.reply
+
+
+def test_a_phrase_of_unknown_words_only_is_a_thing_the_robot_does_not_see(office: KB) -> None:
+    out = say(office, "grab the unicorn")
+    assert out.understood and "don't see any unicorn" in out.reply
+
+
+def test_either_of_two_alternatives(office: KB) -> None:
+    out = say(office, "bring me a unicorn or a pear")
+    assert (out.intent, out.roles) == (I.BRING_OBJECT, {"object": "pear_1", "recipient": "person_bob"})
