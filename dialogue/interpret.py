@@ -254,10 +254,11 @@ class Interpreter:
         slots = {**p.slots, **overrides}
         if p.double_object and "rest" in slots:
             slots = self._split_double_object(slots.pop("rest"))
-        if intent == I.BRING_OBJECT:
-            person = self._person_as_object(slots.get("object", ()))
-            if person is not None:  # "take Maria to the kitchen" is guiding, not carrying
-                intent, slots = I.GUIDE, {"recipient": slots["object"], "goal": slots.get("recipient", ())}
+        if intent in {I.BRING_OBJECT, I.PLACE_OBJECT} and "recipient" in slots:
+            # "take Maria to the kitchen", "walk Mr Ito back to the car park": guiding, not carrying
+            who = tuple(w for w in slots.get("object", ()) if w not in RELATIONAL)
+            if self._person_as_object(who) is not None:
+                intent, slots = I.GUIDE, {"recipient": who, "goal": slots["recipient"]}
         roles: dict[str, str] = {}
         refs: dict[str, _Ref] = {}
         spec = I.CATALOGUE[intent]

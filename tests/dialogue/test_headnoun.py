@@ -87,3 +87,13 @@ def test_a_phrase_of_unknown_words_only_is_a_thing_the_robot_does_not_see(office
 def test_either_of_two_alternatives(office: KB) -> None:
     out = say(office, "bring me a unicorn or a pear")
     assert (out.intent, out.roles) == (I.BRING_OBJECT, {"object": "pear_1", "recipient": "person_bob"})
+
+
+def test_a_kind_word_names_the_general_thing_and_colour_still_filters(office: KB) -> None:
+    out = say(office, "bring me the yellow teacup")  # "teacup" < "cup" (dialogue/lexicon.txt)
+    assert (out.intent, out.roles) == (I.BRING_OBJECT, {"object": "mug_yellow", "recipient": "person_bob"})
+
+
+def test_walking_a_person_somewhere_is_guiding(office: KB) -> None:
+    out = say(office, "could you walk Carol back to the hallway")
+    assert (out.intent, out.roles) == (I.GUIDE, {"recipient": "person_carol", "goal": "hallway"})
