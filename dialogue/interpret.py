@@ -30,7 +30,7 @@ from dialogue.resolution import (
     is_pronoun,
     resolve,
 )  # fmt: skip
-from dialogue.words import COLOURS, cleaned, word_set
+from dialogue.words import COLOURS, INTERJECTIONS, cleaned, word_set
 
 _ONE = frozenset({"one", "ones"})
 #: Punctuation, dashes, and (for unpunctuated speech) a polite request starting mid-utterance.
@@ -43,6 +43,8 @@ RELATIONAL = word_set(
     "smallest large larger largest little other first second third last middle top bottom"
 )
 _MANY = word_set("and both all every each")
+#: An answer naming an owner ("mine", "hers") is the possessive phrase ("my cup").
+_POSSESSIVE_OF = {"mine": "my", "yours": "your", "ours": "our", "hers": "her", "theirs": "their"}
 #: Words that need no name in the KB to be understood in a phrase.
 _ACCOUNTED = RELATIONAL | COLOURS | ME | word_set(
     "it them him her here there over something anything around nearby about"
@@ -399,7 +401,8 @@ class Interpreter:
     # -- follow-ups to the robot's last question ------------------------------------------------
     def _follow_up(self, p: Parse, text: str) -> Outcome | None:
         """ "the red one" after "Which cup do you mean...?" re-reads the pending request with it."""
-        fragment = p.words
+        # "mine, obviously": whose it is, without the interjection.
+        fragment = tuple(_POSSESSIVE_OF.get(w, w) for w in p.words if w not in INTERJECTIONS)
         # The robot's question must be the latest utterance (system notes aside), right after a request.
         spoken = [i for i, u in enumerate(self.history) if u.role != "system"]
         if not fragment or len(spoken) < 2:

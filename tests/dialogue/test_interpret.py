@@ -335,3 +335,14 @@ def test_part_of_a_label_names_the_thing_when_no_name_occurs(office: KB) -> None
     assert say(kb, "grab the heavy duty thing").roles == {"object": "stapler_1"}
     assert say(kb, "grab the heavy violin").intent is None  # every word must fit the thing
     assert say(office, "grab the green").roles == {"object": "mug_green"}
+
+
+@pytest.mark.parametrize("answer", ["mine", "Mine, obviously.", "mine of course"])
+def test_an_answer_naming_the_owner(answer: str) -> None:
+    kb = scene_kb("office", *OWNED)
+    try:
+        history = [("user", "grab the mug"), ("robot", "Which cup do you mean: the green mug or the yellow mug?")]
+        out = say(kb, answer, speaker="person_carol", history=history)
+        assert (out.intent, out.roles) == (I.GRAB_OBJECT, {"object": "mug_yellow"}), out.reply
+    finally:
+        kb.close()
