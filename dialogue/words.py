@@ -44,7 +44,9 @@ FILLERS = frozenset({"um", "umm", "uh", "uhh", "er", "erm", "hmm", "mm", "ah"})
 #: Two-word fillers dropped wherever they occur.
 FILLER_PAIRS = frozenset({("you", "know"), ("i", "guess"), ("of", "course")})
 #: Words of an answer that only add emphasis ("mine, obviously", "the red one definitely").
-INTERJECTIONS = word_set("obviously definitely clearly surely certainly naturally yes yeah yep sure please thanks")
+INTERJECTIONS = word_set(
+    "obviously definitely clearly surely certainly naturally yes yeah yep sure please thanks"
+)
 #: A self-repair: what follows replaces the request said before it ("bring me the uh no wait put...").
 REPAIRS = _phrases("no wait|wait no|sorry i mean|no sorry|i mean|or rather|no no|scratch that|no actually")
 POLITE_PREFIXES = _phrases(
