@@ -332,7 +332,7 @@ class Interpreter:
             if found is None:
                 return _Ref(
                     problem=Outcome(
-                        f'What do you mean by "{" ".join(content)}"?',
+                        f'What do you mean by "{" ".join(content or sorted(bare))}"?',  # "there" is glue
                         clarify=True,
                         open_role=role,
                         open_phrase=words,

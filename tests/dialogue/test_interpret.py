@@ -346,3 +346,8 @@ def test_an_answer_naming_the_owner(answer: str) -> None:
         assert (out.intent, out.roles) == (I.GRAB_OBJECT, {"object": "mug_yellow"}), out.reply
     finally:
         kb.close()
+
+
+def test_an_unresolved_there_is_named_in_the_question(office: KB) -> None:
+    out = say(office, "go over there")
+    assert out.clarify and '"there"' in out.reply, out.reply
