@@ -12,10 +12,12 @@ from dataclasses import dataclass
 
 from dialogue.words import (
     COMMAND_VERBS,
+    GREETINGS,
     NO_INTENT_VERBS,
     QUOTED,
     base_verb,
     normalise,
+    starts,
     strip_politeness,
     strip_vocative,
     word_set,
@@ -44,7 +46,12 @@ class Part:
 
 
 def _verb(text: str) -> str | None:
-    words = strip_vocative(strip_politeness(normalise(text)))
+    words = strip_politeness(normalise(text))
+    for greeting in sorted(GREETINGS, key=len, reverse=True):  # "hey robot take the book"
+        if starts(words, greeting) and len(words) > len(greeting):
+            words = strip_politeness(words[len(greeting) :])
+            break
+    words = strip_vocative(words)
     if not words:
         return None
     verb = base_verb(words[0])

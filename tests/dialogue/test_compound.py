@@ -67,3 +67,8 @@ def test_coordinated_things_are_one_intent_each(office: KB) -> None:
 def test_a_greeting_before_a_compound_is_context(office: KB) -> None:
     out = say(office, "hi there, go to the desk and take the pear")
     assert [o.intent for o in out.steps()] == [I.MOVE_TO, I.GRAB_OBJECT]
+
+
+def test_a_greeting_before_the_first_command_keeps_the_command(office: KB) -> None:
+    out = say(office, "hey robot take the stapler and put it on the shelf")
+    assert [o.intent for o in out.steps()] == [I.GRAB_OBJECT, I.PLACE_OBJECT]
