@@ -130,6 +130,10 @@ def _command(original: str, words: list[str]) -> Parse:
     need = _need(w)
     if need is not None:  # "I'm parched": something to drink
         return cmd(I.BRING_OBJECT, object=(need,), recipient=("me",))
+    if verb == "help" and "to" in rest:  # "help me get to the bathroom": take them there
+        who, _, goal = split_at(rest, ["get to", "to"]) or ((), "", ())
+        if who and goal:
+            return cmd(I.GUIDE, recipient=who, goal=goal)
     going = _wants_to_go(w)
     if going is not None:  # "Ellen needs to get to the utility room": take her there
         return cmd(I.GUIDE, recipient=going[0], goal=going[1])
@@ -205,6 +209,9 @@ def _command(original: str, words: list[str]) -> Parse:
         return cmd(I.PLACE_OBJECT, object=found[0][1:], recipient=found[2])
     if verb in PLACE:
         found = split_at(rest, LOCATIVE)
+        if found is None and rest[-1:] in {("there",), ("here",)} and len(rest) > 1:  # "put it over there"
+            obj = tuple(x for x in rest[:-1] if x not in {"down", "away", "back", "over"})
+            return cmd(I.PLACE_OBJECT, object=obj, recipient=("there",) if rest[-1] == "there" else ("me",))
         if found is None:
             obj = tuple(x for x in rest if x not in {"down", "away", "back"})
             return cmd(I.PLACE_OBJECT, object=obj, recipient=())

@@ -35,7 +35,11 @@ from dialogue.words import COLOURS, INTERJECTIONS, cleaned, word_set
 _ONE = frozenset({"one", "ones"})
 #: Punctuation, dashes, and (for unpunctuated speech) a polite request starting mid-utterance.
 _CLAUSE_BREAK = re.compile(
-    r"[.;!?,]+(?:\s+|$)|\s+(?:-|\u2013|\u2014)\s+|\s+(?=(?:could|can|would|will)\s+you\b|please\b)", re.I
+    r"[.;!?,]+(?:\s+|$)|\s+(?:-|\u2013|\u2014)\s+|\s+(?=(?:could|can|would|will)\s+you\b|please\b)"
+    # A trailing clause with a subject of its own: "...the wine cellar she wants to pick a bottle",
+    # "...my aspirin it is in one of the drawers", "...my eyeglass you can find it on the table".
+    r"|\s+(?=(?:she|he|it|they|you)\s+(?:is|are|was|were|wants|needs|should|might|must|can|could|has|have|just)\b)",
+    re.I,
 )
 #: Spatial or comparative qualifiers the KB does not model (dropped when they block a match).
 RELATIONAL = word_set(

@@ -40,7 +40,7 @@ CONTRACTIONS: dict[str, Words] = {
     "we're": ("we", "are"), "they're": ("they", "are"), "hows": ("how", "is"),
 }  # fmt: skip
 #: Hesitations and discourse fillers, dropped wherever they occur ("put the uh candle on the table").
-FILLERS = frozenset({"um", "umm", "uh", "uhh", "er", "erm", "hmm", "mm", "ah"})
+FILLERS = frozenset({"um", "umm", "uh", "uhh", "er", "erm", "hmm", "mm", "ah", "really"})
 #: Two-word fillers dropped wherever they occur.
 FILLER_PAIRS = frozenset({("you", "know"), ("i", "guess"), ("of", "course")})
 #: Words of an answer that only add emphasis ("mine, obviously", "the red one definitely").

@@ -351,3 +351,13 @@ def test_an_answer_naming_the_owner(answer: str) -> None:
 def test_an_unresolved_there_is_named_in_the_question(office: KB) -> None:
     out = say(office, "go over there")
     assert out.clarify and '"there"' in out.reply, out.reply
+
+
+@pytest.mark.parametrize(
+    "text",
+    ["bring me the stapler it is on the desk", "can you bring me the stapler you can find it on the desk",
+     "show Carol to the hallway she wants to leave"],
+)  # fmt: skip
+def test_a_trailing_clause_with_its_own_subject_does_not_hide_the_request(office: KB, text: str) -> None:
+    out = say(office, text)
+    assert out.intent in {I.BRING_OBJECT, I.GUIDE}, out.reply

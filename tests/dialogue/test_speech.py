@@ -48,6 +48,9 @@ def test_cleaned_keeps_text_without_repairs() -> None:
         ("I'm absolutely parched", I.BRING_OBJECT, {"object": ("drink",), "recipient": ("me",)}),
         ("im starving", I.BRING_OBJECT, {"object": ("food",), "recipient": ("me",)}),
         ("take the cup next to the pear", I.GRAB_OBJECT, {"object": ("the", "cup", "beside", "the", "pear")}),
+        ("help me get to the bathroom, would you?", I.GUIDE, {"recipient": ("me",), "goal": ("the", "bathroom")}),
+        ("put it over there", I.PLACE_OBJECT, {"object": ("it",), "recipient": ("there",)}),
+        ("i really need you to bring me the cup", I.BRING_OBJECT, {"object": ("the", "cup"), "recipient": ("me",)}),
     ],
 )  # fmt: skip
 def test_requests(text: str, intent: str, slots: dict[str, tuple[str, ...]]) -> None:
