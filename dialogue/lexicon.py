@@ -130,6 +130,11 @@ class Lexicon:
             span = words[start:end]
             if end <= len(words) and all(singular(w) == n for w, n in zip(span, name.words, strict=True)):
                 found.append(name)
+        if start + 1 < len(words):
+            # "tea cup" for the "teacup", "tool box" for the "toolbox": a closed compound said apart.
+            joined = singular(words[start] + words[start + 1])
+            found += [Name((words[start], words[start + 1]), n.entity, n.source)
+                      for n in self._by_first.get(joined, ()) if n.words == (joined,)]  # fmt: skip
         return found
 
     def mentions(self, words: Sequence[str]) -> list[Mention]:

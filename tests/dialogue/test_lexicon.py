@@ -60,3 +60,9 @@ def test_how_many_counts_irregular_plurals(office: KB) -> None:
     office.update([f"myself sees {k}" for k in ("knife_1", "knife_2")])
     reply = say(office, "how many knives do you see").reply
     assert "2" in reply or "two" in reply, reply
+
+
+def test_a_closed_compound_said_apart_names_the_thing(office: KB) -> None:
+    office.update(["box_1 rdf:type Artifact", 'box_1 rdfs:label "toolbox"', "myself sees box_1"])
+    lex = Lexicon(build_snapshot(office))
+    assert [(n.entity, n.words) for n in lex.names_at(["tool", "boxes"], 0)] == [("box_1", ("tool", "boxes"))]
