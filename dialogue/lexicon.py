@@ -214,6 +214,10 @@ class LexiconCache:
     def __init__(self) -> None:
         self._lock = threading.Lock()
         self._lexicon: Lexicon | None = None
+        # The lemma tables and the synonyms file load on first use (a few hundred ms): here, when
+        # an engine is made, rather than inside its first turn's deadline.
+        singular("cups")
+        synonyms(phrase)
 
     def get(self, snapshot: Snapshot) -> Lexicon:
         with self._lock:
