@@ -10,11 +10,13 @@ from __future__ import annotations
 import re
 from dataclasses import dataclass
 
+from dialogue.resolution import content_words
 from dialogue.words import (
     COMMAND_VERBS,
     GREETINGS,
     NO_INTENT_VERBS,
     QUOTED,
+    Words,
     base_verb,
     normalise,
     starts,
@@ -103,3 +105,38 @@ def conjuncts(text: str) -> list[Part]:
         verb = _verb(piece)
         out.append(Part(piece, verb, verb in NO_INTENT_VERBS))
     return out
+
+
+def alternatives(words: Words) -> list[Words]:
+    """ "an apple or an orange" -> ["an apple", "an orange"]; [] without "or"."""
+    if "or" not in words:
+        return []
+    out: list[Words] = [()]
+    for w in words:
+        if w == "or":
+            out.append(())
+        else:
+            out[-1] = (*out[-1], w)
+    return out if all(content_words(t) for t in out) else []
+
+
+def coordinated(words: Words) -> list[Words]:
+    """ "the cereals and the milk" -> ["the cereals", "the milk"]; [] when there is no "and"."""
+    if "and" not in words:
+        return []
+    out: list[Words] = []
+    current: list[str] = []
+    for w in words:
+        if w == "and":
+            out.append(tuple(current))
+            current = []
+        else:
+            current.append(w)
+    out.append(tuple(current))
+    return out if all(content_words(t) for t in out) else []
+
+
+def unprefixed(reply: str) -> str:
+    """ "OK, I will pick up the plate." -> "I will pick up the plate." """
+    rest = reply.removeprefix("OK, ").removeprefix("OK: ")
+    return rest[:1].upper() + rest[1:] if rest == reply else rest

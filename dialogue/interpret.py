@@ -15,7 +15,7 @@ from dialogue import answers
 from dialogue import intents as I
 from dialogue.clarify import question as clarifying_question
 from dialogue.commands import LOCATIVE, ME, Parse, Words, parse
-from dialogue.compound import Part, conjuncts
+from dialogue.compound import Part, alternatives, conjuncts, coordinated, unprefixed
 from dialogue.grounding import Entity, Kind
 from dialogue.history import Utterance
 from dialogue.lexicon import Lexicon, tokens
@@ -74,41 +74,6 @@ class Outcome:
         return (self, *self.more)
 
 
-def _alternatives(words: Words) -> list[Words]:
-    """ "an apple or an orange" -> ["an apple", "an orange"]; [] without "or"."""
-    if "or" not in words:
-        return []
-    out: list[Words] = [()]
-    for w in words:
-        if w == "or":
-            out.append(())
-        else:
-            out[-1] = (*out[-1], w)
-    return out if all(content_words(t) for t in out) else []
-
-
-def _coordinated(words: Words) -> list[Words]:
-    """ "the cereals and the milk" -> ["the cereals", "the milk"]; [] when there is no "and"."""
-    if "and" not in words:
-        return []
-    out: list[Words] = []
-    current: list[str] = []
-    for w in words:
-        if w == "and":
-            out.append(tuple(current))
-            current = []
-        else:
-            current.append(w)
-    out.append(tuple(current))
-    return out if all(content_words(t) for t in out) else []
-
-
-def _unprefixed(reply: str) -> str:
-    """ "OK, I will pick up the plate." -> "I will pick up the plate." """
-    rest = reply.removeprefix("OK, ").removeprefix("OK: ")
-    return rest[:1].upper() + rest[1:] if rest == reply else rest
-
-
 @dataclass(frozen=True)
 class _Ref:
     entity: Entity | None = None
@@ -156,7 +121,7 @@ class Interpreter:
                 return outcome if outcome.understood else None
         if not done:
             return None
-        acks = [done[0].reply] + [f"Then {_unprefixed(o.reply)}" for o in done[1:]]
+        acks = [done[0].reply] + [f"Then {unprefixed(o.reply)}" for o in done[1:]]
         acks += [f"I can't {c} myself." for c in cannot]
         return replace(done[0], reply=" ".join(acks), more=tuple(done[1:]))
 
@@ -245,14 +210,14 @@ class Interpreter:
     # -- commands --------------------------------------------------------------------------------
     def _command(self, p: Parse, overrides: dict[str, Words]) -> Outcome:
         whole = self._one_command(p, overrides)
-        things = _coordinated(p.slots.get("object", ())) if "object" not in overrides else []
+        things = coordinated(p.slots.get("object", ())) if "object" not in overrides else []
         if whole.intent is not None or whole.clarify or len(things) < 2:
             return whole
         # "bring me the cereals and the milk": one intent per thing, in order.
         each = [self._one_command(p, {**overrides, "object": t}) for t in things]
         if any(o.intent is None for o in each):
             return next(o for o in each if o.intent is None)
-        acks = [each[0].reply] + [f"Then {_unprefixed(o.reply)}" for o in each[1:]]
+        acks = [each[0].reply] + [f"Then {unprefixed(o.reply)}" for o in each[1:]]
         return replace(each[0], reply=" ".join(acks), more=tuple(each[1:]))
 
     def _one_command(self, p: Parse, overrides: dict[str, Words]) -> Outcome:
@@ -361,8 +326,7 @@ class Interpreter:
                 return _Ref(problem=Outcome(q, clarify=True, open_role=role, open_phrase=loose))
         if set(words) & _MANY:  # "the cup and the apple", "both cups": more than one intent can carry
             return _Ref(problem=Outcome("Sorry, one thing at a time, please.", understood=False))
-        alternatives = _alternatives(words)
-        for alternative in alternatives:  # "an apple or an orange": either will do
+        for alternative in alternatives(words):  # "an apple or an orange": either will do
             ref = self._ground(alternative, kinds, role, owner)
             if ref.entity is not None or ref.speaker:
                 return ref
