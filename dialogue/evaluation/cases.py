@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import asyncio
 import json
-from collections.abc import Awaitable, Callable
+from collections.abc import Awaitable, Callable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, TypeVar
@@ -30,7 +30,9 @@ from kb import KB, KbError
 T = TypeVar("T")
 DEFAULT_SPEAKER = "user1"
 _CASE_KEYS = {"id", "scene", "facts", "speaker", "history", "input", "expect"}
-_EXPECT_KEYS = {"intent", "roles", "clarify", "reply_mentions"}
+#: `then` (an extension of the shared format): the intents that must follow the first, in order,
+#: each {"intent": ..., "roles": {...}}; with it, no other intent may be returned.
+_EXPECT_KEYS = {"intent", "roles", "clarify", "reply_mentions", "then"}
 
 
 class EvalError(DialogueError, ValueError):
@@ -147,6 +149,14 @@ def _case(raw: Any, where: str) -> Case:
     expect = raw.get("expect")
     if not isinstance(expect, dict) or "intent" not in expect or set(expect) - _EXPECT_KEYS:
         raise EvalError(f"{where}: 'expect' must be an object with 'intent' and only {sorted(_EXPECT_KEYS)}")
+    then = expect.get("then", [])
+    if not isinstance(then, list) or not all(
+        isinstance(t, dict) and isinstance(t.get("intent"), str) and set(t) <= {"intent", "roles"}
+        and isinstance(t.get("roles", {}), dict)
+        for t in then
+    ) or (then and expect["intent"] is None):
+        shape = "{'intent': str, 'roles': {...}}"
+        raise EvalError(f"{where}: 'expect.then' must be a list of {shape} after an intent")
     speaker = raw.get("speaker", DEFAULT_SPEAKER)
     history = []
     for turn in raw.get("history", []):
@@ -181,21 +191,30 @@ def check(case: Case, result: TurnResult) -> list[str]:
     if wanted is None and real:
         problems.append(f"expected no intent, got {real[0].intent}")
     if wanted is not None:
-        if not real or real[0].intent != wanted:
-            problems.append(f"expected {wanted}, got {real[0].intent if real else 'no intent'}")
+        steps = [{"intent": wanted, "roles": expect.get("roles") or {}}, *expect.get("then", [])]
+        if "then" not in expect:
+            real = real[:1]  # only the first intent is checked; others may follow it
+        if [i.intent for i in real] != [s["intent"] for s in steps]:
+            problems.append(f"expected {_names(steps)}, got {_names(real) or 'no intent'}")
         else:
-            for role, value in (expect.get("roles") or {}).items():
-                got = real[0].data.get(role)
-                loose = wanted == SAY and role == "object"
-                ok = got is not None and (value.lower() in got.lower() if loose else got == value)
-                if not ok:
-                    problems.append(f"role {role}: expected {value!r}, got {got!r}")
+            for n, (step, intent) in enumerate(zip(steps, real, strict=True)):
+                where = f"intent {n + 1} " if len(steps) > 1 else ""
+                for role, value in (step.get("roles") or {}).items():
+                    got = intent.data.get(role)
+                    loose = step["intent"] == SAY and role == "object"
+                    ok = got is not None and (value.lower() in got.lower() if loose else got == value)
+                    if not ok:
+                        problems.append(f"{where}role {role}: expected {value!r}, got {got!r}")
     if expect.get("clarify") and ("?" not in result.response or real):
         problems.append("expected a clarifying question and no intent")
     for text in expect.get("reply_mentions") or []:
         if text.lower() not in result.response.lower():
             problems.append(f"reply does not mention {text!r}")
     return problems
+
+
+def _names(steps: Sequence[Any]) -> str:
+    return ", ".join(s["intent"] if isinstance(s, dict) else s.intent for s in steps)
 
 
 def case_kb(case: Case, scenes_dir: Path, kb_factory: Callable[[], KB]) -> KB:

@@ -16,14 +16,19 @@ from dialogue.rules.interpret import Interpreter, Outcome
 from dialogue.schema import ChatbotResponse, UserIntent
 
 
-def answer_of(outcome: Outcome) -> ChatbotResponse:
-    if outcome.intent is None:
-        return ChatbotResponse(verbal_ack=outcome.reply, user_intent=None)
+def _wish(outcome: Outcome) -> UserIntent:
     roles = dict(outcome.roles)
     free = roles.pop("object", None) if outcome.intent in FREE_FORM_OBJECT else None
+    return UserIntent(type=outcome.intent, input=free, confidence=outcome.confidence, **roles)
+
+
+def answer_of(outcome: Outcome) -> ChatbotResponse:
+    steps = [o for o in outcome.steps() if o.intent is not None]
+    if not steps:
+        return ChatbotResponse(verbal_ack=outcome.reply, user_intent=None)
+    wishes = [_wish(o) for o in steps]
     return ChatbotResponse(
-        verbal_ack=outcome.reply,
-        user_intent=UserIntent(type=outcome.intent, input=free, confidence=outcome.confidence, **roles),
+        verbal_ack=outcome.reply, user_intent=wishes[0], user_intents=wishes if len(wishes) > 1 else None
     )
 
 
@@ -58,5 +63,8 @@ class RulesModel(ChatModel):
 
     async def chat(self, request: ChatRequest, timeout: float) -> ChatResult:
         outcome = self.interpret(request.context)
-        content = json.dumps(answer_of(outcome).model_dump(exclude_none=False))
+        answer = answer_of(outcome)
+        # The tutorial's two keys, and the list only when there is more than one intent.
+        single = answer.user_intents is None
+        content = json.dumps(answer.model_dump(exclude={"user_intents"} if single else None))
         return ChatResult(content, "stop", understood=outcome.understood)

@@ -12,8 +12,13 @@ import threading
 from collections import defaultdict
 from collections.abc import Sequence
 from dataclasses import dataclass
+from functools import lru_cache
+
+from lemminflect import getLemma
 
 from dialogue.reference.grounding import Entity, Snapshot
+from dialogue.reference.synonyms import synonyms
+from dialogue.rules.words import word_set
 
 _WORD = re.compile(r"[a-z0-9]+(?:'[a-z]+)?")
 
@@ -49,18 +54,26 @@ def tokens(text: str) -> list[str]:
     return _WORD.findall(text)
 
 
+#: Function words ending in -s that a noun lemmatiser would "singularise" ("was" -> "wa").
+_NOT_PLURAL = word_set("is was has does this his us yes its as thus plus whereas always sometimes perhaps")
+
+
+@lru_cache(maxsize=65536)
 def singular(word: str) -> str:
-    if len(word) > 3 and word.endswith("ies"):
-        return word[:-3] + "y"
-    if len(word) > 3 and word.endswith(("ches", "shes", "xes", "sses")):
-        return word[:-2]
-    if len(word) > 2 and word.endswith("s") and not word.endswith("ss"):
-        return word[:-1]
-    return word
+    """The noun lemma of a word ("knives" -> "knife", "buses" -> "bus", "glasses" -> "glass")."""
+    if len(word) < 3 or not word.endswith("s") or word in _NOT_PLURAL or "'" in word:
+        return word
+    lemmas = getLemma(word, "NOUN", lemmatize_oov=True)
+    return lemmas[0] if lemmas else word
 
 
 def norm(words: Sequence[str]) -> tuple[str, ...]:
     return tuple(singular(w) for w in words)
+
+
+def phrase(text: str) -> tuple[str, ...]:
+    """A text as normalised words (the form names are indexed in)."""
+    return norm(tokens(text))
 
 
 @dataclass(frozen=True)
@@ -90,6 +103,8 @@ class Lexicon:
         self.attributes: dict[str, frozenset[str]] = {}
         #: Entities by each (singular) word of their own labels, for "the teddy" ("teddy bear").
         self.by_label_word: dict[str, list[str]] = defaultdict(list)
+        #: Every (singular) word of every name and qualifier: what the KB can account for.
+        self.vocabulary: set[str] = set()
         self._entries: dict[Entity, tuple[list[Name], frozenset[str], frozenset[str]]] = {}
         old = previous._entries if previous is not None else {}
         for entity in snapshot.entities.values():
@@ -97,6 +112,8 @@ class Lexicon:
             self._entries[entity] = entry
             for name in entry[0]:
                 self._by_first[name.words[0]].append(name)
+                self.vocabulary.update(name.words)
+            self.vocabulary.update(entry[1])
             self.attributes[entity.id] = entry[1]
             for word in entry[2]:
                 self.by_label_word[word].append(entity.id)
@@ -113,6 +130,11 @@ class Lexicon:
             span = words[start:end]
             if end <= len(words) and all(singular(w) == n for w, n in zip(span, name.words, strict=True)):
                 found.append(name)
+        if start + 1 < len(words):
+            # "tea cup" for the "teacup", "tool box" for the "toolbox": a closed compound said apart.
+            joined = singular(words[start] + words[start + 1])
+            found += [Name((words[start], words[start + 1]), n.entity, n.source)
+                      for n in self._by_first.get(joined, ()) if n.words == (joined,)]  # fmt: skip
         return found
 
     def mentions(self, words: Sequence[str]) -> list[Mention]:
@@ -132,6 +154,11 @@ class Lexicon:
 
     def knows_word(self, word: str) -> bool:
         return singular(word) in self._by_first
+
+    def knows(self, word: str) -> bool:
+        """Whether the word is part of any name or qualifier of the snapshot ("'s" ignored)."""
+        word = word[:-2] if word.endswith("'s") else word
+        return word.isdigit() or singular(word) in self.vocabulary
 
 
 def _names(entity: Entity) -> list[Name]:
@@ -155,6 +182,16 @@ def _names(entity: Entity) -> list[Name]:
         words = tokens(text)
         if len(words) > 1:
             add(words[-1], "head")
+    # Other ways of saying a name or its ending ("cell phone" for the "mobile phone", "the fridge"
+    # for the "kitchen refrigerator").
+    syn = synonyms(phrase)
+    for text in (*entity.labels, *entity.class_names):
+        said = phrase(text)
+        for k in range(len(said)):
+            for other in syn.of(said[k:]):
+                add(" ".join((*said[:k], *other)), "synonym")
+                if k:
+                    add(" ".join(other), "head")
     return out
 
 
@@ -166,6 +203,8 @@ def _entry(entity: Entity) -> tuple[list[Name], frozenset[str], frozenset[str]]:
         words.update(norm(tokens(entity.colour)))
     for class_name in entity.class_names:
         words.update(norm(tokens(class_name)))
+    syn = synonyms(phrase)
+    words.update(o[0] for w in tuple(words) for o in syn.of((w,)) if len(o) == 1)
     return _names(entity), frozenset(words), label_words
 
 
@@ -175,6 +214,10 @@ class LexiconCache:
     def __init__(self) -> None:
         self._lock = threading.Lock()
         self._lexicon: Lexicon | None = None
+        # The lemma tables and the synonyms file load on first use (a few hundred ms): here, when
+        # an engine is made, rather than inside its first turn's deadline.
+        singular("cups")
+        synonyms(phrase)
 
     def get(self, snapshot: Snapshot) -> Lexicon:
         with self._lock:

@@ -6,7 +6,7 @@ import pytest
 from dialogue.engine import TurnResult
 from dialogue.evaluation.cases import EvalError, check, format_report, load_cases, run
 from dialogue.evaluation.command import main
-from dialogue.intents import GRAB_OBJECT, SAY, make_intent, raw_user_input
+from dialogue.intents import BRING_OBJECT, GRAB_OBJECT, SAY, make_intent, raw_user_input
 from dialogue.llm.hybrid import HybridModel
 from dialogue.llm.openai import OpenAIModel
 from dialogue.llm.testing import ScriptedModel
@@ -146,3 +146,33 @@ def test_a_set_runs_on_one_client_closed_at_the_end(tmp_path: Path, monkeypatch:
     assert report.passed == 2 and report.claims == []
     assert len(server.peers) == 2 and len(set(server.peers)) == 1
     assert closed == [f"openai:m@{server.url}/v1"]
+
+
+def test_compound_commands_return_every_intent_in_order() -> None:
+    report = run(EVAL_DIR / "multi.jsonl", "rules")
+    assert report.total >= 20
+    assert report.score == 1.0, [(r.case.id, r.problems) for r in report.results if not r.passed]
+
+
+def test_then_checks_the_following_intents_in_order(tmp_path: Path) -> None:
+    line = {
+        "id": "x", "input": "take the cup and give it to Tom",
+        "expect": {"intent": GRAB_OBJECT, "roles": {"object": "cup_1"},
+                   "then": [{"intent": BRING_OBJECT, "roles": {"object": "cup_1", "recipient": "person_tom"}}]},
+    }  # fmt: skip
+    (tmp_path / "c.jsonl").write_text(json.dumps(line))
+    case = load_cases(tmp_path / "c.jsonl")[0]
+    grab = make_intent(GRAB_OBJECT, {"object": "cup_1"}, source="p", confidence=1)
+    bring = make_intent(BRING_OBJECT, {"object": "cup_1", "recipient": "person_tom"}, source="p", confidence=1)
+    to_ann = make_intent(BRING_OBJECT, {"object": "cup_1", "recipient": "person_ann"}, source="p", confidence=1)
+    assert check(case, TurnResult("ok", (grab, bring))) == []
+    assert check(case, TurnResult("ok", (grab,))) == [f"expected {GRAB_OBJECT}, {BRING_OBJECT}, got {GRAB_OBJECT}"]
+    assert check(case, TurnResult("ok", (bring, grab))) != []
+    assert check(case, TurnResult("ok", (grab, bring, grab))) != []  # nothing else may follow
+    assert check(case, TurnResult("ok", (grab, to_ann))) == [
+        "intent 2 role recipient: expected 'person_tom', got 'person_ann'"
+    ]
+    line["expect"]["then"] = [{"intent": 3}]  # type: ignore[index]
+    (tmp_path / "c.jsonl").write_text(json.dumps(line))
+    with pytest.raises(EvalError, match=r"expect\.then"):
+        load_cases(tmp_path / "c.jsonl")
