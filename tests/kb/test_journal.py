@@ -267,3 +267,41 @@ def test_a_kill_at_any_step_of_a_snapshot_loses_no_acknowledged_write(
         journal.close()
         third, _ = open_kb(directory)
         assert asserted(third) == expected, f"after a kill at {calls[-1]} (step {at})"
+
+
+def test_an_expiry_due_at_start_is_journaled_so_a_later_re_add_survives(
+        tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """A lifespan that ran out while the service was down is retracted by the expiry thread,
+    which recovery starts. If that retraction ran before the journal took commits, it was never
+    journaled: the fact, acknowledged again later without a lifespan, came back from the next
+    replay with its old expiry time and was retracted again, an acknowledged write lost."""
+    import threading
+
+    clock = Clock()
+    kb, journal = open_kb(tmp_path, clock)
+    kb.update(["p sees q"], lifespan=10)
+    journal.close()
+    clock.now += 50  # down for 50 s: the lifespan ran out meanwhile
+
+    attach = KB.on_commit
+    expiries: list[threading.Thread] = []
+
+    def expiry_thread_runs_first(self: KB, *args: Any, **kwargs: Any) -> Any:
+        # The expiry thread scheduled just before recovery hands the KB to the journal.
+        expiry = threading.Thread(target=self.expire)
+        expiries.append(expiry)
+        expiry.start()
+        expiry.join(timeout=1.0)  # done at once, unless recovery holds the KB until it is journaled
+        return attach(self, *args, **kwargs)
+
+    with monkeypatch.context() as patch:
+        patch.setattr(KB, "on_commit", expiry_thread_runs_first)
+        again, journal = open_kb(tmp_path, clock)
+    expiries[0].join(timeout=30)
+    assert again["p sees ?o"] == []
+    again += "p sees q"  # acknowledged, no lifespan: it stays
+    journal.close()
+
+    third, _ = open_kb(tmp_path, clock)
+    third.expire()
+    assert third["p sees ?o"] == [{"o": "q"}]
