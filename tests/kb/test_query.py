@@ -228,7 +228,8 @@ names = st.builds(
 ).filter(lambda n: n not in ("a", "true", "false") and not n.endswith("."))
 # Any text, with the characters that matter to the tokeniser made frequent.
 _TRICKY = ['"', "\\", "'", "\n", "\r", "\t", '"""', "@en", "^^xsd:integer", "\\u00e9", " ", ".", "?x", "*"]
-texts = st.lists(st.one_of(st.characters(), st.sampled_from(_TRICKY)), max_size=30).map("".join)
+# Lone surrogates are not text the KB takes (kb.unicode refuses them; tests/kb/test_unicode.py).
+texts = st.lists(st.one_of(st.characters(exclude_categories=("Cs",)), st.sampled_from(_TRICKY)), max_size=30).map("".join)
 # (what a client writes, what find must return for it)
 written_values = st.one_of(
     names.map(lambda n: (n, n)),
