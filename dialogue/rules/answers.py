@@ -57,6 +57,7 @@ def location(snapshot: Snapshot, entity: Entity) -> str:
     parts = []
     if entity.support:
         parts.append(f"on the {snapshot.name_of(entity.support)}")
+    parts.extend(f"{prep} the {snapshot.name_of(other)}" for prep, other in entity.relations[:2])
     if entity.zone:
         parts.append(f"in the {snapshot.name_of(entity.zone)}")
     return " ".join(parts)

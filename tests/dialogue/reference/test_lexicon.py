@@ -53,7 +53,7 @@ def test_synonyms_name_the_kbs_things(office: KB) -> None:
 
 
 def test_how_many_counts_irregular_plurals(office: KB) -> None:
-    from tests.dialogue.test_interpret import say
+    from tests.dialogue.rules.test_interpret import say
 
     office.update([f"{k} rdf:type Artifact" for k in ("knife_1", "knife_2")])
     office.update([f'{k} rdfs:label "knife"' for k in ("knife_1", "knife_2")])

@@ -5,7 +5,7 @@ import pytest
 from dialogue import intents as I
 from dialogue.rules.compound import conjuncts
 from kb import KB
-from tests.dialogue.test_interpret import say
+from tests.dialogue.rules.test_interpret import say
 
 
 @pytest.mark.parametrize(

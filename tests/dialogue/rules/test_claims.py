@@ -1,0 +1,32 @@
+"""The rules claim a turn only when they understood it: each class of wrong claim seen on the
+case sets, on scenes and sentences of its own."""
+
+from dialogue.history import ASSISTANT_USER_ID, Utterance
+from dialogue.rules.interpret import Interpreter, Outcome
+from kb import KB
+from tests.dialogue.conftest import lexicon_of, scene_kb
+
+SPEAKER = "person_kim"
+_PEOPLE = (f"{SPEAKER} rdf:type Human", f'{SPEAKER} rdfs:label "Kim"', f"myself sees {SPEAKER}")
+
+
+def say(kb: KB, text: str, history: list[tuple[str, str]] | None = None) -> Outcome:
+    turns = [Utterance(SPEAKER if who == "user" else ASSISTANT_USER_ID, t) for who, t in history or []]
+    return Interpreter(lexicon_of(kb), SPEAKER, turns).interpret(text)
+
+
+def scene(*facts: str) -> KB:
+    return scene_kb(None, *_PEOPLE, *facts)
+
+
+def test_where_says_every_spatial_fact_not_only_support_and_zone() -> None:
+    kb = scene(
+        "boots_1 rdf:type Artifact", 'boots_1 rdfs:label "wellies"', "myself sees boots_1",
+        "door_1 rdf:type Artifact", 'door_1 rdfs:label "back door"', "boots_1 isNextTo door_1",
+        "bag_1 rdf:type Artifact", 'bag_1 rdfs:label "kit bag"', "myself sees bag_1",
+        "bench_1 rdf:type Artifact", 'bench_1 rdfs:label "bench"', "bag_1 isBelow bench_1",
+    )  # fmt: skip
+    out = say(kb, "wheres my wellies")
+    assert out.understood and out.intent is None
+    assert "next to the back door" in out.reply
+    assert "under the bench" in say(kb, "where is the kit bag").reply
