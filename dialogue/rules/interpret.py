@@ -387,7 +387,8 @@ class Interpreter:
         if first.open_role is None:
             return None
         if first.open_phrase:
-            phrase = tuple(w for w in content_words(first.open_phrase))
+            # Prepositions stay: "the novel" + "book from the shelf" keeps "book" as the head.
+            phrase = tuple(w for w in first.open_phrase if w not in {"the", "a", "an"})
             merged = tuple(x for w in fragment for x in (phrase if w in _ONE else (w,)))
             if not set(fragment) & _ONE:
                 merged = (*fragment, *phrase)

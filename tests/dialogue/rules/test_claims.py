@@ -30,3 +30,16 @@ def test_where_says_every_spatial_fact_not_only_support_and_zone() -> None:
     assert out.understood and out.intent is None
     assert "next to the back door" in out.reply
     assert "under the bench" in say(kb, "where is the kit bag").reply
+
+
+def test_a_compound_name_is_its_head_not_a_thing_on_it() -> None:
+    # "the spice rack" is the rack, not the spice jar standing on it (whose support is the rack).
+    kb = scene(
+        "rack_1 rdf:type Artifact", 'rack_1 rdfs:label "spice rack"', "myself sees rack_1",
+        "jar_1 rdf:type Artifact", 'jar_1 rdfs:label "jar of spice"', "jar_1 isOn rack_1", "myself sees jar_1",
+        "mint_1 rdf:type Artifact", 'mint_1 rdfs:label "mint"', "mint_1 isOn rack_1",
+    )  # fmt: skip
+    out = say(kb, "what is on the spice rack")
+    assert not out.clarify, out.reply
+    assert "mint" in out.reply
+    assert say(kb, "pick up the spice rack").roles == {"object": "rack_1"}
