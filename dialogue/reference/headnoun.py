@@ -84,14 +84,19 @@ def _colours(entity: Entity) -> frozenset[str]:
 def _named(lexicon: Lexicon, np: Sequence[str]) -> set[str]:
     """Entities whose name ends the noun phrase (its head), whatever their kind; failing that, those
     a more general word for the head names ("the paperback": a book)."""
-    found: set[str] = set()
+    return set(_name_starts(lexicon, np))
+
+
+def _name_starts(lexicon: Lexicon, np: Sequence[str]) -> dict[str, int]:
+    """`_named`, with where in the phrase each entity's (longest) name starts."""
+    found: dict[str, int] = {}
     for start in range(len(np)):
         for name in lexicon.names_at(np, start):
             if start + len(name.words) == len(np):
-                found.add(name.entity)
+                found.setdefault(name.entity, start)
     if not found and np:
         for general in synonyms(phrase).kind_of(phrase(np[-1])):
-            found |= _named(lexicon, general)
+            found.update(dict.fromkeys(_named(lexicon, general), len(np) - 1))
     return found
 
 
@@ -107,12 +112,11 @@ def resolve_head(lexicon: Lexicon, words: Sequence[str], kinds: Collection[Kind]
     if not phrase.core:
         return []
     snapshot = lexicon.snapshot
-    heads = [
-        e for eid in _named(lexicon, phrase.core) if (e := snapshot.get(eid)) is not None and e.kind in kinds
-    ]
+    starts = _name_starts(lexicon, phrase.core)
+    heads = [e for eid in starts if (e := snapshot.get(eid)) is not None and e.kind in kinds]
     scored: list[tuple[int, Entity]] = []
     for entity in heads:
-        score = _evidence(lexicon, entity, phrase)
+        score = _evidence(lexicon, entity, phrase, starts[entity.id])
         if score is not None:
             scored.append((score, entity))
     if not scored:
@@ -122,12 +126,14 @@ def resolve_head(lexicon: Lexicon, words: Sequence[str], kinds: Collection[Kind]
     return sorted((e for s, e in scored if s == best), key=lambda e: order[e.id])
 
 
-def _evidence(lexicon: Lexicon, entity: Entity, phrase: _Phrase) -> int | None:
-    """How many modifiers hold for the entity, or None when one contradicts a known fact."""
+def _evidence(lexicon: Lexicon, entity: Entity, phrase: _Phrase, name_start: int) -> int | None:
+    """How many modifiers hold for the entity, or None when one contradicts a known fact. The words
+    of the core its own name spans count as modifiers that hold ("tea cup" names the teacup fully,
+    the espresso cup only by "cup")."""
     attrs = lexicon.attributes.get(entity.id, frozenset())
     colours = _colours(entity)
-    score = 0
-    for word in norm(phrase.core[:-1]):
+    score = len(phrase.core) - 1 - name_start
+    for word in norm(phrase.core[:name_start]):
         people = {e.id for e in _entities(lexicon, (word,)) if e.kind == "person"}
         if word in attrs:
             score += 1

@@ -43,3 +43,13 @@ def test_a_compound_name_is_its_head_not_a_thing_on_it() -> None:
     assert not out.clarify, out.reply
     assert "mint" in out.reply
     assert say(kb, "pick up the spice rack").roles == {"object": "rack_1"}
+
+
+def test_a_closed_compound_said_apart_beats_a_name_that_only_shares_its_head() -> None:
+    # "tool box" is the toolbox; the lunch box is a box too, but only by its last word.
+    kb = scene(
+        "tb_1 rdf:type Artifact", 'tb_1 rdfs:label "toolbox"', "myself sees tb_1",
+        "lb_1 rdf:type Artifact", 'lb_1 rdfs:label "lunch box"', "myself sees lb_1",
+    )  # fmt: skip
+    out = say(kb, "uh grab the tool box by the wheelbarrow")
+    assert out.roles == {"object": "tb_1"}, out.reply
