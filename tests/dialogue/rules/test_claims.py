@@ -53,3 +53,16 @@ def test_a_closed_compound_said_apart_beats_a_name_that_only_shares_its_head() -
     )  # fmt: skip
     out = say(kb, "uh grab the tool box by the wheelbarrow")
     assert out.roles == {"object": "tb_1"}, out.reply
+
+
+def test_a_plural_place_is_each_of_them_not_a_question_which_one() -> None:
+    kb = scene(
+        "d1 rdf:type Artifact", 'd1 rdfs:label "top drawer"', "myself sees d1",
+        "d2 rdf:type Artifact", 'd2 rdfs:label "bottom drawer"', "myself sees d2",
+        "spoon_1 rdf:type Artifact", 'spoon_1 rdfs:label "spoon"', "spoon_1 isOn d1",
+        "fork_1 rdf:type Artifact", 'fork_1 rdfs:label "fork"', "fork_1 isOn d2",
+    )  # fmt: skip
+    out = say(kb, "whats on the drawers")
+    assert not out.clarify and out.understood, out.reply
+    assert "spoon" in out.reply and "fork" in out.reply
+    assert say(kb, "whats on the drawer").clarify  # one of them, unsaid which: ask
