@@ -14,7 +14,7 @@ from collections.abc import Collection, Sequence
 from dataclasses import dataclass
 
 from dialogue.reference.grounding import Entity, Kind
-from dialogue.reference.lexicon import DETERMINERS, Lexicon, norm, phrase, tokens
+from dialogue.reference.lexicon import DETERMINERS, Lexicon, norm, phrase, singular, tokens
 from dialogue.reference.synonyms import synonyms
 from dialogue.rules.words import COLOURS, word_set
 
@@ -97,6 +97,8 @@ def _name_starts(lexicon: Lexicon, np: Sequence[str]) -> dict[str, int]:
     if not found and np:
         for general in synonyms(phrase).kind_of(phrase(np[-1])):
             found.update(dict.fromkeys(_named(lexicon, general), len(np) - 1))
+    if not found and np:  # "the thermos" for the "thermos flask": a word of its label
+        found.update(dict.fromkeys(lexicon.by_label_word.get(singular(np[-1]), ()), len(np) - 1))
     return found
 
 

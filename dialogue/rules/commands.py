@@ -222,7 +222,7 @@ def _command(original: str, words: list[str]) -> Parse:
         and (
             (verb != "pick" and rest[:1] and rest[0] in ME)
             or "to" in rest
-            or rest[-2:] in {("for", "me"), ("for", "us")}
+            or "for" in rest  # "get the vitamins down for Mr K": fetching for someone is bringing
         )
     ):
         return _bring(verb, rest, cmd)

@@ -66,3 +66,23 @@ def test_a_plural_place_is_each_of_them_not_a_question_which_one() -> None:
     assert not out.clarify and out.understood, out.reply
     assert "spoon" in out.reply and "fork" in out.reply
     assert say(kb, "whats on the drawer").clarify  # one of them, unsaid which: ask
+
+
+def test_a_word_of_a_label_is_a_head_with_modifiers_checked() -> None:
+    # "the kettle on the sideboard" for the "dictaphone recorder": a word of its label, with a place.
+    kb = scene(
+        "k_1 rdf:type Artifact", 'k_1 rdfs:label "dictaphone recorder"', "myself sees k_1",
+        "sb_1 rdf:type Artifact", 'sb_1 rdfs:label "sideboard"', "k_1 isOn sb_1", "myself sees sb_1",
+        "k_1 belongsTo person_lee", "person_lee rdf:type Human", 'person_lee rdfs:label "Lee"',
+    )  # fmt: skip
+    assert "Lee" in say(kb, "whose dictaphone is that on the sideboard").reply
+    assert say(kb, "grab the dictaphone off the sideboard").roles == {"object": "k_1"}
+
+
+def test_fetching_something_for_someone_is_bringing_it_to_them() -> None:
+    kb = scene(
+        "jar_1 rdf:type Artifact", 'jar_1 rdfs:label "honey jar"', "myself sees jar_1",
+        "person_lee rdf:type Human", 'person_lee rdfs:label "Lee"', "myself sees person_lee",
+    )  # fmt: skip
+    out = say(kb, "could you get the honey jar down for lee")
+    assert (out.intent, out.roles) == ("__intent_bring_object__", {"object": "jar_1", "recipient": "person_lee"})
