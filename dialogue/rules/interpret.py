@@ -230,6 +230,11 @@ class Interpreter:
             who = tuple(w for w in slots.get("object", ()) if w not in RELATIONAL)
             if self._person_as_object(who) is not None:
                 intent, slots = I.GUIDE, {"recipient": who, "goal": slots["recipient"]}
+        implicit = not content_words(slots.get("recipient", ()))
+        if intent == I.GUIDE and slots.get("goal") == ("there",) and implicit:
+            # "Ellen needs the utility room, lead the way": the person just spoken of, else the speaker.
+            person = antecedent(self.lexicon, [u.text for u in self.history], PERSON)
+            slots["recipient"] = tuple(tokens(person.id)) if person is not None else ("me",)
         roles: dict[str, str] = {}
         refs: dict[str, _Ref] = {}
         spec = I.CATALOGUE[intent]

@@ -86,3 +86,28 @@ def test_fetching_something_for_someone_is_bringing_it_to_them() -> None:
     )  # fmt: skip
     out = say(kb, "could you get the honey jar down for lee")
     assert (out.intent, out.roles) == ("__intent_bring_object__", {"object": "jar_1", "recipient": "person_lee"})
+
+
+def _garden() -> KB:
+    return scene(
+        "pond_1 rdf:type ZoneOfInterest", 'pond_1 rdfs:label "koi pond"',
+        "shed_1 rdf:type ZoneOfInterest", 'shed_1 rdfs:label "potting shed"',
+    )  # fmt: skip
+
+
+def test_take_us_there_guides_to_the_place_just_spoken_of() -> None:
+    out = say(_garden(), "sorry wheres the koi pond could you take me there")
+    assert (out.intent, out.roles) == ("__intent_guide__", {"recipient": SPEAKER, "goal": "pond_1"}), out.reply
+
+
+def test_lead_the_way_guides_the_speaker_to_the_place_just_spoken_of() -> None:
+    out = say(_garden(), "The potting shed sounds lovely. Show me the way?")
+    assert (out.intent, out.roles) == ("__intent_guide__", {"recipient": SPEAKER, "goal": "shed_1"}), out.reply
+    assert say(_garden(), "lead the way to the koi pond").roles == {"recipient": SPEAKER, "goal": "pond_1"}
+
+
+def test_lead_the_way_after_naming_someone_guides_them() -> None:
+    kb = scene_kb(None, *_PEOPLE, "person_lee rdf:type Human", 'person_lee rdfs:label "Lee"',
+                  "myself sees person_lee", "shed_1 rdf:type ZoneOfInterest", 'shed_1 rdfs:label "potting shed"')
+    out = say(kb, "Lee wants to see the potting shed. Would you lead the way?")
+    assert (out.intent, out.roles) == ("__intent_guide__", {"recipient": "person_lee", "goal": "shed_1"}), out.reply
