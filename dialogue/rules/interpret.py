@@ -314,6 +314,9 @@ class Interpreter:
                 )
             return _Ref(entity=found)
         res = resolve(self.lexicon, words, kinds, owner=owner)
+        if res.ambiguous and any(e.id == self.speaker for e in res.matches):
+            # A speaker says "me", not "the person in the living room": a description is someone else.
+            res = replace(res, matches=tuple(e for e in res.matches if e.id != self.speaker))
         if res.one is not None:
             return _Ref(entity=res.one)
         if res.ambiguous:

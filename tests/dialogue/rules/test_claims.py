@@ -111,3 +111,13 @@ def test_lead_the_way_after_naming_someone_guides_them() -> None:
                   "myself sees person_lee", "shed_1 rdf:type ZoneOfInterest", 'shed_1 rdfs:label "potting shed"')
     out = say(kb, "Lee wants to see the potting shed. Would you lead the way?")
     assert (out.intent, out.roles) == ("__intent_guide__", {"recipient": "person_lee", "goal": "shed_1"}), out.reply
+
+
+def test_a_description_of_a_person_is_not_the_speaker() -> None:
+    kb = scene(
+        "person_x rdf:type Human", 'person_x rdfs:label "visitor"', "myself sees person_x",
+        f'{SPEAKER} rdfs:label "visitor"', "card_1 rdf:type Artifact", 'card_1 rdfs:label "postcard"',
+        "myself sees card_1",
+    )  # fmt: skip
+    out = say(kb, "give this postcard to the visitor by the window")
+    assert out.roles == {"object": "card_1", "recipient": "person_x"}, out.reply
