@@ -111,6 +111,8 @@ def resolve(
     matches.sort(key=lambda e: order[e.id])
     if not matches and content:
         matches = _by_label_words(lexicon, [normed[i] for i in content], kinds)
+    if not matches and content and {"one", "ones"} & set(words):
+        matches = _by_qualifiers(lexicon, [normed[i] for i in content], kinds)
     if not matches and content:
         matches = resolve_head(lexicon, words, kinds)
     # Ownership only narrows: "my cup" still means the cup when nobody's cups are recorded.
@@ -118,6 +120,16 @@ def resolve(
     matches = owned or matches
     seen = [e for e in matches if e.seen]
     return Resolution(phrase, tuple(seen or matches))
+
+
+def _by_qualifiers(lexicon: Lexicon, qualifiers: Sequence[str], kinds: Collection[Kind]) -> list[Entity]:
+    """ "the orange one": with no noun, the things every qualifier holds for (colour, label words)."""
+    out = []
+    for entity in lexicon.snapshot.entities.values():
+        attrs = lexicon.attributes.get(entity.id, frozenset())
+        if entity.kind in kinds and all(w in attrs for w in qualifiers):
+            out.append(entity)
+    return out
 
 
 def _head(words: Sequence[str], content: Sequence[int]) -> int | None:

@@ -121,3 +121,13 @@ def test_a_description_of_a_person_is_not_the_speaker() -> None:
     )  # fmt: skip
     out = say(kb, "give this postcard to the visitor by the window")
     assert out.roles == {"object": "card_1", "recipient": "person_x"}, out.reply
+
+
+def test_the_colour_one_with_nothing_said_before_is_the_one_thing_of_that_colour() -> None:
+    kb = scene(
+        "m1 rdf:type Artifact", 'm1 rdfs:label "beaker"', "m1 hasColor blue", "myself sees m1",
+        "m2 rdf:type Artifact", 'm2 rdfs:label "flask"', "m2 hasColor red", "myself sees m2",
+        "m3 rdf:type Artifact", 'm3 rdfs:label "funnel"', "m3 hasColor red", "myself sees m3",
+    )  # fmt: skip
+    assert say(kb, "uh hand me the blue one").roles == {"object": "m1", "recipient": SPEAKER}
+    assert say(kb, "hand me the red one").clarify  # two red things: ask which
