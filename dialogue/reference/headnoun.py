@@ -48,6 +48,8 @@ class _Phrase:
     core: tuple[str, ...]
     #: (preposition, its noun phrase) for each modifier after the core.
     modifiers: tuple[tuple[str, tuple[str, ...]], ...]
+    #: A preposition with no noun phrase after it ("the table for"): the phrase is cut short.
+    dangling: bool = False
 
 
 def _split(words: Sequence[str]) -> _Phrase:
@@ -59,6 +61,7 @@ def _split(words: Sequence[str]) -> _Phrase:
             core.append(words[i])
         i += 1
     mods: list[tuple[str, tuple[str, ...]]] = []
+    dangling = False
     while i < len(words):
         prep, i = words[i], i + 1
         np: list[str] = []
@@ -67,11 +70,12 @@ def _split(words: Sequence[str]) -> _Phrase:
             i += 1
         if np:
             mods.append((prep, tuple(np)))
+        dangling = dangling or (not np and i == len(words))
     core_words = tuple(w for w in core if w not in _QUALIFIERS) or tuple(core)
     # "the head of the table": the part's owner is the head.
     if core_words and core_words[-1] in _PARTS and mods and mods[0][0] == "of":
         return _split(mods[0][1] + tuple(w for p, np in mods[1:] for w in (p, *np)))
-    return _Phrase(core_words, tuple(mods))
+    return _Phrase(core_words, tuple(mods), dangling)
 
 
 def _colours(entity: Entity) -> frozenset[str]:
@@ -111,7 +115,7 @@ def resolve_head(lexicon: Lexicon, words: Sequence[str], kinds: Collection[Kind]
     if _SEVERAL & set(words):
         return []
     phrase = _split(words)
-    if not phrase.core:
+    if not phrase.core or phrase.dangling:  # a modifier cut short may have named anything
         return []
     snapshot = lexicon.snapshot
     starts = _name_starts(lexicon, phrase.core)

@@ -131,3 +131,14 @@ def test_the_colour_one_with_nothing_said_before_is_the_one_thing_of_that_colour
     )  # fmt: skip
     assert say(kb, "uh hand me the blue one").roles == {"object": "m1", "recipient": SPEAKER}
     assert say(kb, "hand me the red one").clarify  # two red things: ask which
+
+
+def test_a_phrase_cut_short_after_a_preposition_is_not_claimed() -> None:
+    # "bay for" (a misheard "bay four"): which bay is not said, so the rules do not guess or ask.
+    kb = scene(
+        "b4 rdf:type Artifact", 'b4 rdfs:label "loading bay four"', "myself sees b4",
+        "b9 rdf:type Artifact", 'b9 rdfs:label "loading bay nine"', "myself sees b9",
+    )  # fmt: skip
+    out = say(kb, "go to the loading bay for")
+    assert not out.understood and not out.clarify, out.reply
+    assert say(kb, "go to the loading bay").clarify
