@@ -71,6 +71,8 @@ class Entity:
     owner: str | None = None
     #: A person's engagement with the robot (`engaging`, `engaged`, `disengaging`, `disengaged`).
     engagement: str | None = None
+    #: Other spatial facts, as (preposition, entity id): ("next to", "bed_1") for `isNextTo`.
+    relations: tuple[tuple[str, str], ...] = ()
 
 
 @dataclass(frozen=True)
@@ -194,6 +196,13 @@ def _pattern_term(term: str) -> str:
     return f"<{term}>" if "://" in term else term
 
 
+#: Spatial relations beyond support and zone, with the preposition that says them in a reply.
+RELATIONS: tuple[tuple[str, str], ...] = (
+    ("isNextTo", "next to"), ("cyc:near", "near"), ("isBelow", "under"), ("isAbove", "above"),
+    ("behind", "behind"), ("inFrontOf", "in front of"),
+)  # fmt: skip
+
+
 def build_snapshot(kb: KnowledgeBase, max_entities: int = 300, lang: str = "en",
                    previous: Snapshot | None = None, dirty: set[str] | None = None) -> Snapshot:
     """A few set-wide queries, then small per-entity ones: cheap even with many visible objects.
@@ -211,6 +220,10 @@ def build_snapshot(kb: KnowledgeBase, max_entities: int = 300, lang: str = "en",
     colour = _single(kb.find("?x hasColor ?y"))
     owner = _single(kb.find("?x belongsTo ?y"))
     engagement = _single(kb.find("?x engagementLevel ?y"))
+    relations: dict[str, list[tuple[str, str]]] = {}
+    for prop, prep in RELATIONS:
+        for row in sorted(kb.find(f"?x {prop} ?y"), key=lambda r: (str(r["x"]), str(r["y"]))):
+            relations.setdefault(str(row["x"]), []).append((prep, str(row["y"])))
 
     def rank(term: str) -> int:
         if term in seen:
@@ -278,7 +291,7 @@ def build_snapshot(kb: KnowledgeBase, max_entities: int = 300, lang: str = "en",
             entities[term] = replace(
                 old, seen=term in seen, support=support.get(term), zone=zone.get(term),
                 colour=display_name(hue) if hue else None, engagement=engagement.get(term),
-                owner=owner.get(term),
+                owner=owner.get(term), relations=tuple(relations.get(term, ())),
             )
             continue
         if previous is not None and dirty is not None and term in previous.skipped and term not in dirty:
@@ -315,8 +328,10 @@ def build_snapshot(kb: KnowledgeBase, max_entities: int = 300, lang: str = "en",
             class_names=class_names, kind=kind, seen=term in seen, support=support.get(term),
             zone=zone.get(term), colour=display_name(hue) if hue else None,
             engagement=engagement.get(term), owner=owner.get(term),
+            relations=tuple(relations.get(term, ())),
         )  # fmt: skip
-    names = {term: display_name(term) for term in {*support.values(), *zone.values()}}
+    others = {other for found in relations.values() for _prep, other in found}
+    names = {term: display_name(term) for term in {*support.values(), *zone.values(), *others}}
     return Snapshot(revision=revision, entities=entities, names=names, skipped=frozenset(skipped))
 
 

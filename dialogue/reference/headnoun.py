@@ -14,7 +14,7 @@ from collections.abc import Collection, Sequence
 from dataclasses import dataclass
 
 from dialogue.reference.grounding import Entity, Kind
-from dialogue.reference.lexicon import DETERMINERS, Lexicon, norm, phrase, tokens
+from dialogue.reference.lexicon import DETERMINERS, Lexicon, norm, phrase, singular, tokens
 from dialogue.reference.synonyms import synonyms
 from dialogue.rules.words import COLOURS, word_set
 
@@ -48,6 +48,8 @@ class _Phrase:
     core: tuple[str, ...]
     #: (preposition, its noun phrase) for each modifier after the core.
     modifiers: tuple[tuple[str, tuple[str, ...]], ...]
+    #: A preposition with no noun phrase after it ("the table for"): the phrase is cut short.
+    dangling: bool = False
 
 
 def _split(words: Sequence[str]) -> _Phrase:
@@ -59,6 +61,7 @@ def _split(words: Sequence[str]) -> _Phrase:
             core.append(words[i])
         i += 1
     mods: list[tuple[str, tuple[str, ...]]] = []
+    dangling = False
     while i < len(words):
         prep, i = words[i], i + 1
         np: list[str] = []
@@ -67,11 +70,12 @@ def _split(words: Sequence[str]) -> _Phrase:
             i += 1
         if np:
             mods.append((prep, tuple(np)))
+        dangling = dangling or (not np and i == len(words))
     core_words = tuple(w for w in core if w not in _QUALIFIERS) or tuple(core)
     # "the head of the table": the part's owner is the head.
     if core_words and core_words[-1] in _PARTS and mods and mods[0][0] == "of":
         return _split(mods[0][1] + tuple(w for p, np in mods[1:] for w in (p, *np)))
-    return _Phrase(core_words, tuple(mods))
+    return _Phrase(core_words, tuple(mods), dangling)
 
 
 def _colours(entity: Entity) -> frozenset[str]:
@@ -84,14 +88,21 @@ def _colours(entity: Entity) -> frozenset[str]:
 def _named(lexicon: Lexicon, np: Sequence[str]) -> set[str]:
     """Entities whose name ends the noun phrase (its head), whatever their kind; failing that, those
     a more general word for the head names ("the paperback": a book)."""
-    found: set[str] = set()
+    return set(_name_starts(lexicon, np))
+
+
+def _name_starts(lexicon: Lexicon, np: Sequence[str]) -> dict[str, int]:
+    """`_named`, with where in the phrase each entity's (longest) name starts."""
+    found: dict[str, int] = {}
     for start in range(len(np)):
         for name in lexicon.names_at(np, start):
             if start + len(name.words) == len(np):
-                found.add(name.entity)
+                found.setdefault(name.entity, start)
     if not found and np:
         for general in synonyms(phrase).kind_of(phrase(np[-1])):
-            found |= _named(lexicon, general)
+            found.update(dict.fromkeys(_named(lexicon, general), len(np) - 1))
+    if not found and np:  # "the thermos" for the "thermos flask": a word of its label
+        found.update(dict.fromkeys(lexicon.by_label_word.get(singular(np[-1]), ()), len(np) - 1))
     return found
 
 
@@ -104,15 +115,14 @@ def resolve_head(lexicon: Lexicon, words: Sequence[str], kinds: Collection[Kind]
     if _SEVERAL & set(words):
         return []
     phrase = _split(words)
-    if not phrase.core:
+    if not phrase.core or phrase.dangling:  # a modifier cut short may have named anything
         return []
     snapshot = lexicon.snapshot
-    heads = [
-        e for eid in _named(lexicon, phrase.core) if (e := snapshot.get(eid)) is not None and e.kind in kinds
-    ]
+    starts = _name_starts(lexicon, phrase.core)
+    heads = [e for eid in starts if (e := snapshot.get(eid)) is not None and e.kind in kinds]
     scored: list[tuple[int, Entity]] = []
     for entity in heads:
-        score = _evidence(lexicon, entity, phrase)
+        score = _evidence(lexicon, entity, phrase, starts[entity.id])
         if score is not None:
             scored.append((score, entity))
     if not scored:
@@ -122,12 +132,14 @@ def resolve_head(lexicon: Lexicon, words: Sequence[str], kinds: Collection[Kind]
     return sorted((e for s, e in scored if s == best), key=lambda e: order[e.id])
 
 
-def _evidence(lexicon: Lexicon, entity: Entity, phrase: _Phrase) -> int | None:
-    """How many modifiers hold for the entity, or None when one contradicts a known fact."""
+def _evidence(lexicon: Lexicon, entity: Entity, phrase: _Phrase, name_start: int) -> int | None:
+    """How many modifiers hold for the entity, or None when one contradicts a known fact. The words
+    of the core its own name spans count as modifiers that hold ("tea cup" names the teacup fully,
+    the espresso cup only by "cup")."""
     attrs = lexicon.attributes.get(entity.id, frozenset())
     colours = _colours(entity)
-    score = 0
-    for word in norm(phrase.core[:-1]):
+    score = len(phrase.core) - 1 - name_start
+    for word in norm(phrase.core[:name_start]):
         people = {e.id for e in _entities(lexicon, (word,)) if e.kind == "person"}
         if word in attrs:
             score += 1

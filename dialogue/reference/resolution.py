@@ -28,6 +28,8 @@ _GLUE = DETERMINERS | word_set(
     "labeled kind type next to and"
 )
 _LOCATIVE = frozenset({"on", "in", "at", "from", "near", "inside", "onto", "into", "under", "by", "to"})
+#: Words that end a noun phrase's core: its head is the last content word before the first of them.
+_CORE_END = _LOCATIVE | word_set("of with next that which")
 
 ALL_KINDS: frozenset[Kind] = frozenset({"person", "zone", "robot", "thing"})
 
@@ -87,6 +89,7 @@ def resolve(
             cover[name.entity].update(range(start, start + len(name.words)))
     snapshot = lexicon.snapshot
     content = [i for i, w in enumerate(words) if w not in _GLUE]
+    head = _head(words, content)
     matches: list[Entity] = []
     for entity_id, own in cover.items():
         entity = snapshot.get(entity_id)
@@ -94,17 +97,22 @@ def resolve(
             continue
         if not any(i in own for i in content):
             continue
+        attrs = lexicon.attributes.get(entity_id, frozenset())
+        # "the seed shelf" is a shelf: the head is the thing's own word, never its support's.
+        if head is not None and head not in own and normed[head] not in attrs:
+            continue
         context = set()
         for other in (entity.support, entity.zone, entity.owner):
             if other is not None:
                 context |= cover.get(other, set())
-        attrs = lexicon.attributes.get(entity_id, frozenset())
         if all(i in own or i in context or normed[i] in attrs for i in content):
             matches.append(entity)
     order = {eid: n for n, eid in enumerate(snapshot.entities)}
     matches.sort(key=lambda e: order[e.id])
     if not matches and content:
         matches = _by_label_words(lexicon, [normed[i] for i in content], kinds)
+    if not matches and content and {"one", "ones"} & set(words):
+        matches = _by_qualifiers(lexicon, [normed[i] for i in content], kinds)
     if not matches and content:
         matches = resolve_head(lexicon, words, kinds)
     # Ownership only narrows: "my cup" still means the cup when nobody's cups are recorded.
@@ -112,6 +120,26 @@ def resolve(
     matches = owned or matches
     seen = [e for e in matches if e.seen]
     return Resolution(phrase, tuple(seen or matches))
+
+
+def _by_qualifiers(lexicon: Lexicon, qualifiers: Sequence[str], kinds: Collection[Kind]) -> list[Entity]:
+    """ "the orange one": with no noun, the things every qualifier holds for (colour, label words)."""
+    out = []
+    for entity in lexicon.snapshot.entities.values():
+        attrs = lexicon.attributes.get(entity.id, frozenset())
+        if entity.kind in kinds and all(w in attrs for w in qualifiers):
+            out.append(entity)
+    return out
+
+
+def _head(words: Sequence[str], content: Sequence[int]) -> int | None:
+    """The index of the head noun: the last content word before a preposition ends the core."""
+    head = None
+    for i in content:
+        if any(w in _CORE_END for w in words[:i]):
+            break
+        head = i
+    return head
 
 
 def _by_label_words(lexicon: Lexicon, content: Sequence[str], kinds: Collection[Kind]) -> list[Entity]:

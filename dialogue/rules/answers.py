@@ -7,11 +7,13 @@ from collections.abc import Callable, Sequence
 
 from dialogue.reference.clarify import question as clarifying_question
 from dialogue.reference.grounding import Entity, Snapshot
-from dialogue.reference.lexicon import Lexicon
+from dialogue.reference.lexicon import Lexicon, singular
 from dialogue.reference.resolution import ALL_KINDS, content_words, resolve
 from dialogue.situation import article
 
 MAX_LISTED = 12
+#: Places described at most in one answer about several ("what is on the shelves").
+MAX_PLACES = 3
 
 
 def the(snapshot: Snapshot, entity: Entity, speaker: str = "") -> str:
@@ -57,6 +59,7 @@ def location(snapshot: Snapshot, entity: Entity) -> str:
     parts = []
     if entity.support:
         parts.append(f"on the {snapshot.name_of(entity.support)}")
+    parts.extend(f"{prep} the {snapshot.name_of(other)}" for prep, other in entity.relations[:2])
     if entity.zone:
         parts.append(f"in the {snapshot.name_of(entity.zone)}")
     return " ".join(parts)
@@ -113,12 +116,24 @@ def what_is_on(lexicon: Lexicon, words: Sequence[str]) -> tuple[str, bool]:
     """The answer, and whether it is a clarifying question."""
     snapshot = lexicon.snapshot
     found = resolve(lexicon, words, frozenset({"thing", "zone"}))
-    phrase = " ".join(content_words(words)) or "that"
+    content = content_words(words)
+    phrase = " ".join(content) or "that"
+    if found.ambiguous and _plural(content):  # "what is on the shelves": each of them
+        return " ".join(_on(snapshot, place) for place in found.matches[:MAX_PLACES]), False
     if found.ambiguous:
         return clarifying_question(snapshot, found.matches), True
     place = found.one
     if place is None:
         return f"Sorry, I don't know any {phrase}.", False
+    return _on(snapshot, place), False
+
+
+def _plural(content: Sequence[str]) -> bool:
+    return bool(content) and singular(content[-1]) != content[-1]
+
+
+def _on(snapshot: Snapshot, place: Entity) -> str:
+    """What is on (or in) one place, as a sentence."""
     prep = "in" if place.kind == "zone" else "on"
     items = [
         indefinite(e)
@@ -126,8 +141,8 @@ def what_is_on(lexicon: Lexicon, words: Sequence[str]) -> tuple[str, bool]:
         if e.kind == "thing" and (e.support == place.id or (prep == "in" and e.zone == place.id))
     ]
     if not items:
-        return f"I don't know of anything {prep} the {place.name}.", False
-    return f"{prep.capitalize()} the {place.name}, there is {listing(items)}.", False
+        return f"I don't know of anything {prep} the {place.name}."
+    return f"{prep.capitalize()} the {place.name}, there is {listing(items)}."
 
 
 def can_you_see(lexicon: Lexicon, words: Sequence[str], speaker: str) -> str:

@@ -184,13 +184,20 @@ def _command(original: str, words: list[str]) -> Parse:
         return cmd(I.PERFORM_MOTION, text=motion, recipient=target)
     if verb in SAY:
         return _say(original, verb, rest, cmd)
-    if verb in GUIDE or (verb in {"take", "walk", "bring"} and rest[:1] and rest[0] in ME and "to" in rest):
+    there = rest[-1:] == ("there",) and "to" not in rest  # "take us there": where was just said
+    if verb in GUIDE or (
+        verb in {"take", "walk", "bring"} and rest[:1] and rest[0] in ME and ("to" in rest or there)
+    ):
         if verb == "show" and "way" not in rest and "to" not in rest:
             thing = rest[1:] if rest[:1] and rest[0] in ME else rest
             return Parse("question", question="where", slots={"thing": thing}, words=w)
-        if "way" in rest:
+        way = "way" in rest
+        if way:
             rest = tuple(x for x in rest if x not in {"the", "way"})
         found = split_at(rest, ["to", "towards", "into"]) if rest[:1] != ("to",) else ((), "to", rest[1:])
+        if found is None and (way or there):  # "lead the way": to the place just spoken of
+            who = tuple(x for x in rest if x not in {"there", "over", "back"})
+            return cmd(I.GUIDE, recipient=who, goal=("there",))  # no one named: see interpret
         if found is None:
             return cmd(I.GUIDE, recipient=rest)
         return cmd(I.GUIDE, recipient=found[0] or ("me",), goal=found[2])
@@ -222,7 +229,7 @@ def _command(original: str, words: list[str]) -> Parse:
         and (
             (verb != "pick" and rest[:1] and rest[0] in ME)
             or "to" in rest
-            or rest[-2:] in {("for", "me"), ("for", "us")}
+            or "for" in rest  # "get the vitamins down for Mr K": fetching for someone is bringing
         )
     ):
         return _bring(verb, rest, cmd)

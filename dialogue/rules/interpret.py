@@ -230,6 +230,11 @@ class Interpreter:
             who = tuple(w for w in slots.get("object", ()) if w not in RELATIONAL)
             if self._person_as_object(who) is not None:
                 intent, slots = I.GUIDE, {"recipient": who, "goal": slots["recipient"]}
+        implicit = not content_words(slots.get("recipient", ()))
+        if intent == I.GUIDE and slots.get("goal") == ("there",) and implicit:
+            # "Ellen needs the utility room, lead the way": the person just spoken of, else the speaker.
+            person = antecedent(self.lexicon, [u.text for u in self.history], PERSON)
+            slots["recipient"] = tuple(tokens(person.id)) if person is not None else ("me",)
         roles: dict[str, str] = {}
         refs: dict[str, _Ref] = {}
         spec = I.CATALOGUE[intent]
@@ -309,6 +314,9 @@ class Interpreter:
                 )
             return _Ref(entity=found)
         res = resolve(self.lexicon, words, kinds, owner=owner)
+        if res.ambiguous and any(e.id == self.speaker for e in res.matches):
+            # A speaker says "me", not "the person in the living room": a description is someone else.
+            res = replace(res, matches=tuple(e for e in res.matches if e.id != self.speaker))
         if res.one is not None:
             return _Ref(entity=res.one)
         if res.ambiguous:
@@ -387,7 +395,8 @@ class Interpreter:
         if first.open_role is None:
             return None
         if first.open_phrase:
-            phrase = tuple(w for w in content_words(first.open_phrase))
+            # Prepositions stay: "the novel" + "book from the shelf" keeps "book" as the head.
+            phrase = tuple(w for w in first.open_phrase if w not in {"the", "a", "an"})
             merged = tuple(x for w in fragment for x in (phrase if w in _ONE else (w,)))
             if not set(fragment) & _ONE:
                 merged = (*fragment, *phrase)

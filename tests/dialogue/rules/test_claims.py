@@ -1,0 +1,144 @@
+"""The rules claim a turn only when they understood it: each class of wrong claim seen on the
+case sets, on scenes and sentences of its own."""
+
+from dialogue.history import ASSISTANT_USER_ID, Utterance
+from dialogue.rules.interpret import Interpreter, Outcome
+from kb import KB
+from tests.dialogue.conftest import lexicon_of, scene_kb
+
+SPEAKER = "person_kim"
+_PEOPLE = (f"{SPEAKER} rdf:type Human", f'{SPEAKER} rdfs:label "Kim"', f"myself sees {SPEAKER}")
+
+
+def say(kb: KB, text: str, history: list[tuple[str, str]] | None = None) -> Outcome:
+    turns = [Utterance(SPEAKER if who == "user" else ASSISTANT_USER_ID, t) for who, t in history or []]
+    return Interpreter(lexicon_of(kb), SPEAKER, turns).interpret(text)
+
+
+def scene(*facts: str) -> KB:
+    return scene_kb(None, *_PEOPLE, *facts)
+
+
+def test_where_says_every_spatial_fact_not_only_support_and_zone() -> None:
+    kb = scene(
+        "boots_1 rdf:type Artifact", 'boots_1 rdfs:label "wellies"', "myself sees boots_1",
+        "door_1 rdf:type Artifact", 'door_1 rdfs:label "back door"', "boots_1 isNextTo door_1",
+        "bag_1 rdf:type Artifact", 'bag_1 rdfs:label "kit bag"', "myself sees bag_1",
+        "bench_1 rdf:type Artifact", 'bench_1 rdfs:label "bench"', "bag_1 isBelow bench_1",
+    )  # fmt: skip
+    out = say(kb, "wheres my wellies")
+    assert out.understood and out.intent is None
+    assert "next to the back door" in out.reply
+    assert "under the bench" in say(kb, "where is the kit bag").reply
+
+
+def test_a_compound_name_is_its_head_not_a_thing_on_it() -> None:
+    # "the spice rack" is the rack, not the spice jar standing on it (whose support is the rack).
+    kb = scene(
+        "rack_1 rdf:type Artifact", 'rack_1 rdfs:label "spice rack"', "myself sees rack_1",
+        "jar_1 rdf:type Artifact", 'jar_1 rdfs:label "jar of spice"', "jar_1 isOn rack_1", "myself sees jar_1",
+        "mint_1 rdf:type Artifact", 'mint_1 rdfs:label "mint"', "mint_1 isOn rack_1",
+    )  # fmt: skip
+    out = say(kb, "what is on the spice rack")
+    assert not out.clarify, out.reply
+    assert "mint" in out.reply
+    assert say(kb, "pick up the spice rack").roles == {"object": "rack_1"}
+
+
+def test_a_closed_compound_said_apart_beats_a_name_that_only_shares_its_head() -> None:
+    # "tool box" is the toolbox; the lunch box is a box too, but only by its last word.
+    kb = scene(
+        "tb_1 rdf:type Artifact", 'tb_1 rdfs:label "toolbox"', "myself sees tb_1",
+        "lb_1 rdf:type Artifact", 'lb_1 rdfs:label "lunch box"', "myself sees lb_1",
+    )  # fmt: skip
+    out = say(kb, "uh grab the tool box by the wheelbarrow")
+    assert out.roles == {"object": "tb_1"}, out.reply
+
+
+def test_a_plural_place_is_each_of_them_not_a_question_which_one() -> None:
+    kb = scene(
+        "d1 rdf:type Artifact", 'd1 rdfs:label "top drawer"', "myself sees d1",
+        "d2 rdf:type Artifact", 'd2 rdfs:label "bottom drawer"', "myself sees d2",
+        "spoon_1 rdf:type Artifact", 'spoon_1 rdfs:label "spoon"', "spoon_1 isOn d1",
+        "fork_1 rdf:type Artifact", 'fork_1 rdfs:label "fork"', "fork_1 isOn d2",
+    )  # fmt: skip
+    out = say(kb, "whats on the drawers")
+    assert not out.clarify and out.understood, out.reply
+    assert "spoon" in out.reply and "fork" in out.reply
+    assert say(kb, "whats on the drawer").clarify  # one of them, unsaid which: ask
+
+
+def test_a_word_of_a_label_is_a_head_with_modifiers_checked() -> None:
+    # "the kettle on the sideboard" for the "dictaphone recorder": a word of its label, with a place.
+    kb = scene(
+        "k_1 rdf:type Artifact", 'k_1 rdfs:label "dictaphone recorder"', "myself sees k_1",
+        "sb_1 rdf:type Artifact", 'sb_1 rdfs:label "sideboard"', "k_1 isOn sb_1", "myself sees sb_1",
+        "k_1 belongsTo person_lee", "person_lee rdf:type Human", 'person_lee rdfs:label "Lee"',
+    )  # fmt: skip
+    assert "Lee" in say(kb, "whose dictaphone is that on the sideboard").reply
+    assert say(kb, "grab the dictaphone off the sideboard").roles == {"object": "k_1"}
+
+
+def test_fetching_something_for_someone_is_bringing_it_to_them() -> None:
+    kb = scene(
+        "jar_1 rdf:type Artifact", 'jar_1 rdfs:label "honey jar"', "myself sees jar_1",
+        "person_lee rdf:type Human", 'person_lee rdfs:label "Lee"', "myself sees person_lee",
+    )  # fmt: skip
+    out = say(kb, "could you get the honey jar down for lee")
+    assert (out.intent, out.roles) == ("__intent_bring_object__", {"object": "jar_1", "recipient": "person_lee"})
+
+
+def _garden() -> KB:
+    return scene(
+        "pond_1 rdf:type ZoneOfInterest", 'pond_1 rdfs:label "koi pond"',
+        "shed_1 rdf:type ZoneOfInterest", 'shed_1 rdfs:label "potting shed"',
+    )  # fmt: skip
+
+
+def test_take_us_there_guides_to_the_place_just_spoken_of() -> None:
+    out = say(_garden(), "sorry wheres the koi pond could you take me there")
+    assert (out.intent, out.roles) == ("__intent_guide__", {"recipient": SPEAKER, "goal": "pond_1"}), out.reply
+
+
+def test_lead_the_way_guides_the_speaker_to_the_place_just_spoken_of() -> None:
+    out = say(_garden(), "The potting shed sounds lovely. Show me the way?")
+    assert (out.intent, out.roles) == ("__intent_guide__", {"recipient": SPEAKER, "goal": "shed_1"}), out.reply
+    assert say(_garden(), "lead the way to the koi pond").roles == {"recipient": SPEAKER, "goal": "pond_1"}
+
+
+def test_lead_the_way_after_naming_someone_guides_them() -> None:
+    kb = scene_kb(None, *_PEOPLE, "person_lee rdf:type Human", 'person_lee rdfs:label "Lee"',
+                  "myself sees person_lee", "shed_1 rdf:type ZoneOfInterest", 'shed_1 rdfs:label "potting shed"')
+    out = say(kb, "Lee wants to see the potting shed. Would you lead the way?")
+    assert (out.intent, out.roles) == ("__intent_guide__", {"recipient": "person_lee", "goal": "shed_1"}), out.reply
+
+
+def test_a_description_of_a_person_is_not_the_speaker() -> None:
+    kb = scene(
+        "person_x rdf:type Human", 'person_x rdfs:label "visitor"', "myself sees person_x",
+        f'{SPEAKER} rdfs:label "visitor"', "card_1 rdf:type Artifact", 'card_1 rdfs:label "postcard"',
+        "myself sees card_1",
+    )  # fmt: skip
+    out = say(kb, "give this postcard to the visitor by the window")
+    assert out.roles == {"object": "card_1", "recipient": "person_x"}, out.reply
+
+
+def test_the_colour_one_with_nothing_said_before_is_the_one_thing_of_that_colour() -> None:
+    kb = scene(
+        "m1 rdf:type Artifact", 'm1 rdfs:label "beaker"', "m1 hasColor blue", "myself sees m1",
+        "m2 rdf:type Artifact", 'm2 rdfs:label "flask"', "m2 hasColor red", "myself sees m2",
+        "m3 rdf:type Artifact", 'm3 rdfs:label "funnel"', "m3 hasColor red", "myself sees m3",
+    )  # fmt: skip
+    assert say(kb, "uh hand me the blue one").roles == {"object": "m1", "recipient": SPEAKER}
+    assert say(kb, "hand me the red one").clarify  # two red things: ask which
+
+
+def test_a_phrase_cut_short_after_a_preposition_is_not_claimed() -> None:
+    # "bay for" (a misheard "bay four"): which bay is not said, so the rules do not guess or ask.
+    kb = scene(
+        "b4 rdf:type Artifact", 'b4 rdfs:label "loading bay four"', "myself sees b4",
+        "b9 rdf:type Artifact", 'b9 rdfs:label "loading bay nine"', "myself sees b9",
+    )  # fmt: skip
+    out = say(kb, "go to the loading bay for")
+    assert not out.understood and not out.clarify, out.reply
+    assert say(kb, "go to the loading bay").clarify
