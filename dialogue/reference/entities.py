@@ -14,24 +14,20 @@ from collections import Counter
 from collections.abc import Iterable
 from dataclasses import dataclass
 
-from kb import KbError
-from kb.protocol import KnowledgeBase
-
-from dialogue.reference.facts import PERSON_CLASSES, PLACES, ROBOT_ID, ZONE_CLASSES, Change, Facts
+from dialogue.reference.facts import PERSON_CLASSES, PLACES, ROBOT_ID, ZONE_CLASSES, Change, Facts, Triple
 from dialogue.reference.snapshot import (
-    _IGNORED_CLASSES,
-    _SCHEMA_TYPES,
-    OTHER,
-    PERSON,
+    IGNORED_CLASSES,
     ROBOT_CLASSES,
-    SEEN,
-    ZONE,
+    SCHEMA_TYPES,
     Entity,
     EntityTable,
     Kind,
     Snapshot,
+    rank,
     readable_id,
 )
+from kb import KbError
+from kb.protocol import KnowledgeBase
 
 #: Kind of an entity by its classes, first match wins (the robot also by its id).
 _KINDS: tuple[tuple[frozenset[str], Kind], ...] = (
@@ -92,11 +88,10 @@ class EntityIndex:
         for term in self.facts.candidates() - {ROBOT_ID}:  # covered by the joins: no label
             self._labels.setdefault(term, ())
 
-    def apply(self, added: Iterable[tuple[object, object, object]],
-              removed: Iterable[tuple[object, object, object]]) -> set[str]:
+    def apply(self, added: Iterable[Triple], removed: Iterable[Triple]) -> set[str]:
         """One commit's closure changes; returns the terms whose entity may have changed."""
         change = Change()
-        self.facts.apply(added, removed, change)  # type: ignore[arg-type]
+        self.facts.apply(added, removed, change)
         return self.refresh(change)
 
     def refresh(self, change: Change) -> set[str]:
@@ -141,7 +136,7 @@ class EntityIndex:
             colour=self.display(hue) if hue else None,
             engagement=self.facts.value("engagement", term), owner=self.facts.value("owner", term),
         )  # fmt: skip
-        self._reorder(term, self._rank_of(term))
+        self._reorder(term, rank(self.entities[term]))
 
     def freeze(self, revision: int, changed: tuple[int, frozenset[str]] | None) -> Snapshot:
         table = EntityTable(dict(self.entities), list(self.order))
@@ -181,12 +176,12 @@ class EntityIndex:
         except KbError:
             self._cores[term] = None  # a literal used as a place ("x isIn 'garden'") is not an entity
             return None
-        if set(all_classes) & _SCHEMA_TYPES:
+        if set(all_classes) & SCHEMA_TYPES:
             schema = _Core((), (), (), "thing", readable_id(term), schema=True, typed=True)
             self._cores[term] = schema
             return schema
-        direct = [c for c in self.kb.classesof(term, direct=True) if c not in _IGNORED_CLASSES]
-        inferred = sorted(c for c in all_classes if c not in _IGNORED_CLASSES and c not in direct)
+        direct = [c for c in self.kb.classesof(term, direct=True) if c not in IGNORED_CLASSES]
+        inferred = sorted(c for c in all_classes if c not in IGNORED_CLASSES and c not in direct)
         class_names = tuple(dict.fromkeys(
             name for c in (*direct, *inferred) for name in self._words(c, asserted=c in direct)
         ))
@@ -196,19 +191,12 @@ class EntityIndex:
         classes = set(all_classes)
         kind: Kind = "robot" if term == ROBOT_ID else next((k for cs, k in _KINDS if classes & cs), "thing")
         name = own[0] if own else (class_names[0] if class_names else readable_id(term))
-        core = _Core(own, (*direct, *inferred), class_names, kind, name, schema=False, typed=bool(all_classes))
+        core = _Core(own, (*direct, *inferred), class_names, kind, name, schema=False,
+                     typed=bool(all_classes))
         self._cores[term] = core
         return core
 
     # --- bookkeeping ---------------------------------------------------------------------------
-
-    def _rank_of(self, term: str) -> int:
-        facts = self.facts
-        if term in facts.seen:
-            return SEEN
-        if term in facts.people:
-            return PERSON
-        return ZONE if term in facts.zones else OTHER
 
     def _reorder(self, term: str, rank: int | None) -> None:
         old = self._rank.get(term)

@@ -85,7 +85,8 @@ class Facts:
         )
 
     def candidates(self) -> set[str]:
-        return {ROBOT_ID, *self.seen, *self.people, *self.zones, *self.tables["support"], *self.tables["zone"]}
+        located = (*self.tables["support"], *self.tables["zone"])
+        return {ROBOT_ID, *self.seen, *self.people, *self.zones, *located}
 
     def apply(self, added: Iterable[Triple], removed: Iterable[Triple], change: Change) -> None:
         """One commit's closure changes (removals first, as the writer applies them)."""

@@ -12,12 +12,11 @@ import threading
 from collections.abc import Callable
 from typing import Any
 
-from kb.protocol import KnowledgeBase
-from kb.tbox import is_schema_triple
-
 from dialogue.reference.entities import EntityIndex
 from dialogue.reference.facts import PERSON_CLASSES, ROBOT_ID, ZONE_CLASSES
 from dialogue.reference.snapshot import ROBOT_CLASSES, Entity, Kind, Snapshot, readable_id
+from kb.protocol import KnowledgeBase
+from kb.tbox import is_schema_triple
 
 __all__ = [
     "PERSON_CLASSES", "ROBOT_CLASSES", "ROBOT_ID", "ZONE_CLASSES",

@@ -12,6 +12,7 @@ import threading
 from collections import defaultdict
 from collections.abc import Sequence
 from dataclasses import dataclass
+from typing import Any
 
 from dialogue.reference.grounding import Entity, Snapshot
 
@@ -80,8 +81,10 @@ class Mention:
 class Lexicon:
     """All names of a snapshot's entities, indexed by their first (singular) word.
 
-    Built from a `previous` lexicon, the entries of entities that did not change are reused, so a
-    KB change costs work proportional to what changed.
+    Built from a `previous` lexicon: when the snapshot says which entities changed since the
+    previous one's, only those are indexed again (the indexes are copied, the buckets they touch
+    rebuilt), so a KB change costs work proportional to what changed; otherwise the entries of
+    entities that did not change are reused.
     """
 
     def __init__(self, snapshot: Snapshot, previous: Lexicon | None = None) -> None:
@@ -90,11 +93,15 @@ class Lexicon:
         self.attributes: dict[str, frozenset[str]] = {}
         #: Entities by each (singular) word of their own labels, for "the teddy" ("teddy bear").
         self.by_label_word: dict[str, list[str]] = defaultdict(list)
-        self._entries: dict[Entity, tuple[list[Name], frozenset[str], frozenset[str]]] = {}
+        self._entries: dict[str, tuple[Entity, _Entry]] = {}
+        changed = snapshot.changed
+        if previous is not None and changed is not None and changed[0] == previous.snapshot.revision:
+            self._update(previous, changed[1])
+            return
         old = previous._entries if previous is not None else {}
         for entity in snapshot.entities.values():
-            entry = old.get(entity) or _entry(entity)
-            self._entries[entity] = entry
+            entry = _reuse(old.get(entity.id), entity)
+            self._entries[entity.id] = (entity, entry)
             for name in entry[0]:
                 self._by_first[name.words[0]].append(name)
             self.attributes[entity.id] = entry[1]
@@ -102,6 +109,42 @@ class Lexicon:
                 self.by_label_word[word].append(entity.id)
         for names in self._by_first.values():
             names.sort(key=lambda n: -len(n.words))
+
+    def _update(self, previous: Lexicon, changed: frozenset[str]) -> None:
+        self._entries = dict(previous._entries)
+        self.attributes = dict(previous.attributes)
+        by_first: dict[str, list[Name]] = defaultdict(list, previous._by_first)
+        by_label: dict[str, list[str]] = defaultdict(list, previous.by_label_word)
+        names: dict[str, list[Name]] = defaultdict(list)  # the new names of changed entities
+        labels: dict[str, list[str]] = defaultdict(list)
+        firsts: set[str] = set()  # buckets to rebuild (lists are shared with the previous lexicon)
+        words: set[str] = set()
+        moved: set[str] = set()
+        for entity_id in sorted(changed, key=self.snapshot.order_key):
+            kept = self._entries.pop(entity_id, None)
+            self.attributes.pop(entity_id, None)
+            entity = self.snapshot.get(entity_id)
+            entry = _reuse(kept, entity) if entity is not None else None
+            old_names, old_labels = (kept[1][0], kept[1][2]) if kept is not None else ([], frozenset())
+            if entity is not None and entry is not None:
+                self._entries[entity_id] = (entity, entry)
+                self.attributes[entity_id] = entry[1]
+            new_names, new_labels = (entry[0], entry[2]) if entry is not None else ([], frozenset())
+            if old_names != new_names or old_labels != new_labels:
+                moved.add(entity_id)
+                firsts.update(n.words[0] for n in (*old_names, *new_names))
+                words.update(old_labels | new_labels)
+                for name in new_names:
+                    names[name.words[0]].append(name)
+                for word in new_labels:
+                    labels[word].append(entity_id)
+        for first in firsts:
+            bucket = [n for n in by_first.get(first, ()) if n.entity not in moved] + names[first]
+            bucket.sort(key=lambda n: -len(n.words))
+            _store(by_first, first, bucket)
+        for word in words:
+            _store(by_label, word, [e for e in by_label.get(word, ()) if e not in moved] + labels[word])
+        self._by_first, self.by_label_word = by_first, by_label
 
     def names_at(self, words: Sequence[str], start: int) -> list[Name]:
         """Every name that occurs in `words` starting at `start` (longest first)."""
@@ -158,7 +201,21 @@ def _names(entity: Entity) -> list[Name]:
     return out
 
 
-def _entry(entity: Entity) -> tuple[list[Name], frozenset[str], frozenset[str]]:
+_Entry = tuple[list[Name], frozenset[str], frozenset[str]]
+
+
+def _reuse(kept: tuple[Entity, _Entry] | None, entity: Entity) -> _Entry:
+    return kept[1] if kept is not None and kept[0] == entity else _entry(entity)
+
+
+def _store(index: dict[str, list[Any]], key: str, values: list[Any]) -> None:
+    if values:
+        index[key] = values
+    else:
+        index.pop(key, None)
+
+
+def _entry(entity: Entity) -> _Entry:
     """Names, qualifying words (label words, colour, class names: "red" in "red cup") and label words."""
     label_words = frozenset(w for label in entity.labels for w in norm(tokens(label)))
     words: set[str] = set(label_words)

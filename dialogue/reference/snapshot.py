@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import re
 from bisect import bisect_left
-from collections.abc import Iterator, Mapping
+from collections.abc import Iterable, Iterator, Mapping
 from dataclasses import dataclass, field
 from typing import Literal
 
@@ -20,7 +20,7 @@ Kind = Literal["person", "zone", "robot", "thing"]
 ROBOT_CLASSES = frozenset({"Robot"})
 
 #: Types that make a term part of the vocabulary rather than the situation.
-_SCHEMA_TYPES = frozenset(
+SCHEMA_TYPES = frozenset(
     {
         "owl:Class",
         "rdfs:Class",
@@ -41,7 +41,7 @@ _SCHEMA_TYPES = frozenset(
     }
 )
 #: Classes too generic to name anything in speech.
-_IGNORED_CLASSES = frozenset(
+IGNORED_CLASSES = frozenset(
     {"owl:Thing", "rdfs:Resource", "owl:NamedIndividual", "ActiveConcept", "owl:Nothing"}
 )
 
@@ -68,6 +68,15 @@ class Entity:
 
 #: Ranks of the deterministic order: seen by the robot, people, places, other located things.
 SEEN, PERSON, ZONE, OTHER = range(4)
+
+
+def rank(entity: Entity) -> int:
+    """Where an entity comes in the deterministic order (its classes include the inferred ones)."""
+    if entity.seen:
+        return SEEN
+    if "Human" in entity.classes:
+        return PERSON
+    return ZONE if "ZoneOfInterest" in entity.classes else OTHER
 
 
 class EntityTable(Mapping[str, Entity]):
@@ -123,6 +132,14 @@ class Snapshot:
         if entity is not None:
             return entity.name
         return self.names.get(term) or readable_id(term)
+
+    def order_key(self, entity_id: str) -> tuple[int, str]:
+        """Sort key of the deterministic order (unknown ids last)."""
+        entity = self.entities.get(entity_id)
+        return (rank(entity) if entity is not None else OTHER + 1, entity_id)
+
+    def in_order(self, entities: Iterable[Entity]) -> list[Entity]:
+        return sorted(entities, key=lambda e: self.order_key(e.id))
 
     def of_kind(self, *kinds: Kind) -> list[Entity]:
         # People and places rank at most ZONE; things and the robot may rank OTHER.

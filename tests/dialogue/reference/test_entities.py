@@ -1,0 +1,103 @@
+"""The maintained snapshot (and lexicon) equals a from-scratch build after any sequence of commits."""
+
+from __future__ import annotations
+
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+from dialogue.reference.grounding import Grounder, build_snapshot
+from dialogue.reference.lexicon import Lexicon, LexiconCache
+from kb import KB
+
+BASE = [
+    "myself rdf:type Robot", "kitchen rdf:type ZoneOfInterest", 'kitchen rdfs:label "kitchen"',
+    "hall rdf:type ZoneOfInterest", "table_1 rdf:type dbr:Table_(furniture)", "table_1 isIn kitchen",
+    "person_ann rdf:type Human", 'person_ann rdfs:label "Ann"',
+]  # fmt: skip
+SUBJECTS = ["thing_0", "thing_1", "thing_2", "thing_3", "person_bo", "table_1", "kitchen", "hall", "myself", "red"]
+OBJECTS = ["thing_0", "thing_1", "table_1", "kitchen", "hall", "red", "white", "person_ann", "person_bo"]
+CLASSES = ["dbr:Cup", "dbr:Book", "dbr:Apple", "Remote", "Human", "ZoneOfInterest", "dbr:Table_(furniture)"]
+LABELS = ['"red thing"', '"old cup"', '"Bo"', '"rouge"@fr', '"mug"@en']
+PROPERTIES = ["isOn", "isIn", "hasColor", "belongsTo", "looksAt", "holds"]
+
+statement = st.one_of(
+    st.builds("{} rdf:type {}".format, st.sampled_from(SUBJECTS), st.sampled_from(CLASSES)),
+    st.builds("{} rdfs:label {}".format, st.sampled_from([*SUBJECTS, "dbr:Cup", "Remote"]), st.sampled_from(LABELS)),
+    st.builds("{} {} {}".format, st.sampled_from(SUBJECTS), st.sampled_from(PROPERTIES), st.sampled_from(OBJECTS)),
+    st.builds("myself sees {}".format, st.sampled_from(OBJECTS)),
+    st.builds("{} engagementLevel {}".format, st.sampled_from(["person_ann", "person_bo"]),
+              st.sampled_from(["engaged", "disengaged"])),
+    st.just("dbr:Mug rdfs:subClassOf dbr:Cup"),  # a TBox change: the full rebuild path
+    st.just("thing_2 rdf:type dbr:Mug"),
+)
+commit = st.tuples(
+    st.sampled_from(["update", "remove", "apply", "clear"]),
+    st.lists(statement, min_size=1, max_size=6),
+    st.lists(statement, max_size=4),
+).filter(lambda c: c[0] != "clear" or not c[2])
+
+
+def _lexicon_state(lex: Lexicon) -> tuple[object, ...]:
+    words = {w for w in lex._by_first}
+    return (
+        lex.attributes,
+        {w: sorted((n.words, n.entity, n.source) for n in lex._by_first[w]) for w in words},
+        {w: sorted(ids) for w, ids in lex.by_label_word.items()},
+        {w: [len(n.words) for n in lex._by_first[w]] == sorted((len(n.words) for n in lex._by_first[w]),
+                                                                reverse=True) for w in words},
+    )
+
+
+@settings(max_examples=60, suppress_health_check=[HealthCheck.too_slow])
+@given(st.lists(commit, min_size=1, max_size=8))
+def test_maintained_snapshot_and_lexicon_equal_a_full_build(commits: list[tuple[str, list[str], list[str]]]) -> None:
+    kb = KB()
+    kb.update(BASE)
+    grounder, lexicons = Grounder(), LexiconCache()
+    lexicons.get(grounder.snapshot(kb))
+    for action, first, second in commits:
+        if action == "update":
+            kb.update(first)
+        elif action == "remove":
+            kb.remove(first)
+        elif action == "apply":
+            kb.apply(add=first, remove=second)
+        else:
+            kb.clear()
+            kb.update(BASE[: len(first)])
+        maintained = grounder.snapshot(kb)
+        fresh = build_snapshot(kb)
+        assert maintained == fresh
+        assert list(maintained.entities) == list(fresh.entities)  # the same deterministic order
+        assert _lexicon_state(lexicons.get(maintained)) == _lexicon_state(Lexicon(fresh))
+
+
+def test_a_commit_updates_only_what_it_touched() -> None:
+    kb = KB()
+    kb.update([*BASE, *(f"thing_{i} isIn kitchen" for i in range(50)), *(f"thing_{i} rdf:type dbr:Cup"
+                                                                         for i in range(50))])
+    grounder = Grounder()
+    grounder.snapshot(kb)
+    kb.apply(add=["thing_3 isIn hall", "myself sees thing_4"], remove=["thing_3 isIn kitchen"])
+    snap = grounder.snapshot(kb)
+    assert snap.changed is not None and snap.changed[1] == {"thing_3", "thing_4"}
+    assert snap.entities["thing_3"].zone == "hall" and snap.entities["thing_4"].seen
+
+
+def test_a_class_label_renames_its_instances() -> None:
+    kb = KB()
+    kb.update([*BASE, "cup_1 rdf:type Beaker", "cup_1 isIn kitchen"])
+    grounder = Grounder()
+    assert grounder.snapshot(kb).entities["cup_1"].name == "beaker"
+    kb.update(['Beaker rdfs:label "tumbler"'])
+    assert grounder.snapshot(kb).entities["cup_1"].name == "tumbler"
+
+
+def test_a_colour_label_renames_the_colour_of_its_things() -> None:
+    kb = KB()
+    kb.update([*BASE, "cup_1 rdf:type dbr:Cup", "cup_1 isIn kitchen", "cup_1 hasColor teal_shade"])
+    grounder = Grounder()
+    assert grounder.snapshot(kb).entities["cup_1"].colour == "teal shade"
+    kb.update(['teal_shade rdfs:label "teal"'])
+    assert grounder.snapshot(kb).entities["cup_1"].colour == "teal"
+    assert grounder.snapshot(kb) == build_snapshot(kb)
