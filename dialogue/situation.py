@@ -65,7 +65,7 @@ def describe(snapshot: Snapshot, speaker: str, focus: Sequence[Entity] | None = 
     """Who speaks, who is here, what the robot sees, known places and things not seen now: of the
     `focus` entities (most relevant first), by default the snapshot's most relevant ones."""
     pool = ranked(snapshot, speaker, MAX_ENTITIES) if focus is None else focus
-    lines: list[str] = []
+    lines: list[str | None] = []
     speaking = snapshot.get(speaker)
     if speaking is not None and speaking.kind == "person":
         lines.append(f"{noun_phrase(snapshot, speaking)} is speaking to you.")
@@ -85,19 +85,23 @@ def describe(snapshot: Snapshot, speaker: str, focus: Sequence[Entity] | None = 
     if absent:
         lines.append("You know " + _and([noun_phrase(snapshot, e) for e in absent]) + ", not here now.")
     things = [e for e in pool if e.kind == "thing"]
+    # Lines past MAX_LINES are never shown, only counted: they are not rendered.
     for e in things:
         if e.seen:
-            lines.append(f"You see {noun_phrase(snapshot, e)}{place_phrase(snapshot, e)}.")
+            lines.append(f"You see {noun_phrase(snapshot, e)}{place_phrase(snapshot, e)}."
+                         if len(lines) < MAX_LINES else None)
     zones = [e for e in pool if e.kind == "zone"]
     if zones:
-        lines.append("Places: " + _and([noun_phrase(snapshot, e) for e in zones]) + ".")
+        lines.append("Places: " + _and([noun_phrase(snapshot, e) for e in zones]) + "."
+                     if len(lines) < MAX_LINES else None)
     for e in things:
         if not e.seen:
-            lines.append(f"You know {noun_phrase(snapshot, e)}{place_phrase(snapshot, e)}, not seen now.")
+            lines.append(f"You know {noun_phrase(snapshot, e)}{place_phrase(snapshot, e)}, not seen now."
+                         if len(lines) < MAX_LINES else None)
     kept: list[str] = []
     size = 0
     for line in lines:
-        if len(kept) >= MAX_LINES or size + len(line) + 1 > MAX_CHARS:
+        if line is None or len(kept) >= MAX_LINES or size + len(line) + 1 > MAX_CHARS:
             break
         kept.append(line)
         size += len(line) + 1

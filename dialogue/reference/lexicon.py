@@ -79,17 +79,21 @@ class Mention:
 
 
 class Lexicon:
-    """All names of a snapshot's entities, indexed by their first (singular) word.
+    """All names of a snapshot's entities, indexed by their whole (singular) words, with the
+    lengths of the names each first word starts: finding the names at a position costs a lookup
+    per length, however many entities share a word.
 
     Built from a `previous` lexicon: when the snapshot says which entities changed since the
-    previous one's, only those are indexed again (the indexes are copied, the buckets they touch
-    rebuilt), so a KB change costs work proportional to what changed; otherwise the entries of
+    previous one's, only those are indexed again (the indexes are copied, the entries they touch
+    replaced), so a KB change costs work proportional to what changed; otherwise the entries of
     entities that did not change are reused.
     """
 
     def __init__(self, snapshot: Snapshot, previous: Lexicon | None = None) -> None:
         self.snapshot = snapshot
-        self._by_first: dict[str, list[Name]] = defaultdict(list)
+        self._by_words: dict[tuple[str, ...], list[Name]] = defaultdict(list)
+        #: First word -> {name length: number of names}, longest first when read.
+        self._lengths: dict[str, dict[int, int]] = defaultdict(dict)
         self.attributes: dict[str, frozenset[str]] = {}
         #: Entities by each (singular) word of their own labels, for "the teddy" ("teddy bear").
         self.by_label_word: dict[str, list[str]] = defaultdict(list)
@@ -103,59 +107,69 @@ class Lexicon:
             entry = _reuse(old.get(entity.id), entity)
             self._entries[entity.id] = (entity, entry)
             for name in entry[0]:
-                self._by_first[name.words[0]].append(name)
+                self._by_words[name.words].append(name)
+                counts = self._lengths[name.words[0]]
+                counts[len(name.words)] = counts.get(len(name.words), 0) + 1
             self.attributes[entity.id] = entry[1]
             for word in entry[2]:
                 self.by_label_word[word].append(entity.id)
-        for names in self._by_first.values():
-            names.sort(key=lambda n: -len(n.words))
 
     def _update(self, previous: Lexicon, changed: frozenset[str]) -> None:
+        # Lists and counts are shared with the previous lexicon: copied before they change.
         self._entries = dict(previous._entries)
         self.attributes = dict(previous.attributes)
-        by_first: dict[str, list[Name]] = defaultdict(list, previous._by_first)
+        by_words: dict[tuple[str, ...], list[Name]] = defaultdict(list, previous._by_words)
+        lengths: dict[str, dict[int, int]] = defaultdict(dict, previous._lengths)
         by_label: dict[str, list[str]] = defaultdict(list, previous.by_label_word)
-        names: dict[str, list[Name]] = defaultdict(list)  # the new names of changed entities
-        labels: dict[str, list[str]] = defaultdict(list)
-        firsts: set[str] = set()  # buckets to rebuild (lists are shared with the previous lexicon)
-        words: set[str] = set()
-        moved: set[str] = set()
+        copied: set[object] = set()
+
+        def own(index: dict[Any, Any], key: Any, empty: Any) -> Any:
+            if (id(index), key) not in copied:
+                copied.add((id(index), key))
+                index[key] = index[key].copy() if key in index else empty
+            return index[key]
+
         for entity_id in sorted(changed, key=self.snapshot.order_key):
             kept = self._entries.pop(entity_id, None)
             self.attributes.pop(entity_id, None)
             entity = self.snapshot.get(entity_id)
             entry = _reuse(kept, entity) if entity is not None else None
-            old_names, old_labels = (kept[1][0], kept[1][2]) if kept is not None else ([], frozenset())
             if entity is not None and entry is not None:
                 self._entries[entity_id] = (entity, entry)
                 self.attributes[entity_id] = entry[1]
+            old_names, old_labels = (kept[1][0], kept[1][2]) if kept is not None else ([], frozenset())
             new_names, new_labels = (entry[0], entry[2]) if entry is not None else ([], frozenset())
-            if old_names != new_names or old_labels != new_labels:
-                moved.add(entity_id)
-                firsts.update(n.words[0] for n in (*old_names, *new_names))
-                words.update(old_labels | new_labels)
-                for name in new_names:
-                    names[name.words[0]].append(name)
-                for word in new_labels:
-                    labels[word].append(entity_id)
-        for first in firsts:
-            bucket = [n for n in by_first.get(first, ()) if n.entity not in moved] + names[first]
-            bucket.sort(key=lambda n: -len(n.words))
-            _store(by_first, first, bucket)
-        for word in words:
-            _store(by_label, word, [e for e in by_label.get(word, ()) if e not in moved] + labels[word])
-        self._by_first, self.by_label_word = by_first, by_label
+            if old_names == new_names and old_labels == new_labels:
+                continue
+            for names, step in ((old_names, -1), (new_names, 1)):
+                for name in names:
+                    bucket = own(by_words, name.words, [])
+                    bucket.remove(name) if step < 0 else bucket.append(name)
+                    if not bucket:
+                        del by_words[name.words]
+                    counts = own(lengths, name.words[0], {})
+                    counts[len(name.words)] = counts.get(len(name.words), 0) + step
+                    if not counts[len(name.words)]:
+                        del counts[len(name.words)]
+                    if not counts:
+                        del lengths[name.words[0]]
+            for word in old_labels:
+                ids = own(by_label, word, [])
+                ids.remove(entity_id)
+                if not ids:
+                    del by_label[word]
+            for word in new_labels:
+                own(by_label, word, []).append(entity_id)
+        self._by_words, self._lengths, self.by_label_word = by_words, lengths, by_label
 
     def names_at(self, words: Sequence[str], start: int) -> list[Name]:
         """Every name that occurs in `words` starting at `start` (longest first)."""
         # Only the words a candidate name spans are normalised: normalising the whole utterance
         # at every start made a long utterance cost quadratic time.
-        found = []
-        for name in self._by_first.get(singular(words[start]), ()):
-            end = start + len(name.words)
-            span = words[start:end]
-            if end <= len(words) and all(singular(w) == n for w, n in zip(span, name.words, strict=True)):
-                found.append(name)
+        found: list[Name] = []
+        for length in sorted(self._lengths.get(singular(words[start]), {}), reverse=True):
+            if start + length <= len(words):
+                found += self._by_words.get(norm(words[start : start + length]), ())
         return found
 
     def mentions(self, words: Sequence[str]) -> list[Mention]:
@@ -174,7 +188,7 @@ class Lexicon:
         return out
 
     def knows_word(self, word: str) -> bool:
-        return singular(word) in self._by_first
+        return singular(word) in self._lengths
 
 
 def _names(entity: Entity) -> list[Name]:
@@ -206,13 +220,6 @@ _Entry = tuple[list[Name], frozenset[str], frozenset[str]]
 
 def _reuse(kept: tuple[Entity, _Entry] | None, entity: Entity) -> _Entry:
     return kept[1] if kept is not None and kept[0] == entity else _entry(entity)
-
-
-def _store(index: dict[str, list[Any]], key: str, values: list[Any]) -> None:
-    if values:
-        index[key] = values
-    else:
-        index.pop(key, None)
 
 
 def _entry(entity: Entity) -> _Entry:

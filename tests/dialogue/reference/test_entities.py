@@ -38,13 +38,11 @@ commit = st.tuples(
 
 
 def _lexicon_state(lex: Lexicon) -> tuple[object, ...]:
-    words = {w for w in lex._by_first}
     return (
         lex.attributes,
-        {w: sorted((n.words, n.entity, n.source) for n in lex._by_first[w]) for w in words},
+        {w: sorted((n.words, n.entity, n.source) for n in names) for w, names in lex._by_words.items()},
+        dict(lex._lengths),
         {w: sorted(ids) for w, ids in lex.by_label_word.items()},
-        {w: [len(n.words) for n in lex._by_first[w]] == sorted((len(n.words) for n in lex._by_first[w]),
-                                                                reverse=True) for w in words},
     )
 
 
