@@ -87,7 +87,7 @@ def case(size: int, visible: int, rounds: int, baseline_rounds: int) -> str:
             f" {first:10.1f}")
 
 
-def run(sizes: tuple[int, ...] = (10_000, 100_000), rounds: int = 200, baseline_rounds: int = 5) -> str:
+def run(sizes: tuple[int, ...] = (10_000, 100_000), rounds: int = 200, baseline_rounds: int = 3) -> str:
     rows = []
     for size in sizes:
         for visible in (80, 1000):
@@ -112,7 +112,7 @@ def main(argv: list[str] | None = None) -> int:
     if args.rounds < 1:
         parser.error(f"--rounds must be at least 1, not {args.rounds}")
     sizes = (10_000,) if args.quick else (10_000, 100_000, *((1_000_000,) if args.million else ()))
-    print(run(sizes, 20 if args.quick else args.rounds, 2 if args.quick else 5))
+    print(run(sizes, 20 if args.quick else args.rounds, 2 if args.quick else 3))
     return 0
 
 

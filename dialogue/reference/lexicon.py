@@ -91,7 +91,8 @@ class Lexicon:
 
     def __init__(self, snapshot: Snapshot, previous: Lexicon | None = None) -> None:
         self.snapshot = snapshot
-        self._by_words: dict[tuple[str, ...], list[Name]] = defaultdict(list)
+        #: Names by their words; a dict per name (insertion-ordered) so one is removed in O(1).
+        self._by_words: dict[tuple[str, ...], dict[Name, None]] = defaultdict(dict)
         #: First word -> {name length: number of names}, longest first when read.
         self._lengths: dict[str, dict[int, int]] = defaultdict(dict)
         self.attributes: dict[str, frozenset[str]] = {}
@@ -107,7 +108,7 @@ class Lexicon:
             entry = _reuse(old.get(entity.id), entity)
             self._entries[entity.id] = (entity, entry)
             for name in entry[0]:
-                self._by_words[name.words].append(name)
+                self._by_words[name.words][name] = None
                 counts = self._lengths[name.words[0]]
                 counts[len(name.words)] = counts.get(len(name.words), 0) + 1
             self.attributes[entity.id] = entry[1]
@@ -118,7 +119,7 @@ class Lexicon:
         # Lists and counts are shared with the previous lexicon: copied before they change.
         self._entries = dict(previous._entries)
         self.attributes = dict(previous.attributes)
-        by_words: dict[tuple[str, ...], list[Name]] = defaultdict(list, previous._by_words)
+        by_words: dict[tuple[str, ...], dict[Name, None]] = defaultdict(dict, previous._by_words)
         lengths: dict[str, dict[int, int]] = defaultdict(dict, previous._lengths)
         by_label: dict[str, list[str]] = defaultdict(list, previous.by_label_word)
         copied: set[object] = set()
@@ -143,8 +144,11 @@ class Lexicon:
                 continue
             for names, step in ((old_names, -1), (new_names, 1)):
                 for name in names:
-                    bucket = own(by_words, name.words, [])
-                    bucket.remove(name) if step < 0 else bucket.append(name)
+                    bucket = own(by_words, name.words, {})
+                    if step < 0:
+                        del bucket[name]
+                    else:
+                        bucket[name] = None
                     if not bucket:
                         del by_words[name.words]
                     counts = own(lengths, name.words[0], {})
