@@ -22,7 +22,7 @@ from collections.abc import Callable, Iterator
 from bench.progress import step
 from bench.worlds import PerceptionWorld
 from dialogue.engine import DialogueEngine
-from dialogue.reference.grounding import Grounder
+from dialogue.reference.grounding import Grounder, build_snapshot
 from kb import KB
 
 SPEAKER = "person_0"
@@ -30,8 +30,12 @@ UTTERANCES = ["hello", "bring me the thing 42", "put the apple on the shelf", "w
 STATEMENTS_PER_OBJECT = 3.3  # PerceptionWorld: type, label, isIn, 20 % isOn, furniture and agents
 
 
+def objects_for(size: int, visible: int) -> int:
+    return max(visible, int(size / STATEMENTS_PER_OBJECT))
+
+
 def world(size: int, visible: int) -> KB:
-    objects = max(visible, int(size / STATEMENTS_PER_OBJECT))
+    objects = objects_for(size, visible)
     kb = KB()
     statements = list(PerceptionWorld(objects).statements())
     statements += [f"myself sees thing_{i * (objects // visible)}" for i in range(visible)]
@@ -67,7 +71,7 @@ def case(size: int, visible: int, rounds: int, baseline_rounds: int) -> str:
     step("grounding", f"building a world of {size:,} statements, {visible} visible")
     kb = world(size, visible)
     facts = kb.size(inferred=False)
-    ticks = PerceptionWorld(max(visible, int(size / STATEMENTS_PER_OBJECT))).ticks(rounds + baseline_rounds + 1)
+    ticks = PerceptionWorld(objects_for(size, visible)).ticks(rounds + baseline_rounds + 1)
     engine = DialogueEngine(kb)
     step("grounding", f"first snapshot ({facts:,} asserted statements)")
     start = time.perf_counter()
@@ -75,6 +79,8 @@ def case(size: int, visible: int, rounds: int, baseline_rounds: int) -> str:
     first = (time.perf_counter() - start) * 1000
     step("grounding", f"{rounds} turns right after a +3/-3 tick")
     med, p99 = measure(kb, engine, rounds, ticks)
+    if engine.grounder.snapshot(kb) != build_snapshot(kb):  # a fast wrong answer is no result
+        raise RuntimeError(f"the maintained snapshot differs from a full build ({size:,}, {visible} visible)")
     step("grounding", f"baseline: {baseline_rounds} turns with a full rebuild")
 
     def forget() -> None:
@@ -87,10 +93,11 @@ def case(size: int, visible: int, rounds: int, baseline_rounds: int) -> str:
             f" {first:10.1f}")
 
 
-def run(sizes: tuple[int, ...] = (10_000, 100_000), rounds: int = 200, baseline_rounds: int = 3) -> str:
+def run(sizes: tuple[int, ...] = (10_000, 100_000), rounds: int = 200, baseline_rounds: int = 3,
+        visible_counts: tuple[int, ...] = (80, 1000)) -> str:
     rows = []
     for size in sizes:
-        for visible in (80, 1000):
+        for visible in visible_counts:
             rows.append(case(size, visible, rounds, baseline_rounds))
     load = ", ".join(f"{x:.2f}" for x in os.getloadavg())
     return "\n".join([
