@@ -138,7 +138,7 @@ class EntityIndex:
         )  # fmt: skip
         self._reorder(term, rank(self.entities[term]))
 
-    def freeze(self, revision: int, changed: tuple[int, frozenset[str]] | None) -> Snapshot:
+    def freeze(self, revision: int, changed: tuple[tuple[int, frozenset[str]], ...] = ()) -> Snapshot:
         table = EntityTable(dict(self.entities), list(self.order))
         return Snapshot(revision=revision, entities=table, names=dict(self.names),
                         skipped=frozenset(self.skipped), changed=changed)

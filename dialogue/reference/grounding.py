@@ -25,6 +25,8 @@ __all__ = [
 
 #: Past this many pending changed statements between two turns, a full rebuild is cheaper.
 MAX_PENDING = 200_000
+#: Snapshot steps a snapshot remembers (a lexicon that missed a few revisions still catches up).
+MAX_STEPS = 16
 
 _Triples = list[tuple[Any, Any, Any]]
 
@@ -74,12 +76,13 @@ class Grounder:
             index = self._index
             if pending is None or index is None or previous is None:
                 index = self._index = EntityIndex(kb, self.lang)
-                snap = index.freeze(revision, None)
+                snap = index.freeze(revision)
             else:
                 changed: set[str] = set()
                 for added, removed in pending:
                     changed |= index.apply(added, removed)
-                snap = index.freeze(revision, (previous.revision, frozenset(changed)))
+                steps = (*previous.changed, (previous.revision, frozenset(changed)))[-MAX_STEPS:]
+                snap = index.freeze(revision, steps)
             with self._lock:
                 self._cached = snap
             return snap
@@ -122,4 +125,4 @@ class Grounder:
 def build_snapshot(kb: KnowledgeBase, max_entities: int = 300, lang: str = "en") -> Snapshot:
     """A snapshot from scratch (no commit tracking): what a grounder's snapshots must equal."""
     del max_entities  # the prompt's share is chosen per turn (relevance), not here
-    return EntityIndex(kb, lang).freeze(kb.revision, None)
+    return EntityIndex(kb, lang).freeze(kb.revision)

@@ -99,9 +99,9 @@ class Lexicon:
         #: Entities by each (singular) word of their own labels, for "the teddy" ("teddy bear").
         self.by_label_word: dict[str, list[str]] = defaultdict(list)
         self._entries: dict[str, tuple[Entity, _Entry]] = {}
-        changed = snapshot.changed
-        if previous is not None and changed is not None and changed[0] == previous.snapshot.revision:
-            self._update(previous, changed[1])
+        changed = snapshot.changed_since(previous.snapshot.revision) if previous is not None else None
+        if previous is not None and changed is not None:
+            self._update(previous, changed)
             return
         old = previous._entries if previous is not None else {}
         for entity in snapshot.entities.values():

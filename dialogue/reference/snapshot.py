@@ -119,9 +119,17 @@ class Snapshot:
     names: Mapping[str, str] = field(default_factory=dict)
     #: Terms considered and found not to be entities (schema terms, unseen untyped terms).
     skipped: frozenset[str] = frozenset()
-    #: (revision of the snapshot this one was derived from, ids of the entities that changed since):
-    #: lets a lexicon be updated rather than rebuilt. None: built from scratch.
-    changed: tuple[int, frozenset[str]] | None = field(default=None, compare=False)
+    #: The last few steps that led to this snapshot, oldest first: (revision of an earlier snapshot,
+    #: ids of the entities that changed from it to the next). Lets a lexicon of any of those
+    #: revisions be updated rather than rebuilt. Empty: built from scratch.
+    changed: tuple[tuple[int, frozenset[str]], ...] = field(default=(), compare=False)
+
+    def changed_since(self, revision: int) -> frozenset[str] | None:
+        """Ids of the entities that changed since the snapshot at `revision`; None if unknown."""
+        for n, (base, _ids) in enumerate(self.changed):
+            if base == revision:
+                return frozenset().union(*(ids for _base, ids in self.changed[n:]))
+        return None
 
     def get(self, entity_id: str) -> Entity | None:
         return self.entities.get(entity_id)

@@ -78,7 +78,7 @@ def test_a_commit_updates_only_what_it_touched() -> None:
     grounder.snapshot(kb)
     kb.apply(add=["thing_3 isIn hall", "myself sees thing_4"], remove=["thing_3 isIn kitchen"])
     snap = grounder.snapshot(kb)
-    assert snap.changed is not None and snap.changed[1] == {"thing_3", "thing_4"}
+    assert snap.changed_since(snap.changed[-1][0]) == {"thing_3", "thing_4"}
     assert snap.entities["thing_3"].zone == "hall" and snap.entities["thing_4"].seen
 
 
@@ -99,3 +99,18 @@ def test_a_colour_label_renames_the_colour_of_its_things() -> None:
     kb.update(['teal_shade rdfs:label "teal"'])
     assert grounder.snapshot(kb).entities["cup_1"].colour == "teal"
     assert grounder.snapshot(kb) == build_snapshot(kb)
+
+
+def test_a_lexicon_that_missed_snapshots_catches_up_from_their_steps() -> None:
+    kb = KB()
+    kb.update(BASE)
+    grounder = Grounder()
+    first = Lexicon(grounder.snapshot(kb))
+    kb.update(["cup_1 rdf:type dbr:Cup", "cup_1 isIn kitchen"])
+    grounder.snapshot(kb)  # a snapshot this lexicon never sees
+    kb.update(['cup_1 rdfs:label "blue mug"', "myself sees cup_1"])
+    latest = grounder.snapshot(kb)
+    assert latest.changed_since(first.snapshot.revision) == {"cup_1"}
+    caught_up = Lexicon(latest, first)
+    assert caught_up._entries["kitchen"] is first._entries["kitchen"]  # updated from the steps, not rebuilt
+    assert _lexicon_state(caught_up) == _lexicon_state(Lexicon(build_snapshot(kb)))
