@@ -2,14 +2,15 @@
 
 The snapshot holds every entity (the rules and the validation of answers use them all); the
 prompt's share is chosen per turn by relevance, not by id: the speaker and the people present
-first, then what the utterance names, what the robot sees (things where the speaker or the robot
-is first), the supports and zones of what is kept, then the rest in the snapshot's order. Each step
-reads only the bounded parts of the snapshot (people, visible things, mentioned ones), so the cost
-does not grow with the KB.
+first, then what the utterance names (what the robot sees of it first), what the robot sees
+(things where the speaker or the robot is first), the supports and zones of what is kept, then
+the rest in the snapshot's order. Each step reads only the bounded parts of the snapshot (people,
+visible things, mentioned ones), so the cost does not grow with the KB.
 """
 
 from __future__ import annotations
 
+import heapq
 from collections.abc import Iterable
 
 from dialogue.reference.lexicon import Lexicon, tokens
@@ -41,8 +42,12 @@ def ranked(snapshot: Snapshot, speaker: str, limit: int, mentions: Iterable[str]
     def near(entity: Entity) -> tuple[bool, tuple[int, str]]:
         return (entity.zone not in here and entity.support not in here, snapshot.order_key(entity.id))
 
-    named = snapshot.in_order(e for e in map(snapshot.get, dict.fromkeys(mentions)) if e is not None)
     visible = sorted(snapshot.visible(), key=near)
+    # A class word ("apple") may name thousands: the visible ones first, then the first by id
+    # (heapq on the ids: no per-entity work for the ones that do not make the share).
+    names = dict.fromkeys(mentions)
+    shown = [e for e in visible if e.id in names]
+    named = [*shown, *map(snapshot.get, heapq.nsmallest(limit, names.keys() - {e.id for e in shown}))]
     present = (e for e in people if e.seen)
     steps: tuple[Iterable[Entity | None], ...] = ((speaking, robot), present, named, visible)
     if not all(add(step) for step in steps):
