@@ -4,7 +4,8 @@
 candidate's classes and names (asked of the KB once, again only when its types or labels change),
 display names per term, and the entities in their deterministic order (a sorted list kept with
 `bisect`). A commit touching N statements costs O(N) KB questions and updates; `freeze` copies the
-state into an immutable `Snapshot` (flat copies, no sorting and no KB access).
+state into an immutable `Snapshot` (the entities as a `layered.Layered` version of the last
+snapshot's, the order as a flat copy: no sorting and no KB access).
 """
 
 from __future__ import annotations
@@ -15,6 +16,7 @@ from collections.abc import Iterable
 from dataclasses import dataclass
 
 from dialogue.reference.facts import PERSON_CLASSES, PLACES, ROBOT_ID, ZONE_CLASSES, Change, Facts, Triple
+from dialogue.reference.layered import GONE, Layered
 from dialogue.reference.snapshot import (
     IGNORED_CLASSES,
     ROBOT_CLASSES,
@@ -70,6 +72,8 @@ class EntityIndex:
         self._refs: Counter[str] = Counter()
         self.names: dict[str, str] = {}
         self.entities: dict[str, Entity] = {}
+        self._frozen: Layered[str, Entity] | None = None  # the last snapshot's entities
+        self._touched: set[str] = set()  # entities changed since
         self._rank: dict[str, int] = {}
         self.order: list[tuple[int, str]] = []
         self.skipped: set[str] = set()
@@ -129,6 +133,7 @@ class EntityIndex:
         self.skipped.discard(term)
         hue = self.facts.value("colour", term)
         self._set_hue(term, hue)
+        self._touched.add(term)
         self.entities[term] = Entity(
             id=term, name=core.name, labels=core.labels, classes=core.classes,
             class_names=core.class_names, kind=core.kind, seen=seen,
@@ -139,7 +144,12 @@ class EntityIndex:
         self._reorder(term, rank(self.entities[term]))
 
     def freeze(self, revision: int, changed: tuple[tuple[int, frozenset[str]], ...] = ()) -> Snapshot:
-        table = EntityTable(dict(self.entities), list(self.order))
+        if self._frozen is None:
+            self._frozen = Layered(dict(self.entities))
+        else:
+            self._frozen = self._frozen.evolve({t: self.entities.get(t, GONE) for t in self._touched})
+        self._touched = set()
+        table = EntityTable(self._frozen, list(self.order))
         return Snapshot(revision=revision, entities=table, names=dict(self.names),
                         skipped=frozenset(self.skipped), changed=changed)
 
@@ -210,7 +220,8 @@ class EntityIndex:
             self._rank[term] = rank
 
     def _drop(self, term: str) -> None:
-        self.entities.pop(term, None)
+        if self.entities.pop(term, None) is not None:
+            self._touched.add(term)
         self.skipped.discard(term)
         self._set_hue(term, None)
         self._reorder(term, None)

@@ -10,11 +10,12 @@ from __future__ import annotations
 import re
 import threading
 from collections import defaultdict
-from collections.abc import Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
 
 from dialogue.reference.grounding import Entity, Snapshot
+from dialogue.reference.layered import GONE, Gone, Layered
 
 _WORD = re.compile(r"[a-z0-9]+(?:'[a-z]+)?")
 
@@ -91,80 +92,77 @@ class Lexicon:
 
     def __init__(self, snapshot: Snapshot, previous: Lexicon | None = None) -> None:
         self.snapshot = snapshot
-        #: Names by their words; a dict per name (insertion-ordered) so one is removed in O(1).
-        self._by_words: dict[tuple[str, ...], dict[Name, None]] = defaultdict(dict)
-        #: First word -> {name length: number of names}, longest first when read.
-        self._lengths: dict[str, dict[int, int]] = defaultdict(dict)
-        self.attributes: dict[str, frozenset[str]] = {}
-        #: Entities by each (singular) word of their own labels, for "the teddy" ("teddy bear").
-        self.by_label_word: dict[str, list[str]] = defaultdict(list)
-        self._entries: dict[str, tuple[Entity, _Entry]] = {}
         changed = snapshot.changed_since(previous.snapshot.revision) if previous is not None else None
         if previous is not None and changed is not None:
             self._update(previous, changed)
             return
-        old = previous._entries if previous is not None else {}
+        by_words: dict[tuple[str, ...], dict[Name, None]] = defaultdict(dict)
+        #: First word -> {name length: number of names}, longest first when read.
+        self._lengths: dict[str, dict[int, int]] = defaultdict(dict)
+        attributes: dict[str, frozenset[str]] = {}
+        by_label: dict[str, list[str]] = defaultdict(list)
+        entries: dict[str, tuple[Entity, _Entry]] = {}
+        old = previous._entries if previous is not None else Layered()
         for entity in snapshot.entities.values():
             entry = _reuse(old.get(entity.id), entity)
-            self._entries[entity.id] = (entity, entry)
+            entries[entity.id] = (entity, entry)
             for name in entry[0]:
-                self._by_words[name.words][name] = None
+                by_words[name.words][name] = None
                 counts = self._lengths[name.words[0]]
                 counts[len(name.words)] = counts.get(len(name.words), 0) + 1
-            self.attributes[entity.id] = entry[1]
+            attributes[entity.id] = entry[1]
             for word in entry[2]:
-                self.by_label_word[word].append(entity.id)
+                by_label[word].append(entity.id)
+        #: Names by their words; a dict per name (insertion-ordered) so one is removed in O(1).
+        self._by_words: Layered[tuple[str, ...], dict[Name, None]] = Layered(dict(by_words))
+        self.attributes: Layered[str, frozenset[str]] = Layered(attributes)
+        #: Entities by each (singular) word of their own labels, for "the teddy" ("teddy bear").
+        self.by_label_word: Layered[str, list[str]] = Layered(dict(by_label))
+        self._entries: Layered[str, tuple[Entity, _Entry]] = Layered(entries)
 
     def _update(self, previous: Lexicon, changed: frozenset[str]) -> None:
-        # Lists and counts are shared with the previous lexicon: copied before they change.
-        self._entries = dict(previous._entries)
-        self.attributes = dict(previous.attributes)
-        by_words: dict[tuple[str, ...], dict[Name, None]] = defaultdict(dict, previous._by_words)
-        lengths: dict[str, dict[int, int]] = defaultdict(dict, previous._lengths)
-        by_label: dict[str, list[str]] = defaultdict(list, previous.by_label_word)
-        copied: set[object] = set()
-
-        def own(index: dict[Any, Any], key: Any, empty: Any) -> Any:
-            if (id(index), key) not in copied:
-                copied.add((id(index), key))
-                index[key] = index[key].copy() if key in index else empty
-            return index[key]
-
+        # Only the changed entries are written, into small top layers (`Layered`); the buckets
+        # they touch are copied first (shared with the previous lexicon).
+        entries: dict[str, tuple[Entity, _Entry] | Gone] = {}
+        attributes: dict[str, frozenset[str] | Gone] = {}
+        by_words: dict[tuple[str, ...], dict[Name, None]] = {}
+        by_label: dict[str, list[str]] = {}
+        lengths = dict(previous._lengths)
+        counted: set[str] = set()
         for entity_id in sorted(changed, key=self.snapshot.order_key):
-            kept = self._entries.pop(entity_id, None)
-            self.attributes.pop(entity_id, None)
+            kept = previous._entries.get(entity_id)
             entity = self.snapshot.get(entity_id)
             entry = _reuse(kept, entity) if entity is not None else None
-            if entity is not None and entry is not None:
-                self._entries[entity_id] = (entity, entry)
-                self.attributes[entity_id] = entry[1]
+            entries[entity_id] = (entity, entry) if entity is not None and entry is not None else GONE
+            attributes[entity_id] = entry[1] if entry is not None else GONE
             old_names, old_labels = (kept[1][0], kept[1][2]) if kept is not None else ([], frozenset())
             new_names, new_labels = (entry[0], entry[2]) if entry is not None else ([], frozenset())
             if old_names == new_names and old_labels == new_labels:
                 continue
             for names, step in ((old_names, -1), (new_names, 1)):
                 for name in names:
-                    bucket = own(by_words, name.words, {})
+                    bucket = _own(by_words, previous._by_words, name.words, dict)
                     if step < 0:
                         del bucket[name]
                     else:
                         bucket[name] = None
-                    if not bucket:
-                        del by_words[name.words]
-                    counts = own(lengths, name.words[0], {})
+                    first = name.words[0]
+                    if first not in counted:
+                        counted.add(first)
+                        lengths[first] = dict(lengths.get(first, {}))
+                    counts = lengths[first]
                     counts[len(name.words)] = counts.get(len(name.words), 0) + step
                     if not counts[len(name.words)]:
                         del counts[len(name.words)]
-                    if not counts:
-                        del lengths[name.words[0]]
             for word in old_labels:
-                ids = own(by_label, word, [])
-                ids.remove(entity_id)
-                if not ids:
-                    del by_label[word]
+                _own(by_label, previous.by_label_word, word, list).remove(entity_id)
             for word in new_labels:
-                own(by_label, word, []).append(entity_id)
-        self._by_words, self._lengths, self.by_label_word = by_words, lengths, by_label
+                _own(by_label, previous.by_label_word, word, list).append(entity_id)
+        self._entries = previous._entries.evolve(entries)
+        self.attributes = previous.attributes.evolve(attributes)
+        self._by_words = previous._by_words.evolve({k: v or GONE for k, v in by_words.items()})
+        self.by_label_word = previous.by_label_word.evolve({k: v or GONE for k, v in by_label.items()})
+        self._lengths = {first: counts for first, counts in lengths.items() if counts}
 
     def names_at(self, words: Sequence[str], start: int) -> list[Name]:
         """Every name that occurs in `words` starting at `start` (longest first)."""
@@ -220,6 +218,13 @@ def _names(entity: Entity) -> list[Name]:
 
 
 _Entry = tuple[list[Name], frozenset[str], frozenset[str]]
+
+
+def _own(changes: dict[Any, Any], source: Mapping[Any, Any], key: Any, empty: Callable[[], Any]) -> Any:
+    """The copy of `source[key]` this update writes to (copied once)."""
+    if key not in changes:
+        changes[key] = source[key].copy() if key in source else empty()
+    return changes[key]
 
 
 def _reuse(kept: tuple[Entity, _Entry] | None, entity: Entity) -> _Entry:

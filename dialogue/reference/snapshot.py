@@ -82,12 +82,12 @@ def rank(entity: Entity) -> int:
 class EntityTable(Mapping[str, Entity]):
     """An immutable view of the entities at one revision, iterated in rank-then-id order.
 
-    Built from copies of the maintained dictionary and sorted order (flat copies, no sorting), so
-    a revision costs a copy rather than a rebuild."""
+    Built from a version of the maintained entities and a copy of their sorted order (no
+    sorting), so a revision costs little more than what changed."""
 
     __slots__ = ("_by_id", "_order")
 
-    def __init__(self, by_id: dict[str, Entity], order: list[tuple[int, str]]) -> None:
+    def __init__(self, by_id: Mapping[str, Entity], order: list[tuple[int, str]]) -> None:
         self._by_id = by_id
         self._order = order
 
