@@ -97,8 +97,7 @@ class Lexicon:
             self._update(previous, changed)
             return
         by_words: dict[tuple[str, ...], dict[Name, None]] = defaultdict(dict)
-        #: First word -> {name length: number of names}, longest first when read.
-        self._lengths: dict[str, dict[int, int]] = defaultdict(dict)
+        lengths: dict[str, dict[int, int]] = defaultdict(dict)
         attributes: dict[str, frozenset[str]] = {}
         by_label: dict[str, list[str]] = defaultdict(list)
         entries: dict[str, tuple[Entity, _Entry]] = {}
@@ -108,7 +107,7 @@ class Lexicon:
             entries[entity.id] = (entity, entry)
             for name in entry[0]:
                 by_words[name.words][name] = None
-                counts = self._lengths[name.words[0]]
+                counts = lengths[name.words[0]]
                 counts[len(name.words)] = counts.get(len(name.words), 0) + 1
             attributes[entity.id] = entry[1]
             for word in entry[2]:
@@ -119,6 +118,8 @@ class Lexicon:
         #: Entities by each (singular) word of their own labels, for "the teddy" ("teddy bear").
         self.by_label_word: Layered[str, list[str]] = Layered(dict(by_label))
         self._entries: Layered[str, tuple[Entity, _Entry]] = Layered(entries)
+        #: First word -> {name length: number of names}, longest first when read.
+        self._lengths: Layered[str, dict[int, int]] = Layered(dict(lengths))
 
     def _update(self, previous: Lexicon, changed: frozenset[str]) -> None:
         # Only the changed entries are written, into small top layers (`Layered`); the buckets
@@ -127,8 +128,7 @@ class Lexicon:
         attributes: dict[str, frozenset[str] | Gone] = {}
         by_words: dict[tuple[str, ...], dict[Name, None]] = {}
         by_label: dict[str, list[str]] = {}
-        lengths = dict(previous._lengths)
-        counted: set[str] = set()
+        lengths: dict[str, dict[int, int]] = {}
         for entity_id in sorted(changed, key=self.snapshot.order_key):
             kept = previous._entries.get(entity_id)
             entity = self.snapshot.get(entity_id)
@@ -146,11 +146,7 @@ class Lexicon:
                         del bucket[name]
                     else:
                         bucket[name] = None
-                    first = name.words[0]
-                    if first not in counted:
-                        counted.add(first)
-                        lengths[first] = dict(lengths.get(first, {}))
-                    counts = lengths[first]
+                    counts = _own(lengths, previous._lengths, name.words[0], dict)
                     counts[len(name.words)] = counts.get(len(name.words), 0) + step
                     if not counts[len(name.words)]:
                         del counts[len(name.words)]
@@ -162,7 +158,7 @@ class Lexicon:
         self.attributes = previous.attributes.evolve(attributes)
         self._by_words = previous._by_words.evolve({k: v or GONE for k, v in by_words.items()})
         self.by_label_word = previous.by_label_word.evolve({k: v or GONE for k, v in by_label.items()})
-        self._lengths = {first: counts for first, counts in lengths.items() if counts}
+        self._lengths = previous._lengths.evolve({k: v or GONE for k, v in lengths.items()})
 
     def names_at(self, words: Sequence[str], start: int) -> list[Name]:
         """Every name that occurs in `words` starting at `start` (longest first)."""
