@@ -18,8 +18,9 @@ from dialogue.reference.snapshot import Entity, Snapshot
 
 
 def mentioned(lexicon: Lexicon, text: str) -> list[str]:
-    """Ids of the entities the utterance names (its words against the lexicon)."""
-    return [e for m in lexicon.mentions(tokens(text)) for e in sorted(m.entities)]
+    """Ids of the entities the utterance names (its words against the lexicon), in no particular
+    order: `ranked` orders them (a class word may name thousands; sorting them all is wasted)."""
+    return [e for m in lexicon.mentions(tokens(text)) for e in m.entities]
 
 
 def ranked(snapshot: Snapshot, speaker: str, limit: int, mentions: Iterable[str] = ()) -> list[Entity]:
