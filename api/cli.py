@@ -46,7 +46,7 @@ EXAMPLES = f"""examples (file paths are those of a clone of the repository):
   situated humans --url http://127.0.0.1:8000        id, name, seen, engagement
   situated eval tests/dialogue/eval/dev.jsonl --llm rules --json
                                                      score dialogue cases
-  situated bench kb --quick                          small sizes; also scene, dialogue, grounding, http, load, store
+  situated bench kb --quick                          small sizes; also scene, dialogue, grounding, http...
   situated doctor                                    check the setup (also --llm SPEC); exit 1 on a problem
   situated data check ./data                         is the journal/snapshot intact? (exit 1 if damaged)
   situated data repair ./data                        keep every intact record; damaged files kept beside
@@ -131,7 +131,7 @@ def _parser() -> argparse.ArgumentParser:
                       "repair (service stopped): keep every intact record, the damaged files beside them")
     data.add_argument("dir", type=Path, help="the data folder")
 
-    bench = sub.add_parser("bench", help="run benchmarks: kb, scene, dialogue, grounding, http, load, store, all")
+    bench = sub.add_parser("bench", help=f"run benchmarks: {', '.join(BENCHES)} or all")
     bench.add_argument("which", nargs="?", default="all", choices=[*BENCHES, "all"])
     bench.add_argument("args", nargs=argparse.REMAINDER, help="passed to the benchmark")
     return parser
