@@ -44,7 +44,7 @@ def create_app(settings: Settings | None = None, kb: KB | None = None,
         try:
             yield
         finally:
-            await run_in_threadpool(services.stop)
+            await services.aclose()
 
     # /docs must work offline: Swagger UI's script, style and icon come from fastapi-offline's
     # package (under /static-offline-docs), not from the CDN FastAPI's own page would load.

@@ -27,7 +27,9 @@ from kb.datadir import repair as repair_data
 from kb.errors import DataCorrupt
 from scene.world import load_any_scene
 
-BENCHES = ("kb", "scene", "dialogue", "grounding", "http", "load", "store")
+BENCHES = ("kb", "scene", "dialogue", "grounding", "http", "load", "store", "backend")
+#: Not in `all`: it needs the optional local model (the `local` extra) and takes minutes.
+OPTIONAL_BENCHES = ("model",)
 # tests/api/test_cli.py runs every example below, so they cannot drift from what works.
 KITCHEN = "tests/dialogue/eval/scenes/kitchen.txt"
 EXAMPLES = f"""examples (file paths are those of a clone of the repository):
@@ -131,8 +133,9 @@ def _parser() -> argparse.ArgumentParser:
                       "repair (service stopped): keep every intact record, the damaged files beside them")
     data.add_argument("dir", type=Path, help="the data folder")
 
-    bench = sub.add_parser("bench", help=f"run benchmarks: {', '.join(BENCHES)} or all")
-    bench.add_argument("which", nargs="?", default="all", choices=[*BENCHES, "all"])
+    bench = sub.add_parser("bench", help="run benchmarks: " + ", ".join(BENCHES) + ", all (those), or "
+                                         "model (the local LLM path; the local extra)")
+    bench.add_argument("which", nargs="?", default="all", choices=[*BENCHES, *OPTIONAL_BENCHES, "all"])
     bench.add_argument("args", nargs=argparse.REMAINDER, help="passed to the benchmark")
     return parser
 
@@ -270,11 +273,14 @@ async def _chat_in_process(args: argparse.Namespace) -> int:
     settings = load_settings(llm=args.llm, scene=args.scene)
     with _kb(args) as kb:
         dialogues = build_dialogues(settings, kb)
-        dialogue = dialogues.start()
-        for text in _lines(args):
-            result = await dialogues.interact(args.user, text, dialogue_id=dialogue.id)
-            _show({"response": result.response, "intents": [i.model_dump() for i in result.intents],
-                   "error_msg": result.error_msg})
+        try:
+            dialogue = dialogues.start()
+            for text in _lines(args):
+                result = await dialogues.interact(args.user, text, dialogue_id=dialogue.id)
+                _show({"response": result.response, "intents": [i.model_dump() for i in result.intents],
+                       "error_msg": result.error_msg})
+        finally:
+            await dialogues.engine.model.aclose()  # its HTTP client or worker process
     return 0
 
 

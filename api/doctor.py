@@ -22,11 +22,6 @@ from typing import Literal
 from api.settings import Settings
 from dialogue.engine import DialogueEngine, EngineConfig
 from dialogue.llm.base import ChatModel, ChatRequest, ModelError
-from dialogue.llm.llamabuild import REINSTALL, check_build
-from dialogue.llm.llamacpp import INSTALL_HINT, LlamaCppModel
-from dialogue.llm.ollama import OllamaModel
-from dialogue.llm.openai import OpenAIModel
-from dialogue.llm.rules import RulesModel
 from dialogue.llm.spec import SpecError, parse_spec
 from kb import KB, KbError
 from scene.world import load_any_scene
@@ -114,29 +109,31 @@ def check_model(doctor: Doctor) -> Finding:
             model = parse_spec(spec).model
         except SpecError as exc:
             return Finding("model", "fail", str(exc), "give --llm a valid spec (see situated serve -h)")
+    return asyncio.run(_ask(doctor, model, owned=doctor.model is None))
+
+
+async def _ask(doctor: Doctor, model: ChatModel, owned: bool) -> Finding:
     try:
-        return _ask(doctor, model)
+        return await _check(doctor, model)
     finally:
-        if doctor.model is None and isinstance(model, LlamaCppModel):
-            model.close()
+        if owned:  # its HTTP client or worker process
+            await model.aclose()
 
 
-def _ask(doctor: Doctor, model: ChatModel) -> Finding:
-    if isinstance(model, RulesModel):
-        return Finding("model", "ok", "rules: the offline parser (no model server)")
+async def _check(doctor: Doctor, model: ChatModel) -> Finding:
+    llm = model.llm  # behind the rules in a hybrid model: that is the one to check
+    if llm is None:
+        return Finding("model", "ok", f"{model.name}: the offline parser (no model server)")
     started = time.monotonic()
-    if isinstance(model, LlamaCppModel):
-        check = asyncio.run(check_build(model, doctor.model_timeout))
-        if not check.ok:
-            fix = REINSTALL if check.crashed else f"check the model file; {INSTALL_HINT}"
-            return Finding("model", "fail", check.message, fix)
-        return Finding("model", "ok", f"{check.message} in {time.monotonic() - started:.1f} s "
-                                      f"(worker process; build: {check.build})")
+    own = await llm.self_check(doctor.model_timeout)
+    if own is not None:
+        return Finding("model", "ok" if own.ok else "fail", own.detail, "" if own.ok else own.fix)
+    request = await asyncio.to_thread(_turn_request, doctor, llm)
     try:
-        result = asyncio.run(model.chat(_turn_request(doctor, model), doctor.model_timeout))
+        result = await llm.chat(request, doctor.model_timeout)
     except ModelError as exc:
-        return Finding("model", "fail", f"{model.name}: {exc}", _fix_for(model))
-    return Finding("model", "ok", f"{model.name} answered a turn ({len(result.content)} characters) in "
+        return Finding("model", "fail", f"{llm.name}: {exc}", llm.setup_hint)
+    return Finding("model", "ok", f"{llm.name} answered a turn ({len(result.content)} characters) in "
                                   f"{time.monotonic() - started:.1f} s")
 
 
@@ -148,16 +145,6 @@ def _turn_request(doctor: Doctor, model: ChatModel) -> ChatRequest:
     turn = engine.prepare(engine.ground(), "what do you see?", SPEAKER, (), None)
     schema = engine.schema_for(turn.context.snapshot, SPEAKER)
     return ChatRequest(engine.prompts.messages(turn.context), schema, turn.context)
-
-
-def _fix_for(model: ChatModel) -> str:
-    if isinstance(model, OllamaModel):
-        return (f"start Ollama at {model.host} (ollama serve) and pull the model "
-                f"(ollama pull {model.model}), or fix the URL in --llm")
-    if isinstance(model, OpenAIModel):
-        return (f"start the OpenAI-compatible server at {model.base_url} serving {model.model!r}, or fix "
-                "the model name or URL in --llm")
-    return "check the model backend named by --llm"
 
 
 def check_chromium(doctor: Doctor) -> Finding:

@@ -128,15 +128,20 @@ async def _store_unavailable(request: Request, exc: Exception) -> JSONResponse:
     return error_response(503, "store_unavailable", str(exc))
 
 
-async def _too_many_rows(request: Request, exc: Exception) -> JSONResponse:
-    assert isinstance(exc, TooManyRows)
-    return error_response(413, "too_many_rows", f"{exc} (the service's limit)", {"limit": exc.limit})
+def over_budget(exc: QueryTimeout | TooManyRows) -> ApiError:
+    """A query or subscription past the service's limits: 413 ``too_many_rows`` or 503
+    ``query_timeout`` (as other SPARQL servers answer a cancelled query; the service itself
+    stays available)."""
+    if isinstance(exc, TooManyRows):
+        return ApiError(413, "too_many_rows", f"{exc} (the service's limit)", {"limit": exc.limit})
+    return ApiError(503, "query_timeout", f"{exc} (the service's limit)", {"timeout": exc.seconds})
 
 
-async def _query_timeout(request: Request, exc: Exception) -> JSONResponse:
-    assert isinstance(exc, QueryTimeout)
-    # 503 as other SPARQL servers answer a cancelled query; the service itself stays available.
-    return error_response(503, "query_timeout", f"{exc} (the service's limit)", {"timeout": exc.seconds})
+async def _over_budget(request: Request, exc: Exception) -> JSONResponse:
+    assert isinstance(exc, QueryTimeout | TooManyRows)
+    return await _api_error(request, over_budget(exc))
+
+
 async def _storage_full(request: Request, exc: Exception) -> JSONResponse:
     return error_response(507, "storage_full", str(exc))
 
@@ -169,8 +174,8 @@ def install_error_handlers(app: FastAPI) -> None:
     app.add_exception_handler(KbError, _kb_error)
     app.add_exception_handler(ClientError, _client_error)
     app.add_exception_handler(StoreUnavailable, _store_unavailable)
-    app.add_exception_handler(TooManyRows, _too_many_rows)
-    app.add_exception_handler(QueryTimeout, _query_timeout)
+    app.add_exception_handler(TooManyRows, _over_budget)
+    app.add_exception_handler(QueryTimeout, _over_budget)
     app.add_exception_handler(StorageFull, _storage_full)  # before KbError's 400: more specific
     app.add_exception_handler(StorageError, _storage_error)
     app.add_exception_handler(DialogueError, _dialogue_error)

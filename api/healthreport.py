@@ -28,11 +28,10 @@ def may_read_details(services: Services, presented: str | None) -> bool:
 
 
 def _kb_state(services: Services) -> dict[str, Any]:
-    kb = services.kb
-    with kb.lock:
-        state: dict[str, Any] = {"revision": kb.revision, "size": kb.size(),
-                                 "asserted": kb.size(inferred=False), "models": kb.models(),
-                                 "role": services.settings.role}
+    summary = services.kb.summary()  # not the KB lock: /health answers while a query runs
+    state: dict[str, Any] = {"revision": summary.revision, "size": summary.size,
+                             "asserted": summary.asserted, "models": list(summary.models),
+                             "role": services.settings.role}
     if services.store is not None:
         state["store"] = services.store.endpoint.spec.query_url
         if services.store.mirror is not None:

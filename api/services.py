@@ -5,7 +5,9 @@ Built by the app's lifespan (blocking work, run off the event loop) and stopped 
 
 from __future__ import annotations
 
+import asyncio
 import logging
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -25,6 +27,7 @@ from kb.sparqlstore.endpoint import SparqlEndpoint
 from kb.sparqlstore.mirror import SparqlMirror
 from kb.sparqlstore.remote import RemoteKB
 from kb.status import Components, ComponentStatus
+from kb.writer import CommitListener
 from scene.textfile import load_scene
 from scene.world import World
 
@@ -41,7 +44,8 @@ class Services:
     journal: Journal | None
     owns_kb: bool
     store: Store | None = None
-    #: The model was built from the settings (not passed in): stopping closes it (a worker process).
+    #: The model was built from the settings (not passed in): `aclose` closes it (its HTTP client,
+    #: its worker process).
     owns_model: bool = False
     # Named statuses of I/O and background work, rendered by /health (journal, compaction...).
     components: Components = field(default_factory=Components)
@@ -63,7 +67,17 @@ class Services:
                 # change (the sync asserts every fact it no longer has) or at the next start.
                 log.warning("the scene's facts were not asserted again after a clear: %s", exc)
 
+    async def aclose(self) -> None:
+        """Stop: the model on the event loop that used it (its HTTP client belongs to that loop),
+        then the rest off the loop."""
+        try:
+            if self.owns_model:
+                await self.model.aclose()
+        finally:
+            await asyncio.to_thread(self.stop)
+
     def stop(self) -> None:
+        """Stop everything but the model (blocking), which `aclose` closes first."""
         if self.world is not None:
             self.world.stop()
         self.hub.shutdown()
@@ -78,9 +92,6 @@ class Services:
             self.kb.close()
         if self.store is not None:
             self.store.close()
-        close_model = getattr(self.model, "close", None)
-        if self.owns_model and callable(close_model):
-            close_model()
 
 
 def mirror_status(mirror: SparqlMirror) -> ComponentStatus:
@@ -114,6 +125,15 @@ class Store:
         self.endpoint.close()
 
 
+def event_hub(kb: KnowledgeBase, settings: Settings,
+              commits: Callable[[CommitListener], Callable[[], None]] | None = None) -> EventHub:
+    """Event subscribers of the service, each held to its query limits; ``commits`` follows the
+    writer's commits (None on a reader, which has no commit feed)."""
+    limits = settings.limits
+    return EventHub(kb, limits.max_subscribers, query_timeout=limits.query_timeout, max_rows=limits.max_rows,
+                    commits=commits)
+
+
 def _open_journal(kb: KB, folder: Path, snapshot_records: int) -> Journal:
     journal = Journal(folder)
     found = journal.recover(kb)
@@ -126,23 +146,19 @@ def _open_journal(kb: KB, folder: Path, snapshot_records: int) -> Journal:
     return journal
 
 
-def backend_of(settings: Settings) -> tuple[ChatModel, bool]:
-    """The model ``settings.llm`` names and whether it runs behind the rules (hybrid)."""
+def backend_of(settings: Settings) -> ChatModel:
+    """The model ``settings.llm`` names."""
     try:
-        backend = parse_spec(settings.llm)
+        return parse_spec(settings.llm).model
     except SpecError as exc:
         raise SettingsError(f"llm: {exc}") from exc
-    return backend.model, backend.hybrid
 
 
 def build_dialogues(settings: Settings, kb: KnowledgeBase, model: ChatModel | None = None,
                     endpoint: SparqlEndpoint | None = None) -> DialogueManager:
     """The dialogue engine on this KB, with ``model`` or the backend ``settings.llm`` names;
     with a shared store, the dialogue sessions live in it (every process sees every dialogue)."""
-    hybrid = False
-    if model is None:
-        model, hybrid = backend_of(settings)
-    engine = DialogueEngine(kb, model, EngineConfig(deadline=settings.deadline, hybrid=hybrid))
+    engine = DialogueEngine(kb, model or backend_of(settings), EngineConfig(deadline=settings.deadline))
     limits = settings.limits
     store = SparqlSessions(endpoint, max_dialogues=limits.max_dialogues) if endpoint is not None else None
     return DialogueManager(engine, max_dialogues=limits.max_dialogues, max_turns=limits.max_history_turns,
@@ -182,7 +198,7 @@ def start_services(settings: Settings, kb: KB | None = None, model: ChatModel | 
         if owns_kb:
             the_kb.close()
         raise
-    hub = EventHub(the_kb, settings.limits.max_subscribers, commits=the_kb.on_commit)
+    hub = event_hub(the_kb, settings, commits=the_kb.on_commit)
     services = Services(settings=settings, kb=the_kb, hub=hub, dialogues=dialogues, world=world,
                         journal=journal, owns_kb=owns_kb, store=store, owns_model=model is None,
                         local_kb=the_kb)
@@ -224,6 +240,6 @@ def _start_reader(settings: Settings, model: ChatModel | None) -> Services:
         kb.close()
         store.close()
         raise
-    hub = EventHub(kb, settings.limits.max_subscribers)
+    hub = event_hub(kb, settings)
     return Services(settings=settings, kb=kb, hub=hub, dialogues=dialogues, world=None, journal=None,
                     owns_kb=True, store=store, owns_model=model is None)

@@ -31,11 +31,12 @@ class Limits(BaseModel):
     max_subscribers: int = Field(default=64, ge=1, description="concurrent SSE + WebSocket event subscribers")
     max_history_turns: int = Field(default=50, ge=1, description="turns of history kept per dialogue")
     max_dialogues: int = Field(default=1000, ge=1, description="dialogues open at once")
-    max_rows: int = Field(default=10_000, ge=1, description="rows a /kb/query or /sparql answer may have "
-                          "(triples, for a CONSTRUCT or DESCRIBE)")
+    max_rows: int = Field(default=10_000, ge=1, description="rows a /kb/query or /sparql answer or an event "
+                          "subscription may have (triples, for a CONSTRUCT or DESCRIBE)")
     query_timeout: float = Field(default=5.0, gt=0, le=600, description="seconds a /kb/query or /sparql "
-                                 "query may take, waiting for the KB included; a write waits at most this "
-                                 "long behind one")
+                                 "query or an event subscription's evaluation may take, waiting for the KB "
+                                 "included; a write waits about this long behind queries, a commit about "
+                                 "this long for subscriptions")
     max_input_chars: int = Field(default=4000, ge=1, description="characters in one utterance")
     max_models: int = Field(default=16, ge=1, description="models named in one write or query (each new "
                             "model is a copy of the ontology's closure)")

@@ -7,6 +7,11 @@ id and fans it out to every listener, each with its own bounded queue on its eve
 
 Delivery never takes the hub lock, because a writer may deliver while another thread holds
 the hub lock and waits for the KB lock.
+
+Every subscription gets the service's query limits (kb.events): opening one whose starting rows
+go past them raises ``QueryTimeout``/``TooManyRows`` (503 ``query_timeout``, 413
+``too_many_rows``); a later evaluation past them ends it, and each of its listeners gets that
+error (the same body as the HTTP answer) as its last message.
 """
 
 from __future__ import annotations
@@ -17,8 +22,10 @@ from collections import deque
 from collections.abc import Callable, Sequence
 from typing import Any
 
-from api.errors import ApiError
+from api.errors import ApiError, error_body, over_budget
+from kb import KbError
 from kb.describe import statements
+from kb.errors import QueryTimeout, TooManyRows
 from kb.events import event_id
 from kb.protocol import KnowledgeBase
 from kb.writer import Commit, CommitListener
@@ -48,6 +55,7 @@ class Listener:
     def __init__(self, sub_id: str, loop: asyncio.AbstractEventLoop, max_queued: int) -> None:
         self.sub_id = sub_id
         self.end_reason: str | None = None
+        self.error: dict[str, Any] | None = None  # why the subscription was ended, if it was
         self._loop = loop
         self._max = max_queued
         self._rows: deque[list[Any]] = deque()
@@ -65,6 +73,18 @@ class Listener:
             self._loop.call_soon_threadsafe(self._finish, reason)
         except RuntimeError:
             return
+
+    def fail(self, error: dict[str, Any]) -> None:
+        """End the stream with an error body (called from any thread)."""
+        try:
+            self._loop.call_soon_threadsafe(self._fail, error)
+        except RuntimeError:
+            return
+
+    def _fail(self, error: dict[str, Any]) -> None:
+        if self.end_reason is None:
+            self.error = error
+        self._finish("error")
 
     def _put(self, rows: list[Any], last: bool) -> None:
         if self.end_reason is not None:
@@ -101,6 +121,7 @@ class _Entry:
         self.one_shot = one_shot
         self.listeners: tuple[Listener, ...] = ()  # replaced, never mutated: read without a lock
         self.alive = True
+        self.failure: dict[str, Any] | None = None  # why the KB ended it, if it did
 
     def deliver(self, rows: list[Any]) -> None:
         if self.one_shot:
@@ -108,16 +129,30 @@ class _Entry:
         for listener in self.listeners:
             listener.push(rows, last=self.one_shot)
 
+    def fail(self, error: KbError) -> None:
+        self.alive = False  # the KB has ended it
+        if isinstance(error, QueryTimeout | TooManyRows):
+            failure = over_budget(error)
+            body = error_body(failure.status, failure.code, failure.message, failure.details)
+        else:
+            body = error_body(400, "kb_error", str(error))
+        self.failure = body  # before reading the listeners: one joining now sees one or the other
+        for listener in self.listeners:
+            listener.fail(body)
+
 
 class EventHub:
     """Bounded set of event listeners over one KB."""
 
     def __init__(self, kb: KnowledgeBase, max_listeners: int, max_queued: int = 256, *,
+                 query_timeout: float | None = None, max_rows: int | None = None,
                  commits: Callable[[CommitListener], Callable[[], None]] | None = None) -> None:
         """``commits``: how to follow every commit (the writer's ``KB.on_commit``); a reader, which
         sees no commits, has none and refuses the commit feed."""
         self._kb = kb
         self._commits = commits
+        self._query_timeout = query_timeout
+        self._max_rows = max_rows
         self._max_listeners = max_listeners
         self._max_queued = max_queued
         self._lock = threading.Lock()
@@ -134,7 +169,8 @@ class EventHub:
     def open(self, patterns: Sequence[str], one_shot: bool, models: Sequence[str] | None,
              loop: asyncio.AbstractEventLoop) -> Listener:
         """Subscribe a new listener (blocking: call it off the event loop). 429 past the limit;
-        KbError for bad patterns or unknown models."""
+        KbError for bad patterns or unknown models; ``QueryTimeout``/``TooManyRows`` when the
+        starting rows go past the query limits."""
         names = list(models) if models else [DEFAULT_MODEL]
         key = event_id(list(patterns), one_shot, names)
         with self._lock:
@@ -142,10 +178,14 @@ class EventHub:
             entry = self._entries.get(key)
             if entry is None or not entry.alive:
                 entry = _Entry(key, one_shot)
-                entry.sub_id = self._kb.subscribe(list(patterns), entry.deliver, one_shot, names)
+                entry.sub_id = self._kb.subscribe(list(patterns), entry.deliver, one_shot, names,
+                                                  timeout=self._query_timeout, max_rows=self._max_rows,
+                                                  on_error=entry.fail)
                 self._entries[key] = entry
             listener = Listener(entry.sub_id, loop, self._max_queued)
             entry.listeners = (*entry.listeners, listener)
+            if entry.failure is not None:  # ended by a commit while it was being opened
+                listener.fail(entry.failure)
             self._owners[id(listener)] = entry
             self._count += 1
             return listener

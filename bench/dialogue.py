@@ -31,15 +31,25 @@ SCENE = [
 ]  # fmt: skip
 CLASSES = ["dbr:Cup", "dbr:Book", "dbr:Apple", "dbr:Smartphone", "dbr:Pear"]
 COLOURS = ["red", "blue", "green", "white", "black"]
+
+
+def label(i: int) -> str:
+    """The label of object i of the scene ("blue apple 7"), so that utterances name what it has."""
+    klass, colour = CLASSES[i % len(CLASSES)], COLOURS[(i // len(CLASSES)) % len(COLOURS)]
+    return f"{colour} {klass.split(':')[1].lower().replace('smartphone', 'phone')} {i}"
+
+
 UTTERANCES = [
-    "pick up the red cup 7",
-    "bring me the green book 12",
-    "put the apple 3 on the shelf",
+    f"pick up the {label(7)}",
+    f"bring me the {label(12)}",
+    f"put the {label(3)} on the shelf",
     "go to the kitchen",
-    "where is the blue phone 9?",
+    f"where is the {label(9)}?",
     "hello",
     "what do you see?",
-    "grab the cup",
+    "grab the cup",  # several cups: a clarifying question
+    f"um take the {label(20)} and put it on the table",  # compound, speech style
+    f"grab the heavy {label(33)} from the cupboard",  # modifiers the KB cannot check
 ]
 ANSWER = '{"verbal_ack": "OK", "user_intent": {"type": "__intent_grab_object__", "object": "obj_042"}}'
 
@@ -49,11 +59,9 @@ def scene(n_objects: int = 100) -> KB:
     facts = list(SCENE)
     for i in range(n_objects):
         oid = f"obj_{i:03d}"
-        klass, colour = CLASSES[i % len(CLASSES)], COLOURS[(i // len(CLASSES)) % len(COLOURS)]
-        noun = klass.split(":")[1].lower().replace("smartphone", "phone")
         facts += [
-            f"{oid} rdf:type {klass}",
-            f'{oid} rdfs:label "{colour} {noun} {i}"',
+            f"{oid} rdf:type {CLASSES[i % len(CLASSES)]}",
+            f'{oid} rdfs:label "{label(i)}"',
             f"{oid} isOn {'table_1' if i % 2 else 'shelf_1'}",
             f"{oid} isIn kitchen",
             f"myself sees {oid}",
@@ -79,7 +87,7 @@ def run(n_objects: int = 100, repeat: int = 200) -> str:
 
     def overhead() -> None:
         grounded = engine.ground()
-        turn = engine.prepare(grounded, "grab the cup 42", speaker, (), None)
+        turn = engine.prepare(grounded, f"grab the {label(42)}", speaker, (), None)
         engine.schema_for(grounded[0], speaker)
         engine.prompts.messages(turn.context)
         ground_answer(parse_answer(ANSWER), turn.lexicon, speaker)

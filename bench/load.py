@@ -43,6 +43,10 @@ ANSWER = {"verbal_ack": "OK, I take the cup.",
                           "goal": None, "input": None}}
 OBJECTS_PER_TICK = 4
 WINDOW_TICKS = 30  # the perception batches alive at once: one second of observations at 30 Hz
+# A perception node drops a frame while its previous writes are still out, rather than queueing
+# them without end: on a loaded machine an unbounded backlog made the client itself the bottleneck
+# (thousands of requests waiting in one connection pool, whose scheduling is quadratic).
+MAX_TICKS_IN_FLIGHT = 4
 TURN = "POST /dialogues/{id}/interactions"
 START = "POST /dialogues"
 ADD = "POST /kb/revise (add)"
@@ -87,6 +91,7 @@ class Report:
     ticks: int
     late_ticks: int
     hz: float
+    dropped_ticks: int = 0
     kb_size: int = 0
     kb_asserted: int = 0
     recomputed_size: int = 0
@@ -111,7 +116,8 @@ class Report:
         lines.append(f"{'all':<38} {total:>9} {total / self.seconds:>8.1f} {'':>8} {'':>8} {self.errors:>7}")
         achieved = self.ticks / self.seconds
         lines.append(f"perception writer: {self.hz:g} Hz asked, {achieved:.1f} Hz achieved "
-                     f"({self.late_ticks} ticks started late) over {self.seconds:.1f} s")
+                     f"({self.late_ticks} ticks started late, {self.dropped_ticks} dropped while "
+                     f"{MAX_TICKS_IN_FLIGHT} were in flight) over {self.seconds:.1f} s")
         lines.append(f"KB after: {self.kb_size} triples ({self.kb_asserted} asserted); closure recomputed "
                      f"from the asserted triples: {self.recomputed_size} triples, "
                      f"{'identical' if self.closure_equal else 'DIFFERENT'}; the writer's live facts: "
@@ -134,7 +140,7 @@ class Load:
         self.talking = dialogues  # dialogue tasks still sending turns
         self.routes = {name: Route() for name in (START, TURN, ADD, RETRACT)}
         self.sent = 0
-        self.ticks = self.late_ticks = 0
+        self.ticks = self.late_ticks = self.dropped_ticks = 0
         self.live: dict[int, list[str]] = {}  # tick -> the objects it added, not yet retracted
         self.retracting: set[int] = set()
         self.stop_at = 0.0
@@ -189,10 +195,13 @@ class Load:
             ticks: set[asyncio.Task[None]] = set()
             next_tick = time.monotonic()
             while self._perceiving():
-                task = asyncio.create_task(self._tick(client, self.ticks))
-                ticks.add(task)
-                task.add_done_callback(ticks.discard)
-                self.ticks += 1
+                if len(ticks) < MAX_TICKS_IN_FLIGHT:
+                    task = asyncio.create_task(self._tick(client, self.ticks))
+                    ticks.add(task)
+                    task.add_done_callback(ticks.discard)
+                    self.ticks += 1
+                else:
+                    self.dropped_ticks += 1
                 next_tick += period
                 delay = next_tick - time.monotonic()
                 if delay > 0:
@@ -313,7 +322,7 @@ def run(seconds: float = 60.0, dialogues: int = 50, hz: float = 30.0,
         load = Load(url, seconds, dialogues, hz, max_requests, turns)
         elapsed = asyncio.run(load.run())
         step("load", "checking the KB's closure against a recomputation")
-        report = Report(elapsed, load.routes, load.ticks, load.late_ticks, hz)
+        report = Report(elapsed, load.routes, load.ticks, load.late_ticks, hz, load.dropped_ticks)
         with httpx.Client(base_url=url, timeout=60) as client:
             check_kb(client, report, load.live)
         return report

@@ -12,9 +12,11 @@ Public API (exported here, see ``__all__``; nothing is done at import time):
   `dialogue.sessionstore.SessionStore`: `MemorySessions` (default) or
   `dialogue.sparqlsessions.SparqlSessions(endpoint)` (shared by processes on one SPARQL store);
 - `dialogue.llm.spec.parse_spec("rules" | "ollama:gemma3:1b[@URL]" | "openai:MODEL[@URL]" |
-  "openai-json:MODEL[@URL]" | "hybrid:<llm spec>") -> Backend(model, hybrid)`; errors are `SpecError`;
-- `dialogue.evaluation.cases.run(path, llm_spec) -> Report`; `dialogue.evaluation.command.main(argv)` is
-  the `situated eval` command.
+  "openai-json:MODEL[@URL]" | "hybrid:<llm spec>") -> Backend(model, spec)`; errors are `SpecError`;
+  `dialogue.llm.hybrid.HybridModel(inner)` is what a `hybrid:` spec builds; `await model.aclose()`
+  when done with a model;
+- `dialogue.evaluation.cases.run(path, llm_spec) -> Report` (`score`, `claim_precision`);
+  `dialogue.evaluation.command.main(argv)` is the `situated eval` command.
 
 Modules: intents (Intent.msg catalogue), schema (answer models, per-turn JSON schema), situation
 (snapshot as sentences), validate (model answer -> grounded intents), prompts, history, engine,
@@ -28,6 +30,7 @@ from dialogue.errors import DialogueError, SessionError
 from dialogue.history import Utterance
 from dialogue.intents import Intent
 from dialogue.llm.base import ChatModel, ModelError
+from dialogue.llm.hybrid import HybridModel
 from dialogue.llm.spec import SpecError, parse_spec
 from dialogue.sessions import DialogueManager
 
@@ -37,6 +40,7 @@ __all__ = [
     "DialogueError",
     "DialogueManager",
     "EngineConfig",
+    "HybridModel",
     "Intent",
     "ModelError",
     "SessionError",

@@ -1,4 +1,8 @@
-"""One dialogue turn: ground -> (rules fast path) -> model -> validate -> resolve -> repair once -> reply.
+"""One dialogue turn: ground -> (prescreen) -> model -> validate -> resolve -> repair once -> reply.
+
+The model is asked, never inspected: `prescreen` may answer from the structured context before any
+prompt is built (the rules' fast path, alone or in front of an LLM in a hybrid model), and `llm` is
+the model that reads the prompt of the turns it did not answer (None: they are not understood).
 
 The whole turn runs under a deadline. When the model is down, slow or twice invalid, the turn still
 answers in time: a polite reply, a `__raw_user_input__` intent and a non-empty `error_msg` (D5).
@@ -10,12 +14,13 @@ from __future__ import annotations
 import asyncio
 import logging
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 from dialogue import intents as I
+from dialogue.earlyack import ask
 from dialogue.history import Utterance
 from dialogue.llm.base import ChatMessage, ChatModel, ChatRequest, ChatResult, ModelError, TurnContext
-from dialogue.llm.rules import RulesModel, answer_of
+from dialogue.llm.rules import RulesModel
 from dialogue.prompts import PromptSet
 from dialogue.reference.grounding import Entity, Grounder, Snapshot
 from dialogue.reference.lexicon import Lexicon, LexiconCache
@@ -47,8 +52,6 @@ class EngineConfig:
     robot_name: str = "robot"
     #: Seconds for the whole turn (dialogue_manager waits 5 s).
     deadline: float = 5.0
-    #: Try the rules first and call the model only when they do not understand (hybrid mode).
-    hybrid: bool = False
     #: Confidence of intents from a model that gives none.
     model_confidence: float = 0.7
     max_snapshot_entities: int = 300
@@ -63,6 +66,8 @@ class TurnResult:
     #: Which backend produced the answer ("rules", the model's name, or "fallback").
     backend: str = ""
     clarify: bool = False
+    #: False when no backend understood the input (the reply says so).
+    understood: bool = True
 
 
 @dataclass
@@ -86,16 +91,11 @@ class DialogueEngine:
     ) -> None:
         self.kb = kb
         self.config = config or EngineConfig()
-        self.rules = RulesModel()
-        self.model: ChatModel = model or self.rules
+        self.model: ChatModel = model or RulesModel()
         self.prompts = prompts or PromptSet.load()
         self.grounder = Grounder(self.config.max_snapshot_entities, self.config.lang)
         self._lexicons = LexiconCache()
         self._rebuilds: dict[int, asyncio.Task[tuple[Snapshot, Lexicon]]] = {}
-
-    @property
-    def uses_rules_only(self) -> bool:
-        return self.model is self.rules or isinstance(self.model, RulesModel)
 
     def ground(self) -> tuple[Snapshot, Lexicon]:
         """The current snapshot and its lexicon (blocking: KB queries on a revision change)."""
@@ -176,27 +176,27 @@ class DialogueEngine:
             if added:  # the speaker is a person of the KB from now on
                 grounded = await self.ground_async()
         turn = self.prepare(grounded, text, speaker, history, locale)
-        if self.config.hybrid or self.uses_rules_only:
-            fast = self.fast_path(turn)
-            if fast is not None:
-                return fast
-            if self.uses_rules_only:
-                raw = I.raw_user_input(text, source=speaker, locale=locale)
-                return TurnResult(NOT_UNDERSTOOD, (raw,), backend="rules")
-        return await self._ask_model(turn, deadline)
+        fast = self.fast_path(turn)
+        if fast is not None:
+            return fast
+        llm = self.model.llm
+        if llm is None:
+            raw = I.raw_user_input(text, source=speaker, locale=locale)
+            return TurnResult(NOT_UNDERSTOOD, (raw,), backend=self.model.name, understood=False)
+        return await self._ask_model(turn, deadline, llm)
 
     def fast_path(self, turn: _Turn) -> TurnResult | None:
-        """The rules' answer when they understood the input (synchronous: pure Python, no KB access)."""
-        outcome = self.rules.interpret(turn.context)
-        if not outcome.understood:
+        """The model's answer without a prompt, grounded (synchronous: pure Python, no KB access)."""
+        early = self.model.prescreen(turn.context)
+        if early is None:
             return None
         try:
-            grounded = ground_answer(answer_of(outcome), turn.lexicon, turn.speaker)
-        except AnswerError as exc:  # the rules and the contract disagree: let the model (or fallback) answer
-            log.error("rules answer for %r failed validation: %s", turn.text, exc)
+            grounded = ground_answer(early.answer, turn.lexicon, turn.speaker)
+        except AnswerError as exc:  # the answer and the contract disagree: let the model (or fallback) answer
+            log.error("%s answer for %r failed validation: %s", early.backend, turn.text, exc)
             return None
-        clarify = grounded.clarify or outcome.clarify
-        return TurnResult(grounded.reply, grounded.intents, backend="rules", clarify=clarify)
+        clarify = grounded.clarify or early.clarify
+        return TurnResult(grounded.reply, grounded.intents, backend=early.backend, clarify=clarify)
 
     def schema_for(
         self, snapshot: Snapshot, speaker: str, focus: Sequence[Entity] | None = None
@@ -214,7 +214,7 @@ class DialogueEngine:
         supports = [e.id for e in pool if e.kind == "thing" and _is_support(e, held)]
         return turn_schema(SchemaCandidates(things, [*people, *supports], [*zones, *things, *people]))
 
-    async def _ask_model(self, turn: _Turn, deadline: float) -> TurnResult:
+    async def _ask_model(self, turn: _Turn, deadline: float, model: ChatModel) -> TurnResult:
         loop = asyncio.get_running_loop()
         schema = self.schema_for(turn.context.snapshot, turn.speaker, turn.context.focus)
         messages = self.prompts.messages(turn.context)
@@ -222,9 +222,9 @@ class DialogueEngine:
         errors: list[str] = []
         for attempt in range(2):
             try:
-                result = await self.model.chat(request, max(0.01, deadline - loop.time()))
+                result = await ask(model, request, max(0.01, deadline - loop.time()))
             except ModelError as exc:
-                return self.fallback(turn.text, turn.speaker, turn.locale, f"{self.model.name}: {exc}")
+                return self.fallback(turn.text, turn.speaker, turn.locale, f"{model.name}: {exc}")
             try:
                 grounded = self._validate(result, turn)
             except AnswerError as exc:
@@ -233,16 +233,15 @@ class DialogueEngine:
                     repair = (ChatMessage("assistant", result.content), self.prompts.repair_message(str(exc)))
                     request = ChatRequest((*messages, *repair), schema, turn.context, repair=True)
                 continue
-            return TurnResult(
-                grounded.reply, grounded.intents, backend=self.model.name, clarify=grounded.clarify
-            )
-        return self.fallback(
+            return TurnResult(grounded.reply, grounded.intents, backend=model.name, clarify=grounded.clarify)
+        failed = self.fallback(
             turn.text,
             turn.speaker,
             turn.locale,
-            f"{self.model.name} gave no valid answer twice: " + " | then: ".join(errors),
+            f"{model.name} gave no valid answer twice: " + " | then: ".join(errors),
             reply=NOT_UNDERSTOOD,
         )
+        return replace(failed, understood=False)
 
     def _validate(self, result: ChatResult, turn: _Turn) -> Grounded:
         if not result.understood:

@@ -36,13 +36,28 @@ class UserIntent(BaseModel):
     confidence: float | None = Field(default=None, ge=0.0, le=1.0)
 
 
+#: Most intents one answer may carry ("go to the kitchen, take the plate and bring it to me").
+MAX_INTENTS = 4
+
+
 class ChatbotResponse(BaseModel):
-    """The whole answer: a short spoken reply and at most one intent."""
+    """The whole answer: a short spoken reply and the intents, in the order they are to be done.
+
+    `user_intent` is the ROS4HRI tutorial's single intent; `user_intents`, when given and not empty,
+    is the ordered list of every intent of a compound request and takes its place.
+    """
 
     model_config = ConfigDict(extra="ignore")
 
     verbal_ack: str | None = None
     user_intent: UserIntent | None = None
+    user_intents: list[UserIntent] | None = Field(default=None, max_length=MAX_INTENTS)
+
+    def wishes(self) -> list[UserIntent]:
+        """Every intent of the answer, in order (the list, else the single intent)."""
+        if self.user_intents:
+            return [w for w in self.user_intents if w.type is not None]
+        return [self.user_intent] if self.user_intent is not None and self.user_intent.type else []
 
 
 class AnswerError(DialogueError, ValueError):
@@ -112,11 +127,14 @@ def turn_schema(candidates: SchemaCandidates, intents: Sequence[str] = EXTRACTAB
         },
         "required": ["type", "object", "recipient", "goal", "input"],
     }
+    many = {"type": "array", "items": user_intent, "minItems": 2, "maxItems": MAX_INTENTS}
     return {
         "type": "object",
         "properties": {
             "verbal_ack": _nullable_string(),
             "user_intent": {"anyOf": [user_intent, {"type": "null"}]},
+            # Optional, for compound requests only: every intent in order (the first is user_intent).
+            "user_intents": {"anyOf": [many, {"type": "null"}]},
         },
         "required": ["verbal_ack", "user_intent"],
     }

@@ -35,25 +35,28 @@ class Grounded:
 def ground_answer(
     answer: ChatbotResponse, lexicon: Lexicon, speaker: str, *, default_confidence: float = 0.7
 ) -> Grounded:
+    """Every intent of the answer grounded, in order; a question about any referent replaces them all."""
     reply = (answer.verbal_ack or "").strip()[:MAX_REPLY_CHARS]
-    wish = answer.user_intent
-    if wish is None or wish.type is None:
+    wishes = answer.wishes()
+    if not wishes:
         if not reply:
             raise AnswerError("both verbal_ack and user_intent are null; say something or give an intent")
         return Grounded(reply, ())
-    if wish.type not in I.EXTRACTABLE:
-        raise AnswerError(f"user_intent.type {wish.type!r} is not one of {list(I.EXTRACTABLE)}")
-    data, question = _roles(wish, lexicon, speaker)
-    if question is not None:
-        return Grounded(question, (), clarify=True)
-    if speaker in data.values() and lexicon.snapshot.get(speaker) is None:
-        return Grounded(UNKNOWN_SPEAKER, ())  # no intent names what is not a KB entity
-    confidence = wish.confidence if wish.confidence is not None else default_confidence
-    try:
-        intent = I.make_intent(wish.type, data, source=speaker, confidence=confidence)
-    except I.IntentError as exc:
-        raise AnswerError(str(exc)) from None
-    return Grounded(reply or "OK.", (intent,))
+    intents: list[I.Intent] = []
+    for wish in wishes:
+        if wish.type not in I.EXTRACTABLE:
+            raise AnswerError(f"user_intent.type {wish.type!r} is not one of {list(I.EXTRACTABLE)}")
+        data, question = _roles(wish, lexicon, speaker)
+        if question is not None:
+            return Grounded(question, (), clarify=True)
+        if speaker in data.values() and lexicon.snapshot.get(speaker) is None:
+            return Grounded(UNKNOWN_SPEAKER, ())  # no intent names what is not a KB entity
+        confidence = wish.confidence if wish.confidence is not None else default_confidence
+        try:
+            intents.append(I.make_intent(wish.type, data, source=speaker, confidence=confidence))
+        except I.IntentError as exc:
+            raise AnswerError(str(exc)) from None
+    return Grounded(reply or "OK.", tuple(intents))
 
 
 def _roles(wish: UserIntent, lexicon: Lexicon, speaker: str) -> tuple[dict[str, str | None], str | None]:

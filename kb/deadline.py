@@ -13,6 +13,7 @@ import threading
 import time
 from collections.abc import Iterator
 from contextlib import contextmanager
+from dataclasses import dataclass
 
 from kb.errors import KbError, QueryTimeout
 from kb.index import TripleIndex
@@ -37,12 +38,37 @@ class Deadline:
     def after(cls, seconds: float | None) -> Deadline | None:
         return None if seconds is None else cls(seconds)
 
+    def earlier(self, other: Deadline | None) -> Deadline:
+        return other if other is not None and other._at < self._at else self
+
     def remaining(self) -> float:
         return max(0.0, self._at - time.monotonic())
 
     def check(self) -> None:
         if time.monotonic() > self._at:
             raise QueryTimeout(self.seconds)
+
+
+@dataclass(frozen=True)
+class Budget:
+    """The bounds of a subscription's every evaluation: seconds (``None``: unbounded) and
+    distinct rows (``None``: unbounded)."""
+
+    timeout: float | None = None
+    max_rows: int | None = None
+
+    def __post_init__(self) -> None:
+        Deadline.after(self.timeout)  # refuses a budget that is not a positive number
+        rows = self.max_rows
+        if rows is not None and (isinstance(rows, bool) or not isinstance(rows, int) or rows < 1):
+            raise KbError(f"max_rows must be a positive integer, got {rows!r}")
+
+    @property
+    def bounded(self) -> bool:
+        return self.timeout is not None or self.max_rows is not None
+
+
+UNBOUNDED = Budget()
 
 
 @contextmanager
@@ -58,6 +84,11 @@ def holding(lock: threading.RLock, deadline: Deadline | None) -> Iterator[None]:
         yield
     finally:
         lock.release()
+
+
+def timed(index: TripleIndex, deadline: Deadline | None) -> TripleIndex | TimedIndex:
+    """The index, read through ``TimedIndex`` when there is a deadline."""
+    return index if deadline is None else TimedIndex(index, deadline)
 
 
 class TimedIndex:

@@ -19,15 +19,16 @@ from rdflib import Variable
 from rdflib.query import Result
 
 from kb.arguments import Models_, compiled, lifespan_seconds, model_names, optional_term, parse_term
-from kb.deadline import Deadline
+from kb.deadline import Budget, Deadline
 from kb.errors import KbError
-from kb.events import Callback, event_id
+from kb.events import Callback, ErrorCallback, event_id
 from kb.formats import export_format
 from kb.models import DEFAULT_MODEL
 from kb.query import Query
 from kb.rdfio import parse_data, read_location, serialize
 from kb.sparql import parse_update, to_json
 from kb.sugar import KnowledgeCoreSugar
+from kb.summary import Summary
 from kb.terms import Node, Triple, as_list, parse_ground, parse_patterns
 
 #: What a backend reads one model through (``kb.models.Model``, or a replica's named graphs).
@@ -46,6 +47,10 @@ class Facade(KnowledgeCoreSugar, ABC, Generic[M]):
     @abstractmethod
     def lock(self) -> threading.RLock:
         """Held by every read and write of this process; hold it to group several calls."""
+
+    @abstractmethod
+    def summary(self) -> Summary:
+        """Revision, sizes of the default model and model names, for ``/health``."""
 
     @abstractmethod
     def models(self) -> list[str]:
@@ -222,17 +227,25 @@ class Facade(KnowledgeCoreSugar, ABC, Generic[M]):
     # --- events ---------------------------------------------------------------------------
 
     def subscribe(self, patterns: str | Sequence[str], callback: Callback, one_shot: bool = False,
-                  models: Models_ = None) -> str:
-        """Call ``callback(rows)`` with the new rows after each change; returns ``evt_<md5>``."""
+                  models: Models_ = None, *, timeout: float | None = None, max_rows: int | None = None,
+                  on_error: ErrorCallback | None = None) -> str:
+        """Call ``callback(rows)`` with the new rows after each change; returns ``evt_<md5>``.
+        With ``timeout`` (seconds) or ``max_rows``, every evaluation is bounded: the first one
+        (waiting for the KB included) raises ``QueryTimeout`` or ``TooManyRows`` and nothing is
+        subscribed; a later one past them ends the subscription and calls ``on_error(error)``
+        (kb.events). A replica's callbacks run on its polling thread."""
         texts = as_list(patterns)
         if not texts:
             raise KbError("subscribe needs at least one pattern")
         if not callable(callback):
             raise KbError(f"subscribe needs a callable that takes the new rows, got {callback!r}")
+        if on_error is not None and not callable(on_error):
+            raise KbError(f"on_error must be a callable that takes the error, got {on_error!r}")
+        budget = Budget(timeout, max_rows)
         query = compiled(tuple(texts), None)
         names = model_names(models) or [DEFAULT_MODEL]
         sub_id = event_id(texts, one_shot, names)
-        self._subscribe(sub_id, query, names, one_shot, callback)
+        self._subscribe(sub_id, query, names, one_shot, callback, budget, on_error)
         return sub_id
 
     @abstractmethod
@@ -318,4 +331,4 @@ class Facade(KnowledgeCoreSugar, ABC, Generic[M]):
 
     @abstractmethod
     def _subscribe(self, sub_id: str, query: Query, names: list[str], one_shot: bool,
-                   callback: Callback) -> None: ...
+                   callback: Callback, budget: Budget, on_error: ErrorCallback | None) -> None: ...

@@ -31,14 +31,15 @@ from kb.arguments import (
     model_names,
     render,
 )
-from kb.deadline import Deadline, TimedIndex, holding
-from kb.errors import KbError, StorageError, TooManyRows
-from kb.events import Callback
+from kb.deadline import Budget, Deadline, holding, timed
+from kb.errors import KbError, StorageError
+from kb.events import Callback, ErrorCallback
 from kb.facade import Facade
 from kb.models import ALL_MODELS, DEFAULT_MODEL, Model, Models
-from kb.query import Query, Row, holds, rows
+from kb.query import Query, holds, rows_in
 from kb.rdfio import default_ontology, parse_location
 from kb.sparql import execute
+from kb.summary import Summary
 from kb.terms import Node, Triple, shorten
 from kb.writer import ActiveListener, Batch, Commit, CommitListener, Writer
 
@@ -84,6 +85,11 @@ class KB(Facade[Model]):
         """Held by every read and write; hold it to read several answers from one state."""
         return self._lock
 
+    def summary(self) -> Summary:
+        """Revision, sizes of the default model and model names after the last change, without
+        waiting for the KB lock (``/health`` answers while a long query runs)."""
+        return self._writer.summary
+
     # --- models ---------------------------------------------------------------------------
 
     def models(self) -> list[str]:
@@ -122,15 +128,10 @@ class KB(Facade[Model]):
         self._expire_due()
         with holding(self._lock, deadline):
             targets = self._read_models(models)
-            indexes = [m.closure if deadline is None else TimedIndex(m.closure, deadline) for m in targets]
+            indexes = [timed(m.closure, deadline) for m in targets]
             if query.ground:
                 return list(texts) if any(holds(index, query) for index in indexes) else []
-            found: set[Row] = set()
-            for index in indexes:
-                found |= rows(index, query, max_rows)
-                if max_rows is not None and len(found) > max_rows:
-                    raise TooManyRows(max_rows)
-            return render(query, found)
+            return render(query, rows_in(indexes, query, max_rows))
 
     def _exist(self, query: Query, models: Models_) -> bool:
         self._expire_due()
@@ -223,12 +224,14 @@ class KB(Facade[Model]):
                                   replace_functional=False))
 
     def _subscribe(self, sub_id: str, query: Query, names: list[str], one_shot: bool,
-                   callback: Callback) -> None:
-        with self._lock:
-            baseline: set[Row] = set()
-            for model in self._read_models(names):
-                baseline |= rows(model.closure, query)
-            self._writer.subscriptions.add(sub_id, query, names, one_shot, callback, baseline)
+                   callback: Callback, budget: Budget, on_error: ErrorCallback | None) -> None:
+        deadline = Deadline.after(budget.timeout)
+        with holding(self._lock, deadline):
+            started = time.monotonic()
+            indexes = [timed(m.closure, deadline) for m in self._read_models(names)]
+            baseline = rows_in(indexes, query, budget.max_rows)
+            self._writer.subscriptions.add(sub_id, query, names, one_shot, callback, baseline, budget,
+                                           on_error, cost=time.monotonic() - started)
 
     # --- events and the write path ----------------------------------------------------------
 

@@ -14,7 +14,8 @@ from pathlib import Path
 from typing import Any, Protocol, runtime_checkable
 
 from kb.arguments import Models_
-from kb.events import Callback
+from kb.events import Callback, ErrorCallback
+from kb.summary import Summary
 
 
 @runtime_checkable
@@ -28,6 +29,8 @@ class KnowledgeBase(Protocol):
     def lock(self) -> threading.RLock: ...
 
     def models(self) -> list[str]: ...
+
+    def summary(self) -> Summary: ...
 
     def close(self) -> None: ...
 
@@ -79,6 +82,7 @@ class KnowledgeBase(Protocol):
     def revise(self, stmts: str | Sequence[str], policy: dict[str, Any]) -> int | None: ...
 
     def subscribe(self, patterns: str | Sequence[str], callback: Callback, one_shot: bool = False,
-                  models: Models_ = None) -> str: ...
+                  models: Models_ = None, *, timeout: float | None = None, max_rows: int | None = None,
+                  on_error: ErrorCallback | None = None) -> str: ...
 
     def unsubscribe(self, sub_id: str) -> bool: ...

@@ -8,7 +8,7 @@ SPARQL engine builds (kb-compat §8.5).
 
 from __future__ import annotations
 
-from collections.abc import Iterator, Sequence
+from collections.abc import Iterable, Iterator, Sequence
 from dataclasses import dataclass
 from typing import Protocol
 
@@ -168,6 +168,16 @@ def rows(index: JoinIndex, query: Query, limit: int | None = None) -> set[Row]:
             if limit is not None and len(out) > limit:
                 raise TooManyRows(limit)
     return out
+
+
+def rows_in(indexes: Iterable[JoinIndex], query: Query, limit: int | None = None) -> set[Row]:
+    """Distinct rows over several indexes (models); ``TooManyRows`` past ``limit`` in all."""
+    found: set[Row] = set()
+    for index in indexes:
+        found |= rows(index, query, limit)
+        if limit is not None and len(found) > limit:
+            raise TooManyRows(limit)
+    return found
 
 
 def _one_pattern_rows(index: JoinIndex, query: Query, limit: int | None) -> set[Row]:

@@ -18,12 +18,14 @@ from typing import Any
 from rdflib import URIRef
 from rdflib.namespace import OWL, RDF
 
+from kb.deadline import Deadline, timed
 from kb.errors import KbError, StorageFull
-from kb.events import Firing, Subscriptions
+from kb.events import Delivery, Firing, Subscriptions
 from kb.lifespan import Expiries
 from kb.models import ALL_MODELS, Delta, Models, ModelsState
-from kb.query import Query, Row, holds_row, rows
+from kb.query import Query, Row, holds_row, rows_in
 from kb.status import StatusCell
+from kb.summary import Summary, summarise
 from kb.terms import ORO, Triple, shorten
 
 log = logging.getLogger(__name__)
@@ -92,6 +94,7 @@ class Writer:
         self._wake = threading.Event()
         self._closed = threading.Event()
         self.expiry_status = StatusCell()  # the lifespan reaper's, for /health
+        self.summary: Summary = summarise(0, models)  # replaced at each change; read without the lock
 
     # --- listeners -----------------------------------------------------------------------
 
@@ -123,12 +126,15 @@ class Writer:
     def commit(self, batch: Batch) -> Commit | None:
         """Apply a batch to its models atomically; return the commit, or None if nothing changed."""
         with self.lock:
-            firings, commit = self._commit_locked(batch)
+            try:
+                firings, commit = self._commit_locked(batch)
+            finally:
+                self._summarise()
         for firing in firings:
             firing.deliver()
         return commit
 
-    def _commit_locked(self, batch: Batch) -> tuple[list[Firing], Commit | None]:
+    def _commit_locked(self, batch: Batch) -> tuple[list[Delivery], Commit | None]:
         now = self._clock()
         deltas: list[Delta] = []
         expiries: list[tuple[str, Triple, float]] = []
@@ -212,7 +218,7 @@ class Writer:
             except (KbError, OSError):
                 log.exception("a commit listener could not take the undoing of a refused commit")
 
-    def _evaluate(self, deltas: Iterable[Delta]) -> list[Firing]:
+    def _evaluate(self, deltas: Iterable[Delta]) -> list[Delivery]:
         changed = [d for d in deltas if d.added or d.removed]
         if not changed or not len(self.subscriptions):
             return []
@@ -227,14 +233,12 @@ class Writer:
             if (model := self.models.get(name)) is not None
         )
 
-    def current_rows(self, sub: Any) -> set[Row]:
+    def current_rows(self, sub: Any, deadline: Deadline | None = None) -> set[Row]:
+        """The subscription's rows now; past the deadline ``QueryTimeout``, past its row cap
+        ``TooManyRows``."""
         names = self.models.names if ALL_MODELS in sub.models else sub.models
-        found: set[Row] = set()
-        for name in names:
-            model = self.models.get(name)
-            if model is not None:
-                found |= rows(model.closure, sub.query)
-        return found
+        models = [model for name in names if (model := self.models.get(name)) is not None]
+        return rows_in((timed(model.closure, deadline) for model in models), sub.query, sub.budget.max_rows)
 
     def functional_properties(self) -> frozenset[Any]:
         """Declared and inferred functional properties of the default model (kb-compat §3.5)."""
@@ -262,7 +266,11 @@ class Writer:
             except (KbError, OSError):
                 self._undo_clear(saved, expiries, accepted)
                 raise
-            self.subscriptions.rebaseline(self.current_rows)
+            finally:
+                self._summarise()
+            endings = self.subscriptions.rebaseline(self.current_rows)
+        for ending in endings:
+            ending.deliver()
 
     def _undo_clear(self, saved: ModelsState, expiries: list[tuple[str, Triple, float]],
                     accepted: list[CommitListener]) -> None:
@@ -290,6 +298,9 @@ class Writer:
                 listener(undoing)
             except (KbError, OSError):
                 log.exception("a commit listener could not take the undoing of a refused clear")
+
+    def _summarise(self) -> None:
+        self.summary = summarise(self.revision, self.models)
 
     def state(self) -> State:
         with self.lock:
@@ -322,6 +333,7 @@ class Writer:
             if expiries:
                 self._ensure_reaper()
             self.revision = revision if revision is not None else self.revision + 1
+            self._summarise()
 
     # --- lifespans -----------------------------------------------------------------------
 
@@ -342,6 +354,8 @@ class Writer:
                 for model, triple in due:  # still due: the next attempt retracts them
                     self.expiries.set(model, triple, at)
                 raise
+            finally:
+                self._summarise()
         for firing in firings:
             firing.deliver()
         return commit

@@ -43,7 +43,7 @@ def test_the_backends_only_implement_primitives() -> None:
     public = {name for name in vars(Facade) if not name.startswith("_")}
     for backend in (KB, RemoteKB):
         redefined = public & {name for name in vars(backend) if not name.startswith("_")}
-        assert redefined <= {"revision", "lock", "models", "close", "unsubscribe"}, backend
+        assert redefined <= {"revision", "lock", "models", "summary", "close", "unsubscribe"}, backend
 
 
 def test_every_dialogue_error_has_the_one_root() -> None:

@@ -2,14 +2,17 @@
 
 from __future__ import annotations
 
-from typing import Annotated
+from functools import partial
+from typing import Annotated, Any
 
-from fastapi import APIRouter, Depends, Response
+from fastapi import APIRouter, Depends, Request, Response
 from pydantic import AfterValidator, BaseModel, ConfigDict, Field
 
 from api.deps import ServicesDep, WriteAccess
 from api.errors import ApiError
 from api.limits import check_count, check_length
+from api.turnevents import EVENT_STREAM, turn_events, wants_events
+from dialogue.engine import TurnResult
 from dialogue.history import Utterance
 from dialogue.intents import Intent
 from dialogue.sessions import DEFAULT_ROLE, DialogueManager, SessionError, check_utterance
@@ -77,23 +80,35 @@ async def start(dialogues: Dialogues, body: StartRequest | None = None) -> Start
     return Started(dialogue_id=dialogue.id)
 
 
-@router.post("/{dialogue_id}/interactions", dependencies=[WriteAccess])
+def _response(result: TurnResult) -> InteractionResponse:
+    return InteractionResponse(response=result.response, intents=list(result.intents),
+                               error_msg=result.error_msg)
+
+
+def _body(result: TurnResult) -> dict[str, Any]:
+    return _response(result).model_dump(mode="json", by_alias=True)  # as FastAPI serialises it
+
+
+@router.post("/{dialogue_id}/interactions", dependencies=[WriteAccess], response_model=InteractionResponse,
+             responses={200: {"content": {EVENT_STREAM: {"schema": {"type": "string"}}}, "description":
+                              "with `Accept: text/event-stream`: `event: ack` ({\"verbal_ack\"}) when the "
+                              "model's reply is ready early, then `event: response` (the JSON answer)"}})
 async def interact(dialogue_id: str, body: InteractionRequest, dialogues: Dialogues,
-                   services: ServicesDep) -> InteractionResponse:
+                   services: ServicesDep, request: Request) -> InteractionResponse | Response:
     """One DialogueInteraction: the reply and the validated intents, most relevant first."""
     check_length(body.input, services.settings.limits.max_input_chars, "input")
     history = None
     if body.history is not None:
         check_count(body.history, services.settings.limits.max_history_turns, "history_turns")
         history = [Utterance(turn.speaker, turn.text) for turn in body.history]
+    run = partial(dialogues.interact, body.user_id, body.input, dialogue_id=dialogue_id, locale=body.locale,
+                  response_expected=body.response_expected, history=history)
     try:  # the turn reads the dialogue once: an unknown one is refused, an unreadable store answered
-        result = await dialogues.interact(body.user_id, body.input, dialogue_id=dialogue_id,
-                                          locale=body.locale, response_expected=body.response_expected,
-                                          history=history)
+        if wants_events(request.headers.get("accept")):
+            return await turn_events(run, _body)
+        return _response(await run())
     except SessionError as exc:
         raise ApiError(404, "unknown_dialogue", str(exc)) from exc
-    return InteractionResponse(response=result.response, intents=list(result.intents),
-                               error_msg=result.error_msg)
 
 
 @router.delete("/{dialogue_id}", status_code=204, dependencies=[WriteAccess])

@@ -7,6 +7,12 @@ subscription has fired. WebSocket: the client first sends ``{"patterns", "one_sh
 the server answers ``{"subscribed": id}``, then one JSON list per batch, and closes after a
 one-shot fires. Past ``limits.max_subscribers`` a new subscriber gets 429 ``too_many_subscribers``
 (over WebSocket: that error object, then close code 1013, "try again later").
+
+A subscription is evaluated within the query limits (``limits.query_timeout``,
+``limits.max_rows``): one whose starting rows go past them is refused with 503 ``query_timeout``
+or 413 ``too_many_rows`` (over WebSocket: that error object, then close code 1008); one whose
+evaluation after a commit goes past them is ended, with SSE ``event: error`` carrying that error
+object (over WebSocket: the object, then close code 1008).
 """
 
 from __future__ import annotations
@@ -25,10 +31,11 @@ from starlette.types import Receive, Scope, Send
 
 from api.auth import authorise, token_from_header
 from api.deps import HubDep, ServicesDep, SettingsDep, StreamReadAccess
-from api.errors import ApiError, error_body
+from api.errors import ApiError, error_body, over_budget
 from api.limits import check_count
 from api.subscriptions import EventHub, Listener
 from kb import KbError
+from kb.errors import QueryTimeout, TooManyRows
 
 router = APIRouter(prefix="/kb", tags=["events"])
 KEEPALIVE_SECONDS = 15.0
@@ -60,7 +67,10 @@ async def _stream(listener: Listener) -> AsyncIterator[str]:
             yield ": keepalive\n\n"
             continue
         if rows is None:
-            yield _sse({"reason": listener.end_reason}, "end")
+            if listener.error is not None:
+                yield _sse(listener.error, "error")
+            else:
+                yield _sse({"reason": listener.end_reason}, "end")
             return
         yield _sse(rows)
 
@@ -127,6 +137,8 @@ async def _subscribe(websocket: WebSocket, services: ServicesDep) -> Listener | 
                                        request.models, asyncio.get_running_loop())
     except ApiError as exc:
         await _refuse(websocket, exc, 1013 if exc.status == 429 else 1008)
+    except (QueryTimeout, TooManyRows) as exc:
+        await _refuse(websocket, over_budget(exc), 1008)
     except KbError as exc:
         await _refuse(websocket, ApiError(400, "kb_error", str(exc)), 1008)
     return None
@@ -157,7 +169,12 @@ async def events_ws(websocket: WebSocket, services: ServicesDep) -> None:
             while (rows := await listener.next_rows()) is not None:
                 await websocket.send_json(rows)
             group.cancel_scope.cancel()
-        if not client_gone:
+        if client_gone:
+            return
+        if listener.error is not None:
+            await websocket.send_json(listener.error)
+            await websocket.close(code=1008, reason=listener.error["code"])
+        else:
             await websocket.close()
     except WebSocketDisconnect:
         pass

@@ -11,12 +11,14 @@ optionally the rules-first hybrid).
 Both are scored with `evaluation.check`, and every value of a KB-grounded role that is not an entity id
 of the situation (or the speaker) counts as an ungrounded referent. With the `rules` spec, (a) passes
 the rules' answer through the tutorial's mapping, so the comparison runs offline too. With a
-`hybrid:` spec (or `hybrid=True`) only (b) runs the rules first; (a) always asks the model.
+`hybrid:` spec (or `hybrid=True`) only (b) runs the rules first; (a) always asks the model (the
+hybrid model's `llm`). Both passes run on one event loop; a model built here is closed at the end.
 """
 
 from __future__ import annotations
 
 import asyncio
+import logging
 import string
 import time
 from collections.abc import Callable, Sequence
@@ -28,14 +30,15 @@ from pydantic import BaseModel, ValidationError
 
 from dialogue import intents as I
 from dialogue.engine import DialogueEngine, EngineConfig, TurnResult
-from dialogue.evaluation.cases import Case, CaseResult, Report, case_kb, check, load_cases
+from dialogue.evaluation.cases import Case, CaseResult, Report, case_kb, check, closing, load_cases
 from dialogue.llm.base import ChatMessage, ChatModel, ChatRequest, ModelError, TurnContext
-from dialogue.llm.llamacpp import LlamaCppModel
-from dialogue.llm.spec import Backend, parse_spec
+from dialogue.llm.spec import Backend, parse_spec, rules_first
 from dialogue.prompts import history_message
 from dialogue.reference.grounding import Snapshot
 from dialogue.schema import REFERENT_FIELDS
 from kb import KB
+
+log = logging.getLogger(__name__)
 
 TUTORIAL_INTENTS = (
     I.BRING_OBJECT,
@@ -219,35 +222,61 @@ def compare(
     """
     cases_path = Path(path)
     cases = load_cases(cases_path)
-    scenes_dir = cases_path.parent / "scenes"
+    owned = backend is None
     backend = backend or parse_spec(llm_spec)
-    config = EngineConfig(deadline=deadline, hybrid=backend.hybrid or hybrid)
-    if isinstance(backend.model, LlamaCppModel):
-        backend.model.load()  # loading is not what is compared
-    tutorial, situated = Side("tutorial", Report()), Side("situated", Report())
-    for side in (tutorial, situated):
+    label = backend.spec + (" --hybrid" if hybrid and not backend.spec.startswith("hybrid:") else "")
+    if hybrid:
+        backend = rules_first(backend)
+    comparison = Comparison(label, Side("tutorial", Report()), Side("situated", Report()))
+    run = _passes(comparison, cases, cases_path.parent / "scenes", backend.model, deadline, kb_factory)
+    asyncio.run(closing(run, backend.model) if owned else run)
+    return comparison
+
+
+async def _passes(
+    comparison: Comparison,
+    cases: list[Case],
+    scenes_dir: Path,
+    model: ChatModel,
+    deadline: float,
+    kb_factory: Callable[[], KB],
+) -> None:
+    """The tutorial's pass over the cases, then the engine's."""
+    prompted = model.llm or model  # the tutorial always asks the model (the rules only when alone)
+    try:
+        await prompted.preload()  # loading is not what is compared
+    except ModelError as exc:  # every turn will say so, and be scored as failed
+        log.warning("%s could not be loaded: %s", prompted.name, exc)
+    config = EngineConfig(deadline=deadline)
+    for side in (comparison.tutorial, comparison.situated):
         for case in cases:
-            kb = case_kb(case, scenes_dir, kb_factory)
+            kb = await asyncio.to_thread(case_kb, case, scenes_dir, kb_factory)
             try:
-                engine = DialogueEngine(kb, backend.model, config)
-                snapshot, _lexicon = engine.ground()
+                engine = DialogueEngine(kb, model, config)
+                snapshot, _lexicon = await asyncio.to_thread(engine.ground)
                 started = time.perf_counter()
-                if side is tutorial:
+                if side is comparison.tutorial:
                     context = TurnContext(
                         case.input, case.speaker, snapshot, case.history, None, config.robot_name
                     )
-                    messages = tutorial_messages(case, environment_lines(kb), config.robot_name)
+                    environment = await asyncio.to_thread(environment_lines, kb)
+                    messages = tutorial_messages(case, environment, config.robot_name)
                     request = ChatRequest(messages, TUTORIAL_SCHEMA, context)
-                    result = asyncio.run(tutorial_turn(backend.model, request, deadline))
+                    result = await tutorial_turn(prompted, request, deadline)
                 else:
-                    turn = engine.turn(case.input, speaker=case.speaker, history=case.history)
-                    result = asyncio.run(turn)
+                    result = await engine.turn(case.input, speaker=case.speaker, history=case.history)
                 side.seconds += time.perf_counter() - started
             finally:
-                kb.close()
+                await asyncio.to_thread(kb.close)
             side.add(case, result, snapshot)
-    label = backend.spec + (" --hybrid" if hybrid and not backend.hybrid else "")
-    return Comparison(label, tutorial, situated)
+
+
+def claims_cell(report: Report) -> str:
+    """The rules' claims of one side: right/claimed and their precision ('-' when none)."""
+    claims = report.claims_summary()
+    if not claims["claimed"]:
+        return f"{'-':>15}"
+    return f"{claims['right']:>5}/{claims['claimed']:<3} {claims['precision']:5.2f}"
 
 
 def format_comparison(comparison: Comparison) -> str:
@@ -273,5 +302,6 @@ def format_comparison(comparison: Comparison) -> str:
     lines.append(f"{'ungrounded referents':32} {f'{a.ungrounded}/{a.referents}':>15} "
                  f"{f'{b.ungrounded}/{b.referents}':>15}")
     lines.append(f"{'model errors / invalid answers':32} {a.errors:>15} {b.errors:>15}")
+    lines.append(f"{'rules claims right':32} {claims_cell(a.report)} {claims_cell(b.report)}")
     lines.append(f"{'seconds':32} {a.seconds:>15.1f} {b.seconds:>15.1f}")
     return "\n".join(lines)

@@ -2,6 +2,13 @@
 
 A request carries the rendered chat messages and the turn's JSON schema for text models, and the
 structured turn context so that offline models (`rules`, the test models) work without parsing text.
+
+Callers never test a model's class: they ask the model. `prescreen` answers from the structured
+context before any prompt is built (the rules' fast path), `llm` names the model that reads prompts
+(None when nothing behind this model does), `probe` says whether it can answer (/health),
+`self_check` and `setup_hint` serve `situated doctor`, and `aclose` releases what the model holds
+(its HTTP client, its worker process). Backends subclass `ChatModel` explicitly to inherit the
+defaults.
 """
 
 from __future__ import annotations
@@ -12,6 +19,7 @@ from typing import Any, Literal, Protocol, runtime_checkable
 from dialogue.errors import DialogueError
 from dialogue.history import Utterance
 from dialogue.reference.grounding import Entity, Snapshot
+from dialogue.schema import ChatbotResponse
 
 MessageRole = Literal["system", "user", "assistant"]
 
@@ -53,8 +61,8 @@ class ChatRequest:
 class ChatResult:
     """The raw content (validated later by the engine) and why generation stopped.
 
-    `understood` is False when an offline model knows it did not understand the input, so that the
-    engine can fall back (to the LLM in hybrid mode, else to `__raw_user_input__`).
+    `understood` is False when an offline model knows it did not understand the input: a wrapper
+    (hybrid) then asks the model behind it, and the engine never takes it for an answer.
     """
 
     content: str
@@ -67,6 +75,30 @@ class ModelError(DialogueError):
     """The backend failed: unreachable, HTTP error, truncated or empty output. Message says which."""
 
 
+@dataclass(frozen=True)
+class EarlyAnswer:
+    """An answer given from the turn's structured context alone, before any prompt is built. It goes
+    through the same validation and grounding as a model's answer."""
+
+    answer: ChatbotResponse
+    #: Who answered (the `backend` of the turn's result).
+    backend: str
+    #: The answer asks the speaker which referent they meant.
+    clarify: bool = False
+
+
+@dataclass(frozen=True)
+class SelfCheck:
+    """A backend's own check of its setup (`situated doctor`), for backends a turn cannot check."""
+
+    ok: bool
+    detail: str
+    fix: str = ""
+
+
+DEFAULT_SETUP_HINT = "check the model backend named by --llm"
+
+
 @runtime_checkable
 class ChatModel(Protocol):
     """An async chat backend. `timeout` is the time left in the turn, in seconds."""
@@ -75,3 +107,36 @@ class ChatModel(Protocol):
     def name(self) -> str: ...
 
     async def chat(self, request: ChatRequest, timeout: float) -> ChatResult: ...
+
+    @property
+    def llm(self) -> ChatModel | None:
+        """The model that reads prompts: this one, the model a wrapper asks, or None when the
+        model answers from the structured context only (then a turn `prescreen` did not answer is
+        not understood)."""
+        return self
+
+    def prescreen(self, context: TurnContext) -> EarlyAnswer | None:
+        """An answer without a prompt (synchronous and cheap: it runs on every turn), or None."""
+        return None
+
+    @property
+    def setup_hint(self) -> str:
+        """How to fix a setup where this backend does not answer."""
+        return DEFAULT_SETUP_HINT
+
+    async def self_check(self, timeout: float) -> SelfCheck | None:
+        """A check of the setup by the backend itself; None: a real turn request checks it."""
+        return None
+
+    async def probe(self, timeout: float) -> dict[str, Any]:
+        """For /health: ``{"remote", "reachable", "detail"}`` and whatever else the backend reports
+        of its own state. A remote backend sends one cheap request to its server."""
+        return {"remote": False, "reachable": True, "detail": "in-process"}
+
+    async def preload(self) -> None:
+        """Get ready for the first turn (load the model), so that it does not pay for it."""
+        return None
+
+    async def aclose(self) -> None:
+        """Release what the model holds, at shutdown, on the event loop that used it."""
+        return None

@@ -11,11 +11,13 @@ from __future__ import annotations
 import re
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from dialogue.llm.base import ModelError
-from dialogue.llm.llamacpp import LlamaCppModel
 from dialogue.llm.worker import WorkerCrashed
+
+if TYPE_CHECKING:  # llamacpp checks its own build with this module
+    from dialogue.llm.llamacpp import LlamaCppModel
 
 #: Keep in step with .ci/run.
 LLAMA_CPP_VERSION = "0.3.36"

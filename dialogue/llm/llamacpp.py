@@ -35,8 +35,10 @@ from functools import partial
 from pathlib import Path
 from typing import Any, TypeVar
 
-from dialogue.llm.base import ChatRequest, ChatResult, ModelError
+from dialogue.llm.base import ChatModel, ChatRequest, ChatResult, ModelError, SelfCheck
+from dialogue.llm.llamabuild import REINSTALL, check_build
 from dialogue.llm.llamarunner import INSTALL_HINT, LlamaRunner, LocalModelUnavailable
+from dialogue.llm.stream import TextSink
 from dialogue.llm.worker import Completion, ProcessWorker, WorkerCrashed
 
 __all__ = ["INSTALL_HINT", "LlamaCppModel", "LocalModelUnavailable", "llama_cpp_available", "smollm2_path"]
@@ -86,10 +88,12 @@ class _Job:
         return self.cancel.is_set() or time.monotonic() >= self.deadline
 
 
-class LlamaCppModel:
+class LlamaCppModel(ChatModel):
     """A GGUF model run by llama.cpp in a worker process. `max_tokens` bounds the answer (JSON answers
     need ~40-120). `worker_setup` is a picklable callable run first in every worker process (the
-    tests install a fake llama_cpp with it)."""
+    tests install a fake llama_cpp with it). `prefix_cache` and `constrained` are on in service; the
+    benchmark turns them off for its baselines. `chat_template` (Jinja) is for a GGUF that has none
+    (a base model). It streams (`chat_stream`, dialogue.llm.stream)."""
 
     def __init__(
         self,
@@ -102,6 +106,9 @@ class LlamaCppModel:
         label: str | None = None,
         worker_setup: Callable[[], None] | None = None,
         hang_grace: float = 30.0,
+        prefix_cache: bool = True,
+        constrained: bool = True,
+        chat_template: str | None = None,
     ) -> None:
         self.path = Path(path)
         if self.path.suffix != ".gguf":
@@ -115,7 +122,8 @@ class LlamaCppModel:
         self.hang_grace = hang_grace
         self._label = label or self.path.name
         runner = partial(LlamaRunner, str(self.path), n_ctx=n_ctx, n_threads=n_threads,
-                         max_tokens=max_tokens, temperature=temperature)  # fmt: skip
+                         max_tokens=max_tokens, temperature=temperature, prefix_cache=prefix_cache,
+                         constrained=constrained, chat_template=chat_template)  # fmt: skip
         self._worker = ProcessWorker(runner, setup=worker_setup, name="llama.cpp worker")
         self._executor = ThreadPoolExecutor(max_workers=1, thread_name_prefix="llamacpp")
         self._ids = itertools.count(1)
@@ -156,6 +164,9 @@ class LlamaCppModel:
                 "detail": f"worker process {state}" + (f" (pid {pid})" if pid else ""),
                 "worker": {"state": state, "pid": pid, "crashes": self._worker.crashes,
                            "last_crash": self._worker.last_crash, "restart_error": self._down}}
+
+    async def probe(self, timeout: float) -> dict[str, Any]:
+        return {"remote": False, "reachable": True, "detail": "", **self.health()}
 
     # --- loading ------------------------------------------------------------------------------------
 
@@ -208,6 +219,22 @@ class LlamaCppModel:
             self._down = str(exc)
             log.error("%s: the worker could not be restarted: %s", self.name, exc)
 
+    @property
+    def setup_hint(self) -> str:
+        return f"check the model file; {INSTALL_HINT}"
+
+    async def self_check(self, timeout: float) -> SelfCheck:
+        """One tiny completion in the worker: does this llama.cpp build run on this CPU?"""
+        started = time.monotonic()
+        check = await check_build(self, timeout)
+        if not check.ok:
+            return SelfCheck(False, check.message, REINSTALL if check.crashed else self.setup_hint)
+        return SelfCheck(True, f"{check.message} in {time.monotonic() - started:.1f} s "
+                               f"(worker process; build: {check.build})")
+
+    async def aclose(self) -> None:
+        await asyncio.to_thread(self.close)
+
     def close(self) -> None:
         """Stop a running generation, let the queue drain, stop the worker."""
         self._closed = True
@@ -224,12 +251,23 @@ class LlamaCppModel:
     async def chat(self, request: ChatRequest, timeout: float) -> ChatResult:
         return await self.complete([m.as_dict() for m in request.messages], request.schema, timeout)
 
+    async def chat_stream(self, request: ChatRequest, timeout: float, on_text: TextSink) -> ChatResult:
+        messages = [m.as_dict() for m in request.messages]
+        return await self.complete(messages, request.schema, timeout, on_text=on_text)
+
     async def complete(
-        self, messages: list[dict[str, str]], schema: dict[str, Any], timeout: float
+        self,
+        messages: list[dict[str, str]],
+        schema: dict[str, Any],
+        timeout: float,
+        *,
+        on_text: TextSink | None = None,
     ) -> ChatResult:
-        """One completion of `messages` constrained by `schema`, within `timeout` seconds."""
+        """One completion of `messages` constrained by `schema`, within `timeout` seconds; with
+        `on_text`, its text is handed out piece by piece on this event loop as it is generated."""
         job = _Job(next(self._ids), messages, schema, time.monotonic() + timeout)
-        future = asyncio.wrap_future(self._submit(self._run, job))
+        deliver = None if on_text is None else _deliverer(job, asyncio.get_running_loop(), on_text)
+        future = asyncio.wrap_future(self._submit(self._run, job, deliver))
         try:
             async with asyncio.timeout(timeout):
                 return await future
@@ -241,7 +279,7 @@ class LlamaCppModel:
                 job.cancel.set()
                 self._worker.cancel(job.id)
 
-    def _run(self, job: _Job) -> ChatResult:
+    def _run(self, job: _Job, on_chunk: Callable[[str], None] | None = None) -> ChatResult:
         if job.expired():
             raise ModelError("the turn's time budget ran out before generation could start")
         self._load()
@@ -251,8 +289,8 @@ class LlamaCppModel:
         self._running = job
         try:
             completion: Completion = self._call(
-                "generate", (job.messages, job.schema), job_id=job.id, budget=budget,
-                limit=budget + self.hang_grace,
+                "generate" if on_chunk is None else "stream", (job.messages, job.schema), job_id=job.id,
+                budget=budget, limit=budget + self.hang_grace, on_chunk=on_chunk,
             )  # fmt: skip
         finally:
             self._running = None
@@ -263,4 +301,20 @@ class LlamaCppModel:
         if not completion.text.strip():
             raise ModelError("llama.cpp returned empty content")
         return ChatResult(completion.text, completion.finish_reason, extra={
-            "eval_count": completion.completion_tokens, "prompt_eval_count": completion.prompt_tokens})
+            "eval_count": completion.completion_tokens, "prompt_eval_count": completion.prompt_tokens,
+            "prompt_cached_count": completion.cached_tokens})
+
+
+def _deliverer(job: _Job, loop: asyncio.AbstractEventLoop, on_text: TextSink) -> Callable[[str], None]:
+    """Hands the worker's text (on the executor thread) to `on_text` on the turn's loop, in order;
+    the text of a job whose turn is over is dropped."""
+
+    def deliver(piece: str) -> None:
+        if job.expired():
+            return
+        try:
+            loop.call_soon_threadsafe(on_text, piece)
+        except RuntimeError:  # the loop is closed: nobody waits for this job any more
+            job.cancel.set()
+
+    return deliver

@@ -3,7 +3,8 @@
 One `Llama` object is loaded once and reused for every turn, so the static system prompt stays in
 llama.cpp's KV cache and only the per-turn tail is evaluated again. Output is constrained by a
 grammar compiled from the turn's JSON schema. The worker process runs one request at a time, so
-nothing here is shared between threads.
+nothing here is shared between threads. `prefix_cache=False` and `constrained=False` exist for the
+benchmark's baselines (bench.model): every prompt evaluated in full, free decoding.
 """
 
 from __future__ import annotations
@@ -27,12 +28,27 @@ class LocalModelUnavailable(ModelError):
 class LlamaRunner:
     """One GGUF model in llama.cpp (in the worker process). Built from picklable arguments."""
 
-    def __init__(self, path: str, *, n_ctx: int, n_threads: int, max_tokens: int, temperature: float) -> None:
+    def __init__(
+        self,
+        path: str,
+        *,
+        n_ctx: int,
+        n_threads: int,
+        max_tokens: int,
+        temperature: float,
+        prefix_cache: bool = True,
+        constrained: bool = True,
+        chat_template: str | None = None,
+    ) -> None:
         self.path = Path(path)
         self.n_ctx = n_ctx
         self.n_threads = n_threads
         self.max_tokens = max_tokens
         self.temperature = temperature
+        self.prefix_cache = prefix_cache
+        self.constrained = constrained
+        #: A Jinja chat template for a GGUF that carries none (a base model); None: the file's own.
+        self.chat_template = chat_template
         self._llama: Any = None
         self._formatter: Any = None
         self._template_error: type[Exception] = ValueError
@@ -70,7 +86,7 @@ class LlamaRunner:
             )
         except (ValueError, RuntimeError, OSError) as exc:
             raise ModelError(f"llama.cpp cannot load {self.path}: {exc}") from None
-        template = llama.metadata.get("tokenizer.chat_template")
+        template = self.chat_template or llama.metadata.get("tokenizer.chat_template")
         if not template:
             llama.close()
             raise ModelError(f"{self.path.name} has no chat template in its metadata (not a chat model?)")
@@ -94,12 +110,17 @@ class LlamaRunner:
             self._llama = None
 
     def generate(
-        self, messages: list[dict[str, str]], schema: dict[str, Any], expired: Callable[[], bool]
+        self,
+        messages: list[dict[str, str]],
+        schema: dict[str, Any],
+        expired: Callable[[], bool],
+        emit: Callable[[str], None] | None = None,
     ) -> Completion:
-        """One constrained completion; `expired()` is checked after every token to stop a late one."""
+        """One constrained completion; `expired()` is checked after every token to stop a late one.
+        With `emit`, the text is handed to it piece by piece as it is generated."""
         self.load()
         llama = self._llama
-        grammar = self._grammar(schema)
+        grammar = self._grammar(schema) if self.constrained else None
         try:
             formatted = self._formatter(messages=messages)
             prompt = llama.tokenize(
@@ -114,6 +135,9 @@ class LlamaRunner:
         if expired():
             raise ModelError("the turn's time budget ran out before generation could start")
         template_stop = formatted.stopping_criteria
+        if not self.prefix_cache:
+            llama.reset()
+        cached = _common_prefix(llama.input_ids[: llama.n_tokens], prompt)
 
         def should_stop(ids: Any, logits: Any) -> bool:
             # Checked by llama.cpp after every token: this is how a late generation ends.
@@ -127,8 +151,10 @@ class LlamaRunner:
                 stop=formatted.stop,
                 grammar=grammar,
                 stopping_criteria=should_stop,
-                stream=False,
+                stream=emit is not None,
             )
+            if emit is not None:
+                return _streamed(completion, emit, len(prompt), cached, llama)
         except (ValueError, RuntimeError) as exc:
             raise ModelError(f"llama.cpp generation failed: {exc}") from None
         choice = completion["choices"][0]
@@ -138,6 +164,7 @@ class LlamaRunner:
             finish_reason=choice.get("finish_reason"),
             prompt_tokens=usage.get("prompt_tokens", len(prompt)),
             completion_tokens=usage.get("completion_tokens"),
+            cached_tokens=cached,
         )
 
     def _grammar(self, schema: dict[str, Any]) -> Any:
@@ -161,3 +188,31 @@ class LlamaRunner:
                 self._grammars.pop(next(iter(self._grammars)))
             self._grammars[key] = grammar
         return grammar
+
+
+def _common_prefix(evaluated: Any, prompt: list[int]) -> int:
+    """How many leading prompt tokens are already in the KV cache (llama.cpp reuses them)."""
+    count = 0
+    for old, new in zip(evaluated, prompt, strict=False):
+        if int(old) != new:
+            break
+        count += 1
+    return count
+
+
+def _streamed(
+    chunks: Any, emit: Callable[[str], None], prompt_tokens: int, cached: int, llama: Any
+) -> Completion:
+    """Drain a streamed completion, handing each piece of text to `emit` as it comes."""
+    text: list[str] = []
+    finish_reason: str | None = None
+    for chunk in chunks:
+        choice = chunk["choices"][0]
+        piece = choice.get("text") or ""
+        if piece:
+            emit(piece)
+            text.append(piece)
+        finish_reason = choice.get("finish_reason") or finish_reason
+    # A stream reports no usage: what the context holds beyond the prompt is what was generated.
+    generated = max(0, llama.n_tokens - prompt_tokens)
+    return Completion("".join(text), finish_reason, prompt_tokens, generated, cached)

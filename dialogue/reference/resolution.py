@@ -15,6 +15,7 @@ from dataclasses import dataclass
 
 from dialogue import intents as I
 from dialogue.reference.grounding import Entity, Kind
+from dialogue.reference.headnoun import resolve_head
 from dialogue.reference.lexicon import DETERMINERS, Lexicon, norm, tokens
 from dialogue.rules.words import word_set
 
@@ -103,6 +104,8 @@ def resolve(
     matches = snapshot.in_order(matches)
     if not matches and content:
         matches = _by_label_words(lexicon, [normed[i] for i in content], kinds)
+    if not matches and content:
+        matches = resolve_head(lexicon, words, kinds)
     # Ownership only narrows: "my cup" still means the cup when nobody's cups are recorded.
     owned = [e for e in matches if owner is not None and e.owner == owner]
     matches = owned or matches

@@ -16,10 +16,12 @@ from dialogue.rules.words import (
     GRAB,
     GREETINGS,
     GUIDE,
+    INTENSIFIERS,
     LOCATIVE,
     ME,
     MOTIONS,
     MOVE,
+    NEEDS,
     PLACE,
     QUOTED,
     SAY,
@@ -35,6 +37,7 @@ from dialogue.rules.words import (
     split_at,
     starts,
     strip_politeness,
+    strip_vocative,
     word_set,
 )  # fmt: skip
 
@@ -54,9 +57,13 @@ _GOAL_MARKERS = (
 )  # fmt: skip
 #: Words between a motion verb and its goal: "go back to", "head over to", "go down to the cellar".
 _PARTICLES = word_set(
-    "back over there straight right down up ahead across along out around round on and stand wait"
+    "back over there straight right down up ahead across along out around round on and stand wait close "
+    "closer quickly slowly carefully quietly safely directly"
 )
 _WANT_VERBS = word_set("want wants need needs")
+#: What follows "do" in a request ("do the dishes", "do some exercise"); anything else after "do"
+#: is a yes/no question ("do you like music", "do robots ever get tired").
+_DONE = word_set("the a an some my your our this that these those exercise exercises yoga stretches")
 
 
 class _Cmd(Protocol):
@@ -66,7 +73,7 @@ class _Cmd(Protocol):
 
 
 def parse(text: str, robot_name: str = "") -> Parse:
-    words = strip_politeness(normalise(text), robot_name)
+    words = strip_vocative(strip_politeness(normalise(text), robot_name), robot_name)
     if not words:
         return Parse("unknown", words=())
     words[0] = base_verb(words[0])  # "(would you mind) picking up the cup"
@@ -86,7 +93,7 @@ def parse(text: str, robot_name: str = "") -> Parse:
     welcoming = words[0] == "welcome" and words[1:] and words[1] not in {"back", "home", "to", "everyone"}
     for g in () if welcoming else sorted(GREETINGS, key=len, reverse=True):
         if starts(words, g):
-            rest = strip_politeness(words[len(g) :], robot_name)
+            rest = strip_vocative(strip_politeness(words[len(g) :], robot_name), robot_name)
             if tuple(rest) in SOCIAL:
                 return Parse("greeting", words=tuple(words))
             # "Good morning Maria" is still a greeting; "hi, grab the cup" is a request.
@@ -102,7 +109,14 @@ def _request(text: str, words: list[str]) -> Parse | None:
     return after if after.act != "unknown" else None
 
 
+#: Two-word prepositions read as one, so that their "to" is never taken for a recipient's.
+_PREPOSITIONS = {("next", "to"): "beside", ("close", "to"): "near", ("nearest", "to"): "near"}
+
+
 def _command(original: str, words: list[str]) -> Parse:
+    for i in range(len(words) - 2, 0, -1):
+        if (words[i], words[i + 1]) in _PREPOSITIONS:
+            words[i : i + 2] = [_PREPOSITIONS[(words[i], words[i + 1])]]
     if words[:3] == ["make", "your", "way"] or words[:3] == ["find", "your", "way"]:
         words = ["go", *words[3:]]
     if words[1:3] == ["hold", "of"] and words[0] in GRAB | {"catch"}:  # "get hold of the mug"
@@ -113,6 +127,13 @@ def _command(original: str, words: list[str]) -> Parse:
     def cmd(intent: str, text: str | None = None, double: bool = False, **slots: Words) -> Parse:
         return Parse("command", intent, dict(slots), text=text, words=w, double_object=double)
 
+    need = _need(w)
+    if need is not None:  # "I'm parched": something to drink
+        return cmd(I.BRING_OBJECT, object=(need,), recipient=("me",))
+    if verb == "help" and "to" in rest:  # "help me get to the bathroom": take them there
+        who, _, goal = split_at(rest, ["get to", "to"]) or ((), "", ())
+        if who and goal:
+            return cmd(I.GUIDE, recipient=who, goal=goal)
     going = _wants_to_go(w)
     if going is not None:  # "Ellen needs to get to the utility room": take her there
         return cmd(I.GUIDE, recipient=going[0], goal=going[1])
@@ -127,7 +148,7 @@ def _command(original: str, words: list[str]) -> Parse:
         return _command(original, list(rest))
     if verb == "let" and "know" in rest:  # "let Tom know that..." is "tell Tom that..."
         return _say(original, "tell", tuple(x for x in rest if x != "know"), cmd)
-    if verb == "approach" and rest:
+    if verb in {"approach", "enter"} and rest:
         return cmd(I.MOVE_TO, goal=rest)
     if w[:2] in {("look", "at"), ("turn", "to"), ("turn", "towards")} or verb == "face":
         return cmd(I.ENGAGE_WITH, recipient=rest[1:] if verb != "face" else rest)
@@ -188,6 +209,9 @@ def _command(original: str, words: list[str]) -> Parse:
         return cmd(I.PLACE_OBJECT, object=found[0][1:], recipient=found[2])
     if verb in PLACE:
         found = split_at(rest, LOCATIVE)
+        if found is None and rest[-1:] in {("there",), ("here",)} and len(rest) > 1:  # "put it over there"
+            obj = tuple(x for x in rest[:-1] if x not in {"down", "away", "back", "over"})
+            return cmd(I.PLACE_OBJECT, object=obj, recipient=("there",) if rest[-1] == "there" else ("me",))
         if found is None:
             obj = tuple(x for x in rest if x not in {"down", "away", "back"})
             return cmd(I.PLACE_OBJECT, object=obj, recipient=())
@@ -209,6 +233,8 @@ def _command(original: str, words: list[str]) -> Parse:
         elif obj[-1:] == ("up",):
             obj = obj[:-1]
         return cmd(I.GRAB_OBJECT, object=obj)
+    if verb in {"does", "did"} or (verb == "do" and rest[:1] and rest[0] not in _DONE):
+        return Parse("unknown", words=w)  # "do you like music": a yes/no question, not an activity
     if verb in START or verb in ACTIVITY_VERBS:
         activity = rest if verb in START else w
         if verb in START and rest[:1] and rest[0] in {"to"}:
@@ -216,6 +242,14 @@ def _command(original: str, words: list[str]) -> Parse:
         name = "_".join(x for x in activity if x not in {"the", "a", "an", "some", "with", "me", "us", "of"})
         return cmd(I.START_ACTIVITY, text=name or None)
     return Parse("unknown", words=w)
+
+
+def _need(w: Words) -> str | None:
+    """ "I'm absolutely parched", "we are starving": the class of what would meet the need."""
+    if w[:2] not in {("i", "am"), ("we", "are")}:
+        return None
+    rest = [x for x in w[2:] if x not in INTENSIFIERS]
+    return NEEDS.get(rest[0]) if len(rest) == 1 else None
 
 
 def _wants_to_go(w: Words) -> tuple[Words, Words] | None:

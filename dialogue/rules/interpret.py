@@ -29,12 +29,17 @@ from dialogue.reference.resolution import (
 )  # fmt: skip
 from dialogue.rules import answers
 from dialogue.rules.commands import LOCATIVE, ME, Parse, Words, parse
-from dialogue.rules.words import word_set
+from dialogue.rules.compound import Part, alternatives, conjuncts, coordinated, unprefixed
+from dialogue.rules.words import COLOURS, INTERJECTIONS, cleaned, word_set
 
 _ONE = frozenset({"one", "ones"})
 #: Punctuation, dashes, and (for unpunctuated speech) a polite request starting mid-utterance.
 _CLAUSE_BREAK = re.compile(
-    r"[.;!?,]+(?:\s+|$)|\s+(?:-|\u2013|\u2014)\s+|\s+(?=(?:could|can|would|will)\s+you\b|please\b)", re.I
+    r"[.;!?,]+(?:\s+|$)|\s+(?:-|\u2013|\u2014)\s+|\s+(?=(?:could|can|would|will)\s+you\b|please\b)"
+    # A trailing clause with a subject of its own: "...the wine cellar she wants to pick a bottle",
+    # "...my aspirin it is in one of the drawers", "...my eyeglass you can find it on the table".
+    r"|\s+(?=(?:she|he|it|they|you)\s+(?:is|are|was|were|wants|needs|should|might|must|can|could|has|have|just)\b)",
+    re.I,
 )
 #: Spatial or comparative qualifiers the KB does not model (dropped when they block a match).
 RELATIONAL = word_set(
@@ -42,6 +47,12 @@ RELATIONAL = word_set(
     "smallest large larger largest little other first second third last middle top bottom"
 )
 _MANY = word_set("and both all every each")
+#: An answer naming an owner ("mine", "hers") is the possessive phrase ("my cup").
+_POSSESSIVE_OF = {"mine": "my", "yours": "your", "ours": "our", "hers": "her", "theirs": "their"}
+#: Words that need no name in the KB to be understood in a phrase.
+_ACCOUNTED = RELATIONAL | COLOURS | ME | word_set(
+    "it them him her here there over something anything around nearby about"
+)
 
 
 @dataclass(frozen=True)
@@ -55,6 +66,12 @@ class Outcome:
     #: For a follow-up turn: the role whose phrase was ambiguous (or missing), and that phrase.
     open_role: str | None = None
     open_phrase: Words = ()
+    #: The intents that follow this one in a compound request, in order.
+    more: tuple[Outcome, ...] = ()
+
+    def steps(self) -> tuple[Outcome, ...]:
+        """This outcome and the ones that follow it."""
+        return (self, *self.more)
 
 
 @dataclass(frozen=True)
@@ -75,6 +92,40 @@ class Interpreter:
         self.robot_name = robot_name
 
     def interpret(self, text: str) -> Outcome:
+        text = cleaned(text)
+        parts = conjuncts(text)
+        if parts:
+            combined = self._compound(parts)
+            if combined is not None:
+                return combined
+        return self._single(text)
+
+    def _compound(self, parts: Sequence[Part]) -> Outcome | None:
+        """ "go to the kitchen and take the plate": every part read in order, each with the parts
+        before it as context for its pronouns ("take the book and put it in the oven")."""
+        done: list[Outcome] = []
+        cannot: list[str] = []
+        for n, part in enumerate(parts):
+            context = tuple(Utterance(self.speaker, p.text) for p in parts[:n])
+            reader = Interpreter(self.lexicon, self.speaker, (*self.history, *context), self.robot_name)
+            if n == 0 and part.verb is None:
+                continue  # a preamble ("hey there", "thanks", "the denim jacket"): context for the rest
+            outcome = reader._single(part.text)
+            if outcome.intent is not None:
+                done.append(outcome)
+            elif outcome.clarify:
+                return outcome  # ask about this part first: nothing is done until it is clear
+            elif part.no_intent:
+                cannot.append(part.text)
+            else:  # a part that fails says why; one not understood makes the whole not understood
+                return outcome if outcome.understood else None
+        if not done:
+            return None
+        acks = [done[0].reply] + [f"Then {unprefixed(o.reply)}" for o in done[1:]]
+        acks += [f"I can't {c} myself." for c in cannot]
+        return replace(done[0], reply=" ".join(acks), more=tuple(done[1:]))
+
+    def _single(self, text: str) -> Outcome:
         p = parse(text, self.robot_name)
         not_understood = Outcome("Sorry, I did not understand that.", understood=False)
         outcome = (self._follow_up(p, text) or not_understood) if p.act == "unknown" else self.act(p)
@@ -125,6 +176,9 @@ class Interpreter:
             ref = antecedent(self.lexicon, [u.text for u in self.history], ANYWHERE)
             if ref is not None:
                 thing = tuple(tokens(ref.id))
+        content = content_words(thing)
+        if content and self._half_known(content) and not resolve(self.lexicon, thing, ANYWHERE).matches:
+            return Outcome("Sorry, I don't know how to answer that.", understood=False)
         match p.question:
             case "what_see":
                 return Outcome(answers.what_do_you_see(self.snapshot, self.speaker))
@@ -155,14 +209,27 @@ class Interpreter:
 
     # -- commands --------------------------------------------------------------------------------
     def _command(self, p: Parse, overrides: dict[str, Words]) -> Outcome:
+        whole = self._one_command(p, overrides)
+        things = coordinated(p.slots.get("object", ())) if "object" not in overrides else []
+        if whole.intent is not None or whole.clarify or len(things) < 2:
+            return whole
+        # "bring me the cereals and the milk": one intent per thing, in order.
+        each = [self._one_command(p, {**overrides, "object": t}) for t in things]
+        if any(o.intent is None for o in each):
+            return next(o for o in each if o.intent is None)
+        acks = [each[0].reply] + [f"Then {unprefixed(o.reply)}" for o in each[1:]]
+        return replace(each[0], reply=" ".join(acks), more=tuple(each[1:]))
+
+    def _one_command(self, p: Parse, overrides: dict[str, Words]) -> Outcome:
         intent = p.intent or ""
         slots = {**p.slots, **overrides}
         if p.double_object and "rest" in slots:
             slots = self._split_double_object(slots.pop("rest"))
-        if intent == I.BRING_OBJECT:
-            person = self._person_as_object(slots.get("object", ()))
-            if person is not None:  # "take Maria to the kitchen" is guiding, not carrying
-                intent, slots = I.GUIDE, {"recipient": slots["object"], "goal": slots.get("recipient", ())}
+        if intent in {I.BRING_OBJECT, I.PLACE_OBJECT} and "recipient" in slots:
+            # "take Maria to the kitchen", "walk Mr Ito back to the car park": guiding, not carrying
+            who = tuple(w for w in slots.get("object", ()) if w not in RELATIONAL)
+            if self._person_as_object(who) is not None:
+                intent, slots = I.GUIDE, {"recipient": who, "goal": slots["recipient"]}
         roles: dict[str, str] = {}
         refs: dict[str, _Ref] = {}
         spec = I.CATALOGUE[intent]
@@ -191,7 +258,10 @@ class Interpreter:
             if not content_words(tail):
                 continue
             people = content_words(head)
-            if people and (set(people) <= ME or resolve(self.lexicon, head, PERSON).one is not None):
+            named = set(people) <= ME or resolve(self.lexicon, head, PERSON).one is not None
+            # "bring him the bottle": a person pronoun the conversation resolves.
+            said = set(people) <= {"him", "her", "them"} and self._person_as_object(head) is not None
+            if people and (named or said):
                 return {"object": tail, "recipient": head}
         return {"object": rest, "recipient": ("me",)}
 
@@ -231,7 +301,7 @@ class Interpreter:
             if found is None:
                 return _Ref(
                     problem=Outcome(
-                        f'What do you mean by "{" ".join(content)}"?',
+                        f'What do you mean by "{" ".join(content or sorted(bare))}"?',  # "there" is glue
                         clarify=True,
                         open_role=role,
                         open_phrase=words,
@@ -256,7 +326,20 @@ class Interpreter:
                 return _Ref(problem=Outcome(q, clarify=True, open_role=role, open_phrase=loose))
         if set(words) & _MANY:  # "the cup and the apple", "both cups": more than one intent can carry
             return _Ref(problem=Outcome("Sorry, one thing at a time, please.", understood=False))
+        for alternative in alternatives(words):  # "an apple or an orange": either will do
+            ref = self._ground(alternative, kinds, role, owner)
+            if ref.entity is not None or ref.speaker:
+                return ref
+        if self._half_known(content):
+            # Names the KB knows among words it does not ("mr ito back", "the trousers out"): the
+            # phrase was not understood, which is not the same as "there is no such thing".
+            return _Ref(problem=Outcome("Sorry, I did not understand that.", understood=False))
         return _Ref(problem=Outcome(self._unknown(content, kinds)))
+
+    def _half_known(self, content: Sequence[str]) -> bool:
+        """Whether some words of a phrase are names of the KB and others are words it does not know."""
+        unknown = [w for w in content if not self.lexicon.knows(w) and w not in _ACCOUNTED]
+        return 0 < len(unknown) < len(content)
 
     def _unknown(self, content: Sequence[str], kinds: Collection[Kind]) -> str:
         phrase = " ".join(content)
@@ -286,7 +369,8 @@ class Interpreter:
     # -- follow-ups to the robot's last question ------------------------------------------------
     def _follow_up(self, p: Parse, text: str) -> Outcome | None:
         """ "the red one" after "Which cup do you mean...?" re-reads the pending request with it."""
-        fragment = p.words
+        # "mine, obviously": whose it is, without the interjection.
+        fragment = tuple(_POSSESSIVE_OF.get(w, w) for w in p.words if w not in INTERJECTIONS)
         # The robot's question must be the latest utterance (system notes aside), right after a request.
         spoken = [i for i, u in enumerate(self.history) if u.role != "system"]
         if not fragment or len(spoken) < 2:

@@ -30,6 +30,7 @@ _INDIRECT: tuple[Words, ...] = tuple(
                                "i was wondering")
 )  # fmt: skip
 _BE = frozenset({"is", "are", "was", "were"})
+_NEARBY = word_set("around nearby here about")
 #: "something to eat" is food: the purpose names the ontology's class (labelled "food", "drink").
 _PURPOSES: dict[Words, str] = {("to", "eat"): "food", ("to", "drink"): "drink"}
 
@@ -74,7 +75,7 @@ def question(words: list[str]) -> Parse | None:
         return _q("how_many", w, thing=thing)
     for lead in _SEES:
         if starts(w, lead):
-            thing = w[len(lead) :]
+            thing = _strip_ends(w[len(lead) :], frozenset(), _NEARBY)  # "is there any fruit around"
             if thing[:1] in {("anything",), ("something",)}:
                 return _anything(w, thing[1:])
             return _q("can_see", w, thing=thing)
@@ -146,6 +147,10 @@ def _owned_thing(w: Words) -> Words:
 
 def _where(w: Words) -> Parse:
     rest = w[1:]
+    if rest[-2:] in {("got", "to"), ("get", "to"), ("gone", "to")}:  # "where's my cup got to"
+        rest = rest[:-2]
+        if rest[:1] in {("did",), ("has",), ("have",)}:
+            rest = ("is", *rest[1:])
     if rest[-1:] and rest[-1] in {"go", "gone", "went"} and rest[:1] and rest[0] in {"did", "has", "have"}:
         return _q("where", w, thing=rest[1:-1])  # "where did Uma go?"
     if len(rest) > 1 and rest[-1] in _BE and rest[0] not in _BE:

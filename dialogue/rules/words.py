@@ -31,14 +31,34 @@ CONTRACTIONS: dict[str, Words] = {
     "it's": ("it", "is"), "there's": ("there", "is"), "let's": ("let", "us"), "i'd": ("i", "would"),
     "can't": ("cannot",), "i'm": ("i", "am"), "you're": ("you", "are"), "here's": ("here", "is"),
     "dont": ("don't",), "doesn't": ("don't",), "won't": ("don't",),
+    # Speech recognisers and chat drop the apostrophe.
+    "whats": ("what", "is"), "wheres": ("where", "is"), "whos": ("who", "is"), "thats": ("that", "is"),
+    "theres": ("there", "is"), "heres": ("here", "is"), "shes": ("she", "is"), "hes": ("he", "is"),
+    "im": ("i", "am"), "ive": ("i", "have"), "youre": ("you", "are"), "cant": ("cannot",),
+    "doesnt": ("don't",), "wont": ("don't",), "isnt": ("is", "not"), "arent": ("are", "not"),
+    "didnt": ("did", "not"), "i've": ("i", "have"), "she's": ("she", "is"), "he's": ("he", "is"),
+    "we're": ("we", "are"), "they're": ("they", "are"), "hows": ("how", "is"),
 }  # fmt: skip
+#: Hesitations and discourse fillers, dropped wherever they occur ("put the uh candle on the table").
+FILLERS = frozenset({"um", "umm", "uh", "uhh", "er", "erm", "hmm", "mm", "ah", "really"})
+#: Two-word fillers dropped wherever they occur.
+FILLER_PAIRS = frozenset({("you", "know"), ("i", "guess"), ("of", "course")})
+#: Words of an answer that only add emphasis ("mine, obviously", "the red one definitely").
+INTERJECTIONS = word_set(
+    "obviously definitely clearly surely certainly naturally yes yeah yep sure please thanks"
+)
+#: A self-repair: what follows replaces the request said before it ("bring me the uh no wait put...").
+REPAIRS = _phrases("no wait|wait no|sorry i mean|no sorry|i mean|or rather|no no|scratch that|no actually")
 POLITE_PREFIXES = _phrases(
     "would you mind|do you mind|i would like you to|i want you to|i need you to|i wish you would|"
     "go ahead and|go and|come and|could you|can you|would you|will you|please|kindly|just|now|ok|okay|"
     "so|and|then|also|well|robot|let us|try to|you should|you can|you could|be so kind and|be so kind as to|"
     "time to|maybe|hold on|hang on|wait a moment|wait a second|one moment|actually|oh|um|umm|uh|er|erm|"
     "great|alright|all right|cool|perfect|excellent|sorry|excuse me|can we|could we|shall we|should we|"
-    "why don't we|how about we"
+    "why don't we|how about we|i was wondering if you could|i wonder if you could|"
+    "i was wondering whether you could|"
+    "be a dear and|be an angel and|do me a favour and|do me a favor and|you know what|off you|listen|"
+    "would you be so kind as to|would you be able to|are you able to|if you could|if you can"
 )
 POLITE_SUFFIXES = _phrases(
     "please|thanks|thank you|now|right now|if you can|if you could|for a moment|again|quickly|"
@@ -73,7 +93,18 @@ STOP_FILLER = word_set(
     "right there your whatever am is enough shut up"
 )
 LOCATIVE = ("on top of", "onto", "on", "into", "inside", "in", "at", "to", "under", "next to", "near")
+COLOURS = word_set(
+    "red green blue yellow orange purple violet pink brown black white grey gray silver gold golden beige "
+    "navy turquoise cyan magenta maroon cream tan teal"
+)
 WH = word_set("what where who which how why when whose whom")
+#: "I'm parched": a need names the ontology class of what would meet it.
+NEEDS: dict[str, str] = {
+    "thirsty": "drink", "parched": "drink", "dehydrated": "drink",
+    "hungry": "food", "starving": "food", "peckish": "food", "famished": "food", "ravenous": "food",
+}  # fmt: skip
+INTENSIFIERS = word_set("so very really absolutely quite a bit little totally getting rather pretty bloody")
+_ASKING = word_set("do did don't if would as you that whether about him her them it")
 
 
 @dataclass(frozen=True)
@@ -90,7 +121,15 @@ class Parse:
 
 #: Every verb the grammar knows, to read "would you mind picking up..." as "pick up...".
 VERBS = GRAB | BRING | PLACE | MOVE | GUIDE | SAY | START | STOP | MOTIONS
-VERBS |= word_set("greet welcome approach")
+VERBS |= word_set("greet welcome approach enter")
+#: Verbs that start a command (a part of a compound request starts with one of these).
+COMMAND_VERBS = VERBS | ACTIVITY_VERBS
+#: Actions the robot has no intent for: a part of a compound request with one of these is kept in
+#: the reply ("I can't find the newspaper myself"), never silently dropped.
+NO_INTENT_VERBS = word_set(
+    "find search look open close turn switch remove control check wait stay watch heat boil pour fill "
+    "empty plug unplug lock unlock answer call fix feed throw follow serve"
+)
 
 
 def base_verb(word: str) -> str:
@@ -105,9 +144,59 @@ def base_verb(word: str) -> str:
 
 
 def normalise(text: str) -> list[str]:
+    """Lower-case words with contractions expanded, fillers and stutters removed and a self-repair
+    applied ("put the put the knife uh on the table", "bring me the uh no wait put the candle...")."""
     words: list[str] = []
     for w in _TOKEN.findall(text.lower().replace("\u2019", "'")):
-        words.extend(CONTRACTIONS.get(w, (w,)))
+        words.extend(x for x in CONTRACTIONS.get(w, (w,)) if x not in FILLERS)
+    return _repaired(_unrepeated(_without_filler_pairs(words)))
+
+
+def _without_filler_pairs(words: list[str]) -> list[str]:
+    """ "pick up the uh you know the cup": "you know" mid-sentence, but not "do you know where..."."""
+    drop: set[int] = set()
+    for i in range(1, len(words) - 1):
+        nxt = words[i + 2] if i + 2 < len(words) else ""
+        if (
+            tuple(words[i : i + 2]) in FILLER_PAIRS
+            and words[i - 1] not in _ASKING
+            and nxt not in WH | _ASKING
+        ):
+            drop.update((i, i + 1))
+    return [w for i, w in enumerate(words) if i not in drop]
+
+
+def cleaned(text: str) -> str:
+    """The text with stutters and self-repairs resolved, when it has any (else unchanged, so that
+    quoted words and casing survive): what a compound request is cut in."""
+    lowered = text.lower().replace("\u2019", "'")
+    plain = [x for w in _TOKEN.findall(lowered) for x in CONTRACTIONS.get(w, (w,))]
+    words = [w for w in plain if w not in FILLERS]
+    fixed = _repaired(_unrepeated(words))
+    return text if fixed == words else " ".join(fixed)
+
+
+def _unrepeated(words: list[str]) -> list[str]:
+    """ "put the put the knife", "the the jumper": an immediately repeated run of 1-3 words once."""
+    out: list[str] = []
+    for w in words:
+        out.append(w)
+        for n in (1, 2, 3):
+            if len(out) >= 2 * n and out[-n:] == out[-2 * n : -n] and not out[-1].isdigit():
+                del out[-n:]
+                break
+    return out
+
+
+def _repaired(words: list[str]) -> list[str]:
+    """After the last self-repair marker, a new request replaces the one before it."""
+    for i in range(len(words) - 1, 0, -1):
+        for marker in REPAIRS:
+            if tuple(words[i : i + len(marker)]) == marker:
+                after = words[i + len(marker) :]
+                request = strip_politeness(after)
+                if request and base_verb(request[0]) in VERBS:
+                    return after
     return words
 
 
@@ -149,6 +238,29 @@ def strip_politeness(words: list[str], robot_name: str = "") -> list[str]:
                 words = words[: -len(s)]
                 changed = True
                 break
+    return words
+
+
+#: Words that never address someone by name at the start of an utterance.
+_NOT_VOCATIVE = word_set(
+    "i you we he she it they there this that these those do does did is are was can could would will "
+    "shall should may might must please let what where who which how why when whose the a an my your "
+    "his her our their no not yes if and or but so then me us him them"
+)
+#: Filler words at the start of an utterance ("listen, go to the kitchen").
+_LEAD_FILLERS = word_set("listen look hey see")
+
+
+def strip_vocative(words: list[str], robot_name: str = "") -> list[str]:
+    """ "john can you go to the bathroom", "michael go to the kitchen": the addressee's name (one
+    word before a request) is not part of the request."""
+    while len(words) > 2 and words[0] in _LEAD_FILLERS and base_verb(words[1]) in COMMAND_VERBS:
+        words = words[1:]
+    if len(words) < 3 or words[0] in _NOT_VOCATIVE or words[0] in COMMAND_VERBS or not words[0].isalpha():
+        return words
+    polite = any(starts(words[1:], p) and p[-1:] == ("you",) for p in POLITE_PREFIXES)
+    if polite or base_verb(words[1]) in COMMAND_VERBS:
+        return strip_politeness(words[1:], robot_name)
     return words
 
 

@@ -17,8 +17,19 @@ import threading
 from collections.abc import Callable, Sequence
 
 from kb.arguments import compiled, render
-from kb.errors import KbError
-from kb.events import ALL, Callback, Firing, Subscription
+from kb.deadline import UNBOUNDED, Budget, Deadline
+from kb.errors import KbError, QueryTimeout, TooManyRows
+from kb.events import (
+    ALL,
+    Callback,
+    Delivery,
+    Ending,
+    ErrorCallback,
+    Firing,
+    SharedBudget,
+    Subscription,
+    in_cost_order,
+)
 from kb.models import DEFAULT_MODEL
 from kb.query import Query, Row
 from kb.sparqlstore.query import Meta, StoreQueries
@@ -54,26 +65,34 @@ class Poller:
 
     # --- registration ----------------------------------------------------------------------
 
-    def rows(self, query: Query, models: Sequence[str], known: Sequence[str]) -> set[Row]:
-        """The query's rows over the given models (``all``: every known one) that exist."""
+    def rows(self, query: Query, models: Sequence[str], known: Sequence[str],
+             max_rows: int | None = None, deadline: Deadline | None = None) -> set[Row]:
+        """The query's rows over the given models (``all``: every known one) that exist;
+        ``QueryTimeout`` past the deadline, ``TooManyRows`` past ``max_rows``."""
         names = known if ALL in models else [m for m in models if m in known]
+        limit = None if max_rows is None else max_rows + 1
         found: set[Row] = set()
         for name in names:
-            found |= self._queries.rows(query, self._queries.graphs(name))
+            found |= self._queries.rows(query, self._queries.graphs(name), limit, deadline)
+            if max_rows is not None and len(found) > max_rows:
+                raise TooManyRows(max_rows)
         return found
 
     def subscribe(self, sub_id: str, query: Query, models: Sequence[str], one_shot: bool,
-                  callback: Callback, baseline: set[Row], revision: int | None) -> None:
-        """Register a subscription whose ``baseline`` rows were read at ``revision`` (or later)."""
+                  callback: Callback, baseline: set[Row], revision: int | None,
+                  budget: Budget = UNBOUNDED, on_error: ErrorCallback | None = None) -> None:
+        """Register a subscription whose ``baseline`` rows were read at ``revision`` (or later);
+        an evaluation past its ``budget`` ends it and calls ``on_error``."""
         self._require_open()
         with self._lock:
             existing = self._subscriptions.get(sub_id)
-            if existing is not None:
-                existing.callbacks.append(callback)
-            else:
-                self._subscriptions[sub_id] = Subscription(
-                    sub_id, query, tuple(models), one_shot, [callback], None, set(baseline))
+            if existing is None:
+                existing = self._subscriptions[sub_id] = Subscription(
+                    sub_id, query, tuple(models), one_shot, [], None, set(baseline), budget)
                 self._seen[sub_id] = revision
+            existing.callbacks.append(callback)
+            if on_error is not None:
+                existing.on_error.append(on_error)
         self._start()
 
     def unsubscribe(self, sub_id: str) -> bool:
@@ -150,7 +169,7 @@ class Poller:
                 self._done = max(self._done, serving)
                 self._progress.notify_all()
 
-    def _cycle(self) -> list[Firing]:
+    def _cycle(self) -> list[Delivery]:
         meta = self._queries.meta()
         firings = self._evaluate(meta)
         with self._lock:
@@ -163,12 +182,27 @@ class Poller:
             self._active_seen = meta.revision
         return firings
 
-    def _evaluate(self, meta: Meta) -> list[Firing]:
+    def _evaluate(self, meta: Meta) -> list[Delivery]:
         with self._lock:
             due = [sub for sub in self._subscriptions.values() if self._seen.get(sub.id) != meta.revision]
-        firings = []
-        for sub in due:
-            current = self.rows(sub.query, sub.models, meta.models)
+        firings: list[Delivery] = []
+        poll = SharedBudget()  # one budget for the bounded subscriptions of this poll, as a commit
+
+        def run(sub: Subscription, deadline: Deadline | None) -> set[Row]:
+            return self.rows(sub.query, sub.models, meta.models, sub.budget.max_rows, deadline)
+
+        for sub in in_cost_order(due):
+            try:
+                current = poll.run(sub, run)
+            except (QueryTimeout, TooManyRows) as exc:
+                with self._lock:
+                    if self._subscriptions.get(sub.id) is sub:
+                        del self._subscriptions[sub.id]
+                        del self._seen[sub.id]
+                        firings.append(Ending(sub.id, tuple(sub.on_error), exc))
+                continue
+            if current is None:
+                continue  # the poll's budget is spent: evaluated at the next poll
             with self._lock:
                 if self._subscriptions.get(sub.id) is not sub:
                     continue  # unsubscribed meanwhile

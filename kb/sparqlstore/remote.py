@@ -35,9 +35,9 @@ from typing import Any
 from rdflib.query import Result
 
 from kb.arguments import Models_, model_names, render
-from kb.deadline import Deadline
+from kb.deadline import Budget, Deadline
 from kb.errors import KbError, TooManyRows
-from kb.events import Callback
+from kb.events import Callback, ErrorCallback
 from kb.facade import Facade
 from kb.models import ALL_MODELS, DEFAULT_MODEL
 from kb.query import Query, Row
@@ -47,6 +47,7 @@ from kb.sparqlstore.events import ActiveListener, Poller
 from kb.sparqlstore.query import Graphs, Meta, StoreQueries
 from kb.sparqlstore.sparql import run
 from kb.sparqlstore.writetarget import ReplicaWrites, WriteTarget
+from kb.summary import Summary
 from kb.terms import Node, Triple
 
 __all__ = ["RemoteKB", "WriteTarget"]
@@ -94,6 +95,12 @@ class RemoteKB(Facade[Graphs]):
         """A lock of this process only, for callers that group several calls. It does NOT freeze
         the store: the writer may commit between two reads made under it."""
         return self._lock
+
+    def summary(self) -> Summary:
+        """Revision, sizes of the default model and model names, as the store holds them (one
+        request each: they may straddle a commit)."""
+        meta = self._queries.meta()
+        return Summary(meta.revision or 0, self.size(), self.size(inferred=False), tuple(meta.models))
 
     # --- models ---------------------------------------------------------------------------
 
@@ -200,12 +207,15 @@ class RemoteKB(Facade[Graphs]):
         self._events.sync()
 
     def _subscribe(self, sub_id: str, query: Query, names: list[str], one_shot: bool,
-                   callback: Callback) -> None:
-        # Callbacks run on the polling thread.
+                   callback: Callback, budget: Budget, on_error: ErrorCallback | None) -> None:
+        # Callbacks run on the polling thread; a bounded subscription no longer holds up the
+        # polling of the others past its budget.
         meta = self._queries.meta()  # read before the baseline: a later commit is evaluated again
         self._known(names, meta)
-        baseline = self._events.rows(query, names, meta.models)
-        self._events.subscribe(sub_id, query, names, one_shot, callback, baseline, meta.revision)
+        deadline = Deadline.after(budget.timeout)
+        baseline = self._events.rows(query, names, meta.models, budget.max_rows, deadline)
+        self._events.subscribe(sub_id, query, names, one_shot, callback, baseline, meta.revision, budget,
+                               on_error)
 
     # --- events ---------------------------------------------------------------------------
 

@@ -17,8 +17,11 @@ import httpx
 import pytest
 
 from api.cli import main
+from dialogue.llm.openai import OpenAIModel
 from dialogue.llm.spec import SPEC_HELP
 from tests.api.conftest import SCENE, Live
+from tests.dialogue.llm.fakeserver import fake_server
+from tests.dialogue.llm.test_openai import reply as openai_reply
 
 REPO = Path(__file__).parents[2]
 EXAMPLE_URL = "http://127.0.0.1:8000"
@@ -214,3 +217,22 @@ def test_chat_leaves_quietly_on_ctrl_c(monkeypatch: pytest.MonkeyPatch, capsys: 
 
     monkeypatch.setattr(sys, "stdin", Interrupted())
     assert main(["chat", "--scene", "none"]) == 0
+
+
+def test_chat_keeps_one_model_client_and_closes_it(monkeypatch: pytest.MonkeyPatch,
+                                                   capsys: pytest.CaptureFixture[str]) -> None:
+    closed: list[str] = []
+    close = OpenAIModel.aclose
+
+    async def recorded(self: OpenAIModel) -> None:
+        closed.append(self.name)
+        await close(self)
+
+    monkeypatch.setattr(OpenAIModel, "aclose", recorded)
+    with fake_server(keep_alive=True) as server:
+        server.replies.extend([(200, openai_reply('{"verbal_ack": "Fine.", "user_intent": null}'))] * 2)
+        llm = f"openai:m@{server.url}/v1"
+        assert main(["chat", "--scene", "none", "--llm", llm, "--say", "how are you", "--say", "and now"]) == 0
+    assert capsys.readouterr().out.count("robot: Fine.") == 2
+    assert len(server.peers) == 2 and len(set(server.peers)) == 1  # one client, one connection
+    assert closed == [f"openai:m@{server.url}/v1"]

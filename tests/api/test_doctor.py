@@ -21,6 +21,7 @@ from api.doctor import (
     render,
 )
 from api.settings import Settings
+from dialogue.llm.hybrid import HybridModel
 from dialogue.llm.llamabuild import PORTABLE_CMAKE_ARGS
 from dialogue.llm.llamacpp import LlamaCppModel
 from tests.dialogue.llm import fakellama
@@ -112,6 +113,26 @@ def test_openai_answers_and_refuses() -> None:
         bad = run_check(check_model, doctor(llm=f"openai:qwen@{url}"))
     assert good.status == "ok" and server.requests[0][0] == "/v1/chat/completions"
     assert bad.status == "fail" and "HTTP 404" in bad.detail and "serving 'qwen'" in bad.fix
+
+
+def test_hybrid_checks_the_model_behind_the_rules() -> None:
+    with fake_server() as server:
+        server.replies.append((200, ollama_reply(ANSWER)))
+        good = run_check(check_model, doctor(llm=f"hybrid:ollama:gemma3:1b@{server.url}"))
+    assert good.status == "ok" and good.detail.startswith(f"ollama:gemma3:1b@{server.url} answered a turn")
+    assert server.requests[0][0] == "/api/chat"
+    down = run_check(check_model, doctor(llm=f"hybrid:ollama:gemma3:1b@{free_port_url()}"))
+    assert down.status == "fail" and "unreachable" in down.detail and "ollama serve" in down.fix
+
+
+def test_hybrid_llamacpp_completes_in_the_worker(tmp_path: Path) -> None:
+    model = fake_llama(tmp_path, answer='{"ok": true}')
+    try:
+        finding = run_check(check_model, Doctor(Settings(scene="none"), model=HybridModel(model), model_timeout=30.0))
+        assert model.worker_pid is not None
+    finally:
+        model.close()
+    assert finding.status == "ok" and "worker process" in finding.detail
 
 
 def fake_llama(tmp_path: Path, **config: object) -> LlamaCppModel:

@@ -5,11 +5,14 @@ from __future__ import annotations
 
 from collections.abc import Callable
 
+import httpx
 from pydantic import SecretStr
 
 from api.settings import Settings
+from kb import KB
 from kb.status import StatusCell
 from tests.api.conftest import SCENE, Live
+from tests.kb.test_summary import lock_held_elsewhere
 
 TOKEN = "health-token"
 
@@ -48,3 +51,15 @@ def test_a_failing_component_degrades_health_until_it_recovers(live_factory: Cal
     assert mirror["retry_in"] == 4.0 and mirror["since"] > 0
     cell.succeeded()
     assert live.client.get("/health").json()["status"] == "ok"
+
+
+def test_health_answers_while_a_read_holds_the_kb(live_factory: Callable[..., Live]) -> None:
+    with KB() as kb:
+        kb.add(["cup_1 isOn table_1"])
+        live = live_factory(Settings(scene=SCENE), kb=kb)
+        revision = kb.revision
+        with lock_held_elsewhere(kb), httpx.Client(base_url=live.url, timeout=10.0) as http:
+            health = http.get("/health")  # waited for the lock (here: forever) before
+        assert health.status_code == 200
+        assert health.json()["kb"] | {"size": 0, "asserted": 0} == {
+            "revision": revision, "size": 0, "asserted": 0, "models": ["default"], "role": "standalone"}

@@ -10,9 +10,10 @@ from typing import Any
 import pytest
 from fastapi import FastAPI
 
+from api.app import create_app
 from api.server import serve_in_thread
 from api.settings import Settings
-from tests.api.conftest import SCENE, Live
+from tests.api.conftest import SCENE, Live, serve
 
 
 @pytest.fixture
@@ -70,3 +71,30 @@ def test_unreachable_ollama_is_reported_and_the_turn_falls_back(live_factory) ->
     reply = live.client.post("/dialogues/default/interactions",
                              json={"user_id": "person_alice", "input": "could you fetch me that mug"}).json()
     assert reply["intents"][0]["intent"] == "__raw_user_input__" and reply["error_msg"]
+
+
+def test_the_service_keeps_one_client_and_closes_it_at_shutdown(
+        fake_ollama: tuple[str, list[dict[str, Any]]]) -> None:
+    url, received = fake_ollama
+    with serve(create_app(Settings(scene=SCENE, llm=f"ollama:tiny:1b@{url}"))) as live:
+        for _ in range(3):
+            reply = live.client.post("/dialogues/default/interactions",
+                                     json={"user_id": "person_alice", "input": "could you fetch me that mug"})
+            assert reply.json()["error_msg"] == ""
+        model = live.services.model
+        assert len(received) == 3 and model.client.made == 1 and model.client.open
+    assert not model.client.open  # closed by the lifespan
+
+
+def test_a_hybrid_service_asks_ollama_only_for_what_the_rules_do_not_understand(
+        fake_ollama: tuple[str, list[dict[str, Any]]], live_factory: Callable[..., Live]) -> None:
+    url, received = fake_ollama
+    live = live_factory(Settings(scene=SCENE, llm=f"hybrid:ollama:tiny:1b@{url}"))
+    health = live.client.get("/health").json()
+    assert health["model"]["reachable"] is True and health["model"]["name"] == f"ollama:tiny:1b@{url}"
+    rules = live.client.post("/dialogues/default/interactions",
+                             json={"user_id": "person_alice", "input": "pick up the cup"}).json()
+    assert rules["intents"][0]["data"] == {"object": "cup_1"} and received == []
+    model = live.client.post("/dialogues/default/interactions",
+                             json={"user_id": "person_alice", "input": "how is the weather today?"}).json()
+    assert model["response"] == "Sure, the cup." and len(received) == 1

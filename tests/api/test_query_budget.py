@@ -8,6 +8,7 @@ write and /health complete. Bounds on time are generous: they tell "stopped at t
 
 from __future__ import annotations
 
+import json
 import threading
 import time
 from collections.abc import Callable, Iterator
@@ -15,6 +16,8 @@ from typing import Any
 
 import httpx
 import pytest
+from websockets.exceptions import ConnectionClosed
+from websockets.sync.client import connect
 
 from api.cli import main
 from api.settings import Limits, Settings
@@ -118,3 +121,84 @@ def test_the_cli_applies_the_limits_in_process(monkeypatch: pytest.MonkeyPatch,
     assert main(["kb", "query", "?a ?b ?c", "?d ?e ?f", "--scene", str(SCENE)]) == 2
     assert "time budget of 0.2 s" in capsys.readouterr().err
     assert time.monotonic() - start < 10 * GENEROUS
+
+
+# --- subscriptions: /kb/events and /kb/events/ws -------------------------------------------------
+
+def _events(response: httpx.Response) -> Iterator[tuple[str, Any]]:
+    """(event name, decoded data) pairs of an SSE stream."""
+    name = "message"
+    for line in response.iter_lines():
+        if line.startswith("event:"):
+            name = line[6:].strip()
+        elif line.startswith("data:"):
+            yield name, json.loads(line[5:])
+            name = "message"
+
+
+def _wait_until(predicate: Callable[[], bool]) -> None:
+    deadline = time.monotonic() + GENEROUS
+    while not predicate():
+        assert time.monotonic() < deadline, "condition not reached in time"
+        time.sleep(0.02)
+
+
+SLOW_FEW_ROWS = ["* ?p *", "* ?q *", "* * *"]  # pairs of predicates: few rows, n³ steps
+
+
+def test_a_subscription_past_the_limits_is_refused(live: Live, big_kb: KB) -> None:
+    subscriptions = len(big_kb.writer.subscriptions)
+    with client(live) as http:
+        slow = http.get("/kb/events", params={"pattern": SLOW_FEW_ROWS})
+        assert slow.status_code == 503
+        assert (slow.json()["code"], slow.json()["details"]) == ("query_timeout", {"timeout": 1.0})
+        huge = http.get("/kb/events", params={"pattern": ["?a isOn ?t"]})
+        assert (huge.status_code, huge.json()["code"], huge.json()["details"]) == (413, "too_many_rows",
+                                                                                 {"limit": 1000})
+    for patterns, code in ((SLOW_FEW_ROWS, "query_timeout"), (["?a isOn ?t"], "too_many_rows")):
+        with connect(live.ws_url + "/kb/events/ws") as ws:
+            ws.send(json.dumps({"patterns": patterns}))
+            assert json.loads(ws.recv(timeout=GENEROUS))["code"] == code
+            with pytest.raises(ConnectionClosed) as closed:
+                ws.recv(timeout=GENEROUS)
+            assert closed.value.rcvd is not None and closed.value.rcvd.code == 1008
+    assert len(big_kb.writer.subscriptions) == subscriptions
+    _wait_until(lambda: live.services.hub.listener_count == 0)
+
+
+def _cartesian(trigger: str) -> list[str]:
+    """No row nor work until ``<trigger> isOn ...`` holds; then few rows after n³ steps."""
+    return [f"{trigger} isOn ?z", *SLOW_FEW_ROWS]
+
+
+def test_a_live_subscription_past_the_budget_is_ended_with_the_error(live: Live, big_kb: KB) -> None:
+    with client(live) as http, http.stream("GET", "/kb/events",
+                                           params={"pattern": _cartesian("trigger_sse")}) as response:
+        events = _events(response)
+        assert next(events)[0] == "subscribed"
+        with client(live) as writer:
+            start = time.monotonic()
+            write = writer.post("/kb/revise", json={"statements": ["trigger_sse isOn shelf_1"], "method": "add"})
+            assert write.status_code == 200 and time.monotonic() - start < 10.0  # the budget is 1 s
+        name, error = next(events)
+        assert name == "error" and error["status"] == 503 and error["code"] == "query_timeout"
+        assert error["details"] == {"timeout": 1.0} and "time budget of 1 s" in error["message"]
+        assert list(events) == []  # the stream ends there
+    _wait_until(lambda: live.services.hub.listener_count == 0)
+
+
+def test_a_live_websocket_subscription_past_the_row_cap_is_ended_with_the_error(live: Live) -> None:
+    with connect(live.ws_url + "/kb/events/ws") as ws:
+        ws.send(json.dumps({"patterns": ["?x isOn shelf_ws", "?x isOn ?t"]}))
+        assert "subscribed" in json.loads(ws.recv(timeout=GENEROUS))
+        with client(live) as writer:
+            for start in (0, 600):
+                statements = [f"item_{i} isOn shelf_ws" for i in range(start, start + 600)]
+                assert writer.post("/kb/revise", json={"statements": statements, "method": "add"}).is_success
+        assert len(json.loads(ws.recv(timeout=GENEROUS))) == 600
+        error = json.loads(ws.recv(timeout=GENEROUS))
+        assert (error["status"], error["code"], error["details"]) == (413, "too_many_rows", {"limit": 1000})
+        with pytest.raises(ConnectionClosed) as closed:
+            ws.recv(timeout=GENEROUS)
+        assert closed.value.rcvd is not None and closed.value.rcvd.code == 1008
+    _wait_until(lambda: live.services.hub.listener_count == 0)

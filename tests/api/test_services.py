@@ -2,12 +2,14 @@
 
 from __future__ import annotations
 
+import asyncio
 from pathlib import Path
 
 import pytest
 
 from api.services import start_services
 from api.settings import Settings, SettingsError
+from dialogue.llm.openai import OpenAIModel
 from kb import KbError
 from tests.api.conftest import SCENE
 
@@ -51,3 +53,20 @@ def test_bad_scene_and_bad_backend_are_clear_errors(tmp_path: Path) -> None:
         start_services(Settings(scene=tmp_path / "missing.txt"))
     with pytest.raises(SettingsError, match="llm"):
         start_services(Settings(llm="nonsense"))
+
+
+def test_aclose_closes_the_model_it_built_and_not_one_it_was_given() -> None:
+    built = start_services(Settings(scene="none", llm="hybrid:openai:m@http://127.0.0.1:9/v1"))
+    given_model = OpenAIModel("m", "http://127.0.0.1:9/v1")
+    given = start_services(Settings(scene="none"), model=given_model)
+    inner = built.model.llm
+    assert isinstance(inner, OpenAIModel) and built.owns_model and not given.owns_model
+
+    async def use_then_stop() -> None:
+        for model in (inner, given_model):
+            model.client.get()  # as a turn does
+        await built.aclose()
+        await given.aclose()
+
+    asyncio.run(use_then_stop())
+    assert not inner.client.open and given_model.client.open

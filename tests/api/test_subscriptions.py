@@ -3,12 +3,14 @@
 from __future__ import annotations
 
 import asyncio
+from typing import Any
 
 import pytest
 
 from api.errors import ApiError
 from api.subscriptions import EventHub
 from kb import KB
+from kb.errors import TooManyRows
 
 
 @pytest.fixture(scope="module")
@@ -69,6 +71,28 @@ def test_a_slow_reader_is_ended_not_buffered_forever(kb: KB) -> None:
         assert rows[:2] == [[{"x": "box_0"}], [{"x": "box_1"}]] and rows[2] is None
         assert slow.end_reason is not None and slow.end_reason.startswith("overflow")
         hub.shutdown()
+        assert hub.listener_count == 0
+
+    asyncio.run(scenario())
+
+
+class _EndingAtOnce(KB):
+    """A KB whose commit ends each new subscription between its subscribe and its first listener
+    (the window a real commit can fall into)."""
+
+    def subscribe(self, *args: Any, **kwargs: Any) -> str:
+        sub_id = super().subscribe(*args, **kwargs)
+        kwargs["on_error"](TooManyRows(3))
+        return sub_id
+
+
+def test_a_subscription_ended_while_it_opens_still_tells_its_listener() -> None:
+    async def scenario() -> None:
+        hub = EventHub(_EndingAtOnce(), max_listeners=2, query_timeout=5.0, max_rows=3)
+        listener = hub.open(["?x isOn shelf_7"], False, None, asyncio.get_running_loop())
+        assert await asyncio.wait_for(listener.next_rows(), 30) is None
+        assert listener.error is not None and listener.error["code"] == "too_many_rows"
+        hub.close(listener)
         assert hub.listener_count == 0
 
     asyncio.run(scenario())

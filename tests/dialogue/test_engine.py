@@ -8,8 +8,10 @@ from hypothesis import strategies as st
 from dialogue import intents as I
 from dialogue.engine import DialogueEngine, EngineConfig, TurnResult
 from dialogue.history import ASSISTANT_USER_ID, Utterance
-from dialogue.llm.base import ChatRequest, ModelError
+from dialogue.llm.base import ChatRequest, EarlyAnswer, ModelError, TurnContext
+from dialogue.llm.hybrid import HybridModel
 from dialogue.llm.testing import FunctionModel, ScriptedModel
+from dialogue.schema import ChatbotResponse, UserIntent
 from kb import KB
 from tests.dialogue.conftest import scene_kb
 
@@ -166,7 +168,7 @@ def test_any_model_output_yields_only_kb_referents(kitchen: KB, kind: str, value
 
 def test_hybrid_uses_rules_first_and_the_model_for_the_rest(kitchen: KB) -> None:
     model = ScriptedModel([{"verbal_ack": "It is sunny.", "user_intent": None}])
-    engine = DialogueEngine(kitchen, model, EngineConfig(hybrid=True))
+    engine = DialogueEngine(kitchen, HybridModel(model))
     assert turn(engine, "pick up the apple").intents[0].data == {"object": "apple_1"}
     assert model.requests == []
     result = turn(engine, "how is the weather today?")
@@ -278,3 +280,41 @@ def test_a_speaker_that_cannot_be_a_person_is_never_named(kitchen: KB) -> None:
             assert all(speaker not in intent.data.values() for intent in result.intents), result
     assert kitchen.revision == revision
     assert turn(engine, "pick up the apple", speaker=I.UNKNOWN_AGENT).intents[0].data == {"object": "apple_1"}
+
+
+class Prescreening(ScriptedModel):
+    """An LLM with a prompt-free first answer (as the rules give in front of a hybrid model)."""
+
+    def __init__(self, early: ChatbotResponse, *answers: Any) -> None:
+        super().__init__(answers, name="llm")
+        self.early = early
+
+    def prescreen(self, context: TurnContext) -> EarlyAnswer:
+        return EarlyAnswer(self.early, "early")
+
+
+def test_an_early_answer_is_grounded_like_a_model_answer(kitchen: KB) -> None:
+    words = ChatbotResponse(verbal_ack="Sure.", user_intent=UserIntent(type=I.GRAB_OBJECT, object="the apple"))
+    model = Prescreening(words)
+    result = turn(DialogueEngine(kitchen, model), "anything")
+    assert result.backend == "early" and result.intents[0].data == {"object": "apple_1"}
+    assert model.requests == []
+
+
+def test_an_invalid_early_answer_goes_to_the_model_that_reads_prompts(kitchen: KB) -> None:
+    model = Prescreening(ChatbotResponse(verbal_ack=None, user_intent=None), grab("apple_1"))
+    result = turn(DialogueEngine(kitchen, model), "grab the apple")
+    assert result.backend == "llm" and result.intents[0].data == {"object": "apple_1"}
+    assert len(model.requests) == 1
+
+
+def test_what_the_rules_alone_do_not_understand_is_not_understood(kitchen: KB) -> None:
+    result = turn(DialogueEngine(kitchen), "how is the weather today?")
+    assert result.backend == "rules" and not result.understood
+    assert [i.intent for i in result.intents] == [I.RAW_USER_INPUT]
+    assert turn(DialogueEngine(kitchen), "pick up the cup").understood
+
+
+def test_a_model_twice_invalid_did_not_understand(kitchen: KB) -> None:
+    result = turn(DialogueEngine(kitchen, ScriptedModel(["nonsense", "nonsense"])), "grab it")
+    assert result.backend == "fallback" and not result.understood

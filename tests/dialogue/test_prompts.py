@@ -72,3 +72,8 @@ def test_intent_list_names_constants_and_keys() -> None:
 def test_repair_message_says_what_was_wrong() -> None:
     message = PromptSet.load().repair_message("object 'evil_1' is not an id")
     assert message.role == "user" and "object 'evil_1' is not an id" in message.content
+
+
+def test_the_system_prompt_explains_compound_commands(kitchen: KB) -> None:
+    system = PromptSet.load().messages(kitchen_context(kitchen))[0].content
+    assert '"user_intents"' in system and "order" in system

@@ -1,6 +1,16 @@
+import json
+
 import pytest
 
-from dialogue.schema import AnswerError, SchemaCandidates, extract_json, parse_answer, turn_schema
+from dialogue.schema import (
+    MAX_INTENTS,
+    AnswerError,
+    ChatbotResponse,
+    SchemaCandidates,
+    extract_json,
+    parse_answer,
+    turn_schema,
+)
 
 
 def test_turn_schema_has_closed_enums_of_candidate_ids() -> None:
@@ -41,3 +51,16 @@ def test_bad_answers_raise_answer_error_with_reason(content: str, message: str) 
 def test_non_object_json_is_an_answer_error() -> None:
     with pytest.raises(AnswerError):
         parse_answer("[1, 2] {3}")
+
+
+def test_an_ordered_list_of_intents_is_optional_and_bounded() -> None:
+    schema = turn_schema(SchemaCandidates(["cup_1"], ["p"], ["kitchen"]))
+    assert "user_intents" in schema["properties"] and "user_intents" not in schema["required"]
+    many = schema["properties"]["user_intents"]["anyOf"][0]
+    assert many["maxItems"] == MAX_INTENTS and many["items"] == schema["properties"]["user_intent"]["anyOf"][0]
+    two = '{"verbal_ack": "ok", "user_intent": null, "user_intents": [{"type": "a"}, {"type": "b"}]}'
+    assert [w.type for w in parse_answer(two).wishes()] == ["a", "b"]
+    assert [w.type for w in ChatbotResponse.model_validate({"user_intent": {"type": "a"}}).wishes()] == ["a"]
+    too_many = {"user_intents": [{"type": "a"}] * (MAX_INTENTS + 1)}
+    with pytest.raises(AnswerError, match="user_intents"):
+        parse_answer(json.dumps(too_many))

@@ -38,3 +38,23 @@ def test_no_intent_needs_a_reply(kitchen: KB) -> None:
     assert ground_answer(ChatbotResponse(verbal_ack="It is noon."), lex, "p").intents == ()
     with pytest.raises(AnswerError, match="both verbal_ack and user_intent are null"):
         ground_answer(ChatbotResponse(), lex, "p")
+
+
+def test_an_ordered_list_of_intents_is_grounded_in_order(kitchen: KB) -> None:
+    lex = Lexicon(build_snapshot(kitchen))
+    first = UserIntent(type=I.MOVE_TO, goal="table_1")
+    second = UserIntent(type=I.BRING_OBJECT, object="the cookbook", recipient="me")
+    got = ground_answer(ChatbotResponse(verbal_ack="ok", user_intent=first, user_intents=[first, second]), lex, "person_alice")
+    assert [(i.intent, i.data) for i in got.intents] == [
+        (I.MOVE_TO, {"goal": "table_1"}),
+        (I.BRING_OBJECT, {"object": "book_1", "recipient": "person_alice"}),
+    ]
+
+
+def test_a_bad_intent_anywhere_in_the_list_refuses_the_whole_answer(kitchen: KB) -> None:
+    lex = Lexicon(build_snapshot(kitchen))
+    good = UserIntent(type=I.MOVE_TO, goal="table_1")
+    with pytest.raises(AnswerError, match="not one of"):
+        ground_answer(ChatbotResponse(user_intents=[good, UserIntent(type="dance")]), lex, "p")
+    with pytest.raises(AnswerError, match="not the id"):
+        ground_answer(ChatbotResponse(user_intents=[good, UserIntent(type=I.GRAB_OBJECT, object="piano")]), lex, "p")

@@ -10,6 +10,7 @@ from __future__ import annotations
 import threading
 import time
 from collections.abc import Callable, Iterator
+from contextlib import suppress
 from http.server import BaseHTTPRequestHandler, ThreadingHTTPServer
 from typing import Any
 
@@ -185,3 +186,37 @@ def test_a_reader_stops_reading_the_store_at_its_budget(endless_store: str) -> N
         assert isinstance(error, QueryTimeout), error
         assert took < GENEROUS
         assert isinstance(timed(lambda: reader.find(["?x isOn ?y"], timeout=0.5))[0], QueryTimeout)
+
+
+def test_a_write_gets_in_between_continuous_overlapping_readers() -> None:
+    """Readers one after another, each within its budget, never leave the KB free: a write still
+    gets in within about one budget, since the reads queued before it give up at their
+    deadlines. Bound: ten budgets (a loaded machine), against unbounded if reads could overtake
+    a waiting write for ever."""
+    budget = 1.0
+    with KB() as kb:
+        kb += [f"thing_{i} isOn table_{i % 7}" for i in range(300)]
+        stop = threading.Event()
+        answered: list[int] = [0] * 6
+
+        def read(n: int) -> None:
+            while not stop.is_set():
+                with suppress(QueryTimeout):
+                    kb.find(["?a isOn ?t", "?b isOn ?t"], vars=["?t"], timeout=budget)
+                    answered[n] += 1
+
+        readers = [threading.Thread(target=read, args=(n,)) for n in range(len(answered))]
+        for reader in readers:
+            reader.start()
+        try:
+            for trial in range(3):
+                while sum(answered) <= trial:  # the readers are at it
+                    time.sleep(0.01)
+                start = time.monotonic()
+                kb.add([f"thing_1 isOn shelf_{trial}"])
+                assert time.monotonic() - start < 10 * budget
+        finally:
+            stop.set()
+            for reader in readers:
+                reader.join()
+        assert kb.find(["thing_1 isOn ?s"], timeout=GENEROUS) and sum(answered) > 0

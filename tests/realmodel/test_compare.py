@@ -21,7 +21,7 @@ def test_compare_runs_both_approaches_with_one_model(local_model: LlamaCppModel,
     assert len(lines) == len(CASES)
     (tmp_path / "cases.jsonl").write_text("\n".join(lines) + "\n")
     shutil.copytree(EVAL_DIR / "scenes", tmp_path / "scenes")
-    backend = Backend(local_model, False, "llamacpp:smollm2")
+    backend = Backend(local_model, "llamacpp:smollm2")
     comparison = compare(tmp_path / "cases.jsonl", "llamacpp:smollm2", deadline=20.0, backend=backend)
     summary = comparison.summary()
     assert summary["tutorial"]["total"] == summary["situated"]["total"] == len(CASES)

@@ -5,6 +5,7 @@ from __future__ import annotations
 import asyncio
 import time
 
+from dialogue.earlyack import AckDetector
 from dialogue.engine import DialogueEngine, EngineConfig
 from dialogue.intents import RAW_USER_INPUT
 from dialogue.llm.base import ChatRequest
@@ -71,3 +72,24 @@ def test_short_deadline_answers_on_time_and_frees_the_model(local_model: LlamaCp
         assert_grounded(result, snapshot, SPEAKER, "take the sponge")
     finally:
         kb.close()
+
+
+def test_a_streamed_answer_comes_in_pieces_and_its_ack_is_the_answers(local_model: LlamaCppModel) -> None:
+    kb = scene_kb("kitchen")
+    try:
+        engine = DialogueEngine(kb, local_model, EngineConfig(deadline=DEADLINE))
+        turn = engine.prepare(engine.ground(), "please bring me the apple", SPEAKER, (), None)
+    finally:
+        kb.close()
+    request = ChatRequest(engine.prompts.messages(turn.context), engine.schema_for(turn.context.snapshot, SPEAKER),
+                          turn.context)
+    pieces: list[str] = []
+    result = asyncio.run(local_model.chat_stream(request, DEADLINE, pieces.append))
+    assert len(pieces) > 1 and "".join(pieces) == result.content
+    answer = parse_answer(result.content)
+    acks: list[str] = []
+    detector = AckDetector(acks.append)
+    for piece in pieces:
+        detector.feed(piece)
+    expected = (answer.verbal_ack or "").strip()
+    assert acks == ([expected] if expected else [])

@@ -77,7 +77,7 @@ def test_compare_counts_what_resolution_fixes(cases: Path) -> None:
         }
 
     model = FunctionModel(answer, name="words")
-    comparison = compare(cases, "words", backend=Backend(model, False, "words"))
+    comparison = compare(cases, "words", backend=Backend(model, "words"))
     tutorial, situated = comparison.tutorial, comparison.situated
     assert (tutorial.report.passed, tutorial.ungrounded, tutorial.referents) == (0, 3, 3)
     assert situated.ungrounded == 0
@@ -106,3 +106,18 @@ def test_main_compare_argument_errors(cases: Path, capsys: pytest.CaptureFixture
         main([str(cases), "--hybrid"])
     assert main(["--compare", str(cases), "--llm", "nope"]) == 2
     assert "bad backend spec 'nope'" in capsys.readouterr().err
+
+
+def test_hybrid_runs_the_rules_first_on_the_engine_side_only(cases: Path) -> None:
+    def answer(request: ChatRequest) -> dict[str, object]:
+        return {"verbal_ack": "OK", "user_intent": None}
+
+    model = FunctionModel(answer, name="words")
+    comparison = compare(cases, "words", backend=Backend(model, "words"), hybrid=True)
+    assert comparison.llm == "words --hybrid"
+    # The tutorial asked the model for every case; the engine's rules understood all three.
+    assert len(model.requests) == 3 and all(r.schema is TUTORIAL_SCHEMA for r in model.requests)
+    assert {r.result.backend for r in comparison.situated.report.results} == {"rules"}
+    assert comparison.situated.report.claims_summary() == {"claimed": 3, "right": 3, "precision": 1.0}
+    row = next(line for line in format_comparison(comparison).splitlines() if line.startswith("rules claims right"))
+    assert row.split()[3:] == ["-", "3/3", "1.00"]

@@ -5,7 +5,10 @@ modules in its sys.modules. The fake reads `folder/config.json` at every load an
 test changes its behaviour between turns with `FakeControl.set(...)`, and appends what it did to
 `folder/events.jsonl` (loads, grammars, tokens generated, closes), read with `FakeControl.events()`.
 Its Llama generates tokens one by one, checking the stopping criterion after each like the real one,
-so the time-budget machinery is exercised for real; `crash` makes it die like native code does.
+so the time-budget machinery is exercised for real; `crash` makes it die like native code does. With
+`stream=True` it yields the answer in `tokens` pieces, one per token; like the real one it keeps the
+evaluated tokens (`input_ids[:n_tokens]`), so the prefix a next prompt shares is known, and `reset()`
+forgets them.
 """
 
 from __future__ import annotations
@@ -16,6 +19,7 @@ import signal
 import sys
 import time
 import types
+from collections.abc import Iterator
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -87,6 +91,8 @@ def install(folder_name: str) -> None:
                 raise ValueError(config["load_error"])
             template = config["metadata_template"]
             self.metadata = {"tokenizer.chat_template": template} if template else {}
+            self.input_ids: list[int] = []
+            self.n_tokens = 0
             _record(folder, "load", model_path=model_path, n_ctx=kwargs["n_ctx"], n_threads=kwargs["n_threads"])
 
         def token_eos(self) -> int:
@@ -99,11 +105,20 @@ def install(folder_name: str) -> None:
             return b"<eos>" if tokens == [2] else b"<bos>"
 
         def tokenize(self, text: bytes, add_bos: bool = True, special: bool = False) -> list[int]:
-            return list(range(len(text.split())))
+            return [sum(word) for word in text.split()]  # the same words are the same tokens
 
-        def create_completion(self, **kwargs: Any) -> dict[str, Any]:
+        def reset(self) -> None:
+            self.n_tokens = 0
+            _record(folder, "reset")
+
+        def create_completion(self, **kwargs: Any) -> Any:
             config = _config(folder)
             _maybe_crash(config, "generate")
+            self.input_ids = [*kwargs["prompt"], *range(1000, 1000 + config["tokens"])]
+            self.n_tokens = len(self.input_ids)
+            _record(folder, "completion", grammar=kwargs["grammar"] is not None, stream=kwargs["stream"])
+            if kwargs["stream"]:
+                return self._stream(config, kwargs)
             for n in range(1, config["tokens"] + 1):
                 time.sleep(config["per_token"])
                 if kwargs["stopping_criteria"]([n], None):
@@ -115,12 +130,27 @@ def install(folder_name: str) -> None:
                 "usage": {"completion_tokens": config["tokens"], "prompt_tokens": len(kwargs["prompt"])},
             }
 
+        def _stream(self, config: dict[str, Any], kwargs: dict[str, Any]) -> Iterator[dict[str, Any]]:
+            answer, tokens = config["answer"], config["tokens"]
+            size = -(-len(answer) // tokens)
+            for n in range(1, tokens + 1):
+                time.sleep(config["per_token"])
+                if kwargs["stopping_criteria"]([n], None):
+                    _record(folder, "generated", tokens=n)
+                    yield {"choices": [{"text": "", "finish_reason": "stop"}]}
+                    return
+                last = n == tokens
+                yield {"choices": [{"text": answer[(n - 1) * size : n * size],
+                                    "finish_reason": config["finish_reason"] if last else None}]}
+            _record(folder, "generated", tokens=tokens)
+
         def close(self) -> None:
             _record(folder, "close")
 
     class FakeFormatter:
         def __init__(self, **kwargs: Any) -> None:
             self.kwargs = kwargs
+            _record(folder, "formatter", template=kwargs["template"])
 
         def __call__(self, *, messages: list[dict[str, str]]) -> Any:
             prompt = " ".join(m["content"] for m in messages)

@@ -17,14 +17,20 @@ class FakeServer:
     requests: list[tuple[str, dict[str, Any]]] = field(default_factory=list)
     replies: list[tuple[int, Any]] = field(default_factory=list)
     delay: float = 0.0
+    #: The client's (host, port) of each request: one port for several requests is one connection.
+    peers: list[tuple[str, int]] = field(default_factory=list)
 
 
 @contextmanager
-def fake_server() -> Iterator[FakeServer]:
+def fake_server(keep_alive: bool = False) -> Iterator[FakeServer]:
+    """`keep_alive`: HTTP/1.1, connections stay open between requests (else one per request)."""
     state = FakeServer(url="")
 
     class Handler(BaseHTTPRequestHandler):
+        protocol_version = "HTTP/1.1" if keep_alive else "HTTP/1.0"
+
         def do_POST(self) -> None:
+            state.peers.append(self.client_address[:2])
             length = int(self.headers.get("Content-Length", "0"))
             body = json.loads(self.rfile.read(length) or b"{}")
             state.requests.append((self.path, body))

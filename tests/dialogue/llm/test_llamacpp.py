@@ -25,6 +25,7 @@ from dialogue.engine import DialogueEngine, EngineConfig
 from dialogue.intents import GRAB_OBJECT, RAW_USER_INPUT
 from dialogue.llm import llamacpp, spec
 from dialogue.llm.base import ChatModel, ModelError
+from dialogue.llm.hybrid import HybridModel
 from dialogue.llm.llamacpp import LlamaCppModel, LocalModelUnavailable
 from dialogue.llm.spec import SpecError, parse_spec
 from tests.dialogue.conftest import scene_kb
@@ -72,10 +73,10 @@ def test_llamacpp_path_spec_is_parsed_without_loading(gguf: Path, monkeypatch: p
     monkeypatch.setattr(spec, "llama_cpp_available", lambda: True)
     backend = parse_spec(f"llamacpp:{gguf}")
     assert isinstance(backend.model, LlamaCppModel) and isinstance(backend.model, ChatModel)
-    assert backend.model.path == gguf and not backend.model.loaded and not backend.hybrid
+    assert backend.model.path == gguf and not backend.model.loaded and backend.model.llm is backend.model
     assert backend.model.name == "llamacpp:model.gguf"
     hybrid = parse_spec(f"hybrid:llamacpp:{gguf}")
-    assert hybrid.hybrid and isinstance(hybrid.model, LlamaCppModel)
+    assert isinstance(hybrid.model, HybridModel) and isinstance(hybrid.model.inner, LlamaCppModel)
 
 
 def test_smollm2_spec_finds_the_packaged_file(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
@@ -87,9 +88,10 @@ def test_smollm2_spec_finds_the_packaged_file(tmp_path: Path, monkeypatch: pytes
     monkeypatch.setattr(llamacpp, "SMOLLM2_PACKAGE", "fake_smollm_pkg")
     monkeypatch.setattr(spec, "llama_cpp_available", lambda: True)
     backend = parse_spec("hybrid:llamacpp:smollm2")
-    assert isinstance(backend.model, LlamaCppModel) and backend.hybrid
-    assert backend.model.path == package / llamacpp.SMOLLM2_FILE
-    assert backend.model.name == "llamacpp:smollm2"
+    assert isinstance(backend.model, HybridModel)
+    inner = backend.model.inner
+    assert isinstance(inner, LlamaCppModel) and inner.path == package / llamacpp.SMOLLM2_FILE
+    assert inner.name == "llamacpp:smollm2"
 
 
 @pytest.mark.parametrize(
@@ -366,5 +368,67 @@ def test_stopping_the_service_stops_the_worker_of_the_model_it_built(
     services = start_services(Settings(scene="none", llm=f"llamacpp:{gguf}"))
     model = services.model
     assert isinstance(model, LlamaCppModel) and services.owns_model
-    services.stop()
+    asyncio.run(services.aclose())
     assert model.health()["worker"]["state"] == "closed"
+
+
+def test_a_streamed_completion_hands_out_its_text_in_order(model: LlamaCppModel, fake: FakeControl) -> None:
+    fake.set(tokens=7)
+    pieces: list[str] = []
+    streamed = asyncio.run(model.chat_stream(request(), 30, pieces.append))
+    assert len(pieces) == 7 and "".join(pieces) == streamed.content == GOOD
+    assert streamed.extra["eval_count"] == 7 and streamed.done_reason == "stop"
+    assert asyncio.run(model.chat(request(), 30)).content == GOOD  # the same answer unstreamed
+    assert [e["stream"] for e in fake.events("completion")] == [True, False]
+
+
+def test_a_streamed_generation_stops_at_the_deadline(model: LlamaCppModel, fake: FakeControl) -> None:
+    model.load()
+    fake.set(tokens=200, per_token=0.05)
+    pieces: list[str] = []
+    with pytest.raises(ModelError, match="within"):
+        asyncio.run(model.chat_stream(request(), 0.5, pieces.append))
+    fake.set(tokens=5, per_token=0.0)
+    assert asyncio.run(model.chat(request(), 30)).content == GOOD  # the worker is free again
+    assert fake.events("generated")[0]["tokens"] < 200 and len(pieces) < 200
+
+
+def test_a_crash_while_streaming_is_a_model_error(model: LlamaCppModel, fake: FakeControl) -> None:
+    fake.set(crash="segv")
+    with pytest.raises(ModelError, match="SIGSEGV"):
+        asyncio.run(model.chat_stream(request(), 30, lambda piece: None))
+    fake.set(crash=None)
+    assert asyncio.run(model.chat_stream(request(), 30, lambda piece: None)).content == GOOD
+
+
+def test_the_prompt_prefix_is_reused_unless_the_baseline_asks(gguf: Path, fake: FakeControl) -> None:
+    cached = fake_model(gguf, fake)
+    uncached = fake_model(gguf, fake, prefix_cache=False)
+    try:
+        (c1, c2), (u1, u2) = ([asyncio.run(m.chat(request(), 30)).extra for _ in range(2)]
+                              for m in (cached, uncached))
+    finally:
+        cached.close()
+        uncached.close()
+    assert c1["prompt_cached_count"] == 0 and c2["prompt_cached_count"] == c2["prompt_eval_count"] > 0
+    assert u1["prompt_cached_count"] == u2["prompt_cached_count"] == 0
+    assert len(fake.events("reset")) == 2  # only the baseline forgets its evaluated prompt
+
+
+def test_free_decoding_baseline_uses_no_grammar(gguf: Path, fake: FakeControl) -> None:
+    free = fake_model(gguf, fake, constrained=False)
+    try:
+        assert asyncio.run(free.chat(request(), 30)).content == GOOD
+    finally:
+        free.close()
+    assert fake.events("grammar") == [] and fake.events("completion")[0]["grammar"] is False
+
+
+def test_a_chat_template_can_be_given_for_a_gguf_without_one(gguf: Path, fake: FakeControl) -> None:
+    fake.set(metadata_template=None)
+    base = fake_model(gguf, fake, chat_template="{% for m in messages %}{{ m.content }}{% endfor %}")
+    try:
+        assert asyncio.run(base.chat(request(), 30)).content == GOOD
+    finally:
+        base.close()
+    assert fake.events("formatter")[0]["template"] == "{% for m in messages %}{{ m.content }}{% endfor %}"

@@ -1,5 +1,7 @@
 import asyncio
 
+import httpx
+import ollama
 import pytest
 
 from dialogue.llm.base import ModelError
@@ -78,3 +80,65 @@ def test_preload_sends_an_empty_chat_with_keep_alive() -> None:
     assert path == "/api/chat" and body["messages"] == [] and body["keep_alive"] == "1h"
     with pytest.raises(ModelError, match="unreachable"):
         asyncio.run(OllamaModel("gemma3:1b", free_port_url()).preload(timeout=2))
+
+
+def test_one_client_for_every_turn_closed_by_aclose() -> None:
+    seen: list[str] = []
+
+    def answer(req: httpx.Request) -> httpx.Response:
+        seen.append(req.url.path)
+        return httpx.Response(200, json=reply(ANSWER))
+
+    model = OllamaModel("gemma3:1b", "http://ollama.test:11434", transport=httpx.MockTransport(answer))
+
+    async def turns() -> ollama.AsyncClient:
+        await model.preload(timeout=5)
+        for _ in range(3):
+            assert (await model.chat(request(), timeout=5)).content == ANSWER
+        client = model.client.get()
+        await model.aclose()
+        return client
+
+    client = asyncio.run(turns())
+    assert seen == ["/api/chat"] * 4 and model.client.made == 1
+    assert client._client.is_closed and not model.client.open
+
+
+def test_turns_share_one_connection_to_the_server() -> None:
+    with fake_server(keep_alive=True) as server:
+        server.replies.extend([(200, reply(ANSWER))] * 3)
+        model = OllamaModel("gemma3:1b", server.url)
+
+        async def turns() -> None:
+            for _ in range(3):
+                await model.chat(request(), timeout=5)
+            await model.aclose()
+
+        asyncio.run(turns())
+    assert len(server.peers) == 3 and len(set(server.peers)) == 1
+
+
+@pytest.mark.parametrize(("status", "reachable"), [(200, True), (404, True), (500, False)])
+def test_probe_lists_the_models_with_the_turns_client(status: int, reachable: bool) -> None:
+    def answer(req: httpx.Request) -> httpx.Response:
+        if req.url.path == "/api/tags":
+            return httpx.Response(status, json={"models": []} if status == 200 else {"error": "no"})
+        return httpx.Response(200, json=reply(ANSWER))
+
+    model = OllamaModel("gemma3:1b", "http://ollama.test:11434", transport=httpx.MockTransport(answer))
+
+    async def probe_and_turn() -> dict[str, object]:
+        health = await model.probe(1.0)
+        await model.chat(request(), timeout=5)
+        await model.aclose()
+        return health
+
+    health = asyncio.run(probe_and_turn())
+    assert health == {"remote": True, "reachable": reachable,
+                      "detail": f"http://ollama.test:11434/api/tags: HTTP {status}"}
+    assert model.client.made == 1
+
+
+def test_probe_of_an_unreachable_server() -> None:
+    health = asyncio.run(OllamaModel("gemma3:1b", free_port_url()).probe(1.0))
+    assert health["remote"] is True and health["reachable"] is False and "/api/tags" in str(health["detail"])

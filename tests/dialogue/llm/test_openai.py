@@ -1,5 +1,6 @@
 import asyncio
 
+import httpx
 import pytest
 
 from dialogue.llm.base import ModelError
@@ -64,3 +65,63 @@ def test_unreachable_and_timeout() -> None:
         server.replies.append((200, reply(ANSWER)))
         with pytest.raises(ModelError, match="within"):
             asyncio.run(OpenAIModel("m", server.url + "/v1").chat(request(), timeout=0.2))
+
+
+def test_one_client_for_every_turn_closed_by_aclose() -> None:
+    seen: list[httpx.Request] = []
+
+    def answer(req: httpx.Request) -> httpx.Response:
+        seen.append(req)
+        return httpx.Response(200, json=reply(ANSWER))
+
+    model = OpenAIModel("m", "http://llm.test/v1", transport=httpx.MockTransport(answer))
+
+    async def turns() -> httpx.AsyncClient:
+        for _ in range(3):
+            assert (await model.chat(request(), timeout=5)).content == ANSWER
+        client = model.client.get()
+        await model.aclose()
+        return client
+
+    client = asyncio.run(turns())
+    assert len(seen) == 3 and model.client.made == 1
+    assert client.is_closed and not model.client.open
+
+
+def test_turns_share_one_connection_to_the_server() -> None:
+    with fake_server(keep_alive=True) as server:
+        server.replies.extend([(200, reply(ANSWER))] * 3)
+        model = OpenAIModel("m", server.url + "/v1")
+
+        async def turns() -> None:
+            for _ in range(3):
+                await model.chat(request(), timeout=5)
+            await model.aclose()
+
+        asyncio.run(turns())
+    assert len(server.peers) == 3 and len(set(server.peers)) == 1
+
+
+@pytest.mark.parametrize(("status", "reachable"), [(200, True), (404, True), (503, False)])
+def test_probe_lists_the_models_with_the_turns_client(status: int, reachable: bool) -> None:
+    def answer(req: httpx.Request) -> httpx.Response:
+        if req.url.path == "/v1/models":
+            return httpx.Response(status, json={"data": []})
+        return httpx.Response(200, json=reply(ANSWER))
+
+    model = OpenAIModel("m", "http://llm.test/v1", transport=httpx.MockTransport(answer))
+
+    async def probe_and_turn() -> dict[str, object]:
+        health = await model.probe(1.0)
+        await model.chat(request(), timeout=5)
+        await model.aclose()
+        return health
+
+    health = asyncio.run(probe_and_turn())
+    assert health == {"remote": True, "reachable": reachable, "detail": f"http://llm.test/v1/models: HTTP {status}"}
+    assert model.client.made == 1
+
+
+def test_probe_of_an_unreachable_server() -> None:
+    health = asyncio.run(OpenAIModel("m", free_port_url() + "/v1").probe(1.0))
+    assert health["remote"] is True and health["reachable"] is False and "/v1/models" in str(health["detail"])

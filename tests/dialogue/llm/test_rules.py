@@ -25,3 +25,14 @@ def test_rules_model_says_when_it_did_not_understand(kitchen: KB) -> None:
     context = TurnContext("the moon is made of cheese", "person_alice", build_snapshot(kitchen))
     result = asyncio.run(RulesModel().chat(ChatRequest((), {}, context), timeout=1))
     assert not result.understood and parse_answer(result.content).user_intent is None
+
+
+def test_a_compound_request_answers_every_intent_in_order(kitchen: KB) -> None:
+    context = TurnContext("take the sponge and put it on the shelf", "person_alice", build_snapshot(kitchen))
+    answer = parse_answer(asyncio.run(RulesModel().chat(ChatRequest((), {}, context), timeout=1)).content)
+    assert answer.user_intents is not None
+    assert [(w.type, w.object, w.recipient) for w in answer.user_intents] == [
+        ("__intent_grab_object__", "sponge_1", None),
+        ("__intent_place_object__", "sponge_1", "shelf_1"),
+    ]
+    assert answer.user_intent == answer.user_intents[0]

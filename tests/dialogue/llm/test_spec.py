@@ -1,5 +1,6 @@
 import pytest
 
+from dialogue.llm.hybrid import HybridModel
 from dialogue.llm.ollama import OllamaModel
 from dialogue.llm.openai import OpenAIModel
 from dialogue.llm.rules import RulesModel
@@ -8,7 +9,7 @@ from dialogue.llm.spec import SpecError, parse_spec
 
 def test_rules() -> None:
     backend = parse_spec("rules")
-    assert isinstance(backend.model, RulesModel) and not backend.hybrid
+    assert isinstance(backend.model, RulesModel) and backend.spec == "rules"
 
 
 def test_ollama_specs() -> None:
@@ -27,9 +28,11 @@ def test_ollama_specs() -> None:
 
 def test_openai_and_hybrid_specs() -> None:
     backend = parse_spec("hybrid:openai:qwen2.5@http://h:8080/v1")
-    assert backend.hybrid and isinstance(backend.model, OpenAIModel)
-    assert (backend.model.model, backend.model.base_url) == ("qwen2.5", "http://h:8080/v1")
-    assert backend.model.options.response_format == "json_schema"
+    assert isinstance(backend.model, HybridModel) and isinstance(backend.model.inner, OpenAIModel)
+    inner = backend.model.inner
+    assert (inner.model, inner.base_url) == ("qwen2.5", "http://h:8080/v1")
+    assert inner.options.response_format == "json_schema"
+    assert backend.model.llm is inner and backend.spec == "hybrid:openai:qwen2.5@http://h:8080/v1"
     other = parse_spec("openai-json:m@http://h/v1").model
     assert isinstance(other, OpenAIModel) and other.options.response_format == "json_object"
 

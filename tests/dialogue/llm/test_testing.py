@@ -28,3 +28,15 @@ def test_function_model_sync_and_async() -> None:
 
     assert asyncio.run(FunctionModel(echo).chat(request(), 1)).content == "grab the cup"
     assert asyncio.run(FunctionModel(later).chat(request(), 1)).understood is False
+
+
+def test_scripted_model_streams_its_answer_in_pieces() -> None:
+    model = ScriptedModel([ANSWER, ModelError("down")], chunk_size=10)
+    pieces: list[str] = []
+    result = asyncio.run(model.chat_stream(request(), 1, pieces.append))
+    assert result.content == ANSWER == "".join(pieces)
+    assert [len(p) for p in pieces[:-1]] == [10] * (len(pieces) - 1) and len(pieces) == -(-len(ANSWER) // 10)
+    with pytest.raises(ModelError, match="down"):
+        asyncio.run(model.chat_stream(request(), 1, pieces.append))
+    with pytest.raises(ValueError, match="chunk_size"):
+        ScriptedModel(chunk_size=0)

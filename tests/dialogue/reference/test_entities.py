@@ -15,9 +15,10 @@ BASE = [
     "person_ann rdf:type Human", 'person_ann rdfs:label "Ann"',
 ]  # fmt: skip
 SUBJECTS = ["thing_0", "thing_1", "thing_2", "thing_3", "person_bo", "table_1", "kitchen", "hall", "myself", "red"]
-OBJECTS = ["thing_0", "thing_1", "table_1", "kitchen", "hall", "red", "white", "person_ann", "person_bo"]
+OBJECTS = ["thing_0", "thing_1", "table_1", "kitchen", "hall", "red", "grey", "person_ann", "person_bo"]
 CLASSES = ["dbr:Cup", "dbr:Book", "dbr:Apple", "Remote", "Human", "ZoneOfInterest", "dbr:Table_(furniture)"]
-LABELS = ['"red thing"', '"old cup"', '"Bo"', '"rouge"@fr', '"mug"@en']
+# Synonyms ("fridge" = "refrigerator", "grey" = "gray") and a closed compound ("teacup") among them.
+LABELS = ['"red thing"', '"old cup"', '"Bo"', '"rouge"@fr', '"mug"@en', '"kitchen fridge"', '"teacup"']
 PROPERTIES = ["isOn", "isIn", "hasColor", "belongsTo", "looksAt", "holds"]
 
 statement = st.one_of(
@@ -43,6 +44,7 @@ def _lexicon_state(lex: Lexicon) -> tuple[object, ...]:
         {w: sorted((n.words, n.entity, n.source) for n in names) for w, names in lex._by_words.items()},
         dict(lex._lengths),
         {w: sorted(ids) for w, ids in lex.by_label_word.items()},
+        dict(lex.vocabulary),
     )
 
 
@@ -114,3 +116,22 @@ def test_a_lexicon_that_missed_snapshots_catches_up_from_their_steps() -> None:
     caught_up = Lexicon(latest, first)
     assert caught_up._entries["kitchen"] is first._entries["kitchen"]  # updated from the steps, not rebuilt
     assert _lexicon_state(caught_up) == _lexicon_state(Lexicon(build_snapshot(kb)))
+
+
+def test_an_updated_lexicon_knows_the_new_words_and_forgets_the_old() -> None:
+    kb = KB()
+    kb.update([*BASE, "cup_1 rdf:type Artifact", 'cup_1 rdfs:label "teacup"', "cup_1 isIn kitchen"])
+    grounder, lexicons = Grounder(), LexiconCache()
+    first = lexicons.get(grounder.snapshot(kb))
+    assert first.knows("teacup") and not first.knows("refrigerator")
+    kb.apply(add=['cup_1 rdfs:label "kitchen fridge"'], remove=['cup_1 rdfs:label "teacup"'])
+    snapshot = grounder.snapshot(kb)
+    assert snapshot.changed_since(first.snapshot.revision) == {"cup_1"}  # the update path, not a rebuild
+    lex = lexicons.get(snapshot)
+    assert lex.knows("fridges") and lex.knows("refrigerator") and not lex.knows("teacup")
+    assert {n.entity for n in lex.names_at(["refrigerator"], 0)} == {"cup_1"}
+    assert lex.names_at(["tea", "cup"], 0) == [] and "kitchen" in lex.by_label_word
+    kb.apply(add=['cup_1 rdfs:label "teacup"'], remove=['cup_1 rdfs:label "kitchen fridge"'])
+    lex = lexicons.get(grounder.snapshot(kb))
+    assert [(n.entity, n.words) for n in lex.names_at(["tea", "cups"], 0)] == [("cup_1", ("tea", "cups"))]
+    assert not lex.knows("fridge") and lex.knows("kitchen")  # still the zone's name

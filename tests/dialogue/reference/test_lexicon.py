@@ -35,3 +35,34 @@ def test_unchanged_entities_are_reused_across_revisions(office: KB) -> None:
     second = cache.get(build_snapshot(office))
     assert second is not first and "black" in second.attributes["laptop_1"]
     assert second.attributes["stapler_1"] is first.attributes["stapler_1"]
+
+
+def test_plurals_are_noun_lemmas() -> None:
+    # A suffix rule made "knive", "shelve" and "buse"; function words ending in -s stay as they are.
+    assert [singular(w) for w in ("knives", "shelves", "buses", "dishes", "was", "this", "has")] == [
+        "knife", "shelf", "bus", "dish", "was", "this", "has",
+    ]  # fmt: skip
+
+
+def test_synonyms_name_the_kbs_things(office: KB) -> None:
+    office.update(["fridge_1 rdf:type Artifact", 'fridge_1 rdfs:label "kitchen fridge"', "myself sees fridge_1"])
+    lex = Lexicon(build_snapshot(office))
+    assert {n.entity for n in lex.names_at(["refrigerator"], 0)} == {"fridge_1"}
+    assert {n.entity for n in lex.names_at(["kitchen", "refrigerator"], 0)} == {"fridge_1"}
+    assert "gray" in lex.attributes["laptop_1"] and "grey" in lex.attributes["laptop_1"]
+
+
+def test_how_many_counts_irregular_plurals(office: KB) -> None:
+    from tests.dialogue.rules.test_interpret import say
+
+    office.update([f"{k} rdf:type Artifact" for k in ("knife_1", "knife_2")])
+    office.update([f'{k} rdfs:label "knife"' for k in ("knife_1", "knife_2")])
+    office.update([f"myself sees {k}" for k in ("knife_1", "knife_2")])
+    reply = say(office, "how many knives do you see").reply
+    assert "2" in reply or "two" in reply, reply
+
+
+def test_a_closed_compound_said_apart_names_the_thing(office: KB) -> None:
+    office.update(["box_1 rdf:type Artifact", 'box_1 rdfs:label "toolbox"', "myself sees box_1"])
+    lex = Lexicon(build_snapshot(office))
+    assert [(n.entity, n.words) for n in lex.names_at(["tool", "boxes"], 0)] == [("box_1", ("tool", "boxes"))]

@@ -11,6 +11,7 @@ from contextlib import AbstractContextManager
 import pytest
 
 from kb import KbError
+from kb.errors import TooManyRows
 from kb.sparqlstore.remote import RemoteKB
 from tests.conftest import Replica
 from tests.kb.test_events import Recorder, wait_until
@@ -57,3 +58,23 @@ def test_active_concepts_are_polled(replicas: Replicas) -> None:
         assert seen == [["cup_1"]]
         replica.reader.remove("cup_1 rdf:type ActiveConcept")
         assert seen == [["cup_1"], []]
+
+
+def test_a_replica_subscription_is_bounded_like_the_writers(replicas: Replicas) -> None:
+    with replicas() as replica:
+        reader, writer = replica.reader, replica.writer
+        writer.add([f"thing_{i} isOn table_1" for i in range(5)])
+        with pytest.raises(TooManyRows, match="more than 3 rows"):
+            reader.subscribe("?x isOn ?t", Recorder(), max_rows=3)
+        rec, errors = Recorder(), Recorder()
+        reader.subscribe(["?x isOn ?t", "?t rdf:type Table"], rec, max_rows=6, timeout=30.0,
+                         on_error=errors)
+        writer.add("table_1 rdf:type Table")
+        reader.settle()
+        assert len(rec.take()) == 1 and errors.calls == []
+        writer.add(["thing_5 isOn table_1", "thing_6 isOn table_1"])  # seven rows: past the cap
+        reader.settle()
+        assert rec.calls == [] and len(errors.calls) == 1 and isinstance(errors.calls[0], TooManyRows)
+        writer.add("thing_7 isOn table_1")
+        reader.settle()
+        assert rec.calls == [] and len(errors.calls) == 1  # ended: no longer evaluated

@@ -297,3 +297,7 @@ def test_a_closed_replica_says_so(pair: Replica) -> None:
     reader.close()
     with pytest.raises(StoreUnavailable, match="closed"):
         reader["myself sees ?o"]
+
+
+def test_the_summary_is_the_writers(pair: Replica) -> None:
+    assert pair.reader.summary() == pair.writer.summary()

@@ -1,0 +1,59 @@
+"""Hybrid: the offline rules first, another model only for what they do not understand.
+
+A wrapper model, like pydantic-ai's FallbackModel: it composes two backends instead of a flag
+threaded through the engine. The engine asks it `prescreen` (the rules' answer, no prompt built:
+as fast as the rules alone) and sends the turns it did not answer to `llm`, the inner model. Used on
+its own, `chat` does both steps in order. Everything else (preloading, the doctor's check, closing)
+is the inner model's.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from dialogue.llm.base import ChatModel, ChatRequest, ChatResult, EarlyAnswer, SelfCheck, TurnContext
+from dialogue.llm.rules import RulesModel
+
+
+class HybridModel(ChatModel):
+    def __init__(self, inner: ChatModel, rules: RulesModel | None = None) -> None:
+        if inner.llm is None:
+            # Rules behind rules would only ever answer "not understood" twice.
+            raise ValueError(f"hybrid needs a model that reads prompts behind the rules, not {inner.name!r}")
+        self.inner = inner
+        self.rules = rules or RulesModel()
+
+    @property
+    def name(self) -> str:
+        return f"hybrid:{self.inner.name}"
+
+    @property
+    def llm(self) -> ChatModel | None:
+        return self.inner.llm
+
+    def prescreen(self, context: TurnContext) -> EarlyAnswer | None:
+        return self.rules.prescreen(context)
+
+    async def chat(self, request: ChatRequest, timeout: float) -> ChatResult:
+        # A repair request follows the inner model's own invalid answer: it is the inner model's.
+        if not request.repair:
+            first = await self.rules.chat(request, timeout)
+            if first.understood:
+                return first
+        return await self.inner.chat(request, timeout)
+
+    @property
+    def setup_hint(self) -> str:
+        return self.inner.setup_hint
+
+    async def self_check(self, timeout: float) -> SelfCheck | None:
+        return await self.inner.self_check(timeout)
+
+    async def probe(self, timeout: float) -> dict[str, Any]:
+        return await self.inner.probe(timeout)
+
+    async def preload(self) -> None:
+        await self.inner.preload()
+
+    async def aclose(self) -> None:
+        await self.inner.aclose()

@@ -1,0 +1,153 @@
+"""Open-world reference: a phrase names the things its head noun names, unless a known fact says no.
+
+Used when no entity accounts for every word of a phrase ("the salt box", "the bottle of water on the
+table", "the knife on the cutting board" with no `isOn` fact for the knife). The KB is an open world:
+a modifier it cannot evaluate (a word it does not know, a relation with no fact either way) neither
+confirms nor eliminates a candidate; a modifier that contradicts a known fact (the cup is red, not
+green; the cup is on the shelf, not the table) eliminates it. Modifiers that hold are evidence: among
+several candidates, those with the most confirmed modifiers are kept, the rest asked about.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Collection, Sequence
+from dataclasses import dataclass
+
+from dialogue.reference.grounding import Entity, Kind
+from dialogue.reference.lexicon import DETERMINERS, Lexicon, norm, phrase, tokens
+from dialogue.reference.synonyms import synonyms
+from dialogue.rules.words import COLOURS, word_set
+
+#: Words that end the core noun phrase and start a modifier ("the box *on* the table", "the coke
+#: *that* is in the kitchen", "a glass *of* water").
+_BOUNDARY = word_set(
+    "of from on in at inside into onto off near by beside under underneath below above behind next close "
+    "to towards for with without that which who whose where belonging between against opposite"
+)
+#: Prepositions of a modifier whose object is the thing's support or zone.
+_LOCATED = word_set("on in at inside into onto off from under underneath")
+#: Nouns naming a part or side of something: "the head of the table", "the far end of the room"
+#: name the table and the room.
+_PARTS = word_set(
+    "head end side center centre middle top bottom corner edge front back left right rear part area spot"
+)
+#: Qualifiers of position or size the KB does not model: never a head, never evidence.
+_QUALIFIERS = word_set(
+    "left right front back near nearest closest far farthest furthest big bigger biggest small smaller "
+    "smallest large larger largest little other first second third last middle top bottom hand down up "
+    "upper lower main"
+)
+_SKIP = (DETERMINERS - _BOUNDARY) | word_set("please either is are was were be being it")
+#: Coordinated or quantified phrases name several things: never one by its head ("the cereals and
+#: the milk", "both cups").
+_SEVERAL = word_set("and or both all every each")
+
+
+@dataclass(frozen=True)
+class _Phrase:
+    core: tuple[str, ...]
+    #: (preposition, its noun phrase) for each modifier after the core.
+    modifiers: tuple[tuple[str, tuple[str, ...]], ...]
+
+
+def _split(words: Sequence[str]) -> _Phrase:
+    words = [w for w in words if w not in _SKIP]
+    core: list[str] = []
+    i = 0
+    while i < len(words) and (words[i] not in _BOUNDARY or not core):
+        if words[i] not in _BOUNDARY and words[i] not in DETERMINERS:
+            core.append(words[i])
+        i += 1
+    mods: list[tuple[str, tuple[str, ...]]] = []
+    while i < len(words):
+        prep, i = words[i], i + 1
+        np: list[str] = []
+        while i < len(words) and words[i] not in _BOUNDARY:
+            np.append(words[i])
+            i += 1
+        if np:
+            mods.append((prep, tuple(np)))
+    core_words = tuple(w for w in core if w not in _QUALIFIERS) or tuple(core)
+    # "the head of the table": the part's owner is the head.
+    if core_words and core_words[-1] in _PARTS and mods and mods[0][0] == "of":
+        return _split(mods[0][1] + tuple(w for p, np in mods[1:] for w in (p, *np)))
+    return _Phrase(core_words, tuple(mods))
+
+
+def _colours(entity: Entity) -> frozenset[str]:
+    said = {w for label in entity.labels for w in tokens(label) if w in COLOURS}
+    if entity.colour:
+        said |= {w for w in tokens(entity.colour) if w in COLOURS}
+    return frozenset(said)
+
+
+def _named(lexicon: Lexicon, np: Sequence[str]) -> set[str]:
+    """Entities whose name ends the noun phrase (its head), whatever their kind; failing that, those
+    a more general word for the head names ("the paperback": a book)."""
+    found: set[str] = set()
+    for start in range(len(np)):
+        for name in lexicon.names_at(np, start):
+            if start + len(name.words) == len(np):
+                found.add(name.entity)
+    if not found and np:
+        for general in synonyms(phrase).kind_of(phrase(np[-1])):
+            found |= _named(lexicon, general)
+    return found
+
+
+def _entities(lexicon: Lexicon, np: Sequence[str]) -> list[Entity]:
+    return [e for eid in _named(lexicon, np) if (e := lexicon.snapshot.get(eid)) is not None]
+
+
+def resolve_head(lexicon: Lexicon, words: Sequence[str], kinds: Collection[Kind]) -> list[Entity]:
+    """Entities of `kinds` the phrase's head noun names that no modifier contradicts, best first."""
+    if _SEVERAL & set(words):
+        return []
+    phrase = _split(words)
+    if not phrase.core:
+        return []
+    snapshot = lexicon.snapshot
+    heads = [
+        e for eid in _named(lexicon, phrase.core) if (e := snapshot.get(eid)) is not None and e.kind in kinds
+    ]
+    scored: list[tuple[int, Entity]] = []
+    for entity in heads:
+        score = _evidence(lexicon, entity, phrase)
+        if score is not None:
+            scored.append((score, entity))
+    if not scored:
+        return []
+    best = max(s for s, _ in scored)
+    return snapshot.in_order(e for s, e in scored if s == best)
+
+
+def _evidence(lexicon: Lexicon, entity: Entity, phrase: _Phrase) -> int | None:
+    """How many modifiers hold for the entity, or None when one contradicts a known fact."""
+    attrs = lexicon.attributes.get(entity.id, frozenset())
+    colours = _colours(entity)
+    score = 0
+    for word in norm(phrase.core[:-1]):
+        people = {e.id for e in _entities(lexicon, (word,)) if e.kind == "person"}
+        if word in attrs:
+            score += 1
+        elif word in COLOURS and colours:
+            return None  # "the green cup" when the cup is known to be red
+        elif people and entity.owner is not None:
+            if entity.owner not in people:
+                return None  # "Dan's mug" when the mug is known to be Bob's
+            score += 1
+    for prep, np in phrase.modifiers:
+        if prep not in _LOCATED:
+            continue
+        places = _entities(lexicon, np)
+        if not places:
+            continue  # a place the KB does not know: nothing to check
+        known = {p.id for p in places if p.kind != "zone"}, {p.id for p in places if p.kind == "zone"}
+        for fact, candidates in ((entity.support, known[0]), (entity.zone, known[1])):
+            if fact is None or not candidates:
+                continue
+            if fact in candidates:
+                score += 1
+            else:
+                return None  # "the cup on the table" when the cup is known to be on the shelf
+    return score

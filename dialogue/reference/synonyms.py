@@ -1,0 +1,69 @@
+"""Other ways of saying a name: synonyms and kinds, as data (`dialogue/reference/lexicon.txt`).
+
+The file is read once, on first use. Phrases are normalised by the caller's function (the lexicon's
+noun lemmas), so "fridges" and "refrigerators" meet.
+"""
+
+from __future__ import annotations
+
+from collections import defaultdict
+from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass
+from functools import lru_cache
+from importlib import resources
+
+Phrase = tuple[str, ...]
+Normaliser = Callable[[str], Phrase]
+
+
+class SynonymError(ValueError):
+    """A line of the synonyms file that is not a group; the message names the line."""
+
+
+@dataclass(frozen=True)
+class Synonyms:
+    #: Each phrase to the other phrases that may name what it names.
+    others: Mapping[Phrase, tuple[Phrase, ...]]
+    #: A kind to the more general names of it ("paperback" -> "book"); used only when nothing has
+    #: the specific name, so "the novel" still means the thing labelled "novel".
+    general: Mapping[Phrase, tuple[Phrase, ...]]
+
+    def of(self, phrase: Sequence[str]) -> tuple[Phrase, ...]:
+        return self.others.get(tuple(phrase), ())
+
+    def kind_of(self, phrase: Sequence[str]) -> tuple[Phrase, ...]:
+        return self.general.get(tuple(phrase), ())
+
+
+def parse(text: str, normalise: Normaliser) -> Synonyms:
+    others: dict[Phrase, list[Phrase]] = defaultdict(list)
+    general: dict[Phrase, list[Phrase]] = defaultdict(list)
+    for n, raw in enumerate(text.splitlines(), 1):
+        line = raw.split("#", 1)[0].strip()
+        if not line:
+            continue
+        if "<" in line:
+            kinds, _, wider = line.partition("<")
+            specific = [normalise(w) for w in kinds.split()]
+            target = normalise(wider)
+            if not specific or not target or "<" in wider or "=" in line:
+                raise SynonymError(f"line {n}: expected 'kind kind < general', got {raw!r}")
+            for kind in specific:
+                general[kind].append(target)
+            continue
+        group = [normalise(p) for p in line.split("=")]
+        if len(group) < 2 or not all(group):
+            raise SynonymError(f"line {n}: expected 'a = b [= c ...]', got {raw!r}")
+        for phrase in group:
+            others[phrase].extend(p for p in group if p != phrase)
+    return Synonyms(
+        {k: tuple(dict.fromkeys(v)) for k, v in others.items()},
+        {k: tuple(dict.fromkeys(v)) for k, v in general.items()},
+    )
+
+
+@lru_cache(maxsize=4)
+def synonyms(normalise: Normaliser) -> Synonyms:
+    """The packaged synonyms, normalised with `normalise` (read on first use)."""
+    text = resources.files("dialogue.reference").joinpath("lexicon.txt").read_text(encoding="utf-8")
+    return parse(text, normalise)

@@ -1,0 +1,142 @@
+"""Compound requests: one utterance, several commands in order ("go to the kitchen and take the plate").
+
+An utterance is cut at "and", "then", "after that" or a comma when what follows starts with a verb
+of the grammar, and before an imperative verb that starts a new command without any conjunction
+("go to the bathroom take the rag"). Words only: what each part means is decided by the interpreter.
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass
+
+from dialogue.reference.resolution import content_words
+from dialogue.rules.words import (
+    COMMAND_VERBS,
+    GREETINGS,
+    NO_INTENT_VERBS,
+    QUOTED,
+    Words,
+    base_verb,
+    normalise,
+    starts,
+    strip_politeness,
+    strip_vocative,
+    word_set,
+)
+
+_TOKEN = re.compile(r"[a-z0-9]+(?:'[a-z]+)?|,|;")
+_CONJUNCTIONS = word_set("and then , ; afterwards")
+#: Verbs that start a new command even with no conjunction before them, when followed by one of
+#: `_OBJECT_START` ("go to the bathroom take the rag"): never nouns in a command's phrases.
+_BARE_VERBS = word_set("take bring go put place grab fetch get find search give open move")
+_OBJECT_START = word_set("the a an my your his her this that these those it them me us to into some")
+#: Words after which a verb continues the same command ("you take", "to take", "go get").
+_NO_CUT_AFTER = word_set(
+    "to you i we and then please can could would will go come let just also should must not don't never "
+    "us me robot or but if when while before after so and the a an my your his her this that some"
+) | COMMAND_VERBS
+
+
+@dataclass(frozen=True)
+class Part:
+    text: str
+    #: The verb the part starts with (None for a preamble such as "thanks" or "hello").
+    verb: str | None
+    #: The part's verb is one the robot has no intent for ("find", "turn on"), see NO_INTENT_VERBS.
+    no_intent: bool
+
+
+def _verb(text: str) -> str | None:
+    words = strip_politeness(normalise(text))
+    for greeting in sorted(GREETINGS, key=len, reverse=True):  # "hey robot take the book"
+        if starts(words, greeting) and len(words) > len(greeting):
+            words = strip_politeness(words[len(greeting) :])
+            break
+    words = strip_vocative(words)
+    if not words:
+        return None
+    verb = base_verb(words[0])
+    return verb if verb in COMMAND_VERBS or verb in NO_INTENT_VERBS else None
+
+
+def conjuncts(text: str) -> list[Part]:
+    """The commands of a compound request in order, or [] when the text is one request."""
+    if QUOTED.search(text):  # "say 'stop and wait' to Tom": the quote is one text
+        return []
+    lowered = text.lower().replace("\u2019", "'")
+    toks = [(m.group(), m.start(), m.end()) for m in _TOKEN.finditer(lowered)]
+    cuts: list[tuple[int, int]] = []  # (index of the first word of the new part, index after the cut)
+    for i, (word, _, _) in enumerate(toks):
+        if i == 0:
+            continue
+        if word in _CONJUNCTIONS:
+            j = i
+            while j < len(toks) and toks[j][0] in _CONJUNCTIONS:
+                j += 1
+            if j < len(toks) and (not cuts or cuts[-1][1] <= i):
+                cuts.append((i, j))
+        elif word in _BARE_VERBS and toks[i - 1][0] not in _NO_CUT_AFTER | _CONJUNCTIONS:
+            nxt = toks[i + 1][0] if i + 1 < len(toks) else ""
+            if nxt in _OBJECT_START:
+                cuts.append((i, i))
+    if not cuts:
+        return []
+    spans: list[tuple[int, int]] = []  # token ranges of the parts
+    start = 0
+    for end, resume in cuts:
+        spans.append((start, end))
+        start = resume
+    spans.append((start, len(toks)))
+    parts: list[tuple[int, int]] = []
+    for s, e in spans:
+        if s >= e:
+            continue
+        piece = text[toks[s][1] : toks[e - 1][2]]
+        if parts and _verb(piece) is None:  # "the cereals and the milk": not a new command
+            parts[-1] = (parts[-1][0], e)
+        else:
+            parts.append((s, e))
+    if len(parts) < 2:
+        return []
+    out = []
+    for s, e in parts:
+        piece = text[toks[s][1] : toks[e - 1][2]].strip(" ,;")
+        verb = _verb(piece)
+        out.append(Part(piece, verb, verb in NO_INTENT_VERBS))
+    return out
+
+
+def alternatives(words: Words) -> list[Words]:
+    """ "an apple or an orange" -> ["an apple", "an orange"]; [] without "or"."""
+    if "or" not in words:
+        return []
+    out: list[Words] = [()]
+    for w in words:
+        if w == "or":
+            out.append(())
+        else:
+            out[-1] = (*out[-1], w)
+    return out if all(content_words(t) for t in out) else []
+
+
+def coordinated(words: Words) -> list[Words]:
+    """ "the cereals and the milk" -> ["the cereals", "the milk"]; [] when there is no "and"."""
+    if "and" not in words:
+        return []
+    out: list[Words] = []
+    current: list[str] = []
+    for w in words:
+        if w == "and":
+            out.append(tuple(current))
+            current = []
+        else:
+            current.append(w)
+    out.append(tuple(current))
+    return out if all(content_words(t) for t in out) else []
+
+
+def unprefixed(reply: str) -> str:
+    """ "OK, I will pick up the plate." -> "I will pick up the plate." """
+    rest = reply.removeprefix("OK, ").removeprefix("OK: ")
+    return rest[:1].upper() + rest[1:] if rest == reply else rest

@@ -1,0 +1,99 @@
+"""Open-world reference: the head noun names the thing; only a contradicted known fact eliminates."""
+
+import pytest
+
+from dialogue import intents as I
+from dialogue.reference.headnoun import resolve_head
+from dialogue.reference.resolution import THING, resolve
+from kb import KB
+from tests.dialogue.conftest import lexicon_of
+from tests.dialogue.rules.test_interpret import say
+
+
+@pytest.mark.parametrize(
+    ("text", "obj"),
+    [
+        ("grab the old stapler", "stapler_1"),  # a word the KB does not know
+        ("take the laptop from the kitchen counter", "laptop_1"),  # a place the KB does not know
+        ("pick up the notebook that is on the shelf", "notebook_1"),  # a relative clause that holds
+        ("take the stapler next to the pear", "stapler_1"),  # a relation with no fact either way
+        ("grab the bottle of umbrella", None),  # the head is "bottle": nothing is one
+    ],
+)
+def test_unverifiable_modifiers_do_not_eliminate_a_unique_candidate(office: KB, text: str, obj: str | None) -> None:
+    out = say(office, text)
+    if obj is None:
+        assert out.intent is None and not out.clarify
+    else:
+        assert (out.intent, out.roles) == (I.GRAB_OBJECT, {"object": obj}), out.reply
+
+
+@pytest.mark.parametrize(
+    "text",
+    [
+        "grab the blue laptop",  # the laptop is known to be gray
+        "take the stapler on the shelf",  # the stapler is known to be on the desk
+        "take the umbrella in the office",  # the umbrella is known to be in the hallway
+    ],
+)
+def test_a_modifier_contradicting_a_known_fact_eliminates(office: KB, text: str) -> None:
+    out = say(office, text)
+    assert out.intent is None and not out.clarify and "don't" in out.reply
+
+
+def test_an_unverifiable_modifier_cannot_choose_between_candidates(office: KB) -> None:
+    out = say(office, "grab the heavy mug")
+    assert out.clarify and out.intent is None and "green" in out.reply and "yellow" in out.reply
+
+
+def test_a_known_owner_contradicts_and_confirms() -> None:
+    from tests.dialogue.conftest import scene_kb
+
+    kb = scene_kb("office", "mug_green belongsTo person_bob", "mug_yellow belongsTo person_carol")
+    try:
+        lex = lexicon_of(kb)
+        assert [e.id for e in resolve_head(lex, ["carol", "heavy", "mug"], THING)] == ["mug_yellow"]
+        assert resolve_head(lex, ["dan", "heavy", "mug"], THING) == []
+    finally:
+        kb.close()
+
+
+def test_a_part_of_a_thing_names_the_thing(office: KB) -> None:
+    out = say(office, "go to the far end of the hallway")
+    assert (out.intent, out.roles) == (I.MOVE_TO, {"goal": "hallway"})
+    out = say(office, "put the pear at the head of the desk")
+    assert (out.intent, out.roles) == (I.PLACE_OBJECT, {"object": "pear_1", "recipient": "desk_1"})
+
+
+def test_several_things_are_never_one_by_their_head(office: KB) -> None:
+    lex = lexicon_of(office)
+    assert resolve(lex, ["both", "heavy", "mugs"], THING).matches == ()
+    assert resolve_head(lex, ["the", "stapler", "and", "the", "laptop"], THING) == []
+
+
+@pytest.mark.parametrize(
+    "text", ["walk Carol back home to the hallway right now ok", "take the stapler out of the whatsit", "where is carol's floppy"]
+)
+def test_a_phrase_mixing_known_names_and_unknown_words_is_not_understood(office: KB, text: str) -> None:
+    out = say(office, text)
+    assert out.intent is None and not out.understood, out.reply
+
+
+def test_a_phrase_of_unknown_words_only_is_a_thing_the_robot_does_not_see(office: KB) -> None:
+    out = say(office, "grab the unicorn")
+    assert out.understood and "don't see any unicorn" in out.reply
+
+
+def test_either_of_two_alternatives(office: KB) -> None:
+    out = say(office, "bring me a unicorn or a pear")
+    assert (out.intent, out.roles) == (I.BRING_OBJECT, {"object": "pear_1", "recipient": "person_bob"})
+
+
+def test_a_kind_word_names_the_general_thing_and_colour_still_filters(office: KB) -> None:
+    out = say(office, "bring me the yellow teacup")  # "teacup" < "cup" (dialogue/reference/lexicon.txt)
+    assert (out.intent, out.roles) == (I.BRING_OBJECT, {"object": "mug_yellow", "recipient": "person_bob"})
+
+
+def test_walking_a_person_somewhere_is_guiding(office: KB) -> None:
+    out = say(office, "could you walk Carol back to the hallway")
+    assert (out.intent, out.roles) == (I.GUIDE, {"recipient": "person_carol", "goal": "hallway"})

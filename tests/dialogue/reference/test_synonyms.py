@@ -1,0 +1,20 @@
+import pytest
+
+from dialogue.reference.lexicon import phrase
+from dialogue.reference.synonyms import SynonymError, parse, synonyms
+
+
+def test_groups_and_kinds() -> None:
+    syn = parse("# comment\nfridge = refrigerators\n\npaperback hardback < book  # kinds\n", phrase)
+    assert syn.of(("refrigerator",)) == (("fridge",),) and syn.of(("fridge",)) == (("refrigerator",),)
+    assert syn.kind_of(("paperback",)) == (("book",),) and syn.of(("book",)) == ()
+
+
+@pytest.mark.parametrize("line", ["fridge", "a = ", "a < b < c", "a = b < c", " < book"])
+def test_a_bad_line_is_refused_with_its_number(line: str) -> None:
+    with pytest.raises(SynonymError, match="line 2"):
+        parse(f"x = y\n{line}\n", phrase)
+
+
+def test_the_packaged_file_parses() -> None:
+    assert synonyms(phrase).of(("cellphone",))
