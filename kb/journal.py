@@ -77,8 +77,21 @@ class Journal:
 
     def recover(self, kb: KB) -> Recovery:
         """Load the snapshot and replay the journal into a fresh KB, then start journaling it.
-        ``DataCorrupt`` if the snapshot or a record before the journal's end is damaged."""
+        ``DataCorrupt`` if the snapshot or a record before the journal's end is damaged.
+
+        The KB lock is held until the journal takes the KB's commits: the expiry thread that
+        restored lifespans start would otherwise retract what ran out meanwhile unjournaled,
+        and the next replay would bring back the old expiry time of a fact acknowledged again."""
         (self.directory / SNAPSHOT_TMP).unlink(missing_ok=True)  # a snapshot a crash cut short
+        with kb.lock:
+            result = self._replay_into(kb)
+            self.records_since_snapshot = result.records
+            self._fd = os.open(self.directory / JOURNAL, os.O_WRONLY | os.O_APPEND | os.O_CREAT, 0o644)
+            self._size = os.fstat(self._fd).st_size
+            kb.on_commit(self.append, durable=True)
+        return result
+
+    def _replay_into(self, kb: KB) -> Recovery:
         result = Recovery()
         snapshot = self.directory / SNAPSHOT
         if snapshot.exists():
@@ -88,26 +101,23 @@ class Journal:
                 raise DataCorrupt(f"{snapshot} cannot be read ({exc}); not starting without the "
                                   f"state it holds: {repair_hint(self.directory)}") from exc
         path = self.directory / JOURNAL
-        if path.exists():
-            data = path.read_bytes()
-            found = scan(data)
-            if found.damage:
-                raise DataCorrupt(f"{found.describe_damage(str(path))}; not starting, since that would "
-                                  f"lose them: {repair_hint(self.directory)}")
-            for _start, _end, record in found.records:
-                if record["revision"] > result.revision:
-                    _replay(kb, record)
-                    result.revision = record["revision"]
-                    result.records += 1
-            result.dropped_bytes = found.torn_bytes
-            if found.torn_bytes:
-                with path.open("r+b") as handle:
-                    handle.truncate(found.torn_at)
-                    _fsync(handle)
-        self.records_since_snapshot = result.records
-        self._fd = os.open(path, os.O_WRONLY | os.O_APPEND | os.O_CREAT, 0o644)
-        self._size = os.fstat(self._fd).st_size
-        kb.on_commit(self.append, durable=True)
+        if not path.exists():
+            return result
+        data = path.read_bytes()
+        found = scan(data)
+        if found.damage:
+            raise DataCorrupt(f"{found.describe_damage(str(path))}; not starting, since that would "
+                              f"lose them: {repair_hint(self.directory)}")
+        for _start, _end, record in found.records:
+            if record["revision"] > result.revision:
+                _replay(kb, record)
+                result.revision = record["revision"]
+                result.records += 1
+        result.dropped_bytes = found.torn_bytes
+        if found.torn_bytes:
+            with path.open("r+b") as handle:
+                handle.truncate(found.torn_at)
+                _fsync(handle)
         return result
 
     # --- writing ---------------------------------------------------------------------------

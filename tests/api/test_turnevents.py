@@ -15,7 +15,7 @@ import pytest
 from api.settings import Settings
 from api.turnevents import wants_events
 from dialogue import intents as I
-from dialogue.llm.base import ChatRequest, ChatResult
+from dialogue.llm.base import ChatModel, ChatRequest, ChatResult
 from dialogue.llm.stream import TextSink
 from dialogue.llm.testing import ScriptedModel
 from tests.api.conftest import SCENE, Live
@@ -53,7 +53,7 @@ def new_dialogue(live: Live) -> str:
     return str(live.client.post("/dialogues", json={}).json()["dialogue_id"])
 
 
-class GatedModel:
+class GatedModel(ChatModel):
     """Streams the part of its answer up to the end of the ack, then waits for the test to let it
     finish: the ack can only reach the client before the answer is complete."""
 

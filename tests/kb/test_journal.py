@@ -2,11 +2,14 @@
 
 from __future__ import annotations
 
+import os
 from pathlib import Path
+from typing import Any
 
 import pytest
 
 from kb import KB
+from kb import journal as journal_module
 from kb.errors import DataCorrupt
 from kb.journal import JOURNAL, SNAPSHOT, Journal
 
@@ -202,3 +205,103 @@ def test_background_compaction_snapshots_after_enough_records(tmp_path: Path) ->
     journal.close()
     again, _ = open_kb(tmp_path)
     assert len(again["a sees ?x"]) == 7
+
+
+class _Death(BaseException):
+    """Stands for the process being killed at that point: nothing after it runs."""
+
+
+class _DyingOs:
+    """``os`` as ``kb.journal`` sees it, dying at its ``at``-th call (never for 0)."""
+
+    def __init__(self, at: int) -> None:
+        self.at = at
+        self.calls: list[str] = []
+
+    def __getattr__(self, name: str) -> Any:
+        real = getattr(os, name)
+        if not callable(real):
+            return real
+
+        def call(*args: Any, **kwargs: Any) -> Any:
+            self.calls.append(name)
+            if len(self.calls) == self.at:
+                raise _Death(name)
+            return real(*args, **kwargs)
+
+        return call
+
+
+def test_a_kill_at_any_step_of_a_snapshot_loses_no_acknowledged_write(
+        tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """Killed before, between or after the snapshot's file operations (write, fsync, rename,
+    directory fsync, journal cut), on top of an earlier snapshot with records after it: the next
+    start has every acknowledged write, and so has the start after that (revisions go on)."""
+
+    def run_until_death(directory: Path, at: int) -> tuple[bytes, list[str]]:
+        kb, journal = open_kb(directory)
+        kb += ["a sees b", "c sees d"]
+        journal.snapshot(kb)
+        kb -= "a sees b"
+        kb += "e sees f"
+        kb.update(["g sees h"], lifespan=3600)
+        dying = _DyingOs(at)
+        with monkeypatch.context() as patch:
+            patch.setattr(journal_module, "os", dying)
+            if at:
+                with pytest.raises(_Death):
+                    journal.snapshot(kb)
+            else:
+                journal.snapshot(kb)
+        return asserted(kb), dying.calls
+
+    _, steps = run_until_death(tmp_path / "alive", 0)
+    assert {"replace", "ftruncate", "fsync"} <= set(steps)
+    for at in range(1, len(steps) + 1):
+        directory = tmp_path / f"killed-at-{at}"
+        expected, calls = run_until_death(directory, at)
+        again, journal = open_kb(directory)  # the killed process's journal is left as it was
+        assert asserted(again) == expected, f"killed at {calls[-1]} (step {at})"
+        again += "i sees j"
+        expected = asserted(again)
+        journal.close()
+        third, _ = open_kb(directory)
+        assert asserted(third) == expected, f"after a kill at {calls[-1]} (step {at})"
+
+
+def test_an_expiry_due_at_start_is_journaled_so_a_later_re_add_survives(
+        tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """A lifespan that ran out while the service was down is retracted by the expiry thread,
+    which recovery starts. If that retraction ran before the journal took commits, it was never
+    journaled: the fact, acknowledged again later without a lifespan, came back from the next
+    replay with its old expiry time and was retracted again, an acknowledged write lost."""
+    import threading
+
+    clock = Clock()
+    kb, journal = open_kb(tmp_path, clock)
+    kb.update(["p sees q"], lifespan=10)
+    journal.close()
+    clock.now += 50  # down for 50 s: the lifespan ran out meanwhile
+
+    attach = KB.on_commit
+    expiries: list[threading.Thread] = []
+
+    def expiry_thread_runs_first(self: KB, *args: Any, **kwargs: Any) -> Any:
+        # The expiry thread scheduled just before recovery hands the KB to the journal.
+        expiry = threading.Thread(target=self.expire)
+        expiries.append(expiry)
+        expiry.start()
+        expiry.join(timeout=1.0)  # done at once, unless recovery holds the KB until it is journaled
+        return attach(self, *args, **kwargs)
+
+    with monkeypatch.context() as patch:
+        patch.setattr(KB, "on_commit", expiry_thread_runs_first)
+        again, journal = open_kb(tmp_path, clock)
+    expiries[0].join(timeout=30)
+    assert again["p sees ?o"] == []
+    again += "p sees q"  # acknowledged, no lifespan: it stays
+    journal.close()
+
+    third, _ = open_kb(tmp_path, clock)
+    third.expire()
+    assert third["p sees ?o"] == [{"o": "q"}]

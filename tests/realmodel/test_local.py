@@ -17,8 +17,9 @@ from tests.realmodel.conftest import REALMODEL
 
 pytestmark = REALMODEL
 SPEAKER = "person_alice"
-#: Generous: on 2 busy cores one answer takes 0.5-5 s; the turn may need a repair.
-DEADLINE = 20.0
+#: Generous: a SmolLM2 turn took 7-13 s on 2 cores at load 7 (`situated bench model`), and the
+#: turn may need a repair; these tests assert behaviour, not speed.
+DEADLINE = 60.0
 
 
 def test_output_follows_the_turn_schema(local_model: LlamaCppModel) -> None:

@@ -16,7 +16,9 @@ from tests.realmodel.conftest import REALMODEL
 
 pytestmark = REALMODEL
 SPEAKER = "person_alice"
-DEADLINE = 20.0
+#: Generous: a SmolLM2 turn took 7-13 s on 2 cores at load 7 (`situated bench model`), and the
+#: turn may need a repair; these tests assert behaviour, not speed.
+DEADLINE = 60.0
 
 
 def test_openai_json_backend_against_llama_server(llama_server: str) -> None:

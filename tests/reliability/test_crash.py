@@ -33,6 +33,9 @@ BATCH = 10
 SHORT_LIFESPAN = 3.0  # seconds: some expire while the server is down, some after it is back
 NEAR, FAR = 1.0, 8.0  # scene x positions in and out of the robot's 3.5 m sight
 CLOCK_MARGIN = 0.5  # seconds: expiry is by the server's wall clock, sampled between send and ack
+# verify() reads every probe fact in one query: past the default row cap (10,000) in the long run,
+# and a big read on a loaded machine may take longer than the default budget.
+READ_ALL = {"SITUATED_LIMITS__MAX_ROWS": "1000000", "SITUATED_LIMITS__QUERY_TIMEOUT": "120"}
 
 
 @dataclass
@@ -249,9 +252,9 @@ def _crash_rounds(tmp_path: Path, target_writes: int, per_round: tuple[int, int]
     while ledger.acked_writes < target_writes:
         figures.rounds += 1
         if figures.rounds > 1 and rng.random() < 0.25:  # killed while it recovers the previous rounds
-            ServerProcess(args, log).kill(after=rng.uniform(0.2, 2.5))
+            ServerProcess(args, log, env=READ_ALL).kill(after=rng.uniform(0.2, 2.5))
             figures.recovery_kills += 1
-        server = ServerProcess(args, log)
+        server = ServerProcess(args, log, env=READ_ALL)
         server.wait_ready()
         verify(server.url, ledger)
         if figures.rounds % 4 == 0:
@@ -262,7 +265,7 @@ def _crash_rounds(tmp_path: Path, target_writes: int, per_round: tuple[int, int]
         else:
             _write_until(server, ledger, rng, rng.randint(*per_round), server.kill)
             figures.kills += 1
-    server = ServerProcess(args, log)
+    server = ServerProcess(args, log, env=READ_ALL)
     server.wait_ready()
     verify(server.url, ledger)
     server.stop()
