@@ -27,7 +27,7 @@ from kb.datadir import repair as repair_data
 from kb.errors import DataCorrupt
 from scene.world import load_any_scene
 
-BENCHES = ("kb", "scene", "dialogue", "http", "load", "store", "backend")
+BENCHES = ("kb", "scene", "dialogue", "grounding", "http", "load", "store", "backend")
 #: Not in `all`: it needs the optional local model (the `local` extra) and takes minutes.
 OPTIONAL_BENCHES = ("model",)
 # tests/api/test_cli.py runs every example below, so they cannot drift from what works.
@@ -48,7 +48,7 @@ EXAMPLES = f"""examples (file paths are those of a clone of the repository):
   situated humans --url http://127.0.0.1:8000        id, name, seen, engagement
   situated eval tests/dialogue/eval/dev.jsonl --llm rules --json
                                                      score dialogue cases
-  situated bench kb --quick                          small sizes; also scene, dialogue, http, load, store, all
+  situated bench kb --quick                          small sizes; also scene, dialogue, grounding, http...
   situated doctor                                    check the setup (also --llm SPEC); exit 1 on a problem
   situated data check ./data                         is the journal/snapshot intact? (exit 1 if damaged)
   situated data repair ./data                        keep every intact record; damaged files kept beside

@@ -24,6 +24,7 @@ from dialogue.llm.rules import RulesModel
 from dialogue.prompts import PromptSet
 from dialogue.reference.grounding import Entity, Grounder, Snapshot
 from dialogue.reference.lexicon import Lexicon, LexiconCache
+from dialogue.reference.relevance import mentioned, ranked
 from dialogue.schema import AnswerError, SchemaCandidates, parse_answer, turn_schema
 from dialogue.speakers import admit
 from dialogue.validate import Grounded, ground_answer
@@ -159,7 +160,8 @@ class DialogueEngine:
         locale: str | None,
     ) -> _Turn:
         snapshot, lexicon = grounded
-        context = TurnContext(text, speaker, snapshot, history, locale, self.config.robot_name)
+        focus = ranked(snapshot, speaker, self.config.max_snapshot_entities, mentioned(lexicon, text))
+        context = TurnContext(text, speaker, snapshot, history, locale, self.config.robot_name, tuple(focus))
         return _Turn(text, speaker, locale, context, lexicon)
 
     async def _turn(
@@ -196,21 +198,25 @@ class DialogueEngine:
         clarify = grounded.clarify or early.clarify
         return TurnResult(grounded.reply, grounded.intents, backend=early.backend, clarify=clarify)
 
-    def schema_for(self, snapshot: Snapshot, speaker: str) -> dict[str, object]:
-        things = [e.id for e in snapshot.entities.values() if e.kind == "thing"][:MAX_SCHEMA_IDS]
-        people = [e.id for e in snapshot.entities.values() if e.kind == "person"][:MAX_SCHEMA_IDS]
-        zones = [e.id for e in snapshot.entities.values() if e.kind == "zone"][:MAX_SCHEMA_IDS]
+    def schema_for(
+        self, snapshot: Snapshot, speaker: str, focus: Sequence[Entity] | None = None
+    ) -> dict[str, object]:
+        """Enums of the `focus` entities (the turn's most relevant first), each capped."""
+        pool = ranked(snapshot, speaker, self.config.max_snapshot_entities) if focus is None else focus
+        things = [e.id for e in pool if e.kind == "thing"][:MAX_SCHEMA_IDS]
+        people = [e.id for e in pool if e.kind == "person"][:MAX_SCHEMA_IDS]
+        zones = [e.id for e in pool if e.kind == "zone"][:MAX_SCHEMA_IDS]
         if speaker not in people:
             people.insert(0, speaker)
         # A recipient is a person (bring, greet, guide, say) or a support to put a thing on
         # (place): offering every thing lets small models name an apple as the recipient.
-        held = {e.support for e in snapshot.entities.values() if e.support}
-        supports = [e.id for e in snapshot.entities.values() if e.kind == "thing" and _is_support(e, held)]
+        held = {e.support for e in pool if e.support}
+        supports = [e.id for e in pool if e.kind == "thing" and _is_support(e, held)]
         return turn_schema(SchemaCandidates(things, [*people, *supports], [*zones, *things, *people]))
 
     async def _ask_model(self, turn: _Turn, deadline: float, model: ChatModel) -> TurnResult:
         loop = asyncio.get_running_loop()
-        schema = self.schema_for(turn.context.snapshot, turn.speaker)
+        schema = self.schema_for(turn.context.snapshot, turn.speaker, turn.context.focus)
         messages = self.prompts.messages(turn.context)
         request = ChatRequest(messages, schema, turn.context)
         errors: list[str] = []

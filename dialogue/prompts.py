@@ -95,7 +95,7 @@ class PromptSet:
         return render(self.system, {"robot_name": robot_name, "intent_list": intent_list(intents)})
 
     def messages(self, context: TurnContext, intents: Sequence[str] = EXTRACTABLE) -> tuple[ChatMessage, ...]:
-        situation = describe(context.snapshot, context.speaker).text
+        situation = describe(context.snapshot, context.speaker, context.focus).text
         turn = render(self.turn, {"situation": situation, "user_id": context.speaker, "input": context.text})
         return (
             ChatMessage("system", self.system_prompt(context.robot_name, intents)),

@@ -6,12 +6,16 @@ id in brackets is what the model must use in intent roles.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 from dialogue.reference.grounding import Entity, Snapshot
+from dialogue.reference.relevance import ranked
 
 MAX_LINES = 40
 MAX_CHARS = 3000
+#: Entities considered when the caller ranked none (the engine passes its own share).
+MAX_ENTITIES = 300
 
 
 def article(noun: str) -> str:
@@ -57,9 +61,11 @@ class Description:
         return "\n".join([*self.lines, *tail])
 
 
-def describe(snapshot: Snapshot, speaker: str) -> Description:
-    """Who speaks, who is here, what the robot sees, known places and things not seen now."""
-    lines: list[str] = []
+def describe(snapshot: Snapshot, speaker: str, focus: Sequence[Entity] | None = None) -> Description:
+    """Who speaks, who is here, what the robot sees, known places and things not seen now: of the
+    `focus` entities (most relevant first), by default the snapshot's most relevant ones."""
+    pool = ranked(snapshot, speaker, MAX_ENTITIES) if focus is None else focus
+    lines: list[str | None] = []
     speaking = snapshot.get(speaker)
     if speaking is not None and speaking.kind == "person":
         lines.append(f"{noun_phrase(snapshot, speaking)} is speaking to you.")
@@ -68,30 +74,34 @@ def describe(snapshot: Snapshot, speaker: str) -> Description:
     robot = snapshot.get(snapshot.robot)
     if robot is not None and robot.zone:
         lines.append(f"You are in the {snapshot.name_of(robot.zone)} [{robot.zone}].")
-    people = [e for e in snapshot.of_kind("person") if e.id != speaker]
+    people = [e for e in pool if e.kind == "person" and e.id != speaker]
     present = [e for e in people if e.seen]
     absent = [e for e in people if not e.seen]
     if present:
         lines.append("You see " + _and([noun_phrase(snapshot, e) for e in present]) + ".")
-    engaged = [e for e in snapshot.of_kind("person") if e.engagement in ("engaging", "engaged")]
+    engaged = [e for e in pool if e.kind == "person" and e.engagement in ("engaging", "engaged")]
     if engaged:
         lines.append("Engaged with you now: " + _and([noun_phrase(snapshot, e) for e in engaged]) + ".")
     if absent:
         lines.append("You know " + _and([noun_phrase(snapshot, e) for e in absent]) + ", not here now.")
-    things = [e for e in snapshot.entities.values() if e.kind == "thing"]
+    things = [e for e in pool if e.kind == "thing"]
+    # Lines past MAX_LINES are never shown, only counted: they are not rendered.
     for e in things:
         if e.seen:
-            lines.append(f"You see {noun_phrase(snapshot, e)}{place_phrase(snapshot, e)}.")
-    zones = snapshot.of_kind("zone")
+            lines.append(f"You see {noun_phrase(snapshot, e)}{place_phrase(snapshot, e)}."
+                         if len(lines) < MAX_LINES else None)
+    zones = [e for e in pool if e.kind == "zone"]
     if zones:
-        lines.append("Places: " + _and([noun_phrase(snapshot, e) for e in zones]) + ".")
+        lines.append("Places: " + _and([noun_phrase(snapshot, e) for e in zones]) + "."
+                     if len(lines) < MAX_LINES else None)
     for e in things:
         if not e.seen:
-            lines.append(f"You know {noun_phrase(snapshot, e)}{place_phrase(snapshot, e)}, not seen now.")
+            lines.append(f"You know {noun_phrase(snapshot, e)}{place_phrase(snapshot, e)}, not seen now."
+                         if len(lines) < MAX_LINES else None)
     kept: list[str] = []
     size = 0
     for line in lines:
-        if len(kept) >= MAX_LINES or size + len(line) + 1 > MAX_CHARS:
+        if line is None or len(kept) >= MAX_LINES or size + len(line) + 1 > MAX_CHARS:
             break
         kept.append(line)
         size += len(line) + 1

@@ -18,7 +18,7 @@ from typing import Any, Literal, Protocol, runtime_checkable
 
 from dialogue.errors import DialogueError
 from dialogue.history import Utterance
-from dialogue.reference.grounding import Snapshot
+from dialogue.reference.grounding import Entity, Snapshot
 from dialogue.schema import ChatbotResponse
 
 MessageRole = Literal["system", "user", "assistant"]
@@ -43,6 +43,9 @@ class TurnContext:
     history: tuple[Utterance, ...] = ()
     locale: str | None = None
     robot_name: str = "robot"
+    #: The entities the prompt and the schema show, most relevant first (`reference.relevance`);
+    #: None: ranked without the utterance.
+    focus: tuple[Entity, ...] | None = None
 
 
 @dataclass(frozen=True)

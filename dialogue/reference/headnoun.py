@@ -128,8 +128,7 @@ def resolve_head(lexicon: Lexicon, words: Sequence[str], kinds: Collection[Kind]
     if not scored:
         return []
     best = max(s for s, _ in scored)
-    order = {eid: n for n, eid in enumerate(snapshot.entities)}
-    return sorted((e for s, e in scored if s == best), key=lambda e: order[e.id])
+    return snapshot.in_order(e for s, e in scored if s == best)
 
 
 def _evidence(lexicon: Lexicon, entity: Entity, phrase: _Phrase, name_start: int) -> int | None:

@@ -10,13 +10,15 @@ from __future__ import annotations
 import re
 import threading
 from collections import defaultdict
-from collections.abc import Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from functools import lru_cache
+from typing import Any, NamedTuple
 
 from lemminflect import getLemma
 
 from dialogue.reference.grounding import Entity, Snapshot
+from dialogue.reference.layered import GONE, Gone, Layered
 from dialogue.reference.synonyms import synonyms
 from dialogue.rules.words import word_set
 
@@ -91,50 +93,109 @@ class Mention:
 
 
 class Lexicon:
-    """All names of a snapshot's entities, indexed by their first (singular) word.
+    """All names of a snapshot's entities, indexed by their whole (singular) words, with the
+    lengths of the names each first word starts: finding the names at a position costs a lookup
+    per length, however many entities share a word.
 
-    Built from a `previous` lexicon, the entries of entities that did not change are reused, so a
-    KB change costs work proportional to what changed.
+    Built from a `previous` lexicon: when the snapshot says which entities changed since the
+    previous one's, only those are indexed again (the indexes are copied, the entries they touch
+    replaced), so a KB change costs work proportional to what changed; otherwise the entries of
+    entities that did not change are reused.
     """
 
     def __init__(self, snapshot: Snapshot, previous: Lexicon | None = None) -> None:
         self.snapshot = snapshot
-        self._by_first: dict[str, list[Name]] = defaultdict(list)
-        self.attributes: dict[str, frozenset[str]] = {}
-        #: Entities by each (singular) word of their own labels, for "the teddy" ("teddy bear").
-        self.by_label_word: dict[str, list[str]] = defaultdict(list)
-        #: Every (singular) word of every name and qualifier: what the KB can account for.
-        self.vocabulary: set[str] = set()
-        self._entries: dict[Entity, tuple[list[Name], frozenset[str], frozenset[str]]] = {}
-        old = previous._entries if previous is not None else {}
+        changed = snapshot.changed_since(previous.snapshot.revision) if previous is not None else None
+        if previous is not None and changed is not None:
+            self._update(previous, changed)
+            return
+        by_words: dict[tuple[str, ...], dict[Name, None]] = defaultdict(dict)
+        lengths: dict[str, dict[int, int]] = defaultdict(dict)
+        attributes: dict[str, frozenset[str]] = {}
+        by_label: dict[str, list[str]] = defaultdict(list)
+        vocabulary: dict[str, int] = defaultdict(int)
+        entries: dict[str, tuple[Entity, _Entry]] = {}
+        old = previous._entries if previous is not None else Layered()
         for entity in snapshot.entities.values():
-            entry = old.get(entity) or _entry(entity)
-            self._entries[entity] = entry
-            for name in entry[0]:
-                self._by_first[name.words[0]].append(name)
-                self.vocabulary.update(name.words)
-            self.vocabulary.update(entry[1])
-            self.attributes[entity.id] = entry[1]
-            for word in entry[2]:
-                self.by_label_word[word].append(entity.id)
-        for names in self._by_first.values():
-            names.sort(key=lambda n: -len(n.words))
+            entry = _reuse(old.get(entity.id), entity)
+            entries[entity.id] = (entity, entry)
+            for name in entry.names:
+                by_words[name.words][name] = None
+                counts = lengths[name.words[0]]
+                counts[len(name.words)] = counts.get(len(name.words), 0) + 1
+            attributes[entity.id] = entry.qualifiers
+            for word in entry.label_words:
+                by_label[word].append(entity.id)
+            for word in entry.words:
+                vocabulary[word] += 1
+        #: Names by their words; a dict per name (insertion-ordered) so one is removed in O(1).
+        self._by_words: Layered[tuple[str, ...], dict[Name, None]] = Layered(dict(by_words))
+        self.attributes: Layered[str, frozenset[str]] = Layered(attributes)
+        #: Entities by each (singular) word of their own labels, for "the teddy" ("teddy bear").
+        self.by_label_word: Layered[str, list[str]] = Layered(dict(by_label))
+        #: Every (singular) word of every name and qualifier, what the KB can account for, with the
+        #: number of entities that have it (a word goes when its last entity drops it).
+        self.vocabulary: Layered[str, int] = Layered(dict(vocabulary))
+        self._entries: Layered[str, tuple[Entity, _Entry]] = Layered(entries)
+        #: First word -> {name length: number of names}, longest first when read.
+        self._lengths: Layered[str, dict[int, int]] = Layered(dict(lengths))
+
+    def _update(self, previous: Lexicon, changed: frozenset[str]) -> None:
+        # Only the changed entries are written, into small top layers (`Layered`); the buckets
+        # they touch are copied first (shared with the previous lexicon).
+        entries: dict[str, tuple[Entity, _Entry] | Gone] = {}
+        attributes: dict[str, frozenset[str] | Gone] = {}
+        by_words: dict[tuple[str, ...], dict[Name, None]] = {}
+        by_label: dict[str, list[str]] = {}
+        lengths: dict[str, dict[int, int]] = {}
+        vocabulary: dict[str, int] = {}
+        for entity_id in sorted(changed, key=self.snapshot.order_key):
+            kept = previous._entries.get(entity_id)
+            entity = self.snapshot.get(entity_id)
+            entry = _reuse(kept, entity) if entity is not None else None
+            entries[entity_id] = (entity, entry) if entity is not None and entry is not None else GONE
+            attributes[entity_id] = entry.qualifiers if entry is not None else GONE
+            before, after = kept[1] if kept is not None else _NO_ENTRY, entry or _NO_ENTRY
+            for word in before.words ^ after.words:
+                count = vocabulary.get(word, previous.vocabulary.get(word, 0))
+                vocabulary[word] = count + (1 if word in after.words else -1)
+            if before.names == after.names and before.label_words == after.label_words:
+                continue
+            for names, step in ((before.names, -1), (after.names, 1)):
+                for name in names:
+                    bucket = _own(by_words, previous._by_words, name.words, dict)
+                    if step < 0:
+                        del bucket[name]
+                    else:
+                        bucket[name] = None
+                    counts = _own(lengths, previous._lengths, name.words[0], dict)
+                    counts[len(name.words)] = counts.get(len(name.words), 0) + step
+                    if not counts[len(name.words)]:
+                        del counts[len(name.words)]
+            for word in before.label_words:
+                _own(by_label, previous.by_label_word, word, list).remove(entity_id)
+            for word in after.label_words:
+                _own(by_label, previous.by_label_word, word, list).append(entity_id)
+        self._entries = previous._entries.evolve(entries)
+        self.attributes = previous.attributes.evolve(attributes)
+        self._by_words = previous._by_words.evolve({k: v or GONE for k, v in by_words.items()})
+        self.by_label_word = previous.by_label_word.evolve({k: v or GONE for k, v in by_label.items()})
+        self._lengths = previous._lengths.evolve({k: v or GONE for k, v in lengths.items()})
+        self.vocabulary = previous.vocabulary.evolve({k: v or GONE for k, v in vocabulary.items()})
 
     def names_at(self, words: Sequence[str], start: int) -> list[Name]:
         """Every name that occurs in `words` starting at `start` (longest first)."""
         # Only the words a candidate name spans are normalised: normalising the whole utterance
         # at every start made a long utterance cost quadratic time.
-        found = []
-        for name in self._by_first.get(singular(words[start]), ()):
-            end = start + len(name.words)
-            span = words[start:end]
-            if end <= len(words) and all(singular(w) == n for w, n in zip(span, name.words, strict=True)):
-                found.append(name)
+        found: list[Name] = []
+        for length in sorted(self._lengths.get(singular(words[start]), {}), reverse=True):
+            if start + length <= len(words):
+                found += self._by_words.get(norm(words[start : start + length]), ())
         if start + 1 < len(words):
             # "tea cup" for the "teacup", "tool box" for the "toolbox": a closed compound said apart.
             joined = singular(words[start] + words[start + 1])
             found += [Name((words[start], words[start + 1]), n.entity, n.source)
-                      for n in self._by_first.get(joined, ()) if n.words == (joined,)]  # fmt: skip
+                      for n in self._by_words.get((joined,), ())]  # fmt: skip
         return found
 
     def mentions(self, words: Sequence[str]) -> list[Mention]:
@@ -153,7 +214,7 @@ class Lexicon:
         return out
 
     def knows_word(self, word: str) -> bool:
-        return singular(word) in self._by_first
+        return singular(word) in self._lengths
 
     def knows(self, word: str) -> bool:
         """Whether the word is part of any name or qualifier of the snapshot ("'s" ignored)."""
@@ -195,8 +256,32 @@ def _names(entity: Entity) -> list[Name]:
     return out
 
 
-def _entry(entity: Entity) -> tuple[list[Name], frozenset[str], frozenset[str]]:
-    """Names, qualifying words (label words, colour, class names: "red" in "red cup") and label words."""
+class _Entry(NamedTuple):
+    """What one entity adds to the indexes (kept per entity, so an update can take it out again)."""
+
+    names: list[Name]
+    #: Qualifying words: label words, colour, class names ("red" in "red cup"), their synonyms.
+    qualifiers: frozenset[str]
+    label_words: frozenset[str]
+    #: Its share of the vocabulary: every word of its names and qualifiers.
+    words: frozenset[str]
+
+
+_NO_ENTRY = _Entry([], frozenset(), frozenset(), frozenset())
+
+
+def _own(changes: dict[Any, Any], source: Mapping[Any, Any], key: Any, empty: Callable[[], Any]) -> Any:
+    """The copy of `source[key]` this update writes to (copied once)."""
+    if key not in changes:
+        changes[key] = source[key].copy() if key in source else empty()
+    return changes[key]
+
+
+def _reuse(kept: tuple[Entity, _Entry] | None, entity: Entity) -> _Entry:
+    return kept[1] if kept is not None and kept[0] == entity else _entry(entity)
+
+
+def _entry(entity: Entity) -> _Entry:
     label_words = frozenset(w for label in entity.labels for w in norm(tokens(label)))
     words: set[str] = set(label_words)
     if entity.colour:
@@ -205,7 +290,9 @@ def _entry(entity: Entity) -> tuple[list[Name], frozenset[str], frozenset[str]]:
         words.update(norm(tokens(class_name)))
     syn = synonyms(phrase)
     words.update(o[0] for w in tuple(words) for o in syn.of((w,)) if len(o) == 1)
-    return _names(entity), frozenset(words), label_words
+    names = _names(entity)
+    qualifiers = frozenset(words)
+    return _Entry(names, qualifiers, label_words, qualifiers.union(*(n.words for n in names)))
 
 
 class LexiconCache:

@@ -107,8 +107,7 @@ def resolve(
                 context |= cover.get(other, set())
         if all(i in own or i in context or normed[i] in attrs for i in content):
             matches.append(entity)
-    order = {eid: n for n, eid in enumerate(snapshot.entities)}
-    matches.sort(key=lambda e: order[e.id])
+    matches = snapshot.in_order(matches)
     if not matches and content:
         matches = _by_label_words(lexicon, [normed[i] for i in content], kinds)
     if not matches and content and {"one", "ones"} & set(words):
@@ -152,7 +151,7 @@ def _by_label_words(lexicon: Lexicon, content: Sequence[str], kinds: Collection[
         attrs = lexicon.attributes.get(entity_id, frozenset())
         if entity is not None and entity.kind in kinds and all(w in attrs for w in content):
             out.append(entity)
-    return out
+    return lexicon.snapshot.in_order(out)
 
 
 def resolve_id(lexicon: Lexicon, value: str, kinds: Collection[Kind] = ALL_KINDS) -> Resolution:

@@ -1,0 +1,140 @@
+"""The facts a situation snapshot is made of, kept current from the KB's commits.
+
+Loaded once with a few set-wide `find` queries, then updated from each commit's closure changes
+(added and removed statements), so keeping them current costs what the commit changed, whatever the
+size of the KB. Terms are in the KB's output form (`str(shorten(term))`), as `find` returns them.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+from dataclasses import dataclass, field
+from typing import Any
+
+from rdflib import BNode
+
+from kb.protocol import KnowledgeBase
+from kb.terms import shorten
+
+ROBOT_ID = "myself"
+PERSON_CLASSES = frozenset({"Human"})
+ZONE_CLASSES = frozenset({"ZoneOfInterest"})
+
+#: Situation properties -> the table each fills (an entity shows the first value by sorted text).
+PROPERTIES = {
+    "isOn": "support",
+    "isIn": "zone",
+    "hasColor": "colour",
+    "belongsTo": "owner",
+    "engagementLevel": "engagement",
+}
+#: Spatial relations beyond support and zone, with the preposition that says them in a reply; each
+#: fills its own table (an entity shows all their values, relation by relation, by sorted text).
+RELATIONS: tuple[tuple[str, str], ...] = (
+    ("isNextTo", "next to"), ("cyc:near", "near"), ("isBelow", "under"), ("isAbove", "above"),
+    ("behind", "behind"), ("inFrontOf", "in front of"),
+)  # fmt: skip
+#: Predicates whose change means an entity's classes or names must be asked again.
+DEEP = frozenset({"rdf:type", "rdfs:label"})
+#: Tables whose chosen value is a place, named in the snapshot's `names`.
+PLACES = ("support", "zone")
+
+Triple = tuple[Any, Any, Any]
+#: Every property kept in a table, by the table's name (relations by their property).
+_TABLES = {**PROPERTIES, **{prop: prop for prop, _prep in RELATIONS}}
+
+
+@dataclass
+class Change:
+    """Terms a batch of statements touched: `deep` ones need their classes and labels asked again,
+    `shallow` ones only their place, visibility or colour taken from the tables."""
+
+    deep: set[str] = field(default_factory=set)
+    shallow: set[str] = field(default_factory=set)
+
+
+class Facts:
+    """Who the robot sees, who is a person or a place, and the situation properties per subject."""
+
+    def __init__(self) -> None:
+        self.seen: set[str] = set()
+        self.people: set[str] = set()
+        self.zones: set[str] = set()
+        self.tables: dict[str, dict[str, set[str]]] = {name: {} for name in _TABLES.values()}
+
+    @classmethod
+    def load(cls, kb: KnowledgeBase) -> Facts:
+        """From the whole KB: the baseline the commits are applied to (and a full rebuild)."""
+        facts = cls()
+        facts.seen = {str(r["x"]) for r in kb.find(f"{ROBOT_ID} sees ?x")}
+        facts.people = {str(r["x"]) for c in sorted(PERSON_CLASSES) for r in kb.find(f"?x rdf:type {c}")}
+        facts.zones = {str(r["x"]) for c in sorted(ZONE_CLASSES) for r in kb.find(f"?x rdf:type {c}")}
+        for prop, name in _TABLES.items():
+            table = facts.tables[name]
+            for row in kb.find(f"?x {prop} ?y"):
+                table.setdefault(str(row["x"]), set()).add(str(row["y"]))
+        return facts
+
+    def value(self, table: str, term: str) -> str | None:
+        """The value an entity shows: the first by sorted text, so the choice is deterministic."""
+        values = self.tables[table].get(term)
+        return min(values) if values else None
+
+    def relations(self, term: str) -> tuple[tuple[str, str], ...]:
+        """The entity's other spatial facts, relation by relation, each by sorted text."""
+        return tuple((prep, other) for prop, prep in RELATIONS
+                     for other in sorted(self.tables[prop].get(term, ())))
+
+    def is_candidate(self, term: str) -> bool:
+        """Worth considering as an entity: seen, a person, a place, located, or the robot. Unseen,
+        unplaced individuals are mostly the ontology's own (colours, sizes, postures)."""
+        return (
+            term == ROBOT_ID
+            or term in self.seen
+            or term in self.people
+            or term in self.zones
+            or term in self.tables["support"]
+            or term in self.tables["zone"]
+        )
+
+    def candidates(self) -> set[str]:
+        located = (*self.tables["support"], *self.tables["zone"])
+        return {ROBOT_ID, *self.seen, *self.people, *self.zones, *located}
+
+    def apply(self, added: Iterable[Triple], removed: Iterable[Triple], change: Change) -> None:
+        """One commit's closure changes (removals first, as the writer applies them)."""
+        for triples, present in ((removed, False), (added, True)):
+            for s, p, o in triples:
+                if isinstance(s, BNode) or isinstance(o, BNode):
+                    continue  # never in `find` results
+                self._apply(str(shorten(s)), str(shorten(p)), str(shorten(o)), present, change)
+
+    def _apply(self, s: str, p: str, o: str, present: bool, change: Change) -> None:
+        if p in DEEP:
+            change.deep.add(s)
+            if p == "rdf:type":
+                for classes, members in ((PERSON_CLASSES, self.people), (ZONE_CLASSES, self.zones)):
+                    if o in classes:
+                        _set(members, s, present)
+            return
+        if p == "sees":
+            if s == ROBOT_ID:
+                _set(self.seen, o, present)
+                change.shallow.add(o)
+            return
+        name = _TABLES.get(p)
+        if name is None:
+            return
+        table = self.tables[name]
+        values = table.setdefault(s, set())
+        _set(values, o, present)
+        if not values:
+            del table[s]
+        change.shallow.add(s)
+
+
+def _set(members: set[str], term: str, present: bool) -> None:
+    if present:
+        members.add(term)
+    else:
+        members.discard(term)

@@ -1,0 +1,181 @@
+"""The situation snapshot: every entity the KB knows that a dialogue turn may refer to.
+
+A snapshot is immutable: one per KB revision, shared by every turn at that revision. Entities are
+ordered deterministically: the robot's visible things first, then people, places and other located
+things, each group sorted by id (`EntityTable` keeps that order without sorting per revision).
+"""
+
+from __future__ import annotations
+
+import re
+from bisect import bisect_left
+from collections.abc import Iterable, Iterator, Mapping
+from dataclasses import dataclass, field
+from typing import Literal
+
+from dialogue.reference.facts import ROBOT_ID
+
+Kind = Literal["person", "zone", "robot", "thing"]
+
+ROBOT_CLASSES = frozenset({"Robot"})
+
+#: Types that make a term part of the vocabulary rather than the situation.
+SCHEMA_TYPES = frozenset(
+    {
+        "owl:Class",
+        "rdfs:Class",
+        "owl:ObjectProperty",
+        "owl:DatatypeProperty",
+        "owl:AnnotationProperty",
+        "rdf:Property",
+        "owl:TransitiveProperty",
+        "owl:SymmetricProperty",
+        "owl:FunctionalProperty",
+        "owl:InverseFunctionalProperty",
+        "owl:Ontology",
+        "owl:Restriction",
+        "rdfs:Datatype",
+        "owl:AsymmetricProperty",
+        "owl:IrreflexiveProperty",
+        "owl:ReflexiveProperty",
+    }
+)
+#: Classes too generic to name anything in speech.
+IGNORED_CLASSES = frozenset(
+    {"owl:Thing", "rdfs:Resource", "owl:NamedIndividual", "ActiveConcept", "owl:Nothing"}
+)
+
+
+@dataclass(frozen=True)
+class Entity:
+    """One individual the dialogue may refer to. `id` is what intents carry (D17)."""
+
+    id: str
+    name: str
+    labels: tuple[str, ...]
+    classes: tuple[str, ...]
+    class_names: tuple[str, ...]
+    kind: Kind
+    seen: bool
+    support: str | None = None
+    zone: str | None = None
+    colour: str | None = None
+    #: Whose it is (`belongsTo`): lets "my phone" and "Ines's phone" tell two phones apart.
+    owner: str | None = None
+    #: A person's engagement with the robot (`engaging`, `engaged`, `disengaging`, `disengaged`).
+    engagement: str | None = None
+    #: Other spatial facts, as (preposition, entity id): ("next to", "bed_1") for `isNextTo`.
+    relations: tuple[tuple[str, str], ...] = ()
+
+
+#: Ranks of the deterministic order: seen by the robot, people, places, other located things.
+SEEN, PERSON, ZONE, OTHER = range(4)
+
+
+def rank(entity: Entity) -> int:
+    """Where an entity comes in the deterministic order (its classes include the inferred ones)."""
+    if entity.seen:
+        return SEEN
+    if "Human" in entity.classes:
+        return PERSON
+    return ZONE if "ZoneOfInterest" in entity.classes else OTHER
+
+
+class EntityTable(Mapping[str, Entity]):
+    """An immutable view of the entities at one revision, iterated in rank-then-id order.
+
+    Built from a version of the maintained entities and a copy of their sorted order (no
+    sorting), so a revision costs little more than what changed."""
+
+    __slots__ = ("_by_id", "_order")
+
+    def __init__(self, by_id: Mapping[str, Entity], order: list[tuple[int, str]]) -> None:
+        self._by_id = by_id
+        self._order = order
+
+    def __getitem__(self, key: str) -> Entity:
+        return self._by_id[key]
+
+    def __contains__(self, key: object) -> bool:
+        return key in self._by_id
+
+    def __len__(self) -> int:
+        return len(self._by_id)
+
+    def __iter__(self) -> Iterator[str]:
+        return (term for _rank, term in self._order)
+
+    def ranked_up_to(self, rank: int) -> Iterator[Entity]:
+        """The entities of the first ranks only (cheap: visible things, people, places)."""
+        end = bisect_left(self._order, (rank + 1, ""))
+        return (self._by_id[term] for _rank, term in self._order[:end])
+
+
+@dataclass(frozen=True)
+class Snapshot:
+    """The situation at one KB revision. `entities` preserves the deterministic order."""
+
+    revision: int
+    entities: Mapping[str, Entity]
+    robot: str = ROBOT_ID
+    names: Mapping[str, str] = field(default_factory=dict)
+    #: Terms considered and found not to be entities (schema terms, unseen untyped terms).
+    skipped: frozenset[str] = frozenset()
+    #: The last few steps that led to this snapshot, oldest first: (revision of an earlier snapshot,
+    #: ids of the entities that changed from it to the next). Lets a lexicon of any of those
+    #: revisions be updated rather than rebuilt. Empty: built from scratch.
+    changed: tuple[tuple[int, frozenset[str]], ...] = field(default=(), compare=False)
+
+    def changed_since(self, revision: int) -> frozenset[str] | None:
+        """Ids of the entities that changed since the snapshot at `revision`; None if unknown."""
+        for n, (base, _ids) in enumerate(self.changed):
+            if base == revision:
+                return frozenset().union(*(ids for _base, ids in self.changed[n:]))
+        return None
+
+    def get(self, entity_id: str) -> Entity | None:
+        return self.entities.get(entity_id)
+
+    def name_of(self, term: str) -> str:
+        """Readable name of any term (entity, class or value): its label, else a readable id."""
+        entity = self.entities.get(term)
+        if entity is not None:
+            return entity.name
+        return self.names.get(term) or readable_id(term)
+
+    def order_key(self, entity_id: str) -> tuple[int, str]:
+        """Sort key of the deterministic order (unknown ids last)."""
+        entity = self.entities.get(entity_id)
+        return (rank(entity) if entity is not None else OTHER + 1, entity_id)
+
+    def in_order(self, entities: Iterable[Entity]) -> list[Entity]:
+        return sorted(entities, key=lambda e: self.order_key(e.id))
+
+    def of_kind(self, *kinds: Kind) -> list[Entity]:
+        # People and places rank at most ZONE; things and the robot may rank OTHER.
+        last = ZONE if set(kinds) <= {"person", "zone"} else OTHER
+        return [e for e in self._first(last) if e.kind in kinds]
+
+    def visible(self) -> list[Entity]:
+        return [e for e in self._first(SEEN) if e.seen]
+
+    def _first(self, rank: int) -> Iterator[Entity]:
+        """Entities up to a rank; people and places never rank below ZONE, seen things at SEEN."""
+        if isinstance(self.entities, EntityTable):
+            return self.entities.ranked_up_to(rank)
+        return iter(self.entities.values())
+
+
+_CAMEL = re.compile(r"(?<=[a-z0-9])(?=[A-Z])")
+_QUALIFIER = re.compile(r"_\([^)]*\)$")
+
+
+def readable_id(term: str) -> str:
+    """`dbr:Table_(furniture)` -> "table", `ZoneOfInterest` -> "zone of interest", `cup_1` -> "cup 1"."""
+    local = term.rsplit("#", 1)[-1].rsplit("/", 1)[-1]
+    local = local.split(":", 1)[-1] if ":" in local and not local.startswith("http") else local
+    local = _QUALIFIER.sub("", local)
+    local = _CAMEL.sub(" ", local).replace("_", " ").replace("-", " ")
+    return " ".join(local.lower().split())
+
+

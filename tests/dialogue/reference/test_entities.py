@@ -1,0 +1,137 @@
+"""The maintained snapshot (and lexicon) equals a from-scratch build after any sequence of commits."""
+
+from __future__ import annotations
+
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+from dialogue.reference.grounding import Grounder, build_snapshot
+from dialogue.reference.lexicon import Lexicon, LexiconCache
+from kb import KB
+
+BASE = [
+    "myself rdf:type Robot", "kitchen rdf:type ZoneOfInterest", 'kitchen rdfs:label "kitchen"',
+    "hall rdf:type ZoneOfInterest", "table_1 rdf:type dbr:Table_(furniture)", "table_1 isIn kitchen",
+    "person_ann rdf:type Human", 'person_ann rdfs:label "Ann"',
+]  # fmt: skip
+SUBJECTS = ["thing_0", "thing_1", "thing_2", "thing_3", "person_bo", "table_1", "kitchen", "hall", "myself", "red"]
+OBJECTS = ["thing_0", "thing_1", "table_1", "kitchen", "hall", "red", "grey", "person_ann", "person_bo"]
+CLASSES = ["dbr:Cup", "dbr:Book", "dbr:Apple", "Remote", "Human", "ZoneOfInterest", "dbr:Table_(furniture)"]
+# Synonyms ("fridge" = "refrigerator", "grey" = "gray") and a closed compound ("teacup") among them.
+LABELS = ['"red thing"', '"old cup"', '"Bo"', '"rouge"@fr', '"mug"@en', '"kitchen fridge"', '"teacup"']
+PROPERTIES = ["isOn", "isIn", "hasColor", "belongsTo", "looksAt", "holds"]
+
+statement = st.one_of(
+    st.builds("{} rdf:type {}".format, st.sampled_from(SUBJECTS), st.sampled_from(CLASSES)),
+    st.builds("{} rdfs:label {}".format, st.sampled_from([*SUBJECTS, "dbr:Cup", "Remote"]), st.sampled_from(LABELS)),
+    st.builds("{} {} {}".format, st.sampled_from(SUBJECTS), st.sampled_from(PROPERTIES), st.sampled_from(OBJECTS)),
+    st.builds("myself sees {}".format, st.sampled_from(OBJECTS)),
+    st.builds("{} engagementLevel {}".format, st.sampled_from(["person_ann", "person_bo"]),
+              st.sampled_from(["engaged", "disengaged"])),
+    st.just("dbr:Mug rdfs:subClassOf dbr:Cup"),  # a TBox change: the full rebuild path
+    st.just("thing_2 rdf:type dbr:Mug"),
+)
+commit = st.tuples(
+    st.sampled_from(["update", "remove", "apply", "clear"]),
+    st.lists(statement, min_size=1, max_size=6),
+    st.lists(statement, max_size=4),
+).filter(lambda c: c[0] != "clear" or not c[2])
+
+
+def _lexicon_state(lex: Lexicon) -> tuple[object, ...]:
+    return (
+        lex.attributes,
+        {w: sorted((n.words, n.entity, n.source) for n in names) for w, names in lex._by_words.items()},
+        dict(lex._lengths),
+        {w: sorted(ids) for w, ids in lex.by_label_word.items()},
+        dict(lex.vocabulary),
+    )
+
+
+@settings(max_examples=60, suppress_health_check=[HealthCheck.too_slow])
+@given(st.lists(commit, min_size=1, max_size=8))
+def test_maintained_snapshot_and_lexicon_equal_a_full_build(commits: list[tuple[str, list[str], list[str]]]) -> None:
+    kb = KB()
+    kb.update(BASE)
+    grounder, lexicons = Grounder(), LexiconCache()
+    lexicons.get(grounder.snapshot(kb))
+    for action, first, second in commits:
+        if action == "update":
+            kb.update(first)
+        elif action == "remove":
+            kb.remove(first)
+        elif action == "apply":
+            kb.apply(add=first, remove=second)
+        else:
+            kb.clear()
+            kb.update(BASE[: len(first)])
+        maintained = grounder.snapshot(kb)
+        fresh = build_snapshot(kb)
+        assert maintained == fresh
+        assert list(maintained.entities) == list(fresh.entities)  # the same deterministic order
+        assert _lexicon_state(lexicons.get(maintained)) == _lexicon_state(Lexicon(fresh))
+
+
+def test_a_commit_updates_only_what_it_touched() -> None:
+    kb = KB()
+    kb.update([*BASE, *(f"thing_{i} isIn kitchen" for i in range(50)), *(f"thing_{i} rdf:type dbr:Cup"
+                                                                         for i in range(50))])
+    grounder = Grounder()
+    grounder.snapshot(kb)
+    kb.apply(add=["thing_3 isIn hall", "myself sees thing_4"], remove=["thing_3 isIn kitchen"])
+    snap = grounder.snapshot(kb)
+    assert snap.changed_since(snap.changed[-1][0]) == {"thing_3", "thing_4"}
+    assert snap.entities["thing_3"].zone == "hall" and snap.entities["thing_4"].seen
+
+
+def test_a_class_label_renames_its_instances() -> None:
+    kb = KB()
+    kb.update([*BASE, "cup_1 rdf:type Beaker", "cup_1 isIn kitchen"])
+    grounder = Grounder()
+    assert grounder.snapshot(kb).entities["cup_1"].name == "beaker"
+    kb.update(['Beaker rdfs:label "tumbler"'])
+    assert grounder.snapshot(kb).entities["cup_1"].name == "tumbler"
+
+
+def test_a_colour_label_renames_the_colour_of_its_things() -> None:
+    kb = KB()
+    kb.update([*BASE, "cup_1 rdf:type dbr:Cup", "cup_1 isIn kitchen", "cup_1 hasColor teal_shade"])
+    grounder = Grounder()
+    assert grounder.snapshot(kb).entities["cup_1"].colour == "teal shade"
+    kb.update(['teal_shade rdfs:label "teal"'])
+    assert grounder.snapshot(kb).entities["cup_1"].colour == "teal"
+    assert grounder.snapshot(kb) == build_snapshot(kb)
+
+
+def test_a_lexicon_that_missed_snapshots_catches_up_from_their_steps() -> None:
+    kb = KB()
+    kb.update(BASE)
+    grounder = Grounder()
+    first = Lexicon(grounder.snapshot(kb))
+    kb.update(["cup_1 rdf:type dbr:Cup", "cup_1 isIn kitchen"])
+    grounder.snapshot(kb)  # a snapshot this lexicon never sees
+    kb.update(['cup_1 rdfs:label "blue mug"', "myself sees cup_1"])
+    latest = grounder.snapshot(kb)
+    assert latest.changed_since(first.snapshot.revision) == {"cup_1"}
+    caught_up = Lexicon(latest, first)
+    assert caught_up._entries["kitchen"] is first._entries["kitchen"]  # updated from the steps, not rebuilt
+    assert _lexicon_state(caught_up) == _lexicon_state(Lexicon(build_snapshot(kb)))
+
+
+def test_an_updated_lexicon_knows_the_new_words_and_forgets_the_old() -> None:
+    kb = KB()
+    kb.update([*BASE, "cup_1 rdf:type Artifact", 'cup_1 rdfs:label "teacup"', "cup_1 isIn kitchen"])
+    grounder, lexicons = Grounder(), LexiconCache()
+    first = lexicons.get(grounder.snapshot(kb))
+    assert first.knows("teacup") and not first.knows("refrigerator")
+    kb.apply(add=['cup_1 rdfs:label "kitchen fridge"'], remove=['cup_1 rdfs:label "teacup"'])
+    snapshot = grounder.snapshot(kb)
+    assert snapshot.changed_since(first.snapshot.revision) == {"cup_1"}  # the update path, not a rebuild
+    lex = lexicons.get(snapshot)
+    assert lex.knows("fridges") and lex.knows("refrigerator") and not lex.knows("teacup")
+    assert {n.entity for n in lex.names_at(["refrigerator"], 0)} == {"cup_1"}
+    assert lex.names_at(["tea", "cup"], 0) == [] and "kitchen" in lex.by_label_word
+    kb.apply(add=['cup_1 rdfs:label "teacup"'], remove=['cup_1 rdfs:label "kitchen fridge"'])
+    lex = lexicons.get(grounder.snapshot(kb))
+    assert [(n.entity, n.words) for n in lex.names_at(["tea", "cups"], 0)] == [("cup_1", ("tea", "cups"))]
+    assert not lex.knows("fridge") and lex.knows("kitchen")  # still the zone's name
