@@ -57,12 +57,6 @@ class Subscriber:
         self.errors.append(error)
 
 
-def timed_add(kb: KB, statements: list[str]) -> float:
-    start = time.monotonic()
-    kb.add(statements)
-    return time.monotonic() - start
-
-
 def test_a_first_evaluation_past_the_budget_subscribes_nothing(kb: KB) -> None:
     subscriptions = len(kb.writer.subscriptions)
     start = time.monotonic()
@@ -98,13 +92,20 @@ def test_a_live_subscription_past_its_budget_is_ended_and_commits_go_on() -> Non
         cheap, own = Subscriber(), Subscriber()
         kb.subscribe(["trigger isOn ?s", "?s rdf:type ?k"], cheap, timeout=budget, on_error=cheap.error)
         kb.subscribe(["trigger isOn ?s", "?s isOn ?w"], own)  # no budget: the process's own
-        # One budget per subscription would hold this commit ten budgets; unbounded, for ever.
-        assert timed_add(kb, ["trigger isOn shelf_1", "shelf_1 isOn floor_1", "shelf_1 rdf:type Shelf"]) \
-            < 8 * budget
+        def ended() -> int:
+            return sum(1 for sub in hostile if sub.errors)
+
+        # One shared budget per commit: each over-budget evaluation spends all of it, so a commit
+        # ends at most one hostile subscription and defers the rest (one budget per subscription
+        # would hold it ten budgets; unbounded, for ever). Counted, not timed: a busy machine
+        # slows every evaluation but does not change how many fit in one budget.
+        kb.add(["trigger isOn shelf_1", "shelf_1 isOn floor_1", "shelf_1 rdf:type Shelf"])
+        assert ended() <= 1
         assert own.rows == [[{"s": "shelf_1", "w": "floor_1"}]]
-        # Each commit ends at most about one budget's worth of them; the others wait their turn.
         for n in range(len(hostile) + 1):
-            assert timed_add(kb, [f"noise_{n} isOn floor_1"]) < 8 * budget
+            before = ended()
+            kb.add([f"noise_{n} isOn floor_1"])
+            assert ended() - before <= 1
         for sub in hostile:
             assert sub.rows == [] and len(sub.errors) == 1
             assert isinstance(sub.errors[0], QueryTimeout) and "time budget of 0.5 s" in str(sub.errors[0])
