@@ -12,7 +12,8 @@ import json
 from dialogue.llm.base import ChatModel, ChatRequest, ChatResult, EarlyAnswer, TurnContext
 from dialogue.prompts import FREE_FORM_OBJECT
 from dialogue.reference.lexicon import LexiconCache
-from dialogue.rules.interpret import Interpreter, Outcome
+from dialogue.rules.interpret import Interpreter
+from dialogue.rules.outcome import Outcome
 from dialogue.schema import ChatbotResponse, UserIntent
 
 

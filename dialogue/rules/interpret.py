@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import re
 from collections.abc import Collection, Sequence
-from dataclasses import dataclass, field, replace
+from dataclasses import replace
 
 from dialogue import intents as I
 from dialogue.history import Utterance
@@ -30,6 +30,8 @@ from dialogue.reference.resolution import (
 from dialogue.rules import answers
 from dialogue.rules.commands import LOCATIVE, ME, Parse, Words, parse
 from dialogue.rules.compound import Part, alternatives, conjuncts, coordinated, unprefixed
+from dialogue.rules.outcome import Outcome, Ref
+from dialogue.rules.replies import acknowledgement, vocative
 from dialogue.rules.words import COLOURS, INTERJECTIONS, cleaned, word_set
 
 _ONE = frozenset({"one", "ones"})
@@ -53,32 +55,6 @@ _POSSESSIVE_OF = {"mine": "my", "yours": "your", "ours": "our", "hers": "her", "
 _ACCOUNTED = RELATIONAL | COLOURS | ME | word_set(
     "it them him her here there over something anything around nearby about"
 )
-
-
-@dataclass(frozen=True)
-class Outcome:
-    reply: str
-    intent: str | None = None
-    roles: dict[str, str] = field(default_factory=dict)
-    confidence: float = 0.9
-    understood: bool = True
-    clarify: bool = False
-    #: For a follow-up turn: the role whose phrase was ambiguous (or missing), and that phrase.
-    open_role: str | None = None
-    open_phrase: Words = ()
-    #: The intents that follow this one in a compound request, in order.
-    more: tuple[Outcome, ...] = ()
-
-    def steps(self) -> tuple[Outcome, ...]:
-        """This outcome and the ones that follow it."""
-        return (self, *self.more)
-
-
-@dataclass(frozen=True)
-class _Ref:
-    entity: Entity | None = None
-    speaker: bool = False
-    problem: Outcome | None = None
 
 
 class Interpreter:
@@ -158,7 +134,8 @@ class Interpreter:
         if p.act == "greeting" and "everyone" in p.slots:  # no single recipient: greet verbally only
             return Outcome("Hello everyone!")
         if p.act == "greeting":
-            return self._intent(I.GREET, {"recipient": self.speaker}, f"Hello{self._vocative()}!")
+            hello = f"Hello{vocative(self.snapshot, self.speaker)}!"
+            return self._intent(I.GREET, {"recipient": self.speaker}, hello)
         if p.act == "negated":
             return Outcome("OK, I won't do that.")
         if p.act == "thanks":
@@ -236,7 +213,7 @@ class Interpreter:
             person = antecedent(self.lexicon, [u.text for u in self.history], PERSON)
             slots["recipient"] = tuple(tokens(person.id)) if person is not None else ("me",)
         roles: dict[str, str] = {}
-        refs: dict[str, _Ref] = {}
+        refs: dict[str, Ref] = {}
         spec = I.CATALOGUE[intent]
         for role, kinds in ROLE_KINDS.get(intent, {}).items():
             words = slots.get(role, ())
@@ -254,7 +231,7 @@ class Interpreter:
             roles["object"] = p.text
         elif intent in {I.SAY, I.START_ACTIVITY, I.PERFORM_MOTION, I.PRESENT_CONTENT}:
             return self._missing(intent, "object", p)
-        return self._intent(intent, roles, self._ack(intent, roles, refs))
+        return self._intent(intent, roles, acknowledgement(self.snapshot, self.speaker, intent, roles, refs))
 
     def _split_double_object(self, rest: Words) -> dict[str, Words]:
         """ "bring Maria the book": the longest leading phrase naming one person is the recipient."""
@@ -295,16 +272,16 @@ class Interpreter:
         person = person or antecedent(self.lexicon, [u.text for u in self.history], PERSON)
         return rest, person.id if person is not None else None
 
-    def _ground(self, words: Words, kinds: frozenset[Kind], role: str, owner: str | None = None) -> _Ref:
+    def _ground(self, words: Words, kinds: frozenset[Kind], role: str, owner: str | None = None) -> Ref:
         content = content_words(words)
         if "person" in kinds and content and set(content) <= ME | {"here"}:
-            return _Ref(speaker=True)
+            return Ref(speaker=True)
         bare = {w for w in words if w not in {"the", "over", "please"}}
         if is_pronoun(words) or (bare and bare <= {"him", "her", "there"}):
             history = [u.text for u in self.history]
             found = antecedent(self.lexicon, history, kinds, place=bare == {"there"})
             if found is None:
-                return _Ref(
+                return Ref(
                     problem=Outcome(
                         f'What do you mean by "{" ".join(content or sorted(bare))}"?',  # "there" is glue
                         clarify=True,
@@ -312,28 +289,28 @@ class Interpreter:
                         open_phrase=words,
                     )
                 )
-            return _Ref(entity=found)
+            return Ref(entity=found)
         res = resolve(self.lexicon, words, kinds, owner=owner)
         if res.ambiguous and any(e.id == self.speaker for e in res.matches):
             # A speaker says "me", not "the person in the living room": a description is someone else.
             res = replace(res, matches=tuple(e for e in res.matches if e.id != self.speaker))
         if res.one is not None:
-            return _Ref(entity=res.one)
+            return Ref(entity=res.one)
         if res.ambiguous:
             q = clarifying_question(self.snapshot, res.matches)
-            return _Ref(problem=Outcome(q, clarify=True, open_role=role, open_phrase=words))
+            return Ref(problem=Outcome(q, clarify=True, open_role=role, open_phrase=words))
         loose = tuple(w for w in words if w not in RELATIONAL)
         if loose != tuple(words) and content_words(loose):
             # "the cup on the left": spatial relations are not in the KB; if the rest of the phrase
             # names one thing, that is it, else ask which one.
             res = resolve(self.lexicon, loose, kinds, owner=owner)
             if res.one is not None:
-                return _Ref(entity=res.one)
+                return Ref(entity=res.one)
             if res.ambiguous:
                 q = clarifying_question(self.snapshot, res.matches)
-                return _Ref(problem=Outcome(q, clarify=True, open_role=role, open_phrase=loose))
+                return Ref(problem=Outcome(q, clarify=True, open_role=role, open_phrase=loose))
         if set(words) & _MANY:  # "the cup and the apple", "both cups": more than one intent can carry
-            return _Ref(problem=Outcome("Sorry, one thing at a time, please.", understood=False))
+            return Ref(problem=Outcome("Sorry, one thing at a time, please.", understood=False))
         for alternative in alternatives(words):  # "an apple or an orange": either will do
             ref = self._ground(alternative, kinds, role, owner)
             if ref.entity is not None or ref.speaker:
@@ -341,8 +318,8 @@ class Interpreter:
         if self._half_known(content):
             # Names the KB knows among words it does not ("mr ito back", "the trousers out"): the
             # phrase was not understood, which is not the same as "there is no such thing".
-            return _Ref(problem=Outcome("Sorry, I did not understand that.", understood=False))
-        return _Ref(problem=Outcome(self._unknown(content, kinds)))
+            return Ref(problem=Outcome("Sorry, I did not understand that.", understood=False))
+        return Ref(problem=Outcome(self._unknown(content, kinds)))
 
     def _half_known(self, content: Sequence[str]) -> bool:
         """Whether some words of a phrase are names of the KB and others are words it does not know."""
@@ -421,53 +398,3 @@ class Interpreter:
             open_role=outcome.open_role,
             open_phrase=outcome.open_phrase,
         )
-
-    # -- replies ---------------------------------------------------------------------------------
-    def _vocative(self) -> str:
-        me = self.snapshot.get(self.speaker)
-        return f" {me.name}" if me is not None and me.labels else ""
-
-    def _name(self, ref: _Ref | None) -> str:
-        if ref is None:
-            return "it"
-        if ref.speaker:
-            return "you"
-        return answers.the(self.snapshot, ref.entity, self.speaker) if ref.entity else "it"
-
-    def _ack(self, intent: str, roles: dict[str, str], refs: dict[str, _Ref]) -> str:
-        obj, rec, goal = (self._name(refs.get(r)) for r in ("object", "recipient", "goal"))
-        text = roles.get("object", "").replace("_", " ")
-        match intent:
-            case I.GRAB_OBJECT:
-                return f"OK, I will pick up {obj}."
-            case I.BRING_OBJECT:
-                return f"OK, I will bring {obj} to {rec}."
-            case I.PLACE_OBJECT:
-                ref = refs.get("recipient")
-                prep = (
-                    "in" if ref is not None and ref.entity is not None and ref.entity.kind == "zone" else "on"
-                )
-                return f"OK, I will put {obj if 'object' in refs else 'it'} {prep} {rec}."
-            case I.MOVE_TO:
-                return "OK, I am coming." if goal == "you" else f"OK, I am going to {goal}."
-            case I.GUIDE:
-                who = "take you" if rec == "you" else f"guide {rec}"
-                return f"OK, I will {who} to {goal}."
-            case I.GREET:
-                return f"OK, I will greet {rec}."
-            case I.SAY:
-                return f"OK, I will tell {rec}: {text}." if "recipient" in refs else f"OK: {text}."
-            case I.ENGAGE_WITH:
-                return f"OK, I will go and talk to {rec}."
-            case I.PERFORM_MOTION:
-                prep = "at" if text in {"wave", "point", "nod", "smile"} else "for"
-                return f"OK, I will {text} {prep} {rec}." if "recipient" in refs else f"OK, I will {text}."
-            case I.START_ACTIVITY:
-                return f"OK, I am starting: {text}."
-            case I.STOP_ACTIVITY:
-                return f"OK, I will stop {text}." if text else "OK, I am stopping."
-            case I.WAKEUP:
-                return "I am awake!"
-            case I.SUSPEND:
-                return "OK, I will go to sleep."
-        return "OK."

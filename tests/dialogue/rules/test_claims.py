@@ -2,7 +2,8 @@
 case sets, on scenes and sentences of its own."""
 
 from dialogue.history import ASSISTANT_USER_ID, Utterance
-from dialogue.rules.interpret import Interpreter, Outcome
+from dialogue.rules.interpret import Interpreter
+from dialogue.rules.outcome import Outcome
 from kb import KB
 from tests.dialogue.conftest import lexicon_of, scene_kb
 

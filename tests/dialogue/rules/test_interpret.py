@@ -4,7 +4,8 @@ import pytest
 
 from dialogue import intents as I
 from dialogue.history import ASSISTANT_USER_ID, Utterance
-from dialogue.rules.interpret import Interpreter, Outcome
+from dialogue.rules.interpret import Interpreter
+from dialogue.rules.outcome import Outcome
 from kb import KB
 from tests.dialogue.conftest import lexicon_of, scene_kb
 

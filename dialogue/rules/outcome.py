@@ -1,0 +1,36 @@
+"""What the rules make of an utterance: a reply, maybe intents (in order), and how sure they are."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from dialogue.reference.grounding import Entity
+from dialogue.rules.commands import Words
+
+
+@dataclass(frozen=True)
+class Outcome:
+    reply: str
+    intent: str | None = None
+    roles: dict[str, str] = field(default_factory=dict)
+    confidence: float = 0.9
+    understood: bool = True
+    clarify: bool = False
+    #: For a follow-up turn: the role whose phrase was ambiguous (or missing), and that phrase.
+    open_role: str | None = None
+    open_phrase: Words = ()
+    #: The intents that follow this one in a compound request, in order.
+    more: tuple[Outcome, ...] = ()
+
+    def steps(self) -> tuple[Outcome, ...]:
+        """This outcome and the ones that follow it."""
+        return (self, *self.more)
+
+
+@dataclass(frozen=True)
+class Ref:
+    """What a noun phrase grounded to: one entity, the speaker, or the outcome that says why not."""
+
+    entity: Entity | None = None
+    speaker: bool = False
+    problem: Outcome | None = None
