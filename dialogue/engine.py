@@ -7,12 +7,17 @@ the model that reads the prompt of the turns it did not answer (None: they are n
 The whole turn runs under a deadline. When the model is down, slow or twice invalid, the turn still
 answers in time: a polite reply, a `__raw_user_input__` intent and a non-empty `error_msg` (D5).
 Referents in emitted intents are always entities of the KB snapshot (or the speaker).
+
+Every turn is traced as data (dialogue.trace): each stage timed, each model request with its
+messages, schema, raw answer and validation error; the result carries the finished `TurnTrace`.
+The offline rules read English only (dialogue.locales): a turn in another language skips them.
 """
 
 from __future__ import annotations
 
 import asyncio
 import logging
+import time
 from collections.abc import Sequence
 from dataclasses import dataclass, replace
 
@@ -21,12 +26,14 @@ from dialogue.earlyack import ask
 from dialogue.history import Utterance
 from dialogue.llm.base import ChatMessage, ChatModel, ChatRequest, ChatResult, ModelError, TurnContext
 from dialogue.llm.rules import RulesModel
+from dialogue.locales import is_english, normalise_locale
 from dialogue.prompts import PromptSet
 from dialogue.reference.grounding import Entity, Grounder, Snapshot
 from dialogue.reference.lexicon import Lexicon, LexiconCache
 from dialogue.reference.relevance import mentioned, ranked
 from dialogue.schema import AnswerError, SchemaCandidates, parse_answer, turn_schema
 from dialogue.speakers import admit
+from dialogue.trace.record import AnsweredBy, TraceRecorder, TurnTrace
 from dialogue.validate import Grounded, ground_answer
 from kb import KbError
 from kb.protocol import KnowledgeBase
@@ -37,6 +44,7 @@ log = logging.getLogger(__name__)
 MAX_SCHEMA_IDS = 60
 SORRY = "Sorry, I can't answer right now."
 NOT_UNDERSTOOD = "Sorry, I did not understand that."
+RULES_ENGLISH_ONLY = "the offline rules understand English only; a model backend (hybrid:...) reads locale {}"
 
 
 _SUPPORT_CLASSES = frozenset({"PhysicalSupport", "cyc:FurniturePiece", "cyc:Object-SupportingFurniture"})
@@ -68,6 +76,11 @@ class TurnResult:
     clarify: bool = False
     #: False when no backend understood the input (the reply says so).
     understood: bool = True
+    #: A role's dialogue is over (the ask role: every field obtained, or the person cancelled).
+    dialogue_terminal: bool | None = None
+    #: The role's results, a JSON object string (the ask role: the fields obtained).
+    results: str | None = None
+    trace: TurnTrace | None = None
 
 
 @dataclass
@@ -77,6 +90,7 @@ class _Turn:
     locale: str | None
     context: TurnContext
     lexicon: Lexicon
+    trace: TraceRecorder
 
 
 class DialogueEngine:
@@ -126,23 +140,37 @@ class DialogueEngine:
         history: Sequence[Utterance] = (),
         locale: str | None = None,
         deadline: float | None = None,
+        trace: TraceRecorder | None = None,
     ) -> TurnResult:
         """One turn, answered by `deadline` (the event loop's clock; default: `config.deadline` s from
         now). A caller that queued the turn passes the deadline counted from its arrival. Text that is
-        not valid Unicode (a lone surrogate) is refused with ``kb.unicode.InvalidUnicode`` before
-        anything is asked or recorded."""
+        not valid Unicode (a lone surrogate) is refused with ``kb.unicode.InvalidUnicode``, a locale that
+        is no language tag with ``dialogue.locales.LocaleError``, before anything is asked or recorded."""
         check_text(text, "the utterance")
         check_text(speaker, "the speaker")
+        locale = normalise_locale(locale) if locale else None
         loop = asyncio.get_running_loop()
         if deadline is None:
             deadline = loop.time() + self.config.deadline
+        recorder = trace or TraceRecorder(speaker=speaker, input=text, locale=locale)
         try:
             async with asyncio.timeout_at(deadline):
-                return await self._turn(text, speaker, tuple(history), locale, deadline)
+                result = await self._turn(text, speaker, tuple(history), locale, deadline, recorder)
         except TimeoutError:
-            return self.fallback(
+            result = self.fallback(
                 text, speaker, locale, f"no answer within the {self.config.deadline:g} s deadline"
             )
+        return self.traced(result, recorder)
+
+    def traced(self, result: TurnResult, recorder: TraceRecorder) -> TurnResult:
+        """`result` carrying its finished trace."""
+        trace = recorder.finish(
+            response=result.response, backend=result.backend,
+            answered_by=_answered_by(result, self.model, recorder.trace.locale),
+            intents=result.intents, error_msg=result.error_msg, clarify=result.clarify,
+            dialogue_terminal=result.dialogue_terminal, results=result.results,
+        )
+        return replace(result, trace=trace)
 
     def fallback(
         self, text: str, speaker: str, locale: str | None, error: str, reply: str = SORRY
@@ -158,30 +186,53 @@ class DialogueEngine:
         speaker: str,
         history: tuple[Utterance, ...],
         locale: str | None,
+        trace: TraceRecorder | None = None,
     ) -> _Turn:
         snapshot, lexicon = grounded
         focus = ranked(snapshot, speaker, self.config.max_snapshot_entities, mentioned(lexicon, text))
         context = TurnContext(text, speaker, snapshot, history, locale, self.config.robot_name, tuple(focus))
-        return _Turn(text, speaker, locale, context, lexicon)
+        recorder = trace or TraceRecorder(speaker=speaker, input=text, locale=locale)
+        kinds = [e.kind for e in snapshot.entities.values()]
+        recorder.snapshot(snapshot.revision, kinds, [e.id for e in focus])
+        return _Turn(text, speaker, locale, context, lexicon, recorder)
+
+    async def grounded_for(
+        self, text: str, speaker: str, locale: str | None, trace: TraceRecorder
+    ) -> tuple[Snapshot, Lexicon] | TurnResult:
+        """The turn's snapshot and lexicon, the speaker a person of the KB; a fallback when they cannot be."""
+        with trace.stage("ground"):
+            grounded = await self.ground_async()
+        if grounded[0].get(speaker) is None:
+            with trace.stage("speaker"):
+                try:
+                    added = await asyncio.to_thread(admit, self.kb, speaker)
+                except KbError as exc:
+                    why = f"speaker {speaker!r} cannot join the KB: {exc}"
+                    return self.fallback(text, speaker, locale, why)
+                if added:  # the speaker is a person of the KB from now on
+                    grounded = await self.ground_async()
+        return grounded
 
     async def _turn(
-        self, text: str, speaker: str, history: tuple[Utterance, ...], locale: str | None, deadline: float
+        self, text: str, speaker: str, history: tuple[Utterance, ...], locale: str | None, deadline: float,
+        trace: TraceRecorder,
     ) -> TurnResult:
-        grounded = await self.ground_async()
-        if grounded[0].get(speaker) is None:
-            try:
-                added = await asyncio.to_thread(admit, self.kb, speaker)
-            except KbError as exc:
-                return self.fallback(text, speaker, locale, f"speaker {speaker!r} cannot join the KB: {exc}")
-            if added:  # the speaker is a person of the KB from now on
-                grounded = await self.ground_async()
-        turn = self.prepare(grounded, text, speaker, history, locale)
-        fast = self.fast_path(turn)
-        if fast is not None:
-            return fast
+        grounded = await self.grounded_for(text, speaker, locale, trace)
+        if isinstance(grounded, TurnResult):
+            return grounded
+        turn = self.prepare(grounded, text, speaker, history, locale, trace)
+        english = is_english(locale)
+        if english:  # the rules read English only: never an English misparse of another language
+            with trace.stage("rules"):
+                fast = self.fast_path(turn)
+            if fast is not None:
+                return fast
         llm = self.model.llm
         if llm is None:
             raw = I.raw_user_input(text, source=speaker, locale=locale)
+            if not english:
+                return TurnResult("", (raw,), RULES_ENGLISH_ONLY.format(locale), backend=self.model.name,
+                                  understood=False)
             return TurnResult(NOT_UNDERSTOOD, (raw,), backend=self.model.name, understood=False)
         return await self._ask_model(turn, deadline, llm)
 
@@ -221,13 +272,21 @@ class DialogueEngine:
         request = ChatRequest(messages, schema, turn.context)
         errors: list[str] = []
         for attempt in range(2):
+            exchange = turn.trace.request(model.name, [(m.role, m.content) for m in request.messages], schema,
+                                          repair=request.repair)
+            started = time.perf_counter()
             try:
-                result = await ask(model, request, max(0.01, deadline - loop.time()))
+                with turn.trace.stage("model"):
+                    result = await ask(model, request, max(0.01, deadline - loop.time()))
             except ModelError as exc:
+                turn.trace.answered(exchange, None, None, started, error=str(exc))
                 return self.fallback(turn.text, turn.speaker, turn.locale, f"{model.name}: {exc}")
+            turn.trace.answered(exchange, result.content, result.done_reason, started)
             try:
-                grounded = self._validate(result, turn)
+                with turn.trace.stage("validate"):
+                    grounded = self._validate(result, turn)
             except AnswerError as exc:
+                turn.trace.invalid(exchange, str(exc))
                 errors.append(str(exc))
                 if attempt == 0:
                     repair = (ChatMessage("assistant", result.content), self.prompts.repair_message(str(exc)))
@@ -250,3 +309,12 @@ class DialogueEngine:
         return ground_answer(
             answer, turn.lexicon, turn.speaker, default_confidence=self.config.model_confidence
         )
+
+
+def _answered_by(result: TurnResult, model: ChatModel, locale: str | None) -> AnsweredBy:
+    """Which kind of backend answered the turn, for its trace."""
+    if result.backend in ("fallback", "recorded"):
+        return "fallback" if result.backend == "fallback" else "recorded"
+    if not result.understood and model.llm is None and not is_english(locale):
+        return "handover"
+    return "rules" if result.backend == "rules" else "model"

@@ -17,9 +17,10 @@ from dialogue.errors import DialogueError
 from dialogue.history import Utterance
 from dialogue.intents import CATALOGUE, EXTRACTABLE
 from dialogue.llm.base import ChatMessage, TurnContext
+from dialogue.locales import is_english, language_name
 from dialogue.situation import describe
 
-TEMPLATE_NAMES = ("system", "turn", "repair")
+TEMPLATE_NAMES = ("system", "turn", "repair", "language")
 
 #: Which answer keys each intent uses; free-form roles travel in `input` (see dialogue.schema).
 FREE_FORM_OBJECT = frozenset(
@@ -86,6 +87,8 @@ class PromptSet:
     system: string.Template
     turn: string.Template
     repair: string.Template
+    #: Said after the turn when the dialogue is not in English (the situation stays in English).
+    language: string.Template
 
     @classmethod
     def load(cls, package: str = "prompts") -> PromptSet:
@@ -97,11 +100,18 @@ class PromptSet:
     def messages(self, context: TurnContext, intents: Sequence[str] = EXTRACTABLE) -> tuple[ChatMessage, ...]:
         situation = describe(context.snapshot, context.speaker, context.focus).text
         turn = render(self.turn, {"situation": situation, "user_id": context.speaker, "input": context.text})
+        turn += self.language_line(context.locale)
         return (
             ChatMessage("system", self.system_prompt(context.robot_name, intents)),
             *(history_message(u) for u in context.history),
             ChatMessage("user", turn),
         )
+
+    def language_line(self, locale: str | None) -> str:
+        """The instruction to answer in the dialogue's language; nothing for English."""
+        if is_english(locale) or locale is None:
+            return ""
+        return "\n\n" + render(self.language, {"language": language_name(locale)})
 
     def repair_message(self, errors: str) -> ChatMessage:
         return ChatMessage("user", render(self.repair, {"errors": errors}))

@@ -15,6 +15,11 @@ one process only: two processes running turns on the same dialogue
 at once both load the same state and the last save wins (the other turn's utterances are lost from
 the history; its reply and intents were still returned). A dialogue ended while a turn runs stays
 ended: the turn's save does not store it again.
+
+What a turn does depends on the dialogue's role (dialogue.roles): `__default__` (the engine's turn)
+or `__ask__` (a form; its question is the dialogue's opening line). A turn that brings its role (the
+chatbot_msgs 4.0 stateless shape) reads and writes nothing in the store: the request's history is
+the whole dialogue. Every turn's trace is kept, bounded, in `traces` (dialogue.trace).
 """
 
 from __future__ import annotations
@@ -28,9 +33,12 @@ from collections.abc import Callable, Sequence
 from dataclasses import replace
 from typing import Literal, ParamSpec, TypeVar
 
+from dialogue.ask import ASK_ROLE
 from dialogue.engine import SORRY, DialogueEngine, TurnResult
 from dialogue.errors import SessionError
-from dialogue.history import ASSISTANT_USER_ID, History, Utterance
+from dialogue.history import ASSISTANT_USER_ID, SYSTEM_USER_ID, History, Utterance
+from dialogue.locales import LocaleError, normalise_locale
+from dialogue.roles import Roles
 from dialogue.sessionstore import (
     DEFAULT_DIALOGUE,
     DEFAULT_ROLE,
@@ -40,6 +48,8 @@ from dialogue.sessionstore import (
     StateError,
     check_bound,
 )
+from dialogue.trace.record import TraceRecorder
+from dialogue.trace.store import TraceStore
 from kb.errors import InvalidUnicode, StoreUnavailable
 from kb.unicode import check_text
 
@@ -53,9 +63,7 @@ __all__ = [
     "check_utterance",
 ]
 
-SUPPORTED_ROLES = frozenset({DEFAULT_ROLE})
-
-log = logging.getLogger(__name__)
+SUPPORTED_ROLES = frozenset({DEFAULT_ROLE, ASK_ROLE})
 
 P = ParamSpec("P")
 T = TypeVar("T")
@@ -89,9 +97,17 @@ def _check_id(dialogue_id: str) -> None:
         raise SessionError(f"dialogue id {dialogue_id!r} is not valid Unicode text") from None
 
 
-def _check_texts(user_id: str, text: str, locale: str | None, history: Sequence[Utterance] | None) -> None:
+def _locale(locale: str | None) -> str | None:
+    try:
+        return normalise_locale(locale) if locale else None
+    except LocaleError as exc:
+        raise SessionError(str(exc)) from None
+
+
+def _check_texts(user_id: str, text: str, locale: str | None, history: Sequence[Utterance] | None,
+                 extra: Sequence[tuple[str, str]] = ()) -> None:
     """Refuse a turn holding text that is not valid Unicode before anything is recorded."""
-    fields = [("user_id", user_id), ("input", text), ("locale", locale or "")]
+    fields = [("user_id", user_id), ("input", text), ("locale", locale or ""), *extra]
     fields += [(f"history turn {i}", part) for i, turn in enumerate(history or ())
                for part in (turn.speaker, turn.text)]
     try:
@@ -121,6 +137,9 @@ class DialogueManager:
         check_bound(max_dialogues)
         History(max_turns, max_chars)  # refuses bad limits now, not at the first turn
         self.engine = engine
+        self.roles = Roles(engine)
+        #: The recent turns' traces of each dialogue (this process's turns).
+        self.traces = TraceStore()
         self.store: SessionStore = store if store is not None else MemorySessions(max_dialogues)
         self.max_dialogues = self.store.max_dialogues
         self.max_turns = max_turns
@@ -148,13 +167,21 @@ class DialogueManager:
         configuration: str = "",
         dialogue_id: str | None = None,
     ) -> DialogueState:
-        if role not in SUPPORTED_ROLES:
-            raise SessionError(f"unsupported dialogue role {role!r}; supported: {sorted(SUPPORTED_ROLES)}")
+        opening, role_state = self.roles.get(role).open(configuration)  # a bad configuration is refused
+        locale = _locale(locale)
         if dialogue_id and self._find(dialogue_id) is not None:
             raise SessionError(f"dialogue {dialogue_id!r} already exists")
-        state = DialogueState(dialogue_id or str(uuid.uuid4()), role, locale, configuration, (), time.time())
+        history = (Utterance(ASSISTANT_USER_ID, opening),) if opening else ()
+        new_id = dialogue_id or str(uuid.uuid4())
+        state = DialogueState(new_id, role, locale, configuration, history, time.time(), role_state)
         self.store.save(state, create=True)
         return state
+
+    @staticmethod
+    def opening_line(state: DialogueState) -> str:
+        """What the robot says first in a dialogue just started (the ask role's question), or ""."""
+        last = state.history[-1] if state.history else None
+        return last.text if last is not None and last.speaker == ASSISTANT_USER_ID else ""
 
     def get(self, dialogue_id: str) -> DialogueState:
         state = self._find(dialogue_id)
@@ -165,6 +192,7 @@ class DialogueManager:
     def end(self, dialogue_id: str) -> None:
         """Forget a dialogue; ending `default` only clears its history (it always exists)."""
         state = self.get(dialogue_id)
+        self.traces.forget(dialogue_id)
         if dialogue_id == DEFAULT_DIALOGUE:
             self.store.save(replace(state, history=(), last_used=time.time()), create=True)
         else:
@@ -221,17 +249,31 @@ class DialogueManager:
         locale: str | None = None,
         response_expected: bool = True,
         history: Sequence[Utterance] | None = None,
+        role: str | None = None,
+        configuration: str = "{}",
+        summary: str | None = None,
     ) -> TurnResult:
-        """One DialogueInteraction. `history` (the 4.0.0 stateless shape) replaces the stored one.
+        """One DialogueInteraction. `history` replaces the stored one. With `role` (and its
+        `configuration`) the turn is stateless (chatbot_msgs 4.0): nothing is read from or written to
+        the store, `dialogue_id` only names the turn (its trace), `history` is the whole dialogue.
+        `summary` (of earlier sessions) is given to the turn as a system utterance before the history.
 
         Answered within the engine's deadline from now, however many turns of the dialogue are
         queued before this one."""
         if not user_id:
             raise SessionError("user_id is required")
         check_utterance(text)
-        _check_texts(user_id, text, locale, history)
+        _check_texts(user_id, text, locale, history, [("summary", summary or ""), ("role", role or ""),
+                                                      ("configuration", configuration)])
+        locale = _locale(locale)
+        if summary:
+            earlier = Utterance(SYSTEM_USER_ID, f"Summary of earlier conversations: {summary}")
+            history = [earlier, *(history or ())]
         loop = asyncio.get_running_loop()
         deadline = loop.time() + self.engine.config.deadline
+        if role is not None:
+            state = DialogueState(dialogue_id, role, locale, configuration, tuple(history or ()))
+            return await self._stateless(state, user_id, text, response_expected, deadline)
         lock = self._lock(dialogue_id)
         # The place is taken now, so turns keep their arrival order whatever happens to each.
         place = asyncio.ensure_future(lock.acquire())
@@ -247,6 +289,8 @@ class DialogueManager:
                     f"no answer within the {self.engine.config.deadline:g} s deadline: "
                     "earlier turns of this dialogue were still running",
                 )
+                trace = TraceRecorder(dialogue_id=dialogue_id, speaker=user_id, input=text, locale=locale)
+                late = self._traced(dialogue_id, self.engine.traced(late, trace))
             else:
                 late = TurnResult("", (), backend="recorded")
             self._record_in_turn(place, lock, dialogue_id, user_id, text, late.response, history)
@@ -282,13 +326,42 @@ class DialogueManager:
         if not response_expected:
             kept.add(user_id, text)
             return await self._saved(state, kept, TurnResult("", (), backend="recorded"))
-        result = await self.engine.turn(
-            text, speaker=user_id, history=kept.snapshot(), locale=locale or state.locale, deadline=deadline
-        )
+        result, role_state = await self._role_turn(state, user_id, text, kept.snapshot(), locale, deadline)
         kept.add(user_id, text)
         if result.response:
             kept.add(ASSISTANT_USER_ID, result.response)
-        return await self._saved(state, kept, result)
+        return await self._saved(replace(state, role_state=role_state), kept, result)
+
+    async def _role_turn(self, state: DialogueState, user_id: str, text: str, history: Sequence[Utterance],
+                         locale: str | None, deadline: float,
+                         shape: Literal["3.0", "4.0"] = "3.0") -> tuple[TurnResult, str]:
+        """The turn as the dialogue's role runs it, its trace kept."""
+        locale = locale or state.locale
+        trace = TraceRecorder(dialogue_id=state.id, role=state.role, shape=shape, speaker=user_id, input=text,
+                              locale=locale)
+        result, role_state = await self.roles.get(state.role).turn(
+            state.configuration, state.role_state, text, speaker=user_id, history=history, locale=locale,
+            deadline=deadline, trace=trace,
+        )
+        return self._traced(state.id, result), role_state
+
+    def _traced(self, dialogue_id: str, result: TurnResult) -> TurnResult:
+        if result.trace is not None:
+            self.traces.add(dialogue_id, result.trace)
+        return result
+
+    async def _stateless(self, state: DialogueState, user_id: str, text: str, response_expected: bool,
+                         deadline: float) -> TurnResult:
+        """A 4.0 turn: its request holds the whole dialogue; the store is not used."""
+        role = self.roles.get(state.role)
+        if not state.role_state:  # a bad configuration is refused before the turn
+            role.open(state.configuration)
+        if not response_expected:
+            return TurnResult("", (), backend="recorded")
+        kept = self._kept(state, None)
+        history = kept.snapshot()
+        result, _state = await self._role_turn(state, user_id, text, history, state.locale, deadline, "4.0")
+        return result
 
     async def _saved(self, state: DialogueState, kept: History, result: TurnResult) -> TurnResult:
         """The turn's result once its history is saved; when the store cannot take it, the result

@@ -40,6 +40,8 @@ class DialogueState:
     history: tuple[Utterance, ...] = ()
     #: When the dialogue was last saved (seconds since the epoch); orders the eviction.
     last_used: float = 0.0
+    #: What the role keeps between turns (the ask role: its form), opaque JSON text.
+    role_state: str = ""
 
     def to_json(self) -> str:
         # ASCII only: the text travels safely through any store, even lone surrogates from JSON input.
@@ -52,6 +54,7 @@ class DialogueState:
                 "configuration": self.configuration,
                 "history": [{"speaker": u.speaker, "text": u.text} for u in self.history],
                 "last_used": self.last_used,
+                "role_state": self.role_state,
             },
             ensure_ascii=True,
             separators=(",", ":"),
@@ -70,6 +73,9 @@ class DialogueState:
             raise StateError("stored dialogue history must be a list of {speaker, text} strings")
         locale = data.get("locale")
         last_used = data.get("last_used")
+        role_state = data.get("role_state", "")  # absent from states saved before roles kept any
+        if not isinstance(role_state, str):
+            raise StateError("stored dialogue role_state must be a string")
         strings = (data.get("id"), data.get("role"), data.get("configuration"))
         if not all(isinstance(s, str) for s in strings) or not isinstance(locale, str | None):
             raise StateError("stored dialogue id, role, configuration and locale must be strings")
@@ -82,6 +88,7 @@ class DialogueState:
             data["configuration"],
             tuple(Utterance(u["speaker"], u["text"]) for u in history),
             float(last_used),
+            role_state,
         )
 
 

@@ -4,6 +4,7 @@ from typing import Any
 import pytest
 
 from dialogue import intents as I
+from dialogue.ask import AskError
 from dialogue.engine import SORRY, DialogueEngine, EngineConfig, TurnResult
 from dialogue.history import ASSISTANT_USER_ID, SYSTEM_USER_ID, Utterance
 from dialogue.llm.base import ChatRequest
@@ -86,7 +87,9 @@ def test_errors_and_bounds(kitchen: KB) -> None:
     manager = DialogueManager(DialogueEngine(kitchen, ScriptedModel()), max_dialogues=3, max_turns=4)
     with pytest.raises(SessionError, match="unknown dialogue 'nope'"):
         manager.get("nope")
-    with pytest.raises(SessionError, match="unsupported dialogue role"):
+    with pytest.raises(SessionError, match="unsupported dialogue role '__nope__'"):
+        manager.start(role="__nope__")
+    with pytest.raises(AskError, match="the ask role needs a question"):
         manager.start(role="__ask__")
     first = manager.start(dialogue_id="one").id
     with pytest.raises(SessionError, match="already exists"):

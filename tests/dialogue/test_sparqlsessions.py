@@ -71,15 +71,15 @@ def shared(store: Callable[[], str]) -> Iterator[Callable[..., Shared]]:
 
 def test_a_dialogue_started_on_one_process_continues_on_the_other(kitchen: KB, shared: Callable[..., Shared]) -> None:
     s = shared(kitchen)
-    started = s.a.start(locale="fr_FR", configuration='{"persona": "butler"}')
+    started = s.a.start(locale="en_GB", configuration='{"persona": "butler"}')
     seen = s.b.get(started.id)
-    assert (seen.role, seen.locale, seen.configuration, seen.history) == ("__default__", "fr_FR", '{"persona": "butler"}', ())
+    assert (seen.role, seen.locale, seen.configuration, seen.history) == ("__default__", "en_GB", '{"persona": "butler"}', ())
     assert started.id in s.b.ids()
 
     asyncio.run(s.a.interact("person_alice", "hello", dialogue_id=started.id))
     result = asyncio.run(s.b.interact("person_alice", "bla bla", dialogue_id=started.id))
     # The locale stored by A reaches B's fallback intent.
-    assert result.intents[0].intent == I.RAW_USER_INPUT and result.intents[0].data["locale"] == "fr_FR"
+    assert result.intents[0].intent == I.RAW_USER_INPUT and result.intents[0].data["locale"] == "en_GB"
     said = [(u.speaker, u.text) for u in s.a.get(started.id).history]
     assert said == [
         ("person_alice", "hello"),
@@ -155,12 +155,14 @@ def test_at_most_max_dialogues_are_kept_and_default_is_never_dropped(kitchen: KB
 @pytest.mark.parametrize("dialogue_id", HOSTILE_IDS)
 def test_hostile_ids_and_text_round_trip(dialogue_id: str, kitchen: KB, shared: Callable[..., Shared]) -> None:
     s = shared(kitchen)
-    s.a.start(locale=HOSTILE_TEXT, configuration=HOSTILE_TEXT, dialogue_id=dialogue_id)
+    with pytest.raises(SessionError, match="is not a language tag"):  # a locale is checked, never stored as is
+        s.a.start(locale=HOSTILE_TEXT, dialogue_id=dialogue_id)
+    s.a.start(locale="fr-fr", configuration=HOSTILE_TEXT, dialogue_id=dialogue_id)
     with pytest.raises(SessionError, match="already exists"):
         s.b.start(dialogue_id=dialogue_id)
     asyncio.run(s.b.interact(HOSTILE_TEXT, HOSTILE_TEXT, dialogue_id=dialogue_id, response_expected=False))
     state = s.a.get(dialogue_id)
-    assert (state.id, state.locale, state.configuration) == (dialogue_id, HOSTILE_TEXT, HOSTILE_TEXT)
+    assert (state.id, state.locale, state.configuration) == (dialogue_id, "fr_FR", HOSTILE_TEXT)
     assert state.history == (Utterance(HOSTILE_TEXT, HOSTILE_TEXT),)
     assert s.a.ids() == [DEFAULT_DIALOGUE, dialogue_id]
     s.a.end(dialogue_id)

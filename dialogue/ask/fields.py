@@ -1,0 +1,303 @@
+"""Reading one field's value out of a clause of an answer: one finder per kind of field, in a table.
+
+A finder says what value of its field a clause gives (`Found`), with the reason when the value said
+cannot be used (a number out of bounds, a thing that is not of the field's class), or the
+candidates when an entity field's words name several entities. None: the clause says nothing for
+that field. Booleans and free strings are claimed only by the field being asked or named ("yes"
+says nothing about a field nobody asked about); numbers, enum values and entities by their type.
+
+>>> clause = Clause.of("I'm twenty-three")
+>>> clause.numbers
+(23.0,)
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field
+from typing import Any
+
+from text_to_num import alpha2digit
+
+from dialogue.ask.form import FieldKind, FormField
+from dialogue.reference.grounding import Entity, Snapshot
+from dialogue.reference.lexicon import Lexicon, norm, singular, tokens
+from dialogue.reference.resolution import ALL_KINDS, resolve
+
+YES = frozenset(
+    {
+        "yes",
+        "yeah",
+        "yep",
+        "yup",
+        "yea",
+        "aye",
+        "sure",
+        "certainly",
+        "definitely",
+        "absolutely",
+        "correct",
+        "right",
+        "true",
+        "affirmative",
+        "indeed",
+        "ok",
+        "okay",
+        "alright",
+        "course",
+    }
+)
+NO = frozenset(
+    {
+        "no",
+        "nope",
+        "nah",
+        "never",
+        "negative",
+        "false",
+        "not",
+        "don't",
+        "dont",
+        "doesn't",
+        "isn't",
+        "haven't",
+        "hasn't",
+        "wasn't",
+        "aren't",
+        "won't",
+        "nothing",
+        "none",
+    }
+)
+#: Words said before an answer that are not part of it ("it's Bob", "I'd like the red cup").
+LEAD_INS = frozenset(
+    {
+        "i",
+        "i'm",
+        "im",
+        "i'd",
+        "id",
+        "am",
+        "is",
+        "it",
+        "it's",
+        "its",
+        "that",
+        "that's",
+        "thats",
+        "like",
+        "want",
+        "would",
+        "take",
+        "choose",
+        "pick",
+        "please",
+        "well",
+        "so",
+        "um",
+        "uh",
+        "er",
+        "hmm",
+        "okay",
+        "ok",
+        "the",
+        "a",
+        "an",
+        "say",
+        "think",
+        "guess",
+        "maybe",
+        "probably",
+        "prefer",
+        "rather",
+        "have",
+        "one",
+        "answer",
+        "call",
+        "me",
+        "they",
+        "my",
+        "name's",
+        "years",
+        "year",
+        "old",
+        "of",
+        "course",
+        "actually",
+        "no",
+        "sorry",
+        "oh",
+    }
+)
+_LEAD_IN_TEXT = re.compile(
+    r"^(?:(?:well|so|um+|uh+|er|oh|ok(?:ay)?|yes|yeah|no|actually|sorry)\b[,\s]*)*"
+    r"(?:(?:it'?s|it is|that'?s|that is|i'?m|i am|call me|they call me|i'?d say|i think|i guess|"
+    r"the answer is|my answer is)\b\s*)?",
+    re.IGNORECASE,
+)
+_NUMBER = re.compile(r"(?<![\w.])((?:minus|negative)\s+|-)?(\d+(?:\.\d+)?)(?![\w]|\.\d)", re.IGNORECASE)
+ORDINALS = {"first": 0, "second": 1, "third": 2, "fourth": 3, "last": -1}
+
+
+@dataclass(frozen=True)
+class Clause:
+    """A part of an answer: its text as said (case kept), its words, the numbers said in it."""
+
+    text: str
+    words: tuple[str, ...]
+    numbers: tuple[float, ...]
+
+    @classmethod
+    def of(cls, text: str) -> Clause:
+        digits = alpha2digit(text, "en", threshold=0)
+        numbers = tuple((-1 if m.group(1) else 1) * float(m.group(2)) for m in _NUMBER.finditer(digits))
+        return cls(text.strip(), tuple(tokens(text)), numbers)
+
+    def has(self, words: Sequence[str]) -> int | None:
+        """Where `words` (singular or plural) occur in the clause, or None."""
+        wanted, mine = norm(words), norm(self.words)
+        for start in range(len(mine) - len(wanted) + 1):
+            if mine[start : start + len(wanted)] == wanted:
+                return start
+        return None
+
+
+@dataclass(frozen=True)
+class Found:
+    value: Any = None
+    #: Why the value said cannot fill the field (then `value` is what was said).
+    problem: str | None = None
+    #: Several entities fit the words: the person is asked which.
+    candidates: tuple[Entity, ...] = ()
+    said: str = ""
+
+
+@dataclass
+class ReadContext:
+    lexicon: Lexicon
+    speaker: str
+    #: The field the robot asked for last, the fields named in the clause.
+    asked: str | None = None
+    named: frozenset[str] = frozenset()
+    #: Candidates of a clarifying question about this field, in the order they were offered.
+    clarifying: dict[str, list[str]] = field(default_factory=dict)
+
+
+def checked(form_field: FormField, value: Any, said: str) -> Found:
+    held, problem = form_field.check(value)
+    return Found(value, problem, said=said) if problem else Found(held, said=said)
+
+
+def find_boolean(form_field: FormField, clause: Clause, ctx: ReadContext) -> Found | None:
+    words = set(clause.words)
+    yes, no = bool(words & YES), bool(words & NO)
+    if yes == no:
+        return None
+    return Found(yes, said=clause.text)
+
+
+def _number(form_field: FormField, clause: Clause) -> Found | None:
+    if len(set(clause.numbers)) != 1:
+        return None
+    number = clause.numbers[0]
+    value: Any = int(number) if form_field.kind == "integer" and number.is_integer() else number
+    return checked(form_field, value, clause.text)
+
+
+def find_enum(form_field: FormField, clause: Clause, ctx: ReadContext) -> Found | None:
+    hits = []
+    for value in form_field.enum:
+        if isinstance(value, str):
+            if clause.has(tokens(value)) is not None:
+                hits.append(value)
+        elif float(value) in clause.numbers:
+            hits.append(value)
+    # "light blue" and "blue": the longest value said is the one meant.
+    hits = [h for h in hits if not any(h != o and str(h) in str(o) for o in hits)]
+    return Found(hits[0], said=clause.text) if len(hits) == 1 else None
+
+
+def find_string(form_field: FormField, clause: Clause, ctx: ReadContext) -> Found | None:
+    text = clause.text
+    start = clause.has(tokens(form_field.words)) if form_field.name in ctx.named else None
+    if start is not None:  # "my name is Bob": what follows the field's words (and "is", ":")
+        after = re.split(r"\b(?:is|are|was|'s)\b|:", text, maxsplit=1)
+        text = after[1] if len(after) == 2 else ""
+    text = _LEAD_IN_TEXT.sub("", text).strip(" \t,.;:!?\"'")
+    return checked(form_field, text, clause.text) if text else None
+
+
+def pool(form_field: FormField, snapshot: Snapshot) -> list[Entity]:
+    """The entities the field may name: of its kinds and, when it has one, of its class."""
+    return [
+        e
+        for e in snapshot.entities.values()
+        if e.kind in form_field.kinds and (form_field.kb_class is None or form_field.kb_class in e.classes)
+    ]
+
+
+def find_entity(form_field: FormField, clause: Clause, ctx: ReadContext) -> Found | None:
+    lexicon, snapshot = ctx.lexicon, ctx.lexicon.snapshot
+    offered = [e for e in (snapshot.get(i) for i in ctx.clarifying.get(form_field.name, ())) if e is not None]
+    choices = offered or pool(form_field, snapshot)
+    ids = {e.id for e in choices}
+    for word in re.findall(r"[\w:.\-()]+", clause.text):  # an id said or typed as it is
+        if word in ids:
+            return Found(word, said=word)
+    if offered:
+        for word, index in ORDINALS.items():
+            if word in clause.words:
+                return Found(offered[index].id, said=word)
+    words = [w for w in clause.words if w not in LEAD_INS or w in ("my", "one")]
+    owner = ctx.speaker if "my" in words else None
+    for start in range(len(words)):  # the noun phrase ends the clause: "I'd like the red cup"
+        phrase = words[start:]
+        found = resolve(lexicon, phrase, ALL_KINDS, owner=owner)
+        if not found.matches:
+            continue
+        fits = [e for e in found.matches if e.id in ids]
+        said = " ".join(phrase)
+        if not fits and offered:  # "the red one": what the words say of the offered candidates
+            fits = [
+                e
+                for e in offered
+                if all(
+                    singular(w) in lexicon.attributes.get(e.id, ())
+                    for w in phrase
+                    if w not in ("the", "one", "my")
+                )
+            ]
+        if len(fits) == 1:
+            return Found(fits[0].id, said=said)
+        if fits:
+            return Found(None, candidates=tuple(fits), said=said)
+        what = form_field.kb_class or "/".join(sorted(form_field.kinds))
+        return Found(said, problem=f"{said} is not a {_readable(what)}", said=said)
+    return None
+
+
+def _readable(kb_class: str) -> str:
+    """ "dbr:Cup" -> "cup", "person/zone" stays."""
+    name = kb_class.split(":")[-1].split("_(")[0].replace("_", " ")
+    return re.sub(r"(?<=[a-z])(?=[A-Z])", " ", name).lower()
+
+
+Finder = Callable[[FormField, Clause, ReadContext], "Found | None"]
+
+FINDERS: dict[FieldKind, Finder] = {
+    "boolean": find_boolean,
+    "integer": lambda f, clause, ctx: _number(f, clause),
+    "number": lambda f, clause, ctx: _number(f, clause),
+    "enum": find_enum,
+    "string": find_string,
+    "entity": find_entity,
+}
+#: Kinds whose words say nothing about a field that is neither asked nor named ("yes", "Bob").
+NEEDS_FOCUS: frozenset[FieldKind] = frozenset({"boolean", "string"})
+
+
+def find(form_field: FormField, clause: Clause, ctx: ReadContext) -> Found | None:
+    if form_field.kind in NEEDS_FOCUS and form_field.name != ctx.asked and form_field.name not in ctx.named:
+        return None
+    return FINDERS[form_field.kind](form_field, clause, ctx)

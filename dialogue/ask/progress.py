@@ -1,0 +1,151 @@
+"""The form after an answer, and what the robot says next: the next question, a problem said back,
+a clarifying question, or the end (every required field obtained, given up or cancelled).
+
+A field that could not be obtained after `MAX_TRIES` answers is given up: the form ends without it
+(its key is omitted from the results, never invented).
+
+>>> from dialogue.ask.form import parse_configuration
+>>> from dialogue.ask.read import Reading
+>>> form = parse_configuration('{"question": "How old are you?", "result_schema_properties": '
+...     '{"age": {"type": "integer", "minimum": 0, "maximum": 130}}}')
+>>> state = opening_state(form)
+>>> state, line = advance(form, state, Reading(problems={"age": "Input should be less than or equal to 130"}))
+>>> line
+'That is not a possible age: it must be at least 0 and at most 130. How old are you?'
+>>> state, line = advance(form, state, Reading(values={"age": 34}))
+>>> state.status, state.results(), line
+('done', '{"age": 34}', 'Thank you.')
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+from dialogue.ask.fields import pool
+from dialogue.ask.form import AskForm, FormField, FormState
+from dialogue.ask.read import Reading
+from dialogue.reference.clarify import MAX_OPTIONS, describe_options
+from dialogue.reference.clarify import question as clarifying_question
+from dialogue.reference.grounding import Entity, Snapshot
+
+MAX_TRIES = 3
+DONE = "Thank you."
+CANCELLED = "OK, never mind."
+NOT_UNDERSTOOD = "Sorry, I did not get that."
+
+
+def opening_state(form: AskForm) -> FormState:
+    return FormState(asked=_missing(form, FormState())[0])
+
+
+def _missing(form: AskForm, state: FormState) -> list[str]:
+    return [n for n in form.required if n not in state.values and n not in state.given_up]
+
+
+def _join(options: Sequence[str], word: str = "or") -> str:
+    return options[0] if len(options) == 1 else ", ".join(options[:-1]) + f" {word} " + options[-1]
+
+
+def bounds(form_field: FormField) -> str:
+    """What a number field accepts, said ("at least 0 and at most 130")."""
+    schema = form_field.schema
+    said = [
+        f"{word} {schema[key]}"
+        for key, word in (
+            ("minimum", "at least"),
+            ("exclusiveMinimum", "more than"),
+            ("maximum", "at most"),
+            ("exclusiveMaximum", "less than"),
+        )
+        if key in schema
+    ]
+    return " and ".join(said)
+
+
+def problem_line(form_field: FormField, problem: str) -> str:
+    if form_field.kind in ("integer", "number") and bounds(form_field) and "should be" in problem:
+        return f"That is not a possible {form_field.words}: it must be {bounds(form_field)}."
+    if form_field.kind == "enum":
+        return f"I can only take {_join([str(v) for v in form_field.enum])} for the {form_field.words}."
+    if form_field.kind == "entity":
+        return f"Sorry, {problem}."
+    return f"That is not a possible {form_field.words}: {problem.lower()}."
+
+
+def question_for(form: AskForm, name: str, snapshot: Snapshot | None = None) -> str:
+    """How the robot asks for one field: its description when it is a question, the form's question
+    for the first field, else by the field's kind."""
+    form_field = form.field(name)
+    description = form_field.schema.get("description")
+    if isinstance(description, str) and description.strip().endswith("?"):
+        return description.strip()
+    if name == form.fields[0].name or len(form.required) == 1:
+        hint = {"boolean": " Please say yes or no."}.get(form_field.kind, "")
+        return form.question + hint
+    words = form_field.words
+    if form_field.kind == "boolean":
+        return f"And {words}: yes or no?"
+    if form_field.kind == "enum":
+        return f"Which {words}: {_join([str(v) for v in form_field.enum])}?"
+    if form_field.kind == "entity":
+        options = describe_options(snapshot, pool(form_field, snapshot)) if snapshot is not None else []
+        return f"Which {words}: {_join(options)}?" if 1 < len(options) <= MAX_OPTIONS else f"Which {words}?"
+    return f"And what is your {words}?"
+
+
+def advance(
+    form: AskForm,
+    state: FormState,
+    reading: Reading,
+    snapshot: Snapshot | None = None,
+    options: Sequence[Entity] = (),
+) -> tuple[FormState, str]:
+    """The form once `reading` is applied, and the robot's next line."""
+    new = state.model_copy(deep=True)
+    if reading.cancel:
+        new.status, new.asked, new.clarifying = "cancelled", None, None
+        return new, CANCELLED
+    new.values.update(reading.values)
+    for name in reading.values:
+        new.tries.pop(name, None)
+        if name in new.given_up:
+            new.given_up.remove(name)
+    if new.clarifying is not None and new.clarifying.field in reading.values:
+        new.clarifying = None
+    new.given_up += [n for n in reading.skipped if n not in new.given_up and n not in new.values]
+    _count_tries(new, reading)
+    lines: list[str] = []
+    for name, problem in reading.problems.items():
+        if name not in reading.values:
+            lines.append(problem_line(form.field(name), problem))
+    if not reading.understood and state.asked is not None:
+        lines.append(NOT_UNDERSTOOD)
+    if reading.clarify is not None and reading.clarify.field not in new.given_up:
+        new.clarifying, new.asked = reading.clarify, reading.clarify.field
+        if snapshot is not None and options:
+            return new, " ".join([*lines, clarifying_question(snapshot, options)])
+    missing = _missing(form, new)
+    if not missing:
+        new.status, new.asked, new.clarifying = "done", None, None
+        return new, DONE if new.values else "OK."
+    if new.clarifying is not None and new.clarifying.field in missing and snapshot is not None:
+        offered = [e for e in (snapshot.get(i) for i in new.clarifying.candidates) if e is not None]
+        if offered:
+            new.asked = new.clarifying.field
+            return new, " ".join([*lines, clarifying_question(snapshot, offered)])
+    new.clarifying = None
+    new.asked = new.asked if new.asked in missing else missing[0]
+    return new, " ".join([*lines, question_for(form, new.asked, snapshot)])
+
+
+def _count_tries(state: FormState, reading: Reading) -> None:
+    """An answer that gave the asked field nothing usable counts as a try; too many give it up."""
+    tried: set[str] = set(reading.problems)
+    if state.asked is not None and state.asked not in reading.values and reading.clarify is None:
+        tried.add(state.asked)
+    for name in tried - set(reading.values) - set(state.given_up):
+        state.tries[name] = state.tries.get(name, 0) + 1
+        if state.tries[name] >= MAX_TRIES:
+            state.given_up.append(name)
+            if state.clarifying is not None and state.clarifying.field == name:
+                state.clarifying = None

@@ -1,0 +1,154 @@
+"""The offline reading of one answer to the ask role: which fields it fills, corrects or refuses.
+
+An answer is cut into clauses ("I'm 34 and my name is Bob", "the red cup, and yes"); each clause
+fills one field: the field it names ("my age is 34"), else the field being clarified, else the field
+asked, else the one open field its value fits (a number, an enum value, an entity of the field's
+class), else — when the answer corrects ("no, I'm 34", "actually...") — the one filled field it fits.
+A value its field cannot hold is a problem (said back, then asked again), several entities a
+clarifying question. "Never mind" cancels the form; "I don't know" or "skip" gives up the field.
+
+>>> from dialogue.ask.form import parse_configuration
+>>> from dialogue.reference.grounding import build_snapshot
+>>> from dialogue.reference.lexicon import Lexicon
+>>> from kb import KB
+>>> form = parse_configuration('{"question": "Age and pets?", "result_schema_properties": '
+...     '{"age": {"type": "integer", "minimum": 0}, "pets": {"type": "boolean"}}}')
+>>> lexicon = Lexicon(build_snapshot(KB()))
+>>> read_answer(form, FormState(asked="age"), "thirty-four, and no", lexicon, "alice").values
+{'age': 34}
+>>> read_answer(form, FormState(asked="pets"), "nope", lexicon, "alice").values
+{'pets': False}
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass, field
+from typing import Any
+
+from dialogue.ask.fields import Clause, Found, ReadContext, find
+from dialogue.ask.form import AskForm, Clarifying, FormState
+from dialogue.reference.grounding import Entity
+from dialogue.reference.lexicon import Lexicon, tokens
+
+_CANCEL = re.compile(
+    r"\b(?:never ?mind|forget (?:it|about it)|cancel(?: that| it)?|stop asking|leave it|let'?s stop|"
+    r"i don'?t want to (?:answer|say|tell|do this|continue)|i'?d rather not (?:answer|continue)|"
+    r"none of your business|enough)\b",
+    re.IGNORECASE,
+)
+_SKIP = re.compile(
+    r"\b(?:skip(?: it| that| this)?|pass|i don'?t know|i do not know|dunno|no idea|not sure|i'?m not sure|"
+    r"i'?d rather not say|rather not say|can'?t remember|don'?t remember)\b",
+    re.IGNORECASE,
+)
+_CORRECTION = frozenset({"no", "actually", "sorry", "wait", "oops", "correction", "rather", "mean", "meant"})
+_SPLIT = re.compile(r"\s*(?:[,;!?]+|\.(?=\s|$)|\band\b|\bbut\b|\balso\b|\bplus\b)\s*", re.IGNORECASE)
+
+
+@dataclass
+class Reading:
+    """What one answer says about the form."""
+
+    values: dict[str, Any] = field(default_factory=dict)
+    #: Field -> why what was said cannot fill it.
+    problems: dict[str, str] = field(default_factory=dict)
+    clarify: Clarifying | None = None
+    clarify_options: tuple[Entity, ...] = ()
+    cancel: bool = False
+    skipped: list[str] = field(default_factory=list)
+    #: What the reading did, for the turn's trace.
+    notes: list[str] = field(default_factory=list)
+
+    @property
+    def understood(self) -> bool:
+        return bool(self.values or self.problems or self.clarify or self.cancel or self.skipped)
+
+
+def _named(form: AskForm, clause: Clause) -> frozenset[str]:
+    return frozenset(f.name for f in form.fields if clause.has(tokens(f.words)) is not None)
+
+
+def _choose(
+    form: AskForm,
+    state: FormState,
+    reading: Reading,
+    found: dict[str, Found],
+    named: frozenset[str],
+    correcting: bool,
+) -> str | None:
+    """The field a clause fills, among those whose finder found something in it (module docstring)."""
+    usable = {name for name, f in found.items() if f.problem is None} or set(found)
+    filled = set(state.values) | set(reading.values)
+    order = [
+        [n for n in usable if state.clarifying is not None and n == state.clarifying.field],
+        [n for n in usable if n in named],
+        [n for n in usable if n == state.asked],
+        [n for n in usable if n not in filled and n not in state.given_up],
+        [n for n in usable if correcting and n in filled],
+    ]
+    for names in order:
+        if len(names) == 1:
+            return names[0]
+        if names:  # several fit equally: the form's order decides only between named fields
+            return next(n for n in form.names if n in names) if names == order[1] else None
+    return None
+
+
+def read_answer(form: AskForm, state: FormState, text: str, lexicon: Lexicon, speaker: str) -> Reading:
+    reading = Reading()
+    if _CANCEL.search(text):
+        reading.cancel = True
+        reading.notes.append(f"cancelled: {text!r}")
+        return reading
+    words = tokens(text)
+    asked = form.field(state.asked) if state.asked in form.names else None
+    # "no, I'm 34" corrects; a bare "no" to a yes/no question answers it.
+    correcting = (
+        bool(words)
+        and words[0] in _CORRECTION
+        and not (
+            asked is not None
+            and asked.kind == "boolean"
+            and asked.name not in state.values
+            and len(words) == 1
+        )
+    )
+    clarifying = {state.clarifying.field: state.clarifying.candidates} if state.clarifying else {}
+    for part in _SPLIT.split(text):
+        if not part.strip():
+            continue
+        clause = Clause.of(part)
+        named = _named(form, clause)
+        if _SKIP.search(part):
+            target = next((n for n in form.names if n in named), state.asked)
+            if target is not None and target not in reading.values:
+                reading.skipped.append(target)
+                reading.notes.append(f"{target}: given up ({part.strip()!r})")
+            continue
+        ctx = ReadContext(lexicon, speaker, state.asked, named, clarifying)
+        found = {f.name: hit for f in form.fields if (hit := find(f, clause, ctx)) is not None}
+        target = _choose(form, state, reading, found, named, correcting)
+        if target is None:
+            if found:
+                reading.notes.append(f"{part.strip()!r} fits {sorted(found)}: not used")
+            continue
+        _take(reading, state, target, found[target])
+    return reading
+
+
+def _take(reading: Reading, state: FormState, name: str, hit: Found) -> None:
+    if hit.candidates:
+        reading.clarify = Clarifying(field=name, candidates=[e.id for e in hit.candidates])
+        reading.clarify_options = hit.candidates
+        reading.notes.append(f"{name}: {hit.said!r} names {len(hit.candidates)} entities; asking which")
+        return
+    if hit.problem is not None:
+        reading.problems[name] = hit.problem
+        reading.notes.append(f"{name}: {hit.said!r} refused: {hit.problem}")
+        return
+    before = state.values.get(name)
+    reading.values[name] = hit.value
+    reading.problems.pop(name, None)
+    verb = "corrected" if name in state.values and before != hit.value else "filled"
+    reading.notes.append(f"{name}: {verb} with {hit.value!r} (from {hit.said!r})")

@@ -1,0 +1,214 @@
+"""The trace of one dialogue turn, as data: what was sent to the model and why, and what came back.
+
+The engine fills a `TraceRecorder` while the turn runs (each stage timed, each model request with its
+messages, JSON schema, raw answer and validation error) and the turn's result carries the finished
+`TurnTrace`, a pydantic model. It is bounded by construction: each text is cut at `MAX_TEXT`
+characters (saying how much was cut), at most `MAX_EXCHANGES` requests and `MAX_NOTES` notes are kept.
+
+>>> recorder = TraceRecorder(dialogue_id="d1", speaker="alice", input="hi")
+>>> with recorder.stage("ground"):
+...     pass
+>>> trace = recorder.finish(response="Hello!", backend="rules", answered_by="rules")
+>>> trace.answered_by, [s.name for s in trace.stages], trace.stages[-1].name
+('rules', ['ground', 'total'], 'total')
+"""
+
+from __future__ import annotations
+
+import time
+import uuid
+from collections.abc import Iterator, Sequence
+from contextlib import contextmanager
+from typing import Any, Literal
+
+from pydantic import BaseModel, ConfigDict, Field
+
+from dialogue.intents import Intent
+
+#: Longest text kept for one message, answer or note.
+MAX_TEXT = 8000
+MAX_EXCHANGES = 4
+MAX_NOTES = 24
+
+AnsweredBy = Literal["rules", "model", "fallback", "handover", "recorded", "form"]
+
+
+def clip(text: str, limit: int = MAX_TEXT) -> str:
+    """`text`, cut at `limit` characters with a note of how many were left out."""
+    if len(text) <= limit:
+        return text
+    return f"{text[:limit]}… [{len(text) - limit} more characters]"
+
+
+class Stage(BaseModel):
+    """One timed step of the turn (`ground`, `speaker`, `rules`, `model`, `validate`, `total`...)."""
+
+    name: str
+    ms: float
+
+
+class Message(BaseModel):
+    role: str
+    content: str
+
+
+class Exchange(BaseModel):
+    """One request to a model and its answer."""
+
+    model_config = ConfigDict(populate_by_name=True)
+
+    model: str
+    repair: bool = False
+    messages: list[Message]
+    json_schema: dict[str, Any] = Field(alias="schema", serialization_alias="schema")
+    raw_answer: str | None = None
+    done_reason: str | None = None
+    #: Why the answer could not be used (validation), or why there was none (model error).
+    error: str | None = None
+    ms: float | None = None
+
+
+class SnapshotSummary(BaseModel):
+    """What the turn knew of the situation: the KB revision, entity counts, the prompt's first ids."""
+
+    revision: int
+    entities: int
+    by_kind: dict[str, int]
+    #: The most relevant entities of the turn (what the prompt and the schema show first).
+    focus: list[str]
+
+
+class TurnTrace(BaseModel):
+    """Everything recorded about one turn; `GET /dialogues/{id}/turns` answers a list of these."""
+
+    id: str
+    dialogue_id: str = ""
+    at: float
+    role: str = "__default__"
+    #: "3.0" (the service keeps the history) or "4.0" (the request brings it: stateless).
+    shape: Literal["3.0", "4.0"] = "3.0"
+    speaker: str = ""
+    input: str = ""
+    locale: str | None = None
+    snapshot: SnapshotSummary | None = None
+    #: The backend's name ("rules", "hybrid:ollama:...", "fallback").
+    backend: str = ""
+    answered_by: AnsweredBy | None = None
+    exchanges: list[Exchange] = Field(default_factory=list)
+    validation_errors: list[str] = Field(default_factory=list)
+    #: True when a repair request followed an invalid answer and its answer was used.
+    repaired: bool = False
+    response: str = ""
+    intents: list[Intent] = Field(default_factory=list)
+    error_msg: str = ""
+    clarify: bool = False
+    dialogue_terminal: bool | None = None
+    results: str | None = None
+    #: What a role did with the turn (the ask role: each field read, corrected, refused, asked).
+    notes: list[str] = Field(default_factory=list)
+    stages: list[Stage] = Field(default_factory=list)
+
+
+def _ms(start: float) -> float:
+    return round((time.perf_counter() - start) * 1000, 3)
+
+
+class TraceRecorder:
+    """Collects a turn's trace while it runs; `finish` makes the `TurnTrace`. One per turn."""
+
+    def __init__(
+        self,
+        *,
+        dialogue_id: str = "",
+        role: str = "__default__",
+        shape: Literal["3.0", "4.0"] = "3.0",
+        speaker: str = "",
+        input: str = "",
+        locale: str | None = None,
+    ) -> None:
+        self._start = time.perf_counter()
+        self.trace = TurnTrace(
+            id=uuid.uuid4().hex,
+            dialogue_id=dialogue_id,
+            at=time.time(),
+            role=role,
+            shape=shape,
+            speaker=speaker,
+            input=clip(input),
+            locale=locale,
+        )
+
+    @contextmanager
+    def stage(self, name: str) -> Iterator[None]:
+        start = time.perf_counter()
+        try:
+            yield
+        finally:
+            self.trace.stages.append(Stage(name=name, ms=_ms(start)))
+
+    def snapshot(self, revision: int, kinds: Sequence[str], focus: Sequence[str]) -> None:
+        by_kind: dict[str, int] = {}
+        for kind in kinds:
+            by_kind[kind] = by_kind.get(kind, 0) + 1
+        self.trace.snapshot = SnapshotSummary(
+            revision=revision, entities=len(kinds), by_kind=by_kind, focus=list(focus[:12])
+        )
+
+    def request(
+        self, model: str, messages: Sequence[tuple[str, str]], schema: dict[str, Any], repair: bool = False
+    ) -> Exchange | None:
+        """Record a request about to be sent; fill in its answer on the returned exchange."""
+        if len(self.trace.exchanges) >= MAX_EXCHANGES:
+            return None
+        exchange = Exchange(
+            model=model,
+            repair=repair,
+            schema=schema,
+            messages=[Message(role=r, content=clip(c)) for r, c in messages],
+        )
+        self.trace.exchanges.append(exchange)
+        return exchange
+
+    @staticmethod
+    def answered(
+        exchange: Exchange | None,
+        raw: str | None,
+        done_reason: str | None,
+        started: float,
+        error: str | None = None,
+    ) -> None:
+        if exchange is not None:
+            exchange.raw_answer = None if raw is None else clip(raw)
+            exchange.done_reason = done_reason
+            exchange.error = None if error is None else clip(error)
+            exchange.ms = _ms(started)
+
+    def invalid(self, exchange: Exchange | None, error: str) -> None:
+        self.trace.validation_errors.append(clip(error))
+        if exchange is not None:
+            exchange.error = clip(error)
+
+    def note(self, text: str) -> None:
+        if len(self.trace.notes) < MAX_NOTES:
+            self.trace.notes.append(clip(text, 500))
+
+    def finish(
+        self,
+        *,
+        response: str,
+        backend: str,
+        answered_by: AnsweredBy | None,
+        intents: Sequence[Intent] = (),
+        error_msg: str = "",
+        clarify: bool = False,
+        dialogue_terminal: bool | None = None,
+        results: str | None = None,
+    ) -> TurnTrace:
+        trace = self.trace
+        trace.response, trace.backend, trace.answered_by = clip(response), backend, answered_by
+        trace.intents, trace.error_msg, trace.clarify = list(intents), clip(error_msg), clarify
+        trace.dialogue_terminal, trace.results = dialogue_terminal, results
+        trace.repaired = bool(trace.validation_errors) and answered_by == "model" and not error_msg
+        if not trace.stages or trace.stages[-1].name != "total":
+            trace.stages.append(Stage(name="total", ms=_ms(self._start)))
+        return trace.model_copy(deep=True)
