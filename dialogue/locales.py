@@ -56,3 +56,8 @@ def language_name(locale: str) -> str:
     """The language's English name, for the model's prompt ("fr_FR" -> "French")."""
     name: str = langcodes.Language.get(language_of(locale)).language_name("en")
     return name
+
+
+def supported_locales(*, reads_prompts: bool) -> list[str]:
+    """What `GET /locales` answers: the rules' English alone, or any locale (empty) with a model."""
+    return [] if reads_prompts else list(RULES_LOCALES)

@@ -13,10 +13,14 @@ from typing import Protocol
 from dialogue.ask import ASK_ROLE
 from dialogue.ask.turn import AskRole
 from dialogue.engine import DialogueEngine, TurnResult
-from dialogue.errors import SessionError
+from dialogue.errors import DialogueError
 from dialogue.history import Utterance
 from dialogue.sessionstore import DEFAULT_ROLE
 from dialogue.trace.record import TraceRecorder
+
+
+class UnknownRole(DialogueError, ValueError):
+    """A role this service does not play; the message lists those it does."""
 
 
 class Role(Protocol):
@@ -80,5 +84,5 @@ class Roles:
     def get(self, name: str) -> Role:
         role = self._roles.get(name)
         if role is None:
-            raise SessionError(f"unsupported dialogue role {name!r}; supported: {self.names}")
+            raise UnknownRole(f"unsupported dialogue role {name!r}; supported: {self.names}")
         return role

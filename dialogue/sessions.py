@@ -361,7 +361,9 @@ class DialogueManager:
         kept = self._kept(state, None)
         history = kept.snapshot()
         result, _state = await self._role_turn(state, user_id, text, history, state.locale, deadline, "4.0")
-        return result
+        # The 4.0 response always says whether the dialogue is over, and with what results.
+        terminal = bool(result.dialogue_terminal)
+        return replace(result, dialogue_terminal=terminal, results=result.results or "{}")
 
     async def _saved(self, state: DialogueState, kept: History, result: TurnResult) -> TurnResult:
         """The turn's result once its history is saved; when the store cannot take it, the result

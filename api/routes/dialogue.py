@@ -1,4 +1,9 @@
-"""Dialogues over REST (chatbot_msgs 3.0.0 shapes, dialogue-compat §2): start, interact, end."""
+"""Dialogues over REST (chatbot_msgs shapes, dialogue-compat §2): start, interact, end.
+
+An interaction is the 3.0 incremental shape (`user_id`, `input`; the service keeps the history) or
+the 4.0 stateless one (`role`, `history`, `summary`: the caller keeps the history; the last
+utterance of `history` is the input when `input` is not given). See `dialogue.sessions`.
+"""
 
 from __future__ import annotations
 
@@ -6,15 +11,16 @@ from functools import partial
 from typing import Annotated, Any
 
 from fastapi import APIRouter, Depends, Request, Response
-from pydantic import AfterValidator, BaseModel, ConfigDict, Field
+from pydantic import AfterValidator, BaseModel, ConfigDict, Field, model_validator
 
 from api.deps import ServicesDep, WriteAccess
 from api.errors import ApiError
 from api.limits import check_count, check_length
 from api.turnevents import EVENT_STREAM, turn_events, wants_events
 from dialogue.engine import TurnResult
-from dialogue.history import Utterance
+from dialogue.history import ASSISTANT_USER_ID, Utterance
 from dialogue.intents import Intent
+from dialogue.locales import normalise_locale
 from dialogue.sessions import DEFAULT_ROLE, DialogueManager, SessionError, check_utterance
 
 router = APIRouter(prefix="/dialogues", tags=["dialogue"])
@@ -26,14 +32,19 @@ class Role(BaseModel):
     configuration: str = Field(default="{}", description="opaque JSON string, per chatbot_msgs/DialogueRole")
 
 
+Locale = Annotated[str, AfterValidator(normalise_locale)]
+
+
 class StartRequest(BaseModel):
     model_config = ConfigDict(extra="forbid")
     role: Role | None = None
-    locale: str | None = Field(default=None, description="ll_CC, e.g. en_GB")
+    locale: Locale | None = Field(default=None, description="ll_CC, e.g. en_GB")
 
 
 class Started(BaseModel):
     dialogue_id: str
+    response: str | None = Field(default=None, description="the robot's opening line (the ask role's "
+                                 "question), to say; absent when the role has none")
 
 
 class Turn(BaseModel):
@@ -44,17 +55,42 @@ class Turn(BaseModel):
 
 class InteractionRequest(BaseModel):
     model_config = ConfigDict(extra="forbid")
-    user_id: str = Field(min_length=1, description="the speaker's person id, or __system__ / __assistant__")
-    input: Annotated[str, AfterValidator(check_utterance)] = Field(description="what was said; not blank")
+    user_id: str | None = Field(default=None, min_length=1,
+                                description="the speaker's person id, or __system__ / __assistant__")
+    input: Annotated[str, AfterValidator(check_utterance)] | None = Field(
+        default=None, description="what was said; not blank (4.0: the last utterance of history when absent)")
     response_expected: bool = True
-    locale: str | None = None
-    history: list[Turn] | None = Field(default=None, description="4.0.0 shape: replaces the stored history")
+    locale: Locale | None = None
+    history: list[Turn] | None = Field(default=None, description="the dialogue so far (4.0.0 shape); "
+                                       "replaces the stored history")
+    role: Role | None = Field(default=None, description="4.0.0: the dialogue's role; the turn is stateless")
+    summary: str | None = Field(default=None, description="4.0.0: a summary of earlier sessions")
+
+    @model_validator(mode="after")
+    def _the_input(self) -> InteractionRequest:
+        """4.0: no `input`: the last utterance of `history` is the turn's input, its speaker the user."""
+        if self.input is None:
+            if not self.history:
+                raise ValueError("input is required (or, in the 4.0 shape, a history whose last utterance "
+                                 "is the input)")
+            last = self.history[-1]
+            if last.speaker == ASSISTANT_USER_ID:
+                raise ValueError("the history ends with the robot's own utterance: nothing to answer")
+            self.user_id, self.input = last.speaker, check_utterance(last.text)
+            self.history = self.history[:-1]
+        elif self.user_id is None:
+            raise ValueError("user_id is required with input")
+        return self
 
 
 class InteractionResponse(BaseModel):
     response: str
     intents: list[Intent]
     error_msg: str
+    dialogue_terminal: bool | None = Field(default=None, description="the role's dialogue is over (the "
+                                           "ask role: every field obtained, or cancelled); always in 4.0")
+    results: str | None = Field(default=None, description="the role's results, a JSON object string (the ask "
+                                "role: the fields obtained; the others are omitted)")
 
 
 async def get_dialogues(services: ServicesDep) -> DialogueManager:
@@ -71,38 +107,44 @@ async def _existing(dialogues: DialogueManager, dialogue_id: str) -> None:
         raise ApiError(404, "unknown_dialogue", str(exc)) from exc
 
 
-@router.post("", status_code=201, dependencies=[WriteAccess])
+@router.post("", status_code=201, dependencies=[WriteAccess], response_model_exclude_none=True)
 async def start(dialogues: Dialogues, body: StartRequest | None = None) -> Started:
     """Start a dialogue with a role; the id is a new UUID (``default`` always exists)."""
     request = body or StartRequest()
     role = request.role or Role()
     dialogue = await dialogues.start_async(role.name, request.locale, role.configuration)
-    return Started(dialogue_id=dialogue.id)
+    return Started(dialogue_id=dialogue.id, response=dialogues.opening_line(dialogue) or None)
 
 
 def _response(result: TurnResult) -> InteractionResponse:
     return InteractionResponse(response=result.response, intents=list(result.intents),
-                               error_msg=result.error_msg)
+                               error_msg=result.error_msg, dialogue_terminal=result.dialogue_terminal,
+                               results=result.results)
 
 
 def _body(result: TurnResult) -> dict[str, Any]:
-    return _response(result).model_dump(mode="json", by_alias=True)  # as FastAPI serialises it
+    # as FastAPI serialises it
+    return _response(result).model_dump(mode="json", by_alias=True, exclude_none=True)
 
 
 @router.post("/{dialogue_id}/interactions", dependencies=[WriteAccess], response_model=InteractionResponse,
+             response_model_exclude_none=True,
              responses={200: {"content": {EVENT_STREAM: {"schema": {"type": "string"}}}, "description":
                               "with `Accept: text/event-stream`: `event: ack` ({\"verbal_ack\"}) when the "
                               "model's reply is ready early, then `event: response` (the JSON answer)"}})
 async def interact(dialogue_id: str, body: InteractionRequest, dialogues: Dialogues,
                    services: ServicesDep, request: Request) -> InteractionResponse | Response:
     """One DialogueInteraction: the reply and the validated intents, most relevant first."""
+    assert body.input is not None and body.user_id is not None  # the request model's validator
     check_length(body.input, services.settings.limits.max_input_chars, "input")
+    check_length(body.summary or "", services.settings.limits.max_input_chars, "summary")
     history = None
     if body.history is not None:
         check_count(body.history, services.settings.limits.max_history_turns, "history_turns")
         history = [Utterance(turn.speaker, turn.text) for turn in body.history]
+    role = {} if body.role is None else {"role": body.role.name, "configuration": body.role.configuration}
     run = partial(dialogues.interact, body.user_id, body.input, dialogue_id=dialogue_id, locale=body.locale,
-                  response_expected=body.response_expected, history=history)
+                  response_expected=body.response_expected, history=history, summary=body.summary, **role)
     try:  # the turn reads the dialogue once: an unknown one is refused, an unreadable store answered
         if wants_events(request.headers.get("accept")):
             return await turn_events(run, _body)

@@ -137,6 +137,8 @@ _LEAD_IN_TEXT = re.compile(
     re.IGNORECASE,
 )
 _NUMBER = re.compile(r"(?<![\w.])((?:minus|negative)\s+|-)?(\d+(?:\.\d+)?)(?![\w]|\.\d)", re.IGNORECASE)
+#: "one" after a determiner is a pronoun ("the red one", "that one"), not a number.
+_PRONOUN_ONE = re.compile(r"\b(the|this|that|which|another|each|every|no|any)\b([^,;.]*?)\bone\b", re.IGNORECASE)
 ORDINALS = {"first": 0, "second": 1, "third": 2, "fourth": 3, "last": -1}
 
 
@@ -150,7 +152,7 @@ class Clause:
 
     @classmethod
     def of(cls, text: str) -> Clause:
-        digits = alpha2digit(text, "en", threshold=0)
+        digits = alpha2digit(_PRONOUN_ONE.sub("\\1\\2\u2060", text), "en", threshold=0)
         numbers = tuple((-1 if m.group(1) else 1) * float(m.group(2)) for m in _NUMBER.finditer(digits))
         return cls(text.strip(), tuple(tokens(text)), numbers)
 

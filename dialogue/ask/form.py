@@ -27,6 +27,7 @@ from dataclasses import dataclass
 from typing import Annotated, Any, Literal
 
 from pydantic import BaseModel, Field, TypeAdapter, ValidationError
+from pydantic_core import SchemaError
 
 from dialogue.errors import DialogueError
 from dialogue.reference.resolution import ALL_KINDS, ANYWHERE, PERSON, PLACE, THING
@@ -159,7 +160,7 @@ def _field(name: str, schema: Any) -> FormField:
     field = FormField(name, _SCALAR_TYPES[kind], schema)  # type: ignore[arg-type]
     try:
         field.validator()
-    except (TypeError, ValueError) as exc:  # a bound of the wrong type, a pattern that does not compile
+    except (TypeError, ValueError, SchemaError) as exc:  # a bound of the wrong type, a bad pattern
         raise AskError(f"{where}: its constraints cannot be checked: {exc}") from None
     return field
 

@@ -72,6 +72,13 @@ def problem_line(form_field: FormField, problem: str) -> str:
     return f"That is not a possible {form_field.words}: {problem.lower()}."
 
 
+def _options(snapshot: Snapshot, entities: Sequence[Entity]) -> list[str]:
+    """How the choices are said: people by their names, things by what tells them apart."""
+    if entities and all(e.kind == "person" for e in entities):
+        return [e.name for e in entities]
+    return describe_options(snapshot, entities)
+
+
 def question_for(form: AskForm, name: str, snapshot: Snapshot | None = None) -> str:
     """How the robot asks for one field: its description when it is a question, the form's question
     for the first field, else by the field's kind."""
@@ -88,7 +95,7 @@ def question_for(form: AskForm, name: str, snapshot: Snapshot | None = None) -> 
     if form_field.kind == "enum":
         return f"Which {words}: {_join([str(v) for v in form_field.enum])}?"
     if form_field.kind == "entity":
-        options = describe_options(snapshot, pool(form_field, snapshot)) if snapshot is not None else []
+        options = _options(snapshot, pool(form_field, snapshot)) if snapshot is not None else []
         return f"Which {words}: {_join(options)}?" if 1 < len(options) <= MAX_OPTIONS else f"Which {words}?"
     return f"And what is your {words}?"
 

@@ -77,21 +77,30 @@ def _choose(
     named: frozenset[str],
     correcting: bool,
 ) -> str | None:
-    """The field a clause fills, among those whose finder found something in it (module docstring)."""
+    """The field a clause fills, among those whose finder found something in it (module docstring).
+
+    A free string fits any words, so it is the weakest reading: the field asked takes the clause as
+    a string only when no number in it fits another field and the answer corrects nothing."""
     usable = {name for name, f in found.items() if f.problem is None} or set(found)
     filled = set(state.values) | set(reading.values)
-    order = [
-        [n for n in usable if state.clarifying is not None and n == state.clarifying.field],
-        [n for n in usable if n in named],
-        [n for n in usable if n == state.asked],
-        [n for n in usable if n not in filled and n not in state.given_up],
-        [n for n in usable if correcting and n in filled],
+    strings = {n for n in usable if form.field(n).kind == "string"}
+    typed = usable - strings
+    number = any(form.field(n).kind in ("integer", "number") for n in typed)
+    clarifying = state.clarifying.field if state.clarifying is not None else None
+    tiers = [
+        [n for n in usable if n == clarifying],
+        [n for n in form.names if n in usable and n in named],
+        [n for n in typed if n == state.asked],
+        [n for n in strings if n == state.asked and not number and not correcting],
+        [n for n in typed if n not in filled and n not in state.given_up],
+        [n for n in typed if correcting and n in filled],
+        [n for n in strings if n == state.asked],
     ]
-    for names in order:
-        if len(names) == 1:
+    for index, names in enumerate(tiers):
+        if len(names) == 1 or (names and index == 1):  # between named fields, the form's order decides
             return names[0]
-        if names:  # several fit equally: the form's order decides only between named fields
-            return next(n for n in form.names if n in names) if names == order[1] else None
+        if names:
+            return None  # several fit equally: not guessed
     return None
 
 

@@ -5,6 +5,7 @@ import pytest
 
 from dialogue import intents as I
 from dialogue.ask import AskError
+from dialogue.roles import UnknownRole
 from dialogue.engine import SORRY, DialogueEngine, EngineConfig, TurnResult
 from dialogue.history import ASSISTANT_USER_ID, SYSTEM_USER_ID, Utterance
 from dialogue.llm.base import ChatRequest
@@ -87,7 +88,7 @@ def test_errors_and_bounds(kitchen: KB) -> None:
     manager = DialogueManager(DialogueEngine(kitchen, ScriptedModel()), max_dialogues=3, max_turns=4)
     with pytest.raises(SessionError, match="unknown dialogue 'nope'"):
         manager.get("nope")
-    with pytest.raises(SessionError, match="unsupported dialogue role '__nope__'"):
+    with pytest.raises(UnknownRole, match="unsupported dialogue role '__nope__'"):
         manager.start(role="__nope__")
     with pytest.raises(AskError, match="the ask role needs a question"):
         manager.start(role="__ask__")

@@ -1,0 +1,63 @@
+"""One finder per kind of field: what a clause says for a field, or nothing."""
+
+from __future__ import annotations
+
+from typing import Any
+
+from dialogue.ask.fields import Clause, ReadContext, find
+from dialogue.ask.form import AskForm
+from dialogue.reference.lexicon import Lexicon
+from tests.dialogue.ask.conftest import NINA
+
+
+def found(form: AskForm, lexicon: Lexicon, name: str, text: str, asked: str | None = None,
+          clarifying: dict[str, list[str]] | None = None) -> Any:
+    hit = find(form.field(name), Clause.of(text), ReadContext(lexicon, NINA, asked, frozenset(), clarifying or {}))
+    if hit is None:
+        return None
+    if hit.candidates:
+        return tuple(e.id for e in hit.candidates)
+    return "problem" if hit.problem else hit.value
+
+
+def test_numbers_in_digits_and_words(form: AskForm, lexicon: Lexicon) -> None:
+    assert Clause.of("twenty-three").numbers == (23.0,)
+    assert Clause.of("a hundred and five").numbers == (105.0,)
+    assert Clause.of("minus three").numbers == (-3.0,)
+    assert Clause.of("3.5 metres").numbers == (3.5,)
+    assert Clause.of("the 1st one").numbers == ()  # an ordinal is no number, "one" here a pronoun
+    assert Clause.of("the red one").numbers == () and Clause.of("one").numbers == (1.0,)
+    assert found(form, lexicon, "age", "I'm thirty-four") == 34
+    assert found(form, lexicon, "age", "34 or 35") is None  # two numbers: which?
+    assert found(form, lexicon, "age", "two hundred") == "problem"  # above the maximum
+
+
+def test_booleans_answer_only_the_field_asked(form: AskForm, lexicon: Lexicon) -> None:
+    for text, value in [("yes", True), ("sure", True), ("of course", True), ("nope", False), ("no thanks", False),
+                        ("I don't", False)]:
+        assert found(form, lexicon, "tea", text, asked="tea") is value, text
+    assert found(form, lexicon, "tea", "yes") is None  # nobody asked about tea
+    assert found(form, lexicon, "tea", "yes and no", asked="tea") is None
+
+
+def test_enum_values_longest_first(form: AskForm, lexicon: Lexicon) -> None:
+    assert found(form, lexicon, "colour", "light blue please") == "light blue"
+    assert found(form, lexicon, "colour", "I like blue") == "blue"
+    assert found(form, lexicon, "colour", "purple") is None
+
+
+def test_free_string_is_what_follows_the_lead_in(form: AskForm, lexicon: Lexicon) -> None:
+    assert found(form, lexicon, "name", "It's Nina Simone.", asked="name") == "Nina Simone"
+    assert found(form, lexicon, "name", "Bob") is None  # a free string only for the field asked or named
+
+
+def test_entities_are_kb_ids_with_candidates_when_ambiguous(form: AskForm, lexicon: Lexicon) -> None:
+    assert found(form, lexicon, "cup", "I'd like the red cup") == "cup_red"
+    assert set(found(form, lexicon, "cup", "the cup")) == {"cup_red", "cup_blue"}
+    assert found(form, lexicon, "cup", "the red one", clarifying={"cup": ["cup_red", "cup_blue"]}) == "cup_red"
+    assert found(form, lexicon, "cup", "the second", clarifying={"cup": ["cup_red", "cup_blue"]}) == "cup_blue"
+    assert found(form, lexicon, "cup", "cup_blue") == "cup_blue"
+    assert found(form, lexicon, "cup", "the black phone") == "problem"  # a thing, but not a cup
+    assert found(form, lexicon, "friend", "Oliver") == "person_oliver"
+    assert found(form, lexicon, "friend", "the red cup") == "problem"
+    assert found(form, lexicon, "cup", "a giraffe") is None

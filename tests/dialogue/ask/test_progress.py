@@ -1,0 +1,58 @@
+"""The form after each answer and the robot's next line."""
+
+from __future__ import annotations
+
+from dialogue.ask.form import AskForm, Clarifying
+from dialogue.ask.progress import MAX_TRIES, advance, opening_state, question_for
+from dialogue.ask.read import Reading
+from dialogue.reference.lexicon import Lexicon
+from tests.dialogue.ask.conftest import form_of
+
+
+def test_asks_only_for_what_is_missing_then_ends(form: AskForm, lexicon: Lexicon) -> None:
+    state = opening_state(form)
+    assert state.asked == "age"
+    state, line = advance(form, state, Reading(values={"age": 30, "name": "Nina"}), lexicon.snapshot)
+    assert state.asked == "colour" and line == "Which colour: red, green, light blue or blue?"
+    state, line = advance(form, state, Reading(values={"colour": "red"}), lexicon.snapshot)
+    assert line == "Which cup: the blue cup or the red cup?"
+    state, line = advance(form, state, Reading(values={"cup": "cup_red"}), lexicon.snapshot)
+    assert line == "And tea: yes or no?"
+    state, line = advance(form, state, Reading(values={"tea": True, "friend": "person_oliver"}), lexicon.snapshot)
+    assert (state.status, line, state.asked) == ("done", "Thank you.", None)
+
+
+def test_a_problem_is_said_back_and_the_field_asked_again(lexicon: Lexicon) -> None:
+    form = form_of(age={"type": "integer", "minimum": 0, "maximum": 130})
+    state, line = advance(form, opening_state(form), Reading(problems={"age": "Input should be less than or equal to 130"}))
+    assert line == "That is not a possible age: it must be at least 0 and at most 130. A few questions?"
+    assert state.tries == {"age": 1} and state.status == "open"
+
+
+def test_a_field_never_obtained_is_given_up_and_omitted(lexicon: Lexicon) -> None:
+    form = form_of(age={"type": "integer"}, name={"type": "string"})
+    state = opening_state(form)
+    for _ in range(MAX_TRIES - 1):
+        state, line = advance(form, state, Reading())
+        assert line.startswith("Sorry, I did not get that.") and state.asked == "age"
+    state, line = advance(form, state, Reading())
+    assert state.given_up == ["age"] and state.asked == "name" and line.endswith("And what is your name?")
+    state, line = advance(form, state, Reading(values={"name": "Nina"}))
+    assert state.status == "done" and state.results() == '{"name": "Nina"}'
+
+
+def test_skip_cancel_and_clarify(form: AskForm, lexicon: Lexicon) -> None:
+    state, line = advance(form, opening_state(form), Reading(skipped=["age"]))
+    assert state.given_up == ["age"] and state.asked == "name"
+    state, line = advance(form, state, Reading(cancel=True))
+    assert (state.status, line) == ("cancelled", "OK, never mind.")
+    cups = tuple(lexicon.snapshot.entities[i] for i in ("cup_red", "cup_blue"))
+    reading = Reading(clarify=Clarifying(field="cup", candidates=["cup_red", "cup_blue"]), clarify_options=cups)
+    state, line = advance(form, opening_state(form), reading, lexicon.snapshot, cups)
+    assert state.asked == "cup" and line == "Which cup do you mean: the red cup or the blue cup?"
+
+
+def test_questions_by_kind_and_description() -> None:
+    form = form_of(pets={"type": "boolean"}, size={"type": "number", "description": "How tall are you?"})
+    assert question_for(form, "pets") == "A few questions? Please say yes or no."
+    assert question_for(form, "size") == "How tall are you?"

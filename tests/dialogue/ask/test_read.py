@@ -1,0 +1,62 @@
+"""The offline reading of answers: several fields at once, corrections, refusals, cancel."""
+
+from __future__ import annotations
+
+from dialogue.ask.form import AskForm, FormState
+from dialogue.ask.read import read_answer
+from dialogue.reference.lexicon import Lexicon
+from tests.dialogue.ask.conftest import NINA, form_of
+
+
+def test_several_fields_in_one_answer(form: AskForm, lexicon: Lexicon) -> None:
+    reading = read_answer(form, FormState(asked="age"),
+                          "I'm twenty-three, my name is Nina and my favourite colour is light blue", lexicon, NINA)
+    assert reading.values == {"age": 23, "name": "Nina", "colour": "light blue"}
+    assert reading.understood and not reading.problems
+
+
+def test_a_value_goes_to_the_field_asked_first(lexicon: Lexicon) -> None:
+    form = form_of(age={"type": "integer"}, children={"type": "integer"})
+    assert read_answer(form, FormState(asked="children"), "2", lexicon, NINA).values == {"children": 2}
+    # Not asked, both open: a bare number is not guessed.
+    assert read_answer(form, FormState(asked=None), "2", lexicon, NINA).values == {}
+    # One open field of its type: it goes there.
+    assert read_answer(form, FormState(values={"age": 30}, asked=None), "2", lexicon, NINA).values == {"children": 2}
+
+
+def test_a_correction_replaces_a_filled_field(form: AskForm, lexicon: Lexicon) -> None:
+    state = FormState(values={"age": 33}, asked="name")
+    reading = read_answer(form, state, "no, I'm 34", lexicon, NINA)
+    assert reading.values == {"age": 34}
+    assert any("age: corrected with 34" in note for note in reading.notes)
+    # Without "no"/"actually", a number does not overwrite a filled field nobody named.
+    assert read_answer(form, FormState(values={"age": 33}, asked="cup"), "34", lexicon, NINA).values == {}
+    assert read_answer(form, FormState(values={"age": 33}, asked="cup"), "actually 34", lexicon, NINA).values == {
+        "age": 34}
+    assert read_answer(form, FormState(values={"age": 33}, asked="cup"), "my age is 35", lexicon, NINA).values == {
+        "age": 35}
+
+
+def test_a_bare_no_answers_the_yes_no_question(form: AskForm, lexicon: Lexicon) -> None:
+    assert read_answer(form, FormState(asked="tea"), "no", lexicon, NINA).values == {"tea": False}
+    reading = read_answer(form, FormState(values={"age": 20}, asked="tea"), "no, I'm 21", lexicon, NINA)
+    assert reading.values == {"tea": False, "age": 21}
+
+
+def test_cancel_skip_and_nonsense(form: AskForm, lexicon: Lexicon) -> None:
+    for text in ("never mind", "Forget it.", "I don't want to answer", "cancel"):
+        assert read_answer(form, FormState(asked="age"), text, lexicon, NINA).cancel, text
+    skipped = read_answer(form, FormState(asked="age"), "I don't know", lexicon, NINA)
+    assert skipped.skipped == ["age"] and not skipped.cancel
+    nothing = read_answer(form, FormState(asked="age"), "the weather is lovely", lexicon, NINA)
+    assert not nothing.understood
+
+
+def test_out_of_bounds_is_a_problem_and_ambiguity_a_clarification(form: AskForm, lexicon: Lexicon) -> None:
+    reading = read_answer(form, FormState(asked="age"), "I'm 200", lexicon, NINA)
+    assert reading.values == {} and "age" in reading.problems
+    ambiguous = read_answer(form, FormState(asked="cup"), "the cup please", lexicon, NINA)
+    assert ambiguous.clarify is not None and ambiguous.clarify.field == "cup"
+    assert set(ambiguous.clarify.candidates) == {"cup_red", "cup_blue"}
+    state = FormState(asked="cup", clarifying=ambiguous.clarify)
+    assert read_answer(form, state, "the blue one", lexicon, NINA).values == {"cup": "cup_blue"}
