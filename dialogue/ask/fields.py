@@ -138,7 +138,9 @@ _LEAD_IN_TEXT = re.compile(
 )
 _NUMBER = re.compile(r"(?<![\w.])((?:minus|negative)\s+|-)?(\d+(?:\.\d+)?)(?![\w]|\.\d)", re.IGNORECASE)
 #: "one" after a determiner is a pronoun ("the red one", "that one"), not a number.
-_PRONOUN_ONE = re.compile(r"\b(the|this|that|which|another|each|every|no|any)\b([^,;.]*?)\bone\b", re.IGNORECASE)
+_PRONOUN_ONE = re.compile(
+    r"\b(the|this|that|which|another|each|every|no|any)\b([^,;.]*?)\bone\b", re.IGNORECASE
+)
 ORDINALS = {"first": 0, "second": 1, "third": 2, "fourth": 3, "last": -1}
 
 

@@ -318,3 +318,27 @@ def test_what_the_rules_alone_do_not_understand_is_not_understood(kitchen: KB) -
 def test_a_model_twice_invalid_did_not_understand(kitchen: KB) -> None:
     result = turn(DialogueEngine(kitchen, ScriptedModel(["nonsense", "nonsense"])), "grab it")
     assert result.backend == "fallback" and not result.understood
+
+
+# --- locales (issue 16) ---------------------------------------------------------------------------
+
+def test_another_language_is_never_read_by_the_rules(kitchen: KB) -> None:
+    # "prends la tasse": no English misparse; the rules alone hand it over with the locale.
+    result = turn(DialogueEngine(kitchen), "pick up the cup", locale="fr-FR")
+    assert result.response == "" and "English only" in result.error_msg and not result.understood
+    (raw,) = result.intents
+    assert raw.intent == I.RAW_USER_INPUT and raw.data == {"input": "pick up the cup", "locale": "fr_FR"}
+
+
+def test_a_hybrid_hands_another_language_to_its_model_told_to_answer_in_it(kitchen: KB) -> None:
+    grab = {"verbal_ack": "D'accord, je prends la tasse.", "user_intent": {
+        "type": "__intent_grab_object__", "object": "cup_1", "recipient": None, "goal": None, "input": None}}
+    model = ScriptedModel([grab])
+    result = turn(DialogueEngine(kitchen, HybridModel(model)), "prends la tasse", locale="fr_FR")
+    assert result.response == "D'accord, je prends la tasse." and result.backend == "scripted"
+    assert result.intents[0].intent == I.GRAB_OBJECT and result.intents[0].data == {"object": "cup_1"}
+    prompt = model.requests[0].messages[-1].content
+    assert "Answer the person in French" in prompt and "Current situation" in prompt  # the situation stays English
+    english = ScriptedModel([grab])
+    turn(DialogueEngine(kitchen, english), "take the cup", locale="en_GB")
+    assert "Answer the person in" not in english.requests[0].messages[-1].content

@@ -5,11 +5,11 @@ import pytest
 
 from dialogue import intents as I
 from dialogue.ask import AskError
-from dialogue.roles import UnknownRole
 from dialogue.engine import SORRY, DialogueEngine, EngineConfig, TurnResult
 from dialogue.history import ASSISTANT_USER_ID, SYSTEM_USER_ID, Utterance
 from dialogue.llm.base import ChatRequest
 from dialogue.llm.testing import FunctionModel, ScriptedModel
+from dialogue.roles import UnknownRole
 from dialogue.sessions import DEFAULT_DIALOGUE, DialogueManager, SessionError
 from kb import KB, KbError
 

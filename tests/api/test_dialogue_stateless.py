@@ -1,0 +1,75 @@
+"""chatbot_msgs 4.0 stateless turns over HTTP beside the 3.0 incremental shape (issue 16)."""
+
+from __future__ import annotations
+
+import json
+from collections.abc import Callable
+
+from api.settings import Settings
+from dialogue.llm.testing import ScriptedModel
+from tests.api.conftest import SCENE, Live
+
+ASK = {"name": "__ask__", "configuration": json.dumps({
+    "question": "How old are you?", "result_schema_properties": {"age": {"type": "integer", "minimum": 0}}})}
+
+
+def test_a_4_0_turn_needs_no_session_and_stores_nothing(live: Live) -> None:
+    history = [{"speaker": "__system__", "text": "Alice just came in."},
+               {"speaker": "__assistant__", "text": "Hello Alice!"},
+               {"speaker": "person_alice", "text": "pick up the cup"}]
+    reply = live.client.post("/dialogues/3f2a-dm-owned/interactions",
+                             json={"role": {"name": "__default__", "configuration": "{}"}, "history": history})
+    assert reply.status_code == 200, reply.text
+    body = reply.json()
+    assert set(body) == {"response", "intents", "error_msg", "dialogue_terminal", "results"}
+    assert body["intents"][0]["data"] == {"object": "cup_1"} and body["intents"][0]["source"] == "person_alice"
+    assert (body["dialogue_terminal"], body["results"]) == (False, "{}")
+    assert "3f2a-dm-owned" not in live.services.dialogues.ids()
+    # The 3.0 shape keeps working, with its three keys.
+    old = live.client.post("/dialogues/default/interactions", json={"user_id": "person_alice", "input": "hi"})
+    assert set(old.json()) == {"response", "intents", "error_msg"}
+
+
+def test_a_4_0_ask_turn_reads_the_form_from_the_history(live: Live) -> None:
+    history = [{"speaker": "__assistant__", "text": "How old are you?"},
+               {"speaker": "person_alice", "text": "hmm, let me think"},
+               {"speaker": "__assistant__", "text": "Sorry, I did not get that. How old are you?"},
+               {"speaker": "person_alice", "text": "thirty"}]
+    body = live.client.post("/dialogues/any-id/interactions", json={"role": ASK, "history": history}).json()
+    assert body["dialogue_terminal"] is True and json.loads(body["results"]) == {"age": 30}
+    # With an input beside the history, the input is the turn.
+    body = live.client.post("/dialogues/any-id/interactions", json={
+        "role": ASK, "history": history[:1], "user_id": "person_alice", "input": "no idea"}).json()
+    assert body["dialogue_terminal"] is True and json.loads(body["results"]) == {}
+
+
+def test_the_4_0_history_and_summary_reach_the_model(live_factory: Callable[..., Live]) -> None:
+    model = ScriptedModel([{"verbal_ack": "Nice to see you again.", "user_intent": None}])
+    live = live_factory(Settings(scene=SCENE), model=model)
+    history = [{"speaker": "__system__", "text": "Battery at 80%."},
+               {"speaker": "__assistant__", "text": "Hello!"},
+               {"speaker": "person_alice", "text": "Do you remember me?"}]
+    body = live.client.post("/dialogues/x/interactions", json={
+        "role": {"name": "__default__"}, "history": history, "summary": "Alice likes tea."}).json()
+    assert body["response"] == "Nice to see you again."
+    roles = [(m.role, m.content) for m in model.requests[0].messages]
+    assert roles[1] == ("system", "Summary of earlier conversations: Alice likes tea.")
+    assert roles[2:4] == [("system", "Battery at 80%."), ("assistant", "Hello!")]
+    assert roles[-1][0] == "user" and 'They say: "Do you remember me?"' in roles[-1][1]
+
+
+def test_bad_4_0_requests(live: Live) -> None:
+    client = live.client
+    cases = [
+        ({"role": {"name": "__default__"}}, 422, "input is required"),
+        ({"role": {"name": "__default__"}, "history": [{"speaker": "__assistant__", "text": "Hi"}]}, 422,
+         "nothing to answer"),
+        ({"input": "hi"}, 422, "user_id is required"),
+        ({"role": {"name": "__nope__"}, "history": [{"speaker": "a", "text": "hi"}]}, 400,
+         "unsupported dialogue role"),
+        ({"role": {"name": "__ask__", "configuration": "{}"}, "history": [{"speaker": "a", "text": "hi"}]}, 400,
+         "needs a question"),
+    ]
+    for body, status, message in cases:
+        refused = client.post("/dialogues/x/interactions", json=body)
+        assert refused.status_code == status and message in refused.json()["message"], (body, refused.text)

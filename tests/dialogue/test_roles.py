@@ -1,0 +1,36 @@
+"""The roles table: the default role is the engine's turn, the ask role a form; others are refused."""
+
+from __future__ import annotations
+
+import asyncio
+
+import pytest
+
+from dialogue.engine import DialogueEngine
+from dialogue.roles import DefaultRole, Roles, UnknownRole
+from dialogue.trace.record import TraceRecorder
+from kb import KB
+
+
+def test_roles_by_name(kitchen: KB) -> None:
+    roles = Roles(DialogueEngine(kitchen))
+    assert roles.names == ["__ask__", "__default__"]
+    assert isinstance(roles.get("__default__"), DefaultRole)
+    with pytest.raises(UnknownRole, match="unsupported dialogue role 'x'; supported: \\['__ask__', '__default__'\\]"):
+        roles.get("x")
+    assert roles.get("__default__").open("{}") == ("", "")
+    line, state = roles.get("__ask__").open('{"question": "Age?", "result_schema_properties": {"a": {"type": "integer"}}}')
+    assert line == "Age?" and '"asked":"a"' in state
+
+
+def test_the_default_role_is_the_engine_turn(kitchen: KB) -> None:
+    role = Roles(DialogueEngine(kitchen)).get("__default__")
+
+    async def run() -> tuple[object, str]:
+        deadline = asyncio.get_running_loop().time() + 5
+        return await role.turn("{}", "", "pick up the cup", speaker="person_alice", history=(), locale=None,
+                               deadline=deadline, trace=TraceRecorder(dialogue_id="d"))
+
+    result, state = asyncio.run(run())
+    assert state == "" and result.intents[0].intent == "__intent_grab_object__"  # type: ignore[attr-defined]
+    assert result.trace.dialogue_id == "d"  # type: ignore[attr-defined]
