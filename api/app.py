@@ -58,7 +58,8 @@ def create_app(settings: Settings | None = None, kb: KB | None = None,
     if config.cors_origins:
         app.add_middleware(CORSMiddleware, allow_origins=config.cors_origins,
                            allow_methods=["GET", "POST", "DELETE"],
-                           allow_headers=["Authorization", "Content-Type", "Accept"])
+                           allow_headers=["Authorization", "Content-Type", "Accept"],
+                           expose_headers=["X-Situated-Turn"])
     for router in (kb_routes.router, sparql.router, events.router, dialogue.router, rasa.router,
                    scene.router, health.router, viewer.router, turns.router, locales.router):
         app.include_router(router)

@@ -21,6 +21,7 @@ from typing import Any
 from api.client import ClientError, ServiceClient
 from api.humans import known_humans, render
 from api.settings import SettingsError, load_settings
+from dialogue.errors import DialogueError
 from kb import KB, KbError
 from kb.datadir import check as check_data
 from kb.datadir import repair as repair_data
@@ -40,6 +41,8 @@ EXAMPLES = f"""examples (file paths are those of a clone of the repository):
   situated chat --scene {KITCHEN}
                                                      talk in-process (one line per turn)
   situated chat --url http://127.0.0.1:8000 --say "pick up the cup"
+  situated chat --ask "How old are you, and which cup?" --field age:integer --field cup:dbr:Cup
+                                                     an ask dialogue: the answers fill the fields
   situated kb query "myself sees ?o" "?o rdf:type dbr:Cup" --scene {KITCHEN}
   situated kb add "cup_1 isOn table_1" --url http://127.0.0.1:8000
   situated kb retract "?x isOn table_1" --url http://127.0.0.1:8000
@@ -103,6 +106,12 @@ def _parser() -> argparse.ArgumentParser:
     chat.add_argument("--llm", default="rules", help="in-process model backend, as for serve (default rules)")
     chat.add_argument("--user", default="__unknown_agent__", help="speaker id (default __unknown_agent__)")
     chat.add_argument("--say", action="append", help="say this and exit (repeatable); default: read stdin")
+    chat.add_argument("--ask", metavar="QUESTION", help="start an ask dialogue (the __ask__ role) with this "
+                      "question; it ends when its --field values are obtained")
+    chat.add_argument("--field", action="append", default=[], metavar="NAME:TYPE",
+                      help="a field of --ask (repeatable): TYPE is boolean, integer, number, string, person, "
+                           "thing, place, entity, a KB class (cup:dbr:Cup) or values (size:s|m|l)")
+    chat.add_argument("--locale", help="the dialogue's locale, ll_CC (e.g. en_GB, fr_FR)")
 
     kb = sub.add_parser("kb", help="query and edit the KB: query, add, retract, details, lookup")
     kb_sub = kb.add_subparsers(dest="kb_command", required=True, metavar="KB_COMMAND")
@@ -223,6 +232,8 @@ def _humans(args: argparse.Namespace) -> int:
 
 def _show(reply: dict[str, Any]) -> None:
     print(f"robot: {reply['response']}")
+    if reply.get("dialogue_terminal"):
+        print(f"  results: {reply.get('results', '{}')}")
     for intent in reply["intents"]:
         print(f"  intent {intent['intent']} {json.dumps(intent['data'], ensure_ascii=False)} "
               f"(confidence {intent['confidence']})")
@@ -257,28 +268,52 @@ def _chat(args: argparse.Namespace) -> int:
         return 0
 
 
+def _role(args: argparse.Namespace) -> tuple[str, str]:
+    """The dialogue's role and configuration: __ask__ with --ask and --field, else the default."""
+    from dialogue.ask.form import ASK_ROLE, AskError, configuration_of
+
+    if args.ask is None:
+        if args.field:
+            raise AskError("--field needs --ask QUESTION")
+        return "__default__", "{}"
+    if not args.field:
+        raise AskError("--ask needs at least one --field NAME:TYPE")
+    return ASK_ROLE, configuration_of(args.ask, args.field)
+
+
 def _converse(args: argparse.Namespace) -> int:
+    role, configuration = _role(args)
     if args.url:
         with ServiceClient(args.url, args.token or os.environ.get("SITUATED_TOKEN")) as client:
-            dialogue_id = client.start_dialogue()
+            started = client.start_role(role, configuration, args.locale)
+            if started.get("response"):
+                print(f"robot: {started['response']}")
             for text in _lines(args):
-                _show(client.interact(dialogue_id, args.user, text))
+                reply = client.interact(started["dialogue_id"], args.user, text)
+                _show(reply)
+                if reply.get("dialogue_terminal"):
+                    break
         return 0
-    return asyncio.run(_chat_in_process(args))
+    return asyncio.run(_chat_in_process(args, role, configuration))
 
 
-async def _chat_in_process(args: argparse.Namespace) -> int:
+async def _chat_in_process(args: argparse.Namespace, role: str, configuration: str) -> int:
     from api.services import build_dialogues
 
     settings = load_settings(llm=args.llm, scene=args.scene)
     with _kb(args) as kb:
         dialogues = build_dialogues(settings, kb)
         try:
-            dialogue = dialogues.start()
+            dialogue = await dialogues.start_async(role, args.locale, configuration)
+            if dialogues.opening_line(dialogue):
+                print(f"robot: {dialogues.opening_line(dialogue)}")
             for text in _lines(args):
                 result = await dialogues.interact(args.user, text, dialogue_id=dialogue.id)
                 _show({"response": result.response, "intents": [i.model_dump() for i in result.intents],
-                       "error_msg": result.error_msg})
+                       "error_msg": result.error_msg, "dialogue_terminal": result.dialogue_terminal,
+                       "results": result.results})
+                if result.dialogue_terminal:
+                    break
         finally:
             await dialogues.engine.model.aclose()  # its HTTP client or worker process
     return 0
@@ -346,7 +381,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     args = _parser().parse_args(argv)
     try:
         return COMMANDS[args.command](args)
-    except (KbError, ClientError, SettingsError) as exc:
+    except (KbError, ClientError, SettingsError, DialogueError) as exc:
         _say(f"situated {args.command}: {exc}")
         return 2
 

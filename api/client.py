@@ -122,6 +122,14 @@ class ServiceClient:
         dialogue_id: str = self._call("POST", "/dialogues", json={})["dialogue_id"]
         return dialogue_id
 
+    def start_role(self, role: str, configuration: str, locale: str | None = None) -> dict[str, Any]:
+        """Start a dialogue with a role: ``{"dialogue_id", "response"?}`` (the opening line)."""
+        body: dict[str, Any] = {"role": {"name": role, "configuration": configuration}}
+        if locale:
+            body["locale"] = locale
+        started: dict[str, Any] = self._call("POST", "/dialogues", json=body)
+        return started
+
     def interact(self, dialogue_id: str, user_id: str, text: str) -> dict[str, Any]:
         result: dict[str, Any] = self._call("POST", f"/dialogues/{dialogue_id}/interactions",
                                             json={"user_id": user_id, "input": text})

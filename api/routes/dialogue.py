@@ -24,6 +24,8 @@ from dialogue.locales import normalise_locale
 from dialogue.sessions import DEFAULT_ROLE, DialogueManager, SessionError, check_utterance
 
 router = APIRouter(prefix="/dialogues", tags=["dialogue"])
+#: The id of the turn's trace, in the interaction's answer.
+TURN_HEADER = "X-Situated-Turn"
 
 
 class Role(BaseModel):
@@ -132,8 +134,8 @@ def _body(result: TurnResult) -> dict[str, Any]:
              responses={200: {"content": {EVENT_STREAM: {"schema": {"type": "string"}}}, "description":
                               "with `Accept: text/event-stream`: `event: ack` ({\"verbal_ack\"}) when the "
                               "model's reply is ready early, then `event: response` (the JSON answer)"}})
-async def interact(dialogue_id: str, body: InteractionRequest, dialogues: Dialogues,
-                   services: ServicesDep, request: Request) -> InteractionResponse | Response:
+async def interact(dialogue_id: str, body: InteractionRequest, dialogues: Dialogues, services: ServicesDep,
+                   request: Request, response: Response) -> InteractionResponse | Response:
     """One DialogueInteraction: the reply and the validated intents, most relevant first."""
     assert body.input is not None and body.user_id is not None  # the request model's validator
     check_length(body.input, services.settings.limits.max_input_chars, "input")
@@ -148,7 +150,10 @@ async def interact(dialogue_id: str, body: InteractionRequest, dialogues: Dialog
     try:  # the turn reads the dialogue once: an unknown one is refused, an unreadable store answered
         if wants_events(request.headers.get("accept")):
             return await turn_events(run, _body)
-        return _response(await run())
+        result = await run()
+        if result.trace is not None:  # where to read this turn's trace (GET /dialogues/{id}/turns)
+            response.headers[TURN_HEADER] = result.trace.id
+        return _response(result)
     except SessionError as exc:
         raise ApiError(404, "unknown_dialogue", str(exc)) from exc
 

@@ -20,7 +20,7 @@ export function setToken(token) {
   else sessionStorage.removeItem(TOKEN_KEY);
 }
 
-async function call(method, path, body) {
+async function call(method, path, body, onHeaders) {
   const headers = { Accept: "application/json" };
   const token = getToken();
   if (token) headers.Authorization = `Bearer ${token}`;
@@ -31,6 +31,7 @@ async function call(method, path, body) {
   } catch (err) {
     throw new ApiError(0, "network", `the service did not answer (${err.message})`);
   }
+  if (onHeaders) onHeaders(response.headers);
   const text = await response.text();
   let data = null;
   try { data = text ? JSON.parse(text) : null; } catch { data = text; }
@@ -50,8 +51,14 @@ export const api = {
   classesof: (term) => call("GET", `/kb/classesof/${enc(term)}`),
   query: (patterns) => call("POST", "/kb/query", { patterns }),
   revise: (statements, method) => call("POST", "/kb/revise", { statements, method }),
-  interact: (userId, input) =>
-    call("POST", "/dialogues/default/interactions", { user_id: userId, input }),
+  // The answer, with `turn`: the id of the turn's trace (the X-Situated-Turn header).
+  async interact(userId, input) {
+    let turn = null;
+    const answer = await call("POST", "/dialogues/default/interactions", { user_id: userId, input },
+      (headers) => { turn = headers.get("X-Situated-Turn"); });
+    return { ...answer, turn };
+  },
+  turns: (dialogueId) => call("GET", `/dialogues/${enc(dialogueId)}/turns`),
   // The commit feed: what each write added and removed, so removals show without polling.
   changesUrl() {
     const token = getToken();

@@ -3,6 +3,7 @@
 import { api, getToken, setToken } from "./api.js";
 import { Graph } from "./graph.js";
 import { Concepts } from "./concepts.js";
+import { traceToggle } from "./trace.js";
 import { el, isQuestion, statementOf, termButton } from "./ui.js";
 
 const ROOT = "myself";
@@ -261,6 +262,7 @@ class Viewer {
         el("summary", {}, `${answer.intents.length} intent${answer.intents.length === 1 ? "" : "s"}`),
         el("pre", { class: "json" }, JSON.stringify(answer.intents, null, 2)));
       parts.push(intents);
+      if (answer.turn) parts.push(traceToggle("default", answer.turn));
       // Only the latest answer keeps its intents open; earlier ones fold away.
       for (const open of log.querySelectorAll("details.intents[open]")) open.removeAttribute("open");
       waiting.replaceWith(el("li", { class: `msg robot${question ? " question" : ""}` }, ...parts));

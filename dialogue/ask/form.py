@@ -201,6 +201,49 @@ def parse_configuration(configuration: str) -> AskForm:
     return AskForm(question.strip(), fields, tuple(dict.fromkeys(required)))
 
 
+#: `--field name:TYPE` types that are not JSON-schema types: entity kinds.
+_KIND_WORDS = {
+    "person": "kb-person",
+    "thing": "kb-thing",
+    "object": "kb-thing",
+    "place": "kb-place",
+    "entity": "kb-entity",
+}
+
+
+def field_schema_of(spec: str) -> tuple[str, dict[str, Any]]:
+    """A field from ``name:TYPE`` (the CLI's `--field`): TYPE is boolean, integer, number, string,
+    person, thing, place, entity, a KB class (``cup:dbr:Cup``) or values ``colour:red|green|blue``.
+
+    >>> field_schema_of("cup:dbr:Cup"), field_schema_of("size:s|m|l")
+    (('cup', {'type': 'string', 'x-kb-class': 'dbr:Cup'}), ('size', {'enum': ['s', 'm', 'l']}))
+    """
+    name, _, kind = spec.partition(":")
+    name, kind = name.strip(), kind.strip()
+    if not name or not kind:
+        raise AskError(f"field {spec!r}: write name:TYPE, e.g. age:integer, cup:dbr:Cup or size:s|m|l")
+    if kind in _SCALAR_TYPES:
+        return name, {"type": kind}
+    if kind in _KIND_WORDS:
+        return name, {"type": "string", "format": _KIND_WORDS[kind]}
+    if "|" in kind:
+        return name, {"enum": [v.strip() for v in kind.split("|") if v.strip()]}
+    if ":" in kind:
+        return name, {"type": "string", "x-kb-class": kind}
+    raise AskError(
+        f"field {spec!r}: unknown type {kind!r}; use boolean, integer, number, string, person, thing, "
+        "place, entity, a KB class (dbr:Cup) or values a|b|c"
+    )
+
+
+def configuration_of(question: str, fields: list[str]) -> str:
+    """The ask role's configuration for a question and `name:TYPE` fields (checked: AskError)."""
+    properties = dict(field_schema_of(spec) for spec in fields)
+    configuration = json.dumps({"question": question, "result_schema_properties": properties})
+    parse_configuration(configuration)
+    return configuration
+
+
 class Clarifying(BaseModel):
     """A field whose answer named several entities: the next answer chooses among them."""
 

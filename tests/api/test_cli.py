@@ -236,3 +236,28 @@ def test_chat_keeps_one_model_client_and_closes_it(monkeypatch: pytest.MonkeyPat
     assert capsys.readouterr().out.count("robot: Fine.") == 2
     assert len(server.peers) == 2 and len(set(server.peers)) == 1  # one client, one connection
     assert closed == [f"openai:m@{server.url}/v1"]
+
+
+# --- the ask role (issue 16) ----------------------------------------------------------------------
+
+def test_chat_starts_an_ask_dialogue_and_prints_the_results(live: Live, monkeypatch: pytest.MonkeyPatch,
+                                                            capsys: pytest.CaptureFixture[str]) -> None:
+    ask = ["--ask", "How old are you, and which cup?", "--field", "age:integer", "--field", "cup:dbr:Cup"]
+    monkeypatch.setattr(sys, "stdin", io.StringIO("I'm thirty-four\nthe cup\nnot read: the form is over\n"))
+    assert main(["chat", "--scene", str(SCENE), "--user", "person_alice", *ask]) == 0
+    out = capsys.readouterr().out
+    assert out.splitlines()[0] == "robot: How old are you, and which cup?"
+    assert '  results: {"age": 34, "cup": "cup_1"}' in out and out.count("robot: ") == 3
+    assert main(["chat", "--url", live.url, "--user", "person_alice", *ask, "--say", "34, the cup"]) == 0
+    assert '  results: {"age": 34, "cup": "cup_1"}' in capsys.readouterr().out
+
+
+@pytest.mark.parametrize(("args", "message"), [
+    (["--field", "age:integer"], "--field needs --ask QUESTION"),
+    (["--ask", "Age?"], "--ask needs at least one --field"),
+    (["--ask", "Age?", "--field", "age:colour"], "unknown type 'colour'"),
+    (["--ask", "Age?", "--field", "age"], "write name:TYPE"),
+])
+def test_chat_refuses_bad_ask_options(args: list[str], message: str, capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["chat", "--scene", "none", "--say", "hi", *args]) == 2
+    assert message in capsys.readouterr().err
