@@ -311,10 +311,15 @@ class DialogueEngine:
         )
 
 
+#: Results no backend gave: the fallback, a recorded utterance, a role's own answer ("form").
+_NO_BACKEND: dict[str, AnsweredBy] = {"fallback": "fallback", "recorded": "recorded", "form": "form"}
+
+
 def _answered_by(result: TurnResult, model: ChatModel, locale: str | None) -> AnsweredBy:
     """Which kind of backend answered the turn, for its trace."""
-    if result.backend in ("fallback", "recorded"):
-        return "fallback" if result.backend == "fallback" else "recorded"
+    own = _NO_BACKEND.get(result.backend)
+    if own is not None:
+        return own
     if not result.understood and model.llm is None and not is_english(locale):
         return "handover"
     return "rules" if result.backend == "rules" else "model"

@@ -42,7 +42,7 @@ def test_rules_fill_the_form_with_a_clarification_and_a_correction(cups: KB) -> 
     assert second.response == "Thank you." and second.intents == ()
     # The form is over: a later answer changes nothing and says so.
     assert third.dialogue_terminal and json.loads(third.results or "") == {"age": 33, "cup": "cup_red"}
-    assert "over" in third.error_msg
+    assert "over" in third.error_msg and third.trace is not None and third.trace.answered_by == "form"
     history = [(u.speaker, u.text) for u in manager.get(started.id).history]
     assert history[:3] == [(ASSISTANT_USER_ID, "How old are you, and which cup?"), (NINA, "I'm thirty-three and the cup"),
                            (ASSISTANT_USER_ID, first.response)]
