@@ -15,9 +15,12 @@ rules, turn by turn, or by the model, which is given the whole conversation.
 from __future__ import annotations
 
 import asyncio
+import logging
 import time
 from collections.abc import Sequence
 from dataclasses import replace
+
+from pydantic import ValidationError
 
 from dialogue import intents as I
 from dialogue.ask.form import AskForm, FormState, parse_configuration
@@ -32,6 +35,7 @@ from dialogue.reference.lexicon import Lexicon
 from dialogue.schema import AnswerError
 from dialogue.trace.record import TraceRecorder
 
+log = logging.getLogger(__name__)
 OVER = "this ask dialogue is over (its results are final); start a new one to ask again"
 
 
@@ -43,6 +47,18 @@ def replay(form: AskForm, history: Sequence[Utterance], lexicon: Lexicon) -> For
             reading = read_answer(form, state, utterance.text, lexicon, utterance.speaker)
             state, _line = advance(form, state, reading, lexicon.snapshot, reading.clarify_options)
     return state
+
+
+def _stored(role_state: str, trace: TraceRecorder) -> FormState | None:
+    """The form's stored state; None (read again from the history) when there is none or it is unreadable."""
+    if not role_state:
+        return None
+    try:
+        return FormState.from_json(role_state)
+    except ValidationError as exc:
+        log.error("an ask dialogue's stored form cannot be read, it is read from the history: %s", exc)
+        trace.note(f"the stored form could not be read ({exc.error_count()} errors): read from the history")
+        return None
 
 
 class AskRole:
@@ -71,7 +87,7 @@ class AskRole:
     ) -> tuple[TurnResult, str]:
         form = parse_configuration(configuration)
         locale = normalise_locale(locale) if locale else None
-        state = FormState.from_json(role_state) if role_state else None
+        state = _stored(role_state, trace)
         try:
             async with asyncio.timeout_at(deadline):
                 result, state = await self._turn(

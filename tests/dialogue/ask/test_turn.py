@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import asyncio
 import json
+from dataclasses import replace
 
 from dialogue.ask.form import ASK_ROLE
 from dialogue.engine import DialogueEngine, EngineConfig, TurnResult
@@ -172,3 +173,13 @@ def test_the_deadline_answers_and_keeps_the_form(cups: KB) -> None:
     (result,) = talk(manager, d.id, "34")
     assert "deadline" in result.error_msg and not result.dialogue_terminal
     assert json.loads(manager.get(d.id).role_state)["values"] == {}
+
+
+def test_an_unreadable_stored_form_is_read_again_from_the_history(cups: KB) -> None:
+    manager = DialogueManager(DialogueEngine(cups))
+    d = manager.start(ASK_ROLE, configuration=CONFIG)
+    talk(manager, d.id, "I'm 34")
+    manager.store.save(replace(manager.get(d.id), role_state='{"values": 3}'))
+    (result,) = talk(manager, d.id, "the red cup")
+    assert json.loads(result.results or "") == {"age": 34, "cup": "cup_red"} and result.dialogue_terminal
+    assert result.trace is not None and any("could not be read" in n for n in result.trace.notes)
