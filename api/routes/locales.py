@@ -5,7 +5,7 @@ from __future__ import annotations
 from fastapi import APIRouter
 from pydantic import BaseModel, Field
 
-from api.deps import ServicesDep
+from api.deps import ReadAccess, ServicesDep
 from dialogue.locales import supported_locales
 
 router = APIRouter(tags=["dialogue"])
@@ -18,7 +18,7 @@ class Locales(BaseModel):
                              "language goes to the model (hybrid) or is answered with __raw_user_input__")
 
 
-@router.get("/locales")
+@router.get("/locales", dependencies=[ReadAccess])
 async def locales(services: ServicesDep) -> Locales:
     model = services.dialogues.engine.model
     return Locales(locales=supported_locales(reads_prompts=model.llm is not None), rules=["en"])
