@@ -21,6 +21,9 @@ from dialogue.earlyack import ask
 from dialogue.history import Utterance
 from dialogue.llm.base import ChatMessage, ChatModel, ChatRequest, ChatResult, ModelError, TurnContext
 from dialogue.llm.rules import RulesModel
+from dialogue.memory.claims import Claim
+from dialogue.memory.learn import Memory
+from dialogue.memory.replies import confirmation
 from dialogue.prompts import PromptSet
 from dialogue.reference.grounding import Entity, Grounder, Snapshot
 from dialogue.reference.lexicon import Lexicon, LexiconCache
@@ -68,6 +71,8 @@ class TurnResult:
     clarify: bool = False
     #: False when no backend understood the input (the reply says so).
     understood: bool = True
+    #: What the person told or asked about the world; learnt (dialogue.memory) before the reply.
+    claims: tuple[Claim, ...] = ()
 
 
 @dataclass
@@ -88,8 +93,11 @@ class DialogueEngine:
         model: ChatModel | None = None,
         config: EngineConfig | None = None,
         prompts: PromptSet | None = None,
+        memory: Memory | None = None,
     ) -> None:
         self.kb = kb
+        #: Learns what people tell the robot (default: the `people` trust policy).
+        self.memory = memory or Memory(kb)
         self.config = config or EngineConfig()
         self.model: ChatModel = model or RulesModel()
         self.prompts = prompts or PromptSet.load()
@@ -138,11 +146,28 @@ class DialogueEngine:
             deadline = loop.time() + self.config.deadline
         try:
             async with asyncio.timeout_at(deadline):
-                return await self._turn(text, speaker, tuple(history), locale, deadline)
+                result = await self._turn(text, speaker, tuple(history), locale, deadline)
         except TimeoutError:
             return self.fallback(
                 text, speaker, locale, f"no answer within the {self.config.deadline:g} s deadline"
             )
+        return await self._remember(result, text, speaker) if result.claims else result
+
+    async def _remember(self, result: TurnResult, text: str, speaker: str) -> TurnResult:
+        """Learn what the turn was told (or answer what it was asked about it) and say so: the
+        reply to the intents, if any, then one sentence per claim (dialogue.memory)."""
+        snapshot, _ = await self.ground_async()
+        try:
+            settled = await asyncio.to_thread(
+                self.memory.settle, result.claims, speaker=speaker, text=text, snapshot=snapshot
+            )
+        except KbError as exc:
+            log.warning("what %r said was not learnt: %s", speaker, exc)
+            return replace(result, response="Sorry, I could not remember that.",
+                           error_msg=f"the KB refused what was learnt: {exc}")
+        said = confirmation(settled, snapshot, speaker)
+        kept = result.response if result.intents else ""
+        return replace(result, response=" ".join(p for p in (kept, said) if p))
 
     def fallback(
         self, text: str, speaker: str, locale: str | None, error: str, reply: str = SORRY
@@ -196,7 +221,8 @@ class DialogueEngine:
             log.error("%s answer for %r failed validation: %s", early.backend, turn.text, exc)
             return None
         clarify = grounded.clarify or early.clarify
-        return TurnResult(grounded.reply, grounded.intents, backend=early.backend, clarify=clarify)
+        return TurnResult(grounded.reply, grounded.intents, backend=early.backend, clarify=clarify,
+                          claims=grounded.claims)
 
     def schema_for(
         self, snapshot: Snapshot, speaker: str, focus: Sequence[Entity] | None = None
@@ -233,7 +259,8 @@ class DialogueEngine:
                     repair = (ChatMessage("assistant", result.content), self.prompts.repair_message(str(exc)))
                     request = ChatRequest((*messages, *repair), schema, turn.context, repair=True)
                 continue
-            return TurnResult(grounded.reply, grounded.intents, backend=model.name, clarify=grounded.clarify)
+            return TurnResult(grounded.reply, grounded.intents, backend=model.name, clarify=grounded.clarify,
+                              claims=grounded.claims)
         failed = self.fallback(
             turn.text,
             turn.speaker,

@@ -1,0 +1,8 @@
+"""What people tell the robot: claims, their grounding, learning under a trust policy, provenance.
+
+Modules: claims (the predicates table, claims grounded from a model's `facts`), statements and
+asking (the rules' grammar of statements and of questions about what was told), kinds (classes a
+preference may name), provenance (who told a fact, when: RDF reification), learn (beliefs per
+person, the trust policy, perception wins), replies (what the robot says back), people (each
+person's memory across dialogues).
+"""
