@@ -30,7 +30,8 @@ from typing import Literal, ParamSpec, TypeVar
 
 from dialogue.engine import SORRY, DialogueEngine, TurnResult
 from dialogue.errors import SessionError
-from dialogue.history import ASSISTANT_USER_ID, History, Utterance
+from dialogue.history import ASSISTANT_USER_ID, SYSTEM_USER_ID, History, Utterance
+from dialogue.observers import TurnObserver, TurnRecord, notify
 from dialogue.sessionstore import (
     DEFAULT_DIALOGUE,
     DEFAULT_ROLE,
@@ -40,7 +41,7 @@ from dialogue.sessionstore import (
     StateError,
     check_bound,
 )
-from kb.errors import InvalidUnicode, StoreUnavailable
+from kb.errors import InvalidUnicode, KbError, StoreUnavailable
 from kb.unicode import check_text
 
 __all__ = [
@@ -117,7 +118,12 @@ class DialogueManager:
         max_turns: int = 20,
         max_chars: int = 4000,
         store: SessionStore | None = None,
+        observers: Sequence[TurnObserver] = (),
+        recall: Callable[[str], str | None] | None = None,
     ) -> None:
+        """`observers` are told of every turn once it has its result (dialogue.observers);
+        `recall(user_id)` (blocking) gives a note about the speaker's earlier dialogues that a model
+        reading prompts gets before the history (dialogue.memory.people)."""
         check_bound(max_dialogues)
         History(max_turns, max_chars)  # refuses bad limits now, not at the first turn
         self.engine = engine
@@ -125,6 +131,8 @@ class DialogueManager:
         self.max_dialogues = self.store.max_dialogues
         self.max_turns = max_turns
         self.max_chars = max_chars
+        self.observers = tuple(observers)
+        self.recall = recall
         # One lock per dialogue with a turn under way; gone once no turn holds or waits for it.
         self._locks: weakref.WeakValueDictionary[str, asyncio.Lock] = weakref.WeakValueDictionary()
         # Recordings of turns answered late, waiting for their place in their dialogue's queue.
@@ -250,11 +258,19 @@ class DialogueManager:
             else:
                 late = TurnResult("", (), backend="recorded")
             self._record_in_turn(place, lock, dialogue_id, user_id, text, late.response, history)
+            await self._observed(dialogue_id, user_id, text, late, response_expected)
             return late
         try:
-            return await self._run(dialogue_id, user_id, text, locale, response_expected, history, deadline)
+            result = await self._run(dialogue_id, user_id, text, locale, response_expected, history, deadline)
         finally:
             lock.release()
+        await self._observed(dialogue_id, user_id, text, result, response_expected)
+        return result
+
+    async def _observed(self, dialogue_id: str, user_id: str, text: str, result: TurnResult,
+                        response_expected: bool) -> None:
+        if response_expected and self.observers:
+            await notify(self.observers, TurnRecord(dialogue_id, user_id, text, result, time.time()))
 
     def _kept(self, state: DialogueState, history: Sequence[Utterance] | None) -> History:
         kept = History(self.max_turns, self.max_chars)
@@ -282,13 +298,27 @@ class DialogueManager:
         if not response_expected:
             kept.add(user_id, text)
             return await self._saved(state, kept, TurnResult("", (), backend="recorded"))
+        earlier = await self._recalled(user_id)
         result = await self.engine.turn(
-            text, speaker=user_id, history=kept.snapshot(), locale=locale or state.locale, deadline=deadline
+            text, speaker=user_id, history=(*earlier, *kept.snapshot()), locale=locale or state.locale,
+            deadline=deadline,
         )
         kept.add(user_id, text)
         if result.response:
             kept.add(ASSISTANT_USER_ID, result.response)
         return await self._saved(state, kept, result)
+
+    async def _recalled(self, user_id: str) -> tuple[Utterance, ...]:
+        """The note on the speaker's earlier dialogues, for a model that reads prompts only (the
+        rules read no notes)."""
+        if self.recall is None or self.engine.model.llm is None:
+            return ()
+        try:
+            said = await asyncio.to_thread(self.recall, user_id)
+        except (KbError, StoreUnavailable) as exc:
+            log.warning("no memory of %s for this turn: %s", user_id, exc)
+            return ()
+        return (Utterance(SYSTEM_USER_ID, said),) if said else ()
 
     async def _saved(self, state: DialogueState, kept: History, result: TurnResult) -> TurnResult:
         """The turn's result once its history is saved; when the store cannot take it, the result
