@@ -38,6 +38,8 @@ ENGAGEMENT = URIRef(ORO + "engagementLevel")
 ENGAGED = URIRef(ORO + "engaged")
 #: People queued between the KB's commits and the worker (past it, a burst drops the newest).
 MAX_PENDING = 1000
+#: Greeting times kept before those older than the interval are forgotten.
+MAX_REMEMBERED = 10_000
 _STOP = ""
 
 
@@ -95,12 +97,19 @@ class Initiative:
                         log.warning("initiative: too many engagements at once; %s not reached out to",
                                     shorten(s))
 
+    def join(self) -> None:
+        """Wait until every engagement queued so far has been reached out to."""
+        self._pending.join()
+
     def _work(self) -> None:
         while (person := self._pending.get()) != _STOP:
             try:
                 self.engaged(person)
-            except KbError as exc:  # the name could not be read: engaged, greeted without it
+            except KbError as exc:  # the name could not be read: no greeting this time
                 log.warning("initiative: %s", exc)
+            finally:
+                self._pending.task_done()
+        self._pending.task_done()
 
     def engaged(self, person: str) -> None:
         """Reach out to a person who just became engaged (blocking: reads the KB for the name)."""
@@ -113,10 +122,13 @@ class Initiative:
         last = self._greeted.get(person)
         if last is not None and now - last < self.config.interval:
             return
+        words = self.greeting(person)
         self._greeted[person] = now
+        if len(self._greeted) > MAX_REMEMBERED:  # only those within the interval matter
+            self._greeted = {p: t for p, t in self._greeted.items() if now - t < self.config.interval}
         greet = I.make_intent(I.GREET, data, source=I.ROBOT_ITSELF, confidence=1.0,
                               modality=I.MODALITY_INTERNAL)
-        self.bus.publish("initiative", greet, response=self.greeting(person))
+        self.bus.publish("initiative", greet, response=words)
 
     def greeting(self, person: str) -> str:
         term = format_term(parse_name(person, "person"))

@@ -53,7 +53,7 @@ class Recollection:
         """What a model is told of earlier dialogues with the person (a system note), if anything."""
         if self.last_spoke is None:
             return None
-        when = self.last_spoke.replace("T", " at ")[:19].rstrip(":")
+        when = self.last_spoke.replace("T", " at ")[:19]  # to the minute
         earlier = f" Earlier: {self.summary}." if self.summary else ""
         return f"You last spoke with [{self.person}] on {when} UTC.{earlier}"
 
