@@ -17,7 +17,7 @@ from starlette.concurrency import run_in_threadpool
 from api.errors import install_error_handlers
 from api.forward import WriterProxy
 from api.limits import BodySizeLimit
-from api.routes import dialogue, events, health, intents, rasa, scene, sparql, viewer
+from api.routes import dialogue, events, health, intents, people, rasa, scene, sparql, viewer
 from api.routes import kb as kb_routes
 from api.routes.health import package_version
 from api.services import start_services
@@ -60,7 +60,7 @@ def create_app(settings: Settings | None = None, kb: KB | None = None,
                            allow_methods=["GET", "POST", "DELETE"],
                            allow_headers=["Authorization", "Content-Type", "Accept"])
     for router in (kb_routes.router, sparql.router, events.router, dialogue.router, rasa.router,
-                   scene.router, health.router, intents.router, viewer.router):
+                   scene.router, health.router, intents.router, people.router, viewer.router):
         app.include_router(router)
     app.mount(viewer.ASSETS_PATH, viewer.assets(), name="viewer-assets")
     return app

@@ -19,10 +19,12 @@ import threading
 from collections import OrderedDict
 from dataclasses import dataclass
 from datetime import UTC, datetime
+from typing import Any
 
 from rdflib import XSD, Literal, URIRef
 
 from dialogue import intents as I
+from dialogue.memory.provenance import Told, told
 from dialogue.observers import TurnRecord
 from dialogue.speakers import person_statement
 from kb import KbError
@@ -125,6 +127,17 @@ class People:
         self.kb.update(facts)  # functional properties: the new values replace the old
         return True
 
+    def about(self, person: str) -> dict[str, Any]:
+        """Everything the robot keeps of a person: when they last spoke, the summary, the facts
+        they told it (adopted: those they only believe are in their own model) and the facts others
+        told about them, each with who told it and when."""
+        memory = self.recall(person)
+        if self._term(person) is None:
+            return {"person": person, "last_spoke": None, "summary": "", "told": [], "told_about": []}
+        return {"person": person, "last_spoke": memory.last_spoke, "summary": memory.summary,
+                "told": [_told(t) for t in told(self.kb, by=person)],
+                "told_about": [_told(t) for t in told(self.kb, subject=person)]}
+
     def recall_note(self, person: str) -> str | None:
         return self.recall(person).note()
 
@@ -140,3 +153,8 @@ class People:
         if person_statement(person) is None:
             return None
         return parse_name(person, "person")
+
+
+def _told(fact: Told) -> dict[str, Any]:
+    return {"subject": fact.subject, "predicate": fact.predicate, "object": fact.object, "by": fact.by,
+            "at": fact.at, "words": fact.words}
