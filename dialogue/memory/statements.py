@@ -268,6 +268,8 @@ class Statements:
         """A thing of the situation when the phrase names one with a determiner ("the radio"), else
         the words of a kind ("tea", "apples"), found among the KB's classes when learnt."""
         words = tuple(w for w in words if w not in {"very", "much", "really", "so", "a", "lot", "too"})
+        if words and words[0].endswith("ing") and "VERB" in getAllLemmas(words[0]):
+            raise _Unclaimed  # "I hate marking lab reports": an activity, no thing or kind of the KB
         if words and words[0] in {"the", "this", "that", "my", "your", "his", "her"}:
             return self._entity(words, ANYWHERE)[0]
         if words == ("you",):
