@@ -44,6 +44,8 @@ def ground_answer(
     told = ground_facts(answer.facts or (), lexicon, speaker)
     if told.question is not None:
         return Grounded(told.question, (), clarify=True)
+    if told.refusal is not None:
+        return Grounded(told.refusal, ())
     if not wishes:
         if not reply and not told.claims:
             raise AnswerError("both verbal_ack and user_intent are null; say something or give an intent")

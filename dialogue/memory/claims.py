@@ -98,11 +98,17 @@ def clean_name(text: str) -> str:
     return name if name != name.lower() else name.title()
 
 
+#: The reply when a fact would name a speaker who is not a KB entity (as for intents).
+UNKNOWN_SPEAKER = "Sorry, I don't know who you are."
+
+
 @dataclass(frozen=True)
 class GroundedFacts:
     claims: tuple[Claim, ...]
     #: A question telling ambiguous referents apart; the claims are then empty.
     question: str | None = None
+    #: Why nothing can be learnt from the answer (a speaker who is nobody of the KB).
+    refusal: str | None = None
 
 
 def ground_facts(facts: Sequence[FactClaim], lexicon: Lexicon, speaker: str) -> GroundedFacts:
@@ -134,6 +140,8 @@ def ground_facts(facts: Sequence[FactClaim], lexicon: Lexicon, speaker: str) -> 
         if question is not None:
             return GroundedFacts((), question)
         claims.append(Claim(subject, spec.name, obj))
+    if lexicon.snapshot.get(speaker) is None and any(not c.asks or speaker == c.subject for c in claims):
+        return GroundedFacts((), refusal=UNKNOWN_SPEAKER)  # nobody to hold the belief, or to ask about
     return GroundedFacts(tuple(claims))
 
 

@@ -11,6 +11,7 @@ from dataclasses import dataclass
 from dialogue import intents as I
 from dialogue.history import Utterance
 from dialogue.memory.asking import Asking
+from dialogue.memory.followup import follow_up
 from dialogue.memory.statements import Statements
 from dialogue.reference.lexicon import Lexicon
 from dialogue.schema import ChatbotResponse, UserIntent
@@ -29,7 +30,7 @@ def read_turn(text: str, lexicon: Lexicon, speaker: str, history: Sequence[Utter
     asked = Asking(lexicon, speaker, history).read(text)
     if asked is not None:
         return Reading(ChatbotResponse(facts=asked))
-    told = Statements(lexicon, speaker, history).read(text)
+    told = follow_up(text, lexicon, speaker, history) or Statements(lexicon, speaker, history).read(text)
     if told is None:
         return None
     if told.reply is not None:

@@ -26,9 +26,17 @@ class _Namer:
 
     def __call__(self, term: str) -> str:
         entity = self.snapshot.get(term)
-        if entity is not None:
-            return the(self.snapshot, entity, self.speaker)
-        return self.names.get(term) or self.snapshot.name_of(term)
+        if entity is None:
+            return self.names.get(term) or self.snapshot.name_of(term)
+        named = the(self.snapshot, entity, self.speaker)
+        if entity.colour and entity.colour not in named and self._shared(entity.id, named):
+            return named.replace("the ", f"the {entity.colour} ", 1)  # "the red mug", of two mugs
+        return named
+
+    def _shared(self, term: str, named: str) -> bool:
+        """Whether another thing of the situation goes by the same name."""
+        return any(e.id != term and e.kind == "thing" and the(self.snapshot, e, self.speaker) == named
+                   for e in self.snapshot.visible())
 
     def person(self, term: str, fallback: str = "they") -> str:
         if term == self.speaker:

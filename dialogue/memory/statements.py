@@ -15,7 +15,7 @@ be a kind ("tea"): its words are passed on and found among the KB's classes when
 from __future__ import annotations
 
 import re
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 
 from lemminflect import getAllLemmas
@@ -110,10 +110,16 @@ def name_like(words: Words, original: str) -> bool:
 class Statements:
     """Reads statements against a lexicon, for one speaker and the dialogue's history."""
 
-    def __init__(self, lexicon: Lexicon, speaker: str, history: Sequence[Utterance] = ()) -> None:
+    def __init__(self, lexicon: Lexicon, speaker: str, history: Sequence[Utterance] = (),
+                 overrides: Mapping[Words, Words] | None = None) -> None:
         self.lexicon = lexicon
         self.snapshot = lexicon.snapshot
         self.speaker = speaker
+        #: Phrases read as other words: an ambiguous one completed by the answer to the robot's
+        #: question (dialogue.memory.followup).
+        self.overrides = dict(overrides or {})
+        #: The phrase the last clarifying question was about.
+        self.open_phrase: Words | None = None
         self.history = tuple(history)
 
     def read(self, text: str) -> Told | None:
@@ -341,6 +347,7 @@ class Statements:
 
     def _entity(self, words: Words, kinds: frozenset[Kind]) -> tuple[str, str | None]:
         """One entity of `kinds` the phrase names, and whose it is said to be ("my keys")."""
+        self.open_phrase, words = words, self.overrides.get(words, words)
         if "person" in kinds and words in {("me",), ("i",)}:
             return self.speaker, None
         said = [w for w in words if w in POSSESSIVES]

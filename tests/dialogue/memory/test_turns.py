@@ -108,3 +108,25 @@ def test_the_hybrid_model_learns_with_its_rules_first(home: KB) -> None:
     model = ScriptedModel([])
     bob = Talk(DialogueEngine(home, HybridModel(model)))
     assert bob.say("my name is Bob").response == "Nice to meet you, Bob." and model.requests == []
+
+
+def test_a_speaker_who_is_nobody_of_the_kb_is_told_so_and_nothing_is_learnt(home: KB) -> None:
+    before = home.models()
+    anonymous = Talk(DialogueEngine(home), "__unknown_agent__")
+    for text in ("I'm Bob", "the phone belongs to Ines", "what's my name?"):
+        assert anonymous.say(text).response == "Sorry, I don't know who you are."
+    assert home.models() == before and told(home) == []
+    assert anonymous.say("what does Alice like?").response == "I don't know what Alice likes."
+
+
+def test_an_ambiguous_statement_is_asked_about_and_the_answer_completes_it(home: KB) -> None:
+    home.update(["mug_blue rdf:type dbr:Cup", 'mug_blue rdfs:label "mug"', "mug_blue hasColor blue",
+                 "mug_blue isOn table_1", "myself sees mug_blue"])
+    bob = Talk(DialogueEngine(home))
+    question = bob.say("the mug is mine")
+    assert question.clarify and question.response.endswith("?") and question.claims == ()
+    assert bob.say("the red one").response == "OK, the red mug is yours."
+    assert home.is_asserted(f"mug_red belongsTo {BOB}") and not home.is_asserted(f"mug_blue belongsTo {BOB}")
+    # A command's clarification is still the command grammar's.
+    assert bob.say("bring me the mug").clarify
+    assert [i.data for i in bob.say("the blue one").intents] == [{"object": "mug_blue", "recipient": BOB}]
