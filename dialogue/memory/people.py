@@ -103,29 +103,39 @@ class People:
                             str(summary[0]["s"]) if summary else "")
 
     def remember(self, record: TurnRecord) -> bool:
-        """Note the turn in its speaker's memory; True when the KB was written. A turn the service
-        could not answer (its fallback: model or store down) writes nothing more to a KB that may
-        be struggling."""
+        """Note the turn in its speaker's memory; True when the KB was written (blocking)."""
+        due = self._due(record)
+        if due is None:
+            return False
+        self._write(record, *due)
+        return True
+
+    def _due(self, record: TurnRecord) -> tuple[URIRef, str | None] | None:
+        """The speaker's term and the turn's note when the KB is to be written, else None (cheap:
+        no KB access). A turn the service could not answer (its fallback: model or store down)
+        writes nothing more to a KB that may be struggling."""
         term = self._term(record.user_id)
         if term is None or record.result.error_msg:
-            return False
+            return None
         added = note(record)
         with self._lock:
             last = self._written.get(record.user_id)
             if added is None and last is not None and record.at - last < self.refresh:
-                return False
+                return None
             self._written[record.user_id] = record.at
             self._written.move_to_end(record.user_id)
             while len(self._written) > MAX_TRACKED:
                 self._written.popitem(last=False)
+        return term, added
+
+    def _write(self, record: TurnRecord, term: URIRef, added: str | None) -> None:
         stamp = Literal(datetime.fromtimestamp(record.at, UTC).isoformat(timespec="seconds"),
                         datatype=XSD.dateTime)
         facts = [format_triple((term, LAST_SPOKE, stamp))]
         if added is not None:
-            facts.append(format_triple((term, SUMMARY, Literal(summarised(self.recall(record.user_id).summary,
-                                                                          added)))))
+            summary = summarised(self.recall(record.user_id).summary, added)
+            facts.append(format_triple((term, SUMMARY, Literal(summary))))
         self.kb.update(facts)  # functional properties: the new values replace the old
-        return True
 
     def about(self, person: str) -> dict[str, Any]:
         """Everything the robot keeps of a person: when they last spoke, the summary, the facts
@@ -142,8 +152,12 @@ class People:
         return self.recall(person).note()
 
     async def observe(self, record: TurnRecord) -> None:
+        """The dialogue manager's observer: off the event loop only when there is something to write."""
+        due = self._due(record)
+        if due is None:
+            return
         try:
-            await asyncio.to_thread(self.remember, record)
+            await asyncio.to_thread(self._write, record, *due)
         except KbError as exc:
             log.warning("the memory of %s was not kept for this turn: %s", record.user_id, exc)
 
