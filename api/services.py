@@ -62,6 +62,8 @@ class Services:
     webhooks: Webhooks | None = None
     #: Engaging and greeting people who become engaged (None on a reader: the writer does it).
     initiative: Initiative | None = None
+    #: Each person's memory across dialogues (follows the KB's commits).
+    people: People | None = None
 
     @property
     def model(self) -> ChatModel:
@@ -92,6 +94,8 @@ class Services:
             self.world.stop()
         if self.initiative is not None:
             self.initiative.stop()
+        if self.people is not None:
+            self.people.close()
         if self.webhooks is not None:
             self.webhooks.stop()
         self.bus.shutdown()
@@ -174,7 +178,8 @@ def intent_bus(settings: Settings) -> IntentBus:
 
 
 def build_dialogues(settings: Settings, kb: KnowledgeBase, model: ChatModel | None = None,
-                    endpoint: SparqlEndpoint | None = None, bus: IntentBus | None = None) -> DialogueManager:
+                    endpoint: SparqlEndpoint | None = None, bus: IntentBus | None = None,
+                    people: People | None = None) -> DialogueManager:
     """The dialogue engine on this KB, with ``model`` or the backend ``settings.llm`` names;
     with a shared store, the dialogue sessions live in it (every process sees every dialogue).
     What people say is learnt under the trust policy, each speaker's memory kept in the KB, and
@@ -184,7 +189,7 @@ def build_dialogues(settings: Settings, kb: KnowledgeBase, model: ChatModel | No
                             memory=memory)
     limits = settings.limits
     store = SparqlSessions(endpoint, max_dialogues=limits.max_dialogues) if endpoint is not None else None
-    people = People(kb, settings.memory.refresh)
+    people = people if people is not None else People(kb, settings.memory.refresh)
     observers = [people.observe, *([bus.observe] if bus is not None else [])]
     return DialogueManager(engine, max_dialogues=limits.max_dialogues, max_turns=limits.max_history_turns,
                            store=store, observers=observers, recall=people.recall_note)
@@ -217,7 +222,8 @@ def start_services(settings: Settings, kb: KB | None = None, model: ChatModel | 
     try:
         if settings.store is not None:
             store = Store(SparqlEndpoint(settings.store, settings.store_timeout), mirror=None)
-        dialogues = build_dialogues(settings, the_kb, model, store.endpoint if store else None, bus)
+        people = People(the_kb, settings.memory.refresh)
+        dialogues = build_dialogues(settings, the_kb, model, store.endpoint if store else None, bus, people)
         if settings.data_dir is not None:
             journal = _open_journal(the_kb, settings.data_dir, settings.snapshot_records)
         if store is not None:
@@ -242,7 +248,8 @@ def start_services(settings: Settings, kb: KB | None = None, model: ChatModel | 
     hub = event_hub(the_kb, settings, commits=the_kb.on_commit)
     services = Services(settings=settings, kb=the_kb, hub=hub, dialogues=dialogues, world=world,
                         journal=journal, owns_kb=owns_kb, store=store, owns_model=model is None,
-                        local_kb=the_kb, bus=bus)
+                        local_kb=the_kb, bus=bus, people=people)
+    people.follow()  # the KB is recovered and loaded: the index starts from it
     services.initiative = Initiative(the_kb, bus, InitiativeConfig(settings.memory.greet,
                                                                    settings.memory.greet_interval))
     services.initiative.start()

@@ -24,7 +24,7 @@ import logging
 import time
 import uuid
 import weakref
-from collections.abc import Callable, Sequence
+from collections.abc import Awaitable, Callable, Sequence
 from dataclasses import replace
 from typing import Literal, ParamSpec, TypeVar
 
@@ -119,11 +119,11 @@ class DialogueManager:
         max_chars: int = 4000,
         store: SessionStore | None = None,
         observers: Sequence[TurnObserver] = (),
-        recall: Callable[[str], str | None] | None = None,
+        recall: Callable[[str], Awaitable[str | None]] | None = None,
     ) -> None:
         """`observers` are told of every turn once it has its result (dialogue.observers);
-        `recall(user_id)` (blocking) gives a note about the speaker's earlier dialogues that a model
-        reading prompts gets before the history (dialogue.memory.people)."""
+        `await recall(user_id)` gives a note about the speaker's earlier dialogues that a model
+        reading prompts gets before the history (dialogue.memory.people), not blocking the loop."""
         check_bound(max_dialogues)
         History(max_turns, max_chars)  # refuses bad limits now, not at the first turn
         self.engine = engine
@@ -314,7 +314,7 @@ class DialogueManager:
         if self.recall is None or self.engine.model.llm is None:
             return ()
         try:
-            said = await asyncio.to_thread(self.recall, user_id)
+            said = await self.recall(user_id)
         except (KbError, StoreUnavailable) as exc:
             log.warning("no memory of %s for this turn: %s", user_id, exc)
             return ()

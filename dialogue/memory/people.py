@@ -6,9 +6,10 @@
 Both are functional properties of the robot's model, so they survive a restart with the journal and
 are shared with read replicas through the store, like any fact. The summary keeps the person's last
 few notable turns (what they told, what they asked the robot to do), newest last, bounded in notes
-and characters: chatbot_msgs 4.0's `summary` of earlier sessions. A turn with nothing notable only
-moves `lastSpokeAt`, written at most once per `refresh` seconds per person, so chit-chat does not
-write to the KB on every turn.
+and characters: chatbot_msgs 4.0's `summary` of earlier sessions. A turn that told something writes
+them at once (it wrote what it told anyway); other turns write at most once per `refresh` seconds
+per person, their notes waiting in memory for the next write (so a crash loses at most that much),
+and neither requests nor chit-chat write to the KB on every turn.
 """
 
 from __future__ import annotations
@@ -18,6 +19,7 @@ import logging
 import threading
 from collections import OrderedDict
 from dataclasses import dataclass
+from functools import lru_cache
 from datetime import UTC, datetime
 from typing import Any
 
@@ -25,16 +27,15 @@ from rdflib import XSD, Literal, URIRef
 
 from dialogue import intents as I
 from dialogue.memory.provenance import Told, told
+from dialogue.memory.recollections import LAST_SPOKE, SUMMARY, Recollections
 from dialogue.observers import TurnRecord
 from dialogue.speakers import person_statement
 from kb import KbError
 from kb.protocol import KnowledgeBase
-from kb.terms import ORO, format_term, format_triple, parse_name
+from kb.terms import format_term, format_triple, parse_name
 
 log = logging.getLogger(__name__)
 
-LAST_SPOKE = URIRef(ORO + "lastSpokeAt")
-SUMMARY = URIRef(ORO + "dialogueSummary")
 #: Notes kept in a summary, and its length.
 MAX_NOTES = 6
 MAX_SUMMARY = 600
@@ -89,18 +90,40 @@ class People:
     def __init__(self, kb: KnowledgeBase, refresh: float = 60.0) -> None:
         self.kb = kb
         self.refresh = refresh
-        self._written: OrderedDict[str, float] = OrderedDict()
+        #: Per person: when the KB was last written, and the notes waiting for the next write.
+        self._written: OrderedDict[str, tuple[float, tuple[str, ...]]] = OrderedDict()
         self._lock = threading.Lock()
+        self._index: Recollections | None = None
+
+    def follow(self) -> None:
+        """Keep an index of everyone's memory from the KB's commits from now on (when the KB
+        reports them: not a read replica), so that recalling costs no KB query. Call it once the KB
+        holds what it starts with (recovered from the journal), blocking."""
+        self._index = Recollections.follow(self.kb)
+
+    def close(self) -> None:
+        if self._index is not None:
+            self._index.close()
 
     def recall(self, person: str) -> Recollection:
+        """Blocking unless the index answers."""
         term = self._term(person)
         if term is None:
             return Recollection(person)
+        if self._index is not None:
+            return Recollection(person, *self._index.get(person))
         s = format_term(term)
         spoke = self.kb.find([f"{s} {format_term(LAST_SPOKE)} ?t"])
         summary = self.kb.find([f"{s} {format_term(SUMMARY)} ?s"])
         return Recollection(person, str(spoke[0]["t"]) if spoke else None,
                             str(summary[0]["s"]) if summary else "")
+
+    async def recall_note(self, person: str) -> str | None:
+        """What a model is told of earlier dialogues with the person: from the index on the event
+        loop, else from the KB off it."""
+        if self._index is not None:
+            return self.recall(person).note()
+        return (await asyncio.to_thread(self.recall, person)).note()
 
     def remember(self, record: TurnRecord) -> bool:
         """Note the turn in its speaker's memory; True when the KB was written (blocking)."""
@@ -110,30 +133,33 @@ class People:
         self._write(record, *due)
         return True
 
-    def _due(self, record: TurnRecord) -> tuple[URIRef, str | None] | None:
-        """The speaker's term and the turn's note when the KB is to be written, else None (cheap:
-        no KB access). A turn the service could not answer (its fallback: model or store down)
-        writes nothing more to a KB that may be struggling."""
+    def _due(self, record: TurnRecord) -> tuple[URIRef, tuple[str, ...]] | None:
+        """The speaker's term and the notes to write when the KB is to be written now, else None
+        (cheap: no KB access). A turn the service could not answer (its fallback: model or store
+        down) writes nothing more to a KB that may be struggling."""
         term = self._term(record.user_id)
         if term is None or record.result.error_msg:
             return None
         added = note(record)
+        told_something = any(not c.asks for c in record.result.claims)
         with self._lock:
-            last = self._written.get(record.user_id)
-            if added is None and last is not None and record.at - last < self.refresh:
-                return None
-            self._written[record.user_id] = record.at
+            last, waiting = self._written.get(record.user_id, (None, ()))
+            notes = (*waiting, added)[-MAX_NOTES:] if added is not None else waiting
+            due = told_something or last is None or record.at - last >= self.refresh
+            self._written[record.user_id] = (record.at, ()) if due else (last or record.at, notes)
             self._written.move_to_end(record.user_id)
             while len(self._written) > MAX_TRACKED:
                 self._written.popitem(last=False)
-        return term, added
+        return (term, notes) if due else None
 
-    def _write(self, record: TurnRecord, term: URIRef, added: str | None) -> None:
+    def _write(self, record: TurnRecord, term: URIRef, notes: tuple[str, ...]) -> None:
         stamp = Literal(datetime.fromtimestamp(record.at, UTC).isoformat(timespec="seconds"),
                         datatype=XSD.dateTime)
         facts = [format_triple((term, LAST_SPOKE, stamp))]
-        if added is not None:
-            summary = summarised(self.recall(record.user_id).summary, added)
+        if notes:
+            summary = self.recall(record.user_id).summary
+            for added in notes:
+                summary = summarised(summary, added)
             facts.append(format_triple((term, SUMMARY, Literal(summary))))
         self.kb.update(facts)  # functional properties: the new values replace the old
 
@@ -148,9 +174,6 @@ class People:
                 "told": [_told(t) for t in told(self.kb, by=person)],
                 "told_about": [_told(t) for t in told(self.kb, subject=person)]}
 
-    def recall_note(self, person: str) -> str | None:
-        return self.recall(person).note()
-
     async def observe(self, record: TurnRecord) -> None:
         """The dialogue manager's observer: off the event loop only when there is something to write."""
         due = self._due(record)
@@ -163,12 +186,17 @@ class People:
 
     @staticmethod
     def _term(person: str) -> URIRef | None:
-        """The person's KB term, or None for who is nobody to remember (source constants...)."""
-        if person_statement(person) is None:
-            return None
-        return parse_name(person, "person")
+        return _person_term(person)
 
 
 def _told(fact: Told) -> dict[str, Any]:
     return {"subject": fact.subject, "predicate": fact.predicate, "object": fact.object, "by": fact.by,
             "at": fact.at, "words": fact.words}
+
+
+@lru_cache(maxsize=4096)
+def _person_term(person: str) -> URIRef | None:
+    """The person's KB term, or None for who is nobody to remember (source constants...)."""
+    if person_statement(person) is None:
+        return None
+    return parse_name(person, "person")

@@ -10,7 +10,7 @@ from dialogue.engine import DialogueEngine, TurnResult
 from dialogue.llm.hybrid import HybridModel
 from dialogue.llm.testing import ScriptedModel
 from dialogue.memory.claims import Claim
-from dialogue.memory.people import MAX_NOTES, MAX_SUMMARY, People, note, summarised
+from dialogue.memory.people import MAX_NOTES, MAX_SUMMARY, People, Recollection, note, summarised
 from dialogue.observers import TurnRecord
 from dialogue.sessions import DialogueManager
 from kb import KB
@@ -50,18 +50,20 @@ def test_the_summary_keeps_the_latest_notes_within_its_bounds() -> None:
 
 def test_last_spoke_and_summary_are_facts_of_the_robots_model(home: KB) -> None:
     people = People(home, refresh=60)
-    assert people.recall(BOB).last_spoke is None and people.recall_note(BOB) is None
-    assert people.remember(record("the red mug is mine", TOLD))
+    assert people.recall(BOB).last_spoke is None and asyncio.run(people.recall_note(BOB)) is None
+    assert people.remember(record("the red mug is mine", TOLD))  # what was told: written at once
     assert home.find([f"{BOB} lastSpokeAt ?t"]) == [{"t": "2025-06-01T10:30:00+00:00"}]
-    assert people.remember(record("bring me my mug", TurnResult("OK.", (BRING,)), at=T0 + 5))
-    memory = people.recall(BOB)
-    assert memory.summary == '2025-06-01: said "the red mug is mine"; 2025-06-01: asked "bring me my mug"'
-    assert people.recall_note(BOB) == (
-        f"You last spoke with [{BOB}] on 2025-06-01 at 10:30 UTC. Earlier: {memory.summary}.")
-    # Chit-chat moves lastSpokeAt at most once per refresh period.
+    assert people.recall(BOB).summary == '2025-06-01: said "the red mug is mine"'
+    # Requests and chit-chat write at most once per refresh period; their notes wait for it.
+    assert not people.remember(record("bring me my mug", TurnResult("OK.", (BRING,)), at=T0 + 5))
     assert not people.remember(record("how are you?", CHAT, at=T0 + 30))
-    assert people.remember(record("how are you?", CHAT, at=T0 + 100))
-    assert home.find([f"{BOB} lastSpokeAt ?t"]) == [{"t": "2025-06-01T10:31:40+00:00"}]
+    assert people.recall(BOB).summary == '2025-06-01: said "the red mug is mine"'
+    assert people.remember(record("how are you?", CHAT, at=T0 + 65))
+    memory = people.recall(BOB)
+    assert memory.last_spoke == "2025-06-01T10:31:05+00:00"
+    assert memory.summary == '2025-06-01: said "the red mug is mine"; 2025-06-01: asked "bring me my mug"'
+    assert asyncio.run(people.recall_note(BOB)) == (
+        f"You last spoke with [{BOB}] on 2025-06-01 at 10:31 UTC. Earlier: {memory.summary}.")
     # Nobody to remember: ROS4HRI's source constants; a turn the service could not answer.
     assert not people.remember(record("hello", CHAT, user=I.UNKNOWN_AGENT))
     assert not people.remember(record("x", TurnResult("Sorry.", error_msg="model down"), at=T0 + 999))
@@ -95,3 +97,20 @@ def test_the_dialogue_manager_keeps_it_and_gives_a_model_the_note(home: KB) -> N
     assert any(n.startswith(f"You last spoke with [{BOB}]") for n in notes)
     stored = asyncio.run(manager.get_async("default")).history
     assert all(u.speaker != "__system__" for u in stored)  # the note is for the model, not the history
+
+
+def test_the_index_follows_every_change_so_recalling_needs_no_query(home: KB) -> None:
+    home.update([f'{BOB} lastSpokeAt "2025-05-01T09:00:00+00:00"^^xsd:dateTime'])
+    people = People(home)
+    people.follow()
+    assert people.recall(BOB).last_spoke == "2025-05-01T09:00:00+00:00"
+    People(home).remember(record("the red mug is mine", TOLD))  # another writer of the same KB
+    assert people.recall(BOB) == Recollection(BOB, "2025-06-01T10:30:00+00:00",
+                                              '2025-06-01: said "the red mug is mine"')
+    home.remove([f"{BOB} dialogueSummary ?s"])
+    assert people.recall(BOB).summary == ""
+    home.clear()
+    assert people.recall(BOB) == Recollection(BOB)
+    note = asyncio.run(people.recall_note(BOB))
+    assert note is None
+    people.close()
