@@ -19,8 +19,8 @@ import logging
 import threading
 from collections import OrderedDict
 from dataclasses import dataclass
-from functools import lru_cache
 from datetime import UTC, datetime
+from functools import lru_cache
 from typing import Any
 
 from rdflib import XSD, Literal, URIRef
