@@ -21,6 +21,7 @@ from dialogue.llm.base import ChatModel
 from dialogue.llm.spec import SpecError, parse_spec
 from dialogue.memory.learn import Memory
 from dialogue.memory.people import People
+from dialogue.memory.reconcile import Reconciler
 from dialogue.pushed.bus import IntentBus
 from dialogue.sessions import DialogueManager
 from dialogue.sparqlsessions import SparqlSessions
@@ -64,6 +65,8 @@ class Services:
     initiative: Initiative | None = None
     #: Each person's memory across dialogues (follows the KB's commits).
     people: People | None = None
+    #: Retracts told values that perception later contradicts (None on a reader).
+    reconciler: Reconciler | None = None
 
     @property
     def model(self) -> ChatModel:
@@ -96,6 +99,8 @@ class Services:
             self.initiative.stop()
         if self.people is not None:
             self.people.close()
+        if self.reconciler is not None:
+            self.reconciler.stop()
         if self.webhooks is not None:
             self.webhooks.stop()
         self.bus.shutdown()
@@ -250,6 +255,8 @@ def start_services(settings: Settings, kb: KB | None = None, model: ChatModel | 
                         journal=journal, owns_kb=owns_kb, store=store, owns_model=model is None,
                         local_kb=the_kb, bus=bus, people=people)
     people.follow()  # the KB is recovered and loaded: the index starts from it
+    services.reconciler = Reconciler(dialogues.engine.memory)
+    services.reconciler.start()
     services.initiative = Initiative(the_kb, bus, InitiativeConfig(settings.memory.greet,
                                                                    settings.memory.greet_interval))
     services.initiative.start()

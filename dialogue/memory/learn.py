@@ -24,6 +24,7 @@ off the event loop.
 
 from __future__ import annotations
 
+import threading
 from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass, field, replace
 from datetime import UTC, datetime
@@ -94,10 +95,17 @@ class Memory:
         self.kb = kb
         self.trust = Trust(trust)
         self.clock = clock
+        # One learner at a time: two turns telling values of the same place at once would each
+        # read the other's as absent.
+        self._lock = threading.Lock()
 
     def settle(self, claims: Sequence[Claim], *, speaker: str, text: str, snapshot: Snapshot) -> Settled:
         """Learn the statements and answer the questions of one turn (blocking: KB reads and at
         most two writes, the speaker's model then the robot's). KbError when the KB refuses."""
+        with self._lock:
+            return self._settle(claims, speaker, text, snapshot)
+
+    def _settle(self, claims: Sequence[Claim], speaker: str, text: str, snapshot: Snapshot) -> Settled:
         names: dict[str, str] = {}
         resolved: list[Outcome] = []
         for claim in claims:
@@ -214,6 +222,24 @@ class Memory:
         if format_term(held[1]) != "isIn" or held[2] == fact[2]:
             return False
         return self.kb.exist([f"{format_term(fact[2])} isIn {format_term(held[2])}"])
+
+    def reconcile(self, subject: str, prop: str, value: str, literal: bool = False) -> int:
+        """Perception wins afterwards too: when a value perceived (asserted without a record)
+        contradicts told ones of the same place, the told ones go, with their records. The number
+        of told facts retracted (blocking; KbError when the KB refuses)."""
+        spec = BY_PROPERTY.get(prop)
+        if spec is None:
+            return 0
+        claim = Claim(subject, spec.name, value, "text" if literal else "entity")
+        with self._lock:
+            fact = _fact(claim)
+            if not self.kb.is_asserted(format_triple(fact)) or self._was_told(fact):
+                return 0  # gone again, or told itself: nothing perceived to win
+            stale = [f for f in self._held(claim, [DEFAULT_MODEL])
+                     if f != fact and self._was_told(f) and not self._within(fact, f)]
+            if stale:
+                self.kb.apply([], [s for f in stale for s in (*forget(self.kb, f), format_triple(f))])
+            return len(stale)
 
     def _was_told(self, fact: Fact) -> bool:
         return self.kb.exist([f"{format_term(record_of(fact))} toldBy ?who"])

@@ -47,3 +47,12 @@ def test_the_trust_policy_is_a_setting(live_factory: Any) -> None:
     assert beliefs == [{"n": "Bob"}]
     assert live.client.post("/kb/query", json={"patterns": ["person_bob rdfs:label ?n"]}).json() == []
     assert live.client.get("/people/__unknown_agent__/memory").json()["told"] == []
+
+
+def test_perception_later_wins_over_what_was_told(live: Live) -> None:
+    assert say(live, "the cookbook is mine") == "OK, the cookbook is yours."
+    revise = live.client.post("/kb/revise", json={"statements": ["book_1 belongsTo person_tom"], "method": "add"})
+    assert revise.status_code == 200
+    live.services.reconciler.join()
+    assert say(live, "whose is the cookbook?") == "The cookbook is Tom's."
+    assert live.client.get("/people/person_bob/memory").json()["told"] == []
