@@ -17,7 +17,7 @@ from starlette.concurrency import run_in_threadpool
 from api.errors import install_error_handlers
 from api.forward import WriterProxy
 from api.limits import BodySizeLimit
-from api.routes import dialogue, events, health, locales, rasa, scene, sparql, turns, viewer
+from api.routes import dialogue, events, health, intents, locales, people, rasa, scene, sparql, turns, viewer
 from api.routes import kb as kb_routes
 from api.routes.health import package_version
 from api.services import start_services
@@ -61,7 +61,8 @@ def create_app(settings: Settings | None = None, kb: KB | None = None,
                            allow_headers=["Authorization", "Content-Type", "Accept"],
                            expose_headers=["X-Situated-Turn"])
     for router in (kb_routes.router, sparql.router, events.router, dialogue.router, rasa.router,
-                   scene.router, health.router, viewer.router, turns.router, locales.router):
+                   scene.router, health.router, intents.router, people.router, viewer.router, turns.router,
+                   locales.router):
         app.include_router(router)
     app.mount(viewer.ASSETS_PATH, viewer.assets(), name="viewer-assets")
     return app

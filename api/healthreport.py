@@ -61,4 +61,5 @@ async def health_report(services: Services, details: bool) -> dict[str, Any]:
         return {"status": status}
     return {"status": status, "reasons": reasons, "kb": state, "model": model,
             "events": {"subscribers": services.hub.listener_count},
+            "intents": {"readers": services.bus.reader_count, "last_seq": services.bus.last_seq},
             "components": {name: s.as_dict() for name, s in components.items()}}

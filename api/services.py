@@ -14,9 +14,15 @@ from pathlib import Path
 from api.client import ServiceClient
 from api.settings import Settings, SettingsError
 from api.subscriptions import EventHub
+from api.webhooks import WebhookConfig, Webhooks
 from dialogue.engine import DialogueEngine, EngineConfig
+from dialogue.initiative import Initiative, InitiativeConfig
 from dialogue.llm.base import ChatModel
 from dialogue.llm.spec import SpecError, parse_spec
+from dialogue.memory.learn import Memory
+from dialogue.memory.people import People
+from dialogue.memory.reconcile import Reconciler
+from dialogue.pushed.bus import IntentBus
 from dialogue.sessions import DialogueManager
 from dialogue.sparqlsessions import SparqlSessions
 from kb import KB, KbError
@@ -52,6 +58,15 @@ class Services:
     #: The in-process KB of a standalone service or a writer (None on a reader): the one the
     #: journal snapshots.
     local_kb: KB | None = None
+    #: Every intent emitted, numbered and buffered for the stream (GET /intents/stream).
+    bus: IntentBus = field(default_factory=IntentBus)
+    webhooks: Webhooks | None = None
+    #: Engaging and greeting people who become engaged (None on a reader: the writer does it).
+    initiative: Initiative | None = None
+    #: Each person's memory across dialogues (follows the KB's commits).
+    people: People | None = None
+    #: Retracts told values that perception later contradicts (None on a reader).
+    reconciler: Reconciler | None = None
 
     @property
     def model(self) -> ChatModel:
@@ -80,6 +95,15 @@ class Services:
         """Stop everything but the model (blocking), which `aclose` closes first."""
         if self.world is not None:
             self.world.stop()
+        if self.initiative is not None:
+            self.initiative.stop()
+        if self.people is not None:
+            self.people.close()
+        if self.reconciler is not None:
+            self.reconciler.stop()
+        if self.webhooks is not None:
+            self.webhooks.stop()
+        self.bus.shutdown()
         self.hub.shutdown()
         if self.journal is not None:
             if self.local_kb is not None:
@@ -154,15 +178,41 @@ def backend_of(settings: Settings) -> ChatModel:
         raise SettingsError(f"llm: {exc}") from exc
 
 
+def intent_bus(settings: Settings) -> IntentBus:
+    return IntentBus(settings.intents.buffer, max_readers=settings.intents.max_readers)
+
+
 def build_dialogues(settings: Settings, kb: KnowledgeBase, model: ChatModel | None = None,
-                    endpoint: SparqlEndpoint | None = None) -> DialogueManager:
+                    endpoint: SparqlEndpoint | None = None, bus: IntentBus | None = None,
+                    people: People | None = None) -> DialogueManager:
     """The dialogue engine on this KB, with ``model`` or the backend ``settings.llm`` names;
-    with a shared store, the dialogue sessions live in it (every process sees every dialogue)."""
-    engine = DialogueEngine(kb, model or backend_of(settings), EngineConfig(deadline=settings.deadline))
+    with a shared store, the dialogue sessions live in it (every process sees every dialogue).
+    What people say is learnt under the trust policy, each speaker's memory kept in the KB, and
+    every turn's intents published on ``bus``."""
+    memory = Memory(kb, settings.memory.trust)
+    engine = DialogueEngine(kb, model or backend_of(settings), EngineConfig(deadline=settings.deadline),
+                            memory=memory)
     limits = settings.limits
     store = SparqlSessions(endpoint, max_dialogues=limits.max_dialogues) if endpoint is not None else None
+    people = people if people is not None else People(kb, settings.memory.refresh)
+    observers = [people.observe, *([bus.observe] if bus is not None else [])]
     return DialogueManager(engine, max_dialogues=limits.max_dialogues, max_turns=limits.max_history_turns,
-                           store=store)
+                           store=store, observers=observers, recall=people.recall_note)
+
+
+def _webhooks(settings: Settings, bus: IntentBus, services: Services) -> None:
+    """Start the outgoing webhooks, each a /health component."""
+    intents = settings.intents
+    if not intents.webhooks:
+        return
+    config = WebhookConfig(intents.webhook_retries, intents.webhook_backoff, intents.webhook_max_backoff,
+                           intents.webhook_queue, intents.webhook_timeout)
+    hooks = Webhooks(intents.webhooks, config)
+    hooks.start()
+    bus.on_publish(hooks.enqueue)
+    services.webhooks = hooks
+    for n, hook in enumerate(hooks.hooks):
+        services.components.register(f"webhook_{n}", hook.status)
 
 
 def start_services(settings: Settings, kb: KB | None = None, model: ChatModel | None = None) -> Services:
@@ -173,10 +223,12 @@ def start_services(settings: Settings, kb: KB | None = None, model: ChatModel | 
     the_kb = kb if kb is not None else KB(max_models_per_write=settings.limits.max_models)
     journal: Journal | None = None
     store: Store | None = None
+    bus = intent_bus(settings)
     try:
         if settings.store is not None:
             store = Store(SparqlEndpoint(settings.store, settings.store_timeout), mirror=None)
-        dialogues = build_dialogues(settings, the_kb, model, store.endpoint if store else None)
+        people = People(the_kb, settings.memory.refresh)
+        dialogues = build_dialogues(settings, the_kb, model, store.endpoint if store else None, bus, people)
         if settings.data_dir is not None:
             journal = _open_journal(the_kb, settings.data_dir, settings.snapshot_records)
         if store is not None:
@@ -201,7 +253,14 @@ def start_services(settings: Settings, kb: KB | None = None, model: ChatModel | 
     hub = event_hub(the_kb, settings, commits=the_kb.on_commit)
     services = Services(settings=settings, kb=the_kb, hub=hub, dialogues=dialogues, world=world,
                         journal=journal, owns_kb=owns_kb, store=store, owns_model=model is None,
-                        local_kb=the_kb)
+                        local_kb=the_kb, bus=bus, people=people)
+    people.follow()  # the KB is recovered and loaded: the index starts from it
+    services.reconciler = Reconciler(dialogues.engine.memory)
+    services.reconciler.start()
+    services.initiative = Initiative(the_kb, bus, InitiativeConfig(settings.memory.greet,
+                                                                   settings.memory.greet_interval))
+    services.initiative.start()
+    _webhooks(settings, bus, services)
     if journal is not None:
         services.components.register("storage", journal.storage_status)
         services.components.register("compaction", journal.compaction.get)
@@ -234,12 +293,15 @@ def _start_reader(settings: Settings, model: ChatModel | None) -> Services:
     writer = ServiceClient(settings.writer_url, token, name="writer")
     store = Store(endpoint, writer=writer)
     kb = RemoteKB(endpoint, writes=writer)
+    bus = intent_bus(settings)
     try:
-        dialogues = build_dialogues(settings, kb, model, endpoint)
+        dialogues = build_dialogues(settings, kb, model, endpoint, bus)
     except SettingsError:
         kb.close()
         store.close()
         raise
     hub = event_hub(kb, settings)
-    return Services(settings=settings, kb=kb, hub=hub, dialogues=dialogues, world=None, journal=None,
-                    owns_kb=True, store=store, owns_model=model is None)
+    services = Services(settings=settings, kb=kb, hub=hub, dialogues=dialogues, world=None, journal=None,
+                        owns_kb=True, store=store, owns_model=model is None, bus=bus)
+    _webhooks(settings, bus, services)
+    return services

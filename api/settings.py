@@ -42,6 +42,44 @@ class Limits(BaseModel):
                             "model is a copy of the ontology's closure)")
 
 
+class IntentSettings(BaseModel):
+    """Intents pushed to the middleware: the stream's replay buffer and the outgoing webhooks."""
+
+    buffer: int = Field(default=1000, ge=1, description="pushed intents kept for a client that "
+                        "reconnects to replay (GET /intents/stream?after=N, Last-Event-ID)")
+    max_readers: int = Field(default=64, ge=1, description="intent stream clients (SSE + WebSocket) at once")
+    webhooks: list[str] = Field(default_factory=list, description="URLs each pushed intent is POSTed to")
+    webhook_retries: int = Field(default=5, ge=0, le=100, description="retries of a failed delivery")
+    webhook_backoff: float = Field(default=0.5, gt=0, le=60, description="seconds before the first retry; "
+                                   "doubled for each next one")
+    webhook_max_backoff: float = Field(default=30.0, gt=0, le=3600,
+                                       description="longest wait between retries")
+    webhook_queue: int = Field(default=1000, ge=1, description="intents waiting per webhook URL; past it "
+                               "the oldest is dropped")
+    webhook_timeout: float = Field(default=5.0, gt=0, le=60, description="seconds one delivery may take")
+
+    @field_validator("webhooks")
+    @classmethod
+    def _http_urls(cls, urls: list[str]) -> list[str]:
+        for url in urls:
+            if not url.startswith(("http://", "https://")):
+                raise ValueError(f"webhook {url!r} must be an http:// or https:// URL")
+        return urls
+
+
+class MemorySettings(BaseModel):
+    """What the robot learns from dialogue and remembers of people, and its initiative."""
+
+    trust: Literal["all", "people", "none"] = Field(default="people", description="whose statements the "
+                                                    "robot adopts as its own knowledge: all, people (what a "
+                                                    "person says of themself and their own things) or none")
+    refresh: float = Field(default=60.0, ge=0, description="seconds between two writes of a person's "
+                           "lastSpokeAt when their turns have nothing to note")
+    greet: bool = Field(default=True, description="greet a person who becomes engaged (by name if known)")
+    greet_interval: float = Field(default=300.0, ge=0, description="seconds before the same person is "
+                                  "greeted again")
+
+
 class Settings(BaseSettings):
     """Everything the service reads at start; see the module docstring for precedence."""
 
@@ -62,6 +100,8 @@ class Settings(BaseSettings):
     token: SecretStr | None = Field(default=None, description="Bearer token required for writes when set")
     allow_anonymous_reads: bool = True
     limits: Limits = Field(default_factory=Limits)
+    intents: IntentSettings = Field(default_factory=IntentSettings)
+    memory: MemorySettings = Field(default_factory=MemorySettings)
     cors_origins: list[str] = Field(default_factory=list)
     sparql_update: bool = False
     store: str | None = Field(default=None, description="keep the KB in a SPARQL 1.1 store, e.g. "

@@ -23,7 +23,9 @@ Modules: intents (Intent.msg catalogue), schema (answer models, per-turn JSON sc
 sessions (+ sessionstore, sparqlsessions: where dialogue state lives), roles (default, ask), locales,
 speakers, errors; ask/ (the __ask__ role's form), trace/ (every turn's record); reference/
 (grounding: the KB snapshot; lexicon / resolution / clarify: referents), rules/ (words, commands,
-questions, answers, interpret: the offline grammar), llm/ (backends), evaluation/ (the eval tool).
+questions, answers, interpret: the offline grammar), llm/ (backends), evaluation/ (the eval tool),
+memory/ (what people tell the robot: claims, statements, learn, provenance, people), pushed/ (the
+intent bus), observers (after each turn), initiative (engaging and greeting people).
 """
 
 from dialogue.engine import DialogueEngine, EngineConfig, TurnResult

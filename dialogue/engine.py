@@ -27,6 +27,9 @@ from dialogue.history import Utterance
 from dialogue.llm.base import ChatMessage, ChatModel, ChatRequest, ChatResult, ModelError, TurnContext
 from dialogue.llm.rules import RulesModel
 from dialogue.locales import is_english, normalise_locale
+from dialogue.memory.claims import Claim
+from dialogue.memory.learn import Memory
+from dialogue.memory.replies import confirmation
 from dialogue.prompts import PromptSet
 from dialogue.reference.grounding import Entity, Grounder, Snapshot
 from dialogue.reference.lexicon import Lexicon, LexiconCache
@@ -81,6 +84,8 @@ class TurnResult:
     #: The role's results, a JSON object string (the ask role: the fields obtained).
     results: str | None = None
     trace: TurnTrace | None = None
+    #: What the person told or asked about the world; learnt (dialogue.memory) before the reply.
+    claims: tuple[Claim, ...] = ()
 
 
 @dataclass
@@ -102,8 +107,11 @@ class DialogueEngine:
         model: ChatModel | None = None,
         config: EngineConfig | None = None,
         prompts: PromptSet | None = None,
+        memory: Memory | None = None,
     ) -> None:
         self.kb = kb
+        #: Learns what people tell the robot (default: the `people` trust policy).
+        self.memory = memory or Memory(kb)
         self.config = config or EngineConfig()
         self.model: ChatModel = model or RulesModel()
         self.prompts = prompts or PromptSet.load()
@@ -160,6 +168,8 @@ class DialogueEngine:
             result = self.fallback(
                 text, speaker, locale, f"no answer within the {self.config.deadline:g} s deadline"
             )
+        if result.claims:
+            result = await self._remember(result, text, speaker)
         return self.traced(result, recorder)
 
     def traced(self, result: TurnResult, recorder: TraceRecorder) -> TurnResult:
@@ -171,6 +181,22 @@ class DialogueEngine:
             dialogue_terminal=result.dialogue_terminal, results=result.results,
         )
         return replace(result, trace=trace)
+
+    async def _remember(self, result: TurnResult, text: str, speaker: str) -> TurnResult:
+        """Learn what the turn was told (or answer what it was asked about it) and say so: the
+        reply to the intents, if any, then one sentence per claim (dialogue.memory)."""
+        snapshot, _ = await self.ground_async()
+        try:
+            settled = await asyncio.to_thread(
+                self.memory.settle, result.claims, speaker=speaker, text=text, snapshot=snapshot
+            )
+        except KbError as exc:
+            log.warning("what %r said was not learnt: %s", speaker, exc)
+            return replace(result, response="Sorry, I could not remember that.",
+                           error_msg=f"the KB refused what was learnt: {exc}")
+        said = confirmation(settled, snapshot, speaker)
+        kept = result.response if result.intents else ""
+        return replace(result, response=" ".join(p for p in (kept, said) if p))
 
     def fallback(
         self, text: str, speaker: str, locale: str | None, error: str, reply: str = SORRY
@@ -247,7 +273,8 @@ class DialogueEngine:
             log.error("%s answer for %r failed validation: %s", early.backend, turn.text, exc)
             return None
         clarify = grounded.clarify or early.clarify
-        return TurnResult(grounded.reply, grounded.intents, backend=early.backend, clarify=clarify)
+        return TurnResult(grounded.reply, grounded.intents, backend=early.backend, clarify=clarify,
+                          claims=grounded.claims)
 
     def schema_for(
         self, snapshot: Snapshot, speaker: str, focus: Sequence[Entity] | None = None
@@ -292,7 +319,8 @@ class DialogueEngine:
                     repair = (ChatMessage("assistant", result.content), self.prompts.repair_message(str(exc)))
                     request = ChatRequest((*messages, *repair), schema, turn.context, repair=True)
                 continue
-            return TurnResult(grounded.reply, grounded.intents, backend=model.name, clarify=grounded.clarify)
+            return TurnResult(grounded.reply, grounded.intents, backend=model.name, clarify=grounded.clarify,
+                              claims=grounded.claims)
         failed = self.fallback(
             turn.text,
             turn.speaker,

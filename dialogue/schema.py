@@ -38,6 +38,21 @@ class UserIntent(BaseModel):
 
 #: Most intents one answer may carry ("go to the kitchen, take the plate and bring it to me").
 MAX_INTENTS = 4
+#: Most facts one answer may carry ("I'm Bob and the red mug is mine").
+MAX_FACTS = 4
+#: The predicates of `facts` (dialogue.memory.claims holds what each means).
+FACT_PREDICATES = ("name", "belongsTo", "isIn", "isOn", "likes", "dislikes")
+
+
+class FactClaim(BaseModel):
+    """Something the person tells the robot (`object` given) or asks it (`object` null) about the
+    world: `subject` and `object` are KB ids ("me": the speaker), or for a name the name itself."""
+
+    model_config = ConfigDict(extra="ignore")
+
+    subject: str | None = None
+    predicate: str | None = None
+    object: str | None = None
 
 
 class ChatbotResponse(BaseModel):
@@ -52,6 +67,8 @@ class ChatbotResponse(BaseModel):
     verbal_ack: str | None = None
     user_intent: UserIntent | None = None
     user_intents: list[UserIntent] | None = Field(default=None, max_length=MAX_INTENTS)
+    #: What the person told (or asked) about the world, learnt by dialogue.memory.
+    facts: list[FactClaim] | None = Field(default=None, max_length=MAX_FACTS)
 
     def wishes(self) -> list[UserIntent]:
         """Every intent of the answer, in order (the list, else the single intent)."""
@@ -128,6 +145,18 @@ def turn_schema(candidates: SchemaCandidates, intents: Sequence[str] = EXTRACTAB
         "required": ["type", "object", "recipient", "goal", "input"],
     }
     many = {"type": "array", "items": user_intent, "minItems": 2, "maxItems": MAX_INTENTS}
+    fact = {
+        "type": "object",
+        "properties": {
+            "subject": _nullable_enum(candidates.goals),
+            "predicate": {"enum": list(FACT_PREDICATES)},
+            # An id of the situation, or words: a name ("Bob"), a kind of thing ("tea").
+            "object": {"anyOf": [*([{"enum": list(candidates.goals)}] if candidates.goals else []),
+                                 *_nullable_string()["anyOf"]]},
+        },
+        "required": ["subject", "predicate", "object"],
+    }
+    facts = {"type": "array", "items": fact, "minItems": 1, "maxItems": MAX_FACTS}
     return {
         "type": "object",
         "properties": {
@@ -135,6 +164,8 @@ def turn_schema(candidates: SchemaCandidates, intents: Sequence[str] = EXTRACTAB
             "user_intent": {"anyOf": [user_intent, {"type": "null"}]},
             # Optional, for compound requests only: every intent in order (the first is user_intent).
             "user_intents": {"anyOf": [many, {"type": "null"}]},
+            # Optional: what the person told about themself or the world (dialogue.memory).
+            "facts": {"anyOf": [facts, {"type": "null"}]},
         },
         "required": ["verbal_ack", "user_intent"],
     }

@@ -29,7 +29,7 @@ import logging
 import time
 import uuid
 import weakref
-from collections.abc import Callable, Sequence
+from collections.abc import Awaitable, Callable, Sequence
 from dataclasses import replace
 from typing import Literal, ParamSpec, TypeVar
 
@@ -38,6 +38,7 @@ from dialogue.engine import SORRY, DialogueEngine, TurnResult
 from dialogue.errors import SessionError
 from dialogue.history import ASSISTANT_USER_ID, SYSTEM_USER_ID, History, Utterance
 from dialogue.locales import LocaleError, normalise_locale
+from dialogue.observers import TurnObserver, TurnRecord, notify
 from dialogue.roles import Roles
 from dialogue.sessionstore import (
     DEFAULT_DIALOGUE,
@@ -50,7 +51,7 @@ from dialogue.sessionstore import (
 )
 from dialogue.trace.record import TraceRecorder
 from dialogue.trace.store import TraceStore
-from kb.errors import InvalidUnicode, StoreUnavailable
+from kb.errors import InvalidUnicode, KbError, StoreUnavailable
 from kb.unicode import check_text
 
 __all__ = [
@@ -133,7 +134,12 @@ class DialogueManager:
         max_turns: int = 20,
         max_chars: int = 4000,
         store: SessionStore | None = None,
+        observers: Sequence[TurnObserver] = (),
+        recall: Callable[[str], Awaitable[str | None]] | None = None,
     ) -> None:
+        """`observers` are told of every turn once it has its result (dialogue.observers);
+        `await recall(user_id)` gives a note about the speaker's earlier dialogues that a model
+        reading prompts gets before the history (dialogue.memory.people), not blocking the loop."""
         check_bound(max_dialogues)
         History(max_turns, max_chars)  # refuses bad limits now, not at the first turn
         self.engine = engine
@@ -144,6 +150,8 @@ class DialogueManager:
         self.max_dialogues = self.store.max_dialogues
         self.max_turns = max_turns
         self.max_chars = max_chars
+        self.observers = tuple(observers)
+        self.recall = recall
         # One lock per dialogue with a turn under way; gone once no turn holds or waits for it.
         self._locks: weakref.WeakValueDictionary[str, asyncio.Lock] = weakref.WeakValueDictionary()
         # Recordings of turns answered late, waiting for their place in their dialogue's queue.
@@ -294,11 +302,19 @@ class DialogueManager:
             else:
                 late = TurnResult("", (), backend="recorded")
             self._record_in_turn(place, lock, dialogue_id, user_id, text, late.response, history)
+            await self._observed(dialogue_id, user_id, text, late, response_expected)
             return late
         try:
-            return await self._run(dialogue_id, user_id, text, locale, response_expected, history, deadline)
+            result = await self._run(dialogue_id, user_id, text, locale, response_expected, history, deadline)
         finally:
             lock.release()
+        await self._observed(dialogue_id, user_id, text, result, response_expected)
+        return result
+
+    async def _observed(self, dialogue_id: str, user_id: str, text: str, result: TurnResult,
+                        response_expected: bool) -> None:
+        if response_expected and self.observers:
+            await notify(self.observers, TurnRecord(dialogue_id, user_id, text, result, time.time()))
 
     def _kept(self, state: DialogueState, history: Sequence[Utterance] | None) -> History:
         kept = History(self.max_turns, self.max_chars)
@@ -326,7 +342,10 @@ class DialogueManager:
         if not response_expected:
             kept.add(user_id, text)
             return await self._saved(state, kept, TurnResult("", (), backend="recorded"))
-        result, role_state = await self._role_turn(state, user_id, text, kept.snapshot(), locale, deadline)
+        earlier = await self._recalled(user_id)
+        result, role_state = await self._role_turn(
+            state, user_id, text, (*earlier, *kept.snapshot()), locale, deadline
+        )
         kept.add(user_id, text)
         if result.response:
             kept.add(ASSISTANT_USER_ID, result.response)
@@ -364,6 +383,18 @@ class DialogueManager:
         # The 4.0 response always says whether the dialogue is over, and with what results.
         terminal = bool(result.dialogue_terminal)
         return replace(result, dialogue_terminal=terminal, results=result.results or "{}")
+
+    async def _recalled(self, user_id: str) -> tuple[Utterance, ...]:
+        """The note on the speaker's earlier dialogues, for a model that reads prompts only (the
+        rules read no notes)."""
+        if self.recall is None or self.engine.model.llm is None:
+            return ()
+        try:
+            said = await self.recall(user_id)
+        except (KbError, StoreUnavailable) as exc:
+            log.warning("no memory of %s for this turn: %s", user_id, exc)
+            return ()
+        return (Utterance(SYSTEM_USER_ID, said),) if said else ()
 
     async def _saved(self, state: DialogueState, kept: History, result: TurnResult) -> TurnResult:
         """The turn's result once its history is saved; when the store cannot take it, the result

@@ -10,6 +10,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from dialogue import intents as I
+from dialogue.memory.claims import Claim, ground_facts
 from dialogue.prompts import FREE_FORM_OBJECT
 from dialogue.reference.clarify import question as clarifying_question
 from dialogue.reference.lexicon import Lexicon
@@ -30,6 +31,8 @@ class Grounded:
     reply: str
     intents: tuple[I.Intent, ...]
     clarify: bool = False
+    #: What the person told or asked about the world (learnt after the turn: dialogue.memory).
+    claims: tuple[Claim, ...] = ()
 
 
 def ground_answer(
@@ -38,10 +41,15 @@ def ground_answer(
     """Every intent of the answer grounded, in order; a question about any referent replaces them all."""
     reply = (answer.verbal_ack or "").strip()[:MAX_REPLY_CHARS]
     wishes = answer.wishes()
+    told = ground_facts(answer.facts or (), lexicon, speaker)
+    if told.question is not None:
+        return Grounded(told.question, (), clarify=True)
+    if told.refusal is not None:
+        return Grounded(told.refusal, ())
     if not wishes:
-        if not reply:
+        if not reply and not told.claims:
             raise AnswerError("both verbal_ack and user_intent are null; say something or give an intent")
-        return Grounded(reply, ())
+        return Grounded(reply, (), claims=told.claims)
     intents: list[I.Intent] = []
     for wish in wishes:
         if wish.type not in I.EXTRACTABLE:
@@ -56,7 +64,7 @@ def ground_answer(
             intents.append(I.make_intent(wish.type, data, source=speaker, confidence=confidence))
         except I.IntentError as exc:
             raise AnswerError(str(exc)) from None
-    return Grounded(reply or "OK.", tuple(intents))
+    return Grounded(reply or "OK.", tuple(intents), claims=told.claims)
 
 
 def _roles(wish: UserIntent, lexicon: Lexicon, speaker: str) -> tuple[dict[str, str | None], str | None]:

@@ -4,6 +4,7 @@ import { api, getToken, setToken } from "./api.js";
 import { Graph } from "./graph.js";
 import { Concepts } from "./concepts.js";
 import { traceToggle } from "./trace.js";
+import { describe, isRecord, keyOf } from "./provenance.js";
 import { el, isQuestion, statementOf, termButton } from "./ui.js";
 
 const ROOT = "myself";
@@ -75,15 +76,23 @@ class Viewer {
         el("span", { class: "attr-name" }, attribute.name),
         ...attribute.values.slice(0, 40).map((v) => termButton(v.id, v.label && v.label.default, (t) => this.activate(t)))));
     }
+    // A name learnt from dialogue is no relation of `details`: its provenance goes by the heading.
+    const toldNames = [...(info.told || new Map()).entries()]
+      .map(([key, told]) => [JSON.parse(key), told])
+      .filter(([[s, p]]) => s === d.id && p === "rdfs:label")
+      .map(([[, , name], told]) => el("span", { class: "tag told", "data-told-by": told.who }, `name "${name}" ${describe(told)}`));
     box.replaceChildren(
       el("div", { class: "concept-head" },
         el("span", { class: `badge cat-${info.category}` }, info.category),
         el("h3", { id: "concept-label" }, d.label && d.label.default ? d.label.default : d.id),
         el("code", { class: "concept-id" }, d.id),
-        el("span", { class: "type" }, d.type)),
+        el("span", { class: "type" }, d.type),
+        ...toldNames),
       ...chips);
-    const rows = d.relations.map((triple, i) => {
+    const shown = d.relations.map((triple, i) => [triple, i]).filter(([triple]) => !isRecord(triple));
+    const rows = shown.map(([triple, i]) => {
       const origin = info.origins ? (info.origins[i] ? "asserted" : "inferred") : null;
+      const told = origin !== "inferred" && info.told ? info.told.get(keyOf(triple)) : undefined;
       const statement = statementOf(triple, this.concepts.isDatatype(triple[1]));
       const cells = triple.map((term, j) => el("td", {},
         j !== 1 && typeof term === "string" && !(j === 2 && this.concepts.isDatatype(triple[1]))
@@ -96,6 +105,10 @@ class Viewer {
         $("#statements").focus();
       });
       const actions = el("td", { class: "actions" }, origin === "inferred" ? el("span", { class: "tag inferred" }, "inferred") : retract);
+      if (told) {
+        actions.prepend(el("span", { class: "tag told", title: "learnt from dialogue" }, describe(told)));
+        return el("tr", { class: "told", "data-told-by": told.who }, ...cells, actions);
+      }
       return el("tr", { class: origin || "" }, ...cells, actions);
     });
     if (!rows.length) rows.push(el("tr", {}, el("td", { colspan: "4", class: "muted" }, "No relations.")));

@@ -3,6 +3,7 @@
 // that disappeared from the KB disappear from the graph too.
 
 import { api } from "./api.js";
+import { isRecord, keyOf, toldAbout } from "./provenance.js";
 
 const MAX_NEW_NEIGHBOURS = 25;
 // The first rule whose class the concept has (directly or by inference) gives its colour and icon.
@@ -129,7 +130,9 @@ export class Concepts {
     if (classes === null) classes = details.type === "instance" ? await api.classesof(id) : [];
     const origins = Array.isArray(details.asserted) ? details.asserted : null;
     const category = categoryOf(details, classes);
-    const info = { details, classes, direct, origins, category, icon: iconOf(category, classes) };
+    // Facts learnt from dialogue (and who told them); none when the query fails.
+    const told = details.type === "instance" ? await toldAbout(id).catch(() => new Map()) : new Map();
+    const info = { details, classes, direct, origins, told, category, icon: iconOf(category, classes) };
     this.cache.set(id, info);
     await this.learnPredicates(details.relations.map((r) => r[1]));
     return info;
@@ -151,8 +154,9 @@ export class Concepts {
     const edges = [];
     const d = info.details;
     d.relations.forEach(([s, p, o], i) => {
-      if (p === id || typeof o !== "string" || this.isDatatype(p) || s === o) return;
-      const kind = info.origins && !info.origins[i] ? "inferred" : "asserted";
+      if (p === id || typeof o !== "string" || this.isDatatype(p) || s === o || isRecord([s, p, o])) return;
+      const inferred = info.origins && !info.origins[i];
+      const kind = inferred ? "inferred" : info.told.has(keyOf([s, p, o])) ? "told" : "asserted";
       edges.push({ s, p, o, kind });
     });
     for (const c of info.direct) edges.push({ s: id, p: "isA", o: c, kind: "isa" });

@@ -10,6 +10,7 @@ from __future__ import annotations
 import json
 
 from dialogue.llm.base import ChatModel, ChatRequest, ChatResult, EarlyAnswer, TurnContext
+from dialogue.memory.reading import Reading, read_turn
 from dialogue.prompts import FREE_FORM_OBJECT
 from dialogue.reference.lexicon import LexiconCache
 from dialogue.rules.interpret import Interpreter
@@ -52,10 +53,17 @@ class RulesModel(ChatModel):
         return None
 
     def prescreen(self, context: TurnContext) -> EarlyAnswer | None:
+        told = self.told(context)
+        if told is not None:  # what people tell or ask about what they know (dialogue.memory)
+            return EarlyAnswer(told.answer, RULES, clarify=told.clarify)
         outcome = self.interpret(context)
         if not outcome.understood:
             return None
         return EarlyAnswer(answer_of(outcome), RULES, clarify=outcome.clarify)
+
+    def told(self, context: TurnContext) -> Reading | None:
+        lexicon = self._lexicons.get(context.snapshot)
+        return read_turn(context.text, lexicon, context.speaker, context.history)
 
     def interpret(self, context: TurnContext) -> Outcome:
         lexicon = self._lexicons.get(context.snapshot)
@@ -63,9 +71,12 @@ class RulesModel(ChatModel):
         return interpreter.interpret(context.text)
 
     async def chat(self, request: ChatRequest, timeout: float) -> ChatResult:
+        told = self.told(request.context)
+        if told is not None:
+            return ChatResult(told.answer.model_dump_json(exclude_none=True), "stop")
         outcome = self.interpret(request.context)
         answer = answer_of(outcome)
         # The tutorial's two keys, and the list only when there is more than one intent.
-        single = answer.user_intents is None
-        content = json.dumps(answer.model_dump(exclude={"user_intents"} if single else None))
+        unused = {"user_intents"} if answer.user_intents is None else set()
+        content = json.dumps(answer.model_dump(exclude=unused | {"facts"}))
         return ChatResult(content, "stop", understood=outcome.understood)

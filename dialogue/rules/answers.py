@@ -7,7 +7,7 @@ from collections.abc import Callable, Sequence
 
 from dialogue.reference.clarify import question as clarifying_question
 from dialogue.reference.grounding import Entity, Snapshot
-from dialogue.reference.lexicon import Lexicon, singular
+from dialogue.reference.lexicon import Lexicon, singular, tokens
 from dialogue.reference.resolution import ALL_KINDS, content_words, resolve
 from dialogue.situation import article
 
@@ -101,8 +101,9 @@ def where_is(lexicon: Lexicon, words: Sequence[str], speaker: str) -> str:
         if e.id == speaker:
             sentences.append("You are right here, talking to me.")
         elif where:
-            tail = "" if e.seen else " I don't see it right now."
-            sentences.append(f"{name[:1].upper()}{name[1:]} is {where}.{tail}")
+            plural = _plural(tokens(name))  # "the keys are", "I don't see them"
+            tail = "" if e.seen else f" I don't see {'them' if plural else 'it'} right now."
+            sentences.append(f"{name[:1].upper()}{name[1:]} {'are' if plural else 'is'} {where}.{tail}")
         elif e.seen and e.kind == "person":
             sentences.append(f"{name} is here, I can see {name}.")
         elif e.seen:

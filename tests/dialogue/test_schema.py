@@ -3,6 +3,7 @@ import json
 import pytest
 
 from dialogue.schema import (
+    MAX_FACTS,
     MAX_INTENTS,
     AnswerError,
     ChatbotResponse,
@@ -64,3 +65,22 @@ def test_an_ordered_list_of_intents_is_optional_and_bounded() -> None:
     too_many = {"user_intents": [{"type": "a"}] * (MAX_INTENTS + 1)}
     with pytest.raises(AnswerError, match="user_intents"):
         parse_answer(json.dumps(too_many))
+
+
+def test_turn_schema_offers_facts_with_closed_predicates_and_id_enums() -> None:
+    schema = turn_schema(SchemaCandidates(["cup_1"], ["p"], ["kitchen", "cup_1", "p"]))
+    assert "facts" in schema["properties"] and "facts" not in schema["required"]
+    facts = schema["properties"]["facts"]["anyOf"][0]
+    fact = facts["items"]["properties"]
+    assert fact["predicate"]["enum"] == ["name", "belongsTo", "isIn", "isOn", "likes", "dislikes"]
+    assert fact["subject"]["enum"] == ["kitchen", "cup_1", "p", None]
+    # The object is an id of the situation, or words: a name, a kind of thing; null asks.
+    assert fact["object"]["anyOf"][0] == {"enum": ["kitchen", "cup_1", "p"]}
+    assert {"type": "null"} in fact["object"]["anyOf"]
+    assert facts["maxItems"] == MAX_FACTS
+
+
+def test_an_answer_with_facts_parses() -> None:
+    answer = parse_answer('{"verbal_ack": null, "user_intent": null, '
+                          '"facts": [{"subject": "p", "predicate": "likes", "object": "tea"}]}')
+    assert answer.facts is not None and answer.facts[0].object == "tea" and answer.wishes() == []

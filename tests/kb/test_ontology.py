@@ -13,7 +13,7 @@ import owlrl
 import pytest
 from rdflib import BNode, Graph, Literal, Namespace, URIRef
 from rdflib.collection import Collection
-from rdflib.namespace import FOAF, OWL, RDF, RDFS
+from rdflib.namespace import FOAF, OWL, RDF, RDFS, XSD
 from rdflib.term import Node
 
 ORO = Namespace("http://kb.openrobots.org#")
@@ -287,9 +287,13 @@ def test_every_referenced_class_and_property_is_declared(onto: Graph) -> None:
 # --- characteristics (§6.5) -----------------------------------------------------------------------
 
 
-def test_functional_properties_are_oros_plus_engagement_level(onto: Graph) -> None:
+#: Minted functional properties: the engagement level, and the dialogue memory's single values.
+MINTED_FUNCTIONAL = {ORO.engagementLevel, ORO.toldAt, ORO.toldAs, ORO.lastSpokeAt, ORO.dialogueSummary}
+
+
+def test_functional_properties_are_oros_plus_the_minted_ones(onto: Graph) -> None:
     assert len(ORO_FUNCTIONAL) == 22
-    assert subjects_typed(onto, OWL.FunctionalProperty) == ORO_FUNCTIONAL | {ORO.engagementLevel}
+    assert subjects_typed(onto, OWL.FunctionalProperty) == ORO_FUNCTIONAL | MINTED_FUNCTIONAL
 
 
 def test_symmetric_properties_are_oros_plus_is_engaged_with(onto: Graph) -> None:
@@ -311,6 +315,11 @@ def test_minted_properties_signatures(onto: Graph) -> None:
     assert (ORO.wants, RDFS.subPropertyOf, ORO.desires) not in onto
     assert signature(ORO.wants) == (FOAF.Agent, None)
     assert signature(ORO.likes) == (None, None)
+    assert signature(ORO.dislikes) == (None, None)
+    assert signature(ORO.toldBy) == (ORO.ToldFact, FOAF.Agent)
+    assert signature(ORO.toldAt) == (ORO.ToldFact, XSD.dateTime)
+    assert signature(ORO.lastSpokeAt) == (FOAF.Agent, XSD.dateTime)
+    assert signature(ORO.dialogueSummary) == (FOAF.Agent, XSD.string)
     assert signature(ORO.isEngagedWith) == (FOAF.Agent, FOAF.Agent)
     assert "jointEngagementWith" in str(onto.value(ORO.isEngagedWith, RDFS.comment))
     assert signature(ORO.engagementLevel) == (FOAF.Agent, ORO.EngagementLevel)

@@ -1,0 +1,140 @@
+"""The robot's initiative: when a person becomes engaged, reach out to them.
+
+Engagement comes from the KB, whoever writes it: the scene's engagement state machine (scene.world)
+or any producer's `<person> engagementLevel engaged`. On each transition into `engaged` (the fact
+added to the robot's model), as hri_engagement does, the robot emits `__intent_engage_with__` with
+that person as recipient (source `__myself__`, modality motion: the person's approach and gaze);
+and, when greeting is on, greets them: a `__intent_greet__` and what it says, by name when it knows
+one ("Hello Bob!", "Hello Bob, nice to see you again!" when they spoke before; "Hello!" to a person
+it has never met). A person is greeted at most once per `interval` seconds: one who leaves and comes
+back within it gets the engage intent but no second greeting; after it, a greeting again.
+
+The KB calls the commit listener under its lock, so it only queues the person; a worker thread reads
+the names and publishes. A service that sees no commits (a read replica) has no initiative: the
+writer, which every write goes through, has it.
+"""
+
+from __future__ import annotations
+
+import logging
+import queue
+import threading
+import time
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import Any
+
+from rdflib import URIRef
+
+from dialogue import intents as I
+from dialogue.pushed.bus import IntentBus
+from kb import KbError
+from kb.protocol import KnowledgeBase
+from kb.terms import ORO, format_term, parse_name, shorten
+
+log = logging.getLogger(__name__)
+
+ENGAGEMENT = URIRef(ORO + "engagementLevel")
+ENGAGED = URIRef(ORO + "engaged")
+#: People queued between the KB's commits and the worker (past it, a burst drops the newest).
+MAX_PENDING = 1000
+#: Greeting times kept before those older than the interval are forgotten.
+MAX_REMEMBERED = 10_000
+_STOP = ""
+
+
+@dataclass(frozen=True)
+class InitiativeConfig:
+    #: Greet a person who becomes engaged.
+    greet: bool = True
+    #: Seconds before the same person is greeted again.
+    interval: float = 300.0
+
+
+class Initiative:
+    """Watches a KB's commits for people becoming engaged; engages and greets them on a bus."""
+
+    def __init__(self, kb: KnowledgeBase, bus: IntentBus, config: InitiativeConfig | None = None,
+                 clock: Callable[[], float] = time.monotonic) -> None:
+        self.kb = kb
+        self.bus = bus
+        self.config = config or InitiativeConfig()
+        self.clock = clock
+        self._greeted: dict[str, float] = {}
+        self._pending: queue.Queue[str] = queue.Queue(MAX_PENDING)
+        self._thread: threading.Thread | None = None
+        self._unwatch: Callable[[], None] | None = None
+
+    def start(self) -> bool:
+        """Follow the KB's commits; False when the KB reports none (a read replica)."""
+        on_commit = getattr(self.kb, "on_commit", None)
+        if not callable(on_commit):
+            return False
+        self._thread = threading.Thread(target=self._work, name="initiative", daemon=True)
+        self._thread.start()
+        self._unwatch = on_commit(self._commit)
+        return True
+
+    def stop(self) -> None:
+        if self._unwatch is not None:
+            self._unwatch()
+            self._unwatch = None
+        if self._thread is not None:
+            self._pending.put(_STOP)
+            self._thread.join(timeout=5)
+            self._thread = None
+
+    def _commit(self, commit: Any) -> None:
+        """Called by the KB under its lock: only queue who became engaged."""
+        for delta in commit.deltas:
+            if delta.model != "default":
+                continue
+            for s, p, o in delta.added:
+                if p == ENGAGEMENT and o == ENGAGED and isinstance(s, URIRef):
+                    try:
+                        self._pending.put_nowait(str(shorten(s)))
+                    except queue.Full:
+                        log.warning("initiative: too many engagements at once; %s not reached out to",
+                                    shorten(s))
+
+    def join(self) -> None:
+        """Wait until every engagement queued so far has been reached out to."""
+        self._pending.join()
+
+    def _work(self) -> None:
+        while (person := self._pending.get()) != _STOP:
+            try:
+                self.engaged(person)
+            except KbError as exc:  # the name could not be read: no greeting this time
+                log.warning("initiative: %s", exc)
+            finally:
+                self._pending.task_done()
+        self._pending.task_done()
+
+    def engaged(self, person: str) -> None:
+        """Reach out to a person who just became engaged (blocking: reads the KB for the name)."""
+        data: dict[str, str | None] = {"recipient": person}
+        self.bus.publish("initiative", I.make_intent(I.ENGAGE_WITH, data, source=I.ROBOT_ITSELF,
+                                                     confidence=1.0, modality=I.MODALITY_MOTION))
+        if not self.config.greet:
+            return
+        now = self.clock()
+        last = self._greeted.get(person)
+        if last is not None and now - last < self.config.interval:
+            return
+        words = self.greeting(person)
+        self._greeted[person] = now
+        if len(self._greeted) > MAX_REMEMBERED:  # only those within the interval matter
+            self._greeted = {p: t for p, t in self._greeted.items() if now - t < self.config.interval}
+        greet = I.make_intent(I.GREET, data, source=I.ROBOT_ITSELF, confidence=1.0,
+                              modality=I.MODALITY_INTERNAL)
+        self.bus.publish("initiative", greet, response=words)
+
+    def greeting(self, person: str) -> str:
+        term = format_term(parse_name(person, "person"))
+        names = sorted(str(r["l"]) for r in self.kb.find([f"{term} rdfs:label ?l"]))
+        if not names:
+            return "Hello!"
+        if self.kb.exist([f"{term} lastSpokeAt ?t"]):
+            return f"Hello {names[0]}, nice to see you again!"
+        return f"Hello {names[0]}!"

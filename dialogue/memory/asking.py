@@ -1,0 +1,71 @@
+"""The rules' grammar of questions about what people told: a fact of the answer with no object.
+
+    what do I like · what does Alice like / love / enjoy   -> <person> likes ?
+    what does Alice hate · what doesn't she like           -> <person> dislikes ?
+    what's my name · who am I · do you know my name        -> <speaker> name ?
+
+The answer comes from the robot's model, and from what others said when it has not adopted it
+(dialogue.memory.learn). "Whose mug is this?" and "where are my keys?" are the situation questions
+of the rules (dialogue.rules.questions): what was adopted is in the situation like any fact.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+from dialogue.history import Utterance
+from dialogue.reference.lexicon import Lexicon
+from dialogue.reference.resolution import PERSON, antecedent, content_words, resolve
+from dialogue.rules.words import normalise, word_set
+from dialogue.schema import FactClaim
+
+Words = tuple[str, ...]
+_LIKE = word_set("like love enjoy adore")
+_HATE = word_set("hate dislike detest")
+_WHO_AM_I: frozenset[Words] = frozenset(
+    tuple(p.split()) for p in ("what is my name", "who am i", "do you know my name",
+                               "do you remember my name", "do you know who i am", "do you remember me",
+                               "do you know me", "do you remember who i am", "what am i called",
+                               "what did i say my name was")
+)  # fmt: skip
+_TAIL = word_set("please then again now robot")
+
+
+class Asking:
+    """Reads questions about told facts against a lexicon, for one speaker."""
+
+    def __init__(self, lexicon: Lexicon, speaker: str, history: Sequence[Utterance] = ()) -> None:
+        self.lexicon = lexicon
+        self.speaker = speaker
+        self.history = tuple(history)
+
+    def read(self, text: str) -> list[FactClaim] | None:
+        w = tuple(normalise(text))
+        while w and w[-1] in _TAIL:
+            w = w[:-1]
+        if w in _WHO_AM_I:
+            return [FactClaim(subject=self.speaker, predicate="name", object=None)]
+        if w[:1] != ("what",) or len(w) < 4 or w[1] not in {"do", "does", "don't"}:
+            return None
+        negated = w[1] == "don't" or w[-2:-1] == ("not",)
+        verb = w[-1]
+        subject = w[2:-2] if w[-2:-1] == ("not",) else w[2:-1]
+        if verb in _LIKE:
+            predicate = "dislikes" if negated else "likes"
+        elif verb in _HATE and not negated:
+            predicate = "dislikes"
+        else:
+            return None
+        who = self._person(subject)
+        return [FactClaim(subject=who, predicate=predicate, object=None)] if who is not None else None
+
+    def _person(self, words: Words) -> str | None:
+        if words in {("i",), ("me",)}:
+            return self.speaker
+        if words in {("he",), ("she",), ("they",)}:
+            found = antecedent(self.lexicon, [u.text for u in self.history], PERSON)
+            return found.id if found is not None else None
+        if not content_words(words):
+            return None
+        found = resolve(self.lexicon, words, PERSON).one
+        return found.id if found is not None else None

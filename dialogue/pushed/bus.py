@@ -1,0 +1,183 @@
+"""The intent bus: every pushed intent numbered, kept in a bounded buffer, fanned out to readers.
+
+`publish` may be called from any thread (a dialogue turn on the event loop, the initiative's
+worker thread) and never blocks on a reader: each reader has its own bounded queue on its event
+loop, and one that falls too far behind is ended ("overflow") rather than slowing the others; it
+reconnects and replays what it missed from the buffer. A reader subscribes after a sequence number
+(`after`): the buffered events after it come first, then the live ones, with no gap and no repeat
+(both are taken under the bus's lock). When the buffer no longer holds all of what the reader
+missed, or the number is from before a restart (the numbers start at 1 with each bus, and `stream`
+names the bus), the reader learns it from its `gap` before the events it does get.
+
+Listeners (`on_publish`, the webhooks) are called in the publisher's thread and must only queue.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import threading
+import time
+import uuid
+from collections import deque
+from collections.abc import Callable
+from dataclasses import dataclass
+
+from dialogue.intents import Intent
+from dialogue.observers import TurnRecord
+from dialogue.pushed.events import IntentFilter, Origin, Pushed
+
+Listener = Callable[[Pushed], None]
+
+
+@dataclass(frozen=True)
+class Gap:
+    """Events a reader asked for that the bus no longer has: numbers `first` to `last`, or, with
+    `restarted`, a number from an earlier run of the service (this one's events all follow)."""
+
+    first: int
+    last: int
+    restarted: bool = False
+
+    def as_json(self) -> dict[str, object]:
+        return {"first": self.first, "last": self.last, "restarted": self.restarted}
+
+
+class Reader:
+    """One subscriber's events, in order; `None` from `next` ends them (see `end_reason`)."""
+
+    def __init__(self, loop: asyncio.AbstractEventLoop, flt: IntentFilter, max_queued: int) -> None:
+        self.filter = flt
+        self.end_reason: str | None = None
+        self.gap: Gap | None = None
+        self._loop = loop
+        self._max = max_queued
+        self._events: deque[Pushed] = deque()
+        self._ready = asyncio.Event()
+
+    def push(self, event: Pushed) -> None:
+        """From any thread."""
+        try:
+            self._loop.call_soon_threadsafe(self._put, event)
+        except RuntimeError:  # its loop is closed: the client is gone
+            return
+
+    def end(self, reason: str) -> None:
+        try:
+            self._loop.call_soon_threadsafe(self._finish, reason)
+        except RuntimeError:
+            return
+
+    def _put(self, event: Pushed) -> None:
+        if self.end_reason is not None:
+            return
+        if len(self._events) >= self._max:
+            self._finish("overflow: the client reads intents more slowly than they come; reconnect "
+                         f"after {self._events[-1].seq} to replay what is still buffered")
+            return
+        self._events.append(event)
+        self._ready.set()
+
+    def _finish(self, reason: str) -> None:
+        if self.end_reason is None:
+            self.end_reason = reason
+        self._ready.set()
+
+    async def next(self) -> Pushed | None:
+        while not self._events:
+            if self.end_reason is not None:
+                return None
+            self._ready.clear()
+            await self._ready.wait()
+        return self._events.popleft()
+
+
+class IntentBus:
+    """Numbers and buffers the intents of one service and hands them to readers and listeners."""
+
+    def __init__(self, buffer: int = 1000, max_queued: int = 1000, max_readers: int = 64) -> None:
+        if buffer < 1 or max_queued < 1 or max_readers < 1:
+            raise ValueError("the intent bus's bounds must be positive")
+        #: Names this bus: a client seeing another stream id knows the numbers started again.
+        self.stream = uuid.uuid4().hex
+        self.max_readers = max_readers
+        self._lock = threading.Lock()
+        self._buffer: deque[Pushed] = deque(maxlen=buffer)
+        self._seq = 0
+        self._max_queued = max_queued
+        self._readers: tuple[Reader, ...] = ()
+        self._listeners: tuple[Listener, ...] = ()
+
+    @property
+    def last_seq(self) -> int:
+        return self._seq
+
+    @property
+    def reader_count(self) -> int:
+        return len(self._readers)
+
+    def on_publish(self, listener: Listener) -> None:
+        with self._lock:
+            self._listeners = (*self._listeners, listener)
+
+    def publish(self, origin: Origin, intent: Intent, dialogue_id: str | None = None,
+                response: str = "") -> Pushed:
+        with self._lock:
+            self._seq += 1
+            event = Pushed(self._seq, time.time(), origin, intent, dialogue_id, response)
+            self._buffer.append(event)
+            readers, listeners = self._readers, self._listeners
+            # Handed out under the lock, so that a reader subscribing now gets each event once,
+            # from the buffer or live, and in order.
+            for reader in readers:
+                if reader.filter.matches(event):
+                    reader.push(event)
+        for listener in listeners:
+            listener(event)
+        return event
+
+    async def observe(self, record: TurnRecord) -> None:
+        """The dialogue manager's observer: a turn's intents, in order, its reply with the first."""
+        for n, intent in enumerate(record.result.intents):
+            self.publish("dialogue", intent, record.dialogue_id, record.result.response if n == 0 else "")
+
+    def subscribe(self, loop: asyncio.AbstractEventLoop, flt: IntentFilter | None = None,
+                  after: int | None = None) -> Reader:
+        """A reader of the events after `after` (None: from now on). ValueError past the readers'
+        bound (the caller says so: too many subscribers)."""
+        reader = Reader(loop, flt or IntentFilter(), self._max_queued)
+        with self._lock:
+            if len(self._readers) >= self.max_readers:
+                raise ValueError(f"{len(self._readers)} intent readers are connected; the limit is "
+                                 f"{self.max_readers}")
+            if after is not None:
+                missed, reader.gap = self._since(after, reader.filter)
+                for event in missed:
+                    reader.push(event)
+            self._readers = (*self._readers, reader)
+        return reader
+
+    def since(self, after: int, flt: IntentFilter | None = None) -> tuple[list[Pushed], Gap | None]:
+        """The buffered events after `after` that `flt` wants, and what the buffer no longer has."""
+        with self._lock:
+            return self._since(after, flt or IntentFilter())
+
+    def _since(self, after: int, flt: IntentFilter) -> tuple[list[Pushed], Gap | None]:
+        gap = self._gap(after)
+        start = 0 if gap is not None and gap.restarted else after
+        return [e for e in self._buffer if e.seq > start and flt.matches(e)], gap
+
+    def _gap(self, after: int) -> Gap | None:
+        oldest = self._buffer[0].seq if self._buffer else self._seq + 1
+        if after > self._seq:
+            return Gap(1, oldest - 1, restarted=True)
+        return Gap(after + 1, oldest - 1) if after + 1 < oldest else None
+
+    def close(self, reader: Reader) -> None:
+        with self._lock:
+            self._readers = tuple(r for r in self._readers if r is not reader)
+
+    def shutdown(self) -> None:
+        with self._lock:
+            readers, self._readers = self._readers, ()
+        for reader in readers:
+            reader.end("service stopping")

@@ -1,0 +1,58 @@
+"""Knowledge from dialogue through the service: learnt, queryable with its provenance, kept across a
+restart (the journal), each person's memory readable at /people/{id}/memory."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+from api.app import create_app
+from api.settings import MemorySettings
+from tests.api.conftest import Live, scene_settings, serve
+
+
+def say(live: Live, text: str, user: str = "person_bob") -> str:
+    response = live.client.post("/dialogues/default/interactions", json={"user_id": user, "input": text})
+    assert response.status_code == 200, response.text
+    reply: str = response.json()["response"]
+    return reply
+
+
+def test_what_is_told_survives_a_restart_with_who_told_it(live_factory: Any, tmp_path: Path) -> None:
+    with serve(create_app(scene_settings(data_dir=tmp_path))) as live:
+        assert say(live, "Hi, I'm Bob") == "Hello! Nice to meet you, Bob."
+        assert say(live, "the cookbook is mine") == "OK, the cookbook is yours."
+        assert say(live, "I like tea") == "OK, you like tea."
+    again = live_factory(scene_settings(data_dir=tmp_path))  # the same data directory
+    assert say(again, "what's my name?") == "Your name is Bob."
+    assert say(again, "whose is the cookbook?") == "The cookbook is yours."
+    rows = again.client.post("/kb/query", json={"patterns": [
+        "?r toldBy person_bob", "?r rdf:subject ?s", "?r rdf:predicate ?p", "?r rdf:object ?o", "?r toldAt ?at",
+    ]}).json()
+    assert sorted((r["s"], r["p"], r["o"]) for r in rows) == [
+        ("book_1", "belongsTo", "person_bob"), ("person_bob", "likes", "dbr:Tea"),
+        ("person_bob", "rdfs:label", "Bob")]
+    memory = again.client.get("/people/person_bob/memory").json()
+    assert memory["last_spoke"] is not None
+    assert 'said "the cookbook is mine"' in memory["summary"] and 'said "I like tea"' in memory["summary"]
+    assert {(t["predicate"], t["words"]) for t in memory["told"]} == {
+        ("rdfs:label", "Hi, I'm Bob"), ("belongsTo", "the cookbook is mine"), ("likes", "I like tea")}
+
+
+def test_the_trust_policy_is_a_setting(live_factory: Any) -> None:
+    live = live_factory(scene_settings(memory=MemorySettings(trust="none")))
+    assert say(live, "I'm Bob") == "OK, I'll remember that you said your name is Bob."
+    beliefs = live.client.post("/kb/query", json={"patterns": ["person_bob rdfs:label ?n"],
+                                                  "models": ["person_bob"]}).json()
+    assert beliefs == [{"n": "Bob"}]
+    assert live.client.post("/kb/query", json={"patterns": ["person_bob rdfs:label ?n"]}).json() == []
+    assert live.client.get("/people/__unknown_agent__/memory").json()["told"] == []
+
+
+def test_perception_later_wins_over_what_was_told(live: Live) -> None:
+    assert say(live, "the cookbook is mine") == "OK, the cookbook is yours."
+    revise = live.client.post("/kb/revise", json={"statements": ["book_1 belongsTo person_tom"], "method": "add"})
+    assert revise.status_code == 200
+    live.services.reconciler.join()
+    assert say(live, "whose is the cookbook?") == "The cookbook is Tom's."
+    assert live.client.get("/people/person_bob/memory").json()["told"] == []

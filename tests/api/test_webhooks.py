@@ -1,0 +1,148 @@
+"""Outgoing webhooks against a real HTTP receiver started here: it fails, then recovers."""
+
+from __future__ import annotations
+
+import json
+import threading
+import time
+from collections.abc import Callable, Iterator
+from http.server import BaseHTTPRequestHandler, ThreadingHTTPServer
+from typing import Any
+
+import pytest
+
+from api.settings import IntentSettings
+from api.webhooks import Webhook, WebhookConfig
+from dialogue import intents as I
+from dialogue.pushed.events import Pushed
+from tests.api.conftest import Live, scene_settings
+
+
+class Receiver:
+    """An HTTP server that answers 500 while `failing`, holds requests while `hold` is clear, and
+    keeps the JSON bodies it accepted, in order."""
+
+    def __init__(self) -> None:
+        self.failing = True
+        self.hold = threading.Event()
+        self.hold.set()
+        self.accepted: list[dict[str, Any]] = []
+        self.refused = 0
+        receiver = self
+
+        class Handler(BaseHTTPRequestHandler):
+            def do_POST(self) -> None:
+                body = json.loads(self.rfile.read(int(self.headers["Content-Length"])))
+                receiver.hold.wait(60)
+                if receiver.failing:
+                    receiver.refused += 1
+                    self.send_response(500)
+                else:
+                    receiver.accepted.append(body)
+                    self.send_response(204)
+                self.end_headers()
+
+            def log_message(self, *args: Any) -> None:
+                return
+
+        self.server = ThreadingHTTPServer(("127.0.0.1", 0), Handler)
+        self.url = f"http://127.0.0.1:{self.server.server_address[1]}/hook"
+        self.thread = threading.Thread(target=self.server.serve_forever, daemon=True)
+        self.thread.start()
+
+    def close(self) -> None:
+        self.hold.set()
+        self.server.shutdown()
+        self.server.server_close()
+
+
+@pytest.fixture
+def receiver() -> Iterator[Receiver]:
+    receiver = Receiver()
+    yield receiver
+    receiver.close()
+
+
+def wait_until(predicate: Callable[[], bool], timeout: float = 60.0) -> None:
+    deadline = time.monotonic() + timeout
+    while not predicate():
+        assert time.monotonic() < deadline, "condition not reached in time"
+        time.sleep(0.02)
+
+
+def hooked(live_factory: Any, receiver: Receiver, **values: Any) -> Live:
+    intents = IntentSettings(webhooks=[receiver.url], webhook_backoff=0.05, webhook_max_backoff=0.2,
+                             webhook_retries=100, **values)
+    live: Live = live_factory(scene_settings(intents=intents))
+    return live
+
+
+def say(live: Live, text: str) -> dict[str, Any]:
+    response = live.client.post("/dialogues/default/interactions", json={"user_id": "person_alice", "input": text})
+    assert response.status_code == 200, response.text
+    body: dict[str, Any] = response.json()
+    return body
+
+
+def health(live: Live) -> dict[str, Any]:
+    body: dict[str, Any] = live.client.get("/health").json()
+    return body
+
+
+def test_deliveries_are_retried_until_the_receiver_recovers_and_health_says_so(
+        live_factory: Any, receiver: Receiver) -> None:
+    live = hooked(live_factory, receiver)
+    turn = say(live, "please bring me the cup")
+    wait_until(lambda: receiver.refused >= 2)
+    status = health(live)
+    assert status["status"] == "degraded"
+    hook = status["components"]["webhook_0"]
+    assert not hook["ok"] and hook["code"] == "webhook_failing" and "HTTP 500" in hook["reason"]
+    assert any("webhook_0" in reason for reason in status["reasons"])
+    receiver.failing = False
+    wait_until(lambda: len(receiver.accepted) == 1)
+    assert receiver.accepted[0]["intent"] == turn["intents"][0] and receiver.accepted[0]["seq"] == 1
+    wait_until(lambda: health(live)["status"] == "ok")
+    say(live, "hello")
+    wait_until(lambda: len(receiver.accepted) == 2)
+    assert [body["seq"] for body in receiver.accepted] == [1, 2]  # in order, each once
+
+
+def test_a_turn_never_waits_for_a_webhook(live_factory: Any, receiver: Receiver) -> None:
+    receiver.failing = False
+    receiver.hold.clear()  # the receiver takes the request and does not answer
+    live = hooked(live_factory, receiver, webhook_timeout=60)
+    assert say(live, "hello")["intents"][0]["intent"] == "__intent_greet__"
+    assert say(live, "bring me the cup")["intents"]  # answered while the first delivery still hangs
+    assert receiver.accepted == []
+    receiver.hold.set()
+    wait_until(lambda: [b["seq"] for b in receiver.accepted] == [1, 2])
+
+
+def pushed(seq: int) -> Pushed:
+    intent = I.make_intent(I.GREET, {"recipient": "p"}, source=I.ROBOT_ITSELF, confidence=1.0)
+    return Pushed(seq, 0.0, "initiative", intent)
+
+
+def test_a_full_queue_drops_its_oldest_event_and_counts_it() -> None:
+    hook = Webhook("http://127.0.0.1:9/never", WebhookConfig(queue=2))  # not started: nothing is sent
+    for seq in (1, 2, 3):
+        hook.enqueue(pushed(seq))
+    assert hook.counts.dropped == 1 and hook.queued == 2
+    status = hook.status()
+    assert status.ok and "1 dropped" in status.reason and "2 queued" in status.reason
+
+
+def test_a_delivery_given_up_after_its_retries_is_counted(receiver: Receiver) -> None:
+    hook = Webhook(receiver.url, WebhookConfig(retries=2, backoff=0.01, queue=10))
+    hook.start()
+    try:
+        hook.enqueue(pushed(1))
+        wait_until(lambda: hook.counts.failed == 1)
+        assert receiver.refused == 3  # the first attempt and two retries
+        receiver.failing = False
+        hook.enqueue(pushed(2))
+        wait_until(lambda: hook.counts.delivered == 1)
+        assert [b["seq"] for b in receiver.accepted] == [2] and hook.status().ok
+    finally:
+        hook.stop()

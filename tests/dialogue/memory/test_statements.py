@@ -1,0 +1,139 @@
+"""The rules' grammar of statements: what a person tells, as facts with KB ids (or a kind's words)."""
+
+from __future__ import annotations
+
+import pytest
+
+from dialogue.history import ASSISTANT_USER_ID, Utterance
+from dialogue.memory.statements import Statements, name_like
+from kb import KB
+from tests.dialogue.memory.conftest import lexicon_of
+
+BOB = "person_bob"
+
+
+def facts(kb: KB, text: str, history: list[Utterance] | None = None) -> list[tuple[str | None, ...]] | None:
+    told = Statements(lexicon_of(kb), BOB, history or []).read(text)
+    if told is None:
+        return None
+    assert told.reply is None, told.reply
+    return [(f.subject, f.predicate, f.object) for f in told.facts]
+
+
+def refusal(kb: KB, text: str) -> str | None:
+    told = Statements(lexicon_of(kb), BOB).read(text)
+    assert told is not None and not told.facts
+    return told.reply
+
+
+@pytest.mark.parametrize(("text", "name"), [
+    ("I'm Bob", "Bob"), ("my name is Bob", "Bob"), ("call me Bob", "Bob"), ("Call me Bob, please", "Bob"),
+    ("im bob", "Bob"), ("I am Mary Jane", "Mary Jane"), ("you can call me bobby", "Bobby"),
+    ("Well, my name's Bob.", "Bob"), ("I'm Frank", "Frank"),
+])
+def test_a_speaker_tells_their_name(home: KB, text: str, name: str) -> None:
+    assert facts(home, text) == [(BOB, "name", name)]
+
+
+@pytest.mark.parametrize("text", ["I'm hungry", "I'm tired", "im back", "im frank with you", "I'm not sure",
+                                  "I'm the cook", "I'm going home", "I am here"])
+def test_what_is_no_name_is_not_taken_for_one(home: KB, text: str) -> None:
+    assert facts(home, text) is None
+
+
+def test_name_likeness_reads_casing_when_the_text_has_any() -> None:
+    assert name_like(("frank",), "Frank") and not name_like(("frank",), "frank")
+    assert name_like(("maria",), "maria") and not name_like(("very", "tired"), "very tired")
+
+
+def test_a_greeting_with_a_name_is_both(home: KB) -> None:
+    told = Statements(lexicon_of(home), BOB).read("Hi robot, I'm Bob!")
+    assert told is not None and told.greeted
+    assert [(f.subject, f.predicate, f.object) for f in told.facts] == [(BOB, "name", "Bob")]
+
+
+def test_a_correction_renames_whom_the_robot_just_named(home: KB) -> None:
+    home.update([f'{BOB} rdfs:label "Bob"'])
+    history = [Utterance(BOB, "I'm Bob"), Utterance(ASSISTANT_USER_ID, "Nice to meet you, Bob.")]
+    assert facts(home, "no, it's Rob", history) == [(BOB, "name", "Rob")]
+    assert facts(home, "No, my name is Rob.", history) == [(BOB, "name", "Rob")]
+    # Without the robot having named anyone, "no, it's Rob" is nothing this grammar reads.
+    assert facts(home, "no, it's Rob") is None
+
+
+def test_the_answer_to_the_robots_question_is_a_name(home: KB) -> None:
+    asked = [Utterance(BOB, "what's my name?"),
+             Utterance(ASSISTANT_USER_ID, "I don't know your name yet. What is it?")]
+    assert facts(home, "Bob", asked) == [(BOB, "name", "Bob")]
+    assert facts(home, "it's Bob", asked) == [(BOB, "name", "Bob")]
+    assert facts(home, "Bob") is None
+
+
+def test_this_is_names_the_one_person_present_without_a_name(home: KB) -> None:
+    assert facts(home, "this is Maria") == [("person_x", "name", "Maria")]
+    assert facts(home, "This is my friend Maria.") == [("person_x", "name", "Maria")]
+    home.update(["person_y rdf:type Human", "myself sees person_y"])
+    assert refusal(home, "this is Maria") == (
+        "Sorry, I see more than one person I don't know: I can't tell who you mean.")
+    home.remove(["myself sees person_y", "myself sees person_x"])
+    assert refusal(home, "this is Maria") == "Sorry, I don't see anyone here whose name I don't know."
+
+
+@pytest.mark.parametrize(("text", "expected"), [
+    ("the red mug is mine", [("mug_red", "belongsTo", BOB)]),
+    ("this is my mug", [("mug_red", "belongsTo", BOB)]),
+    ("that phone belongs to Ines", [("phone_1", "belongsTo", "person_ines")]),
+    ("the phone belongs to me", [("phone_1", "belongsTo", BOB)]),
+    ("the cookbook is Alice's", [("book_1", "belongsTo", "person_alice")]),
+    ("I own the remote", [("remote_1", "belongsTo", BOB)]),
+])
+def test_ownership(home: KB, text: str, expected: list[tuple[str, ...]]) -> None:
+    assert facts(home, text) == expected
+
+
+@pytest.mark.parametrize(("text", "expected"), [
+    ("the keys are in the drawer", [("keys_1", "isIn", "drawer_1")]),
+    ("the keys are now inside the drawer", [("keys_1", "isIn", "drawer_1")]),
+    ("I've put the keys in the drawer", [("keys_1", "isIn", "drawer_1")]),
+    ("I left my glasses on the sofa", [("glasses_1", "belongsTo", BOB), ("glasses_1", "isOn", "sofa_1")]),
+    ("the glasses are on top of the table", [("glasses_1", "isOn", "table_1")]),
+    ("I am in the kitchen", [(BOB, "isIn", "kitchen")]),
+])
+def test_locations(home: KB, text: str, expected: list[tuple[str, ...]]) -> None:
+    assert facts(home, text) == expected
+
+
+@pytest.mark.parametrize(("text", "expected"), [
+    ("I like tea", [(BOB, "likes", "tea")]),
+    ("I really love tea", [(BOB, "likes", "tea")]),
+    ("Alice hates coffee", [("person_alice", "dislikes", "coffee")]),
+    ("Alice doesn't like coffee", [("person_alice", "dislikes", "coffee")]),
+    ("I do not like the cookbook", [(BOB, "dislikes", "book_1")]),
+    ("I can't stand coffee", [(BOB, "dislikes", "coffee")]),
+    ("Alice likes Ines", [("person_alice", "likes", "person_ines")]),
+])
+def test_preferences(home: KB, text: str, expected: list[tuple[str, ...]]) -> None:
+    assert facts(home, text) == expected
+
+
+def test_several_statements_in_one_turn(home: KB) -> None:
+    assert facts(home, "I'm Bob and I like tea. The red mug is mine.") == [
+        (BOB, "name", "Bob"), (BOB, "likes", "tea"), ("mug_red", "belongsTo", BOB)]
+
+
+@pytest.mark.parametrize("text", [
+    "bring me the mug", "is the mug on the table?", "I'd like a cup of tea", "where are my keys",
+    "the moon is made of cheese", "does Alice like tea", "what do you see", "I'm Bob, bring me the mug",
+    "i hate marking lab reports",
+])
+def test_what_is_not_a_statement_is_left_to_the_other_rules(home: KB, text: str) -> None:
+    assert facts(home, text) is None
+
+
+def test_nothing_is_invented_and_ambiguity_is_asked_about(home: KB) -> None:
+    assert refusal(home, "the umbrella is mine") == "Sorry, I don't know any umbrella."
+    assert refusal(home, "the mug belongs to Zoe") == "Sorry, I don't know anyone called Zoe."
+    home.update(["mug_blue rdf:type dbr:Cup", 'mug_blue rdfs:label "mug"', "mug_blue hasColor blue",
+                 "myself sees mug_blue"])
+    told = Statements(lexicon_of(home), BOB).read("the mug is mine")
+    assert told is not None and told.clarify and told.reply is not None and "red" in told.reply

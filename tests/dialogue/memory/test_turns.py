@@ -1,0 +1,132 @@
+"""Knowledge from dialogue end to end through the engine: the rules, and a scripted model's `facts`."""
+
+from __future__ import annotations
+
+import asyncio
+from typing import Any
+
+from dialogue.engine import DialogueEngine, TurnResult
+from dialogue.history import ASSISTANT_USER_ID, Utterance
+from dialogue.llm.hybrid import HybridModel
+from dialogue.llm.testing import ScriptedModel
+from dialogue.memory.learn import Memory, Trust
+from dialogue.memory.provenance import told
+from kb import KB
+
+BOB = "person_bob"
+
+
+class Talk:
+    """One person's side of a conversation with an engine, history kept."""
+
+    def __init__(self, engine: DialogueEngine, speaker: str = BOB) -> None:
+        self.engine = engine
+        self.speaker = speaker
+        self.history: list[Utterance] = []
+
+    def say(self, text: str) -> TurnResult:
+        result = asyncio.run(self.engine.turn(text, speaker=self.speaker, history=self.history))
+        self.history += [Utterance(self.speaker, text), Utterance(ASSISTANT_USER_ID, result.response)]
+        return result
+
+
+def test_names_with_the_rules(home: KB) -> None:
+    bob = Talk(DialogueEngine(home))
+    assert bob.say("Hi, I'm Bob").response == "Hello! Nice to meet you, Bob."
+    assert [i.intent for i in bob.history and bob.say("what's my name?").intents] == []
+    assert bob.history[-1].text == "Your name is Bob."
+    assert bob.say("no, it's Rob").response == "Got it: Rob, not Bob."
+    assert [r["l"] for r in home.find(f"{BOB} rdfs:label ?l")] == ["Rob"]
+    assert bob.say("who am I?").response == "Your name is Rob."
+    assert bob.say("this is Maria").response == "Nice to meet you, Maria."
+    assert bob.say("who do you see?").response == "I see Alice and Maria."
+
+
+def test_ownership_and_places_are_used_by_later_questions(home: KB) -> None:
+    bob = Talk(DialogueEngine(home))
+    assert bob.say("the red mug is mine").response == "OK, the mug is yours."
+    assert bob.say("whose mug is this?").response == "The mug is yours."
+    assert bob.say("I left my keys in the drawer").response == "OK, the keys are yours and the keys are in the drawer."
+    assert bob.say("where are my keys?").response.startswith("The keys are in the drawer")
+    # Perception wins, and the robot says so: it sees the remote on the sofa.
+    assert bob.say("I own the remote. The remote is in the drawer.").response == (
+        "OK, the remote is yours. I can see the remote on the couch, though.")
+    assert home.is_asserted("remote_1 isOn sofa_1") and not home.is_asserted("remote_1 isIn drawer_1")
+
+
+def test_preferences_under_each_trust_policy(home: KB) -> None:
+    bob = Talk(DialogueEngine(home))  # the default policy: what people say of themselves
+    assert bob.say("I'm Bob and I like tea").response == "Nice to meet you, Bob. OK, you like tea."
+    assert bob.say("Alice hates coffee").response == "OK, I'll remember that you said Alice doesn't like coffee."
+    assert bob.say("what does Alice hate?").response == "You told me Alice doesn't like coffee."
+    alice = Talk(bob.engine, "person_alice")
+    assert alice.say("what does Alice hate?").response == "Bob told me you don't like coffee."
+    trusting = Talk(DialogueEngine(home, memory=Memory(home, Trust.ALL)))
+    assert trusting.say("Alice likes chocolate").response == "Sorry, I don't know what chocolate is."
+    assert trusting.say("Alice likes tea").response == "OK, Alice likes tea."
+    assert Talk(bob.engine, "person_ines").say("what does Alice like?").response == "Alice likes tea."
+    assert alice.say("what do I like?").response == "You like tea."
+
+
+def test_a_model_tells_facts_in_its_answer_and_a_bad_id_is_repaired(home: KB) -> None:
+    model = ScriptedModel([
+        {"verbal_ack": "Sure!", "user_intent": None,
+         "facts": [{"subject": "me", "predicate": "name", "object": "Bob"},
+                   {"subject": "umbrella_9", "predicate": "belongsTo", "object": "me"}]},
+        {"verbal_ack": "Sure!", "user_intent": None,
+         "facts": [{"subject": "me", "predicate": "name", "object": "Bob"},
+                   {"subject": "mug_red", "predicate": "belongsTo", "object": "me"}]},
+    ])
+    bob = Talk(DialogueEngine(home, model))
+    result = bob.say("Bob here, and that red thing is my mug")
+    assert result.response == "Nice to meet you, Bob. OK, the mug is yours." and result.backend == "scripted"
+    assert "umbrella_9" in model.requests[1].messages[-1].content  # the repair said what was wrong
+    assert home.is_asserted(f"mug_red belongsTo {BOB}") and home.is_asserted(f'{BOB} rdfs:label "Bob"')
+    assert {t.predicate for t in told(home, by=BOB)} == {"rdfs:label", "belongsTo"}
+
+
+def test_a_model_answer_with_an_intent_and_a_fact_says_both(home: KB) -> None:
+    answer: dict[str, Any] = {
+        "verbal_ack": "I will bring you the mug.",
+        "user_intent": {"type": "__intent_bring_object__", "object": "mug_red", "recipient": BOB, "goal": None,
+                        "input": None},
+        "facts": [{"subject": "mug_red", "predicate": "belongsTo", "object": BOB}]}
+    result = Talk(DialogueEngine(home, ScriptedModel([answer]))).say("bring me my mug, the red one is mine")
+    assert result.response == "I will bring you the mug. OK, the mug is yours."
+    assert [(i.intent, i.data) for i in result.intents] == [
+        ("__intent_bring_object__", {"object": "mug_red", "recipient": BOB})]
+
+
+def test_a_model_asks_about_what_was_told(home: KB) -> None:
+    home.update(["person_alice likes dbr:Tea"])
+    model = ScriptedModel([{"verbal_ack": None, "user_intent": None,
+                            "facts": [{"subject": "person_alice", "predicate": "likes", "object": None}]}])
+    assert Talk(DialogueEngine(home, model)).say("any idea what Alice fancies?").response == "Alice likes tea."
+
+
+def test_the_hybrid_model_learns_with_its_rules_first(home: KB) -> None:
+    model = ScriptedModel([])
+    bob = Talk(DialogueEngine(home, HybridModel(model)))
+    assert bob.say("my name is Bob").response == "Nice to meet you, Bob." and model.requests == []
+
+
+def test_a_speaker_who_is_nobody_of_the_kb_is_told_so_and_nothing_is_learnt(home: KB) -> None:
+    before = home.models()
+    anonymous = Talk(DialogueEngine(home), "__unknown_agent__")
+    for text in ("I'm Bob", "the phone belongs to Ines", "what's my name?"):
+        assert anonymous.say(text).response == "Sorry, I don't know who you are."
+    assert home.models() == before and told(home) == []
+    assert anonymous.say("what does Alice like?").response == "I don't know what Alice likes."
+
+
+def test_an_ambiguous_statement_is_asked_about_and_the_answer_completes_it(home: KB) -> None:
+    home.update(["mug_blue rdf:type dbr:Cup", 'mug_blue rdfs:label "mug"', "mug_blue hasColor blue",
+                 "mug_blue isOn table_1", "myself sees mug_blue"])
+    bob = Talk(DialogueEngine(home))
+    question = bob.say("the mug is mine")
+    assert question.clarify and question.response.endswith("?") and question.claims == ()
+    assert bob.say("the red one").response == "OK, the red mug is yours."
+    assert home.is_asserted(f"mug_red belongsTo {BOB}") and not home.is_asserted(f"mug_blue belongsTo {BOB}")
+    # A command's clarification is still the command grammar's.
+    assert bob.say("bring me the mug").clarify
+    assert [i.data for i in bob.say("the blue one").intents] == [{"object": "mug_blue", "recipient": BOB}]
