@@ -14,20 +14,17 @@ from collections.abc import Collection, Sequence
 from dataclasses import dataclass
 
 from dialogue import intents as I
+from dialogue.reference.english import DETERMINERS, LOCATIVE, PRONOUNS, tokens, word_set
 from dialogue.reference.grounding import Entity, Kind
 from dialogue.reference.headnoun import resolve_head
-from dialogue.reference.lexicon import DETERMINERS, Lexicon, norm, tokens
-from dialogue.rules.words import word_set
+from dialogue.reference.lexicon import Lexicon, norm
 
-PRONOUNS = frozenset({"it", "them", "that", "this", "those", "these"})
-#: Possessive determiners whose owner comes from the conversation rather than from the phrase.
-POSSESSIVES = frozenset({"my", "your", "our", "his", "her", "their"})
 #: Words allowed inside a phrase without qualifying anything ("the cup that is on the table").
 _GLUE = DETERMINERS | word_set(
     "on in at of from off near inside onto into top which is are with colour color called named labelled "
     "labeled kind type next to and"
 )
-_LOCATIVE = frozenset({"on", "in", "at", "from", "near", "inside", "onto", "into", "under", "by", "to"})
+_LOCATIVE = LOCATIVE
 #: Words that end a noun phrase's core: its head is the last content word before the first of them.
 _CORE_END = _LOCATIVE | word_set("of with next that which")
 

@@ -4,8 +4,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
+from dialogue.reference.english import Words
 from dialogue.reference.grounding import Entity
-from dialogue.rules.commands import Words
 
 
 @dataclass(frozen=True)

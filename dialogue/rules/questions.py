@@ -6,7 +6,10 @@ answer is computed from the KB snapshot in dialogue.rules.answers.
 
 from __future__ import annotations
 
-from dialogue.rules.words import WH, Parse, Words, split_at, starts, word_set
+from dialogue.reference.english import Words, word_set
+from dialogue.rules.parsed import Parse
+from dialogue.rules.speech import split_at, starts
+from dialogue.rules.words import WH
 
 _SEES: tuple[Words, ...] = tuple(
     tuple(p.split()) for p in ("do you see", "can you see", "could you see", "have you seen", "did you see",

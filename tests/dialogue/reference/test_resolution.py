@@ -1,7 +1,7 @@
 import pytest
 
+from dialogue.reference.english import tokens
 from dialogue.reference.grounding import Kind
-from dialogue.reference.lexicon import tokens
 from dialogue.reference.resolution import antecedent, resolve, resolve_id
 from kb import KB
 from tests.dialogue.conftest import lexicon_of, scene_kb

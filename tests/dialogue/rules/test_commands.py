@@ -25,7 +25,7 @@ from dialogue.rules.commands import parse
         ("head over to the garage", I.MOVE_TO, {"goal": ("the", "garage")}),
         ("come here", I.MOVE_TO, {"goal": ("me",)}),
         ("walk me to the exit", I.GUIDE, {"recipient": ("me",), "goal": ("the", "exit")}),
-        ("lead the way to the lobby", I.GUIDE, {"recipient": ("me",), "goal": ("lobby",)}),
+        ("lead the way to the lobby", I.GUIDE, {"recipient": ("me",), "goal": ("the", "lobby")}),
         ("engage with Ann", I.ENGAGE_WITH, {"recipient": ("ann",)}),
         ("would you mind picking up the vase", I.GRAB_OBJECT, {"object": ("the", "vase")}),
         ("do you mind putting the vase on the piano", I.PLACE_OBJECT,
