@@ -40,8 +40,11 @@ RULES = "rules"
 class RulesModel(ChatModel):
     """Answers every turn it understands in `prescreen`, without a prompt; reads no prompt itself."""
 
-    def __init__(self) -> None:
+    def __init__(self, take_guesses: bool = True) -> None:
         self._lexicons = LexiconCache()
+        #: Whether a turn in which a misspelt word was read as a KB name ("the thremos") is
+        #: answered (alone, the rules' best reading), or left to the model behind (hybrid).
+        self.take_guesses = take_guesses
 
     @property
     def name(self) -> str:
@@ -53,7 +56,7 @@ class RulesModel(ChatModel):
 
     def prescreen(self, context: TurnContext) -> EarlyAnswer | None:
         outcome = self.interpret(context)
-        if not outcome.understood:
+        if not self._claims(outcome):
             return None
         return EarlyAnswer(answer_of(outcome), RULES, clarify=outcome.clarify)
 
@@ -68,4 +71,7 @@ class RulesModel(ChatModel):
         # The tutorial's two keys, and the list only when there is more than one intent.
         single = answer.user_intents is None
         content = json.dumps(answer.model_dump(exclude={"user_intents"} if single else None))
-        return ChatResult(content, "stop", understood=outcome.understood)
+        return ChatResult(content, "stop", understood=self._claims(outcome))
+
+    def _claims(self, outcome: Outcome) -> bool:
+        return outcome.understood and (self.take_guesses or not outcome.guesses)

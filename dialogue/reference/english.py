@@ -80,3 +80,21 @@ MODIFIER_START = (
     | word_set("of near by beside below above behind next close to towards for with without belonging")
     | word_set("between against opposite")
 )
+#: Number words ("table nine", "take three cups").
+NUMBERS = word_set(
+    "zero one two three four five six seven eight nine ten eleven twelve thirteen fourteen fifteen "
+    "sixteen seventeen eighteen nineteen twenty thirty forty fifty sixty seventy eighty ninety hundred "
+    "thousand first second third fourth fifth sixth seventh eighth ninth tenth half dozen"
+)
+#: Closed-class words in general (pronouns, prepositions, conjunctions, auxiliaries): always words of
+#: English, whatever a lexicon of content words says.
+FUNCTION_WORDS = NUMBERS | word_set(
+    "i you he she it we they me him her us them myself yourself himself herself itself ourselves "
+    "themselves mine yours hers ours theirs this that these those who whom whose which what where when "
+    "why how if then than because so but and or nor yet while whilst although though unless until since "
+    "after before about above across against along among around at behind below beneath beside between "
+    "beyond by down during except for from in inside into like near of off on onto out outside over past "
+    "through throughout till to toward towards under underneath up upon with within without "
+    "am is are was were be been being do does did have has had will would shall should can could may "
+    "might must not no yes oh ok okay hey hi hello bye goodbye please thanks"
+)

@@ -45,7 +45,7 @@ class _Phrase:
     core: tuple[str, ...]
     #: (preposition, its noun phrase) for each modifier after the core.
     modifiers: tuple[tuple[str, tuple[str, ...]], ...]
-    #: A preposition with no noun phrase after it ("the table for"): the phrase is cut short.
+    #: A preposition with no noun phrase after it ("the bay for"): the phrase is cut short.
     dangling: bool = False
 
 

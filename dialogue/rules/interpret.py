@@ -32,10 +32,13 @@ from dialogue.rules.outcome import Outcome, Ref
 from dialogue.rules.parsed import Parse
 from dialogue.rules.referents import RELATIONAL, Referents
 from dialogue.rules.replies import acknowledgement, vocative
+from dialogue.rules.spelling import corrected
 from dialogue.rules.utterance import cleaned
 from dialogue.rules.words import INTERJECTIONS, PLACES
 
 _ONE = frozenset({"one", "ones"})
+#: How sure the rules are of a turn in which they corrected a slip ("plase", "thremos").
+SPELT_CONFIDENCE = 0.7
 #: Punctuation, dashes, and (for unpunctuated speech) a polite request starting mid-utterance.
 _CLAUSE_BREAK = re.compile(
     r"[.;!?,]+(?:\s+|$)|\s+(?:-|\u2013|\u2014)\s+|\s+(?=(?:could|can|would|will)\s+you\b|please\b)"
@@ -62,7 +65,16 @@ class Interpreter:
         self.refs = Referents(lexicon, speaker, self.history)
 
     def interpret(self, text: str) -> Outcome:
-        text = cleaned(text)
+        spelled = corrected(text, self.lexicon)
+        outcome = self._read(cleaned(spelled.text))
+        if not spelled.corrections:
+            return outcome
+        # A corrected slip makes the whole turn less sure; a name read from a slip is a guess.
+        steps = outcome.steps()
+        unsure = [replace(o, confidence=min(o.confidence, SPELT_CONFIDENCE), more=()) for o in steps]
+        return replace(unsure[0], more=tuple(unsure[1:]), guessed=spelled.guessed or outcome.guesses)
+
+    def _read(self, text: str) -> Outcome:
         parts = conjuncts(text)
         if parts:
             combined = self._compound(parts)
@@ -229,6 +241,8 @@ class Interpreter:
         # ("in the centre of the table" is put on the table).
         said = p.marks.get("recipient") if "of" not in slots.get("recipient", ("of",)) else None
         reply = acknowledgement(self.snapshot, self.speaker, intent, roles, refs, said)
+        if any(ref.guessed for ref in refs.values()):  # "go to bay mine": a guess, less sure
+            return Outcome(reply, intent, roles, SPELT_CONFIDENCE, guessed=True)
         return self._intent(intent, roles, reply)
 
     def _missing(self, intent: str, role: str, p: Parse) -> Outcome:
@@ -292,4 +306,5 @@ class Interpreter:
             clarify=outcome.clarify,
             open_role=outcome.open_role,
             open_phrase=outcome.open_phrase,
+            guessed=outcome.guessed,
         )

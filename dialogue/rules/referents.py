@@ -10,12 +10,23 @@ from dataclasses import replace
 
 from dialogue.history import Utterance
 from dialogue.reference.clarify import question as clarifying_question
-from dialogue.reference.english import COLOURS, MANY, ME, POSITIONS, POSSESSIVES, Words, word_set
+from dialogue.reference.english import (
+    COLOURS,
+    DETERMINERS,
+    MANY,
+    ME,
+    MODIFIER_START,
+    POSITIONS,
+    POSSESSIVES,
+    Words,
+    word_set,
+)
 from dialogue.reference.grounding import Entity, Kind
 from dialogue.reference.lexicon import Lexicon
 from dialogue.reference.resolution import ANYWHERE, PERSON, antecedent, content_words, is_pronoun, resolve
 from dialogue.rules.compound import alternatives
 from dialogue.rules.outcome import Outcome, Ref
+from dialogue.rules.spelling import slips
 
 #: Spatial or comparative qualifiers the KB does not model (dropped when they block a match).
 RELATIONAL = POSITIONS
@@ -71,6 +82,24 @@ class Referents:
         person = person or antecedent(self.lexicon, [u.text for u in self.history], PERSON)
         return rest, person.id if person is not None else None
 
+    def slipped(self, words: Words, kinds: frozenset[Kind], owner: str | None) -> Entity | None:
+        """The one thing a name means when one of its words was misheard or mistyped as another word
+        ("bay mine", "bay for" for "bay nine", "bay four"): a word the KB does not know,
+        replaced by a slip of it, completes a name of several words that the rest of the phrase
+        starts; the name must then be the only one (a guess, see dialogue.rules.spelling)."""
+        found: set[str] = set()
+        for i, word in enumerate(words):
+            last = i == len(words) - 1
+            if word in DETERMINERS or (word in MODIFIER_START and not last) or self.lexicon.knows(word):
+                continue
+            for other in slips(word, self.lexicon):
+                trial = (*words[:i], other, *words[i + 1 :])
+                one = resolve(self.lexicon, trial, kinds, owner=owner).one
+                if one is not None and _named_with(self.lexicon, one, trial, i):
+                    found.add(one.id)
+        entity = self.snapshot.get(next(iter(found))) if len(found) == 1 else None
+        return entity
+
     def ground(self, words: Words, kinds: frozenset[Kind], role: str, owner: str | None = None) -> Ref:
         content = content_words(words)
         if "person" in kinds and content and set(content) <= ME | {"here"}:
@@ -95,6 +124,9 @@ class Referents:
             res = replace(res, matches=tuple(e for e in res.matches if e.id != self.speaker))
         if res.one is not None:
             return Ref(entity=res.one)
+        slipped = self.slipped(words, kinds, owner)
+        if slipped is not None:
+            return Ref(entity=slipped, guessed=True)
         if res.ambiguous:
             q = clarifying_question(self.snapshot, res.matches)
             return Ref(problem=Outcome(q, clarify=True, open_role=role, open_phrase=words))
@@ -134,3 +166,12 @@ class Referents:
         if "person" in kinds and resolve(self.lexicon, content, ANYWHERE).matches == ():
             return f"Sorry, I don't know who or where {phrase.title()} is."
         return f"Sorry, I don't see any {phrase}."
+
+
+def _named_with(lexicon: Lexicon, entity: Entity, words: Words, i: int) -> bool:
+    """Whether a name of the entity spans word i and a word before it ("table *nine*")."""
+    for start in range(i):
+        for name in lexicon.names_at(words, start):
+            if name.entity == entity.id and start + len(name.words) > i:
+                return True
+    return False

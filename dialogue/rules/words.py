@@ -105,6 +105,13 @@ MANNER = word_set("carefully gently slowly quickly quietly safely")
 #: A noun phrase of its own starts with one of these ("bring to Ana *the* tray").
 NP_START = word_set("the a an this that these those my your his our their some")
 
+#: Words a speech recogniser writes for one another (a number in a name most of all: "bay for").
+HOMOPHONES = phrases(
+    "for four fore|to two too|won one|ate eight|right write|through threw|sea see|pair pear|tee tea|"
+    "flour flower|whole hole|knight night|wood would|bare bear|mail male|meat meet|weight wait|"
+    "piece peace|plain plane|deer dear|sale sail|steal steel|stair stare|board bored|sole soul"
+)
+
 # -- small constructions --------------------------------------------------------------------------
 #: "I want X" and friends ask for X to be brought.
 WANTS = phrases(
