@@ -22,6 +22,7 @@ from dialogue.rules.words import (
     MANNER,
     NP_START,
     PATHS,
+    PURPOSES,
     SOCIAL,
     THERE,
 )
@@ -152,7 +153,7 @@ def _segments(rest: Words, row: Row) -> tuple[Words, dict[str, Words], dict[str,
     i = 0
     while i < len(rest):
         marker = next((m for m in row.slots if rest[i : i + len(m[0])] == m[0] and m[1] not in slots), None)
-        if marker is not None:
+        if marker is not None and rest[i : i + 2] not in PURPOSES:  # "something to eat" is no recipient
             current = slots[marker[1]] = []
             marks[marker[1]] = " ".join(marker[0])
             i += len(marker[0])

@@ -125,13 +125,15 @@ def speech(said: Said) -> Parse:
     unknown = Parse("unknown", words=(verb, *rest))
     if rest[:1] and rest[0] in {"goodbye", "bye"} and "to" in rest:
         return said.command(I.SAY, text="goodbye", recipient=rest[rest.index("to") + 1 :])
-    if verb in {"tell", "inform", "remind"}:
+    if verb in {"tell", "inform", "remind", "ask"}:
         found = split_at(rest, ["that", "to", "about"])
         if found is not None:
             recipient, sep, text = found
             text = ("please", *text) if sep == "to" else text
-            if sep == "about":
+            if sep == "about" or (verb == "ask" and sep != "to"):
                 return unknown
+        elif verb == "ask":  # "ask Ana if she wants tea": a question to put, not words to say
+            return unknown
         else:
             recipient, text = rest[:1], rest[1:]
         if recipient[:1] and recipient[0] in ME:  # "tell me a joke": small talk, not a SAY intent

@@ -95,14 +95,17 @@ class Frame:
 
 _GRAB = "grab|take|get|collect|lift|grasp|seize|hold|pick"
 _BRING = "bring|hand|give|pass|fetch|deliver|carry"
-_PLACE = "put|place|set|lay|drop|leave|stick|stack"
+_PLACE = "put|place|set|lay|drop|leave|stick|stack|release|rest"
 _MOVE = (
     "go|move|navigate|drive|walk|head|come|return|proceed|roll|stand|pop|nip|hop|make your way|"
     "find your way"
 )
 _GUIDE = "guide|lead|escort|accompany|show|direct"
-_SAY = "say|tell|announce|repeat|inform|remind"
-_TO_SOMEONE = "to|towards|for"
+#: Verbs that only ever say where to go: "get over to the desk", "run to the kitchen" ("get the cup",
+#: "run the dishwasher" are other rows').
+_GO = "get|swing|hurry|rush|dash|wander|run|scoot|zip"
+_SAY = "say|tell|announce|repeat|inform|remind|ask"
+_TO_SOMEONE = "to|towards|for|into"
 
 FRAMES: tuple[Frame, ...] = (
     # The robot itself.
@@ -134,6 +137,7 @@ FRAMES: tuple[Frame, ...] = (
     Frame("approach|enter", I.MOVE_TO, direct="goal", requires=("goal",)),
     Frame(_MOVE, I.MOVE_TO, slots={"goal": GOALS}, particles=MOTION_PARTICLES, here="goal",
           requires=("goal",)),
+    Frame(_GO, I.MOVE_TO, slots={"goal": GOALS}, particles=MOTION_PARTICLES, here="goal", requires=("goal",)),
     Frame(_MOVE, I.PLACE_OBJECT, direct="object", slots={"recipient": GOALS},
           requires=("object", "recipient")),
     # Things.

@@ -193,11 +193,16 @@ class Interpreter:
     # -- commands --------------------------------------------------------------------------------
     def _command(self, p: Parse, overrides: dict[str, Words]) -> Outcome:
         whole = self._one_command(p, overrides)
-        things = coordinated(p.slots.get("object", ())) if "object" not in overrides else []
+        # "bring me the cereals and the milk", "greet Ana and Tom": one intent per thing or person
+        # named, in order (people only where a role is a person's: one cup goes to one person).
+        role = "object" if "object" in p.slots else "recipient"
+        person = ROLE_KINDS.get(p.intent or "", {}).get("recipient") == PERSON
+        things = coordinated(p.slots.get(role, ())) if role not in overrides else []
+        if role == "recipient" and not person:
+            things = []
         if whole.intent is not None or whole.clarify or len(things) < 2:
             return whole
-        # "bring me the cereals and the milk": one intent per thing, in order.
-        each = [self._one_command(p, {**overrides, "object": t}) for t in things]
+        each = [self._one_command(p, {**overrides, role: t}) for t in things]
         if any(o.intent is None for o in each):
             return next(o for o in each if o.intent is None)
         acks = [each[0].reply] + [f"Then {unprefixed(o.reply)}" for o in each[1:]]
@@ -213,6 +218,8 @@ class Interpreter:
             who = tuple(w for w in slots.get("object", ()) if w not in RELATIONAL)
             if self.refs.person_as_object(who) is not None:
                 intent, slots = I.GUIDE, {"recipient": who, "goal": slots["recipient"]}
+            elif intent == I.PLACE_OBJECT and self.refs.named_person(slots["recipient"]):
+                intent = I.BRING_OBJECT  # "return the stapler to Carol": carried to a person
         implicit = "recipient" in p.implicit or not content_words(slots.get("recipient", ()))
         if intent == I.GUIDE and slots.get("goal") == ("there",) and implicit:
             # "Ellen needs the utility room, lead the way": the person just spoken of, else the speaker.

@@ -9,7 +9,7 @@ from __future__ import annotations
 from dialogue.reference.english import Words, word_set
 from dialogue.rules.parsed import Parse
 from dialogue.rules.speech import split_at, starts
-from dialogue.rules.words import WH
+from dialogue.rules.words import PURPOSES, WH
 
 _SEES: tuple[Words, ...] = tuple(
     tuple(p.split()) for p in ("do you see", "can you see", "could you see", "have you seen", "did you see",
@@ -34,8 +34,6 @@ _INDIRECT: tuple[Words, ...] = tuple(
 )  # fmt: skip
 _BE = frozenset({"is", "are", "was", "were"})
 _NEARBY = word_set("around nearby here about")
-#: "something to eat" is food: the purpose names the ontology's class (labelled "food", "drink").
-_PURPOSES: dict[Words, str] = {("to", "eat"): "food", ("to", "drink"): "drink"}
 
 
 def _q(kind: str, w: Words, **slots: Words) -> Parse:
@@ -125,7 +123,7 @@ def _what(w: Words) -> Parse:
 
 def _anything(w: Words, rest: Words) -> Parse:
     """ "is there anything on the table", "do you see anything to eat", "can you see anything"."""
-    purpose = _PURPOSES.get(rest[:2])
+    purpose = PURPOSES.get(rest[:2])
     if purpose is not None:
         return _q("can_see", w, thing=(purpose, *rest[2:]))
     found = split_at(("x", *rest), _LOCATIVES)

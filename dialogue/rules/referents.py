@@ -27,6 +27,7 @@ from dialogue.reference.resolution import ANYWHERE, PERSON, antecedent, content_
 from dialogue.rules.compound import alternatives
 from dialogue.rules.outcome import Outcome, Ref
 from dialogue.rules.spelling import slips
+from dialogue.rules.words import PURPOSES
 
 #: Spatial or comparative qualifiers the KB does not model (dropped when they block a match).
 RELATIONAL = POSITIONS
@@ -56,6 +57,12 @@ class Referents:
             if people and (named or said):
                 return {"object": tail, "recipient": head}
         return {"object": rest, "recipient": ("me",)}
+
+    def named_person(self, words: Words) -> bool:
+        """Whether the phrase names one person of the KB (not a pronoun, not the speaker's "me")."""
+        if not content_words(words) or is_pronoun(words) or set(content_words(words)) & ME:
+            return False
+        return resolve(self.lexicon, words, PERSON).one is not None
 
     def person_as_object(self, words: Words) -> Entity | None:
         if content_words(words) and set(content_words(words)) <= ME:
@@ -101,6 +108,9 @@ class Referents:
         return entity
 
     def ground(self, words: Words, kinds: frozenset[Kind], role: str, owner: str | None = None) -> Ref:
+        bare_words = [w for w in words if w not in DETERMINERS]
+        if bare_words[:1] in (["something"], ["anything"]) and tuple(bare_words[1:]) in PURPOSES:
+            words = (PURPOSES[tuple(bare_words[1:])],)  # "something to eat": food
         content = content_words(words)
         if "person" in kinds and content and set(content) <= ME | {"here"}:
             return Ref(speaker=True)

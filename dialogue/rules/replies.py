@@ -23,8 +23,9 @@ def _name(snapshot: Snapshot, speaker: str, ref: Ref | None) -> str:
 
 
 #: How a place said with a preposition is said back ("next to the laptop", not "on the laptop").
-_SAID_BACK = {"beside": "next to", "near": "near", "under": "under", "in": "in", "into": "in",
-              "inside": "in", "at": "at"}  # fmt: skip
+_SAID_BACK = {"beside": "next to", "near": "near", "under": "under", "underneath": "under",
+              "beneath": "under", "below": "under", "in": "in", "into": "in", "inside": "in", "at": "at",
+              "by": "by", "behind": "behind", "against": "against", "in front of": "in front of"}  # fmt: skip
 #: "wave at Ana", "shake hands with Ana"; other motions are done for someone.
 _TOWARDS = {"wave": "at", "point": "at", "nod": "at", "smile": "at", "shake hands": "with"}
 

@@ -76,7 +76,8 @@ def starts(words: Sequence[str], prefix: Sequence[str]) -> bool:
 
 def strip_politeness(words: list[str], robot_name: str = "") -> list[str]:
     name = tuple(expanded(robot_name)) if robot_name else ()
-    prefixes = (*POLITE_PREFIXES, *((name,) if name else ()))
+    # The longest first: "would you be able to" before "would you".
+    prefixes = sorted((*POLITE_PREFIXES, *((name,) if name else ())), key=len, reverse=True)
     changed = True
     while changed and words:
         changed = False

@@ -21,6 +21,9 @@ CONTRACTIONS: dict[str, Words] = {
     "doesnt": ("don't",), "wont": ("don't",), "isnt": ("is", "not"), "arent": ("are", "not"),
     "didnt": ("did", "not"), "i've": ("i", "have"), "she's": ("she", "is"), "he's": ("he", "is"),
     "we're": ("we", "are"), "they're": ("they", "are"), "hows": ("how", "is"),
+    # Chat spellings of speech.
+    "ya": ("you",), "gimme": ("give", "me"), "lemme": ("let", "me"), "wanna": ("want", "to"),
+    "gotta": ("have", "to"), "pls": ("please",), "plz": ("please",), "thx": ("thanks",),
 }  # fmt: skip
 #: Hesitations and discourse fillers, dropped wherever they occur ("put the uh candle on the table").
 FILLERS = word_set("um umm uh uhh er erm hmm mm ah really")
@@ -76,7 +79,10 @@ AUXILIARIES = word_set("does did done is are was were be been being has had havi
 JOINED_PREPOSITIONS: dict[Words, str] = {("next", "to"): "beside", ("close", "to"): "near",
                                           ("nearest", "to"): "near"}  # fmt: skip
 #: Prepositions that introduce a place to put something ("put the cup on top of the piano").
-PLACES = "on top of|onto|on|into|inside|in|at|to|under|beside|near"
+PLACES = (
+    "on top of|onto|on to|on|into|inside|in front of|in|at|to|under|underneath|beneath|below|beside|near|by|"
+    "behind|against"
+)
 #: Prepositions that introduce where to go ("go over to the desk", "stand by the door").
 GOALS = "to|towards|into|inside|onto|on|in|near|beside|over to|by"
 #: Words between a verb of motion and its goal: "go back to", "head over to", "nip down to".
@@ -96,7 +102,7 @@ ADJUNCTS = phrases(
     "on my behalf|on our behalf|on his behalf|on her behalf|for me|for us|from me|from us|"
     "when you can|when you get a chance|when you have a moment|when you have a minute|when you are free|"
     "as soon as possible|as soon as you can|right away|straight away|at once|in a minute|in a moment|"
-    "right now"
+    "right now|real quick|right quick|asap|in a jiffy|in a sec|in a second"
 )
 #: Prepositions of a path: "go to the bathroom through the main door" (what follows is the adjunct).
 PATHS = word_set("through via past across along")
@@ -124,6 +130,8 @@ NEEDS: dict[str, str] = {
     "thirsty": "drink", "parched": "drink", "dehydrated": "drink",
     "hungry": "food", "starving": "food", "peckish": "food", "famished": "food", "ravenous": "food",
 }  # fmt: skip
+#: "something to eat" is food: the purpose names the ontology's class (labelled "food", "drink").
+PURPOSES: dict[Words, str] = {("to", "eat"): "food", ("to", "drink"): "drink"}
 INTENSIFIERS = word_set("so very really absolutely quite a bit little totally getting rather pretty bloody")
 #: What follows "do" in a request ("do the dishes", "do some exercise"); anything else after "do"
 #: is a yes/no question ("do you like music", "do robots ever get tired").

@@ -144,3 +144,36 @@ def test_a_row_is_all_it_takes_to_add_a_verb(extra_row: None, office: KB) -> Non
 
 def test_without_the_row_the_verb_is_not_understood(office: KB) -> None:
     assert say(office, "ferry the stapler over to Carol").intent is None
+
+
+@pytest.mark.parametrize(
+    ("text", "act", "intent", "slots"),
+    [
+        ("get over to the garage", "command", I.MOVE_TO, {"goal": ("the", "garage")}),
+        ("run to the garage", "command", I.MOVE_TO, {"goal": ("the", "garage")}),
+        ("run the dishwasher", "command", I.START_ACTIVITY, {}),
+        ("swing by the piano", "command", I.MOVE_TO, {"goal": ("the", "piano")}),
+        ("release the vase", "command", I.PLACE_OBJECT, {"object": ("the", "vase")}),
+        ("leave the vase by the door", "command", I.PLACE_OBJECT, {"object": ("the", "vase"),
+                                                                   "recipient": ("the", "door")}),
+        ("carry the vase into the garage", "command", I.BRING_OBJECT, {"object": ("the", "vase"),
+                                                                       "recipient": ("the", "garage")}),
+        ("ask Ann to close the gate", "command", I.SAY, {"recipient": ("ann",)}),
+        ("ask Ann if she wants tea", "unknown", None, {}),
+        ("bring me something to drink", "command", I.BRING_OBJECT, {"object": ("something", "to", "drink"),
+                                                                    "recipient": ("me",)}),
+        ("would you be able to pick up the vase", "command", I.GRAB_OBJECT, {"object": ("the", "vase")}),
+        ("gimme the vase would ya", "command", I.BRING_OBJECT, {"object": ("the", "vase"), "recipient": ("me",)}),
+        ("hand Ann the vase asap", "command", I.BRING_OBJECT, {}),
+    ],
+)  # fmt: skip
+def test_more_verbs_and_phrasings(
+    text: str, act: str, intent: str | None, slots: dict[str, tuple[str, ...]]
+) -> None:
+    p = parse(text)
+    assert (p.act, p.intent) == (act, intent)
+    assert {k: p.slots[k] for k in slots} == slots
+    if text.startswith("ask Ann to"):
+        assert p.text == "please close the gate"
+    if text.endswith("asap"):
+        assert p.slots == {"rest": ("ann", "the", "vase")} and p.adjuncts == (("asap",),)

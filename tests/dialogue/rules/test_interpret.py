@@ -362,3 +362,24 @@ def test_an_unresolved_there_is_named_in_the_question(office: KB) -> None:
 def test_a_trailing_clause_with_its_own_subject_does_not_hide_the_request(office: KB, text: str) -> None:
     out = say(office, text)
     assert out.intent in {I.BRING_OBJECT, I.GUIDE}, out.reply
+
+
+def test_carrying_something_to_a_person_is_bringing_it_whatever_the_verb(office: KB) -> None:
+    out = say(office, "return the stapler to Carol")
+    assert (out.intent, out.roles) == (I.BRING_OBJECT, {"object": "stapler_1", "recipient": "person_carol"})
+    assert say(office, "move the pear to the desk").intent == I.PLACE_OBJECT
+
+
+def test_several_people_named_for_a_person_role_are_one_intent_each(office: KB) -> None:
+    out = say(office, "please greet Carol and Dan")
+    assert [(o.intent, o.roles) for o in out.steps()] == [
+        (I.GREET, {"recipient": "person_carol"}),
+        (I.GREET, {"recipient": "person_dan"}),
+    ]
+    # One thing cannot go to two people: not split, not guessed.
+    assert say(office, "bring the stapler to Carol and Dan").intent is None
+
+
+def test_something_to_eat_is_food(kitchen: KB) -> None:
+    out = say(kitchen, "could you get me something to eat", speaker="person_alice")
+    assert (out.intent, out.roles) == (I.BRING_OBJECT, {"object": "apple_1", "recipient": "person_alice"})
