@@ -215,15 +215,20 @@ def _adjunct_end(rest: Words, i: int, own: set[str]) -> int:
     by_doing = word == "by" and i + 1 < len(rest) and rest[i + 1].endswith("ing")  # "by crossing the hall"
     if word in own and not by_doing:
         return i
-    for phrase in ADJUNCTS:
-        if rest[i : i + len(phrase)] == phrase:
-            return i + len(phrase)
-    if word in MANNER:
-        return i + 1
+    said_how = _said_how(rest, i)
+    if said_how:
+        return i + said_how
     if word in PATHS or by_doing:
-        end = i + 1
-        while end < len(rest) and rest[end] not in own and rest[end] not in PATHS:
+        end, stop = i + 1, own | PATHS
+        while end < len(rest) and rest[end] not in stop and not _said_how(rest, end):
             end += 1
         # "through the main door" has a phrase; "walk through to the lounge" is a particle.
         return end if end > i + 1 else i
     return i
+
+
+def _said_how(rest: Words, i: int) -> int:
+    """The length of the phrase of manner or time that starts at i ("when you can", "carefully"), or 0."""
+    if rest[i] in MANNER:
+        return 1
+    return next((len(p) for p in ADJUNCTS if rest[i : i + len(p)] == p), 0)
