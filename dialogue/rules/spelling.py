@@ -11,7 +11,8 @@ word is corrected
 only when exactly one vocabulary word is the cheapest within 1 (2 for words of eight letters or
 more); two at the same price are ambiguous and nothing is changed.
 
-Never corrected: words of the vocabulary, known English words (lemminflect's lexicon: "lamp" is not
+Never corrected: names (a capital not at the start of a sentence), words of the vocabulary, known
+English words (lemminflect's lexicon: "lamp" is not
 a slip of "lamb" even when only a lamb is known), numbers, words with an apostrophe, and quoted text
 (said as it is). A correction to a name (a referent) is a guess about what is meant, which the
 caller may leave to a model (dialogue.llm.hybrid); one to a grammar word is not.
@@ -72,7 +73,7 @@ def corrected(text: str, lexicon: Lexicon) -> Spelled:
     quoted = [m.span() for m in QUOTED.finditer(text)]
     fixes: list[tuple[int, int, Correction]] = []
     for word, start, end in spans(text):
-        if any(a <= start < b for a, b in quoted) or not _suspect(word, lexicon):
+        if any(a <= start < b for a, b in quoted) or _named(text, start) or not _suspect(word, lexicon):
             continue
         meant = _meant(word, lexicon)
         if meant is not None:
@@ -83,9 +84,15 @@ def corrected(text: str, lexicon: Lexicon) -> Spelled:
         return Spelled(" ".join(_fixed_words(text, fixes)), tuple(f[2] for f in fixes))
     out, last = [], 0
     for start, end, fix in fixes:
-        out += [text[last:start], fix.meant]
+        out += [text[last:start], fix.meant.capitalize() if text[start].isupper() else fix.meant]
         last = end
     return Spelled("".join([*out, text[last:]]), tuple(f[2] for f in fixes))
+
+
+def _named(text: str, start: int) -> bool:
+    """A capital not at the start of a sentence: a name, written as meant ("greet Tim", not Tom)."""
+    before = text[:start].rstrip()
+    return text[start : start + 1].isupper() and bool(before) and before[-1] not in ".!?\"“"
 
 
 def _fixed_words(text: str, fixes: list[tuple[int, int, Correction]]) -> list[str]:

@@ -42,7 +42,7 @@ def test_grammar_words_come_from_the_word_lists_and_the_frames() -> None:
         ("plase hand me teh thermos", "please hand me the thermos", False),
         ("pass me the thremos", "pass me the thermos", True),
         ("grab the dictionery please", "grab the dictionary please", True),
-        ("Put the Thermso on the ledge.", "Put the thermos on the ledge.", True),
+        ("Thremos on the ledge, pick it up.", "Thermos on the ledge, pick it up.", True),
     ],
 )
 def test_a_slip_is_corrected_to_the_one_word_it_is_close_to(text: str, fixed: str, referent: bool) -> None:
@@ -60,6 +60,7 @@ def test_a_slip_is_corrected_to_the_one_word_it_is_close_to(text: str, fixed: st
         "take three of them",  # a number word
         'say "helo everyone" to Bob',  # quoted words are said as they are
         "hand me the jat",  # as close to the hat as to the mat: ambiguous
+        "hand the lamb to Lanb",  # a capital mid-sentence: a name, written as meant
     ],
 )
 def test_correct_unknown_and_ambiguous_words_are_left_alone(text: str) -> None:
