@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import re
 from collections.abc import Sequence
+from functools import lru_cache
 
 from dialogue.reference.english import Words, lowered, spans, tokens
 from dialogue.rules.words import (
@@ -74,16 +75,26 @@ def starts(words: Sequence[str], prefix: Sequence[str]) -> bool:
     return len(prefix) <= len(words) and tuple(words[: len(prefix)]) == tuple(prefix)
 
 
-def strip_politeness(words: list[str], robot_name: str = "") -> list[str]:
+@lru_cache(maxsize=64)
+def _openings(robot_name: str) -> dict[str, tuple[Words, ...]]:
+    """The polite openings (and the robot's name) by first word, the longest first: "would you be
+    able to" before "would you"."""
     name = tuple(expanded(robot_name)) if robot_name else ()
-    # The longest first: "would you be able to" before "would you".
-    prefixes = sorted((*POLITE_PREFIXES, *((name,) if name else ())), key=len, reverse=True)
+    by_first: dict[str, list[Words]] = {}
+    for p in (*POLITE_PREFIXES, name):
+        if p:
+            by_first.setdefault(p[0], []).append(p)
+    return {w: tuple(sorted(ps, key=len, reverse=True)) for w, ps in by_first.items()}
+
+
+def strip_politeness(words: list[str], robot_name: str = "") -> list[str]:
+    openings = _openings(robot_name)
     changed = True
     while changed and words:
         changed = False
-        for p in prefixes:
+        for p in openings.get(words[0], ()):
             # "can you see" is a question, not a polite request: keep it.
-            if p and starts(words, p) and not (p[-1] == "you" and words[len(p) : len(p) + 1] == ["see"]):
+            if starts(words, p) and not (p[-1] == "you" and words[len(p) : len(p) + 1] == ["see"]):
                 words = words[len(p) :]
                 changed = True
                 break
