@@ -14,7 +14,17 @@ from dialogue import intents as I
 from dialogue.reference.english import ME, Words
 from dialogue.rules.parsed import Parse
 from dialogue.rules.speech import QUOTED, expanded, original_text, split_at, starts
-from dialogue.rules.words import DONE, EVERYONE, INTENSIFIERS, NEEDS, WANT_VERBS, WANTS
+from dialogue.rules.words import (
+    DONE,
+    EVERYONE,
+    INTENSIFIERS,
+    NEEDS,
+    NOT_WISHERS,
+    THEIR_WANTS,
+    WANT_VERBS,
+    WANTS,
+    WISHERS,
+)
 
 
 @dataclass(frozen=True)
@@ -66,6 +76,27 @@ def wanting(said: Said) -> Parse | None:
     return None
 
 
+def their_wish(said: Said) -> Parse | None:
+    """ "Ahmed would like the photo album", "he needs his glasses": bring it to them."""
+    w = said.words
+    for i in range(1, min(len(w), 4)):
+        who = w[:i]
+        lead = next((p for p in THEIR_WANTS if w[i : i + len(p)] == p), None)
+        if lead is None:
+            continue
+        wanted = w[i + len(lead) :]
+        person = who in {(x,) for x in WISHERS} or not set(who) & (NOT_WISHERS | WISHERS | ME)
+        if person and wanted and wanted[0] != "to":
+            return said.command(I.BRING_OBJECT, object=wanted, recipient=_pronoun(who))
+        return None
+    return None
+
+
+def _pronoun(who: Words) -> Words:
+    """ "he", "she", "they" refer to someone the conversation named."""
+    return {"he": ("him",), "she": ("her",), "they": ("them",)}.get(who[0], who) if len(who) == 1 else who
+
+
 def enough(said: Said) -> Parse | None:
     """ "that is enough (now)": stop."""
     if said.words[:2] == ("that", "is") and "enough" in said.words:
@@ -74,6 +105,17 @@ def enough(said: Said) -> Parse | None:
 
 
 # -- after a verb ---------------------------------------------------------------------------------
+def a_hand(said: Said) -> Parse | None:
+    """ "give George a hand getting to the courtyard" is helping him get there."""
+    rest = said.rest
+    at = next((i for i in range(len(rest) - 1) if rest[i : i + 2] == ("a", "hand")), None)
+    if at is None or at == 0:
+        return None
+    after = rest[at + 2 :]
+    after = after[1:] if after[:1] in {("getting",), ("with",)} else after
+    return helping(Said("help", (*rest[:at], *after), said.words, said.original))
+
+
 def helping(said: Said) -> Parse | None:
     """ "help me get to the bathroom": take them there."""
     found = split_at(said.rest, ["get to", "to"]) if "to" in said.rest else None

@@ -94,7 +94,7 @@ class Frame:
 
 
 _GRAB = "grab|take|get|collect|lift|grasp|seize|hold|pick"
-_BRING = "bring|hand|give|pass|fetch|deliver|carry"
+_BRING = "bring|hand|give|pass|fetch|deliver|carry|wheel|push|drag|pull|slide|shift"
 _PLACE = "put|place|set|lay|drop|leave|stick|stack|release|rest"
 _MOVE = (
     "go|move|navigate|drive|walk|head|come|return|proceed|roll|stand|pop|nip|hop|make your way|"
@@ -127,6 +127,7 @@ FRAMES: tuple[Frame, ...] = (
     Frame(_SAY, special=C.speech),
     Frame("let", special=C.letting_know),
     Frame("help", special=C.helping),
+    Frame("give", special=C.a_hand),
     Frame("show", special=C.showing),
     Frame(_GUIDE, I.GUIDE, direct="recipient", slots={"goal": "to|towards|into"}, here="goal",
           particles="over back through", defaults={"recipient": ("me",)}),
@@ -159,7 +160,7 @@ FRAMES: tuple[Frame, ...] = (
 )  # fmt: skip
 
 #: What the whole utterance may say before any verb is read ("I'm parched", "I want the apple").
-CONSTRUCTIONS: tuple[Special, ...] = (C.need, C.going, C.wanting, C.enough)
+CONSTRUCTIONS: tuple[Special, ...] = (C.need, C.going, C.wanting, C.their_wish, C.enough)
 
 
 @dataclass(frozen=True)

@@ -42,6 +42,7 @@ SPELT_CONFIDENCE = 0.7
 #: Punctuation, dashes, and (for unpunctuated speech) a polite request starting mid-utterance.
 _CLAUSE_BREAK = re.compile(
     r"[.;!?,]+(?:\s+|$)|\s+(?:-|\u2013|\u2014)\s+|\s+(?=(?:could|can|would|will)\s+you\b|please\b)"
+    r"|\s+(?=(?:can|could|may)\s+i\s+(?:have|get)\b)"  # "it's cold can I have a blanket"
     # A trailing clause with a subject of its own: "...the wine cellar she wants to pick a bottle",
     # "...my aspirin it is in one of the drawers", "...my eyeglass you can find it on the table".
     r"|\s+(?=(?:she|he|it|they|you)\s+(?:is|are|was|were|wants|needs|should|might|must|can|could|has|have|just)\b)",

@@ -122,9 +122,16 @@ HOMOPHONES = phrases(
 #: "I want X" and friends ask for X to be brought.
 WANTS = phrases(
     "i want|i need|i would like|can i have|could i have|may i have|can i get|could i get|i will have|"
-    "give me|i could use|i could do with|i would love|i would really like"
+    "give me|i could use|i could do with|i would love|i would really like|i fancy|we want|we need|"
+    "we would like"
 )
 WANT_VERBS = word_set("want wants need needs")
+#: "Ahmed would like the album", "he needs his glasses": someone else's wish, brought to them.
+THEIR_WANTS = phrases("would like|would love|wants|needs|could use|could do with|fancies|is after")
+#: Pronouns that may wish for something in those words; a name may too, but not a phrase with an
+#: article ("the kettle needs descaling") or the speaker or robot ("I", "you": other constructions).
+WISHERS = word_set("he she they")
+NOT_WISHERS = word_set("the a an this that these those some i we you it there what who")
 #: "I'm parched": a need names the ontology class of what would meet it.
 NEEDS: dict[str, str] = {
     "thirsty": "drink", "parched": "drink", "dehydrated": "drink",

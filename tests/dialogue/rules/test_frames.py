@@ -177,3 +177,24 @@ def test_more_verbs_and_phrasings(
         assert p.text == "please close the gate"
     if text.endswith("asap"):
         assert p.slots == {"rest": ("ann", "the", "vase")} and p.adjuncts == (("asap",),)
+
+
+@pytest.mark.parametrize(
+    ("text", "intent", "slots"),
+    [
+        ("Ann would like the vase", I.BRING_OBJECT, {"object": ("the", "vase"), "recipient": ("ann",)}),
+        ("my aunt needs her shawl", I.BRING_OBJECT, {"object": ("her", "shawl"), "recipient": ("my", "aunt")}),
+        ("she could use the vase", I.BRING_OBJECT, {"object": ("the", "vase"), "recipient": ("her",)}),
+        ("give Ann a hand getting to the garage", I.GUIDE, {"recipient": ("ann",), "goal": ("the", "garage")}),
+        ("wheel the trolley over to the piano", I.BRING_OBJECT, {"object": ("the", "trolley"),
+                                                                 "recipient": ("the", "piano")}),
+    ],
+)  # fmt: skip
+def test_someone_elses_wish_and_a_helping_hand(text: str, intent: str, slots: dict[str, tuple[str, ...]]) -> None:
+    p = parse(text)
+    assert (p.intent, {k: p.slots[k] for k in slots}) == (intent, slots)
+
+
+@pytest.mark.parametrize("text", ["the kettle needs descaling", "it needs a new battery", "Ann needs to rest"])
+def test_a_thing_needing_something_is_no_request(text: str) -> None:
+    assert parse(text).intent is None

@@ -383,3 +383,13 @@ def test_several_people_named_for_a_person_role_are_one_intent_each(office: KB) 
 def test_something_to_eat_is_food(kitchen: KB) -> None:
     out = say(kitchen, "could you get me something to eat", speaker="person_alice")
     assert (out.intent, out.roles) == (I.BRING_OBJECT, {"object": "apple_1", "recipient": "person_alice"})
+
+
+def test_a_wish_said_after_a_remark_is_read_on_its_own(kitchen: KB) -> None:
+    out = say(kitchen, "its freezing can i have the cookbook", speaker="person_alice")
+    assert (out.intent, out.roles) == (I.BRING_OBJECT, {"object": "book_1", "recipient": "person_alice"})
+
+
+def test_he_needs_it_brings_it_to_the_person_just_named(office: KB) -> None:
+    out = say(office, "he needs the stapler", history=[("user", "Dan is in the hallway")])
+    assert (out.intent, out.roles) == (I.BRING_OBJECT, {"object": "stapler_1", "recipient": "person_dan"})
