@@ -64,6 +64,16 @@ POSITIONS = word_set(
     "left right front back behind near nearest closest far farthest furthest big bigger biggest small "
     "smaller smallest large larger largest little other first second third last middle top bottom"
 )
+#: Nouns naming a part or side of something: "the head of the table", "the far end of the room"
+#: name the table and the room.
+PARTS = word_set(
+    "head end side center centre middle top bottom corner edge front back left right rear part area spot"
+)
+#: Nouns of what holds food or drink: "the beer cans", "a bottle of water" name the beer and the
+#: water when the KB has no such container.
+CONTAINERS = word_set(
+    "can tin bottle glass cup mug jar box carton packet pack bag bowl pot tub tube crate case"
+)
 #: Words that make a phrase name several things ("the cereals and the milk", "both cups").
 MANY = word_set("and both all every each")
 

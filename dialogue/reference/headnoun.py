@@ -18,6 +18,7 @@ from dialogue.reference.english import (
     DETERMINERS,
     MANY,
     MODIFIER_START,
+    PARTS,
     POSITIONS,
     SUPPORT_PREPOSITIONS,
     tokens,
@@ -27,11 +28,6 @@ from dialogue.reference.grounding import Entity, Kind
 from dialogue.reference.lexicon import Lexicon, norm, phrase, singular
 from dialogue.reference.synonyms import synonyms
 
-#: Nouns naming a part or side of something: "the head of the table", "the far end of the room"
-#: name the table and the room.
-_PARTS = word_set(
-    "head end side center centre middle top bottom corner edge front back left right rear part area spot"
-)
 #: Qualifiers of position or size the KB does not model: never a head, never evidence.
 _QUALIFIERS = POSITIONS | word_set("hand down up upper lower main")
 _SKIP = (DETERMINERS - MODIFIER_START) | word_set("please either is are was were be being it")
@@ -70,7 +66,7 @@ def _split(words: Sequence[str]) -> _Phrase:
         dangling = dangling or (not np and i == len(words))
     core_words = tuple(w for w in core if w not in _QUALIFIERS) or tuple(core)
     # "the head of the table": the part's owner is the head.
-    if core_words and core_words[-1] in _PARTS and mods and mods[0][0] == "of":
+    if core_words and core_words[-1] in PARTS and mods and mods[0][0] == "of":
         return _split(mods[0][1] + tuple(w for p, np in mods[1:] for w in (p, *np)))
     return _Phrase(core_words, tuple(mods), dangling)
 

@@ -47,7 +47,7 @@ def phrase(text: str) -> tuple[str, ...]:
 class Name:
     words: tuple[str, ...]
     entity: str
-    source: str  # "label", "id" or "class"
+    source: str  # "label", "id", "class", "head", "synonym" or "joined"
 
 
 @dataclass(frozen=True)
@@ -208,6 +208,8 @@ def _names(entity: Entity) -> list[Name]:
         words = tokens(text)
         if len(words) > 1:
             add(words[-1], "head")
+        if len(words) == 2 and all(w.isalpha() for w in words):
+            add("".join(words), "joined")  # "the eyeglass" for the "eye glass" (the converse of names_at)
     # Other ways of saying a name or its ending ("cell phone" for the "mobile phone", "the fridge"
     # for the "kitchen refrigerator").
     syn = synonyms(phrase)

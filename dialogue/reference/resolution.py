@@ -14,7 +14,7 @@ from collections.abc import Collection, Sequence
 from dataclasses import dataclass
 
 from dialogue import intents as I
-from dialogue.reference.english import DETERMINERS, LOCATIVE, PRONOUNS, tokens, word_set
+from dialogue.reference.english import CONTAINERS, DETERMINERS, LOCATIVE, PRONOUNS, tokens, word_set
 from dialogue.reference.grounding import Entity, Kind
 from dialogue.reference.headnoun import resolve_head
 from dialogue.reference.lexicon import Lexicon, norm
@@ -25,6 +25,8 @@ _GLUE = DETERMINERS | word_set(
     "labeled kind type next to and"
 )
 _LOCATIVE = LOCATIVE
+#: The ontology's class of what a bottle, a can or a packet holds.
+FOOD_OR_DRINK = "cyc:FoodOrDrink"
 #: Words that end a noun phrase's core: its head is the last content word before the first of them.
 _CORE_END = _LOCATIVE | word_set("of with next that which")
 
@@ -111,11 +113,28 @@ def resolve(
         matches = _by_qualifiers(lexicon, [normed[i] for i in content], kinds)
     if not matches and content:
         matches = resolve_head(lexicon, words, kinds)
+    contents = _contents(words, normed) if not matches and content else ()
+    if contents:  # what a container holds is food or drink ("a bottle of umbrella" is nothing)
+        held = resolve(lexicon, contents, kinds, owner=owner).matches
+        matches = [e for e in held if FOOD_OR_DRINK in e.classes]
     # Ownership only narrows: "my cup" still means the cup when nobody's cups are recorded.
     owned = [e for e in matches if owner is not None and e.owner == owner]
     matches = owned or matches
     seen = [e for e in matches if e.seen]
     return Resolution(phrase, tuple(seen or matches))
+
+
+def _contents(words: Sequence[str], normed: Sequence[str]) -> tuple[str, ...]:
+    """ "the beer cans" -> "the beer", "a can of beer" -> "beer": what a container named by a word
+    the KB has no thing for holds (the caller tried the container first); () when there is none."""
+    for i, word in enumerate(normed):
+        if word not in CONTAINERS:
+            continue
+        if words[i + 1 : i + 2] == ["of"] and words[i + 2 :]:
+            return tuple(words[i + 2 :])
+        if i > 0 and words[i - 1] not in _GLUE:
+            return (*words[:i], *words[i + 1 :])
+    return ()
 
 
 def _by_qualifiers(lexicon: Lexicon, qualifiers: Sequence[str], kinds: Collection[Kind]) -> list[Entity]:

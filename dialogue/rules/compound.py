@@ -20,7 +20,7 @@ _CONJUNCTIONS = word_set("and then , ; afterwards")
 #: Verbs that start a new command even with no conjunction before them, when followed by one of
 #: `_OBJECT_START` ("go to the bathroom take the rag"): never nouns in a command's phrases.
 _BARE_VERBS = word_set("take bring go put place grab fetch get find search give open move")
-_OBJECT_START = word_set("the a an my your his her this that these those it them me us to into some")
+_OBJECT_START = word_set("the a an my your his her this that these those it them me us to into some all both")
 #: Words after which a verb continues the same command ("you take", "to take", "go get"), besides
 #: the verbs of the grammar.
 _NO_CUT_AFTER = word_set(

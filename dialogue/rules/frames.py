@@ -95,7 +95,7 @@ class Frame:
 
 _GRAB = "grab|take|get|collect|lift|grasp|seize|hold|pick"
 _BRING = "bring|hand|give|pass|fetch|deliver|carry|wheel|push|drag|pull|slide|shift"
-_PLACE = "put|place|set|lay|drop|leave|stick|stack|release|rest"
+_PLACE = "put|place|set|lay|drop|leave|stick|stack|release|rest|hang|store|park"
 _MOVE = (
     "go|move|navigate|drive|walk|head|come|return|proceed|roll|stand|pop|nip|hop|make your way|"
     "find your way"
@@ -143,7 +143,7 @@ FRAMES: tuple[Frame, ...] = (
           requires=("object", "recipient")),
     # Things.
     Frame(_PLACE, I.PLACE_OBJECT, direct="object", slots={"recipient": PLACES}, here="recipient",
-          particles="down away back over"),
+          particles="down away back over out up"),
     Frame(_BRING, I.BRING_OBJECT, direct="object", slots={"recipient": _TO_SOMEONE}, here="recipient",
           particles=CARRY_PARTICLES, dative="any"),
     Frame(_GRAB, I.BRING_OBJECT, direct="object", slots={"recipient": _TO_SOMEONE}, particles=CARRY_PARTICLES,

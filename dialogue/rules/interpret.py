@@ -14,7 +14,7 @@ from dataclasses import replace
 from dialogue import intents as I
 from dialogue.history import Utterance
 from dialogue.prompts import FREE_FORM_OBJECT
-from dialogue.reference.english import Words, phrases, tokens
+from dialogue.reference.english import PARTS, Words, phrases, tokens
 from dialogue.reference.lexicon import Lexicon
 from dialogue.reference.resolution import (
     ANYWHERE,
@@ -201,8 +201,12 @@ class Interpreter:
         things = coordinated(p.slots.get(role, ())) if role not in overrides else []
         if role == "recipient" and not person:
             things = []
-        if whole.intent is not None or whole.clarify or len(things) < 2:
+        if role == "object" and not things and role not in overrides:
+            things = self.refs.every(p.slots.get(role, ()))  # "all the plates": each plate there is
+        if whole.intent is not None or whole.clarify or not things:
             return whole
+        if len(things) == 1:
+            return self._one_command(p, {**overrides, role: things[0]})
         each = [self._one_command(p, {**overrides, role: t}) for t in things]
         if any(o.intent is None for o in each):
             return next(o for o in each if o.intent is None)
@@ -247,7 +251,8 @@ class Interpreter:
             return self._missing(intent, "object", p)
         # The place said back with the preposition it was said with, unless a part of it was named
         # ("in the centre of the table" is put on the table).
-        said = p.marks.get("recipient") if "of" not in slots.get("recipient", ("of",)) else None
+        place = slots.get("recipient", ())
+        said = None if set(place) & PARTS and "of" in place else p.marks.get("recipient")
         reply = acknowledgement(self.snapshot, self.speaker, intent, roles, refs, said)
         if any(ref.guessed for ref in refs.values()):  # "go to bay mine": a guess, less sure
             return Outcome(reply, intent, roles, SPELT_CONFIDENCE, guessed=True)

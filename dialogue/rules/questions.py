@@ -30,9 +30,11 @@ _LOCATIVES = ("on top of", "on", "in", "inside", "under", "at")
 _INDIRECT: tuple[Words, ...] = tuple(
     tuple(p.split()) for p in ("do you know", "do you have any idea", "any idea", "have you any idea",
                                "can you tell me", "could you tell me", "i wonder", "i am wondering",
-                               "i was wondering")
+                               "i was wondering", "find out", "check", "go and see", "see")
 )  # fmt: skip
 _BE = frozenset({"is", "are", "was", "were"})
+_SOMEONE = word_set("anybody anyone somebody someone people")
+_ELSE = word_set("else besides except apart from but me us other than the room this")
 _NEARBY = word_set("around nearby here about")
 
 
@@ -59,6 +61,8 @@ def question(words: list[str]) -> Parse | None:
             w = w[len(lead) :]
             break
     head = w[:1]
+    if _anybody(w):  # "is anybody else here", "is there anyone around"
+        return _q("who_see", w)
     if head == ("whose",) or (head == ("who",) and (w[-2:] == ("belong", "to") or w[1:2] == ("owns",))):
         return _q("whose", w, thing=_owned_thing(w))
     if head in {("what",), ("which",)}:
@@ -90,6 +94,13 @@ def question(words: list[str]) -> Parse | None:
     if head and head[0] in WH:
         return _q("other", w)
     return None
+
+
+def _anybody(w: Words) -> bool:
+    if not w[:1] or w[0] not in {"is", "are"}:
+        return False
+    rest = w[2:] if w[1:2] == ("there",) else w[1:]
+    return bool(rest) and rest[0] in _SOMEONE and not set(rest[1:]) - _WHO_NOT_A_NAME - _ELSE
 
 
 def _what(w: Words) -> Parse:

@@ -19,11 +19,20 @@ from dialogue.reference.english import (
     POSITIONS,
     POSSESSIVES,
     Words,
+    tokens,
     word_set,
 )
 from dialogue.reference.grounding import Entity, Kind
 from dialogue.reference.lexicon import Lexicon
-from dialogue.reference.resolution import ANYWHERE, PERSON, antecedent, content_words, is_pronoun, resolve
+from dialogue.reference.resolution import (
+    ANYWHERE,
+    PERSON,
+    THING,
+    antecedent,
+    content_words,
+    is_pronoun,
+    resolve,
+)
 from dialogue.rules.compound import alternatives
 from dialogue.rules.outcome import Outcome, Ref
 from dialogue.rules.spelling import slips
@@ -35,6 +44,9 @@ RELATIONAL = POSITIONS
 _ACCOUNTED = RELATIONAL | COLOURS | ME | word_set(
     "it them him her here there over something anything around nearby about"
 )
+
+
+_EVERY = word_set("all both every each")
 
 
 class Referents:
@@ -57,6 +69,14 @@ class Referents:
             if people and (named or said):
                 return {"object": tail, "recipient": head}
         return {"object": rest, "recipient": ("me",)}
+
+    def every(self, words: Words) -> list[Words]:
+        """ "all the plates", "both cups": each thing the phrase names, as its id ([] when the phrase
+        is not quantified, or names nothing)."""
+        if not set(words) & _EVERY or set(words) & {"and", "or"}:
+            return []
+        rest = tuple(w for w in words if w not in _EVERY and w != "of")
+        return [tuple(tokens(e.id)) for e in resolve(self.lexicon, rest, THING).matches]
 
     def named_person(self, words: Words) -> bool:
         """Whether the phrase names one person of the KB (not a pronoun, not the speaker's "me")."""
