@@ -112,7 +112,7 @@ def _fit(row: Row, said: Said) -> Parse | None:
     rest, adjuncts = _adjuncts(rest, row)
     direct, slots, marks = _segments(rest, row)
     if frame.here is not None:
-        # "put it over there", "come here", "lead the way"; dropped when the place is also named
+        # "leave it over there", "come here", "lead the way"; dropped when the place is also named
         # ("lead the way to the lobby").
         pointed = next((p for p in _POINTING if direct[-len(p[0]) :] == p[0]), None)
         if pointed is not None:

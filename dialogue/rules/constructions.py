@@ -43,7 +43,7 @@ class Said:
 
 # -- before any verb: what the whole utterance says ----------------------------------------------
 def need(said: Said) -> Parse | None:
-    """ "I'm absolutely parched", "we are starving": something of the class that meets the need."""
+    """ "I'm really parched", "we are starving": something of the class that meets the need."""
     w = said.words
     if w[:2] not in {("i", "am"), ("we", "are")}:
         return None

@@ -194,7 +194,7 @@ class Interpreter:
     # -- commands --------------------------------------------------------------------------------
     def _command(self, p: Parse, overrides: dict[str, Words]) -> Outcome:
         whole = self._one_command(p, overrides)
-        # "bring me the cereals and the milk", "greet Ana and Tom": one intent per thing or person
+        # "bring me the bread and the jam", "greet Ana and Tom": one intent per thing or person
         # named, in order (people only where a role is a person's: one cup goes to one person).
         role = "object" if "object" in p.slots else "recipient"
         person = ROLE_KINDS.get(p.intent or "", {}).get("recipient") == PERSON

@@ -92,7 +92,7 @@ MOTION_PARTICLES = (
 )
 #: Words between a verb of carrying and its object or recipient ("bring it over to me").
 CARRY_PARTICLES = "over back up down along round around through"
-#: A place said by pointing at it: "come here", "put it over there", "lead the way".
+#: A place said by pointing at it: "come here", "leave it over there", "lead the way".
 HERE = phrases("here|over here|back here|right here|closer")
 THERE = phrases("there|over there|back there|the way")
 #: Phrases that say how or when, not what or where ("on my behalf", "when you can"): never part of
@@ -144,7 +144,7 @@ INTENSIFIERS = word_set("so very really absolutely quite a bit little totally ge
 #: is a yes/no question ("do you like music", "do robots ever get tired").
 DONE = word_set("the a an some my your our this that these those exercise exercises yoga stretches")
 EVERYONE = frozenset(phrases("everyone|everybody|all|them all|people"))
-#: Words of "stop what you are doing" that do not name the activity.
+#: Words of "stop whatever you are doing" that do not name the activity.
 STOP_FILLER = word_set(
     "what you are doing it that this everything all the current activity task now please immediately "
     "right there your whatever am is enough shut up"
