@@ -21,8 +21,9 @@ from typing import Any
 from text_to_num import alpha2digit
 
 from dialogue.ask.form import FieldKind, FormField
+from dialogue.reference.english import tokens
 from dialogue.reference.grounding import Entity, Snapshot
-from dialogue.reference.lexicon import Lexicon, norm, singular, tokens
+from dialogue.reference.lexicon import Lexicon, norm, singular
 from dialogue.reference.resolution import ALL_KINDS, resolve
 
 YES = frozenset(

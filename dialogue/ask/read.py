@@ -28,8 +28,9 @@ from typing import Any
 
 from dialogue.ask.fields import Clause, Found, ReadContext, find
 from dialogue.ask.form import AskForm, Clarifying, FormState
+from dialogue.reference.english import tokens
 from dialogue.reference.grounding import Entity
-from dialogue.reference.lexicon import Lexicon, tokens
+from dialogue.reference.lexicon import Lexicon
 
 _CANCEL = re.compile(
     r"\b(?:never ?mind|forget (?:it|about it)|cancel(?: that| it)?|stop asking|leave it|let'?s stop|"

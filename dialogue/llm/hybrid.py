@@ -21,7 +21,8 @@ class HybridModel(ChatModel):
             # Rules behind rules would only ever answer "not understood" twice.
             raise ValueError(f"hybrid needs a model that reads prompts behind the rules, not {inner.name!r}")
         self.inner = inner
-        self.rules = rules or RulesModel()
+        # A name read from a misspelt word is a guess: the model sees the words and the situation.
+        self.rules = rules or RulesModel(take_guesses=False)
 
     @property
     def name(self) -> str:

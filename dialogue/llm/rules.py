@@ -41,8 +41,11 @@ RULES = "rules"
 class RulesModel(ChatModel):
     """Answers every turn it understands in `prescreen`, without a prompt; reads no prompt itself."""
 
-    def __init__(self) -> None:
+    def __init__(self, take_guesses: bool = True) -> None:
         self._lexicons = LexiconCache()
+        #: Whether a turn in which a misspelt word was read as a KB name ("the thremos") is
+        #: answered (alone, the rules' best reading), or left to the model behind (hybrid).
+        self.take_guesses = take_guesses
 
     @property
     def name(self) -> str:
@@ -57,7 +60,7 @@ class RulesModel(ChatModel):
         if told is not None:  # what people tell or ask about what they know (dialogue.memory)
             return EarlyAnswer(told.answer, RULES, clarify=told.clarify)
         outcome = self.interpret(context)
-        if not outcome.understood:
+        if not self._claims(outcome):
             return None
         return EarlyAnswer(answer_of(outcome), RULES, clarify=outcome.clarify)
 
@@ -79,4 +82,7 @@ class RulesModel(ChatModel):
         # The tutorial's two keys, and the list only when there is more than one intent.
         unused = {"user_intents"} if answer.user_intents is None else set()
         content = json.dumps(answer.model_dump(exclude=unused | {"facts"}))
-        return ChatResult(content, "stop", understood=outcome.understood)
+        return ChatResult(content, "stop", understood=self._claims(outcome))
+
+    def _claims(self, outcome: Outcome) -> bool:
+        return outcome.understood and (self.take_guesses or not outcome.guesses)

@@ -14,9 +14,10 @@ from __future__ import annotations
 from collections.abc import Sequence
 
 from dialogue.history import Utterance
+from dialogue.reference.english import word_set
 from dialogue.reference.lexicon import Lexicon
 from dialogue.reference.resolution import PERSON, antecedent, content_words, resolve
-from dialogue.rules.words import normalise, word_set
+from dialogue.rules.utterance import normalise
 from dialogue.schema import FactClaim
 
 Words = tuple[str, ...]

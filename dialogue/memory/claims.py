@@ -18,8 +18,9 @@ from dataclasses import dataclass
 from typing import Literal
 
 from dialogue.reference.clarify import question as clarifying_question
+from dialogue.reference.english import tokens
 from dialogue.reference.grounding import Kind
-from dialogue.reference.lexicon import Lexicon, tokens
+from dialogue.reference.lexicon import Lexicon
 from dialogue.reference.resolution import ANYWHERE, PERSON, resolve_id
 from dialogue.schema import AnswerError, FactClaim
 

@@ -12,8 +12,9 @@ from collections.abc import Sequence
 
 from dialogue.history import Utterance
 from dialogue.memory.statements import Statements, Told, Words
+from dialogue.reference.english import word_set
 from dialogue.reference.lexicon import Lexicon
-from dialogue.rules.words import normalise, word_set
+from dialogue.rules.utterance import normalise
 
 _ONE = word_set("one ones")
 _EMPHASIS = word_set("obviously definitely clearly surely certainly yes yeah yep sure please thanks the a an")

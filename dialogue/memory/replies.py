@@ -8,8 +8,9 @@ from __future__ import annotations
 
 from dialogue.memory.claims import Claim
 from dialogue.memory.learn import Outcome, Settled
+from dialogue.reference.english import tokens
 from dialogue.reference.grounding import Snapshot
-from dialogue.reference.lexicon import singular, tokens
+from dialogue.reference.lexicon import singular
 from dialogue.rules.answers import listing, the
 
 _PREPOSITION = {"isIn": "in", "isOn": "on"}

@@ -22,19 +22,21 @@ from lemminflect import getAllLemmas
 
 from dialogue.history import Utterance
 from dialogue.reference.clarify import question as clarifying_question
+from dialogue.reference.english import POSSESSIVES, word_set
 from dialogue.reference.grounding import Kind
 from dialogue.reference.lexicon import Lexicon
 from dialogue.reference.resolution import (
     ANYWHERE,
     PERSON,
     PLACE,
-    POSSESSIVES,
     antecedent,
     content_words,
     is_pronoun,
     resolve,
 )  # fmt: skip
-from dialogue.rules.words import GREETINGS, SOCIAL, normalise, original_text, word_set
+from dialogue.rules.speech import original_text
+from dialogue.rules.utterance import normalise
+from dialogue.rules.words import GREETINGS, SOCIAL
 from dialogue.schema import FactClaim
 
 Words = tuple[str, ...]

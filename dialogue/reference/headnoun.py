@@ -13,34 +13,27 @@ from __future__ import annotations
 from collections.abc import Collection, Sequence
 from dataclasses import dataclass
 
+from dialogue.reference.english import (
+    COLOURS,
+    DETERMINERS,
+    MANY,
+    MODIFIER_START,
+    PARTS,
+    POSITIONS,
+    SUPPORT_PREPOSITIONS,
+    tokens,
+    word_set,
+)
 from dialogue.reference.grounding import Entity, Kind
-from dialogue.reference.lexicon import DETERMINERS, Lexicon, norm, phrase, singular, tokens
+from dialogue.reference.lexicon import Lexicon, norm, phrase, singular
 from dialogue.reference.synonyms import synonyms
-from dialogue.rules.words import COLOURS, word_set
 
-#: Words that end the core noun phrase and start a modifier ("the box *on* the table", "the coke
-#: *that* is in the kitchen", "a glass *of* water").
-_BOUNDARY = word_set(
-    "of from on in at inside into onto off near by beside under underneath below above behind next close "
-    "to towards for with without that which who whose where belonging between against opposite"
-)
-#: Prepositions of a modifier whose object is the thing's support or zone.
-_LOCATED = word_set("on in at inside into onto off from under underneath")
-#: Nouns naming a part or side of something: "the head of the table", "the far end of the room"
-#: name the table and the room.
-_PARTS = word_set(
-    "head end side center centre middle top bottom corner edge front back left right rear part area spot"
-)
 #: Qualifiers of position or size the KB does not model: never a head, never evidence.
-_QUALIFIERS = word_set(
-    "left right front back near nearest closest far farthest furthest big bigger biggest small smaller "
-    "smallest large larger largest little other first second third last middle top bottom hand down up "
-    "upper lower main"
-)
-_SKIP = (DETERMINERS - _BOUNDARY) | word_set("please either is are was were be being it")
+_QUALIFIERS = POSITIONS | word_set("hand down up upper lower main")
+_SKIP = (DETERMINERS - MODIFIER_START) | word_set("please either is are was were be being it")
 #: Coordinated or quantified phrases name several things: never one by its head ("the cereals and
 #: the milk", "both cups").
-_SEVERAL = word_set("and or both all every each")
+_SEVERAL = MANY | {"or"}
 
 
 @dataclass(frozen=True)
@@ -48,7 +41,7 @@ class _Phrase:
     core: tuple[str, ...]
     #: (preposition, its noun phrase) for each modifier after the core.
     modifiers: tuple[tuple[str, tuple[str, ...]], ...]
-    #: A preposition with no noun phrase after it ("the table for"): the phrase is cut short.
+    #: A preposition with no noun phrase after it ("the bay for"): the phrase is cut short.
     dangling: bool = False
 
 
@@ -56,8 +49,8 @@ def _split(words: Sequence[str]) -> _Phrase:
     words = [w for w in words if w not in _SKIP]
     core: list[str] = []
     i = 0
-    while i < len(words) and (words[i] not in _BOUNDARY or not core):
-        if words[i] not in _BOUNDARY and words[i] not in DETERMINERS:
+    while i < len(words) and (words[i] not in MODIFIER_START or not core):
+        if words[i] not in MODIFIER_START and words[i] not in DETERMINERS:
             core.append(words[i])
         i += 1
     mods: list[tuple[str, tuple[str, ...]]] = []
@@ -65,7 +58,7 @@ def _split(words: Sequence[str]) -> _Phrase:
     while i < len(words):
         prep, i = words[i], i + 1
         np: list[str] = []
-        while i < len(words) and words[i] not in _BOUNDARY:
+        while i < len(words) and words[i] not in MODIFIER_START:
             np.append(words[i])
             i += 1
         if np:
@@ -73,7 +66,7 @@ def _split(words: Sequence[str]) -> _Phrase:
         dangling = dangling or (not np and i == len(words))
     core_words = tuple(w for w in core if w not in _QUALIFIERS) or tuple(core)
     # "the head of the table": the part's owner is the head.
-    if core_words and core_words[-1] in _PARTS and mods and mods[0][0] == "of":
+    if core_words and core_words[-1] in PARTS and mods and mods[0][0] == "of":
         return _split(mods[0][1] + tuple(w for p, np in mods[1:] for w in (p, *np)))
     return _Phrase(core_words, tuple(mods), dangling)
 
@@ -149,7 +142,7 @@ def _evidence(lexicon: Lexicon, entity: Entity, phrase: _Phrase, name_start: int
                 return None  # "Dan's mug" when the mug is known to be Bob's
             score += 1
     for prep, np in phrase.modifiers:
-        if prep not in _LOCATED:
+        if prep not in SUPPORT_PREPOSITIONS:
             continue
         places = _entities(lexicon, np)
         if not places:

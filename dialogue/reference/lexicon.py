@@ -1,4 +1,4 @@
-"""Words and names: tokenising utterances and indexing every name of every entity of a snapshot.
+"""Names: indexing every name of every entity of a snapshot.
 
 Names come from the KB only (instance labels, ids, class labels of all classes including inferred
 superclasses, readable class ids), so a new object is understood as soon as it is in the KB. All
@@ -7,7 +7,6 @@ matching is on whole words (D11).
 
 from __future__ import annotations
 
-import re
 import threading
 from collections import defaultdict
 from collections.abc import Callable, Mapping, Sequence
@@ -17,44 +16,10 @@ from typing import Any, NamedTuple
 
 from lemminflect import getLemma
 
+from dialogue.reference.english import DETERMINERS, tokens, word_set
 from dialogue.reference.grounding import Entity, Snapshot
 from dialogue.reference.layered import GONE, Gone, Layered
 from dialogue.reference.synonyms import synonyms
-from dialogue.rules.words import word_set
-
-_WORD = re.compile(r"[a-z0-9]+(?:'[a-z]+)?")
-
-#: Words that never distinguish a referent.
-DETERMINERS = frozenset(
-    {
-        "the",
-        "a",
-        "an",
-        "some",
-        "any",
-        "this",
-        "that",
-        "these",
-        "those",
-        "my",
-        "your",
-        "our",
-        "its",
-        "one",
-        "ones",
-        "please",
-        "thing",
-        "there",
-        "here",
-    }
-)
-
-
-def tokens(text: str) -> list[str]:
-    """Lower-case whole words; `cup_1` gives `cup 1`, "don't" stays one word."""
-    text = text.lower().replace("\u2019", "'")
-    return _WORD.findall(text)
-
 
 #: Function words ending in -s that a noun lemmatiser would "singularise" ("was" -> "wa").
 _NOT_PLURAL = word_set("is was has does this his us yes its as thus plus whereas always sometimes perhaps")
@@ -82,7 +47,7 @@ def phrase(text: str) -> tuple[str, ...]:
 class Name:
     words: tuple[str, ...]
     entity: str
-    source: str  # "label", "id" or "class"
+    source: str  # "label", "id", "class", "head", "synonym" or "joined"
 
 
 @dataclass(frozen=True)
@@ -243,6 +208,8 @@ def _names(entity: Entity) -> list[Name]:
         words = tokens(text)
         if len(words) > 1:
             add(words[-1], "head")
+        if len(words) == 2 and all(w.isalpha() for w in words):
+            add("".join(words), "joined")  # "the eyeglass" for the "eye glass" (the converse of names_at)
     # Other ways of saying a name or its ending ("cell phone" for the "mobile phone", "the fridge"
     # for the "kitchen refrigerator").
     syn = synonyms(phrase)

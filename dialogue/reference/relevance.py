@@ -13,7 +13,8 @@ from __future__ import annotations
 import heapq
 from collections.abc import Iterable
 
-from dialogue.reference.lexicon import Lexicon, tokens
+from dialogue.reference.english import tokens
+from dialogue.reference.lexicon import Lexicon
 from dialogue.reference.snapshot import Entity, Snapshot
 
 

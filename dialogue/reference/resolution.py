@@ -14,20 +14,19 @@ from collections.abc import Collection, Sequence
 from dataclasses import dataclass
 
 from dialogue import intents as I
+from dialogue.reference.english import CONTAINERS, DETERMINERS, LOCATIVE, PRONOUNS, tokens, word_set
 from dialogue.reference.grounding import Entity, Kind
 from dialogue.reference.headnoun import resolve_head
-from dialogue.reference.lexicon import DETERMINERS, Lexicon, norm, tokens
-from dialogue.rules.words import word_set
+from dialogue.reference.lexicon import Lexicon, norm
 
-PRONOUNS = frozenset({"it", "them", "that", "this", "those", "these"})
-#: Possessive determiners whose owner comes from the conversation rather than from the phrase.
-POSSESSIVES = frozenset({"my", "your", "our", "his", "her", "their"})
 #: Words allowed inside a phrase without qualifying anything ("the cup that is on the table").
 _GLUE = DETERMINERS | word_set(
     "on in at of from off near inside onto into top which is are with colour color called named labelled "
     "labeled kind type next to and"
 )
-_LOCATIVE = frozenset({"on", "in", "at", "from", "near", "inside", "onto", "into", "under", "by", "to"})
+_LOCATIVE = LOCATIVE
+#: The ontology's class of what a bottle, a can or a packet holds.
+FOOD_OR_DRINK = "cyc:FoodOrDrink"
 #: Words that end a noun phrase's core: its head is the last content word before the first of them.
 _CORE_END = _LOCATIVE | word_set("of with next that which")
 
@@ -114,11 +113,28 @@ def resolve(
         matches = _by_qualifiers(lexicon, [normed[i] for i in content], kinds)
     if not matches and content:
         matches = resolve_head(lexicon, words, kinds)
+    contents = _contents(words, normed) if not matches and content else ()
+    if contents:  # what a container holds is food or drink ("a bottle of umbrella" is nothing)
+        held = resolve(lexicon, contents, kinds, owner=owner).matches
+        matches = [e for e in held if FOOD_OR_DRINK in e.classes]
     # Ownership only narrows: "my cup" still means the cup when nobody's cups are recorded.
     owned = [e for e in matches if owner is not None and e.owner == owner]
     matches = owned or matches
     seen = [e for e in matches if e.seen]
     return Resolution(phrase, tuple(seen or matches))
+
+
+def _contents(words: Sequence[str], normed: Sequence[str]) -> tuple[str, ...]:
+    """ "the beer cans" -> "the beer", "a can of beer" -> "beer": what a container named by a word
+    the KB has no thing for holds (the caller tried the container first); () when there is none."""
+    for i, word in enumerate(normed):
+        if word not in CONTAINERS:
+            continue
+        if words[i + 1 : i + 2] == ["of"] and words[i + 2 :]:
+            return tuple(words[i + 2 :])
+        if i > 0 and words[i - 1] not in _GLUE:
+            return (*words[:i], *words[i + 1 :])
+    return ()
 
 
 def _by_qualifiers(lexicon: Lexicon, qualifiers: Sequence[str], kinds: Collection[Kind]) -> list[Entity]:

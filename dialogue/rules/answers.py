@@ -6,8 +6,9 @@ from collections import Counter
 from collections.abc import Callable, Sequence
 
 from dialogue.reference.clarify import question as clarifying_question
+from dialogue.reference.english import tokens
 from dialogue.reference.grounding import Entity, Snapshot
-from dialogue.reference.lexicon import Lexicon, singular, tokens
+from dialogue.reference.lexicon import Lexicon, singular
 from dialogue.reference.resolution import ALL_KINDS, content_words, resolve
 from dialogue.situation import article
 

@@ -1,82 +1,43 @@
-"""A small English grammar of robot commands, on whole words (D11).
+"""Reading an utterance's words: its act (a request, a question, a greeting, thanks, a refusal) and,
+for a request, the verb frame it fits (dialogue.rules.frames) with each role's phrase (D11).
 
-This module only looks at words: it returns a `Parse` whose slots are still phrases. Which entity a
-phrase names is decided later against the KB (dialogue.rules.interpret), so no noun is hard-coded here.
+Only words are looked at: which entity a phrase names is decided later against the KB
+(dialogue.rules.interpret), so no noun is written here.
 """
 
 from __future__ import annotations
 
-from typing import Protocol
-
-from dialogue import intents as I
+from dialogue.reference.english import ME, MODIFIER_START, Words
+from dialogue.rules.constructions import Said
+from dialogue.rules.frames import CONSTRUCTIONS, Row, verb_index
+from dialogue.rules.parsed import Parse
 from dialogue.rules.questions import question as _question
+from dialogue.rules.speech import starts, strip_politeness
+from dialogue.rules.utterance import normalise, strip_vocative, verb_lemma
 from dialogue.rules.words import (
-    ACTIVITY_VERBS,
-    BRING,
-    GRAB,
+    ADJUNCTS,
     GREETINGS,
-    GUIDE,
-    INTENSIFIERS,
-    LOCATIVE,
-    ME,
-    MOTIONS,
-    MOVE,
-    NEEDS,
-    PLACE,
-    QUOTED,
-    SAY,
+    HERE,
+    JOINED_PREPOSITIONS,
+    MANNER,
+    NP_START,
+    PATHS,
+    PURPOSES,
     SOCIAL,
-    START,
-    STOP,
-    STOP_FILLER,
-    Parse,
-    Words,
-    base_verb,
-    normalise,
-    original_text,
-    split_at,
-    starts,
-    strip_politeness,
-    strip_vocative,
-    word_set,
-)  # fmt: skip
-
-__all__ = ["LOCATIVE", "ME", "Parse", "Words", "parse"]
-
-_EVERYONE = frozenset({("everyone",), ("everybody",), ("all",), ("them", "all"), ("people",)})
-#: Verbs that may follow "go"/"come" ("go greet Maria", "come pick up the cup").
-_ERRAND_VERBS = GRAB | BRING | PLACE | SAY | {"greet", "check", "clean", "see"}
-#: "I want X" and friends ask for X to be brought.
-_WANTS: tuple[Words, ...] = tuple(
-    tuple(p.split()) for p in ("i want", "i need", "i would like", "can i have", "could i have", "may i have",
-                               "can i get", "could i get", "i will have", "give me", "i could use",
-                               "i could do with", "i would love", "i would really like")
-)  # fmt: skip
-_GOAL_MARKERS = (
-    "to", "towards", "into", "inside", "onto", "on", "in", "near", "next to", "over to", "by", "beside"
-)  # fmt: skip
-#: Words between a motion verb and its goal: "go back to", "head over to", "go down to the cellar".
-_PARTICLES = word_set(
-    "back over there straight right down up ahead across along out around round on and stand wait close "
-    "closer quickly slowly carefully quietly safely directly"
+    THERE,
 )
-_WANT_VERBS = word_set("want wants need needs")
-#: What follows "do" in a request ("do the dishes", "do some exercise"); anything else after "do"
-#: is a yes/no question ("do you like music", "do robots ever get tired").
-_DONE = word_set("the a an some my your our this that these those exercise exercises yoga stretches")
 
+__all__ = ["Parse", "Words", "parse"]
 
-class _Cmd(Protocol):
-    def __call__(
-        self, intent: str, text: str | None = None, double: bool = False, **slots: Words
-    ) -> Parse: ...
+#: Pointing words and what they point at, longest first: the speaker, or the place just spoken of.
+_POINTING = sorted([(p, ("me",)) for p in HERE] + [(p, ("there",)) for p in THERE], key=lambda p: -len(p[0]))
 
 
 def parse(text: str, robot_name: str = "") -> Parse:
     words = strip_vocative(strip_politeness(normalise(text), robot_name), robot_name)
     if not words:
         return Parse("unknown", words=())
-    words[0] = base_verb(words[0])  # "(would you mind) picking up the cup"
+    words[0] = verb_lemma(words[0])  # "(would you mind) picking up the cup"
     if words[0] == "no" and len(words) > 1 and words[1] not in {"need", "more", "thanks", "thank"}:
         words = strip_politeness(words[1:], robot_name)
     if words and (words[0] in {"don't", "never", "no"} or starts(words, ["do", "not"])):
@@ -98,222 +59,176 @@ def parse(text: str, robot_name: str = "") -> Parse:
                 return Parse("greeting", words=tuple(words))
             # "Good morning Maria" is still a greeting; "hi, grab the cup" is a request.
             return _request(text, rest) or Parse("greeting", words=tuple(words))
-    return _question(words) or _command(text, words)
+    return _question(words) or command(text, words)
 
 
 def _request(text: str, words: list[str]) -> Parse | None:
     """What follows a greeting or thanks, if it is a question or command."""
     if not words:
         return None
-    after = _question(words) or _command(text, words)
+    after = _question(words) or command(text, words)
     return after if after.act != "unknown" else None
 
 
-#: Two-word prepositions read as one, so that their "to" is never taken for a recipient's.
-_PREPOSITIONS = {("next", "to"): "beside", ("close", "to"): "near", ("nearest", "to"): "near"}
-
-
-def _command(original: str, words: list[str]) -> Parse:
-    for i in range(len(words) - 2, 0, -1):
-        if (words[i], words[i + 1]) in _PREPOSITIONS:
-            words[i : i + 2] = [_PREPOSITIONS[(words[i], words[i + 1])]]
-    if words[:3] == ["make", "your", "way"] or words[:3] == ["find", "your", "way"]:
-        words = ["go", *words[3:]]
-    if words[1:3] == ["hold", "of"] and words[0] in GRAB | {"catch"}:  # "get hold of the mug"
-        words = ["grab", *words[3:]]
-    verb, rest = words[0], tuple(words[1:])
-    w = tuple(words)
-
-    def cmd(intent: str, text: str | None = None, double: bool = False, **slots: Words) -> Parse:
-        return Parse("command", intent, dict(slots), text=text, words=w, double_object=double)
-
-    need = _need(w)
-    if need is not None:  # "I'm parched": something to drink
-        return cmd(I.BRING_OBJECT, object=(need,), recipient=("me",))
-    if verb == "help" and "to" in rest:  # "help me get to the bathroom": take them there
-        who, _, goal = split_at(rest, ["get to", "to"]) or ((), "", ())
-        if who and goal:
-            return cmd(I.GUIDE, recipient=who, goal=goal)
-    going = _wants_to_go(w)
-    if going is not None:  # "Ellen needs to get to the utility room": take her there
-        return cmd(I.GUIDE, recipient=going[0], goal=going[1])
-    for lead in _WANTS:
-        if starts(w, lead) and len(w) > len(lead):
-            wanted = w[len(lead) :]
-            if wanted[:3] == ("to", "go", "to"):  # "I want to go to the kitchen": take them there
-                return cmd(I.GUIDE, recipient=("me",), goal=wanted[3:])
-            if wanted[:1] != ("to",):  # "I would like the apple"
-                return _bring("bring", ("me", *wanted), cmd)
-    if verb in {"go", "come"} and rest[:1] and rest[0] in _ERRAND_VERBS:  # "go greet Maria"
-        return _command(original, list(rest))
-    if verb == "let" and "know" in rest:  # "let Tom know that..." is "tell Tom that..."
-        return _say(original, "tell", tuple(x for x in rest if x != "know"), cmd)
-    if verb in {"approach", "enter"} and rest:
-        return cmd(I.MOVE_TO, goal=rest)
-    if w[:2] in {("look", "at"), ("turn", "to"), ("turn", "towards")} or verb == "face":
-        return cmd(I.ENGAGE_WITH, recipient=rest[1:] if verb != "face" else rest)
-    if w[:2] == ("wake", "up") or w in {("wake",), ("wakeup",)}:
-        return cmd(I.WAKEUP)
-    if w[:3] in {("go", "to", "sleep"), ("take", "a", "break")} or w in {
-        ("sleep",),
-        ("suspend",),
-        ("standby",),
-        ("stand", "by"),
-        ("rest",),
-        ("power", "down"),
-    }:
-        return cmd(I.SUSPEND)
-    enough = w[:2] == ("shut", "up") or (w[:2] == ("that", "is") and "enough" in w) or w == ("enough",)
-    if verb in STOP or enough:
-        activity = tuple(x for x in rest if x not in STOP_FILLER)
-        return cmd(I.STOP_ACTIVITY, text="_".join(activity) or None)
-    if verb == "greet" and rest in _EVERYONE:
-        return Parse("greeting", words=w, slots={"everyone": rest})
-    greeting_verb = verb in {"greet", "welcome"}
-    if greeting_verb or (verb in {"say", "wave"} and rest[:2] in {("hello", "to"), ("hi", "to")}):
-        recipient = rest if greeting_verb else rest[2:]
-        if recipient[-2:] in {("for", "me"), ("from", "me"), ("for", "us"), ("from", "us")}:
-            recipient = recipient[:-2]  # "say hi to Ahmed for me": still Ahmed
-        return cmd(I.GREET, recipient=recipient)
-    if verb in {"engage", "talk", "speak", "interact"} and rest[:1] in {("with",), ("to",)}:
-        return cmd(I.ENGAGE_WITH, recipient=rest[1:])
-    if verb in MOTIONS:
-        found = split_at(("x", *rest), ["to", "at", "for"])
-        target = found[2] if found and found[1] in {"to", "at"} else ()
-        motion = verb if verb != "shake" else "shake_hands"
-        return cmd(I.PERFORM_MOTION, text=motion, recipient=target)
-    if verb in SAY:
-        return _say(original, verb, rest, cmd)
-    there = rest[-1:] == ("there",) and "to" not in rest  # "take us there": where was just said
-    if verb in GUIDE or (
-        verb in {"take", "walk", "bring"} and rest[:1] and rest[0] in ME and ("to" in rest or there)
-    ):
-        if verb == "show" and "way" not in rest and "to" not in rest:
-            thing = rest[1:] if rest[:1] and rest[0] in ME else rest
-            return Parse("question", question="where", slots={"thing": thing}, words=w)
-        way = "way" in rest
-        if way:
-            rest = tuple(x for x in rest if x not in {"the", "way"})
-        found = split_at(rest, ["to", "towards", "into"]) if rest[:1] != ("to",) else ((), "to", rest[1:])
-        if found is None and (way or there):  # "lead the way": to the place just spoken of
-            who = tuple(x for x in rest if x not in {"there", "over", "back"})
-            return cmd(I.GUIDE, recipient=who, goal=("there",))  # no one named: see interpret
-        if found is None:
-            return cmd(I.GUIDE, recipient=rest)
-        return cmd(I.GUIDE, recipient=found[0] or ("me",), goal=found[2])
-    if verb in MOVE:
-        if rest in {("up",), ("back",), ("down",)}:
-            return Parse("unknown", words=w)
-        found = split_at(("x", *rest), _GOAL_MARKERS)
-        if rest in {("here",), ("over", "here"), ("closer",), ("back", "here")}:
-            return cmd(I.MOVE_TO, goal=("me",))
-        if rest in {("there",), ("over", "there")}:
-            return cmd(I.MOVE_TO, goal=("there",))
-        if found is None:
-            return Parse("unknown", words=w)
-        if found[0] == ("x",) or set(found[0][1:]) <= _PARTICLES:
-            return cmd(I.MOVE_TO, goal=found[2])
-        return cmd(I.PLACE_OBJECT, object=found[0][1:], recipient=found[2])
-    if verb in PLACE:
-        found = split_at(rest, LOCATIVE)
-        if found is None and rest[-1:] in {("there",), ("here",)} and len(rest) > 1:  # "put it over there"
-            obj = tuple(x for x in rest[:-1] if x not in {"down", "away", "back", "over"})
-            return cmd(I.PLACE_OBJECT, object=obj, recipient=("there",) if rest[-1] == "there" else ("me",))
-        if found is None:
-            obj = tuple(x for x in rest if x not in {"down", "away", "back"})
-            return cmd(I.PLACE_OBJECT, object=obj, recipient=())
-        obj = tuple(x for x in found[0] if x not in {"down", "away", "back"})
-        return cmd(I.PLACE_OBJECT, object=obj, recipient=found[2])
-    if verb in BRING or (
-        verb in GRAB
-        and (
-            (verb != "pick" and rest[:1] and rest[0] in ME)
-            or "to" in rest
-            or "for" in rest  # "get the vitamins down for Mr K": fetching for someone is bringing
-        )
-    ):
-        return _bring(verb, rest, cmd)
-    if verb in GRAB:
-        obj = rest
-        if verb == "pick":
-            obj = tuple(x for x in rest if x != "up")
-        elif obj[-1:] == ("up",):
-            obj = obj[:-1]
-        return cmd(I.GRAB_OBJECT, object=obj)
-    if verb in {"does", "did"} or (verb == "do" and rest[:1] and rest[0] not in _DONE):
-        return Parse("unknown", words=w)  # "do you like music": a yes/no question, not an activity
-    if verb in START or verb in ACTIVITY_VERBS:
-        activity = rest if verb in START else w
-        if verb in START and rest[:1] and rest[0] in {"to"}:
-            activity = rest[1:]
-        name = "_".join(x for x in activity if x not in {"the", "a", "an", "some", "with", "me", "us", "of"})
-        return cmd(I.START_ACTIVITY, text=name or None)
+def command(original: str, words: list[str]) -> Parse:
+    """The request the words make: the first construction or verb frame that fits them."""
+    w = _joined(words)
+    said = Said("", w, w, original)
+    for construction in CONSTRUCTIONS:
+        found = construction(said)
+        if found is not None:
+            return found
+    if w:
+        w = (verb_lemma(w[0]), *w[1:])
+    for verb, row in verb_index().get(w[0], ()) if w else ():
+        if tuple(w[: len(verb)]) != verb:
+            continue
+        found = _fit(row, Said(" ".join(verb), w[len(verb) :], w, original))
+        if found is not None:
+            return found
     return Parse("unknown", words=w)
 
 
-def _need(w: Words) -> str | None:
-    """ "I'm absolutely parched", "we are starving": the class of what would meet the need."""
-    if w[:2] not in {("i", "am"), ("we", "are")}:
-        return None
-    rest = [x for x in w[2:] if x not in INTENSIFIERS]
-    return NEEDS.get(rest[0]) if len(rest) == 1 else None
-
-
-def _wants_to_go(w: Words) -> tuple[Words, Words] | None:
-    """ "I want to go to X", "Ellen needs to get to X": (who, where)."""
-    for i in range(len(w) - 4):
-        wants = w[i] in _WANT_VERBS or w[i : i + 2] in {("would", "like"), ("has", "to"), ("have", "to")}
-        at = i + (2 if w[i] == "would" else 1)
-        going = w[at : at + 1] == ("to",) and w[at + 1 : at + 2] in {("go",), ("get",)}
-        if wants and going and w[at + 2 : at + 3] == ("to",) and w[at + 3 :]:
-            who = w[:i]
-            return (("me",) if who in {(), ("i",), ("we",)} else who), w[at + 3 :]
-    return None
-
-
-def _say(original: str, verb: str, rest: Words, cmd: _Cmd) -> Parse:
-    quoted = QUOTED.search(original)
-    if quoted:
-        # The quoted words are the text; the recipient is found outside the quotes only.
-        outside = normalise(original[: quoted.start()] + " " + original[quoted.end() :])
-        rest = tuple(outside[outside.index(verb) + 1 :]) if verb in outside else ()
-        rest = tuple(x for x in rest if x not in {"that", "please"})
-        recipient = rest[1:] if rest[:1] == ("to",) else rest
-        return cmd(I.SAY, text=quoted.group(1).strip(), recipient=recipient)
-    if rest[:1] and rest[0] in {"goodbye", "bye"} and "to" in rest:
-        return cmd(I.SAY, text="goodbye", recipient=rest[rest.index("to") + 1 :])
-    if verb in {"tell", "inform", "remind"}:
-        found = split_at(rest, ["that", "to", "about"])
-        if found is not None:
-            recipient, sep, text = found
-            text = ("please", *text) if sep == "to" else text
-            if sep == "about":
-                return Parse("unknown", words=(verb, *rest))
+def _joined(words: list[str]) -> Words:
+    """ "next to" as one word ("beside"), so that its "to" is never taken for a recipient's."""
+    out: list[str] = []
+    for word in words:
+        if out and (out[-1], word) in JOINED_PREPOSITIONS and len(out) > 1:
+            out[-1] = JOINED_PREPOSITIONS[(out[-1], word)]
         else:
-            recipient, text = rest[:1], rest[1:]
-        if recipient[:1] and recipient[0] in ME:  # "tell me a joke": small talk, not a SAY intent
-            return Parse("unknown", words=(verb, *rest))
-        if not text:  # "tell Maria": the interpreter asks what to say
-            return cmd(I.SAY, recipient=recipient)
-        said = original_text(original, text[1:] if text[0] == "please" else text)
-        return cmd(I.SAY, text=f"please {said}" if text[0] == "please" else said, recipient=recipient)
-    found = split_at(rest, ["to"])
-    text_words, recipient = (found[0], found[2]) if found is not None else (rest, ())
-    if not text_words:
-        return Parse("unknown", words=(verb, *rest))
-    return cmd(I.SAY, text=original_text(original, text_words), recipient=recipient)
+            out.append(word)
+    return tuple(out)
 
 
-def _bring(verb: str, rest: Words, cmd: _Cmd) -> Parse:
-    dropped = {"over", "back", "up", "down", "along", "round", "around"}
-    rest = tuple(x for x in rest if x not in dropped)
-    if rest[-2:] in {("for", "me"), ("for", "us")}:
-        return cmd(I.BRING_OBJECT, object=rest[:-2], recipient=("me",))
-    if rest[-1:] == ("here",):
-        return cmd(I.BRING_OBJECT, object=rest[:-1], recipient=("me",))
-    found = split_at(rest, ["to", "towards", "for"])
-    if found is not None:
-        return cmd(I.BRING_OBJECT, object=found[0], recipient=found[2])
-    if rest[:1] and rest[0] in ME:
-        return cmd(I.BRING_OBJECT, object=rest[1:], recipient=("me",))
-    return cmd(I.BRING_OBJECT, double=True, rest=rest)
+def _fit(row: Row, said: Said) -> Parse | None:
+    """The row's reading of what follows the verb, or None when the row does not fit it."""
+    frame, rest = row.frame, said.rest
+    if frame.special is not None:
+        return frame.special(said)
+    if frame.serial:  # "go get the cup", "come say hello to Ana"
+        return command(said.original, list(rest)) if rest and verb_lemma(rest[0]) in verb_index() else None
+    if frame.whole and rest:
+        return None
+    rest, adjuncts = _adjuncts(rest, row)
+    direct, slots, marks = _segments(rest, row)
+    if frame.here is not None:
+        # "leave it over there", "come here", "lead the way"; dropped when the place is also named
+        # ("lead the way to the lobby").
+        pointed = next((p for p in _POINTING if direct[-len(p[0]) :] == p[0]), None)
+        if pointed is not None:
+            direct = direct[: -len(pointed[0])]
+            slots.setdefault(frame.here, pointed[1])
+    direct = _without_particles(direct, row)
+    if not direct and frame.direct is not None:
+        direct = _second_phrase(slots)  # "bring to Ana the tray"
+    if frame.dative is not None and "recipient" not in slots and direct:
+        if direct[0] in ME:  # "get me a cup"
+            slots["recipient"], direct = ("me",), direct[1:]
+        elif frame.dative == "any":  # "give Ines her phone": the interpreter splits it against the KB
+            return Parse("command", frame.intent, {"rest": direct}, words=said.words, double_object=True,
+                         adjuncts=adjuncts)  # fmt: skip
+    if direct and frame.direct is None:
+        return None
+    if direct and frame.direct is not None:
+        slots[frame.direct] = direct
+    if frame.only is not None and not set(slots.get(frame.direct or "", ("",))) <= frame.only:
+        return None
+    if any(role not in slots for role in frame.requires):
+        return None
+    implicit = frozenset(r for r in frame.defaults if r not in slots)
+    slots = {**{r: frame.defaults[r] for r in implicit}, **slots}
+    text = frame.text(said.verb, said.rest) if frame.text is not None else None
+    return Parse("command", frame.intent, slots, text=text, words=said.words, adjuncts=adjuncts,
+                 implicit=implicit, marks=marks)  # fmt: skip
+
+
+def _segments(rest: Words, row: Row) -> tuple[Words, dict[str, Words], dict[str, str]]:
+    """The words before any of the row's prepositions (the direct role's), and each role's phrase:
+    from its preposition to the next role's (a role's preposition said again stays in its phrase:
+    "put the cup on the tray on the table"), and the preposition of each."""
+    direct: list[str] = []
+    slots: dict[str, list[str]] = {}
+    marks: dict[str, str] = {}
+    current = direct
+    i = 0
+    while i < len(rest):
+        marker = next((m for m in row.slots if rest[i : i + len(m[0])] == m[0] and m[1] not in slots), None)
+        if marker is not None and rest[i : i + 2] not in PURPOSES:  # "something to eat" is no recipient
+            current = slots[marker[1]] = []
+            marks[marker[1]] = " ".join(marker[0])
+            i += len(marker[0])
+            continue
+        current.append(rest[i])
+        i += 1
+    return tuple(direct), {role: tuple(words) for role, words in slots.items() if words}, marks
+
+
+def _second_phrase(slots: dict[str, Words]) -> Words:
+    """When nothing follows the verb directly, a second noun phrase after a role's own ("to Ana the
+    tray") is the direct one; it is taken out of that role's phrase."""
+    for role, words in slots.items():
+        for i in range(1, len(words)):
+            if words[i] in NP_START and words[i - 1] not in NP_START:
+                slots[role] = words[:i]
+                return words[i:]
+    return ()
+
+
+def _without_particles(words: Words, row: Row) -> Words:
+    """Particles next to the verb, at the end, or before a preposition ("pick the cup up from the
+    table"), never inside a phrase ("the back door")."""
+    if not row.particles:
+        return words
+    out = list(words)
+    while out and out[0] in row.particles:
+        out.pop(0)
+    while out and out[-1] in row.particles:
+        out.pop()
+    return tuple(w for i, w in enumerate(out) if w not in row.particles or not _before_preposition(out, i))
+
+
+def _before_preposition(words: list[str], i: int) -> bool:
+    return i + 1 < len(words) and words[i + 1] in MODIFIER_START
+
+
+def _adjuncts(rest: Words, row: Row) -> tuple[Words, tuple[Words, ...]]:
+    """The words without their adjuncts ("through the main door", "on my behalf", "when you can",
+    "carefully"), and the adjuncts. A phrase starting with one of the row's own prepositions is
+    one of its roles, not an adjunct."""
+    own = {m[0][0] for m in row.slots}
+    out: list[str] = []
+    found: list[Words] = []
+    i = 0
+    while i < len(rest):
+        end = _adjunct_end(rest, i, own)
+        if end > i:
+            found.append(rest[i:end])
+            i = end
+        else:
+            out.append(rest[i])
+            i += 1
+    return tuple(out), tuple(found)
+
+
+def _adjunct_end(rest: Words, i: int, own: set[str]) -> int:
+    word = rest[i]
+    by_doing = word == "by" and i + 1 < len(rest) and rest[i + 1].endswith("ing")  # "by crossing the hall"
+    if word in own and not by_doing:
+        return i
+    said_how = _said_how(rest, i)
+    if said_how:
+        return i + said_how
+    if word in PATHS or by_doing:
+        end, stop = i + 1, own | PATHS
+        while end < len(rest) and rest[end] not in stop and not _said_how(rest, end):
+            end += 1
+        # "through the main door" has a phrase; "walk through to the lounge" is a particle.
+        return end if end > i + 1 else i
+    return i
+
+
+def _said_how(rest: Words, i: int) -> int:
+    """The length of the phrase of manner or time that starts at i ("when you can", "carefully"), or 0."""
+    if rest[i] in MANNER:
+        return 1
+    return next((len(p) for p in ADJUNCTS if rest[i : i + len(p)] == p), 0)

@@ -7,35 +7,26 @@ of the grammar, and before an imperative verb that starts a new command without 
 
 from __future__ import annotations
 
-import re
 from dataclasses import dataclass
 
+from dialogue.reference.english import Words, spans, word_set
 from dialogue.reference.resolution import content_words
-from dialogue.rules.words import (
-    COMMAND_VERBS,
-    GREETINGS,
-    NO_INTENT_VERBS,
-    QUOTED,
-    Words,
-    base_verb,
-    normalise,
-    starts,
-    strip_politeness,
-    strip_vocative,
-    word_set,
-)
+from dialogue.rules.frames import verbs
+from dialogue.rules.speech import QUOTED, starts, strip_politeness
+from dialogue.rules.utterance import asked_verb, normalise, strip_vocative
+from dialogue.rules.words import GREETINGS, NO_INTENT_VERBS
 
-_TOKEN = re.compile(r"[a-z0-9]+(?:'[a-z]+)?|,|;")
 _CONJUNCTIONS = word_set("and then , ; afterwards")
 #: Verbs that start a new command even with no conjunction before them, when followed by one of
 #: `_OBJECT_START` ("go to the bathroom take the rag"): never nouns in a command's phrases.
 _BARE_VERBS = word_set("take bring go put place grab fetch get find search give open move")
-_OBJECT_START = word_set("the a an my your his her this that these those it them me us to into some")
-#: Words after which a verb continues the same command ("you take", "to take", "go get").
+_OBJECT_START = word_set("the a an my your his her this that these those it them me us to into some all both")
+#: Words after which a verb continues the same command ("you take", "to take", "go get"), besides
+#: the verbs of the grammar.
 _NO_CUT_AFTER = word_set(
     "to you i we and then please can could would will go come let just also should must not don't never "
     "us me robot or but if when while before after so and the a an my your his her this that some"
-) | COMMAND_VERBS
+)
 
 
 @dataclass(frozen=True)
@@ -56,16 +47,15 @@ def _verb(text: str) -> str | None:
     words = strip_vocative(words)
     if not words:
         return None
-    verb = base_verb(words[0])
-    return verb if verb in COMMAND_VERBS or verb in NO_INTENT_VERBS else None
+    return asked_verb(words[0])
 
 
 def conjuncts(text: str) -> list[Part]:
     """The commands of a compound request in order, or [] when the text is one request."""
     if QUOTED.search(text):  # "say 'stop and wait' to Tom": the quote is one text
         return []
-    lowered = text.lower().replace("\u2019", "'")
-    toks = [(m.group(), m.start(), m.end()) for m in _TOKEN.finditer(lowered)]
+    toks = spans(text, marks=True)
+    no_cut_after = _NO_CUT_AFTER | verbs() | _CONJUNCTIONS
     cuts: list[tuple[int, int]] = []  # (index of the first word of the new part, index after the cut)
     for i, (word, _, _) in enumerate(toks):
         if i == 0:
@@ -76,20 +66,20 @@ def conjuncts(text: str) -> list[Part]:
                 j += 1
             if j < len(toks) and (not cuts or cuts[-1][1] <= i):
                 cuts.append((i, j))
-        elif word in _BARE_VERBS and toks[i - 1][0] not in _NO_CUT_AFTER | _CONJUNCTIONS:
+        elif word in _BARE_VERBS and toks[i - 1][0] not in no_cut_after:
             nxt = toks[i + 1][0] if i + 1 < len(toks) else ""
             if nxt in _OBJECT_START:
                 cuts.append((i, i))
     if not cuts:
         return []
-    spans: list[tuple[int, int]] = []  # token ranges of the parts
+    ranges: list[tuple[int, int]] = []  # token ranges of the parts
     start = 0
     for end, resume in cuts:
-        spans.append((start, end))
+        ranges.append((start, end))
         start = resume
-    spans.append((start, len(toks)))
+    ranges.append((start, len(toks)))
     parts: list[tuple[int, int]] = []
-    for s, e in spans:
+    for s, e in ranges:
         if s >= e:
             continue
         piece = text[toks[s][1] : toks[e - 1][2]]

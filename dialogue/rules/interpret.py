@@ -8,19 +8,17 @@ answering the robot's last question ("the red one") completes the request found 
 from __future__ import annotations
 
 import re
-from collections.abc import Collection, Sequence
+from collections.abc import Sequence
 from dataclasses import replace
 
 from dialogue import intents as I
 from dialogue.history import Utterance
 from dialogue.prompts import FREE_FORM_OBJECT
-from dialogue.reference.clarify import question as clarifying_question
-from dialogue.reference.grounding import Entity, Kind
-from dialogue.reference.lexicon import Lexicon, tokens
+from dialogue.reference.english import PARTS, Words, phrases, tokens
+from dialogue.reference.lexicon import Lexicon
 from dialogue.reference.resolution import (
     ANYWHERE,
     PERSON,
-    POSSESSIVES,
     ROLE_KINDS,
     antecedent,
     content_words,
@@ -28,33 +26,32 @@ from dialogue.reference.resolution import (
     resolve,
 )  # fmt: skip
 from dialogue.rules import answers
-from dialogue.rules.commands import LOCATIVE, ME, Parse, Words, parse
-from dialogue.rules.compound import Part, alternatives, conjuncts, coordinated, unprefixed
+from dialogue.rules.commands import parse
+from dialogue.rules.compound import Part, conjuncts, coordinated, unprefixed
 from dialogue.rules.outcome import Outcome, Ref
+from dialogue.rules.parsed import Parse
+from dialogue.rules.referents import RELATIONAL, Referents
 from dialogue.rules.replies import acknowledgement, vocative
-from dialogue.rules.words import COLOURS, INTERJECTIONS, cleaned, word_set
+from dialogue.rules.spelling import corrected
+from dialogue.rules.utterance import cleaned
+from dialogue.rules.words import INTERJECTIONS, PLACES
 
 _ONE = frozenset({"one", "ones"})
+#: How sure the rules are of a turn in which they corrected a slip ("plase", "thremos").
+SPELT_CONFIDENCE = 0.7
 #: Punctuation, dashes, and (for unpunctuated speech) a polite request starting mid-utterance.
 _CLAUSE_BREAK = re.compile(
     r"[.;!?,]+(?:\s+|$)|\s+(?:-|\u2013|\u2014)\s+|\s+(?=(?:could|can|would|will)\s+you\b|please\b)"
+    r"|\s+(?=(?:can|could|may)\s+i\s+(?:have|get)\b)"  # "it's cold can I have a blanket"
     # A trailing clause with a subject of its own: "...the wine cellar she wants to pick a bottle",
     # "...my aspirin it is in one of the drawers", "...my eyeglass you can find it on the table".
     r"|\s+(?=(?:she|he|it|they|you)\s+(?:is|are|was|were|wants|needs|should|might|must|can|could|has|have|just)\b)",
     re.I,
 )
-#: Spatial or comparative qualifiers the KB does not model (dropped when they block a match).
-RELATIONAL = word_set(
-    "left right front back behind near nearest closest far farthest big bigger biggest small smaller "
-    "smallest large larger largest little other first second third last middle top bottom"
-)
-_MANY = word_set("and both all every each")
+#: A fragment answering "Where should I put it?" may start with its preposition ("on the shelf").
+_PLACES = phrases(PLACES)
 #: An answer naming an owner ("mine", "hers") is the possessive phrase ("my cup").
 _POSSESSIVE_OF = {"mine": "my", "yours": "your", "ours": "our", "hers": "her", "theirs": "their"}
-#: Words that need no name in the KB to be understood in a phrase.
-_ACCOUNTED = RELATIONAL | COLOURS | ME | word_set(
-    "it them him her here there over something anything around nearby about"
-)
 
 
 class Interpreter:
@@ -66,9 +63,19 @@ class Interpreter:
         self.speaker = speaker
         self.history = tuple(history)
         self.robot_name = robot_name
+        self.refs = Referents(lexicon, speaker, self.history)
 
     def interpret(self, text: str) -> Outcome:
-        text = cleaned(text)
+        spelled = corrected(text, self.lexicon)
+        outcome = self._read(cleaned(spelled.text))
+        if not spelled.corrections:
+            return outcome
+        # A corrected slip makes the whole turn less sure; a name read from a slip is a guess.
+        steps = outcome.steps()
+        unsure = [replace(o, confidence=min(o.confidence, SPELT_CONFIDENCE), more=()) for o in steps]
+        return replace(unsure[0], more=tuple(unsure[1:]), guessed=spelled.guessed or outcome.guesses)
+
+    def _read(self, text: str) -> Outcome:
         parts = conjuncts(text)
         if parts:
             combined = self._compound(parts)
@@ -154,7 +161,7 @@ class Interpreter:
             if ref is not None:
                 thing = tuple(tokens(ref.id))
         content = content_words(thing)
-        if content and self._half_known(content) and not resolve(self.lexicon, thing, ANYWHERE).matches:
+        if content and self.refs.half_known(content) and not resolve(self.lexicon, thing, ANYWHERE).matches:
             return Outcome("Sorry, I don't know how to answer that.", understood=False)
         match p.question:
             case "what_see":
@@ -187,11 +194,20 @@ class Interpreter:
     # -- commands --------------------------------------------------------------------------------
     def _command(self, p: Parse, overrides: dict[str, Words]) -> Outcome:
         whole = self._one_command(p, overrides)
-        things = coordinated(p.slots.get("object", ())) if "object" not in overrides else []
-        if whole.intent is not None or whole.clarify or len(things) < 2:
+        # "bring me the bread and the jam", "greet Ana and Tom": one intent per thing or person
+        # named, in order (people only where a role is a person's: one cup goes to one person).
+        role = "object" if "object" in p.slots else "recipient"
+        person = ROLE_KINDS.get(p.intent or "", {}).get("recipient") == PERSON
+        things = coordinated(p.slots.get(role, ())) if role not in overrides else []
+        if role == "recipient" and not person:
+            things = []
+        if role == "object" and not things and role not in overrides:
+            things = self.refs.every(p.slots.get(role, ()))  # "all the plates": each plate there is
+        if whole.intent is not None or whole.clarify or not things:
             return whole
-        # "bring me the cereals and the milk": one intent per thing, in order.
-        each = [self._one_command(p, {**overrides, "object": t}) for t in things]
+        if len(things) == 1:
+            return self._one_command(p, {**overrides, role: things[0]})
+        each = [self._one_command(p, {**overrides, role: t}) for t in things]
         if any(o.intent is None for o in each):
             return next(o for o in each if o.intent is None)
         acks = [each[0].reply] + [f"Then {unprefixed(o.reply)}" for o in each[1:]]
@@ -201,13 +217,15 @@ class Interpreter:
         intent = p.intent or ""
         slots = {**p.slots, **overrides}
         if p.double_object and "rest" in slots:
-            slots = self._split_double_object(slots.pop("rest"))
+            slots = self.refs.split_double_object(slots.pop("rest"))
         if intent in {I.BRING_OBJECT, I.PLACE_OBJECT} and "recipient" in slots:
             # "take Maria to the kitchen", "walk Mr Ito back to the car park": guiding, not carrying
             who = tuple(w for w in slots.get("object", ()) if w not in RELATIONAL)
-            if self._person_as_object(who) is not None:
+            if self.refs.person_as_object(who) is not None:
                 intent, slots = I.GUIDE, {"recipient": who, "goal": slots["recipient"]}
-        implicit = not content_words(slots.get("recipient", ()))
+            elif intent == I.PLACE_OBJECT and self.refs.named_person(slots["recipient"]):
+                intent = I.BRING_OBJECT  # "return the stapler to Carol": carried to a person
+        implicit = "recipient" in p.implicit or not content_words(slots.get("recipient", ()))
         if intent == I.GUIDE and slots.get("goal") == ("there",) and implicit:
             # "Ellen needs the utility room, lead the way": the person just spoken of, else the speaker.
             person = antecedent(self.lexicon, [u.text for u in self.history], PERSON)
@@ -221,8 +239,8 @@ class Interpreter:
                 if role in spec.required:
                     return self._missing(intent, role, p)
                 continue
-            words, owner = self._possessive(words, slots) if role == "object" else (words, None)
-            ref = self._ground(words, kinds, role, owner)
+            words, owner = self.refs.possessive(words, slots) if role == "object" else (words, None)
+            ref = self.refs.ground(words, kinds, role, owner)
             if ref.problem is not None:
                 return ref.problem
             refs[role] = ref
@@ -231,110 +249,14 @@ class Interpreter:
             roles["object"] = p.text
         elif intent in {I.SAY, I.START_ACTIVITY, I.PERFORM_MOTION, I.PRESENT_CONTENT}:
             return self._missing(intent, "object", p)
-        return self._intent(intent, roles, acknowledgement(self.snapshot, self.speaker, intent, roles, refs))
-
-    def _split_double_object(self, rest: Words) -> dict[str, Words]:
-        """ "bring Maria the book": the longest leading phrase naming one person is the recipient."""
-        for k in range(len(rest) - 1, 0, -1):
-            head, tail = rest[:k], rest[k:]
-            if not content_words(tail):
-                continue
-            people = content_words(head)
-            named = set(people) <= ME or resolve(self.lexicon, head, PERSON).one is not None
-            # "bring him the bottle": a person pronoun the conversation resolves.
-            said = set(people) <= {"him", "her", "them"} and self._person_as_object(head) is not None
-            if people and (named or said):
-                return {"object": tail, "recipient": head}
-        return {"object": rest, "recipient": ("me",)}
-
-    def _person_as_object(self, words: Words) -> Entity | None:
-        if content_words(words) and set(content_words(words)) <= ME:
-            return self.snapshot.get(self.speaker) or Entity(self.speaker, "you", (), (), (), "person", True)
-        if content_words(words) and set(content_words(words)) <= {"him", "her", "them"}:
-            return antecedent(self.lexicon, [u.text for u in self.history], PERSON)
-        if not content_words(words) or is_pronoun(words):
-            return None
-        return resolve(self.lexicon, words, PERSON).one
-
-    def _possessive(self, words: Words, slots: dict[str, Words]) -> tuple[Words, str | None]:
-        """ "my phone", "give Ines her phone": the phrase without the possessive, and whose it is."""
-        rest = tuple(w for w in words if w not in POSSESSIVES)
-        said = [w for w in words if w in POSSESSIVES]
-        if not said or not content_words(rest):
-            return words, None
-        if said[0] in {"my", "our"}:
-            return rest, self.speaker
-        if said[0] == "your":
-            return rest, self.snapshot.robot
-        # "his/her/their": the person the same request names, else the one the conversation last named.
-        other = slots.get("recipient", ())
-        person = None if set(other) & ME else self._person_as_object(other)
-        person = person or antecedent(self.lexicon, [u.text for u in self.history], PERSON)
-        return rest, person.id if person is not None else None
-
-    def _ground(self, words: Words, kinds: frozenset[Kind], role: str, owner: str | None = None) -> Ref:
-        content = content_words(words)
-        if "person" in kinds and content and set(content) <= ME | {"here"}:
-            return Ref(speaker=True)
-        bare = {w for w in words if w not in {"the", "over", "please"}}
-        if is_pronoun(words) or (bare and bare <= {"him", "her", "there"}):
-            history = [u.text for u in self.history]
-            found = antecedent(self.lexicon, history, kinds, place=bare == {"there"})
-            if found is None:
-                return Ref(
-                    problem=Outcome(
-                        f'What do you mean by "{" ".join(content or sorted(bare))}"?',  # "there" is glue
-                        clarify=True,
-                        open_role=role,
-                        open_phrase=words,
-                    )
-                )
-            return Ref(entity=found)
-        res = resolve(self.lexicon, words, kinds, owner=owner)
-        if res.ambiguous and any(e.id == self.speaker for e in res.matches):
-            # A speaker says "me", not "the person in the living room": a description is someone else.
-            res = replace(res, matches=tuple(e for e in res.matches if e.id != self.speaker))
-        if res.one is not None:
-            return Ref(entity=res.one)
-        if res.ambiguous:
-            q = clarifying_question(self.snapshot, res.matches)
-            return Ref(problem=Outcome(q, clarify=True, open_role=role, open_phrase=words))
-        loose = tuple(w for w in words if w not in RELATIONAL)
-        if loose != tuple(words) and content_words(loose):
-            # "the cup on the left": spatial relations are not in the KB; if the rest of the phrase
-            # names one thing, that is it, else ask which one.
-            res = resolve(self.lexicon, loose, kinds, owner=owner)
-            if res.one is not None:
-                return Ref(entity=res.one)
-            if res.ambiguous:
-                q = clarifying_question(self.snapshot, res.matches)
-                return Ref(problem=Outcome(q, clarify=True, open_role=role, open_phrase=loose))
-        if set(words) & _MANY:  # "the cup and the apple", "both cups": more than one intent can carry
-            return Ref(problem=Outcome("Sorry, one thing at a time, please.", understood=False))
-        for alternative in alternatives(words):  # "an apple or an orange": either will do
-            ref = self._ground(alternative, kinds, role, owner)
-            if ref.entity is not None or ref.speaker:
-                return ref
-        if self._half_known(content):
-            # Names the KB knows among words it does not ("mr ito back", "the trousers out"): the
-            # phrase was not understood, which is not the same as "there is no such thing".
-            return Ref(problem=Outcome("Sorry, I did not understand that.", understood=False))
-        return Ref(problem=Outcome(self._unknown(content, kinds)))
-
-    def _half_known(self, content: Sequence[str]) -> bool:
-        """Whether some words of a phrase are names of the KB and others are words it does not know."""
-        unknown = [w for w in content if not self.lexicon.knows(w) and w not in _ACCOUNTED]
-        return 0 < len(unknown) < len(content)
-
-    def _unknown(self, content: Sequence[str], kinds: Collection[Kind]) -> str:
-        phrase = " ".join(content)
-        if kinds == PERSON:
-            return f"Sorry, I don't know anyone called {phrase.title()}."
-        if "zone" in kinds and "person" not in kinds:
-            return f"Sorry, I don't know where the {phrase} is."
-        if "person" in kinds and resolve(self.lexicon, content, ANYWHERE).matches == ():
-            return f"Sorry, I don't know who or where {phrase.title()} is."
-        return f"Sorry, I don't see any {phrase}."
+        # The place said back with the preposition it was said with, unless a part of it was named
+        # ("in the centre of the table" is put on the table).
+        place = slots.get("recipient", ())
+        said = None if set(place) & PARTS and "of" in place else p.marks.get("recipient")
+        reply = acknowledgement(self.snapshot, self.speaker, intent, roles, refs, said)
+        if any(ref.guessed for ref in refs.values()):  # "go to bay mine": a guess, less sure
+            return Outcome(reply, intent, roles, SPELT_CONFIDENCE, guessed=True)
+        return self._intent(intent, roles, reply)
 
     def _missing(self, intent: str, role: str, p: Parse) -> Outcome:
         asks = {
@@ -379,9 +301,9 @@ class Interpreter:
                 merged = (*fragment, *phrase)
         else:
             merged = tuple(fragment)
-            for loc in LOCATIVE:
-                if merged[: len(loc.split())] == tuple(loc.split()):
-                    merged = merged[len(loc.split()) :]
+            for loc in _PLACES:
+                if merged[: len(loc)] == loc:
+                    merged = merged[len(loc) :]
                     break
         role = first.open_role
         if role == "object" and pending.intent in FREE_FORM_OBJECT:  # "What should I say?" "Dinner is ready"
@@ -397,4 +319,5 @@ class Interpreter:
             clarify=outcome.clarify,
             open_role=outcome.open_role,
             open_phrase=outcome.open_phrase,
+            guessed=outcome.guessed,
         )

@@ -4,8 +4,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
+from dialogue.reference.english import Words
 from dialogue.reference.grounding import Entity
-from dialogue.rules.commands import Words
 
 
 @dataclass(frozen=True)
@@ -21,10 +21,18 @@ class Outcome:
     open_phrase: Words = ()
     #: The intents that follow this one in a compound request, in order.
     more: tuple[Outcome, ...] = ()
+    #: A misspelt word was read as a name the KB has ("the thremos"): which thing is meant is a
+    #: guess (dialogue.rules.spelling), which a hybrid model leaves to its model.
+    guessed: bool = False
 
     def steps(self) -> tuple[Outcome, ...]:
         """This outcome and the ones that follow it."""
         return (self, *self.more)
+
+    @property
+    def guesses(self) -> bool:
+        """Whether this outcome or one that follows it is a guess."""
+        return any(o.guessed for o in self.steps())
 
 
 @dataclass(frozen=True)
@@ -33,4 +41,6 @@ class Ref:
 
     entity: Entity | None = None
     speaker: bool = False
+    #: The entity was read from a misheard or mistyped name ("bay mine"): a guess.
+    guessed: bool = False
     problem: Outcome | None = None

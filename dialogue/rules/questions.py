@@ -6,7 +6,10 @@ answer is computed from the KB snapshot in dialogue.rules.answers.
 
 from __future__ import annotations
 
-from dialogue.rules.words import WH, Parse, Words, split_at, starts, word_set
+from dialogue.reference.english import Words, word_set
+from dialogue.rules.parsed import Parse
+from dialogue.rules.speech import split_at, starts
+from dialogue.rules.words import PURPOSES, WH
 
 _SEES: tuple[Words, ...] = tuple(
     tuple(p.split()) for p in ("do you see", "can you see", "could you see", "have you seen", "did you see",
@@ -27,12 +30,12 @@ _LOCATIVES = ("on top of", "on", "in", "inside", "under", "at")
 _INDIRECT: tuple[Words, ...] = tuple(
     tuple(p.split()) for p in ("do you know", "do you have any idea", "any idea", "have you any idea",
                                "can you tell me", "could you tell me", "i wonder", "i am wondering",
-                               "i was wondering")
+                               "i was wondering", "find out", "check", "go and see", "see")
 )  # fmt: skip
 _BE = frozenset({"is", "are", "was", "were"})
+_SOMEONE = word_set("anybody anyone somebody someone people")
+_ELSE = word_set("else besides except apart from but me us other than the room this")
 _NEARBY = word_set("around nearby here about")
-#: "something to eat" is food: the purpose names the ontology's class (labelled "food", "drink").
-_PURPOSES: dict[Words, str] = {("to", "eat"): "food", ("to", "drink"): "drink"}
 
 
 def _q(kind: str, w: Words, **slots: Words) -> Parse:
@@ -58,6 +61,8 @@ def question(words: list[str]) -> Parse | None:
             w = w[len(lead) :]
             break
     head = w[:1]
+    if _anybody(w):  # "is anybody else here", "is there anyone around"
+        return _q("who_see", w)
     if head == ("whose",) or (head == ("who",) and (w[-2:] == ("belong", "to") or w[1:2] == ("owns",))):
         return _q("whose", w, thing=_owned_thing(w))
     if head in {("what",), ("which",)}:
@@ -91,6 +96,13 @@ def question(words: list[str]) -> Parse | None:
     return None
 
 
+def _anybody(w: Words) -> bool:
+    if not w[:1] or w[0] not in {"is", "are"}:
+        return False
+    rest = w[2:] if w[1:2] == ("there",) else w[1:]
+    return bool(rest) and rest[0] in _SOMEONE and not set(rest[1:]) - _WHO_NOT_A_NAME - _ELSE
+
+
 def _what(w: Words) -> Parse:
     rest = w[1:]
     if "front" in rest or "around" in rest:
@@ -122,7 +134,7 @@ def _what(w: Words) -> Parse:
 
 def _anything(w: Words, rest: Words) -> Parse:
     """ "is there anything on the table", "do you see anything to eat", "can you see anything"."""
-    purpose = _PURPOSES.get(rest[:2])
+    purpose = PURPOSES.get(rest[:2])
     if purpose is not None:
         return _q("can_see", w, thing=(purpose, *rest[2:]))
     found = split_at(("x", *rest), _LOCATIVES)

@@ -22,9 +22,18 @@ def _name(snapshot: Snapshot, speaker: str, ref: Ref | None) -> str:
     return answers.the(snapshot, ref.entity, speaker) if ref.entity else "it"
 
 
+#: How a place said with a preposition is said back ("next to the laptop", not "on the laptop").
+_SAID_BACK = {"beside": "next to", "near": "near", "under": "under", "underneath": "under",
+              "beneath": "under", "below": "under", "in": "in", "into": "in", "inside": "in", "at": "at",
+              "by": "by", "behind": "behind", "against": "against", "in front of": "in front of"}  # fmt: skip
+#: "wave at Ana", "shake hands with Ana"; other motions are done for someone.
+_TOWARDS = {"wave": "at", "point": "at", "nod": "at", "smile": "at", "shake hands": "with"}
+
+
 def acknowledgement(snapshot: Snapshot, speaker: str, intent: str, roles: dict[str, str],
-                    refs: dict[str, Ref]) -> str:
-    """What the robot says when it takes on an intent ("OK, I will bring the cup to you.")."""
+                    refs: dict[str, Ref], said: str | None = None) -> str:
+    """What the robot says when it takes on an intent ("OK, I will bring the cup to you."); `said`
+    is the preposition the person put the place with, if any."""
     obj, rec, goal = (_name(snapshot, speaker, refs.get(r)) for r in ("object", "recipient", "goal"))
     text = roles.get("object", "").replace("_", " ")
     match intent:
@@ -34,9 +43,8 @@ def acknowledgement(snapshot: Snapshot, speaker: str, intent: str, roles: dict[s
             return f"OK, I will bring {obj} to {rec}."
         case I.PLACE_OBJECT:
             ref = refs.get("recipient")
-            prep = (
-                "in" if ref is not None and ref.entity is not None and ref.entity.kind == "zone" else "on"
-            )
+            zone = ref is not None and ref.entity is not None and ref.entity.kind == "zone"
+            prep = _SAID_BACK.get(said or "", "in" if zone else "on")
             return f"OK, I will put {obj if 'object' in refs else 'it'} {prep} {rec}."
         case I.MOVE_TO:
             return "OK, I am coming." if goal == "you" else f"OK, I am going to {goal}."
@@ -50,7 +58,7 @@ def acknowledgement(snapshot: Snapshot, speaker: str, intent: str, roles: dict[s
         case I.ENGAGE_WITH:
             return f"OK, I will go and talk to {rec}."
         case I.PERFORM_MOTION:
-            prep = "at" if text in {"wave", "point", "nod", "smile"} else "for"
+            prep = _TOWARDS.get(text, "for")
             return f"OK, I will {text} {prep} {rec}." if "recipient" in refs else f"OK, I will {text}."
         case I.START_ACTIVITY:
             return f"OK, I am starting: {text}."

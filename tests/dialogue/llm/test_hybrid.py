@@ -120,3 +120,18 @@ def test_the_rules_fast_path_builds_no_prompt(kitchen: KB, monkeypatch: pytest.M
     assert turn(engine, "pick up the apple").backend == "rules" and built == []
     assert turn(engine, "how is the weather today?").backend == "inner"
     assert built == ["how is the weather today?"]
+
+
+def test_a_name_read_from_a_typo_is_left_to_the_model_behind_the_rules(kitchen: KB) -> None:
+    # The rules alone take their best reading ("cookbok": the cookbook), less sure; in hybrid mode
+    # that guess goes to the model, which sees the words and the situation. A typo of a grammar word
+    # ("plase") changes no referent: the rules keep it.
+    alone = RulesModel().prescreen(TurnContext("pick up the cookbok", ALICE, build_snapshot(kitchen)))
+    assert alone is not None and alone.answer.user_intent is not None
+    assert alone.answer.user_intent.object == "book_1" and alone.answer.user_intent.confidence < 0.9
+    inner = Recording(SUNNY)
+    engine = DialogueEngine(kitchen, HybridModel(inner))
+    assert turn(engine, "pick up the cookbok").backend == "inner" and len(inner.requests) == 1
+    kept = turn(engine, "plase pick up the cookbook")
+    assert kept.backend == "rules" and kept.intents[0].data == {"object": "book_1"}
+    assert kept.intents[0].confidence < 0.9

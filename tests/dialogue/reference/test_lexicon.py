@@ -1,5 +1,6 @@
+from dialogue.reference.english import tokens
 from dialogue.reference.grounding import build_snapshot
-from dialogue.reference.lexicon import Lexicon, LexiconCache, singular, tokens
+from dialogue.reference.lexicon import Lexicon, LexiconCache, singular
 from kb import KB
 
 

@@ -1,7 +1,7 @@
 import pytest
 
+from dialogue.reference.english import tokens
 from dialogue.reference.grounding import Kind
-from dialogue.reference.lexicon import tokens
 from dialogue.reference.resolution import antecedent, resolve, resolve_id
 from kb import KB
 from tests.dialogue.conftest import lexicon_of, scene_kb
@@ -79,3 +79,25 @@ def test_pronoun_antecedent_skips_locative_mentions(kitchen: KB) -> None:
     found = antecedent(lex, ["do you see a book?", "Yes, I see a cookbook on the shelf."], THING)
     assert found is not None and found.id == "book_1"
     assert antecedent(lex, ["hello"], THING) is None
+
+
+def _pantry() -> KB:
+    return scene_kb(None, "c1 rdf:type cyc:Drink", 'c1 rdfs:label "cider"', "myself sees c1",
+                    "m1 rdf:type cyc:Food", 'm1 rdfs:label "soup"', "myself sees m1",
+                    "j1 rdf:type Artifact", 'j1 rdfs:label "jam jar"', "myself sees j1",
+                    "r1 rdf:type Artifact", 'r1 rdfs:label "rain coat"', "myself sees r1")  # fmt: skip
+
+
+@pytest.mark.parametrize(
+    ("phrase", "expected"),
+    [
+        ("the cider bottles", ["c1"]),  # no bottle: the container names what it holds
+        ("a tin of soup", ["m1"]),
+        ("the jam jar", ["j1"]),  # a jar the KB has is the jar
+        ("the raincoat", ["r1"]),  # a two-word name said as one word
+        ("the wine bottle", []),  # nothing holds wine: nothing, not the cider
+        ("a box of raincoat", []),  # a box holds food or drink, not a coat
+    ],
+)
+def test_containers_and_names_said_as_one_word(phrase: str, expected: list[str]) -> None:
+    assert ids(_pantry(), phrase) == expected

@@ -25,7 +25,7 @@ from dialogue.rules.commands import parse
         ("head over to the garage", I.MOVE_TO, {"goal": ("the", "garage")}),
         ("come here", I.MOVE_TO, {"goal": ("me",)}),
         ("walk me to the exit", I.GUIDE, {"recipient": ("me",), "goal": ("the", "exit")}),
-        ("lead the way to the lobby", I.GUIDE, {"recipient": ("me",), "goal": ("lobby",)}),
+        ("lead the way to the lobby", I.GUIDE, {"recipient": ("me",), "goal": ("the", "lobby")}),
         ("engage with Ann", I.ENGAGE_WITH, {"recipient": ("ann",)}),
         ("would you mind picking up the vase", I.GRAB_OBJECT, {"object": ("the", "vase")}),
         ("do you mind putting the vase on the piano", I.PLACE_OBJECT,
@@ -161,3 +161,28 @@ def test_preambles_and_indirect_requests(text: str, act: str, intent: str | None
     assert (p.act, p.intent) == (act, intent)
     if intent == I.GREET:
         assert p.slots["recipient"] == ("ann",)
+
+
+@pytest.mark.parametrize(
+    ("text", "kind"),
+    [
+        ("is anybody else here besides me", "who_see"),
+        ("is there anyone in the room", "who_see"),
+        ("could you find out where the vase is", "where"),
+        ("check where the vase is", "where"),
+    ],
+)
+def test_more_questions(text: str, kind: str) -> None:
+    p = parse(text)
+    assert (p.act, p.question) == ("question", kind)
+
+
+@pytest.mark.parametrize(
+    ("text", "slots"),
+    [
+        ("hang the coat in the hall", {"object": ("the", "coat"), "recipient": ("the", "hall")}),
+        ("lay the shirt out on the bed", {"object": ("the", "shirt"), "recipient": ("the", "bed")}),
+    ],
+)
+def test_more_ways_to_put_something_somewhere(text: str, slots: dict[str, tuple[str, ...]]) -> None:
+    assert (parse(text).intent, parse(text).slots) == (I.PLACE_OBJECT, slots)

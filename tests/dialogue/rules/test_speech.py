@@ -4,7 +4,7 @@ import pytest
 
 from dialogue import intents as I
 from dialogue.rules.commands import parse
-from dialogue.rules.words import cleaned, normalise
+from dialogue.rules.utterance import cleaned, normalise
 
 
 @pytest.mark.parametrize(

@@ -1,0 +1,192 @@
+"""The few requests a frame row cannot say, as small functions the frame table refers to.
+
+Each takes what was said (`Said`) and returns a `Parse`, or None when it does not apply (the grammar
+then tries the next row). Quoted speech, needs ("I'm parched"), wishes ("I want X", "I want to go to
+X"), "help me get to X", "show me the cup" (a question), "greet everyone", "do you like..." (a
+yes/no question, not an activity).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from dialogue import intents as I
+from dialogue.reference.english import ME, Words
+from dialogue.rules.parsed import Parse
+from dialogue.rules.speech import QUOTED, expanded, original_text, split_at, starts
+from dialogue.rules.words import (
+    DONE,
+    EVERYONE,
+    INTENSIFIERS,
+    NEEDS,
+    NOT_WISHERS,
+    THEIR_WANTS,
+    WANT_VERBS,
+    WANTS,
+    WISHERS,
+)
+
+
+@dataclass(frozen=True)
+class Said:
+    #: The verb phrase as the table has it ("pick", "get hold of"; "" before any verb is read).
+    verb: str
+    #: The words after the verb phrase (all the words when `verb` is "").
+    rest: Words
+    #: All the utterance's words, and the original text (for quotes and casing).
+    words: Words
+    original: str
+
+    def command(self, intent: str, text: str | None = None, **slots: Words) -> Parse:
+        return Parse("command", intent, dict(slots), text=text, words=self.words)
+
+
+# -- before any verb: what the whole utterance says ----------------------------------------------
+def need(said: Said) -> Parse | None:
+    """ "I'm really parched", "we are starving": something of the class that meets the need."""
+    w = said.words
+    if w[:2] not in {("i", "am"), ("we", "are")}:
+        return None
+    rest = [x for x in w[2:] if x not in INTENSIFIERS]
+    wanted = NEEDS.get(rest[0]) if len(rest) == 1 else None
+    return said.command(I.BRING_OBJECT, object=(wanted,), recipient=("me",)) if wanted else None
+
+
+def going(said: Said) -> Parse | None:
+    """ "I want to go to X", "Ellen needs to get to X": take them there."""
+    w = said.words
+    for i in range(len(w) - 4):
+        wants = w[i] in WANT_VERBS or w[i : i + 2] in {("would", "like"), ("has", "to"), ("have", "to")}
+        at = i + (2 if w[i] == "would" else 1)
+        goes = w[at : at + 1] == ("to",) and w[at + 1 : at + 2] in {("go",), ("get",)}
+        if wants and goes and w[at + 2 : at + 3] == ("to",) and w[at + 3 :]:
+            who = w[:i]
+            return said.command(I.GUIDE, recipient=("me",) if who in {(), ("i",), ("we",)} else who,
+                                goal=w[at + 3 :])  # fmt: skip
+    return None
+
+
+def wanting(said: Said) -> Parse | None:
+    """ "I would like the apple", "can I have a tea": bring it to the speaker."""
+    for lead in WANTS:
+        if starts(said.words, lead) and len(said.words) > len(lead):
+            wanted = said.words[len(lead) :]
+            if wanted[:1] != ("to",):
+                return said.command(I.BRING_OBJECT, object=wanted, recipient=("me",))
+    return None
+
+
+def their_wish(said: Said) -> Parse | None:
+    """ "Ahmed would like the photo album", "he needs his glasses": bring it to them."""
+    w = said.words
+    for i in range(1, min(len(w), 4)):
+        who = w[:i]
+        lead = next((p for p in THEIR_WANTS if w[i : i + len(p)] == p), None)
+        if lead is None:
+            continue
+        wanted = w[i + len(lead) :]
+        person = who in {(x,) for x in WISHERS} or not set(who) & (NOT_WISHERS | WISHERS | ME)
+        if person and wanted and wanted[0] != "to":
+            return said.command(I.BRING_OBJECT, object=wanted, recipient=_pronoun(who))
+        return None
+    return None
+
+
+def _pronoun(who: Words) -> Words:
+    """ "he", "she", "they" refer to someone the conversation named."""
+    return {"he": ("him",), "she": ("her",), "they": ("them",)}.get(who[0], who) if len(who) == 1 else who
+
+
+def enough(said: Said) -> Parse | None:
+    """ "that is enough (now)": stop."""
+    if said.words[:2] == ("that", "is") and "enough" in said.words:
+        return said.command(I.STOP_ACTIVITY)
+    return None
+
+
+# -- after a verb ---------------------------------------------------------------------------------
+def a_hand(said: Said) -> Parse | None:
+    """ "give George a hand getting to the courtyard" is helping him get there."""
+    rest = said.rest
+    at = next((i for i in range(len(rest) - 1) if rest[i : i + 2] == ("a", "hand")), None)
+    if at is None or at == 0:
+        return None
+    after = rest[at + 2 :]
+    after = after[1:] if after[:1] in {("getting",), ("with",)} else after
+    return helping(Said("help", (*rest[:at], *after), said.words, said.original))
+
+
+def helping(said: Said) -> Parse | None:
+    """ "help me get to the bathroom": take them there."""
+    found = split_at(said.rest, ["get to", "to"]) if "to" in said.rest else None
+    if found is None or not found[0] or not found[2]:
+        return None
+    return said.command(I.GUIDE, recipient=found[0], goal=found[2])
+
+
+def showing(said: Said) -> Parse | None:
+    """ "show me the scissors" asks where they are; "show me the way (to X)" is guiding."""
+    if "way" in said.rest or "to" in said.rest:
+        return None
+    thing = said.rest[1:] if said.rest[:1] and said.rest[0] in ME else said.rest
+    return Parse("question", question="where", slots={"thing": thing}, words=said.words)
+
+
+def everyone(said: Said) -> Parse | None:
+    """ "greet everyone": no one recipient, a greeting said aloud."""
+    if said.rest in EVERYONE:
+        return Parse("greeting", words=said.words, slots={"everyone": said.rest})
+    return None
+
+
+def asking(said: Said) -> Parse | None:
+    """ "do you like music" is a yes/no question, "do the dishes" a request."""
+    if said.rest[:1] and said.rest[0] not in DONE:
+        return Parse("unknown", words=said.words)
+    return None
+
+
+def letting_know(said: Said) -> Parse | None:
+    """ "let Tom know that dinner is ready" is "tell Tom that...". """
+    if "know" not in said.rest:
+        return None
+    return speech(Said("tell", tuple(x for x in said.rest if x != "know"), said.words, said.original))
+
+
+def speech(said: Said) -> Parse:
+    """What to say, to whom: quoted words kept as they are, "tell X that/to...", "say X to Y"."""
+    verb, rest, original = said.verb, said.rest, said.original
+    quoted = QUOTED.search(original)
+    if quoted:
+        # The quoted words are the text; the recipient is found outside the quotes only.
+        outside = expanded(original[: quoted.start()] + " " + original[quoted.end() :])
+        rest = tuple(outside[outside.index(verb) + 1 :]) if verb in outside else ()
+        rest = tuple(x for x in rest if x not in {"that", "please"})
+        recipient = rest[1:] if rest[:1] == ("to",) else rest
+        return said.command(I.SAY, text=quoted.group(1).strip(), recipient=recipient)
+    unknown = Parse("unknown", words=(verb, *rest))
+    if rest[:1] and rest[0] in {"goodbye", "bye"} and "to" in rest:
+        return said.command(I.SAY, text="goodbye", recipient=rest[rest.index("to") + 1 :])
+    if verb in {"tell", "inform", "remind", "ask"}:
+        found = split_at(rest, ["that", "to", "about"])
+        if found is not None:
+            recipient, sep, text = found
+            text = ("please", *text) if sep == "to" else text
+            if sep == "about" or (verb == "ask" and sep != "to"):
+                return unknown
+        elif verb == "ask":  # "ask Ana if she wants tea": a question to put, not words to say
+            return unknown
+        else:
+            recipient, text = rest[:1], rest[1:]
+        if recipient[:1] and recipient[0] in ME:  # "tell me a joke": small talk, not a SAY intent
+            return unknown
+        if not text:  # "tell Maria": the interpreter asks what to say
+            return said.command(I.SAY, recipient=recipient)
+        words = original_text(original, text[1:] if text[0] == "please" else text)
+        said_text = f"please {words}" if text[0] == "please" else words
+        return said.command(I.SAY, text=said_text, recipient=recipient)
+    found = split_at(rest, ["to"])
+    text_words, recipient = (found[0], found[2]) if found is not None else (rest, ())
+    if not text_words:
+        return unknown
+    return said.command(I.SAY, text=original_text(original, text_words), recipient=recipient)

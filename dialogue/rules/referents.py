@@ -1,0 +1,207 @@
+"""Noun phrases of a request grounded in the KB: one entity, the speaker, or why not (unknown, ambiguous,
+not understood); possessives ("my phone", "give Ines her phone") and double objects ("bring Maria the
+book") read against the people the KB knows and the conversation.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Collection, Sequence
+from dataclasses import replace
+
+from dialogue.history import Utterance
+from dialogue.reference.clarify import question as clarifying_question
+from dialogue.reference.english import (
+    COLOURS,
+    DETERMINERS,
+    MANY,
+    ME,
+    MODIFIER_START,
+    POSITIONS,
+    POSSESSIVES,
+    Words,
+    tokens,
+    word_set,
+)
+from dialogue.reference.grounding import Entity, Kind
+from dialogue.reference.lexicon import Lexicon
+from dialogue.reference.resolution import (
+    ANYWHERE,
+    PERSON,
+    THING,
+    antecedent,
+    content_words,
+    is_pronoun,
+    resolve,
+)
+from dialogue.rules.compound import alternatives
+from dialogue.rules.outcome import Outcome, Ref
+from dialogue.rules.spelling import slips
+from dialogue.rules.words import PURPOSES
+
+#: Spatial or comparative qualifiers the KB does not model (dropped when they block a match).
+RELATIONAL = POSITIONS
+#: Words that need no name in the KB to be understood in a phrase.
+_ACCOUNTED = RELATIONAL | COLOURS | ME | word_set(
+    "it them him her here there over something anything around nearby about"
+)
+
+
+_EVERY = word_set("all both every each")
+
+
+class Referents:
+    def __init__(self, lexicon: Lexicon, speaker: str, history: Sequence[Utterance] = ()) -> None:
+        self.lexicon = lexicon
+        self.snapshot = lexicon.snapshot
+        self.speaker = speaker
+        self.history = tuple(history)
+
+    def split_double_object(self, rest: Words) -> dict[str, Words]:
+        """ "bring Maria the book": the longest leading phrase naming one person is the recipient."""
+        for k in range(len(rest) - 1, 0, -1):
+            head, tail = rest[:k], rest[k:]
+            if not content_words(tail):
+                continue
+            people = content_words(head)
+            named = set(people) <= ME or resolve(self.lexicon, head, PERSON).one is not None
+            # "bring him the bottle": a person pronoun the conversation resolves.
+            said = set(people) <= {"him", "her", "them"} and self.person_as_object(head) is not None
+            if people and (named or said):
+                return {"object": tail, "recipient": head}
+        return {"object": rest, "recipient": ("me",)}
+
+    def every(self, words: Words) -> list[Words]:
+        """ "all the plates", "both cups": each thing the phrase names, as its id ([] when the phrase
+        is not quantified, or names nothing)."""
+        if not set(words) & _EVERY or set(words) & {"and", "or"}:
+            return []
+        rest = tuple(w for w in words if w not in _EVERY and w != "of")
+        return [tuple(tokens(e.id)) for e in resolve(self.lexicon, rest, THING).matches]
+
+    def named_person(self, words: Words) -> bool:
+        """Whether the phrase names one person of the KB (not a pronoun, not the speaker's "me")."""
+        if not content_words(words) or is_pronoun(words) or set(content_words(words)) & ME:
+            return False
+        return resolve(self.lexicon, words, PERSON).one is not None
+
+    def person_as_object(self, words: Words) -> Entity | None:
+        if content_words(words) and set(content_words(words)) <= ME:
+            return self.snapshot.get(self.speaker) or Entity(self.speaker, "you", (), (), (), "person", True)
+        if content_words(words) and set(content_words(words)) <= {"him", "her", "them"}:
+            return antecedent(self.lexicon, [u.text for u in self.history], PERSON)
+        if not content_words(words) or is_pronoun(words):
+            return None
+        return resolve(self.lexicon, words, PERSON).one
+
+    def possessive(self, words: Words, slots: dict[str, Words]) -> tuple[Words, str | None]:
+        """ "my phone", "give Ines her phone": the phrase without the possessive, and whose it is."""
+        rest = tuple(w for w in words if w not in POSSESSIVES)
+        said = [w for w in words if w in POSSESSIVES]
+        if not said or not content_words(rest):
+            return words, None
+        if said[0] in {"my", "our"}:
+            return rest, self.speaker
+        if said[0] == "your":
+            return rest, self.snapshot.robot
+        # "his/her/their": the person the same request names, else the one the conversation last named.
+        other = slots.get("recipient", ())
+        person = None if set(other) & ME else self.person_as_object(other)
+        person = person or antecedent(self.lexicon, [u.text for u in self.history], PERSON)
+        return rest, person.id if person is not None else None
+
+    def slipped(self, words: Words, kinds: frozenset[Kind], owner: str | None) -> Entity | None:
+        """The one thing a name means when one of its words was misheard or mistyped as another word
+        ("bay mine", "bay for" for "bay nine", "bay four"): a word the KB does not know,
+        replaced by a slip of it, completes a name of several words that the rest of the phrase
+        starts; the name must then be the only one (a guess, see dialogue.rules.spelling)."""
+        found: set[str] = set()
+        for i, word in enumerate(words):
+            last = i == len(words) - 1
+            if word in DETERMINERS or (word in MODIFIER_START and not last) or self.lexicon.knows(word):
+                continue
+            for other in slips(word, self.lexicon):
+                trial = (*words[:i], other, *words[i + 1 :])
+                one = resolve(self.lexicon, trial, kinds, owner=owner).one
+                if one is not None and _named_with(self.lexicon, one, trial, i):
+                    found.add(one.id)
+        entity = self.snapshot.get(next(iter(found))) if len(found) == 1 else None
+        return entity
+
+    def ground(self, words: Words, kinds: frozenset[Kind], role: str, owner: str | None = None) -> Ref:
+        bare_words = [w for w in words if w not in DETERMINERS]
+        if bare_words[:1] in (["something"], ["anything"]) and tuple(bare_words[1:]) in PURPOSES:
+            words = (PURPOSES[tuple(bare_words[1:])],)  # "something to eat": food
+        content = content_words(words)
+        if "person" in kinds and content and set(content) <= ME | {"here"}:
+            return Ref(speaker=True)
+        bare = {w for w in words if w not in {"the", "over", "please"}}
+        if is_pronoun(words) or (bare and bare <= {"him", "her", "there"}):
+            history = [u.text for u in self.history]
+            found = antecedent(self.lexicon, history, kinds, place=bare == {"there"})
+            if found is None:
+                return Ref(
+                    problem=Outcome(
+                        f'What do you mean by "{" ".join(content or sorted(bare))}"?',  # "there" is glue
+                        clarify=True,
+                        open_role=role,
+                        open_phrase=words,
+                    )
+                )
+            return Ref(entity=found)
+        res = resolve(self.lexicon, words, kinds, owner=owner)
+        if res.ambiguous and any(e.id == self.speaker for e in res.matches):
+            # A speaker says "me", not "the person in the living room": a description is someone else.
+            res = replace(res, matches=tuple(e for e in res.matches if e.id != self.speaker))
+        if res.one is not None:
+            return Ref(entity=res.one)
+        slipped = self.slipped(words, kinds, owner)
+        if slipped is not None:
+            return Ref(entity=slipped, guessed=True)
+        if res.ambiguous:
+            q = clarifying_question(self.snapshot, res.matches)
+            return Ref(problem=Outcome(q, clarify=True, open_role=role, open_phrase=words))
+        loose = tuple(w for w in words if w not in RELATIONAL)
+        if loose != tuple(words) and content_words(loose):
+            # "the cup on the left": spatial relations are not in the KB; if the rest of the phrase
+            # names one thing, that is it, else ask which one.
+            res = resolve(self.lexicon, loose, kinds, owner=owner)
+            if res.one is not None:
+                return Ref(entity=res.one)
+            if res.ambiguous:
+                q = clarifying_question(self.snapshot, res.matches)
+                return Ref(problem=Outcome(q, clarify=True, open_role=role, open_phrase=loose))
+        if set(words) & MANY:  # "the cup and the apple", "both cups": more than one intent can carry
+            return Ref(problem=Outcome("Sorry, one thing at a time, please.", understood=False))
+        for alternative in alternatives(words):  # "an apple or an orange": either will do
+            ref = self.ground(alternative, kinds, role, owner)
+            if ref.entity is not None or ref.speaker:
+                return ref
+        if self.half_known(content):
+            # Names the KB knows among words it does not ("mr ito back", "the trousers out"): the
+            # phrase was not understood, which is not the same as "there is no such thing".
+            return Ref(problem=Outcome("Sorry, I did not understand that.", understood=False))
+        return Ref(problem=Outcome(self.unknown(content, kinds)))
+
+    def half_known(self, content: Sequence[str]) -> bool:
+        """Whether some words of a phrase are names of the KB and others are words it does not know."""
+        unknown = [w for w in content if not self.lexicon.knows(w) and w not in _ACCOUNTED]
+        return 0 < len(unknown) < len(content)
+
+    def unknown(self, content: Sequence[str], kinds: Collection[Kind]) -> str:
+        phrase = " ".join(content)
+        if kinds == PERSON:
+            return f"Sorry, I don't know anyone called {phrase.title()}."
+        if "zone" in kinds and "person" not in kinds:
+            return f"Sorry, I don't know where the {phrase} is."
+        if "person" in kinds and resolve(self.lexicon, content, ANYWHERE).matches == ():
+            return f"Sorry, I don't know who or where {phrase.title()} is."
+        return f"Sorry, I don't see any {phrase}."
+
+
+def _named_with(lexicon: Lexicon, entity: Entity, words: Words, i: int) -> bool:
+    """Whether a name of the entity spans word i and a word before it ("table *nine*")."""
+    for start in range(i):
+        for name in lexicon.names_at(words, start):
+            if name.entity == entity.id and start + len(name.words) > i:
+                return True
+    return False

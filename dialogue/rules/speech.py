@@ -1,0 +1,116 @@
+"""Speech-recogniser and chat text as plain words: contractions without apostrophes, fillers,
+stutters, politeness; and the way back from words to the original text (its casing, its quotes).
+
+Nothing here knows a verb: self-repairs and vocatives, which need the grammar's verbs, are in
+dialogue.rules.utterance.
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Sequence
+from functools import lru_cache
+
+from dialogue.reference.english import Words, lowered, spans, tokens
+from dialogue.rules.words import (
+    ASKING,
+    CONTRACTIONS,
+    FILLER_PAIRS,
+    FILLERS,
+    POLITE_PREFIXES,
+    POLITE_SUFFIXES,
+    WH,
+)
+
+QUOTED = re.compile(r"[\"\u201c\u201d]([^\"\u201c\u201d]+)[\"\u201c\u201d]")
+
+
+def expanded(text: str) -> list[str]:
+    """The text's words with contractions expanded ("wheres" -> "where is")."""
+    return [x for w in tokens(text) for x in CONTRACTIONS.get(w, (w,))]
+
+
+def plain(text: str) -> list[str]:
+    """The text's words with contractions expanded and fillers and stutters removed."""
+    return unrepeated(without_fillers(expanded(text)))
+
+
+def without_fillers(words: list[str]) -> list[str]:
+    """ "put the uh candle", "pick up the uh you know the cup": fillers wherever they are, "you know"
+    mid-sentence but not in "do you know where..."."""
+    words = [w for w in words if w not in FILLERS]
+    drop: set[int] = set()
+    for i in range(1, len(words) - 1):
+        nxt = words[i + 2] if i + 2 < len(words) else ""
+        if tuple(words[i : i + 2]) in FILLER_PAIRS and words[i - 1] not in ASKING and nxt not in WH | ASKING:
+            drop.update((i, i + 1))
+    return [w for i, w in enumerate(words) if i not in drop]
+
+
+def unrepeated(words: list[str]) -> list[str]:
+    """ "put the put the knife", "the the jumper": an immediately repeated run of 1-3 words once."""
+    out: list[str] = []
+    for w in words:
+        out.append(w)
+        for n in (1, 2, 3):
+            if len(out) >= 2 * n and out[-n:] == out[-2 * n : -n] and not out[-1].isdigit():
+                del out[-n:]
+                break
+    return out
+
+
+def original_text(text: str, words: Sequence[str]) -> str:
+    """The part of the original text that the (normalised) words came from, with its casing."""
+    if len(lowered(text)) != len(text) or not words:
+        return " ".join(words)
+    found = [(w, start, end) for word, start, end in spans(text) for w in CONTRACTIONS.get(word, (word,))]
+    n = len(words)
+    for i in range(len(found) - n + 1):
+        if all(found[i + k][0] == words[k] for k in range(n)):
+            return text[found[i][1] : found[i + n - 1][2]]
+    return " ".join(words)
+
+
+def starts(words: Sequence[str], prefix: Sequence[str]) -> bool:
+    return len(prefix) <= len(words) and tuple(words[: len(prefix)]) == tuple(prefix)
+
+
+@lru_cache(maxsize=64)
+def _openings(robot_name: str) -> dict[str, tuple[Words, ...]]:
+    """The polite openings (and the robot's name) by first word, the longest first: "would you be
+    able to" before "would you"."""
+    name = tuple(expanded(robot_name)) if robot_name else ()
+    by_first: dict[str, list[Words]] = {}
+    for p in (*POLITE_PREFIXES, name):
+        if p:
+            by_first.setdefault(p[0], []).append(p)
+    return {w: tuple(sorted(ps, key=len, reverse=True)) for w, ps in by_first.items()}
+
+
+def strip_politeness(words: list[str], robot_name: str = "") -> list[str]:
+    openings = _openings(robot_name)
+    changed = True
+    while changed and words:
+        changed = False
+        for p in openings.get(words[0], ()):
+            # "can you see" is a question, not a polite request: keep it.
+            if starts(words, p) and not (p[-1] == "you" and words[len(p) : len(p) + 1] == ["see"]):
+                words = words[len(p) :]
+                changed = True
+                break
+        for s in POLITE_SUFFIXES:
+            if s and len(words) > len(s) and tuple(words[-len(s) :]) == s:
+                words = words[: -len(s)]
+                changed = True
+                break
+    return words
+
+
+def split_at(words: Sequence[str], separators: Sequence[str]) -> tuple[Words, str, Words] | None:
+    """First occurrence (after position 0) of any separator phrase: (before, separator, after)."""
+    seps = [tuple(s.split()) for s in separators]
+    for i in range(1, len(words)):
+        for sep in seps:
+            if tuple(words[i : i + len(sep)]) == sep:
+                return tuple(words[:i]), " ".join(sep), tuple(words[i + len(sep) :])
+    return None

@@ -1,0 +1,76 @@
+"""An utterance's words as the grammar reads them: plain words (dialogue.rules.speech) with the
+self-repairs applied and a leading vocative dropped, and verbs as lemmas. These need the verbs of
+the frame table ("bring me the uh no wait *put* the candle...", "john *can you* go...").
+"""
+
+from __future__ import annotations
+
+from functools import lru_cache
+
+from lemminflect import getAllLemmas, getInflection
+
+from dialogue.rules.frames import known_verbs, verbs
+from dialogue.rules.speech import expanded, plain, starts, strip_politeness, unrepeated
+from dialogue.rules.words import AUXILIARIES, FILLERS, LEAD_FILLERS, NOT_VOCATIVE, POLITE_PREFIXES, REPAIRS
+
+
+@lru_cache(maxsize=4096)
+def verb_lemma(word: str) -> str:
+    """The table's verb a word is an inflection of ("picking" -> "pick", "took" -> "take", "puts"
+    -> "put"), else the word unchanged. Auxiliaries stay ("does you..." is not "do")."""
+    known = known_verbs()
+    if word in known or word in AUXILIARIES:
+        return word
+    lemmas: tuple[str, ...] = getAllLemmas(word).get("VERB", ())
+    return next((lemma for lemma in lemmas if lemma in known), word)
+
+
+@lru_cache(maxsize=4096)
+def asked_verb(word: str) -> str | None:
+    """The table's verb when the word is one as a request says it: the bare verb, or its -ing form
+    after "would you mind" ("picking"); None otherwise. "Someone *left* the keys" is no request,
+    so a past or third-person form never makes the word before it a vocative."""
+    lemma = verb_lemma(word)
+    if lemma not in known_verbs():
+        return None
+    return lemma if word == lemma or word in getInflection(lemma, "VBG") else None
+
+
+def normalise(text: str) -> list[str]:
+    """Lower-case words with contractions expanded, fillers and stutters removed and a self-repair
+    applied ("put the put the knife uh on the table", "bring me the uh no wait put the candle...")."""
+    return repaired(plain(text))
+
+
+def cleaned(text: str) -> str:
+    """The text with stutters and self-repairs resolved, when it has any (else unchanged, so that
+    quoted words and casing survive): what a compound request is cut in."""
+    words = [w for w in expanded(text) if w not in FILLERS]
+    fixed = repaired(unrepeated(words))
+    return text if fixed == words else " ".join(fixed)
+
+
+def repaired(words: list[str]) -> list[str]:
+    """After the last self-repair marker, a new request replaces the one before it."""
+    for i in range(len(words) - 1, 0, -1):
+        for marker in REPAIRS:
+            if tuple(words[i : i + len(marker)]) == marker:
+                after = words[i + len(marker) :]
+                request = strip_politeness(after)
+                if request and asked_verb(request[0]) in verbs():
+                    return after
+    return words
+
+
+def strip_vocative(words: list[str], robot_name: str = "") -> list[str]:
+    """ "john can you go to the bathroom", "michael go to the kitchen": the addressee's name (one
+    word before a request) is not part of the request."""
+    commands = verbs()
+    while len(words) > 2 and words[0] in LEAD_FILLERS and asked_verb(words[1]) in commands:
+        words = words[1:]
+    if len(words) < 3 or words[0] in NOT_VOCATIVE or words[0] in commands or not words[0].isalpha():
+        return words
+    polite = any(starts(words[1:], p) and p[-1:] == ("you",) for p in POLITE_PREFIXES)
+    if polite or asked_verb(words[1]) in commands:
+        return strip_politeness(words[1:], robot_name)
+    return words

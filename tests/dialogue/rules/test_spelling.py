@@ -1,0 +1,91 @@
+"""Keyboard and recogniser typos: corrected against the grammar's words and the KB's names, never a
+correct word, never when two words are as close."""
+
+import pytest
+
+from dialogue import intents as I
+from dialogue.rules.spelling import corrected, grammar_words, typing_cost
+from kb import KB
+from tests.dialogue.conftest import lexicon_of, scene_kb
+from tests.dialogue.rules.test_interpret import say
+
+
+def _things(*labels: str) -> KB:
+    facts = ["person_bob rdf:type Human", 'person_bob rdfs:label "Bob"', "myself sees person_bob"]
+    for n, label in enumerate(labels):
+        facts += [f"t{n} rdf:type Artifact", f't{n} rdfs:label "{label}"', f"myself sees t{n}"]
+    return scene_kb(None, *facts)
+
+
+@pytest.mark.parametrize(
+    ("said", "meant", "cost"),
+    [
+        ("teh", "the", 0.8),  # two letters swapped
+        ("cyp", "cup", 1.0),  # a neighbouring key
+        ("plase", "please", 1.0),  # a letter missed
+        ("plase", "place", 1.5),  # a key far away
+        ("lego", "leg", 2.0),  # a short word with a letter more is another word
+        ("thermoss", "thermos", 1.0),
+    ],
+)
+def test_typing_cost(said: str, meant: str, cost: float) -> None:
+    assert typing_cost(said, meant) == cost
+
+
+def test_grammar_words_come_from_the_word_lists_and_the_frames() -> None:
+    assert {"please", "the", "bring", "towards", "behalf", "hold", "three"} <= grammar_words()
+
+
+@pytest.mark.parametrize(
+    ("text", "fixed", "referent"),
+    [
+        ("plase hand me teh thermos", "please hand me the thermos", False),
+        ("pass me the thremos", "pass me the thermos", True),
+        ("grab the dictionery please", "grab the dictionary please", True),
+        ("Thremos on the ledge, pick it up.", "Thermos on the ledge, pick it up.", True),
+    ],
+)
+def test_a_slip_is_corrected_to_the_one_word_it_is_close_to(text: str, fixed: str, referent: bool) -> None:
+    spelled = corrected(text, lexicon_of(_things("thermos", "dictionary", "ledge")))
+    assert spelled.text == fixed
+    assert spelled.guessed is referent
+
+
+@pytest.mark.parametrize(
+    "text",
+    [
+        "bring me the lamp",  # an English word: not a slip of the lamb
+        "greet Zed",  # an unknown name
+        "pick up the lego",  # a short word with a letter more
+        "take three of them",  # a number word
+        'say "helo everyone" to Bob',  # quoted words are said as they are
+        "hand me the jat",  # as close to the hat as to the mat: ambiguous
+        "hand the lamb to Lanb",  # a capital mid-sentence: a name, written as meant
+    ],
+)
+def test_correct_unknown_and_ambiguous_words_are_left_alone(text: str) -> None:
+    spelled = corrected(text, lexicon_of(_things("lamb", "leg", "tree", "hat", "mat")))
+    assert (spelled.text, spelled.corrections) == (text, ())
+
+
+def test_names_follow_the_kb() -> None:
+    kb = _things("ledge")
+    assert corrected("pick up the thremos", lexicon_of(kb)).corrections == ()
+    kb.update(["t9 rdf:type Artifact", 't9 rdfs:label "thermos"', "myself sees t9"])
+    assert corrected("pick up the thremos", lexicon_of(kb)).text == "pick up the thermos"
+
+
+def test_a_corrected_turn_is_less_sure_and_a_corrected_name_is_a_guess() -> None:
+    kb = _things("thermos")
+    plain = say(kb, "pick up the thermos")
+    grammar = say(kb, "plaese pick up the thermos")
+    name = say(kb, "pick up the thremos")
+    assert plain.roles == grammar.roles == name.roles == {"object": "t0"}
+    assert plain.confidence > grammar.confidence and name.confidence == grammar.confidence
+    assert (plain.guessed, grammar.guessed, name.guessed) == (False, False, True)
+
+
+def test_a_compound_request_with_a_slip_is_less_sure_in_every_part() -> None:
+    out = say(_things("thermos", "ledge"), "tkae the thermos and put it on the ldege")
+    assert [o.intent for o in out.steps()] == [I.GRAB_OBJECT, I.PLACE_OBJECT]
+    assert all(o.confidence < 0.9 for o in out.steps()) and out.guesses
