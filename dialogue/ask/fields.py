@@ -246,9 +246,9 @@ def find_entity(form_field: FormField, clause: Clause, ctx: ReadContext) -> Foun
     offered = [e for e in (snapshot.get(i) for i in ctx.clarifying.get(form_field.name, ())) if e is not None]
     choices = offered or pool(form_field, snapshot)
     ids = {e.id for e in choices}
-    for word in re.findall(r"[\w:.\-()]+", clause.text):  # an id said or typed as it is
-        if word in ids:
-            return Found(word, said=word)
+    # An id typed as it is, used only when no noun phrase names a choice: an id may also be a word
+    # ("cup" in the demo scene), and "the blue cup" means the blue one whatever the others are called.
+    typed = next((w for w in re.findall(r"[\w:.\-()]+", clause.text) if w in ids), None)
     if offered:
         for word, index in ORDINALS.items():
             if word in clause.words:
@@ -276,9 +276,11 @@ def find_entity(form_field: FormField, clause: Clause, ctx: ReadContext) -> Foun
             return Found(fits[0].id, said=said)
         if fits:
             return Found(None, candidates=tuple(fits), said=said)
+        if typed is not None:
+            break
         what = form_field.kb_class or "/".join(sorted(form_field.kinds))
         return Found(said, problem=f"{said} is not a {_readable(what)}", said=said)
-    return None
+    return None if typed is None else Found(typed, said=typed)
 
 
 def _readable(kb_class: str) -> str:

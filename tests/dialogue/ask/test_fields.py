@@ -8,6 +8,7 @@ from dialogue.ask.fields import Clause, ReadContext, find
 from dialogue.ask.form import AskForm
 from dialogue.reference.lexicon import Lexicon
 from tests.dialogue.ask.conftest import NINA
+from tests.dialogue.conftest import lexicon_of, scene_kb
 
 
 def found(form: AskForm, lexicon: Lexicon, name: str, text: str, asked: str | None = None,
@@ -61,3 +62,14 @@ def test_entities_are_kb_ids_with_candidates_when_ambiguous(form: AskForm, lexic
     assert found(form, lexicon, "friend", "Oliver") == "person_oliver"
     assert found(form, lexicon, "friend", "the red cup") == "problem"
     assert found(form, lexicon, "cup", "a giraffe") is None
+
+
+def test_an_id_that_is_also_a_word_does_not_outrank_the_noun_phrase(form: AskForm) -> None:
+    """The demo scene names its cup `cup`: "the blue cup" is still the blue one, "the cup" any of three."""
+    kb = scene_kb("two_cups", "cup rdf:type dbr:Cup", "cup isOn table_2", "myself sees cup")
+    lexicon = lexicon_of(kb)
+    assert found(form, lexicon, "cup", "the blue cup please") == "cup_blue"
+    assert found(form, lexicon, "cup", "I'd like the red cup") == "cup_red"
+    assert set(found(form, lexicon, "cup", "the cup")) == {"cup", "cup_red", "cup_blue"}
+    assert found(form, lexicon, "cup", "cup_blue") == "cup_blue"  # an id typed as it is
+    kb.close()
