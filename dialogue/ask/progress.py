@@ -35,7 +35,10 @@ NOT_UNDERSTOOD = "Sorry, I did not get that."
 
 
 def opening_state(form: AskForm) -> FormState:
-    return FormState(asked=_missing(form, FormState())[0])
+    """The form before any answer: asking its first required field (the first field when none is
+    required: the question is asked once, and its answer ends the form)."""
+    missing = _missing(form, FormState())
+    return FormState(asked=missing[0] if missing else form.fields[0].name)
 
 
 def _missing(form: AskForm, state: FormState) -> list[str]:

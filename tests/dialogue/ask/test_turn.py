@@ -183,3 +183,12 @@ def test_an_unreadable_stored_form_is_read_again_from_the_history(cups: KB) -> N
     (result,) = talk(manager, d.id, "the red cup")
     assert json.loads(result.results or "") == {"age": 34, "cup": "cup_red"} and result.dialogue_terminal
     assert result.trace is not None and any("could not be read" in n for n in result.trace.notes)
+
+
+def test_a_form_with_no_required_field_ends_after_one_answer(cups: KB) -> None:
+    manager = DialogueManager(DialogueEngine(cups))
+    configuration = json.dumps({"question": "Anything to add?", "required": [],
+                                "result_schema_properties": {"age": PROPERTIES["age"], "tea": PROPERTIES["tea"]}})
+    d = manager.start(ASK_ROLE, configuration=configuration)
+    (result,) = talk(manager, d.id, "I'm 40")
+    assert result.dialogue_terminal and json.loads(result.results or "") == {"age": 40}
