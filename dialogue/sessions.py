@@ -256,7 +256,8 @@ class DialogueManager:
         """One DialogueInteraction. `history` replaces the stored one. With `role` (and its
         `configuration`) the turn is stateless (chatbot_msgs 4.0): nothing is read from or written to
         the store, `dialogue_id` only names the turn (its trace), `history` is the whole dialogue.
-        `summary` (of earlier sessions) is given to the turn as a system utterance before the history.
+        `summary` (of earlier sessions) is given to the turn as a system utterance before the history
+        (stored or given); it is not stored.
 
         Answered within the engine's deadline from now, however many turns of the dialogue are
         queued before this one."""
@@ -266,14 +267,14 @@ class DialogueManager:
         _check_texts(user_id, text, locale, history, [("summary", summary or ""), ("role", role or ""),
                                                       ("configuration", configuration)])
         locale = _locale(locale)
-        if summary:
-            earlier = Utterance(SYSTEM_USER_ID, f"Summary of earlier conversations: {summary}")
-            history = [earlier, *(history or ())]
+        # Context for this turn only, before its history: never stored, never trimmed away.
+        earlier = f"Summary of earlier conversations: {summary}"
+        before = (Utterance(SYSTEM_USER_ID, earlier),) if summary else ()
         loop = asyncio.get_running_loop()
         deadline = loop.time() + self.engine.config.deadline
         if role is not None:
             state = DialogueState(dialogue_id, role, locale, configuration, tuple(history or ()))
-            return await self._stateless(state, user_id, text, response_expected, deadline)
+            return await self._stateless(state, user_id, text, response_expected, deadline, before)
         lock = self._lock(dialogue_id)
         # The place is taken now, so turns keep their arrival order whatever happens to each.
         place = asyncio.ensure_future(lock.acquire())
@@ -296,7 +297,8 @@ class DialogueManager:
             self._record_in_turn(place, lock, dialogue_id, user_id, text, late.response, history)
             return late
         try:
-            return await self._run(dialogue_id, user_id, text, locale, response_expected, history, deadline)
+            return await self._run(dialogue_id, user_id, text, locale, response_expected, history, deadline,
+                                   before)
         finally:
             lock.release()
 
@@ -315,6 +317,7 @@ class DialogueManager:
         response_expected: bool,
         history: Sequence[Utterance] | None,
         deadline: float,
+        before: Sequence[Utterance] = (),
     ) -> TurnResult:
         """The turn, holding its dialogue's lock."""
         try:
@@ -326,7 +329,8 @@ class DialogueManager:
         if not response_expected:
             kept.add(user_id, text)
             return await self._saved(state, kept, TurnResult("", (), backend="recorded"))
-        result, role_state = await self._role_turn(state, user_id, text, kept.snapshot(), locale, deadline)
+        turn_history = (*before, *kept.snapshot())
+        result, role_state = await self._role_turn(state, user_id, text, turn_history, locale, deadline)
         kept.add(user_id, text)
         if result.response:
             kept.add(ASSISTANT_USER_ID, result.response)
@@ -351,15 +355,14 @@ class DialogueManager:
         return result
 
     async def _stateless(self, state: DialogueState, user_id: str, text: str, response_expected: bool,
-                         deadline: float) -> TurnResult:
+                         deadline: float, before: Sequence[Utterance] = ()) -> TurnResult:
         """A 4.0 turn: its request holds the whole dialogue; the store is not used."""
         role = self.roles.get(state.role)
         if not state.role_state:  # a bad configuration is refused before the turn
             role.open(state.configuration)
         if not response_expected:
             return TurnResult("", (), backend="recorded")
-        kept = self._kept(state, None)
-        history = kept.snapshot()
+        history = (*before, *self._kept(state, None).snapshot())
         result, _state = await self._role_turn(state, user_id, text, history, state.locale, deadline, "4.0")
         # The 4.0 response always says whether the dialogue is over, and with what results.
         terminal = bool(result.dialogue_terminal)
