@@ -141,6 +141,8 @@ _NUMBER = re.compile(r"(?<![\w.])((?:minus|negative)\s+|-)?(\d+(?:\.\d+)?)(?![\w
 _PRONOUN_ONE = re.compile(
     r"\b(the|this|that|which|another|each|every|no|any)\b([^,;.]*?)\bone\b", re.IGNORECASE
 )
+_THOUSANDS = re.compile(r"(?<=\d),(?=\d{3}\b)")
+_HALF = re.compile(r"\b(\d+) and a half\b", re.IGNORECASE)
 ORDINALS = {"first": 0, "second": 1, "third": 2, "fourth": 3, "last": -1}
 
 
@@ -155,6 +157,7 @@ class Clause:
     @classmethod
     def of(cls, text: str) -> Clause:
         digits = alpha2digit(_PRONOUN_ONE.sub("\\1\\2\u2060", text), "en", threshold=0)
+        digits = _HALF.sub(r"\1.5", _THOUSANDS.sub("", digits))
         numbers = tuple((-1 if m.group(1) else 1) * float(m.group(2)) for m in _NUMBER.finditer(digits))
         return cls(text.strip(), tuple(tokens(text)), numbers)
 

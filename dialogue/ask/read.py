@@ -43,7 +43,13 @@ _SKIP = re.compile(
     re.IGNORECASE,
 )
 _CORRECTION = frozenset({"no", "actually", "sorry", "wait", "oops", "correction", "rather", "mean", "meant"})
-_SPLIT = re.compile(r"\s*(?:[,;!?]+|\.(?=\s|$)|\band\b|\bbut\b|\balso\b|\bplus\b)\s*", re.IGNORECASE)
+#: Where an answer is cut into clauses; never inside a number ("a hundred and five", "1,500",
+#: "two and a half").
+_SPLIT = re.compile(
+    r"\s*(?:(?:[;!?]|(?<!\d),|,(?!\d{3}\b))+|\.(?=\s|$)|\bbut\b|\balso\b|\bplus\b"
+    r"|(?<!hundred )(?<!thousand )(?<!million )(?<!billion )\band\b(?!\s+a\s+half\b))\s*",
+    re.IGNORECASE,
+)
 
 
 @dataclass
