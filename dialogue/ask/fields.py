@@ -196,12 +196,54 @@ def checked(form_field: FormField, value: Any, said: str) -> Found:
     return Found(value, problem, said=said) if problem else Found(held, said=said)
 
 
+#: Said as a whole, these decide, the longest first: "why not" is a yes, "of course not" a no.
+BOOLEAN_PHRASES: tuple[tuple[tuple[str, ...], bool], ...] = tuple(
+    (tuple(tokens(phrase)), value)
+    for phrase, value in sorted(
+        {
+            "of course not": False,
+            "don't think so": False,
+            "do not think so": False,
+            "rather not": False,
+            "why not": True,
+            "no problem": True,
+            "not a problem": True,
+            "don't mind": True,
+            "do not mind": True,
+            "would love": True,
+            "i'd love": True,
+            "think so": True,
+            "guess so": True,
+            "go ahead": True,
+            "please do": True,
+        }.items(),
+        key=lambda item: -len(item[0]),
+    )
+)
+#: No-words that turn a yes-word next to them into a no ("certainly not", "not true").
+NEGATORS = NO - {"no", "nope", "nah", "negative", "false", "nothing", "none"}
+
+
+def _polarity(words: Sequence[str]) -> list[bool]:
+    """Each yes or no said in `words`; a yes-word with a negator beside it is one no."""
+    said: list[bool] = []
+    used: set[int] = set()
+    for i, word in enumerate(words):
+        if i in used or word not in YES:
+            continue
+        around = [j for j in (i - 1, i + 1) if 0 <= j < len(words) and words[j] in NEGATORS and j not in used]
+        used.update([i, *around[:1]])
+        said.append(not around)
+    said += [False for i, word in enumerate(words) if word in NO and i not in used]
+    return said
+
+
 def find_boolean(form_field: FormField, clause: Clause, ctx: ReadContext) -> Found | None:
-    words = set(clause.words)
-    yes, no = bool(words & YES), bool(words & NO)
-    if yes == no:
-        return None
-    return Found(yes, said=clause.text)
+    for phrase, value in BOOLEAN_PHRASES:
+        if clause.has(phrase) is not None:
+            return Found(value, said=clause.text)
+    said = set(_polarity(clause.words))
+    return Found(said.pop(), said=clause.text) if len(said) == 1 else None
 
 
 def _number(form_field: FormField, clause: Clause) -> Found | None:

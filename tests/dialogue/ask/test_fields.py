@@ -73,3 +73,12 @@ def test_an_id_that_is_also_a_word_does_not_outrank_the_noun_phrase(form: AskFor
     assert set(found(form, lexicon, "cup", "the cup")) == {"cup", "cup_red", "cup_blue"}
     assert found(form, lexicon, "cup", "cup_blue") == "cup_blue"  # an id typed as it is
     kb.close()
+
+
+def test_negated_and_idiomatic_yes_no(form: AskForm, lexicon: Lexicon) -> None:
+    """ "absolutely not" was not understood (a yes word and a no word), "why not" read as a no."""
+    for text, value in [("absolutely not", False), ("certainly not", False), ("of course not", False),
+                        ("that's not true", False), ("not right", False), ("why not", True),
+                        ("no problem", True), ("I don't mind", True), ("I'd love to", True), ("I think so", True),
+                        ("I don't think so", False), ("I'd rather not", False), ("not really", False)]:
+        assert found(form, lexicon, "tea", text, asked="tea") is value, text

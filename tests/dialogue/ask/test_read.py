@@ -70,3 +70,7 @@ def test_a_number_said_with_and_or_a_thousands_comma_is_one_number(lexicon: Lexi
         assert read_answer(form, FormState(asked="n"), text, lexicon, NINA).values.get("n") == value, text
     reading = read_answer(form, FormState(asked="n"), "twelve, and my name is Nina", lexicon, NINA)
     assert reading.values == {"n": 12, "name": "Nina"}
+
+
+def test_sure_why_not_is_a_yes(form: AskForm, lexicon: Lexicon) -> None:
+    assert read_answer(form, FormState(asked="tea"), "sure, why not", lexicon, NINA).values == {"tea": True}
