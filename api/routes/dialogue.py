@@ -34,13 +34,18 @@ class Role(BaseModel):
     configuration: str = Field(default="{}", description="opaque JSON string, per chatbot_msgs/DialogueRole")
 
 
-Locale = Annotated[str, AfterValidator(normalise_locale)]
+def _locale(value: str | None) -> str | None:
+    """`ll_CC`; "" is no locale (chatbot_msgs' locale is optional, and ROS sends an unset string as "")."""
+    return normalise_locale(value) if value else None
+
+
+Locale = Annotated[str | None, AfterValidator(_locale)]
 
 
 class StartRequest(BaseModel):
     model_config = ConfigDict(extra="forbid")
     role: Role | None = None
-    locale: Locale | None = Field(default=None, description="ll_CC, e.g. en_GB")
+    locale: Locale = Field(default=None, description="ll_CC, e.g. en_GB (empty: none)")
 
 
 class Started(BaseModel):
@@ -62,7 +67,7 @@ class InteractionRequest(BaseModel):
     input: Annotated[str, AfterValidator(check_utterance)] | None = Field(
         default=None, description="what was said; not blank (4.0: the last utterance of history when absent)")
     response_expected: bool = True
-    locale: Locale | None = None
+    locale: Locale = None
     history: list[Turn] | None = Field(default=None, description="the dialogue so far (4.0.0 shape); "
                                        "replaces the stored history")
     role: Role | None = Field(default=None, description="4.0.0: the dialogue's role; the turn is stateless")
