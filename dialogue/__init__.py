@@ -8,7 +8,8 @@ Public API (exported here, see ``__all__``; nothing is done at import time):
 - `dialogue.sessions.DialogueManager(engine, store=None)`: `start(role, locale)`, `get(id)`, `end(id)`,
   `ids()` (and their `*_async` forms for async code), `await interact(user_id, text,
   dialogue_id="default", locale=None, response_expected=True, history=None)`; errors are
-  `SessionError` (every error of the package is a `DialogueError`); `store` is a
+  `SessionError` (`UnknownDialogue` for an id no dialogue has; every error of the package is a
+  `DialogueError`); `store` is a
   `dialogue.sessionstore.SessionStore`: `MemorySessions` (default) or
   `dialogue.sparqlsessions.SparqlSessions(endpoint)` (shared by processes on one SPARQL store);
 - `dialogue.llm.spec.parse_spec("rules" | "ollama:gemma3:1b[@URL]" | "openai:MODEL[@URL]" |
@@ -27,7 +28,7 @@ questions, answers, interpret: the offline grammar), llm/ (backends), evaluation
 """
 
 from dialogue.engine import DialogueEngine, EngineConfig, TurnResult
-from dialogue.errors import DialogueError, SessionError
+from dialogue.errors import DialogueError, SessionError, UnknownDialogue
 from dialogue.history import Utterance
 from dialogue.intents import Intent
 from dialogue.llm.base import ChatModel, ModelError
@@ -47,6 +48,7 @@ __all__ = [
     "SessionError",
     "SpecError",
     "TurnResult",
+    "UnknownDialogue",
     "Utterance",
     "parse_spec",
 ]

@@ -35,7 +35,7 @@ from typing import Literal, ParamSpec, TypeVar
 
 from dialogue.ask import ASK_ROLE
 from dialogue.engine import SORRY, DialogueEngine, TurnResult
-from dialogue.errors import SessionError
+from dialogue.errors import SessionError, UnknownDialogue
 from dialogue.history import ASSISTANT_USER_ID, SYSTEM_USER_ID, History, Utterance
 from dialogue.locales import LocaleError, normalise_locale
 from dialogue.roles import Roles
@@ -60,6 +60,7 @@ __all__ = [
     "DialogueManager",
     "DialogueState",
     "SessionError",
+    "UnknownDialogue",
     "check_utterance",
 ]
 
@@ -186,7 +187,7 @@ class DialogueManager:
     def get(self, dialogue_id: str) -> DialogueState:
         state = self._find(dialogue_id)
         if state is None:
-            raise SessionError(f"unknown dialogue {dialogue_id!r}; start it first")
+            raise UnknownDialogue(f"unknown dialogue {dialogue_id!r}; start it first")
         return state
 
     def end(self, dialogue_id: str) -> None:

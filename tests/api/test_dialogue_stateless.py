@@ -69,7 +69,13 @@ def test_bad_4_0_requests(live: Live) -> None:
          "unsupported dialogue role"),
         ({"role": {"name": "__ask__", "configuration": "{}"}, "history": [{"speaker": "a", "text": "hi"}]}, 400,
          "needs a question"),
+        # Bad input, not an unknown dialogue (both were 404 unknown_dialogue).
+        ({"role": {"name": "__default__"}, "history": [{"speaker": "", "text": "hi"}]}, 422,
+         "body.history.0.speaker"),
+        ({"role": {"name": "__default__"}, "summary": "tea \ud800", "history": [{"speaker": "a", "text": "hi"}]},
+         400, "not valid Unicode"),
     ]
     for body, status, message in cases:
-        refused = client.post("/dialogues/x/interactions", json=body)
+        refused = client.post("/dialogues/x/interactions", content=json.dumps(body),  # \ud800 escaped
+                              headers={"Content-Type": "application/json"})
         assert refused.status_code == status and message in refused.json()["message"], (body, refused.text)
