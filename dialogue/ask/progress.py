@@ -66,7 +66,9 @@ def bounds(form_field: FormField) -> str:
 
 
 def problem_line(form_field: FormField, problem: str) -> str:
-    if form_field.kind in ("integer", "number") and bounds(form_field) and "should be" in problem:
+    if form_field.kind == "integer" and "fractional part" in problem:  # pydantic's int_from_float
+        return f"That is not a possible {form_field.words}: it must be a whole number."
+    if form_field.kind in ("integer", "number") and bounds(form_field) and " than " in problem:
         return f"That is not a possible {form_field.words}: it must be {bounds(form_field)}."
     if form_field.kind == "enum":
         return f"I can only take {_join([str(v) for v in form_field.enum])} for the {form_field.words}."

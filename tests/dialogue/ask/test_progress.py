@@ -56,3 +56,12 @@ def test_questions_by_kind_and_description() -> None:
     form = form_of(pets={"type": "boolean"}, size={"type": "number", "description": "How tall are you?"})
     assert question_for(form, "pets") == "A few questions? Please say yes or no."
     assert question_for(form, "size") == "How tall are you?"
+
+
+def test_a_fraction_for_an_integer_is_said_as_such_not_as_the_bounds() -> None:
+    """ "three point five" for an integer field with a minimum was answered "it must be at least 0"."""
+    form = form_of(children={"type": "integer", "minimum": 0})
+    _value, problem = form.field("children").check(3.5)
+    assert problem is not None
+    _state, line = advance(form, opening_state(form), Reading(problems={"children": problem}))
+    assert line == "That is not a possible children: it must be a whole number. A few questions?"
