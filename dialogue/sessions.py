@@ -348,6 +348,11 @@ class DialogueManager:
             state.configuration, state.role_state, text, speaker=user_id, history=history, locale=locale,
             deadline=deadline, trace=trace,
         )
+        if shape == "4.0":  # the 4.0 response always says whether the dialogue is over, and with what
+            terminal, results = bool(result.dialogue_terminal), result.results or "{}"
+            told = result.trace and result.trace.model_copy(
+                update={"dialogue_terminal": terminal, "results": results})
+            result = replace(result, dialogue_terminal=terminal, results=results, trace=told)
         return self._traced(state.id, result), role_state
 
     def _traced(self, dialogue_id: str, result: TurnResult) -> TurnResult:
@@ -365,9 +370,7 @@ class DialogueManager:
             return TurnResult("", (), backend="recorded")
         history = (*before, *self._kept(state, None).snapshot())
         result, _state = await self._role_turn(state, user_id, text, history, state.locale, deadline, "4.0")
-        # The 4.0 response always says whether the dialogue is over, and with what results.
-        terminal = bool(result.dialogue_terminal)
-        return replace(result, dialogue_terminal=terminal, results=result.results or "{}")
+        return result
 
     async def _saved(self, state: DialogueState, kept: History, result: TurnResult) -> TurnResult:
         """The turn's result once its history is saved; when the store cannot take it, the result

@@ -25,6 +25,9 @@ def test_a_4_0_turn_needs_no_session_and_stores_nothing(live: Live) -> None:
     assert body["intents"][0]["data"] == {"object": "cup_1"} and body["intents"][0]["source"] == "person_alice"
     assert (body["dialogue_terminal"], body["results"]) == (False, "{}")
     assert "3f2a-dm-owned" not in live.services.dialogues.ids()
+    # The turn's trace says what the response said (it had null for both).
+    (trace,) = live.client.get("/dialogues/3f2a-dm-owned/turns").json()["turns"]
+    assert (trace["shape"], trace["dialogue_terminal"], trace["results"]) == ("4.0", False, "{}")
     # The 3.0 shape keeps working, with its three keys.
     old = live.client.post("/dialogues/default/interactions", json={"user_id": "person_alice", "input": "hi"})
     assert set(old.json()) == {"response", "intents", "error_msg"}
