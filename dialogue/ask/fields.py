@@ -141,6 +141,8 @@ _NUMBER = re.compile(r"(?<![\w.])((?:minus|negative)\s+|-)?(\d+(?:\.\d+)?)(?![\w
 _PRONOUN_ONE = re.compile(
     r"\b(the|this|that|which|another|each|every|no|any)\b([^,;.]*?)\bone\b", re.IGNORECASE
 )
+#: Words by which the speaker names themself.
+SELF = frozenset({"me", "myself"})
 _THOUSANDS = re.compile(r"(?<=\d),(?=\d{3}\b)")
 _HALF = re.compile(r"\b(\d+) and a half\b", re.IGNORECASE)
 ORDINALS = {"first": 0, "second": 1, "third": 2, "fourth": 3, "last": -1}
@@ -293,12 +295,13 @@ def find_entity(form_field: FormField, clause: Clause, ctx: ReadContext) -> Foun
     ids = {e.id for e in choices}
     # An id typed as it is, used only when no noun phrase names a choice: an id may also be a word
     # ("cup" in the demo scene), and "the blue cup" means the blue one whatever the others are called.
-    typed = next((w for w in re.findall(r"[\w:.\-()]+", clause.text) if w in ids), None)
+    typed = next((w for w in re.findall(r"[\w:.\-()]+", clause.text) if w in ids and w not in SELF), None)
     if offered:
         for word, index in ORDINALS.items():
             if word in clause.words:
                 return Found(offered[index].id, said=word)
-    words = [w for w in clause.words if w not in LEAD_INS or w in ("my", "one")]
+    # "myself" is the speaker, never the robot whose id it is.
+    words = [w for w in clause.words if (w not in LEAD_INS or w in ("my", "one")) and w not in SELF]
     owner = ctx.speaker if "my" in words else None
     for start in range(len(words)):  # the noun phrase ends the clause: "I'd like the red cup"
         phrase = words[start:]
@@ -325,7 +328,13 @@ def find_entity(form_field: FormField, clause: Clause, ctx: ReadContext) -> Foun
             break
         what = form_field.kb_class or "/".join(sorted(form_field.kinds))
         return Found(said, problem=f"{said} is not a {_readable(what)}", said=said)
-    return None if typed is None else Found(typed, said=typed)
+    if typed is not None:
+        return Found(typed, said=typed)
+    spoken = clause.words
+    me = [i for i, w in enumerate(spoken) if w in SELF and not (i and spoken[i - 1] in NEGATORS)]
+    if ctx.speaker in ids and me:  # "to me" (not "not me"): the speaker, when the field may name them
+        return Found(ctx.speaker, said=spoken[me[0]])
+    return None
 
 
 def _readable(kb_class: str) -> str:

@@ -5,7 +5,8 @@ from __future__ import annotations
 from typing import Any
 
 from dialogue.ask.fields import Clause, ReadContext, find
-from dialogue.ask.form import AskForm
+from dialogue.ask.form import AskForm, FormState
+from dialogue.ask.read import read_answer
 from dialogue.reference.lexicon import Lexicon
 from tests.dialogue.ask.conftest import NINA
 from tests.dialogue.conftest import lexicon_of, scene_kb
@@ -82,3 +83,13 @@ def test_negated_and_idiomatic_yes_no(form: AskForm, lexicon: Lexicon) -> None:
                         ("no problem", True), ("I don't mind", True), ("I'd love to", True), ("I think so", True),
                         ("I don't think so", False), ("I'd rather not", False), ("not really", False)]:
         assert found(form, lexicon, "tea", text, asked="tea") is value, text
+
+
+def test_me_in_a_person_field_is_the_speaker(form: AskForm, lexicon: Lexicon) -> None:
+    """ "Who should I bring it to?" "To me." was not understood."""
+    for text in ("me", "to me please", "myself", "bring it to me"):
+        assert found(form, lexicon, "friend", text) == NINA, text
+    assert found(form, lexicon, "friend", "not me") is None
+    reading = read_answer(form, FormState(asked="friend"), "Oliver, not me", lexicon, NINA)
+    assert reading.values == {"friend": "person_oliver"}
+    assert found(form, lexicon, "cup", "me") is None  # a cup field: "me" names no cup
