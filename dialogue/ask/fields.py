@@ -266,7 +266,16 @@ def find_enum(form_field: FormField, clause: Clause, ctx: ReadContext) -> Found 
             hits.append(value)
     # "light blue" and "blue": the longest value said is the one meant.
     hits = [h for h in hits if not any(h != o and str(h) in str(o) for o in hits)]
+    if not hits and (form_field.name == ctx.asked or form_field.name in ctx.named):
+        hits = _by_a_word(form_field, clause)
     return Found(hits[0], said=clause.text) if len(hits) == 1 else None
+
+
+def _by_a_word(form_field: FormField, clause: Clause) -> list[Any]:
+    """ "chocolate" for "hot chocolate": the values one of whose words the clause says (answering
+    this field only: a word is weak evidence)."""
+    said = set(norm([w for w in clause.words if w not in LEAD_INS]))
+    return [v for v in form_field.enum if isinstance(v, str) and said & set(norm(tokens(v)))]
 
 
 def find_string(form_field: FormField, clause: Clause, ctx: ReadContext) -> Found | None:

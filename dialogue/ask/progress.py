@@ -19,10 +19,10 @@ A field that could not be obtained after `MAX_TRIES` answers is given up: the fo
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 
 from dialogue.ask.fields import pool
-from dialogue.ask.form import AskForm, FormField, FormState
+from dialogue.ask.form import AskForm, Clarifying, FieldKind, FormField, FormState
 from dialogue.ask.read import Reading
 from dialogue.reference.clarify import MAX_OPTIONS, describe_options
 from dialogue.reference.clarify import question as clarifying_question
@@ -84,25 +84,44 @@ def _options(snapshot: Snapshot, entities: Sequence[Entity]) -> list[str]:
     return describe_options(snapshot, entities)
 
 
-def question_for(form: AskForm, name: str, snapshot: Snapshot | None = None) -> str:
-    """How the robot asks for one field: its description when it is a question, the form's question
-    for the first field, else by the field's kind."""
+#: What the form's own question is followed by when it is asked again, by the field's kind.
+_HINTS: dict[FieldKind, Callable[[FormField], str]] = {
+    "boolean": lambda f: " Please say yes or no.",
+    "enum": lambda f: f" Please say {_join([str(v) for v in f.enum])}.",
+}
+
+
+def _listed(form_field: FormField, snapshot: Snapshot | None) -> list[Entity]:
+    """The entities a question about an entity field lists (all it may name, when they are few)."""
+    choices = pool(form_field, snapshot) if snapshot is not None else []
+    return choices if 1 < len(choices) <= MAX_OPTIONS else []
+
+
+def asking(form: AskForm, name: str, snapshot: Snapshot | None = None) -> tuple[str, list[Entity]]:
+    """How the robot asks for one field — its description when it is a question, the form's question
+    for the first field, else by the field's kind — and the entities the question offers."""
     form_field = form.field(name)
     description = form_field.schema.get("description")
     if isinstance(description, str) and description.strip().endswith("?"):
-        return description.strip()
+        return description.strip(), []
     if name == form.fields[0].name or len(form.required) == 1:
-        hint = {"boolean": " Please say yes or no."}.get(form_field.kind, "")
-        return form.question + hint
+        hint = _HINTS.get(form_field.kind)
+        return form.question + (hint(form_field) if hint else ""), []
     words = form_field.words
     if form_field.kind == "boolean":
-        return f"And {words}: yes or no?"
+        return f"And {words}: yes or no?", []
     if form_field.kind == "enum":
-        return f"Which {words}: {_join([str(v) for v in form_field.enum])}?"
+        return f"Which {words}: {_join([str(v) for v in form_field.enum])}?", []
     if form_field.kind == "entity":
-        options = _options(snapshot, pool(form_field, snapshot)) if snapshot is not None else []
-        return f"Which {words}: {_join(options)}?" if 1 < len(options) <= MAX_OPTIONS else f"Which {words}?"
-    return f"And what is your {words}?"
+        listed = _listed(form_field, snapshot)
+        options = _options(snapshot, listed) if snapshot is not None and listed else []
+        return (f"Which {words}: {_join(options)}?" if options else f"Which {words}?"), listed
+    return f"And what is your {words}?", []
+
+
+def question_for(form: AskForm, name: str, snapshot: Snapshot | None = None) -> str:
+    """How the robot asks for one field (`asking`)."""
+    return asking(form, name, snapshot)[0]
 
 
 def advance(
@@ -145,9 +164,11 @@ def advance(
         if offered:
             new.asked = new.clarifying.field
             return new, " ".join([*lines, clarifying_question(snapshot, offered)])
-    new.clarifying = None
     new.asked = new.asked if new.asked in missing else missing[0]
-    return new, " ".join([*lines, question_for(form, new.asked, snapshot)])
+    line, offered = asking(form, new.asked, snapshot)
+    # The entities the question lists are the choices, in the order said ("the second one").
+    new.clarifying = Clarifying(field=new.asked, candidates=[e.id for e in offered]) if offered else None
+    return new, " ".join([*lines, line])
 
 
 def _count_tries(state: FormState, reading: Reading) -> None:

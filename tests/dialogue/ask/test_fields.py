@@ -8,7 +8,7 @@ from dialogue.ask.fields import Clause, ReadContext, find
 from dialogue.ask.form import AskForm, FormState
 from dialogue.ask.read import read_answer
 from dialogue.reference.lexicon import Lexicon
-from tests.dialogue.ask.conftest import NINA
+from tests.dialogue.ask.conftest import NINA, form_of
 from tests.dialogue.conftest import lexicon_of, scene_kb
 
 
@@ -93,3 +93,15 @@ def test_me_in_a_person_field_is_the_speaker(form: AskForm, lexicon: Lexicon) ->
     reading = read_answer(form, FormState(asked="friend"), "Oliver, not me", lexicon, NINA)
     assert reading.values == {"friend": "person_oliver"}
     assert found(form, lexicon, "cup", "me") is None  # a cup field: "me" names no cup
+
+
+def test_an_enum_value_said_by_one_of_its_words(lexicon: Lexicon) -> None:
+    """ "chocolate" for "hot chocolate" was not understood; a word of exactly one value names it, when
+    the field is the one asked (a single word is weak evidence)."""
+    form = form_of(drink={"enum": ["tea", "orange juice", "apple juice", "hot chocolate"]})
+    assert found(form, lexicon, "drink", "chocolate please", asked="drink") == "hot chocolate"
+    assert found(form, lexicon, "drink", "the orange one", asked="drink") == "orange juice"
+    assert found(form, lexicon, "drink", "juice", asked="drink") is None  # two juices: which?
+    assert found(form, lexicon, "drink", "something hot", asked="drink") == "hot chocolate"
+    assert found(form, lexicon, "drink", "a glass of water", asked="drink") is None
+    assert found(form, lexicon, "drink", "chocolate please") is None  # not asked
