@@ -21,10 +21,11 @@ Public API (exported here, see ``__all__``; nothing is done at import time):
 
 Modules: intents (Intent.msg catalogue), schema (answer models, per-turn JSON schema), situation
 (snapshot as sentences), validate (model answer -> grounded intents), prompts, history, engine,
-sessions (+ sessionstore, sparqlsessions: where dialogue state lives), roles (default, ask), locales,
-speakers, errors; ask/ (the __ask__ role's form), trace/ (every turn's record); reference/
-(grounding: the KB snapshot; lexicon / resolution / clarify: referents), rules/ (words, commands,
-questions, answers, interpret: the offline grammar), llm/ (backends), evaluation/ (the eval tool).
+sessions (+ sessionstore, sparqlsessions: where dialogue state lives; turnqueue: one turn at a
+time), roles (default, ask), locales, speakers, errors; ask/ (the __ask__ role's form), trace/
+(every turn's record); reference/ (grounding: the KB snapshot; lexicon / resolution / clarify:
+referents), rules/ (words, commands, questions, answers, interpret: the offline grammar), llm/
+(backends), evaluation/ (the eval tool).
 """
 
 from dialogue.engine import DialogueEngine, EngineConfig, TurnResult

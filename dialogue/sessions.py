@@ -7,14 +7,14 @@ dialogue's history, and the answer (with the user's words) is appended after the
 The dialogues live in a `SessionStore` (dialogue.sessionstore): in this process's memory by default,
 or in a store several service processes share (dialogue.sparqlsessions), so a dialogue started on
 one process continues on another, a clarifying question asked by one included. Each turn loads the
-dialogue's state when it starts and saves it when it ends. The per-dialogue asyncio.Lock serialises
-the turns of one dialogue in arrival order, yet each turn answers by its own deadline counted from its
-arrival: a turn whose deadline passes while earlier ones run gets the engine's polite fallback at
+dialogue's state when it starts and saves it when it ends. The turns of one dialogue run one at a
+time in arrival order (dialogue.turnqueue), yet each turn answers by its own deadline counted from
+its arrival: a turn whose deadline passes while earlier ones run gets the engine's polite fallback at
 once, and is recorded (its words and that reply) when its place in the queue comes. This holds within
-one process only: two processes running turns on the same dialogue
-at once both load the same state and the last save wins (the other turn's utterances are lost from
-the history; its reply and intents were still returned). A dialogue ended while a turn runs stays
-ended: the turn's save does not store it again.
+one process only: two processes running turns on the same dialogue at once both load the same
+state and the last save wins (the other turn's utterances are lost from the history; its reply and
+intents were still returned). A dialogue ended while a turn runs stays ended: the turn's save does
+not store it again.
 
 What a turn does depends on the dialogue's role (dialogue.roles): `__default__` (the engine's turn)
 or `__ask__` (a form; its question is the dialogue's opening line). A turn that brings its role (the
@@ -28,9 +28,9 @@ import asyncio
 import logging
 import time
 import uuid
-import weakref
 from collections.abc import Callable, Sequence
 from dataclasses import replace
+from functools import partial
 from typing import Literal, ParamSpec, TypeVar
 
 from dialogue.ask import ASK_ROLE
@@ -50,6 +50,7 @@ from dialogue.sessionstore import (
 )
 from dialogue.trace.record import TraceRecorder
 from dialogue.trace.store import TraceStore
+from dialogue.turnqueue import TurnQueue
 from kb.errors import InvalidUnicode, StoreUnavailable
 from kb.unicode import check_text
 
@@ -71,24 +72,12 @@ T = TypeVar("T")
 log = logging.getLogger(__name__)
 
 
-
 def check_utterance(text: str) -> str:
     """`text` when it has something to say; an empty or blank utterance is no turn (SessionError,
     a ValueError, so request models may use this as a validator)."""
     if not text.strip():
         raise SessionError("the utterance is empty or blank; say something")
     return text
-
-
-def _give_up(place: asyncio.Future[Literal[True]], lock: asyncio.Lock) -> None:
-    """Leave the queue: a place not reached yet is withdrawn, a lock already acquired is released."""
-    if not place.cancel():
-        lock.release()
-
-
-def _log_failure(task: asyncio.Task[None]) -> None:
-    if not task.cancelled() and task.exception() is not None:
-        log.error("recording a late dialogue turn failed", exc_info=task.exception())
 
 
 def _check_id(dialogue_id: str) -> None:
@@ -145,10 +134,8 @@ class DialogueManager:
         self.max_dialogues = self.store.max_dialogues
         self.max_turns = max_turns
         self.max_chars = max_chars
-        # One lock per dialogue with a turn under way; gone once no turn holds or waits for it.
-        self._locks: weakref.WeakValueDictionary[str, asyncio.Lock] = weakref.WeakValueDictionary()
-        # Recordings of turns answered late, waiting for their place in their dialogue's queue.
-        self._late: set[asyncio.Task[None]] = set()
+        #: The turns of each dialogue, one at a time in arrival order.
+        self.queue = TurnQueue()
 
     # -- the store, synchronously ------------------------------------------------------------------
     def _find(self, dialogue_id: str) -> DialogueState | None:
@@ -229,13 +216,6 @@ class DialogueManager:
         return await self._off_loop(self.ids)
 
     # -- turns ------------------------------------------------------------------------------------
-    def _lock(self, dialogue_id: str) -> asyncio.Lock:
-        lock = self._locks.get(dialogue_id)
-        if lock is None:
-            lock = asyncio.Lock()
-            self._locks[dialogue_id] = lock
-        return lock
-
     def _save(self, state: DialogueState, history: History) -> None:
         # Only `default` is stored anew: any other dialogue ended during the turn stays ended.
         saved = replace(state, history=history.snapshot(), last_used=time.time())
@@ -276,15 +256,8 @@ class DialogueManager:
         if role is not None:
             state = DialogueState(dialogue_id, role, locale, configuration, tuple(history or ()))
             return await self._stateless(state, user_id, text, response_expected, deadline, before)
-        lock = self._lock(dialogue_id)
-        # The place is taken now, so turns keep their arrival order whatever happens to each.
-        place = asyncio.ensure_future(lock.acquire())
-        try:
-            await asyncio.wait((place,), timeout=max(0.0, deadline - loop.time()))
-        except asyncio.CancelledError:
-            _give_up(place, lock)
-            raise
-        if not place.done():
+        place = await self.queue.take(dialogue_id, deadline - loop.time())
+        if not place.reached:
             if response_expected:
                 late = self.engine.fallback(
                     text, user_id, locale,
@@ -295,13 +268,14 @@ class DialogueManager:
                 late = self._traced(dialogue_id, self.engine.traced(late, trace))
             else:
                 late = TurnResult("", (), backend="recorded")
-            self._record_in_turn(place, lock, dialogue_id, user_id, text, late.response, history)
+            record = partial(self._record_late, dialogue_id, user_id, text, late.response, history)
+            self.queue.later(place, record)
             return late
         try:
             return await self._run(dialogue_id, user_id, text, locale, response_expected, history, deadline,
                                    before)
         finally:
-            lock.release()
+            place.release()
 
     def _kept(self, state: DialogueState, history: Sequence[Utterance] | None) -> History:
         kept = History(self.max_turns, self.max_chars)
@@ -383,37 +357,15 @@ class DialogueManager:
             return replace(result, error_msg=f"{result.error_msg}; {error}" if result.error_msg else error)
         return result
 
-    def _record_in_turn(
-        self,
-        place: asyncio.Future[Literal[True]],
-        lock: asyncio.Lock,
-        dialogue_id: str,
-        user_id: str,
-        text: str,
-        reply: str,
-        history: Sequence[Utterance] | None,
-    ) -> None:
-        """Record a turn answered late once its place in the queue comes, keeping the order."""
-
-        async def record() -> None:
-            try:
-                await asyncio.shield(place)
-            except asyncio.CancelledError:
-                _give_up(place, lock)
-                raise
-            try:
-                state = await self._off_loop(self.get, dialogue_id)
-                kept = self._kept(state, history)
-                kept.add(user_id, text)
-                if reply:
-                    kept.add(ASSISTANT_USER_ID, reply)
-                await self._off_loop(self._save, state, kept)
-            except (SessionError, StoreUnavailable) as exc:  # ended meanwhile, or unreadable
-                log.warning("late turn of dialogue %r not recorded: %s", dialogue_id, exc)
-            finally:
-                lock.release()
-
-        task = asyncio.get_running_loop().create_task(record())
-        self._late.add(task)
-        task.add_done_callback(self._late.discard)
-        task.add_done_callback(_log_failure)
+    async def _record_late(self, dialogue_id: str, user_id: str, text: str, reply: str,
+                           history: Sequence[Utterance] | None) -> None:
+        """Record a turn answered late, when its place in the queue comes (the order is kept)."""
+        try:
+            state = await self._off_loop(self.get, dialogue_id)
+            kept = self._kept(state, history)
+            kept.add(user_id, text)
+            if reply:
+                kept.add(ASSISTANT_USER_ID, reply)
+            await self._off_loop(self._save, state, kept)
+        except (SessionError, StoreUnavailable) as exc:  # ended meanwhile, or unreadable
+            log.warning("late turn of dialogue %r not recorded: %s", dialogue_id, exc)
