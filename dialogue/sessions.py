@@ -33,7 +33,6 @@ from dataclasses import replace
 from functools import partial
 from typing import Literal, ParamSpec, TypeVar
 
-from dialogue.ask import ASK_ROLE
 from dialogue.engine import SORRY, DialogueEngine, TurnResult
 from dialogue.errors import SessionError, UnknownDialogue
 from dialogue.history import ASSISTANT_USER_ID, SYSTEM_USER_ID, History, Utterance
@@ -57,15 +56,12 @@ from kb.unicode import check_text
 __all__ = [
     "DEFAULT_DIALOGUE",
     "DEFAULT_ROLE",
-    "SUPPORTED_ROLES",
     "DialogueManager",
     "DialogueState",
     "SessionError",
     "UnknownDialogue",
     "check_utterance",
 ]
-
-SUPPORTED_ROLES = frozenset({DEFAULT_ROLE, ASK_ROLE})
 
 P = ParamSpec("P")
 T = TypeVar("T")
