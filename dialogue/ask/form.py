@@ -22,7 +22,7 @@ from __future__ import annotations
 
 import json
 import re
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from typing import Annotated, Any, Literal
 
@@ -87,31 +87,41 @@ class FormField:
             return None, "; ".join(str(e["msg"]) for e in exc.errors())
 
 
-def _python_type(field: FormField) -> Any:
+def _number(field: FormField) -> Any:
     schema = field.schema
-    if field.kind == "enum":
-        return Literal[field.enum]
-    if field.kind == "boolean":
-        return bool
-    if field.kind in ("integer", "number"):
-        bounds = Field(
-            ge=schema.get("minimum"),
-            le=schema.get("maximum"),
-            gt=schema.get("exclusiveMinimum"),
-            lt=schema.get("exclusiveMaximum"),
-        )
-        number: type = int if field.kind == "integer" else float
-        return Annotated[number, bounds]
-    if field.kind == "string":
-        return Annotated[
-            str,
-            Field(
-                min_length=schema.get("minLength", 1),
-                max_length=schema.get("maxLength", 200),
-                pattern=schema.get("pattern"),
-            ),
-        ]
-    return str  # an entity: an id, resolved against the KB
+    bounds = Field(
+        ge=schema.get("minimum"),
+        le=schema.get("maximum"),
+        gt=schema.get("exclusiveMinimum"),
+        lt=schema.get("exclusiveMaximum"),
+    )
+    number: type = int if field.kind == "integer" else float
+    return Annotated[number, bounds]
+
+
+def _string(field: FormField) -> Any:
+    schema = field.schema
+    limits = Field(
+        min_length=schema.get("minLength", 1),
+        max_length=schema.get("maxLength", 200),
+        pattern=schema.get("pattern"),
+    )
+    return Annotated[str, limits]
+
+
+#: The Python type that checks a value of each kind of field (an entity: an id, resolved against the KB).
+_PYTHON_TYPES: dict[FieldKind, Callable[[FormField], Any]] = {
+    "enum": lambda field: Literal[field.enum],
+    "boolean": lambda field: bool,
+    "integer": _number,
+    "number": _number,
+    "string": _string,
+    "entity": lambda field: str,
+}
+
+
+def _python_type(field: FormField) -> Any:
+    return _PYTHON_TYPES[field.kind](field)
 
 
 @dataclass(frozen=True)

@@ -91,6 +91,18 @@ _HINTS: dict[FieldKind, Callable[[FormField], str]] = {
 }
 
 
+#: How a field other than the first is asked, by its kind (given the entities' options, if listed).
+_QUESTIONS: dict[FieldKind, Callable[[FormField, list[str]], str]] = {
+    "boolean": lambda f, _options: f"And {f.words}: yes or no?",
+    "enum": lambda f, _options: f"Which {f.words}: {_join([str(v) for v in f.enum])}?",
+    "entity": lambda f, options: f"Which {f.words}: {_join(options)}?" if options else f"Which {f.words}?",
+}
+
+
+def _open_question(form_field: FormField, _options: list[str]) -> str:
+    return f"And what is your {form_field.words}?"
+
+
 def _listed(form_field: FormField, snapshot: Snapshot | None) -> list[Entity]:
     """The entities a question about an entity field lists (all it may name, when they are few)."""
     choices = pool(form_field, snapshot) if snapshot is not None else []
@@ -107,16 +119,9 @@ def asking(form: AskForm, name: str, snapshot: Snapshot | None = None) -> tuple[
     if name == form.fields[0].name or len(form.required) == 1:
         hint = _HINTS.get(form_field.kind)
         return form.question + (hint(form_field) if hint else ""), []
-    words = form_field.words
-    if form_field.kind == "boolean":
-        return f"And {words}: yes or no?", []
-    if form_field.kind == "enum":
-        return f"Which {words}: {_join([str(v) for v in form_field.enum])}?", []
-    if form_field.kind == "entity":
-        listed = _listed(form_field, snapshot)
-        options = _options(snapshot, listed) if snapshot is not None and listed else []
-        return (f"Which {words}: {_join(options)}?" if options else f"Which {words}?"), listed
-    return f"And what is your {words}?", []
+    listed = _listed(form_field, snapshot) if form_field.kind == "entity" else []
+    options = _options(snapshot, listed) if snapshot is not None and listed else []
+    return _QUESTIONS.get(form_field.kind, _open_question)(form_field, options), listed
 
 
 def question_for(form: AskForm, name: str, snapshot: Snapshot | None = None) -> str:
