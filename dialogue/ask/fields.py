@@ -136,6 +136,12 @@ _LEAD_IN_TEXT = re.compile(
     r"the answer is|my answer is)\b\s*)?",
     re.IGNORECASE,
 )
+#: A question back ("why do you want to know", "what do you mean", "pardon"), never a free string.
+QUESTION_BACK = re.compile(
+    r"\s*(?:why|what|pardon|huh|come again|excuse me"
+    r"|(?:can|could|would|will|do|did|does|are|is)\s+(?:you|i|we)|how\s+(?:do|does|did|can|come|about))\b",
+    re.IGNORECASE,
+)
 _NUMBER = re.compile(r"(?<![\w.])((?:minus|negative)\s+|-)?(\d+(?:\.\d+)?)(?![\w]|\.\d)", re.IGNORECASE)
 #: "one" after a determiner is a pronoun ("the red one", "that one"), not a number.
 _PRONOUN_ONE = re.compile(
@@ -280,6 +286,8 @@ def _by_a_word(form_field: FormField, clause: Clause) -> list[Any]:
 
 def find_string(form_field: FormField, clause: Clause, ctx: ReadContext) -> Found | None:
     text = clause.text
+    if QUESTION_BACK.match(text) or text.endswith("?"):  # "why do you want to know?" is no name
+        return None
     start = clause.has(tokens(form_field.words)) if form_field.name in ctx.named else None
     if start is not None:  # "my name is Bob": what follows the field's words (and "is", ":")
         after = re.split(r"\b(?:is|are|was|'s)\b|:", text, maxsplit=1)

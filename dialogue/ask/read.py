@@ -39,7 +39,8 @@ _CANCEL = re.compile(
 )
 _SKIP = re.compile(
     r"\b(?:skip(?: it| that| this)?|pass|i don'?t know|i do not know|dunno|no idea|not sure|i'?m not sure|"
-    r"i'?d rather not say|rather not say|can'?t remember|don'?t remember)\b",
+    r"i'?d rather not (?:say|tell|answer)|rather not say|i'?d prefer not to|i prefer not to|"
+    r"i won'?t (?:say|tell)|i will not (?:say|tell)|not telling|can'?t remember|don'?t remember)\b",
     re.IGNORECASE,
 )
 _CORRECTION = frozenset({"no", "actually", "sorry", "wait", "oops", "correction", "rather", "mean", "meant"})

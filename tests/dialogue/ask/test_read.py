@@ -74,3 +74,14 @@ def test_a_number_said_with_and_or_a_thousands_comma_is_one_number(lexicon: Lexi
 
 def test_sure_why_not_is_a_yes(form: AskForm, lexicon: Lexicon) -> None:
     assert read_answer(form, FormState(asked="tea"), "sure, why not", lexicon, NINA).values == {"tea": True}
+
+
+def test_a_question_back_or_a_refusal_is_no_free_string(lexicon: Lexicon) -> None:
+    """ "What is your name?" "why do you want to know?" filled the name with those words."""
+    form = form_of(name={"type": "string"}, age={"type": "integer"})
+    for text in ("why do you want to know?", "what?", "can you repeat the question", "what do you mean",
+                 "pardon", "how do you spell it?"):
+        assert read_answer(form, FormState(asked="name"), text, lexicon, NINA).values == {}, text
+    for text in ("I'd rather not tell you", "I prefer not to say", "I won't tell you"):
+        assert read_answer(form, FormState(asked="name"), text, lexicon, NINA).skipped == ["name"], text
+    assert read_answer(form, FormState(asked="name"), "it's Will", lexicon, NINA).values == {"name": "Will"}
