@@ -8,7 +8,8 @@ Public API (exported here, see ``__all__``; nothing is done at import time):
 - `dialogue.sessions.DialogueManager(engine, store=None)`: `start(role, locale)`, `get(id)`, `end(id)`,
   `ids()` (and their `*_async` forms for async code), `await interact(user_id, text,
   dialogue_id="default", locale=None, response_expected=True, history=None)`; errors are
-  `SessionError` (every error of the package is a `DialogueError`); `store` is a
+  `SessionError` (`UnknownDialogue` for an id no dialogue has; every error of the package is a
+  `DialogueError`); `store` is a
   `dialogue.sessionstore.SessionStore`: `MemorySessions` (default) or
   `dialogue.sparqlsessions.SparqlSessions(endpoint)` (shared by processes on one SPARQL store);
 - `dialogue.llm.spec.parse_spec("rules" | "ollama:gemma3:1b[@URL]" | "openai:MODEL[@URL]" |
@@ -20,16 +21,17 @@ Public API (exported here, see ``__all__``; nothing is done at import time):
 
 Modules: intents (Intent.msg catalogue), schema (answer models, per-turn JSON schema), situation
 (snapshot as sentences), validate (model answer -> grounded intents), prompts, history, engine,
-sessions (+ sessionstore, sparqlsessions: where dialogue state lives), roles (default, ask), locales,
-speakers, errors; ask/ (the __ask__ role's form), trace/ (every turn's record); reference/
-(grounding: the KB snapshot; lexicon / resolution / clarify: referents), rules/ (words, commands,
-questions, answers, interpret: the offline grammar), llm/ (backends), evaluation/ (the eval tool),
+sessions (+ sessionstore, sparqlsessions: where dialogue state lives; turnqueue: one turn at a
+time), roles (default, ask), locales, speakers, errors; ask/ (the __ask__ role's form), trace/
+(every turn's record); reference/ (grounding: the KB snapshot; lexicon / resolution / clarify:
+referents), rules/ (words, commands, questions, answers, interpret: the offline grammar), llm/
+(backends), evaluation/ (the eval tool),
 memory/ (what people tell the robot: claims, statements, learn, provenance, people), pushed/ (the
 intent bus), observers (after each turn), initiative (engaging and greeting people).
 """
 
 from dialogue.engine import DialogueEngine, EngineConfig, TurnResult
-from dialogue.errors import DialogueError, SessionError
+from dialogue.errors import DialogueError, SessionError, UnknownDialogue
 from dialogue.history import Utterance
 from dialogue.intents import Intent
 from dialogue.llm.base import ChatModel, ModelError
@@ -49,6 +51,7 @@ __all__ = [
     "SessionError",
     "SpecError",
     "TurnResult",
+    "UnknownDialogue",
     "Utterance",
     "parse_spec",
 ]

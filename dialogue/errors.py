@@ -14,3 +14,7 @@ class DialogueError(Exception):
 
 class SessionError(DialogueError, ValueError):
     """Unknown dialogue id, unsupported role, or a request that cannot be served; message says which."""
+
+
+class UnknownDialogue(SessionError):
+    """No dialogue has this id (never started, ended, or dropped as the least recently used)."""

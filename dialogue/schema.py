@@ -11,7 +11,7 @@ from __future__ import annotations
 import json
 from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, TypeVar
 
 from pydantic import BaseModel, ConfigDict, Field, ValidationError
 
@@ -93,18 +93,27 @@ def extract_json(content: str) -> Any:
     return value
 
 
-def parse_answer(content: str) -> ChatbotResponse:
-    """Validate the raw content into a ChatbotResponse or raise AnswerError (never anything else, D3)."""
+Answer = TypeVar("Answer", bound=BaseModel)
+
+
+def validated(content: str, model: type[Answer], keys: str) -> Answer:
+    """The raw content's JSON object validated into `model`, or AnswerError saying what is wrong
+    (never anything else, D3); `keys` names the object's keys for the message."""
     value = extract_json(content)
     if not isinstance(value, dict):
-        raise AnswerError("the answer must be a JSON object with keys verbal_ack and user_intent")
+        raise AnswerError(f"the answer must be a JSON object with keys {keys}")
     try:
-        return ChatbotResponse.model_validate(value)
+        return model.model_validate(value)
     except ValidationError as exc:
         problems = "; ".join(
             f"{'.'.join(str(p) for p in err['loc']) or 'answer'}: {err['msg']}" for err in exc.errors()
         )
         raise AnswerError(f"the answer does not match the schema ({problems})") from None
+
+
+def parse_answer(content: str) -> ChatbotResponse:
+    """Validate the raw content into a ChatbotResponse or raise AnswerError (never anything else, D3)."""
+    return validated(content, ChatbotResponse, "verbal_ack and user_intent")
 
 
 @dataclass(frozen=True)

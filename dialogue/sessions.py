@@ -7,14 +7,14 @@ dialogue's history, and the answer (with the user's words) is appended after the
 The dialogues live in a `SessionStore` (dialogue.sessionstore): in this process's memory by default,
 or in a store several service processes share (dialogue.sparqlsessions), so a dialogue started on
 one process continues on another, a clarifying question asked by one included. Each turn loads the
-dialogue's state when it starts and saves it when it ends. The per-dialogue asyncio.Lock serialises
-the turns of one dialogue in arrival order, yet each turn answers by its own deadline counted from its
-arrival: a turn whose deadline passes while earlier ones run gets the engine's polite fallback at
+dialogue's state when it starts and saves it when it ends. The turns of one dialogue run one at a
+time in arrival order (dialogue.turnqueue), yet each turn answers by its own deadline counted from
+its arrival: a turn whose deadline passes while earlier ones run gets the engine's polite fallback at
 once, and is recorded (its words and that reply) when its place in the queue comes. This holds within
-one process only: two processes running turns on the same dialogue
-at once both load the same state and the last save wins (the other turn's utterances are lost from
-the history; its reply and intents were still returned). A dialogue ended while a turn runs stays
-ended: the turn's save does not store it again.
+one process only: two processes running turns on the same dialogue at once both load the same
+state and the last save wins (the other turn's utterances are lost from the history; its reply and
+intents were still returned). A dialogue ended while a turn runs stays ended: the turn's save does
+not store it again.
 
 What a turn does depends on the dialogue's role (dialogue.roles): `__default__` (the engine's turn)
 or `__ask__` (a form; its question is the dialogue's opening line). A turn that brings its role (the
@@ -28,14 +28,13 @@ import asyncio
 import logging
 import time
 import uuid
-import weakref
 from collections.abc import Awaitable, Callable, Sequence
 from dataclasses import replace
+from functools import partial
 from typing import Literal, ParamSpec, TypeVar
 
-from dialogue.ask import ASK_ROLE
 from dialogue.engine import SORRY, DialogueEngine, TurnResult
-from dialogue.errors import SessionError
+from dialogue.errors import SessionError, UnknownDialogue
 from dialogue.history import ASSISTANT_USER_ID, SYSTEM_USER_ID, History, Utterance
 from dialogue.locales import LocaleError, normalise_locale
 from dialogue.observers import TurnObserver, TurnRecord, notify
@@ -51,25 +50,23 @@ from dialogue.sessionstore import (
 )
 from dialogue.trace.record import TraceRecorder
 from dialogue.trace.store import TraceStore
+from dialogue.turnqueue import TurnQueue
 from kb.errors import InvalidUnicode, KbError, StoreUnavailable
 from kb.unicode import check_text
 
 __all__ = [
     "DEFAULT_DIALOGUE",
     "DEFAULT_ROLE",
-    "SUPPORTED_ROLES",
     "DialogueManager",
     "DialogueState",
     "SessionError",
+    "UnknownDialogue",
     "check_utterance",
 ]
-
-SUPPORTED_ROLES = frozenset({DEFAULT_ROLE, ASK_ROLE})
 
 P = ParamSpec("P")
 T = TypeVar("T")
 log = logging.getLogger(__name__)
-
 
 
 def check_utterance(text: str) -> str:
@@ -78,17 +75,6 @@ def check_utterance(text: str) -> str:
     if not text.strip():
         raise SessionError("the utterance is empty or blank; say something")
     return text
-
-
-def _give_up(place: asyncio.Future[Literal[True]], lock: asyncio.Lock) -> None:
-    """Leave the queue: a place not reached yet is withdrawn, a lock already acquired is released."""
-    if not place.cancel():
-        lock.release()
-
-
-def _log_failure(task: asyncio.Task[None]) -> None:
-    if not task.cancelled() and task.exception() is not None:
-        log.error("recording a late dialogue turn failed", exc_info=task.exception())
 
 
 def _check_id(dialogue_id: str) -> None:
@@ -152,10 +138,8 @@ class DialogueManager:
         self.max_chars = max_chars
         self.observers = tuple(observers)
         self.recall = recall
-        # One lock per dialogue with a turn under way; gone once no turn holds or waits for it.
-        self._locks: weakref.WeakValueDictionary[str, asyncio.Lock] = weakref.WeakValueDictionary()
-        # Recordings of turns answered late, waiting for their place in their dialogue's queue.
-        self._late: set[asyncio.Task[None]] = set()
+        #: The turns of each dialogue, one at a time in arrival order.
+        self.queue = TurnQueue()
 
     # -- the store, synchronously ------------------------------------------------------------------
     def _find(self, dialogue_id: str) -> DialogueState | None:
@@ -194,7 +178,7 @@ class DialogueManager:
     def get(self, dialogue_id: str) -> DialogueState:
         state = self._find(dialogue_id)
         if state is None:
-            raise SessionError(f"unknown dialogue {dialogue_id!r}; start it first")
+            raise UnknownDialogue(f"unknown dialogue {dialogue_id!r}; start it first")
         return state
 
     def end(self, dialogue_id: str) -> None:
@@ -236,13 +220,6 @@ class DialogueManager:
         return await self._off_loop(self.ids)
 
     # -- turns ------------------------------------------------------------------------------------
-    def _lock(self, dialogue_id: str) -> asyncio.Lock:
-        lock = self._locks.get(dialogue_id)
-        if lock is None:
-            lock = asyncio.Lock()
-            self._locks[dialogue_id] = lock
-        return lock
-
     def _save(self, state: DialogueState, history: History) -> None:
         # Only `default` is stored anew: any other dialogue ended during the turn stays ended.
         saved = replace(state, history=history.snapshot(), last_used=time.time())
@@ -264,7 +241,8 @@ class DialogueManager:
         """One DialogueInteraction. `history` replaces the stored one. With `role` (and its
         `configuration`) the turn is stateless (chatbot_msgs 4.0): nothing is read from or written to
         the store, `dialogue_id` only names the turn (its trace), `history` is the whole dialogue.
-        `summary` (of earlier sessions) is given to the turn as a system utterance before the history.
+        `summary` (of earlier sessions) is given to the turn as a system utterance before the history
+        (stored or given); it is not stored.
 
         Answered within the engine's deadline from now, however many turns of the dialogue are
         queued before this one."""
@@ -274,23 +252,16 @@ class DialogueManager:
         _check_texts(user_id, text, locale, history, [("summary", summary or ""), ("role", role or ""),
                                                       ("configuration", configuration)])
         locale = _locale(locale)
-        if summary:
-            earlier = Utterance(SYSTEM_USER_ID, f"Summary of earlier conversations: {summary}")
-            history = [earlier, *(history or ())]
+        # Context for this turn only, before its history: never stored, never trimmed away.
+        earlier = f"Summary of earlier conversations: {summary}"
+        before = (Utterance(SYSTEM_USER_ID, earlier),) if summary else ()
         loop = asyncio.get_running_loop()
         deadline = loop.time() + self.engine.config.deadline
         if role is not None:
             state = DialogueState(dialogue_id, role, locale, configuration, tuple(history or ()))
-            return await self._stateless(state, user_id, text, response_expected, deadline)
-        lock = self._lock(dialogue_id)
-        # The place is taken now, so turns keep their arrival order whatever happens to each.
-        place = asyncio.ensure_future(lock.acquire())
-        try:
-            await asyncio.wait((place,), timeout=max(0.0, deadline - loop.time()))
-        except asyncio.CancelledError:
-            _give_up(place, lock)
-            raise
-        if not place.done():
+            return await self._stateless(state, user_id, text, response_expected, deadline, before)
+        place = await self.queue.take(dialogue_id, deadline - loop.time())
+        if not place.reached:
             if response_expected:
                 late = self.engine.fallback(
                     text, user_id, locale,
@@ -301,13 +272,15 @@ class DialogueManager:
                 late = self._traced(dialogue_id, self.engine.traced(late, trace))
             else:
                 late = TurnResult("", (), backend="recorded")
-            self._record_in_turn(place, lock, dialogue_id, user_id, text, late.response, history)
+            record = partial(self._record_late, dialogue_id, user_id, text, late.response, history)
+            self.queue.later(place, record)
             await self._observed(dialogue_id, user_id, text, late, response_expected)
             return late
         try:
-            result = await self._run(dialogue_id, user_id, text, locale, response_expected, history, deadline)
+            result = await self._run(dialogue_id, user_id, text, locale, response_expected, history, deadline,
+                                     before)
         finally:
-            lock.release()
+            place.release()
         await self._observed(dialogue_id, user_id, text, result, response_expected)
         return result
 
@@ -331,6 +304,7 @@ class DialogueManager:
         response_expected: bool,
         history: Sequence[Utterance] | None,
         deadline: float,
+        before: Sequence[Utterance] = (),
     ) -> TurnResult:
         """The turn, holding its dialogue's lock."""
         try:
@@ -343,9 +317,8 @@ class DialogueManager:
             kept.add(user_id, text)
             return await self._saved(state, kept, TurnResult("", (), backend="recorded"))
         earlier = await self._recalled(user_id)
-        result, role_state = await self._role_turn(
-            state, user_id, text, (*earlier, *kept.snapshot()), locale, deadline
-        )
+        turn_history = (*earlier, *before, *kept.snapshot())
+        result, role_state = await self._role_turn(state, user_id, text, turn_history, locale, deadline)
         kept.add(user_id, text)
         if result.response:
             kept.add(ASSISTANT_USER_ID, result.response)
@@ -362,6 +335,11 @@ class DialogueManager:
             state.configuration, state.role_state, text, speaker=user_id, history=history, locale=locale,
             deadline=deadline, trace=trace,
         )
+        if shape == "4.0":  # the 4.0 response always says whether the dialogue is over, and with what
+            terminal, results = bool(result.dialogue_terminal), result.results or "{}"
+            told = result.trace and result.trace.model_copy(
+                update={"dialogue_terminal": terminal, "results": results})
+            result = replace(result, dialogue_terminal=terminal, results=results, trace=told)
         return self._traced(state.id, result), role_state
 
     def _traced(self, dialogue_id: str, result: TurnResult) -> TurnResult:
@@ -370,19 +348,16 @@ class DialogueManager:
         return result
 
     async def _stateless(self, state: DialogueState, user_id: str, text: str, response_expected: bool,
-                         deadline: float) -> TurnResult:
+                         deadline: float, before: Sequence[Utterance] = ()) -> TurnResult:
         """A 4.0 turn: its request holds the whole dialogue; the store is not used."""
         role = self.roles.get(state.role)
         if not state.role_state:  # a bad configuration is refused before the turn
             role.open(state.configuration)
         if not response_expected:
             return TurnResult("", (), backend="recorded")
-        kept = self._kept(state, None)
-        history = kept.snapshot()
+        history = (*before, *self._kept(state, None).snapshot())
         result, _state = await self._role_turn(state, user_id, text, history, state.locale, deadline, "4.0")
-        # The 4.0 response always says whether the dialogue is over, and with what results.
-        terminal = bool(result.dialogue_terminal)
-        return replace(result, dialogue_terminal=terminal, results=result.results or "{}")
+        return result
 
     async def _recalled(self, user_id: str) -> tuple[Utterance, ...]:
         """The note on the speaker's earlier dialogues, for a model that reads prompts only (the
@@ -407,37 +382,15 @@ class DialogueManager:
             return replace(result, error_msg=f"{result.error_msg}; {error}" if result.error_msg else error)
         return result
 
-    def _record_in_turn(
-        self,
-        place: asyncio.Future[Literal[True]],
-        lock: asyncio.Lock,
-        dialogue_id: str,
-        user_id: str,
-        text: str,
-        reply: str,
-        history: Sequence[Utterance] | None,
-    ) -> None:
-        """Record a turn answered late once its place in the queue comes, keeping the order."""
-
-        async def record() -> None:
-            try:
-                await asyncio.shield(place)
-            except asyncio.CancelledError:
-                _give_up(place, lock)
-                raise
-            try:
-                state = await self._off_loop(self.get, dialogue_id)
-                kept = self._kept(state, history)
-                kept.add(user_id, text)
-                if reply:
-                    kept.add(ASSISTANT_USER_ID, reply)
-                await self._off_loop(self._save, state, kept)
-            except (SessionError, StoreUnavailable) as exc:  # ended meanwhile, or unreadable
-                log.warning("late turn of dialogue %r not recorded: %s", dialogue_id, exc)
-            finally:
-                lock.release()
-
-        task = asyncio.get_running_loop().create_task(record())
-        self._late.add(task)
-        task.add_done_callback(self._late.discard)
-        task.add_done_callback(_log_failure)
+    async def _record_late(self, dialogue_id: str, user_id: str, text: str, reply: str,
+                           history: Sequence[Utterance] | None) -> None:
+        """Record a turn answered late, when its place in the queue comes (the order is kept)."""
+        try:
+            state = await self._off_loop(self.get, dialogue_id)
+            kept = self._kept(state, history)
+            kept.add(user_id, text)
+            if reply:
+                kept.add(ASSISTANT_USER_ID, reply)
+            await self._off_loop(self._save, state, kept)
+        except (SessionError, StoreUnavailable) as exc:  # ended meanwhile, or unreadable
+            log.warning("late turn of dialogue %r not recorded: %s", dialogue_id, exc)

@@ -21,7 +21,7 @@ from dialogue.engine import TurnResult
 from dialogue.history import ASSISTANT_USER_ID, Utterance
 from dialogue.intents import Intent
 from dialogue.locales import normalise_locale
-from dialogue.sessions import DEFAULT_ROLE, DialogueManager, SessionError, check_utterance
+from dialogue.sessions import DEFAULT_ROLE, DialogueManager, UnknownDialogue, check_utterance
 
 router = APIRouter(prefix="/dialogues", tags=["dialogue"])
 #: The id of the turn's trace, in the interaction's answer.
@@ -34,13 +34,18 @@ class Role(BaseModel):
     configuration: str = Field(default="{}", description="opaque JSON string, per chatbot_msgs/DialogueRole")
 
 
-Locale = Annotated[str, AfterValidator(normalise_locale)]
+def _locale(value: str | None) -> str | None:
+    """`ll_CC`; "" is no locale (chatbot_msgs' locale is optional, and ROS sends an unset string as "")."""
+    return normalise_locale(value) if value else None
+
+
+Locale = Annotated[str | None, AfterValidator(_locale)]
 
 
 class StartRequest(BaseModel):
     model_config = ConfigDict(extra="forbid")
     role: Role | None = None
-    locale: Locale | None = Field(default=None, description="ll_CC, e.g. en_GB")
+    locale: Locale = Field(default=None, description="ll_CC, e.g. en_GB (empty: none)")
 
 
 class Started(BaseModel):
@@ -51,7 +56,7 @@ class Started(BaseModel):
 
 class Turn(BaseModel):
     model_config = ConfigDict(extra="forbid")
-    speaker: str
+    speaker: str = Field(min_length=1, description="a person id, or __system__ / __assistant__")
     text: str
 
 
@@ -62,7 +67,7 @@ class InteractionRequest(BaseModel):
     input: Annotated[str, AfterValidator(check_utterance)] | None = Field(
         default=None, description="what was said; not blank (4.0: the last utterance of history when absent)")
     response_expected: bool = True
-    locale: Locale | None = None
+    locale: Locale = None
     history: list[Turn] | None = Field(default=None, description="the dialogue so far (4.0.0 shape); "
                                        "replaces the stored history")
     role: Role | None = Field(default=None, description="4.0.0: the dialogue's role; the turn is stateless")
@@ -105,7 +110,7 @@ Dialogues = Annotated[DialogueManager, Depends(get_dialogues)]
 async def _existing(dialogues: DialogueManager, dialogue_id: str) -> None:
     try:
         await dialogues.get_async(dialogue_id)
-    except SessionError as exc:
+    except UnknownDialogue as exc:
         raise ApiError(404, "unknown_dialogue", str(exc)) from exc
 
 
@@ -147,14 +152,16 @@ async def interact(dialogue_id: str, body: InteractionRequest, dialogues: Dialog
     role = {} if body.role is None else {"role": body.role.name, "configuration": body.role.configuration}
     run = partial(dialogues.interact, body.user_id, body.input, dialogue_id=dialogue_id, locale=body.locale,
                   response_expected=body.response_expected, history=history, summary=body.summary, **role)
-    try:  # the turn reads the dialogue once: an unknown one is refused, an unreadable store answered
+    # The turn reads the dialogue once: an unknown one is refused (404), an unreadable store answered;
+    # other refusals (bad text, a bad role configuration) are the request's (400).
+    try:
         if wants_events(request.headers.get("accept")):
             return await turn_events(run, _body)
         result = await run()
         if result.trace is not None:  # where to read this turn's trace (GET /dialogues/{id}/turns)
             response.headers[TURN_HEADER] = result.trace.id
         return _response(result)
-    except SessionError as exc:
+    except UnknownDialogue as exc:
         raise ApiError(404, "unknown_dialogue", str(exc)) from exc
 
 

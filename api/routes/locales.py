@@ -6,7 +6,7 @@ from fastapi import APIRouter
 from pydantic import BaseModel, Field
 
 from api.deps import ReadAccess, ServicesDep
-from dialogue.locales import supported_locales
+from dialogue.locales import RULES_LANGUAGES, supported_locales
 
 router = APIRouter(tags=["dialogue"])
 
@@ -21,4 +21,5 @@ class Locales(BaseModel):
 @router.get("/locales", dependencies=[ReadAccess])
 async def locales(services: ServicesDep) -> Locales:
     model = services.dialogues.engine.model
-    return Locales(locales=supported_locales(reads_prompts=model.llm is not None), rules=["en"])
+    supported = supported_locales(reads_prompts=model.llm is not None)
+    return Locales(locales=supported, rules=list(RULES_LANGUAGES))

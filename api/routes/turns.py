@@ -10,7 +10,7 @@ from pydantic import BaseModel
 
 from api.deps import ReadAccess, ServicesDep
 from api.errors import ApiError
-from dialogue.errors import SessionError
+from dialogue.errors import UnknownDialogue
 from dialogue.trace import TurnTrace, redacted
 
 router = APIRouter(prefix="/dialogues", tags=["dialogue"])
@@ -34,7 +34,7 @@ async def turns(dialogue_id: str, services: ServicesDep,
     if kept is None:
         try:  # a dialogue with no turn yet has no trace; an unknown one is an error
             await dialogues.get_async(dialogue_id)
-        except SessionError as exc:
+        except UnknownDialogue as exc:
             raise ApiError(404, "unknown_dialogue", f"{exc} (and no turn of it is traced)") from exc
         kept = []
     token = services.settings.token.get_secret_value() if services.settings.token else ""

@@ -137,11 +137,21 @@ _LEAD_IN_TEXT = re.compile(
     r"the answer is|my answer is)\b\s*)?",
     re.IGNORECASE,
 )
+#: A question back ("why do you want to know", "what do you mean", "pardon"), never a free string.
+QUESTION_BACK = re.compile(
+    r"\s*(?:why|what|pardon|huh|come again|excuse me"
+    r"|(?:can|could|would|will|do|did|does|are|is)\s+(?:you|i|we)|how\s+(?:do|does|did|can|come|about))\b",
+    re.IGNORECASE,
+)
 _NUMBER = re.compile(r"(?<![\w.])((?:minus|negative)\s+|-)?(\d+(?:\.\d+)?)(?![\w]|\.\d)", re.IGNORECASE)
 #: "one" after a determiner is a pronoun ("the red one", "that one"), not a number.
 _PRONOUN_ONE = re.compile(
     r"\b(the|this|that|which|another|each|every|no|any)\b([^,;.]*?)\bone\b", re.IGNORECASE
 )
+#: Words by which the speaker names themself.
+SELF = frozenset({"me", "myself"})
+_THOUSANDS = re.compile(r"(?<=\d),(?=\d{3}\b)")
+_HALF = re.compile(r"\b(\d+) and a half\b", re.IGNORECASE)
 ORDINALS = {"first": 0, "second": 1, "third": 2, "fourth": 3, "last": -1}
 
 
@@ -156,6 +166,7 @@ class Clause:
     @classmethod
     def of(cls, text: str) -> Clause:
         digits = alpha2digit(_PRONOUN_ONE.sub("\\1\\2\u2060", text), "en", threshold=0)
+        digits = _HALF.sub(r"\1.5", _THOUSANDS.sub("", digits))
         numbers = tuple((-1 if m.group(1) else 1) * float(m.group(2)) for m in _NUMBER.finditer(digits))
         return cls(text.strip(), tuple(tokens(text)), numbers)
 
@@ -194,12 +205,54 @@ def checked(form_field: FormField, value: Any, said: str) -> Found:
     return Found(value, problem, said=said) if problem else Found(held, said=said)
 
 
+#: Said as a whole, these decide, the longest first: "why not" is a yes, "of course not" a no.
+BOOLEAN_PHRASES: tuple[tuple[tuple[str, ...], bool], ...] = tuple(
+    (tuple(tokens(phrase)), value)
+    for phrase, value in sorted(
+        {
+            "of course not": False,
+            "don't think so": False,
+            "do not think so": False,
+            "rather not": False,
+            "why not": True,
+            "no problem": True,
+            "not a problem": True,
+            "don't mind": True,
+            "do not mind": True,
+            "would love": True,
+            "i'd love": True,
+            "think so": True,
+            "guess so": True,
+            "go ahead": True,
+            "please do": True,
+        }.items(),
+        key=lambda item: -len(item[0]),
+    )
+)
+#: No-words that turn a yes-word next to them into a no ("certainly not", "not true").
+NEGATORS = NO - {"no", "nope", "nah", "negative", "false", "nothing", "none"}
+
+
+def _polarity(words: Sequence[str]) -> list[bool]:
+    """Each yes or no said in `words`; a yes-word with a negator beside it is one no."""
+    said: list[bool] = []
+    used: set[int] = set()
+    for i, word in enumerate(words):
+        if i in used or word not in YES:
+            continue
+        around = [j for j in (i - 1, i + 1) if 0 <= j < len(words) and words[j] in NEGATORS and j not in used]
+        used.update([i, *around[:1]])
+        said.append(not around)
+    said += [False for i, word in enumerate(words) if word in NO and i not in used]
+    return said
+
+
 def find_boolean(form_field: FormField, clause: Clause, ctx: ReadContext) -> Found | None:
-    words = set(clause.words)
-    yes, no = bool(words & YES), bool(words & NO)
-    if yes == no:
-        return None
-    return Found(yes, said=clause.text)
+    for phrase, value in BOOLEAN_PHRASES:
+        if clause.has(phrase) is not None:
+            return Found(value, said=clause.text)
+    said = set(_polarity(clause.words))
+    return Found(said.pop(), said=clause.text) if len(said) == 1 else None
 
 
 def _number(form_field: FormField, clause: Clause) -> Found | None:
@@ -220,11 +273,22 @@ def find_enum(form_field: FormField, clause: Clause, ctx: ReadContext) -> Found 
             hits.append(value)
     # "light blue" and "blue": the longest value said is the one meant.
     hits = [h for h in hits if not any(h != o and str(h) in str(o) for o in hits)]
+    if not hits and (form_field.name == ctx.asked or form_field.name in ctx.named):
+        hits = _by_a_word(form_field, clause)
     return Found(hits[0], said=clause.text) if len(hits) == 1 else None
+
+
+def _by_a_word(form_field: FormField, clause: Clause) -> list[Any]:
+    """ "chocolate" for "hot chocolate": the values one of whose words the clause says (answering
+    this field only: a word is weak evidence)."""
+    said = set(norm([w for w in clause.words if w not in LEAD_INS]))
+    return [v for v in form_field.enum if isinstance(v, str) and said & set(norm(tokens(v)))]
 
 
 def find_string(form_field: FormField, clause: Clause, ctx: ReadContext) -> Found | None:
     text = clause.text
+    if QUESTION_BACK.match(text) or text.endswith("?"):  # "why do you want to know?" is no name
+        return None
     start = clause.has(tokens(form_field.words)) if form_field.name in ctx.named else None
     if start is not None:  # "my name is Bob": what follows the field's words (and "is", ":")
         after = re.split(r"\b(?:is|are|was|'s)\b|:", text, maxsplit=1)
@@ -247,14 +311,15 @@ def find_entity(form_field: FormField, clause: Clause, ctx: ReadContext) -> Foun
     offered = [e for e in (snapshot.get(i) for i in ctx.clarifying.get(form_field.name, ())) if e is not None]
     choices = offered or pool(form_field, snapshot)
     ids = {e.id for e in choices}
-    for word in re.findall(r"[\w:.\-()]+", clause.text):  # an id said or typed as it is
-        if word in ids:
-            return Found(word, said=word)
+    # An id typed as it is, used only when no noun phrase names a choice: an id may also be a word
+    # ("cup" in the demo scene), and "the blue cup" means the blue one whatever the others are called.
+    typed = next((w for w in re.findall(r"[\w:.\-()]+", clause.text) if w in ids and w not in SELF), None)
     if offered:
         for word, index in ORDINALS.items():
             if word in clause.words:
                 return Found(offered[index].id, said=word)
-    words = [w for w in clause.words if w not in LEAD_INS or w in ("my", "one")]
+    # "myself" is the speaker, never the robot whose id it is.
+    words = [w for w in clause.words if (w not in LEAD_INS or w in ("my", "one")) and w not in SELF]
     owner = ctx.speaker if "my" in words else None
     for start in range(len(words)):  # the noun phrase ends the clause: "I'd like the red cup"
         phrase = words[start:]
@@ -277,8 +342,16 @@ def find_entity(form_field: FormField, clause: Clause, ctx: ReadContext) -> Foun
             return Found(fits[0].id, said=said)
         if fits:
             return Found(None, candidates=tuple(fits), said=said)
+        if typed is not None:
+            break
         what = form_field.kb_class or "/".join(sorted(form_field.kinds))
         return Found(said, problem=f"{said} is not a {_readable(what)}", said=said)
+    if typed is not None:
+        return Found(typed, said=typed)
+    spoken = clause.words
+    me = [i for i, w in enumerate(spoken) if w in SELF and not (i and spoken[i - 1] in NEGATORS)]
+    if ctx.speaker in ids and me:  # "to me" (not "not me"): the speaker, when the field may name them
+        return Found(ctx.speaker, said=spoken[me[0]])
     return None
 
 

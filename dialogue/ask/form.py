@@ -22,7 +22,7 @@ from __future__ import annotations
 
 import json
 import re
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from typing import Annotated, Any, Literal
 
@@ -44,6 +44,7 @@ ENTITY_FORMATS: dict[str, frozenset[Kind]] = {
     "kb-entity": ANYWHERE,
 }
 _SCALAR_TYPES = {"boolean": "boolean", "integer": "integer", "number": "number", "string": "string"}
+_BOUNDS = ("minimum", "maximum", "exclusiveMinimum", "exclusiveMaximum")
 MAX_FIELDS = 16
 MAX_QUESTION = 500
 
@@ -86,31 +87,41 @@ class FormField:
             return None, "; ".join(str(e["msg"]) for e in exc.errors())
 
 
-def _python_type(field: FormField) -> Any:
+def _number(field: FormField) -> Any:
     schema = field.schema
-    if field.kind == "enum":
-        return Literal[field.enum]
-    if field.kind == "boolean":
-        return bool
-    if field.kind in ("integer", "number"):
-        bounds = Field(
-            ge=schema.get("minimum"),
-            le=schema.get("maximum"),
-            gt=schema.get("exclusiveMinimum"),
-            lt=schema.get("exclusiveMaximum"),
-        )
-        number: type = int if field.kind == "integer" else float
-        return Annotated[number, bounds]
-    if field.kind == "string":
-        return Annotated[
-            str,
-            Field(
-                min_length=schema.get("minLength", 1),
-                max_length=schema.get("maxLength", 200),
-                pattern=schema.get("pattern"),
-            ),
-        ]
-    return str  # an entity: an id, resolved against the KB
+    bounds = Field(
+        ge=schema.get("minimum"),
+        le=schema.get("maximum"),
+        gt=schema.get("exclusiveMinimum"),
+        lt=schema.get("exclusiveMaximum"),
+    )
+    number: type = int if field.kind == "integer" else float
+    return Annotated[number, bounds]
+
+
+def _string(field: FormField) -> Any:
+    schema = field.schema
+    limits = Field(
+        min_length=schema.get("minLength", 1),
+        max_length=schema.get("maxLength", 200),
+        pattern=schema.get("pattern"),
+    )
+    return Annotated[str, limits]
+
+
+#: The Python type that checks a value of each kind of field (an entity: an id, resolved against the KB).
+_PYTHON_TYPES: dict[FieldKind, Callable[[FormField], Any]] = {
+    "enum": lambda field: Literal[field.enum],
+    "boolean": lambda field: bool,
+    "integer": _number,
+    "number": _number,
+    "string": _string,
+    "entity": lambda field: str,
+}
+
+
+def _python_type(field: FormField) -> Any:
+    return _PYTHON_TYPES[field.kind](field)
 
 
 @dataclass(frozen=True)
@@ -131,7 +142,7 @@ def _field(name: str, schema: Any) -> FormField:
     where = f"field {name!r}"
     if not isinstance(schema, dict):
         raise AskError(f'{where}: its schema must be a JSON object, e.g. {{"type": "integer"}}')
-    kind = schema.get("type")
+    kind = _type_of(schema)
     if "enum" in schema:
         values = schema["enum"]
         if (
@@ -140,8 +151,10 @@ def _field(name: str, schema: Any) -> FormField:
             or not all(isinstance(v, str | int | float) for v in values)
         ):
             raise AskError(f"{where}: enum must be a non-empty list of strings or numbers")
+        if any(isinstance(v, bool) for v in values):
+            raise AskError(f"{where}: enum values are strings or numbers; a yes/no field is type boolean")
         return FormField(name, "enum", schema)
-    if kind not in _SCALAR_TYPES:
+    if not isinstance(kind, str) or kind not in _SCALAR_TYPES:
         raise AskError(
             f"{where}: type {kind!r} is not supported; use boolean, integer, number or string "
             "(an enum, or an entity of the KB with format kb-person/kb-thing/kb-place/kb-entity "
@@ -157,12 +170,28 @@ def _field(name: str, schema: Any) -> FormField:
             raise AskError(f"{where}: an entity of the KB is a string (its id), not {kind!r}")
         kinds = ENTITY_FORMATS.get(form, ALL_KINDS) if isinstance(form, str) else ALL_KINDS
         return FormField(name, "entity", schema, kinds, kb_class.strip() if kb_class else None)
+    for bound in _BOUNDS:
+        value = schema.get(bound)
+        if value is not None and (not isinstance(value, int | float) or isinstance(value, bool)):
+            raise AskError(f"{where}: {bound} must be a number, not {value!r}")
     field = FormField(name, _SCALAR_TYPES[kind], schema)  # type: ignore[arg-type]
     try:
         field.validator()
     except (TypeError, ValueError, SchemaError) as exc:  # a bound of the wrong type, a bad pattern
         raise AskError(f"{where}: its constraints cannot be checked: {exc}") from None
+    low, high = schema.get("minimum"), schema.get("maximum")
+    if low is not None and high is not None and low > high:  # the field could never be filled
+        raise AskError(f"{where}: no value is at least {low} and at most {high}")
     return field
+
+
+def _type_of(schema: Mapping[str, Any]) -> Any:
+    """The field's JSON-schema type; a nullable one (``["integer", "null"]``) is its non-null type."""
+    kind = schema.get("type")
+    if isinstance(kind, list):
+        named = [k for k in kind if k != "null"]
+        return named[0] if len(named) == 1 and isinstance(named[0], str) else kind
+    return kind
 
 
 def parse_configuration(configuration: str) -> AskForm:

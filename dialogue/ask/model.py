@@ -26,7 +26,7 @@ from dialogue.prompts import PromptSet, history_message, load_template, render
 from dialogue.reference.grounding import Entity, Snapshot
 from dialogue.reference.lexicon import Lexicon
 from dialogue.reference.resolution import resolve_id
-from dialogue.schema import MAX_TEXT, AnswerError, extract_json
+from dialogue.schema import MAX_TEXT, AnswerError, validated
 from dialogue.situation import describe
 
 MAX_IDS = 60
@@ -153,16 +153,7 @@ class AskPrompts:
 
 
 def parse_ask_answer(content: str) -> AskAnswer:
-    value = extract_json(content)
-    if not isinstance(value, dict):
-        raise AnswerError('the answer must be a JSON object with keys "answers", "cancel" and "verbal_ack"')
-    try:
-        return AskAnswer.model_validate(value)
-    except ValidationError as exc:
-        problems = "; ".join(
-            f"{'.'.join(str(p) for p in e['loc']) or 'answer'}: {e['msg']}" for e in exc.errors()
-        )
-        raise AnswerError(f"the answer does not match the schema ({problems})") from None
+    return validated(content, AskAnswer, '"answers", "cancel" and "verbal_ack"')
 
 
 #: pydantic error types that mean the model wrote a value of the wrong type (its fault, not the person's).

@@ -19,10 +19,10 @@ A field that could not be obtained after `MAX_TRIES` answers is given up: the fo
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 
 from dialogue.ask.fields import pool
-from dialogue.ask.form import AskForm, FormField, FormState
+from dialogue.ask.form import AskForm, Clarifying, FieldKind, FormField, FormState
 from dialogue.ask.read import Reading
 from dialogue.reference.clarify import MAX_OPTIONS, describe_options
 from dialogue.reference.clarify import question as clarifying_question
@@ -35,7 +35,10 @@ NOT_UNDERSTOOD = "Sorry, I did not get that."
 
 
 def opening_state(form: AskForm) -> FormState:
-    return FormState(asked=_missing(form, FormState())[0])
+    """The form before any answer: asking its first required field (the first field when none is
+    required: the question is asked once, and its answer ends the form)."""
+    missing = _missing(form, FormState())
+    return FormState(asked=missing[0] if missing else form.fields[0].name)
 
 
 def _missing(form: AskForm, state: FormState) -> list[str]:
@@ -63,7 +66,9 @@ def bounds(form_field: FormField) -> str:
 
 
 def problem_line(form_field: FormField, problem: str) -> str:
-    if form_field.kind in ("integer", "number") and bounds(form_field) and "should be" in problem:
+    if form_field.kind == "integer" and "fractional part" in problem:  # pydantic's int_from_float
+        return f"That is not a possible {form_field.words}: it must be a whole number."
+    if form_field.kind in ("integer", "number") and bounds(form_field) and " than " in problem:
         return f"That is not a possible {form_field.words}: it must be {bounds(form_field)}."
     if form_field.kind == "enum":
         return f"I can only take {_join([str(v) for v in form_field.enum])} for the {form_field.words}."
@@ -79,25 +84,49 @@ def _options(snapshot: Snapshot, entities: Sequence[Entity]) -> list[str]:
     return describe_options(snapshot, entities)
 
 
-def question_for(form: AskForm, name: str, snapshot: Snapshot | None = None) -> str:
-    """How the robot asks for one field: its description when it is a question, the form's question
-    for the first field, else by the field's kind."""
+#: What the form's own question is followed by when it is asked again, by the field's kind.
+_HINTS: dict[FieldKind, Callable[[FormField], str]] = {
+    "boolean": lambda f: " Please say yes or no.",
+    "enum": lambda f: f" Please say {_join([str(v) for v in f.enum])}.",
+}
+
+
+#: How a field other than the first is asked, by its kind (given the entities' options, if listed).
+_QUESTIONS: dict[FieldKind, Callable[[FormField, list[str]], str]] = {
+    "boolean": lambda f, _options: f"And {f.words}: yes or no?",
+    "enum": lambda f, _options: f"Which {f.words}: {_join([str(v) for v in f.enum])}?",
+    "entity": lambda f, options: f"Which {f.words}: {_join(options)}?" if options else f"Which {f.words}?",
+}
+
+
+def _open_question(form_field: FormField, _options: list[str]) -> str:
+    return f"And what is your {form_field.words}?"
+
+
+def _listed(form_field: FormField, snapshot: Snapshot | None) -> list[Entity]:
+    """The entities a question about an entity field lists (all it may name, when they are few)."""
+    choices = pool(form_field, snapshot) if snapshot is not None else []
+    return choices if 1 < len(choices) <= MAX_OPTIONS else []
+
+
+def asking(form: AskForm, name: str, snapshot: Snapshot | None = None) -> tuple[str, list[Entity]]:
+    """How the robot asks for one field — its description when it is a question, the form's question
+    for the first field, else by the field's kind — and the entities the question offers."""
     form_field = form.field(name)
     description = form_field.schema.get("description")
     if isinstance(description, str) and description.strip().endswith("?"):
-        return description.strip()
+        return description.strip(), []
     if name == form.fields[0].name or len(form.required) == 1:
-        hint = {"boolean": " Please say yes or no."}.get(form_field.kind, "")
-        return form.question + hint
-    words = form_field.words
-    if form_field.kind == "boolean":
-        return f"And {words}: yes or no?"
-    if form_field.kind == "enum":
-        return f"Which {words}: {_join([str(v) for v in form_field.enum])}?"
-    if form_field.kind == "entity":
-        options = _options(snapshot, pool(form_field, snapshot)) if snapshot is not None else []
-        return f"Which {words}: {_join(options)}?" if 1 < len(options) <= MAX_OPTIONS else f"Which {words}?"
-    return f"And what is your {words}?"
+        hint = _HINTS.get(form_field.kind)
+        return form.question + (hint(form_field) if hint else ""), []
+    listed = _listed(form_field, snapshot) if form_field.kind == "entity" else []
+    options = _options(snapshot, listed) if snapshot is not None and listed else []
+    return _QUESTIONS.get(form_field.kind, _open_question)(form_field, options), listed
+
+
+def question_for(form: AskForm, name: str, snapshot: Snapshot | None = None) -> str:
+    """How the robot asks for one field (`asking`)."""
+    return asking(form, name, snapshot)[0]
 
 
 def advance(
@@ -140,9 +169,11 @@ def advance(
         if offered:
             new.asked = new.clarifying.field
             return new, " ".join([*lines, clarifying_question(snapshot, offered)])
-    new.clarifying = None
     new.asked = new.asked if new.asked in missing else missing[0]
-    return new, " ".join([*lines, question_for(form, new.asked, snapshot)])
+    line, offered = asking(form, new.asked, snapshot)
+    # The entities the question lists are the choices, in the order said ("the second one").
+    new.clarifying = Clarifying(field=new.asked, candidates=[e.id for e in offered]) if offered else None
+    return new, " ".join([*lines, line])
 
 
 def _count_tries(state: FormState, reading: Reading) -> None:

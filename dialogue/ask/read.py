@@ -40,11 +40,18 @@ _CANCEL = re.compile(
 )
 _SKIP = re.compile(
     r"\b(?:skip(?: it| that| this)?|pass|i don'?t know|i do not know|dunno|no idea|not sure|i'?m not sure|"
-    r"i'?d rather not say|rather not say|can'?t remember|don'?t remember)\b",
+    r"i'?d rather not (?:say|tell|answer)|rather not say|i'?d prefer not to|i prefer not to|"
+    r"i won'?t (?:say|tell)|i will not (?:say|tell)|not telling|can'?t remember|don'?t remember)\b",
     re.IGNORECASE,
 )
 _CORRECTION = frozenset({"no", "actually", "sorry", "wait", "oops", "correction", "rather", "mean", "meant"})
-_SPLIT = re.compile(r"\s*(?:[,;!?]+|\.(?=\s|$)|\band\b|\bbut\b|\balso\b|\bplus\b)\s*", re.IGNORECASE)
+#: Where an answer is cut into clauses; never inside a number ("a hundred and five", "1,500",
+#: "two and a half").
+_SPLIT = re.compile(
+    r"\s*(?:(?:[;!?]|(?<!\d),|,(?!\d{3}\b))+|\.(?=\s|$)|\bbut\b|\balso\b|\bplus\b"
+    r"|(?<!hundred )(?<!thousand )(?<!million )(?<!billion )\band\b(?!\s+a\s+half\b))\s*",
+    re.IGNORECASE,
+)
 
 
 @dataclass

@@ -28,7 +28,7 @@ from dialogue.ask.model import AskPrompts, ask_schema, entity_ids, parse_ask_ans
 from dialogue.ask.progress import advance, opening_state, question_for
 from dialogue.ask.read import Reading, read_answer
 from dialogue.engine import RULES_ENGLISH_ONLY, SORRY, DialogueEngine, TurnResult
-from dialogue.history import Utterance
+from dialogue.history import Utterance, role_of
 from dialogue.llm.base import ChatMessage, ChatModel, ChatRequest, ModelError, TurnContext
 from dialogue.locales import is_english, normalise_locale
 from dialogue.reference.lexicon import Lexicon
@@ -135,6 +135,12 @@ class AskRole:
             return TurnResult(
                 "", (), OVER, backend="form", dialogue_terminal=True, results=state.results()
             ), state
+        if role_of(speaker) != "user":  # a system update, the robot's own words: no answer of the person
+            trace.note(f"{speaker}'s input is no answer: the form is unchanged")
+            again = question_for(form, state.asked, lexicon.snapshot) if state.asked else ""
+            unchanged = TurnResult(again, (), backend="form", dialogue_terminal=False,
+                                   results=state.results())
+            return unchanged, state
         reading: Reading | None = None
         intents: tuple[I.Intent, ...] = ()
         backend, ack, understood = model.name, None, True

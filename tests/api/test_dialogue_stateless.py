@@ -25,6 +25,9 @@ def test_a_4_0_turn_needs_no_session_and_stores_nothing(live: Live) -> None:
     assert body["intents"][0]["data"] == {"object": "cup_1"} and body["intents"][0]["source"] == "person_alice"
     assert (body["dialogue_terminal"], body["results"]) == (False, "{}")
     assert "3f2a-dm-owned" not in live.services.dialogues.ids()
+    # The turn's trace says what the response said (it had null for both).
+    (trace,) = live.client.get("/dialogues/3f2a-dm-owned/turns").json()["turns"]
+    assert (trace["shape"], trace["dialogue_terminal"], trace["results"]) == ("4.0", False, "{}")
     # The 3.0 shape keeps working, with its three keys.
     old = live.client.post("/dialogues/default/interactions", json={"user_id": "person_alice", "input": "hi"})
     assert set(old.json()) == {"response", "intents", "error_msg"}
@@ -69,7 +72,13 @@ def test_bad_4_0_requests(live: Live) -> None:
          "unsupported dialogue role"),
         ({"role": {"name": "__ask__", "configuration": "{}"}, "history": [{"speaker": "a", "text": "hi"}]}, 400,
          "needs a question"),
+        # Bad input, not an unknown dialogue (both were 404 unknown_dialogue).
+        ({"role": {"name": "__default__"}, "history": [{"speaker": "", "text": "hi"}]}, 422,
+         "body.history.0.speaker"),
+        ({"role": {"name": "__default__"}, "summary": "tea \ud800", "history": [{"speaker": "a", "text": "hi"}]},
+         400, "not valid Unicode"),
     ]
     for body, status, message in cases:
-        refused = client.post("/dialogues/x/interactions", json=body)
+        refused = client.post("/dialogues/x/interactions", content=json.dumps(body),  # \ud800 escaped
+                              headers={"Content-Type": "application/json"})
         assert refused.status_code == status and message in refused.json()["message"], (body, refused.text)

@@ -37,3 +37,13 @@ def test_bad_locales_are_refused(live: Live) -> None:
                                           json={"user_id": "a", "input": "hi", "locale": "xx_YY"})):
         refused = call()
         assert refused.status_code == 422 and "e.g. en_GB or fr_FR" in refused.json()["message"]
+
+
+def test_an_empty_locale_is_no_locale(live: Live) -> None:
+    """chatbot_msgs' locale is optional and a ROS message's unset string is "": a bridge that copies
+    the fields sends it. It means no locale (it was refused with 422)."""
+    started = live.client.post("/dialogues", json={"locale": ""})
+    assert started.status_code == 201, started.text
+    body = live.client.post(f"/dialogues/{started.json()['dialogue_id']}/interactions",
+                            json={"user_id": "person_alice", "input": "pick up the cup", "locale": ""}).json()
+    assert body["intents"][0]["intent"] == "__intent_grab_object__"

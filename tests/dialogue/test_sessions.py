@@ -216,3 +216,21 @@ def test_a_turn_cancelled_while_it_waits_leaves_the_queue_working(kitchen: KB) -
     assert last.intents[0].data == {"object": "cup_1"}
     said = [u.text for u in manager.get(DEFAULT_DIALOGUE).history if u.speaker == "person_alice"]
     assert said == ["grab it", "grab the cup"]
+
+
+def test_a_summary_is_given_to_the_turn_and_the_stored_history_is_kept(kitchen: KB) -> None:
+    """`summary` (of earlier sessions) comes before the history the turn sees; in the 3.0 shape the
+    stored history stays the dialogue's (it was replaced by the summary alone), and it is not stored."""
+    model = ScriptedModel([{"verbal_ack": "Hello again.", "user_intent": None}] * 2)
+    manager = DialogueManager(DialogueEngine(kitchen, model))
+    d = manager.start()
+    asyncio.run(manager.interact(SYSTEM_USER_ID, "Alice came in", dialogue_id=d.id, response_expected=False))
+    asyncio.run(manager.interact("person_alice", "hi there", dialogue_id=d.id, summary="Alice likes tea."))
+    seen = [(m.role, m.content) for m in model.requests[0].messages[1:-1]]
+    assert seen == [("system", "Summary of earlier conversations: Alice likes tea."), ("system", "Alice came in")]
+    assert [u.text for u in manager.get(d.id).history] == ["Alice came in", "hi there", "Hello again."]
+    history = [Utterance(SYSTEM_USER_ID, "Bob left")]  # the 4.0 shape: the same order
+    asyncio.run(manager.interact("person_alice", "hi", dialogue_id="dm", history=history, role="__default__",
+                                 summary="Alice likes tea."))
+    assert [m.content for m in model.requests[1].messages[1:-1]] == [
+        "Summary of earlier conversations: Alice likes tea.", "Bob left"]

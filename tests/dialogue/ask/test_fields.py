@@ -5,9 +5,11 @@ from __future__ import annotations
 from typing import Any
 
 from dialogue.ask.fields import Clause, ReadContext, find
-from dialogue.ask.form import AskForm
+from dialogue.ask.form import AskForm, FormState
+from dialogue.ask.read import read_answer
 from dialogue.reference.lexicon import Lexicon
-from tests.dialogue.ask.conftest import NINA
+from tests.dialogue.ask.conftest import NINA, form_of
+from tests.dialogue.conftest import lexicon_of, scene_kb
 
 
 def found(form: AskForm, lexicon: Lexicon, name: str, text: str, asked: str | None = None,
@@ -61,3 +63,45 @@ def test_entities_are_kb_ids_with_candidates_when_ambiguous(form: AskForm, lexic
     assert found(form, lexicon, "friend", "Oliver") == "person_oliver"
     assert found(form, lexicon, "friend", "the red cup") == "problem"
     assert found(form, lexicon, "cup", "a giraffe") is None
+
+
+def test_an_id_that_is_also_a_word_does_not_outrank_the_noun_phrase(form: AskForm) -> None:
+    """The demo scene names its cup `cup`: "the blue cup" is still the blue one, "the cup" any of three."""
+    kb = scene_kb("two_cups", "cup rdf:type dbr:Cup", "cup isOn table_2", "myself sees cup")
+    lexicon = lexicon_of(kb)
+    assert found(form, lexicon, "cup", "the blue cup please") == "cup_blue"
+    assert found(form, lexicon, "cup", "I'd like the red cup") == "cup_red"
+    assert set(found(form, lexicon, "cup", "the cup")) == {"cup", "cup_red", "cup_blue"}
+    assert found(form, lexicon, "cup", "cup_blue") == "cup_blue"  # an id typed as it is
+    kb.close()
+
+
+def test_negated_and_idiomatic_yes_no(form: AskForm, lexicon: Lexicon) -> None:
+    """ "absolutely not" was not understood (a yes word and a no word), "why not" read as a no."""
+    for text, value in [("absolutely not", False), ("certainly not", False), ("of course not", False),
+                        ("that's not true", False), ("not right", False), ("why not", True),
+                        ("no problem", True), ("I don't mind", True), ("I'd love to", True), ("I think so", True),
+                        ("I don't think so", False), ("I'd rather not", False), ("not really", False)]:
+        assert found(form, lexicon, "tea", text, asked="tea") is value, text
+
+
+def test_me_in_a_person_field_is_the_speaker(form: AskForm, lexicon: Lexicon) -> None:
+    """ "Who should I bring it to?" "To me." was not understood."""
+    for text in ("me", "to me please", "myself", "bring it to me"):
+        assert found(form, lexicon, "friend", text) == NINA, text
+    assert found(form, lexicon, "friend", "not me") is None
+    reading = read_answer(form, FormState(asked="friend"), "Oliver, not me", lexicon, NINA)
+    assert reading.values == {"friend": "person_oliver"}
+    assert found(form, lexicon, "cup", "me") is None  # a cup field: "me" names no cup
+
+
+def test_an_enum_value_said_by_one_of_its_words(lexicon: Lexicon) -> None:
+    """ "chocolate" for "hot chocolate" was not understood; a word of exactly one value names it, when
+    the field is the one asked (a single word is weak evidence)."""
+    form = form_of(drink={"enum": ["tea", "orange juice", "apple juice", "hot chocolate"]})
+    assert found(form, lexicon, "drink", "chocolate please", asked="drink") == "hot chocolate"
+    assert found(form, lexicon, "drink", "the orange one", asked="drink") == "orange juice"
+    assert found(form, lexicon, "drink", "juice", asked="drink") is None  # two juices: which?
+    assert found(form, lexicon, "drink", "something hot", asked="drink") == "hot chocolate"
+    assert found(form, lexicon, "drink", "a glass of water", asked="drink") is None
+    assert found(form, lexicon, "drink", "chocolate please") is None  # not asked

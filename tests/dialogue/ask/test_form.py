@@ -7,6 +7,7 @@ import json
 import pytest
 
 from dialogue.ask.form import AskError, FormState, parse_configuration
+from dialogue.ask.progress import opening_state
 
 
 def config(**properties: object) -> str:
@@ -60,10 +61,23 @@ def test_required_and_field_words() -> None:
     ('{"question": "?", "result_schema_properties": {"a": {"type": "string", "format": "kb-car"}}}',
      "format 'kb-car' is not one of"),
     ('{"question": "?", "result_schema_properties": {"a": {"type": "integer", "minimum": "low"}}}',
+     "minimum must be a number, not 'low'"),
+    ('{"question": "?", "result_schema_properties": {"a": {"type": "integer", "minimum": "5", "maximum": 3}}}',
+     "minimum must be a number"),
+    ('{"question": "?", "result_schema_properties": {"a": {"type": "integer", "maximum": true}}}',
+     "maximum must be a number"),
+    ('{"question": "?", "result_schema_properties": {"a": {"type": "string", "pattern": "("}}}',
      "its constraints cannot be checked"),
     ('{"question": "?", "result_schema_properties": {"a": {"type": "string"}}, "required": ["b"]}',
      "required must list field names"),
     ('{"question": "?", "result_schema_properties": {"a": {"type": "string"}}, "prompt": "x"}', "unknown keys"),
+    ('{"question": "?", "result_schema_properties": {"a": {"type": ["integer", "string"]}}}',
+     "type \\['integer', 'string'\\] is not supported"),
+    ('{"question": "?", "result_schema_properties": {"a": {"type": [[]]}}}', "is not supported"),
+    ('{"question": "?", "result_schema_properties": {"a": {"enum": [true, false]}}}',
+     "a yes/no field is type boolean"),
+    ('{"question": "?", "result_schema_properties": {"a": {"type": "integer", "minimum": 10, "maximum": 5}}}',
+     "no value is at least 10 and at most 5"),
 ])
 def test_bad_configurations_are_refused_saying_why(configuration: str, message: str) -> None:
     with pytest.raises(AskError, match=message):
@@ -75,3 +89,17 @@ def test_state_round_trips_and_results_omit_what_was_not_obtained() -> None:
     assert FormState.from_json(state.to_json()) == state
     assert json.loads(state.results()) == {"age": 34}
     assert FormState.from_json("") == FormState()
+
+
+def test_a_nullable_type_is_its_type() -> None:
+    """`{"type": ["integer", "null"]}` (how many generators write an optional field) is an integer field."""
+    form = parse_configuration(config(age={"type": ["integer", "null"], "minimum": 0}, ok={"type": ["null", "boolean"]}))
+    assert [(f.name, f.kind) for f in form.fields] == [("age", "integer"), ("ok", "boolean")]
+    assert form.field("age").check(34) == (34, None) and form.field("age").check(-1)[1] is not None
+
+
+def test_no_required_field_asks_once() -> None:
+    """`"required": []`: the question is asked and the first answer ends the form with what it gave."""
+    form = parse_configuration(json.dumps({"question": "Anything?", "required": [],
+                                           "result_schema_properties": {"age": {"type": "integer"}}}))
+    assert form.required == () and opening_state(form).asked == "age"

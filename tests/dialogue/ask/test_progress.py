@@ -4,9 +4,9 @@ from __future__ import annotations
 
 from dialogue.ask.form import AskForm, Clarifying
 from dialogue.ask.progress import MAX_TRIES, advance, opening_state, question_for
-from dialogue.ask.read import Reading
+from dialogue.ask.read import Reading, read_answer
 from dialogue.reference.lexicon import Lexicon
-from tests.dialogue.ask.conftest import form_of
+from tests.dialogue.ask.conftest import NINA, form_of
 
 
 def test_asks_only_for_what_is_missing_then_ends(form: AskForm, lexicon: Lexicon) -> None:
@@ -56,3 +56,30 @@ def test_questions_by_kind_and_description() -> None:
     form = form_of(pets={"type": "boolean"}, size={"type": "number", "description": "How tall are you?"})
     assert question_for(form, "pets") == "A few questions? Please say yes or no."
     assert question_for(form, "size") == "How tall are you?"
+
+
+def test_a_fraction_for_an_integer_is_said_as_such_not_as_the_bounds() -> None:
+    """ "three point five" for an integer field with a minimum was answered "it must be at least 0"."""
+    form = form_of(children={"type": "integer", "minimum": 0})
+    _value, problem = form.field("children").check(3.5)
+    assert problem is not None
+    _state, line = advance(form, opening_state(form), Reading(problems={"children": problem}))
+    assert line == "That is not a possible children: it must be a whole number. A few questions?"
+
+
+def test_an_enum_asked_again_says_its_values(lexicon: Lexicon) -> None:
+    """The form's question does not list an enum's values: asked again, the robot says them."""
+    form = form_of(size={"enum": ["small", "medium", "large"]})
+    _state, line = advance(form, opening_state(form), Reading())
+    assert line == "Sorry, I did not get that. A few questions? Please say small, medium or large."
+
+
+def test_the_entities_listed_in_a_question_are_offered(form: AskForm, lexicon: Lexicon) -> None:
+    """ "Which cup: the blue cup or the red cup?" then "the second one": the listed cups are the
+    choices, in the order said (an ordinal was understood only after a clarifying question)."""
+    state, line = advance(form, opening_state(form), Reading(values={"age": 30, "name": "Nina", "colour": "red"}),
+                          lexicon.snapshot)
+    assert line == "Which cup: the blue cup or the red cup?"
+    assert state.clarifying == Clarifying(field="cup", candidates=["cup_blue", "cup_red"])
+    reading = read_answer(form, state, "the second one", lexicon, NINA)
+    assert reading.values == {"cup": "cup_red"}

@@ -60,3 +60,28 @@ def test_out_of_bounds_is_a_problem_and_ambiguity_a_clarification(form: AskForm,
     assert set(ambiguous.clarify.candidates) == {"cup_red", "cup_blue"}
     state = FormState(asked="cup", clarifying=ambiguous.clarify)
     assert read_answer(form, state, "the blue one", lexicon, NINA).values == {"cup": "cup_blue"}
+
+
+def test_a_number_said_with_and_or_a_thousands_comma_is_one_number(lexicon: Lexicon) -> None:
+    """ "a hundred and five" was cut into two clauses at "and" (and read as 5), "1,500" at the comma."""
+    form = form_of(n={"type": "number"}, name={"type": "string"})
+    for text, value in [("a hundred and five", 105), ("one hundred and twenty-three", 123), ("1,500", 1500),
+                        ("two and a half", 2.5), ("about 3,250 and my name is Nina", 3250)]:
+        assert read_answer(form, FormState(asked="n"), text, lexicon, NINA).values.get("n") == value, text
+    reading = read_answer(form, FormState(asked="n"), "twelve, and my name is Nina", lexicon, NINA)
+    assert reading.values == {"n": 12, "name": "Nina"}
+
+
+def test_sure_why_not_is_a_yes(form: AskForm, lexicon: Lexicon) -> None:
+    assert read_answer(form, FormState(asked="tea"), "sure, why not", lexicon, NINA).values == {"tea": True}
+
+
+def test_a_question_back_or_a_refusal_is_no_free_string(lexicon: Lexicon) -> None:
+    """ "What is your name?" "why do you want to know?" filled the name with those words."""
+    form = form_of(name={"type": "string"}, age={"type": "integer"})
+    for text in ("why do you want to know?", "what?", "can you repeat the question", "what do you mean",
+                 "pardon", "how do you spell it?"):
+        assert read_answer(form, FormState(asked="name"), text, lexicon, NINA).values == {}, text
+    for text in ("I'd rather not tell you", "I prefer not to say", "I won't tell you"):
+        assert read_answer(form, FormState(asked="name"), text, lexicon, NINA).skipped == ["name"], text
+    assert read_answer(form, FormState(asked="name"), "it's Will", lexicon, NINA).values == {"name": "Will"}

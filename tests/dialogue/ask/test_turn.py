@@ -9,7 +9,7 @@ from dataclasses import replace
 
 from dialogue.ask.form import ASK_ROLE
 from dialogue.engine import DialogueEngine, EngineConfig, TurnResult
-from dialogue.history import ASSISTANT_USER_ID, Utterance
+from dialogue.history import ASSISTANT_USER_ID, SYSTEM_USER_ID, Utterance
 from dialogue.intents import RAW_USER_INPUT
 from dialogue.llm.hybrid import HybridModel
 from dialogue.llm.testing import ScriptedModel
@@ -183,3 +183,35 @@ def test_an_unreadable_stored_form_is_read_again_from_the_history(cups: KB) -> N
     (result,) = talk(manager, d.id, "the red cup")
     assert json.loads(result.results or "") == {"age": 34, "cup": "cup_red"} and result.dialogue_terminal
     assert result.trace is not None and any("could not be read" in n for n in result.trace.notes)
+
+
+def test_a_form_with_no_required_field_ends_after_one_answer(cups: KB) -> None:
+    manager = DialogueManager(DialogueEngine(cups))
+    configuration = json.dumps({"question": "Anything to add?", "required": [],
+                                "result_schema_properties": {"age": PROPERTIES["age"], "tea": PROPERTIES["tea"]}})
+    d = manager.start(ASK_ROLE, configuration=configuration)
+    (result,) = talk(manager, d.id, "I'm 40")
+    assert result.dialogue_terminal and json.loads(result.results or "") == {"age": 40}
+
+
+def test_a_system_update_or_the_robots_own_words_are_no_answer(cups: KB) -> None:
+    """A `__system__` input ("the battery is at 40 percent") filled the age with 40 and ended the form;
+    it is no answer of the person (nor is `__assistant__`): the form is unchanged, the question asked again."""
+    manager = DialogueManager(DialogueEngine(cups))
+    d = manager.start(ASK_ROLE, configuration=CONFIG)
+
+    async def run() -> list[TurnResult]:
+        return [await manager.interact(SYSTEM_USER_ID, "The battery is at 40 percent", dialogue_id=d.id),
+                await manager.interact(ASSISTANT_USER_ID, "I am 30 years old", dialogue_id=d.id),
+                await manager.interact(NINA, "I'm 34", dialogue_id=d.id)]
+
+    system, assistant, person = asyncio.run(run())
+    for result in (system, assistant):
+        assert (result.dialogue_terminal, result.results) == (False, "{}") and result.intents == ()
+        assert result.response == "How old are you, and which cup?"
+    assert json.loads(person.results or "") == {"age": 34}
+    # The same in the 4.0 shape, whose input is the history's last utterance.
+    history = [Utterance(ASSISTANT_USER_ID, "How old are you, and which cup?"), Utterance(NINA, "I'm 34")]
+    stateless = asyncio.run(manager.interact(SYSTEM_USER_ID, "Battery at 40 percent", dialogue_id="dm",
+                                             history=history, role=ASK_ROLE, configuration=CONFIG))
+    assert json.loads(stateless.results or "") == {"age": 34} and not stateless.dialogue_terminal
