@@ -1,0 +1,193 @@
+"""Bulk load and memory for `situated bench kb` (issue 18), each measure in a fresh process.
+
+The world is `bench.worlds.QueryWorld` of the given size. Each way into the KB is timed from an
+empty process to a loaded KB (the default ontology's closure included, as at a service's start):
+``load_data`` of an N-Triples document, ``update`` in batches of 5,000 statements, and journal
+recovery of a snapshot of the same state. The process's RSS is read after each load (and its peak).
+The baseline, in the same run: pyoxigraph loading the same document (no reasoning), and holding
+the triples the KB materialised. ``python -m bench.bulk MODE SIZE DIR`` is one child; it prints
+its figures as JSON.
+"""
+
+from __future__ import annotations
+
+import gc
+import json
+import subprocess
+import sys
+import time
+from collections.abc import Callable
+from pathlib import Path
+from typing import Any
+
+from bench.progress import step
+from bench.worlds import QueryWorld
+
+BATCH = 5_000
+ASSERTED = "asserted.nt"
+MATERIALISED = "materialised.nt"
+JOURNAL = "journal"
+
+
+def memory() -> tuple[int, int]:
+    """(RSS, peak RSS) of this process in MB."""
+    fields = {}
+    for line in Path("/proc/self/status").read_text().splitlines():
+        key, _, value = line.partition(":")
+        fields[key] = value
+    return int(fields["VmRSS"].split()[0]) // 1024, int(fields["VmHWM"].split()[0]) // 1024
+
+
+def write_document(size: int, directory: Path) -> None:
+    """The world's statements as an N-Triples document (what ``load_data`` gets)."""
+    from kb.records import nt
+    from kb.terms import parse_statement
+
+    lines = {nt(parse_statement(s)) for s in QueryWorld(size).statements()}  # type: ignore[arg-type]
+    (directory / ASSERTED).write_text("".join(f"{line} .\n" for line in sorted(lines)), encoding="utf-8")
+
+
+def _report(kb: Any, seconds: float) -> dict[str, Any]:
+    gc.collect()
+    rss, peak = memory()
+    return {"seconds": seconds, "rss": rss, "peak": peak, "asserted": kb.size(inferred=False),
+            "materialised": kb.size()}
+
+
+def _by_update(size: int, directory: Path) -> dict[str, Any]:
+    from kb import KB
+    from kb.journal import Journal
+    from kb.records import nt
+
+    statements = list(QueryWorld(size).statements())
+    gc.collect()
+    start = time.perf_counter()
+    kb = KB()
+    for at in range(0, len(statements), BATCH):
+        kb.update(statements[at : at + BATCH])
+    seconds = time.perf_counter() - start
+    del statements
+    report = _report(kb, seconds)
+    # What the other children load: a snapshot of this state, and the triples it materialised.
+    journal = Journal(directory / JOURNAL)
+    journal.recover(kb)
+    journal.snapshot(kb)
+    journal.close()
+    with (directory / MATERIALISED).open("w", encoding="utf-8") as out:
+        for triple in kb.writer.models.default.closure:
+            out.write(f"{nt(triple)} .\n")
+    return report
+
+
+def _by_load_data(size: int, directory: Path) -> dict[str, Any]:
+    from kb import KB
+
+    document = (directory / ASSERTED).read_bytes()
+    gc.collect()
+    start = time.perf_counter()
+    kb = KB()
+    kb.load_data(document, "nt")
+    seconds = time.perf_counter() - start
+    del document
+    return _report(kb, seconds)
+
+
+def _by_recovery(size: int, directory: Path) -> dict[str, Any]:
+    from kb import KB
+    from kb.journal import Journal
+
+    gc.collect()
+    start = time.perf_counter()
+    kb = KB()
+    Journal(directory / JOURNAL).recover(kb)
+    return _report(kb, time.perf_counter() - start)
+
+
+def _empty(size: int, directory: Path) -> dict[str, Any]:
+    from kb import KB
+
+    kb = KB()
+    return _report(kb, 0.0)
+
+
+def _pyoxigraph(name: str) -> Callable[[int, Path], dict[str, Any]]:
+    def load(size: int, directory: Path) -> dict[str, Any]:
+        from bench.pyoxi import load_seconds
+
+        document = (directory / name).read_bytes()
+        gc.collect()
+        seconds, count = load_seconds(document)
+        del document
+        gc.collect()
+        rss, peak = memory()
+        return {"seconds": seconds, "rss": rss, "peak": peak, "triples": count}
+
+    return load
+
+
+CHILDREN: dict[str, Callable[[int, Path], dict[str, Any]]] = {
+    "update": _by_update,
+    "load_data": _by_load_data,
+    "recover": _by_recovery,
+    "empty": _empty,
+    "oxigraph_asserted": _pyoxigraph(ASSERTED),
+    "oxigraph_materialised": _pyoxigraph(MATERIALISED),
+}
+
+
+def measure(mode: str, size: int, directory: Path) -> dict[str, Any]:
+    """One child's figures (a fresh Python process, so its RSS is the load's alone)."""
+    done = subprocess.run([sys.executable, "-m", "bench.bulk", mode, str(size), str(directory)],
+                          capture_output=True, text=True)
+    if done.returncode != 0:
+        raise RuntimeError(f"bench.bulk {mode} {size} failed: {done.stderr[-2000:]}")
+    figures: dict[str, Any] = json.loads(done.stdout.splitlines()[-1])
+    return figures
+
+
+Row = tuple[str, str, str, str]
+
+
+def rows(size: int, directory: Path, with_oxigraph: bool, load_target: str, rss_target: str) -> list[Row]:
+    """The bulk-load rows of one world size; ``directory`` is scratch space."""
+    step("kb", f"bulk load of {size:,} statements: the N-Triples document")
+    write_document(size, directory)
+    step("kb", f"bulk load of {size:,}: update in batches of {BATCH:,} (a fresh process)")
+    update = measure("update", size, directory)
+    step("kb", f"bulk load of {size:,}: load_data of the document")
+    loaded = measure("load_data", size, directory)
+    step("kb", f"bulk load of {size:,}: journal recovery of a snapshot")
+    recovered = measure("recover", size, directory)
+    empty = measure("empty", 0, directory)
+    if with_oxigraph:
+        step("kb", f"bulk load of {size:,}: pyoxigraph, the same document and the materialised triples")
+        asserted = measure("oxigraph_asserted", size, directory)
+        materialised = measure("oxigraph_materialised", size, directory)
+        load_base = (f"pyoxigraph load, same document, no reasoning: {asserted['seconds']:.2f} s; "
+                     f"materialised ({materialised['triples']:,}): {materialised['seconds']:.2f} s")
+        rss_base = (f"pyoxigraph holding the materialised triples: {materialised['rss']} MB; "
+                    f"empty KB process: {empty['rss']} MB")
+    else:
+        from bench.pyoxi import MISSING
+
+        load_base, rss_base = MISSING, f"{MISSING}; empty KB process: {empty['rss']} MB"
+    kb = f"{loaded['asserted']:,} asserted / {loaded['materialised']:,} materialised"
+    return [
+        (f"bulk load, `load_data` of N-Triples (parse + reasoning), {kb}", f"{loaded['seconds']:.2f} s",
+         load_base, load_target),
+        (f"bulk load, `update` in batches of {BATCH:,} statements (same world)", f"{update['seconds']:.2f} s",
+         "", load_target),
+        ("journal recovery of a snapshot (same state)", f"{recovered['seconds']:.2f} s", "", load_target),
+        (f"RSS after `load_data`, {kb}", f"{loaded['rss']} MB (peak {loaded['peak']} MB)", rss_base,
+         rss_target),
+    ]
+
+
+def main(argv: list[str]) -> int:
+    mode, size, directory = argv[0], int(argv[1]), Path(argv[2])
+    print(json.dumps(CHILDREN[mode](size, directory)))
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main(sys.argv[1:]))
