@@ -42,7 +42,7 @@ class Model:
     def __init__(self, name: str, triples: Iterable[Triple] = (), interner: Interner | None = None) -> None:
         self.name = name
         interner = interner if interner is not None else Interner()
-        self.asserted = TripleIndex(interner)
+        self.asserted = TripleIndex(interner, by_object=False)
         self.closure = TripleIndex(interner)
         for t in triples:
             self.asserted.add(*t)
