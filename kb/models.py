@@ -58,6 +58,12 @@ class Model:
         """Retract then assert; reason incrementally, or recompile when the TBox changes."""
         delta = Delta(self.name)
         asserted = self.asserted
+        # The KB's own term objects from here on: every later lookup stops at the identity check
+        # (rdflib compares terms in Python code, and a batch's terms are looked up many times).
+        interner = asserted.interner
+        canonical, intern = interner.canonical, interner.triple
+        remove = [(canonical(s), canonical(p), canonical(o)) for s, p, o in remove]
+        add = [intern(t) for t in add]
         delta.asserted_removed = [t for t in remove if asserted.remove(*t)]
         delta.asserted_added = [t for t in add if asserted.add(*t)]
         if not delta.asserted_added and not delta.asserted_removed:

@@ -148,20 +148,13 @@ class Writer:
             for s, p, o in add:
                 if p in functional:
                     remove.extend((s, p, old) for old in model.asserted.objects(s, p) if old != o)
-            for t in (*add, *remove):
-                undo.expiries.setdefault((name, t), self.expiries.expires_at(name, t))
+            self.expiries.remember(name, (*add, *remove), undo.expiries)
             delta = model.apply(add, remove)
-            for t in delta.asserted_removed:
-                self.expiries.discard(name, t)
-            for t in add:
-                lifespan = ACTIVE_CONCEPT_LIFESPAN if _is_activation(t) else batch.lifespan
-                if lifespan > 0:
-                    at = now + lifespan
-                    self.expiries.set(name, t, at)
-                    expiries.append((name, t, at))
-                elif self.expiries.expires_at(name, t) is not None:
+            if len(self.expiries):
+                for t in delta.asserted_removed:
                     self.expiries.discard(name, t)
-                    expiries.append((name, t, 0.0))
+            self.expiries.stamp(name, add, lambda t: ACTIVE_CONCEPT_LIFESPAN if _is_activation(t)
+                                else batch.lifespan, now, undo.expiries, expiries)
             if delta or expiries:
                 deltas.append(delta)
         if not deltas:
@@ -404,7 +397,11 @@ class _Undo:
 
 
 def _is_activation(triple: Triple) -> bool:
-    return triple[1] == RDF.type and triple[2] == ACTIVE_CONCEPT
+    # str's own == first: rdflib's is Python code, and this runs for every statement written.
+    return _same_text(triple[2], ACTIVE_CONCEPT) is True and triple[1] == RDF.type and triple[2] == ACTIVE_CONCEPT
+
+
+_same_text = str.__eq__
 
 
 def _last_functional_wins(add: Sequence[Triple], functional: frozenset[Any]) -> list[Triple]:
