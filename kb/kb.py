@@ -31,6 +31,7 @@ from kb.arguments import (
     model_names,
     render,
 )
+from kb.batch import Batch
 from kb.deadline import Budget, Deadline, holding, timed
 from kb.errors import KbError, StorageError
 from kb.events import Callback, ErrorCallback
@@ -41,7 +42,7 @@ from kb.rdfio import default_ontology, parse_location
 from kb.sparql import execute
 from kb.summary import Summary
 from kb.terms import Node, Triple, shorten
-from kb.writer import ActiveListener, Batch, Commit, CommitListener, Writer
+from kb.writer import ActiveListener, Commit, CommitListener, Writer
 
 DEFAULT_MAX_MODELS_PER_WRITE = 16
 
