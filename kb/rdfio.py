@@ -18,6 +18,7 @@ from defusedxml.sax import parse as defused_sax_parse
 from rdflib import Dataset, Graph, URIRef
 from rdflib.exceptions import ParserError
 
+from kb import ntriples
 from kb.errors import KbError
 from kb.formats import EXPORTS, Syntax, export_format, format_of_path, rdf_format
 from kb.terms import ORO, PREFIXES, Triple
@@ -46,6 +47,8 @@ def parse_data(data: str | bytes, fmt: str, source: str = "data") -> tuple[Tripl
     rdf = rdf_format(fmt)
     fmt = rdf.name
     _REFUSALS[rdf.syntax](data, source)
+    if fmt == "nt" and (fast := ntriples.parse(data, source)) is not None:
+        return fast
     graph = Dataset(default_union=True) if rdf.quads else Graph()
     try:
         graph.parse(data=data, format=fmt, publicID=ORO)
