@@ -308,7 +308,7 @@ class Writer:
                     self.expiries.set(model, triple, at)
                 else:
                     self.expiries.discard(model, triple)
-            if expiries:
+            if any(at > 0 for _triple, at in expiries):
                 self._ensure_reaper()
             self.revision = revision if revision is not None else self.revision + 1
             self._summarise()
