@@ -59,7 +59,7 @@ class Interner:
 
 def members(leaf: Leaf) -> Collection[Node]:
     """The terms of a leaf: the set itself, or the lone term as a 1-tuple."""
-    return leaf if type(leaf) is set else (leaf,)  # type: ignore[return-value]
+    return leaf if isinstance(leaf, set) else (leaf,)
 
 
 def _holds(leaf: Leaf, term: Node) -> bool:
@@ -77,14 +77,14 @@ def _put(inner: dict[Node, Leaf], key: Node, term: Node) -> bool:
     if leaf is None:
         inner[key] = term
         return True
-    if type(leaf) is set:
+    if isinstance(leaf, set):
         if term in leaf:
             return False
         leaf.add(term)
         return True
-    if leaf is term:
+    if leaf is term or (_same_text(leaf, term) and leaf == term):
         return False
-    inner[key] = {leaf, term}  # type: ignore[arg-type]
+    inner[key] = {leaf, term}
     return True
 
 
@@ -92,7 +92,7 @@ def _take(index: Level, a: Node, b: Node, c: Node) -> None:
     """Remove c from the leaf (a, b), which holds it; empty containers are dropped."""
     inner = index[a]
     leaf = inner[b]
-    if type(leaf) is set:
+    if isinstance(leaf, set):
         leaf.discard(c)
         if len(leaf) == 1:
             inner[b] = next(iter(leaf))
@@ -153,11 +153,11 @@ class TripleIndex:
     def __iter__(self) -> Iterator[Triple]:
         for s, by_p in self._spo.items():
             for p, leaf in by_p.items():
-                if type(leaf) is set:
+                if isinstance(leaf, set):
                     for o in leaf:
                         yield (s, p, o)
                 else:
-                    yield (s, p, leaf)  # type: ignore[misc]
+                    yield (s, p, leaf)
 
     @property
     def interner(self) -> Interner:
@@ -172,7 +172,12 @@ class TripleIndex:
     def add(self, s: Node, p: Node, o: Node) -> bool:
         """Add a triple; True if it was not there."""
         intern = self._interner.intern
-        s, p, o = intern(s), intern(p), intern(o)
+        return self.insert(intern(s), intern(p), intern(o))
+
+    def insert(self, s: Node, p: Node, o: Node) -> bool:
+        """``add`` for terms that are already this index's interned ones (the model's and the
+        reasoner's, which build triples from them): no interning. Other terms are still stored
+        correctly, only compared more slowly."""
         by_p = self._spo.get(s)
         if by_p is None:
             by_p = self._spo[s] = {}
@@ -352,15 +357,15 @@ class TripleIndex:
                     return 0
                 if o is not None:
                     return 1 if _holds(leaf, o) else 0
-                return len(leaf) if type(leaf) is set else 1
+                return len(leaf) if isinstance(leaf, set) else 1
             if o is not None:
                 return len(self.predicates(s, o))
-            return sum(len(leaf) if type(leaf) is set else 1 for leaf in by_p.values())
+            return sum(len(leaf) if isinstance(leaf, set) else 1 for leaf in by_p.values())
         if p is not None:
             if o is not None:
                 by_o = self._pos.get(p)
                 leaf = None if by_o is None else by_o.get(o)
-                return 0 if leaf is None else len(leaf) if type(leaf) is set else 1
+                return 0 if leaf is None else len(leaf) if isinstance(leaf, set) else 1
             return self._pcount.get(p, 0)
         if o is not None:
             return sum(len(preds) for preds in self.in_edges(o).values())
@@ -370,6 +375,6 @@ class TripleIndex:
 def _as_set(leaf: Leaf | None) -> set[Node] | frozenset[Node]:
     if leaf is None:
         return _EMPTY
-    if type(leaf) is set:
+    if isinstance(leaf, set):
         return leaf
-    return frozenset((leaf,))  # type: ignore[arg-type]
+    return frozenset((leaf,))

@@ -65,7 +65,7 @@ class Model:
         remove = [(canonical(s), canonical(p), canonical(o)) for s, p, o in remove]
         add = [intern(t) for t in add]
         delta.asserted_removed = [t for t in remove if asserted.remove(*t)]
-        delta.asserted_added = [t for t in add if asserted.add(*t)]
+        delta.asserted_added = [t for t in add if asserted.insert(*t)]
         if not delta.asserted_added and not delta.asserted_removed:
             return delta
         changed = delta.asserted_added + delta.asserted_removed
