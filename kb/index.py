@@ -13,6 +13,7 @@ Every term is interned, so a lone leaf is compared by identity first.
 from __future__ import annotations
 
 from collections.abc import Collection, Iterator, Mapping
+from typing import Any
 
 from kb.terms import Node, Triple
 
@@ -29,11 +30,13 @@ class Interner:
     times faster. Terms no index uses any more are pruned from time to time.
     """
 
-    __slots__ = ("_next_prune", "_terms")
+    __slots__ = ("_next_prune", "_terms", "shorts")
 
     def __init__(self) -> None:
         self._terms: dict[Node, Node] = {}
         self._next_prune = 50_000
+        #: The output form of the terms answers have named (``kb.terms.shorten``), made once.
+        self.shorts: dict[Node, Any] = {}
 
     def __len__(self) -> int:
         return len(self._terms)
@@ -54,6 +57,7 @@ class Interner:
         if len(self._terms) < self._next_prune:
             return
         self._terms = {t: t for t in self._terms if any(ix.uses(t) for ix in indexes)}
+        self.shorts = {t: v for t, v in self.shorts.items() if t in self._terms}
         self._next_prune = max(50_000, 2 * len(self._terms))
 
 

@@ -132,7 +132,7 @@ class KB(Facade[Model]):
             indexes = [timed(m.closure, deadline) for m in targets]
             if query.ground:
                 return list(texts) if any(holds(index, query) for index in indexes) else []
-            return render(query, rows_in(indexes, query, max_rows))
+            return render(query, rows_in(indexes, query, max_rows), self._models.shorts)
 
     def _exist(self, query: Query, models: Models_) -> bool:
         self._expire_due()

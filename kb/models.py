@@ -10,11 +10,12 @@ from __future__ import annotations
 
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
+from typing import Any
 
 from kb.index import Interner, TripleIndex
 from kb.reasoner import Reasoner
 from kb.tbox import CompiledTBox, compile_tbox, is_schema_triple
-from kb.terms import Triple
+from kb.terms import Node, Triple
 
 DEFAULT_MODEL = "default"
 ALL_MODELS = "all"
@@ -104,6 +105,11 @@ class Models:
         self._defaults = list(default_triples)
         self._interner = Interner()
         self._models: dict[str, Model] = {DEFAULT_MODEL: Model(DEFAULT_MODEL, self._defaults, self._interner)}
+
+    @property
+    def shorts(self) -> dict[Node, Any]:
+        """The output forms of terms answers named, cached with the terms (see ``render``)."""
+        return self._interner.shorts
 
     @property
     def defaults(self) -> list[Triple]:
