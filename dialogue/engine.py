@@ -161,7 +161,8 @@ class DialogueEngine:
     ) -> _Turn:
         snapshot, lexicon = grounded
         focus = ranked(snapshot, speaker, self.config.max_snapshot_entities, mentioned(lexicon, text))
-        context = TurnContext(text, speaker, snapshot, history, locale, self.config.robot_name, tuple(focus))
+        context = TurnContext(text, speaker, snapshot, history, locale, self.config.robot_name, tuple(focus),
+                              lexicon)
         return _Turn(text, speaker, locale, context, lexicon)
 
     async def _turn(

@@ -41,7 +41,7 @@ class RulesModel(ChatModel):
     """Answers every turn it understands in `prescreen`, without a prompt; reads no prompt itself."""
 
     def __init__(self) -> None:
-        self._lexicons = LexiconCache()
+        self._lexicons: LexiconCache | None = None  # only for contexts that bring no lexicon
 
     @property
     def name(self) -> str:
@@ -58,7 +58,11 @@ class RulesModel(ChatModel):
         return EarlyAnswer(answer_of(outcome), RULES, clarify=outcome.clarify)
 
     def interpret(self, context: TurnContext) -> Outcome:
-        lexicon = self._lexicons.get(context.snapshot)
+        lexicon = context.lexicon
+        if lexicon is None or lexicon.snapshot is not context.snapshot:
+            if self._lexicons is None:
+                self._lexicons = LexiconCache()
+            lexicon = self._lexicons.get(context.snapshot)
         interpreter = Interpreter(lexicon, context.speaker, context.history, context.robot_name)
         return interpreter.interpret(context.text)
 
