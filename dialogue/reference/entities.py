@@ -10,13 +10,12 @@ snapshot's, the order as a flat copy: no sorting and no KB access).
 
 from __future__ import annotations
 
-from bisect import bisect_left, insort
 from collections import Counter
 from collections.abc import Iterable
 from dataclasses import dataclass
 
 from dialogue.reference.facts import PERSON_CLASSES, PLACES, ROBOT_ID, ZONE_CLASSES, Change, Facts, Triple
-from dialogue.reference.layered import GONE, Layered
+from dialogue.reference.layered import GONE, Layered, SortedChunks
 from dialogue.reference.snapshot import (
     IGNORED_CLASSES,
     ROBOT_CLASSES,
@@ -79,11 +78,13 @@ class EntityIndex:
         self._frozen_contents: Layered[str, frozenset[str]] | None = None
         self._moved: set[str] = set()  # places whose contents changed since the last snapshot
         self._rank: dict[str, int] = {}
-        self.order: list[tuple[int, str]] = []
+        #: (rank, id) of every entity, sorted; shared by the snapshots it did not change in.
+        self.order: SortedChunks[tuple[int, str]] | None = None  # None: built at the end of __init__
         self.skipped: set[str] = set()
         self._prefetch_labels()
         for term in sorted(self.facts.candidates()):
             self.update(term)
+        self.order = SortedChunks((rank, term) for term, rank in self._rank.items())
 
     def _prefetch_labels(self) -> None:
         # One join per candidate group instead of one query per entity (the per-query cost dominates).
@@ -161,7 +162,8 @@ class EntityIndex:
         else:
             self._frozen_contents = self._frozen_contents.evolve(contents)
         self._moved = set()
-        table = EntityTable(self._frozen, list(self.order))
+        assert self.order is not None  # built with the index
+        table = EntityTable(self._frozen, self.order)
         return Snapshot(revision=revision, entities=table, names=dict(self.names),
                         skipped=frozenset(self.skipped), changed=changed, contents=self._frozen_contents)
 
@@ -225,10 +227,12 @@ class EntityIndex:
         if old == rank:
             return
         if old is not None:
-            del self.order[bisect_left(self.order, (old, term))]
+            if self.order is not None:
+                self.order = self.order.remove((old, term))
             del self._rank[term]
         if rank is not None:
-            insort(self.order, (rank, term))
+            if self.order is not None:
+                self.order = self.order.insert((rank, term))
             self._rank[term] = rank
 
     def _drop(self, term: str) -> None:

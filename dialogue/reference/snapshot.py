@@ -8,13 +8,13 @@ things, each group sorted by id (`EntityTable` keeps that order without sorting 
 from __future__ import annotations
 
 import re
-from bisect import bisect_left
 from collections.abc import Collection, Iterable, Iterator, Mapping
 from dataclasses import dataclass, field
 from itertools import islice
 from typing import Literal
 
 from dialogue.reference.facts import ROBOT_ID
+from dialogue.reference.layered import SortedChunks
 
 Kind = Literal["person", "zone", "robot", "thing"]
 
@@ -85,12 +85,12 @@ def rank(entity: Entity) -> int:
 class EntityTable(Mapping[str, Entity]):
     """An immutable view of the entities at one revision, iterated in rank-then-id order.
 
-    Built from a version of the maintained entities and a copy of their sorted order (no
-    sorting), so a revision costs little more than what changed."""
+    Built from a version of the maintained entities and their sorted order, both shared with the
+    other versions (no sorting, no copy), so a revision costs little more than what changed."""
 
     __slots__ = ("_by_id", "_order")
 
-    def __init__(self, by_id: Mapping[str, Entity], order: list[tuple[int, str]]) -> None:
+    def __init__(self, by_id: Mapping[str, Entity], order: SortedChunks[tuple[int, str]]) -> None:
         self._by_id = by_id
         self._order = order
 
@@ -108,8 +108,7 @@ class EntityTable(Mapping[str, Entity]):
 
     def ranked_up_to(self, rank: int) -> Iterator[Entity]:
         """The entities of the first ranks only (cheap: visible things, people, places)."""
-        end = bisect_left(self._order, (rank + 1, ""))
-        return (self._by_id[term] for _rank, term in self._order[:end])
+        return (self._by_id[term] for _rank, term in self._order.before((rank + 1, "")))
 
 
 @dataclass(frozen=True)
