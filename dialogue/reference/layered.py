@@ -55,12 +55,15 @@ class Layered(Mapping[K, V], Generic[K, V]):
         return self._len
 
     def __iter__(self) -> Iterator[K]:
-        top = self._top
-        for key in self._base:
-            if not isinstance(top.get(key), Gone):
-                yield key
+        top, base = self._top, self._base
+        gone = [key for key, value in top.items() if isinstance(value, Gone)]
+        if gone:  # only then is each base key looked up (a layered bucket may hold thousands)
+            dropped = set(gone)
+            yield from (key for key in base if key not in dropped)
+        else:
+            yield from base
         for key, value in top.items():
-            if key not in self._base and not isinstance(value, Gone):
+            if key not in base and not isinstance(value, Gone):
                 yield key
 
     def evolve(self, changes: Mapping[K, V | Gone]) -> Layered[K, V]:

@@ -78,8 +78,9 @@ def phrase(text: str) -> tuple[str, ...]:
     return norm(tokens(text))
 
 
-@dataclass(frozen=True)
-class Name:
+class Name(NamedTuple):
+    """One name of an entity (a tuple: hashed in C, and a class word's bucket holds thousands)."""
+
     words: tuple[str, ...]
     entity: str
     source: str  # "label", "id" or "class"
@@ -209,7 +210,7 @@ class Lexicon:
                 i += 1
                 continue
             length = len(names[0].words)
-            ents = frozenset(n.entity for n in names if len(n.words) == length)
+            ents = frozenset([n.entity for n in names if len(n.words) == length])
             out.append(Mention(i, i + length, ents))
             i += length
         return out
