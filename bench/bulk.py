@@ -33,6 +33,8 @@ def ticks_for(size: int) -> int:
     """Ticks journaled after the snapshot (fewer for a small world, so a short run stays short)."""
     return min(TICKS, size // 10)
 ASSERTED = "asserted.nt"
+TURTLE = "asserted.ttl"
+TURTLE_UP_TO = 200_000  # rdflib writes the Turtle document: minutes and gigabytes at 1M
 MATERIALISED = "materialised.nt"
 JOURNAL = "journal"
 
@@ -119,6 +121,16 @@ def _by_load_data(size: int, directory: Path) -> dict[str, Any]:
     return _report(kb, times)
 
 
+def _by_load(size: int, directory: Path) -> dict[str, Any]:
+    from kb import KB
+
+    gc.collect()
+    clock = _Clock()
+    kb = KB()
+    kb.load(directory / TURTLE)
+    return _report(kb, clock.stop())
+
+
 def _by_recovery(size: int, directory: Path) -> dict[str, Any]:
     from kb import KB
     from kb.journal import Journal
@@ -157,6 +169,7 @@ def _pyoxigraph(name: str) -> Callable[[int, Path], dict[str, Any]]:
 CHILDREN: dict[str, Callable[[int, Path], dict[str, Any]]] = {
     "update": _by_update,
     "load_data": _by_load_data,
+    "load_turtle": _by_load,
     "recover": _by_recovery,
     "empty": _empty,
     "oxigraph_asserted": _pyoxigraph(ASSERTED),
@@ -185,6 +198,11 @@ def rows(size: int, directory: Path, with_oxigraph: bool, load_target: str, rss_
     update = measure("update", size, directory)
     step("kb", f"bulk load of {size:,}: load_data of the document")
     loaded = measure("load_data", size, directory)
+    turtle = None
+    if size <= TURTLE_UP_TO:
+        step("kb", f"bulk load of {size:,}: `load` of the same triples as a Turtle file")
+        _write_turtle(directory)
+        turtle = measure("load_turtle", size, directory)
     step("kb", f"bulk load of {size:,}: journal recovery of a snapshot")
     recovered = measure("recover", size, directory)
     empty = measure("empty", 0, directory)
@@ -206,11 +224,21 @@ def rows(size: int, directory: Path, with_oxigraph: bool, load_target: str, rss_
          load_target),
         (f"bulk load, `update` in batches of {BATCH:,} statements (same world)", _took(update), "",
          load_target),
+        *([("bulk load, `load` of a Turtle file of the same triples (rdflib's parser)", _took(turtle), "",
+            load_target)] if turtle is not None else []),
         (f"journal recovery: a snapshot of the same state, then {ticks_for(size):,} perception ticks (+3/−3)",
          _took(recovered), "", load_target),
         (f"RSS after `load_data`, {kb}", f"{loaded['rss']} MB (peak {loaded['peak']} MB)", rss_base,
          rss_target),
     ]
+
+
+def _write_turtle(directory: Path) -> None:
+    from rdflib import Graph
+
+    graph = Graph()
+    graph.parse(directory / ASSERTED, format="nt")
+    graph.serialize(directory / TURTLE, format="turtle")
 
 
 def _took(figures: dict[str, Any]) -> str:
