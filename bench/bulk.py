@@ -5,9 +5,9 @@ empty process to a loaded KB (the default ontology's closure included, as at a s
 ``load_data`` of an N-Triples document, ``update`` in batches of 5,000 statements, ``load`` of
 the same triples as a Turtle file (up to 200k), and journal recovery of a snapshot of the same
 state followed by 10,000 journaled perception ticks. The process's RSS is read after each load
-(and its peak). The baseline, in the same run: pyoxigraph loading the same document (no reasoning), and holding
-the triples the KB materialised. ``python -m bench.bulk MODE SIZE DIR`` is one child; it prints
-its figures as JSON.
+(and its peak). The baseline, in the same run: pyoxigraph loading the same document (no
+reasoning), and holding the triples the KB materialised. ``python -m bench.bulk MODE SIZE DIR``
+is one child; it prints its figures as JSON.
 """
 
 from __future__ import annotations
