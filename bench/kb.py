@@ -2,31 +2,36 @@
 
 Baselines: owlrl's full OWL RL closure (what a KB without incremental reasoning must redo after
 every change) for the ontology load and the perception tick; rdflib's SPARQL engine on the same
-materialised triples for the grounding query. Targets are those of kb-compat §8.8 / issue 2.
+materialised triples for the grounding query; pyoxigraph (a native store, no reasoning; the test
+extra) given the same triples, materialised, for the ticks, the queries and the bulk loads
+(`bench.bulk`, each in a fresh process so that RSS is its own). Targets are those of kb-compat
+§8.8 / issues 2 and 18. `--million` adds the bulk load of 1M statements.
 """
 
 from __future__ import annotations
 
 import argparse
 import gc
+import os
 import statistics
-import subprocess
-import sys
+import tempfile
 import time
 from collections.abc import Callable, Iterable
 from importlib.resources import files
+from pathlib import Path
 
 import owlrl
 from rdflib import Graph
 from rdflib.plugins.sparql import prepareQuery
 
+from bench import bulk, pyoxi
 from bench.progress import step
 from bench.worlds import QUERY, SPARQL_QUERY, PerceptionWorld, QueryWorld
 from kb import KB
 from kb.models import Model
 from kb.rdfio import DEFAULT_ONTOLOGY, parse_data
 from kb.sparql import INIT_NS
-from kb.terms import ORO
+from kb.terms import ORO, parse_ground
 
 Row = tuple[str, str, str, str]
 
@@ -88,7 +93,7 @@ def bench_ontology(rows: list[Row]) -> None:
                  f"owlrl closure alone: {reference * 1000:.0f} ms", "≤ 300 ms"))
 
 
-def bench_ticks(rows: list[Row], objects: int, target: str, with_owlrl: bool) -> None:
+def bench_ticks(rows: list[Row], objects: int, target: str, with_owlrl: bool, oxigraph: bool) -> None:
     step("kb", f"perception ticks in a world of {objects:,} objects")
     world = PerceptionWorld(objects)
     kb = _build(world.statements())
@@ -101,17 +106,37 @@ def bench_ticks(rows: list[Row], objects: int, target: str, with_owlrl: bool) ->
         start = time.perf_counter()
         kb.apply(add, remove)
         samples.append(time.perf_counter() - start)
+    baselines = []
+    if oxigraph:
+        step("kb", "pyoxigraph: the same ticks on the same materialised triples, without reasoning")
+        baselines.append(f"pyoxigraph, no reasoning: {_oxigraph_ticks_ms(kb, ticks):.3f} ms")
     if with_owlrl:
         step("kb", "owlrl's re-closure of the same world")
-    baseline = f"owlrl re-closure: {_owlrl_seconds(kb):.2f} s" if with_owlrl else "owlrl: not run (--full)"
+        baselines.append(f"owlrl re-closure: {_owlrl_seconds(kb):.2f} s")
+    elif objects > 400:
+        baselines.append("owlrl: not run (--full)")
     rows.append((f"perception tick +3/−3, {kb.size():,} materialised ({kb.size(inferred=False):,} asserted)",
-                 f"{_median_ms(samples):.2f} ms median", baseline, target))
+                 f"{_median_ms(samples):.2f} ms median", "; ".join(baselines) or pyoxi.MISSING, target))
     kb.close()
 
 
-def bench_query(rows: list[Row], size: int, target: str, sparql_rounds: int) -> None:
-    step("kb", f"grounding query in a world of {size:,} asserted, then rdflib SPARQL on it")
-    kb = _build(QueryWorld(size).statements())
+def _oxigraph_ticks_ms(kb: KB, ticks: list[tuple[list[str], list[str]]]) -> float:
+    store, terms = pyoxi.store_of(kb.writer.models.default.closure)
+    parsed = [([parse_ground(s) for s in add], [parse_ground(s) for s in remove]) for add, remove in ticks]
+    for add, remove in parsed[:50]:
+        pyoxi.apply(store, terms, add, remove)
+    samples = []
+    for add, remove in parsed[50:]:
+        start = time.perf_counter()
+        pyoxi.apply(store, terms, add, remove)
+        samples.append(time.perf_counter() - start)
+    return _median_ms(samples)
+
+
+def bench_query(rows: list[Row], world: QueryWorld, target: str, sparql_rounds: int, oxigraph: bool,
+                what: str = "") -> None:
+    step("kb", f"grounding query in a world of {world.size:,} asserted{what}, then rdflib SPARQL on it")
+    kb = _build(world.statements())
     for _ in range(20):
         kb.find(QUERY)
     samples = _timed(lambda: kb.find(QUERY), 50)
@@ -122,31 +147,41 @@ def bench_query(rows: list[Row], size: int, target: str, sparql_rounds: int) -> 
     if baseline_answers != answers:
         raise SystemExit(f"query answers differ: situated {answers}, rdflib {baseline_answers}")
     sparql = _timed(lambda: list(graph.query(prepared)), sparql_rounds)
+    baselines = [f"rdflib SPARQL (prepared): {_median_ms(sparql):.1f} ms"]
+    if oxigraph:
+        step("kb", "pyoxigraph: the same query on the same materialised triples")
+        baselines.insert(0, f"pyoxigraph: {_oxigraph_query_ms(kb, SPARQL_QUERY, ('h', 'o'), answers):.2f} ms")
     rows.append((f"3-pattern grounding query, {kb.size(inferred=False):,} asserted / {kb.size():,} "
-                 f"materialised ({answers} answers)",
-                 f"{_median_ms(samples):.2f} ms median",
-                 f"rdflib SPARQL (prepared): {_median_ms(sparql):.1f} ms", target))
+                 f"materialised{what} ({answers} answers)",
+                 f"{_median_ms(samples):.2f} ms median", "; ".join(baselines), target))
+    if oxigraph and world.size >= 100_000:
+        _one_pattern(rows, kb)
     kb.close()
 
 
-def bench_rss(rows: list[Row], size: int) -> None:
-    step("kb", f"memory of a process holding {size:,} asserted")
-    code = (
-        "import resource, sys\n"
-        "from bench.kb import _build\nfrom bench.worlds import QueryWorld\n"
-        f"kb = _build(QueryWorld({size}).statements())\n"
-        "rss = [l for l in open('/proc/self/status') if l.startswith('VmRSS')][0].split()[1]\n"
-        "print(int(rss) // 1024, kb.size(inferred=False), kb.size())\n"
-    )
-    empty = (
-        "from kb import KB\nkb = KB()\n"
-        "print(int([l for l in open('/proc/self/status') if l.startswith('VmRSS')][0].split()[1]) // 1024)\n"
-    )
-    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
-    base = subprocess.run([sys.executable, "-c", empty], capture_output=True, text=True, check=True).stdout
-    rss, asserted, closure = (int(x) for x in out.split())
-    rows.append((f"RSS with {asserted:,} asserted / {closure:,} materialised", f"{rss} MB",
-                 f"empty KB process: {int(base)} MB", "≤ 400 MB"))
+def _one_pattern(rows: list[Row], kb: KB) -> None:
+    step("kb", "a large one-pattern query, and pyoxigraph's")
+    pattern, sparql = "?o rdf:type dbr:Cup", "SELECT ?o WHERE { ?o rdf:type dbr:Cup }"
+    answers = len(kb.find(pattern))
+    samples = _timed(lambda: kb.find(pattern), 20)
+    baseline = _oxigraph_query_ms(kb, sparql, ("o",), answers)
+    rows.append((f"one-pattern query `{pattern}` ({answers:,} rows, same world)",
+                 f"{_median_ms(samples):.2f} ms median", f"pyoxigraph: {baseline:.2f} ms", ""))
+
+
+def _oxigraph_query_ms(kb: KB, sparql: str, names: tuple[str, ...], answers: int) -> float:
+    store, _terms = pyoxi.store_of(kb.writer.models.default.closure)
+    found = len(pyoxi.select(store, sparql, names))
+    if found != answers:
+        raise SystemExit(f"query answers differ: situated {answers}, pyoxigraph {found}")
+    for _ in range(5):
+        pyoxi.select(store, sparql, names)
+    return _median_ms(_timed(lambda: pyoxi.select(store, sparql, names), 30))
+
+
+def bench_bulk(rows: list[Row], size: int, oxigraph: bool, load_target: str, rss_target: str) -> None:
+    with tempfile.TemporaryDirectory(prefix="situated-bulk-") as scratch:
+        rows.extend(bulk.rows(size, Path(scratch), oxigraph, load_target, rss_target))
 
 
 def render(rows: list[Row]) -> str:
@@ -166,17 +201,25 @@ def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(prog="situated bench kb", description=__doc__)
     parser.add_argument("--quick", action="store_true", help="small sizes only (seconds, for CI smoke runs)")
     parser.add_argument("--full", action="store_true", help="also run owlrl at ~60k (minutes)")
+    parser.add_argument("--million", action="store_true", help="also bulk-load 1M statements (minutes)")
     args = parser.parse_args(argv)
+    oxigraph = pyoxi.warn_if_missing()
     rows: list[Row] = []
     bench_ontology(rows)
-    bench_ticks(rows, 400, "≤ 1 ms at ~10k", with_owlrl=True)
+    bench_ticks(rows, 400, "≤ 1 ms at ~10k", with_owlrl=True, oxigraph=oxigraph)
     if not args.quick:
-        bench_ticks(rows, 2900, "≤ 2 ms at ~60k", with_owlrl=args.full)
-    bench_query(rows, 10_000, "≤ 0.5 ms at 10k", sparql_rounds=10)
+        bench_ticks(rows, 2900, "≤ 2 ms at ~60k", with_owlrl=args.full, oxigraph=oxigraph)
+        bench_ticks(rows, 30_000, "≤ 0.4 ms at ~100k", with_owlrl=False, oxigraph=oxigraph)
+    bench_query(rows, QueryWorld(10_000), "≤ 0.5 ms at 10k", sparql_rounds=10, oxigraph=oxigraph)
+    bench_query(rows, QueryWorld(10_000, cups=0.09, humans=40, sightings=25), "≤ 0.7 ms",
+                sparql_rounds=10, oxigraph=oxigraph, what=", 9 % cups, 40 × 25 sightings")
     if not args.quick:
-        bench_query(rows, 100_000, "≤ 5 ms at 100k", sparql_rounds=3)
-        bench_rss(rows, 100_000)
+        bench_query(rows, QueryWorld(100_000), "≤ 5 ms at 100k", sparql_rounds=3, oxigraph=oxigraph)
+        bench_bulk(rows, 100_000, oxigraph, "≤ 3 s", "≤ 250 MB")
+    if args.million:
+        bench_bulk(rows, 1_000_000, oxigraph, "≤ 30 s", "≤ 2 GB")
     print(render(rows))
+    print(f"(load average {', '.join(f'{x:.2f}' for x in os.getloadavg())} on {os.cpu_count()} cores)")
     return 0
 
 

@@ -17,21 +17,27 @@ CLASSES = ["dbr:Cup"] + [f"Thing_class_{i}" for i in range(49)]
 
 @dataclass(frozen=True)
 class QueryWorld:
-    """n statements: n/6 objects (type, label, room, colour), n/100 humans each seeing 20
-    objects, the robot seeing the rest as filler."""
+    """n statements: n/6 objects (type, label, room, colour), humans each seeing some objects
+    (by default n/100 humans seeing 20 each, 2 % of the objects cups), the robot seeing the rest
+    as filler. ``cups``, ``humans`` and ``sightings`` make the grounding query's answer larger
+    (issue 18's world: 9 % cups, 40 humans seeing 25 objects each)."""
 
     size: int
     seed: int = 1
+    cups: float = 0.0
+    humans: int = 0
+    sightings: int = 20
 
     def statements(self) -> Iterator[str]:
         rng = random.Random(self.seed)
         n_objects = self.size // 6
-        n_humans = max(1, self.size // 100)
+        n_humans = self.humans or max(1, self.size // 100)
         rooms = [f"room_{i}" for i in range(max(2, n_objects // 200))]
         emitted = 0
         for i in range(n_objects):
             obj = f"obj_{i}"
-            yield f"{obj} rdf:type {rng.choice(CLASSES)}"
+            kind = "dbr:Cup" if self.cups and rng.random() < self.cups else rng.choice(self._classes)
+            yield f"{obj} rdf:type {kind}"
             yield f'{obj} rdfs:label "object {i}"'
             yield f"{obj} isIn {rng.choice(rooms)}"
             yield f"{obj} hasColor {rng.choice(COLOURS)}"
@@ -39,7 +45,7 @@ class QueryWorld:
         for h in range(n_humans):
             yield f"human_{h} rdf:type Human"
             emitted += 1
-            for _ in range(20):
+            for _ in range(self.sightings):
                 yield f"human_{h} sees obj_{rng.randrange(n_objects)}"
                 emitted += 1
         yield "myself rdf:type Robot"
@@ -47,6 +53,11 @@ class QueryWorld:
         while emitted < self.size:
             yield f"myself sees obj_{rng.randrange(n_objects)}"
             emitted += 1
+
+    @property
+    def _classes(self) -> list[str]:
+        # With an explicit share of cups, the other objects are of the 49 other classes.
+        return CLASSES[1:] if self.cups else CLASSES
 
 
 QUERY = ["?h sees ?o", "?o rdf:type dbr:Cup", "?h rdf:type Human"]

@@ -216,7 +216,8 @@ class DialogueEngine:
     ) -> _Turn:
         snapshot, lexicon = grounded
         focus = ranked(snapshot, speaker, self.config.max_snapshot_entities, mentioned(lexicon, text))
-        context = TurnContext(text, speaker, snapshot, history, locale, self.config.robot_name, tuple(focus))
+        context = TurnContext(text, speaker, snapshot, history, locale, self.config.robot_name, tuple(focus),
+                              lexicon)
         recorder = trace or TraceRecorder(speaker=speaker, input=text, locale=locale)
         kinds = [e.kind for e in snapshot.entities.values()]
         recorder.snapshot(snapshot.revision, kinds, [e.id for e in focus])

@@ -95,7 +95,9 @@ def _roles(wish: UserIntent, lexicon: Lexicon, speaker: str) -> tuple[dict[str, 
         elif found.ambiguous:
             return data, clarifying_question(lexicon.snapshot, found.matches)
         else:
-            allowed = sorted(e.id for e in lexicon.snapshot.entities.values() if e.kind in kind)[:30]
+            # The first of the situation's order (what the robot sees, people, places): naming
+            # them costs what they are, not the size of the world.
+            allowed = sorted(e.id for e in lexicon.snapshot.first_of_kind(kind, 30))
             raise AnswerError(
                 f"{field} {value!r} is not the id of a {'/'.join(sorted(kind))} in the situation; "
                 f"use one of {allowed} or null"

@@ -41,19 +41,27 @@ def compiled_query(patterns: tuple[str, ...], vars: tuple[str, ...] | None) -> Q
     return build_query(parse_patterns(patterns), list(vars) if vars else None)
 
 
-def render(query: Query, found: Iterable[Row]) -> list[dict[str, Any]]:
-    """Rows as dicts of output values, in a deterministic order (sorted by their text)."""
-    cache: dict[Node, Any] = {}
+def render(query: Query, found: Iterable[Row], shorts: dict[Node, Any] | None = None) -> list[dict[str, Any]]:
+    """Rows as dicts of output values, in a deterministic order (sorted by their text).
 
-    def short(term: Node) -> Any:
-        value = cache.get(term, cache)
-        if value is cache:
-            value = cache[term] = shorten(term)
-        return value
-
-    values = [tuple(short(t) for t in row) for row in found]
-    values.sort(key=lambda row: tuple(str(v) for v in row))
+    ``shorts`` caches each term's output form across calls (the KB's interner keeps one). When
+    every value is a string (names, labels), the rows sort as they are: the same order as by
+    their text, without a key per row."""
+    known: dict[Node, Any] = {} if shorts is None else shorts
+    rows = list(found)
+    terms = {t for row in rows for t in row}
+    for term in terms - known.keys():
+        known[term] = shorten(term)
+    value = known.__getitem__
+    values = [tuple(map(value, row)) for row in rows]
+    if all(type(value(t)) is str for t in terms):
+        values.sort()
+    else:
+        values.sort(key=lambda row: tuple(str(v) for v in row))
     names = query.names
+    if len(names) == 1:
+        name = names[0]
+        return [{name: v} for (v,) in values]
     return [dict(zip(names, row, strict=True)) for row in values]
 
 

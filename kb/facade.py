@@ -23,6 +23,7 @@ from kb.deadline import Budget, Deadline
 from kb.errors import KbError
 from kb.events import Callback, ErrorCallback, event_id
 from kb.formats import export_format
+from kb.gcpause import paused
 from kb.models import DEFAULT_MODEL
 from kb.query import Query
 from kb.rdfio import parse_data, read_location, serialize
@@ -159,7 +160,8 @@ class Facade(KnowledgeCoreSugar, ABC, Generic[M]):
         """Add statements; a functional property's new value replaces the old one (§3.5)."""
         self._writable()
         texts = as_list(stmts)
-        triples = [parse_ground(s) for s in texts]
+        with paused(len(texts)):  # parsing a bulk update allocates as much as applying it
+            triples = [parse_ground(s) for s in texts]
         model_names(models)
         self._update(texts, triples, models, lifespan_seconds(lifespan))
 
@@ -191,8 +193,9 @@ class Facade(KnowledgeCoreSugar, ABC, Generic[M]):
         one reasoning pass, one event evaluation. A perception tick or a scene diff uses this."""
         self._writable()
         added_texts, removed_texts = as_list(add), as_list(remove)
-        added = [parse_ground(s) for s in added_texts]
-        removed = [parse_ground(s) for s in removed_texts]
+        with paused(len(added_texts) + len(removed_texts)):
+            added = [parse_ground(s) for s in added_texts]
+            removed = [parse_ground(s) for s in removed_texts]
         model_names(models)
         self._apply((added_texts, added), (removed_texts, removed), models, lifespan_seconds(lifespan))
 

@@ -41,6 +41,7 @@ SNAPSHOT = "snapshot.json"
 SNAPSHOT_TMP = SNAPSHOT + ".tmp"
 LOW_SPACE = 256 * 1024  # bytes free under which storage is reported degraded before writes fail
 MAX_BACKOFF = 300.0  # seconds between compaction attempts that keep failing
+REPLAY_BATCH = 200_000  # changed statements replayed (and reasoned) at once at most
 
 
 def repair_hint(directory: Path) -> str:
@@ -108,11 +109,13 @@ class Journal:
         if found.damage:
             raise DataCorrupt(f"{found.describe_damage(str(path))}; not starting, since that would "
                               f"lose them: {repair_hint(self.directory)}")
+        replay = _Replay(kb)
         for _start, _end, record in found.records:
             if record["revision"] > result.revision:
-                _replay(kb, record)
+                replay.record(record)
                 result.revision = record["revision"]
                 result.records += 1
+        replay.flush()
         result.dropped_bytes = found.torn_bytes
         if found.torn_bytes:
             with path.open("r+b") as handle:
@@ -276,25 +279,52 @@ def _free_bytes(directory: Path) -> int | None:
         return None
 
 
-def _replay(kb: KB, record: dict[str, Any]) -> None:
-    revision = record["revision"]
-    if "clear" in record:
-        kb.writer.clear(record["clear"]["keep_defaults"])
-    bnodes: dict[str, BNode] = {}
-    expiries: dict[str, list[tuple[Triple, float]]] = {}
-    for model, statement, at in record.get("expiries", []):
-        expiries.setdefault(model, []).append((parse_nt(statement, bnodes), at))
-    changes = {c["model"]: c for c in record.get("changes", [])}
-    for model in sorted(set(changes) | set(expiries)):
-        change = changes.get(model, {})
-        kb.writer.restore(
-            model,
-            add=[parse_nt(s, bnodes) for s in change.get("add", [])],
-            remove=[parse_nt(s, bnodes) for s in change.get("remove", [])],
-            expiries=expiries.get(model, []),
-            revision=revision,
-        )
-    kb.writer.revision = revision
+class _Replay:
+    """Journal records replayed in batches, each reasoned once: per model, the last change of each
+    triple (retracted, or asserted) since the last flush, which leaves the asserted triples as the
+    records did one by one, so the closure too. A perception stream journals thousands of small
+    records that add and retract the same facts; one by one, each paid its own reasoning. Lifespans
+    are replayed record by record (their last word counts); a clear flushes first."""
+
+    def __init__(self, kb: KB) -> None:
+        self.kb = kb
+        self._last: dict[str, dict[Triple, bool]] = {}  # model -> triple -> asserted at the end
+        self._pending = 0
+        self._revision = 0
+
+    def record(self, record: dict[str, Any]) -> None:
+        revision = record["revision"]
+        if "clear" in record:
+            self.flush()
+            self.kb.writer.clear(record["clear"]["keep_defaults"])
+        bnodes: dict[str, BNode] = {}
+        expiries: dict[str, list[tuple[Triple, float]]] = {}
+        for model, statement, at in record.get("expiries", []):
+            expiries.setdefault(model, []).append((parse_nt(statement, bnodes), at))
+        changes = {c["model"]: c for c in record.get("changes", [])}
+        for model in sorted(set(changes) | set(expiries)):
+            change = changes.get(model, {})
+            last = self._last.setdefault(model, {})
+            removed = [parse_nt(s, bnodes) for s in change.get("remove", [])]
+            for triple in removed:  # retracted first, then asserted, as the commit did
+                last[triple] = False
+            for statement in change.get("add", []):
+                last[parse_nt(statement, bnodes)] = True
+            self._pending += len(removed) + len(change.get("add", []))
+            # The model exists from this record on, and lifespans change in record order.
+            ended = [(t, 0.0) for t in removed] if len(self.kb.writer.expiries) else []
+            self.kb.writer.restore(model, [], [], ended + expiries.get(model, []), revision=revision)
+        self._revision = revision
+        self.kb.writer.revision = revision
+        if self._pending >= REPLAY_BATCH:
+            self.flush()
+
+    def flush(self) -> None:
+        for model, last in self._last.items():
+            add = [t for t, asserted in last.items() if asserted]
+            remove = [t for t, asserted in last.items() if not asserted]
+            self.kb.writer.restore(model, add, remove, [], revision=self._revision)
+        self._last, self._pending = {}, 0
 
 
 def _restore_snapshot(kb: KB, data: dict[str, Any]) -> int:

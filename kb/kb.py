@@ -31,6 +31,7 @@ from kb.arguments import (
     model_names,
     render,
 )
+from kb.batch import Batch
 from kb.deadline import Budget, Deadline, holding, timed
 from kb.errors import KbError, StorageError
 from kb.events import Callback, ErrorCallback
@@ -41,7 +42,7 @@ from kb.rdfio import default_ontology, parse_location
 from kb.sparql import execute
 from kb.summary import Summary
 from kb.terms import Node, Triple, shorten
-from kb.writer import ActiveListener, Batch, Commit, CommitListener, Writer
+from kb.writer import ActiveListener, Commit, CommitListener, Writer
 
 DEFAULT_MAX_MODELS_PER_WRITE = 16
 
@@ -131,7 +132,7 @@ class KB(Facade[Model]):
             indexes = [timed(m.closure, deadline) for m in targets]
             if query.ground:
                 return list(texts) if any(holds(index, query) for index in indexes) else []
-            return render(query, rows_in(indexes, query, max_rows))
+            return render(query, rows_in(indexes, query, max_rows), self._models.shorts)
 
     def _exist(self, query: Query, models: Models_) -> bool:
         self._expire_due()

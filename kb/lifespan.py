@@ -7,10 +7,13 @@ with a lifespan refreshes it; re-adding it without one makes it permanent.
 from __future__ import annotations
 
 import heapq
+from collections.abc import Callable, Iterable
 
 from kb.terms import Triple
 
 Key = tuple[str, Triple]
+#: An expiry a commit set (0.0: made permanent again), as the journal records it.
+Change = tuple[str, Triple, float]
 
 
 class Expiries:
@@ -55,6 +58,32 @@ class Expiries:
                 del self._when[key]
                 due.append(key)
         return due
+
+    def remember(self, model: str, triples: Iterable[Triple], before: dict[Key, float | None]) -> None:
+        """Note in ``before`` the expiry of each of ``triples`` that has one (what undoing a
+        batch puts back); a KB without lifespans pays nothing per triple."""
+        if not self._when:
+            return
+        when = self._when
+        for triple in triples:
+            at = when.get((model, triple))
+            if at is not None:
+                before.setdefault((model, triple), at)
+
+    def stamp(self, model: str, added: Iterable[Triple], lifespan: Callable[[Triple], float], now: float,
+              before: dict[Key, float | None], changes: list[Change]) -> None:
+        """Give each added triple its lifespan's expiry, or make it permanent again if it had one
+        and has none now; ``before`` and ``changes`` as for ``remember`` and the journal."""
+        for triple in added:
+            seconds = lifespan(triple)
+            if seconds > 0:
+                before.setdefault((model, triple), None)
+                self.set(model, triple, now + seconds)
+                changes.append((model, triple, now + seconds))
+            elif self._when and (model, triple) in self._when:
+                before.setdefault((model, triple), self._when[(model, triple)])
+                self.discard(model, triple)
+                changes.append((model, triple, 0.0))
 
     def items(self) -> list[tuple[str, Triple, float]]:
         return [(model, triple, at) for (model, triple), at in self._when.items()]

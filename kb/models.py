@@ -10,11 +10,12 @@ from __future__ import annotations
 
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
+from typing import Any
 
 from kb.index import Interner, TripleIndex
 from kb.reasoner import Reasoner
 from kb.tbox import CompiledTBox, compile_tbox, is_schema_triple
-from kb.terms import Triple
+from kb.terms import Node, Triple
 
 DEFAULT_MODEL = "default"
 ALL_MODELS = "all"
@@ -42,7 +43,7 @@ class Model:
     def __init__(self, name: str, triples: Iterable[Triple] = (), interner: Interner | None = None) -> None:
         self.name = name
         interner = interner if interner is not None else Interner()
-        self.asserted = TripleIndex(interner)
+        self.asserted = TripleIndex(interner, by_object=False)
         self.closure = TripleIndex(interner)
         for t in triples:
             self.asserted.add(*t)
@@ -58,8 +59,14 @@ class Model:
         """Retract then assert; reason incrementally, or recompile when the TBox changes."""
         delta = Delta(self.name)
         asserted = self.asserted
+        # The KB's own term objects from here on: every later lookup stops at the identity check
+        # (rdflib compares terms in Python code, and a batch's terms are looked up many times).
+        interner = asserted.interner
+        canonical, intern = interner.canonical, interner.triple
+        remove = [(canonical(s), canonical(p), canonical(o)) for s, p, o in remove]
+        add = [intern(t) for t in add]
         delta.asserted_removed = [t for t in remove if asserted.remove(*t)]
-        delta.asserted_added = [t for t in add if asserted.add(*t)]
+        delta.asserted_added = [t for t in add if asserted.insert(*t)]
         if not delta.asserted_added and not delta.asserted_removed:
             return delta
         changed = delta.asserted_added + delta.asserted_removed
@@ -98,6 +105,11 @@ class Models:
         self._defaults = list(default_triples)
         self._interner = Interner()
         self._models: dict[str, Model] = {DEFAULT_MODEL: Model(DEFAULT_MODEL, self._defaults, self._interner)}
+
+    @property
+    def shorts(self) -> dict[Node, Any]:
+        """The output forms of terms answers named, cached with the terms (see ``render``)."""
+        return self._interner.shorts
 
     @property
     def defaults(self) -> list[Triple]:

@@ -8,8 +8,9 @@ SPARQL engine builds (kb-compat §8.5).
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Iterator, Sequence
+from collections.abc import Callable, Iterable, Iterator, Sequence
 from dataclasses import dataclass
+from operator import itemgetter
 from typing import Protocol
 
 from rdflib import BNode, Variable
@@ -112,24 +113,30 @@ def _solutions(
 def _solve(
     index: JoinIndex, patterns: list[_Compiled], binding: list[Node | None]
 ) -> Iterator[list[Node | None]]:
-    if not patterns:
-        yield binding
-        return
-    best_i, best_count = 0, -1
+    # Patterns whose terms are all bound are checks: one that fails ends this branch, one that
+    # holds binds nothing and is done. Of the others, the one with the fewest matches is joined.
+    count = index.count
+    kept: list[_Compiled] = []
+    best_i, best_count = -1, -1
     best: tuple[Node | None, Node | None, Node | None] = (None, None, None)
-    for i, ((cs, vs), (cp, vp), (co, vo)) in enumerate(patterns):
+    for pattern in patterns:
+        (cs, vs), (cp, vp), (co, vo) = pattern
         s = cs if vs < 0 else binding[vs]
         p = cp if vp < 0 else binding[vp]
         o = co if vo < 0 else binding[vo]
-        count = index.count(s, p, o)
-        if count == 0:
+        n = count(s, p, o)
+        if n == 0:
             return
-        if best_count < 0 or count < best_count:
-            best_i, best_count, best = i, count, (s, p, o)
-            if count == 1:
-                break
-    (_, vs), (_, vp), (_, vo) = patterns[best_i]
-    rest = patterns[:best_i] + patterns[best_i + 1 :]
+        if s is not None and p is not None and o is not None:
+            continue
+        if best_i < 0 or n < best_count:
+            best_i, best_count, best = len(kept), n, (s, p, o)
+        kept.append(pattern)
+    if best_i < 0:
+        yield binding
+        return
+    (_, vs), (_, vp), (_, vo) = kept[best_i]
+    rest = kept[:best_i] + kept[best_i + 1 :]
     s, p, o = best
     # Positions to bind: unbound variables of the chosen pattern.
     free_s = vs if s is None else -1
@@ -147,7 +154,10 @@ def _solve(
             if (free_o == free_s and to != ts) or (free_o == free_p and to != tp):
                 continue
             binding[free_o] = to
-        yield from _solve(index, rest, binding)
+        if rest:
+            yield from _solve(index, rest, binding)
+        else:
+            yield binding
     for slot in (free_s, free_p, free_o):
         if slot >= 0:
             binding[slot] = None
@@ -161,13 +171,24 @@ def rows(index: JoinIndex, query: Query, limit: int | None = None) -> set[Row]:
     out: set[Row] = set()
     order = _variables(query.patterns)
     slots = [order.index(v) for v in query.projection]
+    project = _projector(slots)
     for values in _solutions(index, query.patterns, order):
-        row = tuple(values[i] for i in slots)
-        if not any(type(t) is BNode for t in row):
+        row = project(values)
+        if BNode not in map(type, row):
             out.add(row)
             if limit is not None and len(out) > limit:
                 raise TooManyRows(limit)
     return out
+
+
+def _projector(slots: Sequence[int]) -> Callable[[list[Node]], Row]:
+    """The projected row of a solution (itemgetter: no Python call per row for several slots)."""
+    if len(slots) > 1:
+        return itemgetter(*slots)  # a tuple for two or more slots
+    if slots:
+        slot = slots[0]
+        return lambda values: (values[slot],)
+    return lambda values: ()
 
 
 def rows_in(indexes: Iterable[JoinIndex], query: Query, limit: int | None = None) -> set[Row]:

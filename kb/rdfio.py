@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import json
-from collections.abc import Callable, Iterable
+from collections.abc import Callable, Iterable, Iterator
 from functools import lru_cache
 from importlib.resources import files
 from io import BytesIO, StringIO
@@ -17,7 +17,9 @@ from defusedxml import DefusedXmlException
 from defusedxml.sax import parse as defused_sax_parse
 from rdflib import Dataset, Graph, URIRef
 from rdflib.exceptions import ParserError
+from rdflib.store import Store
 
+from kb import ntriples
 from kb.errors import KbError
 from kb.formats import EXPORTS, Syntax, export_format, format_of_path, rdf_format
 from kb.terms import ORO, PREFIXES, Triple
@@ -46,7 +48,12 @@ def parse_data(data: str | bytes, fmt: str, source: str = "data") -> tuple[Tripl
     rdf = rdf_format(fmt)
     fmt = rdf.name
     _REFUSALS[rdf.syntax](data, source)
-    graph = Dataset(default_union=True) if rdf.quads else Graph()
+    if fmt == "nt" and (fast := ntriples.parse(data, source)) is not None:
+        return fast
+    if rdf.quads:
+        graph: Graph = Dataset(default_union=True)
+    else:
+        graph = Graph(store=_Collected()) if fmt in _PLAIN_PARSERS else Graph()
     try:
         graph.parse(data=data, format=fmt, publicID=ORO)
     except _PARSE_ERRORS as exc:
@@ -63,6 +70,53 @@ def parse_data(data: str | bytes, fmt: str, source: str = "data") -> tuple[Tripl
     for triple in triples:
         check_terms(triple, f"a term of {source}")
     return triples  # type: ignore[return-value]  # rdflib yields (Node, Node, Node) triples
+
+
+#: Formats whose rdflib parser only adds triples to a plain graph (JSON-LD's and N3's need a
+#: context-aware store).
+_PLAIN_PARSERS = frozenset({"turtle", "xml", "nt"})
+
+
+class _Collected(Store):
+    """Where an rdflib parser puts a document's triples: a set, in document order. A Graph's
+    default store indexes every triple three ways for lookups nobody makes here (half of a
+    Turtle document's parse). Lookups still work (a parser may read back what it wrote)."""
+
+    def __init__(self) -> None:
+        super().__init__()
+        self._found: dict[Triple, None] = {}
+        self._ns: dict[str, URIRef] = {}
+
+    def add(self, triple: Any, context: Any, quoted: bool = False) -> None:
+        self._found[triple] = None
+
+    def remove(self, triple: Any, context: Any = None) -> None:
+        for found in list(self._matches(triple)):
+            del self._found[found]
+
+    def triples(self, triple_pattern: Any, context: Any = None) -> Iterator[tuple[Triple, Iterator[Any]]]:
+        for found in list(self._matches(triple_pattern)):
+            yield found, iter(())
+
+    def _matches(self, pattern: Any) -> Iterator[Triple]:
+        s, p, o = pattern
+        return (t for t in self._found
+                if (s is None or t[0] == s) and (p is None or t[1] == p) and (o is None or t[2] == o))
+
+    def __len__(self, context: Any = None) -> int:
+        return len(self._found)
+
+    def bind(self, prefix: str, namespace: URIRef, override: bool = True) -> None:
+        self._ns[prefix] = namespace
+
+    def namespace(self, prefix: str) -> URIRef | None:
+        return self._ns.get(prefix)
+
+    def prefix(self, namespace: URIRef) -> str | None:
+        return next((p for p, ns in self._ns.items() if ns == namespace), None)
+
+    def namespaces(self) -> Iterator[tuple[str, URIRef]]:
+        yield from self._ns.items()
 
 
 def _check_xml(data: str | bytes, source: str) -> None:

@@ -16,37 +16,59 @@ from rdflib.namespace import RDF
 
 from kb.index import TripleIndex
 from kb.tbox import CompiledTBox
-from kb.terms import Triple
+from kb.terms import Node, Triple
 
 TYPE = RDF.type
+_same_text = str.__eq__  # C code: rules out most terms before rdflib's Python __eq__
 
 
 class Reasoner:
     """Keeps ``closure`` equal to the OWL RL closure of ``asserted`` under ``tbox``."""
 
-    __slots__ = ("asserted", "closure", "tbox")
+    __slots__ = ("asserted", "closure", "tbox", "type")
 
     def __init__(self, tbox: CompiledTBox, asserted: TripleIndex, closure: TripleIndex) -> None:
         self.tbox = tbox
         self.asserted = asserted
         self.closure = closure
+        self.type = closure.interner.intern(TYPE)  # the KB's own rdf:type, for the triples it derives
 
     def materialise(self) -> None:
         """Recompute the closure from the asserted triples (start-up, TBox change)."""
         self.closure.clear()
         self.insert(list(self.asserted))
-        self.insert(list(self.tbox.schema_closure()))
+        intern = self.closure.interner.triple
+        self.insert([intern(t) for t in self.tbox.schema_closure()])
 
     def insert(self, triples: Iterable[Triple]) -> list[Triple]:
-        """Add triples (already asserted) to the closure; return every triple new to it."""
-        closure = self.closure
-        added = [t for t in triples if closure.add(*t)]
+        """Add triples (already asserted, made of the KB's interned terms) to the closure; return
+        every triple new to it. Derived triples are built from those terms and the TBox's, so
+        they are interned too.
+
+        A new type gives all its superclasses at once (the table is closed), and the types that
+        gives need not give theirs again (they are among them): only their other rules run."""
+        insert = self.closure.insert
+        added = [t for t in triples if insert(*t)]
         queue = list(added)
-        while queue:
-            for derived in self.consequences(queue.pop()):
-                if closure.add(*derived):
+        tp, superclasses = self.type, self.tbox.superclasses
+
+        def derive(found: Iterable[Triple]) -> None:
+            for derived in found:
+                if insert(*derived):
                     added.append(derived)
                     queue.append(derived)
+
+        while queue:
+            triple = queue.pop()
+            s, p, o = triple
+            if p is tp or (_same_text(p, TYPE) and p == TYPE):
+                for sup in superclasses.get(o, ()):
+                    if insert(s, tp, sup):
+                        added.append((s, tp, sup))
+                        derive(self._type_rules(s, sup))
+                derive(self._type_rules(s, o))
+            else:
+                derive(self.consequences(triple))
         return added
 
     def delete(self, triples: Iterable[Triple]) -> tuple[list[Triple], list[Triple]]:
@@ -78,27 +100,22 @@ class Reasoner:
     def consequences(self, triple: Triple) -> Iterator[Triple]:
         """Every triple one rule step derives from ``triple`` and the closure."""
         s, p, o = triple
-        tb = self.tbox
-        if p == TYPE:
+        tb, tp = self.tbox, self.type
+        if p is tp or (_same_text(p, TYPE) and p == TYPE):
             for sup in tb.superclasses.get(o, ()):
-                yield (s, TYPE, sup)
-            pv = tb.has_value.get(o)
-            if pv is not None:
-                yield (s, pv[0], pv[1])
-            for cls in tb.intersections_with.get(o, ()):
-                if all((s, TYPE, m) in self.closure for m in tb.members[cls]):
-                    yield (s, TYPE, cls)
+                yield (s, tp, sup)
+            yield from self._type_rules(s, o)
             return
         for sup in tb.superproperties.get(p, ()):
             yield (s, sup, o)
         for cls in tb.domains.get(p, ()):
-            yield (s, TYPE, cls)
+            yield (s, tp, cls)
         for restriction in tb.restrictions_for.get((p, o), ()):
-            yield (s, TYPE, restriction)
+            yield (s, tp, restriction)
         if isinstance(o, Literal):
             return
         for cls in tb.ranges.get(p, ()):
-            yield (o, TYPE, cls)
+            yield (o, tp, cls)
         for inv in tb.inverses.get(p, ()):
             yield (o, inv, s)
         if p in tb.symmetric:
@@ -110,14 +127,25 @@ class Reasoner:
             for w in list(closure.subjects(p, s)):
                 yield (w, p, o)
 
+    def _type_rules(self, s: Node, o: Node) -> Iterator[Triple]:
+        """What a type gives besides its superclasses: hasValue (cls-hv1), intersections (cls-int1)."""
+        tb, tp = self.tbox, self.type
+        pv = tb.has_value.get(o)
+        if pv is not None:
+            yield (s, pv[0], pv[1])
+        for cls in tb.intersections_with.get(o, ()):
+            if all((s, tp, m) in self.closure for m in tb.members[cls]):
+                yield (s, tp, cls)
+
     def derivable(self, triple: Triple) -> bool:
         """True if one rule step derives ``triple`` from the closure without using itself."""
         if triple in self.asserted:
             return True
         s, p, o = triple
         tb, closure = self.tbox, self.closure
-        if p == TYPE:
-            types = closure.objects(s, TYPE)
+        tp = self.type
+        if p is tp or (_same_text(p, TYPE) and p == TYPE):
+            types = closure.objects(s, tp)
             subs = tb.subclasses.get(o)
             if subs and types:
                 small, large = (subs, types) if len(subs) < len(types) else (types, subs)
@@ -134,7 +162,7 @@ class Reasoner:
             return items is not None and all(m in types for m in items)
         if any((s, q, o) in closure for q in tb.subproperties.get(p, ())):
             return True
-        if any(((s, TYPE, r) in closure) for r in tb.restrictions_for.get((p, o), ())):
+        if any(((s, tp, r) in closure) for r in tb.restrictions_for.get((p, o), ())):
             return True
         if isinstance(o, Literal):
             return False

@@ -13,6 +13,7 @@ from __future__ import annotations
 import json
 import zlib
 from dataclasses import dataclass, field
+from functools import lru_cache
 from typing import Any
 
 from rdflib import BNode, Literal, URIRef
@@ -131,10 +132,36 @@ def _nt_term(term: Node) -> str:
 
 
 def parse_nt(statement: str, bnodes: dict[str, BNode]) -> Triple:
+    if '"' not in statement:
+        # Names and blank nodes only, as `nt` writes most statements: no tokenizer, and each
+        # name parsed once (a recovery reads the same names over and over).
+        parts = statement.split()
+        if len(parts) == 3 and all(_plain(part) for part in parts):
+            s, p, o = (_plain_node(part, bnodes) for part in parts)
+            return (s, p, o)
     tokens = tokenize(statement)
     if len(tokens) != 3:
         raise KbError(f"corrupt journal statement {statement!r}")
     return (_node(tokens[0], bnodes), _node(tokens[1], bnodes), _node(tokens[2], bnodes))
+
+
+def _plain(part: str) -> bool:
+    """A token the tokenizer reads as this very text: ``<iri>`` without other brackets, ``_:x``."""
+    if part.startswith("<"):
+        return part.endswith(">") and part.count("<") == 1 and part.count(">") == 1
+    return part.startswith("_:")
+
+
+def _plain_node(part: str, bnodes: dict[str, BNode]) -> Node:
+    if part.startswith("_:"):
+        label = part[2:]
+        return bnodes.setdefault(label, BNode(label))
+    return _name(part)
+
+
+@lru_cache(maxsize=32768)
+def _name(text: str) -> URIRef:
+    return parse_name(text, "journal")
 
 
 def _node(token: Token, bnodes: dict[str, BNode]) -> Node:

@@ -31,7 +31,9 @@ TOP_CLASSES = frozenset({OWL.Thing, RDFS.Resource})
 
 def is_schema_triple(triple: Triple) -> bool:
     _, p, o = triple
-    return p in SCHEMA_PREDICATES or (p == RDF.type and o in SCHEMA_TYPES)
+    # C-level tests first: rdflib's == (and a literal's hash) are Python code, and every
+    # written triple is tested.
+    return p in SCHEMA_PREDICATES or (type(o) is URIRef and o in SCHEMA_TYPES and p == RDF.type)
 
 
 @dataclass(frozen=True)

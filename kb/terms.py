@@ -242,6 +242,9 @@ def parse_statement(statement: str, parser: TermParser | None = None) -> Pattern
     """Parse one statement or pattern; variables are allowed here, callers forbid them where needed."""
     if not isinstance(statement, str):
         raise KbError(f"a statement must be a string, got {type(statement).__name__}: {statement!r}")
+    plain = _plain_statement(statement)
+    if plain is not None:
+        return plain
     tokens = tokenize(statement)
     # N3 ends a statement with a dot: accept "s p o ." and "s p o." as knowledge_core's parser does.
     last = tokens[-1] if tokens else None
@@ -262,6 +265,38 @@ def parse_statement(statement: str, parser: TermParser | None = None) -> Pattern
     if isinstance(p, Literal):
         raise KbError(f"invalid statement {statement!r}: the predicate may not be a literal")
     return (s, p, o)
+
+
+def _plain_statement(statement: str) -> Triple | None:
+    """The common statement of three bare words (no quote, no IRI in brackets, no variable), each
+    word's term cached; None for anything else, which the general path parses (and refuses with
+    its message). Bulk loads are mostly such statements, and cached terms are the KB's own
+    interned objects, so the index compares them by identity."""
+    if '"' in statement or "'" in statement or "<" in statement:
+        return None
+    words = statement.split()
+    if len(words) == 4 and words[3] == ".":
+        del words[3]
+    elif len(words) == 3 and len(words[2]) > 1 and words[2].endswith("."):
+        words[2] = words[2][:-1]
+    if len(words) != 3:
+        return None
+    s, p, o = _word(words[0], False), _word(words[1], True), _word(words[2], False)
+    if type(s) is not URIRef or type(p) is not URIRef or o is None:
+        return None
+    return (s, p, o)
+
+
+@lru_cache(maxsize=32768)
+def _word(word: str, predicate: bool) -> URIRef | Literal | None:
+    """A bare word's ground term (None: a variable, or not a valid term)."""
+    if word == "*" or word.startswith("?"):
+        return None
+    try:
+        term = TermParser().term(Token(word, False), "predicate" if predicate else "object", word)
+    except KbError:
+        return None
+    return term if isinstance(term, URIRef | Literal) else None
 
 
 def as_list(statements: str | Iterable[str]) -> list[str]:

@@ -11,43 +11,29 @@ from __future__ import annotations
 import logging
 import threading
 import time
-from collections.abc import Callable, Iterable, Sequence
+from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field
 from typing import Any
 
-from rdflib import URIRef
 from rdflib.namespace import OWL, RDF
 
+from kb.batch import ACTIVE_CONCEPT, Batch, last_functional_wins
 from kb.deadline import Deadline, timed
 from kb.errors import KbError, StorageFull
 from kb.events import Delivery, Firing, Subscriptions
+from kb.gcpause import paused
 from kb.lifespan import Expiries
 from kb.models import ALL_MODELS, Delta, Models, ModelsState
 from kb.query import Query, Row, holds_row, rows_in
 from kb.status import StatusCell
 from kb.summary import Summary, summarise
-from kb.terms import ORO, Triple, shorten
+from kb.terms import Triple, shorten
 
 log = logging.getLogger(__name__)
 
-ACTIVE_CONCEPT = URIRef(ORO + "ActiveConcept")
-ACTIVE_CONCEPT_LIFESPAN = 5.0
 MAX_EXPIRY_BACKOFF = 30.0  # seconds between attempts to retract expired statements that keep failing
 
 Render = Callable[[Query, set[Row]], list[dict[str, Any]]]
-
-
-@dataclass
-class Batch:
-    """Validated ground changes for some models; applying it cannot fail."""
-
-    models: Sequence[str]
-    add: list[Triple] = field(default_factory=list)
-    remove: list[Triple] = field(default_factory=list)
-    lifespan: float = 0.0
-    replace_functional: bool = True
-    # Retractions specific to one model (pattern retraction matches per model).
-    remove_by_model: dict[str, list[Triple]] = field(default_factory=dict)
 
 
 @dataclass(frozen=True)
@@ -125,7 +111,7 @@ class Writer:
 
     def commit(self, batch: Batch) -> Commit | None:
         """Apply a batch to its models atomically; return the commit, or None if nothing changed."""
-        with self.lock:
+        with self.lock, paused(batch.size):
             try:
                 firings, commit = self._commit_locked(batch)
             finally:
@@ -144,24 +130,16 @@ class Writer:
         for name in batch.models:
             model = self.models.create(name)
             remove = list(batch.remove) + batch.remove_by_model.get(name, [])
-            add = _last_functional_wins(batch.add, functional)
+            add = last_functional_wins(batch.add, functional)
             for s, p, o in add:
                 if p in functional:
                     remove.extend((s, p, old) for old in model.asserted.objects(s, p) if old != o)
-            for t in (*add, *remove):
-                undo.expiries.setdefault((name, t), self.expiries.expires_at(name, t))
+            self.expiries.remember(name, (*add, *remove), undo.expiries)
             delta = model.apply(add, remove)
-            for t in delta.asserted_removed:
-                self.expiries.discard(name, t)
-            for t in add:
-                lifespan = ACTIVE_CONCEPT_LIFESPAN if _is_activation(t) else batch.lifespan
-                if lifespan > 0:
-                    at = now + lifespan
-                    self.expiries.set(name, t, at)
-                    expiries.append((name, t, at))
-                elif self.expiries.expires_at(name, t) is not None:
+            if len(self.expiries):
+                for t in delta.asserted_removed:
                     self.expiries.discard(name, t)
-                    expiries.append((name, t, 0.0))
+            self.expiries.stamp(name, add, batch.lifespan_of, now, undo.expiries, expiries)
             if delta or expiries:
                 deltas.append(delta)
         if not deltas:
@@ -320,7 +298,7 @@ class Writer:
                 expiries: list[tuple[Triple, float]], revision: int | None = None) -> None:
         """Replay recorded asserted changes as they were (no functional replacement, explicit
         expiry times); used by journal recovery before the service starts."""
-        with self.lock:
+        with self.lock, paused(len(add) + len(remove)):
             target = self.models.create(model)
             target.apply(add, remove)
             for triple in remove:
@@ -330,7 +308,7 @@ class Writer:
                     self.expiries.set(model, triple, at)
                 else:
                     self.expiries.discard(model, triple)
-            if expiries:
+            if any(at > 0 for _triple, at in expiries):
                 self._ensure_reaper()
             self.revision = revision if revision is not None else self.revision + 1
             self._summarise()
@@ -401,18 +379,3 @@ class _Undo:
 
     new_models: list[str]
     expiries: dict[tuple[str, Triple], float | None] = field(default_factory=dict)
-
-
-def _is_activation(triple: Triple) -> bool:
-    return triple[1] == RDF.type and triple[2] == ACTIVE_CONCEPT
-
-
-def _last_functional_wins(add: Sequence[Triple], functional: frozenset[Any]) -> list[Triple]:
-    """Within one batch, a later value of a functional property replaces an earlier one."""
-    if not functional:
-        return list(add)
-    last: dict[tuple[Any, Any], Triple] = {}
-    for t in add:
-        if t[1] in functional:
-            last[(t[0], t[1])] = t
-    return [t for t in add if t[1] not in functional or last[(t[0], t[1])] == t]

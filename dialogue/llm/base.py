@@ -19,6 +19,7 @@ from typing import Any, Literal, Protocol, runtime_checkable
 from dialogue.errors import DialogueError
 from dialogue.history import Utterance
 from dialogue.reference.grounding import Entity, Snapshot
+from dialogue.reference.lexicon import Lexicon
 from dialogue.schema import ChatbotResponse
 
 MessageRole = Literal["system", "user", "assistant"]
@@ -46,6 +47,9 @@ class TurnContext:
     #: The entities the prompt and the schema show, most relevant first (`reference.relevance`);
     #: None: ranked without the utterance.
     focus: tuple[Entity, ...] | None = None
+    #: The lexicon of `snapshot` the engine already keeps (the rules read it rather than keeping
+    #: a second one of every entity); None: the model makes its own.
+    lexicon: Lexicon | None = None
 
 
 @dataclass(frozen=True)

@@ -12,7 +12,7 @@ import json
 from dialogue.llm.base import ChatModel, ChatRequest, ChatResult, EarlyAnswer, TurnContext
 from dialogue.memory.reading import Reading, read_turn
 from dialogue.prompts import FREE_FORM_OBJECT
-from dialogue.reference.lexicon import LexiconCache
+from dialogue.reference.lexicon import Lexicon, LexiconCache
 from dialogue.rules.interpret import Interpreter
 from dialogue.rules.outcome import Outcome
 from dialogue.schema import ChatbotResponse, UserIntent
@@ -42,7 +42,7 @@ class RulesModel(ChatModel):
     """Answers every turn it understands in `prescreen`, without a prompt; reads no prompt itself."""
 
     def __init__(self, take_guesses: bool = True) -> None:
-        self._lexicons = LexiconCache()
+        self._lexicons: LexiconCache | None = None  # only for contexts that bring no lexicon
         #: Whether a turn in which a misspelt word was read as a KB name ("the thremos") is
         #: answered (alone, the rules' best reading), or left to the model behind (hybrid).
         self.take_guesses = take_guesses
@@ -65,11 +65,18 @@ class RulesModel(ChatModel):
         return EarlyAnswer(answer_of(outcome), RULES, clarify=outcome.clarify)
 
     def told(self, context: TurnContext) -> Reading | None:
-        lexicon = self._lexicons.get(context.snapshot)
-        return read_turn(context.text, lexicon, context.speaker, context.history)
+        return read_turn(context.text, self._lexicon(context), context.speaker, context.history)
+
+    def _lexicon(self, context: TurnContext) -> Lexicon:
+        lexicon = context.lexicon
+        if lexicon is None or lexicon.snapshot is not context.snapshot:
+            if self._lexicons is None:
+                self._lexicons = LexiconCache()
+            lexicon = self._lexicons.get(context.snapshot)
+        return lexicon
 
     def interpret(self, context: TurnContext) -> Outcome:
-        lexicon = self._lexicons.get(context.snapshot)
+        lexicon = self._lexicon(context)
         interpreter = Interpreter(lexicon, context.speaker, context.history, context.robot_name)
         return interpreter.interpret(context.text)
 

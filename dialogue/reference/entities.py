@@ -10,13 +10,12 @@ snapshot's, the order as a flat copy: no sorting and no KB access).
 
 from __future__ import annotations
 
-from bisect import bisect_left, insort
 from collections import Counter
 from collections.abc import Iterable
 from dataclasses import dataclass
 
 from dialogue.reference.facts import PERSON_CLASSES, PLACES, ROBOT_ID, ZONE_CLASSES, Change, Facts, Triple
-from dialogue.reference.layered import GONE, Layered
+from dialogue.reference.layered import GONE, Layered, SortedChunks
 from dialogue.reference.snapshot import (
     IGNORED_CLASSES,
     ROBOT_CLASSES,
@@ -74,12 +73,18 @@ class EntityIndex:
         self.entities: dict[str, Entity] = {}
         self._frozen: Layered[str, Entity] | None = None  # the last snapshot's entities
         self._touched: set[str] = set()  # entities changed since
+        self._contents: dict[str, set[str]] = {}  # place -> entities whose support or zone it is
+        self._located: dict[str, tuple[str | None, str | None]] = {}  # entity -> (support, zone)
+        self._frozen_contents: Layered[str, frozenset[str]] | None = None
+        self._moved: set[str] = set()  # places whose contents changed since the last snapshot
         self._rank: dict[str, int] = {}
-        self.order: list[tuple[int, str]] = []
+        #: (rank, id) of every entity, sorted; shared by the snapshots it did not change in.
+        self.order: SortedChunks[tuple[int, str]] | None = None  # None: built at the end of __init__
         self.skipped: set[str] = set()
         self._prefetch_labels()
         for term in sorted(self.facts.candidates()):
             self.update(term)
+        self.order = SortedChunks((rank, term) for term, rank in self._rank.items())
 
     def _prefetch_labels(self) -> None:
         # One join per candidate group instead of one query per entity (the per-query cost dominates).
@@ -143,6 +148,7 @@ class EntityIndex:
             relations=self.facts.relations(term),
         )  # fmt: skip
         self._reorder(term, rank(self.entities[term]))
+        self._locate(term, (self.entities[term].support, self.entities[term].zone))
 
     def freeze(self, revision: int, changed: tuple[tuple[int, frozenset[str]], ...] = ()) -> Snapshot:
         if self._frozen is None:
@@ -150,9 +156,16 @@ class EntityIndex:
         else:
             self._frozen = self._frozen.evolve({t: self.entities.get(t, GONE) for t in self._touched})
         self._touched = set()
-        table = EntityTable(self._frozen, list(self.order))
+        contents = {place: frozenset(self._contents.get(place, ())) or GONE for place in self._moved}
+        if self._frozen_contents is None:
+            self._frozen_contents = Layered({p: frozenset(ids) for p, ids in self._contents.items()})
+        else:
+            self._frozen_contents = self._frozen_contents.evolve(contents)
+        self._moved = set()
+        assert self.order is not None  # built with the index
+        table = EntityTable(self._frozen, self.order)
         return Snapshot(revision=revision, entities=table, names=dict(self.names),
-                        skipped=frozenset(self.skipped), changed=changed)
+                        skipped=frozenset(self.skipped), changed=changed, contents=self._frozen_contents)
 
     # --- names and classes ---------------------------------------------------------------------
 
@@ -214,10 +227,12 @@ class EntityIndex:
         if old == rank:
             return
         if old is not None:
-            del self.order[bisect_left(self.order, (old, term))]
+            if self.order is not None:
+                self.order = self.order.remove((old, term))
             del self._rank[term]
         if rank is not None:
-            insort(self.order, (rank, term))
+            if self.order is not None:
+                self.order = self.order.insert((rank, term))
             self._rank[term] = rank
 
     def _drop(self, term: str) -> None:
@@ -226,6 +241,28 @@ class EntityIndex:
         self.skipped.discard(term)
         self._set_hue(term, None)
         self._reorder(term, None)
+        self._locate(term, (None, None))
+
+    def _locate(self, term: str, places: tuple[str | None, str | None]) -> None:
+        """Keep `_contents` to the entities each support or zone holds."""
+        old = self._located.get(term, (None, None))
+        if places == old:
+            return
+        for place in old:
+            if place is not None and place not in places:
+                held = self._contents[place]
+                held.discard(term)
+                if not held:
+                    del self._contents[place]
+                self._moved.add(place)
+        for place in places:
+            if place is not None and place not in old:
+                self._contents.setdefault(place, set()).add(term)
+                self._moved.add(place)
+        if places == (None, None):
+            del self._located[term]
+        else:
+            self._located[term] = places
 
     def _set_hue(self, term: str, hue: str | None) -> None:
         old = self._hue.get(term)

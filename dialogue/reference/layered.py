@@ -9,8 +9,9 @@ copy, amortised over the changes that made the top grow).
 
 from __future__ import annotations
 
-from collections.abc import Iterator, Mapping
-from typing import Generic, TypeVar
+from bisect import bisect_left, insort
+from collections.abc import Iterable, Iterator, Mapping
+from typing import Any, Generic, TypeVar
 
 K = TypeVar("K")
 V = TypeVar("V")
@@ -54,12 +55,15 @@ class Layered(Mapping[K, V], Generic[K, V]):
         return self._len
 
     def __iter__(self) -> Iterator[K]:
-        top = self._top
-        for key in self._base:
-            if not isinstance(top.get(key), Gone):
-                yield key
+        top, base = self._top, self._base
+        gone = [key for key, value in top.items() if isinstance(value, Gone)]
+        if gone:  # only then is each base key looked up (a layered bucket may hold thousands)
+            dropped = set(gone)
+            yield from (key for key in base if key not in dropped)
+        else:
+            yield from base
         for key, value in top.items():
-            if key not in self._base and not isinstance(value, Gone):
+            if key not in base and not isinstance(value, Gone):
                 yield key
 
     def evolve(self, changes: Mapping[K, V | Gone]) -> Layered[K, V]:
@@ -82,3 +86,90 @@ class Layered(Mapping[K, V], Generic[K, V]):
                     base[key] = value
             new._base, new._top = base, {}
         return new
+
+
+#: A bucket (a set of keys, as a mapping to None) past this size is layered: changing one member
+#: of a bucket that a class name shares with thousands of entities must not copy it.
+SMALL_BUCKET = 64
+
+
+def rebucket(bucket: Mapping[K, None] | None, changes: Mapping[K, Gone | None]) -> Mapping[K, None] | Gone:
+    """``bucket`` with ``changes`` applied (None: add the key, ``GONE``: remove it), sharing what
+    it can with ``bucket``; ``GONE`` when nothing is left."""
+    new: Mapping[K, None]
+    if isinstance(bucket, Layered):
+        new = bucket.evolve(changes)
+    else:
+        members = dict(bucket) if bucket else {}
+        for key, value in changes.items():
+            if isinstance(value, Gone):
+                members.pop(key, None)
+            else:
+                members[key] = None
+        new = layered(members)
+    return new if len(new) else GONE
+
+
+def layered(members: dict[K, None]) -> Mapping[K, None]:
+    """A new bucket: a dict while small, layered once large."""
+    return Layered(members) if len(members) > SMALL_BUCKET else members
+
+
+#: Items per chunk of a `SortedChunks` (a chunk splits at twice this).
+CHUNK = 256
+
+
+class SortedChunks(Generic[K]):
+    """An immutable sorted sequence (of comparable items) that an insertion or a removal copies
+    in time proportional to the number of chunks plus one chunk, not to the sequence: the
+    deterministic order of the entities, shared by every snapshot it did not change in."""
+
+    __slots__ = ("_chunks", "_lasts", "_len")
+
+    def __init__(self, items: Iterable[K] = ()) -> None:
+        ordered: list[Any] = sorted(items)
+        self._chunks: list[list[Any]] = [ordered[i : i + CHUNK] for i in range(0, len(ordered), CHUNK)]
+        self._lasts: list[Any] = [chunk[-1] for chunk in self._chunks]
+        self._len = len(ordered)
+
+    def __len__(self) -> int:
+        return self._len
+
+    def __iter__(self) -> Iterator[K]:
+        for chunk in self._chunks:
+            yield from chunk
+
+    def before(self, bound: Any) -> Iterator[K]:
+        """The items less than ``bound``, in order."""
+        for chunk in self._chunks:
+            if chunk[0] >= bound:
+                return
+            if chunk[-1] < bound:
+                yield from chunk
+            else:
+                yield from chunk[: bisect_left(chunk, bound)]
+                return
+
+    def insert(self, item: K) -> SortedChunks[K]:
+        if not self._chunks:
+            return self._with([], 0, [[item]], 1)
+        at = min(bisect_left(self._lasts, item), len(self._chunks) - 1)
+        chunk = list(self._chunks[at])
+        insort(chunk, item)
+        parts = [chunk] if len(chunk) <= 2 * CHUNK else [chunk[:CHUNK], chunk[CHUNK:]]
+        return self._with(self._chunks, at, parts, 1)
+
+    def remove(self, item: K) -> SortedChunks[K]:
+        """Without ``item``, which must be there."""
+        at = bisect_left(self._lasts, item)
+        chunk = list(self._chunks[at])
+        del chunk[bisect_left(chunk, item)]
+        return self._with(self._chunks, at, [chunk] if chunk else [], -1)
+
+    def _with(self, chunks: list[list[Any]], at: int, parts: list[list[Any]], grew: int) -> SortedChunks[K]:
+        new: SortedChunks[K] = SortedChunks.__new__(SortedChunks)
+        new._chunks = [*chunks[:at], *parts, *chunks[at + 1 :]]
+        new._lasts = [chunk[-1] for chunk in new._chunks]
+        new._len = self._len + grew
+        return new
+

@@ -18,7 +18,7 @@ from lemminflect import getLemma
 
 from dialogue.reference.english import DETERMINERS, tokens, word_set
 from dialogue.reference.grounding import Entity, Snapshot
-from dialogue.reference.layered import GONE, Gone, Layered
+from dialogue.reference.layered import GONE, Gone, Layered, layered, rebucket
 from dialogue.reference.synonyms import synonyms
 
 #: Function words ending in -s that a noun lemmatiser would "singularise" ("was" -> "wa").
@@ -43,8 +43,9 @@ def phrase(text: str) -> tuple[str, ...]:
     return norm(tokens(text))
 
 
-@dataclass(frozen=True)
-class Name:
+class Name(NamedTuple):
+    """One name of an entity (a tuple: hashed in C, and a class word's bucket holds thousands)."""
+
     words: tuple[str, ...]
     entity: str
     source: str  # "label", "id", "class", "head", "synonym" or "joined"
@@ -77,7 +78,7 @@ class Lexicon:
         by_words: dict[tuple[str, ...], dict[Name, None]] = defaultdict(dict)
         lengths: dict[str, dict[int, int]] = defaultdict(dict)
         attributes: dict[str, frozenset[str]] = {}
-        by_label: dict[str, list[str]] = defaultdict(list)
+        by_label: dict[str, dict[str, None]] = defaultdict(dict)
         vocabulary: dict[str, int] = defaultdict(int)
         entries: dict[str, tuple[Entity, _Entry]] = {}
         old = previous._entries if previous is not None else Layered()
@@ -90,14 +91,18 @@ class Lexicon:
                 counts[len(name.words)] = counts.get(len(name.words), 0) + 1
             attributes[entity.id] = entry.qualifiers
             for word in entry.label_words:
-                by_label[word].append(entity.id)
+                by_label[word][entity.id] = None
             for word in entry.words:
                 vocabulary[word] += 1
-        #: Names by their words; a dict per name (insertion-ordered) so one is removed in O(1).
-        self._by_words: Layered[tuple[str, ...], dict[Name, None]] = Layered(dict(by_words))
+        #: Names by their words, each bucket a set of names (a mapping to None, one removed in
+        #: O(1)); a bucket a class name shares with thousands of entities is layered, so a change
+        #: to one of them does not copy it (`layered.rebucket`).
+        self._by_words: Layered[tuple[str, ...], Mapping[Name, None]] = Layered(
+            {words: layered(names) for words, names in by_words.items()})
         self.attributes: Layered[str, frozenset[str]] = Layered(attributes)
         #: Entities by each (singular) word of their own labels, for "the teddy" ("teddy bear").
-        self.by_label_word: Layered[str, list[str]] = Layered(dict(by_label))
+        self.by_label_word: Layered[str, Mapping[str, None]] = Layered(
+            {word: layered(ids) for word, ids in by_label.items()})
         #: Every (singular) word of every name and qualifier, what the KB can account for, with the
         #: number of entities that have it (a word goes when its last entity drops it).
         self.vocabulary: Layered[str, int] = Layered(dict(vocabulary))
@@ -110,8 +115,8 @@ class Lexicon:
         # they touch are copied first (shared with the previous lexicon).
         entries: dict[str, tuple[Entity, _Entry] | Gone] = {}
         attributes: dict[str, frozenset[str] | Gone] = {}
-        by_words: dict[tuple[str, ...], dict[Name, None]] = {}
-        by_label: dict[str, list[str]] = {}
+        by_words: dict[tuple[str, ...], dict[Name, Gone | None]] = {}  # changes per bucket
+        by_label: dict[str, dict[str, Gone | None]] = {}
         lengths: dict[str, dict[int, int]] = {}
         vocabulary: dict[str, int] = {}
         for entity_id in sorted(changed, key=self.snapshot.order_key):
@@ -128,23 +133,20 @@ class Lexicon:
                 continue
             for names, step in ((before.names, -1), (after.names, 1)):
                 for name in names:
-                    bucket = _own(by_words, previous._by_words, name.words, dict)
-                    if step < 0:
-                        del bucket[name]
-                    else:
-                        bucket[name] = None
+                    by_words.setdefault(name.words, {})[name] = GONE if step < 0 else None
                     counts = _own(lengths, previous._lengths, name.words[0], dict)
                     counts[len(name.words)] = counts.get(len(name.words), 0) + step
                     if not counts[len(name.words)]:
                         del counts[len(name.words)]
-            for word in before.label_words:
-                _own(by_label, previous.by_label_word, word, list).remove(entity_id)
-            for word in after.label_words:
-                _own(by_label, previous.by_label_word, word, list).append(entity_id)
+            for words, present in ((before.label_words, GONE), (after.label_words, None)):
+                for word in words:
+                    by_label.setdefault(word, {})[entity_id] = present
         self._entries = previous._entries.evolve(entries)
         self.attributes = previous.attributes.evolve(attributes)
-        self._by_words = previous._by_words.evolve({k: v or GONE for k, v in by_words.items()})
-        self.by_label_word = previous.by_label_word.evolve({k: v or GONE for k, v in by_label.items()})
+        self._by_words = previous._by_words.evolve(
+            {k: rebucket(previous._by_words.get(k), v) for k, v in by_words.items()})
+        self.by_label_word = previous.by_label_word.evolve(
+            {k: rebucket(previous.by_label_word.get(k), v) for k, v in by_label.items()})
         self._lengths = previous._lengths.evolve({k: v or GONE for k, v in lengths.items()})
         self.vocabulary = previous.vocabulary.evolve({k: v or GONE for k, v in vocabulary.items()})
 
@@ -173,7 +175,7 @@ class Lexicon:
                 i += 1
                 continue
             length = len(names[0].words)
-            ents = frozenset(n.entity for n in names if len(n.words) == length)
+            ents = frozenset([n.entity for n in names if len(n.words) == length])
             out.append(Mention(i, i + length, ents))
             i += length
         return out

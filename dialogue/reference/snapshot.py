@@ -8,12 +8,13 @@ things, each group sorted by id (`EntityTable` keeps that order without sorting 
 from __future__ import annotations
 
 import re
-from bisect import bisect_left
-from collections.abc import Iterable, Iterator, Mapping
+from collections.abc import Collection, Iterable, Iterator, Mapping
 from dataclasses import dataclass, field
+from itertools import islice
 from typing import Literal
 
 from dialogue.reference.facts import ROBOT_ID
+from dialogue.reference.layered import SortedChunks
 
 Kind = Literal["person", "zone", "robot", "thing"]
 
@@ -84,12 +85,12 @@ def rank(entity: Entity) -> int:
 class EntityTable(Mapping[str, Entity]):
     """An immutable view of the entities at one revision, iterated in rank-then-id order.
 
-    Built from a version of the maintained entities and a copy of their sorted order (no
-    sorting), so a revision costs little more than what changed."""
+    Built from a version of the maintained entities and their sorted order, both shared with the
+    other versions (no sorting, no copy), so a revision costs little more than what changed."""
 
     __slots__ = ("_by_id", "_order")
 
-    def __init__(self, by_id: Mapping[str, Entity], order: list[tuple[int, str]]) -> None:
+    def __init__(self, by_id: Mapping[str, Entity], order: SortedChunks[tuple[int, str]]) -> None:
         self._by_id = by_id
         self._order = order
 
@@ -107,8 +108,7 @@ class EntityTable(Mapping[str, Entity]):
 
     def ranked_up_to(self, rank: int) -> Iterator[Entity]:
         """The entities of the first ranks only (cheap: visible things, people, places)."""
-        end = bisect_left(self._order, (rank + 1, ""))
-        return (self._by_id[term] for _rank, term in self._order[:end])
+        return (self._by_id[term] for _rank, term in self._order.before((rank + 1, "")))
 
 
 @dataclass(frozen=True)
@@ -125,6 +125,9 @@ class Snapshot:
     #: ids of the entities that changed from it to the next). Lets a lexicon of any of those
     #: revisions be updated rather than rebuilt. Empty: built from scratch.
     changed: tuple[tuple[int, frozenset[str]], ...] = field(default=(), compare=False)
+    #: Place id -> ids of the entities whose support or zone it is ("what is on the shelf"
+    #: without looking at every entity). None: not kept (a snapshot made by hand).
+    contents: Mapping[str, frozenset[str]] | None = None
 
     def changed_since(self, revision: int) -> frozenset[str] | None:
         """Ids of the entities that changed since the snapshot at `revision`; None if unknown."""
@@ -155,6 +158,18 @@ class Snapshot:
         # People and places rank at most ZONE; things and the robot may rank OTHER.
         last = ZONE if set(kinds) <= {"person", "zone"} else OTHER
         return [e for e in self._first(last) if e.kind in kinds]
+
+    def placed_at(self, place: str) -> list[Entity]:
+        """The entities whose support or zone is ``place``, in the deterministic order."""
+        if self.contents is None:
+            return [e for e in self.entities.values() if place in (e.support, e.zone)]
+        return self.in_order(self.entities[i] for i in self.contents.get(place, ()) if i in self.entities)
+
+    def first_of_kind(self, kinds: Collection[Kind], n: int) -> list[Entity]:
+        """The first ``n`` entities of these kinds in the deterministic order (what the robot
+        sees, people, places first): people and places are found without walking the things."""
+        last = ZONE if set(kinds) <= {"person", "zone"} else OTHER
+        return list(islice((e for e in self._first(last) if e.kind in kinds), n))
 
     def visible(self) -> list[Entity]:
         return [e for e in self._first(SEEN) if e.seen]

@@ -139,7 +139,7 @@ def _on(snapshot: Snapshot, place: Entity) -> str:
     prep = "in" if place.kind == "zone" else "on"
     items = [
         indefinite(e)
-        for e in snapshot.entities.values()
+        for e in snapshot.placed_at(place.id)
         if e.kind == "thing" and (e.support == place.id or (prep == "in" and e.zone == place.id))
     ]
     if not items:

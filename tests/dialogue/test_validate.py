@@ -58,3 +58,20 @@ def test_a_bad_intent_anywhere_in_the_list_refuses_the_whole_answer(kitchen: KB)
         ground_answer(ChatbotResponse(user_intents=[good, UserIntent(type="dance")]), lex, "p")
     with pytest.raises(AnswerError, match="not the id"):
         ground_answer(ChatbotResponse(user_intents=[good, UserIntent(type=I.GRAB_OBJECT, object="piano")]), lex, "p")
+
+
+def test_the_allowed_ids_are_the_first_of_the_situation_not_the_whole_world() -> None:
+    """In a large world the refusal names the first ids of the situation's order (what the robot
+    sees, then people and places), at most 30, whatever else the KB holds."""
+    kb = KB()
+    kb.update(["myself rdf:type Robot", "person_ann rdf:type Human", "kitchen rdf:type ZoneOfInterest",
+               *(f"box_{i:03} isIn kitchen" for i in range(200)), *(f"box_{i:03} rdf:type dbr:Box" for i in range(200)),
+               "myself sees box_150", "myself sees box_199"])
+    lex = Lexicon(build_snapshot(kb))
+    with pytest.raises(AnswerError) as refused:
+        ground_answer(answer(type=I.GRAB_OBJECT, object="person_ann"), lex, "person_ann")
+    listed = str(refused.value).split("use one of ")[1].split("]")[0]
+    ids = [part.strip(" '[") for part in listed.split(",")]
+    assert len(ids) == 30 and {"box_150", "box_199"} <= set(ids) and ids == sorted(ids)
+    with pytest.raises(AnswerError, match=r"not the id of a person.*\['person_ann'\]"):
+        ground_answer(answer(type=I.GREET, recipient="box_001"), lex, "person_ann")

@@ -305,3 +305,35 @@ def test_an_expiry_due_at_start_is_journaled_so_a_later_re_add_survives(
     third, _ = open_kb(tmp_path, clock)
     third.expire()
     assert third["p sees ?o"] == [{"o": "q"}]
+
+
+@pytest.mark.parametrize("batch", [1, 7, 1_000_000])
+def test_replay_in_batches_gives_the_state_the_records_made(tmp_path: Path, monkeypatch: pytest.MonkeyPatch,
+                                                             batch: int) -> None:
+    """Records replayed a batch at a time (each triple's last change since the batch began, one
+    reasoning per batch) leave every model, closure and lifespan as replaying them one by one:
+    churn on the same facts, a TBox change, a clear, lifespans set, refreshed and ended."""
+    clock = Clock()
+    kb, journal = open_kb(tmp_path, clock)
+    for tick in range(12):
+        kb.apply(add=[f"cup_{tick % 4} isOn table_{tick % 3}", "myself sees cup_1"],
+                 remove=[f"cup_{(tick - 1) % 4} isOn table_{(tick - 1) % 3}"])
+        if tick == 3:
+            kb += ["Mug rdfs:subClassOf dbr:Cup", "mug_1 rdf:type Mug"]  # the TBox changes
+        if tick == 5:
+            kb.clear()
+            kb += "mug_2 rdf:type dbr:Cup"
+        if tick in (6, 8):
+            kb.update([f"ghost_{tick} isIn kitchen"], lifespan=100 + tick)  # set, then refreshed below
+        if tick == 9:
+            kb += "ghost_6 isIn kitchen"  # permanent again
+        kb.update(["bob sees cup_2"], models=["bob"])
+        kb.remove(["bob sees cup_2"], models=["bob"])
+    expected = (asserted(kb), asserted(kb, "bob"), kb.export("nt", inferred=True), kb.revision,
+                sorted(kb.writer.expiries.items()))
+    journal.close()
+
+    monkeypatch.setattr(journal_module, "REPLAY_BATCH", batch)
+    again, _ = open_kb(tmp_path, clock)
+    assert (asserted(again), asserted(again, "bob"), again.export("nt", inferred=True), again.revision,
+            sorted(again.writer.expiries.items())) == expected

@@ -201,3 +201,28 @@ def test_kb_with_ontology_files(tmp_path: Path) -> None:
         assert k["?x rdf:type Animal"] == [{"x": "tim"}]  # clear keeps these defaults
     with pytest.raises(KbError):
         KB(ontology=[tmp_path / "missing.ttl"])
+
+
+@pytest.mark.parametrize("fmt", ["turtle", "xml", "nt"])
+def test_documents_read_to_the_triples_an_rdflib_graph_reads(fmt: str) -> None:
+    """Turtle and RDF/XML are parsed into a plain collection of triples rather than an indexed
+    graph: the same triples, blank nodes and lists included (the whole default ontology here)."""
+    from importlib.resources import files
+
+    from rdflib.compare import isomorphic
+
+    from kb.rdfio import DEFAULT_ONTOLOGY
+
+    ontology = Graph()
+    ontology.parse(data=(files("ontologies") / DEFAULT_ONTOLOGY).read_text(encoding="utf-8"), format="turtle")
+    ontology.parse(data="<http://ex.org/a> <http://ex.org/p> ( 1 [ <http://ex.org/q> \"x\"@en ] ) .",
+                   format="turtle")
+    document = ontology.serialize(format=fmt)
+    expected = Graph()
+    expected.parse(data=document, format=fmt, publicID=ORO)
+    found = parse_data(document, fmt)
+    assert len(found) == len(set(found)) == len(expected)
+    got = Graph()
+    for triple in found:
+        got.add(triple)
+    assert isomorphic(got, expected)

@@ -36,3 +36,17 @@ def test_a_compound_request_answers_every_intent_in_order(kitchen: KB) -> None:
         ("__intent_place_object__", "sponge_1", "shelf_1"),
     ]
     assert answer.user_intent == answer.user_intents[0]
+
+
+def test_the_rules_read_the_lexicon_the_engine_keeps(kitchen: KB) -> None:
+    """Through the engine the rules use the engine's lexicon of each snapshot: no second copy of
+    every entity's names. A context without one still works (the model makes its own)."""
+    from dialogue.engine import DialogueEngine
+
+    model = RulesModel()
+    engine = DialogueEngine(kitchen, model)
+    result = asyncio.run(engine.turn("give me the sponge", speaker="person_alice"))
+    assert [i.data.get("object") for i in result.intents] == ["sponge_1"]
+    assert model._lexicons is None
+    alone = RulesModel().interpret(TurnContext("give me the sponge", "person_alice", build_snapshot(kitchen)))
+    assert alone.understood

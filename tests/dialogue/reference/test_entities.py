@@ -5,7 +5,7 @@ from __future__ import annotations
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from dialogue.reference.grounding import Grounder, build_snapshot
+from dialogue.reference.grounding import Grounder, Snapshot, build_snapshot
 from dialogue.reference.lexicon import Lexicon, LexiconCache
 from kb import KB
 
@@ -36,6 +36,19 @@ commit = st.tuples(
     st.lists(statement, min_size=1, max_size=6),
     st.lists(statement, max_size=4),
 ).filter(lambda c: c[0] != "clear" or not c[2])
+
+
+def _assert_contents(snapshot: Snapshot) -> None:
+    """`contents` holds, for each place, exactly the entities whose support or zone it is, and
+    `placed_at` gives them in the snapshot's order (as looking at every entity would)."""
+    places = {p for e in snapshot.entities.values() for p in (e.support, e.zone) if p is not None}
+    assert snapshot.contents is not None
+    assert set(snapshot.contents) == places
+    for place in places:
+        everyone = [e for e in snapshot.entities.values() if place in (e.support, e.zone)]
+        assert snapshot.contents[place] == {e.id for e in everyone}
+        assert snapshot.placed_at(place) == everyone
+    assert snapshot.placed_at("nowhere") == []
 
 
 def _lexicon_state(lex: Lexicon) -> tuple[object, ...]:
@@ -69,6 +82,7 @@ def test_maintained_snapshot_and_lexicon_equal_a_full_build(commits: list[tuple[
         fresh = build_snapshot(kb)
         assert maintained == fresh
         assert list(maintained.entities) == list(fresh.entities)  # the same deterministic order
+        _assert_contents(maintained)
         assert _lexicon_state(lexicons.get(maintained)) == _lexicon_state(Lexicon(fresh))
 
 
@@ -135,3 +149,21 @@ def test_an_updated_lexicon_knows_the_new_words_and_forgets_the_old() -> None:
     lex = lexicons.get(grounder.snapshot(kb))
     assert [(n.entity, n.words) for n in lex.names_at(["tea", "cups"], 0)] == [("cup_1", ("tea", "cups"))]
     assert not lex.knows("fridge") and lex.knows("kitchen")  # still the zone's name
+
+
+def test_what_each_place_holds_follows_moves_and_removals() -> None:
+    kb = KB()
+    kb.update([*BASE, "cup_1 rdf:type dbr:Cup", "cup_1 isOn table_1", "cup_1 isIn kitchen",
+               "book_1 rdf:type dbr:Book", "book_1 isIn kitchen"])
+    grounder = Grounder()
+    first = grounder.snapshot(kb)
+    assert [e.id for e in first.placed_at("kitchen")] == ["book_1", "cup_1", "table_1"]
+    kb.apply(add=["cup_1 isIn hall"], remove=["cup_1 isIn kitchen", "cup_1 isOn table_1"])
+    moved = grounder.snapshot(kb)
+    assert [e.id for e in moved.placed_at("kitchen")] == ["book_1", "table_1"]
+    assert [e.id for e in moved.placed_at("hall")] == ["cup_1"] and moved.placed_at("table_1") == []
+    kb.remove(["book_1 isIn kitchen"])  # no longer placed, nor seen: no longer an entity
+    gone = grounder.snapshot(kb)
+    assert [e.id for e in gone.placed_at("kitchen")] == ["table_1"]
+    _assert_contents(gone)
+    assert [e.id for e in first.placed_at("kitchen")] == ["book_1", "cup_1", "table_1"]  # immutable
