@@ -35,7 +35,7 @@ from dialogue.reference.resolution import (
     resolve,
 )  # fmt: skip
 from dialogue.rules.speech import original_text
-from dialogue.rules.utterance import normalise
+from dialogue.rules.utterance import asked_verb, normalise
 from dialogue.rules.words import GREETINGS, SOCIAL
 from dialogue.schema import FactClaim
 
@@ -263,7 +263,7 @@ class Statements:
         if words == ("i",):
             return self.speaker
         if words in {("he",), ("she",)}:
-            found = antecedent(self.lexicon, [u.text for u in self.history], PERSON)
+            found = antecedent(self.lexicon, self.history, PERSON, speaker=self.speaker)
             return found.id if found is not None else None
         if not content_words(words) or not all(w.isalpha() for w in words):
             return None
@@ -320,6 +320,8 @@ class Statements:
             return self._placed(w[verb + 1 :]) if w[verb] in _PUT else None
         for i in range(1, len(w) - 1):
             if w[i] in _BE:
+                if i > 1 and w[0] == asked_verb(w[0]):
+                    return None  # a request ("tell Ana her taxi is on time"), not a subject ("water is...")
                 return self._where(w[:i], w[i + 1 :])
         return None
 
@@ -356,7 +358,7 @@ class Statements:
         owner = self.speaker if said[:1] in (["my"], ["our"]) else None
         bare = tuple(w for w in words if w not in POSSESSIVES)
         if not content_words(bare) or is_pronoun(bare):
-            found = antecedent(self.lexicon, [u.text for u in self.history], kinds)
+            found = antecedent(self.lexicon, self.history, kinds, speaker=self.speaker)
             if found is None:
                 raise _Refused(f'What do you mean by "{" ".join(words)}"?', clarify=True)
             return found.id, owner

@@ -83,7 +83,9 @@ def command(original: str, words: list[str]) -> Parse:
     for verb, row in verb_index().get(w[0], ()) if w else ():
         if tuple(w[: len(verb)]) != verb:
             continue
-        found = _fit(row, Said(" ".join(verb), w[len(verb) :], w, original))
+        # what to say is said as it was ("out of paper"), the roles of a frame read joined
+        rest = tuple(words[len(verb) :]) if row.frame.special is not None else w[len(verb) :]
+        found = _fit(row, Said(" ".join(verb), rest, w, original))
         if found is not None:
             return found
     return Parse("unknown", words=w)

@@ -8,23 +8,32 @@ yes/no question, not an activity).
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 from dialogue import intents as I
-from dialogue.reference.english import ME, Words
+from dialogue.reference.english import ME, Words, phrases, word_set
 from dialogue.rules.parsed import Parse
-from dialogue.rules.speech import QUOTED, expanded, original_text, split_at, starts
+from dialogue.rules.speech import QUOTED, expanded, message, original_text, split_at, starts
 from dialogue.rules.words import (
     DONE,
     EVERYONE,
+    GOES,
+    GOES_PARTICLES,
     INTENSIFIERS,
     NEEDS,
     NOT_WISHERS,
+    PLACES,
     THEIR_WANTS,
     WANT_VERBS,
     WANTS,
     WISHERS,
 )
+
+
+#: Prepositions of a place to put something, longest first ("goes to town" is no such place).
+_PLACES = sorted((p for p in phrases(PLACES) if p not in {("to",), ("at",)}), key=len, reverse=True)
+#: Subjects that never name a thing to put ("I go in the morning", "you belong here").
+NOT_THINGS = word_set("i we you he she what where who which how why when there")
 
 
 @dataclass(frozen=True)
@@ -95,6 +104,24 @@ def their_wish(said: Said) -> Parse | None:
 def _pronoun(who: Words) -> Words:
     """ "he", "she", "they" refer to someone the conversation named."""
     return {"he": ("him",), "she": ("her",), "they": ("them",)}.get(who[0], who) if len(who) == 1 else who
+
+
+def belonging(said: Said) -> Parse | None:
+    """ "the orange juice goes back in the fridge", "this belongs on the shelf": put it there."""
+    w = said.words
+    for i in range(1, min(len(w) - 2, 6)):
+        lead = next((p for p in GOES if w[i : i + len(p)] == p), None)
+        if lead is None:
+            continue
+        thing, rest = w[:i], w[i + len(lead) :]
+        while rest[:1] and rest[0] in GOES_PARTICLES:
+            rest = rest[1:]
+        place = next((p for p in _PLACES if rest[: len(p)] == p), None)
+        if place is None or not rest[len(place) :] or thing[0] in NOT_THINGS:
+            return None
+        parse = said.command(I.PLACE_OBJECT, object=thing, recipient=rest[len(place) :])
+        return replace(parse, marks={"recipient": " ".join(place)})
+    return None
 
 
 def enough(said: Said) -> Parse | None:
@@ -182,7 +209,7 @@ def speech(said: Said) -> Parse:
             return unknown
         if not text:  # "tell Maria": the interpreter asks what to say
             return said.command(I.SAY, recipient=recipient)
-        words = original_text(original, text[1:] if text[0] == "please" else text)
+        words = message(original, text[1:] if text[0] == "please" else text)
         said_text = f"please {words}" if text[0] == "please" else words
         return said.command(I.SAY, text=said_text, recipient=recipient)
     found = split_at(rest, ["to"])

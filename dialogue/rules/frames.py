@@ -95,7 +95,7 @@ class Frame:
 
 _GRAB = "grab|take|get|collect|lift|grasp|seize|hold|pick"
 _BRING = "bring|hand|give|pass|fetch|deliver|carry|wheel|push|drag|pull|slide|shift"
-_PLACE = "put|place|set|lay|drop|leave|stick|stack|release|rest|hang|store|park"
+_PLACE = "put|place|set|lay|drop|leave|stick|stack|release|rest|hang|store|park|chuck|throw|toss|bung|shove|dump|pop"
 _MOVE = (
     "go|move|navigate|drive|walk|head|come|return|proceed|roll|stand|pop|nip|hop|make your way|"
     "find your way"
@@ -129,9 +129,13 @@ FRAMES: tuple[Frame, ...] = (
     Frame("help", special=C.helping),
     Frame("give", special=C.a_hand),
     Frame("show", special=C.showing),
+    # "show Hana (the) way to the dining room": the way is no one's name
     Frame(_GUIDE, I.GUIDE, direct="recipient", slots={"goal": "to|towards|into"}, here="goal",
-          particles="over back through", defaults={"recipient": ("me",)}),
-    Frame("take|walk|bring", I.GUIDE, direct="recipient", slots={"goal": "to|towards|into"}, here="goal",
+          particles="over back through way", defaults={"recipient": ("me",)}),
+    # "take me (there)": the place just spoken of ("I need the toilets, can you take me")
+    Frame("take|walk", I.GUIDE, direct="recipient", slots={"goal": "to|towards|into"}, here="goal",
+          particles="over back through", only=ME, defaults={"goal": ("there",)}),
+    Frame("bring", I.GUIDE, direct="recipient", slots={"goal": "to|towards|into"}, here="goal",
           particles="over back through", only=ME, requires=("goal",)),
     # Going somewhere.
     Frame("go|come", serial=True),
@@ -160,7 +164,7 @@ FRAMES: tuple[Frame, ...] = (
 )  # fmt: skip
 
 #: What the whole utterance may say before any verb is read ("I'm parched", "I want the apple").
-CONSTRUCTIONS: tuple[Special, ...] = (C.need, C.going, C.wanting, C.their_wish, C.enough)
+CONSTRUCTIONS: tuple[Special, ...] = (C.need, C.going, C.wanting, C.their_wish, C.belonging, C.enough)
 
 
 @dataclass(frozen=True)

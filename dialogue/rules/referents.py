@@ -15,7 +15,7 @@ from dialogue.reference.english import (
     DETERMINERS,
     MANY,
     ME,
-    MODIFIER_START,
+    PERSONAL,
     POSITIONS,
     POSSESSIVES,
     Words,
@@ -31,11 +31,12 @@ from dialogue.reference.resolution import (
     antecedent,
     content_words,
     is_pronoun,
+    pronoun_kinds,
     resolve,
 )
 from dialogue.rules.compound import alternatives
 from dialogue.rules.outcome import Outcome, Ref
-from dialogue.rules.spelling import slips
+from dialogue.rules.sounds import slipped as heard_as
 from dialogue.rules.words import PURPOSES
 
 #: Spatial or comparative qualifiers the KB does not model (dropped when they block a match).
@@ -66,6 +67,8 @@ class Referents:
             named = set(people) <= ME or resolve(self.lexicon, head, PERSON).one is not None
             # "bring him the bottle": a person pronoun the conversation resolves.
             said = set(people) <= {"him", "her", "them"} and self.person_as_object(head) is not None
+            # "bring her the muffin": "her" before a determiner is no possessive, whoever she is
+            said = said or (set(head) <= PERSONAL and tail[0] in DETERMINERS)
             if people and (named or said):
                 return {"object": tail, "recipient": head}
         return {"object": rest, "recipient": ("me",)}
@@ -78,6 +81,27 @@ class Referents:
         rest = tuple(w for w in words if w not in _EVERY and w != "of")
         return [tuple(tokens(e.id)) for e in resolve(self.lexicon, rest, THING).matches]
 
+    def named_in(self, phrases: Sequence[Words]) -> Entity | None:
+        """The one person the phrases name, as a name or a possessive ("Hana's phone"), if one."""
+        people: set[str] = set()
+        for words in phrases:
+            bare = [w[:-2] if w.endswith("'s") and len(w) > 2 else w for w in words]
+            for mention in self.lexicon.mentions(bare):
+                found = [e for e in mention.entities if (x := self.snapshot.get(e)) and x.kind == "person"]
+                people.update(found if len(found) == 1 else ())
+        return self.snapshot.get(next(iter(people))) if len(people) == 1 else None
+
+    def a_place(self, words: Words) -> bool:
+        """Whether the phrase names one place (a zone of the KB) and no thing ("the toilets")."""
+        if not content_words(words) or is_pronoun(words) or resolve(self.lexicon, words, THING).matches:
+            return False
+        return resolve(self.lexicon, words, frozenset({"zone"})).one is not None
+
+    def a_person(self, words: Words) -> bool:
+        """Whether the phrase is someone: a person's name, a person pronoun or the speaker."""
+        content = set(content_words(words))
+        return bool(content) and (content <= PERSONAL | ME or self.named_person(words))
+
     def named_person(self, words: Words) -> bool:
         """Whether the phrase names one person of the KB (not a pronoun, not the speaker's "me")."""
         if not content_words(words) or is_pronoun(words) or set(content_words(words)) & ME:
@@ -88,7 +112,10 @@ class Referents:
         if content_words(words) and set(content_words(words)) <= ME:
             return self.snapshot.get(self.speaker) or Entity(self.speaker, "you", (), (), (), "person", True)
         if content_words(words) and set(content_words(words)) <= {"him", "her", "them"}:
-            return antecedent(self.lexicon, [u.text for u in self.history], PERSON)
+            # "them" is people only when the people were spoken of last ("take them to her": the specs)
+            kinds = PERSON if set(content_words(words)) <= PERSONAL else ANYWHERE
+            found = antecedent(self.lexicon, self.history, kinds, speaker=self.speaker)
+            return found if found is not None and found.kind == "person" else None
         if not content_words(words) or is_pronoun(words):
             return None
         return resolve(self.lexicon, words, PERSON).one
@@ -106,28 +133,19 @@ class Referents:
         # "his/her/their": the person the same request names, else the one the conversation last named.
         other = slots.get("recipient", ())
         person = None if set(other) & ME else self.person_as_object(other)
-        person = person or antecedent(self.lexicon, [u.text for u in self.history], PERSON)
+        person = person or antecedent(self.lexicon, self.history, PERSON, speaker=self.speaker)
         return rest, person.id if person is not None else None
 
-    def slipped(self, words: Words, kinds: frozenset[Kind], owner: str | None) -> Entity | None:
-        """The one thing a name means when one of its words was misheard or mistyped as another word
-        ("bay mine", "bay for" for "bay nine", "bay four"): a word the KB does not know,
-        replaced by a slip of it, completes a name of several words that the rest of the phrase
-        starts; the name must then be the only one (a guess, see dialogue.rules.spelling)."""
-        found: set[str] = set()
-        for i, word in enumerate(words):
-            last = i == len(words) - 1
-            if word in DETERMINERS or (word in MODIFIER_START and not last) or self.lexicon.knows(word):
-                continue
-            for other in slips(word, self.lexicon):
-                trial = (*words[:i], other, *words[i + 1 :])
-                one = resolve(self.lexicon, trial, kinds, owner=owner).one
-                if one is not None and _named_with(self.lexicon, one, trial, i):
-                    found.add(one.id)
-        entity = self.snapshot.get(next(iter(found))) if len(found) == 1 else None
-        return entity
-
-    def ground(self, words: Words, kinds: frozenset[Kind], role: str, owner: str | None = None) -> Ref:
+    def ground(
+        self,
+        words: Words,
+        kinds: frozenset[Kind],
+        role: str,
+        owner: str | None = None,
+        said: Sequence[Words] = (),
+    ) -> Ref:
+        """The entity a role's phrase names; `said` are the request's other phrases, where a person
+        pronoun finds the one person they name ("take Hana's phone to her")."""
         bare_words = [w for w in words if w not in DETERMINERS]
         if bare_words[:1] in (["something"], ["anything"]) and tuple(bare_words[1:]) in PURPOSES:
             words = (PURPOSES[tuple(bare_words[1:])],)  # "something to eat": food
@@ -136,8 +154,10 @@ class Referents:
             return Ref(speaker=True)
         bare = {w for w in words if w not in {"the", "over", "please"}}
         if is_pronoun(words) or (bare and bare <= {"him", "her", "there"}):
-            history = [u.text for u in self.history]
-            found = antecedent(self.lexicon, history, kinds, place=bare == {"there"})
+            kinds = pronoun_kinds(words, kinds)
+            found = self.named_in(said) if kinds == PERSON else None
+            found = found or antecedent(self.lexicon, self.history, kinds, place=bare == {"there"},
+                                        speaker=self.speaker)  # fmt: skip
             if found is None:
                 return Ref(
                     problem=Outcome(
@@ -154,7 +174,7 @@ class Referents:
             res = replace(res, matches=tuple(e for e in res.matches if e.id != self.speaker))
         if res.one is not None:
             return Ref(entity=res.one)
-        slipped = self.slipped(words, kinds, owner)
+        slipped = heard_as(self.lexicon, words, kinds, owner)
         if slipped is not None:
             return Ref(entity=slipped, guessed=True)
         if res.ambiguous:
@@ -196,12 +216,3 @@ class Referents:
         if "person" in kinds and resolve(self.lexicon, content, ANYWHERE).matches == ():
             return f"Sorry, I don't know who or where {phrase.title()} is."
         return f"Sorry, I don't see any {phrase}."
-
-
-def _named_with(lexicon: Lexicon, entity: Entity, words: Words, i: int) -> bool:
-    """Whether a name of the entity spans word i and a word before it ("table *nine*")."""
-    for start in range(i):
-        for name in lexicon.names_at(words, start):
-            if name.entity == entity.id and start + len(name.words) > i:
-                return True
-    return False
