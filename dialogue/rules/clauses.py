@@ -47,7 +47,12 @@ _AUXILIARIES = word_set(
     "don't didn't doesn't won't wouldn't couldn't shouldn't isn't aren't wasn't just really also"
 )
 #: Words after which a subject pronoun is an object or a clause the verb takes ("tell him she is...").
-_TAKES_CLAUSE = word_set("that if whether when because so tell ask let make have help and or but")
+_TAKES_CLAUSE = word_set(
+    "that if whether when because so tell ask let make have help and or but think believe guess reckon "
+    "suppose know hope say said"
+)
+#: Verbs whose object comes before the clause they take ("tell him she's here").
+_TELLING = word_set("tell told ask remind warn inform show promise let")
 #: Conjunctions that start a clause of reason after a request ("... because she has to take them").
 _REASONS = word_set("because cos cause since as so")
 #: Words a described thing is said with: "it's the pink one", "I think they're in the drawer".
@@ -85,16 +90,17 @@ def _starts_clause(words: list[list[str]], i: int) -> bool:
     before = words[i - 1][-1]
     if any(tuple(flat[: len(a)]) == a for a in _ASKS):
         return before not in {"you", "i", "that", "if", "and", "or"}
-    if before in _TAKES_CLAUSE or before in _AUXILIARIES or len(flat) < 2:
-        return False  # "tell him she's here"; "can I have": a question's order
+    told = i > 1 and words[i - 2][-1] in _TELLING
+    if before in _TAKES_CLAUSE or before in _AUXILIARIES or told or len(flat) < 2:
+        return False  # "I think it's...", "tell him she's here"; "can I have": a question's order
     first, second = flat[0], flat[1]
     if first in _REASONS:  # "... because she has to take them before dinner"
         return len(flat) > 2 and second in _SUBJECTS and _subject_verb(second, flat[2])
     if first in _SUBJECTS:
         return _subject_verb(first, second)
-    if before in NP_START or before in MODIFIER_START or first in FUNCTION_WORDS - NP_START:
+    if before in NP_START or before in MODIFIER_START or first in FUNCTION_WORDS - NP_START - {"her"}:
         return False
-    if first in NP_START:  # "the class starts soon": a noun phrase of one or two words, then its verb
+    if first in NP_START or first == "her":  # "the bus leaves soon": a phrase of one or two words, its verb
         return any(_agrees(flat, k) for k in (2, 3) if not set(flat[1:k]) & (FUNCTION_WORDS | DETERMINERS))
     # "Gareth wants something": a word that is a name or a noun, then its verb
     name = first.isalpha() and first not in _AUXILIARIES and not set(getAllLemmas(first)) - {"NOUN", "PROPN"}

@@ -122,6 +122,7 @@ def test_several_statements_in_one_turn(home: KB) -> None:
 
 
 @pytest.mark.parametrize("text", [
+    "tell alice her tea is on the table",  # a request: what to tell her is no statement of the speaker's
     "bring me the mug", "is the mug on the table?", "I'd like a cup of tea", "where are my keys",
     "the moon is made of cheese", "does Alice like tea", "what do you see", "I'm Bob, bring me the mug",
     "i hate marking lab reports",

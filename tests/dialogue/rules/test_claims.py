@@ -155,3 +155,36 @@ def test_a_phrase_whose_last_word_is_no_slip_of_a_name_is_not_claimed() -> None:
     out = say(_bays(), "go to the loading bay fine")
     assert not out.understood and not out.clarify and out.intent is None, out.reply
     assert say(_bays(), "go to the loading bay").clarify
+
+
+def _terminal() -> KB:
+    return scene(
+        "lifts_1 rdf:type ZoneOfInterest", 'lifts_1 rdfs:label "lifts"',
+        "person_noor rdf:type Human", 'person_noor rdfs:label "Noor"', "myself sees person_noor",
+        "person_sam rdf:type Human", 'person_sam rdfs:label "Sam"', "myself sees person_sam",
+        "flask_1 rdf:type Artifact", 'flask_1 rdfs:label "flask"', "myself sees flask_1",
+        "ball_r rdf:type Artifact", 'ball_r rdfs:label "ball"', "ball_r hasColor red", "myself sees ball_r",
+        "ball_g rdf:type Artifact", 'ball_g rdfs:label "ball"', "ball_g hasColor green", "myself sees ball_g",
+    )  # fmt: skip
+
+
+def test_needing_a_place_is_being_taken_there() -> None:
+    out = say(_terminal(), "i need the lifts")
+    assert (out.intent, out.roles) == ("__intent_guide__", {"recipient": SPEAKER, "goal": "lifts_1"}), out.reply
+    out = say(_terminal(), "um i need the uh the lifts can you take me")
+    assert (out.intent, out.roles) == ("__intent_guide__", {"recipient": SPEAKER, "goal": "lifts_1"}), out.reply
+    # with no place spoken of, "take me" asks where (a question, not a guess)
+    out = say(_terminal(), "can you take me")
+    assert out.clarify and out.reply == "Where should I take you?"
+
+
+def test_an_answer_with_a_tag_word_completes_the_request() -> None:
+    history = [("user", "pass me the ball"), ("robot", "Which ball: the red one or the green one?")]
+    out = say(_terminal(), "the green one pal", history)
+    assert out.roles == {"object": "ball_g", "recipient": SPEAKER}, out.reply
+
+
+def test_a_request_redirected_instead_keeps_the_thing_spoken_of() -> None:
+    history = [("user", "give sam the flask"), ("robot", "OK, I will bring the flask to Sam.")]
+    out = say(_terminal(), "actually no give it to noor instead", history)
+    assert out.roles == {"object": "flask_1", "recipient": "person_noor"}, out.reply
