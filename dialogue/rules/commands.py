@@ -7,7 +7,7 @@ Only words are looked at: which entity a phrase names is decided later against t
 
 from __future__ import annotations
 
-from dialogue.reference.english import ME, MODIFIER_START, Words
+from dialogue.reference.english import DETERMINERS, FUNCTION_WORDS, MANY, ME, MODIFIER_START, PERSONAL, Words
 from dialogue.rules.constructions import Said
 from dialogue.rules.frames import CONSTRUCTIONS, Row, verb_index
 from dialogue.rules.parsed import Parse
@@ -113,7 +113,8 @@ def _fit(row: Row, said: Said) -> Parse | None:
         return None
     rest, adjuncts = _adjuncts(rest, row)
     direct, slots, marks = _segments(rest, row)
-    if frame.here is not None:
+    if frame.here is not None and not (frame.dative and direct[:1] and direct[0] in ME):
+        # ("fetch me that lamp over there": there is where the lamp is)
         # "leave it over there", "come here", "lead the way"; dropped when the place is also named
         # ("lead the way to the lobby").
         pointed = next((p for p in _POINTING if direct[-len(p[0]) :] == p[0]), None)
@@ -124,9 +125,11 @@ def _fit(row: Row, said: Said) -> Parse | None:
     if not direct and frame.direct is not None:
         direct = _second_phrase(slots)  # "bring to Ana the tray"
     if frame.dative is not None and "recipient" not in slots and direct:
+        # "get Ines her phone": someone, then a noun phrase of its own
+        before = frame.dative == "before" and _someone(direct[0]) and bool(set(direct[1:4]) & _OWN_PHRASE)
         if direct[0] in ME:  # "get me a cup"
             slots["recipient"], direct = ("me",), direct[1:]
-        elif frame.dative == "any":  # "give Ines her phone": the interpreter splits it against the KB
+        elif frame.dative == "any" or before:  # "give Ines her phone": the interpreter splits it
             return Parse("command", frame.intent, {"rest": direct}, words=said.words, double_object=True,
                          adjuncts=adjuncts)  # fmt: skip
     if direct and frame.direct is None:
@@ -142,6 +145,14 @@ def _fit(row: Row, said: Said) -> Parse | None:
     text = frame.text(said.verb, said.rest) if frame.text is not None else None
     return Parse("command", frame.intent, slots, text=text, words=said.words, adjuncts=adjuncts,
                  implicit=implicit, marks=marks)  # fmt: skip
+
+
+_OWN_PHRASE = NP_START | {"her"}
+
+
+def _someone(word: str) -> bool:
+    """Whether a word may start the phrase of a person ("him", "Ines"), not of a thing ("all", "the")."""
+    return word in PERSONAL or word == "them" or word not in FUNCTION_WORDS | DETERMINERS | MANY
 
 
 def _segments(rest: Words, row: Row) -> tuple[Words, dict[str, Words], dict[str, str]]:

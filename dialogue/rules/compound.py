@@ -21,7 +21,9 @@ _CONJUNCTIONS = word_set("and then , ; afterwards")
 #: `_OBJECT_START` ("go to the bathroom take the rag"): never nouns in a command's phrases.
 _BARE_VERBS = word_set("take bring go put place grab fetch get find search give open move")
 _SERIAL = word_set("go come")
-_OBJECT_START = word_set("the a an my your his her this that these those it them me us to into some all both")
+_OBJECT_START = word_set(
+    "the a an my your his her this that these those it them me us him to into some all both"
+)
 #: Words after which a verb continues the same command ("you take", "to take", "go get"), besides
 #: the verbs of the grammar.
 _NO_CUT_AFTER = word_set(

@@ -29,7 +29,6 @@ from dialogue.rules.words import (
     WISHERS,
 )
 
-
 #: Prepositions of a place to put something, longest first ("goes to town" is no such place).
 _PLACES = sorted((p for p in phrases(PLACES) if p not in {("to",), ("at",)}), key=len, reverse=True)
 #: Subjects that never name a thing to put ("I go in the morning", "you belong here").
@@ -80,7 +79,7 @@ def wanting(said: Said) -> Parse | None:
     for lead in WANTS:
         if starts(said.words, lead) and len(said.words) > len(lead):
             wanted = said.words[len(lead) :]
-            if wanted[:1] != ("to",):
+            if wanted[:1] != ("to",) and wanted[:2] != ("a", "hand"):  # "give me a hand to the door"
                 return said.command(I.BRING_OBJECT, object=wanted, recipient=("me",))
     return None
 
@@ -152,7 +151,13 @@ def helping(said: Said) -> Parse | None:
 
 
 def showing(said: Said) -> Parse | None:
-    """ "show me the scissors" asks where they are; "show me the way (to X)" is guiding."""
+    """ "show me the scissors" asks where they are; "show me the way (to X)" is guiding, and so is
+    "show George where the lounge is"."""
+    if "where" in said.rest[1:]:
+        at = said.rest.index("where")
+        place = said.rest[at + 1 :]
+        place = place[:-1] if place[-1:] in {("is",), ("are",)} else place
+        return said.command(I.GUIDE, recipient=said.rest[:at] or ("me",), goal=place) if place else None
     if "way" in said.rest or "to" in said.rest:
         return None
     thing = said.rest[1:] if said.rest[:1] and said.rest[0] in ME else said.rest

@@ -18,6 +18,7 @@ from dialogue.reference.english import (
     PERSONAL,
     POSITIONS,
     POSSESSIVES,
+    SUPPORT_PREPOSITIONS,
     Words,
     tokens,
     word_set,
@@ -40,7 +41,7 @@ from dialogue.rules.sounds import slipped as heard_as
 from dialogue.rules.words import PURPOSES
 
 #: Spatial or comparative qualifiers the KB does not model (dropped when they block a match).
-RELATIONAL = POSITIONS
+RELATIONAL = POSITIONS | word_set("over yonder")
 #: Words that need no name in the KB to be understood in a phrase.
 _ACCOUNTED = RELATIONAL | COLOURS | ME | word_set(
     "it them him her here there over something anything around nearby about"
@@ -190,6 +191,9 @@ class Referents:
             if res.ambiguous:
                 q = clarifying_question(self.snapshot, res.matches)
                 return Ref(problem=Outcome(q, clarify=True, open_role=role, open_phrase=loose))
+        place = self._put_by(words, kinds, role, owner)
+        if place is not None:
+            return place
         if set(words) & MANY:  # "the cup and the apple", "both cups": more than one intent can carry
             return Ref(problem=Outcome("Sorry, one thing at a time, please.", understood=False))
         for alternative in alternatives(words):  # "an apple or an orange": either will do
@@ -201,6 +205,17 @@ class Referents:
             # phrase was not understood, which is not the same as "there is no such thing".
             return Ref(problem=Outcome("Sorry, I did not understand that.", understood=False))
         return Ref(problem=Outcome(self.unknown(content, kinds)))
+
+    def _put_by(self, words: Words, kinds: frozenset[Kind], role: str, owner: str | None) -> Ref | None:
+        """ "put the book next to the cup on the shelf" when the cup is not on the shelf: the last
+        place is where to put it (the verb's), the first only says whereabouts on it."""
+        if role != "recipient" or "zone" not in kinds or "person" in kinds:
+            return None
+        at = max((i for i, w in enumerate(words) if w in SUPPORT_PREPOSITIONS and i > 0), default=None)
+        if at is None or not content_words(words[at + 1 :]):
+            return None
+        ref = self.ground(words[at + 1 :], kinds, role, owner)
+        return ref if ref.entity is not None else None
 
     def half_known(self, content: Sequence[str]) -> bool:
         """Whether some words of a phrase are names of the KB and others are words it does not know."""

@@ -159,7 +159,7 @@ INTENSIFIERS = word_set("so very really absolutely quite a bit little totally ge
 DONE = word_set("the a an some my your our this that these those exercise exercises yoga stretches")
 #: "the juice goes back in the fridge", "these should go on the top shelf": where a thing is to be put.
 GOES = phrases(
-    "goes|go|belongs|belong|should go|can go|needs to go|need to go|has to go|have to go|must go|"
+    "goes|go|belongs|belong|lives|live|should go|can go|needs to go|need to go|has to go|have to go|must go|"
     "should be put|needs to be put|has to be put|wants to go"
 )
 GOES_PARTICLES = word_set("back away over up down")

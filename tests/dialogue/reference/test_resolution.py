@@ -1,8 +1,8 @@
 import pytest
 
+from dialogue.history import ASSISTANT_USER_ID, Utterance
 from dialogue.reference.english import tokens
 from dialogue.reference.grounding import Kind
-from dialogue.history import ASSISTANT_USER_ID, Utterance
 from dialogue.reference.resolution import ANYWHERE, antecedent, pronoun_kinds, resolve, resolve_id
 from kb import KB
 from tests.dialogue.conftest import lexicon_of, scene_kb

@@ -188,3 +188,22 @@ def test_a_request_redirected_instead_keeps_the_thing_spoken_of() -> None:
     history = [("user", "give sam the flask"), ("robot", "OK, I will bring the flask to Sam.")]
     out = say(_terminal(), "actually no give it to noor instead", history)
     assert out.roles == {"object": "flask_1", "recipient": "person_noor"}, out.reply
+
+
+def test_a_second_place_that_the_first_is_not_on_is_where_to_put_it() -> None:
+    kb = scene(
+        "shelf_1 rdf:type Artifact", 'shelf_1 rdfs:label "shelf"', "myself sees shelf_1",
+        "desk_1 rdf:type Artifact", 'desk_1 rdfs:label "desk"', "myself sees desk_1",
+        "lamp_1 rdf:type Artifact", 'lamp_1 rdfs:label "lamp"', "lamp_1 isOn desk_1", "myself sees lamp_1",
+        "vase_1 rdf:type Artifact", 'vase_1 rdfs:label "vase"', "myself sees vase_1",
+    )  # fmt: skip
+    # the lamp is on the desk, not the shelf: "on the shelf" is where the vase goes
+    out = say(kb, "put the vase next to the lamp on the shelf")
+    assert (out.intent, out.roles) == ("__intent_place_object__", {"object": "vase_1", "recipient": "shelf_1"})
+    out = say(kb, "put the vase next to the lamp on the desk")
+    assert out.roles == {"object": "vase_1", "recipient": "lamp_1"}, out.reply
+
+
+def test_give_me_a_hand_to_a_place_is_guiding() -> None:
+    out = say(_terminal(), "can you give me a hand to the lifts")
+    assert (out.intent, out.roles) == ("__intent_guide__", {"recipient": SPEAKER, "goal": "lifts_1"}), out.reply
