@@ -84,6 +84,17 @@ def content_words(words: Sequence[str]) -> list[str]:
 _NOT_SAID = word_set("the please again too over")
 
 
+def said_phrase(words: Sequence[str]) -> str:
+    """A phrase as a reply says it back: without its leading determiners, its prepositions kept
+    ("my mug in the fridge": "mug in the fridge")."""
+    out = [w for w in words if w != "please"]
+    while out and (out[0] in DETERMINERS or out[0] in _GLUE or out[0] in {"his", "her", "their"}):
+        out.pop(0)
+    while out and out[-1] in _GLUE:
+        out.pop()
+    return " ".join(out)
+
+
 def is_pronoun(words: Sequence[str]) -> bool:
     content = [w for w in words if w not in _NOT_SAID - {"over"}]
     return len(content) == 1 and content[0] in PRONOUNS

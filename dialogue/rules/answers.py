@@ -9,7 +9,7 @@ from dialogue.reference.clarify import question as clarifying_question
 from dialogue.reference.english import tokens
 from dialogue.reference.grounding import Entity, Snapshot
 from dialogue.reference.lexicon import Lexicon, singular
-from dialogue.reference.resolution import ALL_KINDS, content_words, resolve
+from dialogue.reference.resolution import ALL_KINDS, content_words, resolve, said_phrase
 from dialogue.situation import article
 
 MAX_LISTED = 12
@@ -150,7 +150,7 @@ def _on(snapshot: Snapshot, place: Entity) -> str:
 def can_you_see(lexicon: Lexicon, words: Sequence[str], speaker: str) -> str:
     snapshot = lexicon.snapshot
     found = resolve(lexicon, words, ALL_KINDS)
-    phrase = " ".join(content_words(words)) or "that"
+    phrase = said_phrase(words) or "that"
     if not found.matches:
         return f"No, I don't see any {phrase}."
     seen = [e for e in found.matches if e.seen]
@@ -180,14 +180,14 @@ def which_do_you_see(lexicon: Lexicon, words: Sequence[str]) -> str:
     found = resolve(lexicon, words, frozenset({"thing", "person"}))
     seen = [e for e in found.matches if e.seen]
     if not seen:
-        return f"I don't see any {' '.join(content_words(words)) or 'such thing'}."
+        return f"I don't see any {said_phrase(words) or 'such thing'}."
     snapshot = lexicon.snapshot
     return f"I see {listing([f'{indefinite(e)} {location(snapshot, e)}'.strip() for e in seen])}."
 
 
 def how_many(lexicon: Lexicon, words: Sequence[str]) -> str:
     found = resolve(lexicon, words, frozenset({"thing", "person"}))
-    phrase = " ".join(content_words(words)) or "things"
+    phrase = said_phrase(words) or "things"
     seen = [e for e in found.matches if e.seen]
     if not seen:
         return f"I don't see any {phrase}."

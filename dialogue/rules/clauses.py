@@ -40,7 +40,7 @@ _BREAK = re.compile(r"[.;!?,]+(?:\s+|$)|\s+(?:-|\u2013|\u2014)\s+")
 #: A polite request said mid-utterance starts a clause of its own.
 _ASKS = phrases("could you|can you|would you|will you|please|can i have|could i have|may i have|can i get|"
                 "could i get")
-_SUBJECTS = word_set("i he she it we they you")
+_SUBJECTS = word_set("i he she it we they you there")
 #: Verbs that follow any subject: auxiliaries, modals and their negations.
 _AUXILIARIES = word_set(
     "am is are was were has have had will would can cannot could should might must shall may do does did "

@@ -122,6 +122,7 @@ class Interpreter:
         if len(said) < 2:
             return whole
         question: Outcome | None = None
+        failed: Outcome | None = None
         for i in range(len(said) - 1, -1, -1):
             context = tuple(Utterance(self.speaker, c) for c in said[:i])
             reader = Interpreter(self.lexicon, self.speaker, (*self.history, *context), self.robot_name)
@@ -135,7 +136,11 @@ class Interpreter:
                 # A complete request in an earlier clause beats asking about an incomplete later one.
                 if question is None and (outcome.clarify or (p.act == "question" and outcome.understood)):
                     question = outcome
-        return question or whole
+                # Why a request alone fails says it better than the run-on whole ("...the sink theres a
+                # spill": no sink, not no "sink spill").
+                elif p.act == "command" and outcome.understood and not outcome.clarify:
+                    failed = outcome
+        return question or failed or whole
 
     def act(self, p: Parse, overrides: dict[str, Words] | None = None) -> Outcome:
         if p.act == "greeting" and "everyone" in p.slots:  # no single recipient: greet verbally only

@@ -35,7 +35,7 @@ _INDIRECT: tuple[Words, ...] = tuple(
 _BE = frozenset({"is", "are", "was", "were"})
 _SOMEONE = word_set("anybody anyone somebody someone people")
 _ELSE = word_set("else besides except apart from but me us other than the room this")
-_NEARBY = word_set("around nearby here about")
+_NEARBY = word_set("around nearby here about anywhere somewhere")
 
 
 def _q(kind: str, w: Words, **slots: Words) -> Parse:

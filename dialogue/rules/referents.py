@@ -15,6 +15,7 @@ from dialogue.reference.english import (
     DETERMINERS,
     MANY,
     ME,
+    MODIFIER_START,
     PERSONAL,
     POSITIONS,
     POSSESSIVES,
@@ -34,11 +35,13 @@ from dialogue.reference.resolution import (
     is_pronoun,
     pronoun_kinds,
     resolve,
+    said_phrase,
 )
+from dialogue.rules.clauses import described
 from dialogue.rules.compound import alternatives
 from dialogue.rules.outcome import Outcome, Ref
 from dialogue.rules.sounds import slipped as heard_as
-from dialogue.rules.words import PURPOSES
+from dialogue.rules.words import NP_START, PURPOSES
 
 #: Spatial or comparative qualifiers the KB does not model (dropped when they block a match).
 RELATIONAL = POSITIONS | word_set("over yonder")
@@ -150,12 +153,15 @@ class Referents:
         bare_words = [w for w in words if w not in DETERMINERS]
         if bare_words[:1] in (["something"], ["anything"]) and tuple(bare_words[1:]) in PURPOSES:
             words = (PURPOSES[tuple(bare_words[1:])],)  # "something to eat": food
+        words = _apposed(words)
         content = content_words(words)
         if "person" in kinds and content and set(content) <= ME | {"here"}:
             return Ref(speaker=True)
         bare = {w for w in words if w not in {"the", "over", "please"}}
         if is_pronoun(words) or (bare and bare <= {"him", "her", "there"}):
             kinds = pronoun_kinds(words, kinds)
+            if not kinds:  # "go and get him": a person where the request wants a thing
+                return Ref(problem=Outcome("Sorry, I did not understand that.", understood=False))
             found = self.named_in(said) if kinds == PERSON else None
             found = found or antecedent(self.lexicon, self.history, kinds, place=bare == {"there"},
                                         speaker=self.speaker)  # fmt: skip
@@ -204,7 +210,7 @@ class Referents:
             # Names the KB knows among words it does not ("mr ito back", "the trousers out"): the
             # phrase was not understood, which is not the same as "there is no such thing".
             return Ref(problem=Outcome("Sorry, I did not understand that.", understood=False))
-        return Ref(problem=Outcome(self.unknown(content, kinds)))
+        return Ref(problem=Outcome(self.unknown(content, kinds, words)))
 
     def _put_by(self, words: Words, kinds: frozenset[Kind], role: str, owner: str | None) -> Ref | None:
         """ "put the book next to the cup on the shelf" when the cup is not on the shelf: the last
@@ -222,7 +228,7 @@ class Referents:
         unknown = [w for w in content if not self.lexicon.knows(w) and w not in _ACCOUNTED]
         return 0 < len(unknown) < len(content)
 
-    def unknown(self, content: Sequence[str], kinds: Collection[Kind]) -> str:
+    def unknown(self, content: Sequence[str], kinds: Collection[Kind], words: Sequence[str] = ()) -> str:
         phrase = " ".join(content)
         if kinds == PERSON:
             return f"Sorry, I don't know anyone called {phrase.title()}."
@@ -230,4 +236,16 @@ class Referents:
             return f"Sorry, I don't know where the {phrase} is."
         if "person" in kinds and resolve(self.lexicon, content, ANYWHERE).matches == ():
             return f"Sorry, I don't know who or where {phrase.title()} is."
-        return f"Sorry, I don't see any {phrase}."
+        return f"Sorry, I don't see any {said_phrase(words) or phrase}."
+
+
+def _apposed(words: Words) -> Words:
+    """ "my mug the yellow one": a second phrase of "one" says which the first is ("my yellow mug")."""
+    if "one" not in words and "ones" not in words:
+        return words
+    for j in range(1, len(words)):
+        if words[j] in NP_START and words[j - 1] not in NP_START and words[j - 1] not in MODIFIER_START:
+            if "one" in words[j:] or "ones" in words[j:]:
+                return described(words[:j], words[j:])
+            return words
+    return words

@@ -21,8 +21,16 @@ CONTRACTIONS: dict[str, Words] = {
     "doesnt": ("don't",), "wont": ("don't",), "isnt": ("is", "not"), "arent": ("are", "not"),
     "didnt": ("did", "not"), "i've": ("i", "have"), "she's": ("she", "is"), "he's": ("he", "is"),
     "we're": ("we", "are"), "they're": ("they", "are"), "hows": ("how", "is"),
+    "theyre": ("they", "are"), "theyve": ("they", "have"), "youve": ("you", "have"), "weve": ("we", "have"),
+    "youll": ("you", "will"), "theyll": ("they", "will"), "itll": ("it", "will"), "thatll": ("that", "will"),
+    "wasnt": ("was", "not"), "werent": ("were", "not"), "hasnt": ("has", "not"), "havent": ("have", "not"),
+    "couldnt": ("could", "not"), "wouldnt": ("would", "not"), "shouldnt": ("should", "not"),
+    "youd": ("you", "would"), "theyd": ("they", "would"), "whatre": ("what", "are"),
+    "whered": ("where", "did"), "it'll": ("it", "will"), "you'll": ("you", "will"),
+    "they've": ("they", "have"), "you've": ("you", "have"),
     # Chat spellings of speech.
-    "ya": ("you",), "gimme": ("give", "me"), "lemme": ("let", "me"), "wanna": ("want", "to"),
+    "ya": ("you",), "u": ("you",), "r": ("are",), "ur": ("your",), "gimme": ("give", "me"),
+    "lemme": ("let", "me"), "wanna": ("want", "to"),
     "gotta": ("have", "to"), "pls": ("please",), "plz": ("please",), "thx": ("thanks",),
 }  # fmt: skip
 #: Hesitations and discourse fillers, dropped wherever they occur ("put the uh candle on the table").
@@ -45,7 +53,8 @@ POLITE_PREFIXES = phrases(
     "go ahead and|go and|come and|could you|can you|would you|will you|please|kindly|just|now|ok|okay|"
     "so|and|then|also|well|robot|let us|try to|you should|you can|you could|be so kind and|be so kind as to|"
     "time to|maybe|hold on|hang on|wait a moment|wait a second|one moment|actually|oh|um|umm|uh|er|erm|"
-    "great|alright|all right|cool|perfect|excellent|sorry|excuse me|can we|could we|shall we|should we|"
+    "great|alright|all right|right|right then|cool|perfect|excellent|sorry|excuse me|can we|could we|"
+    "shall we|should we|"
     "why don't we|how about we|i was wondering if you could|i wonder if you could|"
     "i was wondering whether you could|"
     "be a dear and|be an angel and|do me a favour and|do me a favor and|you know what|off you|listen|"
@@ -57,6 +66,7 @@ ROBOT_SUFFIXES = phrases(
 )
 POLITE_SUFFIXES = (
     *ROBOT_SUFFIXES,
+    *phrases("ta|cheers|thanks a lot|thank you very much|much appreciated|if you would|if you don't mind"),
     *phrases("now|right now|for a moment|again|quickly|immediately|for a sec|for a second|sorry"),
     # the listener named by a tag ("the yellow one mate", "over here love")
     *phrases("mate|pal|buddy|love|dear|darling|sir|madam|miss|boss|chief|my friend|my dear"),
@@ -130,7 +140,7 @@ HOMOPHONES = phrases(
 #: Words of English a recogniser or a typist writes for a preposition, read as it before a noun
 #: phrase of their own ("go too the garage", "the juice form the fridge"): no noun phrase starts
 #: right after them otherwise.
-PREPOSITION_SLIPS = {"too": "to", "two": "to", "form": "from", "fro": "from", "thru": "through"}
+PREPOSITION_SLIPS = {"too": "to", "two": "to", "2": "to", "form": "from", "fro": "from", "thru": "through"}
 
 # -- small constructions --------------------------------------------------------------------------
 #: "I want X" and friends ask for X to be brought.

@@ -207,3 +207,22 @@ def test_a_second_place_that_the_first_is_not_on_is_where_to_put_it() -> None:
 def test_give_me_a_hand_to_a_place_is_guiding() -> None:
     out = say(_terminal(), "can you give me a hand to the lifts")
     assert (out.intent, out.roles) == ("__intent_guide__", {"recipient": SPEAKER, "goal": "lifts_1"}), out.reply
+
+
+def test_a_second_phrase_of_one_says_which_the_first_is() -> None:
+    out = say(_terminal(), "hand me the ball the green one")
+    assert out.roles == {"object": "ball_g", "recipient": SPEAKER}, out.reply
+
+
+def test_a_person_where_a_thing_is_wanted_is_not_understood() -> None:
+    # "go and get him": no intent fetches a person; nothing is claimed (no "what do you mean by him")
+    out = say(_terminal(), "noor is in the lobby go and get him")
+    assert not out.understood and out.intent is None and not out.clarify, out.reply
+
+
+def test_what_is_not_there_is_said_back_with_its_prepositions() -> None:
+    kb = _terminal()
+    kb.update(["hall_1 rdf:type ZoneOfInterest", 'hall_1 rdfs:label "hall"', "flask_1 isIn hall_1"])
+    out = say(kb, "is the flask in the lifts")
+    assert out.reply == "No, I don't see any flask in the lifts."
+    assert say(_terminal(), "can you see the flask anywhere").reply.startswith("Yes, I see")

@@ -25,6 +25,7 @@ SPEAKER = "person_kim"
         ("drive over to the gate omar wants a word", ["drive over to the gate", "omar wants a word"]),
         # a clause of reason starts at its conjunction
         ("bring the jug because she is thirsty", ["bring the jug", "because she is thirsty"]),
+        ("take the mop to the hall theres a puddle", ["take the mop to the hall", "theres a puddle"]),
         # punctuation, and a polite request mid-utterance
         ("it is chilly, can I have the shawl", ["it is chilly", "can I have the shawl"]),
         ("it is chilly could you close it", ["it is chilly", "could you close it"]),

@@ -21,6 +21,9 @@ from dialogue.rules.utterance import Cleaned, cleaned, normalise
         ("pick up the cup you know the blue one", "pick up the cup the blue one"),
         ("do you know where the keys are", "do you know where the keys are"),  # not a filler here
         ("table 4 4", "table 4 4"),  # numbers are not stutters
+        # chat and recogniser spellings
+        ("can u pass the salt theyre waiting", "can you pass the salt they are waiting"),
+        ("how many mugs r there", "how many mugs are there"),
     ],
 )
 def test_normalise(text: str, words: str) -> None:
@@ -105,3 +108,8 @@ def test_requests(text: str, intent: str, slots: dict[str, tuple[str, ...]]) -> 
 )
 def test_yes_no_questions_are_never_activities(text: str) -> None:
     assert parse(text).intent is None
+
+
+def test_a_lead_and_a_thanks_of_their_own_are_politeness() -> None:
+    assert parse("right could you grab the broom ta").slots == {"object": ("the", "broom")}
+    assert parse("pass me the broom cheers").slots == {"object": ("the", "broom"), "recipient": ("me",)}
