@@ -209,6 +209,8 @@ def whose(lexicon: Lexicon, words: Sequence[str], speaker: str) -> str:
 
     def sentence(e: Entity, several: bool) -> str:
         name = the(snapshot, e, speaker)
+        if several and e.colour and e.colour not in name and name.startswith("the "):
+            name = f"the {e.colour} {name[4:]}"  # "which suitcase is mine": the red one
         owner = snapshot.get(e.owner) if e.owner else None
         if owner is None:
             return f"I don't know whose {name} is."

@@ -10,7 +10,7 @@ from __future__ import annotations
 from dialogue.reference.english import DETERMINERS, FUNCTION_WORDS, MANY, ME, MODIFIER_START, PERSONAL, Words
 from dialogue.rules.constructions import Said
 from dialogue.rules.frames import CONSTRUCTIONS, Row, verb_index
-from dialogue.rules.parsed import Parse
+from dialogue.rules.parsed import Act, Parse
 from dialogue.rules.questions import question as _question
 from dialogue.rules.speech import starts, strip_politeness
 from dialogue.rules.utterance import normalise, strip_vocative, verb_lemma
@@ -47,7 +47,7 @@ def parse(text: str, robot_name: str = "") -> Parse:
     if words[0] in {"thanks", "thank"} or words == ["cheers"]:
         # "thanks, now put it on the shelf": the thanks is a preamble to the request
         tail = strip_politeness(words[2:] if words[:2] == ["thank", "you"] else words[1:], robot_name)
-        return _request(text, tail) or Parse("thanks", words=tuple(words))
+        return _request(text, tail) or _aside("thanks", words, tail)
     if tuple(words) in SOCIAL and words[:1] != ["how"]:
         return Parse("greeting", words=tuple(words))
     # "welcome Lucia" asks the robot to greet her; "welcome back" is a greeting.
@@ -58,8 +58,18 @@ def parse(text: str, robot_name: str = "") -> Parse:
             if tuple(rest) in SOCIAL:
                 return Parse("greeting", words=tuple(words))
             # "Good morning Maria" is still a greeting; "hi, grab the cup" is a request.
-            return _request(text, rest) or Parse("greeting", words=tuple(words))
+            return _request(text, rest) or _aside("greeting", words, rest)
     return _question(words) or command(text, words)
+
+
+#: At most this many words after a greeting or thanks are part of it ("good morning Mr Ito").
+_ASIDE = 3
+
+
+def _aside(act: Act, words: list[str], rest: list[str]) -> Parse:
+    """A greeting or thanks, unless more follows it than a name: then what follows was not
+    understood ("hey robot the red case is mine can you..."), and nor is the whole."""
+    return Parse(act, words=tuple(words)) if len(rest) <= _ASIDE else Parse("unknown", words=tuple(words))
 
 
 def _request(text: str, words: list[str]) -> Parse | None:

@@ -143,7 +143,10 @@ FRAMES: tuple[Frame, ...] = (
           particles="over back through", only=ME, requires=("goal",)),
     # Going somewhere.
     Frame("go|come", serial=True),
-    Frame("approach|enter", I.MOVE_TO, direct="goal", requires=("goal",)),
+    Frame("approach|enter|reach|visit", I.MOVE_TO, direct="goal", requires=("goal",)),
+    # "come back", "come over": to the speaker
+    Frame("come|come back|come over|come closer|come along", I.MOVE_TO, whole=True,
+          defaults={"goal": ("me",)}),
     Frame(_MOVE, I.MOVE_TO, slots={"goal": GOALS}, particles=MOTION_PARTICLES, here="goal",
           requires=("goal",)),
     # "go and wait in the courtyard", "stay by the door": be there ("wait for me" is no place)

@@ -35,6 +35,7 @@ _INDIRECT: tuple[Words, ...] = tuple(
 _BE = frozenset({"is", "are", "was", "were"})
 _SOMEONE = word_set("anybody anyone somebody someone people")
 _ELSE = word_set("else besides except apart from but me us other than the room this")
+_OWNERS = word_set("mine yours his hers theirs ours")
 _NEARBY = word_set("around nearby here about anywhere somewhere")
 
 
@@ -105,6 +106,8 @@ def _anybody(w: Words) -> bool:
 
 def _what(w: Words) -> Parse:
     rest = w[1:]
+    if len(rest) > 2 and rest[-2] in _BE and (rest[-1] in _OWNERS or rest[-1].endswith("'s")):
+        return _q("whose", w, thing=rest[:-2])  # "which suitcase is mine": whose each one is
     if "front" in rest or "around" in rest:
         return _q("what_see", w)
     if rest[:1] and rest[0] in _COLOUR_WORDS:

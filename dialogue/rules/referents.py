@@ -8,11 +8,14 @@ from __future__ import annotations
 from collections.abc import Collection, Sequence
 from dataclasses import replace
 
+from lemminflect import getAllLemmas
+
 from dialogue.history import Utterance
 from dialogue.reference.clarify import question as clarifying_question
 from dialogue.reference.english import (
     COLOURS,
     DETERMINERS,
+    FUNCTION_WORDS,
     MANY,
     ME,
     MODIFIER_START,
@@ -165,6 +168,9 @@ class Referents:
             found = self.named_in(said) if kinds == PERSON else None
             found = found or antecedent(self.lexicon, self.history, kinds, place=bare == {"there"},
                                         speaker=self.speaker)  # fmt: skip
+            if found is None and self._unknown_just_said():
+                # "my case is by the door, bring it over": "it" is what the KB has no name for
+                return Ref(problem=Outcome("Sorry, I did not understand that.", understood=False))
             if found is None:
                 return Ref(
                     problem=Outcome(
@@ -222,6 +228,18 @@ class Referents:
             return None
         ref = self.ground(words[at + 1 :], kinds, role, owner)
         return ref if ref.entity is not None else None
+
+    def _unknown_just_said(self) -> bool:
+        """Whether the words just said before this request (the same utterance's earlier clause)
+        name something with a noun the KB does not know."""
+        last = self.history[-1] if self.history else None
+        if last is None or last.role != "user":
+            return False
+        return any(
+            not self.lexicon.knows(w) and "NOUN" in getAllLemmas(w)
+            for w in tokens(last.text)
+            if w.isalpha() and w not in FUNCTION_WORDS | _ACCOUNTED
+        )
 
     def half_known(self, content: Sequence[str]) -> bool:
         """Whether some words of a phrase are names of the KB and others are words it does not know."""

@@ -10,7 +10,7 @@ from functools import lru_cache
 
 from lemminflect import getAllLemmas, getInflection
 
-from dialogue.reference.english import MODIFIER_START
+from dialogue.reference.english import MODIFIER_START, phrases
 from dialogue.rules.frames import known_verbs, verbs
 from dialogue.rules.speech import expanded, plain, starts, strip_politeness, unrepeated
 from dialogue.rules.words import (
@@ -19,6 +19,7 @@ from dialogue.rules.words import (
     LEAD_FILLERS,
     NOT_VOCATIVE,
     NP_START,
+    PLACES,
     POLITE_PREFIXES,
     REPAIRS,
 )
@@ -53,6 +54,9 @@ def normalise(text: str) -> list[str]:
 
 
 _MARKERS = frozenset(REPAIRS)
+_MARKER_STARTS = frozenset(m[0] for m in REPAIRS)
+#: Prepositions that start a place said again ("...on the trolley no on the desk").
+_PLACE_WORDS = frozenset(w for p in phrases(PLACES) for w in p[:1])
 
 
 @dataclass(frozen=True)
@@ -91,10 +95,12 @@ def repair(words: list[str]) -> tuple[list[str], list[str]]:
             after = words[i + len(marker) :]
             # "no wait" rather than its "wait" alone: the whole marker is taken back
             start = next((i - k for k in (2, 1) if tuple(words[i - k : i + len(marker)]) in _MARKERS), i)
+            if after[:1] and after[0] in _MARKER_STARTS:
+                continue  # "no wait ...": the longer marker, read at its own place
             request = strip_politeness(after)
             if request and asked_verb(request[0]) in verbs():
                 return words[:start], after
-            if request and request[0] in NP_START:
+            if request and (request[0] in NP_START or request[0] in _PLACE_WORDS):
                 fixed = _rephrased(words[:start], request)
                 if fixed is not None:
                     return words[:start], fixed
@@ -102,7 +108,11 @@ def repair(words: list[str]) -> tuple[list[str], list[str]]:
 
 
 def _rephrased(before: list[str], phrase: list[str]) -> list[str] | None:
-    """The request said before a repair with its last noun phrase said again (its head for "one")."""
+    """The request said before a repair with its last noun phrase said again (its head for "one"),
+    or its last place ("put it on the shelf no wait on the desk")."""
+    if phrase[0] in _PLACE_WORDS:
+        at = max((j for j in range(1, len(before)) if before[j] in _PLACE_WORDS), default=None)
+        return None if at is None else [*before[:at], *phrase]
     starts = [j for j in range(1, len(before)) if before[j] in NP_START and before[j - 1] not in NP_START]
     if not starts:
         return None

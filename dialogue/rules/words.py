@@ -46,7 +46,7 @@ INTERJECTIONS = word_set(
 #: A self-repair: what follows replaces the request said before it ("bring me the uh no wait put...").
 REPAIRS = phrases(
     "no wait|wait no|sorry i mean|no sorry|i mean|or rather|no no|scratch that|no actually|actually|"
-    "oh wait|wait"
+    "oh wait|wait|sorry"
 )
 POLITE_PREFIXES = phrases(
     "would you mind|do you mind|i would like you to|i want you to|i need you to|i wish you would|"

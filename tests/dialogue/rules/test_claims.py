@@ -226,3 +226,24 @@ def test_what_is_not_there_is_said_back_with_its_prepositions() -> None:
     out = say(kb, "is the flask in the lifts")
     assert out.reply == "No, I don't see any flask in the lifts."
     assert say(_terminal(), "can you see the flask anywhere").reply.startswith("Yes, I see")
+
+
+def test_which_thing_is_mine_says_whose_each_is() -> None:
+    kb = _terminal()
+    kb.update(["ball_r belongsTo person_kim", "ball_g belongsTo person_noor"])
+    reply = say(kb, "which ball is mine").reply
+    assert "red ball" in reply and "is yours" in reply and "Noor's" in reply, reply
+
+
+def test_a_greeting_followed_by_what_is_not_understood_is_not_claimed_as_a_greeting() -> None:
+    out = say(_terminal(), "hey robot the striped bag is mine can you bring it over")
+    assert not out.understood and out.intent is None, out.reply
+    assert say(_terminal(), "good morning noor").intent == "__intent_greet__"
+
+
+def test_a_place_said_again_replaces_the_last_place() -> None:
+    kb = _terminal()
+    kb.update(["shelf_1 rdf:type Artifact", 'shelf_1 rdfs:label "shelf"', "myself sees shelf_1",
+               "desk_1 rdf:type Artifact", 'desk_1 rdfs:label "desk"', "myself sees desk_1"])
+    out = say(kb, "put the flask on the shelf no wait on the desk")
+    assert (out.intent, out.roles) == ("__intent_place_object__", {"object": "flask_1", "recipient": "desk_1"})

@@ -235,6 +235,8 @@ def test_a_thing_needing_something_is_no_request(text: str) -> None:
                                                              "recipient": ("the", "counter")}),
         # pointing after "me" says where the thing is, not where it goes
         ("fetch me that ladder over there", I.BRING_OBJECT, {"recipient": ("me",)}),
+        ("reach the landing", I.MOVE_TO, {"goal": ("the", "landing")}),
+        ("come back", I.MOVE_TO, {"goal": ("me",)}),
     ],
 )  # fmt: skip
 def test_verbs_and_phrasings_of_everyday_speech(text: str, intent: str, slots: dict[str, tuple[str, ...]]) -> None:
