@@ -19,7 +19,9 @@ from dialogue.rules.words import GREETINGS, NO_INTENT_VERBS
 _CONJUNCTIONS = word_set("and then , ; afterwards")
 #: Verbs that start a new command even with no conjunction before them, when followed by one of
 #: `_OBJECT_START` ("go to the bathroom take the rag"): never nouns in a command's phrases.
-_BARE_VERBS = word_set("take bring go put place grab fetch get find search give open move")
+_BARE_VERBS = word_set(
+    "take bring go put place grab fetch get find search give open move tell ask remind greet carry guide"
+)
 _SERIAL = word_set("go come")
 _OBJECT_START = word_set(
     "the a an my your his her this that these those it them me us him to into some all both"

@@ -152,7 +152,7 @@ FRAMES: tuple[Frame, ...] = (
     # "go and wait in the courtyard", "stay by the door": be there ("wait for me" is no place)
     Frame(_STAY, I.MOVE_TO, slots={"goal": _AT}, particles="there", requires=("goal",)),
     Frame(_GO, I.MOVE_TO, slots={"goal": GOALS}, particles=MOTION_PARTICLES, here="goal", requires=("goal",)),
-    Frame(_MOVE, I.PLACE_OBJECT, direct="object", slots={"recipient": GOALS},
+    Frame(_MOVE, I.PLACE_OBJECT, direct="object", slots={"recipient": GOALS}, particles="back away down over",
           requires=("object", "recipient")),
     # Things.
     # "chuck me the remote", "throw the ball to me"; "chuck the rag in the sink" is the next row's

@@ -156,7 +156,7 @@ class Referents:
         bare_words = [w for w in words if w not in DETERMINERS]
         if bare_words[:1] in (["something"], ["anything"]) and tuple(bare_words[1:]) in PURPOSES:
             words = (PURPOSES[tuple(bare_words[1:])],)  # "something to eat": food
-        words = _apposed(words)
+        words = _apposed(_not_the_other(words))
         content = content_words(words)
         if "person" in kinds and content and set(content) <= ME | {"here"}:
             return Ref(speaker=True)
@@ -190,10 +190,15 @@ class Referents:
         slipped = heard_as(self.lexicon, words, kinds, owner)
         if slipped is not None:
             return Ref(entity=slipped, guessed=True)
+        loose = tuple(w for w in words if w not in RELATIONAL)
+        if res.ambiguous and loose != tuple(words) and content_words(loose):
+            # "the box of plasters back": a position word kept the name from matching
+            one = resolve(self.lexicon, loose, kinds, owner=owner).one
+            if one is not None:
+                return Ref(entity=one)
         if res.ambiguous:
             q = clarifying_question(self.snapshot, res.matches)
             return Ref(problem=Outcome(q, clarify=True, open_role=role, open_phrase=words))
-        loose = tuple(w for w in words if w not in RELATIONAL)
         if loose != tuple(words) and content_words(loose):
             # "the cup on the left": spatial relations are not in the KB; if the rest of the phrase
             # names one thing, that is it, else ask which one.
@@ -267,3 +272,9 @@ def _apposed(words: Words) -> Words:
                 return described(words[:j], words[j:])
             return words
     return words
+
+
+def _not_the_other(words: Words) -> Words:
+    """ "the box of gloves not the plasters": the thing meant, without the one it is not."""
+    at = next((i for i in range(1, len(words)) if words[i] == "not" and words[i + 1 : i + 2]), None)
+    return words if at is None or not content_words(words[:at]) else words[:at]

@@ -247,3 +247,18 @@ def test_a_place_said_again_replaces_the_last_place() -> None:
                "desk_1 rdf:type Artifact", 'desk_1 rdfs:label "desk"', "myself sees desk_1"])
     out = say(kb, "put the flask on the shelf no wait on the desk")
     assert (out.intent, out.roles) == ("__intent_place_object__", {"object": "flask_1", "recipient": "desk_1"})
+
+
+def test_the_thing_meant_not_the_one_it_is_not() -> None:
+    out = say(_terminal(), "hand me the red ball not the green one")
+    assert out.roles == {"object": "ball_r", "recipient": SPEAKER}, out.reply
+
+
+def test_a_position_word_does_not_make_a_named_thing_ambiguous() -> None:
+    kb = scene(
+        "b1 rdf:type Artifact", 'b1 rdfs:label "box of nails"', "myself sees b1",
+        "b2 rdf:type Artifact", 'b2 rdfs:label "box of screws"', "myself sees b2",
+        "s1 rdf:type Artifact", 's1 rdfs:label "shelf"', "myself sees s1",
+    )  # fmt: skip
+    out = say(kb, "pop the box of nails back on the shelf")
+    assert (out.intent, out.roles) == ("__intent_place_object__", {"object": "b1", "recipient": "s1"}), out.reply

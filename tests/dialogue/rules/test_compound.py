@@ -22,6 +22,7 @@ from tests.dialogue.rules.test_interpret import say
         # "go" before a verb starts a request after a remark; a verb after a modal is the remark's own
         ("omar is at the door go say hi to him", ["omar is at the door", "go say hi to him"]),
         ("mia can't find her pen, can you take it to her", ["mia can't find her pen", "can you take it to her"]),
+        ("omar is in the shed tell him lunch is ready", ["omar is in the shed", "tell him lunch is ready"]),
     ],
 )
 def test_parts(text: str, parts: list[str]) -> None:
