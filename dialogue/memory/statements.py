@@ -34,6 +34,7 @@ from dialogue.reference.resolution import (
     is_pronoun,
     resolve,
 )  # fmt: skip
+from dialogue.rules.clauses import clauses as run_on_clauses
 from dialogue.rules.speech import original_text
 from dialogue.rules.utterance import asked_verb, normalise
 from dialogue.rules.words import GREETINGS, SOCIAL
@@ -129,8 +130,10 @@ class Statements:
         if text.rstrip().endswith("?"):
             return None  # a question (dialogue.memory.asking reads those about what was told)
         told = Told()
-        clauses = [c for c in _CLAUSES.split(text) if c.strip()]
+        # run-on clauses too: "my keys are in the drawer can you get them" is no statement only
+        clauses = [part for c in _CLAUSES.split(text) if c.strip() for part in run_on_clauses(c)]
         correcting = False
+        refused: _Refused | None = None  # said once every clause is known to be a statement
         try:
             for clause in clauses:
                 words = self._lead(normalise(clause))
@@ -144,11 +147,14 @@ class Statements:
                 if words in _NO:  # "no, it's Rob": what follows corrects the robot
                     correcting = True
                     continue
-                told.facts += self._statement(("no", *words) if correcting else words, clause)
+                try:
+                    told.facts += self._statement(("no", *words) if correcting else words, clause)
+                except _Refused as refusal:
+                    refused = refused or refusal
         except _Unclaimed:
             return None
-        except _Refused as refusal:
-            return Told(reply=refusal.reply, clarify=refusal.clarify)
+        if refused is not None:
+            return Told(reply=refused.reply, clarify=refused.clarify)
         return told if told.facts else None
 
     @staticmethod

@@ -227,7 +227,8 @@ def antecedent(
 ) -> Entity | None:
     """The entity a pronoun refers to: the latest turn's first non-locative unambiguous mention.
 
-    For "there" (`place=True`) mentions after a locative preposition ("on the shelf") come first.
+    For "there" (`place=True`) mentions after a locative preposition ("on the shelf") come first;
+    for a thing's pronoun they are never it.
     A mention of several things is narrowed by whose it is said to be ("your ticket" in the robot's
     words is the ticket of `speaker`, the person now speaking; "my ticket" in a person's is theirs;
     "Chloe's book") and by where the same turn puts it ("the ticket is on the low table").
@@ -246,9 +247,11 @@ def antecedent(
                 owner = _owner_before(lexicon, words, mention.start, owners, before)
                 typed = _narrowed(typed, owner, places)
             before = mention
-            if len(typed) != 1:
+            locative = _after_locative(words, mention.start)
+            # "my keys are on the counter, get them": "them" is not where the keys are
+            if len(typed) != 1 or (locative and not place and typed[0].kind != "person"):
                 continue
-            found.append((_after_locative(words, mention.start), mention.start, typed[0]))
+            found.append((locative, mention.start, typed[0]))
         if found:
             found.sort(key=lambda f: (f[0] != place, f[1]))
             return found[0][2]

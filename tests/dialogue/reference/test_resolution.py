@@ -122,3 +122,12 @@ def test_an_antecedent_said_with_whose_it_is_is_that_persons() -> None:
     assert antecedent(lex, [Utterance("p_1", "i lost my key")], THING).id == "k_1"  # type: ignore[union-attr]
     assert antecedent(lex, ["sams key is missing"], THING).id == "k_2"  # type: ignore[union-attr]
     assert antecedent(lex, ["the key is missing"], THING) is None  # two keys, nothing says whose
+
+
+def test_a_things_pronoun_is_never_where_the_turn_put_something() -> None:
+    kb = scene_kb(None, "t_1 rdf:type Artifact", 't_1 rdfs:label "counter"', "myself sees t_1",
+                  "p_1 rdf:type Human", 'p_1 rdfs:label "Noor"', "myself sees p_1")  # fmt: skip
+    lex = lexicon_of(kb)
+    assert antecedent(lex, ["my spoons are on the counter"], THING) is None
+    assert antecedent(lex, ["my spoons are on the counter"], THING, place=True).id == "t_1"  # type: ignore[union-attr]
+    assert antecedent(lex, ["give the spoon to noor"], PERSON).id == "p_1"  # type: ignore[union-attr]
