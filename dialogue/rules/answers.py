@@ -182,7 +182,10 @@ def which_do_you_see(lexicon: Lexicon, words: Sequence[str]) -> str:
     if not seen:
         return f"I don't see any {said_phrase(words) or 'such thing'}."
     snapshot = lexicon.snapshot
-    return f"I see {listing([f'{indefinite(e)} {location(snapshot, e)}'.strip() for e in seen])}."
+    coloured = [f"the {e.colour} {n[4:]}" if e.colour and n.startswith("the ") and e.colour not in n else n
+                for e, n in zip(seen, told_apart(seen), strict=True)]  # fmt: skip
+    placed = [f"{n} {location(snapshot, e)}".strip() for e, n in zip(seen, coloured, strict=True)]
+    return f"I see {listing(placed)}."
 
 
 def how_many(lexicon: Lexicon, words: Sequence[str]) -> str:
@@ -191,7 +194,15 @@ def how_many(lexicon: Lexicon, words: Sequence[str]) -> str:
     seen = [e for e in found.matches if e.seen]
     if not seen:
         return f"I don't see any {phrase}."
-    return f"I see {_number(len(seen))}: {listing([indefinite(e) for e in seen])}."
+    return f"I see {_number(len(seen))}: {listing(told_apart(seen))}."
+
+
+def told_apart(entities: Sequence[Entity]) -> list[str]:
+    """Each entity as a listing names it, by its colour when it shares its name ("the red marker")."""
+    names = [indefinite(e) for e in entities]
+    shared = {n for n in names if names.count(n) > 1}
+    return [f"the {e.colour} {n[4:]}" if n in shared and e.colour and n.startswith("the ") else n
+            for e, n in zip(entities, names, strict=True)]  # fmt: skip
 
 
 def colour_of(lexicon: Lexicon, words: Sequence[str], speaker: str) -> str:

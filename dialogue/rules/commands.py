@@ -117,6 +117,8 @@ def _fit(row: Row, said: Said) -> Parse | None:
     frame, rest = row.frame, said.rest
     if frame.special is not None:
         return frame.special(said)
+    if frame.intent is None and not frame.serial:  # a verb no intent says ("hand out the sheets")
+        return Parse("unknown", words=said.words)
     if frame.serial:  # "go get the cup", "come say hello to Ana"
         return command(said.original, list(rest)) if rest and verb_lemma(rest[0]) in verb_index() else None
     if frame.whole and rest:

@@ -154,6 +154,8 @@ FRAMES: tuple[Frame, ...] = (
     Frame(_GO, I.MOVE_TO, slots={"goal": GOALS}, particles=MOTION_PARTICLES, here="goal", requires=("goal",)),
     Frame(_MOVE, I.PLACE_OBJECT, direct="object", slots={"recipient": GOALS}, particles="back away down over",
           requires=("object", "recipient")),
+    # Handing things out to everyone: no intent says it ("hand out the worksheets" is no bringing).
+    Frame("hand out|give out|pass out|pass round|pass around|hand round|hand around|share out"),
     # Things.
     # "chuck me the remote", "throw the ball to me"; "chuck the rag in the sink" is the next row's
     Frame(_THROW, I.BRING_OBJECT, direct="object", slots={"recipient": "to"}, particles=CARRY_PARTICLES,

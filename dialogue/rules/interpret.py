@@ -227,7 +227,10 @@ class Interpreter:
             # "take Maria to the kitchen", "walk Mr Ito back to the car park": guiding, not carrying
             who = tuple(w for w in slots.get("object", ()) if w not in RELATIONAL)
             # (never to a person: "take them to her" carries them to her)
-            if not self.refs.a_person(slots["recipient"]) and self.refs.person_as_object(who) is not None:
+            if self.refs.person_as_object(who) is not None and who:
+                if self.refs.a_person(slots["recipient"]) or slots["recipient"] in {("here",), ("there",)}:
+                    # "bring Sam here": a person brought to a person is no intent the rules have
+                    return Outcome("Sorry, I did not understand that.", understood=False)
                 intent, slots = I.GUIDE, {"recipient": who, "goal": slots["recipient"]}
             elif intent == I.PLACE_OBJECT and self.refs.named_person(slots["recipient"]):
                 intent = I.BRING_OBJECT  # "return the stapler to Carol": carried to a person

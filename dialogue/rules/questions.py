@@ -6,7 +6,7 @@ answer is computed from the KB snapshot in dialogue.rules.answers.
 
 from __future__ import annotations
 
-from dialogue.reference.english import Words, word_set
+from dialogue.reference.english import COLOURS, Words, word_set
 from dialogue.rules.parsed import Parse
 from dialogue.rules.speech import split_at, starts
 from dialogue.rules.words import PURPOSES, WH
@@ -108,6 +108,8 @@ def _what(w: Words) -> Parse:
     rest = w[1:]
     if len(rest) > 2 and rest[-2] in _BE and (rest[-1] in _OWNERS or rest[-1].endswith("'s")):
         return _q("whose", w, thing=rest[:-2])  # "which suitcase is mine": whose each one is
+    if w[0] == "which" and 1 < len(rest) < 5 and rest[-2] in _BE and rest[-1] in COLOURS:
+        return _q("which_see", w, thing=(rest[-1], *rest[:-2]))  # "which marker is red"
     if "front" in rest or "around" in rest:
         return _q("what_see", w)
     if rest[:1] and rest[0] in _COLOUR_WORDS:

@@ -19,6 +19,7 @@ from dialogue.reference.english import (
     MANY,
     ME,
     MODIFIER_START,
+    PARTS,
     PERSONAL,
     POSITIONS,
     POSSESSIVES,
@@ -119,10 +120,10 @@ class Referents:
         if content_words(words) and set(content_words(words)) <= ME:
             return self.snapshot.get(self.speaker) or Entity(self.speaker, "you", (), (), (), "person", True)
         if content_words(words) and set(content_words(words)) <= {"him", "her", "them"}:
-            # "them" is people only when the people were spoken of last ("take them to her": the specs)
-            kinds = PERSON if set(content_words(words)) <= PERSONAL else ANYWHERE
-            found = antecedent(self.lexicon, self.history, kinds, speaker=self.speaker)
-            return found if found is not None and found.kind == "person" else None
+            # "them" is people only when no thing was spoken of ("take them to her": the specs)
+            if not set(content_words(words)) <= PERSONAL and antecedent(self.lexicon, self.history, THING):
+                return None
+            return antecedent(self.lexicon, self.history, PERSON, speaker=self.speaker)
         if not content_words(words) or is_pronoun(words):
             return None
         return resolve(self.lexicon, words, PERSON).one
@@ -217,7 +218,8 @@ class Referents:
             ref = self.ground(alternative, kinds, role, owner)
             if ref.entity is not None or ref.speaker:
                 return ref
-        if self.half_known(content):
+        if self.half_known(content) or set(content) <= RELATIONAL | PARTS:
+            # "to the front", "on the left": whereabouts of nothing named, which a model may know.
             # Names the KB knows among words it does not ("mr ito back", "the trousers out"): the
             # phrase was not understood, which is not the same as "there is no such thing".
             return Ref(problem=Outcome("Sorry, I did not understand that.", understood=False))

@@ -48,6 +48,8 @@ _SHORT = 4
 #: Word lists of the grammar's modules whose words are content words, not the grammar's own.
 _NOT_GRAMMAR = frozenset({"HOMOPHONES", "NEEDS", "PREPOSITION_SLIPS"})
 _LONG = 8
+#: Words after which "were" at the start of an utterance can only be "where".
+_ASKED = frozenset({"is", "are", "did", "do", "does", "can", "could", "should", "has", "have", "was"})
 
 
 @dataclass(frozen=True)
@@ -75,6 +77,10 @@ def corrected(text: str, lexicon: Lexicon) -> Spelled:
     words = spans(text)
     for n, (word, start, end) in enumerate(words):
         if any(a <= start < b for a, b in quoted) or _named(text, start):
+            continue
+        if n == 0 and word == "were" and words[1:2] and words[1][0] in _ASKED:
+            # "were is the globe": "where" as a recogniser writes it
+            fixes.append((start, end, Correction(word, "where", False)))
             continue
         if 0 < n < len(words) - 1 and word in PREPOSITION_SLIPS:
             # "go too the garage", "juice form the fridge": a preposition heard as another word

@@ -262,3 +262,33 @@ def test_a_position_word_does_not_make_a_named_thing_ambiguous() -> None:
     )  # fmt: skip
     out = say(kb, "pop the box of nails back on the shelf")
     assert (out.intent, out.roles) == ("__intent_place_object__", {"object": "b1", "recipient": "s1"}), out.reply
+
+
+def _classroom() -> KB:
+    return scene(
+        "m_b rdf:type Artifact", 'm_b rdfs:label "marker"', "m_b hasColor blue", "myself sees m_b",
+        "m_r rdf:type Artifact", 'm_r rdfs:label "marker"', "m_r hasColor red", "myself sees m_r",
+        "sheets_1 rdf:type Artifact", 'sheets_1 rdfs:label "worksheets"', "myself sees sheets_1",
+        "person_sam rdf:type Human", 'person_sam rdfs:label "Sam"', "myself sees person_sam",
+    )  # fmt: skip
+
+
+def test_handing_out_is_no_bringing_to_the_speaker() -> None:
+    out = say(_classroom(), "can you hand out the worksheets")
+    assert not out.understood and out.intent is None, out.reply
+    assert say(_classroom(), "hand me the worksheets").roles == {"object": "sheets_1", "recipient": SPEAKER}
+
+
+def test_a_person_brought_to_a_person_is_not_claimed() -> None:
+    out = say(_classroom(), "bring sam here")
+    assert not out.understood and out.intent is None, out.reply
+
+
+def test_a_place_named_only_by_a_position_word_is_left_to_a_model() -> None:
+    out = say(_classroom(), "bring the worksheets to the front")
+    assert not out.understood and out.intent is None, out.reply
+
+
+def test_things_sharing_a_name_are_told_apart_by_colour() -> None:
+    assert say(_classroom(), "how many markers are there").reply == "I see two: the blue marker and the red marker."
+    assert "the red marker" in say(_classroom(), "which marker is red").reply
