@@ -79,7 +79,7 @@ def _split(words: Sequence[str]) -> _Phrase:
 
 def _clause(words: Sequence[str]) -> bool:
     """Whether the words before the phrase's first modifier run on into another phrase or a clause
-    ("my glasses I can't read the timetable", "platform 4 my train's in ten minutes"): no head."""
+    ("my torch I can't see the clock", "gate 9 my bus is late"): no head."""
     begun = False
     for word in words:
         if begun and word in MODIFIER_START:

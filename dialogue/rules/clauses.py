@@ -1,14 +1,14 @@
 """An utterance cut into its clauses, and the clauses that only describe what a request names.
 
 Written speech has punctuation; a speech recogniser's has none, so a request and the remark that
-follows it run on: "bring me my glasses i can't read the timetable", "walk Ines to the studio the
-class starts soon". A clause starts at a punctuation mark or dash, at a polite request said
+follows it run on: "hand me the torch i can't see the clock", "drive Omar to the gate the
+bus leaves soon". A clause starts at a punctuation mark or dash, at a polite request said
 mid-utterance ("it's cold can I have a blanket"), and where a subject and its verb start again: a
 subject pronoun before a verb ("she's doing sprints"), or a name or a noun phrase before a verb that
-agrees with it ("Gareth wants something", "the class starts soon").
+agrees with it ("Omar wants a word", "the bus leaves soon").
 
-A clause after a request may describe the thing it asks for: "bring me my phone, it's the pink one
-on the charger", "fetch my mobile, I think it's in the bedroom", "the cup I left on the table". Its
+A clause after a request may describe the thing it asks for: "fetch my bag, it's the blue one
+by the door", "get my keys, I think they're in the hall", "the cup I left on the table". Its
 words qualify the request's object (`described`).
 
 Words only: which clause is a request, and what its phrases name, is decided by the interpreter.
@@ -55,7 +55,7 @@ _TAKES_CLAUSE = word_set(
 _TELLING = word_set("tell told ask remind warn inform show promise let")
 #: Conjunctions that start a clause of reason after a request ("... because she has to take them").
 _REASONS = word_set("because cos cause since as so")
-#: Words a described thing is said with: "it's the pink one", "I think they're in the drawer".
+#: Words a described thing is said with: "it's the tall one", "I think they're in the drawer".
 _DESCRIBING = (("it", "is"), ("they", "are"), ("it", "was"), ("they", "were"), ("it", "should", "be"))
 _THINKING = (("i", "think"), ("i", "believe"), ("i", "guess"), ("probably",), ("maybe",), ("i", "reckon"))
 #: "the cup I left on the table": a clause of the speaker's that says where the thing was put.
@@ -102,7 +102,7 @@ def _starts_clause(words: list[list[str]], i: int) -> bool:
         return False
     if first in NP_START or first == "her":  # "the bus leaves soon": a phrase of one or two words, its verb
         return any(_agrees(flat, k) for k in (2, 3) if not set(flat[1:k]) & (FUNCTION_WORDS | DETERMINERS))
-    # "Gareth wants something": a word that is a name or a noun, then its verb
+    # "Omar wants a word": a word that is a name or a noun, then its verb
     name = first.isalpha() and first not in _AUXILIARIES and not set(getAllLemmas(first)) - {"NOUN", "PROPN"}
     return name and _agrees(flat, 1)
 
@@ -142,8 +142,8 @@ def _finite(word: str, third_person: bool) -> bool:
 
 
 def description(text: str) -> Words | None:
-    """What a clause that describes the thing just asked for says of it ("it's the pink one on the
-    charger": the pink one on the charger; "I think it's in the bedroom": in the bedroom; "I left it
+    """What a clause that describes the thing just asked for says of it ("it's the blue one by the
+    door": the blue one by the door; "I think they're in the hall": in the hall; "I left it
     on the bench": on the bench), or None when the clause is not one."""
     words = strip_politeness(expanded(text))
     for lead in _THINKING:
@@ -161,8 +161,8 @@ def description(text: str) -> Words | None:
 
 
 def described(thing: Words, said: Words) -> Words:
-    """The request's phrase for a thing with what a later clause said of it: "my phone" and "the
-    pink one on the charger" make "my pink phone on the charger"."""
+    """The request's phrase for a thing with what a later clause said of it: "my bag" and "the
+    blue one by the door" make "my blue bag by the door"."""
     if said[0] in MODIFIER_START:
         return (*thing, *said)
     lead = tuple(w for w in thing if w in NP_START)

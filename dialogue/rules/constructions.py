@@ -106,7 +106,7 @@ def _pronoun(who: Words) -> Words:
 
 
 def belonging(said: Said) -> Parse | None:
-    """ "the orange juice goes back in the fridge", "this belongs on the shelf": put it there."""
+    """ "the butter goes back in the fridge", "this belongs on the shelf": put it there."""
     w = said.words
     for i in range(1, min(len(w) - 2, 6)):
         lead = next((p for p in GOES if w[i : i + len(p)] == p), None)

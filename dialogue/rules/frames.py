@@ -133,10 +133,10 @@ FRAMES: tuple[Frame, ...] = (
     Frame("help", special=C.helping),
     Frame("give", special=C.a_hand),
     Frame("show", special=C.showing),
-    # "show Hana (the) way to the dining room": the way is no one's name
+    # "show Noor (the) way to the exit": the way is no one's name
     Frame(_GUIDE, I.GUIDE, direct="recipient", slots={"goal": "to|towards|into"}, here="goal",
           particles="over back through way", defaults={"recipient": ("me",)}),
-    # "take me (there)": the place just spoken of ("I need the toilets, can you take me")
+    # "take me (there)": the place just spoken of ("I need the lifts, can you take me")
     Frame("take|walk", I.GUIDE, direct="recipient", slots={"goal": "to|towards|into"}, here="goal",
           particles="over back through", only=ME, defaults={"goal": ("there",)}),
     Frame("bring", I.GUIDE, direct="recipient", slots={"goal": "to|towards|into"}, here="goal",

@@ -62,7 +62,7 @@ class Interpreter:
         clean = cleaned(spelled.text)
         reader = self
         if clean.taken_back and parse(clean.taken_back, self.robot_name).act != "unknown":
-            # "bring Aisha the uh no wait bring her the muffin": what was taken back is context
+            # "hand Ravi the uh no wait hand him the stapler": what was taken back is context
             context = (*self.history, Utterance(self.speaker, clean.taken_back))
             reader = Interpreter(self.lexicon, self.speaker, context, self.robot_name)
         outcome = reader._read(clean.text)
@@ -128,7 +128,7 @@ class Interpreter:
             reader = Interpreter(self.lexicon, self.speaker, (*self.history, *context), self.robot_name)
             p = parse(said[i], self.robot_name)
             if p.act in {"command", "question"}:
-                # "bring me my phone its the pink one": what the next clause says of the thing asked for
+                # "fetch my bag its the blue one": what the next clause says of the thing asked for
                 more = description(said[i + 1]) if i + 1 < len(said) and p.slots.get("object") else None
                 outcome = reader.act(p, {"object": described(p.slots["object"], more)} if more else None)
                 if outcome.intent is not None:
@@ -235,7 +235,7 @@ class Interpreter:
             elif intent == I.PLACE_OBJECT and self.refs.named_person(slots["recipient"]):
                 intent = I.BRING_OBJECT  # "return the stapler to Carol": carried to a person
         if intent == I.BRING_OBJECT and self.refs.a_place(slots.get("object", ())):
-            # "I need the toilets": a place is where to be taken, not a thing to carry
+            # "I need the lifts": a place is where to be taken, not a thing to carry
             intent, slots = I.GUIDE, {"recipient": slots.get("recipient", ("me",)), "goal": slots["object"]}
         if intent == I.GUIDE and "goal" in p.implicit and "goal" not in overrides:
             there = antecedent(self.lexicon, self.history, PLACE, place=True, speaker=self.speaker)

@@ -90,7 +90,7 @@ class Referents:
         return [tuple(tokens(e.id)) for e in resolve(self.lexicon, rest, THING).matches]
 
     def named_in(self, phrases: Sequence[Words]) -> Entity | None:
-        """The one person the phrases name, as a name or a possessive ("Hana's phone"), if one."""
+        """The one person the phrases name, as a name or a possessive ("Ravi's stapler"), if one."""
         people: set[str] = set()
         for words in phrases:
             bare = [w[:-2] if w.endswith("'s") and len(w) > 2 else w for w in words]
@@ -100,7 +100,7 @@ class Referents:
         return self.snapshot.get(next(iter(people))) if len(people) == 1 else None
 
     def a_place(self, words: Words) -> bool:
-        """Whether the phrase names one place (a zone of the KB) and no thing ("the toilets")."""
+        """Whether the phrase names one place (a zone of the KB) and no thing ("the lifts")."""
         if not content_words(words) or is_pronoun(words) or resolve(self.lexicon, words, THING).matches:
             return False
         return resolve(self.lexicon, words, frozenset({"zone"})).one is not None
@@ -153,7 +153,7 @@ class Referents:
         said: Sequence[Words] = (),
     ) -> Ref:
         """The entity a role's phrase names; `said` are the request's other phrases, where a person
-        pronoun finds the one person they name ("take Hana's phone to her")."""
+        pronoun finds the one person they name ("take Ravi's scarf to him")."""
         bare_words = [w for w in words if w not in DETERMINERS]
         if bare_words[:1] in (["something"], ["anything"]) and tuple(bare_words[1:]) in PURPOSES:
             words = (PURPOSES[tuple(bare_words[1:])],)  # "something to eat": food

@@ -1,9 +1,9 @@
 """Names misheard or mistyped as other words: what a phrase that names nothing may have meant.
 
 A speech recogniser writes a word it heard for the word that was said: a homophone ("bay for" for
-"bay four"), a word that sounds alike ("the blew bottle", "the yoga matt", "the bad room" for the
-bedroom: the same consonants in the same order, by the metaphone key of jellyfish), two words for
-one ("the rug sack", "my sand which"); a typist hits a neighbouring key ("bay mine" for "bay nine").
+"bay four"), a word that sounds alike ("the blew kettle", "the bath matt", "the kit chin" for the
+kitchen: the same consonants in the same order, by the metaphone key of jellyfish), two words for
+one ("the pen sill", "the kit chin"); a typist hits a neighbouring key ("bay mine" for "bay nine").
 A word the KB does not know is replaced by such a slip of a word of the KB's names (or two words by
 one) only when that makes the phrase name exactly one thing, and only when the slip is part of a name
 said with other words ("bay nine", "blue water bottle") or two said words make it (a single word heard
@@ -68,7 +68,7 @@ def slipped(lexicon: Lexicon, words: Words, kinds: Collection[Kind], owner: str 
                     found.add(one.id)
         pair = words[i : i + 2]
         if len(pair) == 2 and pair[1] not in DETERMINERS and not all(lexicon.knows(w) for w in pair):
-            # "the rug sack", "the bad room", "my sand which": two words heard for one
+            # "the pen sill", "the kit chin": two words heard for one
             for other in slips("".join(pair), lexicon):
                 one = resolve(lexicon, (*words[:i], other, *words[i + 2 :]), kinds, owner=owner).one
                 if one is not None:

@@ -47,7 +47,7 @@ def expanded(text: str) -> list[str]:
 @lru_cache(maxsize=4096)
 def _is_it_is(after: tuple[str, ...]) -> bool:
     """Whether "its" before these words is "it's" written without its apostrophe: before a function
-    word ("its the pink one", "its on the bench"), a participle ("its started raining") or a last
+    word ("its the tall one", "its on the shelf"), a participle ("its stopped raining") or a last
     adjective ("its empty"); a possessive has a noun after it."""
     if not after:
         return True

@@ -83,7 +83,7 @@ def corrected(text: str, lexicon: Lexicon) -> Spelled:
             fixes.append((start, end, Correction(word, "where", False)))
             continue
         if 0 < n < len(words) - 1 and word in PREPOSITION_SLIPS:
-            # "go too the garage", "juice form the fridge": a preposition heard as another word
+            # "walk too the gate", "milk form the jug": a preposition heard as another word
             if words[n + 1][0] in NP_START and words[n - 1][0] not in NP_START:
                 fixes.append((start, end, Correction(word, PREPOSITION_SLIPS[word], False)))
             continue

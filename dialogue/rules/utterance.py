@@ -64,7 +64,7 @@ class Cleaned:
     """An utterance with its stutters and self-repair resolved."""
 
     text: str
-    #: What a self-repair took back ("bring Aisha the uh no wait..."): no request any more, but what
+    #: What a self-repair took back ("hand Ravi the uh no wait..."): no request any more, but what
     #: its pronouns may refer to ("...bring her the muffin").
     taken_back: str = ""
 

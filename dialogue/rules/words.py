@@ -138,7 +138,7 @@ HOMOPHONES = phrases(
 )
 
 #: Words of English a recogniser or a typist writes for a preposition, read as it before a noun
-#: phrase of their own ("go too the garage", "the juice form the fridge"): no noun phrase starts
+#: phrase of their own ("walk too the gate", "the milk form the jug"): no noun phrase starts
 #: right after them otherwise.
 PREPOSITION_SLIPS = {"too": "to", "two": "to", "2": "to", "form": "from", "fro": "from", "thru": "through"}
 
@@ -167,7 +167,7 @@ INTENSIFIERS = word_set("so very really absolutely quite a bit little totally ge
 #: What follows "do" in a request ("do the dishes", "do some exercise"); anything else after "do"
 #: is a yes/no question ("do you like music", "do robots ever get tired").
 DONE = word_set("the a an some my your our this that these those exercise exercises yoga stretches")
-#: "the juice goes back in the fridge", "these should go on the top shelf": where a thing is to be put.
+#: "the butter goes back in the fridge", "these should go on the top shelf": where a thing is to be put.
 GOES = phrases(
     "goes|go|belongs|belong|lives|live|should go|can go|needs to go|need to go|has to go|have to go|must go|"
     "should be put|needs to be put|has to be put|wants to go"
