@@ -64,7 +64,7 @@ class Asking:
         if words in {("i",), ("me",)}:
             return self.speaker
         if words in {("he",), ("she",), ("they",)}:
-            found = antecedent(self.lexicon, [u.text for u in self.history], PERSON)
+            found = antecedent(self.lexicon, self.history, PERSON, speaker=self.speaker)
             return found.id if found is not None else None
         if not content_words(words):
             return None

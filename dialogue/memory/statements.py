@@ -34,8 +34,9 @@ from dialogue.reference.resolution import (
     is_pronoun,
     resolve,
 )  # fmt: skip
+from dialogue.rules.clauses import clauses as run_on_clauses
 from dialogue.rules.speech import original_text
-from dialogue.rules.utterance import normalise
+from dialogue.rules.utterance import asked_verb, normalise
 from dialogue.rules.words import GREETINGS, SOCIAL
 from dialogue.schema import FactClaim
 
@@ -129,8 +130,10 @@ class Statements:
         if text.rstrip().endswith("?"):
             return None  # a question (dialogue.memory.asking reads those about what was told)
         told = Told()
-        clauses = [c for c in _CLAUSES.split(text) if c.strip()]
+        # run-on clauses too: "my keys are in the drawer can you get them" is no statement only
+        clauses = [part for c in _CLAUSES.split(text) if c.strip() for part in run_on_clauses(c)]
         correcting = False
+        refused: _Refused | None = None  # said once every clause is known to be a statement
         try:
             for clause in clauses:
                 words = self._lead(normalise(clause))
@@ -144,11 +147,14 @@ class Statements:
                 if words in _NO:  # "no, it's Rob": what follows corrects the robot
                     correcting = True
                     continue
-                told.facts += self._statement(("no", *words) if correcting else words, clause)
+                try:
+                    told.facts += self._statement(("no", *words) if correcting else words, clause)
+                except _Refused as refusal:
+                    refused = refused or refusal
         except _Unclaimed:
             return None
-        except _Refused as refusal:
-            return Told(reply=refusal.reply, clarify=refusal.clarify)
+        if refused is not None:
+            return Told(reply=refused.reply, clarify=refused.clarify)
         return told if told.facts else None
 
     @staticmethod
@@ -263,7 +269,7 @@ class Statements:
         if words == ("i",):
             return self.speaker
         if words in {("he",), ("she",)}:
-            found = antecedent(self.lexicon, [u.text for u in self.history], PERSON)
+            found = antecedent(self.lexicon, self.history, PERSON, speaker=self.speaker)
             return found.id if found is not None else None
         if not content_words(words) or not all(w.isalpha() for w in words):
             return None
@@ -320,6 +326,8 @@ class Statements:
             return self._placed(w[verb + 1 :]) if w[verb] in _PUT else None
         for i in range(1, len(w) - 1):
             if w[i] in _BE:
+                if i > 1 and w[0] == asked_verb(w[0]):
+                    return None  # a request ("tell Ana her taxi is on time"), not a subject ("water is...")
                 return self._where(w[:i], w[i + 1 :])
         return None
 
@@ -356,7 +364,7 @@ class Statements:
         owner = self.speaker if said[:1] in (["my"], ["our"]) else None
         bare = tuple(w for w in words if w not in POSSESSIVES)
         if not content_words(bare) or is_pronoun(bare):
-            found = antecedent(self.lexicon, [u.text for u in self.history], kinds)
+            found = antecedent(self.lexicon, self.history, kinds, speaker=self.speaker)
             if found is None:
                 raise _Refused(f'What do you mean by "{" ".join(words)}"?', clarify=True)
             return found.id, owner

@@ -50,6 +50,9 @@ DETERMINERS = word_set(
     "the a an some any this that these those my your our its one ones please thing there here"
 )
 PRONOUNS = word_set("it them that this those these")
+#: Pronouns that refer to a person only, and those that never do.
+PERSONAL = word_set("he she him her himself herself")
+NEUTER = word_set("it itself")
 #: Possessive determiners whose owner comes from the conversation rather than from the phrase.
 POSSESSIVES = word_set("my your our his her their")
 #: The speaker, said by the speaker.

@@ -31,6 +31,12 @@ from dialogue.reference.synonyms import synonyms
 #: Qualifiers of position or size the KB does not model: never a head, never evidence.
 _QUALIFIERS = POSITIONS | word_set("hand down up upper lower main")
 _SKIP = (DETERMINERS - MODIFIER_START) | word_set("please either is are was were be being it")
+#: Words of a clause, never of a noun phrase's core: subject pronouns, modals, negations.
+_CLAUSE_WORDS = word_set(
+    "i you he she we they cannot can't could would should must shall don't didn't not"
+)
+#: Determiners that start a noun phrase of their own after a core has begun.
+_NEW_PHRASE = word_set("the a an my your his her our their these those")
 #: Coordinated or quantified phrases name several things: never one by its head ("the cereals and
 #: the milk", "both cups").
 _SEVERAL = MANY | {"or"}
@@ -71,6 +77,19 @@ def _split(words: Sequence[str]) -> _Phrase:
     return _Phrase(core_words, tuple(mods), dangling)
 
 
+def _clause(words: Sequence[str]) -> bool:
+    """Whether the words before the phrase's first modifier run on into another phrase or a clause
+    ("my torch I can't see the clock", "gate 9 my bus is late"): no head."""
+    begun = False
+    for word in words:
+        if begun and word in MODIFIER_START:
+            return False
+        if word in _CLAUSE_WORDS or (begun and word in _NEW_PHRASE):
+            return True
+        begun = begun or word not in DETERMINERS
+    return False
+
+
 def _colours(entity: Entity) -> frozenset[str]:
     said = {w for label in entity.labels for w in tokens(label) if w in COLOURS}
     if entity.colour:
@@ -105,7 +124,7 @@ def _entities(lexicon: Lexicon, np: Sequence[str]) -> list[Entity]:
 
 def resolve_head(lexicon: Lexicon, words: Sequence[str], kinds: Collection[Kind]) -> list[Entity]:
     """Entities of `kinds` the phrase's head noun names that no modifier contradicts, best first."""
-    if _SEVERAL & set(words):
+    if _SEVERAL & set(words) or _clause(words):
         return []
     phrase = _split(words)
     if not phrase.core or phrase.dangling:  # a modifier cut short may have named anything

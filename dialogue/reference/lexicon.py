@@ -158,12 +158,20 @@ class Lexicon:
         for length in sorted(self._lengths.get(singular(words[start]), {}), reverse=True):
             if start + length <= len(words):
                 found += self._by_words.get(norm(words[start : start + length]), ())
+        word = words[start]
+        if not found and len(word) > 3 and word.endswith("s") and word[:-1] in self._lengths:
+            # "ravis scarf": a person's name with the possessive's apostrophe dropped
+            found += [n for n in self._by_words.get((word[:-1],), ()) if self._is_person(n.entity)]
         if start + 1 < len(words):
             # "tea cup" for the "teacup", "tool box" for the "toolbox": a closed compound said apart.
             joined = singular(words[start] + words[start + 1])
             found += [Name((words[start], words[start + 1]), n.entity, n.source)
                       for n in self._by_words.get((joined,), ())]  # fmt: skip
         return found
+
+    def _is_person(self, entity_id: str) -> bool:
+        entity = self.snapshot.get(entity_id)
+        return entity is not None and entity.kind == "person"
 
     def mentions(self, words: Sequence[str]) -> list[Mention]:
         """Left-to-right longest mentions of entity names in a word sequence."""

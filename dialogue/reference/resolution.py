@@ -14,10 +14,20 @@ from collections.abc import Collection, Sequence
 from dataclasses import dataclass
 
 from dialogue import intents as I
-from dialogue.reference.english import CONTAINERS, DETERMINERS, LOCATIVE, PRONOUNS, tokens, word_set
+from dialogue.history import Utterance
+from dialogue.reference.english import (
+    CONTAINERS,
+    DETERMINERS,
+    LOCATIVE,
+    NEUTER,
+    PERSONAL,
+    PRONOUNS,
+    tokens,
+    word_set,
+)
 from dialogue.reference.grounding import Entity, Kind
 from dialogue.reference.headnoun import resolve_head
-from dialogue.reference.lexicon import Lexicon, norm
+from dialogue.reference.lexicon import Lexicon, Mention, norm
 
 #: Words allowed inside a phrase without qualifying anything ("the cup that is on the table").
 _GLUE = DETERMINERS | word_set(
@@ -70,8 +80,23 @@ def content_words(words: Sequence[str]) -> list[str]:
     return [w for w in words if w not in _GLUE]
 
 
+#: Words said with a pronoun that are not it ("the", "please": "bring it over please").
+_NOT_SAID = word_set("the please again too over")
+
+
+def said_phrase(words: Sequence[str]) -> str:
+    """A phrase as a reply says it back: without its leading determiners, its prepositions kept
+    ("my mug in the fridge": "mug in the fridge")."""
+    out = [w for w in words if w != "please"]
+    while out and (out[0] in DETERMINERS or out[0] in _GLUE or out[0] in {"his", "her", "their"}):
+        out.pop(0)
+    while out and out[-1] in _GLUE:
+        out.pop()
+    return " ".join(out)
+
+
 def is_pronoun(words: Sequence[str]) -> bool:
-    content = [w for w in words if w not in {"the", "please", "again", "too"}]
+    content = [w for w in words if w not in _NOT_SAID - {"over"}]
     return len(content) == 1 and content[0] in PRONOUNS
 
 
@@ -181,25 +206,89 @@ def resolve_id(lexicon: Lexicon, value: str, kinds: Collection[Kind] = ALL_KINDS
     return resolve(lexicon, words, kinds)
 
 
+def pronoun_kinds(words: Sequence[str], kinds: Collection[Kind]) -> frozenset[Kind]:
+    """The kinds a pronoun may refer to among `kinds`: "her" and "him" only ever a person, "it"
+    never one ("take it to her": the thing to the person)."""
+    said = {w for w in words if w not in _NOT_SAID}
+    if said and said <= PERSONAL:
+        return frozenset(kinds) & PERSON
+    if said and said <= NEUTER:
+        return frozenset(kinds) - PERSON
+    return frozenset(kinds)
+
+
 def antecedent(
-    lexicon: Lexicon, history: Sequence[str], kinds: Collection[Kind], *, place: bool = False
+    lexicon: Lexicon,
+    history: Sequence[str | Utterance],
+    kinds: Collection[Kind],
+    *,
+    place: bool = False,
+    speaker: str | None = None,
 ) -> Entity | None:
     """The entity a pronoun refers to: the latest turn's first non-locative unambiguous mention.
 
-    For "there" (`place=True`) mentions after a locative preposition ("on the shelf") come first.
+    For "there" (`place=True`) mentions after a locative preposition ("on the shelf") come first;
+    for a thing's pronoun they are never it.
+    A mention of several things is narrowed by whose it is said to be ("your ticket" in the robot's
+    words is the ticket of `speaker`, the person now speaking; "my ticket" in a person's is theirs;
+    "Chloe's book") and by where the same turn puts it ("the ticket is on the low table").
     """
-    for text in reversed(history):
-        words = tokens(text)
+    for turn in reversed(history):
+        text, owners = _owners(turn, speaker)
+        words = [w[:-2] if w.endswith("'s") and len(w) > 2 else w for w in tokens(text)]
+        mentions = lexicon.mentions(words)
+        places = {e for m in mentions if _after_locative(words, m.start) for e in m.entities}
         found: list[tuple[bool, int, Entity]] = []
-        for mention in lexicon.mentions(words):
+        before: Mention | None = None
+        for mention in mentions:
             ents = [lexicon.snapshot.get(e) for e in mention.entities]
             typed = [e for e in ents if e is not None and e.kind in kinds]
-            if len(typed) != 1:
+            if len(typed) > 1:
+                owner = _owner_before(lexicon, words, mention.start, owners, before)
+                typed = _narrowed(typed, owner, places)
+            before = mention
+            locative = _after_locative(words, mention.start)
+            # "my keys are on the counter, get them": "them" is not where the keys are
+            if len(typed) != 1 or (locative and not place and typed[0].kind != "person"):
                 continue
-            prev = words[max(0, mention.start - 2) : mention.start]
-            locative = any(w in _LOCATIVE for w in prev)
             found.append((locative, mention.start, typed[0]))
         if found:
             found.sort(key=lambda f: (f[0] != place, f[1]))
             return found[0][2]
     return None
+
+
+def _owners(turn: str | Utterance, speaker: str | None) -> tuple[str, dict[str, str]]:
+    """The turn's text and whom its possessives name: "my" is the speaker's in a person's words,
+    "your" the person spoken to in the robot's."""
+    if isinstance(turn, str):
+        return turn, {}
+    if turn.role == "user":
+        return turn.text, {"my": turn.speaker, "our": turn.speaker}
+    if turn.role == "assistant" and speaker is not None:
+        return turn.text, {"your": speaker}
+    return turn.text, {}
+
+
+def _after_locative(words: Sequence[str], start: int) -> bool:
+    return any(w in _LOCATIVE for w in words[max(0, start - 2) : start])
+
+
+def _owner_before(
+    lexicon: Lexicon, words: Sequence[str], start: int, owners: dict[str, str], before: Mention | None
+) -> str | None:
+    """Whose thing the words just before a mention say it is: a possessive ("your") or a person
+    named right before it ("Chloe's book", "chloes book" as a recogniser writes it)."""
+    if before is not None and before.end == start and len(before.entities) == 1:
+        person = lexicon.snapshot.get(next(iter(before.entities)))
+        if person is not None and person.kind == "person":
+            return person.id
+    return next((owners[w] for w in reversed(words[max(0, start - 2) : start]) if w in owners), None)
+
+
+def _narrowed(typed: list[Entity], owner: str | None, places: set[str]) -> list[Entity]:
+    if owner is not None:
+        typed = [e for e in typed if e.owner == owner] or typed
+    if len(typed) > 1 and places:
+        typed = [e for e in typed if e.support in places or e.zone in places] or typed
+    return typed

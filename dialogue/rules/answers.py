@@ -9,7 +9,7 @@ from dialogue.reference.clarify import question as clarifying_question
 from dialogue.reference.english import tokens
 from dialogue.reference.grounding import Entity, Snapshot
 from dialogue.reference.lexicon import Lexicon, singular
-from dialogue.reference.resolution import ALL_KINDS, content_words, resolve
+from dialogue.reference.resolution import ALL_KINDS, content_words, resolve, said_phrase
 from dialogue.situation import article
 
 MAX_LISTED = 12
@@ -150,7 +150,7 @@ def _on(snapshot: Snapshot, place: Entity) -> str:
 def can_you_see(lexicon: Lexicon, words: Sequence[str], speaker: str) -> str:
     snapshot = lexicon.snapshot
     found = resolve(lexicon, words, ALL_KINDS)
-    phrase = " ".join(content_words(words)) or "that"
+    phrase = said_phrase(words) or "that"
     if not found.matches:
         return f"No, I don't see any {phrase}."
     seen = [e for e in found.matches if e.seen]
@@ -180,18 +180,29 @@ def which_do_you_see(lexicon: Lexicon, words: Sequence[str]) -> str:
     found = resolve(lexicon, words, frozenset({"thing", "person"}))
     seen = [e for e in found.matches if e.seen]
     if not seen:
-        return f"I don't see any {' '.join(content_words(words)) or 'such thing'}."
+        return f"I don't see any {said_phrase(words) or 'such thing'}."
     snapshot = lexicon.snapshot
-    return f"I see {listing([f'{indefinite(e)} {location(snapshot, e)}'.strip() for e in seen])}."
+    coloured = [f"the {e.colour} {n[4:]}" if e.colour and n.startswith("the ") and e.colour not in n else n
+                for e, n in zip(seen, told_apart(seen), strict=True)]  # fmt: skip
+    placed = [f"{n} {location(snapshot, e)}".strip() for e, n in zip(seen, coloured, strict=True)]
+    return f"I see {listing(placed)}."
 
 
 def how_many(lexicon: Lexicon, words: Sequence[str]) -> str:
     found = resolve(lexicon, words, frozenset({"thing", "person"}))
-    phrase = " ".join(content_words(words)) or "things"
+    phrase = said_phrase(words) or "things"
     seen = [e for e in found.matches if e.seen]
     if not seen:
         return f"I don't see any {phrase}."
-    return f"I see {_number(len(seen))}: {listing([indefinite(e) for e in seen])}."
+    return f"I see {_number(len(seen))}: {listing(told_apart(seen))}."
+
+
+def told_apart(entities: Sequence[Entity]) -> list[str]:
+    """Each entity as a listing names it, by its colour when it shares its name ("the red marker")."""
+    names = [indefinite(e) for e in entities]
+    shared = {n for n in names if names.count(n) > 1}
+    return [f"the {e.colour} {n[4:]}" if n in shared and e.colour and n.startswith("the ") else n
+            for e, n in zip(entities, names, strict=True)]  # fmt: skip
 
 
 def colour_of(lexicon: Lexicon, words: Sequence[str], speaker: str) -> str:
@@ -209,6 +220,8 @@ def whose(lexicon: Lexicon, words: Sequence[str], speaker: str) -> str:
 
     def sentence(e: Entity, several: bool) -> str:
         name = the(snapshot, e, speaker)
+        if several and e.colour and e.colour not in name and name.startswith("the "):
+            name = f"the {e.colour} {name[4:]}"  # "which suitcase is mine": the red one
         owner = snapshot.get(e.owner) if e.owner else None
         if owner is None:
             return f"I don't know whose {name} is."

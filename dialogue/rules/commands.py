@@ -7,10 +7,10 @@ Only words are looked at: which entity a phrase names is decided later against t
 
 from __future__ import annotations
 
-from dialogue.reference.english import ME, MODIFIER_START, Words
+from dialogue.reference.english import DETERMINERS, FUNCTION_WORDS, MANY, ME, MODIFIER_START, PERSONAL, Words
 from dialogue.rules.constructions import Said
 from dialogue.rules.frames import CONSTRUCTIONS, Row, verb_index
-from dialogue.rules.parsed import Parse
+from dialogue.rules.parsed import Act, Parse
 from dialogue.rules.questions import question as _question
 from dialogue.rules.speech import starts, strip_politeness
 from dialogue.rules.utterance import normalise, strip_vocative, verb_lemma
@@ -47,7 +47,7 @@ def parse(text: str, robot_name: str = "") -> Parse:
     if words[0] in {"thanks", "thank"} or words == ["cheers"]:
         # "thanks, now put it on the shelf": the thanks is a preamble to the request
         tail = strip_politeness(words[2:] if words[:2] == ["thank", "you"] else words[1:], robot_name)
-        return _request(text, tail) or Parse("thanks", words=tuple(words))
+        return _request(text, tail) or _aside("thanks", words, tail)
     if tuple(words) in SOCIAL and words[:1] != ["how"]:
         return Parse("greeting", words=tuple(words))
     # "welcome Lucia" asks the robot to greet her; "welcome back" is a greeting.
@@ -58,8 +58,18 @@ def parse(text: str, robot_name: str = "") -> Parse:
             if tuple(rest) in SOCIAL:
                 return Parse("greeting", words=tuple(words))
             # "Good morning Maria" is still a greeting; "hi, grab the cup" is a request.
-            return _request(text, rest) or Parse("greeting", words=tuple(words))
+            return _request(text, rest) or _aside("greeting", words, rest)
     return _question(words) or command(text, words)
+
+
+#: At most this many words after a greeting or thanks are part of it ("good morning Mr Ito").
+_ASIDE = 3
+
+
+def _aside(act: Act, words: list[str], rest: list[str]) -> Parse:
+    """A greeting or thanks, unless more follows it than a name: then what follows was not
+    understood ("hey robot the red case is mine can you..."), and nor is the whole."""
+    return Parse(act, words=tuple(words)) if len(rest) <= _ASIDE else Parse("unknown", words=tuple(words))
 
 
 def _request(text: str, words: list[str]) -> Parse | None:
@@ -83,7 +93,9 @@ def command(original: str, words: list[str]) -> Parse:
     for verb, row in verb_index().get(w[0], ()) if w else ():
         if tuple(w[: len(verb)]) != verb:
             continue
-        found = _fit(row, Said(" ".join(verb), w[len(verb) :], w, original))
+        # what to say is said as it was ("out of paper"), the roles of a frame read joined
+        rest = tuple(words[len(verb) :]) if row.frame.special is not None else w[len(verb) :]
+        found = _fit(row, Said(" ".join(verb), rest, w, original))
         if found is not None:
             return found
     return Parse("unknown", words=w)
@@ -105,13 +117,16 @@ def _fit(row: Row, said: Said) -> Parse | None:
     frame, rest = row.frame, said.rest
     if frame.special is not None:
         return frame.special(said)
+    if frame.intent is None and not frame.serial:  # a verb no intent says ("hand out the sheets")
+        return Parse("unknown", words=said.words)
     if frame.serial:  # "go get the cup", "come say hello to Ana"
         return command(said.original, list(rest)) if rest and verb_lemma(rest[0]) in verb_index() else None
     if frame.whole and rest:
         return None
     rest, adjuncts = _adjuncts(rest, row)
     direct, slots, marks = _segments(rest, row)
-    if frame.here is not None:
+    if frame.here is not None and not (frame.dative and direct[:1] and direct[0] in ME):
+        # ("fetch me that lamp over there": there is where the lamp is)
         # "leave it over there", "come here", "lead the way"; dropped when the place is also named
         # ("lead the way to the lobby").
         pointed = next((p for p in _POINTING if direct[-len(p[0]) :] == p[0]), None)
@@ -122,9 +137,11 @@ def _fit(row: Row, said: Said) -> Parse | None:
     if not direct and frame.direct is not None:
         direct = _second_phrase(slots)  # "bring to Ana the tray"
     if frame.dative is not None and "recipient" not in slots and direct:
+        # "get Ines her phone": someone, then a noun phrase of its own
+        before = frame.dative == "before" and _someone(direct[0]) and bool(set(direct[1:4]) & _OWN_PHRASE)
         if direct[0] in ME:  # "get me a cup"
             slots["recipient"], direct = ("me",), direct[1:]
-        elif frame.dative == "any":  # "give Ines her phone": the interpreter splits it against the KB
+        elif frame.dative == "any" or before:  # "give Ines her phone": the interpreter splits it
             return Parse("command", frame.intent, {"rest": direct}, words=said.words, double_object=True,
                          adjuncts=adjuncts)  # fmt: skip
     if direct and frame.direct is None:
@@ -140,6 +157,14 @@ def _fit(row: Row, said: Said) -> Parse | None:
     text = frame.text(said.verb, said.rest) if frame.text is not None else None
     return Parse("command", frame.intent, slots, text=text, words=said.words, adjuncts=adjuncts,
                  implicit=implicit, marks=marks)  # fmt: skip
+
+
+_OWN_PHRASE = NP_START | {"her"}
+
+
+def _someone(word: str) -> bool:
+    """Whether a word may start the phrase of a person ("him", "Ines"), not of a thing ("all", "the")."""
+    return word in PERSONAL or word == "them" or word not in FUNCTION_WORDS | DETERMINERS | MANY
 
 
 def _segments(rest: Words, row: Row) -> tuple[Words, dict[str, Words], dict[str, str]]:

@@ -19,13 +19,21 @@ from dialogue.rules.words import GREETINGS, NO_INTENT_VERBS
 _CONJUNCTIONS = word_set("and then , ; afterwards")
 #: Verbs that start a new command even with no conjunction before them, when followed by one of
 #: `_OBJECT_START` ("go to the bathroom take the rag"): never nouns in a command's phrases.
-_BARE_VERBS = word_set("take bring go put place grab fetch get find search give open move")
-_OBJECT_START = word_set("the a an my your his her this that these those it them me us to into some all both")
+_BARE_VERBS = word_set(
+    "take bring go put place grab fetch get find search give open move tell ask remind greet carry guide"
+)
+_SERIAL = word_set("go come")
+_OBJECT_START = word_set(
+    "the a an my your his her this that these those it them me us him to into some all both"
+)
 #: Words after which a verb continues the same command ("you take", "to take", "go get"), besides
 #: the verbs of the grammar.
 _NO_CUT_AFTER = word_set(
     "to you i we and then please can could would will go come let just also should must not don't never "
-    "us me robot or but if when while before after so and the a an my your his her this that some"
+    "us me robot or but if when while before after so and the a an my your his her this that some "
+    # after a modal or a negation a verb is that clause's own ("she can't find her keys")
+    "cannot can't cant couldn't couldnt won't wont wouldn't wouldnt shouldn't don't dont doesn't doesnt "
+    "didn't didnt do does did might may shall"
 )
 
 
@@ -68,7 +76,9 @@ def conjuncts(text: str) -> list[Part]:
                 cuts.append((i, j))
         elif word in _BARE_VERBS and toks[i - 1][0] not in no_cut_after:
             nxt = toks[i + 1][0] if i + 1 < len(toks) else ""
-            if nxt in _OBJECT_START:
+            # "...he is at the door go say hi to him": "go" or "come" before a verb starts a request too
+            serial = word in _SERIAL and asked_verb(nxt) in verbs()
+            if nxt in _OBJECT_START or serial:
                 cuts.append((i, i))
     if not cuts:
         return []

@@ -8,23 +8,31 @@ yes/no question, not an activity).
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 from dialogue import intents as I
-from dialogue.reference.english import ME, Words
+from dialogue.reference.english import ME, Words, phrases, word_set
 from dialogue.rules.parsed import Parse
-from dialogue.rules.speech import QUOTED, expanded, original_text, split_at, starts
+from dialogue.rules.speech import QUOTED, expanded, message, original_text, split_at, starts
 from dialogue.rules.words import (
     DONE,
     EVERYONE,
+    GOES,
+    GOES_PARTICLES,
     INTENSIFIERS,
     NEEDS,
     NOT_WISHERS,
+    PLACES,
     THEIR_WANTS,
     WANT_VERBS,
     WANTS,
     WISHERS,
 )
+
+#: Prepositions of a place to put something, longest first ("goes to town" is no such place).
+_PLACES = sorted((p for p in phrases(PLACES) if p not in {("to",), ("at",)}), key=len, reverse=True)
+#: Subjects that never name a thing to put ("I go in the morning", "you belong here").
+NOT_THINGS = word_set("i we you he she what where who which how why when there")
 
 
 @dataclass(frozen=True)
@@ -71,7 +79,7 @@ def wanting(said: Said) -> Parse | None:
     for lead in WANTS:
         if starts(said.words, lead) and len(said.words) > len(lead):
             wanted = said.words[len(lead) :]
-            if wanted[:1] != ("to",):
+            if wanted[:1] != ("to",) and wanted[:2] != ("a", "hand"):  # "give me a hand to the door"
                 return said.command(I.BRING_OBJECT, object=wanted, recipient=("me",))
     return None
 
@@ -95,6 +103,24 @@ def their_wish(said: Said) -> Parse | None:
 def _pronoun(who: Words) -> Words:
     """ "he", "she", "they" refer to someone the conversation named."""
     return {"he": ("him",), "she": ("her",), "they": ("them",)}.get(who[0], who) if len(who) == 1 else who
+
+
+def belonging(said: Said) -> Parse | None:
+    """ "the butter goes back in the fridge", "this belongs on the shelf": put it there."""
+    w = said.words
+    for i in range(1, min(len(w) - 2, 6)):
+        lead = next((p for p in GOES if w[i : i + len(p)] == p), None)
+        if lead is None:
+            continue
+        thing, rest = w[:i], w[i + len(lead) :]
+        while rest[:1] and rest[0] in GOES_PARTICLES:
+            rest = rest[1:]
+        place = next((p for p in _PLACES if rest[: len(p)] == p), None)
+        if place is None or not rest[len(place) :] or thing[0] in NOT_THINGS:
+            return None
+        parse = said.command(I.PLACE_OBJECT, object=thing, recipient=rest[len(place) :])
+        return replace(parse, marks={"recipient": " ".join(place)})
+    return None
 
 
 def enough(said: Said) -> Parse | None:
@@ -125,7 +151,13 @@ def helping(said: Said) -> Parse | None:
 
 
 def showing(said: Said) -> Parse | None:
-    """ "show me the scissors" asks where they are; "show me the way (to X)" is guiding."""
+    """ "show me the scissors" asks where they are; "show me the way (to X)" is guiding, and so is
+    "show George where the lounge is"."""
+    if "where" in said.rest[1:]:
+        at = said.rest.index("where")
+        place = said.rest[at + 1 :]
+        place = place[:-1] if place[-1:] in {("is",), ("are",)} else place
+        return said.command(I.GUIDE, recipient=said.rest[:at] or ("me",), goal=place) if place else None
     if "way" in said.rest or "to" in said.rest:
         return None
     thing = said.rest[1:] if said.rest[:1] and said.rest[0] in ME else said.rest
@@ -182,7 +214,7 @@ def speech(said: Said) -> Parse:
             return unknown
         if not text:  # "tell Maria": the interpreter asks what to say
             return said.command(I.SAY, recipient=recipient)
-        words = original_text(original, text[1:] if text[0] == "please" else text)
+        words = message(original, text[1:] if text[0] == "please" else text)
         said_text = f"please {words}" if text[0] == "please" else words
         return said.command(I.SAY, text=said_text, recipient=recipient)
     found = split_at(rest, ["to"])

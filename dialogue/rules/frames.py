@@ -75,9 +75,10 @@ class Frame:
     particles: str = ""
     #: The role a bare "here" (the speaker) or "there" (the place just spoken of) fills.
     here: str | None = None
-    #: The direct words may start with the recipient: "me"/"us" only ("get me a cup"), or anyone
-    #: ("give Ines her phone": split against the KB by the interpreter).
-    dative: Literal["me", "any"] | None = None
+    #: The direct words may start with the recipient: "me"/"us" only ("get me a cup"), anyone
+    #: ("give Ines her phone": split against the KB by the interpreter), or anyone said before a
+    #: noun phrase of its own ("get Ines her phone", but "get the phone").
+    dative: Literal["me", "any", "before"] | None = None
     #: The only words the direct role may be ("take *me* to the kitchen").
     only: frozenset[str] | None = None
     #: Roles that must be said for the row to apply (else the next row is tried).
@@ -95,7 +96,8 @@ class Frame:
 
 _GRAB = "grab|take|get|collect|lift|grasp|seize|hold|pick"
 _BRING = "bring|hand|give|pass|fetch|deliver|carry|wheel|push|drag|pull|slide|shift"
-_PLACE = "put|place|set|lay|drop|leave|stick|stack|release|rest|hang|store|park"
+_THROW = "chuck|throw|toss|bung|lob"
+_PLACE = f"put|place|set|lay|drop|leave|stick|stack|release|rest|hang|store|park|shove|dump|pop|{_THROW}"
 _MOVE = (
     "go|move|navigate|drive|walk|head|come|return|proceed|roll|stand|pop|nip|hop|make your way|"
     "find your way"
@@ -104,6 +106,8 @@ _GUIDE = "guide|lead|escort|accompany|show|direct"
 #: Verbs that only ever say where to go: "get over to the desk", "run to the kitchen" ("get the cup",
 #: "run the dishwasher" are other rows').
 _GO = "get|swing|hurry|rush|dash|wander|run|scoot|zip"
+_STAY = "wait|stay|remain|hang on|hang about|hang around|sit"
+_AT = "in|inside|at|by|near|beside|outside|on|under|behind"
 _SAY = "say|tell|announce|repeat|inform|remind|ask"
 _TO_SOMEONE = "to|towards|for|into"
 
@@ -129,25 +133,40 @@ FRAMES: tuple[Frame, ...] = (
     Frame("help", special=C.helping),
     Frame("give", special=C.a_hand),
     Frame("show", special=C.showing),
+    # "show Noor (the) way to the exit": the way is no one's name
     Frame(_GUIDE, I.GUIDE, direct="recipient", slots={"goal": "to|towards|into"}, here="goal",
-          particles="over back through", defaults={"recipient": ("me",)}),
-    Frame("take|walk|bring", I.GUIDE, direct="recipient", slots={"goal": "to|towards|into"}, here="goal",
+          particles="over back through way", defaults={"recipient": ("me",)}),
+    # "take me (there)": the place just spoken of ("I need the lifts, can you take me")
+    Frame("take|walk", I.GUIDE, direct="recipient", slots={"goal": "to|towards|into"}, here="goal",
+          particles="over back through", only=ME, defaults={"goal": ("there",)}),
+    Frame("bring", I.GUIDE, direct="recipient", slots={"goal": "to|towards|into"}, here="goal",
           particles="over back through", only=ME, requires=("goal",)),
     # Going somewhere.
     Frame("go|come", serial=True),
-    Frame("approach|enter", I.MOVE_TO, direct="goal", requires=("goal",)),
+    Frame("approach|enter|reach|visit", I.MOVE_TO, direct="goal", requires=("goal",)),
+    # "come back", "come over": to the speaker
+    Frame("come|come back|come over|come closer|come along", I.MOVE_TO, whole=True,
+          defaults={"goal": ("me",)}),
     Frame(_MOVE, I.MOVE_TO, slots={"goal": GOALS}, particles=MOTION_PARTICLES, here="goal",
           requires=("goal",)),
+    # "go and wait in the courtyard", "stay by the door": be there ("wait for me" is no place)
+    Frame(_STAY, I.MOVE_TO, slots={"goal": _AT}, particles="there", requires=("goal",)),
     Frame(_GO, I.MOVE_TO, slots={"goal": GOALS}, particles=MOTION_PARTICLES, here="goal", requires=("goal",)),
-    Frame(_MOVE, I.PLACE_OBJECT, direct="object", slots={"recipient": GOALS},
+    Frame(_MOVE, I.PLACE_OBJECT, direct="object", slots={"recipient": GOALS}, particles="back away down over",
           requires=("object", "recipient")),
+    # Handing things out to everyone: no intent says it ("hand out the worksheets" is no bringing).
+    Frame("hand out|give out|pass out|pass round|pass around|hand round|hand around|share out"),
     # Things.
+    # "chuck me the remote", "throw the ball to me"; "chuck the rag in the sink" is the next row's
+    Frame(_THROW, I.BRING_OBJECT, direct="object", slots={"recipient": "to"}, particles=CARRY_PARTICLES,
+          dative="before", requires=("recipient",)),
     Frame(_PLACE, I.PLACE_OBJECT, direct="object", slots={"recipient": PLACES}, here="recipient",
           particles="down away back over out up"),
     Frame(_BRING, I.BRING_OBJECT, direct="object", slots={"recipient": _TO_SOMEONE}, here="recipient",
           particles=CARRY_PARTICLES, dative="any"),
+    # "get me a cup", "take Ines her phone"
     Frame(_GRAB, I.BRING_OBJECT, direct="object", slots={"recipient": _TO_SOMEONE}, particles=CARRY_PARTICLES,
-          dative="me", requires=("recipient",)),
+          dative="before", requires=("recipient",)),
     Frame(f"{_GRAB}|get hold of|take hold of|grab hold of|catch hold of", I.GRAB_OBJECT, direct="object",
           particles="up"),
     # Activities.
@@ -160,7 +179,7 @@ FRAMES: tuple[Frame, ...] = (
 )  # fmt: skip
 
 #: What the whole utterance may say before any verb is read ("I'm parched", "I want the apple").
-CONSTRUCTIONS: tuple[Special, ...] = (C.need, C.going, C.wanting, C.their_wish, C.enough)
+CONSTRUCTIONS: tuple[Special, ...] = (C.need, C.going, C.wanting, C.their_wish, C.belonging, C.enough)
 
 
 @dataclass(frozen=True)

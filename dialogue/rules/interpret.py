@@ -7,7 +7,6 @@ answering the robot's last question ("the red one") completes the request found 
 
 from __future__ import annotations
 
-import re
 from collections.abc import Sequence
 from dataclasses import replace
 
@@ -19,6 +18,7 @@ from dialogue.reference.lexicon import Lexicon
 from dialogue.reference.resolution import (
     ANYWHERE,
     PERSON,
+    PLACE,
     ROLE_KINDS,
     antecedent,
     content_words,
@@ -26,6 +26,7 @@ from dialogue.reference.resolution import (
     resolve,
 )  # fmt: skip
 from dialogue.rules import answers
+from dialogue.rules.clauses import clauses, described, description
 from dialogue.rules.commands import parse
 from dialogue.rules.compound import Part, conjuncts, coordinated, unprefixed
 from dialogue.rules.outcome import Outcome, Ref
@@ -39,15 +40,6 @@ from dialogue.rules.words import INTERJECTIONS, PLACES
 _ONE = frozenset({"one", "ones"})
 #: How sure the rules are of a turn in which they corrected a slip ("plase", "thremos").
 SPELT_CONFIDENCE = 0.7
-#: Punctuation, dashes, and (for unpunctuated speech) a polite request starting mid-utterance.
-_CLAUSE_BREAK = re.compile(
-    r"[.;!?,]+(?:\s+|$)|\s+(?:-|\u2013|\u2014)\s+|\s+(?=(?:could|can|would|will)\s+you\b|please\b)"
-    r"|\s+(?=(?:can|could|may)\s+i\s+(?:have|get)\b)"  # "it's cold can I have a blanket"
-    # A trailing clause with a subject of its own: "...the wine cellar she wants to pick a bottle",
-    # "...my aspirin it is in one of the drawers", "...my eyeglass you can find it on the table".
-    r"|\s+(?=(?:she|he|it|they|you)\s+(?:is|are|was|were|wants|needs|should|might|must|can|could|has|have|just)\b)",
-    re.I,
-)
 #: A fragment answering "Where should I put it?" may start with its preposition ("on the shelf").
 _PLACES = phrases(PLACES)
 #: An answer naming an owner ("mine", "hers") is the possessive phrase ("my cup").
@@ -67,7 +59,13 @@ class Interpreter:
 
     def interpret(self, text: str) -> Outcome:
         spelled = corrected(text, self.lexicon)
-        outcome = self._read(cleaned(spelled.text))
+        clean = cleaned(spelled.text)
+        reader = self
+        if clean.taken_back and parse(clean.taken_back, self.robot_name).act != "unknown":
+            # "hand Ravi the uh no wait hand him the stapler": what was taken back is context
+            context = (*self.history, Utterance(self.speaker, clean.taken_back))
+            reader = Interpreter(self.lexicon, self.speaker, context, self.robot_name)
+        outcome = reader._read(clean.text)
         if not spelled.corrections:
             return outcome
         # A corrected slip makes the whole turn less sure; a name read from a slip is a guess.
@@ -120,22 +118,29 @@ class Interpreter:
         """ "The denim jacket. Pick it up." or "Felix wants the remote, can you hand it to him?": when
         the whole utterance is not one request, the last clause that is one is read with the clauses
         before it as context for its pronouns."""
-        clauses = [c for c in _CLAUSE_BREAK.split(text) if c.strip()]
-        if len(clauses) < 2:
+        said = clauses(text)
+        if len(said) < 2:
             return whole
         question: Outcome | None = None
-        for i in range(len(clauses) - 1, -1, -1):
-            context = tuple(Utterance(self.speaker, c) for c in clauses[:i])
+        failed: Outcome | None = None
+        for i in range(len(said) - 1, -1, -1):
+            context = tuple(Utterance(self.speaker, c) for c in said[:i])
             reader = Interpreter(self.lexicon, self.speaker, (*self.history, *context), self.robot_name)
-            p = parse(clauses[i], self.robot_name)
+            p = parse(said[i], self.robot_name)
             if p.act in {"command", "question"}:
-                outcome = reader.act(p)
+                # "fetch my bag its the blue one": what the next clause says of the thing asked for
+                more = description(said[i + 1]) if i + 1 < len(said) and p.slots.get("object") else None
+                outcome = reader.act(p, {"object": described(p.slots["object"], more)} if more else None)
                 if outcome.intent is not None:
                     return outcome
                 # A complete request in an earlier clause beats asking about an incomplete later one.
                 if question is None and (outcome.clarify or (p.act == "question" and outcome.understood)):
                     question = outcome
-        return question or whole
+                # Why a request alone fails says it better than the run-on whole ("...the sink theres a
+                # spill": no sink, not no "sink spill").
+                elif p.act == "command" and outcome.understood and not outcome.clarify:
+                    failed = outcome
+        return question or failed or whole
 
     def act(self, p: Parse, overrides: dict[str, Words] | None = None) -> Outcome:
         if p.act == "greeting" and "everyone" in p.slots:  # no single recipient: greet verbally only
@@ -157,7 +162,7 @@ class Interpreter:
     def _answer(self, p: Parse) -> Outcome:
         thing = p.slots.get("thing", ()) or p.slots.get("place", ())
         if p.question in {"where", "can_see", "what_is", "what_on", "whose"} and is_pronoun(thing):
-            ref = antecedent(self.lexicon, [u.text for u in self.history], ANYWHERE)
+            ref = antecedent(self.lexicon, self.history, ANYWHERE, speaker=self.speaker)
             if ref is not None:
                 thing = tuple(tokens(ref.id))
         content = content_words(thing)
@@ -221,14 +226,25 @@ class Interpreter:
         if intent in {I.BRING_OBJECT, I.PLACE_OBJECT} and "recipient" in slots:
             # "take Maria to the kitchen", "walk Mr Ito back to the car park": guiding, not carrying
             who = tuple(w for w in slots.get("object", ()) if w not in RELATIONAL)
-            if self.refs.person_as_object(who) is not None:
+            # (never to a person: "take them to her" carries them to her)
+            if self.refs.person_as_object(who) is not None and who:
+                if self.refs.a_person(slots["recipient"]) or slots["recipient"] in {("here",), ("there",)}:
+                    # "bring Sam here": a person brought to a person is no intent the rules have
+                    return Outcome("Sorry, I did not understand that.", understood=False)
                 intent, slots = I.GUIDE, {"recipient": who, "goal": slots["recipient"]}
             elif intent == I.PLACE_OBJECT and self.refs.named_person(slots["recipient"]):
                 intent = I.BRING_OBJECT  # "return the stapler to Carol": carried to a person
+        if intent == I.BRING_OBJECT and self.refs.a_place(slots.get("object", ())):
+            # "I need the lifts": a place is where to be taken, not a thing to carry
+            intent, slots = I.GUIDE, {"recipient": slots.get("recipient", ("me",)), "goal": slots["object"]}
+        if intent == I.GUIDE and "goal" in p.implicit and "goal" not in overrides:
+            there = antecedent(self.lexicon, self.history, PLACE, place=True, speaker=self.speaker)
+            if there is None:  # "take me", with no place spoken of
+                return self._missing(intent, "goal", p)
         implicit = "recipient" in p.implicit or not content_words(slots.get("recipient", ()))
         if intent == I.GUIDE and slots.get("goal") == ("there",) and implicit:
             # "Ellen needs the utility room, lead the way": the person just spoken of, else the speaker.
-            person = antecedent(self.lexicon, [u.text for u in self.history], PERSON)
+            person = antecedent(self.lexicon, self.history, PERSON, speaker=self.speaker)
             slots["recipient"] = tuple(tokens(person.id)) if person is not None else ("me",)
         roles: dict[str, str] = {}
         refs: dict[str, Ref] = {}
@@ -240,7 +256,8 @@ class Interpreter:
                     return self._missing(intent, role, p)
                 continue
             words, owner = self.refs.possessive(words, slots) if role == "object" else (words, None)
-            ref = self.refs.ground(words, kinds, role, owner)
+            others = [w for r, w in slots.items() if r != role]
+            ref = self.refs.ground(words, kinds, role, owner, others)
             if ref.problem is not None:
                 return ref.problem
             refs[role] = ref

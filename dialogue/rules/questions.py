@@ -6,7 +6,7 @@ answer is computed from the KB snapshot in dialogue.rules.answers.
 
 from __future__ import annotations
 
-from dialogue.reference.english import Words, word_set
+from dialogue.reference.english import COLOURS, Words, word_set
 from dialogue.rules.parsed import Parse
 from dialogue.rules.speech import split_at, starts
 from dialogue.rules.words import PURPOSES, WH
@@ -35,7 +35,8 @@ _INDIRECT: tuple[Words, ...] = tuple(
 _BE = frozenset({"is", "are", "was", "were"})
 _SOMEONE = word_set("anybody anyone somebody someone people")
 _ELSE = word_set("else besides except apart from but me us other than the room this")
-_NEARBY = word_set("around nearby here about")
+_OWNERS = word_set("mine yours his hers theirs ours")
+_NEARBY = word_set("around nearby here about anywhere somewhere")
 
 
 def _q(kind: str, w: Words, **slots: Words) -> Parse:
@@ -105,6 +106,10 @@ def _anybody(w: Words) -> bool:
 
 def _what(w: Words) -> Parse:
     rest = w[1:]
+    if len(rest) > 2 and rest[-2] in _BE and (rest[-1] in _OWNERS or rest[-1].endswith("'s")):
+        return _q("whose", w, thing=rest[:-2])  # "which suitcase is mine": whose each one is
+    if w[0] == "which" and 1 < len(rest) < 5 and rest[-2] in _BE and rest[-1] in COLOURS:
+        return _q("which_see", w, thing=(rest[-1], *rest[:-2]))  # "which marker is red"
     if "front" in rest or "around" in rest:
         return _q("what_see", w)
     if rest[:1] and rest[0] in _COLOUR_WORDS:

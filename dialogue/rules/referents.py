@@ -8,16 +8,22 @@ from __future__ import annotations
 from collections.abc import Collection, Sequence
 from dataclasses import replace
 
+from lemminflect import getAllLemmas
+
 from dialogue.history import Utterance
 from dialogue.reference.clarify import question as clarifying_question
 from dialogue.reference.english import (
     COLOURS,
     DETERMINERS,
+    FUNCTION_WORDS,
     MANY,
     ME,
     MODIFIER_START,
+    PARTS,
+    PERSONAL,
     POSITIONS,
     POSSESSIVES,
+    SUPPORT_PREPOSITIONS,
     Words,
     tokens,
     word_set,
@@ -31,15 +37,18 @@ from dialogue.reference.resolution import (
     antecedent,
     content_words,
     is_pronoun,
+    pronoun_kinds,
     resolve,
+    said_phrase,
 )
+from dialogue.rules.clauses import described
 from dialogue.rules.compound import alternatives
 from dialogue.rules.outcome import Outcome, Ref
-from dialogue.rules.spelling import slips
-from dialogue.rules.words import PURPOSES
+from dialogue.rules.sounds import slipped as heard_as
+from dialogue.rules.words import NP_START, PURPOSES
 
 #: Spatial or comparative qualifiers the KB does not model (dropped when they block a match).
-RELATIONAL = POSITIONS
+RELATIONAL = POSITIONS | word_set("over yonder")
 #: Words that need no name in the KB to be understood in a phrase.
 _ACCOUNTED = RELATIONAL | COLOURS | ME | word_set(
     "it them him her here there over something anything around nearby about"
@@ -66,6 +75,8 @@ class Referents:
             named = set(people) <= ME or resolve(self.lexicon, head, PERSON).one is not None
             # "bring him the bottle": a person pronoun the conversation resolves.
             said = set(people) <= {"him", "her", "them"} and self.person_as_object(head) is not None
+            # "bring her the muffin": "her" before a determiner is no possessive, whoever she is
+            said = said or (set(head) <= PERSONAL and tail[0] in DETERMINERS)
             if people and (named or said):
                 return {"object": tail, "recipient": head}
         return {"object": rest, "recipient": ("me",)}
@@ -78,6 +89,27 @@ class Referents:
         rest = tuple(w for w in words if w not in _EVERY and w != "of")
         return [tuple(tokens(e.id)) for e in resolve(self.lexicon, rest, THING).matches]
 
+    def named_in(self, phrases: Sequence[Words]) -> Entity | None:
+        """The one person the phrases name, as a name or a possessive ("Ravi's stapler"), if one."""
+        people: set[str] = set()
+        for words in phrases:
+            bare = [w[:-2] if w.endswith("'s") and len(w) > 2 else w for w in words]
+            for mention in self.lexicon.mentions(bare):
+                found = [e for e in mention.entities if (x := self.snapshot.get(e)) and x.kind == "person"]
+                people.update(found if len(found) == 1 else ())
+        return self.snapshot.get(next(iter(people))) if len(people) == 1 else None
+
+    def a_place(self, words: Words) -> bool:
+        """Whether the phrase names one place (a zone of the KB) and no thing ("the lifts")."""
+        if not content_words(words) or is_pronoun(words) or resolve(self.lexicon, words, THING).matches:
+            return False
+        return resolve(self.lexicon, words, frozenset({"zone"})).one is not None
+
+    def a_person(self, words: Words) -> bool:
+        """Whether the phrase is someone: a person's name, a person pronoun or the speaker."""
+        content = set(content_words(words))
+        return bool(content) and (content <= PERSONAL | ME or self.named_person(words))
+
     def named_person(self, words: Words) -> bool:
         """Whether the phrase names one person of the KB (not a pronoun, not the speaker's "me")."""
         if not content_words(words) or is_pronoun(words) or set(content_words(words)) & ME:
@@ -88,7 +120,10 @@ class Referents:
         if content_words(words) and set(content_words(words)) <= ME:
             return self.snapshot.get(self.speaker) or Entity(self.speaker, "you", (), (), (), "person", True)
         if content_words(words) and set(content_words(words)) <= {"him", "her", "them"}:
-            return antecedent(self.lexicon, [u.text for u in self.history], PERSON)
+            # "them" is people only when no thing was spoken of ("take them to her": the specs)
+            if not set(content_words(words)) <= PERSONAL and antecedent(self.lexicon, self.history, THING):
+                return None
+            return antecedent(self.lexicon, self.history, PERSON, speaker=self.speaker)
         if not content_words(words) or is_pronoun(words):
             return None
         return resolve(self.lexicon, words, PERSON).one
@@ -106,38 +141,37 @@ class Referents:
         # "his/her/their": the person the same request names, else the one the conversation last named.
         other = slots.get("recipient", ())
         person = None if set(other) & ME else self.person_as_object(other)
-        person = person or antecedent(self.lexicon, [u.text for u in self.history], PERSON)
+        person = person or antecedent(self.lexicon, self.history, PERSON, speaker=self.speaker)
         return rest, person.id if person is not None else None
 
-    def slipped(self, words: Words, kinds: frozenset[Kind], owner: str | None) -> Entity | None:
-        """The one thing a name means when one of its words was misheard or mistyped as another word
-        ("bay mine", "bay for" for "bay nine", "bay four"): a word the KB does not know,
-        replaced by a slip of it, completes a name of several words that the rest of the phrase
-        starts; the name must then be the only one (a guess, see dialogue.rules.spelling)."""
-        found: set[str] = set()
-        for i, word in enumerate(words):
-            last = i == len(words) - 1
-            if word in DETERMINERS or (word in MODIFIER_START and not last) or self.lexicon.knows(word):
-                continue
-            for other in slips(word, self.lexicon):
-                trial = (*words[:i], other, *words[i + 1 :])
-                one = resolve(self.lexicon, trial, kinds, owner=owner).one
-                if one is not None and _named_with(self.lexicon, one, trial, i):
-                    found.add(one.id)
-        entity = self.snapshot.get(next(iter(found))) if len(found) == 1 else None
-        return entity
-
-    def ground(self, words: Words, kinds: frozenset[Kind], role: str, owner: str | None = None) -> Ref:
+    def ground(
+        self,
+        words: Words,
+        kinds: frozenset[Kind],
+        role: str,
+        owner: str | None = None,
+        said: Sequence[Words] = (),
+    ) -> Ref:
+        """The entity a role's phrase names; `said` are the request's other phrases, where a person
+        pronoun finds the one person they name ("take Ravi's scarf to him")."""
         bare_words = [w for w in words if w not in DETERMINERS]
         if bare_words[:1] in (["something"], ["anything"]) and tuple(bare_words[1:]) in PURPOSES:
             words = (PURPOSES[tuple(bare_words[1:])],)  # "something to eat": food
+        words = _apposed(_not_the_other(words))
         content = content_words(words)
         if "person" in kinds and content and set(content) <= ME | {"here"}:
             return Ref(speaker=True)
         bare = {w for w in words if w not in {"the", "over", "please"}}
         if is_pronoun(words) or (bare and bare <= {"him", "her", "there"}):
-            history = [u.text for u in self.history]
-            found = antecedent(self.lexicon, history, kinds, place=bare == {"there"})
+            kinds = pronoun_kinds(words, kinds)
+            if not kinds:  # "go and get him": a person where the request wants a thing
+                return Ref(problem=Outcome("Sorry, I did not understand that.", understood=False))
+            found = self.named_in(said) if kinds == PERSON else None
+            found = found or antecedent(self.lexicon, self.history, kinds, place=bare == {"there"},
+                                        speaker=self.speaker)  # fmt: skip
+            if found is None and self._unknown_just_said():
+                # "my case is by the door, bring it over": "it" is what the KB has no name for
+                return Ref(problem=Outcome("Sorry, I did not understand that.", understood=False))
             if found is None:
                 return Ref(
                     problem=Outcome(
@@ -154,13 +188,18 @@ class Referents:
             res = replace(res, matches=tuple(e for e in res.matches if e.id != self.speaker))
         if res.one is not None:
             return Ref(entity=res.one)
-        slipped = self.slipped(words, kinds, owner)
+        slipped = heard_as(self.lexicon, words, kinds, owner)
         if slipped is not None:
             return Ref(entity=slipped, guessed=True)
+        loose = tuple(w for w in words if w not in RELATIONAL)
+        if res.ambiguous and loose != tuple(words) and content_words(loose):
+            # "the box of plasters back": a position word kept the name from matching
+            one = resolve(self.lexicon, loose, kinds, owner=owner).one
+            if one is not None:
+                return Ref(entity=one)
         if res.ambiguous:
             q = clarifying_question(self.snapshot, res.matches)
             return Ref(problem=Outcome(q, clarify=True, open_role=role, open_phrase=words))
-        loose = tuple(w for w in words if w not in RELATIONAL)
         if loose != tuple(words) and content_words(loose):
             # "the cup on the left": spatial relations are not in the KB; if the rest of the phrase
             # names one thing, that is it, else ask which one.
@@ -170,24 +209,51 @@ class Referents:
             if res.ambiguous:
                 q = clarifying_question(self.snapshot, res.matches)
                 return Ref(problem=Outcome(q, clarify=True, open_role=role, open_phrase=loose))
+        place = self._put_by(words, kinds, role, owner)
+        if place is not None:
+            return place
         if set(words) & MANY:  # "the cup and the apple", "both cups": more than one intent can carry
             return Ref(problem=Outcome("Sorry, one thing at a time, please.", understood=False))
         for alternative in alternatives(words):  # "an apple or an orange": either will do
             ref = self.ground(alternative, kinds, role, owner)
             if ref.entity is not None or ref.speaker:
                 return ref
-        if self.half_known(content):
+        if self.half_known(content) or set(content) <= RELATIONAL | PARTS:
+            # "to the front", "on the left": whereabouts of nothing named, which a model may know.
             # Names the KB knows among words it does not ("mr ito back", "the trousers out"): the
             # phrase was not understood, which is not the same as "there is no such thing".
             return Ref(problem=Outcome("Sorry, I did not understand that.", understood=False))
-        return Ref(problem=Outcome(self.unknown(content, kinds)))
+        return Ref(problem=Outcome(self.unknown(content, kinds, words)))
+
+    def _put_by(self, words: Words, kinds: frozenset[Kind], role: str, owner: str | None) -> Ref | None:
+        """ "put the book next to the cup on the shelf" when the cup is not on the shelf: the last
+        place is where to put it (the verb's), the first only says whereabouts on it."""
+        if role != "recipient" or "zone" not in kinds or "person" in kinds:
+            return None
+        at = max((i for i, w in enumerate(words) if w in SUPPORT_PREPOSITIONS and i > 0), default=None)
+        if at is None or not content_words(words[at + 1 :]):
+            return None
+        ref = self.ground(words[at + 1 :], kinds, role, owner)
+        return ref if ref.entity is not None else None
+
+    def _unknown_just_said(self) -> bool:
+        """Whether the words just said before this request (the same utterance's earlier clause)
+        name something with a noun the KB does not know."""
+        last = self.history[-1] if self.history else None
+        if last is None or last.role != "user":
+            return False
+        return any(
+            not self.lexicon.knows(w) and "NOUN" in getAllLemmas(w)
+            for w in tokens(last.text)
+            if w.isalpha() and w not in FUNCTION_WORDS | _ACCOUNTED
+        )
 
     def half_known(self, content: Sequence[str]) -> bool:
         """Whether some words of a phrase are names of the KB and others are words it does not know."""
         unknown = [w for w in content if not self.lexicon.knows(w) and w not in _ACCOUNTED]
         return 0 < len(unknown) < len(content)
 
-    def unknown(self, content: Sequence[str], kinds: Collection[Kind]) -> str:
+    def unknown(self, content: Sequence[str], kinds: Collection[Kind], words: Sequence[str] = ()) -> str:
         phrase = " ".join(content)
         if kinds == PERSON:
             return f"Sorry, I don't know anyone called {phrase.title()}."
@@ -195,13 +261,22 @@ class Referents:
             return f"Sorry, I don't know where the {phrase} is."
         if "person" in kinds and resolve(self.lexicon, content, ANYWHERE).matches == ():
             return f"Sorry, I don't know who or where {phrase.title()} is."
-        return f"Sorry, I don't see any {phrase}."
+        return f"Sorry, I don't see any {said_phrase(words) or phrase}."
 
 
-def _named_with(lexicon: Lexicon, entity: Entity, words: Words, i: int) -> bool:
-    """Whether a name of the entity spans word i and a word before it ("table *nine*")."""
-    for start in range(i):
-        for name in lexicon.names_at(words, start):
-            if name.entity == entity.id and start + len(name.words) > i:
-                return True
-    return False
+def _apposed(words: Words) -> Words:
+    """ "my mug the yellow one": a second phrase of "one" says which the first is ("my yellow mug")."""
+    if "one" not in words and "ones" not in words:
+        return words
+    for j in range(1, len(words)):
+        if words[j] in NP_START and words[j - 1] not in NP_START and words[j - 1] not in MODIFIER_START:
+            if "one" in words[j:] or "ones" in words[j:]:
+                return described(words[:j], words[j:])
+            return words
+    return words
+
+
+def _not_the_other(words: Words) -> Words:
+    """ "the box of gloves not the plasters": the thing meant, without the one it is not."""
+    at = next((i for i in range(1, len(words)) if words[i] == "not" and words[i + 1 : i + 2]), None)
+    return words if at is None or not content_words(words[:at]) else words[:at]

@@ -11,7 +11,9 @@ import re
 from collections.abc import Sequence
 from functools import lru_cache
 
-from dialogue.reference.english import Words, lowered, spans, tokens
+from lemminflect import getAllLemmas
+
+from dialogue.reference.english import DETERMINERS, FUNCTION_WORDS, Words, lowered, spans, tokens, word_set
 from dialogue.rules.words import (
     ASKING,
     CONTRACTIONS,
@@ -19,15 +21,43 @@ from dialogue.rules.words import (
     FILLERS,
     POLITE_PREFIXES,
     POLITE_SUFFIXES,
+    ROBOT_SUFFIXES,
     WH,
 )
+
+#: Words after "its" that make it "it is": adverbs no noun phrase starts with.
+_NOT_NOUNS = word_set("not just still already really so very too over gone all fine ok okay right")
 
 QUOTED = re.compile(r"[\"\u201c\u201d]([^\"\u201c\u201d]+)[\"\u201c\u201d]")
 
 
 def expanded(text: str) -> list[str]:
-    """The text's words with contractions expanded ("wheres" -> "where is")."""
-    return [x for w in tokens(text) for x in CONTRACTIONS.get(w, (w,))]
+    """The text's words with contractions expanded ("wheres" -> "where is"; "its" -> "it is" where
+    no noun follows it: "its on the bench", "its empty", but "its lid")."""
+    words = tokens(text)
+    out: list[str] = []
+    for i, w in enumerate(words):
+        if w == "its" and _is_it_is(tuple(words[i + 1 : i + 3])):
+            out += ["it", "is"]
+        else:
+            out += CONTRACTIONS.get(w, (w,))
+    return out
+
+
+@lru_cache(maxsize=4096)
+def _is_it_is(after: tuple[str, ...]) -> bool:
+    """Whether "its" before these words is "it's" written without its apostrophe: before a function
+    word ("its the tall one", "its on the shelf"), a participle ("its stopped raining") or a last
+    adjective ("its empty"); a possessive has a noun after it."""
+    if not after:
+        return True
+    nxt = after[0]
+    if nxt in FUNCTION_WORDS or nxt in DETERMINERS or nxt in _NOT_NOUNS:
+        return True
+    lemmas = getAllLemmas(nxt)
+    if nxt.endswith(("ed", "ing", "en")) and "VERB" in lemmas and "NOUN" not in lemmas:
+        return True
+    return len(after) == 1 and "ADJ" in lemmas
 
 
 def plain(text: str) -> list[str]:
@@ -69,6 +99,31 @@ def original_text(text: str, words: Sequence[str]) -> str:
         if all(found[i + k][0] == words[k] for k in range(n)):
             return text[found[i][1] : found[i + n - 1][2]]
     return " ".join(words)
+
+
+def message(text: str, words: Sequence[str]) -> str:
+    """What to say, as said: the original text from `words` to the end of the utterance, less the
+    politeness addressed to the robot ("tell Ana her taxi is here now please": "her taxi is here
+    now"; `words` were read without the "now", which is the message's)."""
+    if len(lowered(text)) != len(text) or not words:
+        return original_text(text, words)
+    found = [(w, start, end) for word, start, end in spans(text) for w in CONTRACTIONS.get(word, (word,))]
+    n = len(words)
+    at = next((i for i in range(len(found) - n + 1) if [f[0] for f in found[i : i + n]] == list(words)), None)
+    if at is None:
+        return original_text(text, words)
+    tail = found[at:]
+    dropped = True
+    while dropped and len(tail) > n:
+        dropped = False
+        if tail[-1][0] in FILLERS:
+            tail, dropped = tail[:-1], True
+            continue
+        for suffix in ROBOT_SUFFIXES:
+            if len(tail) - len(suffix) >= n and tuple(t[0] for t in tail[-len(suffix) :]) == suffix:
+                tail, dropped = tail[: -len(suffix)], True
+                break
+    return text[tail[0][1] : tail[-1][2]]
 
 
 def starts(words: Sequence[str], prefix: Sequence[str]) -> bool:

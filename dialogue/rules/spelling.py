@@ -35,7 +35,7 @@ from dialogue.reference.lexicon import Lexicon
 from dialogue.rules import questions, words
 from dialogue.rules.frames import FRAMES
 from dialogue.rules.speech import QUOTED
-from dialogue.rules.words import HOMOPHONES
+from dialogue.rules.words import NP_START, PREPOSITION_SLIPS
 
 _ROWS = ("qwertyuiop", "asdfghjkl", "zxcvbnm")
 _OFFSETS = (0.0, 0.25, 0.75)  # how far each row of a keyboard is shifted to the right
@@ -46,8 +46,10 @@ _FAR_KEY = 1.5
 _SWAP = 0.8
 _SHORT = 4
 #: Word lists of the grammar's modules whose words are content words, not the grammar's own.
-_NOT_GRAMMAR = frozenset({"HOMOPHONES", "NEEDS"})
+_NOT_GRAMMAR = frozenset({"HOMOPHONES", "NEEDS", "PREPOSITION_SLIPS"})
 _LONG = 8
+#: Words after which "were" at the start of an utterance can only be "where".
+_ASKED = frozenset({"is", "are", "did", "do", "does", "can", "could", "should", "has", "have", "was"})
 
 
 @dataclass(frozen=True)
@@ -72,8 +74,20 @@ def corrected(text: str, lexicon: Lexicon) -> Spelled:
     """The text with each slip corrected (outside quotes), and the corrections made."""
     quoted = [m.span() for m in QUOTED.finditer(text)]
     fixes: list[tuple[int, int, Correction]] = []
-    for word, start, end in spans(text):
-        if any(a <= start < b for a, b in quoted) or _named(text, start) or not _suspect(word, lexicon):
+    words = spans(text)
+    for n, (word, start, end) in enumerate(words):
+        if any(a <= start < b for a, b in quoted) or _named(text, start):
+            continue
+        if n == 0 and word == "were" and words[1:2] and words[1][0] in _ASKED:
+            # "were is the globe": "where" as a recogniser writes it
+            fixes.append((start, end, Correction(word, "where", False)))
+            continue
+        if 0 < n < len(words) - 1 and word in PREPOSITION_SLIPS:
+            # "walk too the gate", "milk form the jug": a preposition heard as another word
+            if words[n + 1][0] in NP_START and words[n - 1][0] not in NP_START:
+                fixes.append((start, end, Correction(word, PREPOSITION_SLIPS[word], False)))
+            continue
+        if not _suspect(word, lexicon):
             continue
         meant = _meant(word, lexicon)
         if meant is not None:
@@ -115,15 +129,6 @@ def _meant(word: str, lexicon: Lexicon) -> str | None:
     if not priced or priced[0][0] > limit or (len(priced) > 1 and priced[1][0] == priced[0][0]):
         return None
     return priced[0][1]
-
-
-def slips(word: str, lexicon: Lexicon) -> list[str]:
-    """Words of the KB's names that `word`, a word of English or of the grammar, may have been heard
-    or typed for: a homophone ("for": "four") or one slip of a neighbouring key ("mine": "nine")."""
-    sounds = [w for group in HOMOPHONES if word in group for w in group if w != word]
-    near = process.extract(word, list(lexicon.vocabulary), scorer=OSA.distance, score_cutoff=1, limit=None)
-    typed = [choice for choice, _, _ in near if choice != word and typing_cost(word, choice) <= 1]
-    return list(dict.fromkeys(w for w in (*sounds, *typed) if lexicon.knows(w)))
 
 
 def _choices(lexicon: Lexicon) -> list[str]:

@@ -21,8 +21,16 @@ CONTRACTIONS: dict[str, Words] = {
     "doesnt": ("don't",), "wont": ("don't",), "isnt": ("is", "not"), "arent": ("are", "not"),
     "didnt": ("did", "not"), "i've": ("i", "have"), "she's": ("she", "is"), "he's": ("he", "is"),
     "we're": ("we", "are"), "they're": ("they", "are"), "hows": ("how", "is"),
+    "theyre": ("they", "are"), "theyve": ("they", "have"), "youve": ("you", "have"), "weve": ("we", "have"),
+    "youll": ("you", "will"), "theyll": ("they", "will"), "itll": ("it", "will"), "thatll": ("that", "will"),
+    "wasnt": ("was", "not"), "werent": ("were", "not"), "hasnt": ("has", "not"), "havent": ("have", "not"),
+    "couldnt": ("could", "not"), "wouldnt": ("would", "not"), "shouldnt": ("should", "not"),
+    "youd": ("you", "would"), "theyd": ("they", "would"), "whatre": ("what", "are"),
+    "whered": ("where", "did"), "it'll": ("it", "will"), "you'll": ("you", "will"),
+    "they've": ("they", "have"), "you've": ("you", "have"),
     # Chat spellings of speech.
-    "ya": ("you",), "gimme": ("give", "me"), "lemme": ("let", "me"), "wanna": ("want", "to"),
+    "ya": ("you",), "u": ("you",), "r": ("are",), "ur": ("your",), "gimme": ("give", "me"),
+    "lemme": ("let", "me"), "wanna": ("want", "to"),
     "gotta": ("have", "to"), "pls": ("please",), "plz": ("please",), "thx": ("thanks",),
 }  # fmt: skip
 #: Hesitations and discourse fillers, dropped wherever they occur ("put the uh candle on the table").
@@ -36,21 +44,32 @@ INTERJECTIONS = word_set(
     "obviously definitely clearly surely certainly naturally yes yeah yep sure please thanks"
 )
 #: A self-repair: what follows replaces the request said before it ("bring me the uh no wait put...").
-REPAIRS = phrases("no wait|wait no|sorry i mean|no sorry|i mean|or rather|no no|scratch that|no actually")
+REPAIRS = phrases(
+    "no wait|wait no|sorry i mean|no sorry|i mean|or rather|no no|scratch that|no actually|actually|"
+    "oh wait|wait|sorry"
+)
 POLITE_PREFIXES = phrases(
     "would you mind|do you mind|i would like you to|i want you to|i need you to|i wish you would|"
     "go ahead and|go and|come and|could you|can you|would you|will you|please|kindly|just|now|ok|okay|"
     "so|and|then|also|well|robot|let us|try to|you should|you can|you could|be so kind and|be so kind as to|"
     "time to|maybe|hold on|hang on|wait a moment|wait a second|one moment|actually|oh|um|umm|uh|er|erm|"
-    "great|alright|all right|cool|perfect|excellent|sorry|excuse me|can we|could we|shall we|should we|"
+    "great|alright|all right|right|right then|cool|perfect|excellent|sorry|excuse me|can we|could we|"
+    "shall we|should we|"
     "why don't we|how about we|i was wondering if you could|i wonder if you could|"
     "i was wondering whether you could|"
     "be a dear and|be an angel and|do me a favour and|do me a favor and|you know what|off you|listen|"
     "would you be so kind as to|would you be able to|are you able to|if you could|if you can"
 )
-POLITE_SUFFIXES = phrases(
-    "please|thanks|thank you|now|right now|if you can|if you could|for a moment|again|quickly|"
-    "immediately|ok|okay|would you|will you|could you|can you|won't you|for a sec|for a second"
+#: Politeness at the end of a request that is said to the robot, never part of a message to pass on.
+ROBOT_SUFFIXES = phrases(
+    "please|thanks|thank you|if you can|if you could|ok|okay|would you|will you|could you|can you|won't you"
+)
+POLITE_SUFFIXES = (
+    *ROBOT_SUFFIXES,
+    *phrases("ta|cheers|thanks a lot|thank you very much|much appreciated|if you would|if you don't mind"),
+    *phrases("now|right now|for a moment|again|quickly|quick|immediately|for a sec|for a second|sorry"),
+    # the listener named by a tag ("the yellow one mate", "over here love")
+    *phrases("mate|pal|buddy|love|dear|darling|sir|madam|miss|boss|chief|my friend|my dear"),
 )
 GREETINGS = phrases(
     "good morning|good afternoon|good evening|good day|hello|hi|hey|hiya|howdy|greetings|yo|"
@@ -77,7 +96,7 @@ AUXILIARIES = word_set("does did done is are was were be been being has had havi
 # -- requests -------------------------------------------------------------------------------------
 #: Two-word prepositions read as one word, so that their "to" is never taken for a recipient's.
 JOINED_PREPOSITIONS: dict[Words, str] = {("next", "to"): "beside", ("close", "to"): "near",
-                                          ("nearest", "to"): "near"}  # fmt: skip
+                                          ("nearest", "to"): "near", ("out", "of"): "from"}  # fmt: skip
 #: Prepositions that introduce a place to put something ("put the cup on top of the piano").
 PLACES = (
     "on top of|onto|on to|on|into|inside|in front of|in|at|to|under|underneath|beneath|below|beside|near|by|"
@@ -91,7 +110,7 @@ MOTION_PARTICLES = (
     "closer quickly slowly carefully quietly safely directly through"
 )
 #: Words between a verb of carrying and its object or recipient ("bring it over to me").
-CARRY_PARTICLES = "over back up down along round around through"
+CARRY_PARTICLES = "over back up down along round around through out"
 #: A place said by pointing at it: "come here", "leave it over there", "lead the way".
 HERE = phrases("here|over here|back here|right here|closer")
 THERE = phrases("there|over there|back there|the way")
@@ -102,7 +121,7 @@ ADJUNCTS = phrases(
     "on my behalf|on our behalf|on his behalf|on her behalf|for me|for us|from me|from us|"
     "when you can|when you get a chance|when you have a moment|when you have a minute|when you are free|"
     "as soon as possible|as soon as you can|right away|straight away|at once|in a minute|in a moment|"
-    "right now|real quick|right quick|asap|in a jiffy|in a sec|in a second"
+    "right now|real quick|right quick|asap|in a jiffy|in a sec|in a second|instead|instead of that"
 )
 #: Prepositions of a path: "go to the bathroom through the main door" (what follows is the adjunct).
 PATHS = word_set("through via past across along")
@@ -117,6 +136,11 @@ HOMOPHONES = phrases(
     "flour flower|whole hole|knight night|wood would|bare bear|mail male|meat meet|weight wait|"
     "piece peace|plain plane|deer dear|sale sail|steal steel|stair stare|board bored|sole soul"
 )
+
+#: Words of English a recogniser or a typist writes for a preposition, read as it before a noun
+#: phrase of their own ("walk too the gate", "the milk form the jug"): no noun phrase starts
+#: right after them otherwise.
+PREPOSITION_SLIPS = {"too": "to", "two": "to", "2": "to", "form": "from", "fro": "from", "thru": "through"}
 
 # -- small constructions --------------------------------------------------------------------------
 #: "I want X" and friends ask for X to be brought.
@@ -143,6 +167,12 @@ INTENSIFIERS = word_set("so very really absolutely quite a bit little totally ge
 #: What follows "do" in a request ("do the dishes", "do some exercise"); anything else after "do"
 #: is a yes/no question ("do you like music", "do robots ever get tired").
 DONE = word_set("the a an some my your our this that these those exercise exercises yoga stretches")
+#: "the butter goes back in the fridge", "these should go on the top shelf": where a thing is to be put.
+GOES = phrases(
+    "goes|go|belongs|belong|lives|live|should go|can go|needs to go|need to go|has to go|have to go|must go|"
+    "should be put|needs to be put|has to be put|wants to go"
+)
+GOES_PARTICLES = word_set("back away over up down")
 EVERYONE = frozenset(phrases("everyone|everybody|all|them all|people"))
 #: Words of "stop whatever you are doing" that do not name the activity.
 STOP_FILLER = word_set(
@@ -155,5 +185,5 @@ ACTIVITY_FILLER = word_set("the a an some with me us of")
 #: the reply ("I can't find the newspaper myself"), never silently dropped.
 NO_INTENT_VERBS = word_set(
     "find search look open close turn switch remove control check wait stay watch heat boil pour fill "
-    "empty plug unplug lock unlock answer call fix feed throw follow serve"
+    "empty plug unplug lock unlock answer call fix feed follow serve"
 )

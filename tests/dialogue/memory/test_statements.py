@@ -122,6 +122,7 @@ def test_several_statements_in_one_turn(home: KB) -> None:
 
 
 @pytest.mark.parametrize("text", [
+    "tell alice her tea is on the table",  # a request: what to tell her is no statement of the speaker's
     "bring me the mug", "is the mug on the table?", "I'd like a cup of tea", "where are my keys",
     "the moon is made of cheese", "does Alice like tea", "what do you see", "I'm Bob, bring me the mug",
     "i hate marking lab reports",
@@ -137,3 +138,9 @@ def test_nothing_is_invented_and_ambiguity_is_asked_about(home: KB) -> None:
                  "myself sees mug_blue"])
     told = Statements(lexicon_of(home), BOB).read("the mug is mine")
     assert told is not None and told.clarify and told.reply is not None and "red" in told.reply
+
+
+def test_a_statement_run_into_a_request_is_no_statement(home: KB) -> None:
+    # "...can you get them" is a request: the turn is the rules' (which may not know the glasses),
+    # not a refusal to learn where unknown glasses are.
+    assert Statements(lexicon_of(home), BOB).read("my sunglasses are on the table can you get them") is None

@@ -155,3 +155,140 @@ def test_a_phrase_whose_last_word_is_no_slip_of_a_name_is_not_claimed() -> None:
     out = say(_bays(), "go to the loading bay fine")
     assert not out.understood and not out.clarify and out.intent is None, out.reply
     assert say(_bays(), "go to the loading bay").clarify
+
+
+def _terminal() -> KB:
+    return scene(
+        "lifts_1 rdf:type ZoneOfInterest", 'lifts_1 rdfs:label "lifts"',
+        "person_noor rdf:type Human", 'person_noor rdfs:label "Noor"', "myself sees person_noor",
+        "person_sam rdf:type Human", 'person_sam rdfs:label "Sam"', "myself sees person_sam",
+        "flask_1 rdf:type Artifact", 'flask_1 rdfs:label "flask"', "myself sees flask_1",
+        "ball_r rdf:type Artifact", 'ball_r rdfs:label "ball"', "ball_r hasColor red", "myself sees ball_r",
+        "ball_g rdf:type Artifact", 'ball_g rdfs:label "ball"', "ball_g hasColor green", "myself sees ball_g",
+    )  # fmt: skip
+
+
+def test_needing_a_place_is_being_taken_there() -> None:
+    out = say(_terminal(), "i need the lifts")
+    assert (out.intent, out.roles) == ("__intent_guide__", {"recipient": SPEAKER, "goal": "lifts_1"}), out.reply
+    out = say(_terminal(), "um i need the uh the lifts can you take me")
+    assert (out.intent, out.roles) == ("__intent_guide__", {"recipient": SPEAKER, "goal": "lifts_1"}), out.reply
+    # with no place spoken of, "take me" asks where (a question, not a guess)
+    out = say(_terminal(), "can you take me")
+    assert out.clarify and out.reply == "Where should I take you?"
+
+
+def test_an_answer_with_a_tag_word_completes_the_request() -> None:
+    history = [("user", "pass me the ball"), ("robot", "Which ball: the red one or the green one?")]
+    out = say(_terminal(), "the green one pal", history)
+    assert out.roles == {"object": "ball_g", "recipient": SPEAKER}, out.reply
+
+
+def test_a_request_redirected_instead_keeps_the_thing_spoken_of() -> None:
+    history = [("user", "give sam the flask"), ("robot", "OK, I will bring the flask to Sam.")]
+    out = say(_terminal(), "actually no give it to noor instead", history)
+    assert out.roles == {"object": "flask_1", "recipient": "person_noor"}, out.reply
+
+
+def test_a_second_place_that_the_first_is_not_on_is_where_to_put_it() -> None:
+    kb = scene(
+        "shelf_1 rdf:type Artifact", 'shelf_1 rdfs:label "shelf"', "myself sees shelf_1",
+        "desk_1 rdf:type Artifact", 'desk_1 rdfs:label "desk"', "myself sees desk_1",
+        "lamp_1 rdf:type Artifact", 'lamp_1 rdfs:label "lamp"', "lamp_1 isOn desk_1", "myself sees lamp_1",
+        "vase_1 rdf:type Artifact", 'vase_1 rdfs:label "vase"', "myself sees vase_1",
+    )  # fmt: skip
+    # the lamp is on the desk, not the shelf: "on the shelf" is where the vase goes
+    out = say(kb, "put the vase next to the lamp on the shelf")
+    assert (out.intent, out.roles) == ("__intent_place_object__", {"object": "vase_1", "recipient": "shelf_1"})
+    out = say(kb, "put the vase next to the lamp on the desk")
+    assert out.roles == {"object": "vase_1", "recipient": "lamp_1"}, out.reply
+
+
+def test_give_me_a_hand_to_a_place_is_guiding() -> None:
+    out = say(_terminal(), "can you give me a hand to the lifts")
+    assert (out.intent, out.roles) == ("__intent_guide__", {"recipient": SPEAKER, "goal": "lifts_1"}), out.reply
+
+
+def test_a_second_phrase_of_one_says_which_the_first_is() -> None:
+    out = say(_terminal(), "hand me the ball the green one")
+    assert out.roles == {"object": "ball_g", "recipient": SPEAKER}, out.reply
+
+
+def test_a_person_where_a_thing_is_wanted_is_not_understood() -> None:
+    # "go and get him": no intent fetches a person; nothing is claimed (no "what do you mean by him")
+    out = say(_terminal(), "noor is in the lobby go and get him")
+    assert not out.understood and out.intent is None and not out.clarify, out.reply
+
+
+def test_what_is_not_there_is_said_back_with_its_prepositions() -> None:
+    kb = _terminal()
+    kb.update(["hall_1 rdf:type ZoneOfInterest", 'hall_1 rdfs:label "hall"', "flask_1 isIn hall_1"])
+    out = say(kb, "is the flask in the lifts")
+    assert out.reply == "No, I don't see any flask in the lifts."
+    assert say(_terminal(), "can you see the flask anywhere").reply.startswith("Yes, I see")
+
+
+def test_which_thing_is_mine_says_whose_each_is() -> None:
+    kb = _terminal()
+    kb.update(["ball_r belongsTo person_kim", "ball_g belongsTo person_noor"])
+    reply = say(kb, "which ball is mine").reply
+    assert "red ball" in reply and "is yours" in reply and "Noor's" in reply, reply
+
+
+def test_a_greeting_followed_by_what_is_not_understood_is_not_claimed_as_a_greeting() -> None:
+    out = say(_terminal(), "hey robot the striped bag is mine can you bring it over")
+    assert not out.understood and out.intent is None, out.reply
+    assert say(_terminal(), "good morning noor").intent == "__intent_greet__"
+
+
+def test_a_place_said_again_replaces_the_last_place() -> None:
+    kb = _terminal()
+    kb.update(["shelf_1 rdf:type Artifact", 'shelf_1 rdfs:label "shelf"', "myself sees shelf_1",
+               "desk_1 rdf:type Artifact", 'desk_1 rdfs:label "desk"', "myself sees desk_1"])
+    out = say(kb, "put the flask on the shelf no wait on the desk")
+    assert (out.intent, out.roles) == ("__intent_place_object__", {"object": "flask_1", "recipient": "desk_1"})
+
+
+def test_the_thing_meant_not_the_one_it_is_not() -> None:
+    out = say(_terminal(), "hand me the red ball not the green one")
+    assert out.roles == {"object": "ball_r", "recipient": SPEAKER}, out.reply
+
+
+def test_a_position_word_does_not_make_a_named_thing_ambiguous() -> None:
+    kb = scene(
+        "b1 rdf:type Artifact", 'b1 rdfs:label "box of nails"', "myself sees b1",
+        "b2 rdf:type Artifact", 'b2 rdfs:label "box of screws"', "myself sees b2",
+        "s1 rdf:type Artifact", 's1 rdfs:label "shelf"', "myself sees s1",
+    )  # fmt: skip
+    out = say(kb, "pop the box of nails back on the shelf")
+    assert (out.intent, out.roles) == ("__intent_place_object__", {"object": "b1", "recipient": "s1"}), out.reply
+
+
+def _classroom() -> KB:
+    return scene(
+        "m_b rdf:type Artifact", 'm_b rdfs:label "marker"', "m_b hasColor blue", "myself sees m_b",
+        "m_r rdf:type Artifact", 'm_r rdfs:label "marker"', "m_r hasColor red", "myself sees m_r",
+        "sheets_1 rdf:type Artifact", 'sheets_1 rdfs:label "worksheets"', "myself sees sheets_1",
+        "person_sam rdf:type Human", 'person_sam rdfs:label "Sam"', "myself sees person_sam",
+    )  # fmt: skip
+
+
+def test_handing_out_is_no_bringing_to_the_speaker() -> None:
+    out = say(_classroom(), "can you hand out the worksheets")
+    assert not out.understood and out.intent is None, out.reply
+    assert say(_classroom(), "hand me the worksheets").roles == {"object": "sheets_1", "recipient": SPEAKER}
+
+
+def test_a_person_brought_to_a_person_is_not_claimed() -> None:
+    out = say(_classroom(), "bring sam here")
+    assert not out.understood and out.intent is None, out.reply
+
+
+def test_a_place_named_only_by_a_position_word_is_left_to_a_model() -> None:
+    out = say(_classroom(), "bring the worksheets to the front")
+    assert not out.understood and out.intent is None, out.reply
+
+
+def test_things_sharing_a_name_are_told_apart_by_colour() -> None:
+    assert say(_classroom(), "how many markers are there").reply == "I see two: the blue marker and the red marker."
+    assert "the red marker" in say(_classroom(), "which marker is red").reply

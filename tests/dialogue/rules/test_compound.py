@@ -19,6 +19,10 @@ from tests.dialogue.rules.test_interpret import say
         ("put the salt and pepper on the table", []),
         ('say "stop and wait" to Carol', []),  # a quotation is one text
         ("go get a book for me", []),
+        # "go" before a verb starts a request after a remark; a verb after a modal is the remark's own
+        ("omar is at the door go say hi to him", ["omar is at the door", "go say hi to him"]),
+        ("mia can't find her pen, can you take it to her", ["mia can't find her pen", "can you take it to her"]),
+        ("omar is in the shed tell him lunch is ready", ["omar is in the shed", "tell him lunch is ready"]),
     ],
 )
 def test_parts(text: str, parts: list[str]) -> None:

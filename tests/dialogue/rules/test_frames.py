@@ -198,3 +198,71 @@ def test_someone_elses_wish_and_a_helping_hand(text: str, intent: str, slots: di
 @pytest.mark.parametrize("text", ["the kettle needs descaling", "it needs a new battery", "Ann needs to rest"])
 def test_a_thing_needing_something_is_no_request(text: str) -> None:
     assert parse(text).intent is None
+
+
+@pytest.mark.parametrize(
+    ("text", "intent", "slots"),
+    [
+        ("chuck the rag in the sink", I.PLACE_OBJECT, {"object": ("the", "rag"), "recipient": ("the", "sink")}),
+        ("toss the peel into the compost", I.PLACE_OBJECT, {"object": ("the", "peel"),
+                                                            "recipient": ("the", "compost")}),
+        ("throw the wrapper in the bin", I.PLACE_OBJECT, {"object": ("the", "wrapper"), "recipient": ("the", "bin")}),
+        # "out" is a particle of carrying, "out of" says where from
+        ("take grandad out to the garden", I.BRING_OBJECT, {"object": ("grandad",), "recipient": ("the", "garden")}),
+        ("get me a lemon out of the bowl", I.BRING_OBJECT, {"object": ("a", "lemon", "from", "the", "bowl")}),
+        # the way is no one's name, with or without its article
+        ("show Noor way to the exit", I.GUIDE, {"recipient": ("noor",), "goal": ("the", "exit")}),
+        ("show Noor the way to the exit", I.GUIDE, {"recipient": ("noor",), "goal": ("the", "exit")}),
+        # where a thing goes is where to put it
+        ("the butter goes back in the fridge", I.PLACE_OBJECT, {"object": ("the", "butter"),
+                                                               "recipient": ("the", "fridge")}),
+        ("these belong on the top shelf", I.PLACE_OBJECT, {"object": ("these",), "recipient": ("the", "top", "shelf")}),
+        ("the plates should go in the rack", I.PLACE_OBJECT, {"object": ("the", "plates"),
+                                                             "recipient": ("the", "rack")}),
+        # "take me": the place just spoken of (the interpreter finds it), else it asks where
+        ("can you take me", I.GUIDE, {"recipient": ("me",), "goal": ("there",)}),
+        # a request replacing an earlier one, a tag naming the listener: neither is a referent
+        ("give it to Noor instead", I.BRING_OBJECT, {"object": ("it",), "recipient": ("noor",)}),
+        ("pick up the ladder mate", I.GRAB_OBJECT, {"object": ("the", "ladder")}),
+        # being somewhere is going there ("wait for me" is no place: not this row)
+        ("go and wait in the lobby", I.MOVE_TO, {"goal": ("the", "lobby")}),
+        ("stay by the gate", I.MOVE_TO, {"goal": ("the", "gate")}),
+        # throwing to someone is bringing
+        ("chuck me the towel", I.BRING_OBJECT, {"object": ("the", "towel"), "recipient": ("me",)}),
+        ("toss the keys to Noor", I.BRING_OBJECT, {"object": ("the", "keys"), "recipient": ("noor",)}),
+        ("show Noor where the exit is", I.GUIDE, {"recipient": ("noor",), "goal": ("the", "exit")}),
+        ("the kettle lives on the counter", I.PLACE_OBJECT, {"object": ("the", "kettle"),
+                                                             "recipient": ("the", "counter")}),
+        # pointing after "me" says where the thing is, not where it goes
+        ("fetch me that ladder over there", I.BRING_OBJECT, {"recipient": ("me",)}),
+        ("reach the landing", I.MOVE_TO, {"goal": ("the", "landing")}),
+        ("come back", I.MOVE_TO, {"goal": ("me",)}),
+    ],
+)  # fmt: skip
+def test_verbs_and_phrasings_of_everyday_speech(text: str, intent: str, slots: dict[str, tuple[str, ...]]) -> None:
+    p = parse(text)
+    assert (p.act, p.intent) == ("command", intent)
+    assert {k: p.slots[k] for k in slots} == slots
+
+
+@pytest.mark.parametrize("text", ["the bus goes to town", "I go in the morning", "where does the salt go"])
+def test_where_something_goes_is_no_request_without_a_place_to_put_it(text: str) -> None:
+    assert parse(text).intent != I.PLACE_OBJECT
+
+
+@pytest.mark.parametrize(
+    ("text", "slots"),
+    [
+        ("get Noor her scarf", {"rest": ("noor", "her", "scarf")}),
+        ("take him the kettle", {"rest": ("him", "the", "kettle")}),
+        ("take all the plates", {"object": ("all", "the", "plates")}),  # a quantifier is nobody
+        ("get the kettle", {"object": ("the", "kettle")}),
+    ],
+)
+def test_getting_or_taking_someone_something_is_bringing_it(text: str, slots: dict[str, tuple[str, ...]]) -> None:
+    assert parse(text).slots == slots
+
+
+@pytest.mark.parametrize("text", ["wait for me", "stay"])
+def test_waiting_with_no_place_is_no_motion(text: str) -> None:
+    assert parse(text).intent is None

@@ -4,7 +4,8 @@ import pytest
 
 from dialogue import intents as I
 from dialogue.rules.commands import parse
-from dialogue.rules.utterance import cleaned, normalise
+from dialogue.rules.speech import expanded
+from dialogue.rules.utterance import Cleaned, cleaned, normalise
 
 
 @pytest.mark.parametrize(
@@ -20,6 +21,9 @@ from dialogue.rules.utterance import cleaned, normalise
         ("pick up the cup you know the blue one", "pick up the cup the blue one"),
         ("do you know where the keys are", "do you know where the keys are"),  # not a filler here
         ("table 4 4", "table 4 4"),  # numbers are not stutters
+        # chat and recogniser spellings
+        ("can u pass the salt theyre waiting", "can you pass the salt they are waiting"),
+        ("how many mugs r there", "how many mugs are there"),
     ],
 )
 def test_normalise(text: str, words: str) -> None:
@@ -27,8 +31,48 @@ def test_normalise(text: str, words: str) -> None:
 
 
 def test_cleaned_keeps_text_without_repairs() -> None:
-    assert cleaned('Say "Hello, Tom!" to Tom') == 'Say "Hello, Tom!" to Tom'
-    assert cleaned("put the put the cup down") == "put the cup down"
+    assert cleaned('Say "Hello, Tom!" to Tom').text == 'Say "Hello, Tom!" to Tom'
+    assert cleaned("put the put the cup down") == Cleaned("put the cup down")
+
+
+@pytest.mark.parametrize(
+    ("text", "meant", "taken_back"),
+    [
+        # a request said again: what was taken back is kept as context for the new one's pronouns
+        ("hand ravi the uh no wait hand him the stapler", "hand him the stapler", "hand ravi the"),
+        ("where is the ferry actually could you walk me there", "could you walk me there", "where is the ferry"),
+        # a noun phrase said again replaces the last one; "one" is the head it replaces
+        ("grab the red scarf no the green one", "grab the green scarf", "grab the red scarf"),
+        ("put the pen sorry i mean the pencil in the tray", "put the pencil in the tray", "put the pen"),
+        ("fetch the tea oh wait the coffee please", "fetch the coffee", "fetch the tea"),
+        # no repair: "no" inside a phrase, or nothing that could be said again
+        ("make it a tea with no milk", "make it a tea with no milk", ""),
+        ("no thanks", "no thanks", ""),
+    ],
+)
+def test_a_self_repair_says_again_a_request_or_its_last_phrase(text: str, meant: str, taken_back: str) -> None:
+    assert cleaned(text) == Cleaned(meant, taken_back)
+
+
+@pytest.mark.parametrize(
+    ("text", "words"),
+    [
+        ("its on the shelf", "it is on the shelf"),
+        ("its the tall one", "it is the tall one"),
+        ("bin it its empty", "bin it it is empty"),
+        ("its stopped raining", "it is stopped raining"),
+        ("the kettle and its lid", "the kettle and its lid"),  # a possessive before its noun
+        ("its handle is loose", "its handle is loose"),
+    ],
+)
+def test_its_without_apostrophe_is_it_is_where_no_noun_follows(text: str, words: str) -> None:
+    assert " ".join(expanded(text)) == words
+
+
+def test_a_message_keeps_the_words_said_after_it_but_not_the_politeness_to_the_robot() -> None:
+    assert parse("tell ravi that the taxi is outside now please").text == "the taxi is outside now"
+    assert parse("Tell Ravi the bus leaves again at noon, thanks").text == "the bus leaves again at noon"
+    assert parse("tell ravi dinner is ready uh").text == "dinner is ready"
 
 
 @pytest.mark.parametrize(
@@ -64,3 +108,8 @@ def test_requests(text: str, intent: str, slots: dict[str, tuple[str, ...]]) -> 
 )
 def test_yes_no_questions_are_never_activities(text: str) -> None:
     assert parse(text).intent is None
+
+
+def test_a_lead_and_a_thanks_of_their_own_are_politeness() -> None:
+    assert parse("right could you grab the broom ta").slots == {"object": ("the", "broom")}
+    assert parse("pass me the broom cheers").slots == {"object": ("the", "broom"), "recipient": ("me",)}

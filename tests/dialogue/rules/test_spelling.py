@@ -89,3 +89,24 @@ def test_a_compound_request_with_a_slip_is_less_sure_in_every_part() -> None:
     out = say(_things("thermos", "ledge"), "tkae the thermos and put it on the ldege")
     assert [o.intent for o in out.steps()] == [I.GRAB_OBJECT, I.PLACE_OBJECT]
     assert all(o.confidence < 0.9 for o in out.steps()) and out.guesses
+
+
+@pytest.mark.parametrize(
+    ("text", "fixed"),
+    [
+        ("walk too the gate", "walk to the gate"),
+        ("bring the milk form the fridge", "bring the milk from the fridge"),
+        ("go two my room", "go to my room"),
+        ("were is the gate", "where is the gate"),  # "were" before "is" at the start
+    ],
+)
+def test_a_preposition_heard_as_another_word_before_a_noun_phrase(text: str, fixed: str) -> None:
+    spelled = corrected(text, lexicon_of(_things("gate", "fridge")))
+    assert spelled.text == fixed and not spelled.guessed
+
+
+@pytest.mark.parametrize(
+    "text", ["fill in the form the nurse gave you", "take two apples", "me too", "were the apples ripe"]
+)
+def test_the_same_words_elsewhere_are_left_alone(text: str) -> None:
+    assert corrected(text, lexicon_of(_things("form", "apple"))).text == text
