@@ -17,6 +17,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Literal
 
+from dialogue.memory.names import clean_name
 from dialogue.reference.clarify import question as clarifying_question
 from dialogue.reference.english import tokens
 from dialogue.reference.grounding import Kind
@@ -29,8 +30,6 @@ from dialogue.schema import AnswerError, FactClaim
 ObjectForm = Literal["entity", "kind", "text"]
 _HOLDERS: frozenset[Kind] = frozenset({"thing", "person"})
 _PLACES: frozenset[Kind] = frozenset({"zone", "thing"})
-#: Longest name a person may give (characters).
-MAX_NAME = 60
 
 
 @dataclass(frozen=True)
@@ -88,15 +87,6 @@ class Claim:
     @property
     def asks(self) -> bool:
         return self.object is None
-
-
-def clean_name(text: str) -> str:
-    """A name as told ("bob" -> "Bob", "mary jane" -> "Mary Jane"; casing kept when it has any),
-    or "" when it is no name (no letters, or too long)."""
-    name = " ".join(text.split()).strip(" .,!?;:\"'")
-    if not name or len(name) > MAX_NAME or not any(c.isalpha() for c in name):
-        return ""
-    return name if name != name.lower() else name.title()
 
 
 #: The reply when a fact would name a speaker who is not a KB entity (as for intents).

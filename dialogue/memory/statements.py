@@ -21,6 +21,7 @@ from dataclasses import dataclass, field
 from lemminflect import getAllLemmas
 
 from dialogue.history import Utterance
+from dialogue.memory.names import clean_name, given_name, name_like
 from dialogue.reference.clarify import question as clarifying_question
 from dialogue.reference.english import POSSESSIVES, word_set
 from dialogue.reference.grounding import Kind
@@ -49,11 +50,6 @@ _BY_THE_WAY = ("by", "the", "way")
 #: A clause starting with one of these asks something: questions are not statements.
 _ASKING = word_set("do does did is are was were can could would will shall should may might must have has")
 _INTENSIFIERS = word_set("really truly absolutely quite totally just")
-#: Words of "I'm X" that are no name ("I'm back", "I'm the cook", "I'm not sure").
-_NOT_NAMES = word_set(
-    "a an the not no so very just here there back home in on at from with going done fine ok okay sorry "
-    "ready sure afraid looking trying still also only really quite too that this it what who your my"
-)
 _FRIEND = word_set(
     "friend wife husband partner son daughter mother mum mom father dad brother sister colleague boss "
     "neighbour neighbor guest grandmother grandfather granny grandma grandpa aunt uncle cousin"
@@ -69,6 +65,13 @@ _POLITE: frozenset[Words] = frozenset({("please",), ("thanks",), ("thank", "you"
 _NO: frozenset[Words] = frozenset({("no",), ("nope",), ("no", "no"), ("wrong",), ("that", "is", "wrong"),
                                    ("not", "quite"), ("sorry",), ("no", "sorry")})
 _NAME_ASKED = ("your name", "what should i call you")
+#: What introduces the speaker's name, and whether it says a name surely ("my name is frank") or
+#: only when the words look like one ("call me later" is no name).
+_NAME_LEADS: tuple[tuple[Words, bool], ...] = (
+    (("my", "name", "is"), True), (("my", "name's"), True), (("i", "am", "called"), True),
+    (("the", "name", "is"), True), (("call", "me"), False), (("you", "can", "call", "me"), False),
+    (("people", "call", "me"), False),
+)
 
 
 @dataclass
@@ -96,17 +99,6 @@ class _Refused(Exception):
 
 def _fact(subject: str, predicate: str, obj: str | None) -> FactClaim:
     return FactClaim(subject=subject, predicate=predicate, object=obj)
-
-
-def name_like(words: Words, original: str) -> bool:
-    """Whether the words of "I'm X" are a name: one to three words, none a function word, and
-    (for lower-case speech-recogniser text) none an adjective or adverb ("I'm tired", "I'm here")."""
-    if not 1 <= len(words) <= 3 or any(w in _NOT_NAMES or not w.isalpha() for w in words):
-        return False
-    if original != original.lower():  # written casing tells names apart: "I'm Frank", "I'm frank"
-        return all(part[:1].isupper() for part in original.split())
-    lemmas = [getAllLemmas(w) for w in words]
-    return not any({"ADJ", "ADV", "AUX"} & set(found) for found in lemmas) and not words[0].endswith("ing")
 
 
 class Statements:
@@ -179,10 +171,12 @@ class Statements:
         correcting = w[:1] == ("no",)
         if correcting:
             w = self._lead(list(w[1:]))
-        for lead in (("my", "name", "is"), ("my", "name's"), ("call", "me"), ("you", "can", "call", "me"),
-                     ("i", "am", "called"), ("people", "call", "me"), ("the", "name", "is")):
-            if w[: len(lead)] == lead and w[len(lead) :]:
-                return [self._named(self.speaker, w[len(lead) :], clause)]
+        for lead, surely in _NAME_LEADS:
+            rest = w[len(lead) :]
+            if w[: len(lead)] == lead and rest:
+                if not (given_name(rest) if surely else name_like(rest, original_text(clause, list(rest)))):
+                    raise _Unclaimed  # "my name is not important", "call me later"
+                return [self._named(self.speaker, rest, clause)]
         if w[:2] == ("i", "am") and name_like(w[2:], original_text(clause, list(w[2:]))):
             return [self._named(self.speaker, w[2:], clause)]
         if w[:2] in {("his", "name"), ("her", "name"), ("their", "name")} and w[2:3] in {("is",), ("'s",)}:
@@ -202,8 +196,10 @@ class Statements:
         return None
 
     def _named(self, who: str, words: Words, clause: str) -> FactClaim:
-        name = original_text(clause, list(words))
-        return _fact(who, "name", name if name != name.lower() else name.title())
+        name = clean_name(original_text(clause, list(words)))
+        if not name:
+            raise _Unclaimed  # longer than any name
+        return _fact(who, "name", name)
 
     def _known_words(self, words: Words) -> bool:
         return all(self.lexicon.knows(w) for w in words)

@@ -6,7 +6,7 @@ import re
 
 import pytest
 
-from dialogue.memory.claims import Claim, clean_name, ground_facts
+from dialogue.memory.claims import Claim, ground_facts
 from dialogue.schema import AnswerError, FactClaim
 from kb import KB
 from tests.dialogue.memory.conftest import lexicon_of
@@ -53,8 +53,3 @@ def test_an_ambiguous_referent_is_asked_about(home: KB) -> None:
                  "myself sees mug_blue"])
     found = ground_facts([FactClaim(subject="the mug", predicate="belongsTo", object="me")], lexicon_of(home), BOB)
     assert found.claims == () and found.question is not None and "blue" in found.question
-
-
-def test_names_as_told() -> None:
-    assert clean_name(" mary jane ") == "Mary Jane" and clean_name("McKenzie") == "McKenzie"
-    assert clean_name("42") == "" and clean_name("x" * 61) == ""

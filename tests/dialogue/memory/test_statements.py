@@ -5,7 +5,7 @@ from __future__ import annotations
 import pytest
 
 from dialogue.history import ASSISTANT_USER_ID, Utterance
-from dialogue.memory.statements import Statements, name_like
+from dialogue.memory.statements import Statements
 from kb import KB
 from tests.dialogue.memory.conftest import lexicon_of
 
@@ -36,14 +36,22 @@ def test_a_speaker_tells_their_name(home: KB, text: str, name: str) -> None:
 
 
 @pytest.mark.parametrize("text", ["I'm hungry", "I'm tired", "im back", "im frank with you", "I'm not sure",
-                                  "I'm the cook", "I'm going home", "I am here"])
+                                  "I'm the cook", "I'm going home", "I am here",
+                                  # a name said with "my name is" is still no negation or phrase
+                                  "my name is not important", "my name is not Bob", "my name is a secret",
+                                  # "call me" + when, how or what to call: a request, no name
+                                  "call me a taxi", "call me later", "call me back", "call me maybe",
+                                  "call me when you are done", "call me an ambulance",
+                                  # participles and numbers in lower-case recogniser text
+                                  "I'm lost", "im bored", "i'm scared", "I'm thirty", "i am twenty five"])
 def test_what_is_no_name_is_not_taken_for_one(home: KB, text: str) -> None:
     assert facts(home, text) is None
 
 
-def test_name_likeness_reads_casing_when_the_text_has_any() -> None:
-    assert name_like(("frank",), "Frank") and not name_like(("frank",), "frank")
-    assert name_like(("maria",), "maria") and not name_like(("very", "tired"), "very tired")
+def test_a_name_is_told_without_the_quotes_around_it(home: KB) -> None:
+    assert facts(home, 'my name is "Bob" Smith') == [(BOB, "name", "Bob Smith")]
+    assert facts(home, "call me 'Bobby'") == [(BOB, "name", "Bobby")]
+    assert facts(home, "my name is " + "A" * 70) is None  # longer than any name
 
 
 def test_a_greeting_with_a_name_is_both(home: KB) -> None:
