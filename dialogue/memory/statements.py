@@ -9,13 +9,16 @@
 A turn is claimed only when every clause of it is a statement (or a greeting before one); referents
 are resolved against the lexicon as the command grammar's are (one entity, a clarifying question when
 several fit, "I don't know any..." when none does: nothing is invented). A liking's object may also
-be a kind ("tea"): its words are passed on and found among the KB's classes when learnt.
+be a kind ("tea"): its words are passed on and found among the KB's classes when learnt. What
+only looks like a statement is left to the other rules: a liking of what happens or of doing
+something ("I like it when you dance", "I like to dance", "I like that"), and where the speaker is
+said of anything but a zone or furniture the KB knows ("I'm on my way", "I'm on the phone").
 """
 
 from __future__ import annotations
 
 import re
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 
 from lemminflect import getAllLemmas
@@ -24,12 +27,13 @@ from dialogue.history import Utterance
 from dialogue.memory.names import clean_name, given_name, name_like
 from dialogue.reference.clarify import question as clarifying_question
 from dialogue.reference.english import POSSESSIVES, word_set
-from dialogue.reference.grounding import Kind
+from dialogue.reference.grounding import Entity, Kind
 from dialogue.reference.lexicon import Lexicon
 from dialogue.reference.resolution import (
     ANYWHERE,
     PERSON,
     PLACE,
+    Resolution,
     antecedent,
     content_words,
     is_pronoun,
@@ -65,6 +69,14 @@ _POLITE: frozenset[Words] = frozenset({("please",), ("thanks",), ("thank", "you"
 _NO: frozenset[Words] = frozenset({("no",), ("nope",), ("no", "no"), ("wrong",), ("that", "is", "wrong"),
                                    ("not", "quite"), ("sorry",), ("no", "sorry")})
 _NAME_ASKED = ("your name", "what should i call you")
+#: A liking of what happens or of doing something ("I like it when...", "I like to dance"): no thing.
+_HAPPENINGS = word_set("it to when whenever if how what where while")
+#: A bare "this", "that": an appraisal of what just happened or was said, not of a thing.
+_APPRAISED: frozenset[Words] = frozenset({("this",), ("that",), ("these",), ("those",), ("them",)})
+#: Words that start a clause inside the object ("I like the way you talk").
+_CLAUSE = word_set("i you he she we they when whenever if because while")
+#: What a person may be in or on: a zone, or furniture (not "on the phone").
+_FURNITURE = "cyc:FurniturePiece"
 #: What introduces the speaker's name, and whether it says a name surely ("my name is frank") or
 #: only when the words look like one ("call me later" is no name).
 _NAME_LEADS: tuple[tuple[Words, bool], ...] = (
@@ -99,6 +111,10 @@ class _Refused(Exception):
 
 def _fact(subject: str, predicate: str, obj: str | None) -> FactClaim:
     return FactClaim(subject=subject, predicate=predicate, object=obj)
+
+
+def _holds_people(entity: Entity) -> bool:
+    return entity.kind == "zone" or _FURNITURE in entity.classes
 
 
 class Statements:
@@ -274,6 +290,8 @@ class Statements:
         words = tuple(w for w in words if w not in {"very", "much", "really", "so", "a", "lot", "too"})
         if words and words[0].endswith("ing") and "VERB" in getAllLemmas(words[0]):
             raise _Unclaimed  # "I hate marking lab reports": an activity, no thing or kind of the KB
+        if not words or words[0] in _HAPPENINGS or words in _APPRAISED or _CLAUSE & set(words[1:]):
+            raise _Unclaimed  # "I like it when you dance", "I like to dance", "I like that": no thing
         if words and words[0] in {"the", "this", "that", "my", "your", "his", "her"}:
             return self._entity(words, ANYWHERE)[0]
         if words == ("you",):
@@ -310,7 +328,7 @@ class Statements:
 
     def _location(self, w: Words, clause: str) -> list[FactClaim] | None:
         if w[:2] == ("i", "am"):
-            return self._where(("me",), w[2:])
+            return self._where(("me",), w[2:], people_in=True)
         if w[:1] == ("i",) and len(w) > 3:
             verb = 2 if w[1] == "have" else 1
             return self._placed(w[verb + 1 :]) if w[verb] in _PUT else None
@@ -319,12 +337,18 @@ class Statements:
                 return self._where(w[:i], w[i + 1 :])
         return None
 
-    def _where(self, thing: Words, rest: Words) -> list[FactClaim] | None:
-        """ "(the keys are) in the drawer": the place after the verb."""
+    def _where(self, thing: Words, rest: Words, people_in: bool = False) -> list[FactClaim] | None:
+        """ "(the keys are) in the drawer": the place after the verb. With `people_in` ("I'm in
+        the kitchen", "I'm on the sofa") only a zone or furniture the KB knows is a place; other
+        words are an idiom ("I'm on my way", "I'm in trouble", "I'm on the phone")."""
         rest = rest[1:] if rest[:1] in {("now",), ("still",), ("usually",), ("always",)} else rest
         for prep, predicate in _IN.items():
-            if rest[: len(prep)] == prep and rest[len(prep) :]:
-                return self._at(thing, predicate, rest[len(prep) :])
+            place = rest[len(prep) :]
+            if rest[: len(prep)] == prep and place and people_in:
+                here, _ = self._entity(place, PLACE, _holds_people)
+                return [_fact(self.speaker, predicate, here)]
+            if rest[: len(prep)] == prep and place:
+                return self._at(thing, predicate, place)
         return None
 
     def _placed(self, rest: Words) -> list[FactClaim] | None:
@@ -343,8 +367,10 @@ class Statements:
             facts.append(_fact(thing, "belongsTo", owner))  # "my glasses": theirs, said in passing
         return [*facts, _fact(thing, predicate, place)]
 
-    def _entity(self, words: Words, kinds: frozenset[Kind]) -> tuple[str, str | None]:
-        """One entity of `kinds` the phrase names, and whose it is said to be ("my keys")."""
+    def _entity(self, words: Words, kinds: frozenset[Kind],
+                fits: Callable[[Entity], bool] | None = None) -> tuple[str, str | None]:
+        """One entity of `kinds` the phrase names, and whose it is said to be ("my keys"). With
+        `fits`, only an entity it accepts: any other phrase, or a pronoun, is not this grammar's."""
         self.open_phrase, words = words, self.overrides.get(words, words)
         if "person" in kinds and words in {("me",), ("i",)}:
             return self.speaker, None
@@ -352,11 +378,17 @@ class Statements:
         owner = self.speaker if said[:1] in (["my"], ["our"]) else None
         bare = tuple(w for w in words if w not in POSSESSIVES)
         if not content_words(bare) or is_pronoun(bare):
-            found = antecedent(self.lexicon, [u.text for u in self.history], kinds)
+            found = antecedent(self.lexicon, [u.text for u in self.history], kinds) if fits is None else None
+            if found is None and fits is not None:
+                raise _Unclaimed
             if found is None:
                 raise _Refused(f'What do you mean by "{" ".join(words)}"?', clarify=True)
             return found.id, owner
         res = resolve(self.lexicon, bare, kinds, owner=owner)
+        if fits is not None:
+            res = Resolution(res.phrase, tuple(e for e in res.matches if fits(e)))
+            if not res.matches:
+                raise _Unclaimed
         if res.one is not None:
             return res.one.id, owner
         if res.ambiguous:

@@ -106,6 +106,7 @@ def test_ownership(home: KB, text: str, expected: list[tuple[str, ...]]) -> None
     ("I left my glasses on the sofa", [("glasses_1", "belongsTo", BOB), ("glasses_1", "isOn", "sofa_1")]),
     ("the glasses are on top of the table", [("glasses_1", "isOn", "table_1")]),
     ("I am in the kitchen", [(BOB, "isIn", "kitchen")]),
+    ("I'm on the sofa", [(BOB, "isOn", "sofa_1")]),
 ])
 def test_locations(home: KB, text: str, expected: list[tuple[str, ...]]) -> None:
     assert facts(home, text) == expected
@@ -133,6 +134,12 @@ def test_several_statements_in_one_turn(home: KB) -> None:
     "bring me the mug", "is the mug on the table?", "I'd like a cup of tea", "where are my keys",
     "the moon is made of cheese", "does Alice like tea", "what do you see", "I'm Bob, bring me the mug",
     "i hate marking lab reports",
+    # likings of what happens, of doing something, of "it": no thing or kind of the KB
+    "I like it when you dance", "I love it here", "I like to dance", "I hate when that happens",
+    "I like the way you talk", "I don't like it when you do that", "I like it", "I like that",
+    # where the speaker is, said of no place the KB knows: idioms, left to the other rules
+    "I'm on my way", "I'm in a hurry", "I'm in trouble", "I'm on the phone", "I'm on it", "I'm in love",
+    "I'm in the drawer",
 ])
 def test_what_is_not_a_statement_is_left_to_the_other_rules(home: KB, text: str) -> None:
     assert facts(home, text) is None
