@@ -30,6 +30,8 @@ from dialogue.schema import AnswerError, FactClaim
 ObjectForm = Literal["entity", "kind", "text"]
 _HOLDERS: frozenset[Kind] = frozenset({"thing", "person"})
 _PLACES: frozenset[Kind] = frozenset({"zone", "thing"})
+#: What a person may like: anyone or anything of the situation, the robot too ("I like you").
+_LIKED: frozenset[Kind] = ANYWHERE | {"robot"}
 
 
 @dataclass(frozen=True)
@@ -56,9 +58,9 @@ PREDICATES: dict[str, Predicate] = {
         Predicate("belongsTo", "belongsTo", frozenset({"thing"}), PERSON, replaces=("belongsTo",)),
         Predicate("isIn", "isIn", _HOLDERS, _PLACES, replaces=("isIn", "isOn")),
         Predicate("isOn", "isOn", _HOLDERS, _PLACES, replaces=("isIn", "isOn")),
-        Predicate("likes", "likes", PERSON, ANYWHERE, kinds=True, replaces=("likes", "dislikes"),
+        Predicate("likes", "likes", PERSON, _LIKED, kinds=True, replaces=("likes", "dislikes"),
                   per_object=True),
-        Predicate("dislikes", "dislikes", PERSON, ANYWHERE, kinds=True, replaces=("likes", "dislikes"),
+        Predicate("dislikes", "dislikes", PERSON, _LIKED, kinds=True, replaces=("likes", "dislikes"),
                   per_object=True),
     )
 }
@@ -89,7 +91,8 @@ class Claim:
         return self.object is None
 
 
-#: The reply when a fact would name a speaker who is not a KB entity (as for intents).
+#: The reply when a fact would name a speaker who is not a person of the KB (as for intents; the
+#: robot, speaking as `myself`, is no one to learn from).
 UNKNOWN_SPEAKER = "Sorry, I don't know who you are."
 
 
@@ -131,7 +134,8 @@ def ground_facts(facts: Sequence[FactClaim], lexicon: Lexicon, speaker: str) -> 
         if question is not None:
             return GroundedFacts((), question)
         claims.append(Claim(subject, spec.name, obj))
-    if lexicon.snapshot.get(speaker) is None and any(not c.asks or speaker == c.subject for c in claims):
+    who = lexicon.snapshot.get(speaker)
+    if (who is None or who.kind != "person") and any(not c.asks or speaker == c.subject for c in claims):
         return GroundedFacts((), refusal=UNKNOWN_SPEAKER)  # nobody to hold the belief, or to ask about
     return GroundedFacts(tuple(claims))
 
@@ -141,7 +145,9 @@ def _entity(
 ) -> tuple[str, str | None]:
     """An id of `kinds` (the speaker for "me"), or a clarifying question; AnswerError otherwise."""
     text = (value or "").strip()
-    if "person" in kinds and (text == speaker or text.lower() in _SPEAKER_WORDS):
+    # An id first: "myself" is the robot's (ROS4HRI), not the speaker saying "myself".
+    if "person" in kinds and (text == speaker or (lexicon.snapshot.get(text) is None
+                                                  and text.lower() in _SPEAKER_WORDS)):
         return speaker, None
     found = resolve_id(lexicon, text, kinds) if text else None
     if found is not None and found.one is not None:

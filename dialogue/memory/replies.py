@@ -26,6 +26,8 @@ class _Namer:
         self.names = names
 
     def __call__(self, term: str) -> str:
+        if term == self.snapshot.robot:
+            return "me"  # "OK, you like me."
         entity = self.snapshot.get(term)
         if entity is None:
             return self.names.get(term) or self.snapshot.name_of(term)

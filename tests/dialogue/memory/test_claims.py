@@ -53,3 +53,15 @@ def test_an_ambiguous_referent_is_asked_about(home: KB) -> None:
                  "myself sees mug_blue"])
     found = ground_facts([FactClaim(subject="the mug", predicate="belongsTo", object="me")], lexicon_of(home), BOB)
     assert found.claims == () and found.question is not None and "blue" in found.question
+
+
+def test_the_robots_id_is_the_robot_not_the_speaker(home: KB) -> None:
+    # "myself" is the robot's id in ROS4HRI: "I like you" is a liking of the robot, not of oneself.
+    assert ground(home, ("me", "likes", "myself")) == (Claim(BOB, "likes", "myself"),)
+    with pytest.raises(AnswerError, match="subject 'myself'"):
+        ground(home, ("myself", "likes", "tea"))
+
+
+def test_the_robot_is_no_speaker_to_learn_from(home: KB) -> None:
+    found = ground_facts([FactClaim(subject="me", predicate="name", object="Bob")], lexicon_of(home), "myself")
+    assert found.claims == () and found.refusal == "Sorry, I don't know who you are."
