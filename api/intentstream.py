@@ -1,12 +1,12 @@
 """The intent bus as Server-Sent Events and WebSocket messages (GET /intents/stream, /intents/ws).
 
-Events, in order: `hello` (`{"stream", "last_seq", "oldest_seq"}`: which bus, and what it still
-holds), then `gap` when the client asked to resume after a number the buffer no longer covers or
-one from before a restart (`{"first", "last", "restarted"}`), then one `intent` per pushed intent
-(`id` its number, data the pushed intent: dialogue.pushed.events), and `end` (`{"reason"}`) when
-the service stops or the client fell too far behind (it then resumes with `after`, or over SSE with
-the `Last-Event-ID` an EventSource sends by itself on reconnecting). Over WebSocket each message is
-the JSON object with an `"event"` key naming which of these it is.
+Events, in order: `hello` (`{"stream", "last_seq", "gap"}`: which bus, its last number, and the
+gap that follows if any), then `gap` when the client asked to resume after a number the buffer no
+longer covers or one from before a restart (`{"first", "last", "restarted"}`), then one `intent`
+per pushed intent (`id` its number, data the pushed intent: dialogue.pushed.events), and `end`
+(`{"reason"}`) when the service stops or the client fell too far behind (it then resumes with
+`after`, or over SSE with the `Last-Event-ID` an EventSource sends by itself on reconnecting). Over
+WebSocket each message is the JSON object with an `"event"` key naming which of these it is.
 """
 
 from __future__ import annotations

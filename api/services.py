@@ -22,7 +22,7 @@ from dialogue.llm.spec import SpecError, parse_spec
 from dialogue.memory.learn import Memory
 from dialogue.memory.people import People
 from dialogue.memory.reconcile import Reconciler
-from dialogue.pushed.bus import IntentBus
+from dialogue.pushed.bus import IntentBus, clock_first
 from dialogue.sessions import DialogueManager
 from dialogue.sparqlsessions import SparqlSessions
 from kb import KB, KbError
@@ -179,7 +179,8 @@ def backend_of(settings: Settings) -> ChatModel:
 
 
 def intent_bus(settings: Settings) -> IntentBus:
-    return IntentBus(settings.intents.buffer, max_readers=settings.intents.max_readers)
+    """The service's intent bus, numbered from the clock: a restart is told apart from a resume."""
+    return IntentBus(settings.intents.buffer, max_readers=settings.intents.max_readers, first=clock_first())
 
 
 def build_dialogues(settings: Settings, kb: KnowledgeBase, model: ChatModel | None = None,
