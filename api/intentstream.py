@@ -18,12 +18,28 @@ from typing import Any
 import anyio
 from fastapi import WebSocket, WebSocketDisconnect
 from sse_starlette import EventSourceResponse, JSONServerSentEvent
+from starlette.datastructures import QueryParams
 
 from api.errors import ApiError
 from dialogue.pushed.bus import IntentBus, Reader
 from dialogue.pushed.events import IntentFilter
 
 KEEPALIVE_SECONDS = 15.0
+
+
+def websocket_query(params: QueryParams) -> tuple[IntentFilter, int | None]:
+    """The filter and resume number of a WebSocket's query (`after`, `source`, `intent`, `origin`,
+    `dialogue_id`), read after the handshake so that a bad one is told as an error message (a
+    refused handshake tells a client nothing). ApiError 422 saying what is wrong."""
+    after = params.get("after")
+    if after is not None and not (after.isascii() and after.isdigit()):
+        raise ApiError(422, "invalid_request", f"after {after!r} is not a sequence number (0 or more)")
+    try:
+        flt = IntentFilter.of(params.getlist("source"), params.getlist("intent"), params.getlist("origin"),
+                              params.getlist("dialogue_id"))
+    except ValueError as exc:
+        raise ApiError(422, "invalid_request", str(exc)) from exc
+    return flt, int(after) if after is not None else None
 
 
 def open_reader(bus: IntentBus, flt: IntentFilter, after: int | None) -> Reader:

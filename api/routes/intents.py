@@ -11,7 +11,7 @@ from sse_starlette import EventSourceResponse
 from api.auth import authorise, token_from_header
 from api.deps import ReadAccess, ServicesDep, StreamReadAccess
 from api.errors import ApiError, error_body
-from api.intentstream import open_reader, serve_websocket, stream_response
+from api.intentstream import open_reader, serve_websocket, stream_response, websocket_query
 from dialogue.pushed.bus import IntentBus
 from dialogue.pushed.events import IntentFilter
 
@@ -68,13 +68,14 @@ async def buffered(bus: Bus, flt: Filter, after: After = None) -> dict[str, Any]
 
 
 @router.websocket("/ws")
-async def stream_ws(websocket: WebSocket, services: ServicesDep, flt: Filter, after: After = None) -> None:
-    """The stream over a WebSocket: one JSON message per event, with its ``"event"``."""
+async def stream_ws(websocket: WebSocket, services: ServicesDep) -> None:
+    """The stream over a WebSocket: one JSON message per event, with its ``"event"``; the query
+    takes the stream's ``after`` and filters."""
     await websocket.accept()
     presented = token_from_header(websocket.headers.get("authorization"))
     try:
         authorise(services.settings, presented or websocket.query_params.get("access_token"), write=False)
-        reader = open_reader(services.bus, flt, after)
+        reader = open_reader(services.bus, *websocket_query(websocket.query_params))
     except ApiError as exc:
         await websocket.send_json(error_body(exc.status, exc.code, exc.message, exc.details))
         await websocket.close(code=1013 if exc.status == 429 else 1008, reason=exc.code)

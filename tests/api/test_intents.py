@@ -7,6 +7,8 @@ from collections.abc import Iterator
 from typing import Any
 
 import httpx
+import pytest
+from websockets.exceptions import ConnectionClosed
 from websockets.sync.client import connect
 
 from api.settings import IntentSettings
@@ -140,3 +142,16 @@ def test_a_restarted_service_numbers_after_the_earlier_run(live_factory: Any) ->
         say(restarted, "hello")
     answer = restarted.client.get("/intents", params={"after": last}).json()
     assert answer["gap"]["restarted"] and len(answer["intents"]) == 3
+
+
+@pytest.mark.parametrize(("query", "says"), [
+    ("after=abc", "after"), ("after=-1", "after"), ("origin=radio", "unknown origin"),
+])
+def test_a_bad_websocket_request_is_told_what_is_wrong(live: Live, query: str, says: str) -> None:
+    with connect(f"{live.ws_url}/intents/ws?{query}") as ws:
+        error = json.loads(ws.recv(timeout=30))
+        assert error["status"] == 422 and error["code"] == "invalid_request" and says in error["message"]
+        with pytest.raises(ConnectionClosed) as closed:
+            ws.recv(timeout=30)
+        assert closed.value.rcvd is not None and closed.value.rcvd.code == 1008
+    assert live.services.bus.reader_count == 0
