@@ -26,10 +26,11 @@ from typing import Any
 from rdflib import XSD, Literal, URIRef
 
 from dialogue import intents as I
+from dialogue.errors import DialogueError
 from dialogue.memory.provenance import Told, told
 from dialogue.memory.recollections import LAST_SPOKE, SUMMARY, Recollections
 from dialogue.observers import TurnRecord
-from dialogue.speakers import person_statement
+from dialogue.speakers import NOT_PEOPLE, person_statement
 from kb import KbError
 from kb.protocol import KnowledgeBase
 from kb.terms import format_term, format_triple, parse_name
@@ -44,6 +45,10 @@ MAX_QUOTE = 80
 #: People whose last write time is remembered in this process (the least recently seen forgotten).
 MAX_TRACKED = 10_000
 _SEPARATOR = "; "
+
+
+class NotAPerson(DialogueError, ValueError):
+    """A person's id that is no id of the KB ("a b", "?x")."""
 
 
 @dataclass(frozen=True)
@@ -166,9 +171,11 @@ class People:
     def about(self, person: str) -> dict[str, Any]:
         """Everything the robot keeps of a person: when they last spoke, the summary, the facts
         they told it (adopted: those they only believe are in their own model) and the facts others
-        told about them, each with who told it and when."""
+        told about them, each with who told it and when. NotAPerson when `person` is no KB id."""
+        if person not in NOT_PEOPLE and self._term(person) is None:
+            raise NotAPerson(f"{person!r} is not a person's id (a KB name such as person_bob)")
         memory = self.recall(person)
-        if self._term(person) is None:
+        if self._term(person) is None:  # a source constant: nobody the robot remembers
             return {"person": person, "last_spoke": None, "summary": "", "told": [], "told_about": []}
         return {"person": person, "last_spoke": memory.last_spoke, "summary": memory.summary,
                 "told": [_told(t) for t in told(self.kb, by=person)],
