@@ -45,6 +45,8 @@ MAX_QUOTE = 80
 #: People whose last write time is remembered in this process (the least recently seen forgotten).
 MAX_TRACKED = 10_000
 _SEPARATOR = "; "
+#: Intents that ask the robot to do nothing worth remembering: a turn not understood, a greeting.
+_NO_REQUEST = frozenset({I.RAW_USER_INPUT, I.GREET})
 
 
 class NotAPerson(DialogueError, ValueError):
@@ -69,7 +71,7 @@ class Recollection:
 def note(record: TurnRecord) -> str | None:
     """A turn's note for the summary, or None when nothing in it is worth remembering."""
     result = record.result
-    acted = [i for i in result.intents if i.intent != I.RAW_USER_INPUT]
+    acted = [i for i in result.intents if i.intent not in _NO_REQUEST]
     told = [c for c in result.claims if not c.asks]
     if not acted and not told:
         return None

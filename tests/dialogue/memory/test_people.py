@@ -37,6 +37,11 @@ def test_a_turn_notes_what_was_told_or_asked_for_and_nothing_else() -> None:
     assert note(record("what does Alice like?", asked)) is None
     raw = I.raw_user_input("hmm", source=BOB)
     assert note(record("hmm", TurnResult("Sorry.", (raw,)))) is None
+    # A greeting asks the robot to do nothing: "Hi, I'm Bob" is what Bob said, "hello" nothing notable.
+    hello = I.make_intent(I.GREET, {"recipient": BOB}, source=BOB, confidence=0.9)
+    named = TurnResult("Hello! Nice to meet you, Bob.", (hello,), claims=(Claim(BOB, "name", "Bob", "text"),))
+    assert note(record("Hi, I'm Bob", named)) == '2025-06-01: said "Hi, I\'m Bob"'
+    assert note(record("hello", TurnResult("Hello Bob!", (hello,)))) is None
 
 
 def test_the_summary_keeps_the_latest_notes_within_its_bounds() -> None:
