@@ -243,6 +243,19 @@ class Memory:
                 self.kb.apply([], [s for f in stale for s in (*forget(self.kb, f), format_triple(f))])
             return len(stale)
 
+    def forget_if_gone(self, subject: str, prop: str, value: str, literal: bool = False) -> bool:
+        """Retract the record of a told fact that is no longer asserted (whoever retracted it);
+        True when there was one (blocking; KbError when the KB refuses)."""
+        spec = BY_PROPERTY.get(prop)
+        if spec is None:
+            return False
+        with self._lock:
+            fact = _fact(Claim(subject, spec.name, value, "text" if literal else "entity"))
+            if self.kb.is_asserted(format_triple(fact)) or not self._was_told(fact):
+                return False  # told again since, or its record went with it
+            self.kb.apply([], forget(self.kb, fact))
+            return True
+
     def _was_told(self, fact: Fact, by: str | None = None) -> bool:
         who = format_term(parse_name(by, "speaker")) if by is not None else "?who"
         return self.kb.exist([f"{format_term(record_of(fact))} toldBy {who}"])
