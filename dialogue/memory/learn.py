@@ -116,7 +116,7 @@ class Memory:
                     resolved.append(Outcome(claim, "unknown", claim.object))
                     continue
                 if kind is not None:
-                    names[kind.id] = kind.name
+                    names[kind.id] = claim.object  # as told: "apples" for the class "apple"
                 found = kind.id if kind is not None else claim.fallback
                 claim = replace(claim, object=found, form="entity", fallback=None)
             resolved.append(Outcome(claim, "answered" if claim.asks else "known", claim.object))

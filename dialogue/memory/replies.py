@@ -93,7 +93,7 @@ def sentence(outcome: Outcome, name: _Namer) -> str:
         case "perceived":
             return _perceived(outcome, name)
         case "unknown":
-            return f"Sorry, I don't know what {outcome.object} is."
+            return f"Sorry, I don't know what {outcome.object} {_be(outcome.object or '')}."
         case _:
             return _answer(outcome, name)
 

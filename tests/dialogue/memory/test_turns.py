@@ -144,3 +144,10 @@ def test_the_robot_speaking_as_itself_teaches_itself_nothing(home: KB) -> None:
     for text in ("I'm Bob", "I like tea"):
         assert robot.say(text).response == "Sorry, I don't know who you are."
     assert not home.is_asserted('myself rdfs:label "Bob"') and told(home) == []
+
+
+def test_a_kind_is_said_back_as_it_was_told_in_the_plural_too(home: KB) -> None:
+    bob = Talk(DialogueEngine(home))
+    assert bob.say("I like apples").response == "OK, you like apples."
+    assert bob.say("I like cats").response == "Sorry, I don't know what cats are."
+    assert bob.say("I like jazz").response == "Sorry, I don't know what jazz is."
