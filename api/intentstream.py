@@ -42,6 +42,16 @@ def websocket_query(params: QueryParams) -> tuple[IntentFilter, int | None]:
     return flt, int(after) if after is not None else None
 
 
+def resume_after(after: int | None, last_event_id: str | None) -> int | None:
+    """Where an SSE client resumes: `after`, else the `Last-Event-ID` an EventSource sends by itself
+    on reconnecting (ApiError 422 when it is no sequence number)."""
+    if after is not None or not last_event_id:
+        return after
+    if not (last_event_id.isascii() and last_event_id.isdigit()):
+        raise ApiError(422, "invalid_request", f"Last-Event-ID {last_event_id!r} is not a sequence number")
+    return int(last_event_id)
+
+
 def open_reader(bus: IntentBus, flt: IntentFilter, after: int | None) -> Reader:
     """A reader on the running loop (429 past the bus's bound of readers)."""
     try:

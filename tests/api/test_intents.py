@@ -155,3 +155,9 @@ def test_a_bad_websocket_request_is_told_what_is_wrong(live: Live, query: str, s
             ws.recv(timeout=30)
         assert closed.value.rcvd is not None and closed.value.rcvd.code == 1008
     assert live.services.bus.reader_count == 0
+
+
+def test_a_last_event_id_that_is_no_number_is_a_clear_error(live: Live) -> None:
+    for bad in (b"abc", b"\xb2"):  # "\xb2" is latin-1 "2 superscript": a digit to str.isdigit, no int
+        answer = live.client.get("/intents/stream", headers={"Last-Event-ID": bad})
+        assert answer.status_code == 422 and "Last-Event-ID" in answer.json()["message"], bad
