@@ -121,11 +121,12 @@ def ground_facts(facts: Sequence[FactClaim], lexicon: Lexicon, speaker: str) -> 
             continue
         if spec.objects is None:
             name = clean_name(value)
-            if not name:
-                raise AnswerError(f"facts[{n}].object {fact.object!r} is not a name")
+            if not name or value in lexicon.snapshot.entities:
+                raise AnswerError(f"facts[{n}].object {fact.object!r} is not a name: give the name itself")
             claims.append(Claim(subject, spec.name, name, "text"))
             continue
-        if spec.kinds and value not in lexicon.snapshot.entities:  # words: a kind first ("tea")
+        if spec.kinds and value not in lexicon.snapshot.entities and value.lower() not in _SPEAKER_WORDS:
+            # words: a kind first ("tea")
             found = resolve_id(lexicon, value, spec.objects).one
             words = " ".join(tokens(value))
             claims.append(Claim(subject, spec.name, words, "kind", found.id if found is not None else None))

@@ -65,3 +65,12 @@ def test_the_robots_id_is_the_robot_not_the_speaker(home: KB) -> None:
 def test_the_robot_is_no_speaker_to_learn_from(home: KB) -> None:
     found = ground_facts([FactClaim(subject="me", predicate="name", object="Bob")], lexicon_of(home), "myself")
     assert found.claims == () and found.refusal == "Sorry, I don't know who you are."
+
+
+def test_me_is_the_speaker_wherever_it_is_said(home: KB) -> None:
+    assert ground(home, ("person_alice", "likes", "me")) == (Claim("person_alice", "likes", BOB),)
+
+
+def test_a_name_is_no_id(home: KB) -> None:
+    with pytest.raises(AnswerError, match="the name itself"):
+        ground(home, ("me", "name", "person_alice"))
