@@ -30,6 +30,8 @@ def refusal(kb: KB, text: str) -> str | None:
     ("I'm Bob", "Bob"), ("my name is Bob", "Bob"), ("call me Bob", "Bob"), ("Call me Bob, please", "Bob"),
     ("im bob", "Bob"), ("I am Mary Jane", "Mary Jane"), ("you can call me bobby", "Bobby"),
     ("Well, my name's Bob.", "Bob"), ("I'm Frank", "Frank"),
+    ("they call me Bobby", "Bobby"), ("my friends call me Bobby", "Bobby"), ("name's Bob", "Bob"),
+    ("Bob is my name", "Bob"),
 ])
 def test_a_speaker_tells_their_name(home: KB, text: str, name: str) -> None:
     assert facts(home, text) == [(BOB, "name", name)]
@@ -94,6 +96,8 @@ def test_this_is_names_the_one_person_present_without_a_name(home: KB) -> None:
     ("the phone belongs to me", [("phone_1", "belongsTo", BOB)]),
     ("the cookbook is Alice's", [("book_1", "belongsTo", "person_alice")]),
     ("I own the remote", [("remote_1", "belongsTo", BOB)]),
+    ("these are my keys", [("keys_1", "belongsTo", BOB)]),
+    ("those are my glasses", [("glasses_1", "belongsTo", BOB)]),
 ])
 def test_ownership(home: KB, text: str, expected: list[tuple[str, ...]]) -> None:
     assert facts(home, text) == expected
@@ -112,19 +116,6 @@ def test_locations(home: KB, text: str, expected: list[tuple[str, ...]]) -> None
     assert facts(home, text) == expected
 
 
-@pytest.mark.parametrize(("text", "expected"), [
-    ("I like tea", [(BOB, "likes", "tea")]),
-    ("I really love tea", [(BOB, "likes", "tea")]),
-    ("Alice hates coffee", [("person_alice", "dislikes", "coffee")]),
-    ("Alice doesn't like coffee", [("person_alice", "dislikes", "coffee")]),
-    ("I do not like the cookbook", [(BOB, "dislikes", "book_1")]),
-    ("I can't stand coffee", [(BOB, "dislikes", "coffee")]),
-    ("Alice likes Ines", [("person_alice", "likes", "person_ines")]),
-])
-def test_preferences(home: KB, text: str, expected: list[tuple[str, ...]]) -> None:
-    assert facts(home, text) == expected
-
-
 def test_several_statements_in_one_turn(home: KB) -> None:
     assert facts(home, "I'm Bob and I like tea. The red mug is mine.") == [
         (BOB, "name", "Bob"), (BOB, "likes", "tea"), ("mug_red", "belongsTo", BOB)]
@@ -134,9 +125,6 @@ def test_several_statements_in_one_turn(home: KB) -> None:
     "bring me the mug", "is the mug on the table?", "I'd like a cup of tea", "where are my keys",
     "the moon is made of cheese", "does Alice like tea", "what do you see", "I'm Bob, bring me the mug",
     "i hate marking lab reports",
-    # likings of what happens, of doing something, of "it": no thing or kind of the KB
-    "I like it when you dance", "I love it here", "I like to dance", "I hate when that happens",
-    "I like the way you talk", "I don't like it when you do that", "I like it", "I like that",
     # where the speaker is, said of no place the KB knows: idioms, left to the other rules
     "I'm on my way", "I'm in a hurry", "I'm in trouble", "I'm on the phone", "I'm on it", "I'm in love",
     "I'm in the drawer",
