@@ -295,14 +295,15 @@ def _start_reader(settings: Settings, model: ChatModel | None) -> Services:
     store = Store(endpoint, writer=writer)
     kb = RemoteKB(endpoint, writes=writer)
     bus = intent_bus(settings)
+    people = People(kb, settings.memory.refresh)  # closed with the services: what waits is written
     try:
-        dialogues = build_dialogues(settings, kb, model, endpoint, bus)
+        dialogues = build_dialogues(settings, kb, model, endpoint, bus, people)
     except SettingsError:
         kb.close()
         store.close()
         raise
     hub = event_hub(kb, settings)
     services = Services(settings=settings, kb=kb, hub=hub, dialogues=dialogues, world=None, journal=None,
-                        owns_kb=True, store=store, owns_model=model is None, bus=bus)
+                        owns_kb=True, store=store, owns_model=model is None, bus=bus, people=people)
     _webhooks(settings, bus, services)
     return services

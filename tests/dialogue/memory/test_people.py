@@ -74,6 +74,17 @@ def test_last_spoke_and_summary_are_facts_of_the_robots_model(home: KB) -> None:
     assert not people.remember(record("x", TurnResult("Sorry.", error_msg="model down"), at=T0 + 999))
 
 
+def test_a_clean_stop_writes_what_was_waiting_for_the_next_write(home: KB) -> None:
+    people = People(home, refresh=60)
+    people.remember(record("the red mug is mine", TOLD))
+    assert not people.remember(record("bring me my mug", TurnResult("OK.", (BRING,)), at=T0 + 5))
+    assert not people.remember(record("how are you?", CHAT, at=T0 + 10))
+    people.close()  # the service stops within the refresh period: nothing of it is lost
+    memory = People(home).recall(BOB)
+    assert memory.last_spoke == "2025-06-01T10:30:10+00:00"
+    assert memory.summary == '2025-06-01: said "the red mug is mine"; 2025-06-01: asked "bring me my mug"'
+
+
 def test_the_memory_survives_a_restart_with_the_journal(tmp_path: Path, home: KB) -> None:
     kb = KB()
     journal = Journal(tmp_path)
