@@ -151,3 +151,10 @@ def test_a_kind_is_said_back_as_it_was_told_in_the_plural_too(home: KB) -> None:
     assert bob.say("I like apples").response == "OK, you like apples."
     assert bob.say("I like cats").response == "Sorry, I don't know what cats are."
     assert bob.say("I like jazz").response == "Sorry, I don't know what jazz is."
+
+
+def test_the_name_of_someone_just_introduced_is_asked_about(home: KB) -> None:
+    bob = Talk(DialogueEngine(home))
+    assert bob.say("this is Maria").response == "Nice to meet you, Maria."
+    assert bob.say("what is her name?").response == "That's Maria."
+    assert bob.say("what is Alice's name?").response == "That's Alice."

@@ -109,6 +109,8 @@ def test_questions_are_answered_without_intent(office: KB) -> None:
     assert say(office, "can you see the umbrella?").reply.startswith("No")
     assert "Carol" in say(office, "who do you see").reply
     assert say(office, "what's your name?").reply == "My name is Ari."
+    for text in ("what is his name?", "what is the name of Carol?", "what is Carol's name?"):
+        assert "Ari" not in say(office, text).reply, text  # someone else's name is not the robot's
     on_desk = say(office, "what is on the desk").reply
     assert all(w in on_desk for w in ("green mug", "yellow mug", "stapler", "pear"))
     assert all(
