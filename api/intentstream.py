@@ -1,12 +1,12 @@
 """The intent bus as Server-Sent Events and WebSocket messages (GET /intents/stream, /intents/ws).
 
-Events, in order: `hello` (`{"stream", "last_seq", "oldest_seq"}`: which bus, and what it still
-holds), then `gap` when the client asked to resume after a number the buffer no longer covers or
-one from before a restart (`{"first", "last", "restarted"}`), then one `intent` per pushed intent
-(`id` its number, data the pushed intent: dialogue.pushed.events), and `end` (`{"reason"}`) when
-the service stops or the client fell too far behind (it then resumes with `after`, or over SSE with
-the `Last-Event-ID` an EventSource sends by itself on reconnecting). Over WebSocket each message is
-the JSON object with an `"event"` key naming which of these it is.
+Events, in order: `hello` (`{"stream", "last_seq", "gap"}`: which bus, its last number, and the
+gap that follows if any), then `gap` when the client asked to resume after a number the buffer no
+longer covers or one from before a restart (`{"first", "last", "restarted"}`), then one `intent`
+per pushed intent (`id` its number, data the pushed intent: dialogue.pushed.events), and `end`
+(`{"reason"}`) when the service stops or the client fell too far behind (it then resumes with
+`after`, or over SSE with the `Last-Event-ID` an EventSource sends by itself on reconnecting). Over
+WebSocket each message is the JSON object with an `"event"` key naming which of these it is.
 """
 
 from __future__ import annotations
@@ -18,12 +18,38 @@ from typing import Any
 import anyio
 from fastapi import WebSocket, WebSocketDisconnect
 from sse_starlette import EventSourceResponse, JSONServerSentEvent
+from starlette.datastructures import QueryParams
 
 from api.errors import ApiError
 from dialogue.pushed.bus import IntentBus, Reader
 from dialogue.pushed.events import IntentFilter
 
 KEEPALIVE_SECONDS = 15.0
+
+
+def websocket_query(params: QueryParams) -> tuple[IntentFilter, int | None]:
+    """The filter and resume number of a WebSocket's query (`after`, `source`, `intent`, `origin`,
+    `dialogue_id`), read after the handshake so that a bad one is told as an error message (a
+    refused handshake tells a client nothing). ApiError 422 saying what is wrong."""
+    after = params.get("after")
+    if after is not None and not (after.isascii() and after.isdigit()):
+        raise ApiError(422, "invalid_request", f"after {after!r} is not a sequence number (0 or more)")
+    try:
+        flt = IntentFilter.of(params.getlist("source"), params.getlist("intent"), params.getlist("origin"),
+                              params.getlist("dialogue_id"))
+    except ValueError as exc:
+        raise ApiError(422, "invalid_request", str(exc)) from exc
+    return flt, int(after) if after is not None else None
+
+
+def resume_after(after: int | None, last_event_id: str | None) -> int | None:
+    """Where an SSE client resumes: `after`, else the `Last-Event-ID` an EventSource sends by itself
+    on reconnecting (ApiError 422 when it is no sequence number)."""
+    if after is not None or not last_event_id:
+        return after
+    if not (last_event_id.isascii() and last_event_id.isdigit()):
+        raise ApiError(422, "invalid_request", f"Last-Event-ID {last_event_id!r} is not a sequence number")
+    return int(last_event_id)
 
 
 def open_reader(bus: IntentBus, flt: IntentFilter, after: int | None) -> Reader:

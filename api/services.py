@@ -22,7 +22,7 @@ from dialogue.llm.spec import SpecError, parse_spec
 from dialogue.memory.learn import Memory
 from dialogue.memory.people import People
 from dialogue.memory.reconcile import Reconciler
-from dialogue.pushed.bus import IntentBus
+from dialogue.pushed.bus import IntentBus, clock_first
 from dialogue.sessions import DialogueManager
 from dialogue.sparqlsessions import SparqlSessions
 from kb import KB, KbError
@@ -179,7 +179,8 @@ def backend_of(settings: Settings) -> ChatModel:
 
 
 def intent_bus(settings: Settings) -> IntentBus:
-    return IntentBus(settings.intents.buffer, max_readers=settings.intents.max_readers)
+    """The service's intent bus, numbered from the clock: a restart is told apart from a resume."""
+    return IntentBus(settings.intents.buffer, max_readers=settings.intents.max_readers, first=clock_first())
 
 
 def build_dialogues(settings: Settings, kb: KnowledgeBase, model: ChatModel | None = None,
@@ -294,14 +295,15 @@ def _start_reader(settings: Settings, model: ChatModel | None) -> Services:
     store = Store(endpoint, writer=writer)
     kb = RemoteKB(endpoint, writes=writer)
     bus = intent_bus(settings)
+    people = People(kb, settings.memory.refresh)  # closed with the services: what waits is written
     try:
-        dialogues = build_dialogues(settings, kb, model, endpoint, bus)
+        dialogues = build_dialogues(settings, kb, model, endpoint, bus, people)
     except SettingsError:
         kb.close()
         store.close()
         raise
     hub = event_hub(kb, settings)
     services = Services(settings=settings, kb=kb, hub=hub, dialogues=dialogues, world=None, journal=None,
-                        owns_kb=True, store=store, owns_model=model is None, bus=bus)
+                        owns_kb=True, store=store, owns_model=model is None, bus=bus, people=people)
     _webhooks(settings, bus, services)
     return services

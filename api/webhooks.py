@@ -5,7 +5,8 @@ and a turn never waits for any of them: the bus hands an event over with a non-b
 queue is full the oldest waiting event is dropped (counted). A delivery that fails (a transport
 error, or any status but 2xx) is retried after a backoff that doubles each time, up to `retries`
 times, then given up (counted) and the next event is sent; events are delivered in order per URL.
-While a URL's deliveries fail, `/health` reports it degraded, with the reason and the counts.
+While a URL's deliveries fail, `/health` reports it degraded, with the reason and the counts; once
+it recovers, it is ok, with the counts as long as any intent was lost (given up or dropped).
 """
 
 from __future__ import annotations
@@ -87,8 +88,8 @@ class Webhook:
         status = self.cell.get()
         counts = (f"{self.counts.delivered} delivered, {self.counts.failed} given up, "
                   f"{self.counts.dropped} dropped, {self.queued} queued")
-        if status.ok and not self.counts.dropped:
-            return status
+        if status.ok and not self.counts.dropped and not self.counts.failed:
+            return status  # nothing lost: nothing to say
         if status.ok:
             return ComponentStatus(ok=True, reason=counts)
         return ComponentStatus(ok=False, code=status.code, reason=f"{status.reason} ({counts})",

@@ -16,23 +16,18 @@ writer, which every write goes through, has it.
 
 from __future__ import annotations
 
-import logging
-import queue
-import threading
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
 from dataclasses import dataclass
 from typing import Any
 
 from rdflib import URIRef
 
 from dialogue import intents as I
+from dialogue.follower import CommitFollower
 from dialogue.pushed.bus import IntentBus
-from kb import KbError
 from kb.protocol import KnowledgeBase
 from kb.terms import ORO, format_term, parse_name, shorten
-
-log = logging.getLogger(__name__)
 
 ENGAGEMENT = URIRef(ORO + "engagementLevel")
 ENGAGED = URIRef(ORO + "engaged")
@@ -40,7 +35,6 @@ ENGAGED = URIRef(ORO + "engaged")
 MAX_PENDING = 1000
 #: Greeting times kept before those older than the interval are forgotten.
 MAX_REMEMBERED = 10_000
-_STOP = ""
 
 
 @dataclass(frozen=True)
@@ -51,65 +45,17 @@ class InitiativeConfig:
     interval: float = 300.0
 
 
-class Initiative:
-    """Watches a KB's commits for people becoming engaged; engages and greets them on a bus."""
+class Initiative(CommitFollower[str]):
+    """Watches a KB's commits for people becoming engaged (not on a read replica); engages and
+    greets them on a bus. `join` waits until every engagement queued so far was reached out to."""
 
     def __init__(self, kb: KnowledgeBase, bus: IntentBus, config: InitiativeConfig | None = None,
                  clock: Callable[[], float] = time.monotonic) -> None:
-        self.kb = kb
+        super().__init__(kb, "initiative", _engaged, self.engaged, MAX_PENDING)
         self.bus = bus
         self.config = config or InitiativeConfig()
         self.clock = clock
         self._greeted: dict[str, float] = {}
-        self._pending: queue.Queue[str] = queue.Queue(MAX_PENDING)
-        self._thread: threading.Thread | None = None
-        self._unwatch: Callable[[], None] | None = None
-
-    def start(self) -> bool:
-        """Follow the KB's commits; False when the KB reports none (a read replica)."""
-        on_commit = getattr(self.kb, "on_commit", None)
-        if not callable(on_commit):
-            return False
-        self._thread = threading.Thread(target=self._work, name="initiative", daemon=True)
-        self._thread.start()
-        self._unwatch = on_commit(self._commit)
-        return True
-
-    def stop(self) -> None:
-        if self._unwatch is not None:
-            self._unwatch()
-            self._unwatch = None
-        if self._thread is not None:
-            self._pending.put(_STOP)
-            self._thread.join(timeout=5)
-            self._thread = None
-
-    def _commit(self, commit: Any) -> None:
-        """Called by the KB under its lock: only queue who became engaged."""
-        for delta in commit.deltas:
-            if delta.model != "default":
-                continue
-            for s, p, o in delta.added:
-                if p == ENGAGEMENT and o == ENGAGED and isinstance(s, URIRef):
-                    try:
-                        self._pending.put_nowait(str(shorten(s)))
-                    except queue.Full:
-                        log.warning("initiative: too many engagements at once; %s not reached out to",
-                                    shorten(s))
-
-    def join(self) -> None:
-        """Wait until every engagement queued so far has been reached out to."""
-        self._pending.join()
-
-    def _work(self) -> None:
-        while (person := self._pending.get()) != _STOP:
-            try:
-                self.engaged(person)
-            except KbError as exc:  # the name could not be read: no greeting this time
-                log.warning("initiative: %s", exc)
-            finally:
-                self._pending.task_done()
-        self._pending.task_done()
 
     def engaged(self, person: str) -> None:
         """Reach out to a person who just became engaged (blocking: reads the KB for the name)."""
@@ -138,3 +84,13 @@ class Initiative:
         if self.kb.exist([f"{term} lastSpokeAt ?t"]):
             return f"Hello {names[0]}, nice to see you again!"
         return f"Hello {names[0]}!"
+
+
+def _engaged(commit: Any) -> Iterator[str]:
+    """Who became engaged in a commit (called by the KB under its lock: no KB access)."""
+    for delta in commit.deltas:
+        if delta.model != "default":
+            continue
+        for s, p, o in delta.added:
+            if p == ENGAGEMENT and o == ENGAGED and isinstance(s, URIRef):
+                yield str(shorten(s))

@@ -11,7 +11,7 @@ from sse_starlette import EventSourceResponse
 from api.auth import authorise, token_from_header
 from api.deps import ReadAccess, ServicesDep, StreamReadAccess
 from api.errors import ApiError, error_body
-from api.intentstream import open_reader, serve_websocket, stream_response
+from api.intentstream import open_reader, resume_after, serve_websocket, stream_response, websocket_query
 from dialogue.pushed.bus import IntentBus
 from dialogue.pushed.events import IntentFilter
 
@@ -42,21 +42,13 @@ def _bus(services: ServicesDep) -> IntentBus:
 Bus = Annotated[IntentBus, Depends(_bus)]
 
 
-def _resume(after: int | None, last_event_id: str | None) -> int | None:
-    if after is not None or not last_event_id:
-        return after
-    if not last_event_id.isdigit():
-        raise ApiError(422, "invalid_request", f"Last-Event-ID {last_event_id!r} is not a sequence number")
-    return int(last_event_id)
-
-
 @router.get("/stream", dependencies=[StreamReadAccess], response_class=StreamingResponse, responses={
     200: {"content": {"text/event-stream": {}}, "description": "hello, gap?, intent..., end"}})
 async def stream(bus: Bus, flt: Filter, after: After = None,
                  last_event_id: Annotated[str | None, Header()] = None) -> EventSourceResponse:
     """Server-Sent Events: every intent emitted by a dialogue or by the robot's initiative, as it
     is emitted (see api.intentstream for the events)."""
-    return stream_response(bus, open_reader(bus, flt, _resume(after, last_event_id)))
+    return stream_response(bus, open_reader(bus, flt, resume_after(after, last_event_id)))
 
 
 @router.get("", dependencies=[ReadAccess])
@@ -68,13 +60,14 @@ async def buffered(bus: Bus, flt: Filter, after: After = None) -> dict[str, Any]
 
 
 @router.websocket("/ws")
-async def stream_ws(websocket: WebSocket, services: ServicesDep, flt: Filter, after: After = None) -> None:
-    """The stream over a WebSocket: one JSON message per event, with its ``"event"``."""
+async def stream_ws(websocket: WebSocket, services: ServicesDep) -> None:
+    """The stream over a WebSocket: one JSON message per event, with its ``"event"``; the query
+    takes the stream's ``after`` and filters."""
     await websocket.accept()
     presented = token_from_header(websocket.headers.get("authorization"))
     try:
         authorise(services.settings, presented or websocket.query_params.get("access_token"), write=False)
-        reader = open_reader(services.bus, flt, after)
+        reader = open_reader(services.bus, *websocket_query(websocket.query_params))
     except ApiError as exc:
         await websocket.send_json(error_body(exc.status, exc.code, exc.message, exc.details))
         await websocket.close(code=1013 if exc.status == 429 else 1008, reason=exc.code)

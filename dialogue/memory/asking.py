@@ -3,6 +3,7 @@
     what do I like · what does Alice like / love / enjoy   -> <person> likes ?
     what does Alice hate · what doesn't she like           -> <person> dislikes ?
     what's my name · who am I · do you know my name        -> <speaker> name ?
+    what is her name · what is Alice's name                -> <person> name ?
 
 The answer comes from the robot's model, and from what others said when it has not adopted it
 (dialogue.memory.learn). "Whose mug is this?" and "where are my keys?" are the situation questions
@@ -30,6 +31,8 @@ _WHO_AM_I: frozenset[Words] = frozenset(
                                "what did i say my name was")
 )  # fmt: skip
 _TAIL = word_set("please then again now robot")
+#: "what is her name?": the possessive as the pronoun of the person just spoken of.
+_PRONOUN_OF: dict[Words, Words] = {("his",): ("he",), ("her",): ("she",), ("their",): ("they",)}
 
 
 class Asking:
@@ -46,6 +49,13 @@ class Asking:
             w = w[:-1]
         if w in _WHO_AM_I:
             return [FactClaim(subject=self.speaker, predicate="name", object=None)]
+        if w[:5] == ("what", "is", "the", "name", "of") and w[5:]:  # "what is the name of Alice?"
+            who = self._person(w[5:])
+            return [FactClaim(subject=who, predicate="name", object=None)] if who is not None else None
+        if w[:2] == ("what", "is") and w[-1:] == ("name",) and len(w) > 3:  # "what is her name?"
+            whose = w[2:-1]
+            who = self._person(_PRONOUN_OF.get(whose, ())) if whose in _PRONOUN_OF else self._owner(whose)
+            return [FactClaim(subject=who, predicate="name", object=None)] if who is not None else None
         if w[:1] != ("what",) or len(w) < 4 or w[1] not in {"do", "does", "don't"}:
             return None
         negated = w[1] == "don't" or w[-2:-1] == ("not",)
@@ -59,6 +69,12 @@ class Asking:
             return None
         who = self._person(subject)
         return [FactClaim(subject=who, predicate=predicate, object=None)] if who is not None else None
+
+    def _owner(self, words: Words) -> str | None:
+        """The person of "Alice's" ("what is Alice's name?")."""
+        if not words or not words[-1].endswith("'s"):
+            return None
+        return self._person((*words[:-1], words[-1][:-2]))
 
     def _person(self, words: Words) -> str | None:
         if words in {("i",), ("me",)}:

@@ -17,6 +17,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Literal
 
+from dialogue.memory.names import clean_name
 from dialogue.reference.clarify import question as clarifying_question
 from dialogue.reference.english import tokens
 from dialogue.reference.grounding import Kind
@@ -29,8 +30,8 @@ from dialogue.schema import AnswerError, FactClaim
 ObjectForm = Literal["entity", "kind", "text"]
 _HOLDERS: frozenset[Kind] = frozenset({"thing", "person"})
 _PLACES: frozenset[Kind] = frozenset({"zone", "thing"})
-#: Longest name a person may give (characters).
-MAX_NAME = 60
+#: What a person may like: anyone or anything of the situation, the robot too ("I like you").
+_LIKED: frozenset[Kind] = ANYWHERE | {"robot"}
 
 
 @dataclass(frozen=True)
@@ -57,9 +58,9 @@ PREDICATES: dict[str, Predicate] = {
         Predicate("belongsTo", "belongsTo", frozenset({"thing"}), PERSON, replaces=("belongsTo",)),
         Predicate("isIn", "isIn", _HOLDERS, _PLACES, replaces=("isIn", "isOn")),
         Predicate("isOn", "isOn", _HOLDERS, _PLACES, replaces=("isIn", "isOn")),
-        Predicate("likes", "likes", PERSON, ANYWHERE, kinds=True, replaces=("likes", "dislikes"),
+        Predicate("likes", "likes", PERSON, _LIKED, kinds=True, replaces=("likes", "dislikes"),
                   per_object=True),
-        Predicate("dislikes", "dislikes", PERSON, ANYWHERE, kinds=True, replaces=("likes", "dislikes"),
+        Predicate("dislikes", "dislikes", PERSON, _LIKED, kinds=True, replaces=("likes", "dislikes"),
                   per_object=True),
     )
 }
@@ -90,16 +91,8 @@ class Claim:
         return self.object is None
 
 
-def clean_name(text: str) -> str:
-    """A name as told ("bob" -> "Bob", "mary jane" -> "Mary Jane"; casing kept when it has any),
-    or "" when it is no name (no letters, or too long)."""
-    name = " ".join(text.split()).strip(" .,!?;:\"'")
-    if not name or len(name) > MAX_NAME or not any(c.isalpha() for c in name):
-        return ""
-    return name if name != name.lower() else name.title()
-
-
-#: The reply when a fact would name a speaker who is not a KB entity (as for intents).
+#: The reply when a fact would name a speaker who is not a person of the KB (as for intents; the
+#: robot, speaking as `myself`, is no one to learn from).
 UNKNOWN_SPEAKER = "Sorry, I don't know who you are."
 
 
@@ -128,11 +121,12 @@ def ground_facts(facts: Sequence[FactClaim], lexicon: Lexicon, speaker: str) -> 
             continue
         if spec.objects is None:
             name = clean_name(value)
-            if not name:
-                raise AnswerError(f"facts[{n}].object {fact.object!r} is not a name")
+            if not name or value in lexicon.snapshot.entities:
+                raise AnswerError(f"facts[{n}].object {fact.object!r} is not a name: give the name itself")
             claims.append(Claim(subject, spec.name, name, "text"))
             continue
-        if spec.kinds and value not in lexicon.snapshot.entities:  # words: a kind first ("tea")
+        if spec.kinds and value not in lexicon.snapshot.entities and value.lower() not in _SPEAKER_WORDS:
+            # words: a kind first ("tea")
             found = resolve_id(lexicon, value, spec.objects).one
             words = " ".join(tokens(value))
             claims.append(Claim(subject, spec.name, words, "kind", found.id if found is not None else None))
@@ -141,7 +135,8 @@ def ground_facts(facts: Sequence[FactClaim], lexicon: Lexicon, speaker: str) -> 
         if question is not None:
             return GroundedFacts((), question)
         claims.append(Claim(subject, spec.name, obj))
-    if lexicon.snapshot.get(speaker) is None and any(not c.asks or speaker == c.subject for c in claims):
+    who = lexicon.snapshot.get(speaker)
+    if (who is None or who.kind != "person") and any(not c.asks or speaker == c.subject for c in claims):
         return GroundedFacts((), refusal=UNKNOWN_SPEAKER)  # nobody to hold the belief, or to ask about
     return GroundedFacts(tuple(claims))
 
@@ -151,7 +146,9 @@ def _entity(
 ) -> tuple[str, str | None]:
     """An id of `kinds` (the speaker for "me"), or a clarifying question; AnswerError otherwise."""
     text = (value or "").strip()
-    if "person" in kinds and (text == speaker or text.lower() in _SPEAKER_WORDS):
+    # An id first: "myself" is the robot's (ROS4HRI), not the speaker saying "myself".
+    if "person" in kinds and (text == speaker or (lexicon.snapshot.get(text) is None
+                                                  and text.lower() in _SPEAKER_WORDS)):
         return speaker, None
     found = resolve_id(lexicon, text, kinds) if text else None
     if found is not None and found.one is not None:

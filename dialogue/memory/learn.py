@@ -6,9 +6,10 @@ For every statement of a turn, in this order:
    `models=[<speaker>]`), replacing what they believed before in its place (a new name, a new place,
    the opposite preference).
 2. **Adoption.** The trust policy says whether the robot also takes it as true: `all`, `none`, or
-   `people` (the default): what a person says about themself ("I'm Bob", "I like tea") and their own
+   `people` (the default): what a person says about themself ("I'm Bob", "I like tea"), their own
    things ("the red mug is mine", "I left my glasses on the sofa"; a thing is theirs by a
-   `belongsTo` the robot knows or one said in the same turn).
+   `belongsTo` the robot knows or one said in the same turn), and the name of someone the robot
+   cannot name, or could only by that person's word ("this is Maria", then "no, it's Marta").
 3. **Perception wins.** An adopted fact is checked against the robot's model: a value of the same
    place (its name, owner, location, or the opposite preference) asserted there without a record of
    having been told is perception's (or another producer's), and dialogue never overwrites it: the
@@ -115,7 +116,7 @@ class Memory:
                     resolved.append(Outcome(claim, "unknown", claim.object))
                     continue
                 if kind is not None:
-                    names[kind.id] = kind.name
+                    names[kind.id] = claim.object  # as told: "apples" for the class "apple"
                 found = kind.id if kind is not None else claim.fallback
                 claim = replace(claim, object=found, form="entity", fallback=None)
             resolved.append(Outcome(claim, "answered" if claim.asks else "known", claim.object))
@@ -155,8 +156,9 @@ class Memory:
             return True
         if claim.predicate == "belongsTo":
             return claim.object == speaker
-        if claim.predicate == "name":  # an introduction: "this is Maria"
-            return not self.kb.find([f"{format_term(parse_name(claim.subject, 'subject'))} rdfs:label ?l"])
+        if claim.predicate == "name":  # an introduction ("this is Maria"), or its correction by its teller
+            held = self._held(claim, [DEFAULT_MODEL])
+            return all(self._was_told(f, by=speaker) for f in held)
         return claim.subject in theirs
 
     def _adopt(self, speaker: str, text: str, tells: Sequence[Claim],
@@ -241,8 +243,22 @@ class Memory:
                 self.kb.apply([], [s for f in stale for s in (*forget(self.kb, f), format_triple(f))])
             return len(stale)
 
-    def _was_told(self, fact: Fact) -> bool:
-        return self.kb.exist([f"{format_term(record_of(fact))} toldBy ?who"])
+    def forget_if_gone(self, subject: str, prop: str, value: str, literal: bool = False) -> bool:
+        """Retract the record of a told fact that is no longer asserted (whoever retracted it);
+        True when there was one (blocking; KbError when the KB refuses)."""
+        spec = BY_PROPERTY.get(prop)
+        if spec is None:
+            return False
+        with self._lock:
+            fact = _fact(Claim(subject, spec.name, value, "text" if literal else "entity"))
+            if self.kb.is_asserted(format_triple(fact)) or not self._was_told(fact):
+                return False  # told again since, or its record went with it
+            self.kb.apply([], forget(self.kb, fact))
+            return True
+
+    def _was_told(self, fact: Fact, by: str | None = None) -> bool:
+        who = format_term(parse_name(by, "speaker")) if by is not None else "?who"
+        return self.kb.exist([f"{format_term(record_of(fact))} toldBy {who}"])
 
     # -- questions --------------------------------------------------------------------------------
     def _answer(self, claim: Claim, names: dict[str, str]) -> Outcome:

@@ -8,8 +8,8 @@ are shared with read replicas through the store, like any fact. The summary keep
 few notable turns (what they told, what they asked the robot to do), newest last, bounded in notes
 and characters: chatbot_msgs 4.0's `summary` of earlier sessions. A turn that told something writes
 them at once (it wrote what it told anyway); other turns write at most once per `refresh` seconds
-per person, their notes waiting in memory for the next write (so a crash loses at most that much),
-and neither requests nor chit-chat write to the KB on every turn.
+per person, their notes waiting in memory for the next write (so a crash loses at most that much; a
+clean stop writes them), and neither requests nor chit-chat write to the KB on every turn.
 """
 
 from __future__ import annotations
@@ -26,10 +26,11 @@ from typing import Any
 from rdflib import XSD, Literal, URIRef
 
 from dialogue import intents as I
+from dialogue.errors import DialogueError
 from dialogue.memory.provenance import Told, told
 from dialogue.memory.recollections import LAST_SPOKE, SUMMARY, Recollections
 from dialogue.observers import TurnRecord
-from dialogue.speakers import person_statement
+from dialogue.speakers import NOT_PEOPLE, person_statement
 from kb import KbError
 from kb.protocol import KnowledgeBase
 from kb.terms import format_term, format_triple, parse_name
@@ -44,6 +45,22 @@ MAX_QUOTE = 80
 #: People whose last write time is remembered in this process (the least recently seen forgotten).
 MAX_TRACKED = 10_000
 _SEPARATOR = "; "
+#: Intents that ask the robot to do nothing worth remembering: a turn not understood, a greeting.
+_NO_REQUEST = frozenset({I.RAW_USER_INPUT, I.GREET})
+
+
+@dataclass(frozen=True)
+class _Kept:
+    """What is kept of a person between writes: when the KB was last written, and the notes and
+    time of the turns since, which wait for the next write."""
+
+    written: float
+    notes: tuple[str, ...] = ()
+    spoke: float | None = None
+
+
+class NotAPerson(DialogueError, ValueError):
+    """A person's id that is no id of the KB ("a b", "?x")."""
 
 
 @dataclass(frozen=True)
@@ -64,7 +81,7 @@ class Recollection:
 def note(record: TurnRecord) -> str | None:
     """A turn's note for the summary, or None when nothing in it is worth remembering."""
     result = record.result
-    acted = [i for i in result.intents if i.intent != I.RAW_USER_INPUT]
+    acted = [i for i in result.intents if i.intent not in _NO_REQUEST]
     told = [c for c in result.claims if not c.asks]
     if not acted and not told:
         return None
@@ -90,8 +107,8 @@ class People:
     def __init__(self, kb: KnowledgeBase, refresh: float = 60.0) -> None:
         self.kb = kb
         self.refresh = refresh
-        #: Per person: when the KB was last written, and the notes waiting for the next write.
-        self._written: OrderedDict[str, tuple[float, tuple[str, ...]]] = OrderedDict()
+        #: Per person: when the KB was last written, and what waits for the next write.
+        self._written: OrderedDict[str, _Kept] = OrderedDict()
         self._lock = threading.Lock()
         self._index: Recollections | None = None
 
@@ -102,8 +119,24 @@ class People:
         self._index = Recollections.follow(self.kb)
 
     def close(self) -> None:
+        """Write what waits for the next write (a clean stop loses nothing), stop the index."""
+        try:
+            self.flush()
+        except KbError as exc:
+            log.warning("the memory of the last turns was not kept at stop: %s", exc)
         if self._index is not None:
             self._index.close()
+
+    def flush(self) -> None:
+        """Write every person's turns that wait for their next write (blocking)."""
+        with self._lock:
+            waiting = [(person, kept) for person, kept in self._written.items() if kept.spoke is not None]
+            for person, kept in waiting:
+                self._written[person] = _Kept(kept.spoke or kept.written)
+        for person, kept in waiting:
+            term = self._term(person)
+            if term is not None and kept.spoke is not None:
+                self._write(person, term, kept.spoke, kept.notes)
 
     def recall(self, person: str) -> Recollection:
         """Blocking unless the index answers."""
@@ -130,11 +163,11 @@ class People:
         due = self._due(record)
         if due is None:
             return False
-        self._write(record, *due)
+        self._write(record.user_id, *due)
         return True
 
-    def _due(self, record: TurnRecord) -> tuple[URIRef, tuple[str, ...]] | None:
-        """The speaker's term and the notes to write when the KB is to be written now, else None
+    def _due(self, record: TurnRecord) -> tuple[URIRef, float, tuple[str, ...]] | None:
+        """The speaker's term, the time and the notes to write when the KB is to be written now, else None
         (cheap: no KB access). A turn the service could not answer (its fallback: model or store
         down) writes nothing more to a KB that may be struggling."""
         term = self._term(record.user_id)
@@ -143,21 +176,22 @@ class People:
         added = note(record)
         told_something = any(not c.asks for c in record.result.claims)
         with self._lock:
-            last, waiting = self._written.get(record.user_id, (None, ()))
+            kept = self._written.get(record.user_id)
+            waiting = kept.notes if kept is not None else ()
             notes = (*waiting, added)[-MAX_NOTES:] if added is not None else waiting
-            due = told_something or last is None or record.at - last >= self.refresh
-            self._written[record.user_id] = (record.at, ()) if due else (last or record.at, notes)
+            due = told_something or kept is None or record.at - kept.written >= self.refresh
+            self._written[record.user_id] = (_Kept(record.at) if due or kept is None
+                                             else _Kept(kept.written, notes, record.at))
             self._written.move_to_end(record.user_id)
             while len(self._written) > MAX_TRACKED:
                 self._written.popitem(last=False)
-        return (term, notes) if due else None
+        return (term, record.at, notes) if due else None
 
-    def _write(self, record: TurnRecord, term: URIRef, notes: tuple[str, ...]) -> None:
-        stamp = Literal(datetime.fromtimestamp(record.at, UTC).isoformat(timespec="seconds"),
-                        datatype=XSD.dateTime)
+    def _write(self, person: str, term: URIRef, at: float, notes: tuple[str, ...]) -> None:
+        stamp = Literal(datetime.fromtimestamp(at, UTC).isoformat(timespec="seconds"), datatype=XSD.dateTime)
         facts = [format_triple((term, LAST_SPOKE, stamp))]
         if notes:
-            summary = self.recall(record.user_id).summary
+            summary = self.recall(person).summary
             for added in notes:
                 summary = summarised(summary, added)
             facts.append(format_triple((term, SUMMARY, Literal(summary))))
@@ -166,9 +200,11 @@ class People:
     def about(self, person: str) -> dict[str, Any]:
         """Everything the robot keeps of a person: when they last spoke, the summary, the facts
         they told it (adopted: those they only believe are in their own model) and the facts others
-        told about them, each with who told it and when."""
+        told about them, each with who told it and when. NotAPerson when `person` is no KB id."""
+        if person not in NOT_PEOPLE and self._term(person) is None:
+            raise NotAPerson(f"{person!r} is not a person's id (a KB name such as person_bob)")
         memory = self.recall(person)
-        if self._term(person) is None:
+        if self._term(person) is None:  # a source constant: nobody the robot remembers
             return {"person": person, "last_spoke": None, "summary": "", "told": [], "told_about": []}
         return {"person": person, "last_spoke": memory.last_spoke, "summary": memory.summary,
                 "told": [_told(t) for t in told(self.kb, by=person)],
@@ -180,7 +216,7 @@ class People:
         if due is None:
             return
         try:
-            await asyncio.to_thread(self._write, record, *due)
+            await asyncio.to_thread(self._write, record.user_id, *due)
         except KbError as exc:
             log.warning("the memory of %s was not kept for this turn: %s", record.user_id, exc)
 

@@ -4,23 +4,23 @@
 asserts `keys_1 isOn table_1` (without a record of having been told), and the told place goes,
 with its record. A perceived zone that holds the told place contradicts nothing (the keys in the
 kitchen, the drawer being in the kitchen). The KB calls the commit listener under its lock, so it
-only queues the new facts of the places the memory keeps (name, owner, location, preference); a
-worker thread checks them against what was told (dialogue.memory.learn.Memory.reconcile).
+only queues the changed facts of the places the memory keeps (name, owner, location, preference); a
+worker thread checks them against what was told (dialogue.memory.learn.Memory.reconcile). A told
+fact that anyone retracts takes its record with it (Memory.forget_if_gone): a record never outlives
+its fact, or the same fact perceived later would pass for told, and a statement could replace it.
 """
 
 from __future__ import annotations
 
 import logging
-import queue
-import threading
-from collections.abc import Callable
+from collections.abc import Iterator
 from typing import Any
 
 from rdflib import Literal, URIRef
 
+from dialogue.follower import CommitFollower
 from dialogue.memory.claims import BY_PROPERTY
 from dialogue.memory.learn import Memory
-from kb import KbError
 from kb.terms import format_term, parse_name, shorten
 
 log = logging.getLogger(__name__)
@@ -28,60 +28,33 @@ log = logging.getLogger(__name__)
 #: Facts queued between the KB's commits and the worker (past it, the newest are not checked).
 MAX_PENDING = 10_000
 _WATCHED = frozenset(parse_name(prop, "property") for prop in BY_PROPERTY)
-_STOP = ("", "", "", False)
+#: (subject, property, value, literal, added) of a change to a watched place.
+Change = tuple[str, str, str, bool, bool]
 
 
-class Reconciler:
+class Reconciler(CommitFollower[Change]):
+    """Follows the KB's commits (not on a read replica: the writer does it); `join` waits until
+    every change queued so far has been checked."""
+
     def __init__(self, memory: Memory) -> None:
+        super().__init__(memory.kb, "memory-reconcile", _changes, self._check, MAX_PENDING)
         self.memory = memory
-        self._pending: queue.Queue[tuple[str, str, str, bool]] = queue.Queue(MAX_PENDING)
-        self._thread: threading.Thread | None = None
-        self._unwatch: Callable[[], None] | None = None
 
-    def start(self) -> bool:
-        """Follow the KB's commits; False when it reports none (a read replica: the writer does it)."""
-        on_commit = getattr(self.memory.kb, "on_commit", None)
-        if not callable(on_commit):
-            return False
-        self._thread = threading.Thread(target=self._work, name="memory-reconcile", daemon=True)
-        self._thread.start()
-        self._unwatch = on_commit(self._commit)
-        return True
+    def _check(self, change: Change) -> None:
+        subject, prop, value, literal, added = change
+        if not added:
+            self.memory.forget_if_gone(subject, prop, value, literal)
+        elif retracted := self.memory.reconcile(subject, prop, value, literal):
+            log.info("perception of %s %s retracted %d told value(s)", subject, prop, retracted)
 
-    def stop(self) -> None:
-        if self._unwatch is not None:
-            self._unwatch()
-            self._unwatch = None
-        if self._thread is not None:
-            self._pending.put(_STOP)
-            self._thread.join(timeout=5)
-            self._thread = None
 
-    def join(self) -> None:
-        """Wait until every fact queued so far has been checked."""
-        self._pending.join()
-
-    def _commit(self, commit: Any) -> None:
-        for delta in commit.deltas:
-            if delta.model != "default":
-                continue
-            for s, p, o in delta.asserted_added:
+def _changes(commit: Any) -> Iterator[Change]:
+    for delta in commit.deltas:
+        if delta.model != "default":
+            continue
+        for triples, added in ((delta.asserted_added, True), (delta.asserted_removed, False)):
+            for s, p, o in triples:
                 if p in _WATCHED and isinstance(s, URIRef):
                     literal = isinstance(o, Literal)
-                    item = (str(shorten(s)), format_term(p), str(o) if literal else format_term(o), literal)
-                    try:
-                        self._pending.put_nowait(item)
-                    except queue.Full:
-                        log.warning("memory: too many changes at once; %s %s not checked", shorten(s), p)
-
-    def _work(self) -> None:
-        while (item := self._pending.get()) != _STOP:
-            try:
-                retracted = self.memory.reconcile(*item)
-                if retracted:
-                    log.info("perception of %s %s retracted %d told value(s)", item[0], item[1], retracted)
-            except KbError as exc:
-                log.warning("memory: told values not reconciled with %s %s: %s", item[0], item[1], exc)
-            finally:
-                self._pending.task_done()
-        self._pending.task_done()
+                    value = str(o) if literal else format_term(o)
+                    yield str(shorten(s)), format_term(p), value, literal, added

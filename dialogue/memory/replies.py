@@ -26,6 +26,8 @@ class _Namer:
         self.names = names
 
     def __call__(self, term: str) -> str:
+        if term == self.snapshot.robot:
+            return "me"  # "OK, you like me."
         entity = self.snapshot.get(term)
         if entity is None:
             return self.names.get(term) or self.snapshot.name_of(term)
@@ -91,7 +93,7 @@ def sentence(outcome: Outcome, name: _Namer) -> str:
         case "perceived":
             return _perceived(outcome, name)
         case "unknown":
-            return f"Sorry, I don't know what {outcome.object} is."
+            return f"Sorry, I don't know what {outcome.object} {_be(outcome.object or '')}."
         case _:
             return _answer(outcome, name)
 
@@ -129,6 +131,8 @@ def _predicate(prop: str) -> str:
 def _answer(outcome: Outcome, name: _Namer) -> str:
     claim = outcome.claim
     values = [v for _, v in outcome.held]
+    if values and claim.predicate == "name" and claim.subject != name.speaker:
+        return f"That's {listing(values)}."  # "what is her name?"
     if values:
         facts = [clause(Claim(claim.subject, claim.predicate, v), name) for v in values]
         if claim.predicate in {"likes", "dislikes"} and len(values) > 1:
@@ -147,7 +151,7 @@ def _unknown_answer(claim: Claim, name: _Namer) -> str:
         case "name" if claim.subject == name.speaker:
             return "I don't know your name yet. What is it?"
         case "name":
-            return f"I don't know {who}'s name."
+            return f"I don't know {name.person(claim.subject, 'their')}'s name.".replace("their's", "their")
         case "belongsTo":
             return f"I don't know whose {name(claim.subject).removeprefix('the ')} is."
         case "isIn" | "isOn":

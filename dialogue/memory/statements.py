@@ -6,41 +6,35 @@
     the keys are in the drawer · I left my glasses on the sofa -> <thing> isIn / isOn <place>
     I like tea · Alice hates coffee · I don't like the radio  -> <person> likes / dislikes <kind or thing>
 
-A turn is claimed only when every clause of it is a statement (or a greeting before one); referents
-are resolved against the lexicon as the command grammar's are (one entity, a clarifying question when
-several fit, "I don't know any..." when none does: nothing is invented). A liking's object may also
-be a kind ("tea"): its words are passed on and found among the KB's classes when learnt.
+Likings are read by dialogue.memory.likings, the phrases grounded by dialogue.memory.clause (the
+reader this grammar is built on). A turn is claimed only when every clause of it is a statement (or
+a greeting before one); referents are resolved against the lexicon as the command grammar's are (one
+entity, a clarifying question when several fit, "I don't know any..." when none does: nothing is
+invented). A liking's object may also be a kind ("tea"): its words are passed on and found among the
+KB's classes when learnt. What only looks like a statement is left to the other rules: a liking of
+what happens or of doing something ("I like it when you dance", "I like to dance", "I like that"),
+and where the speaker is said of anything but a zone or furniture the KB knows ("I'm on my way",
+"I'm on the phone").
 """
 
 from __future__ import annotations
 
 import re
-from collections.abc import Mapping, Sequence
-from dataclasses import dataclass, field
 
-from lemminflect import getAllLemmas
-
-from dialogue.history import Utterance
-from dialogue.reference.clarify import question as clarifying_question
-from dialogue.reference.english import POSSESSIVES, word_set
-from dialogue.reference.grounding import Kind
-from dialogue.reference.lexicon import Lexicon
-from dialogue.reference.resolution import (
-    ANYWHERE,
-    PERSON,
-    PLACE,
-    antecedent,
-    content_words,
-    is_pronoun,
-    resolve,
-)  # fmt: skip
+from dialogue.memory.clause import Refused, Told, Unclaimed, Words, fact
+from dialogue.memory.likings import Likings
+from dialogue.memory.names import clean_name, given_name, name_like
+from dialogue.reference.english import word_set
+from dialogue.reference.grounding import Entity, Kind
+from dialogue.reference.resolution import PLACE
 from dialogue.rules.clauses import clauses as run_on_clauses
 from dialogue.rules.speech import original_text
 from dialogue.rules.utterance import asked_verb, normalise
 from dialogue.rules.words import GREETINGS, SOCIAL
 from dialogue.schema import FactClaim
 
-Words = tuple[str, ...]
+__all__ = ["Statements", "Told", "Words"]
+
 ME = "me"
 _HOLDERS: frozenset[Kind] = frozenset({"thing", "person"})
 _THING: frozenset[Kind] = frozenset({"thing"})
@@ -49,18 +43,10 @@ _LEADS = word_set("well oh so ok okay actually also and anyway listen hey robot"
 _BY_THE_WAY = ("by", "the", "way")
 #: A clause starting with one of these asks something: questions are not statements.
 _ASKING = word_set("do does did is are was were can could would will shall should may might must have has")
-_INTENSIFIERS = word_set("really truly absolutely quite totally just")
-#: Words of "I'm X" that are no name ("I'm back", "I'm the cook", "I'm not sure").
-_NOT_NAMES = word_set(
-    "a an the not no so very just here there back home in on at from with going done fine ok okay sorry "
-    "ready sure afraid looking trying still also only really quite too that this it what who your my"
-)
 _FRIEND = word_set(
     "friend wife husband partner son daughter mother mum mom father dad brother sister colleague boss "
     "neighbour neighbor guest grandmother grandfather granny grandma grandpa aunt uncle cousin"
 )
-_LIKE = word_set("like likes love loves enjoy enjoys adore adores")
-_HATE = word_set("hate hates dislike dislikes detest detests loathe loathes")
 _PUT = word_set("left put placed keep kept stored leave")
 #: Locative prepositions, longest first, and the property each states.
 _IN = {("on", "top", "of"): "isOn", ("in",): "isIn", ("inside",): "isIn", ("into",): "isIn", ("on",): "isOn",
@@ -70,60 +56,29 @@ _POLITE: frozenset[Words] = frozenset({("please",), ("thanks",), ("thank", "you"
 _NO: frozenset[Words] = frozenset({("no",), ("nope",), ("no", "no"), ("wrong",), ("that", "is", "wrong"),
                                    ("not", "quite"), ("sorry",), ("no", "sorry")})
 _NAME_ASKED = ("your name", "what should i call you")
+#: What a person may be in or on: a zone, or furniture (not "on the phone").
+_FURNITURE = "cyc:FurniturePiece"
+#: What introduces the speaker's name, and whether it says a name surely ("my name is frank") or
+#: only when the words look like one ("call me later" is no name).
+_NAME_LEADS: tuple[tuple[Words, bool], ...] = tuple(
+    (tuple(lead.split()), surely)
+    for leads, surely in (("my name is|my name's|name's|i am called|the name is", True),
+                          ("call me|you can call me|people call me|they call me|everyone calls me|"
+                           "my friends call me", False))
+    for lead in leads.split("|")
+)
+#: "this is my phone", "these are my keys": what the speaker points at is theirs.
+_POINTED: frozenset[Words] = frozenset({("this", "is"), ("that", "is"), ("it", "is"), ("these", "are"),
+                                        ("those", "are"), ("they", "are")})
 
 
-@dataclass
-class Told:
-    """The rules' reading of a turn of statements: the facts, or the reply that says why none."""
-
-    facts: list[FactClaim] = field(default_factory=list)
-    reply: str | None = None
-    clarify: bool = False
-    greeted: bool = False
+def _holds_people(entity: Entity) -> bool:
+    return entity.kind == "zone" or _FURNITURE in entity.classes
 
 
-class _Unclaimed(Exception):
-    """A clause is not a statement this grammar reads: the turn is left to the other rules."""
-
-
-class _Refused(Exception):
-    """A statement whose referent is unknown or ambiguous: the reply says so (no fact)."""
-
-    def __init__(self, reply: str, clarify: bool = False) -> None:
-        super().__init__(reply)
-        self.reply = reply
-        self.clarify = clarify
-
-
-def _fact(subject: str, predicate: str, obj: str | None) -> FactClaim:
-    return FactClaim(subject=subject, predicate=predicate, object=obj)
-
-
-def name_like(words: Words, original: str) -> bool:
-    """Whether the words of "I'm X" are a name: one to three words, none a function word, and
-    (for lower-case speech-recogniser text) none an adjective or adverb ("I'm tired", "I'm here")."""
-    if not 1 <= len(words) <= 3 or any(w in _NOT_NAMES or not w.isalpha() for w in words):
-        return False
-    if original != original.lower():  # written casing tells names apart: "I'm Frank", "I'm frank"
-        return all(part[:1].isupper() for part in original.split())
-    lemmas = [getAllLemmas(w) for w in words]
-    return not any({"ADJ", "ADV", "AUX"} & set(found) for found in lemmas) and not words[0].endswith("ing")
-
-
-class Statements:
+class Statements(Likings):
     """Reads statements against a lexicon, for one speaker and the dialogue's history."""
 
-    def __init__(self, lexicon: Lexicon, speaker: str, history: Sequence[Utterance] = (),
-                 overrides: Mapping[Words, Words] | None = None) -> None:
-        self.lexicon = lexicon
-        self.snapshot = lexicon.snapshot
-        self.speaker = speaker
-        #: Phrases read as other words: an ambiguous one completed by the answer to the robot's
-        #: question (dialogue.memory.followup).
-        self.overrides = dict(overrides or {})
-        #: The phrase the last clarifying question was about.
-        self.open_phrase: Words | None = None
-        self.history = tuple(history)
 
     def read(self, text: str) -> Told | None:
         """The facts of a turn of statements, or None when the turn is not one."""
@@ -133,7 +88,7 @@ class Statements:
         # run-on clauses too: "my keys are in the drawer can you get them" is no statement only
         clauses = [part for c in _CLAUSES.split(text) if c.strip() for part in run_on_clauses(c)]
         correcting = False
-        refused: _Refused | None = None  # said once every clause is known to be a statement
+        refused: Refused | None = None  # said once every clause is known to be a statement
         try:
             for clause in clauses:
                 words = self._lead(normalise(clause))
@@ -149,9 +104,9 @@ class Statements:
                     continue
                 try:
                     told.facts += self._statement(("no", *words) if correcting else words, clause)
-                except _Refused as refusal:
+                except Refused as refusal:
                     refused = refused or refusal
-        except _Unclaimed:
+        except Unclaimed:
             return None
         if refused is not None:
             return Told(reply=refused.reply, clarify=refused.clarify)
@@ -174,21 +129,25 @@ class Statements:
     # -- one clause ----------------------------------------------------------------------------
     def _statement(self, w: Words, clause: str) -> list[FactClaim]:
         if w[0] in _ASKING or w[0] in {"what", "where", "who", "which", "whose", "how", "why", "when"}:
-            raise _Unclaimed
+            raise Unclaimed
         for reader in (self._name, self._preference, self._ownership, self._location):
             facts = reader(w, clause)
             if facts is not None:
                 return facts
-        raise _Unclaimed
+        raise Unclaimed
 
     def _name(self, w: Words, clause: str) -> list[FactClaim] | None:
         correcting = w[:1] == ("no",)
         if correcting:
             w = self._lead(list(w[1:]))
-        for lead in (("my", "name", "is"), ("my", "name's"), ("call", "me"), ("you", "can", "call", "me"),
-                     ("i", "am", "called"), ("people", "call", "me"), ("the", "name", "is")):
-            if w[: len(lead)] == lead and w[len(lead) :]:
-                return [self._named(self.speaker, w[len(lead) :], clause)]
+        for lead, surely in _NAME_LEADS:
+            rest = w[len(lead) :]
+            if w[: len(lead)] == lead and rest:
+                if not (given_name(rest) if surely else name_like(rest, original_text(clause, list(rest)))):
+                    raise Unclaimed  # "my name is not important", "call me later"
+                return [self._named(self.speaker, rest, clause)]
+        if w[-3:] == ("is", "my", "name") and given_name(w[:-3]):  # "Bob is my name"
+            return [self._named(self.speaker, w[:-3], clause)]
         if w[:2] == ("i", "am") and name_like(w[2:], original_text(clause, list(w[2:]))):
             return [self._named(self.speaker, w[2:], clause)]
         if w[:2] in {("his", "name"), ("her", "name"), ("their", "name")} and w[2:3] in {("is",), ("'s",)}:
@@ -208,8 +167,10 @@ class Statements:
         return None
 
     def _named(self, who: str, words: Words, clause: str) -> FactClaim:
-        name = original_text(clause, list(words))
-        return _fact(who, "name", name if name != name.lower() else name.title())
+        name = clean_name(original_text(clause, list(words)))
+        if not name:
+            raise Unclaimed  # longer than any name
+        return fact(who, "name", name)
 
     def _known_words(self, words: Words) -> bool:
         return all(self.lexicon.knows(w) for w in words)
@@ -221,8 +182,8 @@ class Statements:
         if len(unnamed) == 1:
             return unnamed[0].id
         if not unnamed:
-            raise _Refused("Sorry, I don't see anyone here whose name I don't know.")
-        raise _Refused("Sorry, I see more than one person I don't know: I can't tell who you mean.")
+            raise Refused("Sorry, I don't see anyone here whose name I don't know.")
+        raise Refused("Sorry, I see more than one person I don't know: I can't tell who you mean.")
 
     def _robot_said(self) -> str:
         said = [u for u in self.history if u.role == "assistant"]
@@ -240,87 +201,39 @@ class Statements:
                 re.search(rf"\b{re.escape(label)}\b", said) for label in entity.labels
             ):
                 return entity.id
-        raise _Unclaimed
+        raise Unclaimed
 
-    def _preference(self, w: Words, clause: str) -> list[FactClaim] | None:
-        w = tuple(x for x in w if x not in _INTENSIFIERS)
-        if w[:3] == ("i", "cannot", "stand") and w[3:]:
-            return [_fact(self.speaker, "dislikes", self._liked(w[3:]))]
-        for cut in range(1, min(len(w) - 1, 4)):  # the subject: one to three words
-            verb, negated = cut, False
-            if w[cut : cut + 2] in {("do", "not"), ("does", "not")}:
-                verb, negated = cut + 2, True
-            elif w[cut] == "don't":
-                verb, negated = cut + 1, True
-            if verb + 1 >= len(w):
-                continue
-            if w[verb] in _LIKE:
-                predicate = "dislikes" if negated else "likes"
-            elif w[verb] in _HATE and not negated:
-                predicate = "dislikes"
-            else:
-                continue
-            who = self._person(w[:cut])
-            if who is not None:
-                return [_fact(who, predicate, self._liked(w[verb + 1 :]))]
-        return None
 
-    def _person(self, words: Words) -> str | None:
-        if words == ("i",):
-            return self.speaker
-        if words in {("he",), ("she",)}:
-            found = antecedent(self.lexicon, self.history, PERSON, speaker=self.speaker)
-            return found.id if found is not None else None
-        if not content_words(words) or not all(w.isalpha() for w in words):
-            return None
-        res = resolve(self.lexicon, words, PERSON)
-        if res.ambiguous:
-            raise _Refused(clarifying_question(self.snapshot, res.matches), clarify=True)
-        return res.one.id if res.one is not None else None
 
-    def _liked(self, words: Words) -> str:
-        """A thing of the situation when the phrase names one with a determiner ("the radio"), else
-        the words of a kind ("tea", "apples"), found among the KB's classes when learnt."""
-        words = tuple(w for w in words if w not in {"very", "much", "really", "so", "a", "lot", "too"})
-        if words and words[0].endswith("ing") and "VERB" in getAllLemmas(words[0]):
-            raise _Unclaimed  # "I hate marking lab reports": an activity, no thing or kind of the KB
-        if words and words[0] in {"the", "this", "that", "my", "your", "his", "her"}:
-            return self._entity(words, ANYWHERE)[0]
-        if words == ("you",):
-            return self.snapshot.robot
-        person = self._person(words) if words[:1] != ("it",) else None
-        if person is not None:
-            return person
-        return " ".join(words)
 
     def _ownership(self, w: Words, clause: str) -> list[FactClaim] | None:
         if len(w) > 2 and w[-1] == "mine" and w[-2] in _BE:
             thing, _ = self._entity(w[:-2], _THING)
-            return [_fact(thing, "belongsTo", self.speaker)]
+            return [fact(thing, "belongsTo", self.speaker)]
         for verb in (("belongs", "to"), ("belong", "to")):
             for i in range(1, len(w) - 2):
                 if w[i : i + 2] == verb:
                     owner = ME if w[i + 2 :] in {("me",), ("myself",)} else self._person(w[i + 2 :])
                     if owner is None:
-                        raise _Refused(f"Sorry, I don't know anyone called {' '.join(w[i + 2:]).title()}.")
+                        raise Refused(f"Sorry, I don't know anyone called {' '.join(w[i + 2:]).title()}.")
                     thing, _ = self._entity(w[:i], _THING)
-                    return [_fact(thing, "belongsTo", self.speaker if owner == ME else owner)]
-        if w[:2] in {("this", "is"), ("that", "is"), ("it", "is")} and w[2:3] == ("my",) and w[3:]:
+                    return [fact(thing, "belongsTo", self.speaker if owner == ME else owner)]
+        if w[:2] in _POINTED and w[2:3] == ("my",) and w[3:]:
             thing, _ = self._entity(w[3:], _THING)
-            return [_fact(thing, "belongsTo", self.speaker)]
+            return [fact(thing, "belongsTo", self.speaker)]
         if len(w) > 2 and w[-2] in _BE and w[-1].endswith("'s"):
             owner = self._person((w[-1][:-2],))
             if owner is not None:
                 thing, _ = self._entity(w[:-2], _THING)
-                return [_fact(thing, "belongsTo", owner)]
+                return [fact(thing, "belongsTo", owner)]
         if w[:2] == ("i", "own") and w[2:]:
             thing, _ = self._entity(w[2:], _THING)
-            return [_fact(thing, "belongsTo", self.speaker)]
+            return [fact(thing, "belongsTo", self.speaker)]
         return None
 
     def _location(self, w: Words, clause: str) -> list[FactClaim] | None:
         if w[:2] == ("i", "am"):
-            return self._where(("me",), w[2:])
+            return self._where(("me",), w[2:], people_in=True)
         if w[:1] == ("i",) and len(w) > 3:
             verb = 2 if w[1] == "have" else 1
             return self._placed(w[verb + 1 :]) if w[verb] in _PUT else None
@@ -331,12 +244,18 @@ class Statements:
                 return self._where(w[:i], w[i + 1 :])
         return None
 
-    def _where(self, thing: Words, rest: Words) -> list[FactClaim] | None:
-        """ "(the keys are) in the drawer": the place after the verb."""
+    def _where(self, thing: Words, rest: Words, people_in: bool = False) -> list[FactClaim] | None:
+        """ "(the keys are) in the drawer": the place after the verb. With `people_in` ("I'm in
+        the kitchen", "I'm on the sofa") only a zone or furniture the KB knows is a place; other
+        words are an idiom ("I'm on my way", "I'm in trouble", "I'm on the phone")."""
         rest = rest[1:] if rest[:1] in {("now",), ("still",), ("usually",), ("always",)} else rest
         for prep, predicate in _IN.items():
-            if rest[: len(prep)] == prep and rest[len(prep) :]:
-                return self._at(thing, predicate, rest[len(prep) :])
+            place = rest[len(prep) :]
+            if rest[: len(prep)] == prep and place and people_in:
+                here, _ = self._entity(place, PLACE, _holds_people)
+                return [fact(self.speaker, predicate, here)]
+            if rest[: len(prep)] == prep and place:
+                return self._at(thing, predicate, place)
         return None
 
     def _placed(self, rest: Words) -> list[FactClaim] | None:
@@ -352,29 +271,6 @@ class Statements:
         facts = []
         entity = self.snapshot.get(thing)
         if owner is not None and entity is not None and entity.owner is None:
-            facts.append(_fact(thing, "belongsTo", owner))  # "my glasses": theirs, said in passing
-        return [*facts, _fact(thing, predicate, place)]
+            facts.append(fact(thing, "belongsTo", owner))  # "my glasses": theirs, said in passing
+        return [*facts, fact(thing, predicate, place)]
 
-    def _entity(self, words: Words, kinds: frozenset[Kind]) -> tuple[str, str | None]:
-        """One entity of `kinds` the phrase names, and whose it is said to be ("my keys")."""
-        self.open_phrase, words = words, self.overrides.get(words, words)
-        if "person" in kinds and words in {("me",), ("i",)}:
-            return self.speaker, None
-        said = [w for w in words if w in POSSESSIVES]
-        owner = self.speaker if said[:1] in (["my"], ["our"]) else None
-        bare = tuple(w for w in words if w not in POSSESSIVES)
-        if not content_words(bare) or is_pronoun(bare):
-            found = antecedent(self.lexicon, self.history, kinds, speaker=self.speaker)
-            if found is None:
-                raise _Refused(f'What do you mean by "{" ".join(words)}"?', clarify=True)
-            return found.id, owner
-        res = resolve(self.lexicon, bare, kinds, owner=owner)
-        if res.one is not None:
-            return res.one.id, owner
-        if res.ambiguous:
-            raise _Refused(clarifying_question(self.snapshot, res.matches), clarify=True)
-        if any(not self.lexicon.knows(w) for w in content_words(bare)) and any(
-            self.lexicon.knows(w) for w in content_words(bare)
-        ):
-            raise _Unclaimed  # names the KB knows among words it does not: leave it to a model
-        raise _Refused(f"Sorry, I don't know any {' '.join(content_words(bare))}.")

@@ -6,8 +6,12 @@ loop, and one that falls too far behind is ended ("overflow") rather than slowin
 reconnects and replays what it missed from the buffer. A reader subscribes after a sequence number
 (`after`): the buffered events after it come first, then the live ones, with no gap and no repeat
 (both are taken under the bus's lock). When the buffer no longer holds all of what the reader
-missed, or the number is from before a restart (the numbers start at 1 with each bus, and `stream`
-names the bus), the reader learns it from its `gap` before the events it does get.
+missed, or the number is from before a restart, the reader learns it from its `gap` before the
+events it does get. A bus numbers from `first`: the service starts it from the clock
+(`clock_first`), so that a restarted service numbers after every number the earlier run gave and a
+client resuming after one of those is told of the restart, however many intents the new run has
+pushed since (numbering from 1 again, its 42 would have been taken for the old run's 42). `stream`
+names the bus too.
 
 Listeners (`on_publish`, the webhooks) are called in the publisher's thread and must only queue.
 """
@@ -29,10 +33,17 @@ from dialogue.pushed.events import IntentFilter, Origin, Pushed
 Listener = Callable[[Pushed], None]
 
 
+def clock_first() -> int:
+    """A bus's first number from the wall clock (milliseconds): above every number an earlier run
+    gave, unless it pushed more than one intent per millisecond on average."""
+    return time.time_ns() // 1_000_000
+
+
 @dataclass(frozen=True)
 class Gap:
     """Events a reader asked for that the bus no longer has: numbers `first` to `last`, or, with
-    `restarted`, a number from an earlier run of the service (this one's events all follow)."""
+    `restarted`, a number from an earlier run of the service (this one's events all follow; `first`
+    to `last` are then those of this run no longer buffered)."""
 
     first: int
     last: int
@@ -94,15 +105,18 @@ class Reader:
 class IntentBus:
     """Numbers and buffers the intents of one service and hands them to readers and listeners."""
 
-    def __init__(self, buffer: int = 1000, max_queued: int = 1000, max_readers: int = 64) -> None:
-        if buffer < 1 or max_queued < 1 or max_readers < 1:
-            raise ValueError("the intent bus's bounds must be positive")
+    def __init__(self, buffer: int = 1000, max_queued: int = 1000, max_readers: int = 64,
+                 first: int = 1) -> None:
+        if buffer < 1 or max_queued < 1 or max_readers < 1 or first < 1:
+            raise ValueError("the intent bus's bounds and first number must be positive")
         #: Names this bus: a client seeing another stream id knows the numbers started again.
         self.stream = uuid.uuid4().hex
         self.max_readers = max_readers
+        #: The number of this bus's first event; `after` 0 (nothing seen yet) means just before it.
+        self.first = first
         self._lock = threading.Lock()
         self._buffer: deque[Pushed] = deque(maxlen=buffer)
-        self._seq = 0
+        self._seq = first - 1
         self._max_queued = max_queued
         self._readers: tuple[Reader, ...] = ()
         self._listeners: tuple[Listener, ...] = ()
@@ -162,14 +176,15 @@ class IntentBus:
             return self._since(after, flt or IntentFilter())
 
     def _since(self, after: int, flt: IntentFilter) -> tuple[list[Pushed], Gap | None]:
+        after = after or self.first - 1
         gap = self._gap(after)
-        start = 0 if gap is not None and gap.restarted else after
+        start = self.first - 1 if gap is not None and gap.restarted else after
         return [e for e in self._buffer if e.seq > start and flt.matches(e)], gap
 
     def _gap(self, after: int) -> Gap | None:
         oldest = self._buffer[0].seq if self._buffer else self._seq + 1
-        if after > self._seq:
-            return Gap(1, oldest - 1, restarted=True)
+        if after > self._seq or after < self.first - 1:  # a number this run never gave
+            return Gap(self.first, oldest - 1, restarted=True)
         return Gap(after + 1, oldest - 1) if after + 1 < oldest else None
 
     def close(self, reader: Reader) -> None:

@@ -82,7 +82,7 @@ def who_do_you_see(snapshot: Snapshot, speaker: str) -> str:
     return f"I see {listing(names)}."
 
 
-def where_is(lexicon: Lexicon, words: Sequence[str], speaker: str) -> str:
+def where_is(lexicon: Lexicon, words: Sequence[str], speaker: str, owner: str | None = None) -> str:
     snapshot = lexicon.snapshot
     if tuple(words) in {("me",), ("you",)}:
         me = words[0] == "me"
@@ -91,7 +91,7 @@ def where_is(lexicon: Lexicon, words: Sequence[str], speaker: str) -> str:
         if where:
             return f"{'You are' if me else 'I am'} {where}."
         return f"Sorry, I don't know where {'you are' if me else 'I am'}."
-    found = resolve(lexicon, words, ALL_KINDS)
+    found = resolve(lexicon, words, ALL_KINDS, owner=owner)
     phrase = " ".join(content_words(words)) or "that"
     if not found.matches:
         return f"Sorry, I don't know where the {phrase} is: I don't know any {phrase}."
@@ -108,7 +108,8 @@ def where_is(lexicon: Lexicon, words: Sequence[str], speaker: str) -> str:
         elif e.seen and e.kind == "person":
             sentences.append(f"{name} is here, I can see {name}.")
         elif e.seen:
-            sentences.append(f"I can see {name}, but I don't know exactly where it is.")
+            where_it = "where they are" if _plural(tokens(name)) else "where it is"
+            sentences.append(f"I can see {name}, but I don't know exactly {where_it}.")
         else:
             sentences.append(f"I don't know where {name} is right now.")
     return " ".join(sentences)
@@ -147,9 +148,9 @@ def _on(snapshot: Snapshot, place: Entity) -> str:
     return f"{prep.capitalize()} the {place.name}, there is {listing(items)}."
 
 
-def can_you_see(lexicon: Lexicon, words: Sequence[str], speaker: str) -> str:
+def can_you_see(lexicon: Lexicon, words: Sequence[str], speaker: str, owner: str | None = None) -> str:
     snapshot = lexicon.snapshot
-    found = resolve(lexicon, words, ALL_KINDS)
+    found = resolve(lexicon, words, ALL_KINDS, owner=owner)
     phrase = said_phrase(words) or "that"
     if not found.matches:
         return f"No, I don't see any {phrase}."
@@ -163,9 +164,9 @@ def can_you_see(lexicon: Lexicon, words: Sequence[str], speaker: str) -> str:
     return f"No, I don't see {the(snapshot, e, speaker)} right now.{known}"
 
 
-def what_is(lexicon: Lexicon, words: Sequence[str], speaker: str) -> str:
+def what_is(lexicon: Lexicon, words: Sequence[str], speaker: str, owner: str | None = None) -> str:
     snapshot = lexicon.snapshot
-    found = resolve(lexicon, words, ALL_KINDS)
+    found = resolve(lexicon, words, ALL_KINDS, owner=owner)
     phrase = " ".join(content_words(words)) or "that"
     if not found.matches:
         return f"Sorry, I don't know what {phrase} is."
@@ -205,16 +206,16 @@ def told_apart(entities: Sequence[Entity]) -> list[str]:
             for e, n in zip(entities, names, strict=True)]  # fmt: skip
 
 
-def colour_of(lexicon: Lexicon, words: Sequence[str], speaker: str) -> str:
+def colour_of(lexicon: Lexicon, words: Sequence[str], speaker: str, owner: str | None = None) -> str:
     def sentence(e: Entity, several: bool) -> str:
         if e.colour:
             return f"{'One' if several else 'The'} {e.name} is {e.colour}."
         return f"I don't know the colour of {the(lexicon.snapshot, e, speaker)}."
 
-    return _about_each_thing(lexicon, words, sentence)
+    return _about_each_thing(lexicon, words, sentence, owner)
 
 
-def whose(lexicon: Lexicon, words: Sequence[str], speaker: str) -> str:
+def whose(lexicon: Lexicon, words: Sequence[str], speaker: str, owner: str | None = None) -> str:
     """ "Whose phone is on the bookcase?": the owner (`belongsTo`) of each thing the phrase names."""
     snapshot = lexicon.snapshot
 
@@ -222,20 +223,23 @@ def whose(lexicon: Lexicon, words: Sequence[str], speaker: str) -> str:
         name = the(snapshot, e, speaker)
         if several and e.colour and e.colour not in name and name.startswith("the "):
             name = f"the {e.colour} {name[4:]}"  # "which suitcase is mine": the red one
-        owner = snapshot.get(e.owner) if e.owner else None
-        if owner is None:
-            return f"I don't know whose {name} is."
-        whom = "yours" if owner.id == speaker else f"{the(snapshot, owner, speaker)}'s"
+        plural = _plural(tokens(name))
+        held = snapshot.get(e.owner) if e.owner else None
         where = location(snapshot, e) if several else ""
-        return f"{name[:1].upper()}{name[1:]}{' ' + where if where else ''} is {whom}."
+        named = f"{name}{' ' + where if where else ''}"
+        if held is None:
+            return f"I don't know who {named} {'belong' if plural else 'belongs'} to."
+        whom = "yours" if held.id == speaker else f"{the(snapshot, held, speaker)}'s"
+        return f"{named[:1].upper()}{named[1:]} {'are' if plural else 'is'} {whom}."
 
-    return _about_each_thing(lexicon, words, sentence)
+    return _about_each_thing(lexicon, words, sentence, owner)
 
 
-def _about_each_thing(lexicon: Lexicon, words: Sequence[str], sentence: Callable[[Entity, bool], str]) -> str:
-    """One sentence about each of (at most three) things the phrase names; `sentence` is told
-    whether there are several, to tell them apart."""
-    found = resolve(lexicon, words, frozenset({"thing"}))
+def _about_each_thing(lexicon: Lexicon, words: Sequence[str], sentence: Callable[[Entity, bool], str],
+                      owner: str | None = None) -> str:
+    """One sentence about each of (at most three) things the phrase names (`owner`'s when the
+    phrase says whose: "my mug"); `sentence` is told whether there are several, to tell them apart."""
+    found = resolve(lexicon, words, frozenset({"thing"}), owner=owner)
     if not found.matches:
         return f"Sorry, I don't know any {' '.join(content_words(words)) or 'such thing'}."
     several = len(found.matches) > 1

@@ -165,6 +165,7 @@ class Interpreter:
             ref = antecedent(self.lexicon, self.history, ANYWHERE, speaker=self.speaker)
             if ref is not None:
                 thing = tuple(tokens(ref.id))
+        _, owner = self.refs.possessive(thing, p.slots)  # "where is my mug": the speaker's
         content = content_words(thing)
         if content and self.refs.half_known(content) and not resolve(self.lexicon, thing, ANYWHERE).matches:
             return Outcome("Sorry, I don't know how to answer that.", understood=False)
@@ -174,22 +175,22 @@ class Interpreter:
             case "who_see":
                 return Outcome(answers.who_do_you_see(self.snapshot, self.speaker))
             case "where":
-                return Outcome(answers.where_is(self.lexicon, thing, self.speaker))
+                return Outcome(answers.where_is(self.lexicon, thing, self.speaker, owner))
             case "what_on":
                 reply, clarify = answers.what_is_on(self.lexicon, thing)
                 return Outcome(reply, clarify=clarify)
             case "can_see":
-                return Outcome(answers.can_you_see(self.lexicon, thing, self.speaker))
+                return Outcome(answers.can_you_see(self.lexicon, thing, self.speaker, owner))
             case "what_is":
-                return Outcome(answers.what_is(self.lexicon, thing, self.speaker))
+                return Outcome(answers.what_is(self.lexicon, thing, self.speaker, owner))
             case "which_see":
                 return Outcome(answers.which_do_you_see(self.lexicon, thing))
             case "how_many":
                 return Outcome(answers.how_many(self.lexicon, thing))
             case "colour":
-                return Outcome(answers.colour_of(self.lexicon, thing, self.speaker))
+                return Outcome(answers.colour_of(self.lexicon, thing, self.speaker, owner))
             case "whose":
-                return Outcome(answers.whose(self.lexicon, thing, self.speaker))
+                return Outcome(answers.whose(self.lexicon, thing, self.speaker, owner))
             case "name":
                 return Outcome(f"My name is {self.robot_name}.")
             case "how_are_you":

@@ -37,6 +37,7 @@ _SOMEONE = word_set("anybody anyone somebody someone people")
 _ELSE = word_set("else besides except apart from but me us other than the room this")
 _OWNERS = word_set("mine yours his hers theirs ours")
 _NEARBY = word_set("around nearby here about anywhere somewhere")
+_OTHERS = word_set("his her their my its")
 
 
 def _q(kind: str, w: Words, **slots: Words) -> Parse:
@@ -126,7 +127,7 @@ def _what(w: Words) -> Parse:
             return _q("which_see", w, thing=rest[:i])
     if set(rest) & _SEE_WORDS and "name" not in rest:
         return _q("what_see", w)
-    if rest[:1] in {("is",), ("are",)} and set(rest) & {"name", "called"}:
+    if rest[:1] in {("is",), ("are",)} and set(rest) & {"name", "called"} and not _someone_elses(rest):
         return _q("name", w)
     if (
         rest[:1] in {("is",), ("are",)}
@@ -135,6 +136,11 @@ def _what(w: Words) -> Parse:
     ):
         return _q("what_is", w, thing=rest[1:])
     return _q("other", w)
+
+
+def _someone_elses(rest: Words) -> bool:
+    """ "what is her name", "what is the name of Alice": a name, but not the robot's."""
+    return bool(set(rest) & _OTHERS) or any(x.endswith("'s") for x in rest) or "of" in rest
 
 
 def _anything(w: Words, rest: Words) -> Parse:

@@ -7,6 +7,8 @@ from collections.abc import Iterator
 from typing import Any
 
 import httpx
+import pytest
+from websockets.exceptions import ConnectionClosed
 from websockets.sync.client import connect
 
 from api.settings import IntentSettings
@@ -45,31 +47,33 @@ def test_the_stream_pushes_each_turns_intents_as_the_turn_returns_them(live: Liv
         assert stream.headers["content-type"].startswith("text/event-stream")
         events = sse(stream.iter_lines())
         name, _, hello = next(events)
-        assert name == "hello" and hello["last_seq"] == 0 and hello["gap"] is None
+        n = live.services.bus.first - 1  # numbered from the clock: n + 1 is the first
+        assert name == "hello" and hello["last_seq"] == n and hello["gap"] is None
         dialogue = live.client.post("/dialogues", json={}).json()["dialogue_id"]
         turn = say(live, "please bring me the cup", dialogue=dialogue)
         say(live, "what do you see?")  # an answer, no intent: nothing pushed
         say(live, "take the cookbook and put it on the table")
         name, ident, pushed = next(events)
-        assert (name, ident, pushed["seq"]) == ("intent", "1", 1)
+        assert (name, ident, pushed["seq"]) == ("intent", str(n + 1), n + 1)
         assert pushed["intent"] == turn["intents"][0]  # the Intent JSON shape, as the turn returned it
         assert (pushed["origin"], pushed["dialogue_id"], pushed["response"]) == (
             "dialogue", dialogue, turn["response"])
         compound = [next(events)[2] for _ in range(2)]
         assert [(p["seq"], p["intent"]["intent"], p["dialogue_id"]) for p in compound] == [
-            (2, "__intent_grab_object__", "default"), (3, "__intent_place_object__", "default")]
+            (n + 2, "__intent_grab_object__", "default"), (n + 3, "__intent_place_object__", "default")]
         assert compound[0]["response"] and compound[1]["response"] == ""  # the reply goes with the first
     assert live.services.bus.reader_count in (0, 1)  # released once the server sees the disconnect
 
 
 def test_a_reconnecting_client_replays_what_it_missed_then_gets_the_new(live: Live) -> None:
+    n = live.services.bus.first - 1
     say(live, "please bring me the cup")
     with httpx.Client(base_url=live.url, timeout=60) as client:
         with client.stream("GET", "/intents/stream", params={"after": 0}) as stream:
             events = sse(stream.iter_lines())
             next(events)
             last = next(events)[1]
-        assert last == "1"
+        assert last == str(n + 1)
         say(live, "hello")  # said while the middleware was away
         say(live, "go to the kitchen")
         with client.stream("GET", "/intents/stream", headers={"Last-Event-ID": last}) as stream:
@@ -77,12 +81,13 @@ def test_a_reconnecting_client_replays_what_it_missed_then_gets_the_new(live: Li
             assert next(events)[2]["gap"] is None
             missed = [next(events)[2] for _ in range(2)]
             assert [(p["seq"], p["intent"]["intent"]) for p in missed] == [
-                (2, "__intent_greet__"), (3, "__intent_move_to__")]
+                (n + 2, "__intent_greet__"), (n + 3, "__intent_move_to__")]
             say(live, "bring me the cookbook")
-            assert next(events)[2]["seq"] == 4
+            assert next(events)[2]["seq"] == n + 4
 
 
 def test_filters_by_source_and_intent_type(live: Live) -> None:
+    n = live.services.bus.first - 1
     say(live, "hello", user="person_tom")
     say(live, "hello")
     say(live, "bring me the cup")
@@ -94,33 +99,65 @@ def test_filters_by_source_and_intent_type(live: Live) -> None:
         next(events)
         _, _, pushed = next(events)
         assert (pushed["seq"], pushed["intent"]["source"], pushed["intent"]["intent"]) == (
-            2, "person_alice", "__intent_greet__")
+            n + 2, "person_alice", "__intent_greet__")
     buffered = live.client.get("/intents", params={"origin": "dialogue", "source": "person_tom"}).json()
-    assert [p["seq"] for p in buffered["intents"]] == [1] and buffered["last_seq"] == 3
+    assert [p["seq"] for p in buffered["intents"]] == [n + 1] and buffered["last_seq"] == n + 3
     refused = live.client.get("/intents", params={"origin": "radio"})
     assert refused.status_code == 422 and "unknown origin" in refused.json()["message"]
 
 
 def test_what_the_buffer_no_longer_holds_is_said_to_be_missing(live_factory: Any) -> None:
     live = live_factory(scene_settings(intents=IntentSettings(buffer=2)))
+    n = live.services.bus.first - 1
     for _ in range(4):
         say(live, "hello")
     answer = live.client.get("/intents", params={"after": 0}).json()
-    assert answer["gap"] == {"first": 1, "last": 2, "restarted": False}
-    assert [p["seq"] for p in answer["intents"]] == [3, 4]
+    assert answer["gap"] == {"first": n + 1, "last": n + 2, "restarted": False}
+    assert [p["seq"] for p in answer["intents"]] == [n + 3, n + 4]
     # A number from before a restart of the service: all of this run's buffered intents follow.
     again = live.client.get("/intents", params={"after": 99}).json()
-    assert again["gap"]["restarted"] and [p["seq"] for p in again["intents"]] == [3, 4]
+    assert again["gap"]["restarted"] and [p["seq"] for p in again["intents"]] == [n + 3, n + 4]
 
 
 def test_the_websocket_streams_the_same_and_resumes_after_a_number(live: Live) -> None:
+    n = live.services.bus.first - 1
     say(live, "hello")
     with connect(live.ws_url + "/intents/ws?after=0&intent=__intent_greet__&intent=__intent_bring_object__") as ws:
         hello = json.loads(ws.recv(timeout=30))
         assert hello["event"] == "hello" and hello["stream"] == live.services.bus.stream
         first = json.loads(ws.recv(timeout=30))
-        assert (first["event"], first["seq"], first["intent"]["intent"]) == ("intent", 1, "__intent_greet__")
+        assert (first["event"], first["seq"], first["intent"]["intent"]) == ("intent", n + 1, "__intent_greet__")
         say(live, "go to the kitchen")  # filtered out
         say(live, "bring me the cup")
         second = json.loads(ws.recv(timeout=30))
-        assert (second["seq"], second["intent"]["intent"]) == (3, "__intent_bring_object__")
+        assert (second["seq"], second["intent"]["intent"]) == (n + 3, "__intent_bring_object__")
+
+
+def test_a_restarted_service_numbers_after_the_earlier_run(live_factory: Any) -> None:
+    earlier = live_factory(scene_settings())
+    say(earlier, "hello")
+    last = earlier.client.get("/intents").json()["last_seq"]
+    restarted = live_factory(scene_settings())  # a later start: numbered from a later clock
+    for _ in range(3):
+        say(restarted, "hello")
+    answer = restarted.client.get("/intents", params={"after": last}).json()
+    assert answer["gap"]["restarted"] and len(answer["intents"]) == 3
+
+
+@pytest.mark.parametrize(("query", "says"), [
+    ("after=abc", "after"), ("after=-1", "after"), ("origin=radio", "unknown origin"),
+])
+def test_a_bad_websocket_request_is_told_what_is_wrong(live: Live, query: str, says: str) -> None:
+    with connect(f"{live.ws_url}/intents/ws?{query}") as ws:
+        error = json.loads(ws.recv(timeout=30))
+        assert error["status"] == 422 and error["code"] == "invalid_request" and says in error["message"]
+        with pytest.raises(ConnectionClosed) as closed:
+            ws.recv(timeout=30)
+        assert closed.value.rcvd is not None and closed.value.rcvd.code == 1008
+    assert live.services.bus.reader_count == 0
+
+
+def test_a_last_event_id_that_is_no_number_is_a_clear_error(live: Live) -> None:
+    for bad in (b"abc", b"\xb2"):  # "\xb2" is latin-1 "2 superscript": a digit to str.isdigit, no int
+        answer = live.client.get("/intents/stream", headers={"Last-Event-ID": bad})
+        assert answer.status_code == 422 and "Last-Event-ID" in answer.json()["message"], bad

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 from pathlib import Path
 from typing import Any
+from urllib.parse import quote
 
 from api.app import create_app
 from api.settings import MemorySettings
@@ -56,3 +57,19 @@ def test_perception_later_wins_over_what_was_told(live: Live) -> None:
     live.services.reconciler.join()
     assert say(live, "whose is the cookbook?") == "The cookbook is Tom's."
     assert live.client.get("/people/person_bob/memory").json()["told"] == []
+
+
+def test_a_person_id_that_is_no_id_is_a_clear_error(live: Live) -> None:
+    for person in ("a b", "?x", '"quoted"'):
+        answer = live.client.get(f"/people/{quote(person)}/memory")
+        assert answer.status_code == 400 and "is not a person's id" in answer.json()["message"], person
+    assert live.client.get("/people/person_nobody/memory").json()["last_spoke"] is None  # a person yet unmet
+
+
+def test_a_clean_stop_keeps_the_turns_that_waited_for_the_next_write(live_factory: Any, tmp_path: Path) -> None:
+    with serve(create_app(scene_settings(data_dir=tmp_path))) as live:
+        assert say(live, "the cookbook is mine") == "OK, the cookbook is yours."
+        say(live, "please bring me the cup")  # within the refresh period: noted, written later
+    again = live_factory(scene_settings(data_dir=tmp_path))
+    summary = again.client.get("/people/person_bob/memory").json()["summary"]
+    assert 'said "the cookbook is mine"' in summary and 'asked "please bring me the cup"' in summary

@@ -71,8 +71,10 @@ def test_expanding_a_reply_shows_its_trace(hybrid_service: Service, open_viewer:
     expect(exchanges.nth(1).locator(".trace-raw")).to_contain_text("cup_1")
     # The prompt and the schema sent are there, folded.
     exchanges.nth(0).locator("summary", has_text="prompt messages").click()
-    # The system prompt first; the speaker's memory note (dialogue.memory.people) may follow it.
-    expect(exchanges.nth(0).locator(".trace-message.role-system").first).to_contain_text("You are")
+    system = exchanges.nth(0).locator(".trace-message.role-system")
+    expect(system.first).to_contain_text("You are")
+    # Alice spoke a turn before: the model is told so in a system note (her memory, issue 17).
+    expect(system.nth(1)).to_contain_text("You last spoke with [person_alice]")
     expect(exchanges.nth(0).locator(".trace-message.role-user").last).to_contain_text("snatch it")
     exchanges.nth(0).locator("summary", has_text="JSON schema sent").click()
     expect(exchanges.nth(0).locator("pre.json").first).to_contain_text('"user_intent"')

@@ -35,6 +35,14 @@ def test_questions_about_what_was_told(home: KB, text: str, expected: tuple[str 
 def test_a_pronoun_is_the_person_just_spoken_of(home: KB) -> None:
     history = [Utterance(BOB, "Alice is in the kitchen")]
     assert asked(home, "what does she like?", history) == [("person_alice", "likes", None)]
+    assert asked(home, "what is her name?", history) == [("person_alice", "name", None)]
+
+
+def test_someone_elses_name_is_asked_about_by_their_name_or_a_pronoun(home: KB) -> None:
+    assert asked(home, "what is Alice's name?") == [("person_alice", "name", None)]
+    assert asked(home, "what's the name of Alice?") == [("person_alice", "name", None)]
+    assert asked(home, "what is your name?") is None  # the robot's: the situation questions answer it
+    assert asked(home, "what is her name?") is None  # nobody spoken of yet
 
 
 @pytest.mark.parametrize("text", ["what do you see", "what does Zoe like", "whose mug is this", "what is it"])

@@ -6,7 +6,7 @@ import re
 
 import pytest
 
-from dialogue.memory.claims import Claim, clean_name, ground_facts
+from dialogue.memory.claims import Claim, ground_facts
 from dialogue.schema import AnswerError, FactClaim
 from kb import KB
 from tests.dialogue.memory.conftest import lexicon_of
@@ -55,6 +55,22 @@ def test_an_ambiguous_referent_is_asked_about(home: KB) -> None:
     assert found.claims == () and found.question is not None and "blue" in found.question
 
 
-def test_names_as_told() -> None:
-    assert clean_name(" mary jane ") == "Mary Jane" and clean_name("McKenzie") == "McKenzie"
-    assert clean_name("42") == "" and clean_name("x" * 61) == ""
+def test_the_robots_id_is_the_robot_not_the_speaker(home: KB) -> None:
+    # "myself" is the robot's id in ROS4HRI: "I like you" is a liking of the robot, not of oneself.
+    assert ground(home, ("me", "likes", "myself")) == (Claim(BOB, "likes", "myself"),)
+    with pytest.raises(AnswerError, match="subject 'myself'"):
+        ground(home, ("myself", "likes", "tea"))
+
+
+def test_the_robot_is_no_speaker_to_learn_from(home: KB) -> None:
+    found = ground_facts([FactClaim(subject="me", predicate="name", object="Bob")], lexicon_of(home), "myself")
+    assert found.claims == () and found.refusal == "Sorry, I don't know who you are."
+
+
+def test_me_is_the_speaker_wherever_it_is_said(home: KB) -> None:
+    assert ground(home, ("person_alice", "likes", "me")) == (Claim("person_alice", "likes", BOB),)
+
+
+def test_a_name_is_no_id(home: KB) -> None:
+    with pytest.raises(AnswerError, match="the name itself"):
+        ground(home, ("me", "name", "person_alice"))

@@ -56,6 +56,14 @@ def test_an_introduction_of_someone_the_robot_cannot_name_is_adopted(home: KB) -
     assert statuses(settle(home, Claim("person_alice", "name", "Ally", "text"))) == ["believed"]
 
 
+def test_who_introduced_someone_may_correct_the_name_they_gave(home: KB) -> None:
+    settle(home, Claim("person_x", "name", "Maria", "text"))
+    assert statuses(settle(home, Claim("person_x", "name", "Marta", "text"))) == ["adopted"]
+    assert [r["l"] for r in home.find(['person_x rdfs:label ?l'])] == ["Marta"]
+    # Someone else may not: the robot has the name from Bob.
+    assert statuses(settle(home, Claim("person_x", "name", "Mia", "text"), speaker="person_ines")) == ["believed"]
+
+
 def test_all_adopts_everything_perception_does_not_contradict(home: KB) -> None:
     settled = settle(home, Claim("phone_1", "belongsTo", "person_ines"), Claim("person_alice", "likes", "tea", "kind"),
                      Claim("keys_1", "isIn", "drawer_1"), trust=Trust.ALL)

@@ -37,6 +37,11 @@ def test_a_turn_notes_what_was_told_or_asked_for_and_nothing_else() -> None:
     assert note(record("what does Alice like?", asked)) is None
     raw = I.raw_user_input("hmm", source=BOB)
     assert note(record("hmm", TurnResult("Sorry.", (raw,)))) is None
+    # A greeting asks the robot to do nothing: "Hi, I'm Bob" is what Bob said, "hello" nothing notable.
+    hello = I.make_intent(I.GREET, {"recipient": BOB}, source=BOB, confidence=0.9)
+    named = TurnResult("Hello! Nice to meet you, Bob.", (hello,), claims=(Claim(BOB, "name", "Bob", "text"),))
+    assert note(record("Hi, I'm Bob", named)) == '2025-06-01: said "Hi, I\'m Bob"'
+    assert note(record("hello", TurnResult("Hello Bob!", (hello,)))) is None
 
 
 def test_the_summary_keeps_the_latest_notes_within_its_bounds() -> None:
@@ -67,6 +72,17 @@ def test_last_spoke_and_summary_are_facts_of_the_robots_model(home: KB) -> None:
     # Nobody to remember: ROS4HRI's source constants; a turn the service could not answer.
     assert not people.remember(record("hello", CHAT, user=I.UNKNOWN_AGENT))
     assert not people.remember(record("x", TurnResult("Sorry.", error_msg="model down"), at=T0 + 999))
+
+
+def test_a_clean_stop_writes_what_was_waiting_for_the_next_write(home: KB) -> None:
+    people = People(home, refresh=60)
+    people.remember(record("the red mug is mine", TOLD))
+    assert not people.remember(record("bring me my mug", TurnResult("OK.", (BRING,)), at=T0 + 5))
+    assert not people.remember(record("how are you?", CHAT, at=T0 + 10))
+    people.close()  # the service stops within the refresh period: nothing of it is lost
+    memory = People(home).recall(BOB)
+    assert memory.last_spoke == "2025-06-01T10:30:10+00:00"
+    assert memory.summary == '2025-06-01: said "the red mug is mine"; 2025-06-01: asked "bring me my mug"'
 
 
 def test_the_memory_survives_a_restart_with_the_journal(tmp_path: Path, home: KB) -> None:

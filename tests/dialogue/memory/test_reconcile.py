@@ -50,3 +50,21 @@ def test_told_values_are_left_alone_by_their_own_commit_and_by_unrelated_facts(h
         assert [t.predicate for t in told(home)] == ["rdfs:label"]
     finally:
         reconciler.stop()
+
+
+def test_a_told_fact_retracted_by_anyone_takes_its_record_with_it(home: KB) -> None:
+    memory = Memory(home, Trust.ALL)
+    reconciler = Reconciler(memory)
+    reconciler.start()
+    try:
+        tell(memory, home, Claim("glasses_1", "isOn", "sofa_1"))
+        home.remove(["glasses_1 isOn sofa_1"])  # a producer retracts it (the scene moved them)
+        reconciler.join()
+        assert told(home) == []  # no record of a fact the robot no longer holds
+        # Perceived there again later, the fact is perception's: a statement does not replace it.
+        home.update(["glasses_1 isOn sofa_1"])
+        reconciler.join()
+        tell(memory, home, Claim("glasses_1", "isIn", "drawer_1"))
+        assert home.is_asserted("glasses_1 isOn sofa_1") and not home.is_asserted("glasses_1 isIn drawer_1")
+    finally:
+        reconciler.stop()

@@ -49,3 +49,7 @@ def test_answers(home: KB) -> None:
     assert say(home, Outcome(Claim("person_alice", "likes", None), "answered")) == "I don't know what Alice likes."
     assert say(home, Outcome(Claim(BOB, "likes", "jazz", "kind"), "unknown", "jazz")) == (
         "Sorry, I don't know what jazz is.")
+
+
+def test_the_robot_is_me(home: KB) -> None:
+    assert say(home, Outcome(Claim(BOB, "likes", "myself"), "adopted", "myself")) == "OK, you like me."

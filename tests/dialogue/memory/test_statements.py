@@ -5,7 +5,7 @@ from __future__ import annotations
 import pytest
 
 from dialogue.history import ASSISTANT_USER_ID, Utterance
-from dialogue.memory.statements import Statements, name_like
+from dialogue.memory.statements import Statements
 from kb import KB
 from tests.dialogue.memory.conftest import lexicon_of
 
@@ -30,20 +30,30 @@ def refusal(kb: KB, text: str) -> str | None:
     ("I'm Bob", "Bob"), ("my name is Bob", "Bob"), ("call me Bob", "Bob"), ("Call me Bob, please", "Bob"),
     ("im bob", "Bob"), ("I am Mary Jane", "Mary Jane"), ("you can call me bobby", "Bobby"),
     ("Well, my name's Bob.", "Bob"), ("I'm Frank", "Frank"),
+    ("they call me Bobby", "Bobby"), ("my friends call me Bobby", "Bobby"), ("name's Bob", "Bob"),
+    ("Bob is my name", "Bob"),
 ])
 def test_a_speaker_tells_their_name(home: KB, text: str, name: str) -> None:
     assert facts(home, text) == [(BOB, "name", name)]
 
 
 @pytest.mark.parametrize("text", ["I'm hungry", "I'm tired", "im back", "im frank with you", "I'm not sure",
-                                  "I'm the cook", "I'm going home", "I am here"])
+                                  "I'm the cook", "I'm going home", "I am here",
+                                  # a name said with "my name is" is still no negation or phrase
+                                  "my name is not important", "my name is not Bob", "my name is a secret",
+                                  # "call me" + when, how or what to call: a request, no name
+                                  "call me a taxi", "call me later", "call me back", "call me maybe",
+                                  "call me when you are done", "call me an ambulance",
+                                  # participles and numbers in lower-case recogniser text
+                                  "I'm lost", "im bored", "i'm scared", "I'm thirty", "i am twenty five"])
 def test_what_is_no_name_is_not_taken_for_one(home: KB, text: str) -> None:
     assert facts(home, text) is None
 
 
-def test_name_likeness_reads_casing_when_the_text_has_any() -> None:
-    assert name_like(("frank",), "Frank") and not name_like(("frank",), "frank")
-    assert name_like(("maria",), "maria") and not name_like(("very", "tired"), "very tired")
+def test_a_name_is_told_without_the_quotes_around_it(home: KB) -> None:
+    assert facts(home, 'my name is "Bob" Smith') == [(BOB, "name", "Bob Smith")]
+    assert facts(home, "call me 'Bobby'") == [(BOB, "name", "Bobby")]
+    assert facts(home, "my name is " + "A" * 70) is None  # longer than any name
 
 
 def test_a_greeting_with_a_name_is_both(home: KB) -> None:
@@ -86,6 +96,8 @@ def test_this_is_names_the_one_person_present_without_a_name(home: KB) -> None:
     ("the phone belongs to me", [("phone_1", "belongsTo", BOB)]),
     ("the cookbook is Alice's", [("book_1", "belongsTo", "person_alice")]),
     ("I own the remote", [("remote_1", "belongsTo", BOB)]),
+    ("these are my keys", [("keys_1", "belongsTo", BOB)]),
+    ("those are my glasses", [("glasses_1", "belongsTo", BOB)]),
 ])
 def test_ownership(home: KB, text: str, expected: list[tuple[str, ...]]) -> None:
     assert facts(home, text) == expected
@@ -98,21 +110,9 @@ def test_ownership(home: KB, text: str, expected: list[tuple[str, ...]]) -> None
     ("I left my glasses on the sofa", [("glasses_1", "belongsTo", BOB), ("glasses_1", "isOn", "sofa_1")]),
     ("the glasses are on top of the table", [("glasses_1", "isOn", "table_1")]),
     ("I am in the kitchen", [(BOB, "isIn", "kitchen")]),
+    ("I'm on the sofa", [(BOB, "isOn", "sofa_1")]),
 ])
 def test_locations(home: KB, text: str, expected: list[tuple[str, ...]]) -> None:
-    assert facts(home, text) == expected
-
-
-@pytest.mark.parametrize(("text", "expected"), [
-    ("I like tea", [(BOB, "likes", "tea")]),
-    ("I really love tea", [(BOB, "likes", "tea")]),
-    ("Alice hates coffee", [("person_alice", "dislikes", "coffee")]),
-    ("Alice doesn't like coffee", [("person_alice", "dislikes", "coffee")]),
-    ("I do not like the cookbook", [(BOB, "dislikes", "book_1")]),
-    ("I can't stand coffee", [(BOB, "dislikes", "coffee")]),
-    ("Alice likes Ines", [("person_alice", "likes", "person_ines")]),
-])
-def test_preferences(home: KB, text: str, expected: list[tuple[str, ...]]) -> None:
     assert facts(home, text) == expected
 
 
@@ -126,6 +126,9 @@ def test_several_statements_in_one_turn(home: KB) -> None:
     "bring me the mug", "is the mug on the table?", "I'd like a cup of tea", "where are my keys",
     "the moon is made of cheese", "does Alice like tea", "what do you see", "I'm Bob, bring me the mug",
     "i hate marking lab reports",
+    # where the speaker is, said of no place the KB knows: idioms, left to the other rules
+    "I'm on my way", "I'm in a hurry", "I'm in trouble", "I'm on the phone", "I'm on it", "I'm in love",
+    "I'm in the drawer",
 ])
 def test_what_is_not_a_statement_is_left_to_the_other_rules(home: KB, text: str) -> None:
     assert facts(home, text) is None

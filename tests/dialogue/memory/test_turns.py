@@ -130,3 +130,31 @@ def test_an_ambiguous_statement_is_asked_about_and_the_answer_completes_it(home:
     # A command's clarification is still the command grammar's.
     assert bob.say("bring me the mug").clarify
     assert [i.data for i in bob.say("the blue one").intents] == [{"object": "mug_blue", "recipient": BOB}]
+
+
+def test_a_liking_of_the_robot_is_of_the_robot_and_said_so(home: KB) -> None:
+    bob = Talk(DialogueEngine(home))
+    assert bob.say("I like you").response == "OK, you like me."
+    assert home.is_asserted(f"{BOB} likes myself") and not home.is_asserted(f"{BOB} likes {BOB}")
+    assert bob.say("what do I like?").response == "You like me."
+
+
+def test_the_robot_speaking_as_itself_teaches_itself_nothing(home: KB) -> None:
+    robot = Talk(DialogueEngine(home), "myself")
+    for text in ("I'm Bob", "I like tea"):
+        assert robot.say(text).response == "Sorry, I don't know who you are."
+    assert not home.is_asserted('myself rdfs:label "Bob"') and told(home) == []
+
+
+def test_a_kind_is_said_back_as_it_was_told_in_the_plural_too(home: KB) -> None:
+    bob = Talk(DialogueEngine(home))
+    assert bob.say("I like apples").response == "OK, you like apples."
+    assert bob.say("I like cats").response == "Sorry, I don't know what cats are."
+    assert bob.say("I like jazz").response == "Sorry, I don't know what jazz is."
+
+
+def test_the_name_of_someone_just_introduced_is_asked_about(home: KB) -> None:
+    bob = Talk(DialogueEngine(home))
+    assert bob.say("this is Maria").response == "Nice to meet you, Maria."
+    assert bob.say("what is her name?").response == "That's Maria."
+    assert bob.say("what is Alice's name?").response == "That's Alice."

@@ -4,11 +4,12 @@ from __future__ import annotations
 
 import asyncio
 import threading
+import time
 
 import pytest
 
 from dialogue import intents as I
-from dialogue.pushed.bus import Gap, IntentBus, Reader
+from dialogue.pushed.bus import Gap, IntentBus, Reader, clock_first
 from dialogue.pushed.events import IntentFilter, Pushed
 
 
@@ -137,3 +138,22 @@ def test_listeners_get_every_event_in_the_publishers_thread() -> None:
     bus.publish("dialogue", bring("p"), "d")
     bus.publish("initiative", greet("p"))
     assert seen == [1, 2]
+
+
+def test_a_number_of_an_earlier_run_is_a_restart_however_far_the_new_run_has_got() -> None:
+    before = IntentBus(first=clock_first())
+    for n in range(5):
+        before.publish("dialogue", bring(f"p{n}"), "d")
+    time.sleep(0.05)  # the service restarts: the clock moves on (by far more than five milliseconds)
+    after = IntentBus(first=clock_first())
+    for n in range(20):  # more than the earlier run pushed: numbering from 1, 5 would be this run's
+        after.publish("dialogue", bring(f"q{n}"), "d")
+    events, gap = after.since(before.last_seq)
+    assert gap is not None and gap.restarted and [e.seq for e in events] == list(range(after.first, after.first + 20))
+    assert after.since(0) == (events, None)  # 0: nothing seen yet, all of this run
+
+
+def test_numbers_start_from_the_first_given() -> None:
+    bus = IntentBus(first=100)
+    assert bus.last_seq == 99 and bus.publish("initiative", greet("p")).seq == 100
+    assert bus.since(0)[1] is None and bus.since(99)[1] is None and bus.since(50)[1] == Gap(100, 99, restarted=True)

@@ -109,6 +109,8 @@ def test_questions_are_answered_without_intent(office: KB) -> None:
     assert say(office, "can you see the umbrella?").reply.startswith("No")
     assert "Carol" in say(office, "who do you see").reply
     assert say(office, "what's your name?").reply == "My name is Ari."
+    for text in ("what is his name?", "what is the name of Carol?", "what is Carol's name?"):
+        assert "Ari" not in say(office, text).reply, text  # someone else's name is not the robot's
     on_desk = say(office, "what is on the desk").reply
     assert all(w in on_desk for w in ("green mug", "yellow mug", "stapler", "pear"))
     assert all(
@@ -288,7 +290,25 @@ def test_whose_names_the_owner() -> None:
     kb = scene_kb("office", *OWNED)
     assert "Carol's" in say(kb, "whose mug is the yellow one?").reply
     assert "yours" in say(kb, "who does the green mug belong to?").reply
-    assert "don't know whose" in say(kb, "whose is the laptop").reply
+    assert say(kb, "whose is the laptop").reply == "I don't know who the laptop belongs to."
+
+
+def test_questions_about_my_thing_are_about_the_speakers() -> None:
+    kb = scene_kb("office", *OWNED)
+    assert say(kb, "where is my mug?").reply == "The green mug is on the desk in the office."
+    assert say(kb, "where is my mug?", speaker="person_carol").reply == (
+        "The yellow mug is on the desk in the office.")
+    assert say(kb, "can you see my mug?").reply == "Yes, I see the green mug on the desk in the office."
+
+
+def test_things_named_in_the_plural_are_said_in_the_plural(office: KB) -> None:
+    office.update(["glasses_1 rdf:type Artifact", 'glasses_1 rdfs:label "glasses"', "myself sees glasses_1",
+                   "shoes_1 rdf:type Artifact", 'shoes_1 rdfs:label "shoes"', "myself sees shoes_1",
+                   f"glasses_1 belongsTo {BOB}"])
+    assert say(office, "whose glasses are these?").reply == "The glasses are yours."
+    assert say(office, "whose shoes are these?").reply == "I don't know who the shoes belong to."
+    assert say(office, "where are the shoes?").reply == (
+        "I can see the shoes, but I don't know exactly where they are.")
 
 
 @pytest.mark.parametrize(
