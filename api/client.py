@@ -9,11 +9,12 @@ details, so a reader passes the writer's refusal on unchanged.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from typing import Any
 
 import httpx
 
+from kb.arguments import Changes
 from kb.formats import rdf_format
 from kb.terms import as_list
 
@@ -100,6 +101,12 @@ class ServiceClient:
               lifespan: float = 0) -> None:
         self._call("POST", "/kb/apply", writes=True, json={
             "add": as_list(add), "remove": as_list(remove), "models": _models(models),
+            "lifespan": lifespan or None})
+
+    def apply_models(self, changes: Mapping[str, Changes], lifespan: float = 0) -> None:
+        self._call("POST", "/kb/apply_models", writes=True, json={
+            "changes": {name: {"add": as_list(c.get("add", ())), "remove": as_list(c.get("remove", ()))}
+                        for name, c in changes.items()},
             "lifespan": lifespan or None})
 
     def clear(self, keep_defaults: bool = True) -> None:

@@ -9,20 +9,27 @@ from __future__ import annotations
 
 import math
 import re
-from collections.abc import Iterable, Sequence
+from collections.abc import Iterable, Mapping, Sequence
 from functools import lru_cache
-from typing import Any
+from typing import Any, TypedDict
 
 from rdflib import Variable
 
 from kb.errors import KbError
-from kb.models import Model
+from kb.models import ALL_MODELS, Model
 from kb.query import Query, Row, build_query, solve
-from kb.terms import Node, Pattern, TermParser, Triple, parse_patterns, shorten
+from kb.terms import Node, Pattern, TermParser, Triple, as_list, parse_patterns, shorten
 from kb.terms import tokenize as _tokenize
 
 MODEL_NAME = re.compile(r"[A-Za-z0-9_][A-Za-z0-9_.\-]*")
 Models_ = Sequence[str] | str | None
+
+
+class Changes(TypedDict, total=False):
+    """One model's part of ``apply_models``: statements to assert and to retract in it."""
+
+    add: Sequence[str]
+    remove: Sequence[str]
 
 
 def compiled(patterns: tuple[str, ...], vars: Sequence[str] | str | None) -> Query:
@@ -81,6 +88,24 @@ def model_names(models: Models_) -> list[str]:
         if not isinstance(name, str) or not MODEL_NAME.fullmatch(name):
             raise KbError(f"invalid model name {name!r}")
     return names
+
+
+def model_changes(changes: Any) -> dict[str, tuple[list[str], list[str]]]:
+    """``apply_models``' argument as (add, remove) statement lists per model name: a mapping of
+    model names (each model named, not ``all``) to ``{"add": [...], "remove": [...]}``."""
+    if not isinstance(changes, Mapping) or not changes:
+        raise KbError(f"apply_models takes a mapping of model names to their changes "
+                      f"({{'person_bob': {{'add': [...], 'remove': [...]}}}}), got {changes!r}")
+    out: dict[str, tuple[list[str], list[str]]] = {}
+    for name, change in changes.items():
+        model_names([name])
+        if name == ALL_MODELS:
+            raise KbError("apply_models names each model it changes; 'all' is not one")
+        if not isinstance(change, Mapping) or set(change) - {"add", "remove"}:
+            raise KbError(f"the changes of model {name!r} must be {{'add': [...], 'remove': [...]}}, "
+                          f"got {change!r}")
+        out[name] = (as_list(change.get("add", ())), as_list(change.get("remove", ())))
+    return out
 
 
 def lifespan_seconds(value: Any) -> float:

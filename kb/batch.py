@@ -29,13 +29,16 @@ class Batch:
     remove: list[Triple] = field(default_factory=list)
     lifespan: float = 0.0
     replace_functional: bool = True
-    # Retractions specific to one model (pattern retraction matches per model).
+    # Changes specific to one model, besides those of every model above: pattern retraction
+    # matches per model, and one write may tell each model its own (a belief and its adoption).
+    add_by_model: dict[str, list[Triple]] = field(default_factory=dict)
     remove_by_model: dict[str, list[Triple]] = field(default_factory=dict)
 
     @property
     def size(self) -> int:
         """How many statements it names (a bulk change pauses the garbage collector)."""
-        return len(self.add) + len(self.remove) + sum(map(len, self.remove_by_model.values()))
+        by_model = (*self.add_by_model.values(), *self.remove_by_model.values())
+        return len(self.add) + len(self.remove) + sum(map(len, by_model))
 
     def lifespan_of(self, triple: Triple) -> float:
         """Seconds an added triple lives (0: for ever)."""

@@ -11,14 +11,23 @@ from __future__ import annotations
 
 import threading
 from abc import ABC, abstractmethod
-from collections.abc import Iterable, Sequence
+from collections.abc import Iterable, Mapping, Sequence
 from pathlib import Path
 from typing import Any, Generic, Self, TypeVar
 
 from rdflib import Variable
 from rdflib.query import Result
 
-from kb.arguments import Models_, compiled, lifespan_seconds, model_names, optional_term, parse_term
+from kb.arguments import (
+    Changes,
+    Models_,
+    compiled,
+    lifespan_seconds,
+    model_changes,
+    model_names,
+    optional_term,
+    parse_term,
+)
 from kb.deadline import Budget, Deadline
 from kb.errors import KbError
 from kb.events import Callback, ErrorCallback, event_id
@@ -199,6 +208,18 @@ class Facade(KnowledgeCoreSugar, ABC, Generic[M]):
         model_names(models)
         self._apply((added_texts, added), (removed_texts, removed), models, lifespan_seconds(lifespan))
 
+    def apply_models(self, changes: Mapping[str, Changes], lifespan: float = 0) -> None:
+        """Each named model's own ``remove`` retracted and ``add`` asserted, all as ONE batch
+        (``{"person_bob": {"add": [...]}, "default": {"add": [...], "remove": [...]}}``): one
+        revision, one commit; refused, no model changed. What a person said becomes their belief and
+        the robot's knowledge this way, or neither does."""
+        self._writable()
+        texts = model_changes(changes)
+        with paused(sum(len(a) + len(r) for a, r in texts.values())):
+            parsed = {name: ([parse_ground(s) for s in add], [parse_ground(s) for s in remove])
+                      for name, (add, remove) in texts.items()}
+        self._apply_models(texts, parsed, lifespan_seconds(lifespan))
+
     def clear(self, keep_defaults: bool = True) -> None:
         """Drop every model's facts; the default ontology stays unless ``keep_defaults=False``
         (K5). Subscriptions stay and see the facts disappear."""
@@ -321,6 +342,11 @@ class Facade(KnowledgeCoreSugar, ABC, Generic[M]):
     @abstractmethod
     def _apply(self, add: tuple[list[str], list[Triple]], remove: tuple[list[str], list[Triple]],
                models: Models_, lifespan: float) -> None: ...
+
+    @abstractmethod
+    def _apply_models(self, texts: dict[str, tuple[list[str], list[str]]],
+                      changes: dict[str, tuple[list[Triple], list[Triple]]], lifespan: float) -> None:
+        """Per model (add, remove), as the caller wrote them and parsed."""
 
     @abstractmethod
     def _clear(self, keep_defaults: bool) -> None: ...

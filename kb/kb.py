@@ -213,6 +213,13 @@ class KB(Facade[Model]):
         batch = Batch(self._write_models(models), add=add[1], remove=remove[1], lifespan=lifespan)
         self._writer.commit(batch)
 
+    def _apply_models(self, texts: dict[str, tuple[list[str], list[str]]],
+                      changes: dict[str, tuple[list[Triple], list[Triple]]], lifespan: float) -> None:
+        batch = Batch(self._write_models(list(changes)), lifespan=lifespan,
+                      add_by_model={name: add for name, (add, _) in changes.items()},
+                      remove_by_model={name: remove for name, (_, remove) in changes.items()})
+        self._writer.commit(batch)
+
     def _clear(self, keep_defaults: bool) -> None:
         self._writer.clear(keep_defaults)
 

@@ -9,11 +9,11 @@ with either, or with any object that has these calls.
 from __future__ import annotations
 
 import threading
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from pathlib import Path
 from typing import Any, Protocol, runtime_checkable
 
-from kb.arguments import Models_
+from kb.arguments import Changes, Models_
 from kb.events import Callback, ErrorCallback
 from kb.summary import Summary
 
@@ -70,6 +70,8 @@ class KnowledgeBase(Protocol):
 
     def apply(self, add: Sequence[str] = (), remove: Sequence[str] = (), models: Models_ = None,
               lifespan: float = 0) -> None: ...
+
+    def apply_models(self, changes: Mapping[str, Changes], lifespan: float = 0) -> None: ...
 
     def clear(self, keep_defaults: bool = True) -> None: ...
 

@@ -130,7 +130,7 @@ class Writer:
         for name in batch.models:
             model = self.models.create(name)
             remove = list(batch.remove) + batch.remove_by_model.get(name, [])
-            add = last_functional_wins(batch.add, functional)
+            add = last_functional_wins([*batch.add, *batch.add_by_model.get(name, ())], functional)
             for s, p, o in add:
                 if p in functional:
                     remove.extend((s, p, old) for old in model.asserted.objects(s, p) if old != o)

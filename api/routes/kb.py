@@ -13,6 +13,7 @@ from api.errors import ApiError
 from api.limits import check_count
 from api.negotiation import RDF_UPLOAD_TYPES, negotiate, upload_format
 from api.settings import Settings
+from kb.arguments import Changes
 from kb.formats import EXPORTS
 from kb.protocol import KnowledgeBase
 
@@ -42,6 +43,19 @@ class ApplyRequest(BaseModel):
     add: list[str] = Field(default_factory=list, description='e.g. ["cup_1 isOn shelf_1"]')
     remove: list[str] = Field(default_factory=list, description='e.g. ["cup_1 isOn table_1"]')
     models: list[str] | None = None
+    lifespan: float | None = Field(default=None, ge=0, description="seconds until the added facts expire")
+
+
+class ModelChanges(BaseModel):
+    model_config = ConfigDict(extra="forbid")
+    add: list[str] = Field(default_factory=list, description='e.g. ["mug_1 belongsTo person_bob"]')
+    remove: list[str] = Field(default_factory=list)
+
+
+class ApplyModelsRequest(BaseModel):
+    model_config = ConfigDict(extra="forbid")
+    changes: dict[str, ModelChanges] = Field(min_length=1, description="per model name, its own changes: "
+                                             '{"person_bob": {"add": [...]}, "default": {"add": [...]}}')
     lifespan: float | None = Field(default=None, ge=0, description="seconds until the added facts expire")
 
 
@@ -102,6 +116,18 @@ async def apply(body: ApplyRequest, kb: KbDep, settings: SettingsDep) -> Revisio
     check_count([*body.add, *body.remove], settings.limits.max_statements, "statements")
     check_count(body.models or [], settings.limits.max_models, "models")
     await run_in_threadpool(kb.apply, body.add, body.remove, body.models, body.lifespan or 0)
+    return Revision(revision=kb.revision)
+
+
+@router.post("/apply_models", dependencies=[WriteAccess])
+async def apply_models(body: ApplyModelsRequest, kb: KbDep, settings: SettingsDep) -> Revision:
+    """Each model's own ``remove`` retracted and ``add`` asserted, all as ONE batch: one revision;
+    refused, no model changed (a person's belief and the robot's adoption of it, together)."""
+    check_count([s for c in body.changes.values() for s in (*c.add, *c.remove)],
+                settings.limits.max_statements, "statements")
+    check_count(list(body.changes), settings.limits.max_models, "models")
+    changes: dict[str, Changes] = {n: {"add": c.add, "remove": c.remove} for n, c in body.changes.items()}
+    await run_in_threadpool(kb.apply_models, changes, body.lifespan or 0)
     return Revision(revision=kb.revision)
 
 

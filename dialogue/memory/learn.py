@@ -16,7 +16,10 @@ For every statement of a turn, in this order:
    statement stays the speaker's belief and the reply says what the robot knows instead. A value
    that was itself told is replaced, record and all.
 4. **Provenance.** Every adopted fact gets its record (dialogue.memory.provenance), written in the
-   same commit as the fact: the robot's model changes in one batch, or not at all.
+   same commit as the fact.
+
+One turn's statements are one commit (`apply_models`): the speaker's model and the robot's change
+together, or, refused (a full disk, the store down), neither does.
 
 Questions ("what does Alice like?") are answered from the robot's model, and from what others said
 (their models) when the robot has not adopted it. Everything here reads and writes the KB: call it
@@ -102,7 +105,8 @@ class Memory:
 
     def settle(self, claims: Sequence[Claim], *, speaker: str, text: str, snapshot: Snapshot) -> Settled:
         """Learn the statements and answer the questions of one turn (blocking: KB reads and at
-        most two writes, the speaker's model then the robot's). KbError when the KB refuses."""
+        most one write, the speaker's model and the robot's together). KbError when the KB
+        refuses, and then nothing was learnt."""
         with self._lock:
             return self._settle(claims, speaker, text, snapshot)
 
@@ -121,8 +125,15 @@ class Memory:
                 claim = replace(claim, object=found, form="entity", fallback=None)
             resolved.append(Outcome(claim, "answered" if claim.asks else "known", claim.object))
         tells = [o.claim for o in resolved if o.status == "known"]
-        self._believe(speaker, tells)
-        decided = self._adopt(speaker, text, tells, snapshot)
+        decided, add, remove = self._adopt(speaker, text, tells, snapshot)
+        changes: dict[str, tuple[list[str], list[str]]] = {}
+        if tells:
+            changes[speaker] = self._belief(speaker, tells)
+        if add or remove:
+            before = changes.get(DEFAULT_MODEL, ([], []))
+            changes[DEFAULT_MODEL] = ([*before[0], *add], [*before[1], *remove])
+        if changes:
+            self.kb.apply_models({name: {"add": a, "remove": r} for name, (a, r) in changes.items()})
         out = []
         for outcome in resolved:
             if outcome.status == "answered":
@@ -133,9 +144,8 @@ class Memory:
         return Settled(tuple(out), names)
 
     # -- the speaker's belief ---------------------------------------------------------------------
-    def _believe(self, speaker: str, tells: Sequence[Claim]) -> None:
-        if not tells:
-            return
+    def _belief(self, speaker: str, tells: Sequence[Claim]) -> tuple[list[str], list[str]]:
+        """The changes of the speaker's own model: the told values, replacing theirs before."""
         model = [speaker]
         known = speaker in self.kb.models()
         add, remove = [], []
@@ -144,7 +154,7 @@ class Memory:
             add.append(format_triple(fact))
             if known:
                 remove += [format_triple(f) for f in self._held(claim, model) if f != fact]
-        self.kb.apply(add, remove, models=model)
+        return add, remove
 
     # -- adoption into the robot's model ------------------------------------------------------------
     def _trusted(self, speaker: str, claim: Claim, theirs: set[str]) -> bool:
@@ -162,7 +172,8 @@ class Memory:
         return claim.subject in theirs
 
     def _adopt(self, speaker: str, text: str, tells: Sequence[Claim],
-               snapshot: Snapshot) -> dict[Claim, Outcome]:
+               snapshot: Snapshot) -> tuple[dict[Claim, Outcome], list[str], list[str]]:
+        """What becomes of each claim in the robot's model, and that model's changes (add, remove)."""
         owned = [c.subject for c in tells if c.predicate == "belongsTo" and c.object == speaker]
         theirs = {e.id for e in snapshot.entities.values() if e.owner == speaker} | set(owned)
         when = self.clock()
@@ -195,9 +206,7 @@ class Memory:
             status: Outcome_ = "known" if fact in told else "adopted"
             replaced_values = tuple(_shown(f[2]) for f in replaced)
             decided[claim] = Outcome(claim, status, claim.object, replaced=replaced_values)
-        if add or remove:
-            self.kb.apply(add, [r for r in remove if r not in add])
-        return decided
+        return decided, add, [r for r in remove if r not in add]
 
     def _held(self, claim: Claim, models: list[str]) -> list[Fact]:
         """The asserted facts of `models` in the claim's place: the values a new one replaces."""

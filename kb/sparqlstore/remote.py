@@ -193,6 +193,12 @@ class RemoteKB(Facade[Graphs]):
         self._writes.require().apply(add[0], remove[0], models, lifespan)
         self._events.sync()
 
+    def _apply_models(self, texts: dict[str, tuple[list[str], list[str]]],
+                      changes: dict[str, tuple[list[Triple], list[Triple]]], lifespan: float) -> None:
+        self._writes.require().apply_models({name: {"add": add, "remove": remove}
+                                             for name, (add, remove) in texts.items()}, lifespan)
+        self._events.sync()
+
     def _clear(self, keep_defaults: bool) -> None:
         self._writes.require().clear(keep_defaults)
         self._events.sync()

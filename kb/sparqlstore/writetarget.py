@@ -8,10 +8,10 @@ are checked by the facade (kb.facade) exactly as ``KB``'s are, before anything i
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from typing import Protocol, runtime_checkable
 
-from kb.arguments import Models_
+from kb.arguments import Changes, Models_
 from kb.errors import KbError
 
 
@@ -26,6 +26,8 @@ class WriteTarget(Protocol):
 
     def apply(self, add: Sequence[str] = (), remove: Sequence[str] = (), models: Models_ = None,
               lifespan: float = 0) -> None: ...
+
+    def apply_models(self, changes: Mapping[str, Changes], lifespan: float = 0) -> None: ...
 
     def clear(self, keep_defaults: bool = True) -> None: ...
 

@@ -65,7 +65,10 @@ def test_writes_send_the_library_calls_as_the_rest_api_expects() -> None:
         client.update("cup_1 isOn table_1", lifespan=5)
         assert client.remove(["?x isOn table_1"], models=["alice"]) == 2
         client.apply(add=["a sees b"], remove=["a sees c"])
+        client.apply_models({"bob": {"add": "a sees b"}, "default": {"remove": ["a sees c"]}})
     assert seen[0] == ("POST", "/kb/revise", {"statements": ["cup_1 isOn table_1"], "method": "update",
                                               "models": None, "lifespan": 5}, "Bearer s3cret")
     assert seen[1][2] == {"statements": ["?x isOn table_1"], "method": "retract", "models": ["alice"]}
     assert seen[2][:2] == ("POST", "/kb/apply")
+    assert seen[3][:3] == ("POST", "/kb/apply_models", {"changes": {
+        "bob": {"add": ["a sees b"], "remove": []}, "default": {"add": [], "remove": ["a sees c"]}}, "lifespan": None})

@@ -102,3 +102,27 @@ def test_apply_retracts_and_asserts_as_one_batch(live: Live) -> None:
     assert client.post("/kb/query", json={"patterns": ["cup_9 isIn ?z"]}).json() == []  # nothing of it
     too_many = client.post("/kb/apply", json={"add": ["a b c"] * 600, "remove": ["a b d"] * 600})
     assert too_many.status_code == 413
+
+
+def test_apply_models_gives_each_model_its_own_changes_as_one_batch(live: Live) -> None:
+    client = live.client
+    before = client.get("/health").json()["kb"]["revision"]
+    done = client.post("/kb/apply_models", json={"changes": {
+        "person_bob": {"add": ["cup_7 belongsTo person_bob"]},
+        "default": {"add": ["cup_7 belongsTo person_bob", "told_7 toldBy person_bob"]}}})
+    assert done.status_code == 200, done.text
+    assert done.json()["revision"] == before + 1
+    for models in (["person_bob"], None):
+        assert client.post("/kb/query", json={"patterns": ["cup_7 belongsTo ?p"], "models": models}).json() == [
+            {"p": "person_bob"}]
+    assert client.post("/kb/query", json={"patterns": ["told_7 toldBy ?p"], "models": ["person_bob"]}).json() == []
+    bad = client.post("/kb/apply_models", json={"changes": {"person_eve": {"add": ["cup_8 belongsTo person_eve"]},
+                                                            "default": {"add": ["not a statement at all"]}}})
+    assert bad.status_code == 400 and bad.json()["code"] == "kb_error"
+    assert "person_eve" not in client.get("/health").json()["kb"]["models"]  # nothing of it
+    for body in ({"changes": {}}, {"changes": {"x": {"added": []}}}, {"changes": {"all": {"add": ["a b c"]}}}):
+        refused = client.post("/kb/apply_models", json=body)
+        assert refused.status_code in (400, 422) and refused.json()["message"], body
+    too_many = client.post("/kb/apply_models", json={"changes": {"a": {"add": ["a b c"] * 600},
+                                                                 "b": {"remove": ["a b d"] * 600}}})
+    assert too_many.status_code == 413

@@ -439,6 +439,40 @@ def test_writing_to_all_writes_every_existing_model(kb: KB) -> None:
     assert kb.find("alfred sees ?x") == [{"x": "cup"}]
 
 
+def test_apply_models_gives_each_model_its_own_changes_in_one_revision(kb: KB) -> None:
+    kb += ["cup isOn table", "cup belongsTo alice"]
+    kb.add("cup isOn shelf", models=["bob"])
+    revision = kb.revision
+    kb.apply_models({"bob": {"add": ["cup belongsTo bob", "cup isOn sofa"], "remove": ["cup isOn shelf"]},
+                     "default": {"add": ["cup hasColor red"], "remove": ["cup belongsTo alice"]},
+                     "carol": {"add": "cup isOn table"}})  # a new model, and one statement as a string
+    assert kb.revision == revision + 1
+    def facts(model: str) -> list[tuple[str, str]]:
+        return sorted((p, str(r["o"])) for p in ("belongsTo", "isOn", "hasColor")
+                      for r in kb.find(f"cup {p} ?o", models=[model]))
+
+    assert facts("bob") == [("belongsTo", "bob"), ("isOn", "sofa")]
+    assert facts("default") == [("hasColor", "red"), ("isOn", "table")]
+    assert facts("carol") == [("isOn", "table")]
+    assert kb.models() == ["default", "bob", "carol"]
+    kb.apply_models({"default": {"add": ["cup hasColor blue"]}})  # a functional property's new value replaces it
+    assert kb["cup hasColor ?c"] == [{"c": "blue"}]
+
+
+@pytest.mark.parametrize(("changes", "message"), [
+    ({}, "mapping of model names"), (["bob"], "mapping of model names"),
+    ({"all": {"add": ["a b c"]}}, "'all' is not one"), ({"bad name": {"add": ["a b c"]}}, "invalid model name"),
+    ({"bob": ["a b c"]}, "must be {'add'"), ({"bob": {"added": ["a b c"]}}, "must be {'add'"),
+    ({"bob": {"add": [1]}}, "statements must be strings"),
+    ({"bob": {"add": ["a b c"]}, "default": {"add": ["only two"]}}, "only two"),
+])
+def test_apply_models_refuses_bad_changes_and_changes_nothing(kb: KB, changes: Any, message: str) -> None:
+    revision = kb.revision
+    with pytest.raises(KbError, match=re.escape(message)):
+        kb.apply_models(changes)
+    assert kb.models() == ["default"] and kb.revision == revision and kb.find("a b ?c") == []
+
+
 # --- §3.5 writing ----------------------------------------------------------------------------
 
 
@@ -673,7 +707,8 @@ def test_a_write_naming_too_many_models_is_refused_and_creates_none() -> None:
         for write in (lambda: kb.add("a b c", models=many), lambda: kb.apply(["a b c"], [], many),
                       lambda: kb.remove("a b c", models=many), lambda: kb.load_data("<http://a> <http://b> <http://c> .", "nt", many),
                       lambda: kb.sparql_update("INSERT DATA { <http://a> <http://b> <http://c> }", many),
-                      lambda: kb.revise(["a b c"], {"method": "add", "models": many})):
+                      lambda: kb.revise(["a b c"], {"method": "add", "models": many}),
+                      lambda: kb.apply_models({name: {"add": ["a b c"]} for name in many})):
             with pytest.raises(KbError, match="4 models in one write; the limit is 3"):
                 write()
         assert kb.models() == ["default"] and kb.revision == 0

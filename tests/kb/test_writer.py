@@ -426,6 +426,24 @@ def test_a_listener_that_refuses_a_commit_undoes_it_and_earlier_listeners_see_th
         assert kb["myself sees ?x"] == [{"x": "apple_1"}, {"x": "cup_1"}]
 
 
+def test_a_refused_batch_of_several_models_changes_none_of_them() -> None:
+    """A person's belief and the robot's adoption of it are one batch (dialogue.memory): refused,
+    neither stays, and the model the batch would have created does not exist."""
+    with KB() as kb:
+        kb += ["mug_1 isOn table_1"]
+        kb.add("mug_1 isOn shelf_1", models=["person_ann"])
+        unregister = kb.on_commit(_refuse, durable=True)  # the journal on a full disk does this
+        revision = kb.revision
+        with pytest.raises(KbError, match="refused"):
+            kb.apply_models({"person_bob": {"add": ["mug_1 belongsTo person_bob"]},
+                             "person_ann": {"remove": ["mug_1 isOn shelf_1"]},
+                             "default": {"add": ["mug_1 belongsTo person_bob"], "remove": ["mug_1 isOn table_1"]}})
+        assert kb.revision == revision and kb.models() == ["default", "person_ann"]
+        assert kb["mug_1 isOn ?o"] == [{"o": "table_1"}] and kb["mug_1 belongsTo ?o"] == []
+        assert kb.find("mug_1 isOn ?o", models=["person_ann"]) == [{"o": "shelf_1"}]
+        unregister()
+
+
 def _refuse(commit: Commit) -> None:
     raise KbError("refused by the test")
 

@@ -129,13 +129,29 @@ def test_questions_are_answered_from_the_robots_model_then_from_what_others_said
     assert dislikes.held == () and dislikes.hearsay == ((BOB, "dbr:Coffee"),)
 
 
-def test_a_refused_write_changes_nothing_in_the_robots_model(home: KB) -> None:
+def test_a_statement_is_one_commit_of_the_speakers_model_and_the_robots(home: KB) -> None:
+    seen: list[set[str]] = []
+    home.on_commit(lambda commit: seen.append({d.model for d in commit.deltas}))
+    settle(home, Claim(BOB, "name", "Bob", "text"), Claim("mug_red", "belongsTo", BOB),
+           Claim("phone_1", "belongsTo", "person_ines"))
+    assert seen == [{BOB, "default"}]
+    assert holds(home, f'{BOB} rdfs:label "Bob"', BOB) and holds(home, f'{BOB} rdfs:label "Bob"')
+
+
+def test_a_refused_write_changes_neither_the_speakers_model_nor_the_robots(home: KB) -> None:
+    settle(home, Claim("mug_red", "isOn", "sofa_1"))  # Bob's model exists, with a belief to replace
+
     def refuse(commit: object) -> None:
+        # Only what changes the robot's model: were the belief a commit of its own, it would stay.
         if any(d.model == "default" for d in commit.deltas):  # type: ignore[attr-defined]
             raise KbError("disk full")
 
-    before = home.size("default", inferred=False)
+    before = {m: sorted(map(str, home.export("nt", m).splitlines())) for m in ("default", BOB)}
+    revision = home.revision
     home.on_commit(refuse, durable=True)  # as the journal does when its disk refuses
-    with pytest.raises(KbError):
-        settle(home, Claim(BOB, "name", "Bob", "text"))
-    assert home.size("default", inferred=False) == before and not told(home)
+    for claims in ([Claim(BOB, "name", "Bob", "text")], [Claim("mug_red", "belongsTo", BOB)],
+                   [Claim("mug_red", "belongsTo", BOB), Claim("mug_red", "isOn", "table_1")]):
+        with pytest.raises(KbError, match="disk full"):
+            settle(home, *claims)
+    assert {m: sorted(map(str, home.export("nt", m).splitlines())) for m in ("default", BOB)} == before
+    assert home.revision == revision and not told(home) and home.models() == ["default", BOB]

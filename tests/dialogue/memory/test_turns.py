@@ -11,7 +11,7 @@ from dialogue.llm.hybrid import HybridModel
 from dialogue.llm.testing import ScriptedModel
 from dialogue.memory.learn import Memory, Trust
 from dialogue.memory.provenance import told
-from kb import KB
+from kb import KB, KbError
 
 BOB = "person_bob"
 
@@ -40,6 +40,22 @@ def test_names_with_the_rules(home: KB) -> None:
     assert bob.say("who am I?").response == "Your name is Rob."
     assert bob.say("this is Maria").response == "Nice to meet you, Maria."
     assert bob.say("who do you see?").response == "I see Alice and Maria."
+
+
+def test_a_refused_statement_is_not_learnt_at_all_and_the_reply_says_so(home: KB) -> None:
+    def refuse(commit: object) -> None:
+        # The disk fills once the speaker's belief would be written: refused, it must not stay.
+        if any(d.model == "default" for d in commit.deltas):  # type: ignore[attr-defined]
+            raise KbError("no space left on device")
+
+    unregister = home.on_commit(refuse, durable=True)  # the journal on a full disk
+    result = Talk(DialogueEngine(home)).say("Hi, I'm Bob")
+    assert result.response == "Sorry, I could not remember that."
+    assert "no space left on device" in result.error_msg
+    assert home.models() == ["default"] and home.find(f"{BOB} rdfs:label ?l") == []  # no belief left behind
+    unregister()
+    assert Talk(DialogueEngine(home)).say("Hi, I'm Bob").response == "Hello! Nice to meet you, Bob."
+    assert home.find(f"{BOB} rdfs:label ?l", models=[BOB]) == [{"l": "Bob"}]
 
 
 def test_ownership_and_places_are_used_by_later_questions(home: KB) -> None:

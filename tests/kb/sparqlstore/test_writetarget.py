@@ -31,7 +31,7 @@ class RecordingTarget:
         self.calls: list[tuple[str, tuple[Any, ...]]] = []
 
     def __getattr__(self, name: str) -> Any:
-        if name not in ("update", "remove", "apply", "clear", "load_data", "sparql_update"):
+        if name not in ("update", "remove", "apply", "apply_models", "clear", "load_data", "sparql_update"):
             raise AttributeError(name)
         return lambda *args: self.calls.append((name, args))
 
@@ -43,6 +43,8 @@ BAD_WRITES: dict[str, Callable[[Any], Any]] = {
     "model": lambda k: k.add("x sees y", models=["bad name"]),
     "lifespan": lambda k: k.update("x sees y", lifespan=-1),
     "apply": lambda k: k.apply(add=["x sees y"], remove=["x sees"]),
+    "apply models": lambda k: k.apply_models({"bob": {"add": ["x sees y"]}, "default": {"remove": ["x sees"]}}),
+    "apply models shape": lambda k: k.apply_models({"bob": ["x sees y"]}),
     "policy": lambda k: k.revise("x sees y", {"method": "frobnicate"}),
     "load": lambda k: k.load("/no/such/file.ttl"),
     "load type": lambda k: k.load(None),
@@ -77,6 +79,7 @@ def test_good_writes_are_forwarded_as_given(store: Callable[[], str], tmp_path: 
         remote += "x sees y"
         remote.revise(["x sees ?y"], {"method": "retract", "models": ["bob"]})
         remote.apply(add=["x sees z"], remove=["x sees y"], lifespan=5)
+        remote.apply_models({"bob": {"add": "x sees b"}, "default": {"remove": ["x sees z"]}})
         remote.load(document, models=["bob"])
         remote.sparql_update("INSERT DATA { oro:x oro:sees oro:w }")
         remote.clear(keep_defaults=False)
@@ -84,6 +87,8 @@ def test_good_writes_are_forwarded_as_given(store: Callable[[], str], tmp_path: 
         ("update", (["x sees y"], None, 0)),
         ("remove", (["x sees ?y"], ["bob"])),
         ("apply", (["x sees z"], ["x sees y"], None, 5)),
+        ("apply_models", ({"bob": {"add": ["x sees b"], "remove": []}, "default": {"add": [], "remove": ["x sees z"]}},
+                          0.0)),
         ("load_data", (document.read_bytes(), "turtle", ["bob"])),
         ("sparql_update", ("INSERT DATA { oro:x oro:sees oro:w }", None)),
         ("clear", (False,)),
@@ -97,6 +102,7 @@ def test_without_a_writer_the_replica_is_read_only(replicas: Replicas, tmp_path:
         writes: list[Callable[[], Any]] = [
             lambda: reader.add("myself sees cup_2"), lambda: reader.remove("myself sees ?x"),
             lambda: reader.apply(add=["a sees b"]), lambda: reader.clear(),
+            lambda: reader.apply_models({"bob": {"add": ["a sees b"]}}),
             lambda: reader.load_data("<http://a> <http://b> <http://c> .", "nt"),
             lambda: reader.sparql_update("INSERT DATA { oro:a oro:b oro:c }"),
             lambda: reader.revise("a sees b", {"method": "add"}), lambda: reader.load(tmp_path / "x.ttl"),
