@@ -123,6 +123,14 @@ class ServiceClient:
         self._call("POST", "/sparql", writes=True, data={"update": update},
                    params={"model": names[0]} if names else None)
 
+    # --- intents -------------------------------------------------------------------------------
+
+    def publish_intent(self, emitted: dict[str, Any]) -> int:
+        """Push an emitted intent (``{"origin", "intent", "dialogue_id"?, "response"?, "time"?}``)
+        on the service's intent stream; returns the number it was given."""
+        seq: int = self._call("POST", "/intents", writes=True, json=emitted)["seq"]
+        return seq
+
     # --- dialogue ------------------------------------------------------------------------------
 
     def start_dialogue(self) -> str:

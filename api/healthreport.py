@@ -46,6 +46,13 @@ def _kb_health(services: Services) -> dict[str, Any]:
         return {"role": services.settings.role, "reachable": False, "error": str(exc)}
 
 
+def _intents(services: Services) -> dict[str, Any]:
+    """The stream's readers and last number; a reader's relay to the writer's stream instead."""
+    if services.bus is not None:
+        return {"readers": services.bus.reader_count, "last_seq": services.bus.last_seq}
+    return {"relay": services.relay.report() if services.relay is not None else None}
+
+
 async def health_report(services: Services, details: bool) -> dict[str, Any]:
     """``{"status"}``, and with ``details`` the KB, model, events, components and reasons."""
     state = await run_in_threadpool(_kb_health, services)
@@ -61,5 +68,5 @@ async def health_report(services: Services, details: bool) -> dict[str, Any]:
         return {"status": status}
     return {"status": status, "reasons": reasons, "kb": state, "model": model,
             "events": {"subscribers": services.hub.listener_count},
-            "intents": {"readers": services.bus.reader_count, "last_seq": services.bus.last_seq},
+            "intents": _intents(services),
             "components": {name: s.as_dict() for name, s in components.items()}}

@@ -12,9 +12,11 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from api.client import ServiceClient
+from api.courier import DeliveryConfig
+from api.relay import IntentRelay
 from api.settings import Settings, SettingsError
 from api.subscriptions import EventHub
-from api.webhooks import WebhookConfig, Webhooks
+from api.webhooks import Webhooks
 from dialogue.engine import DialogueEngine, EngineConfig
 from dialogue.initiative import Initiative, InitiativeConfig
 from dialogue.llm.base import ChatModel
@@ -22,6 +24,7 @@ from dialogue.llm.spec import SpecError, parse_spec
 from dialogue.memory.learn import Memory
 from dialogue.memory.people import People
 from dialogue.memory.reconcile import Reconciler
+from dialogue.observers import TurnObserver
 from dialogue.pushed.bus import IntentBus, clock_first
 from dialogue.sessions import DialogueManager
 from dialogue.sparqlsessions import SparqlSessions
@@ -58,9 +61,12 @@ class Services:
     #: The in-process KB of a standalone service or a writer (None on a reader): the one the
     #: journal snapshots.
     local_kb: KB | None = None
-    #: Every intent emitted, numbered and buffered for the stream (GET /intents/stream).
-    bus: IntentBus = field(default_factory=IntentBus)
+    #: Every intent emitted, numbered and buffered for the stream (GET /intents/stream); None on a
+    #: reader, whose stream is the writer's.
+    bus: IntentBus | None = None
     webhooks: Webhooks | None = None
+    #: A reader's: the intents of its turns handed to the writer's bus.
+    relay: IntentRelay | None = None
     #: Engaging and greeting people who become engaged (None on a reader: the writer does it).
     initiative: Initiative | None = None
     #: Each person's memory across dialogues (follows the KB's commits).
@@ -103,7 +109,10 @@ class Services:
             self.reconciler.stop()
         if self.webhooks is not None:
             self.webhooks.stop()
-        self.bus.shutdown()
+        if self.relay is not None:
+            self.relay.stop()
+        if self.bus is not None:
+            self.bus.shutdown()
         self.hub.shutdown()
         if self.journal is not None:
             if self.local_kb is not None:
@@ -184,21 +193,28 @@ def intent_bus(settings: Settings) -> IntentBus:
 
 
 def build_dialogues(settings: Settings, kb: KnowledgeBase, model: ChatModel | None = None,
-                    endpoint: SparqlEndpoint | None = None, bus: IntentBus | None = None,
+                    endpoint: SparqlEndpoint | None = None, intents: TurnObserver | None = None,
                     people: People | None = None) -> DialogueManager:
     """The dialogue engine on this KB, with ``model`` or the backend ``settings.llm`` names;
     with a shared store, the dialogue sessions live in it (every process sees every dialogue).
     What people say is learnt under the trust policy, each speaker's memory kept in the KB, and
-    every turn's intents published on ``bus``."""
+    every turn's intents pushed by ``intents`` (the bus's observer, or a reader's relay)."""
     memory = Memory(kb, settings.memory.trust)
     engine = DialogueEngine(kb, model or backend_of(settings), EngineConfig(deadline=settings.deadline),
                             memory=memory)
     limits = settings.limits
     store = SparqlSessions(endpoint, max_dialogues=limits.max_dialogues) if endpoint is not None else None
     people = people if people is not None else People(kb, settings.memory.refresh)
-    observers = [people.observe, *([bus.observe] if bus is not None else [])]
+    observers = [people.observe, *([intents] if intents is not None else [])]
     return DialogueManager(engine, max_dialogues=limits.max_dialogues, max_turns=limits.max_history_turns,
                            store=store, observers=observers, recall=people.recall_note)
+
+
+def delivery_config(settings: Settings) -> DeliveryConfig:
+    """How the webhooks, and a reader's relay to the writer, deliver intents."""
+    intents = settings.intents
+    return DeliveryConfig(intents.webhook_retries, intents.webhook_backoff, intents.webhook_max_backoff,
+                          intents.webhook_queue, intents.webhook_timeout)
 
 
 def _webhooks(settings: Settings, bus: IntentBus, services: Services) -> None:
@@ -206,9 +222,7 @@ def _webhooks(settings: Settings, bus: IntentBus, services: Services) -> None:
     intents = settings.intents
     if not intents.webhooks:
         return
-    config = WebhookConfig(intents.webhook_retries, intents.webhook_backoff, intents.webhook_max_backoff,
-                           intents.webhook_queue, intents.webhook_timeout)
-    hooks = Webhooks(intents.webhooks, config)
+    hooks = Webhooks(intents.webhooks, delivery_config(settings))
     hooks.start()
     bus.on_publish(hooks.enqueue)
     services.webhooks = hooks
@@ -229,7 +243,8 @@ def start_services(settings: Settings, kb: KB | None = None, model: ChatModel | 
         if settings.store is not None:
             store = Store(SparqlEndpoint(settings.store, settings.store_timeout), mirror=None)
         people = People(the_kb, settings.memory.refresh)
-        dialogues = build_dialogues(settings, the_kb, model, store.endpoint if store else None, bus, people)
+        dialogues = build_dialogues(settings, the_kb, model, store.endpoint if store else None, bus.observe,
+                                    people)
         if settings.data_dir is not None:
             journal = _open_journal(the_kb, settings.data_dir, settings.snapshot_records)
         if store is not None:
@@ -289,21 +304,27 @@ def _start_reader(settings: Settings, model: ChatModel | None) -> Services:
     assert settings.store is not None and settings.writer_url is not None  # Settings.role says so
     if settings.ontology_files or settings.scene not in (None, "", "none", "demo"):
         log.info("ontology files and the scene are the writer's; this reader ignores them")
+    if settings.intents.webhooks:
+        log.info("the webhooks are the writer's (every intent of the deployment is on its stream); "
+                 "this reader ignores them")
     endpoint = SparqlEndpoint(settings.store, settings.store_timeout)
     token = settings.token.get_secret_value() if settings.token else None
     writer = ServiceClient(settings.writer_url, token, name="writer")
     store = Store(endpoint, writer=writer)
     kb = RemoteKB(endpoint, writes=writer)
-    bus = intent_bus(settings)
+    config = delivery_config(settings)
+    relay = IntentRelay(ServiceClient(settings.writer_url, token, config.timeout, name="writer"), config)
     people = People(kb, settings.memory.refresh)  # closed with the services: what waits is written
     try:
-        dialogues = build_dialogues(settings, kb, model, endpoint, bus, people)
+        dialogues = build_dialogues(settings, kb, model, endpoint, relay.observe, people)
     except SettingsError:
+        relay.stop()
         kb.close()
         store.close()
         raise
     hub = event_hub(kb, settings)
     services = Services(settings=settings, kb=kb, hub=hub, dialogues=dialogues, world=None, journal=None,
-                        owns_kb=True, store=store, owns_model=model is None, bus=bus, people=people)
-    _webhooks(settings, bus, services)
+                        owns_kb=True, store=store, owns_model=model is None, people=people, relay=relay)
+    relay.start()
+    services.components.register("intent_relay", relay.status)
     return services

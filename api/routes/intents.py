@@ -6,14 +6,16 @@ from typing import Annotated, Any
 
 from fastapi import APIRouter, Depends, Header, Query, WebSocket
 from fastapi.responses import StreamingResponse
+from pydantic import BaseModel, ConfigDict, Field
 from sse_starlette import EventSourceResponse
 
 from api.auth import authorise, token_from_header
-from api.deps import ReadAccess, ServicesDep, StreamReadAccess
+from api.deps import ReadAccess, ServicesDep, StreamReadAccess, WriteAccess
 from api.errors import ApiError, error_body
 from api.intentstream import open_reader, resume_after, serve_websocket, stream_response, websocket_query
+from dialogue.intents import Intent
 from dialogue.pushed.bus import IntentBus
-from dialogue.pushed.events import IntentFilter
+from dialogue.pushed.events import IntentFilter, Origin
 
 router = APIRouter(prefix="/intents", tags=["intents"])
 
@@ -36,6 +38,8 @@ Filter = Annotated[IntentFilter, Depends(intent_filter)]
 
 
 def _bus(services: ServicesDep) -> IntentBus:
+    if services.bus is None:  # a reader forwards /intents to the writer before routing
+        raise ApiError(503, "intents_elsewhere", "the intent stream is kept by the writer service")
     return services.bus
 
 
@@ -59,6 +63,29 @@ async def buffered(bus: Bus, flt: Filter, after: After = None) -> dict[str, Any]
             "intents": [e.as_json() for e in events]}
 
 
+class Emitted(BaseModel):
+    model_config = ConfigDict(extra="forbid")
+    origin: Origin = "dialogue"
+    intent: Intent = Field(description="the Intent JSON shape")
+    dialogue_id: str | None = None
+    response: str = Field(default="", description="what the robot says with it")
+    time: float | None = Field(default=None, ge=0, allow_inf_nan=False,
+                               description="when it was emitted (seconds since the epoch); default: now")
+
+
+class Published(BaseModel):
+    seq: int = Field(description="its number on the stream")
+    stream: str = Field(description="the stream's id (hello's)")
+
+
+@router.post("", dependencies=[WriteAccess])
+async def publish(body: Emitted, bus: Bus) -> Published:
+    """Push an intent on the stream, numbered after every other: how a read replica hands the
+    intents of the turns it answers to the writer's stream, the deployment's one."""
+    event = bus.publish(body.origin, body.intent, body.dialogue_id, body.response, body.time)
+    return Published(seq=event.seq, stream=bus.stream)
+
+
 @router.websocket("/ws")
 async def stream_ws(websocket: WebSocket, services: ServicesDep) -> None:
     """The stream over a WebSocket: one JSON message per event, with its ``"event"``; the query
@@ -67,9 +94,10 @@ async def stream_ws(websocket: WebSocket, services: ServicesDep) -> None:
     presented = token_from_header(websocket.headers.get("authorization"))
     try:
         authorise(services.settings, presented or websocket.query_params.get("access_token"), write=False)
-        reader = open_reader(services.bus, *websocket_query(websocket.query_params))
+        bus = _bus(services)
+        reader = open_reader(bus, *websocket_query(websocket.query_params))
     except ApiError as exc:
         await websocket.send_json(error_body(exc.status, exc.code, exc.message, exc.details))
-        await websocket.close(code=1013 if exc.status == 429 else 1008, reason=exc.code)
+        await websocket.close(code=1013 if exc.status in (429, 503) else 1008, reason=exc.code)
         return
-    await serve_websocket(websocket, services.bus, reader)
+    await serve_websocket(websocket, bus, reader)

@@ -28,7 +28,7 @@ from dataclasses import dataclass
 
 from dialogue.intents import Intent
 from dialogue.observers import TurnRecord
-from dialogue.pushed.events import IntentFilter, Origin, Pushed
+from dialogue.pushed.events import IntentFilter, Origin, Pushed, emitted
 
 Listener = Callable[[Pushed], None]
 
@@ -134,10 +134,12 @@ class IntentBus:
             self._listeners = (*self._listeners, listener)
 
     def publish(self, origin: Origin, intent: Intent, dialogue_id: str | None = None,
-                response: str = "") -> Pushed:
+                response: str = "", at: float | None = None) -> Pushed:
+        """Number and push an intent emitted `at` (seconds since the epoch; None: now)."""
+        when = time.time() if at is None else at
         with self._lock:
             self._seq += 1
-            event = Pushed(self._seq, time.time(), origin, intent, dialogue_id, response)
+            event = Pushed(self._seq, when, origin, intent, dialogue_id, response)
             self._buffer.append(event)
             readers, listeners = self._readers, self._listeners
             # Handed out under the lock, so that a reader subscribing now gets each event once,
@@ -151,8 +153,8 @@ class IntentBus:
 
     async def observe(self, record: TurnRecord) -> None:
         """The dialogue manager's observer: a turn's intents, in order, its reply with the first."""
-        for n, intent in enumerate(record.result.intents):
-            self.publish("dialogue", intent, record.dialogue_id, record.result.response if n == 0 else "")
+        for event in emitted(record):
+            self.publish(event.origin, event.intent, event.dialogue_id, event.response, event.time)
 
     def subscribe(self, loop: asyncio.AbstractEventLoop, flt: IntentFilter | None = None,
                   after: int | None = None) -> Reader:

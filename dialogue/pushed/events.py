@@ -6,7 +6,8 @@
 
 `origin` is `dialogue` (a turn of `dialogue_id`) or `initiative` (the robot's own, e.g. greeting a
 person who engaged; no dialogue). `response` is what the robot says with the intent: a turn's reply
-travels with its first intent, a greeting's words with its GREET.
+travels with its first intent, a greeting's words with its GREET. Before a bus numbers it, an intent
+is `Emitted` (what a read replica hands to the writer's bus).
 """
 
 from __future__ import annotations
@@ -16,6 +17,7 @@ from dataclasses import dataclass
 from typing import Any, Literal
 
 from dialogue.intents import Intent
+from dialogue.observers import TurnRecord
 
 Origin = Literal["dialogue", "initiative"]
 ORIGINS: frozenset[str] = frozenset({"dialogue", "initiative"})
@@ -33,6 +35,28 @@ class Pushed:
     def as_json(self) -> dict[str, Any]:
         return {"seq": self.seq, "time": self.time, "origin": self.origin, "dialogue_id": self.dialogue_id,
                 "response": self.response, "intent": self.intent.model_dump(mode="json")}
+
+
+@dataclass(frozen=True)
+class Emitted:
+    """An intent as emitted, not numbered yet; `time` when (seconds since the epoch)."""
+
+    origin: Origin
+    intent: Intent
+    dialogue_id: str | None
+    response: str
+    time: float
+
+    def as_json(self) -> dict[str, Any]:
+        return {"time": self.time, "origin": self.origin, "dialogue_id": self.dialogue_id,
+                "response": self.response, "intent": self.intent.model_dump(mode="json")}
+
+
+def emitted(record: TurnRecord) -> list[Emitted]:
+    """A turn's intents as emitted, in order, its reply with the first."""
+    result = record.result
+    return [Emitted("dialogue", intent, record.dialogue_id, result.response if n == 0 else "", record.at)
+            for n, intent in enumerate(result.intents)]
 
 
 @dataclass(frozen=True)

@@ -161,3 +161,27 @@ def test_a_last_event_id_that_is_no_number_is_a_clear_error(live: Live) -> None:
     for bad in (b"abc", b"\xb2"):  # "\xb2" is latin-1 "2 superscript": a digit to str.isdigit, no int
         answer = live.client.get("/intents/stream", headers={"Last-Event-ID": bad})
         assert answer.status_code == 422 and "Last-Event-ID" in answer.json()["message"], bad
+
+
+def test_an_intent_published_by_another_process_is_numbered_on_the_stream(live_factory: Any) -> None:
+    live = live_factory(scene_settings(token="pub-token"))
+    auth = {"authorization": "Bearer pub-token"}
+    n = live.services.bus.last_seq
+    intent = {"intent": "__intent_greet__", "data": {"recipient": "person_ann"}, "source": "person_ann"}
+    body = {"origin": "dialogue", "dialogue_id": "hall", "response": "Hello!", "intent": intent, "time": 1750000000.5}
+    assert live.client.post("/intents", json=body).status_code == 401  # a write: the token
+    published = live.client.post("/intents", headers=auth, json=body)
+    assert published.status_code == 200, published.text
+    assert published.json() == {"seq": n + 1, "stream": live.services.bus.stream}
+    [pushed] = live.client.get("/intents", params={"after": n}).json()["intents"]
+    assert pushed == {"seq": n + 1, "time": 1750000000.5, "origin": "dialogue", "dialogue_id": "hall",
+                      "response": "Hello!", "intent": {**intent, "modality": "__modality_speech__",
+                                                       "priority": 128, "confidence": 1.0}}
+    bare = live.client.post("/intents", headers=auth, json={"intent": intent}).json()  # defaults: a dialogue's, now
+    [pushed] = live.client.get("/intents", params={"after": n + 1}).json()["intents"]
+    assert bare["seq"] == n + 2 and pushed["origin"] == "dialogue" and pushed["time"] > 1750000000.5
+    for bad in ({**body, "origin": "radio"}, {**body, "time": -1}, {**body, "intent": {**intent, "modality": "x"}},
+                {**body, "seq": 5}, {k: v for k, v in body.items() if k != "intent"}):
+        refused = live.client.post("/intents", headers=auth, json=bad)
+        assert refused.status_code == 422 and refused.json()["message"], bad
+    assert live.services.bus.last_seq == n + 2  # nothing of them

@@ -11,8 +11,9 @@ from typing import Any
 
 import pytest
 
+from api.courier import DeliveryConfig
 from api.settings import IntentSettings
-from api.webhooks import Webhook, WebhookConfig
+from api.webhooks import Webhook
 from dialogue import intents as I
 from dialogue.pushed.events import Pushed
 from tests.api.conftest import Live, scene_settings
@@ -127,7 +128,7 @@ def pushed(seq: int) -> Pushed:
 
 
 def test_a_full_queue_drops_its_oldest_event_and_counts_it() -> None:
-    hook = Webhook("http://127.0.0.1:9/never", WebhookConfig(queue=2))  # not started: nothing is sent
+    hook = Webhook("http://127.0.0.1:9/never", DeliveryConfig(queue=2))  # not started: nothing is sent
     for seq in (1, 2, 3):
         hook.enqueue(pushed(seq))
     assert hook.counts.dropped == 1 and hook.queued == 2
@@ -136,7 +137,7 @@ def test_a_full_queue_drops_its_oldest_event_and_counts_it() -> None:
 
 
 def test_a_delivery_given_up_after_its_retries_is_counted(receiver: Receiver) -> None:
-    hook = Webhook(receiver.url, WebhookConfig(retries=2, backoff=0.01, queue=10))
+    hook = Webhook(receiver.url, DeliveryConfig(retries=2, backoff=0.01, queue=10))
     hook.start()
     try:
         hook.enqueue(pushed(1))

@@ -36,6 +36,13 @@ def test_events_are_numbered_in_order_with_where_they_came_from() -> None:
                                                "response": "Hello!", "intent": greet("person_b").model_dump()}
 
 
+def test_an_event_keeps_when_it_was_emitted_when_told() -> None:
+    bus = IntentBus()
+    before = time.time()
+    assert bus.publish("dialogue", greet("person_a"), "hall", at=12.5).time == 12.5  # another process's turn
+    assert bus.publish("dialogue", greet("person_a"), "hall").time >= before  # else now
+
+
 def test_a_reader_gets_the_buffered_events_after_its_number_then_the_live_ones() -> None:
     async def run() -> list[int]:
         bus = IntentBus()
