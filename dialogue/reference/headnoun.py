@@ -111,8 +111,12 @@ def _name_starts(lexicon: Lexicon, np: Sequence[str]) -> dict[str, int]:
             if start + len(name.words) == len(np):
                 found.setdefault(name.entity, start)
     if not found and np:
+        # ("the paperback" for the book: only a thing the KB itself calls a book, never one the
+        # lexicon file makes a book; "the banana" is no apple because both are fruit)
         for general in synonyms(phrase).kind_of(phrase(np[-1])):
-            found.update(dict.fromkeys(_named(lexicon, general), len(np) - 1))
+            own = {n.entity for n in lexicon.names_at(general, 0) if len(n.words) == len(general)
+                   and not n.lexical}  # fmt: skip
+            found.update(dict.fromkeys(own, len(np) - 1))
     if not found and np:  # "the thermos" for the "thermos flask": a word of its label
         found.update(dict.fromkeys(lexicon.by_label_word.get(singular(np[-1]), ()), len(np) - 1))
     return found

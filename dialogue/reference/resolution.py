@@ -108,9 +108,12 @@ def resolve(
     words = [w[:-2] if w.endswith("'s") and len(w) > 2 else w for w in words]  # "ines's" names Ines
     normed = norm(words)
     cover: dict[str, set[int]] = defaultdict(set)
+    own_name: set[str] = set()  # entities a name of the KB's own (not the lexicon file's) occurs for
     for start in range(len(words)):
         for name in lexicon.names_at(words, start):
             cover[name.entity].update(range(start, start + len(name.words)))
+            if not name.lexical:
+                own_name.add(name.entity)
     snapshot = lexicon.snapshot
     content = [i for i, w in enumerate(words) if w not in _GLUE]
     head = _head(words, content)
@@ -145,6 +148,8 @@ def resolve(
     # Ownership only narrows: "my cup" still means the cup when nobody's cups are recorded.
     owned = [e for e in matches if owner is not None and e.owner == owner]
     matches = owned or matches
+    # "the bathroom" is the room labelled so, not the toilets the lexicon file says it may be.
+    matches = [e for e in matches if e.id in own_name] or matches
     seen = [e for e in matches if e.seen]
     return Resolution(phrase, tuple(seen or matches))
 
