@@ -171,6 +171,9 @@ def _evidence(lexicon: Lexicon, entity: Entity, phrase: _Phrase, name_start: int
         if not places:
             continue  # a place the KB does not know: nothing to check
         known = {p.id for p in places if p.kind != "zone"}, {p.id for p in places if p.kind == "zone"}
+        if known[0] & {o for p, o in entity.relations if p == "in"}:
+            score += 1  # "the ball in the toy box": a container it is known to be in
+            continue
         for fact, candidates in ((entity.support, known[0]), (entity.zone, known[1])):
             if fact is None or not candidates:
                 continue

@@ -129,7 +129,8 @@ def resolve(
         if head is not None and head not in own and normed[head] not in attrs:
             continue
         context = set()
-        for other in (entity.support, entity.zone, entity.owner):
+        inside = tuple(o for prep, o in entity.relations if prep == "in")
+        for other in (entity.support, entity.zone, entity.owner, *inside):
             if other is not None:
                 context |= cover.get(other, set())
         if all(i in own or i in context or normed[i] in attrs for i in content):

@@ -138,7 +138,7 @@ def _fit(row: Row, said: Said) -> Parse | None:
         direct = _second_phrase(slots)  # "bring to Ana the tray"
     if frame.dative is not None and "recipient" not in slots and direct:
         # "get Ines her phone": someone, then a noun phrase of its own
-        before = frame.dative == "before" and _someone(direct[0]) and bool(set(direct[1:4]) & _OWN_PHRASE)
+        before = frame.dative == "before" and _someone(direct[0]) and _own_phrase_after(direct)
         if direct[0] in ME:  # "get me a cup"
             slots["recipient"], direct = ("me",), direct[1:]
         elif frame.dative == "any" or before:  # "give Ines her phone": the interpreter splits it
@@ -163,8 +163,18 @@ _OWN_PHRASE = NP_START | {"her"}
 
 
 def _someone(word: str) -> bool:
-    """Whether a word may start the phrase of a person ("him", "Ines"), not of a thing ("all", "the")."""
+    """Whether a word may start the phrase of a person ("him", "Ines"), not of a thing ("all", "the")
+    nor a person's thing ("Noor's scarf")."""
+    if word.endswith("'s"):
+        return False
     return word in PERSONAL or word == "them" or word not in FUNCTION_WORDS | DETERMINERS | MANY
+
+
+def _own_phrase_after(direct: Words) -> bool:
+    """Whether a noun phrase of its own starts within the next words after the first ("Ines *her*
+    phone", "Mr Ito *the* menu"), not after a preposition ("Noor's scarf off *the* chair")."""
+    starts = range(1, min(4, len(direct)))
+    return any(direct[i] in _OWN_PHRASE and direct[i - 1] not in MODIFIER_START for i in starts)
 
 
 def _segments(rest: Words, row: Row) -> tuple[Words, dict[str, Words], dict[str, str]]:

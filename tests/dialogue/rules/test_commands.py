@@ -101,7 +101,8 @@ def test_questions(text: str, kind: str) -> None:
 
 
 @pytest.mark.parametrize(
-    "text", ["hi", "Hello there!", "good morning", "good day", "hey robot", "hi, how are you?", "welcome back"]
+    "text",
+    ["hi", "Hello there!", "good morning", "good day", "hey robot", "hi, how are you?", "welcome back"],
 )
 def test_greetings(text: str) -> None:
     assert parse(text).act == "greeting"
@@ -186,3 +187,26 @@ def test_more_questions(text: str, kind: str) -> None:
 )
 def test_more_ways_to_put_something_somewhere(text: str, slots: dict[str, tuple[str, ...]]) -> None:
     assert (parse(text).intent, parse(text).slots) == (I.PLACE_OBJECT, slots)
+
+
+@pytest.mark.parametrize(
+    ("text", "intent", "slots"),
+    [
+        # a person's thing after a grabbing verb is the thing, not a recipient and a thing
+        (
+            "pick up Omar's scarf off the stool",
+            "__intent_grab_object__",
+            {"object": ("omar's", "scarf", "off", "the", "stool")},
+        ),
+        (
+            "grab omars scarf from the stool",
+            "__intent_grab_object__",
+            {"object": ("omars", "scarf", "from", "the", "stool")},
+        ),
+    ],
+)
+def test_a_possessive_is_no_recipient_of_a_double_object(
+    text: str, intent: str, slots: dict[str, tuple[str, ...]]
+) -> None:
+    p = parse(text)
+    assert (p.intent, p.slots, p.double_object) == (intent, slots, False)

@@ -348,7 +348,10 @@ def test_part_of_a_label_names_the_thing_when_no_name_occurs(office: KB) -> None
 def test_an_answer_naming_the_owner(answer: str) -> None:
     kb = scene_kb("office", *OWNED)
     try:
-        history = [("user", "grab the mug"), ("robot", "Which cup do you mean: the green mug or the yellow mug?")]
+        history = [
+            ("user", "grab the mug"),
+            ("robot", "Which cup do you mean: the green mug or the yellow mug?"),
+        ]
         out = say(kb, answer, speaker="person_carol", history=history)
         assert (out.intent, out.roles) == (I.GRAB_OBJECT, {"object": "mug_yellow"}), out.reply
     finally:
@@ -407,3 +410,26 @@ def test_all_the_things_are_each_of_them(office: KB) -> None:
     out = say(office, "put both mugs on the shelf")
     assert [(o.intent, o.roles["object"]) for o in out.steps()] == [
         (I.PLACE_OBJECT, "mug_green"), (I.PLACE_OBJECT, "mug_yellow")]  # fmt: skip
+
+
+def _nursery() -> KB:
+    return scene_kb(
+        None,
+        "myself rdf:type Robot", "den rdf:type ZoneOfInterest", 'den rdfs:label "den"',
+        BOB + " rdf:type Human", BOB + ' rdfs:label "Bob"', "myself sees " + BOB,
+        "crate_1 rdf:type Box", 'crate_1 rdfs:label "crate"', "crate_1 isIn den", "myself sees crate_1",
+        "bench_1 rdf:type Artifact", 'bench_1 rdfs:label "bench"', "bench_1 isIn den", "myself sees bench_1",
+        "yoyo_1 rdf:type Toy", 'yoyo_1 rdfs:label "yoyo"', "yoyo_1 hasColor green", "yoyo_1 isIn crate_1",
+        "yoyo_1 isIn den", "myself sees yoyo_1",
+        "yoyo_2 rdf:type Toy", 'yoyo_2 rdfs:label "yoyo"', "yoyo_2 hasColor red", "yoyo_2 isOn bench_1",
+        "yoyo_2 isIn den", "myself sees yoyo_2",
+    )  # fmt: skip
+
+
+def test_where_a_thing_is_says_the_container_it_is_in_before_the_zone() -> None:
+    kb = _nursery()
+    assert say(kb, "where is the green yoyo").reply == "The yoyo is in the crate in the den."
+    assert say(kb, "what's in the crate?").reply == "In the crate, there is the yoyo."
+    assert say(kb, "what is on the bench").reply == "On the bench, there is the yoyo."
+    assert say(kb, "pick up the yoyo in the crate").roles == {"object": "yoyo_1"}
+    kb.close()
