@@ -24,7 +24,10 @@ from dialogue.rules.words import (
     PATHS,
     PURPOSES,
     SOCIAL,
+    THEIR_SUBJECTS,
     THERE,
+    TIME_CONJUNCTIONS,
+    WHILE,
 )
 
 __all__ = ["Parse", "Words", "parse"]
@@ -263,7 +266,11 @@ def _adjunct_end(rest: Words, i: int, own: set[str]) -> int:
 
 
 def _said_how(rest: Words, i: int) -> int:
-    """The length of the phrase of manner or time that starts at i ("when you can", "carefully"), or 0."""
+    """The length of the phrase of manner or time that starts at i ("when you can", "carefully", a
+    clause of time to the end: "while he waits"), or 0."""
     if rest[i] in MANNER:
         return 1
+    subject = rest[i + 1] if i + 1 < len(rest) else ""
+    if i > 0 and (rest[i] in WHILE or (rest[i] in TIME_CONJUNCTIONS and subject in THEIR_SUBJECTS)):
+        return len(rest) - i
     return next((len(p) for p in ADJUNCTS if rest[i : i + len(p)] == p), 0)

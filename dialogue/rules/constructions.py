@@ -185,6 +185,15 @@ def letting_know(said: Said) -> Parse | None:
     return speech(Said("tell", tuple(x for x in said.rest if x != "know"), said.words, said.original))
 
 
+#: Words that start the clause of a message after the person told ("tell Noor *it*'s time").
+_SUBJECTS = word_set("it he she they we i you there")
+
+
+def _clause_start(rest: Words) -> int | None:
+    """Where a clause with a subject of its own starts after the person told, if one does."""
+    return next((i for i in range(1, len(rest) - 1) if rest[i] in _SUBJECTS), None)
+
+
 def speech(said: Said) -> Parse:
     """What to say, to whom: quoted words kept as they are, "tell X that/to...", "say X to Y"."""
     verb, rest, original = said.verb, said.rest, said.original
@@ -201,6 +210,10 @@ def speech(said: Said) -> Parse:
         return said.command(I.SAY, text="goodbye", recipient=rest[rest.index("to") + 1 :])
     if verb in {"tell", "inform", "remind", "ask"}:
         found = split_at(rest, ["that", "to", "about"])
+        clause = _clause_start(rest) if verb != "ask" else None
+        if clause is not None and (found is None or clause < len(found[0])):
+            # "tell Noor it's time to go": the message is a clause of its own, its "to" is its own
+            found = rest[:clause], "", rest[clause:]
         if found is not None:
             recipient, sep, text = found
             text = ("please", *text) if sep == "to" else text

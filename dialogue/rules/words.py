@@ -107,7 +107,8 @@ GOALS = "to|towards|into|inside|onto|on|in|near|beside|over to|by"
 #: Words between a verb of motion and its goal: "go back to", "head over to", "nip down to".
 MOTION_PARTICLES = (
     "back over there straight right down up ahead across along out around round on and stand wait close "
-    "closer quickly slowly carefully quietly safely directly through"
+    "closer quickly slowly carefully quietly safely directly through outside inside outdoors indoors "
+    "upstairs downstairs"
 )
 #: Words between a verb of carrying and its object or recipient ("bring it over to me").
 CARRY_PARTICLES = "over back up down along round around through out"
@@ -123,6 +124,12 @@ ADJUNCTS = phrases(
     "as soon as possible|as soon as you can|right away|straight away|at once|in a minute|in a moment|"
     "right now|real quick|right quick|asap|in a jiffy|in a sec|in a second|instead|instead of that"
 )
+#: Conjunctions that start a clause of time to the end of a request ("hand Ana the menu *while she
+#: waits*", "put the milk back *before it goes off*"): "while" always, the others before a subject
+#: other than the robot ("after you wash it" asks for more than the request).
+WHILE = word_set("while whilst")
+TIME_CONJUNCTIONS = word_set("until till once before after as when")
+THEIR_SUBJECTS = word_set("i he she we they it")
 #: Prepositions of a path: "go to the bathroom through the main door" (what follows is the adjunct).
 PATHS = word_set("through via past across along")
 #: Adverbs of manner, never part of a referent ("put the vase on the shelf carefully").
