@@ -251,7 +251,7 @@ def antecedent(
             typed = [e for e in ents if e is not None and e.kind in kinds]
             if len(typed) > 1:
                 owner = _owner_before(lexicon, words, mention.start, owners, before)
-                typed = _narrowed(typed, owner, places)
+                typed = _described(lexicon, _narrowed(typed, owner, places), words, mention.start)
             before = mention
             locative = _after_locative(words, mention.start)
             # "my keys are on the counter, get them": "them" is not where the keys are
@@ -290,6 +290,21 @@ def _owner_before(
         if person is not None and person.kind == "person":
             return person.id
     return next((owners[w] for w in reversed(words[max(0, start - 2) : start]) if w in owners), None)
+
+
+def _described(lexicon: Lexicon, typed: list[Entity], words: Sequence[str], start: int) -> list[Entity]:
+    """Those the words right before the mention describe ("the *red* ball": its colour or label
+    words), when any are."""
+    said: list[str] = []
+    at = start - 1
+    while at >= 0 and len(said) < 3 and words[at] not in _GLUE and words[at] not in PRONOUNS:
+        said.append(words[at])
+        at -= 1
+    if not said:
+        return typed
+    qualifiers = norm(said)
+    fit = [e for e in typed if all(w in lexicon.attributes.get(e.id, frozenset()) for w in qualifiers)]
+    return fit or typed
 
 
 def _narrowed(typed: list[Entity], owner: str | None, places: set[str]) -> list[Entity]:

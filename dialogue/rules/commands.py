@@ -22,12 +22,12 @@ from dialogue.rules.words import (
     MANNER,
     NP_START,
     PATHS,
-    PURPOSES,
     SOCIAL,
     THEIR_SUBJECTS,
     THERE,
     TIME_CONJUNCTIONS,
     WHILE,
+    purpose,
 )
 
 __all__ = ["Parse", "Words", "parse"]
@@ -191,7 +191,7 @@ def _segments(rest: Words, row: Row) -> tuple[Words, dict[str, Words], dict[str,
     i = 0
     while i < len(rest):
         marker = next((m for m in row.slots if rest[i : i + len(m[0])] == m[0] and m[1] not in slots), None)
-        if marker is not None and rest[i : i + 2] not in PURPOSES:  # "something to eat" is no recipient
+        if marker is not None and purpose(rest[i : i + 2]) is None:  # "something to eat" is no recipient
             current = slots[marker[1]] = []
             marks[marker[1]] = " ".join(marker[0])
             i += len(marker[0])

@@ -170,7 +170,7 @@ FRAMES: tuple[Frame, ...] = (
     Frame(_GRAB, I.BRING_OBJECT, direct="object", slots={"recipient": _TO_SOMEONE}, particles=CARRY_PARTICLES,
           dative="before", requires=("recipient",)),
     Frame(f"{_GRAB}|get hold of|take hold of|grab hold of|catch hold of", I.GRAB_OBJECT, direct="object",
-          particles="up"),
+          particles="up down out"),
     # Activities.
     Frame("do", special=C.asking),
     Frame("start|begin|launch|run|resume|do|perform|commence", I.START_ACTIVITY, direct="activity",

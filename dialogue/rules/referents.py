@@ -45,7 +45,7 @@ from dialogue.rules.clauses import described
 from dialogue.rules.compound import alternatives
 from dialogue.rules.outcome import Outcome, Ref
 from dialogue.rules.sounds import slipped as heard_as
-from dialogue.rules.words import NP_START, PURPOSES
+from dialogue.rules.words import NP_START, purpose
 
 #: Spatial or comparative qualifiers the KB does not model (dropped when they block a match).
 RELATIONAL = POSITIONS | word_set("over yonder")
@@ -56,6 +56,8 @@ _ACCOUNTED = RELATIONAL | COLOURS | ME | word_set(
 
 
 _EVERY = word_set("all both every each")
+#: Words that say how much of a thing, not which ("get me some", "bring me a couple").
+_SOME = word_set("some one any few couple more")
 
 
 class Referents:
@@ -128,6 +130,14 @@ class Referents:
             return None
         return resolve(self.lexicon, words, PERSON).one
 
+    def some_of(self, words: Words) -> Words:
+        """ "some", "one", "a couple" said for a thing: the thing the conversation just named ("I
+        need biscuits, can you get me some"), as its id; the words as they are when none was."""
+        if not set(words) <= _SOME | {"a", "of", "them"} or not set(words) & _SOME:
+            return words
+        found = antecedent(self.lexicon, self.history, THING, speaker=self.speaker)
+        return tuple(tokens(found.id)) if found is not None else words
+
     def possessive(self, words: Words, slots: dict[str, Words]) -> tuple[Words, str | None]:
         """ "my phone", "give Ines her phone": the phrase without the possessive, and whose it is."""
         rest = tuple(w for w in words if w not in POSSESSIVES)
@@ -155,9 +165,10 @@ class Referents:
         """The entity a role's phrase names; `said` are the request's other phrases, where a person
         pronoun finds the one person they name ("take Ravi's scarf to him")."""
         bare_words = [w for w in words if w not in DETERMINERS]
-        if bare_words[:1] in (["something"], ["anything"]) and tuple(bare_words[1:]) in PURPOSES:
-            words = (PURPOSES[tuple(bare_words[1:])],)  # "something to eat": food
-        words = _apposed(_not_the_other(words))
+        wanted = purpose(tuple(bare_words[1:])) if bare_words[:1] in (["something"], ["anything"]) else None
+        if wanted is not None:  # "something to eat": food; "something to cut this with": a cutting tool
+            words = wanted
+        words = _apposed(_not_the_other(_placed_pronoun(words)))
         content = content_words(words)
         if "person" in kinds and content and set(content) <= ME | {"here"}:
             return Ref(speaker=True)
@@ -273,6 +284,14 @@ def _apposed(words: Words) -> Words:
             if "one" in words[j:] or "ones" in words[j:]:
                 return described(words[:j], words[j:])
             return words
+    return words
+
+
+def _placed_pronoun(words: Words) -> Words:
+    """ "it off the shelf", "them from the table": the pronoun; where it is only says where to take it
+    from (the thing is the one the conversation named)."""
+    if len(words) > 2 and words[0] in {"it", "them"} and words[1] in SUPPORT_PREPOSITIONS:
+        return words[:1]
     return words
 
 

@@ -54,6 +54,8 @@ def _is_it_is(after: tuple[str, ...]) -> bool:
     nxt = after[0]
     if nxt in FUNCTION_WORDS or nxt in DETERMINERS or nxt in _NOT_NOUNS:
         return True
+    if len(after) == 1 and nxt.endswith("'s"):  # "its Carla's": whose it is
+        return True
     lemmas = getAllLemmas(nxt)
     if nxt.endswith(("ed", "ing", "en")) and "VERB" in lemmas and "NOUN" not in lemmas:
         return True

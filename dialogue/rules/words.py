@@ -27,6 +27,8 @@ CONTRACTIONS: dict[str, Words] = {
     "couldnt": ("could", "not"), "wouldnt": ("would", "not"), "shouldnt": ("should", "not"),
     "youd": ("you", "would"), "theyd": ("they", "would"), "whatre": ("what", "are"),
     "whered": ("where", "did"), "it'll": ("it", "will"), "you'll": ("you", "will"),
+    "that'd": ("that", "would"), "thatd": ("that", "would"), "it'd": ("it", "would"), "itd": ("it", "would"),
+    "you'd": ("you", "would"), "we'd": ("we", "would"), "they'd": ("they", "would"),
     "they've": ("they", "have"), "you've": ("you", "have"),
     # Chat spellings of speech.
     "ya": ("you",), "u": ("you",), "r": ("are",), "ur": ("your",), "gimme": ("give", "me"),
@@ -168,8 +170,18 @@ NEEDS: dict[str, str] = {
     "thirsty": "drink", "parched": "drink", "dehydrated": "drink",
     "hungry": "food", "starving": "food", "peckish": "food", "famished": "food", "ravenous": "food",
 }  # fmt: skip
-#: "something to eat" is food: the purpose names the ontology's class (labelled "food", "drink").
-PURPOSES: dict[Words, str] = {("to", "eat"): "food", ("to", "drink"): "drink"}
+#: "something to eat" is food, "something to cut this with" a cutting tool: what a thing is for names
+#: its kind (the ontology's classes "food", "drink"; the lexicon file's general names).
+PURPOSES: dict[str, Words] = {
+    "eat": ("food",), "drink": ("drink",), "cut": ("cutting", "tool"), "write": ("writing", "tool"),
+    "draw": ("writing", "tool"), "wipe": ("cleaning", "cloth"), "clean": ("cleaning", "cloth"),
+    "dry": ("cleaning", "cloth"), "read": ("reading", "matter"), "wear": ("clothing",), "sit": ("seat",),
+}  # fmt: skip
+
+
+def purpose(words: Words) -> Words | None:
+    """The kind of thing "to eat", "to cut this with" (the words after "something") name, if any."""
+    return PURPOSES.get(words[1]) if len(words) > 1 and words[0] == "to" else None
 INTENSIFIERS = word_set("so very really absolutely quite a bit little totally getting rather pretty bloody")
 #: What follows "do" in a request ("do the dishes", "do some exercise"); anything else after "do"
 #: is a yes/no question ("do you like music", "do robots ever get tired").

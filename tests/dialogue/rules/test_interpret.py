@@ -433,3 +433,35 @@ def test_where_a_thing_is_says_the_container_it_is_in_before_the_zone() -> None:
     assert say(kb, "what is on the bench").reply == "On the bench, there is the yoyo."
     assert say(kb, "pick up the yoyo in the crate").roles == {"object": "yoyo_1"}
     kb.close()
+
+
+def test_some_of_the_thing_just_named() -> None:
+    kb = _nursery()
+    kb.update(["chalk_1 rdf:type Artifact", 'chalk_1 rdfs:label "chalk"', "myself sees chalk_1"])
+    out = say(kb, "we need chalk for the game, can you get me some")
+    assert (out.intent, out.roles) == (I.BRING_OBJECT, {"object": "chalk_1", "recipient": BOB})
+    assert say(kb, "get me some").clarify  # nothing named: which?
+    kb.close()
+
+
+@pytest.mark.parametrize(
+    ("text", "thing"),
+    [
+        ("I need something to cut the string with", "knife_1"),
+        ("could I have something to write with", "pencil_1"),
+        ("is there anything to read", None),
+    ],
+)
+def test_what_a_thing_is_for_names_its_kind(text: str, thing: str | None) -> None:
+    kb = _nursery()
+    kb.update(["knife_1 rdf:type dbr:Knife", "myself sees knife_1",
+               "pencil_1 rdf:type Artifact", 'pencil_1 rdfs:label "pencil"', "myself sees pencil_1"])  # fmt: skip
+    out = say(kb, text)
+    assert out.roles.get("object") == thing, out.reply
+    kb.close()
+
+
+def test_a_pronoun_finds_the_thing_a_described_mention_named() -> None:
+    # "the red yoyo" is one of two yoyos; "it off the bench" is that one, where it is
+    out = say(_nursery(), "the children want the red yoyo, can you get it down off the bench")
+    assert (out.intent, out.roles) == (I.GRAB_OBJECT, {"object": "yoyo_2"})
