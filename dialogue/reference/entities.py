@@ -74,7 +74,7 @@ class EntityIndex:
         self._frozen: Layered[str, Entity] | None = None  # the last snapshot's entities
         self._touched: set[str] = set()  # entities changed since
         self._contents: dict[str, set[str]] = {}  # place -> entities on it or in it
-        self._located: dict[str, tuple[str | None, ...]] = {}  # entity -> (support, *isIn)
+        self._located: dict[str, tuple[str | None, ...]] = {}  # entity -> (support, zone, *containers)
         self._frozen_contents: Layered[str, frozenset[str]] | None = None
         self._moved: set[str] = set()  # places whose contents changed since the last snapshot
         self._rank: dict[str, int] = {}
@@ -150,9 +150,9 @@ class EntityIndex:
             relations=self.facts.relations(term),
         )  # fmt: skip
         self._reorder(term, rank(self.entities[term]))
-        # every place it is in (zones and containers: which is which may change)
-        inside = sorted(self.facts.tables["zone"].get(term, ()))
-        self._locate(term, (self.entities[term].support, *inside))
+        entity = self.entities[term]
+        inside = tuple(other for prep, other in entity.relations if prep == "in")
+        self._locate(term, (entity.support, entity.zone, *inside))
 
     def freeze(self, revision: int, changed: tuple[tuple[int, frozenset[str]], ...] = ()) -> Snapshot:
         if self._frozen is None:

@@ -90,11 +90,12 @@ class Facts:
         return min(values)
 
     def relations(self, term: str) -> tuple[tuple[str, str], ...]:
-        """The entity's other spatial facts: the containers it is in besides its zone ("in", the
-        most specific place, first), then relation by relation, each by sorted text."""
+        """The entity's other spatial facts: the other places it is in besides its zone ("in":
+        containers, the most specific places, before zones), then relation by relation, each by
+        sorted text."""
         zone = self.value("zone", term)
-        inside = tuple(("in", other) for other in sorted(self.tables["zone"].get(term, ()))
-                       if other != zone and other not in self.zones)  # fmt: skip
+        places = sorted(self.tables["zone"].get(term, ()), key=lambda p: (p in self.zones, p))
+        inside = tuple(("in", other) for other in places if other != zone)
         return inside + tuple((prep, other) for prop, prep in RELATIONS
                               for other in sorted(self.tables[prop].get(term, ())))  # fmt: skip
 

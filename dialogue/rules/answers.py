@@ -110,7 +110,8 @@ def where_is(lexicon: Lexicon, words: Sequence[str], speaker: str) -> str:
         elif e.seen:
             sentences.append(f"I can see {name}, but I don't know exactly where it is.")
         else:
-            sentences.append(f"I don't know where {name} is right now.")
+            verb = "are" if _plural(tokens(name)) else "is"
+            sentences.append(f"I don't know where {name} {verb} right now.")
     return " ".join(sentences)
 
 

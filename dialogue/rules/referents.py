@@ -71,8 +71,8 @@ class Referents:
         """ "bring Maria the book": the longest leading phrase naming one person is the recipient."""
         for k in range(len(rest) - 1, 0, -1):
             head, tail = rest[:k], rest[k:]
-            if not content_words(tail):
-                continue
+            if not content_words(tail) or self._whose(head[-1]):
+                continue  # "fetch Marco's jacket": whose the thing is, not to whom
             people = content_words(head)
             named = set(people) <= ME or resolve(self.lexicon, head, PERSON).one is not None
             # "bring him the bottle": a person pronoun the conversation resolves.
@@ -82,6 +82,17 @@ class Referents:
             if people and (named or said):
                 return {"object": tail, "recipient": head}
         return {"object": rest, "recipient": ("me",)}
+
+    def _whose(self, word: str) -> bool:
+        """Whether the word is a person's possessive: "Marco's", or "marcos" as a recogniser writes it."""
+        if word.endswith("'s"):
+            return True
+        if not word.endswith("s") or len(word) < 4:
+            return False
+        named = self.lexicon.names_at([word[:-1]], 0)
+        people = [e for n in named if (e := self.snapshot.get(n.entity)) is not None and e.kind == "person"]
+        # (a person whose name it is is no possessive: "Ines" is not Ine's)
+        return bool(people) and not any(word in tokens(label) for e in people for label in e.labels)
 
     def every(self, words: Words) -> list[Words]:
         """ "all the plates", "both cups": each thing the phrase names, as its id ([] when the phrase

@@ -465,3 +465,19 @@ def test_a_pronoun_finds_the_thing_a_described_mention_named() -> None:
     # "the red yoyo" is one of two yoyos; "it off the bench" is that one, where it is
     out = say(_nursery(), "the children want the red yoyo, can you get it down off the bench")
     assert (out.intent, out.roles) == (I.GRAB_OBJECT, {"object": "yoyo_2"})
+
+
+@pytest.mark.parametrize("text", ["fetch Omar's hat off the bench", "fetch omars hat"])
+def test_whose_thing_is_no_recipient_of_a_double_object(text: str) -> None:
+    kb = _nursery()
+    kb.update(["person_omar rdf:type Human", 'person_omar rdfs:label "Omar"', "myself sees person_omar",
+               "hat_1 rdf:type Cloth", 'hat_1 rdfs:label "hat"', "hat_1 belongsTo person_omar",
+               "hat_1 isOn bench_1", "myself sees hat_1",
+               "hat_2 rdf:type Cloth", 'hat_2 rdfs:label "hat"', "myself sees hat_2"])  # fmt: skip
+    out = say(kb, text)
+    assert (out.intent, out.roles) == (I.BRING_OBJECT, {"object": "hat_1", "recipient": BOB})
+    kb.close()
+
+
+def test_telling_several_people_is_left_to_a_model() -> None:
+    assert not say(_nursery(), "tell the children it's lunch time").understood
