@@ -37,7 +37,7 @@ from dialogue.reference.resolution import (
 from dialogue.rules.clauses import clauses as run_on_clauses
 from dialogue.rules.speech import original_text
 from dialogue.rules.utterance import asked_verb, normalise
-from dialogue.rules.words import GREETINGS, SOCIAL
+from dialogue.rules.words import GREETINGS, NEEDS, SOCIAL
 from dialogue.schema import FactClaim
 
 Words = tuple[str, ...]
@@ -102,7 +102,8 @@ def _fact(subject: str, predicate: str, obj: str | None) -> FactClaim:
 def name_like(words: Words, original: str) -> bool:
     """Whether the words of "I'm X" are a name: one to three words, none a function word, and
     (for lower-case speech-recogniser text) none an adjective or adverb ("I'm tired", "I'm here")."""
-    if not 1 <= len(words) <= 3 or any(w in _NOT_NAMES or not w.isalpha() for w in words):
+    # ("I'm peckish": a need the rules' grammar reads, whatever a lemmatiser knows of the word)
+    if not 1 <= len(words) <= 3 or any(w in _NOT_NAMES or w in NEEDS or not w.isalpha() for w in words):
         return False
     if original != original.lower():  # written casing tells names apart: "I'm Frank", "I'm frank"
         return all(part[:1].isupper() for part in original.split())

@@ -221,7 +221,7 @@ def _names(entity: Entity) -> list[Name]:
     # "the remote" for the "TV remote"; the other words stay usable as qualifiers.
     for text in (*entity.labels, *entity.class_names):
         words = tokens(text)
-        if len(words) > 1:
+        if len(words) > 1 and not {"or", "and"} & set(words):  # "food or drink" is no drink
             add(words[-1], "head")
         if len(words) == 2 and all(w.isalpha() for w in words):
             add("".join(words), "joined")  # "the eyeglass" for the "eye glass" (the converse of names_at)

@@ -29,7 +29,7 @@ from dialogue.reference.english import (
     word_set,
 )
 from dialogue.reference.grounding import Entity, Kind
-from dialogue.reference.lexicon import Lexicon
+from dialogue.reference.lexicon import Lexicon, singular
 from dialogue.reference.resolution import (
     ANYWHERE,
     PERSON,
@@ -220,7 +220,7 @@ class Referents:
             if one is not None:
                 return Ref(entity=one)
         if res.ambiguous:
-            q = clarifying_question(self.snapshot, res.matches)
+            q = clarifying_question(self.snapshot, res.matches, self._noun(words, res.matches))
             return Ref(problem=Outcome(q, clarify=True, open_role=role, open_phrase=words))
         if loose != tuple(words) and content_words(loose):
             # "the cup on the left": spatial relations are not in the KB; if the rest of the phrase
@@ -229,7 +229,7 @@ class Referents:
             if res.one is not None:
                 return Ref(entity=res.one)
             if res.ambiguous:
-                q = clarifying_question(self.snapshot, res.matches)
+                q = clarifying_question(self.snapshot, res.matches, self._noun(loose, res.matches))
                 return Ref(problem=Outcome(q, clarify=True, open_role=role, open_phrase=loose))
         place = self._put_by(words, kinds, role, owner)
         if place is not None:
@@ -246,6 +246,20 @@ class Referents:
             # phrase was not understood, which is not the same as "there is no such thing".
             return Ref(problem=Outcome("Sorry, I did not understand that.", understood=False))
         return Ref(problem=Outcome(self.unknown(content, kinds, words)))
+
+    def _noun(self, words: Words, candidates: Sequence[Entity]) -> str | None:
+        """The noun said for all the candidates ("a drink"), if the phrase ends its core with one."""
+        core: list[str] = []
+        for w in words:
+            if w in MODIFIER_START and core:
+                break
+            core.append(w)
+        content = content_words(core)
+        if not content:
+            return None
+        noun = singular(content[-1])
+        named = {n.entity for n in self.lexicon.names_at([noun], 0) if len(n.words) == 1}
+        return noun if all(c.id in named for c in candidates) else None
 
     def _put_by(self, words: Words, kinds: frozenset[Kind], role: str, owner: str | None) -> Ref | None:
         """ "put the book next to the cup on the shelf" when the cup is not on the shelf: the last

@@ -144,3 +144,8 @@ def test_a_statement_run_into_a_request_is_no_statement(home: KB) -> None:
     # "...can you get them" is a request: the turn is the rules' (which may not know the glasses),
     # not a refusal to learn where unknown glasses are.
     assert Statements(lexicon_of(home), BOB).read("my sunglasses are on the table can you get them") is None
+
+
+def test_a_need_is_no_name() -> None:
+    # "I'm peckish" asks for food, whatever a lemmatiser knows of the word; "I'm Pip" is a name
+    assert not name_like(("peckish",), "im peckish") and name_like(("pip",), "im pip")

@@ -481,3 +481,11 @@ def test_whose_thing_is_no_recipient_of_a_double_object(text: str) -> None:
 
 def test_telling_several_people_is_left_to_a_model() -> None:
     assert not say(_nursery(), "tell the children it's lunch time").understood
+
+
+def test_a_clarifying_question_names_the_things_by_the_word_said() -> None:
+    kb = _nursery()
+    kb.update(["juice_1 rdf:type Artifact", 'juice_1 rdfs:label "juice"', "myself sees juice_1",
+               "tea_1 rdf:type Artifact", 'tea_1 rdfs:label "tea"', "myself sees tea_1"])  # fmt: skip
+    assert say(kb, "bring me a drink").reply == "Which drink do you mean: the juice or the tea?"
+    kb.close()
