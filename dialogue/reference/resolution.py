@@ -77,7 +77,14 @@ class Resolution:
 
 
 def content_words(words: Sequence[str]) -> list[str]:
-    return [w for w in words if w not in _GLUE]
+    return [w for i, w in enumerate(words) if not _glue(words, i)]
+
+
+def _glue(words: Sequence[str], i: int) -> bool:
+    """Whether the i-th word qualifies nothing: "top" only in "on top of" ("the top shelf" is one)."""
+    if words[i] == "top":
+        return tuple(words[i + 1 : i + 2]) == ("of",)
+    return words[i] in _GLUE
 
 
 #: Words said with a pronoun that are not it ("the", "please": "bring it over please").
@@ -115,7 +122,7 @@ def resolve(
             if not name.lexical:
                 own_name.add(name.entity)
     snapshot = lexicon.snapshot
-    content = [i for i, w in enumerate(words) if w not in _GLUE]
+    content = [i for i in range(len(words)) if not _glue(words, i)]
     head = _head(words, content)
     matches: list[Entity] = []
     for entity_id, own in cover.items():

@@ -43,9 +43,24 @@ _CONFIRMS = phrases("do you mean|did you mean|you mean|is it|was it|is that|are 
 #: Words that accept an offer or confirm a guess, and those of which one must be said.
 _ACCEPTING = word_set(
     "yes yeah yep yup sure ok okay please go ahead do it that would be great lovely perfect thanks thank "
-    "you absolutely of course why not brilliant fine alright right correct exactly one the this"
+    "you absolutely of course why not brilliant fine alright right correct exactly one the this on then "
+    "lovely cheers"
 )
 _YES = word_set("yes yeah yep yup sure ok okay please absolutely correct exactly")
+_YES_PHRASES = phrases("go on|go ahead|do it|why not|of course|that would be great|that would be lovely")
+_NO = {"nope": "no", "nah": "no", "not": "no"}
+
+
+def accepts(words: list[str]) -> bool:
+    """Whether the words only say yes ("yes please", "go on then", "that'd be lovely")."""
+    if not words or not set(words) <= _ACCEPTING:
+        return False
+    said = tuple(words)
+    return bool(set(words) & _YES) or any(p in _spans(said, len(p)) for p in _YES_PHRASES)
+
+
+def _spans(words: Words, n: int) -> set[Words]:
+    return {words[i : i + n] for i in range(len(words) - n + 1)}
 _OTHER = word_set("other another")
 
 
@@ -57,7 +72,8 @@ def follow_up(reader: Interpreter, p: Parse, text: str) -> Outcome | None:
     question = reader.history[spoken[-1]]
     if question.role != "assistant" or not question.text.rstrip().endswith("?"):
         return None
-    said = [w for w in expanded(text) if w != "no"]
+    answer = [_NO.get(w, w) for w in expanded(text)]
+    said = [w for w in answer if w != "no"]
     accepted = offer(reader, question, said)
     if accepted is not None:
         return accepted
@@ -71,7 +87,7 @@ def follow_up(reader: Interpreter, p: Parse, text: str) -> Outcome | None:
     first = earlier.act(pending)
     if first.open_role is None:
         return None
-    confirmed = confirmation(earlier, pending, first, question, expanded(text))
+    confirmed = confirmation(earlier, pending, first, question, answer)
     if confirmed is not None:
         return _sure(confirmed)
     fragment, more = _fragment(p, text)
@@ -120,7 +136,7 @@ def _merged(fragment: Words, first: Outcome) -> Words:
 def offer(reader: Interpreter, question: Utterance, said: list[str]) -> Outcome | None:
     """ "yes please" to "Would you like me to bring you a basket?": the request the robot offered,
     in the words of the person who accepts it ("bring me a basket")."""
-    if not said or not set(said) <= _ACCEPTING or not set(said) & _YES:
+    if not accepts(said):
         return None
     request = _offered(expanded(question.text.rstrip(" ?")))
     outcome = reader.act(parse(" ".join(request), reader.robot_name)) if request else None
@@ -160,7 +176,7 @@ def confirmation(earlier: Interpreter, pending: Parse, first: Outcome, question:
     if said[:1] == ["no"] and set(said) & _OTHER:  # "no the other one"
         others = [e for e in candidates if e.id != guessed.id]
         meant = others[0] if len(others) == 1 else None
-    elif said[:1] != ["no"] and set(said) <= _ACCEPTING and set(said) & _YES:
+    elif said[:1] != ["no"] and accepts(said):
         meant = guessed
     else:
         return None

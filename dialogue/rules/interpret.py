@@ -28,11 +28,12 @@ from dialogue.rules import answers
 from dialogue.rules.clauses import clauses, described, description
 from dialogue.rules.commands import parse
 from dialogue.rules.compound import Part, conjuncts, coordinated, unprefixed
-from dialogue.rules.followup import follow_up
+from dialogue.rules.followup import accepts, follow_up
 from dialogue.rules.outcome import Outcome, Ref
 from dialogue.rules.parsed import Parse
 from dialogue.rules.referents import RELATIONAL, Referents
 from dialogue.rules.replies import acknowledgement, vocative
+from dialogue.rules.speech import expanded
 from dialogue.rules.spelling import corrected
 from dialogue.rules.utterance import cleaned
 
@@ -106,6 +107,10 @@ class Interpreter:
 
     def _single(self, text: str) -> Outcome:
         p = parse(text, self.robot_name)
+        if p.act != "unknown" and accepts(expanded(text)):  # "go on then" to "Shall I fetch it?"
+            accepted = follow_up(self, p, text)
+            if accepted is not None:
+                return accepted
         not_understood = Outcome("Sorry, I did not understand that.", understood=False)
         outcome = (follow_up(self, p, text) or not_understood) if p.act == "unknown" else self.act(p)
         ungrounded = p.act == "command" and outcome.intent is None and not outcome.clarify

@@ -26,7 +26,9 @@ from dialogue.rules.words import (
 )
 
 #: Words after "its" that make it "it is": adverbs no noun phrase starts with.
-_NOT_NOUNS = word_set("not just still already really so very too over gone all fine ok okay right")
+_NOT_NOUNS = word_set(
+    "not just still already really so very too over gone all fine ok okay right mine yours hers ours theirs"
+)
 
 QUOTED = re.compile(r"[\"\u201c\u201d]([^\"\u201c\u201d]+)[\"\u201c\u201d]")
 

@@ -69,7 +69,7 @@ ROBOT_SUFFIXES = phrases(
 POLITE_SUFFIXES = (
     *ROBOT_SUFFIXES,
     *phrases("ta|cheers|thanks a lot|thank you very much|much appreciated|if you would|if you don't mind"),
-    *phrases("now|right now|for a moment|again|quickly|quick|immediately|for a sec|for a second|sorry"),
+    *phrases("now|right now|for a moment|again|quickly|quick|immediately|for a sec|for a second|sorry|then"),
     # the listener named by a tag ("the yellow one mate", "over here love")
     *phrases("mate|pal|buddy|love|dear|darling|sir|madam|miss|boss|chief|my friend|my dear"),
 )

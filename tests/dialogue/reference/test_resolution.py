@@ -174,3 +174,20 @@ def test_the_kbs_own_name_beats_the_lexicon_files() -> None:
     kb = _shop("wc_1 rdf:type ZoneOfInterest", 'wc_1 rdfs:label "toilets"')
     assert ids(kb, "the bathroom", ZONE) == ["wc_1"]  # none labelled so: the toilets it may be
     kb.close()
+
+
+def test_top_is_a_word_of_a_name_but_not_of_on_top_of() -> None:
+    kb = _shop(
+        "sh_1 rdf:type Artifact", 'sh_1 rdfs:label "top shelf"', "myself sees sh_1",
+        "sh_2 rdf:type Artifact", 'sh_2 rdfs:label "bottom shelf"', "myself sees sh_2",
+        "jar_1 rdf:type Artifact", 'jar_1 rdfs:label "jar"', "jar_1 isOn sh_2", "myself sees jar_1",
+    )  # fmt: skip
+    assert ids(kb, "the top shelf") == ["sh_1"]
+    assert ids(kb, "the jar on top of the bottom shelf") == ["jar_1"]
+    kb.close()
+
+
+def test_the_garbage_is_the_bin() -> None:
+    kb = _shop("b_1 rdf:type Artifact", 'b_1 rdfs:label "trash can"', "myself sees b_1")
+    assert ids(kb, "the garbage") == ids(kb, "the rubbish") == ["b_1"]
+    kb.close()

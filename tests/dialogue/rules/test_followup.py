@@ -70,3 +70,22 @@ def test_a_fragment_may_say_whose_the_thing_is(workshop: KB, answer: str) -> Non
     history = [("user", "grab the cap"), ("robot", "Which cap do you mean: the red one or the grey one?")]
     out = say(workshop, answer, speaker=ANA, history=history)
     assert out.intent == I.GRAB_OBJECT and out.roles["object"] == ("cap_2" if "mine" in answer else "cap_1")
+
+
+@pytest.mark.parametrize("answer", ["go on then", "yeah go ahead", "ok that would be lovely"])
+def test_an_offer_is_accepted_in_words_that_would_be_a_request_of_their_own(workshop: KB, answer: str) -> None:
+    # "go on then" is no going anywhere after "Shall I...?"
+    history = [("user", "my hands are cold"), ("robot", "Shall I fetch you the rake?")]
+    out = say(workshop, answer, speaker=ANA, history=history)
+    assert (out.intent, out.roles) == (I.BRING_OBJECT, {"object": "rake_1", "recipient": ANA})
+
+
+def test_nope_the_other_one(workshop: KB) -> None:
+    workshop.remove(["saw_3 rdf:type Artifact", 'saw_3 rdfs:label "bow saw"', "myself sees saw_3"])
+    history = [("user", "grab the saw"), ("robot", "Did you mean the coping saw?")]
+    assert say(workshop, "nope, the other one", speaker=ANA, history=history).roles == {"object": "saw_1"}
+
+
+def test_a_fragment_may_say_it_is_the_speakers_without_punctuation(workshop: KB) -> None:
+    history = [("user", "grab the cap"), ("robot", "Which cap do you mean: the red one or the grey one?")]
+    assert say(workshop, "the grey one its mine", speaker=ANA, history=history).roles == {"object": "cap_2"}
