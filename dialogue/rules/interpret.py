@@ -85,14 +85,18 @@ class Interpreter:
         before it as context for its pronouns ("take the book and put it in the oven")."""
         done: list[Outcome] = []
         cannot: list[str] = []
+        context: list[Utterance] = []
         for n, part in enumerate(parts):
-            context = tuple(Utterance(self.speaker, p.text) for p in parts[:n])
-            reader = Interpreter(self.lexicon, self.speaker, (*self.history, *context), self.robot_name)
+            reader = self.within((*self.history, *context))
+            context.append(Utterance(self.speaker, part.text))
             if n == 0 and part.verb is None:
                 continue  # a preamble ("hey there", "thanks", "the denim jacket"): context for the rest
             outcome = reader._single(part.text)
             if outcome.intent is not None:
                 done.append(outcome)
+                if outcome.roles.get("object") in self.snapshot.entities:
+                    # "get the teddy off the bench and give it to Zara": "it" is what was taken
+                    context.append(Utterance(self.speaker, outcome.roles["object"]))
             elif outcome.clarify:
                 return outcome  # ask about this part first: nothing is done until it is clear
             elif part.no_intent:

@@ -489,3 +489,18 @@ def test_a_clarifying_question_names_the_things_by_the_word_said() -> None:
                "tea_1 rdf:type Artifact", 'tea_1 rdfs:label "tea"', "myself sees tea_1"])  # fmt: skip
     assert say(kb, "bring me a drink").reply == "Which drink do you mean: the juice or the tea?"
     kb.close()
+
+
+def test_it_in_a_later_part_is_what_an_earlier_part_took() -> None:
+    # "the yoyo" is a thing of two names; "off the bench" names the bench too: "it" is the yoyo taken
+    kb = _nursery()
+    out = say(kb, "take the red yoyo off the bench and give it to me")
+    assert [(o.intent, o.roles.get("object")) for o in out.steps()] == [
+        (I.GRAB_OBJECT, "yoyo_2"), (I.BRING_OBJECT, "yoyo_2")]  # fmt: skip
+    kb.close()
+
+
+@pytest.mark.parametrize("text", ["go and get Bob from the den", "give the crate to my daughter"])
+def test_people_the_rules_cannot_ground_are_left_to_a_model(text: str) -> None:
+    # a person where a thing is wanted; someone known only by how they are related to the speaker
+    assert not say(_nursery(), text, speaker="person_kim").understood
