@@ -1,4 +1,5 @@
-"""Other ways of saying a name: synonyms and kinds, as data (`dialogue/reference/lexicon.txt`).
+"""Other ways of saying a name: synonyms, kinds and general names, as data
+(`dialogue/reference/lexicon.txt`: "a = b", "kind < general", "general > kind kind").
 
 The file is read once, on first use. Phrases are normalised by the caller's function (the lexicon's
 noun lemmas), so "fridges" and "refrigerators" meet.
@@ -51,12 +52,14 @@ def parse(text: str, normalise: Normaliser) -> Synonyms:
         if not line:
             continue
         if "<" in line or ">" in line:
-            guess = "<" in line
-            kinds, _, wider = line.partition("<") if guess else reversed(line.partition(">"))
+            guess = "<" in line  # "kind kind < general"; "general > kind kind" names no kind
+            if guess:
+                kinds, _, wider = line.partition("<")
+            else:
+                wider, _, kinds = line.partition(">")
             specific = [normalise(w) for w in kinds.split()]
             target = normalise(wider)
-            if not specific or not target or "<" in wider or ">" in wider or "=" in line or (
-                    "<" in line and ">" in line):
+            if not specific or not target or "=" in line or line.count("<") + line.count(">") > 1:
                 raise SynonymError(
                     f"line {n}: expected 'kind kind < general' or 'general > kind kind', got {raw!r}")
             for kind in specific:

@@ -33,7 +33,7 @@ from dialogue.reference.english import (
     word_set,
 )
 from dialogue.rules.speech import expanded, strip_politeness
-from dialogue.rules.words import NP_START
+from dialogue.rules.words import NP_START, OWNERS
 
 #: Punctuation and dashes end a clause.
 _BREAK = re.compile(r"[.;!?,]+(?:\s+|$)|\s+(?:-|\u2013|\u2014)\s+")
@@ -60,8 +60,6 @@ _DESCRIBING = (("it", "is"), ("they", "are"), ("it", "was"), ("they", "were"), (
 _THINKING = (("i", "think"), ("i", "believe"), ("i", "guess"), ("probably",), ("maybe",), ("i", "reckon"))
 #: "the cup I left on the table": a clause of the speaker's that says where the thing was put.
 _PUT = word_set("left put placed dropped saw had")
-#: "it's mine": the possessive of the phrase ("my cup").
-_OWNERS = {"mine": "my", "yours": "your", "ours": "our", "hers": "her", "his": "his", "theirs": "their"}
 
 
 def clauses(text: str) -> list[str]:
@@ -159,7 +157,7 @@ def description(text: str) -> Words | None:
     rest = tuple(words[said:])
     located = rest[:1] and rest[0] in MODIFIER_START and len(rest) > 1
     one = rest[:1] and rest[0] in NP_START and ("one" in rest or "ones" in rest)
-    whose = len(rest) == 1 and (rest[0].endswith("'s") or rest[0] in _OWNERS)  # "it's Carla's"
+    whose = len(rest) == 1 and (rest[0].endswith("'s") or rest[0] in OWNERS)  # "it's Carla's"
     return rest if located or one or whose else None
 
 
@@ -169,7 +167,7 @@ def described(thing: Words, said: Words) -> Words:
     if said[0] in MODIFIER_START:
         return (*thing, *said)
     if len(said) == 1:  # whose it is: "the pink phone" and "Carla's" make "Carla's pink phone"
-        return (_OWNERS.get(said[0], said[0]), *(w for w in thing if w not in NP_START))
+        return (OWNERS.get(said[0], said[0]), *(w for w in thing if w not in NP_START))
     lead = tuple(w for w in thing if w in NP_START)
     head = tuple(w for w in thing if w not in NP_START)
     return (*lead, *(x for w in said[1:] for x in (head if w in {"one", "ones"} else (w,))))

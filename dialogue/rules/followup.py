@@ -20,7 +20,7 @@ from dialogue.rules.commands import parse
 from dialogue.rules.outcome import Outcome
 from dialogue.rules.parsed import Parse
 from dialogue.rules.speech import expanded
-from dialogue.rules.words import INTERJECTIONS, PLACES
+from dialogue.rules.words import INTERJECTIONS, OWNERS, PLACES
 
 if TYPE_CHECKING:
     from dialogue.rules.interpret import Interpreter
@@ -28,8 +28,6 @@ if TYPE_CHECKING:
 _ONE = frozenset({"one", "ones"})
 #: A fragment answering "Where should I put it?" may start with its preposition ("on the shelf").
 _PLACES = phrases(PLACES)
-#: An answer naming an owner ("mine", "hers") is the possessive phrase ("my cup").
-_POSSESSIVE_OF = {"mine": "my", "yours": "your", "ours": "our", "hers": "her", "theirs": "their"}
 #: How the robot offers to do something ("Would you like me to bring you a basket?"), and how it
 #: offers a thing ("Would you like a towel?": brought to the person asked).
 _OFFERS = phrases(
@@ -44,11 +42,13 @@ _CONFIRMS = phrases("do you mean|did you mean|you mean|is it|was it|is that|are 
 _ACCEPTING = word_set(
     "yes yeah yep yup sure ok okay please go ahead do it that would be great lovely perfect thanks thank "
     "you absolutely of course why not brilliant fine alright right correct exactly one the this on then "
-    "lovely cheers"
+    "cheers"
 )
 _YES = word_set("yes yeah yep yup sure ok okay please absolutely correct exactly")
 _YES_PHRASES = phrases("go on|go ahead|do it|why not|of course|that would be great|that would be lovely")
-_NO = {"nope": "no", "nah": "no", "not": "no"}
+#: Ways of saying no ("nope, the other one").
+_NO = {"nope": "no", "nah": "no"}
+_OTHER = word_set("other another")
 
 
 def accepts(words: list[str]) -> bool:
@@ -61,7 +61,6 @@ def accepts(words: list[str]) -> bool:
 
 def _spans(words: Words, n: int) -> set[Words]:
     return {words[i : i + n] for i in range(len(words) - n + 1)}
-_OTHER = word_set("other another")
 
 
 def follow_up(reader: Interpreter, p: Parse, text: str) -> Outcome | None:
@@ -116,7 +115,7 @@ def _fragment(p: Parse, text: str) -> tuple[Words, Words | None]:
     said = clauses(text)
     more = description(said[1]) if len(said) == 2 else None
     words = tokens(said[0]) if more is not None else p.words
-    return tuple(_POSSESSIVE_OF.get(w, w) for w in words if w not in INTERJECTIONS), more
+    return tuple(OWNERS.get(w, w) for w in words if w not in INTERJECTIONS), more
 
 
 def _merged(fragment: Words, first: Outcome) -> Words:

@@ -41,6 +41,8 @@ FILLERS = word_set("um umm uh uhh er erm hmm mm ah really")
 FILLER_PAIRS = frozenset({("you", "know"), ("i", "guess"), ("of", "course")})
 #: Words around "you know" that make it a question, not a filler ("do you know where...").
 ASKING = word_set("do did don't if would as you that whether about him her them it")
+#: Whose a thing is, said alone ("it's mine", "mine, obviously"): the possessive of its phrase ("my cup").
+OWNERS = {"mine": "my", "yours": "your", "ours": "our", "hers": "her", "his": "his", "theirs": "their"}
 #: Words of an answer that only add emphasis ("mine, obviously", "the red one definitely").
 INTERJECTIONS = word_set(
     "obviously definitely clearly surely certainly naturally yes yeah yep sure please thanks"

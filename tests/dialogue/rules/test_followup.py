@@ -72,7 +72,7 @@ def test_a_fragment_may_say_whose_the_thing_is(workshop: KB, answer: str) -> Non
     assert out.intent == I.GRAB_OBJECT and out.roles["object"] == ("cap_2" if "mine" in answer else "cap_1")
 
 
-@pytest.mark.parametrize("answer", ["go on then", "yeah go ahead", "ok that would be lovely"])
+@pytest.mark.parametrize("answer", ["go on then", "yeah go ahead", "ok that would be lovely", "why not"])
 def test_an_offer_is_accepted_in_words_that_would_be_a_request_of_their_own(workshop: KB, answer: str) -> None:
     # "go on then" is no going anywhere after "Shall I...?"
     history = [("user", "my hands are cold"), ("robot", "Shall I fetch you the rake?")]
