@@ -57,9 +57,10 @@ def _join(options: Sequence[str]) -> str:
     return ", ".join(options[:-1]) + " or " + options[-1]
 
 
-def question(snapshot: Snapshot, candidates: Sequence[Entity]) -> str:
-    """E.g. "Which cup do you mean: the red cup or the blue cup?"."""
-    noun = common_noun(candidates)
+def question(snapshot: Snapshot, candidates: Sequence[Entity], noun: str | None = None) -> str:
+    """E.g. "Which cup do you mean: the red cup or the blue cup?"; `noun` is the word said for them
+    all, when the caller has one ("Which drink...", not the classes' "Which location...")."""
+    noun = noun or common_noun(candidates)
     shown = list(candidates[:MAX_OPTIONS])
     options = describe_options(snapshot, shown)
     if len(candidates) > MAX_OPTIONS:

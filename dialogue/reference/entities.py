@@ -73,8 +73,8 @@ class EntityIndex:
         self.entities: dict[str, Entity] = {}
         self._frozen: Layered[str, Entity] | None = None  # the last snapshot's entities
         self._touched: set[str] = set()  # entities changed since
-        self._contents: dict[str, set[str]] = {}  # place -> entities whose support or zone it is
-        self._located: dict[str, tuple[str | None, str | None]] = {}  # entity -> (support, zone)
+        self._contents: dict[str, set[str]] = {}  # place -> entities on it or in it
+        self._located: dict[str, tuple[str | None, ...]] = {}  # entity -> (support, zone, *containers)
         self._frozen_contents: Layered[str, frozenset[str]] | None = None
         self._moved: set[str] = set()  # places whose contents changed since the last snapshot
         self._rank: dict[str, int] = {}
@@ -106,6 +106,8 @@ class EntityIndex:
     def refresh(self, change: Change) -> set[str]:
         deep = set(change.deep)
         shallow = set(change.shallow)
+        for place in change.places:
+            shallow |= self._contents.get(place, set())
         for term in change.deep:
             self._forget(term)
             # Its name shows in others: its instances' class names, a colour's users, places.
@@ -148,7 +150,9 @@ class EntityIndex:
             relations=self.facts.relations(term),
         )  # fmt: skip
         self._reorder(term, rank(self.entities[term]))
-        self._locate(term, (self.entities[term].support, self.entities[term].zone))
+        entity = self.entities[term]
+        inside = tuple(other for prep, other in entity.relations if prep == "in")
+        self._locate(term, (entity.support, entity.zone, *inside))
 
     def freeze(self, revision: int, changed: tuple[tuple[int, frozenset[str]], ...] = ()) -> Snapshot:
         if self._frozen is None:
@@ -243,8 +247,8 @@ class EntityIndex:
         self._reorder(term, None)
         self._locate(term, (None, None))
 
-    def _locate(self, term: str, places: tuple[str | None, str | None]) -> None:
-        """Keep `_contents` to the entities each support or zone holds."""
+    def _locate(self, term: str, places: tuple[str | None, ...]) -> None:
+        """Keep `_contents` to the entities each support, zone or container holds."""
         old = self._located.get(term, (None, None))
         if places == old:
             return
@@ -259,8 +263,8 @@ class EntityIndex:
             if place is not None and place not in old:
                 self._contents.setdefault(place, set()).add(term)
                 self._moved.add(place)
-        if places == (None, None):
-            del self._located[term]
+        if not any(places):
+            self._located.pop(term, None)
         else:
             self._located[term] = places
 

@@ -51,6 +51,8 @@ class Change:
 
     deep: set[str] = field(default_factory=set)
     shallow: set[str] = field(default_factory=set)
+    #: Places that became or stopped being zones: what is in them is shown again.
+    places: set[str] = field(default_factory=set)
 
 
 class Facts:
@@ -76,14 +78,26 @@ class Facts:
         return facts
 
     def value(self, table: str, term: str) -> str | None:
-        """The value an entity shows: the first by sorted text, so the choice is deterministic."""
+        """The value an entity shows: the first by sorted text, so the choice is deterministic; of
+        the places a thing is in, a zone first (the ball in the toy box in the playroom: the
+        playroom, the toy box is a container, in `relations`)."""
         values = self.tables[table].get(term)
-        return min(values) if values else None
+        if not values:
+            return None
+        if table == "zone":
+            zones = [v for v in values if v in self.zones]
+            return min(zones) if zones else min(values)
+        return min(values)
 
     def relations(self, term: str) -> tuple[tuple[str, str], ...]:
-        """The entity's other spatial facts, relation by relation, each by sorted text."""
-        return tuple((prep, other) for prop, prep in RELATIONS
-                     for other in sorted(self.tables[prop].get(term, ())))
+        """The entity's other spatial facts: the other places it is in besides its zone ("in":
+        containers, the most specific places, before zones), then relation by relation, each by
+        sorted text."""
+        zone = self.value("zone", term)
+        places = sorted(self.tables["zone"].get(term, ()), key=lambda p: (p in self.zones, p))
+        inside = tuple(("in", other) for other in places if other != zone)
+        return inside + tuple((prep, other) for prop, prep in RELATIONS
+                              for other in sorted(self.tables[prop].get(term, ())))  # fmt: skip
 
     def is_candidate(self, term: str) -> bool:
         """Worth considering as an entity: seen, a person, a place, located, or the robot. Unseen,
@@ -116,6 +130,8 @@ class Facts:
                 for classes, members in ((PERSON_CLASSES, self.people), (ZONE_CLASSES, self.zones)):
                     if o in classes:
                         _set(members, s, present)
+                if o in ZONE_CLASSES:  # what is in it now shows it as its zone or its container
+                    change.places.add(s)
             return
         if p == "sees":
             if s == ROBOT_ID:

@@ -111,8 +111,12 @@ def _name_starts(lexicon: Lexicon, np: Sequence[str]) -> dict[str, int]:
             if start + len(name.words) == len(np):
                 found.setdefault(name.entity, start)
     if not found and np:
+        # ("the paperback" for the book: only a thing the KB itself calls a book, never one the
+        # lexicon file makes a book; "the banana" is no apple because both are fruit)
         for general in synonyms(phrase).kind_of(phrase(np[-1])):
-            found.update(dict.fromkeys(_named(lexicon, general), len(np) - 1))
+            own = {n.entity for n in lexicon.names_at(general, 0) if len(n.words) == len(general)
+                   and not n.lexical}  # fmt: skip
+            found.update(dict.fromkeys(own, len(np) - 1))
     if not found and np:  # "the thermos" for the "thermos flask": a word of its label
         found.update(dict.fromkeys(lexicon.by_label_word.get(singular(np[-1]), ()), len(np) - 1))
     return found
@@ -167,6 +171,9 @@ def _evidence(lexicon: Lexicon, entity: Entity, phrase: _Phrase, name_start: int
         if not places:
             continue  # a place the KB does not know: nothing to check
         known = {p.id for p in places if p.kind != "zone"}, {p.id for p in places if p.kind == "zone"}
+        if known[0] & {o for p, o in entity.relations if p == "in"}:
+            score += 1  # "the ball in the toy box": a container it is known to be in
+            continue
         for fact, candidates in ((entity.support, known[0]), (entity.zone, known[1])):
             if fact is None or not candidates:
                 continue

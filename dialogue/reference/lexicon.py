@@ -48,7 +48,12 @@ class Name(NamedTuple):
 
     words: tuple[str, ...]
     entity: str
-    source: str  # "label", "id", "class", "head", "synonym" or "joined"
+    source: str  # "label", "id", "class", "head", "joined", or the lexicon file's "synonym", "kind"
+
+    @property
+    def lexical(self) -> bool:
+        """Whether the name comes from the lexicon file rather than the KB's own names."""
+        return self.source in {"synonym", "kind"}
 
 
 @dataclass(frozen=True)
@@ -216,12 +221,14 @@ def _names(entity: Entity) -> list[Name]:
     # "the remote" for the "TV remote"; the other words stay usable as qualifiers.
     for text in (*entity.labels, *entity.class_names):
         words = tokens(text)
-        if len(words) > 1:
+        if len(words) > 1 and not {"or", "and"} & set(words):  # "food or drink" is no drink
             add(words[-1], "head")
         if len(words) == 2 and all(w.isalpha() for w in words):
             add("".join(words), "joined")  # "the eyeglass" for the "eye glass" (the converse of names_at)
     # Other ways of saying a name or its ending ("cell phone" for the "mobile phone", "the fridge"
-    # for the "kitchen refrigerator").
+    # for the "kitchen refrigerator"), and the general names of its kind ("the bag" for the
+    # "handbag", "a drink" for the "lemonade"): the lexicon file's, which yield to the KB's own
+    # names (`Name.lexical`).
     syn = synonyms(phrase)
     for text in (*entity.labels, *entity.class_names):
         said = phrase(text)
@@ -229,7 +236,10 @@ def _names(entity: Entity) -> list[Name]:
             for other in syn.of(said[k:]):
                 add(" ".join((*said[:k], *other)), "synonym")
                 if k:
-                    add(" ".join(other), "head")
+                    add(" ".join(other), "synonym")
+            alike = (said[k:], *syn.of(said[k:]))
+            for general in (g for o in alike for g in syn.broader_than(o)):
+                add(" ".join(general), "kind")
     return out
 
 

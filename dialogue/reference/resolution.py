@@ -77,7 +77,14 @@ class Resolution:
 
 
 def content_words(words: Sequence[str]) -> list[str]:
-    return [w for w in words if w not in _GLUE]
+    return [w for i, w in enumerate(words) if not _glue(words, i)]
+
+
+def _glue(words: Sequence[str], i: int) -> bool:
+    """Whether the i-th word qualifies nothing: "top" only in "on top of" ("the top shelf" is one)."""
+    if words[i] == "top":
+        return tuple(words[i + 1 : i + 2]) == ("of",)
+    return words[i] in _GLUE
 
 
 #: Words said with a pronoun that are not it ("the", "please": "bring it over please").
@@ -108,11 +115,14 @@ def resolve(
     words = [w[:-2] if w.endswith("'s") and len(w) > 2 else w for w in words]  # "ines's" names Ines
     normed = norm(words)
     cover: dict[str, set[int]] = defaultdict(set)
+    own_name: set[str] = set()  # entities a name of the KB's own (not the lexicon file's) occurs for
     for start in range(len(words)):
         for name in lexicon.names_at(words, start):
             cover[name.entity].update(range(start, start + len(name.words)))
+            if not name.lexical:
+                own_name.add(name.entity)
     snapshot = lexicon.snapshot
-    content = [i for i, w in enumerate(words) if w not in _GLUE]
+    content = [i for i in range(len(words)) if not _glue(words, i)]
     head = _head(words, content)
     matches: list[Entity] = []
     for entity_id, own in cover.items():
@@ -126,7 +136,8 @@ def resolve(
         if head is not None and head not in own and normed[head] not in attrs:
             continue
         context = set()
-        for other in (entity.support, entity.zone, entity.owner):
+        inside = tuple(o for prep, o in entity.relations if prep == "in")
+        for other in (entity.support, entity.zone, entity.owner, *inside):
             if other is not None:
                 context |= cover.get(other, set())
         if all(i in own or i in context or normed[i] in attrs for i in content):
@@ -145,6 +156,8 @@ def resolve(
     # Ownership only narrows: "my cup" still means the cup when nobody's cups are recorded.
     owned = [e for e in matches if owner is not None and e.owner == owner]
     matches = owned or matches
+    # "the bathroom" is the room labelled so, not the toilets the lexicon file says it may be.
+    matches = [e for e in matches if e.id in own_name] or matches
     seen = [e for e in matches if e.seen]
     return Resolution(phrase, tuple(seen or matches))
 
@@ -245,7 +258,7 @@ def antecedent(
             typed = [e for e in ents if e is not None and e.kind in kinds]
             if len(typed) > 1:
                 owner = _owner_before(lexicon, words, mention.start, owners, before)
-                typed = _narrowed(typed, owner, places)
+                typed = _described(lexicon, _narrowed(typed, owner, places), words, mention.start)
             before = mention
             locative = _after_locative(words, mention.start)
             # "my keys are on the counter, get them": "them" is not where the keys are
@@ -284,6 +297,21 @@ def _owner_before(
         if person is not None and person.kind == "person":
             return person.id
     return next((owners[w] for w in reversed(words[max(0, start - 2) : start]) if w in owners), None)
+
+
+def _described(lexicon: Lexicon, typed: list[Entity], words: Sequence[str], start: int) -> list[Entity]:
+    """Those the words right before the mention describe ("the *red* ball": its colour or label
+    words), when any are."""
+    said: list[str] = []
+    at = start - 1
+    while at >= 0 and len(said) < 3 and words[at] not in _GLUE and words[at] not in PRONOUNS:
+        said.append(words[at])
+        at -= 1
+    if not said:
+        return typed
+    qualifiers = norm(said)
+    fit = [e for e in typed if all(w in lexicon.attributes.get(e.id, frozenset()) for w in qualifiers)]
+    return fit or typed
 
 
 def _narrowed(typed: list[Entity], owner: str | None, places: set[str]) -> list[Entity]:

@@ -160,9 +160,11 @@ class Snapshot:
         return [e for e in self._first(last) if e.kind in kinds]
 
     def placed_at(self, place: str) -> list[Entity]:
-        """The entities whose support or zone is ``place``, in the deterministic order."""
+        """The entities on or in ``place`` (support, zone or container), in the deterministic order
+        (with a zone a thing is also in, that the caller tells apart)."""
         if self.contents is None:
-            return [e for e in self.entities.values() if place in (e.support, e.zone)]
+            return [e for e in self.entities.values()
+                    if place in (e.support, e.zone) or ("in", place) in e.relations]  # fmt: skip
         return self.in_order(self.entities[i] for i in self.contents.get(place, ()) if i in self.entities)
 
     def first_of_kind(self, kinds: Collection[Kind], n: int) -> list[Entity]:

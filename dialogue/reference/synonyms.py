@@ -1,4 +1,5 @@
-"""Other ways of saying a name: synonyms and kinds, as data (`dialogue/reference/lexicon.txt`).
+"""Other ways of saying a name: synonyms, kinds and general names, as data
+(`dialogue/reference/lexicon.txt`: "a = b", "kind < general", "general > kind kind").
 
 The file is read once, on first use. Phrases are normalised by the caller's function (the lexicon's
 noun lemmas), so "fridges" and "refrigerators" meet.
@@ -24,8 +25,12 @@ class SynonymError(ValueError):
 class Synonyms:
     #: Each phrase to the other phrases that may name what it names.
     others: Mapping[Phrase, tuple[Phrase, ...]]
-    #: A kind to the more general names of it ("paperback" -> "book"); used only when nothing has
-    #: the specific name, so "the novel" still means the thing labelled "novel".
+    #: A kind to the more general names it may be said by ("handbag" -> "bag", "lemonade" ->
+    #: "drink"): a handbag is always a bag ("kind < general" and "general > kind" lines).
+    broader: Mapping[Phrase, tuple[Phrase, ...]]
+    #: A kind to the general names of things that may be one ("paperback" -> "book"): a guess,
+    #: tried only when nothing has the specific name ("kind < general" lines only: "the lemonade"
+    #: is no other drink).
     general: Mapping[Phrase, tuple[Phrase, ...]]
 
     def of(self, phrase: Sequence[str]) -> tuple[Phrase, ...]:
@@ -34,32 +39,44 @@ class Synonyms:
     def kind_of(self, phrase: Sequence[str]) -> tuple[Phrase, ...]:
         return self.general.get(tuple(phrase), ())
 
+    def broader_than(self, phrase: Sequence[str]) -> tuple[Phrase, ...]:
+        return self.broader.get(tuple(phrase), ())
+
 
 def parse(text: str, normalise: Normaliser) -> Synonyms:
     others: dict[Phrase, list[Phrase]] = defaultdict(list)
+    broader: dict[Phrase, list[Phrase]] = defaultdict(list)
     general: dict[Phrase, list[Phrase]] = defaultdict(list)
     for n, raw in enumerate(text.splitlines(), 1):
         line = raw.split("#", 1)[0].strip()
         if not line:
             continue
-        if "<" in line:
-            kinds, _, wider = line.partition("<")
+        if "<" in line or ">" in line:
+            guess = "<" in line  # "kind kind < general"; "general > kind kind" names no kind
+            if guess:
+                kinds, _, wider = line.partition("<")
+            else:
+                wider, _, kinds = line.partition(">")
             specific = [normalise(w) for w in kinds.split()]
             target = normalise(wider)
-            if not specific or not target or "<" in wider or "=" in line:
-                raise SynonymError(f"line {n}: expected 'kind kind < general', got {raw!r}")
+            if not specific or not target or "=" in line or line.count("<") + line.count(">") > 1:
+                raise SynonymError(
+                    f"line {n}: expected 'kind kind < general' or 'general > kind kind', got {raw!r}")
             for kind in specific:
-                general[kind].append(target)
+                broader[kind].append(target)
+                if guess:
+                    general[kind].append(target)
             continue
         group = [normalise(p) for p in line.split("=")]
         if len(group) < 2 or not all(group):
             raise SynonymError(f"line {n}: expected 'a = b [= c ...]', got {raw!r}")
         for phrase in group:
             others[phrase].extend(p for p in group if p != phrase)
-    return Synonyms(
-        {k: tuple(dict.fromkeys(v)) for k, v in others.items()},
-        {k: tuple(dict.fromkeys(v)) for k, v in general.items()},
-    )
+
+    def frozen(mapping: dict[Phrase, list[Phrase]]) -> dict[Phrase, tuple[Phrase, ...]]:
+        return {k: tuple(dict.fromkeys(v)) for k, v in mapping.items()}
+
+    return Synonyms(frozen(others), frozen(broader), frozen(general))
 
 
 @lru_cache(maxsize=4)

@@ -111,7 +111,8 @@ def where_is(lexicon: Lexicon, words: Sequence[str], speaker: str, owner: str | 
             where_it = "where they are" if _plural(tokens(name)) else "where it is"
             sentences.append(f"I can see {name}, but I don't know exactly {where_it}.")
         else:
-            sentences.append(f"I don't know where {name} is right now.")
+            verb = "are" if _plural(tokens(name)) else "is"
+            sentences.append(f"I don't know where {name} {verb} right now.")
     return " ".join(sentences)
 
 
@@ -136,16 +137,16 @@ def _plural(content: Sequence[str]) -> bool:
 
 
 def _on(snapshot: Snapshot, place: Entity) -> str:
-    """What is on (or in) one place, as a sentence."""
-    prep = "in" if place.kind == "zone" else "on"
-    items = [
-        indefinite(e)
-        for e in snapshot.placed_at(place.id)
-        if e.kind == "thing" and (e.support == place.id or (prep == "in" and e.zone == place.id))
-    ]
-    if not items:
-        return f"I don't know of anything {prep} the {place.name}."
-    return f"{prep.capitalize()} the {place.name}, there is {listing(items)}."
+    """What is on (or in) one place, as a sentence: in a zone, on a support, in a container (the
+    fridge: what `isIn` it)."""
+    held = [e for e in snapshot.placed_at(place.id) if e.kind == "thing"]
+    inside = told_apart([e for e in held if e.zone == place.id or ("in", place.id) in e.relations])
+    on = told_apart([e for e in held if e.support == place.id])
+    sentences = [f"{prep} the {place.name}, there is {listing(items)}."
+                 for prep, items in (("In", inside), ("On", on)) if items]  # fmt: skip
+    if not sentences:
+        return f"I don't know of anything {'in' if place.kind == 'zone' else 'on'} the {place.name}."
+    return " ".join(sentences)
 
 
 def can_you_see(lexicon: Lexicon, words: Sequence[str], speaker: str, owner: str | None = None) -> str:

@@ -33,7 +33,7 @@ from dialogue.reference.english import (
     word_set,
 )
 from dialogue.rules.speech import expanded, strip_politeness
-from dialogue.rules.words import NP_START
+from dialogue.rules.words import NP_START, OWNERS
 
 #: Punctuation and dashes end a clause.
 _BREAK = re.compile(r"[.;!?,]+(?:\s+|$)|\s+(?:-|\u2013|\u2014)\s+")
@@ -157,7 +157,8 @@ def description(text: str) -> Words | None:
     rest = tuple(words[said:])
     located = rest[:1] and rest[0] in MODIFIER_START and len(rest) > 1
     one = rest[:1] and rest[0] in NP_START and ("one" in rest or "ones" in rest)
-    return rest if located or one else None
+    whose = len(rest) == 1 and (rest[0].endswith("'s") or rest[0] in OWNERS)  # "it's Carla's"
+    return rest if located or one or whose else None
 
 
 def described(thing: Words, said: Words) -> Words:
@@ -165,6 +166,8 @@ def described(thing: Words, said: Words) -> Words:
     blue one by the door" make "my blue bag by the door"."""
     if said[0] in MODIFIER_START:
         return (*thing, *said)
+    if len(said) == 1:  # whose it is: "the pink phone" and "Carla's" make "Carla's pink phone"
+        return (OWNERS.get(said[0], said[0]), *(w for w in thing if w not in NP_START))
     lead = tuple(w for w in thing if w in NP_START)
     head = tuple(w for w in thing if w not in NP_START)
     return (*lead, *(x for w in said[1:] for x in (head if w in {"one", "ones"} else (w,))))

@@ -22,9 +22,12 @@ from dialogue.rules.words import (
     MANNER,
     NP_START,
     PATHS,
-    PURPOSES,
     SOCIAL,
+    THEIR_SUBJECTS,
     THERE,
+    TIME_CONJUNCTIONS,
+    WHILE,
+    purpose,
 )
 
 __all__ = ["Parse", "Words", "parse"]
@@ -138,7 +141,7 @@ def _fit(row: Row, said: Said) -> Parse | None:
         direct = _second_phrase(slots)  # "bring to Ana the tray"
     if frame.dative is not None and "recipient" not in slots and direct:
         # "get Ines her phone": someone, then a noun phrase of its own
-        before = frame.dative == "before" and _someone(direct[0]) and bool(set(direct[1:4]) & _OWN_PHRASE)
+        before = frame.dative == "before" and _someone(direct[0]) and _own_phrase_after(direct)
         if direct[0] in ME:  # "get me a cup"
             slots["recipient"], direct = ("me",), direct[1:]
         elif frame.dative == "any" or before:  # "give Ines her phone": the interpreter splits it
@@ -163,8 +166,18 @@ _OWN_PHRASE = NP_START | {"her"}
 
 
 def _someone(word: str) -> bool:
-    """Whether a word may start the phrase of a person ("him", "Ines"), not of a thing ("all", "the")."""
+    """Whether a word may start the phrase of a person ("him", "Ines"), not of a thing ("all", "the")
+    nor a person's thing ("Noor's scarf")."""
+    if word.endswith("'s"):
+        return False
     return word in PERSONAL or word == "them" or word not in FUNCTION_WORDS | DETERMINERS | MANY
+
+
+def _own_phrase_after(direct: Words) -> bool:
+    """Whether a noun phrase of its own starts within the next words after the first ("Ines *her*
+    phone", "Mr Ito *the* menu"), not after a preposition ("Noor's scarf off *the* chair")."""
+    starts = range(1, min(4, len(direct)))
+    return any(direct[i] in _OWN_PHRASE and direct[i - 1] not in MODIFIER_START for i in starts)
 
 
 def _segments(rest: Words, row: Row) -> tuple[Words, dict[str, Words], dict[str, str]]:
@@ -178,7 +191,7 @@ def _segments(rest: Words, row: Row) -> tuple[Words, dict[str, Words], dict[str,
     i = 0
     while i < len(rest):
         marker = next((m for m in row.slots if rest[i : i + len(m[0])] == m[0] and m[1] not in slots), None)
-        if marker is not None and rest[i : i + 2] not in PURPOSES:  # "something to eat" is no recipient
+        if marker is not None and purpose(rest[i : i + 2]) is None:  # "something to eat" is no recipient
             current = slots[marker[1]] = []
             marks[marker[1]] = " ".join(marker[0])
             i += len(marker[0])
@@ -253,7 +266,11 @@ def _adjunct_end(rest: Words, i: int, own: set[str]) -> int:
 
 
 def _said_how(rest: Words, i: int) -> int:
-    """The length of the phrase of manner or time that starts at i ("when you can", "carefully"), or 0."""
+    """The length of the phrase of manner or time that starts at i ("when you can", "carefully", a
+    clause of time to the end: "while he waits"), or 0."""
     if rest[i] in MANNER:
         return 1
+    subject = rest[i + 1] if i + 1 < len(rest) else ""
+    if i > 0 and (rest[i] in WHILE or (rest[i] in TIME_CONJUNCTIONS and subject in THEIR_SUBJECTS)):
+        return len(rest) - i
     return next((len(p) for p in ADJUNCTS if rest[i : i + len(p)] == p), 0)

@@ -10,6 +10,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass, replace
 
+from lemminflect import getLemma
+
 from dialogue import intents as I
 from dialogue.reference.english import ME, Words, phrases, word_set
 from dialogue.rules.parsed import Parse
@@ -22,6 +24,7 @@ from dialogue.rules.words import (
     INTENSIFIERS,
     NEEDS,
     NOT_WISHERS,
+    NP_START,
     PLACES,
     THEIR_WANTS,
     WANT_VERBS,
@@ -185,6 +188,21 @@ def letting_know(said: Said) -> Parse | None:
     return speech(Said("tell", tuple(x for x in said.rest if x != "know"), said.words, said.original))
 
 
+def _plural(word: str) -> bool:
+    """Whether a noun is a plural ("kids", "children")."""
+    lemmas = getLemma(word, "NOUN")
+    return bool(lemmas) and lemmas[0] != word
+
+
+#: Words that start the clause of a message after the person told ("tell Noor *it*'s time").
+_SUBJECTS = word_set("it he she they we i you there")
+
+
+def _clause_start(rest: Words) -> int | None:
+    """Where a clause with a subject of its own starts after the person told, if one does."""
+    return next((i for i in range(1, len(rest) - 1) if rest[i] in _SUBJECTS), None)
+
+
 def speech(said: Said) -> Parse:
     """What to say, to whom: quoted words kept as they are, "tell X that/to...", "say X to Y"."""
     verb, rest, original = said.verb, said.rest, said.original
@@ -201,6 +219,10 @@ def speech(said: Said) -> Parse:
         return said.command(I.SAY, text="goodbye", recipient=rest[rest.index("to") + 1 :])
     if verb in {"tell", "inform", "remind", "ask"}:
         found = split_at(rest, ["that", "to", "about"])
+        clause = _clause_start(rest) if verb != "ask" else None
+        if clause is not None and (found is None or clause < len(found[0])):
+            # "tell Noor it's time to go": the message is a clause of its own, its "to" is its own
+            found = rest[:clause], "", rest[clause:]
         if found is not None:
             recipient, sep, text = found
             text = ("please", *text) if sep == "to" else text
@@ -208,10 +230,14 @@ def speech(said: Said) -> Parse:
                 return unknown
         elif verb == "ask":  # "ask Ana if she wants tea": a question to put, not words to say
             return unknown
-        else:
-            recipient, text = rest[:1], rest[1:]
+        else:  # "tell Maria", "tell my mum": a name, or a determiner and its noun
+            n = 2 if rest[:1] and rest[0] in NP_START else 1
+            recipient, text = rest[:n], rest[n:]
         if recipient[:1] and recipient[0] in ME:  # "tell me a joke": small talk, not a SAY intent
             return unknown
+        if len(recipient) == 2 and recipient[0] in {"the", "all"} and _plural(recipient[1]):
+            return unknown  # "tell the kids": several people, whom one intent cannot say
+
         if not text:  # "tell Maria": the interpreter asks what to say
             return said.command(I.SAY, recipient=recipient)
         words = message(original, text[1:] if text[0] == "please" else text)

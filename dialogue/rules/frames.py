@@ -108,6 +108,8 @@ _GUIDE = "guide|lead|escort|accompany|show|direct"
 _GO = "get|swing|hurry|rush|dash|wander|run|scoot|zip"
 _STAY = "wait|stay|remain|hang on|hang about|hang around|sit"
 _AT = "in|inside|at|by|near|beside|outside|on|under|behind"
+#: "wait *out* in the courtyard", "stay *over* by the door", "wait *downstairs* in the hall"
+_OUT = "out over back down up outside upstairs downstairs"
 _SAY = "say|tell|announce|repeat|inform|remind|ask"
 _TO_SOMEONE = "to|towards|for|into"
 
@@ -150,7 +152,7 @@ FRAMES: tuple[Frame, ...] = (
     Frame(_MOVE, I.MOVE_TO, slots={"goal": GOALS}, particles=MOTION_PARTICLES, here="goal",
           requires=("goal",)),
     # "go and wait in the courtyard", "stay by the door": be there ("wait for me" is no place)
-    Frame(_STAY, I.MOVE_TO, slots={"goal": _AT}, particles="there", requires=("goal",)),
+    Frame(_STAY, I.MOVE_TO, slots={"goal": _AT}, particles=f"there {_OUT}", requires=("goal",)),
     Frame(_GO, I.MOVE_TO, slots={"goal": GOALS}, particles=MOTION_PARTICLES, here="goal", requires=("goal",)),
     Frame(_MOVE, I.PLACE_OBJECT, direct="object", slots={"recipient": GOALS}, particles="back away down over",
           requires=("object", "recipient")),
@@ -168,7 +170,7 @@ FRAMES: tuple[Frame, ...] = (
     Frame(_GRAB, I.BRING_OBJECT, direct="object", slots={"recipient": _TO_SOMEONE}, particles=CARRY_PARTICLES,
           dative="before", requires=("recipient",)),
     Frame(f"{_GRAB}|get hold of|take hold of|grab hold of|catch hold of", I.GRAB_OBJECT, direct="object",
-          particles="up"),
+          particles="up down out"),
     # Activities.
     Frame("do", special=C.asking),
     Frame("start|begin|launch|run|resume|do|perform|commence", I.START_ACTIVITY, direct="activity",

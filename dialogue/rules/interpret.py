@@ -12,8 +12,7 @@ from dataclasses import replace
 
 from dialogue import intents as I
 from dialogue.history import Utterance
-from dialogue.prompts import FREE_FORM_OBJECT
-from dialogue.reference.english import PARTS, Words, phrases, tokens
+from dialogue.reference.english import PARTS, Words, tokens
 from dialogue.reference.lexicon import Lexicon
 from dialogue.reference.resolution import (
     ANYWHERE,
@@ -29,21 +28,17 @@ from dialogue.rules import answers
 from dialogue.rules.clauses import clauses, described, description
 from dialogue.rules.commands import parse
 from dialogue.rules.compound import Part, conjuncts, coordinated, unprefixed
+from dialogue.rules.followup import accepts, follow_up
 from dialogue.rules.outcome import Outcome, Ref
 from dialogue.rules.parsed import Parse
 from dialogue.rules.referents import RELATIONAL, Referents
 from dialogue.rules.replies import acknowledgement, vocative
+from dialogue.rules.speech import expanded
 from dialogue.rules.spelling import corrected
 from dialogue.rules.utterance import cleaned
-from dialogue.rules.words import INTERJECTIONS, PLACES
 
-_ONE = frozenset({"one", "ones"})
 #: How sure the rules are of a turn in which they corrected a slip ("plase", "thremos").
 SPELT_CONFIDENCE = 0.7
-#: A fragment answering "Where should I put it?" may start with its preposition ("on the shelf").
-_PLACES = phrases(PLACES)
-#: An answer naming an owner ("mine", "hers") is the possessive phrase ("my cup").
-_POSSESSIVE_OF = {"mine": "my", "yours": "your", "ours": "our", "hers": "her", "theirs": "their"}
 
 
 class Interpreter:
@@ -56,6 +51,10 @@ class Interpreter:
         self.history = tuple(history)
         self.robot_name = robot_name
         self.refs = Referents(lexicon, speaker, self.history)
+
+    def within(self, history: Sequence[Utterance]) -> Interpreter:
+        """The same reader with another conversation before the words it reads."""
+        return Interpreter(self.lexicon, self.speaker, history, self.robot_name)
 
     def interpret(self, text: str) -> Outcome:
         spelled = corrected(text, self.lexicon)
@@ -86,14 +85,18 @@ class Interpreter:
         before it as context for its pronouns ("take the book and put it in the oven")."""
         done: list[Outcome] = []
         cannot: list[str] = []
+        context: list[Utterance] = []
         for n, part in enumerate(parts):
-            context = tuple(Utterance(self.speaker, p.text) for p in parts[:n])
-            reader = Interpreter(self.lexicon, self.speaker, (*self.history, *context), self.robot_name)
+            reader = self.within((*self.history, *context))
+            context.append(Utterance(self.speaker, part.text))
             if n == 0 and part.verb is None:
                 continue  # a preamble ("hey there", "thanks", "the denim jacket"): context for the rest
             outcome = reader._single(part.text)
             if outcome.intent is not None:
                 done.append(outcome)
+                if outcome.roles.get("object") in self.snapshot.entities:
+                    # "get the teddy off the bench and give it to Zara": "it" is what was taken
+                    context.append(Utterance(self.speaker, outcome.roles["object"]))
             elif outcome.clarify:
                 return outcome  # ask about this part first: nothing is done until it is clear
             elif part.no_intent:
@@ -108,8 +111,12 @@ class Interpreter:
 
     def _single(self, text: str) -> Outcome:
         p = parse(text, self.robot_name)
+        if p.act != "unknown" and accepts(expanded(text)):  # "go on then" to "Shall I fetch it?"
+            accepted = follow_up(self, p, text)
+            if accepted is not None:
+                return accepted
         not_understood = Outcome("Sorry, I did not understand that.", understood=False)
-        outcome = (self._follow_up(p, text) or not_understood) if p.act == "unknown" else self.act(p)
+        outcome = (follow_up(self, p, text) or not_understood) if p.act == "unknown" else self.act(p)
         ungrounded = p.act == "command" and outcome.intent is None and not outcome.clarify
         failed = not outcome.understood or ungrounded
         return self._clause_by_clause(text, outcome) if failed else outcome
@@ -247,6 +254,8 @@ class Interpreter:
             # "Ellen needs the utility room, lead the way": the person just spoken of, else the speaker.
             person = antecedent(self.lexicon, self.history, PERSON, speaker=self.speaker)
             slots["recipient"] = tuple(tokens(person.id)) if person is not None else ("me",)
+        if "object" in slots:  # "I need biscuits, can you get me some": some of those
+            slots["object"] = self.refs.some_of(slots["object"])
         roles: dict[str, str] = {}
         refs: dict[str, Ref] = {}
         spec = I.CATALOGUE[intent]
@@ -290,52 +299,3 @@ class Interpreter:
 
     def _intent(self, intent: str, roles: dict[str, str], reply: str, confidence: float = 0.9) -> Outcome:
         return Outcome(reply, intent, roles, confidence)
-
-    # -- follow-ups to the robot's last question ------------------------------------------------
-    def _follow_up(self, p: Parse, text: str) -> Outcome | None:
-        """ "the red one" after "Which cup do you mean...?" re-reads the pending request with it."""
-        # "mine, obviously": whose it is, without the interjection.
-        fragment = tuple(_POSSESSIVE_OF.get(w, w) for w in p.words if w not in INTERJECTIONS)
-        # The robot's question must be the latest utterance (system notes aside), right after a request.
-        spoken = [i for i, u in enumerate(self.history) if u.role != "system"]
-        if not fragment or len(spoken) < 2:
-            return None
-        i, before = spoken[-1], spoken[-2]
-        question, request = self.history[i], self.history[before]
-        if question.role != "assistant" or not question.text.rstrip().endswith("?") or request.role != "user":
-            return None
-        earlier = Interpreter(self.lexicon, self.speaker, self.history[:before], self.robot_name)
-        pending = parse(request.text, self.robot_name)
-        if pending.act != "command":
-            return None
-        first = earlier.act(pending)
-        if first.open_role is None:
-            return None
-        if first.open_phrase:
-            # Prepositions stay: "the novel" + "book from the shelf" keeps "book" as the head.
-            phrase = tuple(w for w in first.open_phrase if w not in {"the", "a", "an"})
-            merged = tuple(x for w in fragment for x in (phrase if w in _ONE else (w,)))
-            if not set(fragment) & _ONE:
-                merged = (*fragment, *phrase)
-        else:
-            merged = tuple(fragment)
-            for loc in _PLACES:
-                if merged[: len(loc)] == loc:
-                    merged = merged[len(loc) :]
-                    break
-        role = first.open_role
-        if role == "object" and pending.intent in FREE_FORM_OBJECT:  # "What should I say?" "Dinner is ready"
-            pending = replace(pending, text=text.strip().rstrip(".!?").strip() or None)
-        outcome = earlier.act(pending, {role: merged})
-        if outcome.intent is None and not outcome.clarify:
-            return None
-        return Outcome(
-            outcome.reply,
-            outcome.intent,
-            outcome.roles,
-            0.8,
-            clarify=outcome.clarify,
-            open_role=outcome.open_role,
-            open_phrase=outcome.open_phrase,
-            guessed=outcome.guessed,
-        )

@@ -9,7 +9,7 @@ from __future__ import annotations
 from dialogue.reference.english import COLOURS, Words, word_set
 from dialogue.rules.parsed import Parse
 from dialogue.rules.speech import split_at, starts
-from dialogue.rules.words import PURPOSES, WH
+from dialogue.rules.words import WH, purpose
 
 _SEES: tuple[Words, ...] = tuple(
     tuple(p.split()) for p in ("do you see", "can you see", "could you see", "have you seen", "did you see",
@@ -145,9 +145,9 @@ def _someone_elses(rest: Words) -> bool:
 
 def _anything(w: Words, rest: Words) -> Parse:
     """ "is there anything on the table", "do you see anything to eat", "can you see anything"."""
-    purpose = PURPOSES.get(rest[:2])
-    if purpose is not None:
-        return _q("can_see", w, thing=(purpose, *rest[2:]))
+    wanted = purpose(rest[:2])
+    if wanted is not None:
+        return _q("can_see", w, thing=(*wanted, *rest[2:]))
     found = split_at(("x", *rest), _LOCATIVES)
     if found is not None and found[0] == ("x",):
         return _q("what_on", w, place=found[2])

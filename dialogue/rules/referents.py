@@ -29,7 +29,7 @@ from dialogue.reference.english import (
     word_set,
 )
 from dialogue.reference.grounding import Entity, Kind
-from dialogue.reference.lexicon import Lexicon
+from dialogue.reference.lexicon import Lexicon, singular
 from dialogue.reference.resolution import (
     ANYWHERE,
     PERSON,
@@ -45,7 +45,7 @@ from dialogue.rules.clauses import described
 from dialogue.rules.compound import alternatives
 from dialogue.rules.outcome import Outcome, Ref
 from dialogue.rules.sounds import slipped as heard_as
-from dialogue.rules.words import NP_START, PURPOSES
+from dialogue.rules.words import NP_START, purpose
 
 #: Spatial or comparative qualifiers the KB does not model (dropped when they block a match).
 RELATIONAL = POSITIONS | word_set("over yonder")
@@ -56,6 +56,8 @@ _ACCOUNTED = RELATIONAL | COLOURS | ME | word_set(
 
 
 _EVERY = word_set("all both every each")
+#: Words that say how much of a thing, not which ("get me some", "bring me a couple").
+_SOME = word_set("some one any few couple more")
 
 
 class Referents:
@@ -69,8 +71,8 @@ class Referents:
         """ "bring Maria the book": the longest leading phrase naming one person is the recipient."""
         for k in range(len(rest) - 1, 0, -1):
             head, tail = rest[:k], rest[k:]
-            if not content_words(tail):
-                continue
+            if not content_words(tail) or self._whose(head[-1]):
+                continue  # "fetch Marco's jacket": whose the thing is, not to whom
             people = content_words(head)
             named = set(people) <= ME or resolve(self.lexicon, head, PERSON).one is not None
             # "bring him the bottle": a person pronoun the conversation resolves.
@@ -80,6 +82,17 @@ class Referents:
             if people and (named or said):
                 return {"object": tail, "recipient": head}
         return {"object": rest, "recipient": ("me",)}
+
+    def _whose(self, word: str) -> bool:
+        """Whether the word is a person's possessive: "Marco's", or "marcos" as a recogniser writes it."""
+        if word.endswith("'s"):
+            return True
+        if not word.endswith("s") or len(word) < 4:
+            return False
+        named = self.lexicon.names_at([word[:-1]], 0)
+        people = [e for n in named if (e := self.snapshot.get(n.entity)) is not None and e.kind == "person"]
+        # (a person whose name it is is no possessive: "Ines" is not Ine's)
+        return bool(people) and not any(word in tokens(label) for e in people for label in e.labels)
 
     def every(self, words: Words) -> list[Words]:
         """ "all the plates", "both cups": each thing the phrase names, as its id ([] when the phrase
@@ -128,6 +141,14 @@ class Referents:
             return None
         return resolve(self.lexicon, words, PERSON).one
 
+    def some_of(self, words: Words) -> Words:
+        """ "some", "one", "a couple" said for a thing: the thing the conversation just named ("I
+        need biscuits, can you get me some"), as its id; the words as they are when none was."""
+        if not set(words) <= _SOME | {"a", "of", "them"} or not set(words) & _SOME:
+            return words
+        found = antecedent(self.lexicon, self.history, THING, speaker=self.speaker)
+        return tuple(tokens(found.id)) if found is not None else words
+
     def possessive(self, words: Words, slots: dict[str, Words]) -> tuple[Words, str | None]:
         """ "my phone", "give Ines her phone": the phrase without the possessive, and whose it is."""
         rest = tuple(w for w in words if w not in POSSESSIVES)
@@ -155,9 +176,10 @@ class Referents:
         """The entity a role's phrase names; `said` are the request's other phrases, where a person
         pronoun finds the one person they name ("take Ravi's scarf to him")."""
         bare_words = [w for w in words if w not in DETERMINERS]
-        if bare_words[:1] in (["something"], ["anything"]) and tuple(bare_words[1:]) in PURPOSES:
-            words = (PURPOSES[tuple(bare_words[1:])],)  # "something to eat": food
-        words = _apposed(_not_the_other(words))
+        wanted = purpose(tuple(bare_words[1:])) if bare_words[:1] in (["something"], ["anything"]) else None
+        if wanted is not None:  # "something to eat": food; "something to cut this with": a cutting tool
+            words = wanted
+        words = _apposed(_not_the_other(_placed_pronoun(words)))
         content = content_words(words)
         if "person" in kinds and content and set(content) <= ME | {"here"}:
             return Ref(speaker=True)
@@ -198,7 +220,7 @@ class Referents:
             if one is not None:
                 return Ref(entity=one)
         if res.ambiguous:
-            q = clarifying_question(self.snapshot, res.matches)
+            q = clarifying_question(self.snapshot, res.matches, self._noun(words, res.matches))
             return Ref(problem=Outcome(q, clarify=True, open_role=role, open_phrase=words))
         if loose != tuple(words) and content_words(loose):
             # "the cup on the left": spatial relations are not in the KB; if the rest of the phrase
@@ -207,7 +229,7 @@ class Referents:
             if res.one is not None:
                 return Ref(entity=res.one)
             if res.ambiguous:
-                q = clarifying_question(self.snapshot, res.matches)
+                q = clarifying_question(self.snapshot, res.matches, self._noun(loose, res.matches))
                 return Ref(problem=Outcome(q, clarify=True, open_role=role, open_phrase=loose))
         place = self._put_by(words, kinds, role, owner)
         if place is not None:
@@ -223,7 +245,26 @@ class Referents:
             # Names the KB knows among words it does not ("mr ito back", "the trousers out"): the
             # phrase was not understood, which is not the same as "there is no such thing".
             return Ref(problem=Outcome("Sorry, I did not understand that.", understood=False))
+        someone = "person" not in kinds and resolve(self.lexicon, words, PERSON).matches
+        if someone or ("person" in kinds and words[:1] and words[0] in POSSESSIVES):
+            # "go and get Ben from the garden": a person where a thing is wanted, no intent the rules
+            # have; "my son": someone the KB knows only by how the speaker is related to them
+            return Ref(problem=Outcome("Sorry, I did not understand that.", understood=False))
         return Ref(problem=Outcome(self.unknown(content, kinds, words)))
+
+    def _noun(self, words: Words, candidates: Sequence[Entity]) -> str | None:
+        """The noun said for all the candidates ("a drink"), if the phrase ends its core with one."""
+        core: list[str] = []
+        for w in words:
+            if w in MODIFIER_START and core:
+                break
+            core.append(w)
+        content = content_words(core)
+        if not content:
+            return None
+        noun = singular(content[-1])
+        named = {n.entity for n in self.lexicon.names_at([noun], 0) if len(n.words) == 1}
+        return noun if all(c.id in named for c in candidates) else None
 
     def _put_by(self, words: Words, kinds: frozenset[Kind], role: str, owner: str | None) -> Ref | None:
         """ "put the book next to the cup on the shelf" when the cup is not on the shelf: the last
@@ -273,6 +314,14 @@ def _apposed(words: Words) -> Words:
             if "one" in words[j:] or "ones" in words[j:]:
                 return described(words[:j], words[j:])
             return words
+    return words
+
+
+def _placed_pronoun(words: Words) -> Words:
+    """ "it off the shelf", "them from the table": the pronoun; where it is only says where to take it
+    from (the thing is the one the conversation named)."""
+    if len(words) > 2 and words[0] in {"it", "them"} and words[1] in SUPPORT_PREPOSITIONS:
+        return words[:1]
     return words
 
 

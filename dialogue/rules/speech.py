@@ -26,7 +26,9 @@ from dialogue.rules.words import (
 )
 
 #: Words after "its" that make it "it is": adverbs no noun phrase starts with.
-_NOT_NOUNS = word_set("not just still already really so very too over gone all fine ok okay right")
+_NOT_NOUNS = word_set(
+    "not just still already really so very too over gone all fine ok okay right mine yours hers ours theirs"
+)
 
 QUOTED = re.compile(r"[\"\u201c\u201d]([^\"\u201c\u201d]+)[\"\u201c\u201d]")
 
@@ -53,6 +55,8 @@ def _is_it_is(after: tuple[str, ...]) -> bool:
         return True
     nxt = after[0]
     if nxt in FUNCTION_WORDS or nxt in DETERMINERS or nxt in _NOT_NOUNS:
+        return True
+    if len(after) == 1 and nxt.endswith("'s"):  # "its Carla's": whose it is
         return True
     lemmas = getAllLemmas(nxt)
     if nxt.endswith(("ed", "ing", "en")) and "VERB" in lemmas and "NOUN" not in lemmas:

@@ -5,7 +5,8 @@ The vocabulary is what the rules can understand: the grammar's own words (its wo
 frames) and every word of every name the KB accounts for (the lexicon's vocabulary, so it follows
 the KB). rapidfuzz finds the vocabulary words within one or two edits (optimal string alignment:
 a swap of two letters is one edit); those are then priced as typing slips: a missed or doubled
-letter or a neighbouring key costs 1, two letters swapped 0.8, a key far away 1.5, and in a word of
+letter or a neighbouring key costs 1, two letters swapped or a double letter typed once or a letter
+typed twice 0.8, a key far away 1.5, and in a word of
 four letters or fewer only a swap or a neighbouring key counts ("lego" is not a slip of "leg"). A
 word is corrected
 only when exactly one vocabulary word is the cheapest within 1 (2 for words of eight letters or
@@ -44,6 +45,7 @@ _FAR_KEY = 1.5
 #: Two letters typed in the wrong order, the commonest slip of fast typing ("teh"): a little cheaper
 #: than a neighbouring key, so that "teh" is "the", not "ten".
 _SWAP = 0.8
+_DOUBLE = 0.8
 _SHORT = 4
 #: Word lists of the grammar's modules whose words are content words, not the grammar's own.
 _NOT_GRAMMAR = frozenset({"HOMOPHONES", "NEEDS", "PREPOSITION_SLIPS"})
@@ -144,7 +146,11 @@ def typing_cost(said: str, meant: str) -> float:
     for i, a in enumerate(said, 1):
         row = [i * gap]
         for j, b in enumerate(meant, 1):
-            cost = min(previous[j] + gap, row[j - 1] + gap, previous[j - 1] + _key_distance(a, b))
+            # a doubled letter typed once or a letter typed twice ("helo", "tabble") is the commonest
+            # slip of all after a swap
+            extra = _DOUBLE if not short and i > 1 and a == said[i - 2] else gap
+            missed = _DOUBLE if not short and j > 1 and b == meant[j - 2] else gap
+            cost = min(previous[j] + extra, row[j - 1] + missed, previous[j - 1] + _key_distance(a, b))
             if i > 1 and j > 1 and a == meant[j - 2] and said[i - 2] == b:
                 cost = min(cost, previous2[j - 2] + _SWAP)
             row.append(cost)

@@ -27,6 +27,8 @@ CONTRACTIONS: dict[str, Words] = {
     "couldnt": ("could", "not"), "wouldnt": ("would", "not"), "shouldnt": ("should", "not"),
     "youd": ("you", "would"), "theyd": ("they", "would"), "whatre": ("what", "are"),
     "whered": ("where", "did"), "it'll": ("it", "will"), "you'll": ("you", "will"),
+    "that'd": ("that", "would"), "thatd": ("that", "would"), "it'd": ("it", "would"), "itd": ("it", "would"),
+    "you'd": ("you", "would"), "we'd": ("we", "would"), "they'd": ("they", "would"),
     "they've": ("they", "have"), "you've": ("you", "have"),
     # Chat spellings of speech.
     "ya": ("you",), "u": ("you",), "r": ("are",), "ur": ("your",), "gimme": ("give", "me"),
@@ -39,6 +41,8 @@ FILLERS = word_set("um umm uh uhh er erm hmm mm ah really")
 FILLER_PAIRS = frozenset({("you", "know"), ("i", "guess"), ("of", "course")})
 #: Words around "you know" that make it a question, not a filler ("do you know where...").
 ASKING = word_set("do did don't if would as you that whether about him her them it")
+#: Whose a thing is, said alone ("it's mine", "mine, obviously"): the possessive of its phrase ("my cup").
+OWNERS = {"mine": "my", "yours": "your", "ours": "our", "hers": "her", "his": "his", "theirs": "their"}
 #: Words of an answer that only add emphasis ("mine, obviously", "the red one definitely").
 INTERJECTIONS = word_set(
     "obviously definitely clearly surely certainly naturally yes yeah yep sure please thanks"
@@ -67,7 +71,7 @@ ROBOT_SUFFIXES = phrases(
 POLITE_SUFFIXES = (
     *ROBOT_SUFFIXES,
     *phrases("ta|cheers|thanks a lot|thank you very much|much appreciated|if you would|if you don't mind"),
-    *phrases("now|right now|for a moment|again|quickly|quick|immediately|for a sec|for a second|sorry"),
+    *phrases("now|right now|for a moment|again|quickly|quick|immediately|for a sec|for a second|sorry|then"),
     # the listener named by a tag ("the yellow one mate", "over here love")
     *phrases("mate|pal|buddy|love|dear|darling|sir|madam|miss|boss|chief|my friend|my dear"),
 )
@@ -107,7 +111,8 @@ GOALS = "to|towards|into|inside|onto|on|in|near|beside|over to|by"
 #: Words between a verb of motion and its goal: "go back to", "head over to", "nip down to".
 MOTION_PARTICLES = (
     "back over there straight right down up ahead across along out around round on and stand wait close "
-    "closer quickly slowly carefully quietly safely directly through"
+    "closer quickly slowly carefully quietly safely directly through outside inside outdoors indoors "
+    "upstairs downstairs"
 )
 #: Words between a verb of carrying and its object or recipient ("bring it over to me").
 CARRY_PARTICLES = "over back up down along round around through out"
@@ -123,6 +128,12 @@ ADJUNCTS = phrases(
     "as soon as possible|as soon as you can|right away|straight away|at once|in a minute|in a moment|"
     "right now|real quick|right quick|asap|in a jiffy|in a sec|in a second|instead|instead of that"
 )
+#: Conjunctions that start a clause of time to the end of a request ("hand Ana the menu *while she
+#: waits*", "put the milk back *before it goes off*"): "while" always, the others before a subject
+#: other than the robot ("after you wash it" asks for more than the request).
+WHILE = word_set("while whilst")
+TIME_CONJUNCTIONS = word_set("until till once before after as when")
+THEIR_SUBJECTS = word_set("i he she we they it")
 #: Prepositions of a path: "go to the bathroom through the main door" (what follows is the adjunct).
 PATHS = word_set("through via past across along")
 #: Adverbs of manner, never part of a referent ("put the vase on the shelf carefully").
@@ -161,8 +172,18 @@ NEEDS: dict[str, str] = {
     "thirsty": "drink", "parched": "drink", "dehydrated": "drink",
     "hungry": "food", "starving": "food", "peckish": "food", "famished": "food", "ravenous": "food",
 }  # fmt: skip
-#: "something to eat" is food: the purpose names the ontology's class (labelled "food", "drink").
-PURPOSES: dict[Words, str] = {("to", "eat"): "food", ("to", "drink"): "drink"}
+#: "something to eat" is food, "something to cut this with" a cutting tool: what a thing is for names
+#: its kind (the ontology's classes "food", "drink"; the lexicon file's general names).
+PURPOSES: dict[str, Words] = {
+    "eat": ("food",), "drink": ("drink",), "cut": ("cutting", "tool"), "write": ("writing", "tool"),
+    "draw": ("writing", "tool"), "wipe": ("cleaning", "cloth"), "clean": ("cleaning", "cloth"),
+    "dry": ("cleaning", "cloth"), "read": ("reading", "matter"), "wear": ("clothing",), "sit": ("seat",),
+}  # fmt: skip
+
+
+def purpose(words: Words) -> Words | None:
+    """The kind of thing "to eat", "to cut this with" (the words after "something") name, if any."""
+    return PURPOSES.get(words[1]) if len(words) > 1 and words[0] == "to" else None
 INTENSIFIERS = word_set("so very really absolutely quite a bit little totally getting rather pretty bloody")
 #: What follows "do" in a request ("do the dishes", "do some exercise"); anything else after "do"
 #: is a yes/no question ("do you like music", "do robots ever get tired").

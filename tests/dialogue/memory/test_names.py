@@ -30,3 +30,8 @@ def test_lower_case_participles_numbers_and_adverbs_are_no_names() -> None:
 def test_my_name_is_takes_any_words_but_a_negation_or_a_phrase() -> None:
     assert given_name(("frank",)) and given_name(("mary", "jane"))
     assert not given_name(("not", "important")) and not given_name(("a", "secret"))
+
+
+def test_a_need_is_no_name() -> None:
+    # "I'm peckish" asks for food, whatever a lemmatiser knows of the word; "I'm Pip" is a name
+    assert not name_like(("peckish",), "im peckish") and name_like(("pip",), "im pip")

@@ -5,7 +5,7 @@ from __future__ import annotations
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from dialogue.reference.grounding import Grounder, Snapshot, build_snapshot
+from dialogue.reference.grounding import Entity, Grounder, Snapshot, build_snapshot
 from dialogue.reference.lexicon import Lexicon, LexiconCache
 from kb import KB
 
@@ -39,13 +39,18 @@ commit = st.tuples(
 
 
 def _assert_contents(snapshot: Snapshot) -> None:
-    """`contents` holds, for each place, exactly the entities whose support or zone it is, and
-    `placed_at` gives them in the snapshot's order (as looking at every entity would)."""
-    places = {p for e in snapshot.entities.values() for p in (e.support, e.zone) if p is not None}
+    """`contents` holds, for each place, exactly the entities on it or in it (support, zone, the
+    other places it is in), and `placed_at` gives them in the snapshot's order (as looking at every
+    entity would)."""
+
+    def at(e: Entity) -> set[str]:
+        return {p for p in (e.support, e.zone) if p is not None} | {o for r, o in e.relations if r == "in"}
+
+    places = {p for e in snapshot.entities.values() for p in at(e)}
     assert snapshot.contents is not None
     assert set(snapshot.contents) == places
     for place in places:
-        everyone = [e for e in snapshot.entities.values() if place in (e.support, e.zone)]
+        everyone = [e for e in snapshot.entities.values() if place in at(e)]
         assert snapshot.contents[place] == {e.id for e in everyone}
         assert snapshot.placed_at(place) == everyone
     assert snapshot.placed_at("nowhere") == []

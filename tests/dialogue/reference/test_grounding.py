@@ -64,9 +64,18 @@ def test_incremental_snapshots_equal_full_rebuilds_after_random_changes() -> Non
 
     rng = random.Random(5)
     kb = KB()
-    kb.update(["myself rdf:type Robot", "kitchen rdf:type ZoneOfInterest", 'kitchen rdfs:label "kitchen"',
-               "hall rdf:type ZoneOfInterest", "table_1 rdf:type dbr:Table_(furniture)", "table_1 isIn kitchen",
-               "person_ann rdf:type Human", 'person_ann rdfs:label "Ann"'])
+    kb.update(
+        [
+            "myself rdf:type Robot",
+            "kitchen rdf:type ZoneOfInterest",
+            'kitchen rdfs:label "kitchen"',
+            "hall rdf:type ZoneOfInterest",
+            "table_1 rdf:type dbr:Table_(furniture)",
+            "table_1 isIn kitchen",
+            "person_ann rdf:type Human",
+            'person_ann rdfs:label "Ann"',
+        ]
+    )
     grounder = Grounder()
     grounder.snapshot(kb)
     things = [f"thing_{i}" for i in range(12)]
@@ -77,7 +86,7 @@ def test_incremental_snapshots_equal_full_rebuilds_after_random_changes() -> Non
         lambda t: f"{t} isIn {rng.choice(['kitchen', 'hall'])}",
         lambda t: f"myself sees {t}",
         lambda t: f"{t} hasColor {rng.choice(['red', 'white'])}",
-        lambda t: "dbr:Cup rdfs:label \"mug\"@en",
+        lambda t: 'dbr:Cup rdfs:label "mug"@en',
     ]
     for _ in range(60):
         statement = rng.choice(facts)(rng.choice(things))
@@ -87,5 +96,43 @@ def test_incremental_snapshots_equal_full_rebuilds_after_random_changes() -> Non
             kb.update([statement])
         incremental = grounder.snapshot(kb)
         assert incremental == build_snapshot(kb)
+    grounder.close()
+    kb.close()
+
+
+def test_a_thing_in_a_container_in_a_zone_shows_both() -> None:
+    kb = scene_kb(None, "myself rdf:type Robot", "den rdf:type ZoneOfInterest", 'den rdfs:label "den"',
+                  "crate_1 rdf:type Box", 'crate_1 rdfs:label "crate"', "crate_1 isIn den",
+                  "yoyo_1 rdf:type Toy", "yoyo_1 isIn crate_1", "yoyo_1 isIn den")  # fmt: skip
+    yoyo = build_snapshot(kb).entities["yoyo_1"]
+    # the zone is the den (not "crate_1", first by its text); the crate is where in it
+    assert yoyo.zone == "den" and ("in", "crate_1") in yoyo.relations
+    assert {e.id for e in build_snapshot(kb).placed_at("crate_1")} == {"yoyo_1"}
+    kb.close()
+
+
+def test_incremental_snapshots_follow_containers_and_places_becoming_zones() -> None:
+    import random
+
+    rng = random.Random(11)
+    kb = KB()
+    kb.update(["myself rdf:type Robot", "attic rdf:type ZoneOfInterest", "chest_1 rdf:type Box",
+               "chest_1 isIn attic", "myself sees chest_1"])  # fmt: skip
+    grounder = Grounder()
+    grounder.snapshot(kb)
+    things = [f"thing_{i}" for i in range(8)]
+    facts = [
+        lambda t: f"{t} rdf:type {rng.choice(['dbr:Cup', 'Toy'])}",
+        lambda t: f"{t} isIn {rng.choice(['attic', 'chest_1', 'thing_0', 'loft'])}",
+        lambda t: f"myself sees {t}",
+        lambda t: f"{rng.choice(['loft', 'chest_1'])} rdf:type ZoneOfInterest",
+    ]
+    for _ in range(80):
+        statement = rng.choice(facts)(rng.choice(things))
+        if rng.random() < 0.35:
+            kb.remove([statement])
+        else:
+            kb.update([statement])
+        assert grounder.snapshot(kb) == build_snapshot(kb)
     grounder.close()
     kb.close()

@@ -67,3 +67,10 @@ def test_a_closed_compound_said_apart_names_the_thing(office: KB) -> None:
     office.update(["box_1 rdf:type Artifact", 'box_1 rdfs:label "toolbox"', "myself sees box_1"])
     lex = Lexicon(build_snapshot(office))
     assert [(n.entity, n.words) for n in lex.names_at(["tool", "boxes"], 0)] == [("box_1", ("tool", "boxes"))]
+
+
+def test_a_coordinated_class_name_gives_no_head(office: KB) -> None:
+    # "food or drink" names neither a drink nor a food by its last word
+    lex = Lexicon(build_snapshot(office))
+    heads = {n.words for n in lex.names_at(["drink"], 0) if n.entity == "pear_1"}
+    assert ("drink",) not in heads

@@ -131,3 +131,63 @@ def test_a_things_pronoun_is_never_where_the_turn_put_something() -> None:
     assert antecedent(lex, ["my spoons are on the counter"], THING) is None
     assert antecedent(lex, ["my spoons are on the counter"], THING, place=True).id == "t_1"  # type: ignore[union-attr]
     assert antecedent(lex, ["give the spoon to noor"], PERSON).id == "p_1"  # type: ignore[union-attr]
+
+
+def _shop(*facts: str) -> KB:
+    return scene_kb(
+        None,
+        "myself rdf:type Robot",
+        "kim rdf:type Human", 'kim rdfs:label "Kim"', "myself sees kim",
+        *facts,
+    )  # fmt: skip
+
+
+def test_a_general_name_names_a_kind_and_ownership_picks_among_them() -> None:
+    kb = _shop(
+        "tote_1 rdf:type Artifact", 'tote_1 rdfs:label "satchel"', "tote_1 belongsTo kim", "myself sees tote_1",
+        "sack_1 rdf:type Artifact", 'sack_1 rdfs:label "carrier bag"', "myself sees sack_1",
+    )  # fmt: skip
+    lex = lexicon_of(kb)
+    # the KB's own "bag" first; whose it is comes before that
+    assert [e.id for e in resolve(lex, tokens("the bag"), THING).matches] == ["sack_1"]
+    assert [e.id for e in resolve(lex, tokens("my bag"), THING, owner="kim").matches] == ["tote_1"]
+    kb.close()
+
+
+def test_a_kind_never_names_another_kind_of_the_same_general_name() -> None:
+    kb = _shop("pop_1 rdf:type Artifact", 'pop_1 rdfs:label "lemonade"', "myself sees pop_1")
+    assert ids(kb, "a drink") == ["pop_1"]
+    assert ids(kb, "the smoothie") == []  # both drinks, but a smoothie is no lemonade
+    kb.close()
+
+
+def test_the_kbs_own_name_beats_the_lexicon_files() -> None:
+    kb = _shop(
+        "wc_1 rdf:type ZoneOfInterest", 'wc_1 rdfs:label "toilets"',
+        "bath_1 rdf:type ZoneOfInterest", 'bath_1 rdfs:label "bathroom"',
+        "cart_1 rdf:type Artifact", 'cart_1 rdfs:label "shopping cart"', "myself sees cart_1",
+    )  # fmt: skip
+    assert ids(kb, "the bathroom", ZONE) == ["bath_1"]
+    assert sorted(ids(kb, "the loo", ZONE)) == ["bath_1", "wc_1"]  # either may be meant: asked
+    assert ids(kb, "the trolley") == ["cart_1"]  # British for the cart
+    kb.close()
+    kb = _shop("wc_1 rdf:type ZoneOfInterest", 'wc_1 rdfs:label "toilets"')
+    assert ids(kb, "the bathroom", ZONE) == ["wc_1"]  # none labelled so: the toilets it may be
+    kb.close()
+
+
+def test_top_is_a_word_of_a_name_but_not_of_on_top_of() -> None:
+    kb = _shop(
+        "sh_1 rdf:type Artifact", 'sh_1 rdfs:label "top shelf"', "myself sees sh_1",
+        "sh_2 rdf:type Artifact", 'sh_2 rdfs:label "bottom shelf"', "myself sees sh_2",
+        "jar_1 rdf:type Artifact", 'jar_1 rdfs:label "jar"', "jar_1 isOn sh_2", "myself sees jar_1",
+    )  # fmt: skip
+    assert ids(kb, "the top shelf") == ["sh_1"]
+    assert ids(kb, "the jar on top of the bottom shelf") == ["jar_1"]
+    kb.close()
+
+
+def test_the_garbage_is_the_bin() -> None:
+    kb = _shop("b_1 rdf:type Artifact", 'b_1 rdfs:label "trash can"', "myself sees b_1")
+    assert ids(kb, "the garbage") == ids(kb, "the rubbish") == ["b_1"]
+    kb.close()

@@ -18,3 +18,17 @@ def test_a_bad_line_is_refused_with_its_number(line: str) -> None:
 
 def test_the_packaged_file_parses() -> None:
     assert synonyms(phrase).of(("cellphone",))
+
+
+def test_general_names_go_one_way_and_kinds_both() -> None:
+    syn = parse("bag > satchel tote\nnovel < book\n", phrase)
+    # "the bag" may be the satchel; "the satchel" is no other bag
+    assert syn.broader_than(("satchel",)) == (("bag",),) and syn.kind_of(("satchel",)) == ()
+    # a novel is a book, and "the novel" may be a thing the KB only calls a book
+    assert syn.broader_than(("novel",)) == (("book",),) and syn.kind_of(("novel",)) == (("book",),)
+
+
+@pytest.mark.parametrize("line", ["bag > ", "> satchel", "a < b > c", "a > b = c"])
+def test_a_bad_general_name_line_is_refused(line: str) -> None:
+    with pytest.raises(SynonymError, match="line 1"):
+        parse(f"{line}\n", phrase)

@@ -112,3 +112,16 @@ def test_a_clause_run_into_a_phrase_never_names_its_last_noun(hall: KB) -> None:
     # "the clock" ends the phrase but is the remark's, not what to bring.
     out = say(hall, "bring me the torch i cant read the clock")
     assert out.roles.get("object") == "torch_1", out.reply
+
+
+@pytest.mark.parametrize(
+    ("said", "thing", "meant"),
+    [
+        ("it's Raf's", ("the", "red", "cap"), ("raf's", "red", "cap")),
+        ("its Raf's", ("the", "cap"), ("raf's", "cap")),
+        ("they're mine", ("the", "gloves"), ("my", "gloves")),
+    ],
+)
+def test_a_clause_may_say_whose_the_thing_is(said: str, thing: tuple[str, ...], meant: tuple[str, ...]) -> None:
+    more = description(said)
+    assert more is not None and described(thing, more) == meant

@@ -101,7 +101,8 @@ def test_questions(text: str, kind: str) -> None:
 
 
 @pytest.mark.parametrize(
-    "text", ["hi", "Hello there!", "good morning", "good day", "hey robot", "hi, how are you?", "welcome back"]
+    "text",
+    ["hi", "Hello there!", "good morning", "good day", "hey robot", "hi, how are you?", "welcome back"],
 )
 def test_greetings(text: str) -> None:
     assert parse(text).act == "greeting"
@@ -186,3 +187,62 @@ def test_more_questions(text: str, kind: str) -> None:
 )
 def test_more_ways_to_put_something_somewhere(text: str, slots: dict[str, tuple[str, ...]]) -> None:
     assert (parse(text).intent, parse(text).slots) == (I.PLACE_OBJECT, slots)
+
+
+@pytest.mark.parametrize(
+    ("text", "intent", "slots"),
+    [
+        # a person's thing after a grabbing verb is the thing, not a recipient and a thing
+        (
+            "pick up Omar's scarf off the stool",
+            "__intent_grab_object__",
+            {"object": ("omar's", "scarf", "off", "the", "stool")},
+        ),
+        (
+            "grab omars scarf from the stool",
+            "__intent_grab_object__",
+            {"object": ("omars", "scarf", "from", "the", "stool")},
+        ),
+    ],
+)
+def test_a_possessive_is_no_recipient_of_a_double_object(
+    text: str, intent: str, slots: dict[str, tuple[str, ...]]
+) -> None:
+    p = parse(text)
+    assert (p.intent, p.slots, p.double_object) == (intent, slots, False)
+
+
+@pytest.mark.parametrize(
+    ("text", "intent", "slots"),
+    [
+        # where to go after a word that only says which way
+        ("go outside to the patio", I.MOVE_TO, {"goal": ("the", "patio")}),
+        ("head downstairs to the cellar", I.MOVE_TO, {"goal": ("the", "cellar")}),
+        ("wait out in the porch", I.MOVE_TO, {"goal": ("the", "porch")}),
+        ("go and stay over by the lift", I.MOVE_TO, {"goal": ("the", "lift")}),
+        # a clause of time is no part of a referent
+        ("hand Ola a towel while she dries off", I.BRING_OBJECT, {"rest": ("ola", "a", "towel")}),
+        ("put the butter back before it melts", I.PLACE_OBJECT, {"object": ("the", "butter")}),
+    ],
+)
+def test_which_way_and_clauses_of_time(text: str, intent: str, slots: dict[str, tuple[str, ...]]) -> None:
+    p = parse(text)
+    assert (p.intent, p.slots) == (intent, slots)
+
+
+def test_a_clause_of_time_with_the_robot_as_subject_stays_part_of_the_request() -> None:
+    # "after you wash it" asks for more than the bringing: not an adjunct to drop
+    assert ("after", "you", "wash", "it") not in parse("bring me the mug after you wash it").adjuncts
+
+
+@pytest.mark.parametrize(
+    ("text", "message", "recipient"),
+    [
+        ("tell Ola it's time to go home", "it's time to go home", ("ola",)),
+        ("remind Mr Sato he has to sign the form", "he has to sign the form", ("mr", "sato")),
+        ("tell Ola to sit down", "please sit down", ("ola",)),
+    ],
+)
+def test_a_message_with_a_subject_of_its_own(text: str, message: str, recipient: tuple[str, ...]) -> None:
+    p = parse(text)
+    assert (p.intent, p.text, p.slots["recipient"]) == (I.SAY, message, recipient)

@@ -368,7 +368,10 @@ def test_part_of_a_label_names_the_thing_when_no_name_occurs(office: KB) -> None
 def test_an_answer_naming_the_owner(answer: str) -> None:
     kb = scene_kb("office", *OWNED)
     try:
-        history = [("user", "grab the mug"), ("robot", "Which cup do you mean: the green mug or the yellow mug?")]
+        history = [
+            ("user", "grab the mug"),
+            ("robot", "Which cup do you mean: the green mug or the yellow mug?"),
+        ]
         out = say(kb, answer, speaker="person_carol", history=history)
         assert (out.intent, out.roles) == (I.GRAB_OBJECT, {"object": "mug_yellow"}), out.reply
     finally:
@@ -427,3 +430,97 @@ def test_all_the_things_are_each_of_them(office: KB) -> None:
     out = say(office, "put both mugs on the shelf")
     assert [(o.intent, o.roles["object"]) for o in out.steps()] == [
         (I.PLACE_OBJECT, "mug_green"), (I.PLACE_OBJECT, "mug_yellow")]  # fmt: skip
+
+
+def _nursery() -> KB:
+    return scene_kb(
+        None,
+        "myself rdf:type Robot", "den rdf:type ZoneOfInterest", 'den rdfs:label "den"',
+        BOB + " rdf:type Human", BOB + ' rdfs:label "Bob"', "myself sees " + BOB,
+        "crate_1 rdf:type Box", 'crate_1 rdfs:label "crate"', "crate_1 isIn den", "myself sees crate_1",
+        "bench_1 rdf:type Artifact", 'bench_1 rdfs:label "bench"', "bench_1 isIn den", "myself sees bench_1",
+        "yoyo_1 rdf:type Toy", 'yoyo_1 rdfs:label "yoyo"', "yoyo_1 hasColor green", "yoyo_1 isIn crate_1",
+        "yoyo_1 isIn den", "myself sees yoyo_1",
+        "yoyo_2 rdf:type Toy", 'yoyo_2 rdfs:label "yoyo"', "yoyo_2 hasColor red", "yoyo_2 isOn bench_1",
+        "yoyo_2 isIn den", "myself sees yoyo_2",
+    )  # fmt: skip
+
+
+def test_where_a_thing_is_says_the_container_it_is_in_before_the_zone() -> None:
+    kb = _nursery()
+    assert say(kb, "where is the green yoyo").reply == "The yoyo is in the crate in the den."
+    assert say(kb, "what's in the crate?").reply == "In the crate, there is the yoyo."
+    assert say(kb, "what is on the bench").reply == "On the bench, there is the yoyo."
+    assert say(kb, "pick up the yoyo in the crate").roles == {"object": "yoyo_1"}
+    kb.close()
+
+
+def test_some_of_the_thing_just_named() -> None:
+    kb = _nursery()
+    kb.update(["chalk_1 rdf:type Artifact", 'chalk_1 rdfs:label "chalk"', "myself sees chalk_1"])
+    out = say(kb, "we need chalk for the game, can you get me some")
+    assert (out.intent, out.roles) == (I.BRING_OBJECT, {"object": "chalk_1", "recipient": BOB})
+    assert say(kb, "get me some").clarify  # nothing named: which?
+    kb.close()
+
+
+@pytest.mark.parametrize(
+    ("text", "thing"),
+    [
+        ("I need something to cut the string with", "knife_1"),
+        ("could I have something to write with", "pencil_1"),
+        ("is there anything to read", None),
+    ],
+)
+def test_what_a_thing_is_for_names_its_kind(text: str, thing: str | None) -> None:
+    kb = _nursery()
+    kb.update(["knife_1 rdf:type dbr:Knife", "myself sees knife_1",
+               "pencil_1 rdf:type Artifact", 'pencil_1 rdfs:label "pencil"', "myself sees pencil_1"])  # fmt: skip
+    out = say(kb, text)
+    assert out.roles.get("object") == thing, out.reply
+    kb.close()
+
+
+def test_a_pronoun_finds_the_thing_a_described_mention_named() -> None:
+    # "the red yoyo" is one of two yoyos; "it off the bench" is that one, where it is
+    out = say(_nursery(), "the children want the red yoyo, can you get it down off the bench")
+    assert (out.intent, out.roles) == (I.GRAB_OBJECT, {"object": "yoyo_2"})
+
+
+@pytest.mark.parametrize("text", ["fetch Omar's hat off the bench", "fetch omars hat"])
+def test_whose_thing_is_no_recipient_of_a_double_object(text: str) -> None:
+    kb = _nursery()
+    kb.update(["person_omar rdf:type Human", 'person_omar rdfs:label "Omar"', "myself sees person_omar",
+               "hat_1 rdf:type Cloth", 'hat_1 rdfs:label "hat"', "hat_1 belongsTo person_omar",
+               "hat_1 isOn bench_1", "myself sees hat_1",
+               "hat_2 rdf:type Cloth", 'hat_2 rdfs:label "hat"', "myself sees hat_2"])  # fmt: skip
+    out = say(kb, text)
+    assert (out.intent, out.roles) == (I.BRING_OBJECT, {"object": "hat_1", "recipient": BOB})
+    kb.close()
+
+
+def test_telling_several_people_is_left_to_a_model() -> None:
+    assert not say(_nursery(), "tell the children it's lunch time").understood
+
+
+def test_a_clarifying_question_names_the_things_by_the_word_said() -> None:
+    kb = _nursery()
+    kb.update(["juice_1 rdf:type Artifact", 'juice_1 rdfs:label "juice"', "myself sees juice_1",
+               "tea_1 rdf:type Artifact", 'tea_1 rdfs:label "tea"', "myself sees tea_1"])  # fmt: skip
+    assert say(kb, "bring me a drink").reply == "Which drink do you mean: the juice or the tea?"
+    kb.close()
+
+
+def test_it_in_a_later_part_is_what_an_earlier_part_took() -> None:
+    # "the yoyo" is a thing of two names; "off the bench" names the bench too: "it" is the yoyo taken
+    kb = _nursery()
+    out = say(kb, "take the red yoyo off the bench and give it to me")
+    assert [(o.intent, o.roles.get("object")) for o in out.steps()] == [
+        (I.GRAB_OBJECT, "yoyo_2"), (I.BRING_OBJECT, "yoyo_2")]  # fmt: skip
+    kb.close()
+
+
+@pytest.mark.parametrize("text", ["go and get Bob from the den", "give the crate to my daughter"])
+def test_people_the_rules_cannot_ground_are_left_to_a_model(text: str) -> None:
+    # a person where a thing is wanted; someone known only by how they are related to the speaker
+    assert not say(_nursery(), text, speaker="person_kim").understood

@@ -25,7 +25,10 @@ def _things(*labels: str) -> KB:
         ("plase", "please", 1.0),  # a letter missed
         ("plase", "place", 1.5),  # a key far away
         ("lego", "leg", 2.0),  # a short word with a letter more is another word
-        ("thermoss", "thermos", 1.0),
+        ("thermoss", "thermos", 0.8),  # a letter typed twice
+        ("helo", "hello", 0.8),  # a double letter typed once: cheaper than "help" (a key away)
+        ("helo", "help", 1.0),
+        ("thermis", "thermos", 1.0),
     ],
 )
 def test_typing_cost(said: str, meant: str, cost: float) -> None:

@@ -1,0 +1,185 @@
+"""Answers to the robot's last question: a fragment that completes the pending request ("the red
+one", "mine, obviously", "the pink one, it's Carla's"), a yes or a no to "Do you mean the flat
+brush?", and a yes to an offer ("Would you like me to bring you a basket?" "yes please").
+
+The robot's question must be the latest utterance (system notes aside); a fragment or a confirmation
+re-reads the request said right before it, an accepted offer is read as the request the robot made.
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+from typing import TYPE_CHECKING
+
+from dialogue.history import Utterance
+from dialogue.prompts import FREE_FORM_OBJECT
+from dialogue.reference.english import Words, phrases, tokens, word_set
+from dialogue.reference.resolution import ROLE_KINDS, resolve
+from dialogue.rules.clauses import clauses, described, description
+from dialogue.rules.commands import parse
+from dialogue.rules.outcome import Outcome
+from dialogue.rules.parsed import Parse
+from dialogue.rules.speech import expanded
+from dialogue.rules.words import INTERJECTIONS, OWNERS, PLACES
+
+if TYPE_CHECKING:
+    from dialogue.rules.interpret import Interpreter
+
+_ONE = frozenset({"one", "ones"})
+#: A fragment answering "Where should I put it?" may start with its preposition ("on the shelf").
+_PLACES = phrases(PLACES)
+#: How the robot offers to do something ("Would you like me to bring you a basket?"), and how it
+#: offers a thing ("Would you like a towel?": brought to the person asked).
+_OFFERS = phrases(
+    "would you like me to|do you want me to|shall i|should i|want me to|can i|may i|would it help if i"
+)
+_OFFERS_A_THING = phrases("would you like|do you want|can i get you|could i get you|shall i get you")
+#: The robot's words for the person it speaks to, said back by that person.
+_SWAPPED = {"you": "me", "your": "my", "yourself": "myself", "yours": "mine"}
+#: How the robot asks whether it guessed right ("Do you mean the flat brush?").
+_CONFIRMS = phrases("do you mean|did you mean|you mean|is it|was it|is that|are you talking about")
+#: Words that accept an offer or confirm a guess, and those of which one must be said.
+_ACCEPTING = word_set(
+    "yes yeah yep yup sure ok okay please go ahead do it that would be great lovely perfect thanks thank "
+    "you absolutely of course why not brilliant fine alright right correct exactly one the this on then "
+    "cheers"
+)
+_YES = word_set("yes yeah yep yup sure ok okay please absolutely correct exactly")
+_YES_PHRASES = phrases("go on|go ahead|do it|why not|of course|that would be great|that would be lovely")
+#: Ways of saying no ("nope, the other one").
+_NO = {"nope": "no", "nah": "no"}
+_OTHER = word_set("other another")
+
+
+def accepts(words: list[str]) -> bool:
+    """Whether the words only say yes ("yes please", "go on then", "that'd be lovely")."""
+    if not words or not set(words) <= _ACCEPTING:
+        return False
+    said = tuple(words)
+    return bool(set(words) & _YES) or any(p in _spans(said, len(p)) for p in _YES_PHRASES)
+
+
+def _spans(words: Words, n: int) -> set[Words]:
+    return {words[i : i + n] for i in range(len(words) - n + 1)}
+
+
+def follow_up(reader: Interpreter, p: Parse, text: str) -> Outcome | None:
+    """What the words answer of the robot's last question, or None when they answer none."""
+    spoken = [i for i, u in enumerate(reader.history) if u.role != "system"]
+    if not spoken:
+        return None
+    question = reader.history[spoken[-1]]
+    if question.role != "assistant" or not question.text.rstrip().endswith("?"):
+        return None
+    answer = [_NO.get(w, w) for w in expanded(text)]
+    said = [w for w in answer if w != "no"]
+    accepted = offer(reader, question, said)
+    if accepted is not None:
+        return accepted
+    if len(spoken) < 2 or reader.history[spoken[-2]].role != "user":
+        return None
+    before = spoken[-2]
+    earlier = reader.within(reader.history[:before])
+    pending = parse(reader.history[before].text, reader.robot_name)
+    if pending.act != "command":
+        return None
+    first = earlier.act(pending)
+    if first.open_role is None:
+        return None
+    confirmed = confirmation(earlier, pending, first, question, answer)
+    if confirmed is not None:
+        return _sure(confirmed)
+    fragment, more = _fragment(p, text)
+    if not fragment:
+        return None
+    merged = _merged(fragment, first)
+    if more is not None:  # "the pink one, it's Carla's"
+        merged = described(merged, more)
+    role = first.open_role
+    if role == "object" and pending.intent in FREE_FORM_OBJECT:  # "What should I say?" "Dinner is ready"
+        pending = replace(pending, text=text.strip().rstrip(".!?").strip() or None)
+    outcome = earlier.act(pending, {role: merged})
+    if outcome.intent is None and not outcome.clarify:
+        return None
+    return _sure(outcome)
+
+
+def _sure(outcome: Outcome) -> Outcome:
+    """A request completed by a follow-up is a little less sure than one said whole."""
+    return replace(outcome, confidence=0.8, more=())
+
+
+def _fragment(p: Parse, text: str) -> tuple[Words, Words | None]:
+    """The words of the answer ("mine, obviously": whose it is, without the interjection), and what
+    a clause after it says of the thing ("..., it's Carla's"), if one does."""
+    said = clauses(text)
+    more = description(said[1]) if len(said) == 2 else None
+    words = tokens(said[0]) if more is not None else p.words
+    return tuple(OWNERS.get(w, w) for w in words if w not in INTERJECTIONS), more
+
+
+def _merged(fragment: Words, first: Outcome) -> Words:
+    """The fragment with the pending request's phrase: "the red one" and "the cup" make "the red
+    cup"; prepositions stay ("the novel" + "book from the shelf" keeps "book" as the head)."""
+    if first.open_phrase:
+        phrase = tuple(w for w in first.open_phrase if w not in {"the", "a", "an"})
+        if not set(fragment) & _ONE:
+            return (*fragment, *phrase)
+        return tuple(x for w in fragment for x in (phrase if w in _ONE else (w,)))
+    for loc in _PLACES:
+        if fragment[: len(loc)] == loc:
+            return fragment[len(loc) :]
+    return fragment
+
+
+def offer(reader: Interpreter, question: Utterance, said: list[str]) -> Outcome | None:
+    """ "yes please" to "Would you like me to bring you a basket?": the request the robot offered,
+    in the words of the person who accepts it ("bring me a basket")."""
+    if not accepts(said):
+        return None
+    request = _offered(expanded(question.text.rstrip(" ?")))
+    outcome = reader.act(parse(" ".join(request), reader.robot_name)) if request else None
+    if outcome is None or outcome.intent is None:
+        return None
+    return _sure(outcome)
+
+
+def _offered(asked: list[str]) -> list[str]:
+    """The request an offer makes, in the words of the person offered it ([] when it makes none)."""
+    for lead in _OFFERS:
+        at = next((i for i in range(len(asked)) if tuple(asked[i : i + len(lead)]) == lead), None)
+        if at is not None:
+            return [_SWAPPED.get(w, w) for w in asked[at + len(lead) :]]
+    for lead in _OFFERS_A_THING:  # "Would you like a towel?"
+        if tuple(asked[: len(lead)]) == lead and asked[len(lead) :]:
+            return ["bring", "me", *asked[len(lead) :]]
+    return []
+
+
+def confirmation(earlier: Interpreter, pending: Parse, first: Outcome, question: Utterance,
+                 said: list[str]) -> Outcome | None:  # fmt: skip
+    """ "yes" or "no, the other one" to "Do you mean the flat brush?": the thing the robot guessed,
+    or the one other thing the pending request's phrase names."""
+    asked = expanded(question.text.rstrip(" ?"))
+    lead = next((c for c in _CONFIRMS if tuple(asked[: len(c)]) == c), None)
+    role = first.open_role
+    if lead is None or role is None or not first.open_phrase:
+        return None
+    kinds = ROLE_KINDS.get(pending.intent or "", {}).get(role)
+    if kinds is None:
+        return None
+    candidates = resolve(earlier.lexicon, first.open_phrase, kinds).matches
+    guessed = resolve(earlier.lexicon, asked[len(lead) :], kinds).one
+    if guessed is None or guessed not in candidates:
+        return None
+    if said[:1] == ["no"] and set(said) & _OTHER:  # "no the other one"
+        others = [e for e in candidates if e.id != guessed.id]
+        meant = others[0] if len(others) == 1 else None
+    elif said[:1] != ["no"] and accepts(said):
+        meant = guessed
+    else:
+        return None
+    if meant is None:
+        return None
+    outcome = earlier.act(pending, {role: tuple(tokens(meant.id))})
+    return outcome if outcome.intent is not None else None
