@@ -15,6 +15,7 @@ characters (saying how much was cut), at most `MAX_EXCHANGES` requests and `MAX_
 
 from __future__ import annotations
 
+import json
 import time
 import uuid
 from collections.abc import Iterator, Sequence
@@ -67,6 +68,11 @@ class Exchange(BaseModel):
     error: str | None = None
     ms: float | None = None
 
+    def chars(self) -> int:
+        """About how many characters this exchange holds (the schema counted as its JSON)."""
+        texts = (self.raw_answer or "", self.error or "", *(m.content for m in self.messages))
+        return sum(map(len, texts)) + len(json.dumps(self.json_schema))
+
 
 class SnapshotSummary(BaseModel):
     """What the turn knew of the situation: the KB revision, entity counts, the prompt's first ids."""
@@ -107,6 +113,15 @@ class TurnTrace(BaseModel):
     #: What a role did with the turn (the ask role: each field read, corrected, refused, asked).
     notes: list[str] = Field(default_factory=list)
     stages: list[Stage] = Field(default_factory=list)
+
+    def chars(self) -> int:
+        """About how many characters the trace holds: what a store's budget counts."""
+        texts = (self.input, self.response, self.error_msg, self.results or "", *self.notes)
+        return (
+            sum(map(len, texts))
+            + sum(map(len, self.validation_errors))
+            + sum(exchange.chars() for exchange in self.exchanges)
+        )
 
 
 def _ms(start: float) -> float:
