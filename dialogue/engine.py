@@ -219,8 +219,8 @@ class DialogueEngine:
         context = TurnContext(text, speaker, snapshot, history, locale, self.config.robot_name, tuple(focus),
                               lexicon)
         recorder = trace or TraceRecorder(speaker=speaker, input=text, locale=locale)
-        kinds = [e.kind for e in snapshot.entities.values()]
-        recorder.snapshot(snapshot.revision, kinds, [e.id for e in focus])
+        shown = [e.id for e in focus]
+        recorder.snapshot(snapshot.revision, len(snapshot.entities), [e.kind for e in focus], shown)
         return _Turn(text, speaker, locale, context, lexicon, recorder)
 
     async def grounded_for(

@@ -38,7 +38,7 @@ export function renderTrace(trace) {
       ` (${trace.backend})`, trace.repaired ? " · repaired" : "", trace.locale ? ` · ${trace.locale}` : "",
       trace.role !== "__default__" ? ` · role ${trace.role}` : "", ` · shape ${trace.shape}`),
     snapshot ? el("p", { class: "trace-snapshot" },
-      `KB revision ${snapshot.revision}: ${snapshot.entities} entities (${kinds}); first in the prompt: ` +
+      `KB revision ${snapshot.revision}: ${snapshot.entities} entities; in the prompt: ${kinds}; first: ` +
       snapshot.focus.join(", ")) : null,
     stages,
     ...trace.exchanges.map(exchange),

@@ -18,6 +18,7 @@ from __future__ import annotations
 import json
 import time
 import uuid
+from collections import Counter
 from collections.abc import Iterator, Sequence
 from contextlib import contextmanager
 from typing import Any, Literal
@@ -75,10 +76,12 @@ class Exchange(BaseModel):
 
 
 class SnapshotSummary(BaseModel):
-    """What the turn knew of the situation: the KB revision, entity counts, the prompt's first ids."""
+    """What the turn knew of the situation: the KB revision, how many entities it knew, the kinds of
+    those the prompt showed (the most relevant, ranked per turn) and the first of their ids."""
 
     revision: int
     entities: int
+    #: Kinds of the prompt's entities; counting the whole KB's would cost a turn O(KB size).
     by_kind: dict[str, int]
     #: The most relevant entities of the turn (what the prompt and the schema show first).
     focus: list[str]
@@ -161,12 +164,10 @@ class TraceRecorder:
         finally:
             self.trace.stages.append(Stage(name=name, ms=_ms(start)))
 
-    def snapshot(self, revision: int, kinds: Sequence[str], focus: Sequence[str]) -> None:
-        by_kind: dict[str, int] = {}
-        for kind in kinds:
-            by_kind[kind] = by_kind.get(kind, 0) + 1
+    def snapshot(self, revision: int, entities: int, kinds: Sequence[str], focus: Sequence[str]) -> None:
+        """`entities`: how many the snapshot holds; `kinds` and `focus`: of the prompt's entities."""
         self.trace.snapshot = SnapshotSummary(
-            revision=revision, entities=len(kinds), by_kind=by_kind, focus=list(focus[:12])
+            revision=revision, entities=entities, by_kind=dict(Counter(kinds)), focus=list(focus[:12])
         )
 
     def request(
