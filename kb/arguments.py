@@ -57,8 +57,11 @@ def render(query: Query, found: Iterable[Row], shorts: dict[Node, Any] | None = 
     known: dict[Node, Any] = {} if shorts is None else shorts
     rows = list(found)
     terms = {t for row in rows for t in row}
-    for term in terms - known.keys():
-        known[term] = shorten(term)
+    for term in terms:
+        # Not `terms - known.keys()`: a set minus a dict view iterates the whole view, and the KB's
+        # cache holds every term ever rendered: O(KB size) per query.
+        if term not in known:
+            known[term] = shorten(term)
     value = known.__getitem__
     values = [tuple(map(value, row)) for row in rows]
     if all(type(value(t)) is str for t in terms):

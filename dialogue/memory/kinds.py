@@ -11,7 +11,9 @@ from dataclasses import dataclass
 
 from dialogue.reference.lexicon import phrase
 from kb.protocol import KnowledgeBase
-from kb.terms import format_term, parse_name
+
+#: The labels of the classes, by the types that make a term a class (as `lookup` tells classes).
+CLASS_LABELS = (("?c rdfs:label ?l", "?c rdf:type owl:Class"), ("?c rdfs:label ?l", "?c rdf:type rdfs:Class"))
 
 
 @dataclass(frozen=True)
@@ -21,17 +23,13 @@ class Kind:
 
 
 def find_kind(kb: KnowledgeBase, words: str) -> Kind | None:
-    """The class whose label is `words` (the first by id when several are), or None (blocking)."""
+    """The class whose label is `words` (the first by id when several are), or None (blocking).
+
+    Reads the labels of the classes only (a few hundred), not a text search of the whole KB
+    (`lookup` scans every label: O(KB size) per turn)."""
     wanted = phrase(words)
     if not wanted:
         return None
-    found: list[Kind] = []
-    for term, kind in kb.lookup(" ".join(wanted)):
-        if kind != "class":
-            continue
-        labels = [str(r["l"]) for r in kb.find([f"{format_term(parse_name(term, 'class'))} rdfs:label ?l"])]
-        for label in labels:
-            if phrase(label) == wanted:
-                found.append(Kind(term, label))
-                break
-    return min(found, key=lambda k: k.id) if found else None
+    labels = {(str(r["c"]), str(r["l"])) for patterns in CLASS_LABELS for r in kb.find(list(patterns))}
+    found = [Kind(term, label) for term, label in labels if phrase(label) == wanted]
+    return min(found, key=lambda k: (k.id, k.name)) if found else None

@@ -175,7 +175,9 @@ class Memory:
                snapshot: Snapshot) -> tuple[dict[Claim, Outcome], list[str], list[str]]:
         """What becomes of each claim in the robot's model, and that model's changes (add, remove)."""
         owned = [c.subject for c in tells if c.predicate == "belongsTo" and c.object == speaker]
-        theirs = {e.id for e in snapshot.entities.values() if e.owner == speaker} | set(owned)
+        # Only the told subjects are ever asked about: no pass over every entity of the snapshot.
+        subjects = (snapshot.get(c.subject) for c in tells)
+        theirs = {e.id for e in subjects if e is not None and e.owner == speaker} | set(owned)
         when = self.clock()
         who = parse_name(speaker, "speaker")
         add: list[str] = []
