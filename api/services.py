@@ -271,6 +271,9 @@ def start_services(settings: Settings, kb: KB | None = None, model: ChatModel | 
                         journal=journal, owns_kb=owns_kb, store=store, owns_model=model is None,
                         local_kb=the_kb, bus=bus, people=people)
     people.follow()  # the KB is recovered and loaded: the index starts from it
+    # The first snapshot is the one full build (seconds at 100k statements): made now, not by the
+    # first turn, which would pay it against its deadline. Later commits update it incrementally.
+    dialogues.engine.ground()
     services.reconciler = Reconciler(dialogues.engine.memory)
     services.reconciler.start()
     services.initiative = Initiative(the_kb, bus, InitiativeConfig(settings.memory.greet,

@@ -70,3 +70,14 @@ def test_aclose_closes_the_model_it_built_and_not_one_it_was_given() -> None:
 
     asyncio.run(use_then_stop())
     assert not inner.client.open and given_model.client.open
+
+
+def test_the_first_snapshot_is_built_at_start_and_followed_after(tmp_path: Path) -> None:
+    services = start_services(Settings(scene=SCENE))
+    try:
+        engine = services.dialogues.engine
+        assert engine.grounder.cached(services.kb.revision) is not None  # no turn has run yet
+        services.kb.update(["cup_9 rdf:type dbr:Cup", "myself sees cup_9"])
+        assert engine.ground()[0].get("cup_9") is not None
+    finally:
+        services.stop()
