@@ -13,7 +13,7 @@ def test_a_short_run_has_a_row_per_case_and_the_load_average() -> None:
     out = bench.grounding.run((1500,), rounds=3, baseline_rounds=1, visible_counts=(10, 40))
     rows = [line.split() for line in out.splitlines() if line.strip()[:1].isdigit()]
     assert [row[1] for row in rows] == ["10", "40"]
-    assert all(len(row) == 7 and all(float(v.replace(",", "")) >= 0 for v in row) for row in rows)
+    assert all(len(row) == 9 and all(float(v.replace(",", "")) >= 0 for v in row) for row in rows)
     assert "load average" in out
 
 
