@@ -16,6 +16,7 @@ from dialogue.rules.speech import starts, strip_politeness
 from dialogue.rules.utterance import normalise, strip_vocative, verb_lemma
 from dialogue.rules.words import (
     ADJUNCTS,
+    GOAL_PARTICLES,
     GREETINGS,
     HERE,
     JOINED_PREPOSITIONS,
@@ -133,7 +134,7 @@ def _fit(row: Row, said: Said) -> Parse | None:
         # "leave it over there", "come here", "lead the way"; dropped when the place is also named
         # ("lead the way to the lobby").
         pointed = next((p for p in _POINTING if direct[-len(p[0]) :] == p[0]), None)
-        if pointed is not None:
+        if pointed is not None and not (frame.there_only and pointed[1] != ("there",)):
             direct = direct[: -len(pointed[0])]
             slots.setdefault(frame.here, pointed[1])
     direct = _without_particles(direct, row)
@@ -191,6 +192,8 @@ def _segments(rest: Words, row: Row) -> tuple[Words, dict[str, Words], dict[str,
     i = 0
     while i < len(rest):
         marker = next((m for m in row.slots if rest[i : i + len(m[0])] == m[0] and m[1] not in slots), None)
+        if marker is not None and marker[0][0] in GOAL_PARTICLES and rest[i + 1 : i + 2] not in _NP_AFTER:
+            marker = None  # "go down to the cellar": a particle; "go down the garden": where to
         if marker is not None and purpose(rest[i : i + 2]) is None:  # "something to eat" is no recipient
             current = slots[marker[1]] = []
             marks[marker[1]] = " ".join(marker[0])
@@ -199,6 +202,9 @@ def _segments(rest: Words, row: Row) -> tuple[Words, dict[str, Words], dict[str,
         current.append(rest[i])
         i += 1
     return tuple(direct), {role: tuple(words) for role, words in slots.items() if words}, marks
+
+
+_NP_AFTER = {(w,) for w in NP_START}
 
 
 def _second_phrase(slots: dict[str, Words]) -> Words:
@@ -251,13 +257,15 @@ def _adjuncts(rest: Words, row: Row) -> tuple[Words, tuple[Words, ...]]:
 def _adjunct_end(rest: Words, i: int, own: set[str]) -> int:
     word = rest[i]
     by_doing = word == "by" and i + 1 < len(rest) and rest[i + 1].endswith("ing")  # "by crossing the hall"
-    if word in own and not by_doing:
+    # "down the hall to the garage": the way, when the place comes after it
+    way = word in GOAL_PARTICLES & own and bool(set(rest[i + 1 :]) & (own - GOAL_PARTICLES))
+    if word in own and not by_doing and not way:
         return i
     said_how = _said_how(rest, i)
     if said_how:
         return i + said_how
-    if word in PATHS or by_doing:
-        end, stop = i + 1, own | PATHS
+    if word in PATHS or by_doing or way:
+        end, stop = i + 1, (own - GOAL_PARTICLES) | PATHS
         while end < len(rest) and rest[end] not in stop and not _said_how(rest, end):
             end += 1
         # "through the main door" has a phrase; "walk through to the lounge" is a particle.

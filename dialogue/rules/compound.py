@@ -14,7 +14,7 @@ from dialogue.reference.resolution import content_words
 from dialogue.rules.frames import verbs
 from dialogue.rules.speech import QUOTED, starts, strip_politeness
 from dialogue.rules.utterance import asked_verb, normalise, strip_vocative
-from dialogue.rules.words import GREETINGS, NO_INTENT_VERBS
+from dialogue.rules.words import CHAT, GREETINGS, NO_INTENT_VERBS
 
 _CONJUNCTIONS = word_set("and then , ; afterwards")
 #: Verbs that start a new command even with no conjunction before them, when followed by one of
@@ -62,7 +62,8 @@ def conjuncts(text: str) -> list[Part]:
     """The commands of a compound request in order, or [] when the text is one request."""
     if QUOTED.search(text):  # "say 'stop and wait' to Tom": the quote is one text
         return []
-    toks = spans(text, marks=True)
+    # (a conjunction as chat writes it: "get my bag n bring it over")
+    toks = [(_one_word(word), start, end) for word, start, end in spans(text, marks=True)]
     no_cut_after = _NO_CUT_AFTER | verbs() | _CONJUNCTIONS
     cuts: list[tuple[int, int]] = []  # (index of the first word of the new part, index after the cut)
     for i, (word, _, _) in enumerate(toks):
@@ -105,6 +106,12 @@ def conjuncts(text: str) -> list[Part]:
         verb = _verb(piece)
         out.append(Part(piece, verb, verb in NO_INTENT_VERBS))
     return out
+
+
+def _one_word(word: str) -> str:
+    """The conjunction a chat abbreviation stands for ("n" for "and"), else the word as written."""
+    said = CHAT.get(word, (word,))
+    return said[0] if len(said) == 1 and said[0] in _CONJUNCTIONS else word
 
 
 def alternatives(words: Words) -> list[Words]:

@@ -78,8 +78,7 @@ def question(words: list[str]) -> Parse | None:
     if head == ("where",):
         return _where(w)
     if starts(w, ("how", "many")):
-        thing = tuple(x for x in w[2:] if x not in {"do", "you", "see", "can", "are", "there", "is"})
-        return _q("how_many", w, thing=thing)
+        return _q("how_many", w, thing=_counted(w[2:]))
     for lead in _SEES:
         if starts(w, lead):
             thing = _strip_ends(w[len(lead) :], frozenset(), _NEARBY)  # "is there any fruit around"
@@ -96,6 +95,30 @@ def question(words: list[str]) -> Parse | None:
     if head and head[0] in WH:
         return _q("other", w)
     return None
+
+
+#: The verb of a question's own clause after what it counts ("how many cans *have* we got").
+_ASKING_VERBS = word_set("do does did have has can could are is were was will would")
+_ASKED_SUBJECTS = word_set("we you i they there")
+#: Words after a counted thing that only say where or in all ("here", "left", "altogether").
+_COUNT_TAIL = word_set("here there around left altogether total in all now got")
+
+
+def _counted(rest: Words) -> Words:
+    """What "how many" counts: the words before the question's own clause ("watering cans (have we
+    got)", "cups (can you see)", "chairs (are there) in the hall")."""
+    at = next((i for i in range(1, len(rest) - 1)
+               if rest[i] in _ASKING_VERBS and rest[i + 1] in _ASKED_SUBJECTS), None)  # fmt: skip
+    if at is None:
+        return tuple(x for x in rest if x not in {"do", "you", "see", "can", "are", "there", "is"})
+    after = rest[at + 2 :]
+    while after[:1] and after[0] in {"got", "see", "have", "left", "here", "around"}:
+        after = after[1:]
+    thing = rest[:at] + (after if after[:1] and after[0] in _PLACE_STARTS else ())
+    return _strip_ends(thing, frozenset(), _COUNT_TAIL)
+
+
+_PLACE_STARTS = word_set("in on at under inside")
 
 
 def _anybody(w: Words) -> bool:

@@ -23,6 +23,9 @@ from tests.dialogue.rules.test_interpret import say
         ("omar is at the door go say hi to him", ["omar is at the door", "go say hi to him"]),
         ("mia can't find her pen, can you take it to her", ["mia can't find her pen", "can you take it to her"]),
         ("omar is in the shed tell him lunch is ready", ["omar is in the shed", "tell him lunch is ready"]),
+        # "and" as chat writes it; other chat words cut nothing ("cn u go...": "u" is "you")
+        ("fetch the tray n put it on the shelf", ["fetch the tray", "put it on the shelf"]),
+        ("cn u go to the shed", ["cn u", "go to the shed"]),
     ],
 )
 def test_parts(text: str, parts: list[str]) -> None:

@@ -524,3 +524,48 @@ def test_it_in_a_later_part_is_what_an_earlier_part_took() -> None:
 def test_people_the_rules_cannot_ground_are_left_to_a_model(text: str) -> None:
     # a person where a thing is wanted; someone known only by how they are related to the speaker
     assert not say(_nursery(), text, speaker="person_kim").understood
+
+
+def test_a_run_on_question_about_someone_is_answered_by_its_last_clause(office: KB) -> None:
+    office.update(["person_dan isIn hallway"])
+    out = say(office, "is dan about do you know where he is")
+    assert out.understood and out.intent is None and "hallway" in out.reply
+
+
+@pytest.mark.parametrize(
+    "text",
+    ["this is Dan he just started, say hello", "Dan is new here. Say hi!", "meet Dan, say good morning"],
+)
+def test_say_hello_greets_the_person_just_introduced(office: KB, text: str) -> None:
+    out = say(office, text)
+    assert (out.intent, out.roles) == (I.GREET, {"recipient": "person_dan"}), out.reply
+
+
+def test_say_hello_with_nobody_introduced_greets_the_speaker(office: KB) -> None:
+    out = say(office, "say hello")
+    assert (out.intent, out.roles, out.reply) == (I.GREET, {"recipient": BOB}, "Hello Bob!")
+    # someone named in an earlier turn is not "introduced" now
+    earlier = say(office, "say hi", history=[("user", "where is Carol"), ("robot", "Carol is in the office.")])
+    assert earlier.roles == {"recipient": BOB}
+
+
+def test_going_somewhere_and_waiting_there_is_one_move(office: KB) -> None:
+    out = say(office, "go to the hallway and wait there")
+    assert (out.intent, out.roles, out.more) == (I.MOVE_TO, {"goal": "hallway"}, ())
+    out = say(office, "head down the hallway n wait for me there")
+    assert (out.intent, out.roles, out.more) == (I.MOVE_TO, {"goal": "hallway"}, ())
+    assert not say(office, "wait here").understood  # to stay put is no move anywhere
+
+
+@pytest.mark.parametrize(
+    ("text", "intent", "roles"),
+    [
+        ("can u get my laptop n put it on the desk pls", I.GRAB_OBJECT, {"object": "laptop_1"}),
+        ("go bk to the hallway", I.MOVE_TO, {"goal": "hallway"}),
+        ("grab the umbrella b4 someone takes it", I.GRAB_OBJECT, {"object": "umbrella_1"}),
+        ("whats on the desk rn", None, {}),
+    ],
+)
+def test_chat_abbreviations(office: KB, text: str, intent: str | None, roles: dict[str, str]) -> None:
+    out = say(office, text)
+    assert out.understood and (out.intent, out.roles) == (intent, roles), out.reply

@@ -24,6 +24,9 @@ from dialogue.rules.utterance import Cleaned, cleaned, normalise
         # chat and recogniser spellings
         ("can u pass the salt theyre waiting", "can you pass the salt they are waiting"),
         ("how many mugs r there", "how many mugs are there"),
+        ("grab my keys b4 u go", "grab my keys before you go"),
+        ("fetch the tray n bring it bk rn", "fetch the tray and bring it back right now"),
+        ("pls get sth to eat", "please get something to eat"),
     ],
 )
 def test_normalise(text: str, words: str) -> None:
