@@ -140,6 +140,11 @@ def _fit(row: Row, said: Said) -> Parse | None:
     direct = _without_particles(direct, row)
     if not direct and frame.direct is not None:
         direct = _second_phrase(slots)  # "bring to Ana the tray"
+    if frame.dative is not None and direct[:1] and direct[0] in ME and marks.get("recipient") == "to":
+        # "bring me the keys to the red car": the keys of the car, brought to the speaker
+        direct = (*direct[1:], "to", *slots.pop("recipient"))
+        slots["recipient"] = ("me",)
+        del marks["recipient"]
     if frame.dative is not None and "recipient" not in slots and direct:
         # "get Ines her phone": someone, then a noun phrase of its own
         before = frame.dative == "before" and _someone(direct[0]) and _own_phrase_after(direct)
@@ -192,7 +197,7 @@ def _segments(rest: Words, row: Row) -> tuple[Words, dict[str, Words], dict[str,
     i = 0
     while i < len(rest):
         marker = next((m for m in row.slots if rest[i : i + len(m[0])] == m[0] and m[1] not in slots), None)
-        if marker is not None and marker[0][0] in GOAL_PARTICLES and rest[i + 1 : i + 2] not in _NP_AFTER:
+        if marker is not None and marker[0][0] in GOAL_PARTICLES and not _phrase_at(rest, i + 1):
             marker = None  # "go down to the cellar": a particle; "go down the garden": where to
         if marker is not None and purpose(rest[i : i + 2]) is None:  # "something to eat" is no recipient
             current = slots[marker[1]] = []
@@ -204,7 +209,10 @@ def _segments(rest: Words, row: Row) -> tuple[Words, dict[str, Words], dict[str,
     return tuple(direct), {role: tuple(words) for role, words in slots.items() if words}, marks
 
 
-_NP_AFTER = {(w,) for w in NP_START}
+def _phrase_at(words: Words, i: int) -> bool:
+    """Whether a noun phrase starts at i: a determiner, or a word that is no function word ("plot
+    12", "Ana's desk")."""
+    return i < len(words) and (words[i] in NP_START or words[i] not in FUNCTION_WORDS)
 
 
 def _second_phrase(slots: dict[str, Words]) -> Words:

@@ -18,6 +18,7 @@ from dialogue.rules.clauses import finite
 from dialogue.rules.parsed import Parse
 from dialogue.rules.speech import QUOTED, expanded, message, original_text, split_at, starts
 from dialogue.rules.words import (
+    ADJUNCTS,
     DONE,
     EVERYONE,
     GOES,
@@ -50,7 +51,15 @@ class Said:
     original: str
 
     def command(self, intent: str, text: str | None = None, **slots: Words) -> Parse:
+        if "recipient" in slots:  # "tell Ana from me that...": whom, not on whose behalf
+            slots["recipient"] = _without_adjunct(slots["recipient"])
         return Parse("command", intent, dict(slots), text=text, words=self.words)
+
+
+def _without_adjunct(words: Words) -> Words:
+    """The words without an adjunct at their end ("ana from me", "ana on my behalf")."""
+    found = next((a for a in ADJUNCTS if len(words) > len(a) and words[-len(a) :] == a), None)
+    return words[: -len(found)] if found is not None else words
 
 
 # -- before any verb: what the whole utterance says ----------------------------------------------

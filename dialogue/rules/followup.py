@@ -21,7 +21,7 @@ from dialogue.rules.commands import parse
 from dialogue.rules.outcome import Outcome
 from dialogue.rules.parsed import Parse
 from dialogue.rules.speech import expanded, strip_politeness
-from dialogue.rules.words import INTERJECTIONS, OWNERS, PLACES
+from dialogue.rules.words import INTERJECTIONS, NP_START, OWNERS, PLACES
 
 if TYPE_CHECKING:
     from dialogue.rules.interpret import Interpreter
@@ -196,10 +196,12 @@ def correction(reader: Interpreter, text: str) -> Outcome | None:
     """ "sorry, I meant screen two" after "take the booster seat to screen 1": the last request again,
     with the phrase of the role that names the same kind of thing (a place for a place, a thing for
     a thing) replaced."""
-    words = [w for w in expanded(text) if w not in _SOFTENING]
-    words = strip_politeness([w for w in words if w not in _SOFTENING])
+    parts = [strip_politeness([w for w in expanded(part) if w not in _SOFTENING]) for part in text.split(",")]
+    words = [w for part in parts for w in part]
     lead = next((c for c in _CORRECTING if tuple(words[: len(c)]) == c), None)
-    fragment = tuple(words[len(lead) :]) if lead is not None else ()
+    fragment = tuple(words[len(lead) :]) if lead is not None else _not_that(tuple(words))
+    if len(parts) == 2 and parts[0][:1] == ["not"] and parts[1]:  # "not the shed, the porch"
+        fragment = tuple(parts[1])
     for loc in _PLACES:  # "I meant on the shelf"
         if fragment[: len(loc)] == loc and fragment[len(loc) :]:
             fragment = fragment[len(loc) :]
@@ -214,9 +216,12 @@ def correction(reader: Interpreter, text: str) -> Outcome | None:
     if pending.act != "command" or pending.intent is None:
         return None
     before = earlier.act(pending)
+    slots = pending.slots
+    if pending.double_object and "rest" in slots:  # "fetch Ana the mug": whose phrase is whose
+        slots = earlier.refs.split_double_object(slots["rest"])
     fits: list[tuple[int, Outcome]] = []
     for role in ROLE_KINDS.get(pending.intent, {}):
-        said = pending.slots.get(role, ())
+        said = slots.get(role, ())
         was = before.roles.get(role)
         if not content_words(said) or was is None:
             continue
@@ -232,6 +237,18 @@ def correction(reader: Interpreter, text: str) -> Outcome | None:
     if not fits or (len(fits) > 1 and fits[0][0] == fits[1][0]):
         return None
     return _sure(fits[0][1])
+
+
+def _not_that(words: Words) -> Words:
+    """ "not the shed, the porch" or "the porch, not the shed": the phrase meant (() if none is)."""
+    if "not" not in words:
+        return ()
+    at = words.index("not")
+    if at > 0:
+        return words[:at]
+    starts = (j for j in range(2, len(words)) if words[j] in NP_START and words[j - 1] not in NP_START)
+    again = next(starts, None)
+    return words[again:] if again is not None else ()
 
 
 def _instead(fragment: Words, said: Words) -> Words:

@@ -12,7 +12,8 @@ from dataclasses import replace
 
 from dialogue import intents as I
 from dialogue.history import Utterance
-from dialogue.reference.english import PARTS, Words, tokens
+from dialogue.reference.english import PARTS, POSSESSIVES, Words, tokens
+from dialogue.reference.grounding import Kind
 from dialogue.reference.lexicon import Lexicon
 from dialogue.reference.resolution import (
     ANYWHERE,
@@ -197,7 +198,11 @@ class Interpreter:
             case "where":
                 return Outcome(answers.where_is(self.lexicon, thing, self.speaker, owner))
             case "what_on":
-                reply, clarify = answers.what_is_on(self.lexicon, thing)
+                asked = " ".join(p.slots.get("relation", ()))
+                reply, clarify = answers.what_is_on(self.lexicon, thing, asked)
+                return Outcome(reply, clarify=clarify)
+            case "what_near":
+                reply, clarify = answers.what_is_near(self.lexicon, thing, p.slots.get("relation", ()))
                 return Outcome(reply, clarify=clarify)
             case "can_see":
                 return Outcome(answers.can_you_see(self.lexicon, thing, self.speaker, owner))
@@ -243,7 +248,7 @@ class Interpreter:
         intent = p.intent or ""
         slots = {**p.slots, **overrides}
         if p.double_object and "rest" in slots:
-            slots = self.refs.split_double_object(slots.pop("rest"))
+            slots = {**self.refs.split_double_object(slots.pop("rest")), **overrides}
         if intent in {I.BRING_OBJECT, I.PLACE_OBJECT} and "recipient" in slots:
             # "take Maria to the kitchen", "walk Mr Ito back to the car park": guiding, not carrying
             who = tuple(w for w in slots.get("object", ()) if w not in RELATIONAL)
@@ -282,7 +287,8 @@ class Interpreter:
                 if role in spec.required:
                     return self._missing(intent, role, p)
                 continue
-            words, owner = self.refs.possessive(words, slots) if role == "object" else (words, None)
+            whose = self.refs.possessive(words, slots) if role == "object" else self._whose(words, kinds)
+            words, owner = whose
             others = [w for r, w in slots.items() if r != role]
             ref = self.refs.ground(words, kinds, role, owner, others)
             if ref.problem is not None:
@@ -303,6 +309,16 @@ class Interpreter:
         if any(ref.guessed for ref in refs.values()):  # "go to bay mine": a guess, less sure
             return Outcome(reply, intent, roles, SPELT_CONFIDENCE, guessed=True)
         return self._intent(intent, roles, reply)
+
+    def _whose(self, words: Words, kinds: frozenset[Kind]) -> tuple[Words, str | None]:
+        """ "go to my desk", "put it on Ana's shelf": a place said with whose it is, when that names
+        one (a person's phrase keeps its possessive: "my son" is no son of the KB's)."""
+        if not words or words[0] not in POSSESSIVES:  # "platform 4 my train's late" says no one's place
+            return words, None
+        bare, owner = self.refs.possessive(words, {})
+        if owner is None or resolve(self.lexicon, bare, kinds, owner=owner).one is None:
+            return words, None
+        return bare, owner
 
     def _this_turn(self) -> tuple[Utterance, ...]:
         """What the speaker said since the robot last spoke (the earlier clauses of this turn)."""

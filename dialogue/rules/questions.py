@@ -26,6 +26,9 @@ _WHO_NOT_A_NAME = word_set("here there around in with present speaking talking a
 _SEE_WORDS = frozenset({"see", "notice", "around", "front", "here", "there"})
 _COLOUR_WORDS = frozenset({"colour", "color"})
 _LOCATIVES = ("on top of", "on", "in", "inside", "under", "at")
+#: Relations beside support and zone a "what is ... X" question may ask about.
+_NEAR = ("next to", "close to", "in front of", "near", "beside", "by", "behind", "underneath", "below",
+         "beneath", "above")
 #: Leads of an indirect question: "do you know where the keys are", "any idea where the toolbox is".
 _INDIRECT: tuple[Words, ...] = tuple(
     tuple(p.split()) for p in ("do you know", "do you have any idea", "any idea", "have you any idea",
@@ -38,6 +41,8 @@ _ELSE = word_set("else besides except apart from but me us other than the room t
 _OWNERS = word_set("mine yours his hers theirs ours")
 _NEARBY = word_set("around nearby here about anywhere somewhere")
 _OTHERS = word_set("his her their my its")
+#: Words that ask whether someone is there ("is Maria about?").
+_THERE = word_set("here there around present about")
 
 
 def _q(kind: str, w: Words, **slots: Words) -> Parse:
@@ -85,7 +90,7 @@ def question(words: list[str]) -> Parse | None:
             if thing[:1] in {("anything",), ("something",)}:
                 return _anything(w, thing[1:])
             return _q("can_see", w, thing=thing)
-    if head in {("is",), ("are",)} and len(w) > 2 and w[-1] in {"here", "there", "around", "present"}:
+    if head in {("is",), ("are",)} and len(w) > 2 and w[-1] in _THERE:
         return _q("can_see", w, thing=w[1:-1])  # "is Maria here?"
     if head in {("is",), ("are",)} and split_at(w, _LOCATIVES) is not None:
         return _q("can_see", w, thing=w[1:])  # "is the cup on the table?"
@@ -140,10 +145,14 @@ def _what(w: Words) -> Parse:
         return _q(
             "colour", w, thing=_strip_ends(rest[1:], frozenset({"is", "are"}), frozenset({"is", "are"}))
         )
+    for sep in _NEAR:  # "what's next to the window": what the KB puts there
+        found = split_at(("x", *rest), [sep])
+        if found and found[2] and not set(found[0][1:]) - _ON_GLUE:
+            return _q("what_near", w, place=found[2], relation=tuple(sep.split()))
     for sep in _LOCATIVES:
         found = split_at(("x", *rest), [sep])
         if found and not set(found[0][1:]) - _ON_GLUE:
-            return _q("what_on", w, place=found[2])
+            return _q("what_on", w, place=found[2], relation=(sep,))
     for i, word in enumerate(rest):  # "which cups do you see", "what fruit can you see"
         seeing = word in {"do", "can", "could"} and rest[i + 1 : i + 3] == ("you", "see")
         if seeing and i > 0 and not set(rest[:i]) & {"is", "are", "else"}:

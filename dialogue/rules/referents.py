@@ -245,10 +245,11 @@ class Referents:
             # Names the KB knows among words it does not ("mr ito back", "the trousers out"): the
             # phrase was not understood, which is not the same as "there is no such thing".
             return Ref(problem=Outcome("Sorry, I did not understand that.", understood=False))
-        someone = "person" not in kinds and resolve(self.lexicon, words, PERSON).matches
-        if someone or ("person" in kinds and words[:1] and words[0] in POSSESSIVES):
+        other = resolve(self.lexicon, words, ANYWHERE - kinds).matches if ANYWHERE - kinds else ()
+        if other or ("person" in kinds and words[:1] and words[0] in POSSESSIVES):
             # "go and get Ben from the garden": a person where a thing is wanted, no intent the rules
-            # have; "my son": someone the KB knows only by how the speaker is related to them
+            # have, or a place ("pop plot 12 down"): not "I don't see any plot 12"; "my son":
+            # someone the KB knows only by how the speaker is related to them
             return Ref(problem=Outcome("Sorry, I did not understand that.", understood=False))
         reply = self.unknown(content, kinds, words)
         a_name = "person" in kinds and not set(words) & DETERMINERS  # "go to Zorblina": whoever she is

@@ -42,12 +42,15 @@ CHAT: dict[str, Words] = {
     "ty": ("thank", "you"), "cos": ("because",), "cuz": ("because",), "coz": ("because",),
     "abt": ("about",), "tho": ("though",), "ppl": ("people",), "sth": ("something",),
     "smth": ("something",), "l8r": ("later",), "2moro": ("tomorrow",), "tmrw": ("tomorrow",),
-    "bc": ("because",), "w8": ("wait",),
+    "bc": ("because",), "w8": ("wait",), "wat": ("what",), "wot": ("what",), "whr": ("where",),
+    "cld": ("could",), "cud": ("could",), "wud": ("would",), "wld": ("would",), "shud": ("should",),
+    "hv": ("have",), "em": ("them",), "yr": ("your",), "thnx": ("thanks",), "thanx": ("thanks",),
+    "rly": ("really",), "dunno": ("don't", "know"), "2day": ("today",),
 }  # fmt: skip
 #: Every written form read as other words: contractions, with or without the apostrophe, and chat.
 CONTRACTIONS: dict[str, Words] = {**_SPOKEN, **CHAT}
 #: Hesitations and discourse fillers, dropped wherever they occur ("put the uh candle on the table").
-FILLERS = word_set("um umm uh uhh er erm hmm mm ah really")
+FILLERS = word_set("um umm uh uhh er erm hmm mm ah really lol btw tbh")
 #: Two-word fillers dropped wherever they occur.
 FILLER_PAIRS = frozenset({("you", "know"), ("i", "guess"), ("of", "course")})
 #: Words around "you know" that make it a question, not a filler ("do you know where...").
@@ -222,5 +225,5 @@ ACTIVITY_FILLER = word_set("the a an some with me us of")
 #: the reply ("I can't find the newspaper myself"), never silently dropped.
 NO_INTENT_VERBS = word_set(
     "find search look open close turn switch remove control check wait stay watch heat boil pour fill "
-    "empty plug unplug lock unlock answer call fix feed follow serve"
+    "empty plug unplug lock unlock answer call fix feed follow serve see"
 )

@@ -261,6 +261,8 @@ def test_a_message_with_a_subject_of_its_own(text: str, message: str, recipient:
          "the plumber for the upstairs flat is here"),
         ("tell Ann that her parcel is here", ("ann",), "her parcel is here"),
         ("tell Ann to bring her parcel", ("ann",), "please bring her parcel"),
+        ("tell Ann from me that the bus is late", ("ann",), "the bus is late"),
+        ("say to Ann on my behalf that the bus is late", ("ann",), "the bus is late"),
     ],
 )  # fmt: skip
 def test_whom_to_tell_and_what(text: str, recipient: tuple[str, ...], free: str) -> None:
@@ -291,3 +293,9 @@ def test_a_particle_of_motion_before_a_noun_phrase_says_where_to(
     p = parse(text)
     assert (p.intent, p.slots) == (I.MOVE_TO, {"goal": goal})
     assert way is None or way in p.adjuncts
+
+
+def test_me_and_a_thing_to_a_place_is_the_thing_of_that_place_brought_to_me() -> None:
+    p = parse("bring me the keys to the red car")
+    assert (p.intent, p.slots) == (I.BRING_OBJECT, {"object": ("the", "keys", "to", "the", "red", "car"),
+                                                    "recipient": ("me",)})  # fmt: skip

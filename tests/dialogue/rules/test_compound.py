@@ -26,6 +26,8 @@ from tests.dialogue.rules.test_interpret import say
         # "and" as chat writes it; other chat words cut nothing ("cn u go...": "u" is "you")
         ("fetch the tray n put it on the shelf", ["fetch the tray", "put it on the shelf"]),
         ("cn u go to the shed", ["cn u", "go to the shed"]),
+        # an action the robot has no intent for is a part of its own, kept in the reply
+        ("go to the shed and see if the hose is there", ["go to the shed", "see if the hose is there"]),
     ],
 )
 def test_parts(text: str, parts: list[str]) -> None:

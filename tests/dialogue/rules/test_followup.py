@@ -114,3 +114,21 @@ def test_a_correction_says_the_same_kind_of_thing_as_what_it_corrects(workshop: 
     assert say(workshop, "sorry I meant Raf", speaker=ANA, history=history).intent is None
     # with no request before it, "I meant the porch" corrects nothing
     assert not say(workshop, "I meant the porch", speaker=ANA).understood
+
+
+@pytest.mark.parametrize("answer", ["not the shed, the porch", "the porch, not the shed", "no not the shed the porch"])
+def test_not_this_but_that_corrects_the_last_request(workshop: KB, answer: str) -> None:
+    history = [("user", "take the rake to the shed"), ("robot", "OK, I will bring the rake to the shed.")]
+    out = say(workshop, answer, speaker=ANA, history=history)
+    assert (out.intent, out.roles) == (I.BRING_OBJECT, {"object": "rake_1", "recipient": "porch"}), out.reply
+
+
+def test_a_correction_and_an_answer_complete_a_request_said_without_to(workshop: KB) -> None:
+    # "fetch the saw": to whom is not said ("fetch Ana the saw" would say it), yet the answer to
+    # "Which saw?" and a correction keep the request's own recipient
+    asked = [("user", "fetch the saw"), ("robot", "Which saw do you mean: the hand saw, the coping saw or the bow saw?")]
+    out = say(workshop, "the bow one", speaker=ANA, history=asked)
+    assert (out.intent, out.roles) == (I.BRING_OBJECT, {"object": "saw_3", "recipient": ANA}), out.reply
+    done = [("user", "fetch the hand saw"), ("robot", "OK, I will bring the hand saw to you.")]
+    out = say(workshop, "sorry I meant the coping one", speaker=ANA, history=done)
+    assert (out.intent, out.roles) == (I.BRING_OBJECT, {"object": "saw_2", "recipient": ANA}), out.reply

@@ -3,6 +3,7 @@
 import pytest
 
 from dialogue.rules.questions import question
+from dialogue.rules.speech import expanded
 from kb import KB
 from tests.dialogue.rules.test_interpret import say
 
@@ -27,3 +28,24 @@ def test_how_many_counts_the_words_before_the_questions_own_clause(text: str, th
 def test_how_many_have_we_got_is_answered(office: KB) -> None:
     assert say(office, "how many mugs have we got").reply == (
         "I see two: the green mug and the yellow mug.")  # fmt: skip
+
+
+@pytest.mark.parametrize(
+    ("text", "place", "relation"),
+    [
+        ("what is next to the window", ("the", "window"), ("next", "to")),
+        ("whats by the door", ("the", "door"), ("by",)),
+        ("what's behind the sofa", ("the", "sofa"), ("behind",)),
+    ],
+)
+def test_what_is_near_a_thing_asks_about_its_relations(
+    text: str, place: tuple[str, ...], relation: tuple[str, ...]
+) -> None:
+    asked = question(expanded(text))
+    assert asked is not None and asked.question == "what_near"
+    assert asked.slots == {"place": place, "relation": relation}
+
+
+def test_is_someone_about_asks_whether_they_are_there() -> None:
+    asked = question(["is", "maria", "about"])
+    assert asked is not None and (asked.question, asked.slots) == ("can_see", {"thing": ("maria",)})

@@ -27,6 +27,7 @@ from dialogue.rules.utterance import Cleaned, cleaned, normalise
         ("grab my keys b4 u go", "grab my keys before you go"),
         ("fetch the tray n bring it bk rn", "fetch the tray and bring it back right now"),
         ("pls get sth to eat", "please get something to eat"),
+        ("cld u grab em lol", "could you grab them"),
     ],
 )
 def test_normalise(text: str, words: str) -> None:
