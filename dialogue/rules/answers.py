@@ -92,6 +92,24 @@ def who_do_you_see(snapshot: Snapshot, speaker: str) -> str:
     return f"I see {listing(names)}."
 
 
+def who_is_in(lexicon: Lexicon, words: Sequence[str], speaker: str) -> tuple[str, bool]:
+    """ "Who's at the box office?": the people the KB puts there; and whether the answer is a
+    clarifying question (which office)."""
+    snapshot = lexicon.snapshot
+    found = resolve(lexicon, words, frozenset({"zone", "thing"}))
+    if found.ambiguous:
+        return clarifying_question(snapshot, found.matches), True
+    if found.one is None:  # "who's in today": no place, who is there
+        return who_do_you_see(snapshot, speaker), False
+    place = found.one
+    there = [e for e in snapshot.entities.values()
+             if e.kind == "person" and place.id in (e.zone, e.support)]  # fmt: skip
+    if not there:
+        return f"I don't know of anyone in {the(snapshot, place)}.", False
+    names = ["you" if e.id == speaker else e.name if e.labels else "someone I don't know" for e in there]
+    return f"In {the(snapshot, place)}, there is {listing(names)}.", False
+
+
 def where_is(lexicon: Lexicon, words: Sequence[str], speaker: str, owner: str | None = None) -> str:
     snapshot = lexicon.snapshot
     if tuple(words) in {("me",), ("you",)}:
@@ -166,9 +184,9 @@ def what_is_near(lexicon: Lexicon, words: Sequence[str], relation: Sequence[str]
     near = [e for e in snapshot.entities.values()
             if e.kind == "thing" and any(r in wanted and o == place.id for r, o in e.relations)]  # fmt: skip
     if not near:
-        return f"I don't know of anything {said} the {place.name}.", False
+        return f"I don't know of anything {said} {the(snapshot, place)}.", False
     things = listing(told_apart(near, snapshot))
-    return f"{said[:1].upper()}{said[1:]} the {place.name}, there is {things}.", False
+    return f"{said[:1].upper()}{said[1:]} {the(snapshot, place)}, there is {things}.", False
 
 
 def _plural(content: Sequence[str]) -> bool:

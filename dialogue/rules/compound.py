@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from dialogue.reference.english import Words, spans, word_set
+from dialogue.reference.english import Words, phrases, spans, word_set
 from dialogue.reference.resolution import content_words
 from dialogue.rules.frames import verbs
 from dialogue.rules.speech import QUOTED, starts, strip_politeness
@@ -23,6 +23,12 @@ _BARE_VERBS = word_set(
     "take bring go put place grab fetch get find search give open move tell ask remind greet carry guide"
 )
 _SERIAL = word_set("go come")
+#: A greeting asked for starts a request of its own, whatever came before it ("Agnes is here say hi").
+_GREETING = frozenset(phrases("say hello|say hi|say hiya|say goodbye|say bye|wave hello|wave hi"))
+
+
+def _greeting_at(toks: list[tuple[str, int, int]], i: int) -> bool:
+    return i + 1 < len(toks) and (toks[i][0], toks[i + 1][0]) in _GREETING
 _OBJECT_START = word_set(
     "the a an my your his her this that these those it them me us him to into some all both"
 )
@@ -75,6 +81,8 @@ def conjuncts(text: str) -> list[Part]:
                 j += 1
             if j < len(toks) and (not cuts or cuts[-1][1] <= i):
                 cuts.append((i, j))
+        elif _greeting_at(toks, i) and toks[i - 1][0] not in no_cut_after:
+            cuts.append((i, i))  # "Agnes is here say hi"
         elif word in _BARE_VERBS and toks[i - 1][0] not in no_cut_after:
             nxt = toks[i + 1][0] if i + 1 < len(toks) else ""
             # "...he is at the door go say hi to him": "go" or "come" before a verb starts a request too

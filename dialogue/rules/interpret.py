@@ -201,6 +201,9 @@ class Interpreter:
                 asked = " ".join(p.slots.get("relation", ()))
                 reply, clarify = answers.what_is_on(self.lexicon, thing, asked)
                 return Outcome(reply, clarify=clarify)
+            case "who_in":
+                reply, clarify = answers.who_is_in(self.lexicon, thing, self.speaker)
+                return Outcome(reply, clarify=clarify)
             case "what_near":
                 reply, clarify = answers.what_is_near(self.lexicon, thing, p.slots.get("relation", ()))
                 return Outcome(reply, clarify=clarify)

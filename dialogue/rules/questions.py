@@ -79,7 +79,8 @@ def question(words: list[str]) -> Parse | None:
             return _q("name", w)
         if w[1:2] == ("is",) and w[2:] and w[2] not in _WHO_NOT_A_NAME:
             return _q("what_is", w, thing=w[2:])
-        return _q("who_see", w)
+        at = w[2:3] in {("at",), ("in",), ("inside",)} and w[1:2] in {("is",), ("are",)} and len(w) > 3
+        return _q("who_in", w, place=w[3:]) if at else _q("who_see", w)  # "who's at the box office"
     if head == ("where",):
         return _where(w)
     if starts(w, ("how", "many")):

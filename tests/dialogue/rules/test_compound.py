@@ -28,6 +28,8 @@ from tests.dialogue.rules.test_interpret import say
         ("cn u go to the shed", ["cn u", "go to the shed"]),
         # an action the robot has no intent for is a part of its own, kept in the reply
         ("go to the shed and see if the hose is there", ["go to the shed", "see if the hose is there"]),
+        # a greeting asked for after a remark
+        ("ola is here say hi", ["ola is here", "say hi"]),
     ],
 )
 def test_parts(text: str, parts: list[str]) -> None:

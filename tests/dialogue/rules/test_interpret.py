@@ -623,3 +623,11 @@ def test_which_one_is_asked_by_what_the_kb_says_of_each_and_answered_so() -> Non
     asked = [("user", "grab the rake"), ("robot", out.reply)]
     assert say(kb, "olas", history=asked).roles == {"object": "rake_1"}
     assert say(kb, "the one in the shed", history=asked).roles == {"object": "rake_2"}
+
+
+def test_who_is_in_a_place_names_the_people_the_kb_puts_there() -> None:
+    kb = _yard()
+    kb.update(["person_ola isIn shed"])
+    assert say(kb, "whos in the shed").reply == "In the shed, there is Ola."
+    assert say(kb, "who is at bay three").reply == "I don't know of anyone in bay 3."
+    assert say(kb, "who's in today").reply == "I see you and Ola."  # no place: who is there

@@ -28,6 +28,10 @@ from dialogue.rules.utterance import Cleaned, cleaned, normalise
         ("fetch the tray n bring it bk rn", "fetch the tray and bring it back right now"),
         ("pls get sth to eat", "please get something to eat"),
         ("cld u grab em lol", "could you grab them"),
+        # a word that only announces the number after it
+        ("go to gate number nine", "go to gate nine"),
+        ("go to room no 4", "go to room 4"),
+        ("no one is there", "no one is there"),
     ],
 )
 def test_normalise(text: str, words: str) -> None:
