@@ -37,6 +37,12 @@ def describe_options(snapshot: Snapshot, candidates: Sequence[Entity]) -> list[s
         features.append(lambda c: f"the one on the {snapshot.name_of(c.support or '')}")
     if _distinct(zones):
         features.append(lambda c: f"the one in the {snapshot.name_of(c.zone or '')}")
+    if _distinct([c.owner for c in candidates]):
+        features.append(lambda c: f"{snapshot.name_of(c.owner or '')}'s")
+    if not features:  # each by what the KB says of it: "Ola's or the one in the shed"
+        mixed = [_said_of(snapshot, c) for c in candidates]
+        if _distinct(mixed):
+            return [m or "" for m in mixed]
     if features:
         out = []
         for c in candidates:
@@ -49,6 +55,17 @@ def describe_options(snapshot: Snapshot, candidates: Sequence[Entity]) -> list[s
         where = f" on the {snapshot.name_of(c.support)}" if c.support else ""
         out.append(f"the {c.name if c.labels else noun}{where} ({c.id})")
     return out
+
+
+def _said_of(snapshot: Snapshot, c: Entity) -> str | None:
+    """The first thing the KB says of a candidate that a person could answer with."""
+    if c.colour:
+        return f"the {c.colour} one"
+    if c.owner:
+        return f"{snapshot.name_of(c.owner)}'s"
+    if c.support:
+        return f"the one on the {snapshot.name_of(c.support)}"
+    return f"the one in the {snapshot.name_of(c.zone)}" if c.zone else None
 
 
 def _join(options: Sequence[str]) -> str:

@@ -9,6 +9,7 @@ own lists (politeness, greetings, verb frames) are in dialogue.rules.
 from __future__ import annotations
 
 import re
+from collections.abc import Sequence
 
 Words = tuple[str, ...]
 
@@ -77,6 +78,9 @@ PARTS = word_set(
 CONTAINERS = word_set(
     "can tin bottle glass cup mug jar box carton packet pack bag bowl pot tub tube crate case"
 )
+#: Nouns of how much of a thing ("a pair of 3D glasses", "a roll of tape", "a couple of plates"): the
+#: phrase names what follows their "of" when the KB has no such thing itself.
+MEASURES = word_set("pair couple set piece bunch handful slice bit lot stack pile sheet roll ball reel")
 #: Words that make a phrase name several things ("the cereals and the milk", "both cups").
 MANY = word_set("and both all every each")
 
@@ -99,6 +103,35 @@ NUMBERS = word_set(
     "sixteen seventeen eighteen nineteen twenty thirty forty fifty sixty seventy eighty ninety hundred "
     "thousand first second third fourth fifth sixth seventh eighth ninth tenth half dozen"
 )
+_UNITS = (
+    "zero", "one", "two", "three", "four", "five", "six", "seven", "eight", "nine", "ten", "eleven", "twelve",
+    "thirteen", "fourteen", "fifteen", "sixteen", "seventeen", "eighteen", "nineteen",
+)  # fmt: skip
+_TENS = ("twenty", "thirty", "forty", "fifty", "sixty", "seventy", "eighty", "ninety")
+#: Numbers below a hundred as said in words ("7" -> ("seven",), "21" -> ("twenty", "one")).
+SPOKEN_NUMBERS: dict[str, Words] = {
+    **{str(n): (w,) for n, w in enumerate(_UNITS)},
+    **{str(20 + 10 * t + u): (w, _UNITS[u]) if u else (w,) for t, w in enumerate(_TENS) for u in range(10)},
+}
+_WRITTEN = {words: digits for digits, words in SPOKEN_NUMBERS.items()}
+
+
+def other_numbers(words: Sequence[str]) -> Words | None:
+    """The words with each number below a hundred written the other way: "plot 7" -> "plot seven",
+    "table nine" -> "table 9", "gate twenty one" -> "gate 21"; None when they have no number."""
+    out: list[str] = []
+    i = 0
+    while i < len(words):
+        pair, one = tuple(words[i : i + 2]), (words[i],)
+        if len(pair) == 2 and pair in _WRITTEN:
+            out.append(_WRITTEN[pair])
+            i += 2
+            continue
+        out.extend(SPOKEN_NUMBERS.get(words[i]) or ((_WRITTEN[one],) if one in _WRITTEN else one))
+        i += 1
+    return tuple(out) if out != list(words) else None
+
+
 #: Closed-class words in general (pronouns, prepositions, conjunctions, auxiliaries): always words of
 #: English, whatever a lexicon of content words says.
 FUNCTION_WORDS = NUMBERS | word_set(

@@ -12,6 +12,8 @@ import threading
 from collections.abc import Callable
 from typing import Any
 
+from rdflib import RDF
+
 from dialogue.reference.entities import EntityIndex
 from dialogue.reference.facts import PERSON_CLASSES, ROBOT_ID, ZONE_CLASSES
 from dialogue.reference.snapshot import ROBOT_CLASSES, Entity, Kind, Snapshot, readable_id
@@ -116,10 +118,22 @@ class Grounder:
                 if any(map(is_schema_triple, (*delta.asserted_added, *delta.asserted_removed))):
                     self._pending = None  # the TBox changed: classes and names may all change
                     return
+                if _retyped(delta):
+                    # a type asserted that was only inferred (or no longer asserted but still
+                    # inferred) changes no fact of the closure, yet which classes are the entity's
+                    # own (its name: "cup", not "mug"): rare, so everything is asked again
+                    self._pending = None
+                    return
                 self._pending.append((list(delta.added), list(delta.removed)))
                 self._pending_size += len(delta.added) + len(delta.removed)
             if self._pending_size > MAX_PENDING:
                 self._pending = None
+
+
+def _retyped(delta: Any) -> bool:
+    """Whether an asserted type changed that the closure's changes do not show."""
+    asserted = [t for t in (*delta.asserted_added, *delta.asserted_removed) if t[1] == RDF.type]
+    return bool(asserted) and not set(asserted) <= {*delta.added, *delta.removed}
 
 
 def build_snapshot(kb: KnowledgeBase, max_entities: int = 300, lang: str = "en") -> Snapshot:

@@ -63,6 +63,8 @@ def _split(words: Sequence[str]) -> _Phrase:
     dangling = False
     while i < len(words):
         prep, i = words[i], i + 1
+        if prep in {"next", "close"} and words[i : i + 1] == ["to"]:  # "next to", "close to": one word
+            prep, i = "beside", i + 1
         np: list[str] = []
         while i < len(words) and words[i] not in MODIFIER_START:
             np.append(words[i])
@@ -147,6 +149,30 @@ def resolve_head(lexicon: Lexicon, words: Sequence[str], kinds: Collection[Kind]
     return snapshot.in_order(e for s, e in scored if s == best)
 
 
+#: Prepositions of a thing nearby, and the relations of the KB (`isNextTo`, `near`, `isBelow`...)
+#: that say it ("the printer by the window").
+_BESIDE: dict[str, frozenset[str]] = {
+    **dict.fromkeys(("by", "beside", "near", "nearest", "alongside"), frozenset({"next to", "near"})),
+    **dict.fromkeys(("below", "beneath"), frozenset({"under"})),
+    "behind": frozenset({"behind"}), "above": frozenset({"above"}),
+}  # fmt: skip
+#: How much a fact of the relation itself weighs, against the weaker evidence of sharing a zone.
+_RELATED, _SAME_ZONE = 2, 1
+
+
+def _nearby(lexicon: Lexicon, entity: Entity, said: frozenset[str], places: Sequence[Entity]) -> int:
+    """The evidence that the entity is where the modifier says, near one of `places`: a fact of the
+    relation ("isNextTo"), else the same zone (a thing by the window is in the window's room). No
+    evidence contradicts: a thing may be next to several (the open world)."""
+    ids = {p.id for p in places if p.id != entity.id}
+    if any(prep in said and other in ids for prep, other in entity.relations):
+        return _RELATED
+    zones = {p.zone for p in places if p.id != entity.id and p.zone is not None}
+    if "next to" in said and entity.zone is not None and entity.zone in zones:
+        return _SAME_ZONE
+    return 0
+
+
 def _evidence(lexicon: Lexicon, entity: Entity, phrase: _Phrase, name_start: int) -> int | None:
     """How many modifiers hold for the entity, or None when one contradicts a known fact. The words
     of the core its own name spans count as modifiers that hold ("tea cup" names the teacup fully,
@@ -165,6 +191,9 @@ def _evidence(lexicon: Lexicon, entity: Entity, phrase: _Phrase, name_start: int
                 return None  # "Dan's mug" when the mug is known to be Bob's
             score += 1
     for prep, np in phrase.modifiers:
+        if prep in _BESIDE:
+            score += _nearby(lexicon, entity, _BESIDE[prep], _entities(lexicon, np))
+            continue
         if prep not in SUPPORT_PREPOSITIONS:
             continue
         places = _entities(lexicon, np)

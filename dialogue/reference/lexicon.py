@@ -16,7 +16,7 @@ from typing import Any, NamedTuple
 
 from lemminflect import getLemma
 
-from dialogue.reference.english import DETERMINERS, tokens, word_set
+from dialogue.reference.english import DETERMINERS, other_numbers, tokens, word_set
 from dialogue.reference.grounding import Entity, Snapshot
 from dialogue.reference.layered import GONE, Gone, Layered, layered, rebucket
 from dialogue.reference.synonyms import synonyms
@@ -214,6 +214,9 @@ def _names(entity: Entity) -> list[Name]:
 
     for label in entity.labels:
         add(label, "label")
+        numbered = other_numbers(tokens(label))
+        if numbered is not None:  # "screen two" for "screen 2", "table 9" for "table nine"
+            add(" ".join(numbered), "label")
     add(entity.id, "id")
     for class_name in entity.class_names:
         add(class_name, "class")

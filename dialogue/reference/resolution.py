@@ -19,6 +19,7 @@ from dialogue.reference.english import (
     CONTAINERS,
     DETERMINERS,
     LOCATIVE,
+    MEASURES,
     NEUTER,
     PERSONAL,
     PRONOUNS,
@@ -149,6 +150,9 @@ def resolve(
         matches = _by_qualifiers(lexicon, [normed[i] for i in content], kinds)
     if not matches and content:
         matches = resolve_head(lexicon, words, kinds)
+    counted = _counted(words) if not matches and content else ()
+    if counted:  # "a pair of 3D glasses": the glasses
+        matches = list(resolve(lexicon, counted, kinds, owner=owner).matches)
     contents = _contents(words, normed) if not matches and content else ()
     if contents:  # what a container holds is food or drink ("a bottle of umbrella" is nothing)
         held = resolve(lexicon, contents, kinds, owner=owner).matches
@@ -160,6 +164,12 @@ def resolve(
     matches = [e for e in matches if e.id in own_name] or matches
     seen = [e for e in matches if e.seen]
     return Resolution(phrase, tuple(seen or matches))
+
+
+def _counted(words: Sequence[str]) -> tuple[str, ...]:
+    """ "a pair of glasses" -> "glasses": what a measure of it names; () when no measure is said."""
+    at = next((i for i in range(len(words) - 2) if words[i] in MEASURES and words[i + 1] == "of"), None)
+    return () if at is None else tuple(words[at + 2 :])
 
 
 def _contents(words: Sequence[str], normed: Sequence[str]) -> tuple[str, ...]:

@@ -6,13 +6,15 @@ from collections import Counter
 from collections.abc import Callable, Sequence
 
 from dialogue.reference.clarify import question as clarifying_question
-from dialogue.reference.english import tokens
+from dialogue.reference.english import SPOKEN_NUMBERS, tokens
 from dialogue.reference.grounding import Entity, Snapshot
 from dialogue.reference.lexicon import Lexicon, singular
 from dialogue.reference.resolution import ALL_KINDS, content_words, resolve, said_phrase
 from dialogue.situation import article
 
 MAX_LISTED = 12
+#: Numbers said in words ("nine"), which end a name of its own ("gate nine").
+SPOKEN_WORDS = frozenset(w for words in SPOKEN_NUMBERS.values() for w in words) - {"zero"}
 #: Places described at most in one answer about several ("what is on the shelves").
 MAX_PLACES = 3
 
@@ -25,7 +27,15 @@ def the(snapshot: Snapshot, entity: Entity, speaker: str = "") -> str:
         return entity.name if entity.labels else "a person"
     if entity.colour and not entity.labels and entity.colour not in entity.name:
         return f"the {entity.colour} {entity.name}"
+    if entity.labels and _numbered(entity.name):
+        return entity.name  # "screen 2", "gate nine": a name of its own, said without "the"
     return f"the {entity.name}"
+
+
+def _numbered(name: str) -> bool:
+    """Whether a name ends with its number ("screen 2", "table four")."""
+    words = tokens(name)
+    return len(words) > 1 and (words[-1].isdigit() or words[-1] in SPOKEN_WORDS)
 
 
 def indefinite(entity: Entity) -> str:
@@ -82,6 +92,24 @@ def who_do_you_see(snapshot: Snapshot, speaker: str) -> str:
     return f"I see {listing(names)}."
 
 
+def who_is_in(lexicon: Lexicon, words: Sequence[str], speaker: str) -> tuple[str, bool]:
+    """ "Who's at the box office?": the people the KB puts there; and whether the answer is a
+    clarifying question (which office)."""
+    snapshot = lexicon.snapshot
+    found = resolve(lexicon, words, frozenset({"zone", "thing"}))
+    if found.ambiguous:
+        return clarifying_question(snapshot, found.matches), True
+    if found.one is None:  # "who's in today": no place, who is there
+        return who_do_you_see(snapshot, speaker), False
+    place = found.one
+    there = [e for e in snapshot.entities.values()
+             if e.kind == "person" and place.id in (e.zone, e.support)]  # fmt: skip
+    if not there:
+        return f"I don't know of anyone in {the(snapshot, place)}.", False
+    names = ["you" if e.id == speaker else e.name if e.labels else "someone I don't know" for e in there]
+    return f"In {the(snapshot, place)}, there is {listing(names)}.", False
+
+
 def where_is(lexicon: Lexicon, words: Sequence[str], speaker: str, owner: str | None = None) -> str:
     snapshot = lexicon.snapshot
     if tuple(words) in {("me",), ("you",)}:
@@ -116,27 +144,56 @@ def where_is(lexicon: Lexicon, words: Sequence[str], speaker: str, owner: str | 
     return " ".join(sentences)
 
 
-def what_is_on(lexicon: Lexicon, words: Sequence[str]) -> tuple[str, bool]:
+def what_is_on(lexicon: Lexicon, words: Sequence[str], asked: str = "") -> tuple[str, bool]:
     """The answer, and whether it is a clarifying question."""
     snapshot = lexicon.snapshot
     found = resolve(lexicon, words, frozenset({"thing", "zone"}))
     content = content_words(words)
     phrase = " ".join(content) or "that"
     if found.ambiguous and _plural(content):  # "what is on the shelves": each of them
-        return " ".join(_on(snapshot, place) for place in found.matches[:MAX_PLACES]), False
+        return " ".join(_on(snapshot, place, asked) for place in found.matches[:MAX_PLACES]), False
     if found.ambiguous:
         return clarifying_question(snapshot, found.matches), True
     place = found.one
     if place is None:
         return f"Sorry, I don't know any {phrase}.", False
-    return _on(snapshot, place), False
+    return _on(snapshot, place, asked), False
+
+
+#: The relations of the snapshot (dialogue.reference.facts.RELATIONS) each way of asking names.
+_RELATED: dict[str, frozenset[str]] = {
+    **dict.fromkeys(("next", "close", "near", "beside", "by"), frozenset({"next to", "near"})),
+    **dict.fromkeys(("underneath", "below", "beneath"), frozenset({"under"})),
+    "in": frozenset({"in front of"}), "behind": frozenset({"behind"}), "above": frozenset({"above"}),
+}  # fmt: skip
+
+
+def what_is_near(lexicon: Lexicon, words: Sequence[str], relation: Sequence[str]) -> tuple[str, bool]:
+    """ "What's next to the window?": the things a spatial fact puts there; and whether the answer
+    is a clarifying question (which window)."""
+    snapshot = lexicon.snapshot
+    found = resolve(lexicon, words, frozenset({"thing", "zone"}))
+    content = content_words(words)
+    if found.ambiguous:
+        return clarifying_question(snapshot, found.matches, singular(content[-1]) if content else None), True
+    said = " ".join(relation)
+    phrase = " ".join(content) or "that"
+    if found.one is None:
+        return f"Sorry, I don't know any {phrase}.", False
+    place, wanted = found.one, _RELATED.get(relation[0], frozenset())
+    near = [e for e in snapshot.entities.values()
+            if e.kind == "thing" and any(r in wanted and o == place.id for r, o in e.relations)]  # fmt: skip
+    if not near:
+        return f"I don't know of anything {said} {the(snapshot, place)}.", False
+    things = listing(told_apart(near, snapshot))
+    return f"{said[:1].upper()}{said[1:]} {the(snapshot, place)}, there is {things}.", False
 
 
 def _plural(content: Sequence[str]) -> bool:
     return bool(content) and singular(content[-1]) != content[-1]
 
 
-def _on(snapshot: Snapshot, place: Entity) -> str:
+def _on(snapshot: Snapshot, place: Entity, asked: str = "") -> str:
     """What is on (or in) one place, as a sentence: in a zone, on a support, in a container (the
     fridge: what `isIn` it)."""
     held = [e for e in snapshot.placed_at(place.id) if e.kind == "thing"]
@@ -145,7 +202,9 @@ def _on(snapshot: Snapshot, place: Entity) -> str:
     sentences = [f"{prep} the {place.name}, there is {listing(items)}."
                  for prep, items in (("In", inside), ("On", on)) if items]  # fmt: skip
     if not sentences:
-        return f"I don't know of anything {'in' if place.kind == 'zone' else 'on'} the {place.name}."
+        # as asked: "what's in the box"
+        prep = "in" if place.kind == "zone" or asked in {"in", "inside"} else "on"
+        return f"I don't know of anything {prep} the {place.name}."
     return " ".join(sentences)
 
 
@@ -196,15 +255,27 @@ def how_many(lexicon: Lexicon, words: Sequence[str]) -> str:
     seen = [e for e in found.matches if e.seen]
     if not seen:
         return f"I don't see any {phrase}."
-    return f"I see {_number(len(seen))}: {listing(told_apart(seen))}."
+    return f"I see {_number(len(seen))}: {listing(told_apart(seen, lexicon.snapshot))}."
 
 
-def told_apart(entities: Sequence[Entity]) -> list[str]:
-    """Each entity as a listing names it, by its colour when it shares its name ("the red marker")."""
+def told_apart(entities: Sequence[Entity], snapshot: Snapshot | None = None) -> list[str]:
+    """Each entity as a listing names it; one that shares its name by its colour ("the red marker"),
+    else, given the snapshot, by whose it is ("Harold's spade") or where it is ("the spade in the
+    shed")."""
     names = [indefinite(e) for e in entities]
     shared = {n for n in names if names.count(n) > 1}
-    return [f"the {e.colour} {n[4:]}" if n in shared and e.colour and n.startswith("the ") else n
+    return [_apart(e, n, snapshot) if n in shared and n.startswith("the ") else n
             for e, n in zip(entities, names, strict=True)]  # fmt: skip
+
+
+def _apart(entity: Entity, name: str, snapshot: Snapshot | None) -> str:
+    if entity.colour:
+        return f"the {entity.colour} {name[4:]}"
+    owner = snapshot.get(entity.owner) if snapshot is not None and entity.owner else None
+    if owner is not None and owner.labels:
+        return f"{owner.name}'s {name[4:]}"
+    where = location(snapshot, entity) if snapshot is not None else ""
+    return f"{name} {where}" if where else name
 
 
 def colour_of(lexicon: Lexicon, words: Sequence[str], speaker: str, owner: str | None = None) -> str:

@@ -39,7 +39,8 @@ from dialogue.rules.words import NP_START, OWNERS
 _BREAK = re.compile(r"[.;!?,]+(?:\s+|$)|\s+(?:-|\u2013|\u2014)\s+")
 #: A polite request said mid-utterance starts a clause of its own.
 _ASKS = phrases("could you|can you|would you|will you|please|can i have|could i have|may i have|can i get|"
-                "could i get")
+                "could i get|do you know where|do you know who|do you know if|do you know whether|"
+                "do you know what|any idea where|any idea who")
 _SUBJECTS = word_set("i he she it we they you there")
 #: Verbs that follow any subject: auxiliaries, modals and their negations.
 _AUXILIARIES = word_set(
@@ -49,7 +50,7 @@ _AUXILIARIES = word_set(
 #: Words after which a subject pronoun is an object or a clause the verb takes ("tell him she is...").
 _TAKES_CLAUSE = word_set(
     "that if whether when because so tell ask let make have help and or but think believe guess reckon "
-    "suppose know hope say said"
+    "suppose know hope say said where who what which how why"
 )
 #: Verbs whose object comes before the clause they take ("tell him she's here").
 _TELLING = word_set("tell told ask remind warn inform show promise let")
@@ -111,7 +112,7 @@ def _subject_verb(subject: str, verb: str) -> bool:
     """Whether a subject pronoun and the word after it start a clause ("she is", "I can't")."""
     if subject == "you":
         return verb in _AUXILIARIES and verb not in {"do", "does", "did", "just", "really", "also"}
-    return verb in _AUXILIARIES or _finite(verb, third_person=subject in {"he", "she", "it"})
+    return verb in _AUXILIARIES or finite(verb, third_person=subject in {"he", "she", "it"})
 
 
 def _agrees(flat: list[str], k: int) -> bool:
@@ -122,7 +123,7 @@ def _agrees(flat: list[str], k: int) -> bool:
     if verb in {"is", "was", "has"}:
         return True
     lemmas = getAllLemmas(verb)
-    if not _finite(verb, third_person=True):
+    if not finite(verb, third_person=True):
         return False
     # "the class starts soon", "the baby needs a nap"; but "the reading glasses (on the table)" is
     # a plural noun: one that may be either is a verb only before an adverb or an object
@@ -131,7 +132,7 @@ def _agrees(flat: list[str], k: int) -> bool:
 
 
 @lru_cache(maxsize=4096)
-def _finite(word: str, third_person: bool) -> bool:
+def finite(word: str, third_person: bool) -> bool:
     """Whether the word is a verb in a tense ("wants", "started"; "want" too after "I", "we"...)."""
     for lemma in getAllLemmas(word).get("VERB", ()):
         forms = {*getInflection(lemma, "VBZ"), *getInflection(lemma, "VBD")} if third_person else set()

@@ -16,6 +16,7 @@ from dialogue.rules.speech import starts, strip_politeness
 from dialogue.rules.utterance import normalise, strip_vocative, verb_lemma
 from dialogue.rules.words import (
     ADJUNCTS,
+    GOAL_PARTICLES,
     GREETINGS,
     HERE,
     JOINED_PREPOSITIONS,
@@ -133,12 +134,17 @@ def _fit(row: Row, said: Said) -> Parse | None:
         # "leave it over there", "come here", "lead the way"; dropped when the place is also named
         # ("lead the way to the lobby").
         pointed = next((p for p in _POINTING if direct[-len(p[0]) :] == p[0]), None)
-        if pointed is not None:
+        if pointed is not None and not (frame.there_only and pointed[1] != ("there",)):
             direct = direct[: -len(pointed[0])]
             slots.setdefault(frame.here, pointed[1])
     direct = _without_particles(direct, row)
     if not direct and frame.direct is not None:
         direct = _second_phrase(slots)  # "bring to Ana the tray"
+    if frame.dative is not None and direct[:1] and direct[0] in ME and marks.get("recipient") == "to":
+        # "bring me the keys to the red car": the keys of the car, brought to the speaker
+        direct = (*direct[1:], "to", *slots.pop("recipient"))
+        slots["recipient"] = ("me",)
+        del marks["recipient"]
     if frame.dative is not None and "recipient" not in slots and direct:
         # "get Ines her phone": someone, then a noun phrase of its own
         before = frame.dative == "before" and _someone(direct[0]) and _own_phrase_after(direct)
@@ -191,6 +197,8 @@ def _segments(rest: Words, row: Row) -> tuple[Words, dict[str, Words], dict[str,
     i = 0
     while i < len(rest):
         marker = next((m for m in row.slots if rest[i : i + len(m[0])] == m[0] and m[1] not in slots), None)
+        if marker is not None and marker[0][0] in GOAL_PARTICLES and not _phrase_at(rest, i + 1):
+            marker = None  # "go down to the cellar": a particle; "go down the garden": where to
         if marker is not None and purpose(rest[i : i + 2]) is None:  # "something to eat" is no recipient
             current = slots[marker[1]] = []
             marks[marker[1]] = " ".join(marker[0])
@@ -199,6 +207,12 @@ def _segments(rest: Words, row: Row) -> tuple[Words, dict[str, Words], dict[str,
         current.append(rest[i])
         i += 1
     return tuple(direct), {role: tuple(words) for role, words in slots.items() if words}, marks
+
+
+def _phrase_at(words: Words, i: int) -> bool:
+    """Whether a noun phrase starts at i: a determiner, or a word that is no function word ("plot
+    12", "Ana's desk")."""
+    return i < len(words) and (words[i] in NP_START or words[i] not in FUNCTION_WORDS)
 
 
 def _second_phrase(slots: dict[str, Words]) -> Words:
@@ -251,13 +265,15 @@ def _adjuncts(rest: Words, row: Row) -> tuple[Words, tuple[Words, ...]]:
 def _adjunct_end(rest: Words, i: int, own: set[str]) -> int:
     word = rest[i]
     by_doing = word == "by" and i + 1 < len(rest) and rest[i + 1].endswith("ing")  # "by crossing the hall"
-    if word in own and not by_doing:
+    # "down the hall to the garage": the way, when the place comes after it
+    way = word in GOAL_PARTICLES & own and bool(set(rest[i + 1 :]) & (own - GOAL_PARTICLES))
+    if word in own and not by_doing and not way:
         return i
     said_how = _said_how(rest, i)
     if said_how:
         return i + said_how
-    if word in PATHS or by_doing:
-        end, stop = i + 1, own | PATHS
+    if word in PATHS or by_doing or way:
+        end, stop = i + 1, (own - GOAL_PARTICLES) | PATHS
         while end < len(rest) and rest[end] not in stop and not _said_how(rest, end):
             end += 1
         # "through the main door" has a phrase; "walk through to the lounge" is a particle.

@@ -9,12 +9,12 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from dialogue.reference.english import Words, spans, word_set
+from dialogue.reference.english import Words, phrases, spans, word_set
 from dialogue.reference.resolution import content_words
 from dialogue.rules.frames import verbs
 from dialogue.rules.speech import QUOTED, starts, strip_politeness
 from dialogue.rules.utterance import asked_verb, normalise, strip_vocative
-from dialogue.rules.words import GREETINGS, NO_INTENT_VERBS
+from dialogue.rules.words import CHAT, GREETINGS, NO_INTENT_VERBS
 
 _CONJUNCTIONS = word_set("and then , ; afterwards")
 #: Verbs that start a new command even with no conjunction before them, when followed by one of
@@ -23,6 +23,12 @@ _BARE_VERBS = word_set(
     "take bring go put place grab fetch get find search give open move tell ask remind greet carry guide"
 )
 _SERIAL = word_set("go come")
+#: A greeting asked for starts a request of its own, whatever came before it ("Agnes is here say hi").
+_GREETING = frozenset(phrases("say hello|say hi|say hiya|say goodbye|say bye|wave hello|wave hi"))
+
+
+def _greeting_at(toks: list[tuple[str, int, int]], i: int) -> bool:
+    return i + 1 < len(toks) and (toks[i][0], toks[i + 1][0]) in _GREETING
 _OBJECT_START = word_set(
     "the a an my your his her this that these those it them me us him to into some all both"
 )
@@ -62,7 +68,8 @@ def conjuncts(text: str) -> list[Part]:
     """The commands of a compound request in order, or [] when the text is one request."""
     if QUOTED.search(text):  # "say 'stop and wait' to Tom": the quote is one text
         return []
-    toks = spans(text, marks=True)
+    # (a conjunction as chat writes it: "get my bag n bring it over")
+    toks = [(_one_word(word), start, end) for word, start, end in spans(text, marks=True)]
     no_cut_after = _NO_CUT_AFTER | verbs() | _CONJUNCTIONS
     cuts: list[tuple[int, int]] = []  # (index of the first word of the new part, index after the cut)
     for i, (word, _, _) in enumerate(toks):
@@ -74,6 +81,8 @@ def conjuncts(text: str) -> list[Part]:
                 j += 1
             if j < len(toks) and (not cuts or cuts[-1][1] <= i):
                 cuts.append((i, j))
+        elif _greeting_at(toks, i) and toks[i - 1][0] not in no_cut_after:
+            cuts.append((i, i))  # "Agnes is here say hi"
         elif word in _BARE_VERBS and toks[i - 1][0] not in no_cut_after:
             nxt = toks[i + 1][0] if i + 1 < len(toks) else ""
             # "...he is at the door go say hi to him": "go" or "come" before a verb starts a request too
@@ -105,6 +114,12 @@ def conjuncts(text: str) -> list[Part]:
         verb = _verb(piece)
         out.append(Part(piece, verb, verb in NO_INTENT_VERBS))
     return out
+
+
+def _one_word(word: str) -> str:
+    """The conjunction a chat abbreviation stands for ("n" for "and"), else the word as written."""
+    said = CHAT.get(word, (word,))
+    return said[0] if len(said) == 1 and said[0] in _CONJUNCTIONS else word
 
 
 def alternatives(words: Words) -> list[Words]:

@@ -13,10 +13,12 @@ from dataclasses import dataclass, replace
 from lemminflect import getLemma
 
 from dialogue import intents as I
-from dialogue.reference.english import ME, Words, phrases, word_set
+from dialogue.reference.english import FUNCTION_WORDS, ME, Words, phrases, word_set
+from dialogue.rules.clauses import finite
 from dialogue.rules.parsed import Parse
 from dialogue.rules.speech import QUOTED, expanded, message, original_text, split_at, starts
 from dialogue.rules.words import (
+    ADJUNCTS,
     DONE,
     EVERYONE,
     GOES,
@@ -49,7 +51,15 @@ class Said:
     original: str
 
     def command(self, intent: str, text: str | None = None, **slots: Words) -> Parse:
+        if "recipient" in slots:  # "tell Ana from me that...": whom, not on whose behalf
+            slots["recipient"] = _without_adjunct(slots["recipient"])
         return Parse("command", intent, dict(slots), text=text, words=self.words)
+
+
+def _without_adjunct(words: Words) -> Words:
+    """The words without an adjunct at their end ("ana from me", "ana on my behalf")."""
+    found = next((a for a in ADJUNCTS if len(words) > len(a) and words[-len(a) :] == a), None)
+    return words[: -len(found)] if found is not None else words
 
 
 # -- before any verb: what the whole utterance says ----------------------------------------------
@@ -199,8 +209,32 @@ _SUBJECTS = word_set("it he she they we i you there")
 
 
 def _clause_start(rest: Words) -> int | None:
-    """Where a clause with a subject of its own starts after the person told, if one does."""
-    return next((i for i in range(1, len(rest) - 1) if rest[i] in _SUBJECTS), None)
+    """Where a clause with a subject of its own starts after the person told, if one does: a subject
+    pronoun ("tell Noor *it*'s time"), or a noun phrase and its verb ("tell Kasia *her courgettes
+    are* ready", "tell Ana *the taxi is* here")."""
+    starts = (i for i in range(1, len(rest) - 1) if rest[i] in _SUBJECTS or _subject_phrase(rest, i))
+    return next(starts, None)
+
+
+#: Verbs that follow a subject whatever it is.
+_VERBS_OF_ANY = word_set("is are was were has have had will would can could should must may might")
+
+
+#: At most this many words of a subject before its verb ("the customer for the grey car has...").
+_SUBJECT_WORDS = 6
+
+
+def _subject_phrase(rest: Words, i: int) -> bool:
+    """Whether a noun phrase starts at i and its verb follows it ("her courgettes are", "the film
+    starts", "the customer for the grey car has")."""
+    if (rest[i] not in NP_START and rest[i] != "her") or i + 1 >= len(rest) or rest[i + 1] in FUNCTION_WORDS:
+        return False
+    for k in range(i + 2, min(len(rest), i + 1 + _SUBJECT_WORDS)):
+        if rest[k] in _VERBS_OF_ANY or finite(rest[k], third_person=True):
+            return True
+        if rest[k] in {"that", "to", "and", "or"}:
+            return False
+    return False
 
 
 def speech(said: Said) -> Parse:
@@ -243,8 +277,26 @@ def speech(said: Said) -> Parse:
         words = message(original, text[1:] if text[0] == "please" else text)
         said_text = f"please {words}" if text[0] == "please" else words
         return said.command(I.SAY, text=said_text, recipient=recipient)
+    if rest[:1] == ("to",):  # "say to Sandeep that the film starts soon": to whom, then what
+        return _said_to(said, rest[1:])
     found = split_at(rest, ["to"])
     text_words, recipient = (found[0], found[2]) if found is not None else (rest, ())
     if not text_words:
         return unknown
     return said.command(I.SAY, text=original_text(original, text_words), recipient=recipient)
+
+
+def _said_to(said: Said, rest: Words) -> Parse:
+    """ "(say) to Sandeep that the film starts soon", "(say) to Ana it's time": the person, then the
+    message ("that" or a clause of its own starts it)."""
+    found = split_at(rest, ["that"])
+    clause = _clause_start(rest)
+    if found is not None and (clause is None or len(found[0]) <= clause):
+        recipient, text = found[0], found[2]
+    elif clause is not None:
+        recipient, text = rest[:clause], rest[clause:]
+    else:
+        return Parse("unknown", words=said.words)
+    if not text:
+        return said.command(I.SAY, recipient=recipient)
+    return said.command(I.SAY, text=message(said.original, text), recipient=recipient)

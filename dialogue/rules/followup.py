@@ -1,6 +1,7 @@
 """Answers to the robot's last question: a fragment that completes the pending request ("the red
 one", "mine, obviously", "the pink one, it's Carla's"), a yes or a no to "Do you mean the flat
-brush?", and a yes to an offer ("Would you like me to bring you a basket?" "yes please").
+brush?", and a yes to an offer ("Would you like me to bring you a basket?" "yes please"); and a
+correction of the request just made ("sorry, I meant screen two").
 
 The robot's question must be the latest utterance (system notes aside); a fragment or a confirmation
 re-reads the request said right before it, an accepted offer is read as the request the robot made.
@@ -13,14 +14,14 @@ from typing import TYPE_CHECKING
 
 from dialogue.history import Utterance
 from dialogue.prompts import FREE_FORM_OBJECT
-from dialogue.reference.english import Words, phrases, tokens, word_set
-from dialogue.reference.resolution import ROLE_KINDS, resolve
+from dialogue.reference.english import MODIFIER_START, Words, phrases, tokens, word_set
+from dialogue.reference.resolution import ROLE_KINDS, content_words, resolve
 from dialogue.rules.clauses import clauses, described, description
 from dialogue.rules.commands import parse
 from dialogue.rules.outcome import Outcome
 from dialogue.rules.parsed import Parse
-from dialogue.rules.speech import expanded
-from dialogue.rules.words import INTERJECTIONS, OWNERS, PLACES
+from dialogue.rules.speech import expanded, strip_politeness
+from dialogue.rules.words import INTERJECTIONS, NP_START, OWNERS, PLACES
 
 if TYPE_CHECKING:
     from dialogue.rules.interpret import Interpreter
@@ -183,3 +184,80 @@ def confirmation(earlier: Interpreter, pending: Parse, first: Outcome, question:
         return None
     outcome = earlier.act(pending, {role: tuple(tokens(meant.id))})
     return outcome if outcome.intent is not None else None
+
+
+#: How a speaker says that the request just made named the wrong thing or place ("sorry, I meant
+#: screen two"), after the words that only soften it ("sorry", "no", "oops").
+_CORRECTING = phrases("i meant|i mean|i said|make that|make it|i was meaning|what i meant was")
+_SOFTENING = word_set("no oops oh whoops sorry my bad")
+
+
+def correction(reader: Interpreter, text: str) -> Outcome | None:
+    """ "sorry, I meant screen two" after "take the booster seat to screen 1": the last request again,
+    with the phrase of the role that names the same kind of thing (a place for a place, a thing for
+    a thing) replaced."""
+    parts = [strip_politeness([w for w in expanded(part) if w not in _SOFTENING]) for part in text.split(",")]
+    words = [w for part in parts for w in part]
+    lead = next((c for c in _CORRECTING if tuple(words[: len(c)]) == c), None)
+    fragment = tuple(words[len(lead) :]) if lead is not None else _not_that(tuple(words))
+    if len(parts) == 2 and parts[0][:1] == ["not"] and parts[1]:  # "not the shed, the porch"
+        fragment = tuple(parts[1])
+    for loc in _PLACES:  # "I meant on the shelf"
+        if fragment[: len(loc)] == loc and fragment[len(loc) :]:
+            fragment = fragment[len(loc) :]
+            break
+    if not content_words(fragment):
+        return None
+    asked = [i for i, u in enumerate(reader.history) if u.role == "user"]
+    if not asked:
+        return None
+    earlier = reader.within(reader.history[: asked[-1]])
+    pending = parse(reader.history[asked[-1]].text, reader.robot_name)
+    if pending.act != "command" or pending.intent is None:
+        return None
+    before = earlier.act(pending)
+    slots = pending.slots
+    if pending.double_object and "rest" in slots:  # "fetch Ana the mug": whose phrase is whose
+        slots = earlier.refs.split_double_object(slots["rest"])
+    fits: list[tuple[int, Outcome]] = []
+    for role in ROLE_KINDS.get(pending.intent, {}):
+        said = slots.get(role, ())
+        was = before.roles.get(role)
+        if not content_words(said) or was is None:
+            continue
+        outcome = earlier.act(pending, {role: _instead(fragment, said)})
+        now = outcome.roles.get(role)
+        if outcome.intent is None or now is None or now == was:
+            continue
+        old, new = earlier.snapshot.get(was), earlier.snapshot.get(now)
+        if old is None or new is None or old.kind != new.kind:
+            continue  # "I meant screen two" corrects a place, never the thing carried there
+        fits.append((len(set(old.classes) & set(new.classes)), outcome))
+    fits.sort(key=lambda f: -f[0])
+    if not fits or (len(fits) > 1 and fits[0][0] == fits[1][0]):
+        return None
+    return _sure(fits[0][1])
+
+
+def _not_that(words: Words) -> Words:
+    """ "not the shed, the porch" or "the porch, not the shed": the phrase meant (() if none is)."""
+    if "not" not in words:
+        return ()
+    at = words.index("not")
+    if at > 0:
+        return words[:at]
+    starts = (j for j in range(2, len(words)) if words[j] in NP_START and words[j - 1] not in NP_START)
+    again = next(starts, None)
+    return words[again:] if again is not None else ()
+
+
+def _instead(fragment: Words, said: Words) -> Words:
+    """The fragment, its "one" said with the head of the phrase it replaces ("the red one" for "the
+    blue cup": the red cup)."""
+    core: list[str] = []
+    for w in said:
+        if w in MODIFIER_START and core:
+            break
+        core.append(w)
+    head = content_words(core)[-1:] if content_words(core) else []
+    return tuple(x for w in fragment for x in (head if w in _ONE and head else [w]))

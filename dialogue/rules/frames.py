@@ -27,6 +27,7 @@ from dialogue.rules.words import (
     ACTIVITY_FILLER,
     CARRY_PARTICLES,
     GOALS,
+    MOTION_GOALS,
     MOTION_PARTICLES,
     NO_INTENT_VERBS,
     PLACES,
@@ -75,6 +76,8 @@ class Frame:
     particles: str = ""
     #: The role a bare "here" (the speaker) or "there" (the place just spoken of) fills.
     here: str | None = None
+    #: Only "there" fills it ("wait there": the place spoken of; "wait here" is to stay put).
+    there_only: bool = False
     #: The direct words may start with the recipient: "me"/"us" only ("get me a cup"), anyone
     #: ("give Ines her phone": split against the KB by the interpreter), or anyone said before a
     #: noun phrase of its own ("get Ines her phone", but "get the phone").
@@ -124,6 +127,9 @@ FRAMES: tuple[Frame, ...] = (
     # People.
     Frame("greet", special=C.everyone),
     Frame("greet|welcome|say hello to|say hi to|wave hello to|wave hi to", I.GREET, direct="recipient"),
+    # "this is Callum, say hello": the person just introduced (else the speaker)
+    Frame("say hello|say hi|say hiya|wave hello|wave hi|say good morning|say good afternoon|"
+          "say good evening", I.GREET, whole=True, defaults={"recipient": ("me",)}),
     Frame("look at|turn to|turn towards|face|engage with|talk to|talk with|speak to|speak with|"
           "interact with|interact to|engage to", I.ENGAGE_WITH, direct="recipient"),
     Frame("dance|wave|nod|bow|clap|point|spin|jump|salute", I.PERFORM_MOTION, direct="manner",
@@ -149,11 +155,14 @@ FRAMES: tuple[Frame, ...] = (
     # "come back", "come over": to the speaker
     Frame("come|come back|come over|come closer|come along", I.MOVE_TO, whole=True,
           defaults={"goal": ("me",)}),
-    Frame(_MOVE, I.MOVE_TO, slots={"goal": GOALS}, particles=MOTION_PARTICLES, here="goal",
+    Frame(_MOVE, I.MOVE_TO, slots={"goal": MOTION_GOALS}, particles=MOTION_PARTICLES, here="goal",
           requires=("goal",)),
     # "go and wait in the courtyard", "stay by the door": be there ("wait for me" is no place)
-    Frame(_STAY, I.MOVE_TO, slots={"goal": _AT}, particles=f"there {_OUT}", requires=("goal",)),
-    Frame(_GO, I.MOVE_TO, slots={"goal": GOALS}, particles=MOTION_PARTICLES, here="goal", requires=("goal",)),
+    # ("go to the shed and wait there": the place just spoken of)
+    Frame(_STAY, I.MOVE_TO, slots={"goal": _AT}, particles=f"there {_OUT}", here="goal",
+          there_only=True, requires=("goal",)),
+    Frame(_GO, I.MOVE_TO, slots={"goal": MOTION_GOALS}, particles=MOTION_PARTICLES, here="goal",
+          requires=("goal",)),
     Frame(_MOVE, I.PLACE_OBJECT, direct="object", slots={"recipient": GOALS}, particles="back away down over",
           requires=("object", "recipient")),
     # Handing things out to everyone: no intent says it ("hand out the worksheets" is no bringing).

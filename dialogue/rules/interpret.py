@@ -12,7 +12,8 @@ from dataclasses import replace
 
 from dialogue import intents as I
 from dialogue.history import Utterance
-from dialogue.reference.english import PARTS, Words, tokens
+from dialogue.reference.english import PARTS, POSSESSIVES, Words, tokens
+from dialogue.reference.grounding import Kind
 from dialogue.reference.lexicon import Lexicon
 from dialogue.reference.resolution import (
     ANYWHERE,
@@ -28,7 +29,8 @@ from dialogue.rules import answers
 from dialogue.rules.clauses import clauses, described, description
 from dialogue.rules.commands import parse
 from dialogue.rules.compound import Part, conjuncts, coordinated, unprefixed
-from dialogue.rules.followup import accepts, follow_up
+from dialogue.rules.followup import accepts, correction, follow_up
+from dialogue.rules.letters import joined
 from dialogue.rules.outcome import Outcome, Ref
 from dialogue.rules.parsed import Parse
 from dialogue.rules.referents import RELATIONAL, Referents
@@ -37,6 +39,8 @@ from dialogue.rules.speech import expanded
 from dialogue.rules.spelling import corrected
 from dialogue.rules.utterance import cleaned
 
+#: Pronouns of a person a question may be about ("do you know where she is").
+_SOMEONE = frozenset({"he", "she", "him", "her"})
 #: How sure the rules are of a turn in which they corrected a slip ("plase", "thremos").
 SPELT_CONFIDENCE = 0.7
 
@@ -57,7 +61,7 @@ class Interpreter:
         return Interpreter(self.lexicon, self.speaker, history, self.robot_name)
 
     def interpret(self, text: str) -> Outcome:
-        spelled = corrected(text, self.lexicon)
+        spelled = corrected(joined(text, self.lexicon), self.lexicon)  # "the s u v brochure"
         clean = cleaned(spelled.text)
         reader = self
         if clean.taken_back and parse(clean.taken_back, self.robot_name).act != "unknown":
@@ -92,6 +96,9 @@ class Interpreter:
             if n == 0 and part.verb is None:
                 continue  # a preamble ("hey there", "thanks", "the denim jacket"): context for the rest
             outcome = reader._single(part.text)
+            if outcome.intent is not None and done and (outcome.intent, outcome.roles) == (
+                done[-1].intent, done[-1].roles):
+                continue  # "go to the shed and wait there": one move
             if outcome.intent is not None:
                 done.append(outcome)
                 if outcome.roles.get("object") in self.snapshot.entities:
@@ -116,7 +123,10 @@ class Interpreter:
             if accepted is not None:
                 return accepted
         not_understood = Outcome("Sorry, I did not understand that.", understood=False)
-        outcome = (follow_up(self, p, text) or not_understood) if p.act == "unknown" else self.act(p)
+        if p.act == "unknown":  # an answer to the robot's question, or "sorry, I meant screen two"
+            outcome = follow_up(self, p, text) or correction(self, text) or not_understood
+        else:
+            outcome = self.act(p)
         ungrounded = p.act == "command" and outcome.intent is None and not outcome.clarify
         failed = not outcome.understood or ungrounded
         return self._clause_by_clause(text, outcome) if failed else outcome
@@ -168,13 +178,17 @@ class Interpreter:
     # -- questions -------------------------------------------------------------------------------
     def _answer(self, p: Parse) -> Outcome:
         thing = p.slots.get("thing", ()) or p.slots.get("place", ())
-        if p.question in {"where", "can_see", "what_is", "what_on", "whose"} and is_pronoun(thing):
-            ref = antecedent(self.lexicon, self.history, ANYWHERE, speaker=self.speaker)
+        someone = set(content_words(thing)) <= _SOMEONE and bool(content_words(thing))  # "where is she"
+        about = p.question in {"where", "can_see", "what_is", "what_on", "whose"}
+        if about and (is_pronoun(thing) or someone):
+            kinds = PERSON if someone else ANYWHERE
+            ref = antecedent(self.lexicon, self.history, kinds, speaker=self.speaker)
             if ref is not None:
                 thing = tuple(tokens(ref.id))
         _, owner = self.refs.possessive(thing, p.slots)  # "where is my mug": the speaker's
         content = content_words(thing)
-        if content and self.refs.half_known(content) and not resolve(self.lexicon, thing, ANYWHERE).matches:
+        unsure = self.refs.half_known(content) or self.refs.strange(content)  # "how many bks": a doubt
+        if content and unsure and not resolve(self.lexicon, thing, ANYWHERE).matches:
             return Outcome("Sorry, I don't know how to answer that.", understood=False)
         match p.question:
             case "what_see":
@@ -184,7 +198,14 @@ class Interpreter:
             case "where":
                 return Outcome(answers.where_is(self.lexicon, thing, self.speaker, owner))
             case "what_on":
-                reply, clarify = answers.what_is_on(self.lexicon, thing)
+                asked = " ".join(p.slots.get("relation", ()))
+                reply, clarify = answers.what_is_on(self.lexicon, thing, asked)
+                return Outcome(reply, clarify=clarify)
+            case "who_in":
+                reply, clarify = answers.who_is_in(self.lexicon, thing, self.speaker)
+                return Outcome(reply, clarify=clarify)
+            case "what_near":
+                reply, clarify = answers.what_is_near(self.lexicon, thing, p.slots.get("relation", ()))
                 return Outcome(reply, clarify=clarify)
             case "can_see":
                 return Outcome(answers.can_you_see(self.lexicon, thing, self.speaker, owner))
@@ -230,7 +251,7 @@ class Interpreter:
         intent = p.intent or ""
         slots = {**p.slots, **overrides}
         if p.double_object and "rest" in slots:
-            slots = self.refs.split_double_object(slots.pop("rest"))
+            slots = {**self.refs.split_double_object(slots.pop("rest")), **overrides}
         if intent in {I.BRING_OBJECT, I.PLACE_OBJECT} and "recipient" in slots:
             # "take Maria to the kitchen", "walk Mr Ito back to the car park": guiding, not carrying
             who = tuple(w for w in slots.get("object", ()) if w not in RELATIONAL)
@@ -249,6 +270,10 @@ class Interpreter:
             there = antecedent(self.lexicon, self.history, PLACE, place=True, speaker=self.speaker)
             if there is None:  # "take me", with no place spoken of
                 return self._missing(intent, "goal", p)
+        if intent == I.GREET and "recipient" in p.implicit and "recipient" not in overrides:
+            # "this is Callum, say hello": whom the same utterance introduced, else the speaker
+            person = antecedent(self.lexicon, self._this_turn(), PERSON, speaker=self.speaker)
+            slots["recipient"] = tuple(tokens(person.id)) if person is not None else ("me",)
         implicit = "recipient" in p.implicit or not content_words(slots.get("recipient", ()))
         if intent == I.GUIDE and slots.get("goal") == ("there",) and implicit:
             # "Ellen needs the utility room, lead the way": the person just spoken of, else the speaker.
@@ -265,7 +290,8 @@ class Interpreter:
                 if role in spec.required:
                     return self._missing(intent, role, p)
                 continue
-            words, owner = self.refs.possessive(words, slots) if role == "object" else (words, None)
+            whose = self.refs.possessive(words, slots) if role == "object" else self._whose(words, kinds)
+            words, owner = whose
             others = [w for r, w in slots.items() if r != role]
             ref = self.refs.ground(words, kinds, role, owner, others)
             if ref.problem is not None:
@@ -281,9 +307,26 @@ class Interpreter:
         place = slots.get("recipient", ())
         said = None if set(place) & PARTS and "of" in place else p.marks.get("recipient")
         reply = acknowledgement(self.snapshot, self.speaker, intent, roles, refs, said)
+        if intent == I.GREET and roles.get("recipient") == self.speaker:  # "say hello": to the speaker
+            reply = f"Hello{vocative(self.snapshot, self.speaker)}!"
         if any(ref.guessed for ref in refs.values()):  # "go to bay mine": a guess, less sure
             return Outcome(reply, intent, roles, SPELT_CONFIDENCE, guessed=True)
         return self._intent(intent, roles, reply)
+
+    def _whose(self, words: Words, kinds: frozenset[Kind]) -> tuple[Words, str | None]:
+        """ "go to my desk", "put it on Ana's shelf": a place said with whose it is, when that names
+        one (a person's phrase keeps its possessive: "my son" is no son of the KB's)."""
+        if not words or words[0] not in POSSESSIVES:  # "platform 4 my train's late" says no one's place
+            return words, None
+        bare, owner = self.refs.possessive(words, {})
+        if owner is None or resolve(self.lexicon, bare, kinds, owner=owner).one is None:
+            return words, None
+        return bare, owner
+
+    def _this_turn(self) -> tuple[Utterance, ...]:
+        """What the speaker said since the robot last spoke (the earlier clauses of this turn)."""
+        said = [i for i, u in enumerate(self.history) if u.role == "assistant"]
+        return self.history[said[-1] + 1 :] if said else self.history
 
     def _missing(self, intent: str, role: str, p: Parse) -> Outcome:
         asks = {

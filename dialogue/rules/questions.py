@@ -26,6 +26,9 @@ _WHO_NOT_A_NAME = word_set("here there around in with present speaking talking a
 _SEE_WORDS = frozenset({"see", "notice", "around", "front", "here", "there"})
 _COLOUR_WORDS = frozenset({"colour", "color"})
 _LOCATIVES = ("on top of", "on", "in", "inside", "under", "at")
+#: Relations beside support and zone a "what is ... X" question may ask about.
+_NEAR = ("next to", "close to", "in front of", "near", "beside", "by", "behind", "underneath", "below",
+         "beneath", "above")
 #: Leads of an indirect question: "do you know where the keys are", "any idea where the toolbox is".
 _INDIRECT: tuple[Words, ...] = tuple(
     tuple(p.split()) for p in ("do you know", "do you have any idea", "any idea", "have you any idea",
@@ -38,6 +41,8 @@ _ELSE = word_set("else besides except apart from but me us other than the room t
 _OWNERS = word_set("mine yours his hers theirs ours")
 _NEARBY = word_set("around nearby here about anywhere somewhere")
 _OTHERS = word_set("his her their my its")
+#: Words that ask whether someone is there ("is Maria about?").
+_THERE = word_set("here there around present about")
 
 
 def _q(kind: str, w: Words, **slots: Words) -> Parse:
@@ -74,19 +79,19 @@ def question(words: list[str]) -> Parse | None:
             return _q("name", w)
         if w[1:2] == ("is",) and w[2:] and w[2] not in _WHO_NOT_A_NAME:
             return _q("what_is", w, thing=w[2:])
-        return _q("who_see", w)
+        at = w[2:3] in {("at",), ("in",), ("inside",)} and w[1:2] in {("is",), ("are",)} and len(w) > 3
+        return _q("who_in", w, place=w[3:]) if at else _q("who_see", w)  # "who's at the box office"
     if head == ("where",):
         return _where(w)
     if starts(w, ("how", "many")):
-        thing = tuple(x for x in w[2:] if x not in {"do", "you", "see", "can", "are", "there", "is"})
-        return _q("how_many", w, thing=thing)
+        return _q("how_many", w, thing=_counted(w[2:]))
     for lead in _SEES:
         if starts(w, lead):
             thing = _strip_ends(w[len(lead) :], frozenset(), _NEARBY)  # "is there any fruit around"
             if thing[:1] in {("anything",), ("something",)}:
                 return _anything(w, thing[1:])
             return _q("can_see", w, thing=thing)
-    if head in {("is",), ("are",)} and len(w) > 2 and w[-1] in {"here", "there", "around", "present"}:
+    if head in {("is",), ("are",)} and len(w) > 2 and w[-1] in _THERE:
         return _q("can_see", w, thing=w[1:-1])  # "is Maria here?"
     if head in {("is",), ("are",)} and split_at(w, _LOCATIVES) is not None:
         return _q("can_see", w, thing=w[1:])  # "is the cup on the table?"
@@ -96,6 +101,30 @@ def question(words: list[str]) -> Parse | None:
     if head and head[0] in WH:
         return _q("other", w)
     return None
+
+
+#: The verb of a question's own clause after what it counts ("how many cans *have* we got").
+_ASKING_VERBS = word_set("do does did have has can could are is were was will would")
+_ASKED_SUBJECTS = word_set("we you i they there")
+#: Words after a counted thing that only say where or in all ("here", "left", "altogether").
+_COUNT_TAIL = word_set("here there around left altogether total in all now got")
+
+
+def _counted(rest: Words) -> Words:
+    """What "how many" counts: the words before the question's own clause ("watering cans (have we
+    got)", "cups (can you see)", "chairs (are there) in the hall")."""
+    at = next((i for i in range(1, len(rest) - 1)
+               if rest[i] in _ASKING_VERBS and rest[i + 1] in _ASKED_SUBJECTS), None)  # fmt: skip
+    if at is None:
+        return tuple(x for x in rest if x not in {"do", "you", "see", "can", "are", "there", "is"})
+    after = rest[at + 2 :]
+    while after[:1] and after[0] in {"got", "see", "have", "left", "here", "around"}:
+        after = after[1:]
+    thing = rest[:at] + (after if after[:1] and after[0] in _PLACE_STARTS else ())
+    return _strip_ends(thing, frozenset(), _COUNT_TAIL)
+
+
+_PLACE_STARTS = word_set("in on at under inside")
 
 
 def _anybody(w: Words) -> bool:
@@ -117,10 +146,14 @@ def _what(w: Words) -> Parse:
         return _q(
             "colour", w, thing=_strip_ends(rest[1:], frozenset({"is", "are"}), frozenset({"is", "are"}))
         )
+    for sep in _NEAR:  # "what's next to the window": what the KB puts there
+        found = split_at(("x", *rest), [sep])
+        if found and found[2] and not set(found[0][1:]) - _ON_GLUE:
+            return _q("what_near", w, place=found[2], relation=tuple(sep.split()))
     for sep in _LOCATIVES:
         found = split_at(("x", *rest), [sep])
         if found and not set(found[0][1:]) - _ON_GLUE:
-            return _q("what_on", w, place=found[2])
+            return _q("what_on", w, place=found[2], relation=(sep,))
     for i, word in enumerate(rest):  # "which cups do you see", "what fruit can you see"
         seeing = word in {"do", "can", "could"} and rest[i + 1 : i + 3] == ("you", "see")
         if seeing and i > 0 and not set(rest[:i]) & {"is", "are", "else"}:

@@ -245,12 +245,19 @@ class Referents:
             # Names the KB knows among words it does not ("mr ito back", "the trousers out"): the
             # phrase was not understood, which is not the same as "there is no such thing".
             return Ref(problem=Outcome("Sorry, I did not understand that.", understood=False))
-        someone = "person" not in kinds and resolve(self.lexicon, words, PERSON).matches
-        if someone or ("person" in kinds and words[:1] and words[0] in POSSESSIVES):
+        other = resolve(self.lexicon, words, ANYWHERE - kinds).matches if ANYWHERE - kinds else ()
+        if other or ("person" in kinds and words[:1] and words[0] in POSSESSIVES):
             # "go and get Ben from the garden": a person where a thing is wanted, no intent the rules
-            # have; "my son": someone the KB knows only by how the speaker is related to them
+            # have, or a place ("pop plot 12 down"): not "I don't see any plot 12"; "my son":
+            # someone the KB knows only by how the speaker is related to them
             return Ref(problem=Outcome("Sorry, I did not understand that.", understood=False))
-        return Ref(problem=Outcome(self.unknown(content, kinds, words)))
+        reply = self.unknown(content, kinds, words)
+        a_name = "person" in kinds and not set(words) & DETERMINERS  # "go to Zorblina": whoever she is
+        if not a_name and self.strange(content):
+            # "I don't see any bk": only true of a kind the rules know; of a word they do not, it is
+            # a doubt, for a model to read ("bk" is "back" in chat)
+            return Ref(problem=Outcome(reply, understood=False))
+        return Ref(problem=Outcome(reply))
 
     def _noun(self, words: Words, candidates: Sequence[Entity]) -> str | None:
         """The noun said for all the candidates ("a drink"), if the phrase ends its core with one."""
@@ -288,6 +295,12 @@ class Referents:
             for w in tokens(last.text)
             if w.isalpha() and w not in FUNCTION_WORDS | _ACCOUNTED
         )
+
+    def strange(self, content: Sequence[str]) -> list[str]:
+        """The words of a phrase that nothing accounts for: no name or qualifier of the KB, no word of
+        English (lemminflect's lexicon), no number or function word ("bk", "thingummy")."""
+        return [w for w in content if not self.lexicon.knows(w) and w not in _ACCOUNTED
+                and w not in FUNCTION_WORDS and not getAllLemmas(w.removesuffix("'s"))]  # fmt: skip
 
     def half_known(self, content: Sequence[str]) -> bool:
         """Whether some words of a phrase are names of the KB and others are words it does not know."""

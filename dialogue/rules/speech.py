@@ -13,7 +13,16 @@ from functools import lru_cache
 
 from lemminflect import getAllLemmas
 
-from dialogue.reference.english import DETERMINERS, FUNCTION_WORDS, Words, lowered, spans, tokens, word_set
+from dialogue.reference.english import (
+    DETERMINERS,
+    FUNCTION_WORDS,
+    SPOKEN_NUMBERS,
+    Words,
+    lowered,
+    spans,
+    tokens,
+    word_set,
+)
 from dialogue.rules.words import (
     ASKING,
     CONTRACTIONS,
@@ -39,11 +48,23 @@ def expanded(text: str) -> list[str]:
     words = tokens(text)
     out: list[str] = []
     for i, w in enumerate(words):
+        if i > 0 and _numbering(w, words[i + 1] if i + 1 < len(words) else ""):
+            continue  # "screen number two", "room no 4": the number names it
         if w == "its" and _is_it_is(tuple(words[i + 1 : i + 3])):
             out += ["it", "is"]
         else:
             out += CONTRACTIONS.get(w, (w,))
     return out
+
+
+#: Words that only say a number follows ("number", "no." before a digit).
+_NUMBERING = word_set("number num nr no")
+_NUMBER_WORDS = frozenset(w for words in SPOKEN_NUMBERS.values() for w in words)
+
+
+def _numbering(word: str, after: str) -> bool:
+    """Whether the word only announces the number after it ("no" only before digits: "no one")."""
+    return word in _NUMBERING and (after.isdigit() or (word != "no" and after in _NUMBER_WORDS))
 
 
 @lru_cache(maxsize=4096)

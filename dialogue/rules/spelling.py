@@ -85,8 +85,10 @@ def corrected(text: str, lexicon: Lexicon) -> Spelled:
             fixes.append((start, end, Correction(word, "where", False)))
             continue
         if 0 < n < len(words) - 1 and word in PREPOSITION_SLIPS:
-            # "walk too the gate", "milk form the jug": a preposition heard as another word
-            if words[n + 1][0] in NP_START and words[n - 1][0] not in NP_START:
+            # "walk too the gate", "milk form the jug", "take it 2 Carol": a preposition heard or
+            # typed as another word, before a noun phrase or a person's name
+            phrase = words[n + 1][0] in NP_START or _someone(lexicon, words[n + 1][0])
+            if phrase and words[n - 1][0] not in NP_START:
                 fixes.append((start, end, Correction(word, PREPOSITION_SLIPS[word], False)))
             continue
         if not _suspect(word, lexicon):
@@ -103,6 +105,12 @@ def corrected(text: str, lexicon: Lexicon) -> Spelled:
         out += [text[last:start], fix.meant.capitalize() if text[start].isupper() else fix.meant]
         last = end
     return Spelled("".join([*out, text[last:]]), tuple(f[2] for f in fixes))
+
+
+def _someone(lexicon: Lexicon, word: str) -> bool:
+    """Whether the word is (the first word of) the name of a person of the KB."""
+    found = (lexicon.snapshot.get(n.entity) for n in lexicon.names_at([word], 0))
+    return any(e is not None and e.kind == "person" for e in found)
 
 
 def _named(text: str, start: int) -> bool:

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from dialogue.reference.english import Words, phrases, word_set
 
-CONTRACTIONS: dict[str, Words] = {
+_SPOKEN: dict[str, Words] = {
     "what's": ("what", "is"), "where's": ("where", "is"), "who's": ("who", "is"), "that's": ("that", "is"),
     "it's": ("it", "is"), "there's": ("there", "is"), "let's": ("let", "us"), "i'd": ("i", "would"),
     "can't": ("cannot",), "i'm": ("i", "am"), "you're": ("you", "are"), "here's": ("here", "is"),
@@ -30,13 +30,27 @@ CONTRACTIONS: dict[str, Words] = {
     "that'd": ("that", "would"), "thatd": ("that", "would"), "it'd": ("it", "would"), "itd": ("it", "would"),
     "you'd": ("you", "would"), "we'd": ("we", "would"), "they'd": ("they", "would"),
     "they've": ("they", "have"), "you've": ("you", "have"),
-    # Chat spellings of speech.
-    "ya": ("you",), "u": ("you",), "r": ("are",), "ur": ("your",), "gimme": ("give", "me"),
-    "lemme": ("let", "me"), "wanna": ("want", "to"),
-    "gotta": ("have", "to"), "pls": ("please",), "plz": ("please",), "thx": ("thanks",),
+    "gimme": ("give", "me"), "lemme": ("let", "me"), "wanna": ("want", "to"), "gotta": ("have", "to"),
+    "gonna": ("going", "to"),
 }  # fmt: skip
+#: Chat abbreviations, read as the words they stand for ("can u get my bag n bring it over", "go bk
+#: to the desk", "whats on the counter rn"). Words spelled out letter by letter ("s u v") are
+#: joined before these are read (dialogue.rules.letters).
+CHAT: dict[str, Words] = {
+    "u": ("you",), "ya": ("you",), "r": ("are",), "ur": ("your",), "n": ("and",), "b4": ("before",),
+    "bk": ("back",), "rn": ("right", "now"), "pls": ("please",), "plz": ("please",), "thx": ("thanks",),
+    "ty": ("thank", "you"), "cos": ("because",), "cuz": ("because",), "coz": ("because",),
+    "abt": ("about",), "tho": ("though",), "ppl": ("people",), "sth": ("something",),
+    "smth": ("something",), "l8r": ("later",), "2moro": ("tomorrow",), "tmrw": ("tomorrow",),
+    "bc": ("because",), "w8": ("wait",), "wat": ("what",), "wot": ("what",), "whr": ("where",),
+    "cld": ("could",), "cud": ("could",), "wud": ("would",), "wld": ("would",), "shud": ("should",),
+    "hv": ("have",), "em": ("them",), "yr": ("your",), "thnx": ("thanks",), "thanx": ("thanks",),
+    "rly": ("really",), "dunno": ("don't", "know"), "2day": ("today",),
+}  # fmt: skip
+#: Every written form read as other words: contractions, with or without the apostrophe, and chat.
+CONTRACTIONS: dict[str, Words] = {**_SPOKEN, **CHAT}
 #: Hesitations and discourse fillers, dropped wherever they occur ("put the uh candle on the table").
-FILLERS = word_set("um umm uh uhh er erm hmm mm ah really")
+FILLERS = word_set("um umm uh uhh er erm hmm mm ah really lol btw tbh")
 #: Two-word fillers dropped wherever they occur.
 FILLER_PAIRS = frozenset({("you", "know"), ("i", "guess"), ("of", "course")})
 #: Words around "you know" that make it a question, not a filler ("do you know where...").
@@ -108,6 +122,11 @@ PLACES = (
 )
 #: Prepositions that introduce where to go ("go over to the desk", "stand by the door").
 GOALS = "to|towards|into|inside|onto|on|in|near|beside|over to|by"
+#: Where to go, also said with a particle of motion before a noun phrase ("go down the compost area",
+#: "pop round the shop"; "go down to the cellar" keeps "down" a particle, and "go down the hall to
+#: the garage" makes "down the hall" the way).
+GOAL_PARTICLES = word_set("down up round")
+MOTION_GOALS = "|".join((GOALS, *sorted(GOAL_PARTICLES)))
 #: Words between a verb of motion and its goal: "go back to", "head over to", "nip down to".
 MOTION_PARTICLES = (
     "back over there straight right down up ahead across along out around round on and stand wait close "
@@ -133,7 +152,7 @@ ADJUNCTS = phrases(
 #: other than the robot ("after you wash it" asks for more than the request).
 WHILE = word_set("while whilst")
 TIME_CONJUNCTIONS = word_set("until till once before after as when")
-THEIR_SUBJECTS = word_set("i he she we they it")
+THEIR_SUBJECTS = word_set("i he she we they it someone somebody anyone anybody everyone everybody people")
 #: Prepositions of a path: "go to the bathroom through the main door" (what follows is the adjunct).
 PATHS = word_set("through via past across along")
 #: Adverbs of manner, never part of a referent ("put the vase on the shelf carefully").
@@ -206,5 +225,5 @@ ACTIVITY_FILLER = word_set("the a an some with me us of")
 #: the reply ("I can't find the newspaper myself"), never silently dropped.
 NO_INTENT_VERBS = word_set(
     "find search look open close turn switch remove control check wait stay watch heat boil pour fill "
-    "empty plug unplug lock unlock answer call fix feed follow serve"
+    "empty plug unplug lock unlock answer call fix feed follow serve see"
 )

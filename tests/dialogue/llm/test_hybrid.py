@@ -135,3 +135,16 @@ def test_a_name_read_from_a_typo_is_left_to_the_model_behind_the_rules(kitchen: 
     kept = turn(engine, "plase pick up the cookbook")
     assert kept.backend == "rules" and kept.intents[0].data == {"object": "book_1"}
     assert kept.intents[0].confidence < 0.9
+
+
+def test_a_word_the_rules_do_not_know_goes_to_the_model_not_to_i_dont_see_any(kitchen: KB) -> None:
+    # "bring me the glorp": the rules cannot tell a thing the scene lacks from a word they do not know
+    alone = DialogueEngine(kitchen, RulesModel())
+    said = turn(alone, "bring me the glorp")
+    assert not said.understood and said.response == "Sorry, I did not understand that."
+    inner = Recording(SUNNY)
+    engine = DialogueEngine(kitchen, HybridModel(inner))
+    assert turn(engine, "bring me the glorp").backend == "inner" and len(inner.requests) == 1
+    # a kind English has, absent from the scene, the rules answer themselves
+    absent = turn(engine, "bring me the hammer")
+    assert absent.backend == "rules" and absent.response == "Sorry, I don't see any hammer."

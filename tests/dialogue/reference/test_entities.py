@@ -112,6 +112,19 @@ def test_a_class_label_renames_its_instances() -> None:
     assert grounder.snapshot(kb).entities["cup_1"].name == "tumbler"
 
 
+def test_asserting_a_type_that_was_only_inferred_is_seen() -> None:
+    # "thing_2 rdf:type dbr:Cup" when it is already a cup as a mug changes no fact of the closure,
+    # but which classes are its own, and so its name (found by the property test)
+    kb = KB()
+    kb.update([*BASE, "dbr:Mug rdfs:subClassOf dbr:Cup", "thing_2 isOn thing_0", "thing_2 rdf:type dbr:Mug"])
+    grounder = Grounder()
+    grounder.snapshot(kb)
+    kb.update(["thing_2 rdf:type dbr:Cup"])
+    assert grounder.snapshot(kb) == build_snapshot(kb)
+    kb.remove(["thing_2 rdf:type dbr:Cup"])
+    assert grounder.snapshot(kb) == build_snapshot(kb)
+
+
 def test_a_colour_label_renames_the_colour_of_its_things() -> None:
     kb = KB()
     kb.update([*BASE, "cup_1 rdf:type dbr:Cup", "cup_1 isIn kitchen", "cup_1 hasColor teal_shade"])

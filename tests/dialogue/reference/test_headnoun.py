@@ -6,7 +6,7 @@ from dialogue import intents as I
 from dialogue.reference.headnoun import resolve_head
 from dialogue.reference.resolution import THING, resolve
 from kb import KB
-from tests.dialogue.conftest import lexicon_of
+from tests.dialogue.conftest import lexicon_of, scene_kb
 from tests.dialogue.rules.test_interpret import say
 
 
@@ -97,3 +97,41 @@ def test_a_kind_word_names_the_general_thing_and_colour_still_filters(office: KB
 def test_walking_a_person_somewhere_is_guiding(office: KB) -> None:
     out = say(office, "could you walk Carol back to the hallway")
     assert (out.intent, out.roles) == (I.GUIDE, {"recipient": "person_carol", "goal": "hallway"})
+
+
+def _lamps(*facts: str) -> KB:
+    return scene_kb(
+        None,
+        "hall rdf:type ZoneOfInterest", 'hall rdfs:label "hall"',
+        "den rdf:type ZoneOfInterest", 'den rdfs:label "den"',
+        "door_1 rdf:type Artifact", 'door_1 rdfs:label "door"', "door_1 isIn hall", "myself sees door_1",
+        "sofa_1 rdf:type Artifact", 'sofa_1 rdfs:label "sofa"', "sofa_1 isIn den", "myself sees sofa_1",
+        "lamp_1 rdf:type Artifact", 'lamp_1 rdfs:label "lamp"', "myself sees lamp_1",
+        "lamp_2 rdf:type Artifact", 'lamp_2 rdfs:label "lamp"', "myself sees lamp_2",
+        *facts,
+    )  # fmt: skip
+
+
+@pytest.mark.parametrize("near", ["by", "next to", "near", "beside", "close to"])
+def test_a_thing_said_to_be_near_another_is_the_one_the_kb_puts_there(near: str) -> None:
+    kb = _lamps("lamp_1 isNextTo door_1", "lamp_2 isNextTo sofa_1", "lamp_1 isIn hall", "lamp_2 isIn hall")
+    assert [e.id for e in resolve(lexicon_of(kb), f"the lamp {near} the sofa".split(), THING).matches] == [
+        "lamp_2"]  # fmt: skip
+    out = say(kb, f"go to the lamp {near} the door")
+    assert (out.intent, out.roles) == (I.MOVE_TO, {"goal": "lamp_1"}), out.reply
+
+
+def test_sharing_a_zone_is_weaker_evidence_of_being_near_than_a_fact() -> None:
+    # lamp_1 is in the den with the sofa, lamp_2 in the hall: "by the sofa" is the den's lamp
+    kb = _lamps("lamp_1 isIn den", "lamp_2 isIn hall")
+    assert say(kb, "pick up the lamp by the sofa").roles == {"object": "lamp_1"}
+    # both in the den, one known to be next to the sofa: that one
+    kb = _lamps("lamp_1 isIn den", "lamp_2 isIn den", "lamp_2 isNextTo sofa_1")
+    assert say(kb, "pick up the lamp by the sofa").roles == {"object": "lamp_2"}
+
+
+def test_nothing_known_of_what_is_near_what_leaves_the_question_open() -> None:
+    # no fact either way: "by the door" neither picks a lamp nor rules one out (the open world)
+    out = say(_lamps(), "pick up the lamp by the door")
+    assert out.intent is None and out.clarify
+    assert say(_lamps("lamp_2 isNextTo sofa_1"), "pick up the lamp by the door").clarify

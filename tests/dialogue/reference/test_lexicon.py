@@ -74,3 +74,17 @@ def test_a_coordinated_class_name_gives_no_head(office: KB) -> None:
     lex = Lexicon(build_snapshot(office))
     heads = {n.words for n in lex.names_at(["drink"], 0) if n.entity == "pear_1"}
     assert ("drink",) not in heads
+
+
+def test_a_number_in_a_name_is_said_in_digits_or_in_words() -> None:
+    kb = KB()
+    kb.update([
+        "bay_4 rdf:type ZoneOfInterest", 'bay_4 rdfs:label "loading bay 4"',
+        "court_9 rdf:type ZoneOfInterest", 'court_9 rdfs:label "court nine"',
+    ])  # fmt: skip
+    lex = Lexicon(build_snapshot(kb))
+    assert {n.entity for n in lex.names_at(tokens("loading bay four"), 0)} == {"bay_4"}
+    assert {n.entity for n in lex.names_at(tokens("court 9"), 0)} == {"court_9"}
+    assert {n.entity for n in lex.names_at(tokens("court nine"), 0)} == {"court_9"}
+    assert "court_9" not in {n.entity for n in lex.names_at(tokens("court ten"), 0)}
+    kb.close()

@@ -191,3 +191,21 @@ def test_the_garbage_is_the_bin() -> None:
     kb = _shop("b_1 rdf:type Artifact", 'b_1 rdfs:label "trash can"', "myself sees b_1")
     assert ids(kb, "the garbage") == ids(kb, "the rubbish") == ["b_1"]
     kb.close()
+
+
+@pytest.mark.parametrize(
+    ("phrase", "expected"),
+    [
+        ("a pair of safety goggles", ["goggles_1"]),
+        ("a roll of tape", ["tape_1"]),
+        ("a couple of the goggles", ["goggles_1"]),
+        ("a pair of gloves", []),  # no gloves: a measure of nothing is nothing
+    ],
+)
+def test_a_measure_of_a_thing_names_the_thing(phrase: str, expected: list[str]) -> None:
+    kb = scene_kb(
+        None,
+        "goggles_1 rdf:type Artifact", 'goggles_1 rdfs:label "safety goggles"', "myself sees goggles_1",
+        "tape_1 rdf:type Artifact", 'tape_1 rdfs:label "tape"', "myself sees tape_1",
+    )  # fmt: skip
+    assert ids(kb, phrase) == expected

@@ -292,3 +292,17 @@ def test_a_place_named_only_by_a_position_word_is_left_to_a_model() -> None:
 def test_things_sharing_a_name_are_told_apart_by_colour() -> None:
     assert say(_classroom(), "how many markers are there").reply == "I see two: the blue marker and the red marker."
     assert "the red marker" in say(_classroom(), "which marker is red").reply
+
+
+def test_a_word_nothing_accounts_for_is_a_doubt_not_an_absent_thing() -> None:
+    kb = scene("mop_1 rdf:type Artifact", 'mop_1 rdfs:label "mop"', "myself sees mop_1",
+               "hall rdf:type ZoneOfInterest", 'hall rdfs:label "hall"')  # fmt: skip
+    # "zorp" is neither a name of the KB nor a word of English: saying "I don't see any zorp" would
+    # claim to know what it is
+    for text in ("fetch the zorp", "pick up the blorgs", "go to the zorp", "how many zorps are there"):
+        assert not say(kb, text).understood, text
+    # an English noun the scene has none of is a thing the robot does not see: that is an answer
+    absent = say(kb, "fetch the hammer")
+    assert absent.understood and absent.reply == "Sorry, I don't see any hammer."
+    # a person's name the KB does not know is still said to be unknown
+    assert say(kb, "greet Zorblina").understood

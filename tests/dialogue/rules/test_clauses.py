@@ -29,6 +29,9 @@ SPEAKER = "person_kim"
         # punctuation, and a polite request mid-utterance
         ("it is chilly, can I have the shawl", ["it is chilly", "can I have the shawl"]),
         ("it is chilly could you close it", ["it is chilly", "could you close it"]),
+        # an indirect question said after another
+        ("is tom in do you know where he went", ["is tom in", "do you know where he went"]),
+        ("is the van back any idea where the keys are", ["is the van back", "any idea where the keys are"]),
     ],
 )  # fmt: skip
 def test_a_clause_starts_where_a_subject_and_its_verb_start_again(text: str, parts: list[str]) -> None:
@@ -43,6 +46,8 @@ def test_a_clause_starts_where_a_subject_and_its_verb_start_again(text: str, par
         "can i have the jug",  # a question's order
         "bring me the cups the kids need",  # no verb agreeing with a singular noun phrase
         "put the box and its lid on the shelf",
+        "do you know where the keys are",  # an indirect question at the start is the whole
+        "what do you know about the van",
     ],
 )
 def test_one_clause_is_not_cut(text: str) -> None:

@@ -246,3 +246,56 @@ def test_a_clause_of_time_with_the_robot_as_subject_stays_part_of_the_request() 
 def test_a_message_with_a_subject_of_its_own(text: str, message: str, recipient: tuple[str, ...]) -> None:
     p = parse(text)
     assert (p.intent, p.text, p.slots["recipient"]) == (I.SAY, message, recipient)
+
+
+@pytest.mark.parametrize(
+    ("text", "recipient", "free"),
+    [
+        ("say to Ann that the bus is late", ("ann",), "the bus is late"),
+        ("Say to Mr Ito that his room is ready.", ("mr", "ito"), "his room is ready"),
+        ("say to Ann it is raining", ("ann",), "it is raining"),
+        # a message whose subject is a noun phrase: the person told, then the clause
+        ("tell Ann her parcel has arrived", ("ann",), "her parcel has arrived"),
+        ("tell Ann her tomatoes are ready to pick", ("ann",), "her tomatoes are ready to pick"),
+        ("tell my dad the plumber for the upstairs flat is here", ("my", "dad"),
+         "the plumber for the upstairs flat is here"),
+        ("tell Ann that her parcel is here", ("ann",), "her parcel is here"),
+        ("tell Ann to bring her parcel", ("ann",), "please bring her parcel"),
+        ("tell Ann from me that the bus is late", ("ann",), "the bus is late"),
+        ("say to Ann on my behalf that the bus is late", ("ann",), "the bus is late"),
+    ],
+)  # fmt: skip
+def test_whom_to_tell_and_what(text: str, recipient: tuple[str, ...], free: str) -> None:
+    p = parse(text)
+    assert (p.intent, p.slots.get("recipient"), p.text) == (I.SAY, recipient, free)
+
+
+def test_say_to_someone_without_that_or_a_clause_is_not_read() -> None:
+    # which words name the person and which are the message is not said ("say to Ann hello")
+    assert parse("say to Ann hello").act == "unknown"
+    assert parse("say to Ann").act == "unknown"
+
+
+@pytest.mark.parametrize(
+    ("text", "goal", "way"),
+    [
+        ("go down the allotment", ("the", "allotment"), None),
+        ("pop round the back yard", ("the", "back", "yard"), None),
+        ("nip up the attic", ("the", "attic"), None),
+        ("go down to the cellar", ("the", "cellar"), None),  # "down" a particle
+        ("go down the hall to the garage", ("the", "garage"), ("down", "the", "hall")),  # the way
+        ("head up the stairs into the loft", ("the", "loft"), ("up", "the", "stairs")),
+    ],
+)
+def test_a_particle_of_motion_before_a_noun_phrase_says_where_to(
+    text: str, goal: tuple[str, ...], way: tuple[str, ...] | None
+) -> None:
+    p = parse(text)
+    assert (p.intent, p.slots) == (I.MOVE_TO, {"goal": goal})
+    assert way is None or way in p.adjuncts
+
+
+def test_me_and_a_thing_to_a_place_is_the_thing_of_that_place_brought_to_me() -> None:
+    p = parse("bring me the keys to the red car")
+    assert (p.intent, p.slots) == (I.BRING_OBJECT, {"object": ("the", "keys", "to", "the", "red", "car"),
+                                                    "recipient": ("me",)})  # fmt: skip

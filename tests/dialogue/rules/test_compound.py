@@ -23,6 +23,13 @@ from tests.dialogue.rules.test_interpret import say
         ("omar is at the door go say hi to him", ["omar is at the door", "go say hi to him"]),
         ("mia can't find her pen, can you take it to her", ["mia can't find her pen", "can you take it to her"]),
         ("omar is in the shed tell him lunch is ready", ["omar is in the shed", "tell him lunch is ready"]),
+        # "and" as chat writes it; other chat words cut nothing ("cn u go...": "u" is "you")
+        ("fetch the tray n put it on the shelf", ["fetch the tray", "put it on the shelf"]),
+        ("cn u go to the shed", ["cn u", "go to the shed"]),
+        # an action the robot has no intent for is a part of its own, kept in the reply
+        ("go to the shed and see if the hose is there", ["go to the shed", "see if the hose is there"]),
+        # a greeting asked for after a remark
+        ("ola is here say hi", ["ola is here", "say hi"]),
     ],
 )
 def test_parts(text: str, parts: list[str]) -> None:

@@ -89,3 +89,46 @@ def test_nope_the_other_one(workshop: KB) -> None:
 def test_a_fragment_may_say_it_is_the_speakers_without_punctuation(workshop: KB) -> None:
     history = [("user", "grab the cap"), ("robot", "Which cap do you mean: the red one or the grey one?")]
     assert say(workshop, "the grey one its mine", speaker=ANA, history=history).roles == {"object": "cap_2"}
+
+
+@pytest.mark.parametrize(
+    ("answer", "roles"),
+    [
+        ("sorry I meant the porch", {"object": "rake_1", "recipient": "porch"}),  # the place, not the rake
+        ("oops i meant the hand saw", {"object": "saw_1", "recipient": "shed"}),  # the thing, not the shed
+        ("no sorry, I mean the bow saw", {"object": "saw_3", "recipient": "shed"}),
+        ("I meant to the porch", {"object": "rake_1", "recipient": "porch"}),
+    ],
+)
+def test_a_correction_redoes_the_last_request_with_what_was_meant(
+    workshop: KB, answer: str, roles: dict[str, str]
+) -> None:
+    history = [("user", "take the rake to the shed"), ("robot", "OK, I will bring the rake to the shed.")]
+    out = say(workshop, answer, speaker=ANA, history=history)
+    assert (out.intent, out.roles) == (I.BRING_OBJECT, roles), out.reply
+
+
+def test_a_correction_says_the_same_kind_of_thing_as_what_it_corrects(workshop: KB) -> None:
+    history = [("user", "take the rake to the shed"), ("robot", "OK, I will bring the rake to the shed.")]
+    # Raf is neither a place nor a thing to carry: nothing to correct
+    assert say(workshop, "sorry I meant Raf", speaker=ANA, history=history).intent is None
+    # with no request before it, "I meant the porch" corrects nothing
+    assert not say(workshop, "I meant the porch", speaker=ANA).understood
+
+
+@pytest.mark.parametrize("answer", ["not the shed, the porch", "the porch, not the shed", "no not the shed the porch"])
+def test_not_this_but_that_corrects_the_last_request(workshop: KB, answer: str) -> None:
+    history = [("user", "take the rake to the shed"), ("robot", "OK, I will bring the rake to the shed.")]
+    out = say(workshop, answer, speaker=ANA, history=history)
+    assert (out.intent, out.roles) == (I.BRING_OBJECT, {"object": "rake_1", "recipient": "porch"}), out.reply
+
+
+def test_a_correction_and_an_answer_complete_a_request_said_without_to(workshop: KB) -> None:
+    # "fetch the saw": to whom is not said ("fetch Ana the saw" would say it), yet the answer to
+    # "Which saw?" and a correction keep the request's own recipient
+    asked = [("user", "fetch the saw"), ("robot", "Which saw do you mean: the hand saw, the coping saw or the bow saw?")]
+    out = say(workshop, "the bow one", speaker=ANA, history=asked)
+    assert (out.intent, out.roles) == (I.BRING_OBJECT, {"object": "saw_3", "recipient": ANA}), out.reply
+    done = [("user", "fetch the hand saw"), ("robot", "OK, I will bring the hand saw to you.")]
+    out = say(workshop, "sorry I meant the coping one", speaker=ANA, history=done)
+    assert (out.intent, out.roles) == (I.BRING_OBJECT, {"object": "saw_2", "recipient": ANA}), out.reply

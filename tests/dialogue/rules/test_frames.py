@@ -76,6 +76,8 @@ def test_roles_are_found_by_their_prepositions_in_any_order() -> None:
         ("put the vase on the piano carefully", I.PLACE_OBJECT,
          {"object": ("the", "vase"), "recipient": ("the", "piano")}, ("carefully",)),
         ("go along the hall to the garage", I.MOVE_TO, {"goal": ("the", "garage")}, ("along", "the", "hall")),
+        ("grab the ladder before someone trips on it", I.GRAB_OBJECT, {"object": ("the", "ladder")},
+         ("before", "someone", "trips", "on", "it")),
     ],
 )  # fmt: skip
 def test_adjuncts_are_not_part_of_a_referent(
@@ -266,3 +268,17 @@ def test_getting_or_taking_someone_something_is_bringing_it(text: str, slots: di
 @pytest.mark.parametrize("text", ["wait for me", "stay"])
 def test_waiting_with_no_place_is_no_motion(text: str) -> None:
     assert parse(text).intent is None
+
+
+def test_wait_there_is_at_the_place_spoken_of_and_wait_here_is_no_place() -> None:
+    p = parse("wait for me there")
+    assert (p.intent, p.slots) == (I.MOVE_TO, {"goal": ("there",)})
+    assert parse("stay over there").slots == {"goal": ("there",)}
+    assert parse("wait here").act == "unknown"
+
+
+def test_say_hello_alone_greets_someone_the_interpreter_finds() -> None:
+    p = parse("say hello")
+    assert (p.intent, p.slots, p.implicit) == (I.GREET, {"recipient": ("me",)}, frozenset({"recipient"}))
+    assert parse("say hello to Ann").slots == {"recipient": ("ann",)}
+    assert parse("say hello world").intent == I.SAY  # words to say, not a greeting of no one

@@ -524,3 +524,110 @@ def test_it_in_a_later_part_is_what_an_earlier_part_took() -> None:
 def test_people_the_rules_cannot_ground_are_left_to_a_model(text: str) -> None:
     # a person where a thing is wanted; someone known only by how they are related to the speaker
     assert not say(_nursery(), text, speaker="person_kim").understood
+
+
+def test_a_run_on_question_about_someone_is_answered_by_its_last_clause(office: KB) -> None:
+    office.update(["person_dan isIn hallway"])
+    out = say(office, "is dan about do you know where he is")
+    assert out.understood and out.intent is None and "hallway" in out.reply
+
+
+@pytest.mark.parametrize(
+    "text",
+    ["this is Dan he just started, say hello", "Dan is new here. Say hi!", "meet Dan, say good morning"],
+)
+def test_say_hello_greets_the_person_just_introduced(office: KB, text: str) -> None:
+    out = say(office, text)
+    assert (out.intent, out.roles) == (I.GREET, {"recipient": "person_dan"}), out.reply
+
+
+def test_say_hello_with_nobody_introduced_greets_the_speaker(office: KB) -> None:
+    out = say(office, "say hello")
+    assert (out.intent, out.roles, out.reply) == (I.GREET, {"recipient": BOB}, "Hello Bob!")
+    # someone named in an earlier turn is not "introduced" now
+    earlier = say(office, "say hi", history=[("user", "where is Carol"), ("robot", "Carol is in the office.")])
+    assert earlier.roles == {"recipient": BOB}
+
+
+def test_going_somewhere_and_waiting_there_is_one_move(office: KB) -> None:
+    out = say(office, "go to the hallway and wait there")
+    assert (out.intent, out.roles, out.more) == (I.MOVE_TO, {"goal": "hallway"}, ())
+    out = say(office, "head down the hallway n wait for me there")
+    assert (out.intent, out.roles, out.more) == (I.MOVE_TO, {"goal": "hallway"}, ())
+    assert not say(office, "wait here").understood  # to stay put is no move anywhere
+
+
+@pytest.mark.parametrize(
+    ("text", "intent", "roles"),
+    [
+        ("can u get my laptop n put it on the desk pls", I.GRAB_OBJECT, {"object": "laptop_1"}),
+        ("go bk to the hallway", I.MOVE_TO, {"goal": "hallway"}),
+        ("grab the umbrella b4 someone takes it", I.GRAB_OBJECT, {"object": "umbrella_1"}),
+        ("whats on the desk rn", None, {}),
+    ],
+)
+def test_chat_abbreviations(office: KB, text: str, intent: str | None, roles: dict[str, str]) -> None:
+    out = say(office, text)
+    assert out.understood and (out.intent, out.roles) == (intent, roles), out.reply
+
+
+def _yard() -> KB:
+    return scene_kb(
+        None,
+        f"{BOB} rdf:type Human", f'{BOB} rdfs:label "Bob"', f"myself sees {BOB}",
+        "person_ola rdf:type Human", 'person_ola rdfs:label "Ola"', "myself sees person_ola",
+        "shed rdf:type ZoneOfInterest", 'shed rdfs:label "shed"',
+        "bay_3 rdf:type ZoneOfInterest", 'bay_3 rdfs:label "bay 3"',
+        "gate_1 rdf:type Artifact", 'gate_1 rdfs:label "gate"', "myself sees gate_1",
+        "bench_1 rdf:type Artifact", 'bench_1 rdfs:label "bench"', f"bench_1 belongsTo {BOB}", "myself sees bench_1",
+        "bench_2 rdf:type Artifact", 'bench_2 rdfs:label "bench"', "bench_2 belongsTo person_ola",
+        "myself sees bench_2",
+        "rake_1 rdf:type Artifact", 'rake_1 rdfs:label "rake"', "rake_1 belongsTo person_ola", "myself sees rake_1",
+        "rake_2 rdf:type Artifact", 'rake_2 rdfs:label "rake"', "rake_2 isIn shed", "myself sees rake_2",
+        "bin_1 rdf:type Box", 'bin_1 rdfs:label "bin"', "bin_1 isNextTo gate_1", "myself sees bin_1",
+    )  # fmt: skip
+
+
+def test_a_name_ending_with_its_number_is_said_without_the() -> None:
+    assert say(_yard(), "go to bay three").reply == "OK, I am going to bay 3."
+
+
+def test_things_sharing_a_name_without_a_colour_are_told_apart_by_owner_or_place() -> None:
+    assert say(_yard(), "how many rakes have we got").reply == "I see two: Ola's rake and the rake in the shed."
+
+
+def test_what_is_next_to_a_thing_and_what_is_in_an_empty_one() -> None:
+    kb = _yard()
+    assert say(kb, "whats next to the gate").reply == "Next to the gate, there is the bin."
+    assert say(kb, "what is in the bin").reply == "I don't know of anything in the bin."
+
+
+def test_a_place_said_with_whose_it_is() -> None:
+    kb = _yard()
+    out = say(kb, "put the bin on my bench")
+    assert out.roles.get("recipient") == "bench_1", out.reply
+    assert say(kb, "go to olas bench").roles == {"goal": "bench_2"}
+    # a possessive inside a remark run into the phrase says nothing of the place
+    assert say(kb, "go to the gate my rakes in the shed").roles.get("goal") != "rake_1"
+
+
+def test_a_place_where_a_thing_is_wanted_is_not_said_to_be_unseen() -> None:
+    out = say(_yard(), "pick up bay 3")
+    assert not out.understood  # not "I don't see any bay 3": there is one, but no one picks it up
+
+
+def test_which_one_is_asked_by_what_the_kb_says_of_each_and_answered_so() -> None:
+    kb = _yard()
+    out = say(kb, "grab the rake")
+    assert out.clarify and out.reply == "Which rake do you mean: Ola's or the one in the shed?"
+    asked = [("user", "grab the rake"), ("robot", out.reply)]
+    assert say(kb, "olas", history=asked).roles == {"object": "rake_1"}
+    assert say(kb, "the one in the shed", history=asked).roles == {"object": "rake_2"}
+
+
+def test_who_is_in_a_place_names_the_people_the_kb_puts_there() -> None:
+    kb = _yard()
+    kb.update(["person_ola isIn shed"])
+    assert say(kb, "whos in the shed").reply == "In the shed, there is Ola."
+    assert say(kb, "who is at bay three").reply == "I don't know of anyone in bay 3."
+    assert say(kb, "who's in today").reply == "I see you and Ola."  # no place: who is there

@@ -24,6 +24,14 @@ from dialogue.rules.utterance import Cleaned, cleaned, normalise
         # chat and recogniser spellings
         ("can u pass the salt theyre waiting", "can you pass the salt they are waiting"),
         ("how many mugs r there", "how many mugs are there"),
+        ("grab my keys b4 u go", "grab my keys before you go"),
+        ("fetch the tray n bring it bk rn", "fetch the tray and bring it back right now"),
+        ("pls get sth to eat", "please get something to eat"),
+        ("cld u grab em lol", "could you grab them"),
+        # a word that only announces the number after it
+        ("go to gate number nine", "go to gate nine"),
+        ("go to room no 4", "go to room 4"),
+        ("no one is there", "no one is there"),
     ],
 )
 def test_normalise(text: str, words: str) -> None:

@@ -113,3 +113,10 @@ def test_a_preposition_heard_as_another_word_before_a_noun_phrase(text: str, fix
 )
 def test_the_same_words_elsewhere_are_left_alone(text: str) -> None:
     assert corrected(text, lexicon_of(_things("form", "apple"))).text == text
+
+
+def test_a_preposition_typed_as_a_digit_before_a_persons_name() -> None:
+    kb = scene_kb(None, "person_ola rdf:type Human", 'person_ola rdfs:label "Ola"',
+                  "cup_1 rdf:type dbr:Cup", "myself sees cup_1")  # fmt: skip
+    assert corrected("take the cup 2 ola", lexicon_of(kb)).text == "take the cup to ola"
+    assert corrected("take 2 cups to ola", lexicon_of(kb)).text == "take 2 cups to ola"  # a number
