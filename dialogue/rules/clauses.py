@@ -33,7 +33,7 @@ from dialogue.reference.english import (
     word_set,
 )
 from dialogue.rules.speech import expanded, strip_politeness
-from dialogue.rules.words import NP_START, OWNERS
+from dialogue.rules.words import NP_START, OWNERS, TAGS
 
 #: Punctuation and dashes end a clause.
 _BREAK = re.compile(r"[.;!?,]+(?:\s+|$)|\s+(?:-|\u2013|\u2014)\s+")
@@ -56,6 +56,10 @@ _TAKES_CLAUSE = word_set(
 _TELLING = word_set("tell told ask remind warn inform show promise let")
 #: Conjunctions that start a clause of reason after a request ("... because she has to take them").
 _REASONS = word_set("because cos cause since as so")
+#: Words that soften a request said after a remark ("you're blocking the door *maybe* go...").
+_HEDGES = word_set("maybe perhaps just now then so")
+#: Words naming the listener at the end of a remark ("you're in the way *mate* go...").
+_TAGS = frozenset(w for p in phrases(TAGS) for w in p[-1:])
 #: Words a described thing is said with: "it's the tall one", "I think they're in the drawer".
 _DESCRIBING = (("it", "is"), ("they", "are"), ("it", "was"), ("they", "were"), ("it", "should", "be"))
 _THINKING = (("i", "think"), ("i", "believe"), ("i", "guess"), ("probably",), ("maybe",), ("i", "reckon"))
@@ -95,6 +99,11 @@ def _starts_clause(words: list[list[str]], i: int) -> bool:
     if before in _TAKES_CLAUSE or before in _AUXILIARIES or told or len(flat) < 2:
         return False  # "I think it's...", "tell him she's here"; "can I have": a question's order
     first, second = flat[0], flat[1]
+    if first in _HEDGES and before not in _SUBJECTS and _bare_verb(second):
+        return True  # "move out of the way a bit *maybe go* over to the counter"
+    tagged = i > 1 and before in _TAGS and words[i - 2][-1] not in _SUBJECTS | NP_START
+    if tagged and _bare_verb(first):
+        return True  # "you're in the way mate *go* over by the door"
     if first in _REASONS:  # "... because she has to take them before dinner"
         return len(flat) > 2 and second in _SUBJECTS and _subject_verb(second, flat[2])
     if first in _SUBJECTS:
@@ -106,6 +115,12 @@ def _starts_clause(words: list[list[str]], i: int) -> bool:
     # "Omar wants a word": a word that is a name or a noun, then its verb
     name = first.isalpha() and first not in _AUXILIARIES and not set(getAllLemmas(first)) - {"NOUN", "PROPN"}
     return name and _agrees(flat, 1)
+
+
+@lru_cache(maxsize=4096)
+def _bare_verb(word: str) -> bool:
+    """Whether the word is a verb as a request starts with it ("go", "put"), not in a tense."""
+    return word in getAllLemmas(word).get("VERB", ()) and word not in FUNCTION_WORDS
 
 
 def _subject_verb(subject: str, verb: str) -> bool:

@@ -16,6 +16,8 @@ from dialogue.rules.speech import starts, strip_politeness
 from dialogue.rules.utterance import normalise, strip_vocative, verb_lemma
 from dialogue.rules.words import (
     ADJUNCTS,
+    AWAY,
+    DURATIONS,
     GOAL_PARTICLES,
     GREETINGS,
     HERE,
@@ -106,10 +108,12 @@ def command(original: str, words: list[str]) -> Parse:
 
 
 def _joined(words: list[str]) -> Words:
-    """ "next to" as one word ("beside"), so that its "to" is never taken for a recipient's."""
+    """ "next to" as one word ("beside"), so that its "to" is never taken for a recipient's ("out
+    of the way" stays: an adjunct, no place)."""
     out: list[str] = []
-    for word in words:
-        if out and (out[-1], word) in JOINED_PREPOSITIONS and len(out) > 1:
+    for i, word in enumerate(words):
+        way = word == "of" and words[i + 1 : i + 3][-1:] == ["way"]
+        if out and (out[-1], word) in JOINED_PREPOSITIONS and len(out) > 1 and not way:
             out[-1] = JOINED_PREPOSITIONS[(out[-1], word)]
         else:
             out.append(word)
@@ -138,6 +142,8 @@ def _fit(row: Row, said: Said) -> Parse | None:
             direct = direct[: -len(pointed[0])]
             slots.setdefault(frame.here, pointed[1])
     direct = _without_particles(direct, row)
+    if not direct and not slots and set(adjuncts) & _AWAY:
+        return None  # "get out of my way": where not to be is all it says (no thing to get)
     if not direct and frame.direct is not None:
         direct = _second_phrase(slots)  # "bring to Ana the tray"
     if frame.dative is not None and direct[:1] and direct[0] in ME and marks.get("recipient") == "to":
@@ -169,6 +175,7 @@ def _fit(row: Row, said: Said) -> Parse | None:
 
 
 _OWN_PHRASE = NP_START | {"her"}
+_AWAY = frozenset(AWAY)
 
 
 def _someone(word: str) -> bool:
@@ -264,6 +271,9 @@ def _adjuncts(rest: Words, row: Row) -> tuple[Words, tuple[Words, ...]]:
 
 def _adjunct_end(rest: Words, i: int, own: set[str]) -> int:
     word = rest[i]
+    lasting = next((len(p) for p in DURATIONS if rest[i : i + len(p)] == p), 0)
+    if lasting:  # "wait in the hall for now", "bring the fan for now"
+        return i + lasting
     by_doing = word == "by" and i + 1 < len(rest) and rest[i + 1].endswith("ing")  # "by crossing the hall"
     # "down the hall to the garage": the way, when the place comes after it
     way = word in GOAL_PARTICLES & own and bool(set(rest[i + 1 :]) & (own - GOAL_PARTICLES))

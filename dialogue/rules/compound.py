@@ -14,7 +14,7 @@ from dialogue.reference.resolution import content_words
 from dialogue.rules.frames import verbs
 from dialogue.rules.speech import QUOTED, starts, strip_politeness
 from dialogue.rules.utterance import asked_verb, normalise, strip_vocative
-from dialogue.rules.words import CHAT, GREETINGS, NO_INTENT_VERBS
+from dialogue.rules.words import AWAY, CHAT, GREETINGS, NO_INTENT_VERBS
 
 _CONJUNCTIONS = word_set("and then , ; afterwards")
 #: Verbs that start a new command even with no conjunction before them, when followed by one of
@@ -50,6 +50,9 @@ class Part:
     verb: str | None
     #: The part's verb is one the robot has no intent for ("find", "turn on"), see NO_INTENT_VERBS.
     no_intent: bool
+    #: The part only says where not to be ("move out of the way and go to the door"): what the
+    #: parts after it do.
+    aside: bool = False
 
 
 def _verb(text: str) -> str | None:
@@ -112,8 +115,18 @@ def conjuncts(text: str) -> list[Part]:
     for s, e in parts:
         piece = text[toks[s][1] : toks[e - 1][2]].strip(" ,;")
         verb = _verb(piece)
-        out.append(Part(piece, verb, verb in NO_INTENT_VERBS))
+        out.append(Part(piece, verb, verb in NO_INTENT_VERBS, _away(piece)))
     return out
+
+
+def _away(text: str) -> bool:
+    """Whether a request only says where not to be ("get out of the way", "move out of my way")."""
+    words = strip_vocative(strip_politeness(normalise(text)))
+    rest = tuple(w for w in words[1:] if w not in _A_BIT)
+    return bool(words) and asked_verb(words[0]) in verbs() and rest in AWAY
+
+
+_A_BIT = word_set("a bit little")
 
 
 def _one_word(word: str) -> str:

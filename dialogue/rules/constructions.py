@@ -34,8 +34,10 @@ from dialogue.rules.words import (
     WISHERS,
 )
 
-#: Prepositions of a place to put something, longest first ("goes to town" is no such place).
-_PLACES = sorted((p for p in phrases(PLACES) if p not in {("to",), ("at",)}), key=len, reverse=True)
+#: Prepositions of a place a thing goes, longest first; "to" and "at" say no place to put it
+#: ("goes to town"), only one to take it to after a request to take another thing there.
+_PLACES = sorted(phrases(PLACES), key=len, reverse=True)
+_NOT_PUT = frozenset({("to",), ("at",)})
 #: Subjects that never name a thing to put ("I go in the morning", "you belong here").
 NOT_THINGS = word_set("i we you he she what where who which how why when there")
 
@@ -120,7 +122,17 @@ def _pronoun(who: Words) -> Words:
 
 def belonging(said: Said) -> Parse | None:
     """ "the butter goes back in the fridge", "this belongs on the shelf": put it there."""
-    w = said.words
+    found = where_it_goes(said.words)
+    if found is None or found[1] in _NOT_PUT:  # "goes to town" is no place to put it
+        return None
+    thing, place, where = found
+    parse = said.command(I.PLACE_OBJECT, object=thing, recipient=where)
+    return replace(parse, marks={"recipient": " ".join(place)})
+
+
+def where_it_goes(w: Words) -> tuple[Words, Words, Words] | None:
+    """ "the butter goes back in the fridge", "the soup goes to table two": the thing, the
+    preposition and the place; None when the words say no such thing."""
     for i in range(1, min(len(w) - 2, 6)):
         lead = next((p for p in GOES if w[i : i + len(p)] == p), None)
         if lead is None:
@@ -131,8 +143,7 @@ def belonging(said: Said) -> Parse | None:
         place = next((p for p in _PLACES if rest[: len(p)] == p), None)
         if place is None or not rest[len(place) :] or thing[0] in NOT_THINGS:
             return None
-        parse = said.command(I.PLACE_OBJECT, object=thing, recipient=rest[len(place) :])
-        return replace(parse, marks={"recipient": " ".join(place)})
+        return thing, place, rest[len(place) :]
     return None
 
 

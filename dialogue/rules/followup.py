@@ -1,7 +1,8 @@
 """Answers to the robot's last question: a fragment that completes the pending request ("the red
 one", "mine, obviously", "the pink one, it's Carla's"), a yes or a no to "Do you mean the flat
-brush?", and a yes to an offer ("Would you like me to bring you a basket?" "yes please"); and a
-correction of the request just made ("sorry, I meant screen two").
+brush?", and a yes to an offer ("Would you like me to bring you a basket?" "yes please"); a
+correction of the request just made ("sorry, I meant screen two"); and the same request for another
+thing ("and the soup goes to table two" after "take the steak to table four").
 
 The robot's question must be the latest utterance (system notes aside); a fragment or a confirmation
 re-reads the request said right before it, an accepted offer is read as the request the robot made.
@@ -12,15 +13,17 @@ from __future__ import annotations
 from dataclasses import replace
 from typing import TYPE_CHECKING
 
+from dialogue import intents as I
 from dialogue.history import Utterance
 from dialogue.prompts import FREE_FORM_OBJECT
 from dialogue.reference.english import MODIFIER_START, Words, phrases, tokens, word_set
 from dialogue.reference.resolution import ROLE_KINDS, content_words, resolve
 from dialogue.rules.clauses import clauses, described, description
 from dialogue.rules.commands import parse
+from dialogue.rules.constructions import where_it_goes
 from dialogue.rules.outcome import Outcome
 from dialogue.rules.parsed import Parse
-from dialogue.rules.speech import expanded, strip_politeness
+from dialogue.rules.speech import expanded, plain, strip_politeness
 from dialogue.rules.words import INTERJECTIONS, NP_START, OWNERS, PLACES
 
 if TYPE_CHECKING:
@@ -261,3 +264,22 @@ def _instead(fragment: Words, said: Words) -> Words:
         core.append(w)
     head = content_words(core)[-1:] if content_words(core) else []
     return tuple(x for w in fragment for x in (head if w in _ONE and head else [w]))
+
+
+def continuation(reader: Interpreter, text: str) -> Outcome | None:
+    """ "and the soup goes to table two" after "take the steak to table four": the request just made
+    (a bringing) again, for another thing and place. Alone, "X goes to Y" says no request."""
+    found = where_it_goes(tuple(strip_politeness(plain(text))))
+    if found is None or found[1] != ("to",):
+        return None
+    asked = [i for i, u in enumerate(reader.history) if u.role == "user"]
+    if not asked:
+        return None
+    pending = parse(reader.history[asked[-1]].text, reader.robot_name)
+    if pending.act != "command" or pending.intent != I.BRING_OBJECT:
+        return None
+    thing, _, place = found
+    again = Parse("command", I.BRING_OBJECT, {"object": thing, "recipient": place}, words=(*thing, *place),
+                  marks={"recipient": "to"})  # fmt: skip
+    outcome = reader.act(again)
+    return _sure(outcome) if outcome.intent is not None else None

@@ -113,6 +113,8 @@ _STAY = "wait|stay|remain|hang on|hang about|hang around|sit"
 _AT = "in|inside|at|by|near|beside|outside|on|under|behind"
 #: "wait *out* in the courtyard", "stay *over* by the door", "wait *downstairs* in the hall"
 _OUT = "out over back down up outside upstairs downstairs"
+#: Particles of the way someone is taken: "show Ana *out* to the terrace", "walk me *back*".
+_ALONG = "over back through out in up down round around along"
 _SAY = "say|tell|announce|repeat|inform|remind|ask"
 _TO_SOMEONE = "to|towards|for|into"
 
@@ -141,12 +143,13 @@ FRAMES: tuple[Frame, ...] = (
     Frame("help", special=C.helping),
     Frame("give", special=C.a_hand),
     Frame("show", special=C.showing),
-    # "show Noor (the) way to the exit": the way is no one's name
+    # "show Noor (the) way to the exit": the way is no one's name; "show Ana out to the terrace",
+    # "see Mr Ito up to his room": the particle says the way
     Frame(_GUIDE, I.GUIDE, direct="recipient", slots={"goal": "to|towards|into"}, here="goal",
-          particles="over back through way", defaults={"recipient": ("me",)}),
+          particles=f"way {_ALONG}", defaults={"recipient": ("me",)}),
     # "take me (there)": the place just spoken of ("I need the lifts, can you take me")
     Frame("take|walk", I.GUIDE, direct="recipient", slots={"goal": "to|towards|into"}, here="goal",
-          particles="over back through", only=ME, defaults={"goal": ("there",)}),
+          particles=_ALONG, only=ME, defaults={"goal": ("there",)}),
     Frame("bring", I.GUIDE, direct="recipient", slots={"goal": "to|towards|into"}, here="goal",
           particles="over back through", only=ME, requires=("goal",)),
     # Going somewhere.

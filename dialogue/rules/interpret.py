@@ -29,7 +29,7 @@ from dialogue.rules import answers
 from dialogue.rules.clauses import clauses, described, description
 from dialogue.rules.commands import parse
 from dialogue.rules.compound import Part, conjuncts, coordinated, unprefixed
-from dialogue.rules.followup import accepts, correction, follow_up
+from dialogue.rules.followup import accepts, continuation, correction, follow_up
 from dialogue.rules.letters import joined
 from dialogue.rules.outcome import Outcome, Ref
 from dialogue.rules.parsed import Parse
@@ -90,11 +90,15 @@ class Interpreter:
         done: list[Outcome] = []
         cannot: list[str] = []
         context: list[Utterance] = []
+        aside = False
         for n, part in enumerate(parts):
             reader = self.within((*self.history, *context))
             context.append(Utterance(self.speaker, part.text))
             if n == 0 and part.verb is None:
                 continue  # a preamble ("hey there", "thanks", "the denim jacket"): context for the rest
+            if part.aside and n < len(parts) - 1:
+                aside = True  # "move out of the way and go to the door": the going does it
+                continue
             outcome = reader._single(part.text)
             if outcome.intent is not None and done and (outcome.intent, outcome.roles) == (
                 done[-1].intent, done[-1].roles):
@@ -110,8 +114,8 @@ class Interpreter:
                 cannot.append(part.text)
             else:  # a part that fails says why; one not understood makes the whole not understood
                 return outcome if outcome.understood else None
-        if not done:
-            return None
+        if not done or (aside and not {o.intent for o in done} & {I.MOVE_TO, I.GUIDE}):
+            return None  # (out of the way, then no going anywhere: not understood)
         acks = [done[0].reply] + [f"Then {unprefixed(o.reply)}" for o in done[1:]]
         acks += [f"I can't {c} myself." for c in cannot]
         return replace(done[0], reply=" ".join(acks), more=tuple(done[1:]))
@@ -124,7 +128,8 @@ class Interpreter:
                 return accepted
         not_understood = Outcome("Sorry, I did not understand that.", understood=False)
         if p.act == "unknown":  # an answer to the robot's question, or "sorry, I meant screen two"
-            outcome = follow_up(self, p, text) or correction(self, text) or not_understood
+            outcome = follow_up(self, p, text) or correction(self, text) or continuation(self, text)
+            outcome = outcome or not_understood
         else:
             outcome = self.act(p)
         ungrounded = p.act == "command" and outcome.intent is None and not outcome.clarify

@@ -16,6 +16,7 @@ from lemminflect import getAllLemmas
 from dialogue.reference.english import (
     DETERMINERS,
     FUNCTION_WORDS,
+    NUMBERS,
     SPOKEN_NUMBERS,
     Words,
     lowered,
@@ -173,17 +174,37 @@ def strip_politeness(words: list[str], robot_name: str = "") -> list[str]:
     while changed and words:
         changed = False
         for p in openings.get(words[0], ()):
-            # "can you see" is a question, not a polite request: keep it.
-            if starts(words, p) and not (p[-1] == "you" and words[len(p) : len(p) + 1] == ["see"]):
+            # "can you see" is a question, not a polite request: keep it; "could we get the bill"
+            # is a wish (dialogue.rules.constructions.wanting), not "get the bill".
+            if starts(words, p) and not _asking(p, words[len(p) :]):
                 words = words[len(p) :]
                 changed = True
                 break
         for s in POLITE_SUFFIXES:
-            if s and len(words) > len(s) and tuple(words[-len(s) :]) == s:
+            # ("wait in the hall for now": "for now" says how long, its "now" is no politeness)
+            dangling = len(words) > len(s) and words[-len(s) - 1] in _LEFT_BEHIND
+            if s and len(words) > len(s) and tuple(words[-len(s) :]) == s and not dangling:
                 words = words[: -len(s)]
                 changed = True
                 break
     return words
+
+
+#: Prepositions that a politeness word at the end completes ("for now", "till then", "by now").
+_LEFT_BEHIND = word_set("for till until by from since")
+#: After "could we", "can we": words that ask for a thing to be brought ("could we get the bill",
+#: "can we have two coffees"), when a noun phrase follows them ("can we get over to the desk" goes).
+_WISHING = word_set("get have")
+
+
+def _asking(opening: Words, after: list[str]) -> bool:
+    """Whether a polite opening is part of what is asked: "can you *see*...", "could we *get the*..."
+    (a wish of the speaker's; "could we get the menu to Ana" is a request to bring it to her)."""
+    if opening[-1] == "you":
+        return after[:1] == ["see"]
+    if opening[-1] != "we" or len(after) < 2 or after[0] not in _WISHING or "to" in after[2:]:
+        return False
+    return after[1] in NUMBERS or after[1] not in FUNCTION_WORDS
 
 
 def split_at(words: Sequence[str], separators: Sequence[str]) -> tuple[Words, str, Words] | None:

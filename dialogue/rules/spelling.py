@@ -26,13 +26,13 @@ from dataclasses import dataclass
 from functools import cache
 from types import ModuleType
 
-from lemminflect import getAllLemmas
+from lemminflect import getAllLemmas, getInflection
 from rapidfuzz import process
 from rapidfuzz.distance import OSA
 
 from dialogue.reference import english
-from dialogue.reference.english import lowered, phrases, spans
-from dialogue.reference.lexicon import Lexicon
+from dialogue.reference.english import ME, NUMBERS, PRONOUNS, lowered, phrases, spans
+from dialogue.reference.lexicon import Lexicon, singular
 from dialogue.rules import questions, words
 from dialogue.rules.frames import FRAMES
 from dialogue.rules.speech import QUOTED
@@ -52,6 +52,8 @@ _NOT_GRAMMAR = frozenset({"HOMOPHONES", "NEEDS", "PREPOSITION_SLIPS"})
 _LONG = 8
 #: Words after which "were" at the start of an utterance can only be "where".
 _ASKED = frozenset({"is", "are", "did", "do", "does", "can", "could", "should", "has", "have", "was"})
+#: Who a preposition may introduce without an article ("four me": for me; "2 him").
+_PEOPLE = ME | {"him", "her", "them"}
 
 
 @dataclass(frozen=True)
@@ -85,10 +87,7 @@ def corrected(text: str, lexicon: Lexicon) -> Spelled:
             fixes.append((start, end, Correction(word, "where", False)))
             continue
         if 0 < n < len(words) - 1 and word in PREPOSITION_SLIPS:
-            # "walk too the gate", "milk form the jug", "take it 2 Carol": a preposition heard or
-            # typed as another word, before a noun phrase or a person's name
-            phrase = words[n + 1][0] in NP_START or _someone(lexicon, words[n + 1][0])
-            if phrase and words[n - 1][0] not in NP_START:
+            if _slipped_preposition([w for w, _, _ in words], n, lexicon):
                 fixes.append((start, end, Correction(word, PREPOSITION_SLIPS[word], False)))
             continue
         if not _suspect(word, lexicon):
@@ -105,6 +104,28 @@ def corrected(text: str, lexicon: Lexicon) -> Spelled:
         out += [text[last:start], fix.meant.capitalize() if text[start].isupper() else fix.meant]
         last = end
     return Spelled("".join([*out, text[last:]]), tuple(f[2] for f in fixes))
+
+
+def _slipped_preposition(words: list[str], n: int, lexicon: Lexicon) -> bool:
+    """Whether the n-th word is a preposition heard or typed as another word ("walk too the gate",
+    "milk form the jug", "take it 2 Carol", "get the ladle four me", "take the soup two table
+    four"): before a noun phrase, a person (a name, "me", "him"), or a name of the KB said without
+    its article after a noun phrase that has ended. A real number is never lost: a number before a
+    plural ("two apples"), a number ending a name ("table two"), after a determiner ("the two")."""
+    before, after = words[n - 1], words[n + 1]
+    if before in NP_START or before.isdigit() or before in NUMBERS or not _ended(words, n, lexicon):
+        return False  # ("platform 4 my train's late": the number of a name)
+    if after in NP_START or after in _PEOPLE or _someone(lexicon, after):
+        return True
+    if not lexicon.names_at(words, n + 1) or singular(after) != after:
+        return False
+    return before in PRONOUNS or lexicon.knows(before)
+
+
+def _ended(words: list[str], n: int, lexicon: Lexicon) -> bool:
+    """Whether no name of the KB goes on into the n-th word ("table two", "screen 2")."""
+    starts = range(max(0, n - 4), n)
+    return not any(len(name.words) > n - j for j in starts for name in lexicon.names_at(words, j))
 
 
 def _someone(lexicon: Lexicon, word: str) -> bool:
@@ -132,6 +153,19 @@ def _suspect(word: str, lexicon: Lexicon) -> bool:
 
 
 def _meant(word: str, lexicon: Lexicon) -> str | None:
+    """The one word the word is a slip of; a plural's slip ("tisues") is the plural of the word its
+    singular is a slip of (the KB's names are indexed singular: "box of tissues" by "tissue")."""
+    meant = _nearest(word, lexicon)
+    if len(word) <= _SHORT or not word.endswith("s") or (meant is not None and not lexicon.knows(meant)):
+        return meant
+    one = _nearest(word[:-1], lexicon)
+    if one is None or one not in lexicon.vocabulary or meant not in {None, one}:
+        return meant
+    plurals = getInflection(one, "NNS")  # ("glases": glasses, not glass)
+    return plurals[0] if plurals else meant
+
+
+def _nearest(word: str, lexicon: Lexicon) -> str | None:
     limit = 2 if len(word) >= _LONG else 1
     choices = _choices(lexicon)
     near = process.extract(word, choices, scorer=OSA.distance, score_cutoff=limit, limit=None)

@@ -82,12 +82,14 @@ POLITE_PREFIXES = phrases(
 ROBOT_SUFFIXES = phrases(
     "please|thanks|thank you|if you can|if you could|ok|okay|would you|will you|could you|can you|won't you"
 )
+#: Words naming the listener after what was said to them ("you're in the way mate").
+TAGS = "mate|pal|buddy|love|dear|darling|sir|madam|miss|boss|chief|my friend|my dear"
 POLITE_SUFFIXES = (
     *ROBOT_SUFFIXES,
     *phrases("ta|cheers|thanks a lot|thank you very much|much appreciated|if you would|if you don't mind"),
     *phrases("now|right now|for a moment|again|quickly|quick|immediately|for a sec|for a second|sorry|then"),
     # the listener named by a tag ("the yellow one mate", "over here love")
-    *phrases("mate|pal|buddy|love|dear|darling|sir|madam|miss|boss|chief|my friend|my dear"),
+    *phrases(TAGS),
 )
 GREETINGS = phrases(
     "good morning|good afternoon|good evening|good day|hello|hi|hey|hiya|howdy|greetings|yo|"
@@ -145,8 +147,16 @@ ADJUNCTS = phrases(
     "on my behalf|on our behalf|on his behalf|on her behalf|for me|for us|from me|from us|"
     "when you can|when you get a chance|when you have a moment|when you have a minute|when you are free|"
     "as soon as possible|as soon as you can|right away|straight away|at once|in a minute|in a moment|"
-    "right now|real quick|right quick|asap|in a jiffy|in a sec|in a second|instead|instead of that"
+    "right now|real quick|right quick|asap|in a jiffy|in a sec|in a second|instead|instead of that|"
+    "a bit|a little|a little bit"
 )
+#: Where not to be ("move out of the way and go to the door"): said before where to go, or alone (a
+#: move to no place the rules can name).
+AWAY = phrases("out of the way|out the way|out of my way|out of your way|out of our way")
+#: How long, never whom or where, whatever the verb ("bring the fan for now": no one is "now").
+DURATIONS = phrases("for now|for the moment|for the time being|for a bit|for a while|for a minute|"
+                    "for a few minutes|for the night|for the day")
+ADJUNCTS = (*ADJUNCTS, *DURATIONS, *AWAY)
 #: Conjunctions that start a clause of time to the end of a request ("hand Ana the menu *while she
 #: waits*", "put the milk back *before it goes off*"): "while" always, the others before a subject
 #: other than the robot ("after you wash it" asks for more than the request).
@@ -170,14 +180,17 @@ HOMOPHONES = phrases(
 #: Words of English a recogniser or a typist writes for a preposition, read as it before a noun
 #: phrase of their own ("walk too the gate", "the milk form the jug"): no noun phrase starts
 #: right after them otherwise.
-PREPOSITION_SLIPS = {"too": "to", "two": "to", "2": "to", "form": "from", "fro": "from", "thru": "through"}
+PREPOSITION_SLIPS = {
+    "too": "to", "two": "to", "2": "to", "form": "from", "fro": "from", "thru": "through", "four": "for",
+    "4": "for", "fore": "for",
+}  # fmt: skip
 
 # -- small constructions --------------------------------------------------------------------------
 #: "I want X" and friends ask for X to be brought.
 WANTS = phrases(
     "i want|i need|i would like|can i have|could i have|may i have|can i get|could i get|i will have|"
     "give me|i could use|i could do with|i would love|i would really like|i fancy|we want|we need|"
-    "we would like"
+    "we would like|can we have|could we have|may we have|can we get|could we get|we will have"
 )
 WANT_VERBS = word_set("want wants need needs")
 #: "Ahmed would like the album", "he needs his glasses": someone else's wish, brought to them.

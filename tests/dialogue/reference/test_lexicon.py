@@ -1,3 +1,5 @@
+import pytest
+
 from dialogue.reference.english import tokens
 from dialogue.reference.grounding import build_snapshot
 from dialogue.reference.lexicon import Lexicon, LexiconCache, singular
@@ -51,6 +53,13 @@ def test_synonyms_name_the_kbs_things(office: KB) -> None:
     assert {n.entity for n in lex.names_at(["refrigerator"], 0)} == {"fridge_1"}
     assert {n.entity for n in lex.names_at(["kitchen", "refrigerator"], 0)} == {"fridge_1"}
     assert "gray" in lex.attributes["laptop_1"] and "grey" in lex.attributes["laptop_1"]
+
+
+@pytest.mark.parametrize(("label", "said"), [("wrench", "spanner"), ("tire", "tyre"), ("bill", "check")])
+def test_everyday_names_of_the_lexicon_file(office: KB, label: str, said: str) -> None:
+    office.update(["t_1 rdf:type Artifact", f't_1 rdfs:label "{label}"', "myself sees t_1"])
+    lex = Lexicon(build_snapshot(office))
+    assert {n.entity for n in lex.names_at([said], 0)} == {"t_1"}
 
 
 def test_how_many_counts_irregular_plurals(office: KB) -> None:

@@ -32,6 +32,10 @@ SPEAKER = "person_kim"
         # an indirect question said after another
         ("is tom in do you know where he went", ["is tom in", "do you know where he went"]),
         ("is the van back any idea where the keys are", ["is the van back", "any idea where the keys are"]),
+        # a request after a remark, softened or after a word naming the listener
+        ("shift out of the way a little perhaps wait by the porch",
+         ["shift out of the way a little", "perhaps wait by the porch"]),
+        ("youre blocking the hall pal go stand by the porch", ["youre blocking the hall pal", "go stand by the porch"]),
     ],
 )  # fmt: skip
 def test_a_clause_starts_where_a_subject_and_its_verb_start_again(text: str, parts: list[str]) -> None:
@@ -48,6 +52,9 @@ def test_a_clause_starts_where_a_subject_and_its_verb_start_again(text: str, par
         "put the box and its lid on the shelf",
         "do you know where the keys are",  # an indirect question at the start is the whole
         "what do you know about the van",
+        "i just put it on the shelf",  # a subject's adverb, then its verb
+        "you could maybe go to the porch",
+        "thank the dear lady",
     ],
 )
 def test_one_clause_is_not_cut(text: str) -> None:
@@ -104,6 +111,27 @@ def say(kb: KB, text: str) -> Outcome:
 def test_a_remark_after_a_request_is_not_part_of_it(hall: KB, text: str, intent: str, roles: dict[str, str]) -> None:
     out = say(hall, text)
     assert (out.intent, out.roles) == (intent, roles), out.reply
+
+
+@pytest.mark.parametrize(
+    "text",
+    [
+        "could you move out of the way a bit maybe go over to the porch",
+        "youre in the way mate go over by the porch",
+        "get out of the way and go to the porch",
+        "um shift out of my way love head to the porch",
+    ],
+)
+def test_a_remark_or_where_not_to_be_before_the_request(hall: KB, text: str) -> None:
+    out = say(hall, text)
+    assert (out.intent, out.roles) == (I.MOVE_TO, {"goal": "porch_1"}), out.reply
+    assert not out.more
+
+
+def test_out_of_the_way_and_no_going_is_not_understood(hall: KB) -> None:
+    # (the robot would be left in the way: the rules do not claim it)
+    assert not say(hall, "move out of the way").understood
+    assert not say(hall, "get out of the way and pick up the torch").understood
 
 
 def test_a_description_after_a_request_picks_the_thing(hall: KB) -> None:

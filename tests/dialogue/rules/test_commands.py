@@ -299,3 +299,30 @@ def test_me_and_a_thing_to_a_place_is_the_thing_of_that_place_brought_to_me() ->
     p = parse("bring me the keys to the red car")
     assert (p.intent, p.slots) == (I.BRING_OBJECT, {"object": ("the", "keys", "to", "the", "red", "car"),
                                                     "recipient": ("me",)})  # fmt: skip
+
+
+@pytest.mark.parametrize(
+    ("text", "intent", "slots"),
+    [
+        # how long is never where or whom
+        ("go and wait in the hall for now", I.MOVE_TO, {"goal": ("the", "hall")}),
+        ("stay by the gate for a bit", I.MOVE_TO, {"goal": ("the", "gate")}),
+        ("take the fan for now to nadia", I.BRING_OBJECT, {"object": ("the", "fan"), "recipient": ("nadia",)}),
+        # the particle of the way someone is shown or walked
+        ("could you show nadia out to the porch", I.GUIDE, {"recipient": ("nadia",), "goal": ("the", "porch")}),
+        ("walk me back up to the ward", I.GUIDE, {"recipient": ("me",), "goal": ("the", "ward")}),
+        ("lead the guests down to the cellar", I.GUIDE, {"recipient": ("the", "guests"), "goal": ("the", "cellar")}),
+    ],
+)  # fmt: skip
+def test_how_long_and_which_way_are_no_roles(text: str, intent: str, slots: dict[str, tuple[str, ...]]) -> None:
+    p = parse(text)
+    assert (p.act, p.intent) == ("command", intent)
+    assert {k: v for k, v in p.slots.items() if k in {"object", "goal", "recipient"} & set(slots)} == slots
+    assert "now" not in p.slots.get("recipient", ())
+
+
+def test_out_of_the_way_is_no_place() -> None:
+    # where not to be names no place to go: alone, the request says no intent
+    assert parse("move out of the way").intent is None
+    assert parse("get out of my way").intent is None
+    assert parse("go out of the way to the shed").slots == {"goal": ("the", "shed")}

@@ -83,3 +83,9 @@ def test_a_greeting_before_a_compound_is_context(office: KB) -> None:
 def test_a_greeting_before_the_first_command_keeps_the_command(office: KB) -> None:
     out = say(office, "hey robot take the stapler and put it on the shelf")
     assert [o.intent for o in out.steps()] == [I.GRAB_OBJECT, I.PLACE_OBJECT]
+
+
+def test_a_part_that_only_says_where_not_to_be_is_an_aside() -> None:
+    parts = conjuncts("could you get out of the way and go to the shelf")
+    assert [(p.text, p.aside) for p in parts] == [("could you get out of the way", True), ("go to the shelf", False)]
+    assert not any(p.aside for p in conjuncts("get the stapler and go to the shelf"))

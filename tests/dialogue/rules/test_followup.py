@@ -132,3 +132,22 @@ def test_a_correction_and_an_answer_complete_a_request_said_without_to(workshop:
     done = [("user", "fetch the hand saw"), ("robot", "OK, I will bring the hand saw to you.")]
     out = say(workshop, "sorry I meant the coping one", speaker=ANA, history=done)
     assert (out.intent, out.roles) == (I.BRING_OBJECT, {"object": "saw_2", "recipient": ANA}), out.reply
+
+
+@pytest.mark.parametrize("said", ["and the rake goes to the porch", "and uh the rake goes to the porch please"])
+def test_the_same_request_for_another_thing_and_place(workshop: KB, said: str) -> None:
+    history = [("user", "take the hand saw to the shed"), ("robot", "OK, I will bring the hand saw to the shed.")]
+    out = say(workshop, said, speaker=ANA, history=history)
+    assert (out.intent, out.roles) == (I.BRING_OBJECT, {"object": "rake_1", "recipient": "porch"})
+    out = say(workshop, "the rake goes to Raf", speaker=ANA, history=history)
+    assert (out.intent, out.roles) == (I.BRING_OBJECT, {"object": "rake_1", "recipient": "person_raf"})
+
+
+@pytest.mark.parametrize(
+    "history",
+    [[], [("user", "go to the shed"), ("robot", "OK, I am going to the shed.")]],
+)
+def test_where_a_thing_goes_is_no_bringing_after_no_bringing(workshop: KB, history: list[tuple[str, str]]) -> None:
+    # "the rake goes to the porch" alone says where it belongs, not what to do: left to a model
+    out = say(workshop, "the rake goes to the porch", speaker=ANA, history=history)
+    assert out.intent is None and not out.understood

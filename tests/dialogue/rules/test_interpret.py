@@ -631,3 +631,49 @@ def test_who_is_in_a_place_names_the_people_the_kb_puts_there() -> None:
     assert say(kb, "whos in the shed").reply == "In the shed, there is Ola."
     assert say(kb, "who is at bay three").reply == "I don't know of anyone in bay 3."
     assert say(kb, "who's in today").reply == "I see you and Ola."  # no place: who is there
+
+
+def _bistro() -> KB:
+    return scene_kb(
+        None,
+        "person_nadia rdf:type Human", 'person_nadia rdfs:label "Nadia"', "myself sees person_nadia",
+        "person_omar rdf:type Human", 'person_omar rdfs:label "Omar"', "myself sees person_omar",
+        "table_3 rdf:type dbr:Table_(furniture)", 'table_3 rdfs:label "table 3"', "myself sees table_3",
+        "table_5 rdf:type dbr:Table_(furniture)", 'table_5 rdfs:label "table 5"', "myself sees table_5",
+        "flatbread_1 rdf:type Artifact", 'flatbread_1 rdfs:label "flatbread"', "myself sees flatbread_1",
+        "jug_1 rdf:type Artifact", 'jug_1 rdfs:label "water jug"', "myself sees jug_1",
+        "bill_1 rdf:type Artifact", 'bill_1 rdfs:label "bill"', "myself sees bill_1",
+        "wrench_1 rdf:type Artifact", 'wrench_1 rdfs:label "wrench"', "wrench_1 isOn table_5",
+        "myself sees wrench_1",
+    )  # fmt: skip
+
+
+NADIA = "person_nadia"
+
+
+@pytest.mark.parametrize(
+    ("text", "intent", "roles"),
+    [
+        # we/us said by the speaker: brought to the speaker
+        ("excuse me could we get the uh the flatbread please", I.BRING_OBJECT, {"object": "flatbread_1", "recipient": NADIA}),
+        ("can we have the check", I.BRING_OBJECT, {"object": "bill_1", "recipient": NADIA}),
+        ("robot pass us the spanner off table 5 will you", I.BRING_OBJECT, {"object": "wrench_1", "recipient": NADIA}),
+        # prepositions heard as numbers
+        ("take the flatbread two table three", I.BRING_OBJECT, {"object": "flatbread_1", "recipient": "table_3"}),
+        ("could you get the jug four me", I.BRING_OBJECT, {"object": "jug_1", "recipient": NADIA}),
+        ("get the jug four omar", I.BRING_OBJECT, {"object": "jug_1", "recipient": "person_omar"}),
+        # a count stays a count, and a number of a name stays the name's
+        ("take the flatbread to table 3", I.BRING_OBJECT, {"object": "flatbread_1", "recipient": "table_3"}),
+        ("go to table five", I.MOVE_TO, {"goal": "table_5"}),
+    ],
+)  # fmt: skip
+def test_requests_as_a_recogniser_writes_them(text: str, intent: str, roles: dict[str, str]) -> None:
+    out = say(_bistro(), text, speaker=NADIA)
+    assert (out.intent, out.roles) == (intent, roles), out.reply
+
+
+def test_could_we_get_to_a_place_is_going_there_and_a_thing_for_someone_is_theirs() -> None:
+    out = say(_bistro(), "could we get the jug to omar", speaker=NADIA)
+    assert (out.intent, out.roles) == (I.BRING_OBJECT, {"object": "jug_1", "recipient": "person_omar"})
+    out = say(_bistro(), "can we get over to table 3", speaker=NADIA)
+    assert (out.intent, out.roles) == (I.MOVE_TO, {"goal": "table_3"})

@@ -4,7 +4,7 @@ import pytest
 
 from dialogue import intents as I
 from dialogue.rules.commands import parse
-from dialogue.rules.speech import expanded
+from dialogue.rules.speech import expanded, strip_politeness
 from dialogue.rules.utterance import Cleaned, cleaned, normalise
 
 
@@ -121,3 +121,35 @@ def test_yes_no_questions_are_never_activities(text: str) -> None:
 def test_a_lead_and_a_thanks_of_their_own_are_politeness() -> None:
     assert parse("right could you grab the broom ta").slots == {"object": ("the", "broom")}
     assert parse("pass me the broom cheers").slots == {"object": ("the", "broom"), "recipient": ("me",)}
+
+
+@pytest.mark.parametrize(
+    ("text", "words"),
+    [
+        # "we"/"us" is the speaker: "could we get X" asks for X, as "can I get X" does
+        ("could we get the menu", "could we get the menu"),
+        ("can we have two pies", "can we have two pies"),
+        # ...but going somewhere, or a thing for someone else, is a request to the robot
+        ("could we get over to the door", "get over to the door"),
+        ("can we get the pie to nadia", "get the pie to nadia"),
+        # "for now" says how long: its "now" is no politeness
+        ("wait by the door for now", "wait by the door for now"),
+        ("wait by the door now", "wait by the door"),
+    ],
+)
+def test_what_politeness_leaves_of_a_request(text: str, words: str) -> None:
+    assert " ".join(strip_politeness(normalise(text))) == words
+
+
+@pytest.mark.parametrize(
+    ("text", "intent", "slots"),
+    [
+        ("excuse me could we get the um the pie please", I.BRING_OBJECT,
+         {"object": ("the", "pie"), "recipient": ("me",)}),
+        ("could we have the menu", I.BRING_OBJECT, {"object": ("the", "menu"), "recipient": ("me",)}),
+        ("pass us the salt", I.BRING_OBJECT, {"object": ("the", "salt"), "recipient": ("me",)}),
+    ],
+)  # fmt: skip
+def test_what_we_ask_for_is_brought_to_the_speaker(text: str, intent: str, slots: dict[str, tuple[str, ...]]) -> None:
+    p = parse(text)
+    assert (p.intent, p.slots) == (intent, slots)

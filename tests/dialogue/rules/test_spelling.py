@@ -120,3 +120,54 @@ def test_a_preposition_typed_as_a_digit_before_a_persons_name() -> None:
                   "cup_1 rdf:type dbr:Cup", "myself sees cup_1")  # fmt: skip
     assert corrected("take the cup 2 ola", lexicon_of(kb)).text == "take the cup to ola"
     assert corrected("take 2 cups to ola", lexicon_of(kb)).text == "take 2 cups to ola"  # a number
+
+
+def _diner() -> KB:
+    return scene_kb(
+        None,
+        "person_nadia rdf:type Human", 'person_nadia rdfs:label "Nadia"', "myself sees person_nadia",
+        "table_3 rdf:type dbr:Table_(furniture)", 'table_3 rdfs:label "table 3"', "myself sees table_3",
+        "screen_2 rdf:type Artifact", 'screen_2 rdfs:label "screen 2"', "myself sees screen_2",
+        "pie_1 rdf:type Artifact", 'pie_1 rdfs:label "apple pie"', "myself sees pie_1",
+        "napkins_1 rdf:type Artifact", 'napkins_1 rdfs:label "pack of napkins"', "myself sees napkins_1",
+        "straws_1 rdf:type Artifact", 'straws_1 rdfs:label "pack of straws"', "myself sees straws_1",
+    )  # fmt: skip
+
+
+@pytest.mark.parametrize(
+    ("text", "fixed"),
+    [
+        # "for" heard as "four", before the speaker, a person or a noun phrase
+        ("could you fetch the pie four me", "could you fetch the pie for me"),
+        ("fetch the pie 4 nadia", "fetch the pie for nadia"),
+        ("carry it two him", "carry it to him"),
+        # "to" heard as "two" before a name of the KB said without its article
+        ("carry the pie two table three", "carry the pie to table three"),
+        ("carry it too table 3", "carry it to table 3"),
+    ],
+)
+def test_a_preposition_heard_as_a_number_before_whom_or_where(text: str, fixed: str) -> None:
+    spelled = corrected(text, lexicon_of(_diner()))
+    assert spelled.text == fixed and not spelled.guessed
+
+
+@pytest.mark.parametrize(
+    "text",
+    [
+        "carry two pies to table three",  # a count: a plural follows
+        "put the four pies on table 3",  # after a determiner
+        "take me to screen 2 my film starts soon",  # the number of a name
+        "go from screen two table three",
+        "bring me four napkins",
+    ],
+)
+def test_a_real_number_is_never_read_as_a_preposition(text: str) -> None:
+    assert corrected(text, lexicon_of(_diner())).text == text
+
+
+def test_a_slip_in_a_plural_is_corrected_to_the_plural() -> None:
+    # the KB's names are indexed singular ("napkin"): "napkns" is two edits from it, one from "napkins"
+    spelled = corrected("pls bring me a pack of napkns", lexicon_of(_diner()))
+    assert spelled.text == "pls bring me a pack of napkins" and spelled.guessed
+    out = say(_diner(), "pls bring me a pack of napkns", speaker="person_nadia")
+    assert (out.intent, out.roles) == (I.BRING_OBJECT, {"object": "napkins_1", "recipient": "person_nadia"})
