@@ -267,9 +267,14 @@ def _instead(fragment: Words, said: Words) -> Words:
 
 
 def continuation(reader: Interpreter, text: str) -> Outcome | None:
-    """ "and the soup goes to table two" after "take the steak to table four": the request just made
-    (a bringing) again, for another thing and place. Alone, "X goes to Y" says no request."""
-    found = where_it_goes(tuple(strip_politeness(plain(text))))
+    """ "and the soup goes to table two", "and the soup to table two" after "take the steak to table
+    four": the request just made (a bringing) again, for another thing and place. Alone, "X goes to
+    Y" says no request."""
+    words = tuple(strip_politeness(plain(text)))
+    found = where_it_goes(words)
+    if found is None and "to" in words[1:-1]:  # said without its verb
+        at = words.index("to")
+        found = words[:at], ("to",), words[at + 1 :]
     if found is None or found[1] != ("to",):
         return None
     asked = [i for i, u in enumerate(reader.history) if u.role == "user"]

@@ -27,6 +27,7 @@ from dialogue.reference.english import (
 from dialogue.rules.words import (
     ASKING,
     CONTRACTIONS,
+    DURATIONS,
     FILLER_PAIRS,
     FILLERS,
     POLITE_PREFIXES,
@@ -202,9 +203,18 @@ def _asking(opening: Words, after: list[str]) -> bool:
     (a wish of the speaker's; "could we get the menu to Ana" is a request to bring it to her)."""
     if opening[-1] == "you":
         return after[:1] == ["see"]
-    if opening[-1] != "we" or len(after) < 2 or after[0] not in _WISHING or "to" in after[2:]:
+    if opening[-1] != "we" or len(after) < 2 or after[0] not in _WISHING or _for_someone(after[2:]):
         return False
     return after[1] in NUMBERS or after[1] not in FUNCTION_WORDS
+
+
+def _for_someone(words: list[str]) -> bool:
+    """Whether the words name whom or where a thing is for ("to Ana", "for table 4"; "for now" not)."""
+    for i, w in enumerate(words):
+        lasting = any(tuple(words[i : i + len(d)]) == d for d in DURATIONS)
+        if w == "to" or (w == "for" and not lasting):
+            return True
+    return False
 
 
 def split_at(words: Sequence[str], separators: Sequence[str]) -> tuple[Words, str, Words] | None:

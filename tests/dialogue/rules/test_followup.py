@@ -134,7 +134,9 @@ def test_a_correction_and_an_answer_complete_a_request_said_without_to(workshop:
     assert (out.intent, out.roles) == (I.BRING_OBJECT, {"object": "saw_2", "recipient": ANA}), out.reply
 
 
-@pytest.mark.parametrize("said", ["and the rake goes to the porch", "and uh the rake goes to the porch please"])
+@pytest.mark.parametrize(
+    "said", ["and the rake goes to the porch", "and uh the rake goes to the porch please", "and then the rake to the porch"]
+)
 def test_the_same_request_for_another_thing_and_place(workshop: KB, said: str) -> None:
     history = [("user", "take the hand saw to the shed"), ("robot", "OK, I will bring the hand saw to the shed.")]
     out = say(workshop, said, speaker=ANA, history=history)

@@ -675,5 +675,9 @@ def test_requests_as_a_recogniser_writes_them(text: str, intent: str, roles: dic
 def test_could_we_get_to_a_place_is_going_there_and_a_thing_for_someone_is_theirs() -> None:
     out = say(_bistro(), "could we get the jug to omar", speaker=NADIA)
     assert (out.intent, out.roles) == (I.BRING_OBJECT, {"object": "jug_1", "recipient": "person_omar"})
+    out = say(_bistro(), "can we get the flatbread for table 5", speaker=NADIA)
+    assert (out.intent, out.roles) == (I.BRING_OBJECT, {"object": "flatbread_1", "recipient": "table_5"})
+    out = say(_bistro(), "could we have the jug for now", speaker=NADIA)
+    assert (out.intent, out.roles) == (I.BRING_OBJECT, {"object": "jug_1", "recipient": NADIA})
     out = say(_bistro(), "can we get over to table 3", speaker=NADIA)
     assert (out.intent, out.roles) == (I.MOVE_TO, {"goal": "table_3"})
