@@ -151,6 +151,12 @@ def _fit(row: Row, said: Said) -> Parse | None:
         direct = (*direct[1:], "to", *slots.pop("recipient"))
         slots["recipient"] = ("me",)
         del marks["recipient"]
+    elif frame.dative is not None and direct[:1] and direct[0] in ME and marks.get("recipient") == "for":
+        # "pass me the drill for Marcus", "get me a cloth for the spill": the speaker is handed it,
+        # whoever or whatever it is for
+        adjuncts = (*adjuncts, ("for", *slots.pop("recipient")))
+        slots["recipient"], direct = ("me",), direct[1:]
+        del marks["recipient"]
     if frame.dative is not None and "recipient" not in slots and direct:
         # "get Ines her phone": someone, then a noun phrase of its own
         before = frame.dative == "before" and _someone(direct[0]) and _own_phrase_after(direct)

@@ -182,10 +182,14 @@ def showing(said: Said) -> Parse | None:
         place = said.rest[at + 1 :]
         place = place[:-1] if place[-1:] in {("is",), ("are",)} else place
         return said.command(I.GUIDE, recipient=said.rest[:at] or ("me",), goal=place) if place else None
-    if "way" in said.rest or "to" in said.rest:
-        return None
+    if "way" in said.rest or "to" in said.rest or set(said.rest[-1:]) & _SHOWN:
+        return None  # ("show Ana out": guiding her, not where she is)
     thing = said.rest[1:] if said.rest[:1] and said.rest[0] in ME else said.rest
     return Parse("question", question="where", slots={"thing": thing}, words=said.words)
+
+
+#: "show Ana in", "show them round": the way someone is shown, guiding them.
+_SHOWN = word_set("in out round around up down through along back")
 
 
 def everyone(said: Said) -> Parse | None:

@@ -293,7 +293,7 @@ class Interpreter:
             words = slots.get(role, ())
             if not content_words(words) and words not in {("there",), ("over", "there")}:
                 if role in spec.required:
-                    return self._missing(intent, role, p)
+                    return self._missing(intent, role, p, roles.get("recipient"))
                 continue
             whose = self.refs.possessive(words, slots) if role == "object" else self._whose(words, kinds)
             words, owner = whose
@@ -333,11 +333,13 @@ class Interpreter:
         said = [i for i, u in enumerate(self.history) if u.role == "assistant"]
         return self.history[said[-1] + 1 :] if said else self.history
 
-    def _missing(self, intent: str, role: str, p: Parse) -> Outcome:
+    def _missing(self, intent: str, role: str, p: Parse, whom: str | None = None) -> Outcome:
+        # ("show Ana in": where to take her, not "you")
+        them = "you" if whom in {None, self.speaker} else self.snapshot.name_of(whom or "")
         asks = {
             (I.PLACE_OBJECT, "recipient"): "Where should I put it?",
             (I.MOVE_TO, "goal"): "Where should I go?",
-            (I.GUIDE, "goal"): "Where should I take you?",
+            (I.GUIDE, "goal"): f"Where should I take {them}?",
             (I.SAY, "object"): "What should I say?",
             (I.START_ACTIVITY, "object"): "Which activity should I start?",
         }

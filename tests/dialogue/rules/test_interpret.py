@@ -645,6 +645,7 @@ def _bistro() -> KB:
         "bill_1 rdf:type Artifact", 'bill_1 rdfs:label "bill"', "myself sees bill_1",
         "wrench_1 rdf:type Artifact", 'wrench_1 rdfs:label "wrench"', "wrench_1 isOn table_5",
         "myself sees wrench_1",
+        "terrace_1 rdf:type ZoneOfInterest", 'terrace_1 rdfs:label "terrace"',
     )  # fmt: skip
 
 
@@ -681,3 +682,19 @@ def test_could_we_get_to_a_place_is_going_there_and_a_thing_for_someone_is_their
     assert (out.intent, out.roles) == (I.BRING_OBJECT, {"object": "jug_1", "recipient": NADIA})
     out = say(_bistro(), "can we get over to table 3", speaker=NADIA)
     assert (out.intent, out.roles) == (I.MOVE_TO, {"goal": "table_3"})
+
+
+def test_someone_shown_in_or_out_is_guided() -> None:
+    out = say(_bistro(), "could you show omar out to the terrace", speaker=NADIA)
+    assert (out.intent, out.roles) == (I.GUIDE, {"recipient": "person_omar", "goal": "terrace_1"})
+    out = say(_bistro(), "show omar in", speaker=NADIA)  # not where Omar is: where to take him
+    assert (out.intent, out.clarify, out.reply) == (None, True, "Where should I take Omar?")
+    history = [("user", "show omar in"), ("robot", out.reply)]
+    out = say(_bistro(), "to the terrace", speaker=NADIA, history=history)
+    assert (out.intent, out.roles) == (I.GUIDE, {"recipient": "person_omar", "goal": "terrace_1"})
+
+
+@pytest.mark.parametrize("text", ["pass us the jug for omar", "get me the jug four the flatbread"])
+def test_whom_a_thing_is_for_beside_me_is_no_recipient(text: str) -> None:
+    out = say(_bistro(), text, speaker=NADIA)
+    assert (out.intent, out.roles) == (I.BRING_OBJECT, {"object": "jug_1", "recipient": NADIA}), out.reply
