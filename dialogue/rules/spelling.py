@@ -115,7 +115,7 @@ def _slipped_preposition(words: list[str], n: int, lexicon: Lexicon) -> bool:
     before, after = words[n - 1], words[n + 1]
     if before in NP_START or before.isdigit() or before in NUMBERS or not _ended(words, n, lexicon):
         return False  # ("platform 4 my train's late": the number of a name)
-    if after in NP_START or after in _PEOPLE or _someone(lexicon, after):
+    if after in NP_START or after in _PEOPLE or _someone(lexicon, words, n + 1):
         return True
     if not lexicon.names_at(words, n + 1) or singular(after) != after:
         return False
@@ -128,9 +128,9 @@ def _ended(words: list[str], n: int, lexicon: Lexicon) -> bool:
     return not any(len(name.words) > n - j for j in starts for name in lexicon.names_at(words, j))
 
 
-def _someone(lexicon: Lexicon, word: str) -> bool:
-    """Whether the word is (the first word of) the name of a person of the KB."""
-    found = (lexicon.snapshot.get(n.entity) for n in lexicon.names_at([word], 0))
+def _someone(lexicon: Lexicon, words: list[str], i: int) -> bool:
+    """Whether the name of a person of the KB starts at the i-th word ("ola", "dr mensah")."""
+    found = (lexicon.snapshot.get(n.entity) for n in lexicon.names_at(words, i))
     return any(e is not None and e.kind == "person" for e in found)
 
 

@@ -126,6 +126,7 @@ def _diner() -> KB:
     return scene_kb(
         None,
         "person_nadia rdf:type Human", 'person_nadia rdfs:label "Nadia"', "myself sees person_nadia",
+        "person_lee rdf:type Human", 'person_lee rdfs:label "Dr Lee"', "myself sees person_lee",
         "table_3 rdf:type dbr:Table_(furniture)", 'table_3 rdfs:label "table 3"', "myself sees table_3",
         "screen_2 rdf:type Artifact", 'screen_2 rdfs:label "screen 2"', "myself sees screen_2",
         "pie_1 rdf:type Artifact", 'pie_1 rdfs:label "apple pie"', "myself sees pie_1",
@@ -140,6 +141,7 @@ def _diner() -> KB:
         # "for" heard as "four", before the speaker, a person or a noun phrase
         ("could you fetch the pie four me", "could you fetch the pie for me"),
         ("fetch the pie 4 nadia", "fetch the pie for nadia"),
+        ("fetch the pie four dr lee", "fetch the pie for dr lee"),
         ("carry it two him", "carry it to him"),
         # "to" heard as "two" before a name of the KB said without its article
         ("carry the pie two table three", "carry the pie to table three"),
