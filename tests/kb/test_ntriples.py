@@ -107,7 +107,10 @@ def test_a_load_is_the_same_kb_either_way() -> None:
     with KB() as fast, KB() as slow:
         fast.load_data(document, "nt")
         slow.load_data(rdflib_reads(document).serialize(format="turtle"), "turtle")
-        assert fast.export("nt", inferred=True) == slow.export("nt", inferred=True)
+        # Compared by lines: an export's order follows the store's history, not only its triples.
+        assert sorted(fast.export("nt", inferred=True).splitlines()) == sorted(
+            slow.export("nt", inferred=True).splitlines()
+        )
 
 
 _iris = st.sampled_from(["http://ex.org/a", "http://ex.org/b", "urn:x:é", "http://ex.org/p#q",
