@@ -32,7 +32,7 @@ SPEAKER = "person_0"
 UTTERANCES = ["hello", "bring me the thing 42", "put the apple on the shelf", "what do you see?"]
 #: Whole rules turns: commands, questions, and statements the robot learns (a KB write each).
 FULL_TURNS = ["bring me the thing 42", "where is the thing 42", "the thing 42 is mine", "I like tea",
-              "whose is the thing 42", "who is here"]
+              "whose is the thing 42", "who is here", "bring me an apple"]  # a class of thousands
 STATEMENTS_PER_OBJECT = 3.3  # PerceptionWorld: type, label, isIn, 20 % isOn, furniture and agents
 
 

@@ -137,7 +137,7 @@ def resolve_head(lexicon: Lexicon, words: Sequence[str], kinds: Collection[Kind]
         return []
     snapshot = lexicon.snapshot
     starts = _name_starts(lexicon, phrase.core)
-    heads = [e for eid in starts if (e := snapshot.get(eid)) is not None and e.kind in kinds]
+    heads = snapshot.among(starts, kinds)
     scored: list[tuple[int, Entity]] = []
     for entity in heads:
         score = _evidence(lexicon, entity, phrase, starts[entity.id])

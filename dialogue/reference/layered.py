@@ -46,6 +46,15 @@ class Layered(Mapping[K, V], Generic[K, V]):
             return value
         return self._base[key]
 
+    def get(self, key: K, default: Any = None) -> Any:
+        # Mapping.get goes through __getitem__ and a KeyError: resolving a class word looks up
+        # thousands of entities per phrase.
+        top = self._top
+        if key in top:
+            value = top[key]
+            return default if isinstance(value, Gone) else value
+        return self._base.get(key, default)
+
     def __contains__(self, key: object) -> bool:
         if key in self._top:
             return not isinstance(self._top[key], Gone)

@@ -9,7 +9,6 @@ and, when the caller knows whose thing is meant ("my phone"), that person's thin
 
 from __future__ import annotations
 
-from collections import defaultdict
 from collections.abc import Collection, Sequence
 from dataclasses import dataclass
 
@@ -40,6 +39,9 @@ _LOCATIVE = LOCATIVE
 FOOD_OR_DRINK = "cyc:FoodOrDrink"
 #: Words that end a noun phrase's core: its head is the last content word before the first of them.
 _CORE_END = _LOCATIVE | word_set("of with next that which")
+
+#: Past this many named entities, those in sight are found from the snapshot's visible ones.
+_MANY = 64
 
 ALL_KINDS: frozenset[Kind] = frozenset({"person", "zone", "robot", "thing"})
 
@@ -115,35 +117,51 @@ def resolve(
     phrase = " ".join(words)
     words = [w[:-2] if w.endswith("'s") and len(w) > 2 else w for w in words]  # "ines's" names Ines
     normed = norm(words)
-    cover: dict[str, set[int]] = defaultdict(set)
+    cover: dict[str, frozenset[int]] = {}  # entity -> the word positions its names span
     own_name: set[str] = set()  # entities a name of the KB's own (not the lexicon file's) occurs for
     for start in range(len(words)):
+        spans: dict[int, frozenset[int]] = {}  # shared: a class word's name is thousands of things'
         for name in lexicon.names_at(words, start):
-            cover[name.entity].update(range(start, start + len(name.words)))
+            span = spans.get(len(name.words))
+            if span is None:
+                span = spans[len(name.words)] = frozenset(range(start, start + len(name.words)))
+            before = cover.get(name.entity)
+            cover[name.entity] = span if before is None else before | span
             if not name.lexical:
                 own_name.add(name.entity)
     snapshot = lexicon.snapshot
     content = [i for i in range(len(words)) if not _glue(words, i)]
     head = _head(words, content)
-    matches: list[Entity] = []
-    for entity_id, own in cover.items():
-        entity = snapshot.get(entity_id)
+
+    def named(entity: Entity | None) -> bool:
         if entity is None or entity.kind not in kinds:
-            continue
+            return False
+        own = cover[entity.id]
         if not any(i in own for i in content):
-            continue
-        attrs = lexicon.attributes.get(entity_id, frozenset())
+            return False
+        attrs = lexicon.attributes.get(entity.id, frozenset())
         # "the seed shelf" is a shelf: the head is the thing's own word, never its support's.
         if head is not None and head not in own and normed[head] not in attrs:
-            continue
-        context = set()
+            return False
+        context: frozenset[int] = frozenset()
         inside = tuple(o for prep, o in entity.relations if prep == "in")
         for other in (entity.support, entity.zone, entity.owner, *inside):
             if other is not None:
-                context |= cover.get(other, set())
-        if all(i in own or i in context or normed[i] in attrs for i in content):
-            matches.append(entity)
-    matches = snapshot.in_order(matches)
+                context |= cover.get(other, frozenset())
+        return all(i in own or i in context or normed[i] in attrs for i in content)
+
+    # A class word names thousands of things of which a handful are in sight or the speaker's:
+    # those are tried first, and the rest only when they cannot settle the answer (see _settled).
+    def everything() -> list[Entity]:
+        return snapshot.among(cover, kinds)
+
+    if owner is None and len(cover) > _MANY:  # the things in sight, without looking at the others
+        near = [e for e in snapshot.visible() if e.id in cover]
+    else:
+        near = [e for e in everything() if e.seen or (owner is not None and e.owner == owner)]
+    matches = [e for e in near if named(e)]
+    if not _settled(matches, owner, own_name):
+        matches = [e for e in everything() if named(e)]
     if not matches and content:
         matches = _by_label_words(lexicon, [normed[i] for i in content], kinds)
     if not matches and content and {"one", "ones"} & set(words):
@@ -163,7 +181,20 @@ def resolve(
     # "the bathroom" is the room labelled so, not the toilets the lexicon file says it may be.
     matches = [e for e in matches if e.id in own_name] or matches
     seen = [e for e in matches if e.seen]
-    return Resolution(phrase, tuple(seen or matches))
+    # Sorted last: a class word names thousands of things of which a handful are in sight.
+    return Resolution(phrase, tuple(snapshot.in_order(seen or matches)))
+
+
+def _settled(near: Sequence[Entity], owner: str | None, own_name: Collection[str]) -> bool:
+    """Whether the matches among the seen and the owner's things give the answer the matches among
+    all would (the filters below keep the owner's things, then the KB's own names, then the seen)."""
+    if not near:
+        return False  # nothing in sight: the unseen ones, or the fallbacks, answer
+    if owner is not None and any(e.owner == owner for e in near):
+        return True  # every owned candidate was tried
+    # Not the owner's: the seen matches with a name of the KB's own, else all of them when no
+    # unseen thing can have one.
+    return any(e.id in own_name for e in near) or not own_name
 
 
 def _counted(words: Sequence[str]) -> tuple[str, ...]:

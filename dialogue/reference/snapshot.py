@@ -11,7 +11,7 @@ import re
 from collections.abc import Collection, Iterable, Iterator, Mapping
 from dataclasses import dataclass, field
 from itertools import islice
-from typing import Literal
+from typing import Any, Literal
 
 from dialogue.reference.facts import ROBOT_ID
 from dialogue.reference.layered import SortedChunks
@@ -97,6 +97,9 @@ class EntityTable(Mapping[str, Entity]):
     def __getitem__(self, key: str) -> Entity:
         return self._by_id[key]
 
+    def get(self, key: str, default: Any = None) -> Any:
+        return self._by_id.get(key, default)
+
     def __contains__(self, key: object) -> bool:
         return key in self._by_id
 
@@ -173,6 +176,13 @@ class Snapshot:
         last = ZONE if set(kinds) <= {"person", "zone"} else OTHER
         return list(islice((e for e in self._first(last) if e.kind in kinds), n))
 
+    def among(self, ids: Collection[str], kinds: Collection[Kind]) -> list[Entity]:
+        """The entities of ``ids`` of these kinds, unordered. People and places are found among
+        the people and places when ``ids`` are many (a class word names thousands of things)."""
+        if len(ids) > _MANY_IDS and set(kinds) <= {"person", "zone"}:
+            return [e for e in self.of_kind(*kinds) if e.id in ids]
+        return [e for i in ids if (e := self.entities.get(i)) is not None and e.kind in kinds]
+
     def visible(self) -> list[Entity]:
         return [e for e in self._first(SEEN) if e.seen]
 
@@ -182,6 +192,9 @@ class Snapshot:
             return self.entities.ranked_up_to(rank)
         return iter(self.entities.values())
 
+
+#: Past this many ids, `Snapshot.among` walks the people and places rather than the ids.
+_MANY_IDS = 64
 
 _CAMEL = re.compile(r"(?<=[a-z0-9])(?=[A-Z])")
 _QUALIFIER = re.compile(r"_\([^)]*\)$")

@@ -209,3 +209,36 @@ def test_a_measure_of_a_thing_names_the_thing(phrase: str, expected: list[str]) 
         "tape_1 rdf:type Artifact", 'tape_1 rdfs:label "tape"', "myself sees tape_1",
     )  # fmt: skip
     assert ids(kb, phrase) == expected
+
+
+def _many(count: int, label: str, *facts: str) -> KB:
+    """A shop with ``count`` unseen things labelled ``label`` in its store (past the count where
+    resolution looks at the seen ones first) and the given facts."""
+    things = [f for i in range(count) for f in (f"{label}_{i} rdf:type Artifact", f'{label}_{i} rdfs:label "{label}"',
+                                                 f"{label}_{i} isIn store")]  # fmt: skip
+    return _shop("store rdf:type ZoneOfInterest", 'store rdfs:label "store"', *things, *facts)
+
+
+def test_a_word_naming_hundreds_of_things_answers_as_for_a_few() -> None:
+    kb = _many(
+        150, "apple",
+        "seen_a rdf:type Artifact", 'seen_a rdfs:label "apple"', "myself sees seen_a",
+        "seen_b rdf:type Artifact", 'seen_b rdfs:label "apple"', "myself sees seen_b",
+        "kims rdf:type Artifact", 'kims rdfs:label "apple"', "kims belongsTo kim", "kims isIn store",
+        "pip rdf:type Human", 'pip rdfs:label "Apple"',
+    )  # fmt: skip
+    lex = lexicon_of(kb)
+    assert ids(kb, "the apple") == ["seen_a", "seen_b"]  # the ones in sight
+    assert [e.id for e in resolve(lex, tokens("the apple"), THING, owner="kim").matches] == ["kims"]  # unseen
+    assert [e.id for e in resolve(lex, tokens("apple"), PERSON).matches] == ["pip"]
+    kb.close()
+    kb = _many(150, "apple")
+    assert len(ids(kb, "the apple")) == 150  # none in sight: all of them, to be asked about
+    kb.close()
+
+
+def test_among_hundreds_the_kbs_own_name_still_beats_a_seen_synonym() -> None:
+    kb = _many(100, "fridge", "cold_1 rdf:type Artifact", 'cold_1 rdfs:label "refrigerator"', "myself sees cold_1")
+    assert len(ids(kb, "the fridge")) == 100 and "cold_1" not in ids(kb, "the fridge")
+    assert ids(kb, "the refrigerator") == ["cold_1"]
+    kb.close()
