@@ -137,10 +137,18 @@ def _fit(row: Row, said: Said) -> Parse | None:
         # ("fetch me that lamp over there": there is where the lamp is)
         # "leave it over there", "come here", "lead the way"; dropped when the place is also named
         # ("lead the way to the lobby").
-        pointed = next((p for p in _POINTING if direct[-len(p[0]) :] == p[0]), None)
+        # ("wait for me there": what for says no place, the pointing word after it does)
+        aside = "extra" if not direct and "extra" in slots else None
+        words = slots[aside] if aside is not None else direct
+        pointed = next((p for p in _POINTING if words[-len(p[0]) :] == p[0]), None)
         if pointed is not None and not (frame.there_only and pointed[1] != ("there",)):
-            direct = direct[: -len(pointed[0])]
+            if aside is None:
+                direct = direct[: -len(pointed[0])]
+            else:
+                slots[aside] = words[: -len(pointed[0])]
             slots.setdefault(frame.here, pointed[1])
+    if "extra" in slots:  # what a role the intent does not ground says is an adjunct ("for the van")
+        adjuncts = (*adjuncts, (marks.pop("extra"), *slots.pop("extra")))
     direct = _without_particles(direct, row)
     if not direct and not slots and set(adjuncts) & _AWAY:
         return None  # "get out of my way": where not to be is all it says (no thing to get)

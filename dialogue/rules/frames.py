@@ -162,8 +162,9 @@ FRAMES: tuple[Frame, ...] = (
           requires=("goal",)),
     # "go and wait in the courtyard", "stay by the door": be there ("wait for me" is no place)
     # ("go to the shed and wait there": the place just spoken of)
-    Frame(_STAY, I.MOVE_TO, slots={"goal": _AT}, particles=f"there {_OUT}", here="goal",
-          there_only=True, requires=("goal",)),
+    # ("wait there for the van": what for changes nothing)
+    Frame(_STAY, I.MOVE_TO, slots={"goal": _AT, "extra": "for|until|till"}, particles=f"there {_OUT}",
+          here="goal", there_only=True, requires=("goal",)),
     Frame(_GO, I.MOVE_TO, slots={"goal": MOTION_GOALS}, particles=MOTION_PARTICLES, here="goal",
           requires=("goal",)),
     Frame(_MOVE, I.PLACE_OBJECT, direct="object", slots={"recipient": GOALS}, particles="back away down over",

@@ -25,6 +25,7 @@ from dialogue.reference.english import (
     POSSESSIVES,
     SUPPORT_PREPOSITIONS,
     Words,
+    phrases,
     tokens,
     word_set,
 )
@@ -45,7 +46,7 @@ from dialogue.rules.clauses import described
 from dialogue.rules.compound import alternatives
 from dialogue.rules.outcome import Outcome, Ref
 from dialogue.rules.sounds import slipped as heard_as
-from dialogue.rules.words import NP_START, purpose
+from dialogue.rules.words import NP_START, TAGS, purpose
 
 #: Spatial or comparative qualifiers the KB does not model (dropped when they block a match).
 RELATIONAL = POSITIONS | word_set("over yonder")
@@ -54,6 +55,9 @@ _ACCOUNTED = RELATIONAL | COLOURS | ME | word_set(
     "it them him her here there over something anything around nearby about"
 )
 
+
+#: Words that address someone without naming them ("take it to sir"): whom the KB calls otherwise.
+_ADDRESS = frozenset(w for p in phrases(TAGS) for w in p) - POSSESSIVES
 
 _EVERY = word_set("all both every each")
 #: Words that say how much of a thing, not which ("get me some", "bring me a couple").
@@ -204,6 +208,9 @@ class Referents:
                     )
                 )
             return Ref(entity=found)
+        if "person" in kinds and content and set(content) <= _ADDRESS and not self.named_person(words):
+            # "take my calculator to sir": someone the KB knows by name, which one a model may know
+            return Ref(problem=Outcome("Sorry, I did not understand that.", understood=False))
         res = resolve(self.lexicon, words, kinds, owner=owner)
         if res.ambiguous and any(e.id == self.speaker for e in res.matches):
             # A speaker says "me", not "the person in the living room": a description is someone else.
