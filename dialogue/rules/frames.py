@@ -50,6 +50,7 @@ def _verb(verb: str, rest: Words) -> str:
 def _activity(verb: str, rest: Words) -> str | None:
     """ "play a game with me" -> "play_game"; "start (to) vacuum" -> "vacuum"."""
     words = rest[1:] if rest[:1] == ("to",) else rest
+    words = words[: words.index("for")] if "for" in words[1:] else words  # ("story time for the little ones")
     return "_".join(w for w in words if w not in ACTIVITY_FILLER) or None
 
 
@@ -186,7 +187,8 @@ FRAMES: tuple[Frame, ...] = (
           particles="up down out"),
     # Activities.
     Frame("do", special=C.asking),
-    Frame("start|begin|launch|run|resume|do|perform|commence", I.START_ACTIVITY, direct="activity",
+    Frame("start|begin|launch|run|resume|do|perform|commence|kick off|get started with|get going with|"
+          "crack on with|start off", I.START_ACTIVITY, direct="activity",
           text=_activity),
     Frame("clean|tidy|vacuum|hoover|sweep|mop|wash|dust|cook|water|iron|fold|patrol|charge|sing|exercise|"
           "wipe|organise|organize|prepare|make|cleaning|vacuuming|tidying|play", I.START_ACTIVITY,

@@ -213,8 +213,11 @@ def _where(w: Words) -> Parse:
         rest = rest[:-2]
         if rest[:1] in {("did",), ("has",), ("have",)}:
             rest = ("is", *rest[1:])
-    if rest[-1:] and rest[-1] in {"go", "gone", "went"} and rest[:1] and rest[0] in {"did", "has", "have"}:
-        return _q("where", w, thing=rest[1:-1])  # "where did Uma go?"
+    # "where did Uma go?", "where's my jacket gone" ("is" for "has", as said)
+    gone = rest[-1:] == ("gone",) and rest[:1] in {("is",), ("are",)}
+    went = rest[-1:] and rest[-1] in {"go", "gone", "went"} and rest[:1] and rest[0] in {"did", "has", "have"}
+    if gone or went:
+        return _q("where", w, thing=rest[1:-1])
     if len(rest) > 1 and rest[-1] in _BE and rest[0] not in _BE:
         return _q("where", w, thing=rest[:-1])  # the indirect order: "(do you know) where the keys are"
     if rest in {("am", "i"), ("are", "we")}:

@@ -104,6 +104,9 @@ GREETINGS = phrases(
     "good morning|good afternoon|good evening|good day|hello|hi|hey|hiya|howdy|greetings|yo|"
     "hello there|hi there|hey there|welcome|morning|evening|afternoon"
 )
+#: Greetings that only call for attention before what follows ("hey robot, who's at the gate"):
+#: greeting back is for the others ("hello robot, what's your name").
+ATTENTION = frozenset(phrases("hey|hey there|yo|oi"))
 SOCIAL = frozenset(
     phrases(
         "nice to see you|nice to meet you|good to see you|glad to see you|how are you|how are you doing|"
@@ -247,6 +250,9 @@ STOP_FILLER = word_set(
 ACTIVITY_FILLER = word_set("the a an some with me us of")
 #: Actions the robot has no intent for: a part of a compound request with one of these is kept in
 #: the reply ("I can't find the newspaper myself"), never silently dropped.
+#: States a request asks a thing to be brought into ("get it ready", "have the room sorted"): no
+#: intent of the robot's says it, whatever the verb, and the part is kept in the reply.
+RESULTS = word_set("ready sorted done prepared finished organised organized tidied cleaned")
 NO_INTENT_VERBS = word_set(
     "find search look open close turn switch remove control check wait stay watch heat boil pour fill "
     "empty plug unplug lock unlock answer call fix feed follow serve see"

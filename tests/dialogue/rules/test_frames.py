@@ -288,3 +288,8 @@ def test_what_the_waiting_is_for_is_an_adjunct() -> None:
     p = parse("wait there for the delivery van")
     assert (p.intent, p.slots, p.adjuncts) == (I.MOVE_TO, {"goal": ("there",)}, (("for", "the", "delivery", "van"),))
     assert parse("wait for me").intent is None
+
+
+def test_an_activity_is_kicked_off_and_whom_it_is_for_is_not_its_name() -> None:
+    p = parse("kick off story time for the little ones")
+    assert (p.intent, p.text) == (I.START_ACTIVITY, "story_time")
