@@ -238,6 +238,9 @@ class Referents:
             if res.ambiguous:
                 q = clarifying_question(self.snapshot, res.matches, self._noun(loose, res.matches))
                 return Ref(problem=Outcome(q, clarify=True, open_role=role, open_phrase=loose))
+        titled = self._titled(words, kinds)
+        if titled is not None:
+            return Ref(entity=titled)
         place = self._put_by(words, kinds, role, owner)
         if place is not None:
             return place
@@ -265,6 +268,25 @@ class Referents:
             # a doubt, for a model to read ("bk" is "back" in chat)
             return Ref(problem=Outcome(reply, understood=False))
         return Ref(problem=Outcome(reply))
+
+    def _titled(self, words: Words, kinds: frozenset[Kind]) -> Entity | None:
+        """ "my reserved book murder on the orient express (on the reservations shelf under jeff)": a
+        thing said by the whole of a label of three words or more with a preposition in it (a title)
+        at the head of the phrase, with words before it the KB cannot check and modifiers after it:
+        that thing, when one thing has the label."""
+        for start in range(len(words)):
+            if words[start] in MODIFIER_START:
+                return None  # (a title inside a modifier names where, not what)
+            titles = {n.entity: n for n in self.lexicon.names_at(words, start)
+                      if n.source == "label" and len(n.words) > 2 and set(n.words[1:-1]) & MODIFIER_START}
+            if titles:
+                name = next(iter(titles.values()))
+                after = words[start + len(name.words) :]
+                entity = self.snapshot.get(name.entity) if len(titles) == 1 else None
+                if entity is None or entity.kind not in kinds or (after and after[0] not in MODIFIER_START):
+                    return None
+                return entity
+        return None
 
     def _noun(self, words: Words, candidates: Sequence[Entity]) -> str | None:
         """The noun said for all the candidates ("a drink"), if the phrase ends its core with one."""

@@ -106,7 +106,8 @@ def corrected(text: str, lexicon: Lexicon) -> Spelled:
             fixes.append((start, end, Correction(word, split, False)))
             continue
         # a person's name in another spelling before a slip of a word ("steven" is Stephen, not "seven")
-        meant = heard_name(word, lexicon) or _meant(word, lexicon)
+        someone = n == 0 or said[n - 1] not in NP_START  # ("the kat" is no Kate)
+        meant = (heard_name(word, lexicon) if someone else None) or _meant(word, lexicon)
         if meant is not None:
             fixes.append((start, end, Correction(word, meant, meant not in grammar_words())))
     if not fixes:

@@ -80,7 +80,7 @@ POLITE_PREFIXES = phrases(
     "so|and|then|also|well|robot|let us|try to|you should|you can|you could|be so kind and|be so kind as to|"
     "time to|maybe|hold on|hang on|wait a moment|wait a second|one moment|actually|oh|um|umm|uh|er|erm|"
     "great|alright|all right|right|right then|cool|perfect|excellent|sorry|excuse me|can we|could we|"
-    "shall we|should we|you must|you have to|you need to|you will|you should go and|"
+    "shall we|should we|you must|you have to|you need to|you will|"
     "why don't we|how about we|i was wondering if you could|i wonder if you could|"
     "i was wondering whether you could|"
     "be a dear and|be an angel and|do me a favour and|do me a favor and|you know what|off you|listen|"

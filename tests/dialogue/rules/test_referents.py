@@ -89,3 +89,17 @@ def test_a_word_of_address_is_nobody_the_rules_can_name() -> None:
     out = Interpreter(lexicon_of(kb), SPEAKER).interpret("can you take my calculator to sir he wants to check it")
     assert out.intent is None and not out.understood
     kb.close()
+
+
+def test_a_title_with_a_preposition_names_its_thing_whatever_is_said_around_it() -> None:
+    kb = scene_kb(
+        None, "b_1 rdf:type dbr:Book", 'b_1 rdfs:label "Murder on the Orient Express"', "myself sees b_1",
+        "s_1 rdf:type Artifact", 's_1 rdfs:label "reservations shelf"', "b_1 isOn s_1", "b_2 rdf:type dbr:Book",
+        'b_2 rdfs:label "The Gruffalo"', "myself sees b_2", f"{SPEAKER} rdf:type Human",
+    )  # fmt: skip
+    said = Interpreter(lexicon_of(kb), SPEAKER)
+    out = said.interpret("could you get me my reserved book murder on the orient express its on the reservations shelf")
+    assert (out.intent, out.roles) == (I.BRING_OBJECT, {"object": "b_1", "recipient": SPEAKER})
+    # a title inside a modifier says where, not what
+    assert said.interpret("get me the red box next to murder on the orient express").intent is None
+    kb.close()
