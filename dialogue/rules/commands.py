@@ -239,7 +239,14 @@ def _segments(rest: Words, row: Row) -> tuple[Words, dict[str, Words], dict[str,
             continue
         current.append(rest[i])
         i += 1
-    return tuple(direct), {role: tuple(words) for role, words in slots.items() if words}, marks
+    # "take the calculator to": a role cut short is still said (asked for), never dropped
+    cut = {r for r, words in slots.items() if not words and marks[r] in _CUT_SHORT and current is words}
+    return tuple(direct), {role: tuple(words) for role, words in slots.items() if words or role in cut}, marks
+
+
+#: Prepositions that never end a request as a particle: a role said with one and nothing after it was
+#: cut short ("give it to"), where "come in", "hold on" end with a particle.
+_CUT_SHORT = frozenset({"to", "towards", "into", "onto"})
 
 
 def _which_one_back(direct: Words, slots: dict[str, Words], marks: dict[str, str], row: Row) -> Words:

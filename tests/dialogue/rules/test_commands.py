@@ -2,6 +2,8 @@ import pytest
 
 from dialogue import intents as I
 from dialogue.rules.commands import parse
+from kb import KB
+from tests.dialogue.rules.test_interpret import say
 
 
 @pytest.mark.parametrize(
@@ -360,3 +362,10 @@ def test_a_question_after_a_greeting_greets_too_and_after_hey_only_asks() -> Non
     p = parse("hello robot whats your name", "robot")
     assert (p.act, p.question, p.greeted) == ("question", "name", True)
     assert not parse("hey robot whos at the gate", "robot").greeted
+
+
+@pytest.mark.parametrize("text", ["take the stapler to", "give the stapler to", "go to"])
+def test_a_role_cut_short_is_asked_for_never_dropped(office: KB, text: str) -> None:
+    # ("take the stapler to" was a grab: the cut-short "to" dropped)
+    out = say(office, text)
+    assert out.intent is None and out.clarify
