@@ -24,7 +24,7 @@ import re
 from dialogue.memory.clause import Refused, Told, Unclaimed, Words, fact
 from dialogue.memory.likings import Likings
 from dialogue.memory.names import clean_name, given_name, name_like
-from dialogue.reference.english import word_set
+from dialogue.reference.english import phrases, word_set
 from dialogue.reference.grounding import Entity, Kind
 from dialogue.reference.resolution import PLACE
 from dialogue.rules.clauses import clauses as run_on_clauses
@@ -76,6 +76,18 @@ def _holds_people(entity: Entity) -> bool:
     return entity.kind == "zone" or _FURNITURE in entity.classes
 
 
+#: Greetings said before more words in the same clause, longest first ("hi there my name is...");
+#: "morning", "evening" and "welcome" may be what a statement is about.
+_OPENINGS = sorted((g for g in GREETINGS if g not in phrases("morning|evening|afternoon|welcome")),
+                   key=len, reverse=True)  # fmt: skip
+
+
+def _after_greeting(words: Words) -> Words | None:
+    """The words after a greeting that opens them, when more follows it."""
+    found = next((g for g in _OPENINGS if words[: len(g)] == g and len(words) > len(g)), None)
+    return words[len(found) :] if found is not None else None
+
+
 class Statements(Likings):
     """Reads statements against a lexicon, for one speaker and the dialogue's history."""
 
@@ -97,6 +109,11 @@ class Statements(Likings):
                 if self._greeting(words):
                     told.greeted = True
                     continue
+                after = _after_greeting(words)
+                if after is not None:  # "hiya my name is Frank" ("hiya what's on the desk" asks)
+                    told.greeted, words = True, self._lead(list(after))
+                    if not words:
+                        continue
                 if words in _POLITE:
                     continue
                 if words in _NO:  # "no, it's Rob": what follows corrects the robot

@@ -97,6 +97,9 @@ MODIFIER_START = (
     | word_set("of near by beside below above behind next close to towards for with without belonging")
     | word_set("between against opposite")
 )
+#: Titles said in full or short before a name ("mister Kowalski" for "Mr Kowalski", "Dr Adeyemi" for
+#: "Doctor Adeyemi"): each group's words stand for one another at the start of a person's name.
+TITLES = phrases("mr mister|mrs missus missis|ms miz|dr doctor|prof professor")
 #: Number words ("table nine", "take three cups").
 NUMBERS = word_set(
     "zero one two three four five six seven eight nine ten eleven twelve thirteen fourteen fifteen "

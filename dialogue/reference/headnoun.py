@@ -146,7 +146,25 @@ def resolve_head(lexicon: Lexicon, words: Sequence[str], kinds: Collection[Kind]
     if not scored:
         return []
     best = max(s for s, _ in scored)
-    return snapshot.in_order(e for s, e in scored if s == best)
+    found = snapshot.in_order(e for s, e in scored if s == best)
+    seen = {e.seen for e in found}
+    if len(seen) > 1 and _told_apart_by_nothing(lexicon, found, phrase.core, starts):
+        # "the staff room" among the waiting room the robot sees and rooms it does not: the one it
+        # sees is not meant any more than the others (when it sees all or none, it asks which)
+        return []
+    return found
+
+
+def _told_apart_by_nothing(
+    lexicon: Lexicon, found: Sequence[Entity], core: Sequence[str], starts: dict[str, int]
+) -> bool:
+    """Whether a word of the core before the candidates' names, said to tell them apart, holds for
+    none of them ("the staff room" among several rooms)."""
+    said = [set(norm(core[: starts[e.id]])) - COLOURS for e in found]
+    unconfirmed = set.intersection(*said) if said else set()
+    for entity in found:
+        unconfirmed -= lexicon.attributes.get(entity.id, frozenset())
+    return bool(unconfirmed)
 
 
 #: Prepositions of a thing nearby, and the relations of the KB (`isNextTo`, `near`, `isBelow`...)

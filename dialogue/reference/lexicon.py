@@ -16,7 +16,7 @@ from typing import Any, NamedTuple
 
 from lemminflect import getLemma
 
-from dialogue.reference.english import DETERMINERS, other_numbers, tokens, word_set
+from dialogue.reference.english import DETERMINERS, TITLES, other_numbers, tokens, word_set
 from dialogue.reference.grounding import Entity, Snapshot
 from dialogue.reference.layered import GONE, Gone, Layered, layered, rebucket
 from dialogue.reference.synonyms import synonyms
@@ -217,6 +217,8 @@ def _names(entity: Entity) -> list[Name]:
         numbered = other_numbers(tokens(label))
         if numbered is not None:  # "screen two" for "screen 2", "table 9" for "table nine"
             add(" ".join(numbered), "label")
+        for other in said_otherwise(tokens(label)):
+            add(" ".join(other), "label")
     add(entity.id, "id")
     for class_name in entity.class_names:
         add(class_name, "class")
@@ -246,6 +248,22 @@ def _names(entity: Entity) -> list[Name]:
     return out
 
 
+#: Each title to the other words said for it ("mister" for "mr").
+_TITLES = {w: tuple(o for o in group if o != w) for group in TITLES for w in group}
+
+
+def said_otherwise(words: Sequence[str]) -> list[tuple[str, ...]]:
+    """Other ways a label is said: a possessive without its apostrophe, as a recogniser or a typist
+    writes it ("hygienists room", "hygienist room" for the "hygienist's room"), and a title in full
+    or short ("mister kowalski" for "Mr Kowalski")."""
+    out: list[tuple[str, ...]] = []
+    if any(w.endswith("'s") for w in words):
+        out.append(tuple(w.removesuffix("'s") for w in words))
+    if len(words) > 1 and words[0] in _TITLES:
+        out += [(title, *words[1:]) for title in _TITLES[words[0]]]
+    return out
+
+
 class _Entry(NamedTuple):
     """What one entity adds to the indexes (kept per entity, so an update can take it out again)."""
 
@@ -272,7 +290,8 @@ def _reuse(kept: tuple[Entity, _Entry] | None, entity: Entity) -> _Entry:
 
 
 def _entry(entity: Entity) -> _Entry:
-    label_words = frozenset(w for label in entity.labels for w in norm(tokens(label)))
+    label_words = frozenset(w for label in entity.labels
+                            for said in (tokens(label), *said_otherwise(tokens(label))) for w in norm(said))
     words: set[str] = set(label_words)
     if entity.colour:
         words.update(norm(tokens(entity.colour)))

@@ -41,7 +41,9 @@ _BREAK = re.compile(r"[.;!?,]+(?:\s+|$)|\s+(?:-|\u2013|\u2014)\s+")
 _ASKS = phrases("could you|can you|would you|will you|please|can i have|could i have|may i have|can i get|"
                 "could i get|do you know where|do you know who|do you know if|do you know whether|"
                 "do you know what|any idea where|any idea who")
-_SUBJECTS = word_set("i he she it we they you there")
+#: Subjects that are no one in particular ("pick up the umbrella *someone left* it here").
+_INDEFINITE = word_set("someone somebody everyone everybody nobody anyone anybody")
+_SUBJECTS = word_set("i he she it we they you there") | _INDEFINITE
 #: Verbs that follow any subject: auxiliaries, modals and their negations.
 _AUXILIARIES = word_set(
     "am is are was were has have had will would can cannot could should might must shall may do does did "
@@ -127,7 +129,7 @@ def _subject_verb(subject: str, verb: str) -> bool:
     """Whether a subject pronoun and the word after it start a clause ("she is", "I can't")."""
     if subject == "you":
         return verb in _AUXILIARIES and verb not in {"do", "does", "did", "just", "really", "also"}
-    return verb in _AUXILIARIES or finite(verb, third_person=subject in {"he", "she", "it"})
+    return verb in _AUXILIARIES or finite(verb, third_person=subject in {"he", "she", "it"} | _INDEFINITE)
 
 
 def _agrees(flat: list[str], k: int) -> bool:

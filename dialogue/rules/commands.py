@@ -7,6 +7,8 @@ Only words are looked at: which entity a phrase names is decided later against t
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 from dialogue.reference.english import DETERMINERS, FUNCTION_WORDS, MANY, ME, MODIFIER_START, PERSONAL, Words
 from dialogue.rules.constructions import Said
 from dialogue.rules.frames import CONSTRUCTIONS, Row, verb_index
@@ -16,6 +18,7 @@ from dialogue.rules.speech import starts, strip_politeness
 from dialogue.rules.utterance import normalise, strip_vocative, verb_lemma
 from dialogue.rules.words import (
     ADJUNCTS,
+    ATTENTION,
     AWAY,
     DURATIONS,
     GOAL_PARTICLES,
@@ -25,6 +28,7 @@ from dialogue.rules.words import (
     MANNER,
     NP_START,
     PATHS,
+    RESULTS,
     SOCIAL,
     THEIR_SUBJECTS,
     THERE,
@@ -63,8 +67,12 @@ def parse(text: str, robot_name: str = "") -> Parse:
             rest = strip_vocative(strip_politeness(words[len(g) :], robot_name), robot_name)
             if tuple(rest) in SOCIAL:
                 return Parse("greeting", words=tuple(words))
-            # "Good morning Maria" is still a greeting; "hi, grab the cup" is a request.
-            return _request(text, rest) or _aside("greeting", words, rest)
+            # "Good morning Maria" is still a greeting; "hi, grab the cup" is a request; "hello
+            # robot, what's your name" a greeting and a question.
+            after = _request(text, rest)
+            if after is not None and after.act == "question" and g not in ATTENTION:
+                return replace(after, greeted=True)
+            return after or _aside("greeting", words, rest)
     return _question(words) or command(text, words)
 
 
@@ -133,15 +141,27 @@ def _fit(row: Row, said: Said) -> Parse | None:
         return None
     rest, adjuncts = _adjuncts(rest, row)
     direct, slots, marks = _segments(rest, row)
+    if direct:
+        direct = _which_one_back(direct, slots, marks, row)
     if frame.here is not None and not (frame.dative and direct[:1] and direct[0] in ME):
         # ("fetch me that lamp over there": there is where the lamp is)
         # "leave it over there", "come here", "lead the way"; dropped when the place is also named
         # ("lead the way to the lobby").
-        pointed = next((p for p in _POINTING if direct[-len(p[0]) :] == p[0]), None)
+        # ("wait for me there": what for says no place, the pointing word after it does)
+        aside = "extra" if not direct and "extra" in slots else None
+        words = slots[aside] if aside is not None else direct
+        pointed = next((p for p in _POINTING if words[-len(p[0]) :] == p[0]), None)
         if pointed is not None and not (frame.there_only and pointed[1] != ("there",)):
-            direct = direct[: -len(pointed[0])]
+            if aside is None:
+                direct = direct[: -len(pointed[0])]
+            else:
+                slots[aside] = words[: -len(pointed[0])]
             slots.setdefault(frame.here, pointed[1])
+    if "extra" in slots:  # what a role the intent does not ground says is an adjunct ("for the van")
+        adjuncts = (*adjuncts, (marks.pop("extra"), *slots.pop("extra")))
     direct = _without_particles(direct, row)
+    if direct[-1:] and direct[-1] in RESULTS:  # "get the room ready": no intent of the robot's
+        return Parse("unknown", words=said.words)
     if not direct and not slots and set(adjuncts) & _AWAY:
         return None  # "get out of my way": where not to be is all it says (no thing to get)
     if not direct and frame.direct is not None:
@@ -219,7 +239,29 @@ def _segments(rest: Words, row: Row) -> tuple[Words, dict[str, Words], dict[str,
             continue
         current.append(rest[i])
         i += 1
-    return tuple(direct), {role: tuple(words) for role, words in slots.items() if words}, marks
+    # "take the calculator to": a role cut short is still said (asked for), never dropped
+    cut = {r for r, words in slots.items() if not words and marks[r] in _CUT_SHORT and current is words}
+    return tuple(direct), {role: tuple(words) for role, words in slots.items() if words or role in cut}, marks
+
+
+#: Prepositions that never end a request as a particle: a role said with one and nothing after it was
+#: cut short ("give it to"), where "come in", "hold on" end with a particle.
+_CUT_SHORT = frozenset({"to", "towards", "into", "onto"})
+
+
+def _which_one_back(direct: Words, slots: dict[str, Words], marks: dict[str, str], row: Row) -> Words:
+    """ "put the goggles on the front bench back on the shelf": a place said before "back" and the
+    role's preposition again says which thing (the goggles on the front bench), the one after it
+    where the thing goes. The direct phrase with its modifier; the role's phrase is cut to the
+    place after "back"."""
+    for preposition, role in row.slots:
+        words = slots.get(role, ())
+        for i in range(1, len(words) - len(preposition)):
+            if words[i] == "back" and words[i + 1 : i + 1 + len(preposition)] == preposition:
+                slots[role] = words[i + 1 + len(preposition) :]
+                first, marks[role] = marks[role], " ".join(preposition)
+                return (*direct, *first.split(), *words[:i])
+    return direct
 
 
 def _phrase_at(words: Words, i: int) -> bool:
@@ -230,10 +272,11 @@ def _phrase_at(words: Words, i: int) -> bool:
 
 def _second_phrase(slots: dict[str, Words]) -> Words:
     """When nothing follows the verb directly, a second noun phrase after a role's own ("to Ana the
-    tray") is the direct one; it is taken out of that role's phrase."""
+    tray", "to Fenna her keys") is the direct one; it is taken out of that role's phrase."""
     for role, words in slots.items():
         for i in range(1, len(words)):
-            if words[i] in NP_START and words[i - 1] not in NP_START:
+            starts = words[i] in NP_START or (words[i] == "her" and i + 1 < len(words))
+            if starts and words[i - 1] not in NP_START:
                 slots[role] = words[:i]
                 return words[i:]
     return ()
@@ -283,6 +326,10 @@ def _adjunct_end(rest: Words, i: int, own: set[str]) -> int:
     by_doing = word == "by" and i + 1 < len(rest) and rest[i + 1].endswith("ing")  # "by crossing the hall"
     # "down the hall to the garage": the way, when the place comes after it
     way = word in GOAL_PARTICLES & own and bool(set(rest[i + 1 :]) & (own - GOAL_PARTICLES))
+    # "take Aisha down the corridor to the staff room": the way, between the thing or person and
+    # where they go, for a verb of carrying or guiding too
+    way = way or (i > 0 and word in GOAL_PARTICLES and rest[i + 1 : i + 2] != () and rest[i + 1] in NP_START
+                  and bool(set(rest[i + 2 :]) & (own - GOAL_PARTICLES)))  # fmt: skip
     if word in own and not by_doing and not way:
         return i
     said_how = _said_how(rest, i)

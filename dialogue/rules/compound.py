@@ -14,7 +14,7 @@ from dialogue.reference.resolution import content_words
 from dialogue.rules.frames import verbs
 from dialogue.rules.speech import QUOTED, starts, strip_politeness
 from dialogue.rules.utterance import asked_verb, normalise, strip_vocative
-from dialogue.rules.words import AWAY, CHAT, GREETINGS, NO_INTENT_VERBS
+from dialogue.rules.words import AWAY, CHAT, GREETINGS, NO_INTENT_VERBS, RESULTS
 
 _CONJUNCTIONS = word_set("and then , ; afterwards")
 #: Verbs that start a new command even with no conjunction before them, when followed by one of
@@ -115,7 +115,10 @@ def conjuncts(text: str) -> list[Part]:
     for s, e in parts:
         piece = text[toks[s][1] : toks[e - 1][2]].strip(" ,;")
         verb = _verb(piece)
-        out.append(Part(piece, verb, verb in NO_INTENT_VERBS, _away(piece)))
+        # ("go to the x-ray room and get it ready": no intent says the getting ready)
+        said = normalise(piece)
+        result = verb is not None and bool(said) and said[-1] in RESULTS
+        out.append(Part(piece, verb, verb in NO_INTENT_VERBS or result, _away(piece)))
     return out
 
 

@@ -50,6 +50,7 @@ def _verb(verb: str, rest: Words) -> str:
 def _activity(verb: str, rest: Words) -> str | None:
     """ "play a game with me" -> "play_game"; "start (to) vacuum" -> "vacuum"."""
     words = rest[1:] if rest[:1] == ("to",) else rest
+    words = words[: words.index("for")] if "for" in words[1:] else words  # ("story time for the little ones")
     return "_".join(w for w in words if w not in ACTIVITY_FILLER) or None
 
 
@@ -162,8 +163,9 @@ FRAMES: tuple[Frame, ...] = (
           requires=("goal",)),
     # "go and wait in the courtyard", "stay by the door": be there ("wait for me" is no place)
     # ("go to the shed and wait there": the place just spoken of)
-    Frame(_STAY, I.MOVE_TO, slots={"goal": _AT}, particles=f"there {_OUT}", here="goal",
-          there_only=True, requires=("goal",)),
+    # ("wait there for the van": what for changes nothing)
+    Frame(_STAY, I.MOVE_TO, slots={"goal": _AT, "extra": "for|until|till"}, particles=f"there {_OUT}",
+          here="goal", there_only=True, requires=("goal",)),
     Frame(_GO, I.MOVE_TO, slots={"goal": MOTION_GOALS}, particles=MOTION_PARTICLES, here="goal",
           requires=("goal",)),
     Frame(_MOVE, I.PLACE_OBJECT, direct="object", slots={"recipient": GOALS}, particles="back away down over",
@@ -185,7 +187,8 @@ FRAMES: tuple[Frame, ...] = (
           particles="up down out"),
     # Activities.
     Frame("do", special=C.asking),
-    Frame("start|begin|launch|run|resume|do|perform|commence", I.START_ACTIVITY, direct="activity",
+    Frame("start|begin|launch|run|resume|do|perform|commence|kick off|get started with|get going with|"
+          "crack on with|start off", I.START_ACTIVITY, direct="activity",
           text=_activity),
     Frame("clean|tidy|vacuum|hoover|sweep|mop|wash|dust|cook|water|iron|fold|patrol|charge|sing|exercise|"
           "wipe|organise|organize|prepare|make|cleaning|vacuuming|tidying|play", I.START_ACTIVITY,

@@ -174,6 +174,12 @@ class Interpreter:
             return Outcome("OK, I won't do that.")
         if p.act == "thanks":
             return Outcome("You're welcome!")
+        if p.act == "question" and p.greeted:  # "hello robot, what's your name": both
+            answer = self._answer(p)
+            if not answer.understood or answer.clarify:
+                return answer
+            hello = f"Hello{vocative(self.snapshot, self.speaker)}!"
+            return self._intent(I.GREET, {"recipient": self.speaker}, f"{hello} {answer.reply}")
         if p.act == "question":
             return self._answer(p)
         if p.act == "command" and p.intent is not None:

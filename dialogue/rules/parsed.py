@@ -31,3 +31,5 @@ class Parse:
     implicit: frozenset[str] = frozenset()
     #: The preposition that introduced each role's phrase ("beside" for "next to the laptop").
     marks: dict[str, str] = field(default_factory=dict)
+    #: A question said after a greeting ("hello robot, what's your name"): greet, then answer.
+    greeted: bool = False

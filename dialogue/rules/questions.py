@@ -22,7 +22,7 @@ _WHERE_LEADS: tuple[Words, ...] = tuple(
 _ON_GLUE = word_set(
     "is are do you see can lying there objects things thing stuff placed sitting kept have has we got"
 )
-_WHO_NOT_A_NAME = word_set("here there around in with present speaking talking at near next else")
+_WHO_NOT_A_NAME = word_set("here there around in with present speaking talking at near next else home")
 _SEE_WORDS = frozenset({"see", "notice", "around", "front", "here", "there"})
 _COLOUR_WORDS = frozenset({"colour", "color"})
 _LOCATIVES = ("on top of", "on", "in", "inside", "under", "at")
@@ -140,7 +140,7 @@ def _what(w: Words) -> Parse:
         return _q("whose", w, thing=rest[:-2])  # "which suitcase is mine": whose each one is
     if w[0] == "which" and 1 < len(rest) < 5 and rest[-2] in _BE and rest[-1] in COLOURS:
         return _q("which_see", w, thing=(rest[-1], *rest[:-2]))  # "which marker is red"
-    if "front" in rest or "around" in rest:
+    if _before_you(rest) or "around" in rest:  # "what's in front of you" ("the front bench" is a name)
         return _q("what_see", w)
     if rest[:1] and rest[0] in _COLOUR_WORDS:
         return _q(
@@ -169,6 +169,12 @@ def _what(w: Words) -> Parse:
     ):
         return _q("what_is", w, thing=rest[1:])
     return _q("other", w)
+
+
+def _before_you(rest: Words) -> bool:
+    """Whether the words ask what is in front of the robot ("in front", "in front of you")."""
+    at = next((i for i in range(len(rest) - 1) if rest[i : i + 2] == ("in", "front")), None)
+    return at is not None and rest[at + 2 :] in {(), ("of", "you"), ("of", "me"), ("of", "us")}
 
 
 def _someone_elses(rest: Words) -> bool:
@@ -207,8 +213,11 @@ def _where(w: Words) -> Parse:
         rest = rest[:-2]
         if rest[:1] in {("did",), ("has",), ("have",)}:
             rest = ("is", *rest[1:])
-    if rest[-1:] and rest[-1] in {"go", "gone", "went"} and rest[:1] and rest[0] in {"did", "has", "have"}:
-        return _q("where", w, thing=rest[1:-1])  # "where did Uma go?"
+    # "where did Uma go?", "where's my jacket gone" ("is" for "has", as said)
+    gone = rest[-1:] == ("gone",) and rest[:1] in {("is",), ("are",)}
+    went = rest[-1:] and rest[-1] in {"go", "gone", "went"} and rest[:1] and rest[0] in {"did", "has", "have"}
+    if gone or went:
+        return _q("where", w, thing=rest[1:-1])
     if len(rest) > 1 and rest[-1] in _BE and rest[0] not in _BE:
         return _q("where", w, thing=rest[:-1])  # the indirect order: "(do you know) where the keys are"
     if rest in {("am", "i"), ("are", "we")}:

@@ -25,6 +25,7 @@ from dialogue.reference.english import (
     POSSESSIVES,
     SUPPORT_PREPOSITIONS,
     Words,
+    phrases,
     tokens,
     word_set,
 )
@@ -45,7 +46,7 @@ from dialogue.rules.clauses import described
 from dialogue.rules.compound import alternatives
 from dialogue.rules.outcome import Outcome, Ref
 from dialogue.rules.sounds import slipped as heard_as
-from dialogue.rules.words import NP_START, purpose
+from dialogue.rules.words import NP_START, TAGS, purpose
 
 #: Spatial or comparative qualifiers the KB does not model (dropped when they block a match).
 RELATIONAL = POSITIONS | word_set("over yonder")
@@ -54,6 +55,9 @@ _ACCOUNTED = RELATIONAL | COLOURS | ME | word_set(
     "it them him her here there over something anything around nearby about"
 )
 
+
+#: Words that address someone without naming them ("take it to sir"): whom the KB calls otherwise.
+_ADDRESS = frozenset(w for p in phrases(TAGS) for w in p) - POSSESSIVES
 
 _EVERY = word_set("all both every each")
 #: Words that say how much of a thing, not which ("get me some", "bring me a couple").
@@ -204,6 +208,9 @@ class Referents:
                     )
                 )
             return Ref(entity=found)
+        if "person" in kinds and content and set(content) <= _ADDRESS and not self.named_person(words):
+            # "take my calculator to sir": someone the KB knows by name, which one a model may know
+            return Ref(problem=Outcome("Sorry, I did not understand that.", understood=False))
         res = resolve(self.lexicon, words, kinds, owner=owner)
         if res.ambiguous and any(e.id == self.speaker for e in res.matches):
             # A speaker says "me", not "the person in the living room": a description is someone else.
@@ -231,6 +238,9 @@ class Referents:
             if res.ambiguous:
                 q = clarifying_question(self.snapshot, res.matches, self._noun(loose, res.matches))
                 return Ref(problem=Outcome(q, clarify=True, open_role=role, open_phrase=loose))
+        titled = self._titled(words, kinds)
+        if titled is not None:
+            return Ref(entity=titled)
         place = self._put_by(words, kinds, role, owner)
         if place is not None:
             return place
@@ -258,6 +268,25 @@ class Referents:
             # a doubt, for a model to read ("bk" is "back" in chat)
             return Ref(problem=Outcome(reply, understood=False))
         return Ref(problem=Outcome(reply))
+
+    def _titled(self, words: Words, kinds: frozenset[Kind]) -> Entity | None:
+        """ "my reserved book murder on the orient express (on the reservations shelf under jeff)": a
+        thing said by the whole of a label of three words or more with a preposition in it (a title)
+        at the head of the phrase, with words before it the KB cannot check and modifiers after it:
+        that thing, when one thing has the label."""
+        for start in range(len(words)):
+            if words[start] in MODIFIER_START:
+                return None  # (a title inside a modifier names where, not what)
+            titles = {n.entity: n for n in self.lexicon.names_at(words, start)
+                      if n.source == "label" and len(n.words) > 2 and set(n.words[1:-1]) & MODIFIER_START}
+            if titles:
+                name = next(iter(titles.values()))
+                after = words[start + len(name.words) :]
+                entity = self.snapshot.get(name.entity) if len(titles) == 1 else None
+                if entity is None or entity.kind not in kinds or (after and after[0] not in MODIFIER_START):
+                    return None
+                return entity
+        return None
 
     def _noun(self, words: Words, candidates: Sequence[Entity]) -> str | None:
         """The noun said for all the candidates ("a drink"), if the phrase ends its core with one."""

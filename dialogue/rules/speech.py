@@ -26,10 +26,12 @@ from dialogue.reference.english import (
 )
 from dialogue.rules.words import (
     ASKING,
+    CHAT,
     CONTRACTIONS,
     DURATIONS,
     FILLER_PAIRS,
     FILLERS,
+    NP_START,
     POLITE_PREFIXES,
     POLITE_SUFFIXES,
     ROBOT_SUFFIXES,
@@ -54,6 +56,8 @@ def expanded(text: str) -> list[str]:
             continue  # "screen number two", "room no 4": the number names it
         if w == "its" and _is_it_is(tuple(words[i + 1 : i + 3])):
             out += ["it", "is"]
+        elif w in CHAT and i > 0 and words[i - 1] in NP_START:
+            out.append(w)  # "the atm": the cash machine, not "at the moment"
         else:
             out += CONTRACTIONS.get(w, (w,))
     return out
@@ -181,7 +185,7 @@ def strip_politeness(words: list[str], robot_name: str = "") -> list[str]:
                 words = words[len(p) :]
                 changed = True
                 break
-        for s in POLITE_SUFFIXES:
+        for s in _SUFFIXES:
             # ("wait in the hall for now": "for now" says how long, its "now" is no politeness)
             dangling = len(words) > len(s) and words[-len(s) - 1] in _LEFT_BEHIND
             if s and len(words) > len(s) and tuple(words[-len(s) :]) == s and not dangling:
@@ -191,8 +195,11 @@ def strip_politeness(words: list[str], robot_name: str = "") -> list[str]:
     return words
 
 
-#: Prepositions that a politeness word at the end completes ("for now", "till then", "by now").
-_LEFT_BEHIND = word_set("for till until by from since")
+#: Prepositions that a politeness word at the end completes ("for now", "till then", "by now"), or
+#: whose object a word naming the listener is ("take it to sir": whom, not a tag).
+_LEFT_BEHIND = word_set("for till until by from since to with")
+#: The politeness at the end, longest first ("right now" before its "now").
+_SUFFIXES = sorted(POLITE_SUFFIXES, key=len, reverse=True)
 #: After "could we", "can we": words that ask for a thing to be brought ("could we get the bill",
 #: "can we have two coffees"), when a noun phrase follows them ("can we get over to the desk" goes).
 _WISHING = word_set("get have")

@@ -35,8 +35,10 @@ from dialogue.reference.english import ME, NUMBERS, PRONOUNS, lowered, phrases, 
 from dialogue.reference.lexicon import Lexicon, singular
 from dialogue.rules import questions, words
 from dialogue.rules.frames import FRAMES
+from dialogue.rules.homophones import misheard
+from dialogue.rules.names import heard_name
 from dialogue.rules.speech import QUOTED
-from dialogue.rules.words import NP_START, PREPOSITION_SLIPS
+from dialogue.rules.words import CARRY_PARTICLES, MOTION_PARTICLES, NP_START, PATHS, PREPOSITION_SLIPS
 
 _ROWS = ("qwertyuiop", "asdfghjkl", "zxcvbnm")
 _OFFSETS = (0.0, 0.25, 0.75)  # how far each row of a keyboard is shifted to the right
@@ -54,6 +56,8 @@ _LONG = 8
 _ASKED = frozenset({"is", "are", "did", "do", "does", "can", "could", "should", "has", "have", "was"})
 #: Who a preposition may introduce without an article ("four me": for me; "2 him").
 _PEOPLE = ME | {"him", "her", "them"}
+#: Particles of the way after which a preposition says where ("show him through two surgery one").
+_WAY = frozenset(MOTION_PARTICLES.split()) | frozenset(CARRY_PARTICLES.split()) | PATHS
 
 
 @dataclass(frozen=True)
@@ -79,6 +83,7 @@ def corrected(text: str, lexicon: Lexicon) -> Spelled:
     quoted = [m.span() for m in QUOTED.finditer(text)]
     fixes: list[tuple[int, int, Correction]] = []
     words = spans(text)
+    said = [w for w, _, _ in words]
     for n, (word, start, end) in enumerate(words):
         if any(a <= start < b for a, b in quoted) or _named(text, start):
             continue
@@ -87,12 +92,22 @@ def corrected(text: str, lexicon: Lexicon) -> Spelled:
             fixes.append((start, end, Correction(word, "where", False)))
             continue
         if 0 < n < len(words) - 1 and word in PREPOSITION_SLIPS:
-            if _slipped_preposition([w for w, _, _ in words], n, lexicon):
+            if _slipped_preposition(said, n, lexicon):
                 fixes.append((start, end, Correction(word, PREPOSITION_SLIPS[word], False)))
+            continue
+        heard = misheard(said, n, lexicon)  # "the pear of goggles", "write now", "wait their"
+        if heard is not None:
+            fixes.append((start, end, Correction(word, heard, False)))
             continue
         if not _suspect(word, lexicon):
             continue
-        meant = _meant(word, lexicon)
+        split = _run_together(word)  # "goto"
+        if split is not None:
+            fixes.append((start, end, Correction(word, split, False)))
+            continue
+        # a person's name in another spelling before a slip of a word ("steven" is Stephen, not "seven")
+        someone = n == 0 or said[n - 1] not in NP_START  # ("the kat" is no Kate)
+        meant = (heard_name(word, lexicon) if someone else None) or _meant(word, lexicon)
         if meant is not None:
             fixes.append((start, end, Correction(word, meant, meant not in grammar_words())))
     if not fixes:
@@ -110,7 +125,8 @@ def _slipped_preposition(words: list[str], n: int, lexicon: Lexicon) -> bool:
     """Whether the n-th word is a preposition heard or typed as another word ("walk too the gate",
     "milk form the jug", "take it 2 Carol", "get the ladle four me", "take the soup two table
     four"): before a noun phrase, a person (a name, "me", "him"), or a name of the KB said without
-    its article after a noun phrase that has ended. A real number is never lost: a number before a
+    its article after a noun phrase that has ended or a particle of the way ("through two surgery
+    one"). A real number is never lost: a number before a
     plural ("two apples"), a number ending a name ("table two"), after a determiner ("the two")."""
     before, after = words[n - 1], words[n + 1]
     if before in NP_START or before.isdigit() or before in NUMBERS or not _ended(words, n, lexicon):
@@ -119,7 +135,7 @@ def _slipped_preposition(words: list[str], n: int, lexicon: Lexicon) -> bool:
         return True
     if not lexicon.names_at(words, n + 1) or singular(after) != after:
         return False
-    return before in PRONOUNS or lexicon.knows(before)
+    return before in PRONOUNS or before in _WAY or lexicon.knows(before)
 
 
 def _ended(words: list[str], n: int, lexicon: Lexicon) -> bool:
@@ -143,6 +159,20 @@ def _named(text: str, start: int) -> bool:
 def _fixed_words(text: str, fixes: list[tuple[int, int, Correction]]) -> list[str]:
     meant = {start: fix.meant for start, _, fix in fixes}
     return [meant.get(start, word) for word, start, _ in spans(text)]
+
+
+#: The shortest part of a word typed together with the next ("goto": "go" and "to").
+_PART = 2
+
+
+def _run_together(word: str) -> str | None:
+    """Two words of the grammar typed as one ("goto", "infront", "bringme"), when only one cut makes
+    two of them ("someones" is someone's, not "some ones")."""
+    if word.endswith("s") and (word[:-1] in grammar_words() or getAllLemmas(word[:-1])):
+        return None
+    cuts = [(word[:k], word[k:]) for k in range(_PART, len(word) - _PART + 1)]
+    found = [f"{a} {b}" for a, b in cuts if a in grammar_words() and b in grammar_words()]
+    return found[0] if len(found) == 1 else None
 
 
 def _suspect(word: str, lexicon: Lexicon) -> bool:

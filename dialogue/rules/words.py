@@ -36,6 +36,7 @@ _SPOKEN: dict[str, Words] = {
 #: Chat abbreviations, read as the words they stand for ("can u get my bag n bring it over", "go bk
 #: to the desk", "whats on the counter rn"). Words spelled out letter by letter ("s u v") are
 #: joined before these are read (dialogue.rules.letters).
+#: After a determiner, an abbreviation is read as written: a noun ("where is the atm").
 CHAT: dict[str, Words] = {
     "u": ("you",), "ya": ("you",), "r": ("are",), "ur": ("your",), "n": ("and",), "b4": ("before",),
     "bk": ("back",), "rn": ("right", "now"), "pls": ("please",), "plz": ("please",), "thx": ("thanks",),
@@ -46,6 +47,13 @@ CHAT: dict[str, Words] = {
     "cld": ("could",), "cud": ("could",), "wud": ("would",), "wld": ("would",), "shud": ("should",),
     "hv": ("have",), "em": ("them",), "yr": ("your",), "thnx": ("thanks",), "thanx": ("thanks",),
     "rly": ("really",), "dunno": ("don't", "know"), "2day": ("today",),
+    "atm": ("at", "the", "moment"), "nvm": ("never", "mind"), "idk": ("i", "don't", "know"),
+    "omw": ("on", "my", "way"), "prolly": ("probably",), "probs": ("probably",), "def": ("definitely",),
+    "defo": ("definitely",), "kinda": ("kind", "of"), "sorta": ("sort", "of"), "outta": ("out", "of"),
+    "cya": ("see", "you"), "msg": ("message",), "tomoz": ("tomorrow",), "2nite": ("tonight",),
+    "tonite": ("tonight",), "yw": ("you", "are", "welcome"), "np": ("no", "problem"), "plzz": ("please",),
+    "pleez": ("please",), "fone": ("phone",), "tnx": ("thanks",), "rite": ("right",), "nite": ("night",),
+    "cus": ("because",),
 }  # fmt: skip
 #: Every written form read as other words: contractions, with or without the apostrophe, and chat.
 CONTRACTIONS: dict[str, Words] = {**_SPOKEN, **CHAT}
@@ -72,7 +80,7 @@ POLITE_PREFIXES = phrases(
     "so|and|then|also|well|robot|let us|try to|you should|you can|you could|be so kind and|be so kind as to|"
     "time to|maybe|hold on|hang on|wait a moment|wait a second|one moment|actually|oh|um|umm|uh|er|erm|"
     "great|alright|all right|right|right then|cool|perfect|excellent|sorry|excuse me|can we|could we|"
-    "shall we|should we|"
+    "shall we|should we|you must|you have to|you need to|you will|"
     "why don't we|how about we|i was wondering if you could|i wonder if you could|"
     "i was wondering whether you could|"
     "be a dear and|be an angel and|do me a favour and|do me a favor and|you know what|off you|listen|"
@@ -87,7 +95,8 @@ TAGS = "mate|pal|buddy|love|dear|darling|sir|madam|miss|boss|chief|my friend|my 
 POLITE_SUFFIXES = (
     *ROBOT_SUFFIXES,
     *phrases("ta|cheers|thanks a lot|thank you very much|much appreciated|if you would|if you don't mind"),
-    *phrases("now|right now|for a moment|again|quickly|quick|immediately|for a sec|for a second|sorry|then"),
+    *phrases("now|right now|at the moment|for a moment|again|quickly|quick|immediately|for a sec|"
+             "for a second|sorry|then"),
     # the listener named by a tag ("the yellow one mate", "over here love")
     *phrases(TAGS),
 )
@@ -95,6 +104,9 @@ GREETINGS = phrases(
     "good morning|good afternoon|good evening|good day|hello|hi|hey|hiya|howdy|greetings|yo|"
     "hello there|hi there|hey there|welcome|morning|evening|afternoon"
 )
+#: Greetings that only call for attention before what follows ("hey robot, who's at the gate"):
+#: greeting back is for the others ("hello robot, what's your name").
+ATTENTION = frozenset(phrases("hey|hey there|yo|oi"))
 SOCIAL = frozenset(
     phrases(
         "nice to see you|nice to meet you|good to see you|glad to see you|how are you|how are you doing|"
@@ -147,7 +159,8 @@ ADJUNCTS = phrases(
     "on my behalf|on our behalf|on his behalf|on her behalf|for me|for us|from me|from us|"
     "when you can|when you get a chance|when you have a moment|when you have a minute|when you are free|"
     "as soon as possible|as soon as you can|right away|straight away|at once|in a minute|in a moment|"
-    "right now|real quick|right quick|asap|in a jiffy|in a sec|in a second|instead|instead of that|"
+    "right now|at the moment|real quick|right quick|asap|in a jiffy|in a sec|in a second|instead|"
+    "instead of that|"
     "a bit|a little|a little bit"
 )
 #: Where not to be ("move out of the way and go to the door"): said before where to go, or alone (a
@@ -173,6 +186,7 @@ NP_START = word_set("the a an this that these those my your his our their some")
 #: Words a speech recogniser writes for one another (a number in a name most of all: "bay for").
 HOMOPHONES = phrases(
     "for four fore|to two too|won one|ate eight|right write|through threw|sea see|pair pear|tee tea|"
+    "there their|"
     "flour flower|whole hole|knight night|wood would|bare bear|mail male|meat meet|weight wait|"
     "piece peace|plain plane|deer dear|sale sail|steal steel|stair stare|board bored|sole soul"
 )
@@ -236,6 +250,9 @@ STOP_FILLER = word_set(
 ACTIVITY_FILLER = word_set("the a an some with me us of")
 #: Actions the robot has no intent for: a part of a compound request with one of these is kept in
 #: the reply ("I can't find the newspaper myself"), never silently dropped.
+#: States a request asks a thing to be brought into ("get it ready", "have the room sorted"): no
+#: intent of the robot's says it, whatever the verb, and the part is kept in the reply.
+RESULTS = word_set("ready sorted done prepared finished organised organized tidied cleaned")
 NO_INTENT_VERBS = word_set(
     "find search look open close turn switch remove control check wait stay watch heat boil pour fill "
     "empty plug unplug lock unlock answer call fix feed follow serve see"

@@ -147,3 +147,11 @@ def test_a_statement_run_into_a_request_is_no_statement(home: KB) -> None:
     # "...can you get them" is a request: the turn is the rules' (which may not know the glasses),
     # not a refusal to learn where unknown glasses are.
     assert Statements(lexicon_of(home), BOB).read("my sunglasses are on the table can you get them") is None
+
+
+def test_a_greeting_run_into_the_clause_is_taken_off_it(home: KB) -> None:
+    # "hiya whats on the table" asks (it was read as "hiya what" being on the table)
+    assert Statements(lexicon_of(home), BOB).read("hiya whats on the table") is None
+    told = Statements(lexicon_of(home), BOB).read("hiya the keys are in the drawer")
+    assert told is not None and told.greeted
+    assert [(f.subject, f.predicate, f.object) for f in told.facts] == [("keys_1", "isIn", "drawer_1")]

@@ -135,3 +135,18 @@ def test_nothing_known_of_what_is_near_what_leaves_the_question_open() -> None:
     out = say(_lamps(), "pick up the lamp by the door")
     assert out.intent is None and out.clarify
     assert say(_lamps("lamp_2 isNextTo sofa_1"), "pick up the lamp by the door").clarify
+
+
+def test_a_word_none_of_the_candidates_has_does_not_pick_the_one_the_robot_sees() -> None:
+    # "the staff room" is neither the waiting room the robot sees nor the x-ray room it does not:
+    # no guess (with every candidate seen, it asks which: "the heavy mug")
+    kb = scene_kb(
+        None,
+        "room_w rdf:type ZoneOfInterest", 'room_w rdfs:label "waiting room"', "myself sees room_w",
+        "room_x rdf:type ZoneOfInterest", 'room_x rdfs:label "x-ray room"',
+    )  # fmt: skip
+    assert resolve_head(lexicon_of(kb), ("the", "staff", "room"), frozenset({"zone"})) == []
+    out = say(kb, "go to the staff room")
+    assert out.intent is None and not out.understood
+    assert say(kb, "go to the x ray room").roles == {"goal": "room_x"}
+    kb.close()

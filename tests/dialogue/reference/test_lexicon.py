@@ -97,3 +97,37 @@ def test_a_number_in_a_name_is_said_in_digits_or_in_words() -> None:
     assert {n.entity for n in lex.names_at(tokens("court nine"), 0)} == {"court_9"}
     assert "court_9" not in {n.entity for n in lex.names_at(tokens("court ten"), 0)}
     kb.close()
+
+
+def test_a_possessive_label_is_said_without_its_apostrophe_and_a_title_in_full_or_short() -> None:
+    kb = KB()
+    kb.update([
+        "room_h rdf:type ZoneOfInterest", "room_h rdfs:label \"hygienist's room\"",
+        "room_w rdf:type ZoneOfInterest", 'room_w rdfs:label "waiting room"', "myself sees room_w",
+        "p_k rdf:type Human", 'p_k rdfs:label "Mr Kowalski"', "p_d rdf:type Human", 'p_d rdfs:label "Doctor Ali"',
+    ])  # fmt: skip
+    lex = Lexicon(build_snapshot(kb))
+    for said in ("hygienists room", "hygienist room", "hygienist's room"):
+        assert {n.entity for n in lex.names_at(tokens(said), 0) if len(n.words) == 2} == {"room_h"}, said
+    assert lex.knows("hygienists")
+    assert {n.entity for n in lex.names_at(tokens("mister kowalski"), 0)} == {"p_k"}
+    assert {n.entity for n in lex.names_at(tokens("dr ali"), 0)} == {"p_d"}
+    kb.close()
+
+
+@pytest.mark.parametrize(
+    ("label", "said"),
+    [
+        ("payment terminal", "card machine"),
+        ("mobile phone", "cell"),
+        ("photocopier", "copy machine"),
+        ("hand sanitiser", "hand gel"),
+        ("lawnmower", "mower"),
+    ],
+)
+def test_everyday_names_of_labelled_things(label: str, said: str) -> None:
+    kb = KB()
+    kb.update(["t1 rdf:type Artifact", f't1 rdfs:label "{label}"', "myself sees t1"])
+    lex = Lexicon(build_snapshot(kb))
+    assert {n.entity for n in lex.names_at(tokens(said), 0)} == {"t1"}
+    kb.close()

@@ -158,3 +158,9 @@ def test_a_clause_run_into_a_phrase_never_names_its_last_noun(hall: KB) -> None:
 def test_a_clause_may_say_whose_the_thing_is(said: str, thing: tuple[str, ...], meant: tuple[str, ...]) -> None:
     more = description(said)
     assert more is not None and described(thing, more) == meant
+
+
+def test_a_remark_with_someone_as_its_subject_is_a_clause_of_its_own(office: KB) -> None:
+    assert clauses("can you pick up the mug someone left it here") == ["can you pick up the mug", "someone left it here"]
+    out = Interpreter(lexicon_of(office), "person_bob").interpret("can you pick up the mug someone left it here")
+    assert out.clarify and out.intent is None and "yellow" in out.reply

@@ -2,6 +2,8 @@ import pytest
 
 from dialogue import intents as I
 from dialogue.rules.commands import parse
+from kb import KB
+from tests.dialogue.rules.test_interpret import say
 
 
 @pytest.mark.parametrize(
@@ -326,3 +328,44 @@ def test_out_of_the_way_is_no_place() -> None:
     assert parse("move out of the way").intent is None
     assert parse("get out of my way").intent is None
     assert parse("go out of the way to the shed").slots == {"goal": ("the", "shed")}
+
+
+@pytest.mark.parametrize(
+    ("text", "slots"),
+    [
+        # the place before "back" says which thing, the one after it where it goes
+        (
+            "put the goggles on the front bench back on the shelf",
+            {"object": ("the", "goggles", "on", "the", "front", "bench"), "recipient": ("the", "shelf")},
+        ),
+        ("put the cup back on the shelf", {"object": ("the", "cup"), "recipient": ("the", "shelf")}),
+        # the way between the person and where they go is an adjunct
+        ("take aisha down the corridor to the staff room", {"object": ("aisha",), "recipient": ("the", "staff", "room")}),
+        # a dative before the thing, which has a possessive of its own
+        ("give to Fenna her keys", {"recipient": ("fenna",), "object": ("her", "keys")}),
+    ],
+)
+def test_which_thing_where_it_goes_and_the_way(text: str, slots: dict[str, tuple[str, ...]]) -> None:
+    assert parse(text).slots == slots
+
+
+def test_the_way_is_said_apart_from_the_roles() -> None:
+    assert parse("take aisha down the corridor to the staff room").adjuncts == (("down", "the", "corridor"),)
+    assert parse("bring the box down to the cellar").slots["recipient"] == ("the", "cellar")
+
+
+def test_a_state_to_bring_a_thing_into_is_no_intent_of_the_robots() -> None:
+    assert parse("get the room ready").act == "unknown"
+
+
+def test_a_question_after_a_greeting_greets_too_and_after_hey_only_asks() -> None:
+    p = parse("hello robot whats your name", "robot")
+    assert (p.act, p.question, p.greeted) == ("question", "name", True)
+    assert not parse("hey robot whos at the gate", "robot").greeted
+
+
+@pytest.mark.parametrize("text", ["take the stapler to", "give the stapler to", "go to"])
+def test_a_role_cut_short_is_asked_for_never_dropped(office: KB, text: str) -> None:
+    # ("take the stapler to" was a grab: the cut-short "to" dropped)
+    out = say(office, text)
+    assert out.intent is None and out.clarify

@@ -89,3 +89,10 @@ def test_a_part_that_only_says_where_not_to_be_is_an_aside() -> None:
     parts = conjuncts("could you get out of the way and go to the shelf")
     assert [(p.text, p.aside) for p in parts] == [("could you get out of the way", True), ("go to the shelf", False)]
     assert not any(p.aside for p in conjuncts("get the stapler and go to the shelf"))
+
+
+def test_a_part_asking_for_a_state_is_kept_in_the_reply(office: KB) -> None:
+    parts = conjuncts("go to the bathroom and get it ready")
+    assert [p.no_intent for p in parts] == [False, True]
+    out = say(office, "go too the bathroom and get it ready")
+    assert (out.intent, out.roles) == (I.MOVE_TO, {"goal": "bathroom"}) and "can't get it ready" in out.reply

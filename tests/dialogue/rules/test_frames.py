@@ -282,3 +282,14 @@ def test_say_hello_alone_greets_someone_the_interpreter_finds() -> None:
     assert (p.intent, p.slots, p.implicit) == (I.GREET, {"recipient": ("me",)}, frozenset({"recipient"}))
     assert parse("say hello to Ann").slots == {"recipient": ("ann",)}
     assert parse("say hello world").intent == I.SAY  # words to say, not a greeting of no one
+
+
+def test_what_the_waiting_is_for_is_an_adjunct() -> None:
+    p = parse("wait there for the delivery van")
+    assert (p.intent, p.slots, p.adjuncts) == (I.MOVE_TO, {"goal": ("there",)}, (("for", "the", "delivery", "van"),))
+    assert parse("wait for me").intent is None
+
+
+def test_an_activity_is_kicked_off_and_whom_it_is_for_is_not_its_name() -> None:
+    p = parse("kick off story time for the little ones")
+    assert (p.intent, p.text) == (I.START_ACTIVITY, "story_time")

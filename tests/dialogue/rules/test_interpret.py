@@ -327,9 +327,10 @@ def test_a_request_after_context_clauses_uses_them_for_its_pronouns(
     assert (out.intent, out.roles) == (intent, roles), out.reply
 
 
-def test_a_question_after_a_greeting_is_still_answered_not_greeted(office: KB) -> None:
+def test_a_question_after_a_greeting_is_still_answered(office: KB) -> None:
+    # (and the greeting returned: the person is greeted, then the question answered)
     out = say(office, "hello Ari, what is on the desk?")
-    assert out.intent is None and "stapler" in out.reply
+    assert out.intent == I.GREET and out.reply.startswith("Hello Bob!") and "stapler" in out.reply
 
 
 @pytest.mark.parametrize(
@@ -698,3 +699,10 @@ def test_someone_shown_in_or_out_is_guided() -> None:
 def test_whom_a_thing_is_for_beside_me_is_no_recipient(text: str) -> None:
     out = say(_bistro(), text, speaker=NADIA)
     assert (out.intent, out.roles) == (I.BRING_OBJECT, {"object": "jug_1", "recipient": NADIA}), out.reply
+
+
+def test_a_greeting_with_a_question_greets_and_answers(office: KB) -> None:
+    out = say(office, "hello robot whats your name")
+    assert (out.intent, out.roles) == (I.GREET, {"recipient": BOB}) and "My name is" in out.reply
+    out = say(office, "hey robot who is in the office")
+    assert out.intent is None and out.understood

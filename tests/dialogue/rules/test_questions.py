@@ -49,3 +49,16 @@ def test_what_is_near_a_thing_asks_about_its_relations(
 def test_is_someone_about_asks_whether_they_are_there() -> None:
     asked = question(["is", "maria", "about"])
     assert asked is not None and (asked.question, asked.slots) == ("can_see", {"thing": ("maria",)})
+
+
+def test_a_name_with_front_is_a_place_and_at_home_is_here(office: KB) -> None:
+    assert question(expanded("whats on the front bench")).question == "what_on"
+    assert question(expanded("what is in front of you")).question == "what_see"
+    assert question(expanded("who is home")).question == "who_see"
+    assert "Carol" in say(office, "who is at home right now?").reply
+
+
+def test_where_has_a_thing_gone_said_with_is(office: KB) -> None:
+    p = question(expanded("wheres my mug gone"))
+    assert p is not None and (p.question, p.slots["thing"]) == ("where", ("my", "mug"))
+    assert "desk" in say(office, "er wheres the green mug gone").reply

@@ -78,3 +78,28 @@ def test_him_before_a_noun_phrase_is_a_recipient_even_when_nobody_was_named(cloa
     # "give him the stapler" with no one spoken of: ask who, never give it to the speaker.
     out = say(cloakroom, "give him the stapler")
     assert out.clarify and out.intent is None and '"him"' in out.reply
+
+
+def test_a_word_of_address_is_nobody_the_rules_can_name() -> None:
+    # "take my calculator to sir": the teacher, whom the KB knows by name; never a grab without him
+    kb = scene_kb(
+        None, "p_o rdf:type Human", 'p_o rdfs:label "Mr Okafor"', "c_1 rdf:type Artifact",
+        'c_1 rdfs:label "calculator"', "myself sees c_1", f"{SPEAKER} rdf:type Human",
+    )  # fmt: skip
+    out = Interpreter(lexicon_of(kb), SPEAKER).interpret("can you take my calculator to sir he wants to check it")
+    assert out.intent is None and not out.understood
+    kb.close()
+
+
+def test_a_title_with_a_preposition_names_its_thing_whatever_is_said_around_it() -> None:
+    kb = scene_kb(
+        None, "b_1 rdf:type dbr:Book", 'b_1 rdfs:label "Murder on the Orient Express"', "myself sees b_1",
+        "s_1 rdf:type Artifact", 's_1 rdfs:label "reservations shelf"', "b_1 isOn s_1", "b_2 rdf:type dbr:Book",
+        'b_2 rdfs:label "The Gruffalo"', "myself sees b_2", f"{SPEAKER} rdf:type Human",
+    )  # fmt: skip
+    said = Interpreter(lexicon_of(kb), SPEAKER)
+    out = said.interpret("could you get me my reserved book murder on the orient express its on the reservations shelf")
+    assert (out.intent, out.roles) == (I.BRING_OBJECT, {"object": "b_1", "recipient": SPEAKER})
+    # a title inside a modifier says where, not what
+    assert said.interpret("get me the red box next to murder on the orient express").intent is None
+    kb.close()

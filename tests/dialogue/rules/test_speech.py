@@ -153,3 +153,20 @@ def test_what_politeness_leaves_of_a_request(text: str, words: str) -> None:
 def test_what_we_ask_for_is_brought_to_the_speaker(text: str, intent: str, slots: dict[str, tuple[str, ...]]) -> None:
     p = parse(text)
     assert (p.intent, p.slots) == (intent, slots)
+
+
+@pytest.mark.parametrize(
+    ("text", "words"),
+    [
+        ("whats on the desk atm", "what is on the desk"),  # chat: "at the moment", longest first
+        ("who is at home right now", "who is at home"),  # "right now" before its "now"
+        ("where is the atm", "where is the atm"),  # after a determiner an abbreviation is a noun
+        ("robot you must go to the balcony", "go to the balcony"),  # a modal said to the robot
+        ("you have to go to the balcony", "go to the balcony"),
+        ("take my calculator to sir", "take my calculator to sir"),  # whom, not a tag
+        ("take the calculator over there sir", "take the calculator over there"),
+        ("idk just go to the shed tbh", "i don't know just go to the shed"),
+    ],
+)
+def test_chat_modals_and_what_politeness_at_the_end_leaves(text: str, words: str) -> None:
+    assert " ".join(strip_politeness(normalise(text), "robot")) == words

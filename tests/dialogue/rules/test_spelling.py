@@ -173,3 +173,28 @@ def test_a_slip_in_a_plural_is_corrected_to_the_plural() -> None:
     assert spelled.text == "pls bring me a pack of napkins" and spelled.guessed
     out = say(_diner(), "pls bring me a pack of napkns", speaker="person_nadia")
     assert (out.intent, out.roles) == (I.BRING_OBJECT, {"object": "napkins_1", "recipient": "person_nadia"})
+
+
+@pytest.mark.parametrize(
+    ("text", "fixed"),
+    [
+        ("goto the shed", "go to the shed"),  # two grammar words typed as one
+        ("put it infront of the shed", "put it in front of the shed"),
+        ("someones left it here", "someone left it here"),  # someone's: never "some ones"
+        ("show him through two the shed", "show him through to the shed"),  # a preposition after a particle
+        ("hand me the pear of gloves", "hand me the pair of gloves"),  # homophones of the grammar's words
+        ("go to the shed write now", "go to the shed right now"),
+        ("wait their for the van", "wait there for the van"),
+        ("bring their gloves", "bring their gloves"),  # a possessive before its noun stays
+    ],
+)
+def test_run_together_words_and_homophones_of_grammar_words(text: str, fixed: str) -> None:
+    kb = _things("shed", "gloves")
+    assert corrected(text, lexicon_of(kb)).text == fixed
+    kb.close()
+
+
+def test_a_homophone_the_kb_names_is_never_read_otherwise() -> None:
+    kb = _things("pear", "basket")
+    assert corrected("bring me the pear of the basket", lexicon_of(kb)).text == "bring me the pear of the basket"
+    kb.close()
