@@ -37,6 +37,7 @@ from dialogue.rules.referents import RELATIONAL, Referents
 from dialogue.rules.replies import acknowledgement, vocative
 from dialogue.rules.speech import expanded
 from dialogue.rules.spelling import corrected
+from dialogue.rules.terse import terse
 from dialogue.rules.utterance import cleaned
 
 #: Pronouns of a person a question may be about ("do you know where she is").
@@ -77,6 +78,9 @@ class Interpreter:
         return replace(unsure[0], more=tuple(unsure[1:]), guessed=spelled.guessed or outcome.guesses)
 
     def _read(self, text: str) -> Outcome:
+        said_terse = self._terse(text)
+        if said_terse is not None:
+            return said_terse
         parts = conjuncts(text)
         if parts:
             combined = self._compound(parts)
@@ -120,7 +124,19 @@ class Interpreter:
         acks += [f"I can't {c} myself." for c in cannot]
         return replace(done[0], reply=" ".join(acks), more=tuple(done[1:]))
 
-    def _single(self, text: str) -> Outcome:
+    def _terse(self, text: str) -> Outcome | None:
+        """ "Orchid put on counter", "Go workstand", "dining room, now please": the request said in
+        the grammar's order, when that is one (what was said is context: "Edna cardigan, put on
+        her chair" is Edna's chair)."""
+        said = terse(text, self.lexicon, self.robot_name)
+        if said is None:
+            return None
+        outcome = self.within((*self.history, Utterance(self.speaker, text)))._single(said, terse_read=False)
+        return outcome if outcome.intent is not None else None
+
+    def _single(self, text: str, terse_read: bool = True) -> Outcome:
+        if terse_read and (outcome := self._terse(text)) is not None:
+            return outcome
         p = parse(text, self.robot_name)
         if p.act != "unknown" and accepts(expanded(text)):  # "go on then" to "Shall I fetch it?"
             accepted = follow_up(self, p, text)

@@ -240,6 +240,10 @@ GOES = phrases(
     "should be put|needs to be put|has to be put|wants to go"
 )
 GOES_PARTICLES = word_set("back away over up down")
+#: Verbs of motion a terse request says a place after with no preposition ("go workstand").
+TERSE_MOTION = word_set("go come walk move head drive")
+#: Prepositions of a request with no verb that puts a thing somewhere ("sunflowers into tall vase").
+TERSE_PLACING = word_set("into onto on in")
 EVERYONE = frozenset(phrases("everyone|everybody|all|them all|people"))
 #: Words of "stop whatever you are doing" that do not name the activity.
 STOP_FILLER = word_set(
