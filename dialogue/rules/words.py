@@ -53,7 +53,8 @@ CHAT: dict[str, Words] = {
     "cya": ("see", "you"), "msg": ("message",), "tomoz": ("tomorrow",), "2nite": ("tonight",),
     "tonite": ("tonight",), "yw": ("you", "are", "welcome"), "np": ("no", "problem"), "plzz": ("please",),
     "pleez": ("please",), "fone": ("phone",), "tnx": ("thanks",), "rite": ("right",), "nite": ("night",),
-    "cus": ("because",),
+    "cus": ("because",), "ovr": ("over",), "cn": ("can",), "wat's": ("what", "is"), "wot's": ("what", "is"),
+    "wats": ("what", "is"), "gd": ("good",), "frm": ("from",), "wiv": ("with",),
 }  # fmt: skip
 #: Every written form read as other words: contractions, with or without the apostrophe, and chat.
 CONTRACTIONS: dict[str, Words] = {**_SPOKEN, **CHAT}

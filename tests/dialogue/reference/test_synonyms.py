@@ -32,3 +32,11 @@ def test_general_names_go_one_way_and_kinds_both() -> None:
 def test_a_bad_general_name_line_is_refused(line: str) -> None:
     with pytest.raises(SynonymError, match="line 1"):
         parse(f"{line}\n", phrase)
+
+
+def test_everyday_names_of_garden_and_care_things() -> None:
+    syn = synonyms(phrase)
+    # "the clippers" may be the secateurs, and "pruners" are secateurs; a zimmer is a walking frame
+    assert phrase("clippers") in syn.broader_than(phrase("secateurs"))
+    assert phrase("pruners") in syn.of(phrase("secateurs"))
+    assert phrase("walking frame") in syn.of(phrase("zimmer frame"))

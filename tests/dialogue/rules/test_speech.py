@@ -170,3 +170,12 @@ def test_what_we_ask_for_is_brought_to_the_speaker(text: str, intent: str, slots
 )
 def test_chat_modals_and_what_politeness_at_the_end_leaves(text: str, words: str) -> None:
     assert " ".join(strip_politeness(normalise(text), "robot")) == words
+
+
+@pytest.mark.parametrize(
+    ("text", "words"),
+    [("go ovr to the counter", "go over to the counter"), ("cn u bring it", "can you bring it"),
+     ("wat's on the table", "what is on the table")],
+)
+def test_more_chat_words(text: str, words: str) -> None:
+    assert expanded(text) == words.split()
