@@ -162,6 +162,8 @@ def resolve(
     matches = [e for e in near if named(e)]
     if not _settled(matches, owner, own_name):
         matches = [e for e in everything() if named(e)]
+    # "the kitchen table" is the one named so, before a table that is in the kitchen.
+    matches = [e for e in matches if all(i in cover[e.id] for i in content)] or matches
     if not matches and content:
         matches = _by_label_words(lexicon, [normed[i] for i in content], kinds)
     if not matches and content and {"one", "ones"} & set(words):

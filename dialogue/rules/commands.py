@@ -7,6 +7,7 @@ Only words are looked at: which entity a phrase names is decided later against t
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import replace
 
 from dialogue.reference.english import DETERMINERS, FUNCTION_WORDS, MANY, ME, MODIFIER_START, PERSONAL, Words
@@ -23,11 +24,14 @@ from dialogue.rules.words import (
     DURATIONS,
     GOAL_PARTICLES,
     GREETINGS,
+    HALTS,
     HERE,
+    IF_MODALS,
     JOINED_PREPOSITIONS,
     MANNER,
     NP_START,
     PATHS,
+    POLITE_IF,
     RESULTS,
     SOCIAL,
     THEIR_SUBJECTS,
@@ -50,8 +54,12 @@ def parse(text: str, robot_name: str = "") -> Parse:
     words[0] = verb_lemma(words[0])  # "(would you mind) picking up the cup"
     if words[0] == "no" and len(words) > 1 and words[1] not in {"need", "more", "thanks", "thank"}:
         words = strip_politeness(words[1:], robot_name)
-    if words and (words[0] in {"don't", "never", "no"} or starts(words, ["do", "not"])):
+    if len(words) > 1 and words[0] in HALTS and _negation(words[1:]):  # "stop, don't go"
+        words = words[1:]
+    if words and _negation(words):
         return Parse("negated", words=tuple(words))
+    if _conditional(words):  # "if Declan comes by, give him the menu": not now
+        return Parse("conditional", words=tuple(words))
     if not words:
         return Parse("unknown", words=())
     if words[0] in {"thanks", "thank"} or words == ["cheers"]:
@@ -342,6 +350,18 @@ def _adjunct_end(rest: Words, i: int, own: set[str]) -> int:
         # "through the main door" has a phrase; "walk through to the lounge" is a particle.
         return end if end > i + 1 else i
     return i
+
+
+def _negation(words: Sequence[str]) -> bool:
+    return words[0] in {"don't", "never", "no"} or starts(words, ["do", "not"])
+
+
+def _conditional(words: Sequence[str]) -> bool:
+    """Whether the request is said under a condition of something to happen first ("if I nod off,
+    could you..."), not a polite "if" ("if you could...", "if I could have the bill")."""
+    if words[:1] != ["if"] or len(words) < 4 or any(starts(words, p) for p in POLITE_IF):
+        return False
+    return words[2] not in IF_MODALS
 
 
 def _said_how(rest: Words, i: int) -> int:

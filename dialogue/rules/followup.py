@@ -17,6 +17,7 @@ from dialogue import intents as I
 from dialogue.history import Utterance
 from dialogue.prompts import FREE_FORM_OBJECT
 from dialogue.reference.english import MODIFIER_START, Words, phrases, tokens, word_set
+from dialogue.reference.grounding import Kind
 from dialogue.reference.resolution import ROLE_KINDS, content_words, resolve
 from dialogue.rules.clauses import clauses, described, description
 from dialogue.rules.commands import parse
@@ -199,10 +200,12 @@ def correction(reader: Interpreter, text: str) -> Outcome | None:
     """ "sorry, I meant screen two" after "take the booster seat to screen 1": the last request again,
     with the phrase of the role that names the same kind of thing (a place for a place, a thing for
     a thing) replaced."""
-    parts = [strip_politeness([w for w in expanded(part) if w not in _SOFTENING]) for part in text.split(",")]
+    parts = [strip_politeness([w for w in plain(part) if w not in _SOFTENING]) for part in text.split(",")]
     words = [w for part in parts for w in part]
     lead = next((c for c in _CORRECTING if tuple(words[: len(c)]) == c), None)
     fragment = tuple(words[len(lead) :]) if lead is not None else _not_that(tuple(words))
+    if lead is None and set(words) & _OTHER and set(content_words(words)) <= _OTHER | _ONE:
+        fragment = tuple(words)  # "no, the other one"
     if len(parts) == 2 and parts[0][:1] == ["not"] and parts[1]:  # "not the shed, the porch"
         fragment = tuple(parts[1])
     for loc in _PLACES:  # "I meant on the shelf"
@@ -228,7 +231,8 @@ def correction(reader: Interpreter, text: str) -> Outcome | None:
         was = before.roles.get(role)
         if not content_words(said) or was is None:
             continue
-        outcome = earlier.act(pending, {role: _instead(fragment, said)})
+        instead = _the_other(earlier, fragment, said, was, ROLE_KINDS[pending.intent][role])
+        outcome = earlier.act(pending, {role: instead or _instead(fragment, said)})
         now = outcome.roles.get(role)
         if outcome.intent is None or now is None or now == was:
             continue
@@ -240,6 +244,17 @@ def correction(reader: Interpreter, text: str) -> Outcome | None:
     if not fits or (len(fits) > 1 and fits[0][0] == fits[1][0]):
         return None
     return _sure(fits[0][1])
+
+
+def _the_other(earlier: Interpreter, fragment: Words, said: Words, was: str,
+               kinds: frozenset[Kind]) -> Words | None:  # fmt: skip
+    """ "no, the other one" after "bring me the black umbrella": the one other thing the head of the
+    phrase names (the red umbrella), as its id; None when that is not what was said or several are."""
+    if not set(fragment) & _OTHER or not set(content_words(fragment)) <= _OTHER | _ONE:
+        return None
+    named = resolve(earlier.lexicon, _instead(("the", "one"), said), kinds).matches
+    others = [e for e in named if e.id != was]
+    return tuple(tokens(others[0].id)) if len(others) == 1 and len(named) == 2 else None
 
 
 def _not_that(words: Words) -> Words:

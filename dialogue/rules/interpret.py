@@ -78,6 +78,10 @@ class Interpreter:
         return replace(unsure[0], more=tuple(unsure[1:]), guessed=spelled.guessed or outcome.guesses)
 
     def _read(self, text: str) -> Outcome:
+        if text.lower().startswith("if "):  # the condition covers every part ("if Ana comes, ...")
+            whole = parse(text, self.robot_name)
+            if whole.act == "conditional":
+                return self.act(whole)
         said_terse = self._terse(text)
         if said_terse is not None:
             return said_terse
@@ -188,6 +192,8 @@ class Interpreter:
             return self._intent(I.GREET, {"recipient": self.speaker}, hello)
         if p.act == "negated":
             return Outcome("OK, I won't do that.")
+        if p.act == "conditional":  # the rules act now or never: asked again, then
+            return Outcome("I can't wait for that myself: tell me again when it happens.")
         if p.act == "thanks":
             return Outcome("You're welcome!")
         if p.act == "question" and p.greeted:  # "hello robot, what's your name": both

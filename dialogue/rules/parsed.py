@@ -7,7 +7,7 @@ from typing import Literal
 
 from dialogue.reference.english import Words
 
-Act = Literal["command", "question", "greeting", "negated", "thanks", "unknown"]
+Act = Literal["command", "question", "greeting", "negated", "conditional", "thanks", "unknown"]
 
 __all__ = ["Act", "Parse", "Words"]
 

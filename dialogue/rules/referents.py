@@ -262,10 +262,10 @@ class Referents:
             # someone the KB knows only by how the speaker is related to them
             return Ref(problem=Outcome("Sorry, I did not understand that.", understood=False))
         reply = self.unknown(content, kinds, words)
-        a_name = "person" in kinds and not set(words) & DETERMINERS  # "go to Zorblina": whoever she is
-        if not a_name and self.strange(content):
+        if self.strange(content):
             # "I don't see any bk": only true of a kind the rules know; of a word they do not, it is
-            # a doubt, for a model to read ("bk" is "back" in chat)
+            # a doubt, for a model to read ("bk" is "back" in chat); so is a name no one has here, a
+            # recogniser's spelling of one a model may see in the situation ("chevonne": Siobhan)
             return Ref(problem=Outcome(reply, understood=False))
         return Ref(problem=Outcome(reply))
 

@@ -177,6 +177,16 @@ ADJUNCTS = (*ADJUNCTS, *DURATIONS, *AWAY)
 WHILE = word_set("while whilst")
 TIME_CONJUNCTIONS = word_set("until till once before after as when")
 THEIR_SUBJECTS = word_set("i he she we they it someone somebody anyone anybody everyone everybody people")
+#: The starts of a condition that is only politeness, never a condition on the request ("if you
+#: could...", "if possible", "if it's not too much trouble"); after any other subject a modal makes
+#: it a request of its own ("if I could have the bill").
+POLITE_IF = phrases(
+    "if you|if possible|if so|if not|if it is not|if it's not|if its not|if it isn't|if it is no|"
+    "if it's no|if that is ok|if that's ok|if thats ok|if that is alright|if that's alright|if ok"
+)
+IF_MODALS = word_set("could can may might would")
+#: Words that stop what the robot is about before a negated request ("stop, don't go").
+HALTS = word_set("stop wait hold")
 #: Prepositions of a path: "go to the bathroom through the main door" (what follows is the adjunct).
 PATHS = word_set("through via past across along")
 #: Adverbs of manner, never part of a referent ("put the vase on the shelf carefully").

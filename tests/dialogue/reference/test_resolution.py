@@ -242,3 +242,15 @@ def test_among_hundreds_the_kbs_own_name_still_beats_a_seen_synonym() -> None:
     assert len(ids(kb, "the fridge")) == 100 and "cold_1" not in ids(kb, "the fridge")
     assert ids(kb, "the refrigerator") == ["cold_1"]
     kb.close()
+
+
+def test_a_thing_named_by_all_the_words_comes_before_one_they_describe() -> None:
+    kb = _shop(
+        "kitchen rdf:type ZoneOfInterest", 'kitchen rdfs:label "kitchen"',
+        "counter_1 rdf:type dbr:Table_(furniture)", 'counter_1 rdfs:label "counter"', "counter_1 isIn kitchen",
+        "myself sees counter_1",
+        "table_1 rdf:type dbr:Table_(furniture)", 'table_1 rdfs:label "kitchen table"', "myself sees table_1",
+    )  # fmt: skip
+    assert ids(kb, "the kitchen table") == ["table_1"]
+    assert sorted(ids(kb, "the table")) == ["counter_1", "table_1"]
+    kb.close()

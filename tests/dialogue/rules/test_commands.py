@@ -369,3 +369,26 @@ def test_a_role_cut_short_is_asked_for_never_dropped(office: KB, text: str) -> N
     # ("take the stapler to" was a grab: the cut-short "to" dropped)
     out = say(office, text)
     assert out.intent is None and out.clarify
+
+
+@pytest.mark.parametrize(
+    "text",
+    ["if Declan comes by, give him the menu", "if i nod off could you put my book on the table",
+     "if the kettle boils pour me a tea"],
+)  # fmt: skip
+def test_a_request_for_when_something_happens_is_no_request_now(text: str) -> None:
+    assert parse(text).act == "conditional"
+
+
+@pytest.mark.parametrize(
+    "text",
+    ["if you could bring me the menu", "if possible bring me the menu", "if it's not too much trouble, bring me the menu",
+     "if i could have the menu please"],
+)  # fmt: skip
+def test_a_polite_if_is_no_condition(text: str) -> None:
+    assert parse(text).act != "conditional"
+
+
+@pytest.mark.parametrize("text", ["stop, don't go", "no stop dont go", "wait don't go"])
+def test_stop_before_a_negated_request_is_the_negation(text: str) -> None:
+    assert parse(text).act == "negated"

@@ -153,3 +153,13 @@ def test_where_a_thing_goes_is_no_bringing_after_no_bringing(workshop: KB, histo
     # "the rake goes to the porch" alone says where it belongs, not what to do: left to a model
     out = say(workshop, "the rake goes to the porch", speaker=ANA, history=history)
     assert out.intent is None and not out.understood
+
+
+@pytest.mark.parametrize("answer", ["hmm no, the other one", "no sorry the other one", "the other one"])
+def test_the_other_one_after_a_request_is_the_one_other_thing_its_head_names(workshop: KB, answer: str) -> None:
+    history = [("user", "bring me the red cap"), ("robot", "OK, I will bring the cap to you.")]
+    out = say(workshop, answer, speaker=ANA, history=history)
+    assert (out.intent, out.roles) == (I.BRING_OBJECT, {"object": "cap_2", "recipient": ANA}), out.reply
+    # three saws: which other one is not known
+    history = [("user", "bring me the hand saw"), ("robot", "OK, I will bring the hand saw to you.")]
+    assert say(workshop, answer, speaker=ANA, history=history).intent is None

@@ -59,16 +59,17 @@ def test_greeting_uses_the_speaker(office: KB) -> None:
 
 
 @pytest.mark.parametrize(
-    ("text", "mentions"),
+    ("text", "mentions", "claimed"),
     [
-        ("unknown: fetch the violin", "violin"),
-        ("unknown: guide Zed to the office", "Zed"),
-        ("unknown: go to the attic", "attic"),
+        ("unknown: fetch the violin", "violin", True),
+        # a name no one here has may be a recogniser's spelling of one: said, and left to a model
+        ("unknown: guide Zed to the office", "Zed", False),
+        ("unknown: go to the attic", "attic", True),
     ],
 )
-def test_unknown_referents_give_no_intent_and_say_so(office: KB, text: str, mentions: str) -> None:
+def test_unknown_referents_give_no_intent_and_say_so(office: KB, text: str, mentions: str, claimed: bool) -> None:
     out = say(office, text.split(": ", 1)[1])
-    assert out.intent is None and out.understood
+    assert out.intent is None and out.understood == claimed
     assert mentions.lower() in out.reply.lower()
 
 
@@ -123,6 +124,12 @@ def test_negation_and_chitchat(office: KB) -> None:
     assert say(office, "do not give the pear to Carol").intent is None
     assert say(office, "thanks a lot").reply == "You're welcome!"
     assert not say(office, "what time is it?").understood
+
+
+def test_a_request_under_a_condition_is_not_done_now_and_says_so(office: KB) -> None:
+    out = say(office, "if Carol comes by, give her the pear")
+    assert out.intent is None and out.understood and "tell me again" in out.reply
+    assert say(office, "if you could, give Carol the pear").intent == I.BRING_OBJECT
 
 
 SPEAKERS = {"kitchen": "person_alice", "living_room": "user1", "two_cups": "person_nina", "office": BOB}
