@@ -14,9 +14,9 @@ from dataclasses import dataclass
 from functools import lru_cache
 from typing import Any, NamedTuple
 
-from lemminflect import getLemma
+from lemminflect import getAllLemmas, getLemma
 
-from dialogue.reference.english import DETERMINERS, TITLES, other_numbers, tokens, word_set
+from dialogue.reference.english import COMPOUND_HEADS, DETERMINERS, TITLES, other_numbers, tokens, word_set
 from dialogue.reference.grounding import Entity, Snapshot
 from dialogue.reference.layered import GONE, Gone, Layered, layered, rebucket
 from dialogue.reference.synonyms import synonyms
@@ -230,6 +230,9 @@ def _names(entity: Entity) -> list[Name]:
             add(words[-1], "head")
         if len(words) == 2 and all(w.isalpha() for w in words):
             add("".join(words), "joined")  # "the eyeglass" for the "eye glass" (the converse of names_at)
+        tail = _compound_head(words[-1]) if words else None
+        if tail is not None:  # "the bench" for the "workbench", yielding to a bench of the KB's own
+            add(" ".join((*words[:-1], tail)) if len(words) > 1 else tail, "kind")
     # Other ways of saying a name or its ending ("cell phone" for the "mobile phone", "the fridge"
     # for the "kitchen refrigerator"), and the general names of its kind ("the bag" for the
     # "handbag", "a drink" for the "lemonade"): the lexicon file's, which yield to the KB's own
@@ -246,6 +249,15 @@ def _names(entity: Entity) -> list[Name]:
             for general in (g for o in alike for g in syn.broader_than(o)):
                 add(" ".join(general), "kind")
     return out
+
+
+def _compound_head(word: str) -> str | None:
+    """The general noun a closed compound ends with ("workbench": "bench"), if it is one of
+    `COMPOUND_HEADS` after a word of its own; None otherwise."""
+    for k in range(3, len(word) - 2):
+        if word[k:] in COMPOUND_HEADS and getAllLemmas(word[:k]):
+            return word[k:]
+    return None
 
 
 #: Each title to the other words said for it ("mister" for "mr").

@@ -132,6 +132,9 @@ def resolve(
     snapshot = lexicon.snapshot
     content = [i for i in range(len(words)) if not _glue(words, i)]
     head = _head(words, content)
+    # "the ones on the bench": no noun before the preposition, and never the bench itself
+    core_end = next((i for i, w in enumerate(words) if w in _LOCATIVE), len(words))  # ("one of the baskets")
+    only_one = head is None and {"one", "ones"} & set(words[:core_end])
 
     def named(entity: Entity | None) -> bool:
         if entity is None or entity.kind not in kinds:
@@ -177,6 +180,8 @@ def resolve(
     if contents:  # what a container holds is food or drink ("a bottle of umbrella" is nothing)
         held = resolve(lexicon, contents, kinds, owner=owner).matches
         matches = [e for e in held if FOOD_OR_DRINK in e.classes]
+    if only_one:  # whatever found them, the place a "one" is said to be at is not that one
+        matches = [e for e in matches if not cover.get(e.id) or min(cover[e.id]) <= core_end]
     # Ownership only narrows: "my cup" still means the cup when nobody's cups are recorded.
     owned = [e for e in matches if owner is not None and e.owner == owner]
     matches = owned or matches

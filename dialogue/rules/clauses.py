@@ -95,7 +95,11 @@ def _starts_clause(words: list[list[str]], i: int) -> bool:
     """Whether the i-th word (each word with its contraction expanded) starts a clause."""
     flat = [w for ws in words[i:] for w in ws]
     before = words[i - 1][-1]
-    if any(tuple(flat[: len(a)]) == a for a in _ASKS):
+    asked = next((a for a in _ASKS if tuple(flat[: len(a)]) == a), None)
+    if asked is not None:
+        after = flat[len(asked) : len(asked) + 1]
+        if asked[-1] == "you" and (not after or after[0] in _SUBJECTS - {"you"}):
+            return False  # a tag: "pick up my frame would you (it's fallen over)"
         return before not in {"you", "i", "that", "if", "and", "or"}
     told = i > 1 and words[i - 2][-1] in _TELLING
     if before in _TAKES_CLAUSE or before in _AUXILIARIES or told or len(flat) < 2:
@@ -137,6 +141,8 @@ def _agrees(flat: list[str], k: int) -> bool:
     if k >= len(flat):
         return False
     verb, after = flat[k], flat[k + 1] if k + 1 < len(flat) else ""
+    if after == "you" and verb in _AUXILIARIES:
+        return False  # "(pick up) my frame would you": a tag question's order, no subject before it
     if verb in {"is", "was", "has"}:
         return True
     lemmas = getAllLemmas(verb)

@@ -262,7 +262,10 @@ class Referents:
             # someone the KB knows only by how the speaker is related to them
             return Ref(problem=Outcome("Sorry, I did not understand that.", understood=False))
         reply = self.unknown(content, kinds, words)
-        if self.strange(content):
+        if {"one", "ones"} & set(words):
+            # "the ones on the bench": which ones the conversation means, not that no bench is here
+            return Ref(problem=Outcome("Sorry, I did not understand that.", understood=False))
+        if self.strange(content) or (kinds == PERSON and not set(words) & DETERMINERS):
             # "I don't see any bk": only true of a kind the rules know; of a word they do not, it is
             # a doubt, for a model to read ("bk" is "back" in chat); so is a name no one has here, a
             # recogniser's spelling of one a model may see in the situation ("chevonne": Siobhan)

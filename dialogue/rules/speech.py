@@ -108,6 +108,20 @@ def without_fillers(words: list[str]) -> list[str]:
     return [w for i, w in enumerate(words) if i not in drop]
 
 
+#: Words after which "me" before a noun is "my" (British and Irish speech: "pick up me zimmer frame"):
+#: a verb's particle, or "me" itself ("fetch me me cardigan": to me, my cardigan).
+_MY_AFTER = word_set("me up down out off away")
+
+
+def my_for_me(words: list[str]) -> list[str]:
+    """ "me" said for "my" before a noun, where "me" could be no object: after a particle or another "me"."""
+    out = list(words)
+    for i in range(1, len(out) - 1):
+        if out[i] == "me" and out[i - 1] in _MY_AFTER and out[i + 1] not in FUNCTION_WORDS | NP_START:
+            out[i] = "my"
+    return out
+
+
 def unrepeated(words: list[str]) -> list[str]:
     """ "put the put the knife", "the the jumper": an immediately repeated run of 1-3 words once."""
     out: list[str] = []

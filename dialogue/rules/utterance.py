@@ -12,7 +12,7 @@ from lemminflect import getAllLemmas, getInflection
 
 from dialogue.reference.english import MODIFIER_START, phrases
 from dialogue.rules.frames import known_verbs, verbs
-from dialogue.rules.speech import expanded, plain, starts, strip_politeness, unrepeated
+from dialogue.rules.speech import expanded, my_for_me, plain, starts, strip_politeness, unrepeated
 from dialogue.rules.words import (
     AUXILIARIES,
     FILLERS,
@@ -73,7 +73,7 @@ def cleaned(text: str) -> Cleaned:
     """The text with stutters and self-repairs resolved, when it has any (else unchanged, so that
     quoted words and casing survive): what a compound request is cut in."""
     words = [w for w in expanded(text) if w not in FILLERS]
-    before, fixed = repair(unrepeated(words))
+    before, fixed = repair(unrepeated(my_for_me(words)))
     if fixed == words:
         return Cleaned(text)
     return Cleaned(" ".join(fixed), " ".join(before) if before != fixed[: len(before)] else "")

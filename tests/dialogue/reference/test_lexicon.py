@@ -131,3 +131,14 @@ def test_everyday_names_of_labelled_things(label: str, said: str) -> None:
     lex = Lexicon(build_snapshot(kb))
     assert {n.entity for n in lex.names_at(tokens(said), 0)} == {"t1"}
     kb.close()
+
+
+def test_a_closed_compound_is_named_by_its_general_noun_yielding_to_the_kbs_own() -> None:
+    kb = KB()
+    kb.update(["myself rdf:type Robot",
+               "wb_1 rdf:type Artifact", 'wb_1 rdfs:label "workbench"', "myself sees wb_1",
+               "cb_1 rdf:type Artifact", 'cb_1 rdfs:label "cupboard"', "myself sees cb_1"])  # fmt: skip
+    lex = Lexicon(build_snapshot(kb))
+    assert [(n.entity, n.lexical) for n in lex.names_at(["bench"], 0)] == [("wb_1", True)]
+    assert lex.names_at(["board"], 0) == []  # a cupboard is no board
+    kb.close()

@@ -254,3 +254,12 @@ def test_a_thing_named_by_all_the_words_comes_before_one_they_describe() -> None
     assert ids(kb, "the kitchen table") == ["table_1"]
     assert sorted(ids(kb, "the table")) == ["counter_1", "table_1"]
     kb.close()
+
+
+def test_the_ones_on_a_place_are_never_the_place() -> None:
+    kb = _shop("bench_1 rdf:type Artifact", 'bench_1 rdfs:label "bench"', "myself sees bench_1",
+               "lev_1 rdf:type Artifact", 'lev_1 rdfs:label "tyre levers"', "lev_1 isOn bench_1",
+               "myself sees lev_1")  # fmt: skip
+    assert "bench_1" not in ids(kb, "the ones on the bench")
+    assert ids(kb, "the bench") == ["bench_1"]
+    kb.close()

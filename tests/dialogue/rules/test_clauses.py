@@ -164,3 +164,9 @@ def test_a_remark_with_someone_as_its_subject_is_a_clause_of_its_own(office: KB)
     assert clauses("can you pick up the mug someone left it here") == ["can you pick up the mug", "someone left it here"]
     out = Interpreter(lexicon_of(office), "person_bob").interpret("can you pick up the mug someone left it here")
     assert out.clarify and out.intent is None and "yellow" in out.reply
+
+
+def test_a_tag_question_ends_the_request_it_follows() -> None:
+    assert clauses("pick up my frame would you its fallen over") == [
+        "pick up my frame would you", "its fallen over",
+    ]  # fmt: skip

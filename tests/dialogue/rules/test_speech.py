@@ -179,3 +179,15 @@ def test_chat_modals_and_what_politeness_at_the_end_leaves(text: str, words: str
 )
 def test_more_chat_words(text: str, words: str) -> None:
     assert expanded(text) == words.split()
+
+
+@pytest.mark.parametrize(
+    ("text", "meant"),
+    [
+        ("pick up me zimmer frame", "pick up my zimmer frame"),
+        ("fetch me me cardigan", "fetch me my cardigan"),
+        ("bring me the cardigan", "bring me the cardigan"),  # "me" the recipient stays
+    ],
+)
+def test_me_said_for_my_before_a_noun(text: str, meant: str) -> None:
+    assert cleaned(text).text == meant
