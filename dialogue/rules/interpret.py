@@ -78,6 +78,9 @@ class Interpreter:
         return replace(unsure[0], more=tuple(unsure[1:]), guessed=spelled.guessed or outcome.guesses)
 
     def _read(self, text: str) -> Outcome:
+        addressed = self._to_someone_else(text)
+        if addressed is not None:  # "lily put your book on the shelf": Lily is asked, not the robot
+            return Outcome(f"I think that was for {addressed}.")
         if text.lower().startswith("if "):  # the condition covers every part ("if Ana comes, ...")
             whole = parse(text, self.robot_name)
             if whole.act == "conditional":
@@ -91,6 +94,17 @@ class Interpreter:
             if combined is not None:
                 return combined
         return self._single(text)
+
+    def _to_someone_else(self, text: str) -> str | None:
+        """The name of the person present a request is said to, when it starts with their name and
+        speaks of their things ("your book"); None when it may be the robot's."""
+        words = tokens(text)
+        if len(words) < 3 or "your" not in words[1:]:
+            return None
+        person = resolve(self.lexicon, words[:1], PERSON).one
+        if person is None or not person.seen or person.id == self.speaker:
+            return None
+        return person.name
 
     def _compound(self, parts: Sequence[Part]) -> Outcome | None:
         """ "go to the kitchen and take the plate": every part read in order, each with the parts

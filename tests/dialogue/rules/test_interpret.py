@@ -713,3 +713,12 @@ def test_a_greeting_with_a_question_greets_and_answers(office: KB) -> None:
     assert (out.intent, out.roles) == (I.GREET, {"recipient": BOB}) and "My name is" in out.reply
     out = say(office, "hey robot who is in the office")
     assert out.intent is None and out.understood
+
+
+def test_a_request_said_to_someone_present_about_their_things_is_theirs(office: KB) -> None:
+    out = say(office, "carol put your mug on the desk please")
+    assert (out.intent, out.understood) == (None, True) and "Carol" in out.reply
+    # without "your", the name is a vocative and the request the robot's
+    assert say(office, "carol put the green mug on the desk").roles == {"object": "mug_green", "recipient": "desk_1"}
+    # the speaker's own name is no one else's
+    assert "I think that was for" not in say(office, "bob put your mug on the desk").reply
