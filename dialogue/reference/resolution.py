@@ -11,6 +11,9 @@ from __future__ import annotations
 
 from collections.abc import Collection, Sequence
 from dataclasses import dataclass
+from functools import lru_cache
+
+from lemminflect import getAllLemmas
 
 from dialogue import intents as I
 from dialogue.history import Utterance
@@ -151,7 +154,8 @@ def resolve(
         for other in (entity.support, entity.zone, entity.owner, *inside):
             if other is not None:
                 context |= cover.get(other, frozenset())
-        return all(i in own or i in context or normed[i] in attrs for i in content)
+        return all(i in own or i in context or normed[i] in attrs or compared(normed[i]) in attrs
+                   for i in content)  # fmt: skip
 
     # A class word names thousands of things of which a handful are in sight or the speaker's:
     # those are tried first, and the rest only when they cannot settle the answer (see _settled).
@@ -204,6 +208,16 @@ def _settled(near: Sequence[Entity], owner: str | None, own_name: Collection[str
     return any(e.id in own_name for e in near) or not own_name
 
 
+@lru_cache(maxsize=4096)
+def compared(word: str) -> str:
+    """The adjective a comparative or superlative compares by ("the bigger one": big), else the word."""
+    if word.endswith(("er", "est")):
+        bases: tuple[str, ...] = getAllLemmas(word).get("ADJ", ())
+        if bases and bases[0] != word:
+            return bases[0]
+    return word
+
+
 def _counted(words: Sequence[str]) -> tuple[str, ...]:
     """ "a pair of glasses" -> "glasses": what a measure of it names; () when no measure is said."""
     at = next((i for i in range(len(words) - 2) if words[i] in MEASURES and words[i + 1] == "of"), None)
@@ -228,7 +242,7 @@ def _by_qualifiers(lexicon: Lexicon, qualifiers: Sequence[str], kinds: Collectio
     out = []
     for entity in lexicon.snapshot.entities.values():
         attrs = lexicon.attributes.get(entity.id, frozenset())
-        if entity.kind in kinds and all(w in attrs for w in qualifiers):
+        if entity.kind in kinds and all(w in attrs or compared(w) in attrs for w in qualifiers):
             out.append(entity)
     return out
 

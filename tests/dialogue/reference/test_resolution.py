@@ -263,3 +263,12 @@ def test_the_ones_on_a_place_are_never_the_place() -> None:
     assert "bench_1" not in ids(kb, "the ones on the bench")
     assert ids(kb, "the bench") == ["bench_1"]
     kb.close()
+
+
+@pytest.mark.parametrize(("phrase", "expected"), [("the bigger jug", ["jug_big"]), ("the smallest jug", ["jug_small"])])
+def test_a_comparative_qualifies_by_its_adjective(phrase: str, expected: list[str]) -> None:
+    kb = _shop("jug_big rdf:type Artifact", 'jug_big rdfs:label "big jug"', "myself sees jug_big",
+               "jug_small rdf:type Artifact", 'jug_small rdfs:label "small jug"', "myself sees jug_small")  # fmt: skip
+    assert ids(kb, phrase) == expected
+    assert ids(kb, "the bigger one") == ["jug_big"]
+    kb.close()
