@@ -78,8 +78,7 @@ def _holds_people(entity: Entity) -> bool:
 
 #: Greetings said before more words in the same clause, longest first ("hi there my name is...");
 #: "morning", "evening" and "welcome" may be what a statement is about.
-_OPENINGS = sorted((g for g in GREETINGS if g not in phrases("morning|evening|afternoon|welcome")),
-                   key=len, reverse=True)  # fmt: skip
+_OPENINGS = [g for g in GREETINGS if g not in phrases("morning|evening|afternoon|welcome")]
 
 
 def _after_greeting(words: Words) -> Words | None:

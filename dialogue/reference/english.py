@@ -78,14 +78,14 @@ PARTS = word_set(
 CONTAINERS = word_set(
     "can tin bottle glass cup mug jar box carton packet pack bag bowl pot tub tube crate case"
 )
-#: Nouns of how much of a thing ("a pair of 3D glasses", "a roll of tape", "a couple of plates"): the
-#: phrase names what follows their "of" when the KB has no such thing itself.
 #: General names of furniture and holders whose closed compounds are kinds of them: "the bench"
 #: for the "workbench", "the box" for the "toolbox" (not "the board" for the "cupboard").
 COMPOUND_HEADS = word_set(
     "bench box chair table shelf shelves cup bag basket bin desk tray rack stand stool cabinet "
     "trolley cart mat lamp light pot jar tin bucket can bowl pan glass"
 )
+#: Nouns of how much of a thing ("a pair of 3D glasses", "a roll of tape", "a couple of plates"): the
+#: phrase names what follows their "of" when the KB has no such thing itself.
 MEASURES = word_set("pair couple set piece bunch handful slice bit lot stack pile sheet roll ball reel")
 #: Words that make a phrase name several things ("the cereals and the milk", "both cups").
 MANY = word_set("and both all every each")

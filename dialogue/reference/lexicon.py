@@ -166,7 +166,7 @@ class Lexicon:
         word = words[start]
         if not found and len(word) > 3 and word.endswith("s") and word[:-1] in self._lengths:
             # "ravis scarf": a person's name with the possessive's apostrophe dropped
-            found += [n for n in self._by_words.get((word[:-1],), ()) if self._is_person(n.entity)]
+            found += [n for n in self._by_words.get((word[:-1],), ()) if self.is_person(n.entity)]
         if start + 1 < len(words):
             # "tea cup" for the "teacup", "tool box" for the "toolbox": a closed compound said apart.
             joined = singular(words[start] + words[start + 1])
@@ -174,7 +174,7 @@ class Lexicon:
                       for n in self._by_words.get((joined,), ())]  # fmt: skip
         return found
 
-    def _is_person(self, entity_id: str) -> bool:
+    def is_person(self, entity_id: str) -> bool:
         entity = self.snapshot.get(entity_id)
         return entity is not None and entity.kind == "person"
 

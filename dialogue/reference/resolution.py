@@ -43,13 +43,11 @@ FOOD_OR_DRINK = "cyc:FoodOrDrink"
 #: Words that end a noun phrase's core: its head is the last content word before the first of them.
 _CORE_END = _LOCATIVE | word_set("of with next that which")
 
-#: Past this many named entities, those in sight are found from the snapshot's visible ones.
-_MANY = 64
-
 ALL_KINDS: frozenset[Kind] = frozenset({"person", "zone", "robot", "thing"})
 
 PERSON: frozenset[Kind] = frozenset({"person"})
 THING: frozenset[Kind] = frozenset({"thing"})
+ZONE: frozenset[Kind] = frozenset({"zone"})
 PLACE: frozenset[Kind] = frozenset({"zone", "thing"})
 ANYWHERE: frozenset[Kind] = frozenset({"person", "zone", "thing"})
 
@@ -120,6 +118,7 @@ def resolve(
     phrase = " ".join(words)
     words = [w[:-2] if w.endswith("'s") and len(w) > 2 else w for w in words]  # "ines's" names Ines
     normed = norm(words)
+    bases = [compared(w) for w in normed]  # "bigger": big
     cover: dict[str, frozenset[int]] = {}  # entity -> the word positions its names span
     own_name: set[str] = set()  # entities a name of the KB's own (not the lexicon file's) occurs for
     for start in range(len(words)):
@@ -154,16 +153,15 @@ def resolve(
         for other in (entity.support, entity.zone, entity.owner, *inside):
             if other is not None:
                 context |= cover.get(other, frozenset())
-        return all(i in own or i in context or normed[i] in attrs or compared(normed[i]) in attrs
-                   for i in content)  # fmt: skip
+        return all(i in own or i in context or normed[i] in attrs or bases[i] in attrs for i in content)
 
     # A class word names thousands of things of which a handful are in sight or the speaker's:
     # those are tried first, and the rest only when they cannot settle the answer (see _settled).
     def everything() -> list[Entity]:
         return snapshot.among(cover, kinds)
 
-    if owner is None and len(cover) > _MANY:  # the things in sight, without looking at the others
-        near = [e for e in snapshot.visible() if e.id in cover]
+    if owner is None:  # the things in sight, without looking at the others
+        near = snapshot.seen_among(cover)
     else:
         near = [e for e in everything() if e.seen or (owner is not None and e.owner == owner)]
     matches = [e for e in near if named(e)]
@@ -239,10 +237,11 @@ def _contents(words: Sequence[str], normed: Sequence[str]) -> tuple[str, ...]:
 
 def _by_qualifiers(lexicon: Lexicon, qualifiers: Sequence[str], kinds: Collection[Kind]) -> list[Entity]:
     """ "the orange one": with no noun, the things every qualifier holds for (colour, label words)."""
+    said = [(w, compared(w)) for w in qualifiers]
     out = []
     for entity in lexicon.snapshot.entities.values():
         attrs = lexicon.attributes.get(entity.id, frozenset())
-        if entity.kind in kinds and all(w in attrs or compared(w) in attrs for w in qualifiers):
+        if entity.kind in kinds and all(w in attrs or base in attrs for w, base in said):
             out.append(entity)
     return out
 

@@ -183,6 +183,13 @@ class Snapshot:
             return [e for e in self.of_kind(*kinds) if e.id in ids]
         return [e for i in ids if (e := self.entities.get(i)) is not None and e.kind in kinds]
 
+    def seen_among(self, ids: Collection[str]) -> list[Entity]:
+        """The seen entities of ``ids``, unordered: found among the visible ones when ``ids`` are
+        many (a class word names thousands of things, a handful of them in sight)."""
+        if len(ids) > _MANY_IDS:
+            return [e for e in self.visible() if e.id in ids]
+        return [e for i in ids if (e := self.entities.get(i)) is not None and e.seen]
+
     def visible(self) -> list[Entity]:
         return [e for e in self._first(SEEN) if e.seen]
 
@@ -193,7 +200,8 @@ class Snapshot:
         return iter(self.entities.values())
 
 
-#: Past this many ids, `Snapshot.among` walks the people and places rather than the ids.
+#: Past this many ids, `Snapshot.among` walks the people and places, and `seen_among` the visible
+#: entities, rather than the ids.
 _MANY_IDS = 64
 
 _CAMEL = re.compile(r"(?<=[a-z0-9])(?=[A-Z])")

@@ -70,7 +70,7 @@ def parse(text: str, robot_name: str = "") -> Parse:
         return Parse("greeting", words=tuple(words))
     # "welcome Lucia" asks the robot to greet her; "welcome back" is a greeting.
     welcoming = words[0] == "welcome" and words[1:] and words[1] not in {"back", "home", "to", "everyone"}
-    for g in () if welcoming else sorted(GREETINGS, key=len, reverse=True):
+    for g in () if welcoming else GREETINGS:
         if starts(words, g):
             rest = strip_vocative(strip_politeness(words[len(g) :], robot_name), robot_name)
             if tuple(rest) in SOCIAL:

@@ -57,7 +57,7 @@ class Part:
 
 def _verb(text: str) -> str | None:
     words = strip_politeness(normalise(text))
-    for greeting in sorted(GREETINGS, key=len, reverse=True):  # "hey robot take the book"
+    for greeting in GREETINGS:  # "hey robot take the book"
         if starts(words, greeting) and len(words) > len(greeting):
             words = strip_politeness(words[len(greeting) :])
             break

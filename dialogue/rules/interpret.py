@@ -93,7 +93,7 @@ class Interpreter:
             combined = self._compound(parts)
             if combined is not None:
                 return combined
-        return self._single(text)
+        return self._single(text, terse_read=False)  # (tried above, before the parts)
 
     def _to_someone_else(self, text: str) -> str | None:
         """The name of the person present a request is said to, when it starts with their name and

@@ -35,6 +35,7 @@ from dialogue.reference.resolution import (
     ANYWHERE,
     PERSON,
     THING,
+    ZONE,
     antecedent,
     content_words,
     is_pronoun,
@@ -120,7 +121,7 @@ class Referents:
         """Whether the phrase names one place (a zone of the KB) and no thing ("the lifts")."""
         if not content_words(words) or is_pronoun(words) or resolve(self.lexicon, words, THING).matches:
             return False
-        return resolve(self.lexicon, words, frozenset({"zone"})).one is not None
+        return resolve(self.lexicon, words, ZONE).one is not None
 
     def a_person(self, words: Words) -> bool:
         """Whether the phrase is someone: a person's name, a person pronoun or the speaker."""

@@ -111,13 +111,14 @@ def without_fillers(words: list[str]) -> list[str]:
 #: Words after which "me" before a noun is "my" (British and Irish speech: "pick up me zimmer frame"):
 #: a verb's particle, or "me" itself ("fetch me me cardigan": to me, my cardigan).
 _MY_AFTER = word_set("me up down out off away")
+_NO_NOUN = FUNCTION_WORDS | NP_START
 
 
 def my_for_me(words: list[str]) -> list[str]:
     """ "me" said for "my" before a noun, where "me" could be no object: after a particle or another "me"."""
     out = list(words)
     for i in range(1, len(out) - 1):
-        if out[i] == "me" and out[i - 1] in _MY_AFTER and out[i + 1] not in FUNCTION_WORDS | NP_START:
+        if out[i] == "me" and out[i - 1] in _MY_AFTER and out[i + 1] not in _NO_NOUN:
             out[i] = "my"
     return out
 

@@ -15,7 +15,7 @@ from collections.abc import Sequence
 from dialogue.reference.english import FUNCTION_WORDS, Words
 from dialogue.reference.grounding import Kind
 from dialogue.reference.lexicon import Lexicon
-from dialogue.reference.resolution import PLACE, resolve
+from dialogue.reference.resolution import PLACE, ZONE, resolve
 from dialogue.rules.frames import verbs
 from dialogue.rules.speech import strip_politeness
 from dialogue.rules.utterance import asked_verb, normalise
@@ -23,8 +23,6 @@ from dialogue.rules.words import NP_START, TERSE_MOTION, TERSE_PLACING
 
 #: Subjects said before an imperative by a speaker of another language ("you go office").
 _SUBJECTS = frozenset({"you", "robot"})
-#: A place alone, with no verb, is only a room or area to go to ("dining room"), never a thing.
-ZONE: frozenset[Kind] = frozenset({"zone"})
 
 
 def terse(text: str, lexicon: Lexicon, robot_name: str = "") -> str | None:
@@ -51,7 +49,7 @@ def terse(text: str, lexicon: Lexicon, robot_name: str = "") -> str | None:
 
 def _verbless(words: list[str], lexicon: Lexicon) -> str | None:
     """ "dining room": go there; "sunflowers into tall vase": put them there."""
-    if _a_place(words, lexicon, ZONE):
+    if _a_place(words, lexicon, ZONE):  # a place alone is a room or area, never a thing
         return " ".join(("go", "to", *words))
     at = next((i for i, w in enumerate(words) if w in TERSE_PLACING), None)
     if at is None or at == 0 or _named(words[:at], lexicon) is None:
@@ -68,7 +66,7 @@ def _named(words: Sequence[str], lexicon: Lexicon) -> Words | None:
     named = {i for m in found for i in range(m.start, m.end)}
     if not bare or any(w in FUNCTION_WORDS for i, w in enumerate(bare) if i not in named):
         return None  # ("you go", "I need", "it is"): a clause, no phrase
-    people = [m for m in found if all(_person(lexicon, e) for e in m.entities)]
+    people = [m for m in found if all(lexicon.is_person(e) for e in m.entities)]
     if people and people[0].start == 0 and len(people) == 1 and people[0].end < len(bare):
         # "edna cardigan": Edna's cardigan, when that is a thing
         owner, thing = bare[: people[0].end], bare[people[0].end :]
@@ -81,17 +79,12 @@ def _a_thing(words: Sequence[str], lexicon: Lexicon) -> bool:
     return bool(resolve(lexicon, words, PLACE).matches)
 
 
-def _person(lexicon: Lexicon, entity_id: str) -> bool:
-    entity = lexicon.snapshot.get(entity_id)
-    return entity is not None and entity.kind == "person"
-
-
 def _a_place(words: Sequence[str], lexicon: Lexicon, kinds: frozenset[Kind] = PLACE) -> bool:
     """Whether the words are exactly the name of one place (a zone, or a thing to go to after a
     verb of motion)."""
     found = lexicon.mentions(words)
     if len(found) != 1 or (found[0].start, found[0].end) != (0, len(words)):
         return False
-    if any(_person(lexicon, e) for e in found[0].entities):
+    if any(lexicon.is_person(e) for e in found[0].entities):
         return False
     return resolve(lexicon, words, kinds).one is not None

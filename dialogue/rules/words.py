@@ -101,10 +101,10 @@ POLITE_SUFFIXES = (
     # the listener named by a tag ("the yellow one mate", "over here love")
     *phrases(TAGS),
 )
-GREETINGS = phrases(
+GREETINGS = tuple(sorted(phrases(  # longest first: "hello there" before "hello"
     "good morning|good afternoon|good evening|good day|hello|hi|hey|hiya|howdy|greetings|yo|"
     "hello there|hi there|hey there|welcome|morning|evening|afternoon"
-)
+), key=len, reverse=True))
 #: Greetings that only call for attention before what follows ("hey robot, who's at the gate"):
 #: greeting back is for the others ("hello robot, what's your name").
 ATTENTION = frozenset(phrases("hey|hey there|yo|oi"))
