@@ -6,7 +6,8 @@ its scene, the event hub) and stops them at shutdown; a KB passed in stays the c
 
 from __future__ import annotations
 
-from collections.abc import AsyncIterator
+import asyncio
+from collections.abc import AsyncIterator, Callable, Sequence
 from contextlib import asynccontextmanager
 
 from fastapi import FastAPI
@@ -20,7 +21,7 @@ from api.limits import BodySizeLimit
 from api.routes import dialogue, events, health, intents, locales, people, rasa, scene, sparql, turns, viewer
 from api.routes import kb as kb_routes
 from api.routes.health import package_version
-from api.services import start_services
+from api.services import Services, start_services
 from api.settings import Settings
 from api.validtext import ValidText
 from dialogue.llm.base import ChatModel
@@ -30,21 +31,35 @@ DESCRIPTION = """Knowledge-grounded dialogue for social robots: a knowledge_core
 a SPARQL 1.1 endpoint, KB events (SSE, WebSocket) and a dialogue endpoint returning ROS4HRI intents.
 Errors always have the shape `{"status", "code", "message", "details"}`."""
 
+#: Another front of the same service in the same process (the ROS 2 node): started with the
+#: services and the app's event loop once they are built (blocking work: run off the loop), it
+#: returns what stops it, called before the services stop.
+Extension = Callable[[Services, asyncio.AbstractEventLoop], Callable[[], None]]
+
 
 def create_app(settings: Settings | None = None, kb: KB | None = None,
-               model: ChatModel | None = None) -> FastAPI:
+               model: ChatModel | None = None, extensions: Sequence[Extension] = ()) -> FastAPI:
     """A new app. ``kb``: use this KB (not closed at shutdown); ``model``: a dialogue model
-    instance to use instead of the one ``settings.llm`` names."""
+    instance to use instead of the one ``settings.llm`` names; ``extensions``: other fronts on
+    the same services (the ROS 2 node)."""
     config = settings if settings is not None else Settings()
 
     @asynccontextmanager
     async def lifespan(app: FastAPI) -> AsyncIterator[None]:
         services = await run_in_threadpool(start_services, config, kb, model)
         app.state.services = services
+        stops: list[Callable[[], None]] = []
         try:
+            loop = asyncio.get_running_loop()
+            for extension in extensions:
+                stops.append(await run_in_threadpool(extension, services, loop))
             yield
         finally:
-            await services.aclose()
+            try:
+                for stop in reversed(stops):
+                    await run_in_threadpool(stop)
+            finally:
+                await services.aclose()
 
     # /docs must work offline: Swagger UI's script, style and icon come from fastapi-offline's
     # package (under /static-offline-docs), not from the CDN FastAPI's own page would load.

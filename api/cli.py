@@ -1,4 +1,4 @@
-"""The ``situated`` command: serve, chat, kb, humans, eval, bench, doctor, data. Thin over the libraries.
+"""The ``situated`` command: serve, chat, kb, humans, eval, bench, doctor, data, ros. Thin over the libraries.
 
 ``kb``, ``humans`` and ``chat`` work in-process (a fresh KB, loaded with ``--scene``) or against a
 running service with ``--url`` (token from ``--token`` or ``$SITUATED_TOKEN``).
@@ -16,10 +16,11 @@ import sys
 from collections.abc import Callable, Iterator, Sequence
 from contextlib import contextmanager
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from api.client import ClientError, ServiceClient
 from api.humans import known_humans, render
+from api.ros import cli as ros_cli
 from api.settings import SettingsError, load_settings
 from dialogue.errors import DialogueError
 from kb import KB, KbError
@@ -27,6 +28,9 @@ from kb.datadir import check as check_data
 from kb.datadir import repair as repair_data
 from kb.errors import DataCorrupt
 from scene.world import load_any_scene
+
+if TYPE_CHECKING:
+    from api.app import Extension
 
 BENCHES = ("kb", "scene", "dialogue", "grounding", "http", "load", "store", "backend")
 #: Not in `all`: it needs the optional local model (the `local` extra) and takes minutes.
@@ -80,12 +84,7 @@ def _remote_options(parser: argparse.ArgumentParser) -> None:
                         "(default), an .svg/.json scene, a .txt file of statements, or none")
 
 
-def _parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(prog="situated", description=__doc__, epilog=EXAMPLES,
-                                     formatter_class=argparse.RawDescriptionHelpFormatter)
-    sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
-
-    serve = sub.add_parser("serve", help="run the HTTP service (default 127.0.0.1:8000, rules backend)")
+def _serve_options(serve: argparse.ArgumentParser) -> None:
     serve.add_argument("--host", help="interface to bind (default 127.0.0.1)")
     serve.add_argument("--port", type=int, help="port (default 8000)")
     serve.add_argument("--data", type=Path, help="data folder: every write journaled, recovered at start")
@@ -100,6 +99,15 @@ def _parser() -> argparse.ArgumentParser:
     serve.add_argument("--store", help="keep the KB in a SPARQL 1.1 store, e.g. "
                                        "sparql+http://127.0.0.1:7878 (the writer, unless --writer is given)")
     serve.add_argument("--writer", help="with --store: be a reader; writes go to the writer service here")
+
+
+def _parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(prog="situated", description=__doc__, epilog=EXAMPLES,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
+
+    _serve_options(sub.add_parser("serve", help="run the HTTP service (default 127.0.0.1:8000, rules "
+                                                "backend)"))
 
     chat = sub.add_parser("chat", help="talk to the robot (in-process or --url), showing reply and intents")
     _remote_options(chat)
@@ -146,12 +154,20 @@ def _parser() -> argparse.ArgumentParser:
                                          "model (the local LLM path; the local extra)")
     bench.add_argument("which", nargs="?", default="all", choices=[*BENCHES, *OPTIONAL_BENCHES, "all"])
     bench.add_argument("args", nargs=argparse.REMAINDER, help="passed to the benchmark")
+    ros_cli.add_parser(sub, _serve_options)
     return parser
 
 
 # --- serve -----------------------------------------------------------------------------------------
 
 def _serve(args: argparse.Namespace) -> int:
+    _run_service(args)
+    return 0
+
+
+def _run_service(args: argparse.Namespace, extensions: Sequence[Extension] = (), also: str = "") -> None:
+    """Serve with ``serve``'s options in ``args``; ``extensions``: other fronts in the same process
+    (``situated ros run``), ``also`` what the start-up line says of them."""
     import uvicorn
 
     from api.accesslog import log_config
@@ -169,11 +185,11 @@ def _serve(args: argparse.Namespace) -> int:
     # Start-up progress (journal recovery, ontology files, the scene) is logged by situated.*.
     logging.basicConfig(level=logging.INFO, format="%(levelname)s:     %(name)s: %(message)s")
     role = "" if settings.role == "standalone" else f"; {settings.role} of {settings.store}"
-    _say(f"situated: serving on http://{settings.host}:{settings.port} (model: {settings.llm}; "
+    _say(f"situated: serving on http://{settings.host}:{settings.port}{also} (model: {settings.llm}; "
          f"scene: {settings.scene or 'none'}{role}); loading the KB...")
-    uvicorn.run(create_app(settings), host=settings.host, port=settings.port, ws="websockets-sansio",
-                ws_max_size=settings.limits.max_body_bytes, log_level="info", log_config=log_config())
-    return 0
+    uvicorn.run(create_app(settings, extensions=extensions), host=settings.host, port=settings.port,
+                ws="websockets-sansio", ws_max_size=settings.limits.max_body_bytes, log_level="info",
+                log_config=log_config())
 
 
 # --- KB access, in-process or remote ----------------------------------------------------------------
@@ -371,6 +387,7 @@ COMMANDS: dict[str, Callable[[argparse.Namespace], int]] = {
     "serve": _serve, "chat": _chat, "kb": _kb_command, "humans": _humans, "eval": _eval, "bench": _bench,
     "doctor": _doctor,
     "data": _data,
+    "ros": lambda args: ros_cli.command(args, _run_service),
 }
 
 
@@ -381,7 +398,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     args = _parser().parse_args(argv)
     try:
         return COMMANDS[args.command](args)
-    except (KbError, ClientError, SettingsError, DialogueError) as exc:
+    except (KbError, ClientError, SettingsError, DialogueError, ros_cli.RosError) as exc:
         _say(f"situated {args.command}: {exc}")
         return 2
 

@@ -25,10 +25,12 @@ STARTS = 5  # attempts, each on a new port, when another process took the port f
 
 
 class ServerProcess:
-    """``python -m api.cli serve ARGS --port P``; its output goes to ``log``."""
+    """``python -m api.cli serve ARGS --port P`` (or another ``command`` taking serve's options, such
+    as ``ros run``); its output goes to ``log``."""
 
-    def __init__(self, args: list[str], log: Path, env: dict[str, str] | None = None) -> None:
-        self.args, self.log, self.env = args, log, env
+    def __init__(self, args: list[str], log: Path, env: dict[str, str] | None = None,
+                 command: tuple[str, ...] = ("serve",)) -> None:
+        self.args, self.log, self.env, self.command = args, log, env, command
         self.starts = 0
         self._spawn()
 
@@ -37,7 +39,7 @@ class ServerProcess:
         self.port = free_port()
         self.url = f"http://127.0.0.1:{self.port}"
         self._log_from = self.log.stat().st_size if self.log.exists() else 0
-        command = [sys.executable, "-m", "api.cli", "serve", *self.args, "--port", str(self.port)]
+        command = [sys.executable, "-m", "api.cli", *self.command, "--port", str(self.port), *self.args]
         with self.log.open("ab") as out:
             self.proc = subprocess.Popen(command, stdout=out, stderr=subprocess.STDOUT,
                                          env={**os.environ, **(self.env or {})})

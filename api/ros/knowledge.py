@@ -1,0 +1,167 @@
+"""knowledge_core's ROS API on the service's KB (kb_msgs; knowledge_core 3.5's names under ``/kb``).
+
+Every service answers ``success`` and, on a refusal, ``error_msg`` (a refused write changed
+nothing), within the same limits as REST (patterns, statements, models, rows, query time).
+"""
+
+from __future__ import annotations
+
+import json
+from collections.abc import Callable, Sequence
+from typing import Any
+
+from kb_msgs.srv import About, Lookup, Manage, Query, Revise, Sparql
+from std_msgs.msg import String
+
+from api.errors import ApiError
+from api.limits import check_count
+from api.ros.front import Front
+from api.routes.health import package_version
+from api.settings import Settings
+from kb import KbError
+from kb.protocol import KnowledgeBase
+
+#: What a refused request answers in its error_msg: the KB's own refusals, and the service's limits.
+REFUSALS = (KbError, ApiError)
+
+
+def _models(models: Sequence[str]) -> list[str] | None:
+    """An empty list (ROS's unset array) is the robot's own model, as knowledge_core reads it."""
+    return list(models) or None
+
+
+def _seconds(duration: Any) -> float:
+    return float(duration.sec) + float(duration.nanosec) / 1e9
+
+
+class KnowledgeServices:
+    """The handlers: a request in, the response filled (success, json, error_msg)."""
+
+    def __init__(self, kb: KnowledgeBase, settings: Settings, clear: Callable[[bool], None]) -> None:
+        self.kb = kb
+        self.limits = settings.limits
+        self._clear = clear
+
+    def _check(self, patterns: Sequence[str] = (), statements: Sequence[str] = (),
+               models: Sequence[str] = ()) -> None:
+        check_count(patterns, self.limits.max_patterns, "patterns")
+        check_count(statements, self.limits.max_statements, "statements")
+        check_count(models, self.limits.max_models, "models")
+
+    def _answer(self, response: Any, work: Callable[[], Any], with_json: bool = True) -> Any:
+        try:
+            result = work()
+        except REFUSALS as exc:
+            response.success = False
+            response.error_msg = exc.message if isinstance(exc, ApiError) else str(exc)
+            return response
+        response.success = True
+        response.error_msg = ""
+        if with_json:
+            response.json = json.dumps(result)
+        return response
+
+    def query(self, request: Any, response: Any) -> Any:
+        def work() -> Any:
+            self._check(patterns=request.patterns, models=request.models)
+            return self.kb.find(list(request.patterns), list(request.vars) or None, _models(request.models),
+                                max_rows=self.limits.max_rows, timeout=self.limits.query_timeout)
+        return self._answer(response, work)
+
+    def revise(self, request: Any, response: Any) -> Any:
+        def work() -> None:
+            self._check(statements=request.statements, models=request.models)
+            policy = {"method": request.method, "models": _models(request.models),
+                      "lifespan": _seconds(request.lifespan)}
+            self.kb.revise(list(request.statements), policy)
+        return self._answer(response, work, with_json=False)
+
+    def about(self, request: Any, response: Any) -> Any:
+        return self._answer(response, lambda: self.kb.about(request.term, _models(request.models)))
+
+    def details(self, request: Any, response: Any) -> Any:
+        return self._answer(response, lambda: self.kb.details(request.term, _models(request.models)))
+
+    def label(self, request: Any, response: Any) -> Any:
+        return self._answer(response, lambda: self.kb.label(request.term, models=_models(request.models)))
+
+    def lookup(self, request: Any, response: Any) -> Any:
+        return self._answer(response, lambda: self.kb.lookup(request.query, _models(request.models)))
+
+    def sparql(self, request: Any, response: Any) -> Any:
+        def work() -> Any:
+            self._check(models=request.models)
+            return self.kb.sparql(request.query, _models(request.models), timeout=self.limits.query_timeout,
+                                  max_rows=self.limits.max_rows)
+        return self._answer(response, work)
+
+    def manage(self, request: Any, response: Any) -> Any:
+        action = MANAGE.get(request.action)
+        if action is None:
+            response.success = False
+            response.error_msg = (f"unknown 'manage' action {request.action!r}: one of "
+                                  + ", ".join(sorted(MANAGE)))
+            return response
+        return self._answer(response, lambda: action(self, list(request.parameters), _models(request.models)))
+
+    # --- manage actions --------------------------------------------------------------------------------
+
+    def _do_clear(self, parameters: list[str], models: list[str] | None) -> None:
+        self._clear(True)
+
+    def _do_load(self, parameters: list[str], models: list[str] | None) -> None:
+        if len(parameters) != 1:
+            raise KbError("'load' expects 'parameters' to hold exactly one URI of the ontology to load")
+        self.kb.load(parameters[0], models)
+
+    def _do_save(self, parameters: list[str], models: list[str] | None) -> list[str]:
+        if len(parameters) != 2:
+            raise KbError("'save' expects 'parameters' to hold exactly two values: the folder and the "
+                          "basename (one file per model: <folder>/<basename>-<model>.xml)")
+        return self.kb.save(parameters[0], parameters[1], models)
+
+    def _do_status(self, parameters: list[str], models: list[str] | None) -> dict[str, Any]:
+        summary = self.kb.summary()
+        return {"name": "situated", "version": package_version(), "reasoning_enabled": True,
+                "revision": summary.revision, "models": list(summary.models)}
+
+
+#: knowledge_core's Manage actions.
+MANAGE: dict[str, Callable[[KnowledgeServices, list[str], list[str] | None], Any]] = {
+    Manage.Request.CLEAR: KnowledgeServices._do_clear,
+    Manage.Request.LOAD: KnowledgeServices._do_load,
+    Manage.Request.SAVE: KnowledgeServices._do_save,
+    Manage.Request.STATUS: KnowledgeServices._do_status,
+}
+
+
+def attach(front: Front) -> Callable[[], None]:
+    """knowledge_core's services and fact topics on the ``/kb`` node."""
+    node = front.kb_node
+    handlers = KnowledgeServices(front.services.kb, front.services.settings, front.services.clear)
+    table = (("manage", Manage, handlers.manage), ("revise", Revise, handlers.revise),
+             ("query", Query, handlers.query), ("about", About, handlers.about),
+             ("label", About, handlers.label), ("details", About, handlers.details),
+             ("lookup", Lookup, handlers.lookup), ("sparql", Sparql, handlers.sparql))
+    made = [node.create_service(kind, name, handler, callback_group=front.group)
+            for name, kind, handler in table]
+
+    def fact(method: str) -> Callable[[Any], None]:
+        def on_message(message: Any) -> None:
+            response = Revise.Response()
+            handlers._answer(response, lambda: front.services.kb.revise([message.data], {"method": method}),
+                             with_json=False)
+            if not response.success:
+                node.get_logger().error(f"/kb/{method} of {message.data!r} refused: {response.error_msg}")
+        return on_message
+
+    subscriptions = [node.create_subscription(String, topic, fact(method), 10, callback_group=front.group)
+                     for topic, method in (("add_fact", "update"), ("remove_fact", "retract"))]
+
+    def detach() -> None:
+        for service in made:
+            node.destroy_service(service)
+        for subscription in subscriptions:
+            node.destroy_subscription(subscription)
+
+    return detach
