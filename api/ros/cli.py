@@ -104,7 +104,7 @@ def _run(args: argparse.Namespace, run_service: RunService) -> int:
     missing = missing_modules()
     if missing:
         raise RosError(f"cannot import {', '.join(missing)}: " + SETUP_HINT)
-    from api.ros import front
+    from api.ros.node import front
 
     defaults = NodeParameters(voices=args.voices, **({} if args.turn_deadline is None
                                                       else {"turn_deadline": args.turn_deadline}))

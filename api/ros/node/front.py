@@ -64,7 +64,7 @@ class Front:
 
 def _parts() -> tuple[Part, ...]:
     # Imported here: each part imports the generated interfaces, which exist only once ROS is set up.
-    from api.ros import knowledge
+    from api.ros.node import knowledge
 
     return (knowledge.attach,)
 

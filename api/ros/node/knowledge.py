@@ -15,7 +15,7 @@ from std_msgs.msg import String
 
 from api.errors import ApiError
 from api.limits import check_count
-from api.ros.front import Front
+from api.ros.node.front import Front
 from api.routes.health import package_version
 from api.settings import Settings
 from kb import KbError
