@@ -25,6 +25,21 @@ from dialogue.pushed.bus import IntentBus, Reader
 from dialogue.pushed.events import IntentFilter
 
 KEEPALIVE_SECONDS = 15.0
+#: Digits of a sequence number: the bus numbers from the clock in milliseconds (13 digits now), so
+#: a number of more is none it gave (and past 4,300 digits int() itself refuses it).
+MAX_SEQ_DIGITS = 20
+#: Characters of a bad value said back in the error.
+_SHOWN = 40
+
+
+def sequence_number(text: str, what: str) -> int:
+    """The sequence number written in `text` (`what` names where it came from); ApiError 422 saying
+    what is wrong when it is none."""
+    if not (text.isascii() and text.isdigit()) or len(text) > MAX_SEQ_DIGITS:
+        shown = text if len(text) <= _SHOWN else f"{text[:_SHOWN]}... ({len(text)} characters)"
+        raise ApiError(422, "invalid_request", f"{what} {shown!r} is not a sequence number (0 or more, "
+                                               f"at most {MAX_SEQ_DIGITS} digits)")
+    return int(text)
 
 
 def websocket_query(params: QueryParams) -> tuple[IntentFilter, int | None]:
@@ -32,14 +47,13 @@ def websocket_query(params: QueryParams) -> tuple[IntentFilter, int | None]:
     `dialogue_id`), read after the handshake so that a bad one is told as an error message (a
     refused handshake tells a client nothing). ApiError 422 saying what is wrong."""
     after = params.get("after")
-    if after is not None and not (after.isascii() and after.isdigit()):
-        raise ApiError(422, "invalid_request", f"after {after!r} is not a sequence number (0 or more)")
+    number = sequence_number(after, "after") if after is not None else None
     try:
         flt = IntentFilter.of(params.getlist("source"), params.getlist("intent"), params.getlist("origin"),
                               params.getlist("dialogue_id"))
     except ValueError as exc:
         raise ApiError(422, "invalid_request", str(exc)) from exc
-    return flt, int(after) if after is not None else None
+    return flt, number
 
 
 def resume_after(after: int | None, last_event_id: str | None) -> int | None:
@@ -47,9 +61,7 @@ def resume_after(after: int | None, last_event_id: str | None) -> int | None:
     on reconnecting (ApiError 422 when it is no sequence number)."""
     if after is not None or not last_event_id:
         return after
-    if not (last_event_id.isascii() and last_event_id.isdigit()):
-        raise ApiError(422, "invalid_request", f"Last-Event-ID {last_event_id!r} is not a sequence number")
-    return int(last_event_id)
+    return sequence_number(last_event_id, "Last-Event-ID")
 
 
 def open_reader(bus: IntentBus, flt: IntentFilter, after: int | None) -> Reader:

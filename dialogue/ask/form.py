@@ -29,6 +29,7 @@ from typing import Annotated, Any, Literal
 from pydantic import BaseModel, Field, TypeAdapter, ValidationError
 from pydantic_core import SchemaError
 
+from dialogue.ask.jsontext import ConfigurationError, decode
 from dialogue.errors import DialogueError
 from dialogue.reference.resolution import ALL_KINDS, ANYWHERE, PERSON, PLACE, THING
 from dialogue.reference.snapshot import Kind
@@ -197,7 +198,9 @@ def _type_of(schema: Mapping[str, Any]) -> Any:
 def parse_configuration(configuration: str) -> AskForm:
     """The form of an ask role's configuration, or AskError saying what is wrong with it."""
     try:
-        data = json.loads(configuration or "{}")
+        data = decode(configuration or "{}")
+    except ConfigurationError as exc:
+        raise AskError(str(exc)) from None
     except json.JSONDecodeError as exc:
         raise AskError(f"the ask role's configuration is not JSON: {exc}") from None
     if not isinstance(data, dict):

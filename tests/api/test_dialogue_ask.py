@@ -93,3 +93,23 @@ def test_a_scripted_model_fills_the_form(live_factory: Callable[..., Live]) -> N
     schema = model.requests[0].schema["properties"]["answers"]["properties"]
     assert schema["cup"]["anyOf"][0] == {"enum": ["cup_1"]}
     assert set(schema["bringer"]["anyOf"][0]["enum"]) == {"person_alice", "person_tom"}
+
+
+def test_a_configuration_json_cannot_carry_is_a_clear_400_and_the_dialogue_stays_readable(live: Live) -> None:
+    """Once a 500 each: a 5,000-digit number, 10,000 levels of nesting, a lone surrogate (whose dialogue
+    then answered 500 to every turn and to GET .../turns)."""
+    good = json.dumps({"question": "How old?", "result_schema_properties": {"age": {"type": "integer"}}})
+    bad = {"digits": good.replace('"integer"}', '"integer", "minimum": ' + "9" * 5000 + "}"),
+           "nesting": good.replace('"integer"}', '"integer", "x": ' + "[" * 10_000 + "]" * 10_000 + "}"),
+           "surrogate": good.replace("age", "a\\udc00ge")}
+    for what, configuration in bad.items():
+        role = {"name": "__ask__", "configuration": configuration}
+        started = live.client.post("/dialogues", json={"role": role})
+        assert (started.status_code, started.json()["code"]) == (400, "dialogue_error"), what
+        stateless = live.client.post("/dialogues/default/interactions",
+                                     json={"user_id": ALICE, "input": "33", "role": role})
+        assert (stateless.status_code, stateless.json()["code"]) == (400, "dialogue_error"), what
+        assert "configuration" in stateless.json()["message"] or "field" in stateless.json()["message"], what
+    turns = live.client.get("/dialogues/default/turns")
+    assert turns.status_code == 200 and turns.json()["turns"] == []  # nothing of them was kept
+    assert say(live, "default", "hello")["response"]  # and the dialogue answers

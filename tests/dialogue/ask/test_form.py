@@ -103,3 +103,16 @@ def test_no_required_field_asks_once() -> None:
     form = parse_configuration(json.dumps({"question": "Anything?", "required": [],
                                            "result_schema_properties": {"age": {"type": "integer"}}}))
     assert form.required == () and opening_state(form).asked == "age"
+
+
+
+@pytest.mark.parametrize(("configuration", "message"), [
+    (config(a={"type": "integer", "minimum": 1}).replace(": 1}", ": " + "9" * 5000 + "}"), "5000 digits"),
+    (config(a={"type": "string"}).replace('"string"}', '"string", "x": ' + "[" * 10_000 + "]" * 10_000 + "}"),
+     "nested more than 32 levels"),
+    ('{"question": "?", "result_schema_properties": {"a\\udc00ge": {"type": "integer"}}}', "lone surrogate U\\+DC00"),
+])
+def test_json_no_field_needs_is_refused_as_a_bad_configuration(configuration: str, message: str) -> None:
+    """Once a ValueError, a RecursionError and a 500 at every answer naming the field (dialogue.ask.jsontext)."""
+    with pytest.raises(AskError, match=message):
+        parse_configuration(configuration)
