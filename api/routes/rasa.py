@@ -1,6 +1,7 @@
 """Rasa-compatible facade: the REST channel webhook and ``/model/parse``, so a client written for
-``rasa run`` (port 5005) works when pointed at this service. A token, when configured, may also be
-given as ``?token=`` as Rasa's HTTP API does."""
+``rasa run`` (port 5005) works when pointed at this service. Both run a dialogue turn (which spends
+model requests under a model backend), so both need the token as an interaction does; it may also
+be given as ``?token=`` as Rasa's HTTP API does."""
 
 from __future__ import annotations
 
@@ -86,7 +87,7 @@ def _labeller(kb: KnowledgeBase) -> Any:
     return label
 
 
-@router.post("/model/parse", dependencies=[_rasa_access(write=False)])
+@router.post("/model/parse", dependencies=[_rasa_access(write=True)])
 async def parse(body: ParseRequest, services: ServicesDep) -> dict[str, Any]:
     """NLU only: the turn's intents as Rasa's parse result; nothing is recorded."""
     check_length(body.text, services.settings.limits.max_input_chars, "text")

@@ -64,6 +64,19 @@ def test_rasa_style_token_parameter(live_factory: Callable[..., Live]) -> None:
     assert ok.status_code == 200 and ok.json()[0]["recipient_id"] == "u2"
 
 
+def test_model_parse_follows_the_access_rule_of_dialogue_turns(live_factory: Callable[..., Live]) -> None:
+    """It runs a turn (model requests, under a model backend): the token, as for an interaction."""
+    live = live_factory(Settings(scene=SCENE, token=SecretStr("rasa-secret")))
+    text = {"text": "pick up the cookbook"}
+    assert live.client.post("/dialogues/default/interactions", json={"user_id": "u", "input": "hi"}).status_code == 401
+    refused = live.client.post("/model/parse", json=text)
+    assert refused.status_code == 401 and refused.json()["code"] == "unauthorized"
+    assert live.client.post("/model/parse?token=nope", json=text).status_code == 403
+    for allowed in (live.client.post("/model/parse?token=rasa-secret", json=text),
+                    live.client.post("/model/parse", json=text, headers={"authorization": "Bearer rasa-secret"})):
+        assert allowed.status_code == 200 and allowed.json()["intent"]["name"] == "__intent_grab_object__"
+
+
 def test_blank_messages_are_refused(live: Live) -> None:
     for text in ("", "  ", "\n"):
         refused = live.client.post("/webhooks/rest/webhook", json={"sender": "person_alice", "message": text})
