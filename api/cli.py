@@ -1,7 +1,8 @@
 """The ``situated`` command: serve, chat, kb, humans, eval, bench, doctor, data, ros. Thin over the libraries.
 
 ``kb``, ``humans`` and ``chat`` work in-process (a fresh KB, loaded with ``--scene``) or against a
-running service with ``--url`` (token from ``--token`` or ``$SITUATED_TOKEN``).
+running service with ``--url`` (token from ``--token`` or ``$SITUATED_TOKEN``); ``kb add`` and
+``kb retract`` only with ``--url`` (in-process, what they change would be gone when they end).
 """
 
 from __future__ import annotations
@@ -27,7 +28,7 @@ from kb import KB, KbError
 from kb.datadir import check as check_data
 from kb.datadir import repair as repair_data
 from kb.errors import DataCorrupt
-from scene.world import load_any_scene
+from scene.world import check_scene, load_any_scene
 
 if TYPE_CHECKING:
     from api.app import Extension
@@ -73,6 +74,16 @@ KB_COMMANDS = {
 }
 
 
+#: kb commands that change the KB: in-process, the KB they would change is gone when they end.
+KB_WRITES = ("add", "retract")
+#: The namespace attribute holding the parser of the command given (its usage, for its errors).
+_PARSER = "_command_parser"
+
+
+class CommandError(Exception):
+    """A command line that cannot do what it asks; the message says why and what to give instead."""
+
+
 def _say(text: str) -> None:
     print(text, file=sys.stderr)
 
@@ -106,10 +117,12 @@ def _parser() -> argparse.ArgumentParser:
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
     sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
 
-    _serve_options(sub.add_parser("serve", help="run the HTTP service (default 127.0.0.1:8000, rules "
-                                                "backend)"))
+    serve = sub.add_parser("serve", help="run the HTTP service (default 127.0.0.1:8000, rules backend)")
+    serve.set_defaults(**{_PARSER: serve})
+    _serve_options(serve)
 
     chat = sub.add_parser("chat", help="talk to the robot (in-process or --url), showing reply and intents")
+    chat.set_defaults(**{_PARSER: chat})
     _remote_options(chat)
     chat.add_argument("--llm", default="rules", help="in-process model backend, as for serve (default rules)")
     chat.add_argument("--user", default="__unknown_agent__", help="speaker id (default __unknown_agent__)")
@@ -121,16 +134,19 @@ def _parser() -> argparse.ArgumentParser:
                            "thing, place, entity, a KB class (cup:dbr:Cup) or values (size:s|m|l)")
     chat.add_argument("--locale", help="the dialogue's locale, ll_CC (e.g. en_GB, fr_FR)")
 
-    kb = sub.add_parser("kb", help="query and edit the KB: query, add, retract, details, lookup")
+    kb = sub.add_parser("kb", help="query and edit the KB: query, add, retract, details, lookup (add and "
+                                   "retract: of a running service, --url)")
     kb_sub = kb.add_subparsers(dest="kb_command", required=True, metavar="KB_COMMAND")
     for name, (what, arg, example) in KB_COMMANDS.items():
         one = kb_sub.add_parser(name, help=what)
+        one.set_defaults(**{_PARSER: one})
         many = "+" if arg in ("patterns", "statements") else None
         one.add_argument(arg, nargs=many, help=f"e.g. {example}")
         one.add_argument("--models", nargs="*", help="KB models (default: the robot's own)")
         _remote_options(one)
 
     humans = sub.add_parser("humans", help="persons the KB knows: id, name, seen, engagement")
+    humans.set_defaults(**{_PARSER: humans})
     _remote_options(humans)
 
     evaluate = sub.add_parser("eval", help="score dialogue cases (.jsonl); see 'situated eval -h'",
@@ -145,14 +161,17 @@ def _parser() -> argparse.ArgumentParser:
     doctor.add_argument("--data", type=Path, help="as for serve (default: the settings' data folder)")
     doctor.add_argument("--config", type=Path, help="TOML or JSON settings file (or $SITUATED_CONFIG)")
     doctor.add_argument("--strict", action="store_true", help="warnings (no Chromium) also exit 1")
+    doctor.set_defaults(**{_PARSER: doctor})
     data = sub.add_parser("data", help="check or repair a data folder (--data): journal and snapshot")
     data.add_argument("action", choices=["check", "repair"], help="check: report, exit 1 if damaged; "
                       "repair (service stopped): keep every intact record, the damaged files beside them")
     data.add_argument("dir", type=Path, help="the data folder")
+    data.set_defaults(**{_PARSER: data})
 
     bench = sub.add_parser("bench", help="run benchmarks: " + ", ".join(BENCHES) + ", all (those), or "
                                          "model (the local LLM path; the local extra)")
     bench.add_argument("which", nargs="?", default="all", choices=[*BENCHES, *OPTIONAL_BENCHES, "all"])
+    bench.set_defaults(**{_PARSER: bench})
     bench.add_argument("args", nargs=argparse.REMAINDER, help="passed to the benchmark")
     ros_cli.add_parser(sub, _serve_options)
     return parser
@@ -178,6 +197,7 @@ def _run_service(args: argparse.Namespace, extensions: Sequence[Extension] = (),
                              scene=args.scene, llm=args.llm, token=args.token, store=args.store,
                              writer_url=args.writer)
     backend_of(settings)  # a bad backend spec is reported before anything starts
+    check_scene(settings.scene)  # so is a scene that cannot be loaded (else: a start-up traceback)
     if settings.data_dir is not None and settings.data_dir.is_dir():
         report = check_data(settings.data_dir)  # damage is reported plainly, not as a traceback
         if report.damaged:
@@ -212,6 +232,10 @@ def _print_json(value: Any) -> None:
 
 
 def _kb_command(args: argparse.Namespace) -> int:
+    if args.kb_command in KB_WRITES and not args.url:
+        raise CommandError(f"{args.kb_command} changes the KB of a running service: give its --url (e.g. "
+                           "--url http://127.0.0.1:8000); without it the change would go to a throwaway "
+                           "in-process KB, gone when the command ends")
     models = args.models or None
     with _kb(args) as kb:
         command = args.kb_command
@@ -395,10 +419,13 @@ def main(argv: Sequence[str] | None = None) -> int:
     eval_args = _split_eval(argv)
     if eval_args is not None:
         return _eval(argparse.Namespace(command="eval", args=eval_args))
-    args = _parser().parse_args(argv)
+    parser = _parser()
+    args, unknown = parser.parse_known_args(argv)
+    if unknown:  # said with the usage of the command given, not the top-level one
+        getattr(args, _PARSER, parser).error(f"unrecognized arguments: {' '.join(unknown)}")
     try:
         return COMMANDS[args.command](args)
-    except (KbError, ClientError, SettingsError, DialogueError, ros_cli.RosError) as exc:
+    except (KbError, ClientError, SettingsError, DialogueError, ros_cli.RosError, CommandError) as exc:
         _say(f"situated {args.command}: {exc}")
         return 2
 

@@ -19,17 +19,22 @@ from typing import Any
 
 from kb import KB, KbError
 from kb.errors import StorageError, storage_error
+from kb.terms import parse_ground
 from scene.engagement import Transition
 from scene.scene import ROBOT_ID, Diff, Entity, Kind, SceneConfig
 from scene.settings import SceneSettings
 from scene.svg import load_svg
 from scene.sync import SceneSync, entity_from_json, entity_to_json, scene_from_json, scene_to_json
-from scene.textfile import load_scene
+from scene.textfile import load_scene, read_statements
 
 log = logging.getLogger("situated.scene")
 SCENE_FILE = "scene.json"
 PENDING_FILE = "scene.pending.json"  # a scene change written ahead of its KB commit
 DEMO = "demo"
+
+
+#: What a scene source may be, as every message says it.
+SCENE_KINDS = "'demo', an .svg environment, a .json scene, a .txt file of statements, or 'none'"
 
 
 def read_scene(source: str) -> list[Entity]:
@@ -45,7 +50,23 @@ def read_scene(source: str) -> list[Entity]:
         return load_svg(data)
     if path.suffix.lower() == ".json":
         return scene_from_json(data)
-    raise KbError(f"scene {source!r}: use an .svg environment, a .json scene, 'demo' or 'none'")
+    raise KbError(f"scene {source!r}: use {SCENE_KINDS}")
+
+
+def check_scene(source: str | None) -> None:
+    """Read and parse a scene source as a start would load it, without a KB, so that a bad one is
+    said in one line before anything starts (KbError saying what is wrong)."""
+    if source in (None, "", "none", DEMO):
+        return
+    assert source is not None
+    if not source.endswith(".txt"):
+        read_scene(source)
+        return
+    for statement in read_statements(Path(source)):
+        try:
+            parse_ground(statement)
+        except KbError as exc:
+            raise KbError(f"scene {source!r}: {exc}") from None
 
 
 def load_any_scene(kb: KB, source: str) -> str:

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import io
 import json
+import os
 import re
 import shlex
 import socket
@@ -17,6 +18,7 @@ import httpx
 import pytest
 
 from api.cli import main
+from api.settings import Settings
 from dialogue.llm.openai import OpenAIModel
 from dialogue.llm.spec import SPEC_HELP
 from tests.api.conftest import SCENE, Live
@@ -70,8 +72,6 @@ def test_kb_and_humans_against_a_running_service(live: Live, capsys: pytest.Capt
 def test_kb_retract_reports_the_triples_removed_not_the_patterns(live: Live,
                                                                  capsys: pytest.CaptureFixture[str]) -> None:
     # The scene has cup_1 and book_1 on table_1: one pattern, two triples.
-    assert main(["kb", "retract", "?x isOn table_1", "--scene", str(SCENE)]) == 0
-    assert "retract: 2 triple(s) removed" in capsys.readouterr().err
     assert main(["kb", "retract", "?x isOn table_1", "--url", live.url]) == 0
     assert "retract: 2 triple(s) removed" in capsys.readouterr().err
     assert main(["kb", "retract", "?x isOn table_1", "--url", live.url]) == 0
@@ -175,12 +175,18 @@ def test_every_example_of_the_help_works(live: Live, tmp_path: Path, monkeypatch
 
 
 @pytest.mark.parametrize("command", ["query", "add", "retract", "details", "lookup"])
-def test_each_kb_command_help_example_works(command: str, capsys: pytest.CaptureFixture[str]) -> None:
-    """The e.g. of ``situated kb COMMAND -h`` is an argument that command takes, and does something."""
+def test_each_kb_command_help_example_works(command: str, request: pytest.FixtureRequest,
+                                            capsys: pytest.CaptureFixture[str]) -> None:
+    """The e.g. of ``situated kb COMMAND -h`` is an argument that command takes, and does something
+    (add and retract to a running service, with the kitchen scene)."""
     found = re.search(r"\be\.g\. (.+)$", _help("kb", command), flags=re.MULTILINE)
     assert found, f"kb {command} -h gives no example"
-    scene = str(REPO / "tests/dialogue/eval/scenes/kitchen.txt")
-    assert main(["kb", command, *shlex.split(found.group(1)), "--scene", scene]) == 0
+    scene = REPO / "tests/dialogue/eval/scenes/kitchen.txt"
+    where = ["--scene", str(scene)]
+    if command in ("add", "retract"):
+        live: Live = request.getfixturevalue("live_factory")(Settings(scene=str(scene)))
+        where = ["--url", live.url]
+    assert main(["kb", command, *shlex.split(found.group(1)), *where]) == 0
     out, err = capsys.readouterr()
     if command in ("query", "lookup"):
         assert json.loads(out), f"kb {command} example found nothing"
@@ -261,3 +267,53 @@ def test_chat_starts_an_ask_dialogue_and_prints_the_results(live: Live, monkeypa
 def test_chat_refuses_bad_ask_options(args: list[str], message: str, capsys: pytest.CaptureFixture[str]) -> None:
     assert main(["chat", "--scene", "none", "--say", "hi", *args]) == 2
     assert message in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("command", ["add", "retract"])
+def test_kb_writes_without_a_url_are_refused_not_done_to_a_throwaway_kb(
+        command: str, capsys: pytest.CaptureFixture[str]) -> None:
+    """They once said "add: 1 statement(s)" of an in-process KB gone when the command ended."""
+    assert main(["kb", command, "cup_1 isOn table_1", "--scene", str(SCENE)]) == 2
+    out, err = capsys.readouterr()
+    assert out == "" and err.count("\n") == 1
+    assert f"situated kb: {command} changes the KB of a running service: give its --url" in err
+    assert "throwaway" in err and "statement(s)" not in err and "removed" not in err
+
+
+def test_serve_with_a_scene_it_cannot_load_says_so_in_one_line(tmp_path: Path) -> None:
+    """Once a 100-line traceback from the start-up (doctor and chat said it in one line)."""
+    (tmp_path / "room.png").write_bytes(b"not a scene")
+    (tmp_path / "bad.txt").write_text("cup_1 isOn ?where\n")
+    cases = {"missing.svg": "cannot read scene 'missing.svg': No such file or directory",
+             "room.png": "scene 'room.png': use 'demo', an .svg environment, a .json scene, a .txt file of "
+                         "statements, or 'none'",
+             "bad.txt": "scene 'bad.txt': invalid statement 'cup_1 isOn ?where'"}
+    for scene, says in cases.items():
+        done = subprocess.run([sys.executable, "-m", "api.cli", "serve", "--scene", scene, "--port",
+                               str(_free_port())], capture_output=True, text=True, cwd=tmp_path, timeout=120,
+                              env={**os.environ, "PYTHONPATH": str(REPO)})
+        assert done.returncode == 2, done.stderr[-2000:]
+        (line,) = done.stderr.splitlines()
+        assert line.startswith(f"situated serve: {says}"), done.stderr[-2000:]
+        assert "Traceback" not in done.stderr
+
+
+@pytest.mark.parametrize("command", ["chat", "doctor"])
+def test_the_kinds_of_scene_are_all_named(command: str, tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    scene = tmp_path / "room.png"
+    scene.write_bytes(b"not a scene")
+    main([command, "--scene", str(scene), *(["--say", "hi"] if command == "chat" else ["--port", str(_free_port())])])
+    out, err = capsys.readouterr()
+    assert "a .txt file of statements" in out + err
+
+
+@pytest.mark.parametrize(("words", "prog"), [
+    (["serve", "--bogus"], "situated serve"), (["kb", "query", "?x isOn ?y", "--bogus"], "situated kb query"),
+    (["chat", "--say", "hi", "--bogus"], "situated chat"), (["data", "check", ".", "--bogus"], "situated data"),
+])
+def test_an_unknown_option_is_told_with_the_usage_of_its_command(words: list[str], prog: str) -> None:
+    """`serve --bogus` once printed the top-level usage, which says nothing of serve's options."""
+    done = subprocess.run([sys.executable, "-m", "api.cli", *words], capture_output=True, text=True, cwd=REPO,
+                          timeout=120)
+    assert done.returncode == 2 and done.stderr.startswith(f"usage: {prog} "), done.stderr
+    assert done.stderr.rstrip().endswith(f"{prog}: error: unrecognized arguments: --bogus"), done.stderr
