@@ -57,7 +57,7 @@ class ServiceClient:
             response = self._http.request(method, path, **kwargs)
         except httpx.HTTPError as exc:
             after = "; nothing was written" if writes else ""
-            raise ClientError(503, f"{self.name}_unavailable", f"the {self.name} service at {self.url} "
+            raise ClientError(503, f"{self.name}_unavailable", f"the {self.name} at {self.url} "
                               f"cannot be reached: {exc}{after}") from exc
         if response.is_error:
             raise _refusal(response, self.name)

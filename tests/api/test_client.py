@@ -48,8 +48,12 @@ def test_an_unreachable_service_is_503_and_a_write_says_nothing_was_written() ->
         with pytest.raises(ClientError) as read:
             client.lookup("cup")
     assert (write.value.status, write.value.code) == (503, "writer_unavailable")
+    assert write.value.message.startswith("the writer at http://writer.test cannot be reached: ")
     assert write.value.message.endswith("nothing was written")
     assert "nothing was written" not in read.value.message
+    with _client(httpx.MockTransport(down)) as client, pytest.raises(ClientError) as plain:
+        client.lookup("cup")  # the CLI's --url: once "the service service at ..."
+    assert plain.value.message.startswith("the service at http://writer.test cannot be reached: ")
 
 
 def test_writes_send_the_library_calls_as_the_rest_api_expects() -> None:
