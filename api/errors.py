@@ -1,10 +1,10 @@
 """The one JSON error shape of every route: ``{"status", "code", "message", "details"}``.
 
 Every failure goes through here: HTTP errors raised by the framework (404, 405), request
-validation (422), ``KbError`` and ``DialogueError`` (400; a failing model is 503), a full or
-failing data directory (507 ``storage_full``, 503 ``storage_unavailable``), the service's own
-``ApiError`` (auth, limits) and unexpected errors (500 with a generic message; the traceback
-goes to the log only).
+validation (422; 415 for a body sent without saying it is JSON), ``KbError`` and
+``DialogueError`` (400; a failing model is 503), a full or failing data directory (507
+``storage_full``, 503 ``storage_unavailable``), the service's own ``ApiError`` (auth, limits) and
+unexpected errors (500 with a generic message; the traceback goes to the log only).
 """
 
 from __future__ import annotations
@@ -106,9 +106,23 @@ async def _http_error(request: Request, exc: Exception) -> JSONResponse:
     return error_response(status, None, message, details, getattr(exc, "headers", None))
 
 
+def _not_json(request: Request, details: list[dict[str, Any]]) -> str | None:
+    """Why a body that failed as a whole is no JSON to the route: it was sent without saying it is
+    JSON (the framework then reads it as bytes, and the error would speak of a dictionary)."""
+    media = request.headers.get("content-type", "").split(";")[0].strip().lower()
+    json_sent = media == "application/json" or media.endswith("+json")
+    if json_sent or not any(d["loc"] == ["body"] for d in details):
+        return None
+    said = f"is sent as {media}" if media else "has no Content-Type"
+    return f"the request {said}; its body must be JSON: send Content-Type: application/json"
+
+
 async def _validation_error(request: Request, exc: Exception) -> JSONResponse:
     assert isinstance(exc, RequestValidationError)
     details = _validation_details(exc)
+    unsupported = _not_json(request, details)
+    if unsupported is not None:
+        return error_response(415, "unsupported_media_type", unsupported)
     first = details[0] if details else {"loc": [], "msg": "invalid request"}
     where = ".".join(str(p) for p in first["loc"]) or "request"
     return error_response(422, "invalid_request", f"{where}: {first['msg']}", details)

@@ -36,6 +36,21 @@ def test_validation_error_names_the_field(live: Live) -> None:
     _assert_shape(live.client.post("/kb/query", json={"patterns": ["a b c"], "extra": 1}), 422)
 
 
+def test_a_json_body_without_its_content_type_is_told_what_to_send(live: Live) -> None:
+    """Once a puzzling 422 "Input should be a valid dictionary or object to extract fields from"."""
+    body = b'{"patterns": ["?x rdf:type Human"]}'
+    for headers in ({}, {"content-type": "text/plain"}, {"content-type": "application/x-www-form-urlencoded"}):
+        answer = _assert_shape(live.client.post("/kb/query", content=body, headers=headers), 415,
+                               "unsupported_media_type")
+        assert "send Content-Type: application/json" in answer["message"], headers
+    said = _assert_shape(live.client.post("/dialogues/default/interactions", content=b'{"user_id": "a", "input": "hi"}'),
+                         415)
+    assert said["message"].startswith("the request has no Content-Type")
+    assert live.client.post("/kb/query", content=body, headers={"content-type": "application/json"}).json()
+    # a JSON body of the wrong shape stays a 422 naming what is wrong
+    _assert_shape(live.client.post("/kb/query", json=["?x rdf:type Human"]), 422, "invalid_request")
+
+
 def test_kb_error_is_400_with_the_kb_message(live: Live) -> None:
     body = _assert_shape(live.client.post("/kb/revise", json={"statements": ["cup_2 rdf:type"],
                                                                "method": "add"}), 400, "kb_error")
