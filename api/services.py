@@ -189,7 +189,8 @@ def backend_of(settings: Settings) -> ChatModel:
 
 def intent_bus(settings: Settings) -> IntentBus:
     """The service's intent bus, numbered from the clock: a restart is told apart from a resume."""
-    return IntentBus(settings.intents.buffer, max_readers=settings.intents.max_readers, first=clock_first())
+    return IntentBus(settings.intents.buffer, max_readers=settings.intents.max_readers, first=clock_first(),
+                     buffer_bytes=settings.intents.buffer_bytes)
 
 
 def build_dialogues(settings: Settings, kb: KnowledgeBase, model: ChatModel | None = None,

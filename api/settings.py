@@ -47,6 +47,11 @@ class IntentSettings(BaseModel):
 
     buffer: int = Field(default=1000, ge=1, description="pushed intents kept for a client that "
                         "reconnects to replay (GET /intents/stream?after=N, Last-Event-ID)")
+    buffer_bytes: int = Field(default=8 * 1024 * 1024, ge=4096, description="bytes (of JSON) of pushed "
+                              "intents kept in that buffer, and queued for one stream client; past it the "
+                              "oldest go (GET /intents answers at most about this much)")
+    max_intent_bytes: int = Field(default=65_536, ge=1024, description="bytes (of JSON) of one intent, "
+                                  "with its response, that POST /intents takes (413 past it)")
     max_readers: int = Field(default=64, ge=1, description="intent stream clients (SSE + WebSocket) at once")
     webhooks: list[str] = Field(default_factory=list, description="URLs each pushed intent is POSTed to")
     webhook_retries: int = Field(default=5, ge=0, le=100, description="retries of a failed delivery")
@@ -57,6 +62,13 @@ class IntentSettings(BaseModel):
     webhook_queue: int = Field(default=1000, ge=1, description="intents waiting per webhook URL; past it "
                                "the oldest is dropped")
     webhook_timeout: float = Field(default=5.0, gt=0, le=60, description="seconds one delivery may take")
+
+    @model_validator(mode="after")
+    def _one_fits(self) -> IntentSettings:
+        if self.max_intent_bytes > self.buffer_bytes:
+            raise ValueError(f"max_intent_bytes ({self.max_intent_bytes}) must not exceed buffer_bytes "
+                             f"({self.buffer_bytes}): the buffer holds at least one intent")
+        return self
 
     @field_validator("webhooks")
     @classmethod

@@ -2,12 +2,14 @@
 
 from __future__ import annotations
 
+import time
 from typing import Annotated, Any
 
 from fastapi import APIRouter, Depends, Header, Query, WebSocket
 from fastapi.responses import StreamingResponse
 from pydantic import BaseModel, ConfigDict, Field
 from sse_starlette import EventSourceResponse
+from starlette.concurrency import run_in_threadpool
 
 from api.auth import authorise, token_from_header
 from api.deps import ReadAccess, ServicesDep, StreamReadAccess, WriteAccess
@@ -15,7 +17,9 @@ from api.errors import ApiError, error_body
 from api.intentstream import open_reader, resume_after, serve_websocket, stream_response, websocket_query
 from dialogue.intents import Intent
 from dialogue.pushed.bus import IntentBus
+from dialogue.pushed.events import Emitted as Pushable
 from dialogue.pushed.events import IntentFilter, Origin
+from dialogue.pushed.incoming import IncomingError, IncomingTooLarge, check_incoming
 
 router = APIRouter(prefix="/intents", tags=["intents"])
 
@@ -79,10 +83,21 @@ class Published(BaseModel):
 
 
 @router.post("", dependencies=[WriteAccess])
-async def publish(body: Emitted, bus: Bus) -> Published:
+async def publish(body: Emitted, bus: Bus, services: ServicesDep) -> Published:
     """Push an intent on the stream, numbered after every other: how a read replica hands the
-    intents of the turns it answers to the writer's stream, the deployment's one."""
-    event = bus.publish(body.origin, body.intent, body.dialogue_id, body.response, body.time)
+    intents of the turns it answers to the writer's stream, the deployment's one. The intent must be
+    an hri_actions_msgs/Intent constant with its roles, each entity role naming something of the KB
+    (422 ``invalid_intent``), and at most ``intents.max_intent_bytes`` of JSON (413)."""
+    when = body.time if body.time is not None else time.time()
+    emitted = Pushable(body.origin, body.intent, body.dialogue_id, body.response, when)
+    try:
+        limit = services.settings.intents.max_intent_bytes
+        await run_in_threadpool(check_incoming, services.kb, emitted, limit)
+    except IncomingTooLarge as exc:
+        raise ApiError(413, "intent_too_large", str(exc)) from exc
+    except IncomingError as exc:
+        raise ApiError(422, "invalid_intent", str(exc)) from exc
+    event = bus.publish(emitted.origin, emitted.intent, emitted.dialogue_id, emitted.response, emitted.time)
     return Published(seq=event.seq, stream=bus.stream)
 
 

@@ -13,6 +13,10 @@ client resuming after one of those is told of the restart, however many intents 
 pushed since (numbering from 1 again, its 42 would have been taken for the old run's 42). `stream`
 names the bus too.
 
+The buffer is bounded in events and in bytes (each event's JSON): past either, the oldest go (the
+newest always stays), so neither a flood of large intents nor a client reading the whole buffer
+(`GET /intents`) costs more than `buffer_bytes`. A reader's queue is bounded the same way.
+
 Listeners (`on_publish`, the webhooks) are called in the publisher's thread and must only queue.
 """
 
@@ -31,6 +35,8 @@ from dialogue.observers import TurnRecord
 from dialogue.pushed.events import IntentFilter, Origin, Pushed, emitted
 
 Listener = Callable[[Pushed], None]
+#: Bytes of events a buffer (and a reader's queue) holds at most, by default.
+DEFAULT_BUFFER_BYTES = 8 * 1024 * 1024
 
 
 def clock_first() -> int:
@@ -56,12 +62,15 @@ class Gap:
 class Reader:
     """One subscriber's events, in order; `None` from `next` ends them (see `end_reason`)."""
 
-    def __init__(self, loop: asyncio.AbstractEventLoop, flt: IntentFilter, max_queued: int) -> None:
+    def __init__(self, loop: asyncio.AbstractEventLoop, flt: IntentFilter, max_queued: int,
+                 max_bytes: int = DEFAULT_BUFFER_BYTES) -> None:
         self.filter = flt
         self.end_reason: str | None = None
         self.gap: Gap | None = None
         self._loop = loop
         self._max = max_queued
+        self._max_bytes = max_bytes
+        self._bytes = 0
         self._events: deque[Pushed] = deque()
         self._ready = asyncio.Event()
 
@@ -81,11 +90,12 @@ class Reader:
     def _put(self, event: Pushed) -> None:
         if self.end_reason is not None:
             return
-        if len(self._events) >= self._max:
+        if self._events and (len(self._events) >= self._max or self._bytes + event.size > self._max_bytes):
             self._finish("overflow: the client reads intents more slowly than they come; reconnect "
                          f"after {self._events[-1].seq} to replay what is still buffered")
             return
         self._events.append(event)
+        self._bytes += event.size
         self._ready.set()
 
     def _finish(self, reason: str) -> None:
@@ -99,15 +109,17 @@ class Reader:
                 return None
             self._ready.clear()
             await self._ready.wait()
-        return self._events.popleft()
+        event = self._events.popleft()
+        self._bytes -= event.size
+        return event
 
 
 class IntentBus:
     """Numbers and buffers the intents of one service and hands them to readers and listeners."""
 
     def __init__(self, buffer: int = 1000, max_queued: int = 1000, max_readers: int = 64,
-                 first: int = 1) -> None:
-        if buffer < 1 or max_queued < 1 or max_readers < 1 or first < 1:
+                 first: int = 1, buffer_bytes: int = DEFAULT_BUFFER_BYTES) -> None:
+        if buffer < 1 or max_queued < 1 or max_readers < 1 or first < 1 or buffer_bytes < 1:
             raise ValueError("the intent bus's bounds and first number must be positive")
         #: Names this bus: a client seeing another stream id knows the numbers started again.
         self.stream = uuid.uuid4().hex
@@ -115,7 +127,10 @@ class IntentBus:
         #: The number of this bus's first event; `after` 0 (nothing seen yet) means just before it.
         self.first = first
         self._lock = threading.Lock()
-        self._buffer: deque[Pushed] = deque(maxlen=buffer)
+        self._buffer: deque[Pushed] = deque()
+        self._max_buffered = buffer
+        self._max_bytes = buffer_bytes
+        self._bytes = 0  # of the buffered events
         self._seq = first - 1
         self._max_queued = max_queued
         self._readers: tuple[Reader, ...] = ()
@@ -140,7 +155,7 @@ class IntentBus:
         with self._lock:
             self._seq += 1
             event = Pushed(self._seq, when, origin, intent, dialogue_id, response)
-            self._buffer.append(event)
+            self._keep(event)
             readers, listeners = self._readers, self._listeners
             # Handed out under the lock, so that a reader subscribing now gets each event once,
             # from the buffer or live, and in order.
@@ -151,6 +166,14 @@ class IntentBus:
             listener(event)
         return event
 
+    def _keep(self, event: Pushed) -> None:
+        """Buffer the event, dropping the oldest past the bounds (under the lock)."""
+        self._buffer.append(event)
+        self._bytes += event.size
+        buffer = self._buffer
+        while len(buffer) > 1 and (len(buffer) > self._max_buffered or self._bytes > self._max_bytes):
+            self._bytes -= buffer.popleft().size
+
     async def observe(self, record: TurnRecord) -> None:
         """The dialogue manager's observer: a turn's intents, in order, its reply with the first."""
         for event in emitted(record):
@@ -160,7 +183,7 @@ class IntentBus:
                   after: int | None = None) -> Reader:
         """A reader of the events after `after` (None: from now on). ValueError past the readers'
         bound (the caller says so: too many subscribers)."""
-        reader = Reader(loop, flt or IntentFilter(), self._max_queued)
+        reader = Reader(loop, flt or IntentFilter(), self._max_queued, self._max_bytes)
         with self._lock:
             if len(self._readers) >= self.max_readers:
                 raise ValueError(f"{len(self._readers)} intent readers are connected; the limit is "

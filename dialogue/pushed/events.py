@@ -7,13 +7,16 @@
 `origin` is `dialogue` (a turn of `dialogue_id`) or `initiative` (the robot's own, e.g. greeting a
 person who engaged; no dialogue). `response` is what the robot says with the intent: a turn's reply
 travels with its first intent, a greeting's words with its GREET. Before a bus numbers it, an intent
-is `Emitted` (what a read replica hands to the writer's bus).
+is `Emitted` (what a read replica hands to the writer's bus). Each one's `size` is the bytes of its
+JSON, what it costs a buffer and an answer that carries it.
 """
 
 from __future__ import annotations
 
+import json
 from collections.abc import Iterable
 from dataclasses import dataclass
+from functools import cached_property
 from typing import Any, Literal
 
 from dialogue.intents import Intent
@@ -21,6 +24,11 @@ from dialogue.observers import TurnRecord
 
 Origin = Literal["dialogue", "initiative"]
 ORIGINS: frozenset[str] = frozenset({"dialogue", "initiative"})
+
+
+def json_bytes(value: Any) -> int:
+    """The bytes of `value` as compact UTF-8 JSON."""
+    return len(json.dumps(value, ensure_ascii=False, separators=(",", ":")).encode())
 
 
 @dataclass(frozen=True)
@@ -36,6 +44,10 @@ class Pushed:
         return {"seq": self.seq, "time": self.time, "origin": self.origin, "dialogue_id": self.dialogue_id,
                 "response": self.response, "intent": self.intent.model_dump(mode="json")}
 
+    @cached_property
+    def size(self) -> int:
+        return json_bytes(self.as_json())
+
 
 @dataclass(frozen=True)
 class Emitted:
@@ -50,6 +62,10 @@ class Emitted:
     def as_json(self) -> dict[str, Any]:
         return {"time": self.time, "origin": self.origin, "dialogue_id": self.dialogue_id,
                 "response": self.response, "intent": self.intent.model_dump(mode="json")}
+
+    @property
+    def size(self) -> int:
+        return json_bytes(self.as_json())
 
 
 def emitted(record: TurnRecord) -> list[Emitted]:

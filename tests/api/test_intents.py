@@ -170,7 +170,7 @@ def test_an_intent_published_by_another_process_is_numbered_on_the_stream(live_f
     live = live_factory(scene_settings(token="pub-token"))
     auth = {"authorization": "Bearer pub-token"}
     n = live.services.bus.last_seq
-    intent = {"intent": "__intent_greet__", "data": {"recipient": "person_ann"}, "source": "person_ann"}
+    intent = {"intent": "__intent_greet__", "data": {"recipient": "person_alice"}, "source": "person_alice"}
     body = {"origin": "dialogue", "dialogue_id": "hall", "response": "Hello!", "intent": intent, "time": 1750000000.5}
     assert live.client.post("/intents", json=body).status_code == 401  # a write: the token
     published = live.client.post("/intents", headers=auth, json=body)
@@ -188,3 +188,66 @@ def test_an_intent_published_by_another_process_is_numbered_on_the_stream(live_f
         refused = live.client.post("/intents", headers=auth, json=bad)
         assert refused.status_code == 422 and refused.json()["message"], bad
     assert live.services.bus.last_seq == n + 2  # nothing of them
+
+
+def test_a_published_intent_is_a_catalogue_intent_whose_entities_the_kb_knows(live_factory: Any) -> None:
+    """POST /intents once took anything: intents no hri_actions_msgs/Intent has, roles naming nothing."""
+    live = live_factory(scene_settings(token="pub-token"))
+    auth = {"authorization": "Bearer pub-token"}
+    n = live.services.bus.last_seq
+
+    def publish(intent: str, data: dict[str, str]) -> httpx.Response:
+        body = {"intent": {"intent": intent, "data": data, "source": "person_alice"}}
+        return live.client.post("/intents", headers=auth, json=body)
+
+    refusals = [
+        (("__intent_dance__", {}), "unknown intent '__intent_dance__'; expected one of"),
+        (("__intent_greet__", {}), "GREET is missing required role(s) ['recipient']"),
+        (("__intent_greet__", {"recipient": "person_alice", "colour": "red"}), "GREET has no role 'colour'"),
+        (("__intent_greet__", {"recipient": "person_nobody"}),
+         "recipient 'person_nobody' names nothing in the KB"),
+        (("__intent_bring_object__", {"object": "dbr:Unicorn", "recipient": "person_alice"}),
+         "object 'dbr:Unicorn' names nothing in the KB"),
+        (("__intent_guide__", {"goal": "kitchen", "recipient": "no one"}), "recipient 'no one' is not a KB id"),
+    ]
+    for (intent, data), says in refusals:
+        refused = publish(intent, data)
+        assert (refused.status_code, refused.json()["code"]) == (422, "invalid_intent"), (intent, data)
+        assert says in refused.json()["message"], refused.json()["message"]
+    assert live.services.bus.last_seq == n  # nothing of them
+    for intent, data in [("__intent_bring_object__", {"object": "cup_1", "recipient": "person_alice"}),
+                         ("__intent_guide__", {"goal": "kitchen", "recipient": "person_alice"}),
+                         ("__intent_say__", {"object": "free text, no entity", "recipient": "person_tom"})]:
+        assert publish(intent, data).status_code == 200, (intent, data)
+    assert live.services.bus.last_seq == n + 3
+
+
+def test_a_published_intent_and_the_buffer_are_bounded_in_bytes(live_factory: Any) -> None:
+    """600 intents of 900 KB once added 600 MB, and an anonymous GET /intents answered 540 MB."""
+    bounds = IntentSettings(max_intent_bytes=8192, buffer_bytes=65_536)
+    live = live_factory(scene_settings(token="pub-token", intents=bounds))
+    auth = {"authorization": "Bearer pub-token"}
+
+    def say(text: str, response: str = "") -> httpx.Response:
+        intent = {"intent": "__intent_say__", "data": {"object": text}, "source": "person_alice"}
+        return live.client.post("/intents", headers=auth, json={"intent": intent, "response": response})
+
+    for text, response in (("x" * 900_000, ""), ("x" * 8192, ""), ("hi", "é" * 5000)):  # é: 2 bytes
+        refused = say(text, response)
+        assert (refused.status_code, refused.json()["code"]) == (413, "intent_too_large"), refused.text
+        assert "the limit is 8192 bytes" in refused.json()["message"]
+    first = live.services.bus.last_seq + 1
+    for n in range(100):  # about 4 KB each: 400 KB in all, six times the buffer
+        assert say(f"{n:03d} " + "y" * 4000).status_code == 200
+    answer = live.client.get("/intents")  # anonymous: reads are open
+    kept = answer.json()["intents"]
+    assert 10 <= len(kept) <= 16 and len(answer.content) <= 65_536 + 4096
+    assert kept[-1]["intent"]["data"]["object"].startswith("099 ")  # the newest, the oldest dropped
+    assert answer.json()["gap"]["last"] == kept[0]["seq"] - 1  # what was dropped is said to be missing
+    missed = live.client.get("/intents", params={"after": first - 1}).json()
+    assert missed["gap"] == {"first": first, "last": kept[0]["seq"] - 1, "restarted": False}
+
+
+def test_the_intent_bounds_have_defaults() -> None:
+    bounds = IntentSettings()
+    assert bounds.max_intent_bytes == 65_536 and bounds.buffer_bytes == 8 * 1024 * 1024

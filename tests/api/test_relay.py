@@ -21,11 +21,11 @@ TURN_AT = 1_750_000_000.5
 
 
 def turn(dialogue: str = "kitchen_talk") -> TurnRecord:
-    fetch = I.make_intent(I.BRING_OBJECT, {"object": "cup_1", "recipient": "person_ann"}, source="person_ann",
+    fetch = I.make_intent(I.BRING_OBJECT, {"object": "cup_1", "recipient": "person_alice"}, source="person_alice",
                           confidence=0.9)
-    greet = I.make_intent(I.GREET, {"recipient": "person_ann"}, source="person_ann", confidence=1.0)
+    greet = I.make_intent(I.GREET, {"recipient": "person_alice"}, source="person_alice", confidence=1.0)
     result = TurnResult("Hello! OK, I will bring the cup to you.", (greet, fetch))
-    return TurnRecord(dialogue, "person_ann", "hi, bring me the cup", result, TURN_AT)
+    return TurnRecord(dialogue, "person_alice", "hi, bring me the cup", result, TURN_AT)
 
 
 def test_a_turns_intents_reach_the_writers_stream_in_order(live_factory: Any) -> None:

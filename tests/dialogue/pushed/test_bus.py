@@ -111,6 +111,34 @@ def test_what_the_buffer_lost_and_a_number_from_before_a_restart_are_gaps() -> N
     assert [e.seq for e in events] == [4, 5, 6] and gap == Gap(1, 3, restarted=True)
 
 
+def say(text: str) -> I.Intent:
+    return I.make_intent(I.SAY, {"object": text}, source=I.ROBOT_ITSELF, confidence=1.0)
+
+
+def test_the_buffer_is_bounded_in_bytes_the_newest_always_kept() -> None:
+    bus = IntentBus(buffer=1000, buffer_bytes=10_000)
+    sizes = [bus.publish("dialogue", say("x" * 900), "d").size for _ in range(30)]  # about 27 KB
+    events, gap = bus.since(0)
+    assert sum(e.size for e in events) <= 10_000 < sum(e.size for e in events) + sizes[0]
+    assert [e.seq for e in events] == list(range(31 - len(events), 31)) and gap == Gap(1, 30 - len(events))
+    huge = bus.publish("dialogue", say("y" * 50_000), "d")  # larger than the bound alone: kept, alone
+    assert bus.since(0)[0] == [huge]
+
+
+def test_a_reader_whose_queue_passes_the_bytes_is_ended_as_too_slow() -> None:
+    async def run() -> tuple[str | None, int]:
+        bus = IntentBus(max_queued=1000, buffer_bytes=5_000)
+        slow = bus.subscribe(asyncio.get_running_loop())
+        for _ in range(10):  # about 9 KB, in ten events
+            bus.publish("dialogue", say("x" * 900), "d")
+        await asyncio.sleep(0)
+        got = await drain(slow, 10)
+        return slow.end_reason, len(got)
+
+    reason, got = asyncio.run(run())
+    assert reason is not None and reason.startswith("overflow") and 1 <= got < 10
+
+
 def test_a_reader_too_slow_is_ended_and_the_others_are_not_held_up() -> None:
     async def run() -> tuple[str | None, int]:
         bus = IntentBus(max_queued=3)
