@@ -24,6 +24,7 @@ from starlette.exceptions import HTTPException as StarletteHTTPException
 from api.client import ClientError
 from dialogue.errors import DialogueError
 from dialogue.llm.base import ModelError
+from dialogue.speakers import NotAPerson
 from kb import KbError
 from kb.errors import QueryTimeout, StorageError, StorageFull, StoreUnavailable, TooManyRows
 
@@ -168,6 +169,10 @@ async def _dialogue_error(request: Request, exc: Exception) -> JSONResponse:
     return error_response(400, "dialogue_error", str(exc))
 
 
+async def _not_a_person(request: Request, exc: Exception) -> JSONResponse:
+    return error_response(400, "not_a_person", str(exc))
+
+
 async def _model_error(request: Request, exc: Exception) -> JSONResponse:
     return error_response(503, "model_unavailable", str(exc))
 
@@ -194,4 +199,5 @@ def install_error_handlers(app: FastAPI) -> None:
     app.add_exception_handler(StorageError, _storage_error)
     app.add_exception_handler(DialogueError, _dialogue_error)
     app.add_exception_handler(ModelError, _model_error)  # more specific than DialogueError's 400
+    app.add_exception_handler(NotAPerson, _not_a_person)
     app.add_exception_handler(Exception, _unexpected)

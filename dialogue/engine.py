@@ -35,7 +35,7 @@ from dialogue.reference.grounding import Entity, Grounder, Snapshot
 from dialogue.reference.lexicon import Lexicon, LexiconCache
 from dialogue.reference.relevance import mentioned, ranked
 from dialogue.schema import AnswerError, SchemaCandidates, parse_answer, turn_schema
-from dialogue.speakers import admit
+from dialogue.speakers import NOT_PEOPLE, admit, check_speaker
 from dialogue.trace.record import AnsweredBy, TraceRecorder, TurnTrace
 from dialogue.validate import Grounded, ground_answer
 from kb import KbError
@@ -222,6 +222,16 @@ class DialogueEngine:
         shown = [e.id for e in focus]
         recorder.snapshot(snapshot.revision, len(snapshot.entities), [e.kind for e in focus], shown)
         return _Turn(text, speaker, locale, context, lexicon, recorder)
+
+    async def check_speaker(self, speaker: str, what: str = "user_id") -> None:
+        """Refuse (dialogue.speakers.NotAPerson) a speaker's id that names something of the KB that is
+        no person; a person of the snapshot passes without a KB read."""
+        if speaker in NOT_PEOPLE:
+            return
+        snapshot, _ = await self.ground_async()
+        entity = snapshot.get(speaker)
+        if entity is None or entity.kind != "person":
+            await asyncio.to_thread(check_speaker, self.kb, speaker, what)
 
     async def grounded_for(
         self, text: str, speaker: str, locale: str | None, trace: TraceRecorder

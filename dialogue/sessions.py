@@ -252,6 +252,7 @@ class DialogueManager:
         _check_texts(user_id, text, locale, history, [("summary", summary or ""), ("role", role or ""),
                                                       ("configuration", configuration)])
         locale = _locale(locale)
+        await self.engine.check_speaker(user_id)  # before anything is recorded or learnt
         # Context for this turn only, before its history: never stored, never trimmed away.
         earlier = f"Summary of earlier conversations: {summary}"
         before = (Utterance(SYSTEM_USER_ID, earlier),) if summary else ()

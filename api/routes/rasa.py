@@ -70,6 +70,7 @@ async def webhook(body: WebhookMessage, services: ServicesDep,
     if stream:
         raise ApiError(400, "unsupported", "stream=true is not supported; omit it")
     check_length(body.message, services.settings.limits.max_input_chars, "message")
+    await services.dialogues.engine.check_speaker(body.sender, "sender")  # before its dialogue is made
     key = rasa.dialogue_key(body.sender)
     await _ensure_dialogue(services.dialogues, key)
     result: TurnResult = await services.dialogues.interact(body.sender, body.message, dialogue_id=key)

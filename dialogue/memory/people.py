@@ -26,11 +26,10 @@ from typing import Any
 from rdflib import XSD, Literal, URIRef
 
 from dialogue import intents as I
-from dialogue.errors import DialogueError
 from dialogue.memory.provenance import Told, told
 from dialogue.memory.recollections import LAST_SPOKE, SUMMARY, Recollections
 from dialogue.observers import TurnRecord
-from dialogue.speakers import NOT_PEOPLE, person_statement
+from dialogue.speakers import NOT_PEOPLE, NotAPerson, check_speaker, person_statement
 from kb import KbError
 from kb.protocol import KnowledgeBase
 from kb.terms import format_term, format_triple, parse_name
@@ -57,10 +56,6 @@ class _Kept:
     written: float
     notes: tuple[str, ...] = ()
     spoke: float | None = None
-
-
-class NotAPerson(DialogueError, ValueError):
-    """A person's id that is no id of the KB ("a b", "?x")."""
 
 
 @dataclass(frozen=True)
@@ -200,9 +195,11 @@ class People:
     def about(self, person: str) -> dict[str, Any]:
         """Everything the robot keeps of a person: when they last spoke, the summary, the facts
         they told it (adopted: those they only believe are in their own model) and the facts others
-        told about them, each with who told it and when. NotAPerson when `person` is no KB id."""
+        told about them, each with who told it and when. NotAPerson when `person` is no KB id, or
+        names something of the KB that is no person."""
         if person not in NOT_PEOPLE and self._term(person) is None:
             raise NotAPerson(f"{person!r} is not a person's id (a KB name such as person_bob)")
+        check_speaker(self.kb, person, "person")
         memory = self.recall(person)
         if self._term(person) is None:  # a source constant: nobody the robot remembers
             return {"person": person, "last_spoke": None, "summary": "", "told": [], "told_about": []}

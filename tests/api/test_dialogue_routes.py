@@ -136,3 +136,40 @@ def test_concurrent_turns_on_one_dialogue_each_answer_by_their_own_deadline(live
                      json={"user_id": "person_alice", "input": "that is all", "response_expected": False})
     said = [u.text for u in live.services.dialogues.get("default").history if u.speaker == "person_alice"]
     assert sorted(said[:-1]) == sorted(f"fetch thing {n}" for n in range(turns)) and said[-1] == "that is all"
+
+
+NOT_PEOPLE = {  # user id -> what the refusal says it names (tests/api/scene.txt)
+    "cup_1": "names cup_1, a thing of the KB", "kitchen": "names the kitchen, a place of the KB",
+    "myself": "names the robot itself", "dbr:Cup": "names a class of the KB", "Human": "names a class of the KB",
+    "isOn": "names a property of the KB", "rdf:type": "is an RDF/OWL keyword", "owl:Thing": "is an RDF/OWL keyword",
+}
+
+
+def test_a_user_id_naming_what_is_no_person_is_refused_on_every_route(live: Live) -> None:
+    """Any user id once became a person: `cup_1`, `dbr:Cup` or `Human` an agent, `rdf:type` a Human the
+    robot greeted. Refused everywhere a speaker enters, and nothing changes."""
+    client = live.client
+    kb = live.services.kb
+    revision, models = kb.revision, kb.models()
+    for user, says in NOT_PEOPLE.items():
+        calls = {
+            "3.0": client.post("/dialogues/default/interactions", json={"user_id": user, "input": "I like tea"}),
+            "recorded": client.post("/dialogues/default/interactions",
+                                    json={"user_id": user, "input": "hello", "response_expected": False}),
+            "4.0": client.post("/dialogues/default/interactions", json={
+                "role": {"name": "__default__"}, "history": [{"speaker": user, "text": "hello"}]}),
+            "rasa": client.post("/webhooks/rest/webhook", json={"sender": user, "message": "hello"}),
+            "people": client.get(f"/people/{user}/memory"),
+        }
+        for route, answer in calls.items():
+            assert (answer.status_code, answer.json()["code"]) == (400, "not_a_person"), (user, route, answer.text)
+            message = answer.json()["message"]
+            assert repr(user) in message and says in message and "not a person" in message, (route, message)
+    assert kb.revision == revision and kb.models() == models  # nothing learnt, nobody added
+    assert not any(d.startswith("rasa:") for d in live.services.dialogues.ids())
+    assert client.get("/dialogues/default/turns").json()["turns"] == []
+    # people, known or new, and the chat roles still speak
+    for user in ("person_alice", "person_tom", "person_new", "__assistant__", "__unknown_agent__"):
+        answer = client.post("/dialogues/default/interactions", json={"user_id": user, "input": "hello"})
+        assert answer.status_code == 200, (user, answer.text)
+    assert kb.exist(["person_new rdf:type Human"])
