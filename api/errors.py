@@ -26,7 +26,7 @@ from dialogue.errors import DialogueError
 from dialogue.llm.base import ModelError
 from dialogue.speakers import NotAPerson
 from kb import KbError
-from kb.errors import QueryTimeout, StorageError, StorageFull, StoreUnavailable, TooManyRows
+from kb.errors import ModelLimit, QueryTimeout, StorageError, StorageFull, StoreUnavailable, TooManyRows
 
 log = logging.getLogger("situated.api")
 
@@ -139,6 +139,10 @@ async def _kb_error(request: Request, exc: Exception) -> JSONResponse:
     return error_response(400, "kb_error", str(exc))
 
 
+async def _model_limit(request: Request, exc: Exception) -> JSONResponse:
+    return error_response(413, "model_limit", f"{exc}")
+
+
 async def _store_unavailable(request: Request, exc: Exception) -> JSONResponse:
     return error_response(503, "store_unavailable", str(exc))
 
@@ -193,6 +197,7 @@ def install_error_handlers(app: FastAPI) -> None:
     app.add_exception_handler(KbError, _kb_error)
     app.add_exception_handler(ClientError, _client_error)
     app.add_exception_handler(StoreUnavailable, _store_unavailable)
+    app.add_exception_handler(ModelLimit, _model_limit)
     app.add_exception_handler(TooManyRows, _over_budget)
     app.add_exception_handler(QueryTimeout, _over_budget)
     app.add_exception_handler(StorageFull, _storage_full)  # before KbError's 400: more specific

@@ -236,7 +236,10 @@ def start_services(settings: Settings, kb: KB | None = None, model: ChatModel | 
     if settings.role == "reader":
         return _start_reader(settings, model)
     owns_kb = kb is None
-    the_kb = kb if kb is not None else KB(max_models_per_write=settings.limits.max_models)
+    limits = settings.limits
+    the_kb = kb if kb is not None else KB(max_models_per_write=limits.max_models,
+                                          max_models=limits.max_total_models,
+                                          max_model_statements=limits.max_model_statements)
     journal: Journal | None = None
     store: Store | None = None
     bus = intent_bus(settings)

@@ -40,6 +40,13 @@ class Limits(BaseModel):
     max_input_chars: int = Field(default=4000, ge=1, description="characters in one utterance")
     max_models: int = Field(default=16, ge=1, description="models named in one write or query (each new "
                             "model is a copy of the ontology's closure)")
+    max_total_models: int = Field(default=256, ge=2, description="models the KB holds, the robot's own "
+                                  "included (one per person who told the robot something, each about 1 MB "
+                                  "with the default ontology); a write making more is refused "
+                                  "(413 model_limit)")
+    max_model_statements: int = Field(default=1000, ge=1, description="statements of its own a model "
+                                      "other than the robot's holds (a person's beliefs); a write past it "
+                                      "is refused (413 model_limit)")
 
 
 class IntentSettings(BaseModel):

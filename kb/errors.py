@@ -63,6 +63,11 @@ class QueryTimeout(KbError):
         self.seconds = seconds
 
 
+class ModelLimit(KbError):
+    """A write that would make more models than the KB may hold, or a model (other than the robot's)
+    hold more statements of its own than one may (each model costs memory: kb.modelbounds)."""
+
+
 class StoreUnavailable(KbError):
     """The SPARQL store could not be reached, did not answer in time or failed the request."""
 

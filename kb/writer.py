@@ -23,6 +23,7 @@ from kb.errors import KbError, StorageFull
 from kb.events import Delivery, Firing, Subscriptions
 from kb.gcpause import paused
 from kb.lifespan import Expiries
+from kb.modelbounds import ModelBounds
 from kb.models import ALL_MODELS, Delta, Models, ModelsState
 from kb.query import Query, Row, holds_row, rows_in
 from kb.status import StatusCell
@@ -65,9 +66,10 @@ class Writer:
     """Applies batches to models; owns lifespans, subscriptions and the revision counter."""
 
     def __init__(self, lock: threading.RLock, models: Models, render: Render,
-                 clock: Callable[[], float] = time.time) -> None:
+                 clock: Callable[[], float] = time.time, bounds: ModelBounds | None = None) -> None:
         self.lock = lock
         self.models = models
+        self.bounds = bounds or ModelBounds()
         self.subscriptions = Subscriptions()
         self.expiries = Expiries()
         self.revision = 0
@@ -126,6 +128,7 @@ class Writer:
         expiries: list[tuple[str, Triple, float]] = []
         active_before = self._active_concepts()
         functional = self.functional_properties() if batch.replace_functional else frozenset()
+        self.bounds.check(self.models, batch)  # before anything changes: refused means nothing did
         undo = _Undo(new_models=[n for n in batch.models if self.models.get(n) is None])
         for name in batch.models:
             model = self.models.create(name)
