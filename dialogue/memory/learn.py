@@ -14,7 +14,9 @@ For every statement of a turn, in this order:
    place (its name, owner, location, or the opposite preference) asserted there without a record of
    having been told is perception's (or another producer's), and dialogue never overwrites it: the
    statement stays the speaker's belief and the reply says what the robot knows instead. A value
-   that was itself told is replaced, record and all.
+   that was itself told is replaced, record and all — unless it is someone else's word about what
+   is someone else's (dialogue.memory.disputes): a thing another person's word made theirs, or the
+   name of another known person, which stays the speaker's belief under every policy.
 4. **Provenance.** Every adopted fact gets its record (dialogue.memory.provenance), written in the
    same commit as the fact.
 
@@ -38,6 +40,7 @@ from typing import Literal as Status
 from rdflib import Literal, URIRef
 
 from dialogue.memory.claims import BY_PROPERTY, Claim
+from dialogue.memory.disputes import dispute
 from dialogue.memory.kinds import find_kind
 from dialogue.memory.provenance import Fact, forget, record, record_of
 from dialogue.reference.grounding import Snapshot
@@ -57,7 +60,7 @@ class Trust(StrEnum):
     NONE = "none"
 
 
-Outcome_ = Status["adopted", "known", "believed", "perceived", "unknown", "answered"]
+Outcome_ = Status["adopted", "known", "believed", "perceived", "disputed", "unknown", "answered"]
 
 
 @dataclass(frozen=True)
@@ -67,12 +70,13 @@ class Outcome:
     claim: Claim
     status: Outcome_
     object: str | None = None
-    #: The robot's values that win over the claim (perception's) as (property, value), or the
-    #: values a question found.
+    #: The robot's values that win over the claim (perception's, or another person's word) as
+    #: (property, value), or the values a question found.
     held: tuple[tuple[str, str], ...] = ()
     #: Told values the claim replaced ("no, it's Rob": ("Bob",)).
     replaced: tuple[str, ...] = ()
-    #: For a question the robot's model does not answer: (who said it, value) from their models.
+    #: For a question the robot's model does not answer: (who said it, value) from their models;
+    #: for a disputed claim, whose word holds: (who told it, or has the name, value).
     hearsay: tuple[tuple[str, str], ...] = ()
 
 
@@ -201,6 +205,14 @@ class Memory:
                     theirs.discard(claim.subject)  # not theirs after all: their places stay beliefs
                 continue
             replaced = [f for f in told if f != fact]
+            disputed = dispute(self.kb, claim, speaker, replaced)
+            if disputed is not None:  # someone else's word holds: the claim stays the speaker's belief
+                holds = (disputed.property, disputed.value)
+                decided[claim] = Outcome(claim, "disputed", claim.object, held=(holds,),
+                                         hearsay=((disputed.by, disputed.value),))
+                if claim.predicate == "belongsTo":
+                    theirs.discard(claim.subject)  # not theirs after all: their places stay beliefs
+                continue
             for old in [*replaced, *([fact] if fact in told else [])]:
                 remove += forget(self.kb, old)
             remove += [format_triple(f) for f in replaced]

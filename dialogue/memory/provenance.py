@@ -101,6 +101,12 @@ def told(kb: KnowledgeBase, subject: str | None = None, by: str | None = None) -
     return sorted(out, key=lambda t: (t.at, t.record))
 
 
+def teller(kb: KnowledgeBase, fact: Fact) -> str | None:
+    """Who told a fact the robot adopted (the record's `toldBy`), or None: not told (perceived)."""
+    rows = kb.find([f"{format_term(record_of(fact))} toldBy ?who"])
+    return str(rows[0]["who"]) if rows else None
+
+
 def recorded(kb: KnowledgeBase, facts: Iterable[Fact]) -> set[Fact]:
     """Which of `facts` have a record (were told), the others being perception's."""
     return {f for f in facts if kb.exist([f"{format_term(record_of(f))} rdf:type {format_term(TOLD_FACT)}"])}

@@ -92,6 +92,8 @@ def sentence(outcome: Outcome, name: _Namer) -> str:
             return f"OK, I'll remember that you said {clause(claim, name, outcome.object)}."
         case "perceived":
             return _perceived(outcome, name)
+        case "disputed":
+            return _disputed(outcome, name)
         case "unknown":
             return f"Sorry, I don't know what {outcome.object} {_be(outcome.object or '')}."
         case _:
@@ -122,6 +124,17 @@ def _perceived(outcome: Outcome, name: _Namer) -> str:
         return f"As far as I know, {thing} {_be(thing)} {places}."
     facts = [clause(Claim(claim.subject, _predicate(p), v), name) for p, v in held]
     return f"As far as I know, {listing(facts)}."
+
+
+def _disputed(outcome: Outcome, name: _Namer) -> str:
+    """Whose word holds: "I know someone else called Alice.", "Ana told me the mug is theirs."."""
+    claim = outcome.claim
+    (by, value), = outcome.hearsay
+    if claim.predicate == "name":
+        return f"I know someone else called {value}."
+    thing = name(claim.subject)
+    owner = "theirs" if by == value else name.owner(value)
+    return f"{_cap(name.person(by, 'someone'))} told me {thing} {_be(thing)} {owner}."
 
 
 def _predicate(prop: str) -> str:

@@ -73,3 +73,26 @@ def test_a_clean_stop_keeps_the_turns_that_waited_for_the_next_write(live_factor
     again = live_factory(scene_settings(data_dir=tmp_path))
     summary = again.client.get("/people/person_bob/memory").json()["summary"]
     assert 'said "the cookbook is mine"' in summary and 'asked "please bring me the cup"' in summary
+
+
+def test_one_persons_word_takes_neither_anothers_thing_nor_name(live: Live) -> None:
+    """Issue 26, through the service with three people: Alice's cookbook stays hers when Bob claims
+    it, Bob saying he is Tom names nobody Tom, and what Alice and Tom ask for goes where it did."""
+    assert say(live, "the cookbook is mine", "person_alice") == "OK, the cookbook is yours."
+    assert say(live, "the cookbook is mine", "person_bob") == "Alice told me the cookbook is theirs."
+    assert say(live, "I'm Tom", "person_bob") == "I know someone else called Tom."
+    assert say(live, "whose is the cookbook?", "person_tom") == "The cookbook is Alice's."
+    query = live.client.post("/kb/query", json={"patterns": ["?who rdfs:label \"Tom\""]}).json()
+    assert query == [{"who": "person_tom"}]
+    beliefs = live.client.post("/kb/query", json={"patterns": ["book_1 belongsTo ?o", "person_bob rdfs:label ?n"],
+                                                  "models": ["person_bob"]}).json()
+    assert beliefs == [{"o": "person_bob", "n": "Tom"}]  # Bob's own model
+    for user, text, data in [("person_alice", "bring me my cookbook", {"object": "book_1", "recipient": "person_alice"}),
+                             ("person_alice", "bring the cup to Tom", {"object": "cup_1", "recipient": "person_tom"}),
+                             ("person_tom", "bring the cookbook to Alice", {"object": "book_1",
+                                                                             "recipient": "person_alice"})]:
+        answer = live.client.post("/dialogues/default/interactions", json={"user_id": user, "input": text}).json()
+        assert [i["data"] for i in answer["intents"]] == [data], (user, text, answer)
+    memory = live.client.get("/people/person_alice/memory").json()
+    assert [(t["subject"], t["predicate"], t["object"]) for t in memory["told"]] == [
+        ("book_1", "belongsTo", "person_alice")]

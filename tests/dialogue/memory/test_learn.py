@@ -155,3 +155,32 @@ def test_a_refused_write_changes_neither_the_speakers_model_nor_the_robots(home:
             settle(home, *claims)
     assert {m: sorted(map(str, home.export("nt", m).splitlines())) for m in ("default", BOB)} == before
     assert home.revision == revision and not told(home) and home.models() == ["default", BOB]
+
+
+def test_what_another_persons_word_made_theirs_is_disputed_under_every_adopting_policy(home: KB) -> None:
+    """Issue 26: a claim on what the robot holds as someone else's stays the speaker's belief."""
+    settle(home, Claim("mug_red", "belongsTo", "person_alice"), speaker="person_alice")
+    for trust in (Trust.PEOPLE, Trust.ALL):
+        (outcome,) = settle(home, Claim("mug_red", "belongsTo", BOB), trust=trust).outcomes
+        assert (outcome.status, outcome.held, outcome.hearsay) == (
+            "disputed", (("belongsTo", "person_alice"),), (("person_alice", "person_alice"),))
+    (outcome,) = settle(home, Claim("mug_red", "belongsTo", BOB), speaker="person_ines", trust=Trust.ALL).outcomes
+    assert outcome.status == "disputed"  # nor may a third person give it away
+    assert holds(home, "mug_red belongsTo person_alice") and holds(home, f"mug_red belongsTo {BOB}", BOB)
+    # The owner may; so may whoever told it (their correction).
+    settle(home, Claim("keys_1", "belongsTo", "person_ines"), speaker=BOB, trust=Trust.ALL)
+    assert statuses(settle(home, Claim("keys_1", "belongsTo", "person_alice"), trust=Trust.ALL)) == ["adopted"]
+    assert statuses(settle(home, Claim("mug_red", "belongsTo", "person_ines"), speaker="person_alice",
+                           trust=Trust.ALL)) == ["adopted"]
+    assert holds(home, "mug_red belongsTo person_ines") and not holds(home, "mug_red belongsTo person_alice")
+
+
+def test_the_name_of_another_known_person_is_disputed_an_introduction_too(home: KB) -> None:
+    for claim in (Claim(BOB, "name", "alice", "text"), Claim("person_x", "name", "Alice", "text"),
+                  Claim(BOB, "name", "Ines", "text")):
+        (outcome,) = settle(home, claim, trust=Trust.ALL).outcomes
+        assert outcome.status == "disputed" and outcome.hearsay[0][0] in ("person_alice", "person_ines")
+    assert home.find(f"{BOB} rdfs:label ?l") == [] and home.find("person_x rdfs:label ?l") == []
+    assert statuses(settle(home, Claim(BOB, "name", "Alicia", "text"))) == ["adopted"]  # another name
+    assert statuses(settle(home, Claim("person_alice", "name", "Alice", "text"), speaker="person_alice")) == [
+        "known"]

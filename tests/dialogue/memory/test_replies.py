@@ -39,6 +39,19 @@ def test_perception_is_said_when_it_wins(home: KB) -> None:
     assert say(home, name) == "I know them as Alice, though."
 
 
+def test_another_persons_word_is_said_when_it_holds(home: KB) -> None:
+    def mug(by: str, owner: str) -> Outcome:
+        return Outcome(Claim("mug_red", "belongsTo", BOB), "disputed", BOB, held=(("belongsTo", owner),),
+                       hearsay=((by, owner),))
+
+    assert say(home, mug("person_alice", "person_alice")) == "Alice told me the mug is theirs."
+    assert say(home, mug("person_ines", "person_alice")) == "Ines told me the mug is Alice's."
+    assert say(home, mug("person_x", "person_alice")) == "Someone told me the mug is Alice's."  # no name known
+    alice = Outcome(Claim(BOB, "name", "Alice", "text"), "disputed", "Alice", held=(("rdfs:label", "Alice"),),
+                    hearsay=(("person_alice", "Alice"),))
+    assert say(home, alice) == "I know someone else called Alice."
+
+
 def test_answers(home: KB) -> None:
     likes = Outcome(Claim("person_alice", "likes", None), "answered",
                     held=(("likes", "dbr:Tea"), ("likes", "dbr:Coffee")))

@@ -5,6 +5,8 @@ from __future__ import annotations
 import asyncio
 from typing import Any
 
+import pytest
+
 from dialogue.engine import DialogueEngine, TurnResult
 from dialogue.history import ASSISTANT_USER_ID, Utterance
 from dialogue.llm.hybrid import HybridModel
@@ -174,3 +176,52 @@ def test_the_name_of_someone_just_introduced_is_asked_about(home: KB) -> None:
     assert bob.say("this is Maria").response == "Nice to meet you, Maria."
     assert bob.say("what is her name?").response == "That's Maria."
     assert bob.say("what is Alice's name?").response == "That's Alice."
+
+
+ALICE, INES = "person_alice", "person_ines"
+
+
+@pytest.mark.parametrize("trust", [Trust.PEOPLE, Trust.ALL])
+def test_a_thing_told_to_be_someone_elses_stays_theirs_when_another_claims_it(home: KB, trust: Trust) -> None:
+    """Issue 26: one person's word once took another's thing: Bob's "that mug is mine" after Alice's
+    made it Bob's, and Alice's "bring me my mug" found no mug of hers."""
+    engine = DialogueEngine(home, memory=Memory(home, trust))
+    alice, bob, ines = Talk(engine, ALICE), Talk(engine, BOB), Talk(engine, INES)
+    assert bob.say("I'm Bob").response == "Nice to meet you, Bob."
+    assert alice.say("the red mug is mine").response == "OK, the mug is yours."
+    assert bob.say("that mug is mine").response == "Alice told me the mug is theirs."
+    assert home.is_asserted(f"mug_red belongsTo {ALICE}") and not home.is_asserted(f"mug_red belongsTo {BOB}")
+    assert home.is_asserted(f"mug_red belongsTo {BOB}", BOB)  # Bob's belief, in his own model
+    assert ines.say("the mug belongs to Bob").response == (
+        "Alice told me the mug is theirs." if trust is Trust.ALL
+        else "OK, I'll remember that you said the mug is Bob's.")
+    assert bob.say("I left my mug on the sofa").response == (  # not his: where it is stays his belief
+        "I can see the mug on the table, though." if trust is Trust.ALL
+        else "OK, I'll remember that you said the mug is on the couch.")
+    assert home.is_asserted("mug_red isOn table_1") and not home.is_asserted("mug_red isOn sofa_1")
+    # What others ask for still means Alice's mug, and so does what Alice asks for.
+    (fetch,) = alice.say("bring me my mug").intents
+    assert (fetch.intent, fetch.data) == ("__intent_bring_object__", {"object": "mug_red", "recipient": ALICE})
+    assert ines.say("whose mug is this?").response == "The mug is Alice's."
+    assert [t.by for t in told(home, subject="mug_red")] == [ALICE]
+    # Alice may still give it away herself.
+    if trust is Trust.ALL:
+        assert alice.say("the mug belongs to Ines").response == "OK, the mug is Ines's."
+        assert home.is_asserted(f"mug_red belongsTo {INES}")
+
+
+def test_the_name_of_another_known_person_stays_the_speakers_belief(home: KB) -> None:
+    """Issue 26: Bob's "I'm Alice", Alice being known, once named Bob Alice in the robot's model, and
+    "bring the mug to Alice" could go to him."""
+    engine = DialogueEngine(home)
+    alice, bob, ines = Talk(engine, ALICE), Talk(engine, BOB), Talk(engine, INES)
+    assert bob.say("I'm Alice").response == "I know someone else called Alice."
+    assert bob.say("hi, my name is alice").response == "Hello! I know someone else called Alice."
+    assert home.find(f"{BOB} rdfs:label ?l") == [] and home.find(f"{BOB} rdfs:label ?l", models=[BOB]) == [
+        {"l": "Alice"}]
+    for speaker in (ines, bob):
+        (bring,) = speaker.say("bring the mug to Alice").intents
+        assert bring.data == {"object": "mug_red", "recipient": ALICE}, speaker.speaker
+    assert ines.say("who do you see?").response == "I see Alice and someone I don't know."
+    assert alice.say("I'm Alice").response == "I know, Alice."  # her own name, of course
+    assert bob.say("I'm Bob").response == "Nice to meet you, Bob."
