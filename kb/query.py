@@ -45,27 +45,32 @@ class Query:
 
 
 def build_query(patterns: Sequence[Pattern], vars: Sequence[str] | None = None) -> Query:
-    """Choose the projected variables as knowledge_core does (kb-compat §1.5, §3.2)."""
+    """Choose the projected variables as knowledge_core does (kb-compat §1.5, §3.2): the named
+    variables (those given in ``vars``, else all of the patterns'); anonymous ones (``*``,
+    ``?__x``) only when there is no named one, then called ``var1``, ``var2``... in order."""
     seen: list[Variable] = []
     for pattern in patterns:
         for term in pattern:
             if isinstance(term, Variable) and term not in seen:
                 seen.append(term)
-    if vars:
-        projection: list[Variable] = []
-        for name in vars:
-            bare = name[1:] if isinstance(name, str) and name.startswith("?") else name
-            if not isinstance(bare, str) or not bare.isidentifier():
-                raise KbError(f"vars must be variable names such as '?obj', got {name!r}")
-            var = Variable(bare)
-            if var not in seen:
-                raise KbError(f"variable ?{var} of vars does not occur in the patterns")
-            projection.append(var)
-        return Query(tuple(patterns), tuple(projection), tuple(str(v) for v in projection))
-    named = [v for v in seen if not is_anonymous(v)]
+    chosen = _chosen(seen, vars) if vars else seen
+    named = [v for v in chosen if not is_anonymous(v)]
     if named:
         return Query(tuple(patterns), tuple(named), tuple(str(v) for v in named))
-    return Query(tuple(patterns), tuple(seen), tuple(f"var{i}" for i in range(1, len(seen) + 1)))
+    return Query(tuple(patterns), tuple(chosen), tuple(f"var{i}" for i in range(1, len(chosen) + 1)))
+
+
+def _chosen(seen: list[Variable], vars: Sequence[str]) -> list[Variable]:
+    projection: list[Variable] = []
+    for name in vars:
+        bare = name[1:] if isinstance(name, str) and name.startswith("?") else name
+        if not isinstance(bare, str) or not bare.isidentifier():
+            raise KbError(f"vars must be variable names such as '?obj', got {name!r}")
+        var = Variable(bare)
+        if var not in seen:
+            raise KbError(f"variable ?{var} of vars does not occur in the patterns")
+        projection.append(var)
+    return projection
 
 
 # A compiled pattern: for each position, (constant, -1) or (None, variable slot).

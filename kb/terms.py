@@ -72,7 +72,10 @@ _INTEGER_TYPES: Final = frozenset(
     )
 )
 _FLOAT_TYPES: Final = frozenset((XSD.decimal, XSD.double, XSD.float))
-ANONYMOUS_PREFIX: Final = "__anon"
+#: knowledge_core's anonymous variables: those whose name starts with ``__`` (its clients write
+#: every ``*`` as one); ``*`` itself becomes ``?__anon<n>``.
+ANONYMOUS_MARK: Final = "__"
+ANONYMOUS_PREFIX: Final = ANONYMOUS_MARK + "anon"
 
 
 @dataclass(frozen=True, slots=True)
@@ -329,7 +332,7 @@ def parse_ground(statement: str) -> Triple:
 
 
 def is_anonymous(var: Variable) -> bool:
-    return var.startswith(ANONYMOUS_PREFIX)
+    return var.startswith(ANONYMOUS_MARK)
 
 
 @lru_cache(maxsize=131072)

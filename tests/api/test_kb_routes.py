@@ -21,6 +21,14 @@ def test_query_post_and_get(live: Live) -> None:
     assert ground.json() == ["cup_1 isOn table_1"]
 
 
+def test_query_names_anonymous_variables_var1_var2(live: Live) -> None:
+    # '?__x' is anonymous, as in knowledge_core: named var1... when no variable is named.
+    assert live.client.post("/kb/query", json={"patterns": ["?__a isOn ?__b", "?__a rdf:type dbr:Book"]}).json() == [
+        {"var1": "book_1", "var2": "table_1"}]
+    assert live.client.post("/kb/query", json={"patterns": ["?what isOn ?__b", "?what rdf:type dbr:Book"]}).json() == [
+        {"what": "book_1"}]
+
+
 def test_revise_add_update_retract_and_models(live: Live) -> None:
     client = live.client
     first = client.post("/kb/revise", json={"statements": ["cup_1 isOn shelf_1"], "method": "add"}).json()

@@ -85,6 +85,13 @@ def test_reference_examples(world: KB) -> None:
     assert world[grounding] == [{"h": "person_x", "o": "cup_abcd"}]
 
 
+def test_variables_named_with_two_underscores_are_anonymous_as_in_knowledge_core(world: KB) -> None:
+    # knowledge_core's clients write each '*' as '?__<random>': the rows read the same either way.
+    assert world.find(["?__xyz sees ?__abc"]) == world["* sees *"]
+    assert world.find(["?__a sees ?__b"], ["?__a", "?__b"])[0] == {"var1": "myself", "var2": "cup_abcd"}
+    assert world.find(["?agent looksAt ?__what"], ["?agent", "?__what"]) == world["?agent looksAt *"]
+
+
 def test_rows_are_distinct_after_projection(world: KB) -> None:
     assert world["?agent looksAt *"] == [{"agent": "myself"}, {"agent": "person_x"}]  # K1
     assert world.find(["?a sees ?o"], vars=["?a"]) == [{"a": "myself"}, {"a": "person_x"}]

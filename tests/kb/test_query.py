@@ -44,6 +44,14 @@ def o(name: str) -> URIRef:
         (["?a sees ?b"], ["b", "a"], ("b", "a")),
         (["?a sees ?b"], ["?a", "?b"], ("a", "b")),
         (["myself sees cup"], None, ()),
+        # knowledge_core's anonymous variables: any whose name starts with '__' (its clients
+        # write every '*' as one), named var1, var2... when there is no named variable.
+        (["?__ rdfs:subClassOf Agent"], None, ("var1",)),
+        (["?__a ?__b ?__c"], ["?__a", "?__b", "?__c"], ("var1", "var2", "var3")),
+        (["?__b likes ?__a"], ["?__a", "?__b"], ("var1", "var2")),
+        (["?x likes ?__y"], None, ("x",)),
+        (["?x ?__p ?__y"], ["?x", "?__p"], ("x",)),
+        (["?__x likes *"], None, ("var1", "var2")),
     ],
 )
 def test_projection_rules(patterns: list[str], vars: list[str] | None, names: tuple[str, ...]) -> None:
