@@ -62,6 +62,14 @@ class Subscription:
     pending: bool = False  # a commit's budget ran out before its evaluation: due at the next one
     spent: float = 0.0  # seconds of evaluations stopped by commits' budgets since its last answer
 
+    def attach(self, callback: Callback, on_error: ErrorCallback | None) -> None:
+        """Add a subscriber; one already there (an equal callable: the same function, or the same
+        bound method) is not added again, so it is called once per trigger (knowledge_core)."""
+        if callback not in self.callbacks:
+            self.callbacks.append(callback)
+        if on_error is not None and on_error not in self.on_error:
+            self.on_error.append(on_error)
+
     def check_rows(self, rows: set[Row]) -> None:
         limit = self.budget.max_rows
         if limit is not None and len(rows) > limit:
@@ -137,9 +145,7 @@ class Subscriptions:
             predicates = None if any(isinstance(p, Variable) for p in constant) else frozenset(constant)
             existing = self._by_id[sub_id] = Subscription(
                 sub_id, query, tuple(models), one_shot, [], predicates, set(baseline), budget, cost=cost)
-        existing.callbacks.append(callback)
-        if on_error is not None:
-            existing.on_error.append(on_error)
+        existing.attach(callback, on_error)
 
     def remove(self, sub_id: str) -> bool:
         return self._by_id.pop(sub_id, None) is not None

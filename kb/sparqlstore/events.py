@@ -90,9 +90,7 @@ class Poller:
                 existing = self._subscriptions[sub_id] = Subscription(
                     sub_id, query, tuple(models), one_shot, [], None, set(baseline), budget)
                 self._seen[sub_id] = revision
-            existing.callbacks.append(callback)
-            if on_error is not None:
-                existing.on_error.append(on_error)
+            existing.attach(callback, on_error)
         self._start()
 
     def unsubscribe(self, sub_id: str) -> bool:

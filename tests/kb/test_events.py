@@ -97,6 +97,18 @@ def test_subscribe_returns_the_id_and_identical_subscriptions_share_it(kb: KB) -
     assert second.take() == [[{"a": "alfred", "b": "cup"}]]
 
 
+def test_a_callback_subscribed_twice_to_the_same_patterns_is_called_once_per_trigger(kb: KB) -> None:
+    # As knowledge_core's client: the same callback (an equal callable) subscribed again is not
+    # added again; another callback of the same subscription is called too, once.
+    rec, other = Recorder(), Recorder()
+    sid = kb.subscribe("?a sees ?b", rec)
+    assert kb.subscribe(["?a sees ?b"], rec) == sid
+    kb.subscribe("?a sees ?b", other)
+    kb += "alfred sees cup"
+    assert rec.take() == [[{"a": "alfred", "b": "cup"}]]
+    assert other.take() == [[{"a": "alfred", "b": "cup"}]]
+
+
 # --- baseline and payloads -------------------------------------------------------------------
 
 
