@@ -252,8 +252,11 @@ class KB(Facade[Model]):
         with self._lock:
             return self._writer.subscriptions.remove(sub_id)
 
-    def on_active_concept(self, callback: ActiveListener) -> None:
-        self._writer.on_active_concept(callback)
+    def on_active_concept(self, callback: ActiveListener) -> Callable[[], None]:
+        """Call ``callback`` with the sorted active concepts whenever they change (kb-compat
+        §3.7); returns what removes it."""
+        with self._lock:
+            return self._writer.on_active_concept(callback)
 
     def on_commit(self, listener: CommitListener, durable: bool = False) -> Callable[[], None]:
         """Called under the lock with every commit (for journals and mirrors); a ``durable``

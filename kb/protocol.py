@@ -9,7 +9,7 @@ with either, or with any object that has these calls.
 from __future__ import annotations
 
 import threading
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from pathlib import Path
 from typing import Any, Protocol, runtime_checkable
 
@@ -88,3 +88,5 @@ class KnowledgeBase(Protocol):
                   on_error: ErrorCallback | None = None) -> str: ...
 
     def unsubscribe(self, sub_id: str) -> bool: ...
+
+    def on_active_concept(self, callback: Callable[[list[str]], None]) -> Callable[[], None]: ...

@@ -106,8 +106,17 @@ class Writer:
 
         return remove
 
-    def on_active_concept(self, listener: ActiveListener) -> None:
+    def on_active_concept(self, listener: ActiveListener) -> Callable[[], None]:
+        """Call ``listener`` with the sorted active concepts whenever they change; returns what
+        removes it."""
         self._active_listeners.append(listener)
+
+        def remove() -> None:
+            with self.lock:
+                if listener in self._active_listeners:
+                    self._active_listeners.remove(listener)
+
+        return remove
 
     # --- committing ----------------------------------------------------------------------
 

@@ -98,7 +98,9 @@ class Poller:
             self._seen.pop(sub_id, None)
             return self._subscriptions.pop(sub_id, None) is not None
 
-    def on_active_concept(self, callback: ActiveListener) -> None:
+    def on_active_concept(self, callback: ActiveListener) -> Callable[[], None]:
+        """Call ``callback`` with the sorted active concepts when a poll finds them changed;
+        returns what removes it."""
         self._require_open()
         with self._lock:
             first = not self._active_listeners
@@ -110,6 +112,13 @@ class Poller:
                 self._active, self._active_seen = active, revision
             self._active_listeners.append(callback)
         self._start()
+
+        def remove() -> None:
+            with self._lock:
+                if callback in self._active_listeners:
+                    self._active_listeners.remove(callback)
+
+        return remove
 
     def _require_open(self) -> None:
         if self._closed:

@@ -29,7 +29,7 @@ Where a replica cannot be the in-process KB exactly:
 from __future__ import annotations
 
 import threading
-from collections.abc import Iterator, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from typing import Any
 
 from rdflib.query import Result
@@ -234,6 +234,7 @@ class RemoteKB(Facade[Graphs]):
         next poll otherwise)."""
         self._events.sync(timeout)
 
-    def on_active_concept(self, callback: ActiveListener) -> None:
-        """Call ``callback(concepts)`` when the set of active concepts changes (polled)."""
-        self._events.on_active_concept(callback)
+    def on_active_concept(self, callback: ActiveListener) -> Callable[[], None]:
+        """Call ``callback(concepts)`` when the set of active concepts changes (polled); returns
+        what removes it."""
+        return self._events.on_active_concept(callback)

@@ -197,6 +197,16 @@ def test_active_concepts_are_published_and_expire_after_5_seconds() -> None:
         assert published[-1] == []
 
 
+def test_an_active_concept_listener_can_be_removed() -> None:
+    with KB() as k:
+        published: list[list[str]] = []
+        stop = k.on_active_concept(published.append)
+        k += "cup_1 rdf:type ActiveConcept"
+        stop()
+        k += "book_1 rdf:type ActiveConcept"
+        assert published == [["cup_1"]]
+
+
 # --- concurrency -----------------------------------------------------------------------------
 
 

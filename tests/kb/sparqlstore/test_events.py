@@ -60,6 +60,16 @@ def test_active_concepts_are_polled(replicas: Replicas) -> None:
         assert seen == [["cup_1"], []]
 
 
+def test_an_active_concept_listener_can_be_removed(replicas: Replicas) -> None:
+    with replicas() as replica:
+        seen: list[list[str]] = []
+        stop = replica.reader.on_active_concept(seen.append)
+        replica.reader.add("cup_1 rdf:type ActiveConcept")
+        stop()
+        replica.reader.add("book_1 rdf:type ActiveConcept")
+        assert seen == [["cup_1"]]
+
+
 def test_a_replica_subscription_is_bounded_like_the_writers(replicas: Replicas) -> None:
     with replicas() as replica:
         reader, writer = replica.reader, replica.writer
