@@ -2,8 +2,9 @@
 
 The KB calls a subscription's callback in the writer's thread. Identical subscriptions share
 one KB subscription id (knowledge_core's ``evt_<md5>``), so the hub keeps one KB callback per
-id and fans it out to every listener, each with its own bounded queue on its event loop
-(``loop.call_soon_threadsafe``). The KB subscription is removed when its last listener leaves.
+id and fans it out to every listener: a stream's, with its own bounded queue on its event loop
+(``loop.call_soon_threadsafe``), or any other ``Sink`` (the ROS node's event topics). The KB
+subscription is removed when its last listener leaves; all of them count against one limit.
 
 Delivery never takes the hub lock, because a writer may deliver while another thread holds
 the hub lock and waits for the KB lock.
@@ -20,7 +21,7 @@ import asyncio
 import threading
 from collections import deque
 from collections.abc import Callable, Sequence
-from typing import Any
+from typing import Any, Protocol, TypeVar
 
 from api.errors import ApiError, error_body, over_budget
 from kb import KbError
@@ -47,6 +48,23 @@ def change_event(commit: Commit) -> dict[str, Any]:
     event["added"] = statements(added)
     event["removed"] = statements(removed)
     return event
+
+
+class Sink(Protocol):
+    """Where one client's rows go (a stream's ``Listener``, the ROS node's event topic); every
+    method may be called from any thread and must not block."""
+
+    def push(self, rows: list[Any], last: bool = False) -> None:
+        """New rows; ``last``: the subscription was one-shot and has ended."""
+
+    def fail(self, error: dict[str, Any]) -> None:
+        """The KB ended the subscription (an evaluation went past the query limits): the error body."""
+
+    def end(self, reason: str) -> None:
+        """The service is stopping."""
+
+
+S = TypeVar("S", bound=Sink)
 
 
 class Listener:
@@ -119,7 +137,7 @@ class _Entry:
         self.key = key
         self.sub_id = key
         self.one_shot = one_shot
-        self.listeners: tuple[Listener, ...] = ()  # replaced, never mutated: read without a lock
+        self.listeners: tuple[Sink, ...] = ()  # replaced, never mutated: read without a lock
         self.alive = True
         self.failure: dict[str, Any] | None = None  # why the KB ended it, if it did
 
@@ -157,7 +175,7 @@ class EventHub:
         self._max_queued = max_queued
         self._lock = threading.Lock()
         self._entries: dict[str, _Entry] = {}
-        self._owners: dict[int, _Entry] = {}  # id(listener) -> the entry feeding it
+        self._owners: dict[int, _Entry] = {}  # id(sink) -> the entry feeding it
         self._count = 0
         self._changes: tuple[Listener, ...] = ()  # replaced, never mutated: read without a lock
         self._unwatch: Callable[[], None] | None = None
@@ -171,6 +189,13 @@ class EventHub:
         """Subscribe a new listener (blocking: call it off the event loop). 429 past the limit;
         KbError for bad patterns or unknown models; ``QueryTimeout``/``TooManyRows`` when the
         starting rows go past the query limits."""
+        return self.attach(patterns, one_shot, models,
+                           lambda sub_id: Listener(sub_id, loop, self._max_queued))
+
+    def attach(self, patterns: Sequence[str], one_shot: bool, models: Sequence[str] | None,
+               make: Callable[[str], S]) -> S:
+        """``open`` for any sink: ``make(sub_id)`` builds it once the subscription exists. The
+        same limit, budgets and sharing as a stream's listener; ``close`` it the same way."""
         names = list(models) if models else [DEFAULT_MODEL]
         key = event_id(list(patterns), one_shot, names)
         with self._lock:
@@ -182,13 +207,13 @@ class EventHub:
                                                   timeout=self._query_timeout, max_rows=self._max_rows,
                                                   on_error=entry.fail)
                 self._entries[key] = entry
-            listener = Listener(entry.sub_id, loop, self._max_queued)
-            entry.listeners = (*entry.listeners, listener)
+            sink = make(entry.sub_id)
+            entry.listeners = (*entry.listeners, sink)
             if entry.failure is not None:  # ended by a commit while it was being opened
-                listener.fail(entry.failure)
-            self._owners[id(listener)] = entry
+                sink.fail(entry.failure)
+            self._owners[id(sink)] = entry
             self._count += 1
-            return listener
+            return sink
 
     def open_changes(self, loop: asyncio.AbstractEventLoop) -> Listener:
         """A listener of every commit's changes (blocking: call it off the event loop)."""
@@ -217,7 +242,7 @@ class EventHub:
                            f"{self._count} event subscribers are connected; the limit is "
                            f"{self._max_listeners}", {"limit": self._max_listeners})
 
-    def close(self, listener: Listener) -> None:
+    def close(self, listener: Sink) -> None:
         """Remove a listener (blocking); the KB subscription goes with its last listener."""
         with self._lock:
             if listener in self._changes:

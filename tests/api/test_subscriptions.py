@@ -96,3 +96,41 @@ def test_a_subscription_ended_while_it_opens_still_tells_its_listener() -> None:
         assert hub.listener_count == 0
 
     asyncio.run(scenario())
+
+
+class RecordingSink:
+    """A sink other than a stream's listener (as the ROS node's event topics are)."""
+
+    def __init__(self, sub_id: str) -> None:
+        self.sub_id = sub_id
+        self.got: list[tuple[list[Any], bool]] = []
+        self.errors: list[dict[str, Any]] = []
+
+    def push(self, rows: list[Any], last: bool = False) -> None:
+        self.got.append((rows, last))
+
+    def fail(self, error: dict[str, Any]) -> None:
+        self.errors.append(error)
+
+    def end(self, reason: str) -> None:
+        self.errors.append({"reason": reason})
+
+
+def test_any_sink_shares_the_subscriptions_and_the_limit_of_stream_listeners(kb: KB) -> None:
+    async def scenario() -> None:
+        loop = asyncio.get_running_loop()
+        hub = EventHub(kb, max_listeners=2)
+        stream = hub.open(["?x isOn shelf_7"], True, None, loop)
+        sink = hub.attach(["?x isOn shelf_7"], True, None, RecordingSink)
+        assert sink.sub_id == stream.sub_id
+        with pytest.raises(ApiError) as refused:
+            hub.attach(["?x isIn room_7"], False, None, RecordingSink)
+        assert refused.value.status == 429
+        await asyncio.to_thread(kb.update, ["box_7 isOn shelf_7"])
+        assert await asyncio.wait_for(stream.next_rows(), 30) == [{"x": "box_7"}]
+        assert sink.got == [([{"x": "box_7"}], True)]  # one-shot: the last rows
+        hub.close(sink)
+        hub.close(stream)
+        assert hub.listener_count == 0
+
+    asyncio.run(scenario())
