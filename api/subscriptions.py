@@ -192,17 +192,22 @@ class EventHub:
         return self.attach(patterns, one_shot, models,
                            lambda sub_id: Listener(sub_id, loop, self._max_queued))
 
+    @staticmethod
+    def key(patterns: Sequence[str], one_shot: bool, models: Sequence[str] | None) -> str:
+        """The id the KB gives this subscription (knowledge_core's ``evt_<md5>``)."""
+        return event_id(list(patterns), one_shot, list(models) if models else [DEFAULT_MODEL])
+
     def attach(self, patterns: Sequence[str], one_shot: bool, models: Sequence[str] | None,
                make: Callable[[str], S]) -> S:
         """``open`` for any sink: ``make(sub_id)`` builds it once the subscription exists. The
         same limit, budgets and sharing as a stream's listener; ``close`` it the same way."""
-        names = list(models) if models else [DEFAULT_MODEL]
-        key = event_id(list(patterns), one_shot, names)
+        key = self.key(patterns, one_shot, models)
         with self._lock:
             self._check_limit()
             entry = self._entries.get(key)
             if entry is None or not entry.alive:
                 entry = _Entry(key, one_shot)
+                names = list(models) if models else [DEFAULT_MODEL]
                 entry.sub_id = self._kb.subscribe(list(patterns), entry.deliver, one_shot, names,
                                                   timeout=self._query_timeout, max_rows=self._max_rows,
                                                   on_error=entry.fail)

@@ -64,9 +64,9 @@ class Front:
 
 def _parts() -> tuple[Part, ...]:
     # Imported here: each part imports the generated interfaces, which exist only once ROS is set up.
-    from api.ros.node import knowledge
+    from api.ros.node import events, knowledge
 
-    return (knowledge.attach,)
+    return (knowledge.attach, events.attach)
 
 
 def init(ros_args: list[str]) -> Any:

@@ -1,7 +1,10 @@
 """knowledge_core's ROS API on the service's KB (kb_msgs; knowledge_core 3.5's names under ``/kb``).
 
 Every service answers ``success`` and, on a refusal, ``error_msg`` (a refused write changed
-nothing), within the same limits as REST (patterns, statements, models, rows, query time).
+nothing), within the same limits as REST (patterns, statements, models, the text a request
+carries, rows, query time). Manage ``clear`` does what kb_msgs documents and knowledge_core does:
+the KB is emptied, its ontology too, unless ``parameters`` holds ``keep_defaults`` (the service's
+REST and Python ``clear`` keep the ontology unless told not to).
 """
 
 from __future__ import annotations
@@ -14,7 +17,7 @@ from kb_msgs.srv import About, Lookup, Manage, Query, Revise, Sparql
 from std_msgs.msg import String
 
 from api.errors import ApiError
-from api.limits import check_count
+from api.ros.bounds import RequestBounds
 from api.ros.node.front import Front
 from api.routes.health import package_version
 from api.settings import Settings
@@ -23,6 +26,8 @@ from kb.protocol import KnowledgeBase
 
 #: What a refused request answers in its error_msg: the KB's own refusals, and the service's limits.
 REFUSALS = (KbError, ApiError)
+#: Manage ``clear``'s one parameter (kb_msgs): keep the default ontology.
+KEEP_DEFAULTS = "keep_defaults"
 
 
 def _models(models: Sequence[str]) -> list[str] | None:
@@ -40,13 +45,9 @@ class KnowledgeServices:
     def __init__(self, kb: KnowledgeBase, settings: Settings, clear: Callable[[bool], None]) -> None:
         self.kb = kb
         self.limits = settings.limits
+        self.bounds = RequestBounds(settings.limits)
+        self._check = self.bounds.check
         self._clear = clear
-
-    def _check(self, patterns: Sequence[str] = (), statements: Sequence[str] = (),
-               models: Sequence[str] = ()) -> None:
-        check_count(patterns, self.limits.max_patterns, "patterns")
-        check_count(statements, self.limits.max_statements, "statements")
-        check_count(models, self.limits.max_models, "models")
 
     def _answer(self, response: Any, work: Callable[[], Any], with_json: bool = True) -> Any:
         try:
@@ -77,20 +78,28 @@ class KnowledgeServices:
         return self._answer(response, work, with_json=False)
 
     def about(self, request: Any, response: Any) -> Any:
-        return self._answer(response, lambda: self.kb.about(request.term, _models(request.models)))
+        return self._answer(response, lambda: self.kb.about(*self._term(request)))
 
     def details(self, request: Any, response: Any) -> Any:
-        return self._answer(response, lambda: self.kb.details(request.term, _models(request.models)))
+        return self._answer(response, lambda: self.kb.details(*self._term(request)))
 
     def label(self, request: Any, response: Any) -> Any:
-        return self._answer(response, lambda: self.kb.label(request.term, models=_models(request.models)))
+        return self._answer(response, lambda: self.kb.label(self._term(request)[0],
+                                                            models=_models(request.models)))
 
     def lookup(self, request: Any, response: Any) -> Any:
-        return self._answer(response, lambda: self.kb.lookup(request.query, _models(request.models)))
+        def work() -> Any:
+            self._check(models=request.models, texts=[request.query])
+            return self.kb.lookup(request.query, _models(request.models))
+        return self._answer(response, work)
+
+    def _term(self, request: Any) -> tuple[str, list[str] | None]:
+        self._check(models=request.models, texts=[request.term])
+        return request.term, _models(request.models)
 
     def sparql(self, request: Any, response: Any) -> Any:
         def work() -> Any:
-            self._check(models=request.models)
+            self._check(models=request.models, texts=[request.query])
             return self.kb.sparql(request.query, _models(request.models), timeout=self.limits.query_timeout,
                                   max_rows=self.limits.max_rows)
         return self._answer(response, work)
@@ -102,12 +111,23 @@ class KnowledgeServices:
             response.error_msg = (f"unknown 'manage' action {request.action!r}: one of "
                                   + ", ".join(sorted(MANAGE)))
             return response
-        return self._answer(response, lambda: action(self, list(request.parameters), _models(request.models)))
+        def work() -> Any:
+            self._check(models=request.models, texts=request.parameters)
+            return action(self, list(request.parameters), _models(request.models))
+        return self._answer(response, work)
+
+    def fact(self, statement: str, method: str) -> None:
+        """One statement of the add_fact / remove_fact topics."""
+        self._check(statements=[statement])
+        self.kb.revise([statement], {"method": method})
 
     # --- manage actions --------------------------------------------------------------------------------
 
     def _do_clear(self, parameters: list[str], models: list[str] | None) -> None:
-        self._clear(True)
+        if parameters not in ([], [KEEP_DEFAULTS]):
+            raise KbError(f"'clear' takes no parameter (everything goes, the ontology too) or "
+                          f"[{KEEP_DEFAULTS!r}] (the ontology stays), got {parameters!r}")
+        self._clear(KEEP_DEFAULTS in parameters)
 
     def _do_load(self, parameters: list[str], models: list[str] | None) -> None:
         if len(parameters) != 1:
@@ -117,7 +137,7 @@ class KnowledgeServices:
     def _do_save(self, parameters: list[str], models: list[str] | None) -> list[str]:
         if len(parameters) != 2:
             raise KbError("'save' expects 'parameters' to hold exactly two values: the folder and the "
-                          "basename (one file per model: <folder>/<basename>-<model>.xml)")
+                          "basename (one RDF/XML file per model: <folder>/<basename>-<model>.rdf)")
         return self.kb.save(parameters[0], parameters[1], models)
 
     def _do_status(self, parameters: list[str], models: list[str] | None) -> dict[str, Any]:
@@ -149,8 +169,7 @@ def attach(front: Front) -> Callable[[], None]:
     def fact(method: str) -> Callable[[Any], None]:
         def on_message(message: Any) -> None:
             response = Revise.Response()
-            handlers._answer(response, lambda: front.services.kb.revise([message.data], {"method": method}),
-                             with_json=False)
+            handlers._answer(response, lambda: handlers.fact(message.data, method), with_json=False)
             if not response.success:
                 node.get_logger().error(f"/kb/{method} of {message.data!r} refused: {response.error_msg}")
         return on_message

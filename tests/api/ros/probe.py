@@ -7,7 +7,8 @@ lists). Commands (``op``):
 
 - ``call``: ``service``, ``type`` ("kb_msgs/srv/Query"), ``request`` -> ``{"response": {...}}``
 - ``publish``: ``topic``, ``type``, ``message`` (``"repeat_until"``: a topic to wait a message on)
-- ``subscribe``: ``topic``, ``type`` -> later ``messages``: ``topic``, ``count``, ``timeout``
+- ``subscribe``: ``topic``, ``type`` -> later ``messages``: ``topic``, ``count``, ``timeout``;
+  ``unsubscribe``: ``topic`` (its messages stay readable)
 - ``goal``: ``action``, ``type``, ``goal``, ``uuid`` (hex, optional) -> ``{"accepted", "goal"}``;
   ``result``: ``goal`` -> ``{"status", "result"}``; ``cancel``: ``goal``
 - ``env``: the ROS environment variables this process runs with; ``quit``.
@@ -111,6 +112,10 @@ class Probe:
                              durability=QoSDurabilityPolicy.TRANSIENT_LOCAL if latched
                              else QoSDurabilityPolicy.VOLATILE)
             self.subscriptions[topic] = self.node.create_subscription(message_type(type), topic, keep, qos)
+        return {}
+
+    def unsubscribe(self, topic: str) -> dict[str, Any]:
+        self.node.destroy_subscription(self.subscriptions.pop(topic))
         return {}
 
     def messages(self, topic: str, count: int = 1, timeout: float = 30.0) -> dict[str, Any]:

@@ -61,3 +61,33 @@ def test_facts_topics_add_and_remove(ros_node: RosNode, probe: Probe) -> None:
         if json.loads(probe.call("/kb/query", QUERY, patterns=["lamp_1 isOn ?d"])["json"]):
             break
     assert json.loads(probe.call("/kb/query", QUERY, patterns=["lamp_1 isOn ?d"])["json"]) == [{"d": "desk_1"}]
+
+
+def test_manage_clear_empties_the_kb_as_kb_msgs_documents_unless_keep_defaults(ros_node: RosNode, probe: Probe) -> None:
+    ontology = ["?c rdfs:subClassOf Agent"]
+    assert json.loads(probe.call("/kb/query", QUERY, patterns=ontology)["json"])
+    probe.call("/kb/revise", REVISE, method="update", statements=["ari rdf:type Robot"])
+    kept = probe.call("/kb/manage", MANAGE, action="clear", parameters=["keep_defaults"])
+    assert kept["success"] is True
+    assert json.loads(probe.call("/kb/query", QUERY, patterns=["ari ?p ?o"])["json"]) == []
+    assert json.loads(probe.call("/kb/query", QUERY, patterns=ontology)["json"])  # the ontology stayed
+    assert probe.call("/kb/manage", MANAGE, action="clear")["success"] is True
+    assert json.loads(probe.call("/kb/query", QUERY, patterns=ontology)["json"]) == []  # everything went
+
+
+def test_a_clear_with_an_unknown_parameter_changes_nothing(ros_node: RosNode, probe: Probe) -> None:
+    before = ros_node.http.get("/health").json()["kb"]["revision"]
+    refused = probe.call("/kb/manage", MANAGE, action="clear", parameters=["keep_default"])
+    assert refused["success"] is False and "'keep_default'" in refused["error_msg"]
+    assert "keep_defaults" in refused["error_msg"]
+    assert ros_node.http.get("/health").json()["kb"]["revision"] == before
+
+
+def test_a_request_carrying_more_text_than_a_rest_body_may_is_refused(ros_node: RosNode, probe: Probe) -> None:
+    limit = Settings().limits.max_body_bytes
+    huge = "cat_1 says " + '"' + "m" * limit + '"'
+    refused = probe.call("/kb/revise", REVISE, method="update", statements=[huge])
+    assert refused["success"] is False and "characters of text; the limit is" in refused["error_msg"]
+    assert json.loads(probe.call("/kb/query", QUERY, patterns=["cat_1 says ?x"])["json"]) == []
+    lookup = probe.call("/kb/lookup", "kb_msgs/srv/Lookup", query="x" * (limit + 1))
+    assert lookup["success"] is False and "limit" in lookup["error_msg"]
