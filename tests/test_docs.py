@@ -13,8 +13,8 @@ import pytest
 ROOT = Path(__file__).parents[1]
 PACKAGES = ("kb", "scene", "dialogue", "api", "bench")
 #: Import rclpy and the generated ROS interfaces, which the test process never has: their behaviour
-#: is tested on a real graph (tests/api/ros).
-NEEDS_ROS = "api.ros.node."
+#: is tested on a real graph (tests/api/ros), the README's ROS example too (```python ros).
+NEEDS_ROS = ("api.ros.node.", "api.ros.client.kb")
 _PYTHON_BLOCK = re.compile(r"```python\n(.*?)```", re.S)
 
 
