@@ -1,0 +1,5 @@
+"""``launch_testing.actions.ReadyToTest``: inert."""
+
+
+class ReadyToTest:
+    pass
