@@ -15,7 +15,9 @@ also ends when nobody subscribed to it in time, once its one-shot trigger was de
 evaluation went past the query limits) and when the service stops.
 
 Every topic's subscription is one of the event hub's (``api.subscriptions``): the same query limits
-and the same subscriber limit as REST's event streams.
+and the same subscriber limit as REST's event streams. A ``Sweeper`` thread ticks the topics: every
+``FAST`` seconds while one holds triggers (a client is about to subscribe), every ``SLOW`` seconds
+while there are topics, never when there are none (an idle node costs nothing).
 """
 
 from __future__ import annotations
@@ -32,6 +34,11 @@ from typing import Any, Protocol
 from api.subscriptions import EventHub
 
 log = logging.getLogger("situated.ros")
+#: Seconds between two sweeps while a topic holds triggers: they wait at most this long once
+#: someone subscribed.
+FAST = 0.02
+#: Seconds between two sweeps otherwise: an abandoned topic is ended within about this long.
+SLOW = 1.0
 
 
 class Topic(Protocol):
@@ -62,11 +69,14 @@ class EventTopic:
     """One subscription's topic: the hub's sink (``push``, ``fail``, ``end``: any thread) and the
     sweep's ``tick``. Its lock orders every publish and the closing of the topic."""
 
-    def __init__(self, sub_id: str, topic: Topic, hold: Hold, clock: Callable[[], float]) -> None:
+    def __init__(self, sub_id: str, topic: Topic, hold: Hold, clock: Callable[[], float],
+                 held: Callable[[], None] = lambda: None) -> None:
+        """``held`` is called (outside the lock) when a trigger is held."""
         self.sub_id = sub_id
         self.topic = topic
         self._hold = hold
         self._clock = clock
+        self._on_held = held
         self._lock = threading.Lock()
         self._held: deque[str] = deque()
         self._dropped = 0
@@ -96,6 +106,7 @@ class EventTopic:
             if self.ended is not None:
                 return
             self._spent = self._spent or last
+            held = False
             if self.topic.subscribers() > 0:
                 self._listened = True
                 self._flush()
@@ -107,6 +118,9 @@ class EventTopic:
                     self._held.popleft()
                     self._dropped += 1
                 self._held.append(data)
+                held = True
+        if held:
+            self._on_held()
 
     def fail(self, error: dict[str, Any]) -> None:
         with self._lock:
@@ -183,10 +197,18 @@ class EventTopics:
         self._lock = threading.Lock()
         self._topics: dict[str, EventTopic] = {}
         self._retiring: list[EventTopic] = []  # replaced by a newer topic of the same id, not closed yet
+        #: Called when there is something for a sweep to do sooner (a new topic, a held trigger).
+        self.changed: Callable[[], None] = lambda: None
 
     def __len__(self) -> int:
         with self._lock:
             return len(self._topics) + len(self._retiring)
+
+    def holding(self) -> bool:
+        """True while a topic holds triggers for a subscriber yet to come."""
+        with self._lock:
+            topics = [*self._topics.values(), *self._retiring]
+        return any(topic.held for topic in topics)
 
     def subscribe(self, patterns: Sequence[str], one_shot: bool, models: Sequence[str] | None) -> EventTopic:
         """The topic of these patterns (an existing one, or a new subscription). The hub's errors
@@ -203,10 +225,11 @@ class EventTopics:
                 self._retiring.append(current)
             made = self._hub.attach(list(patterns), one_shot, models, self._new)
             self._topics[made.sub_id] = made
-            return made
+        self.changed()
+        return made
 
     def _new(self, sub_id: str) -> EventTopic:
-        return EventTopic(sub_id, self._make_topic(sub_id), self._hold, self._clock)
+        return EventTopic(sub_id, self._make_topic(sub_id), self._hold, self._clock, lambda: self.changed())
 
     def tick(self) -> list[tuple[EventTopic, str]]:
         """Publish held triggers, end the topics that are done; returns those ended, with why."""
@@ -244,3 +267,34 @@ class EventTopics:
         if topic.attached:
             topic.attached = False
             self._hub.close(topic)
+
+
+class Sweeper:
+    """The thread that ticks the topics: soon after a change, then every ``FAST`` seconds while one
+    holds triggers, every ``SLOW`` seconds while there are topics; asleep when there are none."""
+
+    def __init__(self, topics: EventTopics, fast: float = FAST, slow: float = SLOW) -> None:
+        self._topics = topics
+        self._fast, self._slow = fast, slow
+        self._wake = threading.Event()
+        self._stop = threading.Event()
+        self._thread = threading.Thread(target=self._run, name="ros-event-topics", daemon=True)
+        topics.changed = self._wake.set
+
+    def start(self) -> None:
+        self._thread.start()
+
+    def stop(self) -> None:
+        self._stop.set()
+        self._wake.set()
+        self._thread.join(5)
+
+    def _run(self) -> None:
+        while not self._stop.is_set():
+            self._wake.clear()
+            self._topics.tick()
+            if self._topics.holding():
+                wait: float | None = self._fast
+            else:
+                wait = self._slow if len(self._topics) else None
+            self._wake.wait(wait)

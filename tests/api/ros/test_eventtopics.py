@@ -4,13 +4,15 @@ clock it moves. What is published, held, dropped, and when a topic ends."""
 from __future__ import annotations
 
 import json
-from collections.abc import Iterator
+import threading
+import time
+from collections.abc import Callable, Iterator
 from typing import Any
 
 import pytest
 
 from api.errors import ApiError
-from api.ros.eventtopics import EventTopic, EventTopics, Hold
+from api.ros.eventtopics import EventTopic, EventTopics, Hold, Sweeper
 from api.subscriptions import EventHub
 from kb import KB, KbError
 
@@ -219,3 +221,48 @@ def test_a_topic_publishes_nothing_once_closed() -> None:
     made.close()
     made.push([{"x": 1}])
     assert topic.sent == [] and made.tick() == "closed"
+
+
+class CountingTopics(EventTopics):
+    def __init__(self, *args: Any, **kwargs: Any) -> None:
+        super().__init__(*args, **kwargs)
+        self.ticks = 0
+
+    def tick(self) -> list[tuple[EventTopic, str]]:
+        self.ticks += 1
+        return super().tick()
+
+
+def wait_for(condition: Callable[[], bool], timeout: float = 10.0) -> bool:
+    deadline = time.monotonic() + timeout
+    while time.monotonic() < deadline and not condition():
+        time.sleep(0.005)
+    return condition()
+
+
+def test_the_sweeper_publishes_held_triggers_soon_and_sleeps_when_there_is_nothing_to_do() -> None:
+    kb = KB()
+    made: list[FakeTopic] = []
+
+    def make(sub_id: str) -> FakeTopic:
+        made.append(FakeTopic(sub_id))
+        return made[-1]
+
+    topics = CountingTopics(EventHub(kb, max_listeners=4), make, HOLD)
+    sweeper = Sweeper(topics, fast=0.01, slow=60.0)
+    sweeper.start()
+    try:
+        time.sleep(0.2)
+        assert topics.ticks == 1  # no topic: asleep after its first look
+        topics.subscribe(["?x isIn kitchen"], False, None)
+        kb.add("cup_1 isIn kitchen")  # held: nobody has subscribed yet
+        [topic] = made
+        threading.Timer(0.1, lambda: setattr(topic, "count", 1)).start()  # the client is discovered
+        assert wait_for(lambda: topic.sent == [[{"x": "cup_1"}]])
+        settled = topics.ticks
+        time.sleep(0.2)
+        assert topics.ticks - settled <= 1  # nothing held: no more fast sweeps
+    finally:
+        sweeper.stop()
+        topics.close()
+        kb.close()
