@@ -19,6 +19,8 @@ def test_revise_then_query_then_retract(ros_node: RosNode, probe: Probe) -> None
     assert added == {"success": True, "error_msg": ""}
     found = probe.call("/kb/query", QUERY, patterns=["?m isOn shelf_1", "?m rdf:type dbr:Cup"], vars=["?m"])
     assert found["success"] is True and json.loads(found["json"]) == [{"m": "mug_1"}]
+    anonymous = probe.call("/kb/query", QUERY, patterns=["?__a isOn shelf_1", "?__a rdf:type ?__c"])  # knowledge_core's '*'
+    assert {"var1": "mug_1", "var2": "dbr:Cup"} in json.loads(anonymous["json"])
     assert probe.call("/kb/revise", REVISE, method="retract", statements=["mug_1 isOn shelf_1"])["success"] is True
     assert json.loads(probe.call("/kb/query", QUERY, patterns=["?m isOn shelf_1"])["json"]) == []
 

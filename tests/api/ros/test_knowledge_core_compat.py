@@ -109,6 +109,20 @@ def outcomes(name: str, report: Path) -> list[Outcome]:
     return found
 
 
+def unexpected(outcome: Outcome) -> str | None:
+    """What is wrong with an outcome, if anything."""
+    expected = EXPECTED.get(outcome.test)
+    if outcome.result == "skipped":
+        return None if SKIPPED in outcome.text else f"{outcome.test} skipped: {outcome.text}"
+    if expected is None:
+        return None if outcome.result == "passed" else f"{outcome.test} failed:\n{outcome.text}"
+    if outcome.result != "failed":
+        return f"{outcome.test} passes now: remove it from EXPECTED"
+    if not all(text in outcome.text for text in expected.shows):
+        return f"{outcome.test} fails for another reason than {expected.reason}:\n{outcome.text}"
+    return None
+
+
 def table(found: list[Outcome]) -> str:
     lines = [f"{o.result:8} {o.test}" + (f"  [{EXPECTED[o.test].reason}]" if o.test in EXPECTED else "")
              for o in found]
@@ -123,16 +137,8 @@ def test_knowledge_cores_own_tests_against_our_node(name: str, ros_node_factory:
     found = run_upstream(name, ros_env, tmp_path / "upstream")
     print(f"\nknowledge_core 3.5's {name} against situated's node:\n{table(found)}")
     assert found, "no test ran"
-    for outcome in found:
-        expected = EXPECTED.get(outcome.test)
-        if outcome.result == "skipped":
-            assert SKIPPED in outcome.text, outcome
-        elif expected is None:
-            assert outcome.result == "passed", f"{outcome.test} failed:\n{outcome.text}"
-        else:
-            assert outcome.result == "failed", f"{outcome.test} passes now: remove it from EXPECTED"
-            assert all(text in outcome.text for text in expected.shows), (
-                f"{outcome.test} fails for another reason than {expected.reason}:\n{outcome.text}")
+    wrong = [problem for outcome in found if (problem := unexpected(outcome))]
+    assert not wrong, "\n".join(wrong) + f"\n\n{table(found)}"
     # What the skipped post-shutdown tests check of knowledge_core's process: the node stops cleanly.
     node.server.proc.send_signal(signal.SIGTERM)
     assert node.server.proc.wait(30) == -signal.SIGTERM
