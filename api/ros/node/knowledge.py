@@ -2,9 +2,11 @@
 
 Every service answers ``success`` and, on a refusal, ``error_msg`` (a refused write changed
 nothing), within the same limits as REST (patterns, statements, models, the text a request
-carries, rows, query time). Manage ``clear`` does what kb_msgs documents and knowledge_core does:
-the KB is emptied, its ontology too, unless ``parameters`` holds ``keep_defaults`` (the service's
-REST and Python ``clear`` keep the ontology unless told not to).
+carries, rows, query time). ``label`` answers the labels by language, which knowledge_core's client
+reads there (knowledge_core serves the details, which that client cannot read: kb-compat K6).
+Manage ``clear`` does what kb_msgs documents and knowledge_core does: the KB is emptied, its
+ontology too, unless ``parameters`` holds ``keep_defaults`` (the service's REST and Python ``clear``
+keep the ontology unless told not to).
 """
 
 from __future__ import annotations
@@ -84,8 +86,10 @@ class KnowledgeServices:
         return self._answer(response, lambda: self.kb.details(*self._term(request)))
 
     def label(self, request: Any, response: Any) -> Any:
-        return self._answer(response, lambda: self.kb.label(self._term(request)[0],
-                                                            models=_models(request.models)))
+        """The term's labels by language, ``{"default": ..., "fr": ...}``: what knowledge_core's
+        client reads from ``/kb/label`` (its server answers the details there, which that client
+        cannot read: kb-compat K6)."""
+        return self._answer(response, lambda: self.kb.details(*self._term(request))["label"])
 
     def lookup(self, request: Any, response: Any) -> Any:
         def work() -> Any:

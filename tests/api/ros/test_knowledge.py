@@ -55,6 +55,10 @@ def test_about_lookup_and_details(ros_node: RosNode, probe: Probe) -> None:
     assert ["book_1", "instance"] in json.loads(lookup["json"])
     details = json.loads(probe.call("/kb/details", ABOUT, term="book_1")["json"])
     assert details["id"] == "book_1" and details["label"]["default"] == "cookbook"
+    probe.call("/kb/revise", REVISE, method="update", statements=['book_1 rdfs:label "livre de cuisine"@fr'])
+    # What knowledge_core's client reads from /kb/label: the labels by language.
+    assert json.loads(probe.call("/kb/label", ABOUT, term="book_1")["json"]) == {
+        "default": "cookbook", "fr": "livre de cuisine"}
 
 
 def test_facts_topics_add_and_remove(ros_node: RosNode, probe: Probe) -> None:
