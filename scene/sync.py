@@ -37,6 +37,9 @@ class SceneSync:
         self._lock = threading.RLock()
         self._known_classes: set[str] = set()
         self._asserted: set[str] = set()
+        #: The scene has been put in the KB (loaded, adopted or changed): a clear must bring its
+        #: facts back. A service started without a scene (`--scene none`) has none to bring back.
+        self._in_kb = False
         self._levels_unwritten = False
 
     # --- whole scene -----------------------------------------------------------------------
@@ -81,12 +84,16 @@ class SceneSync:
                 self.kb.apply(sorted(diff.added), sorted(diff.removed))
             self.scene = scene
             self._asserted = facts
+            self._in_kb = True
             self.tracker = EngagementTracker(self.tracker.config)
             return diff
 
     def resync(self) -> Diff:
-        """Assert the scene's whole fact set again (after a KB clear or a late start)."""
+        """Assert the scene's whole fact set again after a KB clear; nothing when the scene was never
+        put in the KB."""
         with self._lock:
+            if not self._in_kb:
+                return Diff()
             self._asserted = set()
             return self._commit(self.scene)
 
@@ -148,6 +155,7 @@ class SceneSync:
             self.kb.apply(sorted(diff.added), sorted(diff.removed))
         self.scene = scene
         self._asserted = facts
+        self._in_kb = True
         return diff
 
     def _undo(self, entity_id: str, previous: Entity | None) -> None:

@@ -9,7 +9,7 @@ from importlib.resources import files
 import pytest
 
 from kb import KB, KbError
-from scene.scene import Entity, Kind
+from scene.scene import Diff, Entity, Kind
 from scene.svg import load_svg
 from scene.sync import SceneSync, entity_from_json, scene_from_json, scene_to_json
 
@@ -133,3 +133,11 @@ def test_json_round_trip_and_errors(kb: KB) -> None:
         entity_from_json({"kind": "object"})
     with pytest.raises(KbError, match="malformed JSON"):
         scene_from_json("{")
+
+
+def test_a_scene_never_put_in_the_kb_brings_nothing_back_after_a_clear(kb: KB) -> None:
+    # `--scene none`: the robot's facts were never asserted; a clear must not invent them.
+    sync = SceneSync(kb)
+    kb.clear(keep_defaults=False)
+    assert sync.resync() == Diff()
+    assert kb["?s ?p ?o"] == []

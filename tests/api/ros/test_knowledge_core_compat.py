@@ -42,25 +42,12 @@ class Expected:
     shows: tuple[str, ...]
 
 
-#: situated's scene always holds the robot itself, and a clear asserts its facts again (the KB is
-#: then ``myself rdf:type Robot``, where knowledge_core's is empty).
-ROBOT = "the robot itself: situated's scene asserts `myself rdf:type Robot` again after a clear"
 #: Test id (file::class::test) -> why it fails against situated.
 EXPECTED: dict[str, Expected] = {
-    "test_ros_350.py::TestKB::test_basics": Expected(ROBOT, ("First has 1, Second has 0:  {'s': 'myself'}",)),
-    "test_ros_350.py::TestKB::test_base_revise": Expected(ROBOT, ("First has 1, Second has 0:  {'s': 'myself'}",)),
-    # Past this first difference it would meet another: situated's rows are distinct (kb-compat K1),
-    # where knowledge_core's `vars=["?cls"]` answer repeats {"cls": "Agent"}.
+    # kb-compat K1: situated's rows are distinct, where knowledge_core's `vars=["?cls"]` answer
+    # repeats {"cls": "Agent"} (once per subclass).
     "test_ros_350.py::TestKB::test_queries": Expected(
-        ROBOT + "; then distinct rows (K1)", ("First has 1, Second has 0:  {'agent': 'myself'}",)),
-    # knowledge_core's tests run it without its reasoner (`--no-reasoner`): this one is then skipped
-    # by its own check of `reasoning_enabled`; situated always reasons, and it passes but for the robot.
-    "test_ros_350.py::TestKB::test_reasoning": Expected(
-        ROBOT, ("First has 1, Second has 0:  {'agent': 'myself'}",)),
-    "test_pythonic_api_ros_350.py::TestPythonicROSKb::test_modifications": Expected(
-        ROBOT, ("First has 1, Second has 0:  {'var1': 'myself', 'var2': 'rdf:type', 'var3': 'Robot'}",)),
-    "test_pythonic_api_ros_350.py::TestPythonicROSKb::test_complex_queries": Expected(
-        ROBOT, ("First has 1, Second has 0:  {'var1': 'myself', 'var2': 'rdf:type', 'var3': 'Robot'}",)),
+        "situated's rows are distinct (kb-compat K1)", ("First has 1, Second has 2:  {'cls': 'Agent'}",)),
     # kb-compat §1.4: single-quoted literals are refused upstream; accepting them is allowed.
     "test_pythonic_api_ros_350.py::TestPythonicROSKb::test_literals": Expected(
         "situated accepts the single-quoted literal 'test' (kb-compat §1.4 allows it)",
