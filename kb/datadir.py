@@ -1,29 +1,38 @@
 """Checking and repairing a data directory (``situated data check|repair DIR``).
 
 ``check`` reads the snapshot and every journal record and says what is intact, what a crash
-left (a torn last record, a temporary snapshot: both harmless, handled at start) and what is
-damaged (a bad snapshot, or bad bytes with intact records after them: the service refuses to
-start on those rather than lose acknowledged writes). ``repair`` keeps each damaged file beside
-the new one (``NAME.damaged-TIMESTAMP``) and writes what can be recovered: every intact journal
-record, and from a snapshot whose checksum fails but whose content still reads, every statement
-that parses. Run it while the service is stopped.
+left (a last record cut short, a temporary snapshot: both harmless, handled at start) and what is
+damaged (a bad snapshot; bytes that are no intact record, a complete last record that fails its
+checksum included; a journal that does not continue the snapshot): the service refuses to start
+on those rather than lose acknowledged writes. ``repair`` keeps each damaged file beside the new
+one (``NAME.damaged-TIMESTAMP``) and writes what can be recovered: every intact journal record,
+and from a snapshot whose checksum fails, every statement of it that still reads (of one cut
+short, every statement before the cut). Revisions that neither holds any more are then marked
+lost in the snapshot, so that the service starts with everything else and says what was lost.
+Run it while the service is stopped.
 """
 
 from __future__ import annotations
 
-import json
 import os
+import re
 import shutil
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from pydantic_core import from_json
 from rdflib import BNode
 
 from kb.errors import KbError, storage_error
 from kb.journal import JOURNAL, SNAPSHOT, SNAPSHOT_TMP
-from kb.records import frame, parse_nt, read_snapshot, scan
+from kb.records import describe_missing, frame, missing_revisions, parse_nt, read_snapshot, scan
+
+#: The finding about the two files together: does the journal continue the snapshot?
+REVISIONS = "revisions"
+# Where a JSON parser says it stopped reading.
+_COLUMN = re.compile(r"column (\d+)")
 
 
 @dataclass
@@ -65,6 +74,9 @@ def check(directory: str | Path) -> Report:
         report.findings.append(Finding(SNAPSHOT_TMP, "harmless", "left by an interrupted snapshot; "
                                                                  "removed at the next start"))
     report.findings.append(_check_journal(folder / JOURNAL))
+    missing = _missing(folder)
+    if missing is not None:
+        report.findings.append(Finding(REVISIONS, "damaged", missing[1]))
     return report
 
 
@@ -73,13 +85,35 @@ def repair(directory: str | Path) -> Report:
     report = check(directory)
     folder = report.directory
     repairs = {SNAPSHOT: _repair_snapshot, JOURNAL: _repair_journal}
-    for finding in report.findings:
-        if finding.state == "damaged":
-            try:
+    try:
+        for finding in report.findings:
+            if finding.state == "damaged" and finding.name in repairs:
                 report.actions.append(repairs[finding.name](folder / finding.name))
-            except OSError as exc:  # each file is replaced whole or not at all
-                raise storage_error(exc, folder, f"the repair of {finding.name}") from exc
+        # After those repairs: what the snapshot ends at and the journal starts from.
+        missing = _missing(folder)
+        if missing is not None:
+            report.actions.append(_mark_lost(folder / SNAPSHOT, missing[0]))
+    except OSError as exc:  # each file is replaced whole or not at all
+        raise storage_error(exc, folder, "the repair") from exc
     return report
+
+
+def _missing(folder: Path) -> tuple[range, str] | None:
+    """The revisions neither a readable snapshot (or its absence) nor the journal holds, and why."""
+    path = folder / SNAPSHOT
+    revision = 0
+    if path.exists():
+        try:
+            revision = read_snapshot(path.read_bytes())["revision"]
+        except ValueError:  # a damaged snapshot: its own finding says so
+            return None
+    journal = folder / JOURNAL
+    found = scan(journal.read_bytes() if journal.exists() else b"")
+    missing = missing_revisions(revision, (r["revision"] for _s, _e, r in found.records))
+    if missing is None:
+        return None
+    named = f"the snapshot (revision {revision})" if path.exists() else "a snapshot (there is none)"
+    return missing, f"{describe_missing(missing, named)}; the service will not start with part of the state"
 
 
 # --- the snapshot ------------------------------------------------------------------------------
@@ -114,40 +148,78 @@ def _repair_snapshot(path: Path) -> str:
         return (f"{SNAPSHOT} could not be read at all: kept as {kept.name} and removed; the KB "
                 f"starts from the default ontology plus the journal, and what only the snapshot "
                 f"held is lost")
-    state, dropped = salvaged
+    state, kept_count, dropped = salvaged
     _replace(path, frame(state))
     return (f"{SNAPSHOT} rewritten from what still reads (revision {state['revision']}, "
-            f"{dropped} unreadable statement(s) dropped); the original is kept as {kept.name}")
+            f"{kept_count} statement(s) kept, {dropped} unreadable statement(s) dropped); the original "
+            f"is kept as {kept.name}")
 
 
-def _salvage(data: bytes) -> tuple[dict[str, Any], int] | None:
-    """The state of a snapshot whose checksum failed, with its unparsable statements dropped."""
+def _mark_lost(path: Path, missing: range) -> str:
+    """Make the snapshot (an empty one if there is none) end where the journal starts: the
+    missing revisions are gone, everything else is kept."""
+    if path.exists():
+        kept = _keep(path)
+        state = read_snapshot(path.read_bytes())
+        where = f"{SNAPSHOT} (kept as {kept.name})"
+    else:
+        state = {"models": {}, "expiries": []}
+        where = f"an empty {SNAPSHOT}"
+    state["revision"] = missing.stop - 1
+    _replace(path, frame(state))
+    return (f"revisions {missing.start}..{missing.stop - 1} are lost (in neither the snapshot nor the "
+            f"journal): {where} now ends at revision {missing.stop - 1}, where the journal starts")
+
+
+def _salvage(data: bytes) -> tuple[dict[str, Any], int, int] | None:
+    """The state of a snapshot whose checksum failed: every statement that still reads, of a
+    snapshot cut short those before the cut (with the number kept and dropped); None when not even
+    its revision and models read."""
     text = data.strip()
     if not text.startswith(b"{"):
         text = text.split(b" ", 2)[-1]  # the body after ``<length> <crc32>``
-    try:
-        raw = json.loads(text)
-        models = raw["models"]
-        revision = raw.get("revision")
-        state: dict[str, Any] = {"revision": revision if isinstance(revision, int) else 0, "models": {},
-                                 "expiries": []}
-        dropped = 0
-        bnodes: dict[str, BNode] = {}
-        for name, change in models.items():
-            kept_change: dict[str, list[str]] = {}
-            for key in ("add", "remove"):
-                good = [s for s in change.get(key, []) if _parses(s, bnodes)]
-                dropped += len(change.get(key, [])) - len(good)
-                kept_change[key] = good
-            state["models"][str(name)] = kept_change
-        for entry in raw.get("expiries", []):
-            if _parses(entry[1], bnodes):
-                state["expiries"].append(entry)
-            else:
-                dropped += 1
-    except (ValueError, KeyError, TypeError, AttributeError, IndexError):
+    raw = _partial_json(text)
+    if not isinstance(raw, dict) or not isinstance(raw.get("models"), dict):
         return None
-    return state, dropped
+    revision = raw.get("revision")
+    state: dict[str, Any] = {"revision": revision if isinstance(revision, int) else 0, "models": {},
+                             "expiries": []}
+    kept = dropped = 0
+    bnodes: dict[str, BNode] = {}
+    for name, change in raw["models"].items():
+        change = change if isinstance(change, dict) else {}
+        kept_change: dict[str, list[str]] = {}
+        for key in ("add", "remove"):
+            found = change.get(key, [])
+            found = found if isinstance(found, list) else []
+            good = [s for s in found if _parses(s, bnodes)]
+            dropped += len(found) - len(good)
+            kept += len(good)
+            kept_change[key] = good
+        state["models"][str(name)] = kept_change
+    expiries = raw.get("expiries", [])
+    for entry in expiries if isinstance(expiries, list) else []:
+        if isinstance(entry, list) and len(entry) == 3 and isinstance(entry[0], str) \
+                and isinstance(entry[2], int | float) and _parses(entry[1], bnodes):
+            state["expiries"].append(entry)
+        else:
+            dropped += 1
+    return state, kept, dropped
+
+
+def _partial_json(text: bytes) -> Any:
+    """As much of a JSON document as reads: one cut short gives what comes before the cut
+    (strings cut in two are left out), one damaged in the middle what comes before the damage."""
+    try:
+        return from_json(text, allow_partial=True)
+    except ValueError as exc:
+        column = _COLUMN.search(str(exc))
+        if column is None:
+            return None
+        try:
+            return from_json(text[: int(column.group(1)) - 1], allow_partial=True)
+        except ValueError:
+            return None
 
 
 def _parses(statement: Any, bnodes: dict[str, BNode]) -> bool:
@@ -180,7 +252,7 @@ def _repair_journal(path: Path) -> str:
     data = path.read_bytes()
     found = scan(data)
     kept = _keep(path)
-    _replace(path, b"".join(data[start:end] for start, end, _record in found.records))
+    _replace(path, b"".join(data[start:end].rstrip(b"\n") + b"\n" for start, end, _record in found.records))
     lost = sum(d.end - d.start for d in found.damage) + found.torn_bytes
     return (f"{JOURNAL} rewritten with its {len(found.records)} intact record(s) ({lost} damaged bytes "
             f"left out); the original is kept as {kept.name}")

@@ -4,8 +4,9 @@ Every commit becomes one journal record, written and fsync'd before the write ca
 an acknowledged write survives a crash. A write the disk refuses (full, I/O error) is cut off
 again, so the file ends at the last acknowledged record, and the commit is undone in memory: a
 refused write changes nothing and consumes no revision. Records carry a checksum
-(``kb.records``); at start a torn last record is dropped, while damage with intact records after
-it stops the start (``DataCorrupt``), since going on would silently lose acknowledged writes:
+(``kb.records``); at start a last record cut short (a torn append) is dropped, while any other
+damage, a complete last record that fails its checksum included, stops the start
+(``DataCorrupt``), since going on would silently lose acknowledged writes:
 ``situated data check|repair DIR`` (``kb.datadir``) deals with it. ``snapshot()`` writes the
 whole asserted state (as differences from the default ontology, with lifespans) to a new file,
 renames it into place and starts an empty journal; background compaction survives its errors,
@@ -29,7 +30,7 @@ from rdflib import BNode
 
 from kb.errors import DataCorrupt, KbError, StorageError, StorageFull, storage_error
 from kb.kb import KB
-from kb.records import frame, nt, parse_nt, read_snapshot, scan
+from kb.records import describe_missing, frame, missing_revisions, nt, parse_nt, read_snapshot, scan
 from kb.status import ComponentStatus, StatusCell
 from kb.terms import Triple
 from kb.writer import Commit
@@ -95,20 +96,33 @@ class Journal:
     def _replay_into(self, kb: KB) -> Recovery:
         result = Recovery()
         snapshot = self.directory / SNAPSHOT
-        if snapshot.exists():
-            try:
-                result.revision = _restore_snapshot(kb, read_snapshot(snapshot.read_bytes()))
-            except (ValueError, KeyError, TypeError, KbError) as exc:
-                raise DataCorrupt(f"{snapshot} cannot be read ({exc}); not starting without the "
-                                  f"state it holds: {repair_hint(self.directory)}") from exc
         path = self.directory / JOURNAL
-        if not path.exists():
-            return result
-        data = path.read_bytes()
-        found = scan(data)
+        found = scan(path.read_bytes() if path.exists() else b"")
         if found.damage:
             raise DataCorrupt(f"{found.describe_damage(str(path))}; not starting, since that would "
-                              f"lose them: {repair_hint(self.directory)}")
+                              f"lose acknowledged writes: {repair_hint(self.directory)}")
+        state: dict[str, Any] | None = None
+        if snapshot.exists():
+            try:
+                state = read_snapshot(snapshot.read_bytes())
+            except ValueError as exc:
+                raise DataCorrupt(f"{snapshot} cannot be read ({exc}); not starting without the "
+                                  f"state it holds: {repair_hint(self.directory)}") from exc
+        revisions = (record["revision"] for _start, _end, record in found.records)
+        missing = missing_revisions(state["revision"] if state else 0, revisions)
+        if missing is not None:
+            named = f"the snapshot {snapshot} (revision {missing.start - 1})" if state else \
+                f"a snapshot (there is none: {snapshot} is missing)"
+            raise DataCorrupt(f"{describe_missing(missing, named)}; not starting with part of the "
+                              f"state: {repair_hint(self.directory)}")
+        if state is not None:
+            try:
+                result.revision = _restore_snapshot(kb, state)
+            except (KeyError, TypeError, KbError) as exc:
+                raise DataCorrupt(f"{snapshot} cannot be read ({exc}); not starting without the "
+                                  f"state it holds: {repair_hint(self.directory)}") from exc
+        if not path.exists():
+            return result
         replay = _Replay(kb)
         for _start, _end, record in found.records:
             if record["revision"] > result.revision:
@@ -117,9 +131,12 @@ class Journal:
                 result.records += 1
         replay.flush()
         result.dropped_bytes = found.torn_bytes
-        if found.torn_bytes:
+        if found.torn_bytes or found.unterminated:
             with path.open("r+b") as handle:
                 handle.truncate(found.torn_at)
+                if found.unterminated:  # the next record starts on a line of its own
+                    handle.seek(found.torn_at)
+                    handle.write(b"\n")
                 _fsync(handle)
         return result
 

@@ -3,15 +3,19 @@ corruption, and N-Triples terms (blank nodes included, unlike the KB's statement
 
 A record is one line, ``<length> <crc32> <json>\\n`` (compact JSON never holds a raw newline).
 The journal is a sequence of records; the snapshot is one record (older snapshots were bare
-JSON, still read). A scan reads every line: a bad line followed by an intact record is
-corruption (acknowledged writes come after it); bad bytes after the last intact record are a
-torn tail, what a crash in the middle of an append leaves.
+JSON, still read). A scan reads every line. Only a record cut short is a torn tail, what a crash
+in the middle of an append leaves: an append writes the newline last and a record never holds
+one, so a torn record is the file's last bytes, with no newline and fewer bytes than its header
+announces. Anything else that is not an intact record is damage, the last record included: a
+complete record that fails its checksum was acknowledged, and starting without it would lose it.
 """
 
 from __future__ import annotations
 
 import json
+import re
 import zlib
+from collections.abc import Iterable
 from dataclasses import dataclass, field
 from functools import lru_cache
 from typing import Any
@@ -25,6 +29,47 @@ from kb.terms import Node, Token, Triple, parse_literal, parse_name, tokenize
 def frame(payload: dict[str, Any]) -> bytes:
     body = json.dumps(payload, separators=(",", ":")).encode()
     return b"%d %08x " % (len(body), zlib.crc32(body)) + body + b"\n"
+
+
+# What an append has written of a header when it stopped: digits, a space, part of the checksum.
+_PARTIAL_HEADER = re.compile(rb"([0-9]+( [0-9a-f]{0,8})?)?")
+
+
+def _header(line: bytes) -> tuple[int, int] | None:
+    """The body length a line announces and where its body starts, if its header is whole."""
+    head, space, rest = line.partition(b" ")
+    crc_text, space2, _body = rest.partition(b" ")
+    if not (head.isdigit() and space and space2 and len(crc_text) == 8):
+        return None
+    try:
+        int(crc_text, 16)
+    except ValueError:
+        return None
+    return int(head), len(head) + len(crc_text) + 2
+
+
+def cut_short(line: bytes) -> bool:
+    """True when ``line`` (the file's last bytes, no newline) is the start of a record that an
+    interrupted append left: its header is incomplete, or its body shorter than announced
+    (zeros after it are space a crash allocated but never wrote). A whole record whose newline
+    is missing or changed is damage, not a torn write."""
+    line = line.rstrip(b"\0")
+    header = _header(line)
+    if header is None:
+        return _PARTIAL_HEADER.fullmatch(line) is not None
+    length, body_at = header
+    body = line[body_at:]
+    # A prefix of a record's JSON object never parses; a body that does is whole (its length
+    # digits are what changed).
+    return len(body) < length and not _parses(body)
+
+
+def _parses(body: bytes) -> bool:
+    try:
+        json.loads(body)
+    except ValueError:
+        return False
+    return True
 
 
 def unframe(line: bytes) -> dict[str, Any] | None:
@@ -54,13 +99,15 @@ class Damage:
 
 @dataclass
 class Scan:
-    """Every intact record (with where it starts and ends), damage followed by intact records,
-    and where a torn tail starts (``size`` when there is none)."""
+    """Every intact record (with where it starts and ends), the damage (bytes that are not
+    intact records, the last ones included unless they are a record cut short), and where a torn
+    tail starts (``size`` when there is none)."""
 
     size: int
     records: list[tuple[int, int, dict[str, Any]]] = field(default_factory=list)
     damage: list[Damage] = field(default_factory=list)
     torn_at: int = 0
+    unterminated: bool = False  # the last record is whole but lacks its newline
 
     @property
     def torn_bytes(self) -> int:
@@ -70,8 +117,11 @@ class Scan:
         first = self.damage[0]
         following = sum(1 for start, _end, _r in self.records if start >= first.end)
         lost = sum(d.end - d.start for d in self.damage)
+        where = (f"{following} intact record(s) follow the first damage" if following else
+                 "its last record is complete but does not match its checksum: an acknowledged "
+                 "write, not one a crash cut short")
         return (f"{name} is damaged at byte {first.start} ({len(self.damage)} damaged region(s), "
-                f"{lost} bytes), and {following} intact record(s) follow the first damage")
+                f"{lost} bytes), and {where}")
 
 
 def scan(data: bytes) -> Scan:
@@ -80,7 +130,20 @@ def scan(data: bytes) -> Scan:
     pos = 0
     while pos < len(data):
         end = data.find(b"\n", pos)
-        if end < 0:  # no newline: an incomplete last line
+        if end < 0:  # no newline: the last bytes, torn only if they are a record cut short
+            last = data[pos:]
+            record = unframe(last)
+            if bad_from is None and record is None and cut_short(last):
+                result.torn_at = pos
+                return result
+            if record is not None and isinstance(record.get("revision"), int):
+                # Whole but for its newline (the append stopped at its last byte): a record.
+                if bad_from is not None:
+                    result.damage.append(Damage(bad_from, pos))
+                result.records.append((pos, len(data), record))
+                result.unterminated = True
+                result.torn_at = len(data)
+                return result
             bad_from = pos if bad_from is None else bad_from
             break
         record = unframe(data[pos:end])
@@ -92,7 +155,9 @@ def scan(data: bytes) -> Scan:
                 bad_from = None
             result.records.append((pos, end + 1, record))
         pos = end + 1
-    result.torn_at = bad_from if bad_from is not None else len(data)
+    if bad_from is not None:
+        result.damage.append(Damage(bad_from, len(data)))
+    result.torn_at = len(data)
     return result
 
 
@@ -109,6 +174,22 @@ def read_snapshot(data: bytes) -> dict[str, Any]:
             or not isinstance(state.get("models"), dict):
         raise ValueError("it does not hold a revision and models")
     return state
+
+
+def missing_revisions(snapshot_revision: int, revisions: Iterable[int]) -> range | None:
+    """The revisions that neither the snapshot nor the journal holds, if any: the journal's first
+    record after the snapshot must be the revision right after it (a journal keeps every commit
+    in order; records the snapshot already holds may precede it)."""
+    following = next((r for r in revisions if r > snapshot_revision), None)
+    if following is None or following == snapshot_revision + 1:
+        return None
+    return range(snapshot_revision + 1, following)
+
+
+def describe_missing(missing: range, snapshot: str) -> str:
+    return (f"the journal does not continue {snapshot}: its next record is revision {missing.stop}, "
+            f"so revisions {missing.start}..{missing.stop - 1} are in neither (a snapshot deleted, "
+            f"or replaced by an older one?)")
 
 
 # --- N-Triples terms ---------------------------------------------------------------------------

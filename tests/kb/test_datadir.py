@@ -11,6 +11,7 @@ import pytest
 from kb import KB
 from kb.datadir import check, repair
 from kb.journal import JOURNAL, SNAPSHOT, SNAPSHOT_TMP, Journal
+from kb.terms import ORO
 
 
 @pytest.fixture
@@ -92,7 +93,60 @@ def test_repair_of_an_unreadable_snapshot_keeps_the_journal(tmp_path: Path, kbs:
     _write(tmp_path, kbs, 6, snapshot_after=2)
     (tmp_path / SNAPSHOT).write_bytes(b"")
     report = repair(tmp_path)
-    assert "could not be read at all" in report.render() and not (tmp_path / SNAPSHOT).exists()
+    assert "could not be read at all" in report.render()
+    # the journal starts at revision 4: the lost revisions are said, and marked in a new snapshot
+    assert "revisions 1..3 are lost" in report.render() and not check(tmp_path).damaged
     assert next(tmp_path.glob(f"{SNAPSHOT}.damaged-*")).read_bytes() == b""
     again, _ = _open(tmp_path, kbs)
     assert {r["s"] for r in again["?s sees ?o"]} == {"s3", "s4", "s5"}  # what the journal held
+
+
+def test_repair_of_a_snapshot_cut_short_keeps_every_statement_before_the_cut(tmp_path: Path,
+                                                                            kbs: list[KB]) -> None:
+    # issue 26, item 7: 100 bytes cut off the snapshot used to drop the whole file
+    _write(tmp_path, kbs, 100, snapshot_after=49)
+    path = tmp_path / SNAPSHOT
+    original = path.read_bytes()
+    path.write_bytes(original[:-100])
+    assert check(tmp_path).damaged
+    # the statements wholly before the cut (a JSON string each, closing quote included)
+    whole = {f"s{i}" for i in range(50) if f'#s{i}> <{ORO}sees> <{ORO}o{i}>"'.encode() in original[:-100]}
+    assert len(whole) >= 47
+    report = repair(tmp_path)
+    assert f"rewritten from what still reads (revision 50, {len(whole)} statement(s) kept" in report.render(), \
+        report.render()
+    assert next(tmp_path.glob(f"{SNAPSHOT}.damaged-*")).read_bytes() == original[:-100]
+    assert not check(tmp_path).damaged
+    again, _ = _open(tmp_path, kbs)
+    assert {r["s"] for r in again["?s sees ?o"]} == whole | {f"s{i}" for i in range(50, 100)}
+    assert again.revision == 100
+
+
+def test_a_journal_that_does_not_continue_the_snapshot_is_damage_until_repaired(tmp_path: Path,
+                                                                                kbs: list[KB]) -> None:
+    # issue 26, item 7: a deleted snapshot, and a journal that starts at a later revision
+    _write(tmp_path, kbs, 100, snapshot_after=49)
+    (tmp_path / SNAPSHOT).unlink()
+    report = check(tmp_path)
+    assert report.damaged
+    assert "revisions: damaged: the journal does not continue a snapshot (there is none): its next " \
+           "record is revision 51, so revisions 1..50 are in neither" in report.render(), report.render()
+    report = repair(tmp_path)
+    assert "revisions 1..50 are lost" in report.render()
+    assert (tmp_path / JOURNAL).read_bytes().count(b"\n") == 50  # every record kept
+    assert not check(tmp_path).damaged
+    again, _ = _open(tmp_path, kbs)
+    assert {r["s"] for r in again["?s sees ?o"]} == {f"s{i}" for i in range(50, 100)}
+    assert again.revision == 100
+
+
+def test_check_calls_a_flipped_bit_in_the_last_record_damage(tmp_path: Path, kbs: list[KB]) -> None:
+    # issue 26, item 6: a complete last record failing its checksum was acknowledged
+    _write(tmp_path, kbs, 10)
+    path = tmp_path / JOURNAL
+    data = bytearray(path.read_bytes())
+    data[-20] ^= 0x02
+    path.write_bytes(bytes(data))
+    report = check(tmp_path)
+    assert report.damaged and "journal.log: damaged:" in report.render()
+    assert "its last record is complete but does not match its checksum" in report.render()

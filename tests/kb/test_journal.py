@@ -82,17 +82,40 @@ def test_torn_last_record_is_dropped_never_applied_in_part(tmp_path: Path) -> No
     assert third["?s sees ?o"] == [{"s": "a", "o": "b"}, {"s": "g", "o": "h"}]
 
 
-def test_a_damaged_last_record_is_a_torn_tail(tmp_path: Path) -> None:
+def test_a_flipped_bit_in_the_last_record_stops_recovery_and_changes_nothing(tmp_path: Path) -> None:
+    # issue 26, item 6: the last record was acknowledged; a complete record failing its checksum is
+    # damage, not a torn write
     kb, journal = open_kb(tmp_path)
     kb += "a sees b"
     kb += "c sees d"
     journal.close()
     path = tmp_path / JOURNAL
     first, second = path.read_bytes().splitlines(keepends=True)
-    path.write_bytes(first + second.replace(b"d>", b"x>"))  # same length, wrong checksum
-    again, _ = open_kb(tmp_path)
-    assert again["?s sees ?o"] == [{"s": "a", "o": "b"}]
-    assert path.read_bytes() == first
+    flipped = bytearray(second)
+    flipped[len(flipped) // 2] ^= 0x01
+    damaged = first + bytes(flipped)
+    path.write_bytes(damaged)
+    with pytest.raises(DataCorrupt) as caught:
+        open_kb(tmp_path)
+    message = str(caught.value)
+    assert f"damaged at byte {len(first)}" in message and "does not match its checksum" in message
+    assert f"situated data repair {tmp_path}" in message
+    assert path.read_bytes() == damaged
+
+
+def test_a_last_record_missing_only_its_newline_is_replayed_and_the_journal_goes_on(tmp_path: Path) -> None:
+    kb, journal = open_kb(tmp_path)
+    kb += "a sees b"
+    kb += "c sees d"
+    journal.close()
+    path = tmp_path / JOURNAL
+    path.write_bytes(path.read_bytes()[:-1])
+    again, journal = open_kb(tmp_path)
+    assert again["?s sees ?o"] == [{"s": "a", "o": "b"}, {"s": "c", "o": "d"}]
+    again += "e sees f"
+    journal.close()
+    third, _ = open_kb(tmp_path)
+    assert [r["s"] for r in third["?s sees ?o"]] == ["a", "c", "e"]
 
 
 def test_a_flipped_byte_mid_journal_stops_recovery_and_changes_nothing(tmp_path: Path) -> None:
@@ -129,6 +152,36 @@ def test_a_damaged_snapshot_stops_recovery_with_a_clear_error(tmp_path: Path, da
     with pytest.raises(DataCorrupt, match=f"{SNAPSHOT} cannot be read .*situated data check"):
         open_kb(tmp_path)
     assert path.read_bytes() == changed
+
+
+@pytest.mark.parametrize("change", ["deleted", "older"])
+def test_a_journal_that_does_not_continue_its_snapshot_stops_recovery(tmp_path: Path, change: str) -> None:
+    # issue 26, item 7: without the snapshot (or with an older one) the journal's records start
+    # later than the state they follow, and starting would silently lose what the snapshot held
+    kb, journal = open_kb(tmp_path)
+    for i in range(5):
+        kb += f"s{i} sees o{i}"
+    journal.snapshot(kb)
+    older = (tmp_path / SNAPSHOT).read_bytes()
+    for i in range(5, 10):
+        kb += f"s{i} sees o{i}"
+    journal.snapshot(kb)
+    for i in range(10, 15):
+        kb += f"s{i} sees o{i}"
+    journal.close()
+    if change == "deleted":
+        (tmp_path / SNAPSHOT).unlink()
+        expected = "revisions 1..10 are in neither"
+    else:
+        (tmp_path / SNAPSHOT).write_bytes(older)
+        expected = "revisions 6..10 are in neither"
+    journal_bytes = (tmp_path / JOURNAL).read_bytes()
+    with pytest.raises(DataCorrupt) as caught:
+        open_kb(tmp_path)
+    message = str(caught.value)
+    assert "the journal does not continue" in message and expected in message, message
+    assert f"situated data repair {tmp_path}" in message
+    assert (tmp_path / JOURNAL).read_bytes() == journal_bytes
 
 
 def test_a_snapshot_written_before_checksums_is_still_read(tmp_path: Path) -> None:

@@ -85,3 +85,40 @@ def test_a_damaged_snapshot_stops_the_start_with_a_clear_error(tmp_path: Path, c
     (data / SNAPSHOT).write_bytes(content)
     message = _refused_start(data)
     assert "snapshot.json: damaged: cannot be read" in message and "situated data repair" in message
+
+
+def test_a_flipped_bit_in_the_last_record_stops_the_start_until_repaired(tmp_path: Path) -> None:
+    # issue 26, item 6: the last record is complete, so it was acknowledged: damage, not a torn write
+    data = tmp_path / "data"
+    _journal_of(data, 20)
+    path = data / JOURNAL
+    damaged = bytearray(path.read_bytes())
+    damaged[-30] ^= 0x08
+    path.write_bytes(bytes(damaged))
+
+    message = _refused_start(data)
+    assert "journal.log: damaged" in message and "does not match its checksum" in message, message
+    assert path.read_bytes() == bytes(damaged)
+    checked = _situated("data", "check", str(data))
+    assert checked.returncode == 1 and "journal.log: damaged" in checked.stdout, checked.stdout
+    assert "harmless" not in checked.stdout
+
+
+def test_a_deleted_snapshot_stops_the_start_and_the_check_says_why(tmp_path: Path) -> None:
+    # issue 26, item 7: the journal begins after the snapshot's revision; starting without it
+    # would serve half the facts
+    data = tmp_path / "data"
+    _journal_of(data, 50, snapshot=True)
+    with KB() as kb:  # 50 more writes after the snapshot, in the journal
+        journal = Journal(data)
+        journal.recover(kb)
+        for i in range(50, 100):
+            kb += f"s{i} sees o{i}"
+        journal.close()
+    (data / SNAPSHOT).unlink()
+
+    message = _refused_start(data)
+    assert "the journal does not continue a snapshot (there is none)" in message, message
+    assert "revisions 1..50 are in neither" in message
+    checked = _situated("data", "check", str(data))
+    assert checked.returncode == 1 and "revisions: damaged" in checked.stdout, checked.stdout
