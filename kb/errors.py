@@ -33,6 +33,11 @@ class InvalidUnicode(KbError):
     """Text holding a code point that is not a Unicode scalar value."""
 
 
+class InvalidCharacter(KbError):
+    """Text holding a character that an RDF serialisation cannot carry (a C0 control but tab,
+    newline and carriage return; U+FFFE, U+FFFF): the KB could not be exported and loaded back."""
+
+
 class InvalidRegex(KbError):
     """A REGEX or REPLACE pattern that is not a valid regular expression."""
 

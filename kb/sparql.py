@@ -26,7 +26,7 @@ from kb.errors import InvalidSparql, KbError, UnsupportedUpdate
 from kb.index import TripleIndex
 from kb.sparqlbudget import bound, check_size
 from kb.terms import ORO, PREFIXES, Node, Triple
-from kb.unicode import check_text
+from kb.unicode import check_terms, check_text
 
 _GRAPH_ID = URIRef(ORO + "sparql")
 # rdflib keeps one prefix per namespace, so `:` is declared and `oro:` names are renamed to it in
@@ -161,6 +161,7 @@ def parse_update(update: str) -> tuple[list[Triple], list[Triple]]:
             raise UnsupportedUpdate("blank nodes cannot be written to the KB")
         into, out_of = (added, removed) if op.name == "InsertData" else (removed, added)
         for triple in triples:
+            check_terms(triple, "a term of the SPARQL update")
             into[triple] = None
             out_of.pop(triple, None)
     return list(added), list(removed)

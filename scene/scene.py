@@ -18,7 +18,7 @@ from typing import Literal
 from rdflib import Literal as RdfLiteral
 
 from kb.terms import format_term
-from kb.unicode import check_text
+from kb.unicode import check_carried, check_text
 from scene.geometry import Box, Sector
 
 ROBOT_ID = "myself"
@@ -59,6 +59,7 @@ class Entity:
         for name, text in (("id", self.id), ("class", self.cls), ("label", self.label)):
             if isinstance(text, str):
                 check_text(text, f"the {name} of scene entity {self.id!r}")
+                check_carried(text, f"the {name} of scene entity {self.id!r}")
         if not self.cls:
             object.__setattr__(self, "cls", DEFAULT_CLASS[self.kind])
 

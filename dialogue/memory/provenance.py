@@ -25,6 +25,7 @@ from rdflib import RDF, XSD, Literal, URIRef
 
 from kb.protocol import KnowledgeBase
 from kb.terms import ORO, Node, format_term, format_triple, parse_name
+from kb.unicode import carried
 
 TOLD_FACT = URIRef(ORO + "ToldFact")
 TOLD_BY = URIRef(ORO + "toldBy")
@@ -52,7 +53,7 @@ def record(fact: Fact, speaker: URIRef, when: datetime, words: str) -> list[str]
         (node, RDF.object, obj), (node, TOLD_BY, speaker), (node, TOLD_AT, stamp),
     ]  # fmt: skip
     if words.strip():
-        triples.append((node, TOLD_AS, Literal(words.strip()[:MAX_WORDS])))
+        triples.append((node, TOLD_AS, Literal(carried(words).strip()[:MAX_WORDS])))
     return [format_triple(t) for t in triples]
 
 

@@ -134,3 +134,26 @@ def test_apply_models_gives_each_model_its_own_changes_as_one_batch(live: Live) 
     too_many = client.post("/kb/apply_models", json={"changes": {"a": {"add": ["a b c"] * 600},
                                                                  "b": {"remove": ["a b d"] * 600}}})
     assert too_many.status_code == 413
+
+
+def test_a_literal_holding_nul_is_refused_and_every_export_loads_back(live: Live) -> None:
+    # issue 26, item 12: a NUL was accepted, then the RDF/XML export could not be loaded back
+    client = live.client
+    nt = {"accept": "application/n-triples"}
+    before = client.get("/kb/export", headers=nt).text
+    for body in ({"statements": ['cup_1 rdfs:label "a\u0000b"'], "method": "add"},
+                 {"statements": ['cup_1 rdfs:label "a\\u0000b"'], "method": "add"}):
+        refused = client.post("/kb/revise", json=body)
+        assert refused.status_code == 400 and "U+0000" in refused.json()["message"], refused.text
+    refused = client.post("/kb/load", content='<http://x.org/a> <http://x.org/b> "\\u0000" .',
+                          headers={"content-type": "text/turtle"})
+    assert refused.status_code == 400 and "RDF/XML" in refused.json()["message"], refused.text
+    assert client.get("/kb/export", headers=nt).text == before
+    assert client.post("/kb/revise", json={"statements": ['cup_1 comment "tab\\there\\r\\nline \u0085\u2028"'],
+                                           "method": "add"}).status_code == 200
+    for fmt, media in (("xml", "application/rdf+xml"), ("turtle", "text/turtle"), ("json-ld", "application/ld+json")):
+        exported = client.get("/kb/export", headers={"accept": media})
+        graph = Graph().parse(data=exported.content, format=fmt)
+        assert len(graph) > 0 and exported.headers["content-type"].startswith(media)
+        comments = [str(o) for o in graph.objects(URIRef(ORO + "cup_1"), URIRef(ORO + "comment"))]
+        assert comments == ["tab\there\r\nline \u0085\u2028"], fmt

@@ -17,6 +17,7 @@ from hypothesis import strategies as st
 
 from api.app import create_app
 from api.settings import Settings
+from kb.unicode import carried
 from tests.api.conftest import Live, serve
 
 SETTINGS = hypothesis.settings(max_examples=150, deadline=None, derandomize=True,
@@ -24,7 +25,7 @@ SETTINGS = hypothesis.settings(max_examples=150, deadline=None, derandomize=True
 NAME = r"\w(?:[\w\-.()~!$&+,;=/%]*[\w\-()~!$&+,;=/%])?"
 INJECTIONS = ['"} ; DROP ALL ; INSERT DATA { <x> <y> <z> } #', "> . <x> <y> <z", 'a\nb" . x y z . "',
               "x' ; y z w . '", '\\" . evil owns robot . "', "\\", '"""', "@en ^^xsd:int", "?s ?p ?o",
-              "\x00\r\n\t\u2028", "SELECT * WHERE { ?s ?p ?o }"]
+              "\x7f\r\n\t\u2028\x85", "SELECT * WHERE { ?s ?p ?o }"]
 _ids = itertools.count()
 
 
@@ -66,6 +67,10 @@ def fresh() -> str:
 def test_string_literals_round_trip_as_one_triple(live: Live, text: str) -> None:
     subject, predicate, before = fresh(), fresh(), asserted(live)
     response = add(live, f"{subject} {predicate} {quoted(text)}")
+    if carried(text) != text:  # a control character RDF/XML cannot carry: refused, nothing written
+        assert response.status_code == 400 and "cannot carry" in response.json()["message"], response.text
+        assert asserted(live) == before
+        return
     assert response.status_code == 200, response.text
     assert asserted(live) == before + 1
     assert query(live, f"{subject} ?p ?v") == [{"p": predicate, "v": text}]
@@ -82,7 +87,7 @@ def test_injection_attempts_stay_one_literal(live: Live, text: str) -> None:
 
 
 @SETTINGS
-@given(text=st.text(), lang=st.from_regex(r"[a-z]{2}(-[A-Z]{2})?", fullmatch=True))
+@given(text=st.text().map(carried), lang=st.from_regex(r"[a-z]{2}(-[A-Z]{2})?", fullmatch=True))
 def test_language_tagged_literals_round_trip(live: Live, text: str, lang: str) -> None:
     subject = fresh()
     assert add(live, f"{subject} probeValue {quoted(text)}@{lang}").status_code == 200

@@ -5,16 +5,20 @@ from __future__ import annotations
 import asyncio
 from pathlib import Path
 
+from rdflib import Literal
+
 from dialogue import intents as I
 from dialogue.engine import DialogueEngine, TurnResult
 from dialogue.llm.hybrid import HybridModel
 from dialogue.llm.testing import ScriptedModel
 from dialogue.memory.claims import Claim
 from dialogue.memory.people import MAX_NOTES, MAX_SUMMARY, People, Recollection, note, summarised
+from dialogue.memory.recollections import SUMMARY
 from dialogue.observers import TurnRecord
 from dialogue.sessions import DialogueManager
 from kb import KB
 from kb.journal import Journal
+from kb.terms import format_term
 
 BOB = "person_bob"
 T0 = 1_748_773_800.0  # 2025-06-01T10:30:00Z
@@ -42,6 +46,14 @@ def test_a_turn_notes_what_was_told_or_asked_for_and_nothing_else() -> None:
     named = TurnResult("Hello! Nice to meet you, Bob.", (hello,), claims=(Claim(BOB, "name", "Bob", "text"),))
     assert note(record("Hi, I'm Bob", named)) == '2025-06-01: said "Hi, I\'m Bob"'
     assert note(record("hello", TurnResult("Hello Bob!", (hello,)))) is None
+
+
+def test_a_note_leaves_out_what_the_kb_cannot_keep() -> None:
+    # issue 26, item 12: the KB refuses C0 controls (RDF/XML cannot carry them); said words keep the rest
+    said = note(record("bring\x00 me\x1b[0m my mug\x07", TurnResult("OK.", (BRING,))))
+    assert said == '2025-06-01: asked "bring me[0m my mug"'
+    with KB() as kb:
+        kb.add([f"{BOB} {format_term(SUMMARY)} {format_term(Literal(said))}"])  # accepted
 
 
 def test_the_summary_keeps_the_latest_notes_within_its_bounds() -> None:
