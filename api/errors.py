@@ -2,9 +2,10 @@
 
 Every failure goes through here: HTTP errors raised by the framework (404, 405), request
 validation (422; 415 for a body sent without saying it is JSON), ``KbError`` and
-``DialogueError`` (400; a failing model is 503), a full or failing data directory (507
-``storage_full``, 503 ``storage_unavailable``), the service's own ``ApiError`` (auth, limits) and
-unexpected errors (500 with a generic message; the traceback goes to the log only).
+``DialogueError`` (400; a failing model is 503), a query over the service's bounds (503
+``query_timeout``, 413 ``too_many_rows`` or ``query_too_large``), a full or failing data directory
+(507 ``storage_full``, 503 ``storage_unavailable``), the service's own ``ApiError`` (auth, limits)
+and unexpected errors (500 with a generic message; the traceback goes to the log only).
 """
 
 from __future__ import annotations
@@ -26,7 +27,15 @@ from dialogue.errors import DialogueError
 from dialogue.llm.base import ModelError
 from dialogue.speakers import NotAPerson
 from kb import KbError
-from kb.errors import ModelLimit, QueryTimeout, StorageError, StorageFull, StoreUnavailable, TooManyRows
+from kb.errors import (
+    ModelLimit,
+    QueryTimeout,
+    QueryTooLarge,
+    StorageError,
+    StorageFull,
+    StoreUnavailable,
+    TooManyRows,
+)
 
 log = logging.getLogger("situated.api")
 
@@ -161,6 +170,10 @@ async def _over_budget(request: Request, exc: Exception) -> JSONResponse:
     return await _api_error(request, over_budget(exc))
 
 
+async def _query_too_large(request: Request, exc: Exception) -> JSONResponse:
+    return error_response(413, "query_too_large", f"{exc} (the service's limit)")
+
+
 async def _storage_full(request: Request, exc: Exception) -> JSONResponse:
     return error_response(507, "storage_full", str(exc))
 
@@ -200,6 +213,7 @@ def install_error_handlers(app: FastAPI) -> None:
     app.add_exception_handler(ModelLimit, _model_limit)
     app.add_exception_handler(TooManyRows, _over_budget)
     app.add_exception_handler(QueryTimeout, _over_budget)
+    app.add_exception_handler(QueryTooLarge, _query_too_large)
     app.add_exception_handler(StorageFull, _storage_full)  # before KbError's 400: more specific
     app.add_exception_handler(StorageError, _storage_error)
     app.add_exception_handler(DialogueError, _dialogue_error)

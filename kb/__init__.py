@@ -8,6 +8,7 @@ checks), and every error they raise is a ``KbError`` (``kb.errors``).
 
 from kb.errors import (
     DataCorrupt,
+    InvalidCharacter,
     InvalidRegex,
     InvalidSparql,
     InvalidUnicode,
@@ -15,6 +16,7 @@ from kb.errors import (
     ModelLimit,
     OutcomeUnknown,
     QueryTimeout,
+    QueryTooLarge,
     StorageError,
     StorageFull,
     StoreUnavailable,
@@ -31,6 +33,7 @@ __all__ = [
     "KB",
     "DataCorrupt",
     "Facade",
+    "InvalidCharacter",
     "InvalidRegex",
     "InvalidSparql",
     "InvalidUnicode",
@@ -39,6 +42,7 @@ __all__ = [
     "ModelLimit",
     "OutcomeUnknown",
     "QueryTimeout",
+    "QueryTooLarge",
     "RemoteKB",
     "StorageError",
     "StorageFull",

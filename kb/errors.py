@@ -58,6 +58,11 @@ class TooManyRows(KbError):
         self.limit = limit
 
 
+class QueryTooLarge(KbError):
+    """A query whose text, or a string its expressions build, is over the KB's bounds (it was not
+    run, or stopped; nothing changed)."""
+
+
 class QueryTimeout(KbError):
     """A query that did not finish within its time budget (it was stopped, nothing changed)."""
 

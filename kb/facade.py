@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import threading
 from abc import ABC, abstractmethod
-from collections.abc import Iterable, Mapping, Sequence
+from collections.abc import Callable, Iterable, Mapping, Sequence
 from pathlib import Path
 from typing import Any, Generic, Self, TypeVar
 
@@ -37,6 +37,7 @@ from kb.models import DEFAULT_MODEL
 from kb.query import Query
 from kb.rdfio import parse_data, read_location, serialize
 from kb.sparql import parse_update, to_json
+from kb.sparql import serialize as serialize_result
 from kb.sugar import KnowledgeCoreSugar
 from kb.summary import Summary
 from kb.terms import Node, Triple, as_list, parse_ground, parse_patterns
@@ -130,13 +131,14 @@ class Facade(KnowledgeCoreSugar, ABC, Generic[M]):
         ``kb.errors.TooManyRows``."""
         return to_json(self._sparql_result(query, model, Deadline.after(timeout), max_rows), query)
 
-    def sparql_serialize(self, query: str, fmt: str, model: str | None = None, *,
+    def sparql_serialize(self, query: str, fmt: str | Callable[[str], str], model: str | None = None, *,
                          timeout: float | None = None, max_rows: int | None = None) -> tuple[str, bytes]:
         """Run a read-only query and serialise its result (``json``, ``xml``, ``csv``, ``tsv``
-        for SELECT/ASK; RDF formats for CONSTRUCT/DESCRIBE); returns (result type, bytes).
-        ``timeout`` and ``max_rows`` as for ``sparql``."""
+        for SELECT/ASK; RDF formats for CONSTRUCT/DESCRIBE), or in the format ``fmt`` chooses
+        for the result type (SELECT, ASK, CONSTRUCT, DESCRIBE), so that the query is parsed
+        once; returns (result type, bytes). ``timeout`` and ``max_rows`` as for ``sparql``."""
         result = self._sparql_result(query, model, Deadline.after(timeout), max_rows)
-        return result.type, result.serialize(format=fmt, encoding="utf-8") or b""
+        return result.type, serialize_result(result, fmt if isinstance(fmt, str) else fmt(result.type))
 
     def export(self, fmt: str = "turtle", model: str | None = None, inferred: bool = False) -> bytes:
         """A model's asserted (or, with ``inferred``, materialised) triples in an RDF format."""

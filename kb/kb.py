@@ -40,7 +40,7 @@ from kb.modelbounds import ModelBounds
 from kb.models import ALL_MODELS, DEFAULT_MODEL, Model, Models
 from kb.query import Query, holds, rows_in
 from kb.rdfio import default_ontology, parse_location
-from kb.sparql import execute
+from kb.sparql import check_query, execute
 from kb.summary import Summary
 from kb.terms import Node, Triple, shorten
 from kb.writer import ActiveListener, Commit, CommitListener, Writer
@@ -178,8 +178,9 @@ class KB(Facade[Model]):
 
     def _sparql_result(self, query: str, model: Models_, deadline: Deadline | None,
                        max_rows: int | None) -> Result:
+        checked = check_query(query, deadline)  # parsed before taking the KB: no write waits on it
         with holding(self._lock, deadline):
-            return execute(self._one_model(model).closure, query, deadline, max_rows)
+            return execute(self._one_model(model).closure, checked, deadline, max_rows)
 
     def _triples(self, model: str | None, inferred: bool) -> list[Triple]:
         with self._lock:

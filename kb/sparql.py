@@ -22,13 +22,17 @@ from rdflib.store import Store
 from rdflib.term import Node as RdfNode
 
 from kb.deadline import Deadline, TimedIndex
-from kb.errors import InvalidSparql, KbError, UnsupportedUpdate
+from kb.errors import InvalidSparql, KbError, QueryTooLarge, UnsupportedUpdate
 from kb.index import TripleIndex
 from kb.sparqlbudget import bound, check_size
+from kb.sparqlparse import Parser, parse
 from kb.terms import ORO, PREFIXES, Node, Triple
 from kb.unicode import check_terms, check_text
 
 _GRAPH_ID = URIRef(ORO + "sparql")
+#: The longest query text parsed, in characters: a parse holds what it builds, and takes time in
+#: proportion (an update is a write, bounded by its request or file).
+MAX_QUERY_CHARS = 100_000
 # rdflib keeps one prefix per namespace, so `:` is declared and `oro:` names are renamed to it in
 # the parse tree (see _alias_oro), unless the query declares its own `oro:`.
 INIT_NS = {**{prefix: ns for prefix, ns in PREFIXES.items() if prefix not in ("", "oro")}, "": ORO}
@@ -113,9 +117,12 @@ def _refuse_remote(tree: Any) -> None:
                       "parameter")
 
 
-def _translate(text: str, kind: str, parse: Callable[[str], Any], translate: Callable[..., Any],
-               prologues: Callable[[Any], Iterable[Any]]) -> tuple[Any, frozenset[str]]:
+def _translate(text: str, kind: str, parser: Parser, translate: Callable[..., Any],
+               prologues: Callable[[Any], Iterable[Any]], deadline: Deadline | None = None,
+               max_chars: int | None = MAX_QUERY_CHARS) -> tuple[Any, frozenset[str]]:
     """The translated query or update, and the prefixes it declares itself."""
+    if max_chars is not None and len(text) > max_chars:  # before expanding escapes, too
+        raise QueryTooLarge(f"the SPARQL {kind} has {len(text)} characters; the limit is {max_chars}")
     try:
         # SPARQL's \u escapes apply to the whole text before parsing; a lone surrogate one would
         # put text that is not Unicode into the results (or, for an update, into the KB).
@@ -123,7 +130,7 @@ def _translate(text: str, kind: str, parse: Callable[[str], Any], translate: Cal
     except ValueError as exc:  # an escape beyond U+10FFFF
         raise InvalidSparql(f"invalid SPARQL {kind}: {exc}") from None
     try:
-        tree = parse(text)
+        tree = parse(text, parser, deadline)
         if kind == "query":
             _refuse_remote(tree)
         # CompValue.get takes no default (its second argument means something else): use dict's.
@@ -148,7 +155,9 @@ def parse_update(update: str) -> tuple[list[Triple], list[Triple]]:
     other update form is refused before anything changes."""
     if not isinstance(update, str) or not update.strip():
         raise InvalidSparql("a SPARQL update must be a non-empty string")
-    parsed, _ = _translate(update, "update", parseUpdate, translateUpdate, lambda tree: tree["prologue"])
+    # An update is a write, whose size the caller bounds (a request body, a file): no text bound.
+    parsed, _ = _translate(update, "update", parseUpdate, translateUpdate, lambda tree: tree["prologue"],
+                           max_chars=None)
     added: dict[Triple, None] = {}
     removed: dict[Triple, None] = {}
     for op in parsed.algebra:
@@ -180,21 +189,26 @@ _FORMS = {"SelectQuery": "SELECT", "AskQuery": "ASK", "ConstructQuery": "CONSTRU
           "DescribeQuery": "DESCRIBE"}
 
 
-def check_query(query: str) -> CheckedQuery:
+def check_query(query: str, deadline: Deadline | None = None) -> CheckedQuery:
     """Parse a read-only query and refuse what ``execute`` refuses (updates, SERVICE, FROM,
-    GRAPH, syntax errors), with the same errors; the query is not run."""
+    GRAPH, syntax errors, a text over ``MAX_QUERY_CHARS``), with the same errors; the query is not
+    run. Parsing waits for its turn and stops at the ``deadline`` (``QueryTimeout``)."""
     if not isinstance(query, str) or not query.strip():
         raise InvalidSparql("a SPARQL query must be a non-empty string")
-    prepared, declared = _translate(query, "query", parseQuery, translateQuery, lambda tree: [tree[0]])
+    prepared, declared = _translate(query, "query", parseQuery, translateQuery, lambda tree: [tree[0]],
+                                    deadline)
     return CheckedQuery(prepared, _FORMS[prepared.algebra.name], declared)
 
 
-def execute(index: TripleIndex, query: str, deadline: Deadline | None = None,
+def execute(index: TripleIndex, query: str | CheckedQuery, deadline: Deadline | None = None,
             max_rows: int | None = None) -> Result:
-    """Run a read-only query; a SPARQL Update or a syntax error is a KbError. Past the
-    ``deadline`` it stops with ``kb.deadline.QueryTimeout``; a SELECT with more than
-    ``max_rows`` rows (a graph with more triples) is ``kb.query.TooManyRows``."""
-    prepared = check_query(query).prepared
+    """Run a read-only query (text, or checked by ``check_query`` under the same deadline); a
+    SPARQL Update or a syntax error is a KbError. Past the ``deadline`` it stops with
+    ``kb.deadline.QueryTimeout``; a SELECT with more than ``max_rows`` rows (a graph with more
+    triples) is ``kb.query.TooManyRows``; a string built past kb.sparqlspend's bounds is
+    ``QueryTooLarge``."""
+    checked = query if isinstance(query, CheckedQuery) else check_query(query, deadline)
+    prepared = checked.prepared
     bound(prepared, deadline, max_rows)
     store = IndexStore(index if deadline is None else TimedIndex(index, deadline))
     result = Graph(store=store, identifier=_GRAPH_ID).query(prepared)
@@ -202,6 +216,23 @@ def execute(index: TripleIndex, query: str, deadline: Deadline | None = None,
         result.bindings  # noqa: B018 - materialise while the caller holds the KB lock
     check_size(result, max_rows)
     return result
+
+
+def serialize(result: Result, fmt: str) -> bytes:
+    """A result in a results format (``json``, ``xml``, ``csv``, ``tsv``) or, for a graph, an RDF
+    format rdflib writes."""
+    if fmt == "tsv":  # rdflib has no TSV results serialiser
+        return _tsv(result)
+    return result.serialize(format=fmt, encoding="utf-8") or b""
+
+
+def _tsv(result: Result) -> bytes:
+    """W3C SPARQL 1.1 TSV results of a SELECT: a header of ?vars, then terms in Turtle syntax."""
+    names = list(result.vars or [])
+    lines = ["\t".join(f"?{n}" for n in names)]
+    for row in result.bindings:
+        lines.append("\t".join(row[n].n3() if row.get(n) is not None else "" for n in names))
+    return ("\n".join(lines) + "\n").encode("utf-8")
 
 
 def to_json(result: Result, query: str) -> dict[str, Any]:

@@ -38,7 +38,7 @@ def run(endpoint: SparqlEndpoint, query: str, graphs: Graphs, deadline: Deadline
         max_rows: int | None = None) -> Result:
     """One request: the query's result, as rdflib would have given it in-process. The deadline
     bounds the request and the reading of the answer; the row cap is checked on the answer."""
-    checked = check_query(query)
+    checked = check_query(query, deadline)
     default_graphs = [str(g) for g in graphs.closure()]
     body = full_text(query, checked.declared)
     if checked.form in ("SELECT", "ASK"):

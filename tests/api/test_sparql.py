@@ -4,13 +4,19 @@ from __future__ import annotations
 
 import csv
 import io
+import threading
+import time
+from concurrent.futures import ThreadPoolExecutor
+from pathlib import Path
 
+import httpx
 from pydantic import SecretStr
 from rdflib import Graph, URIRef
 from rdflib.plugins.stores.sparqlstore import SPARQLStore
 
-from api.settings import Settings
+from api.settings import Limits, Settings
 from tests.api.conftest import SCENE, Live
+from tests.reliability.server import ServerProcess
 
 ORO = "http://kb.openrobots.org#"
 SELECT = f"PREFIX o: <{ORO}> SELECT ?x WHERE {{ o:myself o:sees ?x . ?x o:isOn o:table_1 }} ORDER BY ?x"
@@ -87,3 +93,55 @@ def test_update_when_enabled_goes_through_the_kb(live_factory) -> None:  # type:
         **auth, "content-type": "application/sparql-update"})
     assert refused.json()["code"] == "unsupported_update"
     assert kb.find(["cup_1 isOn shelf_1"]) == ["cup_1 isOn shelf_1"]
+
+
+# --- anonymous /sparql on a fresh service (issue 26, item 1) -------------------------------------
+
+FIRST_QUERIES = [SELECT, ASK, CONSTRUCT, "DESCRIBE <http://x.org/a>",
+                 "SELECT ?x WHERE { VALUES ?x { 1 2 3 } OPTIONAL { ?x ?y ?z } } ORDER BY DESC(?x)",
+                 "SELECT ?x (SAMPLE(?y) AS ?z) WHERE { ?x ?p ?y } GROUP BY ?x HAVING (COUNT(?y) > 1)",
+                 "SELECT (COUNT(*) AS ?n) WHERE { ?s ?p ?o FILTER(REGEX(STR(?s), 'cup')) }"]
+
+
+def test_concurrent_first_queries_of_a_fresh_service_leave_sparql_answering(tmp_path: Path) -> None:
+    server = ServerProcess(["--scene", "none"], tmp_path / "server.log")
+    try:
+        server.wait_ready(timeout=120)
+        start = threading.Barrier(40)
+
+        def first(n: int) -> int:
+            with httpx.Client(timeout=120) as client:
+                start.wait()
+                return client.get(server.url + "/sparql", params={"query": FIRST_QUERIES[n % len(FIRST_QUERIES)]},
+                                  headers={"accept": "application/sparql-results+json, text/turtle"}).status_code
+
+        with ThreadPoolExecutor(40) as pool:
+            statuses = list(pool.map(first, range(40)))
+        assert statuses == [200] * 40, statuses
+        with httpx.Client(timeout=60) as client:
+            for query in FIRST_QUERIES:
+                later = client.get(server.url + "/sparql", params={"query": query},
+                                   headers={"accept": "application/sparql-results+json, text/turtle"})
+                assert later.status_code == 200, later.text
+            assert client.get(server.url + "/health").json()["status"] == "ok"
+    finally:
+        server.kill()
+
+
+def test_a_concat_chain_and_a_long_parse_are_refused_clearly(live_factory) -> None:  # type: ignore[no-untyped-def]
+    live = live_factory(Settings(scene=SCENE, limits=Limits(query_timeout=1.0)))
+    # 512 characters doubled 13 times: 4 MiB (30 times, the attack: 512 GiB)
+    binds = " ".join(f"BIND(CONCAT(?v{i}, ?v{i}) AS ?v{i + 1})" for i in range(13))
+    chain = f'SELECT (STRLEN(?v13) AS ?n) WHERE {{ BIND("{"x" * 512}" AS ?v0) {binds} }}'
+    refused = live.client.get("/sparql", params={"query": chain})
+    assert (refused.status_code, refused.json()["code"]) == (413, "query_too_large"), refused.text
+    assert "CONCAT builds a string" in refused.json()["message"]
+    values = "SELECT ?x WHERE { VALUES ?x { " + "1 " * 40_000 + "} }"
+    started = time.monotonic()
+    slow = live.client.post("/sparql", content=values, headers={"content-type": "application/sparql-query"})
+    assert (slow.status_code, slow.json()["code"]) == (503, "query_timeout"), slow.text
+    assert time.monotonic() - started < 15, "the parse ran past its budget"
+    huge = "SELECT ?x WHERE { VALUES ?x { " + "<x> " * 30_000 + "} }"
+    too_large = live.client.post("/sparql", content=huge, headers={"content-type": "application/sparql-query"})
+    assert (too_large.status_code, too_large.json()["code"]) == (413, "query_too_large"), too_large.text
+    assert live.client.get("/sparql", params={"query": ASK}).json()["boolean"] is True
