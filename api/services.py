@@ -36,6 +36,7 @@ from kb.sparqlstore.endpoint import SparqlEndpoint
 from kb.sparqlstore.mirror import SparqlMirror
 from kb.sparqlstore.remote import RemoteKB
 from kb.status import Components, ComponentStatus
+from kb.tboxbudget import TBoxBounds
 from kb.writer import CommitListener
 from scene.textfile import load_scene
 from scene.world import World
@@ -237,9 +238,11 @@ def start_services(settings: Settings, kb: KB | None = None, model: ChatModel | 
         return _start_reader(settings, model)
     owns_kb = kb is None
     limits = settings.limits
+    bounds = TBoxBounds(limits.max_tbox_triples, limits.max_tbox_links, limits.max_tbox_depth)
     the_kb = kb if kb is not None else KB(max_models_per_write=limits.max_models,
                                           max_models=limits.max_total_models,
-                                          max_model_statements=limits.max_model_statements)
+                                          max_model_statements=limits.max_model_statements,
+                                          tbox_bounds=bounds)
     journal: Journal | None = None
     store: Store | None = None
     bus = intent_bus(settings)

@@ -47,6 +47,14 @@ class Limits(BaseModel):
     max_model_statements: int = Field(default=1000, ge=1, description="statements of its own a model "
                                       "other than the robot's holds (a person's beliefs); a write past it "
                                       "is refused (413 model_limit)")
+    max_tbox_triples: int = Field(default=20_000, ge=1, description="schema triples (subclasses, domains, "
+                                  "RDF list items...) one write may change in a model: each write that "
+                                  "changes the TBox recompiles it and re-reasons the model under the KB lock")
+    max_tbox_links: int = Field(default=50_000, ge=1, description="superclass and superproperty links the "
+                                "TBox a write makes may hold in all (they grow with the square of a "
+                                "hierarchy's depth)")
+    max_tbox_depth: int = Field(default=256, ge=1, description="superclasses of one class (superproperties "
+                                "of one property) the TBox a write makes may give")
 
 
 class IntentSettings(BaseModel):

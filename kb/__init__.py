@@ -20,6 +20,7 @@ from kb.errors import (
     StorageError,
     StorageFull,
     StoreUnavailable,
+    TBoxTooLarge,
     TooManyRows,
     UnsupportedUpdate,
 )
@@ -47,6 +48,7 @@ __all__ = [
     "StorageError",
     "StorageFull",
     "StoreUnavailable",
+    "TBoxTooLarge",
     "TooManyRows",
     "UnsupportedUpdate",
     "__version__",

@@ -63,6 +63,11 @@ class QueryTooLarge(KbError):
     run, or stopped; nothing changed)."""
 
 
+class TBoxTooLarge(KbError):
+    """A write whose TBox change would cost the reasoner more than the KB allows (nothing of it
+    was written)."""
+
+
 class QueryTimeout(KbError):
     """A query that did not finish within its time budget (it was stopped, nothing changed)."""
 

@@ -10,11 +10,13 @@ from __future__ import annotations
 
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
+from itertools import chain
 from typing import Any
 
 from kb.index import Interner, TripleIndex
 from kb.reasoner import Reasoner
 from kb.tbox import CompiledTBox, compile_tbox, is_schema_triple
+from kb.tboxbudget import TBoxBounds
 from kb.terms import Node, Triple
 
 DEFAULT_MODEL = "default"
@@ -55,8 +57,23 @@ class Model:
     def tbox(self) -> CompiledTBox:
         return self.reasoner.tbox
 
-    def apply(self, add: Sequence[Triple], remove: Sequence[Triple]) -> Delta:
-        """Retract then assert; reason incrementally, or recompile when the TBox changes."""
+    def plan_tbox(self, add: Sequence[Triple], remove: Sequence[Triple],
+                  bounds: TBoxBounds) -> CompiledTBox | None:
+        """The TBox this model would have after ``apply(add, remove)``, compiled within ``bounds``
+        (``TBoxTooLarge`` past them, nothing changed); None when the change holds no schema
+        triple (the TBox stays)."""
+        schema_add = [t for t in add if is_schema_triple(t)]
+        schema_remove = {t for t in remove if is_schema_triple(t)}
+        if not schema_add and not schema_remove:
+            return None
+        bounds.check_triples(len(schema_add) + len(schema_remove), self.name)
+        kept = (t for t in self.asserted if t not in schema_remove and is_schema_triple(t))
+        return compile_tbox(chain(kept, schema_add), bounds)
+
+    def apply(self, add: Sequence[Triple], remove: Sequence[Triple],
+              tbox: CompiledTBox | None = None) -> Delta:
+        """Retract then assert; reason incrementally, or recompile when the TBox changes (to
+        ``tbox`` when ``plan_tbox`` made it for this very change)."""
         delta = Delta(self.name)
         asserted = self.asserted
         # The KB's own term objects from here on: every later lookup stops at the identity check
@@ -71,7 +88,7 @@ class Model:
             return delta
         changed = delta.asserted_added + delta.asserted_removed
         if any(is_schema_triple(t) for t in changed):
-            self._recompile(delta)
+            self._recompile(delta, tbox)
             return delta
         removed, readded = self.reasoner.delete(delta.asserted_removed)
         added = self.reasoner.insert(delta.asserted_added)
@@ -85,9 +102,10 @@ class Model:
             delta.added = readded + added
         return delta
 
-    def _recompile(self, delta: Delta) -> None:
+    def _recompile(self, delta: Delta, tbox: CompiledTBox | None) -> None:
         before = set(self.closure)
-        self.reasoner = Reasoner(compile_tbox(self.asserted), self.asserted, self.closure)
+        tbox = tbox if tbox is not None else compile_tbox(self.asserted)
+        self.reasoner = Reasoner(tbox, self.asserted, self.closure)
         self.reasoner.materialise()
         self.tbox_revision += 1
         after = set(self.closure)

@@ -14,6 +14,7 @@ from dataclasses import dataclass, field
 from rdflib import BNode, Literal, URIRef
 from rdflib.namespace import OWL, RDF, RDFS
 
+from kb.tboxbudget import LinkCount, TBoxBounds
 from kb.terms import Node, Triple
 
 # Predicates whose triples change the compiled rules: adding or removing one recompiles.
@@ -72,8 +73,9 @@ class CompiledTBox:
                         yield (prop, RDFS.subPropertyOf, sup)
 
 
-def compile_tbox(triples: Iterable[Triple]) -> CompiledTBox:
-    """Build the rule tables from a model's asserted triples (only schema triples are read)."""
+def compile_tbox(triples: Iterable[Triple], bounds: TBoxBounds | None = None) -> CompiledTBox:
+    """Build the rule tables from a model's asserted triples (only schema triples are read).
+    With ``bounds``, ``TBoxTooLarge`` as soon as the closed hierarchies pass them."""
     class_edges: dict[Node, set[Node]] = defaultdict(set)
     prop_edges: dict[Node, set[Node]] = defaultdict(set)
     domains: dict[Node, set[Node]] = defaultdict(set)
@@ -132,8 +134,9 @@ def compile_tbox(triples: Iterable[Triple]) -> CompiledTBox:
         for item in _rdf_list(head, first, rest):
             class_edges[item].add(cls)  # C ≡ C1 ⊔ … ⊔ Cn ⇒ Ci ⊑ C (scm-uni, cls-uni)
 
-    superclasses = _closure(class_edges, drop=TOP_CLASSES)
-    superproperties = _closure(prop_edges, drop=frozenset())
+    count = LinkCount(bounds) if bounds is not None else None
+    superclasses = _closure(class_edges, TOP_CLASSES, count, "superclasses")
+    superproperties = _closure(prop_edges, frozenset(), count, "superproperties")
     restriction_values = {
         r: (on_property[r], v) for r, v in has_value.items() if r in on_property
     }
@@ -175,9 +178,12 @@ def _rdf_list(head: Node, first: Mapping[Node, Node], rest: Mapping[Node, Node])
     return tuple(items)
 
 
-def _closure(edges: Mapping[Node, set[Node]], drop: frozenset[Node]) -> dict[Node, frozenset[Node]]:
-    """Reflexive-free transitive closure of a relation given as adjacency sets."""
+def _closure(edges: Mapping[Node, set[Node]], drop: frozenset[Node], count: LinkCount | None,
+             kind: str) -> dict[Node, frozenset[Node]]:
+    """Reflexive-free transitive closure of a relation given as adjacency sets, counted against
+    the bounds as it is made (the start and what is dropped count too: a bound a little early)."""
     result: dict[Node, frozenset[Node]] = {}
+    depth = count.bounds.max_depth + len(drop) + 1 if count is not None else None
     for start in edges:
         seen: set[Node] = set()
         stack = list(edges[start])
@@ -186,12 +192,17 @@ def _closure(edges: Mapping[Node, set[Node]], drop: frozenset[Node]) -> dict[Nod
             if node in seen:
                 continue
             seen.add(node)
+            if depth is not None and len(seen) > depth:
+                assert count is not None
+                count.add(start, len(seen), kind)
             stack.extend(edges.get(node, ()))
         seen.discard(start)
         seen -= drop
         seen = {n for n in seen if not isinstance(n, Literal)}
         if seen:
             result[start] = frozenset(seen)
+            if count is not None:
+                count.add(start, len(seen), kind)
     return result
 
 

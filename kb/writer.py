@@ -24,10 +24,11 @@ from kb.events import Delivery, Firing, Subscriptions
 from kb.gcpause import paused
 from kb.lifespan import Expiries
 from kb.modelbounds import ModelBounds
-from kb.models import ALL_MODELS, Delta, Models, ModelsState
+from kb.models import ALL_MODELS, Delta, Model, Models, ModelsState
 from kb.query import Query, Row, holds_row, rows_in
 from kb.status import StatusCell
 from kb.summary import Summary, summarise
+from kb.tboxbudget import TBoxBounds
 from kb.terms import Triple, shorten
 
 log = logging.getLogger(__name__)
@@ -66,10 +67,12 @@ class Writer:
     """Applies batches to models; owns lifespans, subscriptions and the revision counter."""
 
     def __init__(self, lock: threading.RLock, models: Models, render: Render,
-                 clock: Callable[[], float] = time.time, bounds: ModelBounds | None = None) -> None:
+                 clock: Callable[[], float] = time.time, bounds: ModelBounds | None = None,
+                 tbox_bounds: TBoxBounds | None = None) -> None:
         self.lock = lock
         self.models = models
         self.bounds = bounds or ModelBounds()
+        self.tbox_bounds = tbox_bounds if tbox_bounds is not None else TBoxBounds()
         self.subscriptions = Subscriptions()
         self.expiries = Expiries()
         self.revision = 0
@@ -139,6 +142,7 @@ class Writer:
         functional = self.functional_properties() if batch.replace_functional else frozenset()
         self.bounds.check(self.models, batch)  # before anything changes: refused means nothing did
         undo = _Undo(new_models=[n for n in batch.models if self.models.get(n) is None])
+        changes: list[tuple[str, Model, list[Triple], list[Triple]]] = []
         for name in batch.models:
             model = self.models.create(name)
             remove = list(batch.remove) + batch.remove_by_model.get(name, [])
@@ -146,8 +150,16 @@ class Writer:
             for s, p, o in add:
                 if p in functional:
                     remove.extend((s, p, old) for old in model.asserted.objects(s, p) if old != o)
+            changes.append((name, model, add, remove))
+        try:  # every model's TBox change within the bounds, before any model changes
+            tboxes = [model.plan_tbox(add, remove, self.tbox_bounds) for _n, model, add, remove in changes]
+        except KbError:
+            for name in undo.new_models:
+                self.models.drop(name)
+            raise
+        for (name, model, add, remove), tbox in zip(changes, tboxes, strict=True):
             self.expiries.remember(name, (*add, *remove), undo.expiries)
-            delta = model.apply(add, remove)
+            delta = model.apply(add, remove, tbox)
             if len(self.expiries):
                 for t in delta.asserted_removed:
                     self.expiries.discard(name, t)

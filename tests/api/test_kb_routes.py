@@ -2,9 +2,14 @@
 
 from __future__ import annotations
 
+import time
+from concurrent.futures import ThreadPoolExecutor
+
+from pydantic import SecretStr
 from rdflib import Graph, URIRef
 
-from tests.api.conftest import Live
+from api.settings import Settings
+from tests.api.conftest import SCENE, Live
 
 ORO = "http://kb.openrobots.org#"
 
@@ -157,3 +162,31 @@ def test_a_literal_holding_nul_is_refused_and_every_export_loads_back(live: Live
         assert len(graph) > 0 and exported.headers["content-type"].startswith(media)
         comments = [str(o) for o in graph.objects(URIRef(ORO + "cup_1"), URIRef(ORO + "comment"))]
         assert comments == ["tab\there\r\nline \u0085\u2028"], fmt
+
+
+def test_a_tbox_write_past_the_bounds_is_refused_while_turns_keep_answering(live_factory) -> None:  # type: ignore[no-untyped-def]
+    # issue 26, item 1d: a 2,000-class subclass chain cost 9 s and 850 MB under the KB lock
+    live = live_factory(Settings(scene=SCENE, token=SecretStr("t0ken"), deadline=4.0))
+    auth = {"authorization": "Bearer t0ken"}
+    client = live.client
+    head = "@prefix : <http://x.org/> . @prefix rdfs: <http://www.w3.org/2000/01/rdf-schema#> .\n"
+    chain = head + "\n".join(f":C{i} rdfs:subClassOf :C{i + 1} ." for i in range(2000))
+    dialogue = client.post("/dialogues", headers=auth, json={}).json()["dialogue_id"]
+
+    def turn() -> tuple[int, float]:
+        started = time.monotonic()
+        answer = client.post(f"/dialogues/{dialogue}/interactions", headers=auth,
+                             json={"user_id": "person_alice", "input": "what do you see?"})
+        return answer.status_code, time.monotonic() - started
+
+    with ThreadPoolExecutor(2) as pool:
+        load = pool.submit(client.post, "/kb/load", content=chain, headers={**auth, "content-type": "text/turtle"})
+        time.sleep(0.2)
+        turns = [pool.submit(turn) for _ in range(3)]
+        refused = load.result()
+        answered = [t.result() for t in turns]
+    assert (refused.status_code, refused.json()["code"]) == (413, "tbox_too_large"), refused.text
+    assert "more than 256 superclasses" in refused.json()["message"]
+    # nothing of it written (the turns write what they note of the speaker)
+    assert "http://x.org/" not in client.get("/kb/export", headers={"accept": "application/n-triples"}).text
+    assert all(status == 200 and took < 4.0 + 3 for status, took in answered), answered
