@@ -207,7 +207,8 @@ def build_dialogues(settings: Settings, kb: KnowledgeBase, model: ChatModel | No
     limits = settings.limits
     store = SparqlSessions(endpoint, max_dialogues=limits.max_dialogues) if endpoint is not None else None
     people = people if people is not None else People(kb, settings.memory.refresh)
-    observers = [people.observe, *([intents] if intents is not None else [])]
+    # The intents first: pushed at once, whatever the memory's write waits for.
+    observers = [*([intents] if intents is not None else []), people.observe]
     return DialogueManager(engine, max_dialogues=limits.max_dialogues, max_turns=limits.max_history_turns,
                            store=store, observers=observers, recall=people.recall_note)
 

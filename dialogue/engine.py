@@ -164,12 +164,12 @@ class DialogueEngine:
         try:
             async with asyncio.timeout_at(deadline):
                 result = await self._turn(text, speaker, tuple(history), locale, deadline, recorder)
+                if result.claims:  # learning is part of the turn: within its deadline too
+                    result = await self._remember(result, text, speaker)
         except TimeoutError:
             result = self.fallback(
                 text, speaker, locale, f"no answer within the {self.config.deadline:g} s deadline"
             )
-        if result.claims:
-            result = await self._remember(result, text, speaker)
         return self.traced(result, recorder)
 
     def traced(self, result: TurnResult, recorder: TraceRecorder) -> TurnResult:

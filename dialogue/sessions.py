@@ -137,6 +137,7 @@ class DialogueManager:
         self.max_turns = max_turns
         self.max_chars = max_chars
         self.observers = tuple(observers)
+        self._late_observers: set[asyncio.Task[None]] = set()  # still running after their turn's reply
         self.recall = recall
         #: The turns of each dialogue, one at a time in arrival order.
         self.queue = TurnQueue()
@@ -275,20 +276,23 @@ class DialogueManager:
                 late = TurnResult("", (), backend="recorded")
             record = partial(self._record_late, dialogue_id, user_id, text, late.response, history)
             self.queue.later(place, record)
-            await self._observed(dialogue_id, user_id, text, late, response_expected)
+            await self._observed(dialogue_id, user_id, text, late, response_expected, deadline)
             return late
         try:
             result = await self._run(dialogue_id, user_id, text, locale, response_expected, history, deadline,
                                      before)
         finally:
             place.release()
-        await self._observed(dialogue_id, user_id, text, result, response_expected)
+        await self._observed(dialogue_id, user_id, text, result, response_expected, deadline)
         return result
 
     async def _observed(self, dialogue_id: str, user_id: str, text: str, result: TurnResult,
-                        response_expected: bool) -> None:
+                        response_expected: bool, deadline: float) -> None:
+        """Tell the observers, returning by the turn's deadline (what they have not done by then
+        goes on after the reply)."""
         if response_expected and self.observers:
-            await notify(self.observers, TurnRecord(dialogue_id, user_id, text, result, time.time()))
+            await notify(self.observers, TurnRecord(dialogue_id, user_id, text, result, time.time()),
+                         deadline, self._late_observers)
 
     def _kept(self, state: DialogueState, history: Sequence[Utterance] | None) -> History:
         kept = History(self.max_turns, self.max_chars)

@@ -60,6 +60,7 @@ class State:
 
 
 CommitListener = Callable[[Commit], None]
+Gate = Callable[[], None]
 ActiveListener = Callable[[list[str]], None]
 
 
@@ -79,6 +80,7 @@ class Writer:
         self._render = render
         self._clock = clock
         self._commit_listeners: list[CommitListener] = []  # the durable ones first
+        self._gates: list[Gate] = []
         self._durable_count = 0
         self._active_listeners: list[ActiveListener] = []
         self._reaper: threading.Thread | None = None
@@ -109,6 +111,26 @@ class Writer:
 
         return remove
 
+    def gate(self, check: Gate) -> Callable[[], None]:
+        """Register a check every commit (and clear) passes before anything changes, under the
+        lock; returns the function that unregisters it. A check that raises refuses the write
+        whole: nothing is applied, no listener is called and no revision is consumed (a store
+        mirror that knows its store is out of reach refuses this way, so that refused writes do not
+        move the revision its reconciliation waits on)."""
+        with self.lock:
+            self._gates.append(check)
+
+        def remove() -> None:
+            with self.lock:
+                if check in self._gates:
+                    self._gates.remove(check)
+
+        return remove
+
+    def _pass_gates(self) -> None:
+        for check in self._gates:
+            check()
+
     def on_active_concept(self, listener: ActiveListener) -> Callable[[], None]:
         """Call ``listener`` with the sorted active concepts whenever they change; returns what
         removes it."""
@@ -135,6 +157,7 @@ class Writer:
         return commit
 
     def _commit_locked(self, batch: Batch) -> tuple[list[Delivery], Commit | None]:
+        self._pass_gates()
         now = self._clock()
         deltas: list[Delta] = []
         expiries: list[tuple[str, Triple, float]] = []
@@ -256,6 +279,7 @@ class Writer:
         """Drop every model's facts. If a listener refuses (the disk is full, the store is down),
         the models and lifespans are put back and the error raised: nothing changed."""
         with self.lock:
+            self._pass_gates()
             saved, expiries = self.models.reset(keep_defaults), self.expiries.items()
             self.expiries.clear()
             self.revision += 1

@@ -11,8 +11,9 @@ caller gets ``StoreUnavailable``.
 An update that was sent but not answered in time (``OutcomeUnknown``) may still be applied by the
 store later. Every update applies only where the store still holds the write id it follows
 (kb.sparqlstore.mirrortext), so from then on the mirror is *in doubt*: it refuses commits at once, without
-contacting the store (the KB lock is never held waiting on a store known to be stalled), and a
-background thread reconciles. It reads the store's write id: if the store still holds the last
+contacting the store (the KB lock is never held waiting on a store known to be stalled) and
+before they change anything, the revision included (the writer's gate), and a background thread
+reconciles. It reads the store's write id: if the store still holds the last
 confirmed one, a fence (a new id) voids whatever is in flight; if the refused update got there
 first, the dataset is rewritten from the KB. Then store and KB agree and commits flow again.
 """
@@ -128,7 +129,14 @@ class SparqlMirror:
                 self._writer = None  # not attached: the caller gives up or tries again
                 raise
             self._synced(write)
-            self._unregister = writer.on_commit(self._on_commit, durable=True)
+            unregister = writer.on_commit(self._on_commit, durable=True)
+            ungate = writer.gate(self._refuse_in_doubt)
+
+            def detached() -> None:
+                unregister()
+                ungate()
+
+            self._unregister = detached
 
     def detach(self) -> None:
         if self._unregister is not None:
@@ -142,14 +150,20 @@ class SparqlMirror:
 
     # --- commits (under the KB lock) ------------------------------------------------------
 
-    def _on_commit(self, commit: Commit) -> None:
-        writer = self._require_writer()
+    def _refuse_in_doubt(self) -> None:
+        """The writer's gate: while in doubt a write is refused before it changes anything, the
+        revision included, so reconciliation, which makes the store equal to the KB at one
+        revision, is not outrun by writes that are refused anyway."""
         doubt = self._doubt
         if doubt is not None:
             self._refused += 1
             raise StoreUnavailable(
                 f"the SPARQL store at {self.endpoint.spec.update_url} is being reconciled after a write "
                 f"whose outcome is unknown ({doubt[1]}); nothing was written, retry shortly")
+
+    def _on_commit(self, commit: Commit) -> None:
+        writer = self._require_writer()
+        self._refuse_in_doubt()  # the gate's check, for a commit that got past it meanwhile
         write = _new_id()
         if commit.cleared is not None or commit.revision != self._synced_revision + 1:
             # The KB moved without the store (a clear, or an undone batch another listener had

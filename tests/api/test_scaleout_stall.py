@@ -10,6 +10,7 @@ store's 30 s timeout for each of these.
 
 from __future__ import annotations
 
+import threading
 import time
 from collections.abc import Callable, Iterator
 from concurrent.futures import ThreadPoolExecutor
@@ -115,3 +116,51 @@ def test_a_stalled_store_does_not_freeze_the_writer(stalling: tuple[OxigraphServ
         assert store.ask(f"ASK {{ GRAPH {graph} {{ {sparqltext.triple(*parse_ground('myself sees book_1'))} }} }}")
     finally:
         store.close()
+
+
+def test_a_writer_recovers_within_seconds_while_writes_keep_coming(tmp_path: Path) -> None:
+    # issue 26, item 3: with the demo scene running (and a producer writing), every refused write
+    # moved the revision the reconciliation waited on (the journal took it, then its undoing), so
+    # the writer never got back in sync
+    if oxigraph_command() is None:
+        pytest.skip("the `oxigraph` command is not installed (pip install oxigraph; it is in the test extra)")
+    with OxigraphServer(in_memory=True) as server:
+        writer = ServerProcess(["--data", str(tmp_path / "data")], tmp_path / "writer.log", env={  # the demo scene
+            "SITUATED_STORE": server.store("busy"), "SITUATED_TOKEN": TOKEN,
+            "SITUATED_STORE_TIMEOUT": str(STORE_TIMEOUT), "SITUATED_DEADLINE": str(DEADLINE)})
+        stop = threading.Event()
+        statuses: list[int] = []
+
+        def produce() -> None:  # perception: a write every 50 ms, refused or not
+            with httpx.Client(timeout=60) as client:
+                n = 0
+                while not stop.is_set():
+                    n += 1
+                    statuses.append(client.post(writer.url + "/kb/revise", headers=AUTH, json={
+                        "statements": [f"myself sees thing_{n}"], "method": "add"}).status_code)
+                    time.sleep(0.05)
+
+        producer = threading.Thread(target=produce)
+        try:
+            writer.wait_ready(timeout=120)
+            producer.start()
+            time.sleep(1.0)
+            server.pause()
+            try:
+                time.sleep(8.0)
+            finally:
+                server.resume()
+            resumed = time.monotonic()
+            while httpx.get(writer.url + "/health", timeout=60).json()["components"]["store_mirror"]["ok"] is not True:
+                assert time.monotonic() - resumed < BOUND, "the writer did not reconcile the store while writes came"
+                time.sleep(0.1)
+            recovered = time.monotonic() - resumed
+            assert recovered < BOUND, f"reconciled {recovered:.1f} s after the store came back"
+            time.sleep(1.0)
+            assert statuses[-5:] == [200] * 5, statuses[-20:]  # writes flow again
+            assert 503 in statuses  # the stall did refuse some
+        finally:
+            stop.set()
+            if producer.is_alive():
+                producer.join(timeout=60)
+            writer.stop()
