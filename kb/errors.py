@@ -92,11 +92,16 @@ class OutcomeUnknown(StoreUnavailable):
 
 
 # Errors that mean "no space", whatever the filesystem calls it.
-_FULL = frozenset({errno.ENOSPC, errno.EDQUOT, errno.EFBIG})
+_FULL = frozenset({errno.ENOSPC, errno.EDQUOT})
 
 
 def storage_error(exc: OSError, directory: Path, what: str) -> StorageError:
     """The KB's error for an OS error while writing ``what`` in ``directory``."""
+    if exc.errno == errno.EFBIG:  # the disk may have room: the file may not grow
+        return StorageFull(f"a file of the data directory {directory} is at the largest size it may have "
+                           f"({exc.strerror}: the process's file-size limit, ulimit -f, or the "
+                           f"filesystem's): {what} was not saved and nothing changed; raise the limit or "
+                           f"compact the journal (a snapshot empties it)", exc.errno)
     if exc.errno in _FULL:
         return StorageFull(f"the disk of the data directory {directory} is full ({exc.strerror}): "
                            f"{what} was not saved and nothing changed; free space and retry", exc.errno)

@@ -18,6 +18,7 @@ restarts.
 
 from __future__ import annotations
 
+import errno
 import logging
 import os
 import shutil
@@ -180,7 +181,8 @@ class Journal:
 
     def storage_status(self) -> ComponentStatus:
         """The journal's disk: degraded while writes fail for want of space (until space is
-        free again) or for another I/O error (until one succeeds), or while space runs low."""
+        free again) or for another I/O error, a file at its size limit (EFBIG) included (until one
+        succeeds: free disk space says nothing of that limit), or while space runs low."""
         status = self.storage.get()
         free = _free_bytes(self.directory)
         if not status.ok and (status.code != "storage_full" or free is None or free < LOW_SPACE):
@@ -280,6 +282,8 @@ def _record(commit: Commit) -> dict[str, Any]:
 
 
 def _code(error: StorageError) -> str:
+    if error.errno == errno.EFBIG:
+        return "file_too_large"
     return "storage_full" if isinstance(error, StorageFull) else "storage_error"
 
 

@@ -13,6 +13,7 @@ import signal
 import subprocess
 import sys
 import time
+from collections.abc import Callable
 from pathlib import Path
 
 import httpx
@@ -29,8 +30,9 @@ class ServerProcess:
     as ``ros run``); its output goes to ``log``."""
 
     def __init__(self, args: list[str], log: Path, env: dict[str, str] | None = None,
-                 command: tuple[str, ...] = ("serve",)) -> None:
-        self.args, self.log, self.env, self.command = args, log, env, command
+                 command: tuple[str, ...] = ("serve",), preexec: Callable[[], None] | None = None) -> None:
+        """``preexec`` runs in the child before the server starts (limits, signal dispositions)."""
+        self.args, self.log, self.env, self.command, self.preexec = args, log, env, command, preexec
         self.starts = 0
         self._spawn()
 
@@ -42,7 +44,7 @@ class ServerProcess:
         command = [sys.executable, "-m", "api.cli", *self.command, "--port", str(self.port), *self.args]
         with self.log.open("ab") as out:
             self.proc = subprocess.Popen(command, stdout=out, stderr=subprocess.STDOUT,
-                                         env={**os.environ, **(self.env or {})})
+                                         env={**os.environ, **(self.env or {})}, preexec_fn=self.preexec)
 
     def _own_output(self) -> str:
         with self.log.open("rb") as handle:

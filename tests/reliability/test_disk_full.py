@@ -9,6 +9,8 @@ refused one is.
 
 from __future__ import annotations
 
+import resource
+import signal
 from pathlib import Path
 
 import httpx
@@ -115,5 +117,43 @@ def test_a_full_disk_refuses_writes_whole_and_loses_no_acknowledged_one(small_fs
             assert missing == [] and resurrected == [], (missing, resurrected)
             assert client.get("/health").json()["kb"]["revision"] == revision
             assert not any(e["id"] == "box_full" for e in client.get("/scene").json()["entities"])
+    finally:
+        server.kill()
+
+
+LIMIT = 2 * 1024 * 1024  # bytes any file of the server may grow to (its log included)
+
+
+def _file_size_limit() -> None:
+    # In the server's process: appends past the limit fail with EFBIG instead of killing it.
+    signal.signal(signal.SIGXFSZ, signal.SIG_IGN)
+    resource.setrlimit(resource.RLIMIT_FSIZE, (LIMIT, LIMIT))
+
+
+def test_a_file_size_limit_refuses_writes_and_health_says_why(tmp_path: Path) -> None:
+    # issue 26, item 10: appends refused with EFBIG (a file-size limit: the disk has room) were
+    # refused correctly, but /health said ok
+    server = ServerProcess(["--data", str(tmp_path / "data"), "--scene", "none"], tmp_path / "server.log",
+                           preexec=_file_size_limit)
+    try:
+        server.wait_ready(timeout=120)
+        with httpx.Client(base_url=server.url, timeout=60) as client:
+            big = "x" * 200_000
+            refused = None
+            for n in range(40):  # 200 KB a write: the journal reaches 2 MiB within a dozen
+                answer = client.post("/kb/revise", json={"statements": [f'item_{n} comment "{big}"'],
+                                                         "method": "add"})
+                if answer.status_code != 200:
+                    refused = answer
+                    break
+            assert refused is not None, "the file-size limit was never reached"
+            assert (refused.status_code, refused.json()["code"]) == (507, "storage_full"), refused.text
+            assert "file-size limit" in refused.json()["message"]
+            assert client.post("/kb/query", json={"patterns": [f"item_{n} comment ?c"]}).json() == []
+            health = client.get("/health").json()
+            assert health["status"] == "degraded", health
+            storage = health["components"]["storage"]
+            assert not storage["ok"] and storage["code"] == "file_too_large", storage
+            assert "file-size limit" in storage["reason"], storage
     finally:
         server.kill()
