@@ -1,9 +1,12 @@
-"""Tokens kept out of the server's logs.
+"""Secrets kept out of the server's logs and of what /health says.
 
 Clients that cannot set a header pass the service token in the URL (``?token=`` on the Rasa routes,
 ``?access_token=`` on event streams), and uvicorn logs every request line with its query string
-(HTTP on ``uvicorn.access``, WebSocket handshakes on ``uvicorn.error``). A filter on both loggers
-replaces those parameters' values before any handler formats the record.
+(HTTP on ``uvicorn.access``, WebSocket handshakes on ``uvicorn.error``). The service's own
+outgoing URLs may hold secrets too: a webhook's ``https://user:pass@host/?token=...``, a model
+server's ``?key=...``, which httpx logs with every request (``httpx``). A filter on those loggers
+replaces the values of such parameters, and a URL's credentials, before any handler formats the
+record; ``redact`` does the same for text the service shows (/health's reasons and names).
 """
 
 from __future__ import annotations
@@ -13,16 +16,33 @@ import logging
 import re
 from typing import Any
 
+import httpx
 from uvicorn.config import LOGGING_CONFIG
 
 REDACTED = "[redacted]"
-_TOKEN_PARAMETER = re.compile(r"([?&](?:access_)?token=)[^&\s\"]*", re.IGNORECASE)
-_LOGGERS = ("uvicorn.access", "uvicorn.error")
+# URL parameters whose value is a secret, by the names services give them.
+_SECRET_PARAMETER = re.compile(
+    r"([?&](?:access_token|token|api_key|apikey|api-key|key|password|passwd|secret|sig|signature|auth)=)"
+    r"[^&#\s\"']*", re.IGNORECASE)
+_URL_CREDENTIALS = re.compile(r"(\b[a-z][a-z0-9+.-]*://)[^/?#@\s\"']+@", re.IGNORECASE)
+_LOGGERS = ("uvicorn.access", "uvicorn.error", "httpx")
 
 
 def redact(text: str) -> str:
-    """``text`` with the value of every ``token=`` / ``access_token=`` URL parameter replaced."""
-    return _TOKEN_PARAMETER.sub(rf"\g<1>{REDACTED}", text)
+    """``text`` with the value of every secret URL parameter (``token=``, ``access_token=``,
+    ``key=``, ``password=``...) and every URL's credentials (``user:pass@``) replaced."""
+    return _URL_CREDENTIALS.sub(rf"\g<1>{REDACTED}@", _SECRET_PARAMETER.sub(rf"\g<1>{REDACTED}", text))
+
+
+def redacted(value: Any) -> Any:
+    """``value`` (JSON-like) with ``redact`` applied to every string in it."""
+    if isinstance(value, str):
+        return redact(value)
+    if isinstance(value, dict):
+        return {key: redacted(item) for key, item in value.items()}
+    if isinstance(value, list):
+        return [redacted(item) for item in value]
+    return value
 
 
 class RedactTokens(logging.Filter):
@@ -30,8 +50,18 @@ class RedactTokens(logging.Filter):
         if isinstance(record.msg, str):
             record.msg = redact(record.msg)
         if isinstance(record.args, tuple):
-            record.args = tuple(redact(arg) if isinstance(arg, str) else arg for arg in record.args)
+            # httpx passes its URL as an httpx.URL: redacted as text
+            record.args = tuple(redact(str(arg)) if isinstance(arg, str | httpx.URL) else arg
+                                for arg in record.args)
         return True
+
+
+def redact_client_logs() -> None:
+    """Put ``RedactTokens`` on the logger of the service's HTTP client (httpx), once: it logs
+    every request's URL, a webhook's or a model server's with its secrets."""
+    logger = logging.getLogger("httpx")
+    if not any(isinstance(f, RedactTokens) for f in logger.filters):
+        logger.addFilter(RedactTokens())
 
 
 def log_config() -> dict[str, Any]:

@@ -79,7 +79,8 @@ class Courier(ABC, Generic[T]):
             self._queue.put_nowait(_Stop())
         if self._thread.is_alive():
             self._thread.join(timeout=self.config.timeout + 1)
-        self._closing()
+        if not self._thread.is_alive():  # a worker still sending keeps what it sends with
+            self._closing()
 
     def enqueue(self, item: T) -> None:
         """Never blocks: a full queue loses its oldest item."""

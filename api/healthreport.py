@@ -12,6 +12,7 @@ from typing import Any
 
 from starlette.concurrency import run_in_threadpool
 
+from api.accesslog import redacted
 from api.auth import authorise
 from api.errors import ApiError
 from api.probe import probe
@@ -66,7 +67,9 @@ async def health_report(services: Services, details: bool) -> dict[str, Any]:
     status = "degraded" if reasons else "ok"
     if not details:
         return {"status": status}
-    return {"status": status, "reasons": reasons, "kb": state, "model": model,
-            "events": {"subscribers": services.hub.listener_count},
-            "intents": _intents(services),
-            "components": {name: s.as_dict() for name, s in components.items()}}
+    # No URL's credentials or secret parameters (a webhook's, the model server's, the store's).
+    report: dict[str, Any] = redacted({
+        "status": status, "reasons": reasons, "kb": state, "model": model,
+        "events": {"subscribers": services.hub.listener_count}, "intents": _intents(services),
+        "components": {name: s.as_dict() for name, s in components.items()}})
+    return report

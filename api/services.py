@@ -11,6 +11,7 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from api.accesslog import redact_client_logs
 from api.client import ServiceClient
 from api.courier import DeliveryConfig
 from api.relay import IntentRelay
@@ -235,6 +236,7 @@ def _webhooks(settings: Settings, bus: IntentBus, services: Services) -> None:
 
 def start_services(settings: Settings, kb: KB | None = None, model: ChatModel | None = None) -> Services:
     """Build the services (blocking) for the process's role (Settings.role)."""
+    redact_client_logs()  # webhook and model server URLs may hold secrets; httpx logs every URL
     if settings.role == "reader":
         return _start_reader(settings, model)
     owns_kb = kb is None

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import logging
 import threading
 import time
 from collections.abc import Callable, Iterator
@@ -152,3 +153,79 @@ def test_a_delivery_given_up_after_its_retries_is_counted(receiver: Receiver) ->
         assert "1 delivered, 1 given up" in status.reason
     finally:
         hook.stop()
+
+
+# --- a slow receiver and secrets in URLs (issue 26, item 11) -------------------------------------
+
+class Trickler:
+    """A receiver on loopback that answers one byte every half second, for a minute: each read
+    comes well within any per-read timeout, the whole answer never does."""
+
+    def __init__(self) -> None:
+        self.requests = 0
+        self.stop = threading.Event()
+        outer = self
+
+        class Handler(BaseHTTPRequestHandler):
+            def do_POST(self) -> None:
+                self.rfile.read(int(self.headers["Content-Length"]))
+                outer.requests += 1
+                for byte in b"HTTP/1.1 204 No Content\r\n\r\n" + b" " * 100:
+                    if outer.stop.wait(0.5):
+                        return
+                    try:
+                        self.wfile.write(bytes([byte]))
+                        self.wfile.flush()
+                    except OSError:
+                        return
+
+            def log_message(self, *args: Any) -> None:
+                return
+
+        self.server = ThreadingHTTPServer(("127.0.0.1", 0), Handler)
+        self.url = f"http://127.0.0.1:{self.server.server_address[1]}/hook"
+        threading.Thread(target=self.server.serve_forever, daemon=True).start()
+
+    def close(self) -> None:
+        self.stop.set()
+        self.server.shutdown()
+        self.server.server_close()
+
+
+def test_a_trickling_receiver_is_given_up_on_time_and_reported_slow(live_factory: Any) -> None:
+    trickler = Trickler()
+    try:
+        intents = IntentSettings(webhooks=[trickler.url], webhook_timeout=2.0, webhook_retries=0)
+        live: Live = live_factory(scene_settings(intents=intents))
+        hook = live.services.webhooks.hooks[0]
+        started = time.monotonic()
+        say(live, "hello")
+        wait_until(lambda: hook.counts.failed == 1, timeout=30)
+        took = time.monotonic() - started
+        assert took < 2.0 + 3, f"one delivery held the webhook {took:.1f} s; its timeout is 2 s"
+        status = health(live)
+        assert status["status"] == "degraded"
+        reported = status["components"]["webhook_0"]
+        assert not reported["ok"] and "slow receiver" in reported["reason"], reported
+    finally:
+        trickler.close()
+
+
+def test_webhook_and_model_urls_show_no_secrets(live_factory: Any, receiver: Receiver,
+                                                caplog: pytest.LogCaptureFixture) -> None:
+    receiver.failing = False
+    secret_hook = receiver.url.replace("http://", "http://robot:pa55word@") + "?token=s3cr3t&room=4"
+    intents = IntentSettings(webhooks=[secret_hook], webhook_retries=0)
+    caplog.set_level(logging.INFO)
+    live: Live = live_factory(scene_settings(intents=intents, llm="hybrid:openai:tiny@http://127.0.0.1:9/v1?key=k3y"))
+    say(live, "hello")
+    wait_until(lambda: len(receiver.accepted) == 1)  # delivered, with its credentials
+    receiver.failing = True
+    say(live, "please bring me the cup")
+    wait_until(lambda: live.services.webhooks.hooks[0].counts.failed == 1)
+    anonymous = live.client.get("/health").json()
+    shown = json.dumps(anonymous) + caplog.text
+    assert "webhook_0" in json.dumps(anonymous) and "openai:tiny" in json.dumps(anonymous)
+    for secret in ("pa55word", "s3cr3t", "k3y"):
+        assert secret not in shown, secret
+    assert "[redacted]" in json.dumps(anonymous) and "room=4" in json.dumps(anonymous)
