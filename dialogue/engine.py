@@ -47,6 +47,7 @@ log = logging.getLogger(__name__)
 MAX_SCHEMA_IDS = 60
 SORRY = "Sorry, I can't answer right now."
 NOT_UNDERSTOOD = "Sorry, I did not understand that."
+NO_ANSWER_IN_TIME = "no answer by the turn's deadline"
 RULES_ENGLISH_ONLY = "the offline rules understand English only; a model backend (hybrid:...) reads locale {}"
 
 
@@ -167,9 +168,7 @@ class DialogueEngine:
                 if result.claims:  # learning is part of the turn: within its deadline too
                     result = await self._remember(result, text, speaker)
         except TimeoutError:
-            result = self.fallback(
-                text, speaker, locale, f"no answer within the {self.config.deadline:g} s deadline"
-            )
+            result = self.fallback(text, speaker, locale, NO_ANSWER_IN_TIME)
         return self.traced(result, recorder)
 
     def traced(self, result: TurnResult, recorder: TraceRecorder) -> TurnResult:

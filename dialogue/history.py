@@ -42,6 +42,9 @@ class History:
         self._items: deque[Utterance] = deque(maxlen=max_turns)
 
     def add(self, speaker: str, text: str) -> None:
+        """Keep an utterance; a blank one says nothing and is not kept."""
+        if not text.strip():
+            return
         self._items.append(Utterance(speaker, text))
         while len(self._items) > 1 and sum(len(u.text) for u in self._items) > self.max_chars:
             self._items.popleft()

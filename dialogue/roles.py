@@ -2,11 +2,18 @@
 
 `__default__` is the engine's turn (understand, ground, answer with intents); `__ask__` fills a form
 (dialogue.ask). Each role opens a dialogue (an opening line, a first state) and runs its turns; the
-state it keeps between turns is opaque text the dialogue store saves with the history.
+state it keeps between turns is opaque text the dialogue store saves with the history, and says
+where the dialogue is (`progress`: open, or over with its results).
+
+A role's configuration is chatbot_msgs' opaque JSON: the default role reads no key of it, yet it
+must be a JSON object (or nothing), as the contract says, so that a caller's mistake is refused.
+A system update (`__system__`) and the robot's own words (`__assistant__`) are no person's words:
+the default role has nothing to answer them (they are context for the next turns).
 """
 
 from __future__ import annotations
 
+import json
 from collections.abc import Sequence
 from typing import Protocol
 
@@ -14,13 +21,33 @@ from dialogue.ask import ASK_ROLE
 from dialogue.ask.turn import AskRole
 from dialogue.engine import DialogueEngine, TurnResult
 from dialogue.errors import DialogueError
-from dialogue.history import Utterance
+from dialogue.history import Utterance, role_of
+from dialogue.rolestate import Progress
 from dialogue.sessionstore import DEFAULT_ROLE
 from dialogue.trace.record import TraceRecorder
 
 
 class UnknownRole(DialogueError, ValueError):
     """A role this service does not play; the message lists those it does."""
+
+
+class BadConfiguration(DialogueError, ValueError):
+    """A role configuration that is no JSON object; the message says what is wrong."""
+
+
+def check_configuration(configuration: str, role: str) -> dict[str, object]:
+    """The configuration as a JSON object ("" is an empty one); BadConfiguration otherwise."""
+    if not configuration.strip():
+        return {}
+    try:
+        value = json.loads(configuration)
+    except json.JSONDecodeError as exc:
+        raise BadConfiguration(f"the {role} role's configuration is not JSON ({exc.msg} at character "
+                               f"{exc.pos}); give a JSON object, e.g. {{}}") from None
+    if not isinstance(value, dict):
+        raise BadConfiguration(f"the {role} role's configuration must be a JSON object, not "
+                               f"{type(value).__name__}")
+    return value
 
 
 class Role(Protocol):
@@ -43,6 +70,10 @@ class Role(Protocol):
         """One turn: the result (with its trace) and the role's new state."""
         ...
 
+    def progress(self, role_state: str) -> Progress:
+        """Where a dialogue whose role state is `role_state` is."""
+        ...
+
 
 class DefaultRole:
     """The engine's own turn; the role keeps nothing."""
@@ -51,7 +82,11 @@ class DefaultRole:
         self.engine = engine
 
     def open(self, configuration: str) -> tuple[str, str]:
+        check_configuration(configuration, DEFAULT_ROLE)
         return "", ""
+
+    def progress(self, role_state: str) -> Progress:
+        return Progress()  # a default dialogue is open until it is ended
 
     async def turn(
         self,
@@ -65,6 +100,9 @@ class DefaultRole:
         deadline: float,
         trace: TraceRecorder,
     ) -> tuple[TurnResult, str]:
+        if role_of(speaker) != "user":
+            trace.note(f"{speaker}'s input is no person's words: nothing to answer")
+            return self.engine.traced(TurnResult("", (), backend="recorded"), trace), role_state
         result = await self.engine.turn(
             text, speaker=speaker, history=history, locale=locale, deadline=deadline, trace=trace
         )

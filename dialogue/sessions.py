@@ -19,7 +19,8 @@ not store it again.
 What a turn does depends on the dialogue's role (dialogue.roles): `__default__` (the engine's turn)
 or `__ask__` (a form; its question is the dialogue's opening line). A turn that brings its role (the
 chatbot_msgs 4.0 stateless shape) reads and writes nothing in the store: the request's history is
-the whole dialogue. Every turn's trace is kept, bounded, in `traces` (dialogue.trace).
+the whole dialogue. Every turn's trace is kept, bounded, in `traces` (dialogue.trace), and every
+answered turn (stateless ones included) is told to the observers (the intent bus...).
 """
 
 from __future__ import annotations
@@ -34,11 +35,12 @@ from functools import partial
 from typing import Literal, ParamSpec, TypeVar
 
 from dialogue.engine import SORRY, DialogueEngine, TurnResult
+from dialogue.entries import answers, check_id, check_texts, check_utterance, entry_locale
 from dialogue.errors import SessionError, UnknownDialogue
 from dialogue.history import ASSISTANT_USER_ID, SYSTEM_USER_ID, History, Utterance
-from dialogue.locales import LocaleError, normalise_locale
 from dialogue.observers import TurnObserver, TurnRecord, notify
 from dialogue.roles import Roles
+from dialogue.rolestate import Progress
 from dialogue.sessionstore import (
     DEFAULT_DIALOGUE,
     DEFAULT_ROLE,
@@ -51,8 +53,7 @@ from dialogue.sessionstore import (
 from dialogue.trace.record import TraceRecorder
 from dialogue.trace.store import TraceStore
 from dialogue.turnqueue import TurnQueue
-from kb.errors import InvalidUnicode, KbError, StoreUnavailable
-from kb.unicode import check_text
+from kb.errors import KbError, StoreUnavailable
 
 __all__ = [
     "DEFAULT_DIALOGUE",
@@ -67,41 +68,6 @@ __all__ = [
 P = ParamSpec("P")
 T = TypeVar("T")
 log = logging.getLogger(__name__)
-
-
-def check_utterance(text: str) -> str:
-    """`text` when it has something to say; an empty or blank utterance is no turn (SessionError,
-    a ValueError, so request models may use this as a validator)."""
-    if not text.strip():
-        raise SessionError("the utterance is empty or blank; say something")
-    return text
-
-
-def _check_id(dialogue_id: str) -> None:
-    try:
-        dialogue_id.encode("utf-8")
-    except UnicodeEncodeError:
-        raise SessionError(f"dialogue id {dialogue_id!r} is not valid Unicode text") from None
-
-
-def _locale(locale: str | None) -> str | None:
-    try:
-        return normalise_locale(locale) if locale else None
-    except LocaleError as exc:
-        raise SessionError(str(exc)) from None
-
-
-def _check_texts(user_id: str, text: str, locale: str | None, history: Sequence[Utterance] | None,
-                 extra: Sequence[tuple[str, str]] = ()) -> None:
-    """Refuse a turn holding text that is not valid Unicode before anything is recorded."""
-    fields = [("user_id", user_id), ("input", text), ("locale", locale or ""), *extra]
-    fields += [(f"history turn {i}", part) for i, turn in enumerate(history or ())
-               for part in (turn.speaker, turn.text)]
-    try:
-        for name, value in fields:
-            check_text(value, f"the {name}")
-    except InvalidUnicode as exc:
-        raise SessionError(str(exc)) from None
 
 
 class DialogueManager:
@@ -144,7 +110,7 @@ class DialogueManager:
 
     # -- the store, synchronously ------------------------------------------------------------------
     def _find(self, dialogue_id: str) -> DialogueState | None:
-        _check_id(dialogue_id)
+        check_id(dialogue_id)
         try:
             state = self.store.load(dialogue_id)
         except StateError as exc:
@@ -161,7 +127,7 @@ class DialogueManager:
         dialogue_id: str | None = None,
     ) -> DialogueState:
         opening, role_state = self.roles.get(role).open(configuration)  # a bad configuration is refused
-        locale = _locale(locale)
+        locale = entry_locale(locale)
         if dialogue_id and self._find(dialogue_id) is not None:
             raise SessionError(f"dialogue {dialogue_id!r} already exists")
         history = (Utterance(ASSISTANT_USER_ID, opening),) if opening else ()
@@ -175,6 +141,14 @@ class DialogueManager:
         """What the robot says first in a dialogue just started (the ask role's question), or ""."""
         last = state.history[-1] if state.history else None
         return last.text if last is not None and last.speaker == ASSISTANT_USER_ID else ""
+
+    def add_observer(self, observer: TurnObserver) -> None:
+        """Tell `observer` of every turn from now on, after the observers given at construction."""
+        self.observers = (*self.observers, observer)
+
+    def progress(self, state: DialogueState) -> Progress:
+        """Where the dialogue is by its role: open, or over with the role's results."""
+        return self.roles.get(state.role).progress(state.role_state)
 
     def get(self, dialogue_id: str) -> DialogueState:
         state = self._find(dialogue_id)
@@ -238,36 +212,41 @@ class DialogueManager:
         role: str | None = None,
         configuration: str = "{}",
         summary: str | None = None,
+        timeout: float | None = None,
     ) -> TurnResult:
-        """One DialogueInteraction. `history` replaces the stored one. With `role` (and its
+        """One DialogueInteraction (dialogue.entries: which entries are answered; an empty or
+        blank entry is legal). `history` replaces the stored one. With `role` (and its
         `configuration`) the turn is stateless (chatbot_msgs 4.0): nothing is read from or written to
         the store, `dialogue_id` only names the turn (its trace), `history` is the whole dialogue.
         `summary` (of earlier sessions) is given to the turn as a system utterance before the history
         (stored or given); it is not stored.
 
-        Answered within the engine's deadline from now, however many turns of the dialogue are
-        queued before this one."""
+        Answered within `timeout` seconds (default: the engine's deadline) from now, however many
+        turns of the dialogue are queued before this one."""
         if not user_id:
             raise SessionError("user_id is required")
-        check_utterance(text)
-        _check_texts(user_id, text, locale, history, [("summary", summary or ""), ("role", role or ""),
+        check_texts(user_id, text, locale, history, [("summary", summary or ""), ("role", role or ""),
                                                       ("configuration", configuration)])
-        locale = _locale(locale)
+        locale = entry_locale(locale)
         await self.engine.check_speaker(user_id)  # before anything is recorded or learnt
+        response_expected = answers(user_id, text, response_expected)
         # Context for this turn only, before its history: never stored, never trimmed away.
         earlier = f"Summary of earlier conversations: {summary}"
         before = (Utterance(SYSTEM_USER_ID, earlier),) if summary else ()
         loop = asyncio.get_running_loop()
-        deadline = loop.time() + self.engine.config.deadline
+        seconds = self.engine.config.deadline if timeout is None else timeout
+        deadline = loop.time() + seconds
         if role is not None:
             state = DialogueState(dialogue_id, role, locale, configuration, tuple(history or ()))
-            return await self._stateless(state, user_id, text, response_expected, deadline, before)
+            result = await self._stateless(state, user_id, text, response_expected, deadline, before)
+            await self._observed(dialogue_id, user_id, text, result, response_expected, deadline)
+            return result
         place = await self.queue.take(dialogue_id, deadline - loop.time())
         if not place.reached:
             if response_expected:
                 late = self.engine.fallback(
                     text, user_id, locale,
-                    f"no answer within the {self.engine.config.deadline:g} s deadline: "
+                    f"no answer within the {seconds:g} s deadline: "
                     "earlier turns of this dialogue were still running",
                 )
                 trace = TraceRecorder(dialogue_id=dialogue_id, speaker=user_id, input=text, locale=locale)
@@ -319,6 +298,8 @@ class DialogueManager:
                                         reply=SORRY if response_expected else "")
         kept = self._kept(state, history)
         if not response_expected:
+            if not text.strip():  # nothing said: nothing to record
+                return TurnResult("", (), backend="recorded")
             kept.add(user_id, text)
             return await self._saved(state, kept, TurnResult("", (), backend="recorded"))
         earlier = await self._recalled(user_id)

@@ -27,11 +27,12 @@ from dialogue.ask.form import AskForm, FormState, parse_configuration
 from dialogue.ask.model import AskPrompts, ask_schema, entity_ids, parse_ask_answer, reading_of
 from dialogue.ask.progress import advance, opening_state, question_for
 from dialogue.ask.read import Reading, read_answer
-from dialogue.engine import RULES_ENGLISH_ONLY, SORRY, DialogueEngine, TurnResult
+from dialogue.engine import NO_ANSWER_IN_TIME, RULES_ENGLISH_ONLY, SORRY, DialogueEngine, TurnResult
 from dialogue.history import Utterance, role_of
 from dialogue.llm.base import ChatMessage, ChatModel, ChatRequest, ModelError, TurnContext
 from dialogue.locales import is_english, normalise_locale
 from dialogue.reference.lexicon import Lexicon
+from dialogue.rolestate import Progress
 from dialogue.schema import AnswerError
 from dialogue.trace.record import TraceRecorder
 
@@ -73,6 +74,14 @@ class AskRole:
         form = parse_configuration(configuration)
         return form.question, opening_state(form).to_json()
 
+    def progress(self, role_state: str) -> Progress:
+        """The form's status and the fields obtained so far (an unreadable form: open, none)."""
+        try:
+            state = FormState.from_json(role_state)
+        except ValidationError:
+            return Progress()
+        return Progress(state.status, state.results())
+
     async def turn(
         self,
         configuration: str,
@@ -94,9 +103,7 @@ class AskRole:
                     form, state, text, speaker, tuple(history), locale, deadline, trace
                 )
         except TimeoutError:
-            result = self.engine.fallback(
-                text, speaker, locale, f"no answer within the {self.engine.config.deadline:g} s deadline"
-            )
+            result = self.engine.fallback(text, speaker, locale, NO_ANSWER_IN_TIME)
             result = self._again(result, form, state)
         kept = state if state is not None else opening_state(form)
         return self.engine.traced(result, trace), kept.to_json()

@@ -7,7 +7,7 @@ import asyncio
 import pytest
 
 from dialogue.engine import DialogueEngine
-from dialogue.roles import DefaultRole, Roles, UnknownRole
+from dialogue.roles import BadConfiguration, DefaultRole, Roles, UnknownRole
 from dialogue.trace.record import TraceRecorder
 from kb import KB
 
@@ -18,7 +18,10 @@ def test_roles_by_name(kitchen: KB) -> None:
     assert isinstance(roles.get("__default__"), DefaultRole)
     with pytest.raises(UnknownRole, match="unsupported dialogue role 'x'; supported: \\['__ask__', '__default__'\\]"):
         roles.get("x")
-    assert roles.get("__default__").open("{}") == ("", "")
+    assert roles.get("__default__").open("{}") == roles.get("__default__").open("") == ("", "")
+    for bad, why in (("hello", "is not JSON"), ("[1, 2]", "must be a JSON object, not list")):
+        with pytest.raises(BadConfiguration, match=f"the __default__ role's configuration {why}"):
+            roles.get("__default__").open(bad)
     line, state = roles.get("__ask__").open('{"question": "Age?", "result_schema_properties": {"a": {"type": "integer"}}}')
     assert line == "Age?" and '"asked":"a"' in state
 
@@ -34,3 +37,17 @@ def test_the_default_role_is_the_engine_turn(kitchen: KB) -> None:
     result, state = asyncio.run(run())
     assert state == "" and result.intents[0].intent == "__intent_grab_object__"  # type: ignore[attr-defined]
     assert result.trace.dialogue_id == "d"  # type: ignore[attr-defined]
+
+
+def test_the_default_role_has_no_answer_to_a_system_update(kitchen: KB) -> None:
+    role = Roles(DialogueEngine(kitchen)).get("__default__")
+
+    async def run() -> object:
+        deadline = asyncio.get_running_loop().time() + 5
+        result, _state = await role.turn("{}", "", "pick up the cup", speaker="__system__", history=(), locale=None,
+                                         deadline=deadline, trace=TraceRecorder(dialogue_id="d"))
+        return result
+
+    result = asyncio.run(run())
+    assert (result.response, result.intents, result.error_msg) == ("", (), "")  # type: ignore[attr-defined]
+    assert result.trace.answered_by == "recorded"  # type: ignore[attr-defined]

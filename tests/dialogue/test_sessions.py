@@ -5,11 +5,12 @@ import pytest
 
 from dialogue import intents as I
 from dialogue.ask import AskError
-from dialogue.engine import SORRY, DialogueEngine, EngineConfig, TurnResult
+from dialogue.engine import NO_ANSWER_IN_TIME, SORRY, DialogueEngine, EngineConfig, TurnResult
 from dialogue.history import ASSISTANT_USER_ID, SYSTEM_USER_ID, Utterance
 from dialogue.llm.base import ChatRequest
 from dialogue.llm.testing import FunctionModel, ScriptedModel
 from dialogue.roles import UnknownRole
+from dialogue.rolestate import Progress
 from dialogue.sessions import DEFAULT_DIALOGUE, DialogueManager, SessionError
 from kb import KB, KbError
 
@@ -179,14 +180,79 @@ def test_a_queued_turn_still_gets_the_time_left_of_its_deadline(kitchen: KB) -> 
     assert second.intents[0].data == {"object": "cup_1"} and second.error_msg == ""
 
 
-def test_empty_or_blank_utterances_are_refused_and_nothing_is_recorded(kitchen: KB) -> None:
+def test_a_person_who_says_nothing_gets_no_answer_and_nothing_is_recorded(kitchen: KB) -> None:
+    """chatbot_msgs allows an empty input: not an error, nothing said, nothing to answer or keep."""
     manager = DialogueManager(DialogueEngine(kitchen))
     for text in ("", "   ", "\n\t"):
-        with pytest.raises(SessionError, match="empty or blank"):
-            asyncio.run(manager.interact("person_alice", text))
-        with pytest.raises(SessionError, match="empty or blank"):
-            asyncio.run(manager.interact("person_alice", text, response_expected=False))
+        for expected in (True, False):
+            result = asyncio.run(manager.interact("person_alice", text, response_expected=expected))
+            assert (result.response, result.intents, result.error_msg) == ("", (), "")
     assert manager.get(DEFAULT_DIALOGUE).history == ()
+    with pytest.raises(SessionError, match="unknown dialogue 'nope'"):  # still a turn of a dialogue
+        asyncio.run(manager.interact("person_alice", "", dialogue_id="nope"))
+
+
+def test_system_updates_and_the_robots_own_words_are_recorded_never_misunderstood(kitchen: KB) -> None:
+    manager = DialogueManager(DialogueEngine(kitchen))
+    d = manager.start()
+    update = asyncio.run(manager.interact(SYSTEM_USER_ID, '{"intent": "__intent_greet__", "data": {}}',
+                                          dialogue_id=d.id))
+    own = asyncio.run(manager.interact(ASSISTANT_USER_ID, "I will fetch it.", dialogue_id=d.id))
+    empty = asyncio.run(manager.interact(SYSTEM_USER_ID, "", dialogue_id=d.id))
+    for result in (update, own, empty):
+        assert (result.response, result.intents, result.error_msg) == ("", (), "")
+    assert [(u.role, u.text) for u in manager.get(d.id).history] == [
+        ("system", '{"intent": "__intent_greet__", "data": {}}'), ("assistant", "I will fetch it.")]
+
+
+def test_an_empty_system_update_asks_an_ask_dialogue_its_question(kitchen: KB) -> None:
+    """How a dialogue manager has the robot speak first: a system update, nothing said."""
+    manager = DialogueManager(DialogueEngine(kitchen))
+    config = '{"question": "How old are you?", "result_schema_properties": {"age": {"type": "integer"}}}'
+    d = manager.start("__ask__", configuration=config)
+    prompted = asyncio.run(manager.interact(SYSTEM_USER_ID, "", dialogue_id=d.id))
+    assert prompted.response == "How old are you?" and prompted.intents == () and not prompted.dialogue_terminal
+
+
+def test_a_turn_answers_within_its_own_timeout(kitchen: KB) -> None:
+    async def slow(request: ChatRequest) -> dict[str, Any]:
+        await asyncio.sleep(5)
+        return {"verbal_ack": "late", "user_intent": None}
+
+    manager = DialogueManager(DialogueEngine(kitchen, FunctionModel(slow), EngineConfig(deadline=30)))
+
+    # The model answers after 5 s, the engine's deadline is 30 s: only the turn's timeout falls back.
+    result = asyncio.run(manager.interact("person_alice", "blorp the glorp", timeout=0.3))
+    assert result.response == SORRY and result.error_msg == NO_ANSWER_IN_TIME
+
+
+def test_observers_hear_stateless_turns_and_observers_added_later(kitchen: KB) -> None:
+    heard: list[tuple[str, str]] = []
+
+    async def first(record: Any) -> None:
+        heard.append(("first", record.dialogue_id))
+
+    async def later(record: Any) -> None:
+        heard.append(("later", record.dialogue_id))
+
+    manager = DialogueManager(DialogueEngine(kitchen), observers=[first])
+    asyncio.run(manager.interact("person_alice", "pick up the cup", dialogue_id="dm-1", role="__default__"))
+    manager.add_observer(later)
+    asyncio.run(manager.interact("person_alice", "pick up the cup"))
+    asyncio.run(manager.interact("person_alice", "noted", response_expected=False))  # not answered: not told
+    assert heard == [("first", "dm-1"), ("first", DEFAULT_DIALOGUE), ("later", DEFAULT_DIALOGUE)]
+
+
+def test_progress_says_whether_a_dialogue_is_over_and_with_what(kitchen: KB) -> None:
+    manager = DialogueManager(DialogueEngine(kitchen))
+    config = '{"question": "How old are you?", "result_schema_properties": {"age": {"type": "integer"}}}'
+    default, asked, cancelled = manager.start(), manager.start("__ask__", configuration=config), \
+        manager.start("__ask__", configuration=config)
+    asyncio.run(manager.interact("person_alice", "I am 40", dialogue_id=asked.id))
+    asyncio.run(manager.interact("person_alice", "never mind", dialogue_id=cancelled.id))
+    assert manager.progress(manager.get(default.id)) == Progress("open", "{}")
+    assert manager.progress(manager.get(asked.id)) == Progress("done", '{"age": 40}')
+    assert manager.progress(manager.get(cancelled.id)) == Progress("cancelled", "{}")
 
 
 def test_a_turn_cancelled_while_it_waits_leaves_the_queue_working(kitchen: KB) -> None:

@@ -5,6 +5,7 @@ these tests are skipped when the `oxigraph` command is missing)."""
 from __future__ import annotations
 
 import asyncio
+import json
 import time
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass
@@ -157,12 +158,13 @@ def test_hostile_ids_and_text_round_trip(dialogue_id: str, kitchen: KB, shared: 
     s = shared(kitchen)
     with pytest.raises(SessionError, match="is not a language tag"):  # a locale is checked, never stored as is
         s.a.start(locale=HOSTILE_TEXT, dialogue_id=dialogue_id)
-    s.a.start(locale="fr-fr", configuration=HOSTILE_TEXT, dialogue_id=dialogue_id)
+    configuration = json.dumps({"note": HOSTILE_TEXT})  # a role's configuration is a JSON object
+    s.a.start(locale="fr-fr", configuration=configuration, dialogue_id=dialogue_id)
     with pytest.raises(SessionError, match="already exists"):
         s.b.start(dialogue_id=dialogue_id)
     asyncio.run(s.b.interact(HOSTILE_TEXT, HOSTILE_TEXT, dialogue_id=dialogue_id, response_expected=False))
     state = s.a.get(dialogue_id)
-    assert (state.id, state.locale, state.configuration) == (dialogue_id, "fr_FR", HOSTILE_TEXT)
+    assert (state.id, state.locale, state.configuration) == (dialogue_id, "fr_FR", configuration)
     assert state.history == (Utterance(HOSTILE_TEXT, HOSTILE_TEXT),)
     assert s.a.ids() == [DEFAULT_DIALOGUE, dialogue_id]
     s.a.end(dialogue_id)

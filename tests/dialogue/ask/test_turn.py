@@ -196,7 +196,8 @@ def test_a_form_with_no_required_field_ends_after_one_answer(cups: KB) -> None:
 
 def test_a_system_update_or_the_robots_own_words_are_no_answer(cups: KB) -> None:
     """A `__system__` input ("the battery is at 40 percent") filled the age with 40 and ended the form;
-    it is no answer of the person (nor is `__assistant__`): the form is unchanged, the question asked again."""
+    it is no answer of the person (nor is `__assistant__`): the form is unchanged, the question asked again
+    after the system update."""
     manager = DialogueManager(DialogueEngine(cups))
     d = manager.start(ASK_ROLE, configuration=CONFIG)
 
@@ -206,9 +207,10 @@ def test_a_system_update_or_the_robots_own_words_are_no_answer(cups: KB) -> None
                 await manager.interact(NINA, "I'm 34", dialogue_id=d.id)]
 
     system, assistant, person = asyncio.run(run())
-    for result in (system, assistant):
-        assert (result.dialogue_terminal, result.results) == (False, "{}") and result.intents == ()
-        assert result.response == "How old are you, and which cup?"
+    assert (system.dialogue_terminal, system.results) == (False, "{}") and system.intents == ()
+    assert system.response == "How old are you, and which cup?"
+    # The robot's own words are recorded, never answered (dialogue.entries).
+    assert (assistant.response, assistant.intents, assistant.dialogue_terminal) == ("", (), None)
     assert json.loads(person.results or "") == {"age": 34}
     # The same in the 4.0 shape, whose input is the history's last utterance.
     history = [Utterance(ASSISTANT_USER_ID, "How old are you, and which cup?"), Utterance(NINA, "I'm 34")]

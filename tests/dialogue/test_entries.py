@@ -1,0 +1,36 @@
+"""Which dialogue entries are answered, and the checks every entry passes first."""
+
+from __future__ import annotations
+
+import pytest
+
+from dialogue.entries import answers, check_texts, check_utterance, entry_locale
+from dialogue.errors import SessionError
+from dialogue.history import Utterance
+
+
+@pytest.mark.parametrize(("user_id", "text", "expected", "answered"), [
+    ("person_alice", "pick up the cup", True, True),
+    ("person_alice", "pick up the cup", False, False),
+    ("person_alice", "  ", True, False),          # nothing said
+    ("__system__", "Tom came in", True, True),    # the role may have a line for it
+    ("__system__", "", True, True),               # a prompt to speak (the ask role's question)
+    ("__system__", "Tom came in", False, False),
+    ("__assistant__", "I fetched it.", True, False),  # the robot's own words: never answered
+])
+def test_which_entries_are_answered(user_id: str, text: str, expected: bool, answered: bool) -> None:
+    assert answers(user_id, text, expected) is answered
+
+
+def test_a_blank_utterance_is_refused_where_an_edge_asks_for_words() -> None:
+    assert check_utterance("hi") == "hi"
+    with pytest.raises(SessionError, match="empty or blank"):
+        check_utterance(" \n")
+
+
+def test_locales_and_texts_are_checked() -> None:
+    assert entry_locale("en-gb") == "en_GB" and entry_locale("") is None
+    with pytest.raises(SessionError, match="not a language tag"):
+        entry_locale("english please")
+    with pytest.raises(SessionError, match="history turn 0.*not valid Unicode"):
+        check_texts("p", "hi", None, [Utterance("p", "bad \ud800")])
