@@ -149,9 +149,10 @@ async def interact(dialogue_id: str, body: InteractionRequest, dialogues: Dialog
     if body.history is not None:
         check_count(body.history, services.settings.limits.max_history_turns, "history_turns")
         history = [Utterance(turn.speaker, turn.text) for turn in body.history]
-    role = {} if body.role is None else {"role": body.role.name, "configuration": body.role.configuration}
+    role, configuration = (None, "{}") if body.role is None else (body.role.name, body.role.configuration)
     run = partial(dialogues.interact, body.user_id, body.input, dialogue_id=dialogue_id, locale=body.locale,
-                  response_expected=body.response_expected, history=history, summary=body.summary, **role)
+                  response_expected=body.response_expected, history=history, summary=body.summary, role=role,
+                  configuration=configuration)
     # The turn reads the dialogue once: an unknown one is refused (404), an unreadable store answered;
     # other refusals (bad text, a bad role configuration) are the request's (400).
     try:

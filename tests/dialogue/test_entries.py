@@ -32,5 +32,5 @@ def test_locales_and_texts_are_checked() -> None:
     assert entry_locale("en-gb") == "en_GB" and entry_locale("") is None
     with pytest.raises(SessionError, match="not a language tag"):
         entry_locale("english please")
-    with pytest.raises(SessionError, match="history turn 0.*not valid Unicode"):
+    with pytest.raises(SessionError, match=r"history turn 0.*not valid Unicode"):
         check_texts("p", "hi", None, [Utterance("p", "bad \ud800")])

@@ -20,12 +20,13 @@ from dataclasses import dataclass, field
 from typing import Any, Protocol, TypeVar
 
 import rclpy
+from rcl_interfaces.msg import SetParametersResult
 from rclpy.callback_groups import ReentrantCallbackGroup
 from rclpy.executors import ExternalShutdownException, MultiThreadedExecutor
 from rclpy.node import Node
 from rclpy.signals import SignalHandlerOptions
 
-from api.ros.parameters import NodeParameters, declare
+from api.ros.parameters import NodeParameters, declare, refusal
 from api.services import Services
 
 log = logging.getLogger("situated.ros")
@@ -52,6 +53,11 @@ class Front:
     #: Callbacks may run at the same time (a turn must not hold up a KB query).
     group: ReentrantCallbackGroup = field(default_factory=ReentrantCallbackGroup)
 
+    def default_locale(self) -> str | None:
+        """The node's default locale now (``default_locale``, which changes while the node runs)."""
+        value = self.chatbot_node.get_parameter("default_locale").value
+        return str(value) if value else None
+
     def on_loop(self, coroutine: Coroutine[Any, Any, T], timeout: float) -> T:
         """Run ``coroutine`` on the app's event loop and wait for it (from an executor thread)."""
         future = asyncio.run_coroutine_threadsafe(coroutine, self.loop)
@@ -64,9 +70,10 @@ class Front:
 
 def _parts() -> tuple[Part, ...]:
     # Imported here: each part imports the generated interfaces, which exist only once ROS is set up.
-    from api.ros.node import events, knowledge
+    from api.ros.node import chatbot, diagnostics, engagement, events, intents, knowledge, locales, voices
 
-    return (knowledge.attach, events.attach)
+    return (knowledge.attach, events.attach, intents.attach, chatbot.attach, locales.attach,
+            engagement.attach, voices.attach, diagnostics.attach)
 
 
 def init(ros_args: list[str]) -> Any:
@@ -85,6 +92,7 @@ def extension(services: Services, loop: asyncio.AbstractEventLoop, *, context: A
     kb_node = Node("knowledge_core", namespace="kb", context=context)
     chatbot_node = Node("chatbot", context=context)
     front = Front(services, loop, context, kb_node, chatbot_node, declare(chatbot_node, defaults))
+    chatbot_node.add_on_set_parameters_callback(_checked_change)
     detach = [attach(front) for attach in (parts if parts is not None else _parts())]
     executor = MultiThreadedExecutor(num_threads=4, context=context)
     executor.add_node(kb_node)
@@ -104,6 +112,15 @@ def extension(services: Services, loop: asyncio.AbstractEventLoop, *, context: A
             rclpy.shutdown(context=context)
 
     return stop
+
+
+def _checked_change(changes: list[Any]) -> SetParametersResult:
+    """Only what changes while the node runs (``default_locale``) may change, to a value it can use."""
+    for change in changes:
+        why = refusal(change.name, change.value)
+        if why is not None:
+            return SetParametersResult(successful=False, reason=why)
+    return SetParametersResult(successful=True)
 
 
 def _spin(executor: MultiThreadedExecutor) -> None:

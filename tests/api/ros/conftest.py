@@ -12,8 +12,11 @@ import fcntl
 import json
 import os
 import random
+import socket
 import subprocess
 import sys
+import threading
+import time
 from collections.abc import Callable, Iterator
 from pathlib import Path
 from typing import Any
@@ -102,9 +105,15 @@ class Probe:
             raise AssertionError(f"probe {op} failed: {answer['error']}")
         return answer
 
-    def call(self, service: str, type: str, **request: Any) -> dict[str, Any]:
-        response: dict[str, Any] = self("call", service=service, type=type, request=request)["response"]
+    def call(self, service: str, type: str, timeout: float = 30.0, **request: Any) -> dict[str, Any]:
+        response: dict[str, Any] = self("call", service=service, type=type, request=request,
+                                        timeout=timeout)["response"]
         return response
+
+    def messages(self, topic: str, count: int = 1, timeout: float = 30.0) -> list[dict[str, Any]]:
+        """The messages received on ``topic`` so far, once there are ``count`` (or ``timeout`` s passed)."""
+        received: list[dict[str, Any]] = self("messages", topic=topic, count=count, timeout=timeout)["messages"]
+        return received
 
     def close(self) -> None:
         if self.proc.poll() is None:
@@ -160,3 +169,42 @@ def ros_node_factory(ros_env: dict[str, str], tmp_path: Path) -> Iterator[Callab
 @pytest.fixture
 def ros_node(ros_node_factory: Callable[..., RosNode]) -> RosNode:
     return ros_node_factory()
+
+
+def eventually(check: Callable[[], Any], timeout: float = 30.0, every: float = 0.05) -> Any:
+    """``check()``'s first truthy value; AssertionError with its last value after ``timeout`` s (what
+    a graph does asynchronously: a message taken, a fact written)."""
+    end = time.monotonic() + timeout
+    value = check()
+    while not value and time.monotonic() < end:
+        time.sleep(every)
+        value = check()
+    assert value, f"still {value!r} after {timeout} s"
+    return value
+
+
+@pytest.fixture
+def silent_model() -> Iterator[str]:
+    """An --llm spec whose server accepts connections and never answers (a model server hung)."""
+    server = socket.create_server(("127.0.0.1", 0))
+    held: list[socket.socket] = []
+    stop = threading.Event()
+
+    def hold() -> None:
+        server.settimeout(0.2)
+        while not stop.is_set():
+            try:
+                held.append(server.accept()[0])
+            except TimeoutError:
+                continue
+
+    thread = threading.Thread(target=hold, daemon=True)
+    thread.start()
+    try:
+        yield f"hybrid:ollama:silent@http://127.0.0.1:{server.getsockname()[1]}"
+    finally:
+        stop.set()
+        thread.join(5)
+        for connection in held:
+            connection.close()
+        server.close()

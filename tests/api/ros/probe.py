@@ -6,11 +6,12 @@ per line. Messages travel as JSON objects of their fields (nested messages as ob
 lists). Commands (``op``):
 
 - ``call``: ``service``, ``type`` ("kb_msgs/srv/Query"), ``request`` -> ``{"response": {...}}``
-- ``publish``: ``topic``, ``type``, ``message`` (``"repeat_until"``: a topic to wait a message on)
+- ``publish``: ``topic``, ``type``, ``message`` (``latched``: transient local), once someone subscribes;
+  ``unpublish``: ``topic`` (the publisher destroyed); ``subscribers``: ``topic`` -> ``{"count"}``
 - ``subscribe``: ``topic``, ``type`` -> later ``messages``: ``topic``, ``count``, ``timeout``;
   ``unsubscribe``: ``topic`` (its messages stay readable)
 - ``goal``: ``action``, ``type``, ``goal``, ``uuid`` (hex, optional) -> ``{"accepted", "goal"}``;
-  ``result``: ``goal`` -> ``{"status", "result"}``; ``cancel``: ``goal``
+  ``result``: ``goal`` -> ``{"status", "result", "feedback"}``; ``status``: ``goal``; ``cancel``: ``goal``
 - ``env``: the ROS environment variables this process runs with; ``quit``.
 
 Every answer has ``ok``; a failure answers ``{"ok": false, "error": "..."}``.
@@ -87,6 +88,7 @@ class Probe:
         self.subscriptions: dict[str, Any] = {}
         self.publishers: dict[str, Any] = {}
         self.goals: dict[str, Any] = {}
+        self.feedback: dict[str, list[Any]] = {}
         self.lock = threading.Lock()
 
     def call(self, service: str, type: str, request: dict[str, Any], timeout: float = 30.0) -> dict[str, Any]:
@@ -129,9 +131,12 @@ class Probe:
             return {"messages": list(self.received[topic])}
 
     def publish(self, topic: str, type: str, message: dict[str, Any], subscribers: int = 1,
-                timeout: float = 30.0) -> dict[str, Any]:
+                timeout: float = 30.0, latched: bool = False) -> dict[str, Any]:
         if topic not in self.publishers:
-            self.publishers[topic] = self.node.create_publisher(message_type(type), topic, 10)
+            qos = QoSProfile(depth=10, reliability=QoSReliabilityPolicy.RELIABLE,
+                             durability=QoSDurabilityPolicy.TRANSIENT_LOCAL if latched
+                             else QoSDurabilityPolicy.VOLATILE)
+            self.publishers[topic] = self.node.create_publisher(message_type(type), topic, qos)
         publisher = self.publishers[topic]
         end = time.monotonic() + timeout
         while publisher.get_subscription_count() < subscribers:  # discovery takes a moment
@@ -140,6 +145,14 @@ class Probe:
             time.sleep(0.01)
         publisher.publish(fill(message_type(type)(), message))
         return {}
+
+    def unpublish(self, topic: str) -> dict[str, Any]:
+        """Stop publishing ``topic`` (as a perception node does when a person goes)."""
+        self.node.destroy_publisher(self.publishers.pop(topic))
+        return {}
+
+    def subscribers(self, topic: str) -> dict[str, Any]:
+        return {"count": self.node.count_subscribers(topic)}
 
     def goal(self, action: str, type: str, goal: dict[str, Any], uuid_hex: str | None = None,
              timeout: float = 30.0) -> dict[str, Any]:
@@ -151,14 +164,28 @@ class Probe:
         if not client.wait_for_server(timeout_sec=timeout):
             raise TimeoutError(f"action {action} not available in {timeout} s")
         goal_uuid = uuid.UUID(uuid_hex) if uuid_hex else uuid.uuid4()
-        handle = wait(client.send_goal_async(fill(kind.Goal(), goal), goal_uuid=UUID(uuid=list(goal_uuid.bytes))),
-                      timeout)
+        feedback: list[Any] = []
+        self.feedback[goal_uuid.hex] = feedback
+
+        def keep(message: Any) -> None:
+            with self.lock:
+                feedback.append(to_dict(message.feedback))
+
+        handle = wait(client.send_goal_async(fill(kind.Goal(), goal), feedback_callback=keep,
+                                             goal_uuid=UUID(uuid=list(goal_uuid.bytes))), timeout)
         self.goals[goal_uuid.hex] = handle
         return {"accepted": bool(handle.accepted), "goal": goal_uuid.hex}
 
     def result(self, goal: str, timeout: float = 30.0) -> dict[str, Any]:
         outcome = wait(self.goals[goal].get_result_async(), timeout)
-        return {"status": STATUS.get(outcome.status, str(outcome.status)), "result": to_dict(outcome.result)}
+        with self.lock:
+            feedback = list(self.feedback[goal])
+        return {"status": STATUS.get(outcome.status, str(outcome.status)), "result": to_dict(outcome.result),
+                "feedback": feedback}
+
+    def status(self, goal: str) -> dict[str, Any]:
+        """The goal's status as its client last heard it (accepted, executing, succeeded...)."""
+        return {"status": STATUS.get(self.goals[goal].status, str(self.goals[goal].status))}
 
     def cancel(self, goal: str, timeout: float = 30.0) -> dict[str, Any]:
         answer = wait(self.goals[goal].cancel_goal_async(), timeout)
@@ -170,7 +197,8 @@ class Probe:
 
 
 STATUS = {GoalStatus.STATUS_SUCCEEDED: "succeeded", GoalStatus.STATUS_CANCELED: "canceled",
-          GoalStatus.STATUS_ABORTED: "aborted"}
+          GoalStatus.STATUS_ABORTED: "aborted", GoalStatus.STATUS_ACCEPTED: "accepted",
+          GoalStatus.STATUS_EXECUTING: "executing", GoalStatus.STATUS_CANCELING: "canceling"}
 
 
 def main() -> int:
