@@ -69,7 +69,7 @@ def instant_model(request: ChatRequest) -> str:
     return json.dumps(ANSWER)
 
 
-def _no_delay() -> httpx.HTTPTransport:
+def no_delay() -> httpx.HTTPTransport:
     # httpx writes a POST's headers and body separately: without TCP_NODELAY, Nagle + delayed ACK
     # can add ~40 ms per request, which would measure the kernel, not the service.
     return httpx.HTTPTransport(socket_options=[(socket.IPPROTO_TCP, socket.TCP_NODELAY, 1)])
@@ -106,7 +106,7 @@ def run(count: int = 1000, seconds: float = 5.0) -> tuple[str, bool]:
     try:
         with serve_in_thread(echo_app()) as echo_url, \
                 serve_in_thread(create_app(Settings(scene=None), kb=kb, model=model)) as url, \
-                httpx.Client(timeout=10, transport=_no_delay()) as client:
+                httpx.Client(timeout=10, transport=no_delay()) as client:
             results.append(measure("POST /echo (bare FastAPI)", lambda: client.post(
                 echo_url + "/echo", json={"patterns": ["myself sees ?o"]}), count, seconds))
             results.append(measure("POST /kb/query", lambda: client.post(

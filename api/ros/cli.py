@@ -94,16 +94,21 @@ def missing_modules() -> list[str]:
     return missing
 
 
-def _run(args: argparse.Namespace, run_service: RunService) -> int:
-    if args.prefix is not None and os.environ.get(ACTIVE) != str(args.prefix.resolve()):
-        # The dynamic loader reads LD_LIBRARY_PATH once, at start: the prefix's environment needs a
-        # new process image (the same command line).
-        env = {**os.environ, **environment(_built(args.prefix)), ACTIVE: str(args.prefix.resolve())}
+def in_ros(prefix: Path | None) -> None:
+    """Make sure this process can import rclpy and the interfaces: with ``prefix``, the same command
+    line re-executed once in the prefix's environment (the dynamic loader reads LD_LIBRARY_PATH only
+    at start); RosError naming what is missing otherwise."""
+    if prefix is not None and os.environ.get(ACTIVE) != str(prefix.resolve()):
+        env = {**os.environ, **environment(_built(prefix)), ACTIVE: str(prefix.resolve())}
         sys.stderr.flush()
         os.execve(sys.executable, sys.orig_argv, env)
     missing = missing_modules()
     if missing:
         raise RosError(f"cannot import {', '.join(missing)}: " + SETUP_HINT)
+
+
+def _run(args: argparse.Namespace, run_service: RunService) -> int:
+    in_ros(args.prefix)
     from api.ros.node import front
 
     defaults = NodeParameters(voices=args.voices, **({} if args.turn_deadline is None
