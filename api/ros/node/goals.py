@@ -55,6 +55,7 @@ SETTLE = 2.0
 #: Seconds `close` waits for the goals it aborts to end, and what they are told.
 STOPPING = 2.0
 STOPPING_MESSAGE = "the service is stopping"
+RESULTS_SENT = 0.2
 
 
 @dataclass(frozen=True)
@@ -227,4 +228,7 @@ class DialogueGoals:
         end = time.monotonic() + STOPPING
         while any(handle.is_active for handle in goals.values()) and time.monotonic() < end:
             time.sleep(0.01)
+        # rclpy sends a goal's result right after its terminal state is set, in the same task: a
+        # moment for the last of them to go before the server does.
+        time.sleep(RESULTS_SENT if goals else 0)
         self.server.destroy()

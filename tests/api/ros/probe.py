@@ -89,6 +89,7 @@ class Probe:
         self.publishers: dict[str, Any] = {}
         self.goals: dict[str, Any] = {}
         self.feedback: dict[str, list[Any]] = {}
+        self.results: dict[str, Any] = {}
         self.lock = threading.Lock()
 
     def call(self, service: str, type: str, request: dict[str, Any], timeout: float = 30.0) -> dict[str, Any]:
@@ -174,10 +175,12 @@ class Probe:
         handle = wait(client.send_goal_async(fill(kind.Goal(), goal), feedback_callback=keep,
                                              goal_uuid=UUID(uuid=list(goal_uuid.bytes))), timeout)
         self.goals[goal_uuid.hex] = handle
+        if handle.accepted:  # asked for at once, as action clients do: a result comes even as the server stops
+            self.results[goal_uuid.hex] = handle.get_result_async()
         return {"accepted": bool(handle.accepted), "goal": goal_uuid.hex}
 
     def result(self, goal: str, timeout: float = 30.0) -> dict[str, Any]:
-        outcome = wait(self.goals[goal].get_result_async(), timeout)
+        outcome = wait(self.results[goal], timeout)
         with self.lock:
             feedback = list(self.feedback[goal])
         return {"status": STATUS.get(outcome.status, str(outcome.status)), "result": to_dict(outcome.result),
