@@ -5,6 +5,7 @@ Pure functions from a dialogue turn's result to what a client of ``rasa run`` ex
 
 from __future__ import annotations
 
+import json
 import re
 from collections.abc import Callable, Sequence
 from typing import Any
@@ -45,15 +46,19 @@ def _span(text: str, names: Sequence[str]) -> tuple[int, int]:
 
 
 def parse_result(text: str, intents: Sequence[Intent], label: Callable[[str], str]) -> dict[str, Any]:
-    """Rasa's ``/model/parse`` answer. ``label(id)`` gives an entity's name, to find it in the text."""
+    """Rasa's ``/model/parse`` answer. ``label(id)`` gives an entity's name, to find it in the text; a
+    role whose value is no string (JSON in ``other_data``) is an entity whose value is its JSON text."""
     ranking = [{"name": i.intent, "confidence": i.confidence} for i in intents]
     top = intents[0] if intents else None
     intent = ranking[0] if ranking else {"name": RAW_USER_INPUT, "confidence": 0.0}
     entities = []
     if top is not None and top.intent != RAW_USER_INPUT:
         for role, value in top.data.items():
-            names = [value, label(value)] if role in REFERENT_ROLES else [value]
-            start, end = _span(text, names)
+            if isinstance(value, str):
+                names = [value, label(value)] if role in REFERENT_ROLES else [value]
+                start, end = _span(text, names)
+            else:  # a JSON value (other_data...): Rasa's entity value is text, and no words say it
+                value, (start, end) = json.dumps(value, ensure_ascii=False), (0, 0)
             entities.append({"start": start, "end": end, "value": value, "entity": role,
                              "confidence": top.confidence})
     return {"text": text, "intent": intent, "entities": entities, "intent_ranking": ranking}

@@ -1,4 +1,5 @@
-"""The ask role's configuration as JSON: decoded within the bounds a form's schema ever needs.
+"""The ask role's configuration as JSON: decoded within the bounds a form's schema ever needs
+(dialogue.jsonvalues; a field's schema is three levels: configuration, properties, field).
 
 A configuration comes from the request (an opaque string of chatbot_msgs' DialogueRole), so its
 JSON is decoded before anything else reads it, and what no field schema needs is refused with the
@@ -19,13 +20,9 @@ import math
 from typing import Any
 
 from dialogue.errors import DialogueError
-from kb.errors import InvalidUnicode
-from kb.unicode import check_text
+from dialogue.jsonvalues import MAX_DEPTH, MAX_DIGITS, JsonValueError, check
 
-#: Digits of a number (a bound such as 10**30 has 31).
-MAX_DIGITS = 100
-#: Levels of objects and lists (a field's schema is three: configuration, properties, field).
-MAX_DEPTH = 32
+__all__ = ["MAX_DEPTH", "MAX_DIGITS", "ConfigurationError", "decode"]
 _WHERE = "the ask role's configuration"
 
 
@@ -65,27 +62,7 @@ def decode(text: str) -> Any:
 
 
 def _check(value: Any) -> None:
-    """Depth and text of a decoded value, without recursion (a value as deep as the decoder allowed
-    would exhaust the stack of a recursive walk too)."""
-    pending: list[tuple[Any, int]] = [(value, 1)]
-    while pending:
-        item, depth = pending.pop()
-        if isinstance(item, str):
-            _text(item)
-            continue
-        if not isinstance(item, dict | list):
-            continue
-        if depth > MAX_DEPTH:
-            raise ConfigurationError(f"{_WHERE} is nested more than {MAX_DEPTH} levels deep")
-        if isinstance(item, dict):
-            for key in item:
-                _text(key)
-        children = item.values() if isinstance(item, dict) else item
-        pending.extend((child, depth + 1) for child in children)
-
-
-def _text(text: str) -> None:
     try:
-        check_text(text, f"text of {_WHERE}")
-    except InvalidUnicode as exc:
+        check(value, _WHERE)
+    except JsonValueError as exc:
         raise ConfigurationError(str(exc)) from None

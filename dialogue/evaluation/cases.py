@@ -202,7 +202,7 @@ def check(case: Case, result: TurnResult) -> list[str]:
                 for role, value in (step.get("roles") or {}).items():
                     got = intent.data.get(role)
                     loose = step["intent"] == SAY and role == "object"
-                    ok = got is not None and (value.lower() in got.lower() if loose else got == value)
+                    ok = isinstance(got, str) and (value.lower() in got.lower() if loose else got == value)
                     if not ok:
                         problems.append(f"{where}role {role}: expected {value!r}, got {got!r}")
     if expect.get("clarify") and ("?" not in result.response or real):

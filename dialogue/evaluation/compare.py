@@ -157,7 +157,7 @@ def ungrounded(result: TurnResult, snapshot: Snapshot, speaker: str) -> tuple[in
         spec = I.CATALOGUE.get(intent.intent)
         for role in spec.grounded if spec else REFERENT_FIELDS:
             value = intent.data.get(role)
-            if value is None:
+            if not isinstance(value, str):  # absent (a grounded role's value is always text)
                 continue
             total += 1
             bad += value not in snapshot.entities and value != speaker

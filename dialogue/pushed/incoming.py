@@ -4,7 +4,8 @@ another process of the deployment), checked before the bus numbers it.
 What the service emits itself is built to the contract (dialogue.intents.make_intent, referents
 resolved against the KB); an intent that arrives whole must meet the same contract: an
 hri_actions_msgs/Intent constant with its required roles and no others, every role that names an
-entity (the catalogue's grounded roles) naming something the KB knows, and, with its response and
+entity (the catalogue's grounded roles) naming something the KB knows, the other roles any JSON within
+dialogue.jsonvalues' bounds (the Intent model's check), and, with its response and
 dialogue id, at most `max_bytes` of JSON (the bus keeps it, and every client that reads the buffer
 gets it).
 """
@@ -41,8 +42,8 @@ def check_incoming(kb: KnowledgeBase, emitted: Emitted, max_bytes: int) -> None:
     except IntentError as exc:
         raise IncomingError(str(exc)) from None
     for role in spec_of(intent.intent).grounded:
-        value = intent.data.get(role, "").strip()
-        if value:
+        value = intent.data.get(role)
+        if isinstance(value, str) and value.strip():  # text: the Intent model holds to it
             _known(kb, role, value)
 
 

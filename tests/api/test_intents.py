@@ -222,6 +222,59 @@ def test_a_published_intent_is_a_catalogue_intent_whose_entities_the_kb_knows(li
     assert live.services.bus.last_seq == n + 3
 
 
+def test_a_published_intent_carries_json_values_where_no_entity_is_named(live_factory: Any) -> None:
+    """A ROS caller's Intent has `data` values of any JSON type (`other_data` an object...): taken
+    whole, and given back the same by the buffer, the stream and the WebSocket; a role that names an
+    entity stays a KB id, and what no reader can take is refused saying where."""
+    live = live_factory(scene_settings(token="pub-token"))
+    auth = {"authorization": "Bearer pub-token"}
+    n = live.services.bus.last_seq
+    other = {"level": 2, "players": ["person_alice", "person_tom"], "timed": True, "rules": None, "pace": 0.5,
+             "board": [[1, 2], [3, 4]]}
+    intents = [{"intent": "__intent_start_activity__", "data": {"object": "memory_game", "other_data": other},
+                "source": "person_alice"},
+               {"intent": "__intent_say__", "data": {"object": {"text": "Hi!", "gesture": "wave"},
+                                                     "recipient": "person_alice"}, "source": "__myself__"},
+               {"intent": "__intent_stop_activity__", "data": {"other_data": 0}, "source": "person_alice"}]
+    for intent in intents:
+        published = live.client.post("/intents", headers=auth, json={"intent": intent})
+        assert published.status_code == 200, published.text
+    buffered = live.client.get("/intents", params={"after": n}).json()["intents"]
+    assert [e["intent"]["data"] for e in buffered] == [i["data"] for i in intents]
+    with live.client.stream("GET", "/intents/stream", params={"after": n}) as stream:
+        events = sse(stream.iter_lines())
+        streamed = [data for name, _, data in (next(events) for _ in range(4)) if name == "intent"]
+    assert [e["intent"]["data"] for e in streamed] == [i["data"] for i in intents]
+    with connect(f"{live.ws_url}/intents/ws?after={n}") as ws:
+        frames = [json.loads(ws.recv(timeout=10)) for _ in range(4)]
+    assert [f["intent"]["data"] for f in frames if f["event"] == "intent"] == [i["data"] for i in intents]
+
+    def refused(data: Any, intent: str = "__intent_start_activity__") -> httpx.Response:
+        return live.client.post("/intents", headers=auth, json={"intent": {"intent": intent, "data": data,
+                                                                          "source": "person_alice"}})
+
+    deep: Any = "x"
+    for _ in range(40):
+        deep = {"a": deep}
+    cases = [
+        (refused({"recipient": {"id": "person_alice"}}, "__intent_greet__"),
+         "data.recipient of __intent_greet__ names an entity: a string (a KB id)"),
+        (refused({"object": "game", "other_data": deep}), "data.other_data is nested more than 32 levels deep"),
+        (refused({"object": "game", "other_data": None}), "data.other_data is null; leave a role with no value out"),
+        (refused({"object": "game", "other_data": 10 ** 120}), "data.other_data has a number of 121 digits"),
+    ]
+    for answer, says in cases:
+        assert (answer.status_code, answer.json()["code"]) == (422, "invalid_request"), answer.text
+        assert says in answer.json()["message"] and len(answer.json()["message"]) < 400
+    nan = live.client.post("/intents", headers={**auth, "content-type": "application/json"}, content=json.dumps(
+        {"intent": {"intent": "__intent_start_activity__", "data": {"object": "game", "other_data": [float("nan")]},
+                    "source": "person_alice"}}))
+    assert nan.status_code == 422 and "data.other_data: nan is not a finite number" in nan.json()["message"]
+    large = refused({"object": "game", "other_data": {"cells": list(range(20_000))}})
+    assert (large.status_code, large.json()["code"]) == (413, "intent_too_large")
+    assert live.services.bus.last_seq == n + len(intents)  # nothing of the refused ones
+
+
 def test_a_published_intent_and_the_buffer_are_bounded_in_bytes(live_factory: Any) -> None:
     """600 intents of 900 KB once added 600 MB, and an anonymous GET /intents answered 540 MB."""
     bounds = IntentSettings(max_intent_bytes=8192, buffer_bytes=65_536)

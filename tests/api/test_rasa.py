@@ -6,7 +6,7 @@ from collections.abc import Callable
 
 from pydantic import SecretStr
 
-from api.rasa import webhook_messages
+from api.rasa import parse_result, webhook_messages
 from api.settings import Settings
 from dialogue.intents import Intent
 from tests.api.conftest import SCENE, Live
@@ -37,6 +37,19 @@ def test_webhook_splits_at_blank_lines_and_omits_null_keys() -> None:
     assert webhook_messages("u", "", []) == []
     assert webhook_messages("u", "", [intent]) == [{"recipient_id": "u",
                                                     "custom": {"intents": [intent.model_dump()]}}]
+
+
+def test_json_values_ride_in_custom_whole_and_are_entities_as_json_text() -> None:
+    """An intent's non-entity roles may hold any JSON: the webhook's ``custom`` carries them as they
+    are; a parse result's entity value is text (Rasa's), so such a role is its JSON there."""
+    intent = Intent(intent="__intent_start_activity__", source="p",
+                    data={"object": "quiz", "other_data": {"round": 3, "topics": ["art"]}})
+    assert webhook_messages("u", "Let's play.", [intent])[0]["custom"]["intents"][0]["data"] == intent.data
+    parsed = parse_result("start the quiz", [intent], lambda term: term)
+    assert parsed["entities"] == [
+        {"start": 10, "end": 14, "value": "quiz", "entity": "object", "confidence": 1.0},
+        {"start": 0, "end": 0, "value": '{"round": 3, "topics": ["art"]}', "entity": "other_data",
+         "confidence": 1.0}]
 
 
 def test_model_parse_shape(live: Live) -> None:

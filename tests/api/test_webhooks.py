@@ -123,6 +123,16 @@ def test_a_turn_never_waits_for_a_webhook(live_factory: Any, receiver: Receiver)
     wait_until(lambda: [b["seq"] for b in receiver.accepted] == [n + 1, n + 2])
 
 
+def test_an_intent_with_json_values_is_delivered_as_pushed(live_factory: Any, receiver: Receiver) -> None:
+    receiver.failing = False
+    live = hooked(live_factory, receiver)
+    intent = {"intent": "__intent_start_activity__", "source": "person_alice",
+              "data": {"object": "quiz", "other_data": {"round": 3, "topics": ["art", "maths"], "hints": False}}}
+    assert live.client.post("/intents", json={"intent": intent}).status_code == 200
+    wait_until(lambda: len(receiver.accepted) == 1)
+    assert receiver.accepted[0]["intent"]["data"] == intent["data"]
+
+
 def pushed(seq: int) -> Pushed:
     intent = I.make_intent(I.GREET, {"recipient": "p"}, source=I.ROBOT_ITSELF, confidence=1.0)
     return Pushed(seq, 0.0, "initiative", intent)

@@ -7,7 +7,8 @@ lists). Commands (``op``):
 
 - ``call``: ``service``, ``type`` ("kb_msgs/srv/Query"), ``request`` -> ``{"response": {...}}``
 - ``publish``: ``topic``, ``type``, ``message`` (``latched``: transient local), once someone subscribes;
-  ``unpublish``: ``topic`` (the publisher destroyed); ``subscribers``: ``topic`` -> ``{"count"}``
+  ``unpublish``: ``topic`` (the publisher destroyed); ``subscribers``: ``topic`` -> ``{"count"}``;
+  ``publisher_count``: ``topic`` -> ``{"count", "matched"}`` (those this probe's subscription is matched with)
 - ``subscribe``: ``topic``, ``type`` -> later ``messages``: ``topic``, ``count``, ``timeout``;
   ``unsubscribe``: ``topic`` (its messages stay readable)
 - ``goal``: ``action``, ``type``, ``goal``, ``uuid`` (hex, optional) -> ``{"accepted", "goal"}``;
@@ -154,6 +155,12 @@ class Probe:
 
     def subscribers(self, topic: str) -> dict[str, Any]:
         return {"count": self.node.count_subscribers(topic)}
+
+    def publisher_count(self, topic: str) -> dict[str, Any]:
+        """Publishers of ``topic`` on the graph, and those matched with this probe's subscription."""
+        subscription = self.subscriptions.get(topic)
+        return {"count": self.node.count_publishers(topic),
+                "matched": subscription.get_publisher_count() if subscription is not None else 0}
 
     def goal(self, action: str, type: str, goal: dict[str, Any], uuid_hex: str | None = None,
              timeout: float = 30.0) -> dict[str, Any]:

@@ -7,7 +7,7 @@ import json
 from concurrent.futures import ThreadPoolExecutor
 from typing import Any
 
-from tests.api.ros.conftest import Probe, RosNode
+from tests.api.ros.conftest import Probe, RosNode, eventually
 
 INTENT = "hri_actions_msgs/msg/Intent"
 
@@ -54,3 +54,17 @@ def test_every_intent_of_every_dialogue_and_of_the_initiative_in_order(ros_node:
     assert [fields(m) for m in published] == [
         (e["intent"]["intent"], e["intent"]["data"], e["intent"]["source"]) for e in numbered]
     assert len(published) == 5 + 16
+
+
+def test_an_intent_with_json_values_is_published_with_them(ros_node: RosNode, probe: Probe) -> None:
+    """`data` is a JSON string: values of any JSON type (an object in `other_data`) are in it as
+    they were pushed."""
+    probe("subscribe", topic="/intents", type=INTENT)
+    eventually(lambda: probe("publisher_count", topic="/intents")["matched"])  # else the message may go before
+    data = {"object": "memory_game", "other_data": {"level": 2, "players": ["person_tom"], "timed": False}}
+    pushed = ros_node.http.post("/intents", json={"intent": {"intent": "__intent_start_activity__", "data": data,
+                                                             "source": "person_tom", "priority": 200}})
+    assert pushed.status_code == 200, pushed.text
+    [message] = probe.messages("/intents", count=1)
+    assert fields(message) == ("__intent_start_activity__", data, "person_tom")
+    assert message["priority"] == 200
