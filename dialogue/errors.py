@@ -18,3 +18,7 @@ class SessionError(DialogueError, ValueError):
 
 class UnknownDialogue(SessionError):
     """No dialogue has this id (never started, ended, or dropped as the least recently used)."""
+
+
+class DialogueExists(SessionError):
+    """A dialogue is to start with an id another dialogue has (chosen by its caller: a goal's UUID)."""

@@ -36,7 +36,7 @@ from typing import Literal, ParamSpec, TypeVar
 
 from dialogue.engine import SORRY, DialogueEngine, TurnResult
 from dialogue.entries import answers, check_id, check_texts, check_utterance, entry_locale
-from dialogue.errors import SessionError, UnknownDialogue
+from dialogue.errors import DialogueExists, SessionError, UnknownDialogue
 from dialogue.history import ASSISTANT_USER_ID, SYSTEM_USER_ID, History, Utterance
 from dialogue.observers import TurnObserver, TurnRecord, notify
 from dialogue.roles import Roles
@@ -58,6 +58,7 @@ from kb.errors import KbError, StoreUnavailable
 __all__ = [
     "DEFAULT_DIALOGUE",
     "DEFAULT_ROLE",
+    "DialogueExists",
     "DialogueManager",
     "DialogueState",
     "SessionError",
@@ -129,7 +130,8 @@ class DialogueManager:
         opening, role_state = self.roles.get(role).open(configuration)  # a bad configuration is refused
         locale = entry_locale(locale)
         if dialogue_id and self._find(dialogue_id) is not None:
-            raise SessionError(f"dialogue {dialogue_id!r} already exists")
+            raise DialogueExists(f"dialogue {dialogue_id!r} already exists: end it first, or choose "
+                                 "another id")
         history = (Utterance(ASSISTANT_USER_ID, opening),) if opening else ()
         new_id = dialogue_id or str(uuid.uuid4())
         state = DialogueState(new_id, role, locale, configuration, history, time.time(), role_state)

@@ -7,6 +7,7 @@ utterance of `history` is the input when `input` is not given). See `dialogue.se
 
 from __future__ import annotations
 
+import re
 from functools import partial
 from typing import Annotated, Any
 
@@ -21,7 +22,7 @@ from dialogue.engine import TurnResult
 from dialogue.history import ASSISTANT_USER_ID, Utterance
 from dialogue.intents import Intent
 from dialogue.locales import normalise_locale
-from dialogue.sessions import DEFAULT_ROLE, DialogueManager, UnknownDialogue, check_utterance
+from dialogue.sessions import DEFAULT_ROLE, DialogueExists, DialogueManager, UnknownDialogue, check_utterance
 
 router = APIRouter(prefix="/dialogues", tags=["dialogue"])
 #: The id of the turn's trace, in the interaction's answer.
@@ -40,12 +41,25 @@ def _locale(value: str | None) -> str | None:
 
 
 Locale = Annotated[str | None, AfterValidator(_locale)]
+#: A dialogue id a caller chooses is a path segment of every route of the dialogue (a UUID fits).
+_CHOSEN_ID = re.compile(r"[A-Za-z0-9][A-Za-z0-9._:-]{0,127}")
+
+
+def _chosen_id(value: str) -> str:
+    if not _CHOSEN_ID.fullmatch(value):
+        shown = value if len(value) <= 40 else f"{value[:40]}..."
+        raise ValueError(f"dialogue_id {shown!r} cannot be a dialogue's id: 1 to 128 characters, letters, "
+                         "digits, '.', '_', ':' or '-', the first a letter or a digit (a UUID fits)")
+    return value
 
 
 class StartRequest(BaseModel):
     model_config = ConfigDict(extra="forbid")
     role: Role | None = None
     locale: Locale = Field(default=None, description="ll_CC, e.g. en_GB (empty: none)")
+    dialogue_id: Annotated[str, AfterValidator(_chosen_id)] | None = Field(
+        default=None, description="the dialogue's id, chosen by the caller (a ROS Dialogue goal's UUID); "
+        "default: a new UUID. An id in use is refused (409 dialogue_exists)")
 
 
 class Started(BaseModel):
@@ -116,10 +130,15 @@ async def _existing(dialogues: DialogueManager, dialogue_id: str) -> None:
 
 @router.post("", status_code=201, dependencies=[WriteAccess], response_model_exclude_none=True)
 async def start(dialogues: Dialogues, body: StartRequest | None = None) -> Started:
-    """Start a dialogue with a role; the id is a new UUID (``default`` always exists)."""
+    """Start a dialogue with a role; its id is the caller's ``dialogue_id``, or a new UUID
+    (``default`` always exists)."""
     request = body or StartRequest()
     role = request.role or Role()
-    dialogue = await dialogues.start_async(role.name, request.locale, role.configuration)
+    try:
+        dialogue = await dialogues.start_async(role.name, request.locale, role.configuration,
+                                               request.dialogue_id)
+    except DialogueExists as exc:
+        raise ApiError(409, "dialogue_exists", str(exc)) from exc
     return Started(dialogue_id=dialogue.id, response=dialogues.opening_line(dialogue) or None)
 
 

@@ -32,6 +32,34 @@ def test_start_interact_end(live: Live) -> None:
     assert (gone.status_code, gone.json()["code"]) == (404, "unknown_dialogue")
 
 
+def test_a_caller_chooses_the_dialogue_id_once(live: Live) -> None:
+    """As a ROS Dialogue goal's UUID is its dialogue's id, a REST caller may choose the id; an id
+    in use is a 409 saying so, a bad one a 422 saying why, and neither changes anything."""
+    client = live.client
+    chosen = "0f8fad5b-d9cb-469f-a165-70867728950e"
+    started = client.post("/dialogues", json={"dialogue_id": chosen, "role": {"name": "__ask__", "configuration":
+                                              json.dumps({"question": "How old are you?", "result_schema_properties":
+                                                          {"age": {"type": "integer"}}})}})
+    assert started.status_code == 201 and started.json() == {"dialogue_id": chosen, "response": "How old are you?"}
+    answer = client.post(f"/dialogues/{chosen}/interactions", json={"user_id": "person_alice", "input": "I'm 7"})
+    assert answer.json()["results"] == '{"age": 7}'
+    before = live.services.dialogues.ids()
+    for taken in (chosen, "default"):
+        again = client.post("/dialogues", json={"dialogue_id": taken})
+        assert (again.status_code, again.json()["code"]) == (409, "dialogue_exists"), again.text
+        assert f"dialogue {taken!r} already exists" in again.json()["message"]
+    for bad in ("", "a/b", "with space", "-lead", "x" * 129, "ça", "a?b", "a#b"):
+        refused = client.post("/dialogues", json={"dialogue_id": bad})
+        assert refused.status_code == 422, bad
+        assert "cannot be a dialogue's id: 1 to 128 characters" in refused.json()["message"]
+    assert live.services.dialogues.ids() == before
+    assert live.services.dialogues.get(chosen).role == "__ask__"  # the first one, untouched
+    client.delete(f"/dialogues/{chosen}")
+    assert client.post("/dialogues", json={"dialogue_id": chosen}).status_code == 201  # free again once ended
+    assert client.post("/dialogues", json={"dialogue_id": "robot-3:hall_1.a"}).json()["dialogue_id"] == \
+        "robot-3:hall_1.a"
+
+
 def test_default_dialogue_always_exists_and_records_without_reply(live: Live) -> None:
     client = live.client
     recorded = client.post("/dialogues/default/interactions",

@@ -11,7 +11,7 @@ from dialogue.llm.base import ChatRequest
 from dialogue.llm.testing import FunctionModel, ScriptedModel
 from dialogue.roles import UnknownRole
 from dialogue.rolestate import Progress
-from dialogue.sessions import DEFAULT_DIALOGUE, DialogueManager, SessionError
+from dialogue.sessions import DEFAULT_DIALOGUE, DialogueExists, DialogueManager, SessionError
 from kb import KB, KbError
 
 
@@ -94,7 +94,7 @@ def test_errors_and_bounds(kitchen: KB) -> None:
     with pytest.raises(AskError, match="the ask role needs a question"):
         manager.start(role="__ask__")
     first = manager.start(dialogue_id="one").id
-    with pytest.raises(SessionError, match="already exists"):
+    with pytest.raises(DialogueExists, match="already exists: end it first, or choose another id"):
         manager.start(dialogue_id="one")
     manager.start()
     manager.start()
