@@ -158,14 +158,17 @@ class DialogueManager:
             raise UnknownDialogue(f"unknown dialogue {dialogue_id!r}; start it first")
         return state
 
-    def end(self, dialogue_id: str) -> None:
-        """Forget a dialogue; ending `default` only clears its history (it always exists)."""
+    def end(self, dialogue_id: str) -> Progress:
+        """Forget a dialogue; ending `default` only clears its history (it always exists). Where its
+        role was when it ended: still open (ended before the role was done), or over with the results."""
         state = self.get(dialogue_id)
+        progress = self.progress(state)
         self.traces.forget(dialogue_id)
         if dialogue_id == DEFAULT_DIALOGUE:
             self.store.save(replace(state, history=(), last_used=time.time()), create=True)
         else:
             self.store.delete(dialogue_id)
+        return progress
 
     def ids(self) -> list[str]:
         """The dialogues, least recently used first (`default` first when it was never used)."""
@@ -190,8 +193,8 @@ class DialogueManager:
     async def get_async(self, dialogue_id: str) -> DialogueState:
         return await self._off_loop(self.get, dialogue_id)
 
-    async def end_async(self, dialogue_id: str) -> None:
-        await self._off_loop(self.end, dialogue_id)
+    async def end_async(self, dialogue_id: str) -> Progress:
+        return await self._off_loop(self.end, dialogue_id)
 
     async def ids_async(self) -> list[str]:
         return await self._off_loop(self.ids)

@@ -1,4 +1,4 @@
-"""Dialogues over REST (chatbot_msgs shapes, dialogue-compat §2): start, interact, end.
+"""Dialogues over REST (chatbot_msgs shapes, dialogue-compat §2): start, interact, where it is, end.
 
 An interaction is the 3.0 incremental shape (`user_id`, `input`; the service keeps the history) or
 the 4.0 stateless one (`role`, `history`, `summary`: the caller keeps the history; the last
@@ -14,7 +14,7 @@ from typing import Annotated, Any
 from fastapi import APIRouter, Depends, Request, Response
 from pydantic import AfterValidator, BaseModel, ConfigDict, Field, model_validator
 
-from api.deps import ServicesDep, WriteAccess
+from api.deps import ReadAccess, ServicesDep, WriteAccess
 from api.errors import ApiError
 from api.limits import check_count, check_length
 from api.turnevents import EVENT_STREAM, turn_events, wants_events
@@ -22,7 +22,15 @@ from dialogue.engine import TurnResult
 from dialogue.history import ASSISTANT_USER_ID, Utterance
 from dialogue.intents import Intent
 from dialogue.locales import normalise_locale
-from dialogue.sessions import DEFAULT_ROLE, DialogueExists, DialogueManager, UnknownDialogue, check_utterance
+from dialogue.rolestate import Progress, Status
+from dialogue.sessions import (
+    DEFAULT_ROLE,
+    DialogueExists,
+    DialogueManager,
+    DialogueState,
+    UnknownDialogue,
+    check_utterance,
+)
 
 router = APIRouter(prefix="/dialogues", tags=["dialogue"])
 #: The id of the turn's trace, in the interaction's answer.
@@ -114,6 +122,25 @@ class InteractionResponse(BaseModel):
                                 "role: the fields obtained; the others are omitted)")
 
 
+class DialogueStatus(BaseModel):
+    """Where a dialogue is by its role: what a ROS Dialogue action's result reports when it ends."""
+
+    dialogue_id: str
+    role: str
+    locale: str | None = None
+    status: Status = Field(description="open; or over: done (the role obtained its results: the ask role's "
+                           "form filled), cancelled (the person called it off)")
+    results: str = Field(description="the role's results, a JSON object string (the ask role: the fields "
+                         "obtained so far)")
+    error_msg: str = Field(description="why the dialogue is over without its role done (cancelled), else "
+                           "empty: the Dialogue action result's error_msg")
+
+
+def _status(dialogue_id: str, role: str, locale: str | None, progress: Progress) -> DialogueStatus:
+    return DialogueStatus(dialogue_id=dialogue_id, role=role, locale=locale, status=progress.status,
+                          results=progress.results, error_msg=progress.error_msg)
+
+
 async def get_dialogues(services: ServicesDep) -> DialogueManager:
     return services.dialogues
 
@@ -121,9 +148,9 @@ async def get_dialogues(services: ServicesDep) -> DialogueManager:
 Dialogues = Annotated[DialogueManager, Depends(get_dialogues)]
 
 
-async def _existing(dialogues: DialogueManager, dialogue_id: str) -> None:
+async def _existing(dialogues: DialogueManager, dialogue_id: str) -> DialogueState:
     try:
-        await dialogues.get_async(dialogue_id)
+        return await dialogues.get_async(dialogue_id)
     except UnknownDialogue as exc:
         raise ApiError(404, "unknown_dialogue", str(exc)) from exc
 
@@ -185,9 +212,20 @@ async def interact(dialogue_id: str, body: InteractionRequest, dialogues: Dialog
         raise ApiError(404, "unknown_dialogue", str(exc)) from exc
 
 
-@router.delete("/{dialogue_id}", status_code=204, dependencies=[WriteAccess])
-async def end(dialogue_id: str, dialogues: Dialogues) -> Response:
-    """Forget a dialogue (``default`` is only cleared)."""
-    await _existing(dialogues, dialogue_id)
-    await dialogues.end_async(dialogue_id)
-    return Response(status_code=204)
+@router.get("/{dialogue_id}", dependencies=[ReadAccess], response_model_exclude_none=True)
+async def status(dialogue_id: str, dialogues: Dialogues) -> DialogueStatus:
+    """Where the dialogue is: open, or over (done, cancelled) with its role's results."""
+    state = await _existing(dialogues, dialogue_id)
+    return _status(state.id, state.role, state.locale, dialogues.progress(state))
+
+
+@router.delete("/{dialogue_id}", dependencies=[WriteAccess], response_model_exclude_none=True)
+async def end(dialogue_id: str, dialogues: Dialogues) -> DialogueStatus:
+    """Forget a dialogue (``default`` is only cleared); the answer is where it was as it ended (its
+    results; ``open``: ended before its role was done)."""
+    state = await _existing(dialogues, dialogue_id)
+    try:
+        progress = await dialogues.end_async(dialogue_id)
+    except UnknownDialogue as exc:  # ended meanwhile
+        raise ApiError(404, "unknown_dialogue", str(exc)) from exc
+    return _status(state.id, state.role, state.locale, progress)

@@ -27,7 +27,10 @@ def test_start_interact_end(live: Live) -> None:
     assert intent["intent"] == "__intent_grab_object__" and intent["data"] == {"object": "cup_1"}
     assert intent["source"] == "person_alice" and intent["priority"] == 128
     assert intent["modality"] == "__modality_speech__"
-    assert client.delete(f"/dialogues/{dialogue_id}").status_code == 204
+    ended = client.delete(f"/dialogues/{dialogue_id}")
+    assert ended.status_code == 200 and ended.json() == {"dialogue_id": dialogue_id, "role": "__default__",
+                                                          "locale": "en_GB", "status": "open", "results": "{}",
+                                                          "error_msg": ""}
     gone = client.post(f"/dialogues/{dialogue_id}/interactions", json={"user_id": "a", "input": "hi"})
     assert (gone.status_code, gone.json()["code"]) == (404, "unknown_dialogue")
 
@@ -60,12 +63,49 @@ def test_a_caller_chooses_the_dialogue_id_once(live: Live) -> None:
         "robot-3:hall_1.a"
 
 
+def test_where_a_dialogue_is_and_how_it_ended_are_read_over_rest(live: Live) -> None:
+    """What a ROS Dialogue goal's result says — the role's results, error_msg when the person called
+    it off — REST reads from the same place: GET while it runs, and DELETE's answer when it ends."""
+    client = live.client
+    form = json.dumps({"question": "How old are you, and your name?", "result_schema_properties": {
+        "age": {"type": "integer"}, "name": {"type": "string"}}})
+
+    def ask() -> str:
+        started = client.post("/dialogues", json={"role": {"name": "__ask__", "configuration": form}})
+        dialogue_id: str = started.json()["dialogue_id"]
+        return dialogue_id
+
+    def turn(dialogue_id: str, text: str) -> None:
+        client.post(f"/dialogues/{dialogue_id}/interactions", json={"user_id": "person_alice", "input": text})
+
+    done, called_off, left = ask(), ask(), ask()
+    assert client.get(f"/dialogues/{done}").json() == {"dialogue_id": done, "role": "__ask__", "status": "open",
+                                                       "results": "{}", "error_msg": ""}
+    turn(done, "I am 40 and my name is Alice")
+    assert client.get(f"/dialogues/{done}").json() == {"dialogue_id": done, "role": "__ask__", "status": "done",
+                                                       "results": '{"age": 40, "name": "Alice"}', "error_msg": ""}
+    turn(called_off, "I'm 12")
+    turn(called_off, "never mind")
+    assert client.get(f"/dialogues/{called_off}").json() == {
+        "dialogue_id": called_off, "role": "__ask__", "status": "cancelled", "results": '{"age": 12}',
+        "error_msg": "the person called the dialogue off"}
+    turn(left, "I'm 30")
+    assert client.delete(f"/dialogues/{left}").json() == {"dialogue_id": left, "role": "__ask__", "status": "open",
+                                                           "results": '{"age": 30}', "error_msg": ""}
+    assert client.delete(f"/dialogues/{done}").json()["status"] == "done"
+    for gone in (left, done):
+        for answer in (client.get(f"/dialogues/{gone}"), client.delete(f"/dialogues/{gone}")):
+            assert (answer.status_code, answer.json()["code"]) == (404, "unknown_dialogue")
+    assert client.get("/dialogues/default").json() == {"dialogue_id": "default", "role": "__default__",
+                                                       "status": "open", "results": "{}", "error_msg": ""}
+
+
 def test_default_dialogue_always_exists_and_records_without_reply(live: Live) -> None:
     client = live.client
     recorded = client.post("/dialogues/default/interactions",
                            json={"user_id": "__assistant__", "input": "Hello!", "response_expected": False})
     assert recorded.json() == {"response": "", "intents": [], "error_msg": ""}
-    assert client.delete("/dialogues/default").status_code == 204
+    assert client.delete("/dialogues/default").status_code == 200
     greeting = client.post("/dialogues/default/interactions", json={"user_id": "person_alice", "input": "hi"})
     assert greeting.json()["intents"][0]["intent"] == "__intent_greet__"
 

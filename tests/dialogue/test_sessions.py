@@ -11,7 +11,7 @@ from dialogue.llm.base import ChatRequest
 from dialogue.llm.testing import FunctionModel, ScriptedModel
 from dialogue.roles import UnknownRole
 from dialogue.rolestate import Progress
-from dialogue.sessions import DEFAULT_DIALOGUE, DialogueExists, DialogueManager, SessionError
+from dialogue.sessions import DEFAULT_DIALOGUE, DialogueExists, DialogueManager, SessionError, UnknownDialogue
 from kb import KB, KbError
 
 
@@ -253,6 +253,20 @@ def test_progress_says_whether_a_dialogue_is_over_and_with_what(kitchen: KB) -> 
     assert manager.progress(manager.get(default.id)) == Progress("open", "{}")
     assert manager.progress(manager.get(asked.id)) == Progress("done", '{"age": 40}')
     assert manager.progress(manager.get(cancelled.id)) == Progress("cancelled", "{}")
+
+
+def test_ending_a_dialogue_says_where_its_role_was(kitchen: KB) -> None:
+    manager = DialogueManager(DialogueEngine(kitchen))
+    config = ('{"question": "Your age and name?", "result_schema_properties": {"age": {"type": "integer"}, '
+              '"name": {"type": "string"}}}')
+    asked, filled = manager.start("__ask__", configuration=config), manager.start("__ask__", configuration=config)
+    asyncio.run(manager.interact("person_alice", "I am 40", dialogue_id=asked.id))
+    asyncio.run(manager.interact("person_alice", "I am 40 and my name is Alice", dialogue_id=filled.id))
+    assert manager.end(asked.id) == Progress("open", '{"age": 40}')  # ended before the form was filled
+    assert manager.end(filled.id) == Progress("done", '{"age": 40, "name": "Alice"}')
+    assert manager.end(DEFAULT_DIALOGUE) == Progress()
+    with pytest.raises(UnknownDialogue):
+        manager.end(asked.id)
 
 
 def test_a_turn_cancelled_while_it_waits_leaves_the_queue_working(kitchen: KB) -> None:

@@ -73,7 +73,7 @@ def _over(progress: Progress) -> Outcome | None:
     if progress.status == "done":
         return Outcome("succeeded", progress.results)
     if progress.status == "cancelled":
-        return Outcome("aborted", progress.results, "the person called the dialogue off")
+        return Outcome("aborted", progress.results, progress.error_msg)
     return None
 
 
@@ -168,8 +168,7 @@ class DialogueGoals:
         for dialogue_id, handle in goals.items():
             outcome: Outcome | None = None
             if handle.is_cancel_requested:
-                outcome = Outcome("canceled", self._results(dialogue_id))
-                self._forget(dialogue_id)
+                outcome = Outcome("canceled", self._forget(dialogue_id))
             elif dialogue_id in flagged or look:
                 outcome = self._looked_up(dialogue_id)
             if outcome is not None:
@@ -193,11 +192,13 @@ class DialogueGoals:
         except (DialogueError, StoreUnavailable):
             return "{}"
 
-    def _forget(self, dialogue_id: str) -> None:
+    def _forget(self, dialogue_id: str) -> str:
+        """End the dialogue of a cancelled goal; its results as it ended."""
         try:
-            self.dialogues.end(dialogue_id)
+            return self.dialogues.end(dialogue_id).results
         except (DialogueError, StoreUnavailable) as exc:
             log.warning("dialogue %s of a cancelled goal was not ended: %s", dialogue_id, exc)
+            return self._results(dialogue_id)
 
     def _end(self, dialogue_id: str, handle: Any, outcome: Outcome) -> None:
         """Execute the goal now that its outcome is known (any thread: rclpy schedules the task)."""

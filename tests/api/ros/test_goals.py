@@ -43,6 +43,8 @@ def test_an_ask_goal_is_the_dialogue_rest_sees_and_succeeds_with_the_form_filled
     done = probe("result", goal=goal["goal"])
     assert done["status"] == "succeeded"
     assert json.loads(done["result"]["results"]) == {"age": 40} and done["result"]["error_msg"] == ""
+    status = ros_node.http.get(f"/dialogues/{dialogue_id}").json()  # REST reads the same end
+    assert (status["status"], status["results"], status["error_msg"]) == ("done", done["result"]["results"], "")
     turns = ros_node.http.get(f"/dialogues/{dialogue_id}/turns").json()["turns"]
     assert turns[0]["locale"] == "en_GB"
 
@@ -65,7 +67,10 @@ def test_a_goal_is_aborted_when_the_person_calls_it_off_or_its_dialogue_is_ended
     say(probe, asked["goal"], "person_alice", "never mind")
     called_off = probe("result", goal=asked["goal"])
     assert called_off["status"] == "aborted" and "called the dialogue off" in called_off["result"]["error_msg"]
-    assert ros_node.http.delete(f"/dialogues/{uuid.UUID(other['goal'])}").status_code == 204
+    status = ros_node.http.get(f"/dialogues/{uuid.UUID(asked['goal'])}").json()  # REST reads the same end
+    assert (status["status"], status["results"], status["error_msg"]) == (
+        "cancelled", called_off["result"]["results"], called_off["result"]["error_msg"])
+    assert ros_node.http.delete(f"/dialogues/{uuid.UUID(other['goal'])}").status_code == 200
     ended = probe("result", goal=other["goal"])
     assert ended["status"] == "aborted" and "ended elsewhere" in ended["result"]["error_msg"]
 
