@@ -46,6 +46,8 @@ class ParseRequest(BaseModel):
     model_config = ConfigDict(extra="ignore")
     text: Annotated[str, AfterValidator(check_utterance)] = Field(description="the utterance; not blank")
     message_id: str | None = None
+    sender: str | None = Field(default=None, min_length=1, description="who said it (as the webhook's "
+                               "sender: a person id); \"me\" is them. Rasa's own request has no speaker")
 
 
 async def _ensure_dialogue(dialogues: DialogueManager, key: str) -> None:
@@ -90,8 +92,12 @@ def _labeller(kb: KnowledgeBase) -> Any:
 
 @router.post("/model/parse", dependencies=[_rasa_access(write=True)])
 async def parse(body: ParseRequest, services: ServicesDep) -> dict[str, Any]:
-    """NLU only: the turn's intents as Rasa's parse result; nothing is recorded."""
+    """NLU only: the turn's intents as Rasa's parse result; nothing is recorded in a dialogue. The
+    ``sender``, when given, is the speaker (checked as any speaker: an id naming what is no person is
+    refused; one the KB does not know becomes a person of it, as the webhook's sender does)."""
     check_length(body.text, services.settings.limits.max_input_chars, "text")
-    result = await services.dialogues.engine.turn(body.text, speaker=UNKNOWN_AGENT)
+    speaker = body.sender or UNKNOWN_AGENT
+    await services.dialogues.engine.check_speaker(speaker, "sender")
+    result = await services.dialogues.engine.turn(body.text, speaker=speaker)
     label = _labeller(services.kb)
     return await run_in_threadpool(rasa.parse_result, body.text, result.intents, label)

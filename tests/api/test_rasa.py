@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from collections.abc import Callable
 
+import httpx
 from pydantic import SecretStr
 
 from api.rasa import parse_result, webhook_messages
@@ -68,6 +69,27 @@ def test_model_parse_shape(live: Live) -> None:
     assert live.client.post("/model/parse", json={}).status_code == 422
 
 
+def test_model_parse_takes_the_sender_as_the_speaker(live: Live) -> None:
+    """Rasa's /model/parse request has no speaker (text, message_id); ours takes the webhook's
+    `sender`, so "me" is someone: the recipient of "bring me the cookbook" is the sender."""
+    def parse(**body: str) -> httpx.Response:
+        return live.client.post("/model/parse", json={"text": "bring me the cookbook", **body})
+
+    parsed = parse(sender="person_tom").json()
+    assert parsed["intent"]["name"] == "__intent_bring_object__"
+    assert {e["entity"]: e["value"] for e in parsed["entities"]} == {"object": "book_1", "recipient": "person_tom"}
+    assert live.services.dialogues.ids() == ["default"]  # nothing recorded in a dialogue
+    for thing in ("book_1", "myself", "rdf:type"):  # checked as any speaker, before anything is learnt
+        refused = parse(sender=thing)
+        assert (refused.status_code, refused.json()["code"]) == (400, "not_a_person"), thing
+        assert "sender" in refused.json()["message"]
+    assert parse(sender="").status_code == 422
+    assert live.client.get("/kb/query", params={"pattern": "visitor_9 rdf:type ?c"}).json() == []
+    assert {e["entity"]: e["value"] for e in parse(sender="visitor_9").json()["entities"]}["recipient"] == \
+        "visitor_9"  # a sender the KB did not know is a person of it now, as the webhook's
+    assert {"c": "Human"} in live.client.get("/kb/query", params={"pattern": "visitor_9 rdf:type ?c"}).json()
+
+
 def test_rasa_style_token_parameter(live_factory: Callable[..., Live]) -> None:
     live = live_factory(Settings(scene=SCENE, token=SecretStr("rasa-secret")))
     message = {"sender": "u2", "message": "hello"}
@@ -108,7 +130,7 @@ def test_a_sender_the_kb_does_not_know_becomes_a_person_of_it(live: Live) -> Non
     assert intent["intent"] == "__intent_greet__" and intent["data"] == {"recipient": "u"}
     people = live.client.get("/kb/query", params={"pattern": "?p rdf:type Human"}).json()
     assert {"p": "u"} in people
-    # /model/parse has no speaker: nothing names one, and the KB gains nobody
+    # /model/parse without a sender has no speaker: nothing names one, and the KB gains nobody
     parsed = live.client.post("/model/parse", json={"text": "bring me the cookbook"}).json()
     assert all(entity["value"] != "__unknown_agent__" for entity in parsed["entities"])
     people_after = live.client.get("/kb/query", params={"pattern": "?p rdf:type Human"}).json()
