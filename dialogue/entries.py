@@ -4,12 +4,15 @@ before anything is recorded.
 An entry is a person's words, a system update (`__system__`: nobody uttered it) or the robot's own
 words (`__assistant__`, said elsewhere). Only some entries call for an answer: the robot's own words
 are recorded, never answered; a person who said nothing (an empty input, which chatbot_msgs allows)
-gets no answer and nothing is recorded; a system update, even an empty one, may ask the dialogue's
-role for its line (the ask role repeats its question). Edges that refuse a blank utterance outright
-(the REST routes) use `check_utterance`.
+gets no answer and nothing is recorded (`said_nothing`: over ROS, REST's interactions and the Rasa
+webhook alike); a system update, even an empty one, may ask the dialogue's role for its line (the
+ask role repeats its question). An edge with nothing to do for a blank utterance refuses it with
+`check_utterance` (`/model/parse`: there is nothing to parse).
 
 >>> answers("person_alice", "", True), answers("__system__", "", True), answers("__assistant__", "Hi", True)
 (False, True, False)
+>>> said_nothing("person_alice", " "), said_nothing("__system__", "")
+(True, False)
 """
 
 from __future__ import annotations
@@ -31,10 +34,14 @@ def check_utterance(text: str) -> str:
     return text
 
 
+def said_nothing(user_id: str, text: str) -> bool:
+    """Whether the entry is nothing said: empty or blank, and no system update."""
+    return not text.strip() and role_of(user_id) != "system"
+
+
 def answers(user_id: str, text: str, response_expected: bool) -> bool:
     """Whether the entry calls for the role's answer (see the module's docstring)."""
-    speaker = role_of(user_id)
-    return response_expected and speaker != "assistant" and (speaker == "system" or bool(text.strip()))
+    return response_expected and role_of(user_id) != "assistant" and not said_nothing(user_id, text)
 
 
 def check_id(dialogue_id: str) -> None:

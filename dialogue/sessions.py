@@ -35,7 +35,7 @@ from functools import partial
 from typing import Literal, ParamSpec, TypeVar
 
 from dialogue.engine import SORRY, DialogueEngine, TurnResult
-from dialogue.entries import answers, check_id, check_texts, check_utterance, entry_locale
+from dialogue.entries import answers, check_id, check_texts, check_utterance, entry_locale, said_nothing
 from dialogue.errors import DialogueExists, SessionError, UnknownDialogue
 from dialogue.history import ASSISTANT_USER_ID, SYSTEM_USER_ID, History, Utterance
 from dialogue.observers import TurnObserver, TurnRecord, notify
@@ -64,6 +64,7 @@ __all__ = [
     "SessionError",
     "UnknownDialogue",
     "check_utterance",
+    "said_nothing",
 ]
 
 P = ParamSpec("P")

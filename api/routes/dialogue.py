@@ -29,7 +29,6 @@ from dialogue.sessions import (
     DialogueManager,
     DialogueState,
     UnknownDialogue,
-    check_utterance,
 )
 
 router = APIRouter(prefix="/dialogues", tags=["dialogue"])
@@ -86,8 +85,9 @@ class InteractionRequest(BaseModel):
     model_config = ConfigDict(extra="forbid")
     user_id: str | None = Field(default=None, min_length=1,
                                 description="the speaker's person id, or __system__ / __assistant__")
-    input: Annotated[str, AfterValidator(check_utterance)] | None = Field(
-        default=None, description="what was said; not blank (4.0: the last utterance of history when absent)")
+    input: str | None = Field(
+        default=None, description="what was said (4.0: the last utterance of history when absent); empty: "
+        "nothing said, so no answer and nothing recorded (a __system__ update may be empty)")
     response_expected: bool = True
     locale: Locale = None
     history: list[Turn] | None = Field(default=None, description="the dialogue so far (4.0.0 shape); "
@@ -105,7 +105,7 @@ class InteractionRequest(BaseModel):
             last = self.history[-1]
             if last.speaker == ASSISTANT_USER_ID:
                 raise ValueError("the history ends with the robot's own utterance: nothing to answer")
-            self.user_id, self.input = last.speaker, check_utterance(last.text)
+            self.user_id, self.input = last.speaker, last.text
             self.history = self.history[:-1]
         elif self.user_id is None:
             raise ValueError("user_id is required with input")

@@ -18,7 +18,7 @@ from api.deps import Credentials, ServicesDep, SettingsDep
 from api.errors import ApiError
 from api.limits import check_length
 from dialogue.engine import TurnResult
-from dialogue.sessions import DialogueManager, SessionError, check_utterance
+from dialogue.sessions import DialogueManager, SessionError, check_utterance, said_nothing
 from kb import KbError
 from kb.protocol import KnowledgeBase
 
@@ -37,7 +37,7 @@ def _rasa_access(write: bool) -> Any:
 class WebhookMessage(BaseModel):
     model_config = ConfigDict(extra="ignore")
     sender: str = Field(min_length=1, description="the conversation id; also the user id")
-    message: Annotated[str, AfterValidator(check_utterance)] = Field(description="what was said; not blank")
+    message: str = Field(description="what was said; blank: nothing said, answered [] as Rasa does")
     metadata: dict[str, Any] | None = None
     input_channel: str | None = None
 
@@ -73,6 +73,8 @@ async def webhook(body: WebhookMessage, services: ServicesDep,
         raise ApiError(400, "unsupported", "stream=true is not supported; omit it")
     check_length(body.message, services.settings.limits.max_input_chars, "message")
     await services.dialogues.engine.check_speaker(body.sender, "sender")  # before its dialogue is made
+    if said_nothing(body.sender, body.message):  # no answer, nothing recorded, no dialogue made
+        return []
     key = rasa.dialogue_key(body.sender)
     await _ensure_dialogue(services.dialogues, key)
     result: TurnResult = await services.dialogues.interact(body.sender, body.message, dialogue_id=key)

@@ -161,17 +161,29 @@ def test_health_reports_the_model(live_factory) -> None:  # type: ignore[no-unty
     assert live.client.get("/version").json()["name"] == "situated"
 
 
-def test_an_empty_or_blank_input_is_refused_and_not_recorded(live: Live) -> None:
-    dialogues = live.services.dialogues
+def test_an_empty_or_blank_input_is_nothing_said_no_answer_and_nothing_recorded(live: Live) -> None:
+    """As over ROS (chatbot_msgs allows an empty input): a person who said nothing gets no answer,
+    and nothing is recorded, traced or pushed; an empty system update still asks an ask dialogue."""
+    client, dialogues = live.client, live.services.dialogues
+    client.post("/dialogues/default/interactions", json={"user_id": "person_alice", "input": "hello"})
+    history, pushed = dialogues.get("default").history, live.services.bus.last_seq
+    traced = len(client.get("/dialogues/default/turns").json()["turns"])
+    nothing = {"response": "", "intents": [], "error_msg": ""}
     for text in ("", "   ", "\n\t"):
         for expected in (True, False):
-            refused = live.client.post("/dialogues/default/interactions", json={
+            answer = client.post("/dialogues/default/interactions", json={
                 "user_id": "person_alice", "input": text, "response_expected": expected})
-            assert refused.status_code == 422, refused.text
-            body = refused.json()
-            assert body["code"] == "invalid_request" and "input" in body["message"]
-            assert "empty or blank" in body["message"]
-    assert dialogues.get("default").history == ()
+            assert (answer.status_code, answer.json()) == (200, nothing), answer.text
+            assert "X-Situated-Turn" not in answer.headers
+        stateless = client.post("/dialogues/dm-7/interactions", json={"role": {"name": "__default__"}, "history": [
+            {"speaker": "person_alice", "text": "hello"}, {"speaker": "person_tom", "text": text}]})
+        assert stateless.status_code == 200 and stateless.json()["response"] == "" and stateless.json()["intents"] == []
+    assert dialogues.get("default").history == history and live.services.bus.last_seq == pushed
+    assert len(client.get("/dialogues/default/turns").json()["turns"]) == traced
+    form = json.dumps({"question": "How old are you?", "result_schema_properties": {"age": {"type": "integer"}}})
+    asked = client.post("/dialogues", json={"role": {"name": "__ask__", "configuration": form}}).json()["dialogue_id"]
+    prompt = client.post(f"/dialogues/{asked}/interactions", json={"user_id": "__system__", "input": ""})
+    assert prompt.json()["response"] == "How old are you?"
 
 
 def test_concurrent_turns_on_one_dialogue_each_answer_by_their_own_deadline(live_factory) -> None:  # type: ignore[no-untyped-def]

@@ -112,13 +112,18 @@ def test_model_parse_follows_the_access_rule_of_dialogue_turns(live_factory: Cal
         assert allowed.status_code == 200 and allowed.json()["intent"]["name"] == "__intent_grab_object__"
 
 
-def test_blank_messages_are_refused(live: Live) -> None:
+def test_a_blank_message_is_answered_with_no_message_and_parse_refuses_blank_text(live: Live) -> None:
+    """Rasa answers a blank message 200 with no message; nothing is recorded, no dialogue made. The
+    sender is still checked. /model/parse has nothing to parse in blank text: 422."""
     for text in ("", "  ", "\n"):
-        refused = live.client.post("/webhooks/rest/webhook", json={"sender": "person_alice", "message": text})
-        assert refused.status_code == 422 and "empty or blank" in refused.json()["message"]
+        answer = live.client.post("/webhooks/rest/webhook", json={"sender": "person_alice", "message": text})
+        assert (answer.status_code, answer.json()) == (200, [])
         parsed = live.client.post("/model/parse", json={"text": text})
         assert parsed.status_code == 422 and "empty or blank" in parsed.json()["message"]
     assert "rasa:person_alice" not in live.services.dialogues.ids()
+    thing = live.client.post("/webhooks/rest/webhook", json={"sender": "book_1", "message": ""})
+    assert (thing.status_code, thing.json()["code"]) == (400, "not_a_person")
+    assert live.client.post("/webhooks/rest/webhook", json={"sender": "person_alice"}).status_code == 422
 
 
 def test_a_sender_the_kb_does_not_know_becomes_a_person_of_it(live: Live) -> None:

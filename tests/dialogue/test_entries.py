@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import pytest
 
-from dialogue.entries import answers, check_texts, check_utterance, entry_locale
+from dialogue.entries import answers, check_texts, check_utterance, entry_locale, said_nothing
 from dialogue.errors import SessionError
 from dialogue.history import Utterance
 
@@ -34,3 +34,10 @@ def test_locales_and_texts_are_checked() -> None:
         entry_locale("english please")
     with pytest.raises(SessionError, match=r"history turn 0.*not valid Unicode"):
         check_texts("p", "hi", None, [Utterance("p", "bad \ud800")])
+
+
+def test_nothing_said_is_a_blank_entry_that_is_no_system_update() -> None:
+    for user in ("person_alice", "__assistant__"):
+        assert said_nothing(user, "") and said_nothing(user, " \n\t")
+        assert not said_nothing(user, "hi")
+    assert not said_nothing("__system__", "") and not answers("person_alice", " ", True)
