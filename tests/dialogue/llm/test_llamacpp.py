@@ -269,7 +269,9 @@ def test_engine_emits_grounded_intent_from_the_local_model(model: LlamaCppModel,
     fake.set(answer=GRAB_CUP)
     kb = scene_kb("kitchen")
     try:
-        result = asyncio.run(DialogueEngine(kb, model).turn("pick up the cup", speaker="person_alice"))
+        # A deadline a loaded machine meets: the worker process starts inside this turn.
+        engine = DialogueEngine(kb, model, EngineConfig(deadline=120.0))
+        result = asyncio.run(engine.turn("pick up the cup", speaker="person_alice"))
     finally:
         kb.close()
     assert [(i.intent, i.data) for i in result.intents] == [(GRAB_OBJECT, {"object": "cup_1"})]
@@ -347,7 +349,8 @@ def test_health_reports_the_worker_crash_and_restart(model: LlamaCppModel, fake:
     from api.settings import Settings
 
     fake.set(crash="segv")
-    with TestClient(create_app(Settings(scene="none"), model=model)) as client:
+    # A deadline a loaded machine meets: the worker process starts (and crashes) inside this turn.
+    with TestClient(create_app(Settings(scene="none", deadline=120), model=model)) as client:
         turn = client.post("/dialogues/default/interactions", json={"user_id": "person_alice", "input": "hi"})
         assert turn.status_code == 200 and "killed by SIGSEGV" in turn.json()["error_msg"]
         fake.set(crash=None)
