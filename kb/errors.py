@@ -46,6 +46,11 @@ class InvalidSparql(KbError):
     """Text that does not parse as SPARQL (of the kind expected)."""
 
 
+class QueryEvaluationError(KbError):
+    """A query whose evaluation met values it cannot combine where SPARQL has no error value to
+    give (an aggregate, an ordering): it was stopped, nothing changed."""
+
+
 class UnsupportedUpdate(KbError):
     """A SPARQL Update other than INSERT DATA / DELETE DATA on the model itself."""
 

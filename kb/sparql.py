@@ -22,9 +22,10 @@ from rdflib.store import Store
 from rdflib.term import Node as RdfNode
 
 from kb.deadline import Deadline, TimedIndex
-from kb.errors import InvalidSparql, KbError, QueryTooLarge, UnsupportedUpdate
+from kb.errors import InvalidSparql, KbError, QueryEvaluationError, QueryTooLarge, UnsupportedUpdate
 from kb.index import TripleIndex
 from kb.sparqlbudget import bound, check_size
+from kb.sparqlexpr import EVALUATION_ERRORS
 from kb.sparqlparse import Parser, parse
 from kb.terms import ORO, PREFIXES, Node, Triple
 from kb.unicode import check_terms, check_text
@@ -211,11 +212,21 @@ def execute(index: TripleIndex, query: str | CheckedQuery, deadline: Deadline | 
     prepared = checked.prepared
     bound(prepared, deadline, max_rows)
     store = IndexStore(index if deadline is None else TimedIndex(index, deadline))
-    result = Graph(store=store, identifier=_GRAPH_ID).query(prepared)
-    if result.type == "SELECT":
-        result.bindings  # noqa: B018 - materialise while the caller holds the KB lock
+    try:
+        result = Graph(store=store, identifier=_GRAPH_ID).query(prepared)
+        if result.type == "SELECT":
+            result.bindings  # noqa: B018 - materialise while the caller holds the KB lock
+    except EVALUATION_ERRORS as exc:
+        # An expression's errors are error values (kb.sparqlexpr); what reaches here is an
+        # aggregate's (SUM of a duration and a number, of decimals past the largest one).
+        raise QueryEvaluationError(f"the query could not be evaluated: {_reason(exc)}") from None
     check_size(result, max_rows)
     return result
+
+
+def _reason(exc: BaseException) -> str:
+    text = str(exc) or type(exc).__name__
+    return text if len(text) <= 200 else text[:200] + "..."
 
 
 def serialize(result: Result, fmt: str) -> bytes:

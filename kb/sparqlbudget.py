@@ -7,6 +7,8 @@ The deadline is checked where rdflib's engine spends its time:
   billion rows from 250 characters), so each gets a filter that only looks at the clock;
 - every expression evaluated (a chain of BINDs reads nothing either);
 - REGEX and REPLACE, which get the rest of the budget as their match timeout (kb.sparqlregex).
+Every expression's Python errors are SPARQL expression errors and its numbers are bounded
+(kb.sparqlexpr), so no value makes a server error or a conversion that holds the GIL for minutes.
 Every string an expression builds is measured (kb.sparqlspend: CONCAT before it joins, REPLACE
 as it goes, the others on their result; GROUP_CONCAT's values as they are gathered), so no
 expression builds more than the bounds allow, with or without a deadline.
@@ -28,6 +30,7 @@ from rdflib.query import Result
 
 from kb.deadline import Deadline
 from kb.errors import TooManyRows
+from kb.sparqlexpr import guarded
 from kb.sparqlregex import bound_regex
 from kb.sparqlspend import Spend
 
@@ -75,8 +78,10 @@ def _bound_expression(node: Expr, deadline: Deadline | None, spend: Spend) -> No
             return result
 
         node._evalfn = MethodType(evaluate, node)
+    built: Callable[[Any], Any] = node._evalfn  # type: ignore[assignment]
+    node._evalfn = MethodType(guarded(node, built, name), node)
     if deadline is not None:
-        measured: Callable[[Any], Any] = node._evalfn  # type: ignore[assignment]
+        measured: Callable[[Any], Any] = node._evalfn
 
         def timed(expr: Expr, ctx: Any) -> Any:
             deadline.check()
