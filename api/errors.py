@@ -4,7 +4,8 @@ Every failure goes through here: HTTP errors raised by the framework (404, 405),
 validation (422; 415 for a body sent without saying it is JSON), ``KbError`` and
 ``DialogueError`` (400; a failing model is 503), a query over the service's bounds (503
 ``query_timeout``, 413 ``too_many_rows`` or ``query_too_large``), a write whose TBox change is over
-them (413 ``tbox_too_large``), a full or failing data directory (507 ``storage_full``, 503
+them (413 ``tbox_too_large``) or whose facts would cost the reasoner too much (413
+``reasoning_too_large``), a full or failing data directory (507 ``storage_full``, 503
 ``storage_unavailable``), the service's own ``ApiError`` (auth, limits) and unexpected errors (500
 with a generic message; the traceback goes to the log only).
 """
@@ -32,6 +33,7 @@ from kb.errors import (
     ModelLimit,
     QueryTimeout,
     QueryTooLarge,
+    ReasoningTooLarge,
     StorageError,
     StorageFull,
     StoreUnavailable,
@@ -180,6 +182,10 @@ async def _tbox_too_large(request: Request, exc: Exception) -> JSONResponse:
     return error_response(413, "tbox_too_large", f"{exc} (the service's limit)")
 
 
+async def _reasoning_too_large(request: Request, exc: Exception) -> JSONResponse:
+    return error_response(413, "reasoning_too_large", f"{exc} (the service's limit)")
+
+
 async def _storage_full(request: Request, exc: Exception) -> JSONResponse:
     return error_response(507, "storage_full", str(exc))
 
@@ -221,6 +227,7 @@ def install_error_handlers(app: FastAPI) -> None:
     app.add_exception_handler(QueryTimeout, _over_budget)
     app.add_exception_handler(QueryTooLarge, _query_too_large)
     app.add_exception_handler(TBoxTooLarge, _tbox_too_large)
+    app.add_exception_handler(ReasoningTooLarge, _reasoning_too_large)
     app.add_exception_handler(StorageFull, _storage_full)  # before KbError's 400: more specific
     app.add_exception_handler(StorageError, _storage_error)
     app.add_exception_handler(DialogueError, _dialogue_error)

@@ -33,6 +33,7 @@ from kb import KB, KbError
 from kb.errors import StorageError
 from kb.journal import Journal
 from kb.protocol import KnowledgeBase
+from kb.reasonbudget import ReasoningBounds
 from kb.sparqlstore.endpoint import SparqlEndpoint
 from kb.sparqlstore.mirror import SparqlMirror
 from kb.sparqlstore.remote import RemoteKB
@@ -245,7 +246,10 @@ def start_services(settings: Settings, kb: KB | None = None, model: ChatModel | 
     the_kb = kb if kb is not None else KB(max_models_per_write=limits.max_models,
                                           max_models=limits.max_total_models,
                                           max_model_statements=limits.max_model_statements,
-                                          tbox_bounds=bounds)
+                                          tbox_bounds=bounds,
+                                          reasoning_bounds=ReasoningBounds(
+                                              limits.max_reasoning_steps,
+                                              limits.max_reasoning_steps_per_statement))
     journal: Journal | None = None
     store: Store | None = None
     bus = intent_bus(settings)

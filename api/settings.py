@@ -55,6 +55,14 @@ class Limits(BaseModel):
                                 "hierarchy's depth)")
     max_tbox_depth: int = Field(default=256, ge=1, description="superclasses of one class (superproperties "
                                 "of one property) the TBox a write makes may give")
+    max_reasoning_steps: int = Field(default=200_000, ge=1, description="derivation steps the reasoner "
+                                     "may take for one write's facts, plus max_reasoning_steps_per_statement "
+                                     "for each statement it writes (facts along a transitive property "
+                                     "close into the square of their chain's length); a write past it is "
+                                     "refused (413 reasoning_too_large)")
+    max_reasoning_steps_per_statement: int = Field(default=16, ge=1, description="derivation steps each "
+                                                   "statement of a write adds to its allowance (a bulk "
+                                                   "load takes 5 to 9)")
 
 
 class IntentSettings(BaseModel):

@@ -73,6 +73,11 @@ class TBoxTooLarge(KbError):
     was written)."""
 
 
+class ReasoningTooLarge(KbError):
+    """A write whose facts would cost the reasoner more derivations than one write may take
+    (nothing of it was written)."""
+
+
 class QueryTimeout(KbError):
     """A query that did not finish within its time budget (it was stopped, nothing changed)."""
 

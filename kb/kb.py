@@ -40,6 +40,7 @@ from kb.modelbounds import ModelBounds
 from kb.models import ALL_MODELS, DEFAULT_MODEL, Model, Models
 from kb.query import Query, holds, rows_in
 from kb.rdfio import default_ontology, parse_location
+from kb.reasonbudget import ReasoningBounds
 from kb.sparql import check_query, execute
 from kb.summary import Summary
 from kb.tboxbudget import TBoxBounds
@@ -56,7 +57,8 @@ class KB(Facade[Model]):
                  clock: Callable[[], float] = time.time,
                  max_models_per_write: int = DEFAULT_MAX_MODELS_PER_WRITE,
                  max_models: int | None = None, max_model_statements: int | None = None,
-                 tbox_bounds: TBoxBounds | None = None) -> None:
+                 tbox_bounds: TBoxBounds | None = None,
+                 reasoning_bounds: ReasoningBounds | None = None) -> None:
         """``ontology``: True for the default ORO-compatible ontology, False for none, or files.
         ``max_models_per_write``: the most models one write may name (each new model starts with
         a copy of the ontology's closure, so one write naming thousands would take minutes and
@@ -64,7 +66,7 @@ class KB(Facade[Model]):
         included), ``max_model_statements``: the most statements of its own a model other than
         ``default`` holds; None: no bound (kb.modelbounds; a write past one is ``ModelLimit``).
         ``tbox_bounds``: what one write's TBox change may cost the reasoner (``kb.tboxbudget``;
-        the defaults when None)."""
+        the defaults when None), ``reasoning_bounds`` what its facts may (``kb.reasonbudget``)."""
         bounds = ModelBounds(max_models, max_model_statements)
         if isinstance(max_models_per_write, bool) or not isinstance(max_models_per_write, int) \
                 or max_models_per_write < 1:
@@ -78,7 +80,7 @@ class KB(Facade[Model]):
             defaults = tuple(t for path in ontology for t in parse_location(str(path)))
         self._lock = threading.RLock()
         self._models = Models(defaults)
-        self._writer = Writer(self._lock, self._models, render, clock, bounds, tbox_bounds)
+        self._writer = Writer(self._lock, self._models, render, clock, bounds, tbox_bounds, reasoning_bounds)
         self._clock = clock
 
     def close(self) -> None:

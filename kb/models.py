@@ -13,7 +13,9 @@ from dataclasses import dataclass, field
 from itertools import chain
 from typing import Any
 
+from kb.errors import ReasoningTooLarge
 from kb.index import Interner, TripleIndex
+from kb.reasonbudget import StepBudget
 from kb.reasoner import Reasoner
 from kb.tbox import CompiledTBox, compile_tbox, is_schema_triple
 from kb.tboxbudget import TBoxBounds
@@ -71,8 +73,9 @@ class Model:
         return compile_tbox(chain(kept, schema_add), bounds)
 
     def apply(self, add: Sequence[Triple], remove: Sequence[Triple],
-              tbox: CompiledTBox | None = None) -> Delta:
-        """Retract then assert; reason incrementally, or recompile when the TBox changes (to
+              tbox: CompiledTBox | None = None, budget: StepBudget | None = None) -> Delta:
+        """Retract then assert; reason incrementally within the ``budget``'s steps (past them,
+        ``ReasoningTooLarge`` with the model as it was), or recompile when the TBox changes (to
         ``tbox`` when ``plan_tbox`` made it for this very change)."""
         delta = Delta(self.name)
         asserted = self.asserted
@@ -90,8 +93,22 @@ class Model:
         if any(is_schema_triple(t) for t in changed):
             self._recompile(delta, tbox)
             return delta
-        removed, readded = self.reasoner.delete(delta.asserted_removed)
-        added = self.reasoner.insert(delta.asserted_added)
+        try:
+            removed, readded = self.reasoner.delete(delta.asserted_removed, budget)
+            try:
+                added = self.reasoner.insert(delta.asserted_added, budget)
+            except ReasoningTooLarge:
+                for t in readded:
+                    self.closure.remove(*t)
+                for t in removed:
+                    self.closure.insert(*t)
+                raise
+        except ReasoningTooLarge:
+            for t in delta.asserted_added:
+                asserted.remove(*t)
+            for t in delta.asserted_removed:
+                asserted.insert(*t)
+            raise
         # A fact removed by DRed and derived again by the additions is no change at all.
         if removed and added:
             gone, new = set(removed), set(added)

@@ -14,12 +14,19 @@ from collections.abc import Iterable, Iterator
 from rdflib import Literal
 from rdflib.namespace import RDF
 
+from kb.errors import ReasoningTooLarge
 from kb.index import TripleIndex
+from kb.reasonbudget import StepBudget
 from kb.tbox import CompiledTBox
 from kb.terms import Node, Triple
 
 TYPE = RDF.type
 _same_text = str.__eq__  # C code: rules out most terms before rdflib's Python __eq__
+# Steps counted before they are spent from a write's budget (a check per step would cost more).
+_SPEND_EVERY = 1024
+# What a triple new to the closure (or withdrawn from it) costs besides the step that found it: its
+# place in the indexes (and taking it out again if the write is refused).
+_NEW = 1
 
 
 class Reasoner:
@@ -40,10 +47,11 @@ class Reasoner:
         intern = self.closure.interner.triple
         self.insert([intern(t) for t in self.tbox.schema_closure()])
 
-    def insert(self, triples: Iterable[Triple]) -> list[Triple]:
+    def insert(self, triples: Iterable[Triple], budget: StepBudget | None = None) -> list[Triple]:
         """Add triples (already asserted, made of the KB's interned terms) to the closure; return
         every triple new to it. Derived triples are built from those terms and the TBox's, so
-        they are interned too.
+        they are interned too. Past the ``budget``'s steps, ``ReasoningTooLarge`` with the
+        closure as it was.
 
         A new type gives all its superclasses at once (the table is closed), and the types that
         gives need not give theirs again (they are among them): only their other rules run."""
@@ -51,28 +59,46 @@ class Reasoner:
         added = [t for t in triples if insert(*t)]
         queue = list(added)
         tp, superclasses = self.type, self.tbox.superclasses
+        steps = 0
 
         def derive(found: Iterable[Triple]) -> None:
+            nonlocal steps
             for derived in found:
+                steps += 1
                 if insert(*derived):
+                    steps += _NEW
                     added.append(derived)
                     queue.append(derived)
 
-        while queue:
-            triple = queue.pop()
-            s, p, o = triple
-            if p is tp or (_same_text(p, TYPE) and p == TYPE):
-                for sup in superclasses.get(o, ()):
-                    if insert(s, tp, sup):
-                        added.append((s, tp, sup))
-                        derive(self._type_rules(s, sup))
-                derive(self._type_rules(s, o))
-            else:
-                derive(self.consequences(triple))
+        try:
+            while queue:
+                triple = queue.pop()
+                s, p, o = triple
+                if p is tp or (_same_text(p, TYPE) and p == TYPE):
+                    for sup in superclasses.get(o, ()):
+                        if insert(s, tp, sup):
+                            steps += _NEW
+                            added.append((s, tp, sup))
+                            derive(self._type_rules(s, sup))
+                    derive(self._type_rules(s, o))
+                else:
+                    derive(self.consequences(triple))
+                if budget is not None and steps >= _SPEND_EVERY:
+                    budget.spend(steps)
+                    steps = 0
+            if budget is not None:
+                budget.spend(steps)
+        except ReasoningTooLarge:
+            remove = self.closure.remove
+            for t in added:
+                remove(*t)
+            raise
         return added
 
-    def delete(self, triples: Iterable[Triple]) -> tuple[list[Triple], list[Triple]]:
+    def delete(self, triples: Iterable[Triple],
+               budget: StepBudget | None = None) -> tuple[list[Triple], list[Triple]]:
         """Withdraw triples no longer asserted; return (removed, re-added) net of each other.
+        Past the ``budget``'s steps, ``ReasoningTooLarge`` with the closure as it was.
 
         Over-deletion removes everything that has a derivation through a withdrawn fact; then
         each over-deleted fact with another one-step derivation from what is left comes back,
@@ -81,17 +107,29 @@ class Reasoner:
         closure, asserted = self.closure, self.asserted
         over: set[Triple] = set()
         queue = [t for t in triples if t in closure and t not in asserted]
+        steps = 0
         while queue:
             t = queue.pop()
             if t in over:
                 continue
             over.add(t)
             for derived in self.consequences(t):
+                steps += 1
                 if derived not in over and derived not in asserted and derived in closure:
                     queue.append(derived)
+            if budget is not None and steps >= _SPEND_EVERY:
+                budget.spend(steps)  # nothing has changed yet
+                steps = 0
+        if budget is not None:
+            budget.spend(steps + len(over) * _NEW)
         for t in over:
             closure.remove(*t)
-        back = self.insert([t for t in over if self.derivable(t)])
+        try:
+            back = self.insert([t for t in over if self.derivable(t)], budget)
+        except ReasoningTooLarge:
+            for t in over:
+                closure.insert(*t)
+            raise
         if not back:
             return list(over), []
         restored = set(back)

@@ -19,13 +19,14 @@ from rdflib.namespace import OWL, RDF
 
 from kb.batch import ACTIVE_CONCEPT, Batch, last_functional_wins
 from kb.deadline import Deadline, timed
-from kb.errors import KbError, StorageFull
+from kb.errors import KbError, ReasoningTooLarge, StorageFull
 from kb.events import Delivery, Firing, Subscriptions
 from kb.gcpause import paused
 from kb.lifespan import Expiries
 from kb.modelbounds import ModelBounds
 from kb.models import ALL_MODELS, Delta, Model, Models, ModelsState
 from kb.query import Query, Row, holds_row, rows_in
+from kb.reasonbudget import ReasoningBounds, StepBudget
 from kb.status import StatusCell
 from kb.summary import Summary, summarise
 from kb.tboxbudget import TBoxBounds
@@ -69,11 +70,13 @@ class Writer:
 
     def __init__(self, lock: threading.RLock, models: Models, render: Render,
                  clock: Callable[[], float] = time.time, bounds: ModelBounds | None = None,
-                 tbox_bounds: TBoxBounds | None = None) -> None:
+                 tbox_bounds: TBoxBounds | None = None,
+                 reasoning_bounds: ReasoningBounds | None = None) -> None:
         self.lock = lock
         self.models = models
         self.bounds = bounds or ModelBounds()
         self.tbox_bounds = tbox_bounds if tbox_bounds is not None else TBoxBounds()
+        self.reasoning_bounds = reasoning_bounds if reasoning_bounds is not None else ReasoningBounds()
         self.subscriptions = Subscriptions()
         self.expiries = Expiries()
         self.revision = 0
@@ -180,15 +183,22 @@ class Writer:
             for name in undo.new_models:
                 self.models.drop(name)
             raise
-        for (name, model, add, remove), tbox in zip(changes, tboxes, strict=True):
-            self.expiries.remember(name, (*add, *remove), undo.expiries)
-            delta = model.apply(add, remove, tbox)
-            if len(self.expiries):
-                for t in delta.asserted_removed:
-                    self.expiries.discard(name, t)
-            self.expiries.stamp(name, add, batch.lifespan_of, now, undo.expiries, expiries)
-            if delta or expiries:
-                deltas.append(delta)
+        budget = StepBudget(self.reasoning_bounds.allowance(batch.size))
+        applied: list[Delta] = []
+        try:
+            for (name, model, add, remove), tbox in zip(changes, tboxes, strict=True):
+                self.expiries.remember(name, (*add, *remove), undo.expiries)
+                delta = model.apply(add, remove, tbox, budget)
+                applied.append(delta)
+                if len(self.expiries):
+                    for t in delta.asserted_removed:
+                        self.expiries.discard(name, t)
+                self.expiries.stamp(name, add, batch.lifespan_of, now, undo.expiries, expiries)
+                if delta or expiries:
+                    deltas.append(delta)
+        except ReasoningTooLarge:  # the model that ran out is as it was; the others are put back
+            self._revert(applied, undo)
+            raise
         if not deltas:
             return [], None
         self.revision += 1
@@ -218,8 +228,23 @@ class Writer:
             raise
 
     def _undo(self, commit: Commit, undo: _Undo, accepted: list[CommitListener]) -> None:
+        deltas, restored = self._revert(commit.deltas, undo)
+        if not accepted:
+            self.revision -= 1  # nobody saw the refused revision
+            return
+        self.revision += 1
+        undoing = Commit(self.revision, tuple(deltas), tuple(restored))
+        for listener in accepted:
+            try:
+                listener(undoing)
+            except (KbError, OSError):
+                log.exception("a commit listener could not take the undoing of a refused commit")
+
+    def _revert(self, applied: Iterable[Delta],
+                undo: _Undo) -> tuple[list[Delta], list[tuple[str, Triple, float]]]:
+        """Put back what a batch changed in memory; return the undoing deltas and expiries."""
         deltas = []
-        for delta in commit.deltas:
+        for delta in applied:
             model = self.models.get(delta.model)
             if model is not None:
                 deltas.append(model.apply(delta.asserted_removed, delta.asserted_added))
@@ -232,16 +257,7 @@ class Writer:
             restored.append((name, triple, at or 0.0))
         for name in undo.new_models:
             self.models.drop(name)
-        if not accepted:
-            self.revision -= 1  # nobody saw the refused revision
-            return
-        self.revision += 1
-        undoing = Commit(self.revision, tuple(deltas), tuple(restored))
-        for listener in accepted:
-            try:
-                listener(undoing)
-            except (KbError, OSError):
-                log.exception("a commit listener could not take the undoing of a refused commit")
+        return deltas, restored
 
     def _evaluate(self, deltas: Iterable[Delta]) -> list[Delivery]:
         changed = [d for d in deltas if d.added or d.removed]

@@ -190,3 +190,16 @@ def test_a_tbox_write_past_the_bounds_is_refused_while_turns_keep_answering(live
     # nothing of it written (the turns write what they note of the speaker)
     assert "http://x.org/" not in client.get("/kb/export", headers={"accept": "application/n-triples"}).text
     assert all(status == 200 and took < 4.0 + 3 for status, took in answered), answered
+
+
+def test_a_transitive_chain_past_the_reasoning_allowance_is_a_413(live_factory) -> None:  # type: ignore[no-untyped-def]
+    # issue 26, rerun of 1d: 300 statements along behind/inFrontOf took 23 s under the KB lock
+    live = live_factory(Settings(scene=SCENE, token=SecretStr("t0ken")))
+    auth = {"authorization": "Bearer t0ken"}
+    chain = [f"o{i} behind o{i + 1}" for i in range(300)]
+    started = time.monotonic()
+    refused = live.client.post("/kb/revise", headers=auth, json={"statements": chain, "method": "add"})
+    assert (refused.status_code, refused.json()["code"]) == (413, "reasoning_too_large"), refused.text
+    assert "derivation steps" in refused.json()["message"]
+    assert time.monotonic() - started < 10
+    assert live.client.post("/kb/query", json={"patterns": ["o0 behind ?x"]}).json() == []
