@@ -3,12 +3,14 @@
 ``check`` reads the snapshot and every journal record and says what is intact, what a crash
 left (a last record cut short, a temporary snapshot: both harmless, handled at start) and what is
 damaged (a bad snapshot; bytes that are no intact record, a complete last record that fails its
-checksum included; a journal that does not continue the snapshot): the service refuses to start
-on those rather than lose acknowledged writes. ``repair`` keeps each damaged file beside the new
+checksum included; a journal that does not continue the snapshot, or whose records do not follow
+each other revision by revision): the service refuses to start on those rather than lose
+acknowledged writes. ``repair`` keeps each damaged file beside the new
 one (``NAME.damaged-TIMESTAMP``) and writes what can be recovered: every intact journal record,
 and from a snapshot whose checksum fails, every statement of it that still reads (of one cut
 short, every statement before the cut). Revisions that neither holds any more are then marked
-lost in the snapshot, so that the service starts with everything else and says what was lost.
+lost, in the snapshot or, where journal records are missing, by a marker record in the journal,
+so that the service starts with everything else and says what was lost.
 Run it while the service is stopped.
 """
 
@@ -27,7 +29,17 @@ from rdflib import BNode
 
 from kb.errors import KbError, storage_error
 from kb.journal import JOURNAL, SNAPSHOT, SNAPSHOT_TMP
-from kb.records import describe_missing, frame, missing_revisions, parse_nt, read_snapshot, scan
+from kb.records import (
+    Break,
+    breaks,
+    describe_missing,
+    first_revision,
+    frame,
+    missing_revisions,
+    parse_nt,
+    read_snapshot,
+    scan,
+)
 
 #: The finding about the two files together: does the journal continue the snapshot?
 REVISIONS = "revisions"
@@ -77,6 +89,10 @@ def check(directory: str | Path) -> Report:
     missing = _missing(folder)
     if missing is not None:
         report.findings.append(Finding(REVISIONS, "damaged", missing[1]))
+    gaps = _breaks(folder)
+    if gaps:
+        report.findings.append(Finding(REVISIONS, "damaged", "; ".join(g.describe() for g in gaps) +
+                                       "; the service will not start without those writes"))
     return report
 
 
@@ -84,11 +100,12 @@ def repair(directory: str | Path) -> Report:
     """Repair what ``check`` finds damaged; returns the check before, with what was done."""
     report = check(directory)
     folder = report.directory
-    repairs = {SNAPSHOT: _repair_snapshot, JOURNAL: _repair_journal}
+    damaged = {f.name for f in report.findings if f.state == "damaged"}
     try:
-        for finding in report.findings:
-            if finding.state == "damaged" and finding.name in repairs:
-                report.actions.append(repairs[finding.name](folder / finding.name))
+        if SNAPSHOT in damaged:  # first: the journal is judged against what it ends at
+            report.actions.append(_repair_snapshot(folder / SNAPSHOT))
+        if JOURNAL in damaged or _breaks(folder):
+            report.actions.append(_repair_journal(folder))
         # After those repairs: what the snapshot ends at and the journal starts from.
         missing = _missing(folder)
         if missing is not None:
@@ -98,18 +115,36 @@ def repair(directory: str | Path) -> Report:
     return report
 
 
+def _snapshot_revision(folder: Path) -> int | None:
+    """The revision the snapshot ends at (0 without one), None when it cannot be read."""
+    path = folder / SNAPSHOT
+    if not path.exists():
+        return 0
+    try:
+        revision: int = read_snapshot(path.read_bytes())["revision"]
+    except ValueError:  # a damaged snapshot: its own finding says so
+        return None
+    return revision
+
+
+def _breaks(folder: Path) -> list[Break]:
+    """Where the journal's intact records, after the snapshot, do not follow each other."""
+    revision = _snapshot_revision(folder)
+    journal = folder / JOURNAL
+    if revision is None or not journal.exists():
+        return []
+    return breaks(revision, scan(journal.read_bytes()).records)
+
+
 def _missing(folder: Path) -> tuple[range, str] | None:
     """The revisions neither a readable snapshot (or its absence) nor the journal holds, and why."""
     path = folder / SNAPSHOT
-    revision = 0
-    if path.exists():
-        try:
-            revision = read_snapshot(path.read_bytes())["revision"]
-        except ValueError:  # a damaged snapshot: its own finding says so
-            return None
+    revision = _snapshot_revision(folder)
+    if revision is None:
+        return None
     journal = folder / JOURNAL
     found = scan(journal.read_bytes() if journal.exists() else b"")
-    missing = missing_revisions(revision, (r["revision"] for _s, _e, r in found.records))
+    missing = missing_revisions(revision, (first_revision(r) for _s, _e, r in found.records))
     if missing is None:
         return None
     named = f"the snapshot (revision {revision})" if path.exists() else "a snapshot (there is none)"
@@ -248,14 +283,38 @@ def _check_journal(path: Path) -> Finding:
     return Finding(JOURNAL, "ok", intact)
 
 
-def _repair_journal(path: Path) -> str:
+def _repair_journal(folder: Path) -> str:
+    """Rewrite the journal with its intact records in order: a marker of lost revisions (a record
+    that changes nothing) where records are missing, and without the damaged bytes and the records
+    that repeat or go back on a revision."""
+    path = folder / JOURNAL
     data = path.read_bytes()
     found = scan(data)
     kept = _keep(path)
-    _replace(path, b"".join(data[start:end].rstrip(b"\n") + b"\n" for start, end, _record in found.records))
-    lost = sum(d.end - d.start for d in found.damage) + found.torn_bytes
-    return (f"{JOURNAL} rewritten with its {len(found.records)} intact record(s) ({lost} damaged bytes "
-            f"left out); the original is kept as {kept.name}")
+    at = {gap.at: gap for gap in breaks(_snapshot_revision(folder) or 0, found.records)}
+    lines: list[bytes] = []
+    lost: list[str] = []
+    dropped: list[int] = []
+    for start, end, record in found.records:
+        gap = at.get(start)
+        if gap is not None and gap.found <= gap.after:
+            dropped.append(record["revision"])
+            continue
+        if gap is not None:
+            lines.append(frame({"revision": gap.found - 1, "lost": gap.after + 1}))
+            lost.append(f"{gap.after + 1}..{gap.found - 1}")
+        lines.append(data[start:end].rstrip(b"\n") + b"\n")
+    _replace(path, b"".join(lines))
+    damaged = sum(d.end - d.start for d in found.damage) + found.torn_bytes
+    said = [f"{JOURNAL} rewritten with its {len(found.records) - len(dropped)} intact record(s) "
+            f"({damaged} damaged bytes left out)"]
+    if lost:
+        said.append(f"revisions {', '.join(lost)} marked lost (their records are gone; the service "
+                    "starts without them)")
+    if dropped:
+        said.append(f"{len(dropped)} repeated or out-of-order record(s) left out (revisions "
+                    f"{', '.join(map(str, dropped))})")
+    return f"{'; '.join(said)}; the original is kept as {kept.name}"
 
 
 # --- files -------------------------------------------------------------------------------------

@@ -31,7 +31,17 @@ from rdflib import BNode
 
 from kb.errors import DataCorrupt, KbError, StorageError, StorageFull, storage_error
 from kb.kb import KB
-from kb.records import describe_missing, frame, missing_revisions, nt, parse_nt, read_snapshot, scan
+from kb.records import (
+    breaks,
+    describe_missing,
+    first_revision,
+    frame,
+    missing_revisions,
+    nt,
+    parse_nt,
+    read_snapshot,
+    scan,
+)
 from kb.status import ComponentStatus, StatusCell
 from kb.terms import Triple
 from kb.writer import Commit
@@ -109,13 +119,17 @@ class Journal:
             except ValueError as exc:
                 raise DataCorrupt(f"{snapshot} cannot be read ({exc}); not starting without the "
                                   f"state it holds: {repair_hint(self.directory)}") from exc
-        revisions = (record["revision"] for _start, _end, record in found.records)
-        missing = missing_revisions(state["revision"] if state else 0, revisions)
+        since = state["revision"] if state else 0
+        missing = missing_revisions(since, (first_revision(record) for _s, _e, record in found.records))
         if missing is not None:
             named = f"the snapshot {snapshot} (revision {missing.start - 1})" if state else \
                 f"a snapshot (there is none: {snapshot} is missing)"
             raise DataCorrupt(f"{describe_missing(missing, named)}; not starting with part of the "
                               f"state: {repair_hint(self.directory)}")
+        gaps = breaks(since, found.records)
+        if gaps:
+            raise DataCorrupt(f"{path}: {gaps[0].describe()} ({len(gaps)} such place(s)); not starting "
+                              f"without acknowledged writes: {repair_hint(self.directory)}")
         if state is not None:
             try:
                 result.revision = _restore_snapshot(kb, state)

@@ -186,6 +186,53 @@ def missing_revisions(snapshot_revision: int, revisions: Iterable[int]) -> range
     return range(snapshot_revision + 1, following)
 
 
+@dataclass(frozen=True)
+class Break:
+    """Where the journal's records stop following each other: the record at byte ``at``, of
+    revision ``found`` (or, marked by a repair, accounting from it), follows revision ``after``."""
+
+    at: int
+    after: int
+    found: int
+
+    @property
+    def missing(self) -> range:
+        return range(self.after + 1, self.found)
+
+    def describe(self) -> str:
+        if self.found > self.after + 1:
+            return (f"revisions {self.after + 1}..{self.found - 1} are missing between the records of "
+                    f"revisions {self.after} and {self.found} (byte {self.at}: a record removed?)")
+        return (f"the record at byte {self.at} (revision {self.found}) follows revision {self.after}: "
+                f"repeated or out of order")
+
+
+def first_revision(record: dict[str, Any]) -> int:
+    """The first revision a record accounts for: its own, or for a repair's marker of lost
+    revisions (``{"revision": last, "lost": first}``, no change) the first it marks."""
+    revision: int = record["revision"]
+    lost = record.get("lost")
+    return lost if isinstance(lost, int) and not isinstance(lost, bool) and 0 < lost <= revision else revision
+
+
+def breaks(snapshot_revision: int, records: Iterable[tuple[int, int, dict[str, Any]]]) -> list[Break]:
+    """Every place where a journal record after the snapshot's revision does not take the next
+    revision after the record before it. Every commit is one record and takes the next revision,
+    so a missing record (not a torn tail: a whole line gone) shows here and nowhere else. The
+    first record after the snapshot is ``missing_revisions``' to judge."""
+    found: list[Break] = []
+    previous: int | None = None
+    for start, _end, record in records:
+        revision = record["revision"]
+        if revision <= snapshot_revision and previous is None:
+            continue  # the snapshot already holds it
+        if previous is not None and first_revision(record) != previous + 1:
+            found.append(Break(start, previous, first_revision(record)))
+        if previous is None or revision > previous:
+            previous = revision
+    return found
+
+
 def describe_missing(missing: range, snapshot: str) -> str:
     return (f"the journal does not continue {snapshot}: its next record is revision {missing.stop}, "
             f"so revisions {missing.start}..{missing.stop - 1} are in neither (a snapshot deleted, "

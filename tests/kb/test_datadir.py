@@ -11,6 +11,7 @@ import pytest
 from kb import KB
 from kb.datadir import check, repair
 from kb.journal import JOURNAL, SNAPSHOT, SNAPSHOT_TMP, Journal
+from kb.records import frame
 from kb.terms import ORO
 
 
@@ -68,7 +69,9 @@ def test_repair_of_a_flipped_byte_keeps_the_original_and_every_intact_record(tmp
     assert "199 intact record(s)" in report.render()
     originals = list(tmp_path.glob(f"{JOURNAL}.damaged-*"))
     assert len(originals) == 1 and originals[0].read_bytes() == damaged
-    assert path.read_bytes() == b"".join(lines[:99] + lines[100:])
+    # the damaged record's revision is marked lost, so that the journal's revisions follow on
+    assert "revisions 100..100 marked lost" in report.render()
+    assert path.read_bytes() == b"".join([*lines[:99], frame({"revision": 100, "lost": 100}), *lines[100:]])
     assert not check(tmp_path).damaged
     again, _ = _open(tmp_path, kbs)
     assert {r["s"] for r in again["?s sees ?o"]} == {f"s{i}" for i in range(200) if i != 99}
@@ -150,3 +153,27 @@ def test_check_calls_a_flipped_bit_in_the_last_record_damage(tmp_path: Path, kbs
     report = check(tmp_path)
     assert report.damaged and "journal.log: damaged:" in report.render()
     assert "its last record is complete but does not match its checksum" in report.render()
+
+
+def test_a_record_removed_mid_journal_is_damage_and_repair_marks_its_revision_lost(tmp_path: Path,
+                                                                                 kbs: list[KB]) -> None:
+    # issue 26, rerun of attack 6: check said "ok: 29 intact record(s), revisions 1..30"
+    _write(tmp_path, kbs, 30, snapshot_after=4)
+    path = tmp_path / JOURNAL
+    lines = path.read_bytes().splitlines(keepends=True)  # revisions 6..30
+    repeated = lines[2]
+    path.write_bytes(b"".join(lines[:5] + lines[6:] + [repeated]))  # 11 gone, 8 again at the end
+    report = check(tmp_path)
+    assert report.damaged, report.render()
+    rendered = report.render()
+    assert "revisions: damaged: revisions 11..11 are missing between the records of revisions 10 and 12" \
+           in rendered and "(revision 8) follows revision 30: repeated or out of order" in rendered, rendered
+    report = repair(tmp_path)
+    assert "revisions 11..11 marked lost (their records are gone; the service starts without " \
+           "them); 1 repeated or out-of-order record(s) left out (revisions 8)" in report.render(), report.render()
+    assert not check(tmp_path).damaged, check(tmp_path).render()
+    again, _ = _open(tmp_path, kbs)
+    assert {r["s"] for r in again["?s sees ?o"]} == {f"s{i}" for i in range(30)} - {"s10"}
+    assert again.revision == 30
+    again += "later sees more"  # the journal goes on after the marker
+    assert again.revision == 31

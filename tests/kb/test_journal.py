@@ -392,3 +392,28 @@ def test_replay_in_batches_gives_the_state_the_records_made(tmp_path: Path, monk
     again, _ = open_kb(tmp_path, clock)
     assert (asserted(again), asserted(again, "bob"), asserted(again, inferred=True), again.revision,
             sorted(again.writer.expiries.items())) == expected
+
+
+@pytest.mark.parametrize("change", ["removed", "repeated"])
+def test_a_record_removed_or_repeated_mid_journal_stops_recovery(tmp_path: Path, change: str) -> None:
+    # issue 26, rerun of attack 6: a whole record gone from the middle started with 29 of 30
+    # facts, silently; a whole line repeated later would replay an old change over newer ones
+    kb, journal = open_kb(tmp_path)
+    for i in range(30):
+        kb += f"s{i} sees o{i}"
+    journal.close()
+    path = tmp_path / JOURNAL
+    lines = path.read_bytes().splitlines(keepends=True)
+    if change == "removed":
+        damaged = b"".join(lines[:10] + lines[11:])
+        expected = f"revisions 11..11 are missing between the records of revisions 10 and 12 (byte " \
+                   f"{len(b''.join(lines[:10]))}"
+    else:
+        damaged = b"".join(lines[:20] + lines[5:6] + lines[20:])
+        expected = "(revision 6) follows revision 20: repeated or out of order"
+    path.write_bytes(damaged)
+    with pytest.raises(DataCorrupt) as caught:
+        open_kb(tmp_path)
+    message = str(caught.value)
+    assert expected in message and f"situated data repair {tmp_path}" in message, message
+    assert path.read_bytes() == damaged
