@@ -17,14 +17,12 @@ Run it while the service is stopped.
 from __future__ import annotations
 
 import os
-import re
 import shutil
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from pydantic_core import from_json
 from rdflib import BNode
 
 from kb.errors import KbError, storage_error
@@ -40,11 +38,10 @@ from kb.records import (
     read_snapshot,
     scan,
 )
+from kb.salvage import salvage
 
 #: The finding about the two files together: does the journal continue the snapshot?
 REVISIONS = "revisions"
-# Where a JSON parser says it stopped reading.
-_COLUMN = re.compile(r"column (\d+)")
 
 
 @dataclass
@@ -176,18 +173,19 @@ def _statements(state: dict[str, Any]) -> list[str]:
 
 def _repair_snapshot(path: Path) -> str:
     kept = _keep(path)
-    salvaged = _salvage(path.read_bytes())
+    salvaged = salvage(path.read_bytes())
     if salvaged is None:
         path.unlink()
         _fsync_dir(path.parent)
         return (f"{SNAPSHOT} could not be read at all: kept as {kept.name} and removed; the KB "
                 f"starts from the default ontology plus the journal, and what only the snapshot "
                 f"held is lost")
-    state, kept_count, dropped = salvaged
-    _replace(path, frame(state))
-    return (f"{SNAPSHOT} rewritten from what still reads (revision {state['revision']}, "
-            f"{kept_count} statement(s) kept, {dropped} unreadable statement(s) dropped); the original "
-            f"is kept as {kept.name}")
+    _replace(path, frame(salvaged.state))
+    after = (f"; {salvaged.after_damage} of them read after damaged bytes and kept in the list open "
+             f"there (a model boundary inside the damage cannot be seen)") if salvaged.after_damage else ""
+    return (f"{SNAPSHOT} rewritten from what still reads (revision {salvaged.state['revision']}, "
+            f"{salvaged.kept} statement(s) kept, {salvaged.dropped} unreadable statement(s) dropped"
+            f"{after}); the original is kept as {kept.name}")
 
 
 def _mark_lost(path: Path, missing: range) -> str:
@@ -204,65 +202,6 @@ def _mark_lost(path: Path, missing: range) -> str:
     _replace(path, frame(state))
     return (f"revisions {missing.start}..{missing.stop - 1} are lost (in neither the snapshot nor the "
             f"journal): {where} now ends at revision {missing.stop - 1}, where the journal starts")
-
-
-def _salvage(data: bytes) -> tuple[dict[str, Any], int, int] | None:
-    """The state of a snapshot whose checksum failed: every statement that still reads, of a
-    snapshot cut short those before the cut (with the number kept and dropped); None when not even
-    its revision and models read."""
-    text = data.strip()
-    if not text.startswith(b"{"):
-        text = text.split(b" ", 2)[-1]  # the body after ``<length> <crc32>``
-    raw = _partial_json(text)
-    if not isinstance(raw, dict) or not isinstance(raw.get("models"), dict):
-        return None
-    revision = raw.get("revision")
-    state: dict[str, Any] = {"revision": revision if isinstance(revision, int) else 0, "models": {},
-                             "expiries": []}
-    kept = dropped = 0
-    bnodes: dict[str, BNode] = {}
-    for name, change in raw["models"].items():
-        change = change if isinstance(change, dict) else {}
-        kept_change: dict[str, list[str]] = {}
-        for key in ("add", "remove"):
-            found = change.get(key, [])
-            found = found if isinstance(found, list) else []
-            good = [s for s in found if _parses(s, bnodes)]
-            dropped += len(found) - len(good)
-            kept += len(good)
-            kept_change[key] = good
-        state["models"][str(name)] = kept_change
-    expiries = raw.get("expiries", [])
-    for entry in expiries if isinstance(expiries, list) else []:
-        if isinstance(entry, list) and len(entry) == 3 and isinstance(entry[0], str) \
-                and isinstance(entry[2], int | float) and _parses(entry[1], bnodes):
-            state["expiries"].append(entry)
-        else:
-            dropped += 1
-    return state, kept, dropped
-
-
-def _partial_json(text: bytes) -> Any:
-    """As much of a JSON document as reads: one cut short gives what comes before the cut
-    (strings cut in two are left out), one damaged in the middle what comes before the damage."""
-    try:
-        return from_json(text, allow_partial=True)
-    except ValueError as exc:
-        column = _COLUMN.search(str(exc))
-        if column is None:
-            return None
-        try:
-            return from_json(text[: int(column.group(1)) - 1], allow_partial=True)
-        except ValueError:
-            return None
-
-
-def _parses(statement: Any, bnodes: dict[str, BNode]) -> bool:
-    try:
-        parse_nt(str(statement), bnodes)
-    except KbError:
-        return False
-    return isinstance(statement, str)
 
 
 # --- the journal -------------------------------------------------------------------------------

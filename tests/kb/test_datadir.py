@@ -177,3 +177,21 @@ def test_a_record_removed_mid_journal_is_damage_and_repair_marks_its_revision_lo
     assert again.revision == 30
     again += "later sees more"  # the journal goes on after the marker
     assert again.revision == 31
+
+
+def test_repair_of_a_snapshot_zeroed_in_the_middle_keeps_the_statements_after_the_damage(
+        tmp_path: Path, kbs: list[KB]) -> None:
+    # issue 26, rerun of attack 7: repair kept the 29 statements before 512 zero bytes, of 88
+    _write(tmp_path, kbs, 100, snapshot_after=87)
+    path = tmp_path / SNAPSHOT
+    data = bytearray(path.read_bytes())
+    third = len(data) // 3
+    data[third:third + 512] = bytes(512)
+    path.write_bytes(bytes(data))
+    intact = {f"s{i}" for i in range(88) if f'"<{ORO}s{i}> <{ORO}sees> <{ORO}o{i}>"'.encode() in data}
+    assert len(intact) >= 88 - 7
+    report = repair(tmp_path)
+    assert f"{len(intact)} statement(s) kept" in report.render() and "read after damaged bytes" in report.render()
+    assert not check(tmp_path).damaged
+    again, _ = _open(tmp_path, kbs)
+    assert {r["s"] for r in again["?s sees ?o"]} == intact | {f"s{i}" for i in range(88, 100)}
