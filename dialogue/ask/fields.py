@@ -8,14 +8,16 @@ says nothing about a field nobody asked about); numbers, enum values and entitie
 
 >>> clause = Clause.of("I'm twenty-three")
 >>> clause.numbers
-(23.0,)
+(Decimal('23'),)
 """
 
 from __future__ import annotations
 
+import math
 import re
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
+from decimal import Decimal
 from typing import Any
 
 from text_to_num import alpha2digit
@@ -161,13 +163,14 @@ class Clause:
 
     text: str
     words: tuple[str, ...]
-    numbers: tuple[float, ...]
+    #: Exact: a float would turn 400 nines into infinity and round 10**24 (``_number`` decides).
+    numbers: tuple[Decimal, ...]
 
     @classmethod
     def of(cls, text: str) -> Clause:
         digits = alpha2digit(_PRONOUN_ONE.sub("\\1\\2\u2060", text), "en", threshold=0)
         digits = _HALF.sub(r"\1.5", _THOUSANDS.sub("", digits))
-        numbers = tuple((-1 if m.group(1) else 1) * float(m.group(2)) for m in _NUMBER.finditer(digits))
+        numbers = tuple((-1 if m.group(1) else 1) * Decimal(m.group(2)) for m in _NUMBER.finditer(digits))
         return cls(text.strip(), tuple(tokens(text)), numbers)
 
     def has(self, words: Sequence[str]) -> int | None:
@@ -259,17 +262,28 @@ def _number(form_field: FormField, clause: Clause) -> Found | None:
     if len(set(clause.numbers)) != 1:
         return None
     number = clause.numbers[0]
-    value: Any = int(number) if form_field.kind == "integer" and number.is_integer() else number
-    return checked(form_field, value, clause.text)
+    whole = number == number.to_integral_value()
+    if whole and form_field.kind == "integer":
+        return checked(form_field, int(number), clause.text)
+    as_float = float(number)
+    if math.isfinite(as_float) and Decimal(repr(as_float)) == number:
+        return checked(form_field, as_float, clause.text)
+    if whole:  # exact as a JSON integer, where a float would round it (or overflow)
+        return checked(form_field, int(number), clause.text)
+    if form_field.kind == "integer":
+        return checked(form_field, number, clause.text)  # a fraction: the check says so
+    return Found(str(number), "it has more digits than can be kept exactly", said=clause.text)
 
 
 def find_enum(form_field: FormField, clause: Clause, ctx: ReadContext) -> Found | None:
-    hits = []
+    hits: list[Any] = []
     for value in form_field.enum:
+        if isinstance(value, bool):
+            continue
         if isinstance(value, str):
             if clause.has(tokens(value)) is not None:
                 hits.append(value)
-        elif float(value) in clause.numbers:
+        elif isinstance(value, int | float) and Decimal(repr(value)) in clause.numbers:
             hits.append(value)
     # "light blue" and "blue": the longest value said is the one meant.
     hits = [h for h in hits if not any(h != o and str(h) in str(o) for o in hits)]

@@ -26,11 +26,12 @@ from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from typing import Annotated, Any, Literal
 
-from pydantic import BaseModel, Field, TypeAdapter, ValidationError
-from pydantic_core import SchemaError
+from pydantic import AfterValidator, BaseModel, Field, TypeAdapter, ValidationError
+from pydantic_core import PydanticCustomError, SchemaError
 
 from dialogue.ask.jsontext import ConfigurationError, decode
 from dialogue.errors import DialogueError
+from dialogue.jsonvalues import MAX_DIGITS
 from dialogue.reference.resolution import ALL_KINDS, ANYWHERE, PERSON, PLACE, THING
 from dialogue.reference.snapshot import Kind
 
@@ -84,20 +85,31 @@ class FormField:
         """The value as the field holds it, or the reason it cannot hold it."""
         try:
             return self.validator().validate_python(value), None
-        except ValidationError as exc:
-            return None, "; ".join(str(e["msg"]) for e in exc.errors())
+        except ValidationError as exc:  # one value: one reason (a number field's int, then float)
+            return None, str(exc.errors()[0]["msg"])
 
 
 def _number(field: FormField) -> Any:
+    """A whole number stays an int (exact however long: a float rounds past 2**53), a number field
+    takes a float too; both within the bounds every reader of the results takes
+    (``jsonvalues``: finite, at most 100 digits)."""
     schema = field.schema
-    bounds = Field(
-        ge=schema.get("minimum"),
-        le=schema.get("maximum"),
-        gt=schema.get("exclusiveMinimum"),
-        lt=schema.get("exclusiveMaximum"),
-    )
-    number: type = int if field.kind == "integer" else float
-    return Annotated[number, bounds]
+
+    def bounds(allow_inf_nan: bool | None = None) -> Any:  # pydantic checks an int's finiteness as a float
+        return Field(ge=schema.get("minimum"), le=schema.get("maximum"), gt=schema.get("exclusiveMinimum"),
+                     lt=schema.get("exclusiveMaximum"), allow_inf_nan=allow_inf_nan)
+
+    whole = Annotated[int, bounds(), AfterValidator(_held)]
+    if field.kind == "integer":
+        return whole
+    return whole | Annotated[float, bounds(allow_inf_nan=False), AfterValidator(_held)]
+
+
+def _held(value: float) -> float:
+    if isinstance(value, int) and abs(value) >= 10**MAX_DIGITS:
+        raise PydanticCustomError("too_many_digits", "Input should have at most {digits} digits",
+                                  {"digits": MAX_DIGITS})
+    return value
 
 
 def _string(field: FormField) -> Any:

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import json
 from typing import Any
 
 from dialogue.ask.fields import Clause, ReadContext, find
@@ -105,3 +106,20 @@ def test_an_enum_value_said_by_one_of_its_words(lexicon: Lexicon) -> None:
     assert found(form, lexicon, "drink", "something hot", asked="drink") == "hot chocolate"
     assert found(form, lexicon, "drink", "a glass of water", asked="drink") is None
     assert found(form, lexicon, "drink", "chocolate please") is None  # not asked
+
+
+def test_numbers_are_read_exactly_or_refused(lexicon: Lexicon) -> None:
+    """Issue 26, rerun of attack 8: 400 nines in a number field gave ``Infinity`` (no JSON), and
+    "1,000,000,000,000,000,000,000,000" in an integer field 999999999999999983222784."""
+    form = form_of(amount={"type": "number"}, n={"type": "integer"})
+    assert found(form, lexicon, "n", "1,000,000,000,000,000,000,000,000") == 10**24
+    # a float whose JSON text is the number said ("1e+24"), or the integer itself
+    assert json.dumps(found(form, lexicon, "amount", "1,000,000,000,000,000,000,000,000")) in (
+        "1e+24", "1000000000000000000000000")
+    assert found(form, lexicon, "amount", "12345678901234567") == 12345678901234567
+    assert found(form, lexicon, "amount", "3.5") == 3.5 and found(form, lexicon, "n", "three") == 3
+    assert found(form, lexicon, "amount", "9" * 400) == "problem"  # past 100 digits, never Infinity
+    assert found(form, lexicon, "amount", "-" + "9" * 400) == "problem"
+    assert found(form, lexicon, "n", "9" * 400) == "problem"
+    assert found(form, lexicon, "n", "12345678901234567 and a half") == "problem"  # not a whole number
+    assert found(form, lexicon, "amount", "12345678901234567.5") == "problem"  # a float would round it

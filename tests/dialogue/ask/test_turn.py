@@ -217,3 +217,16 @@ def test_a_system_update_or_the_robots_own_words_are_no_answer(cups: KB) -> None
     stateless = asyncio.run(manager.interact(SYSTEM_USER_ID, "Battery at 40 percent", dialogue_id="dm",
                                              history=history, role=ASK_ROLE, configuration=CONFIG))
     assert json.loads(stateless.results or "") == {"age": 34} and not stateless.dialogue_terminal
+
+
+def test_results_are_json_and_exact_or_the_robot_asks_again(cups: KB) -> None:
+    manager = DialogueManager(DialogueEngine(cups))
+    config = json.dumps({"question": "How much, and how many?",
+                         "result_schema_properties": {"amount": {"type": "number"}, "n": {"type": "integer"}}})
+    started = manager.start(ASK_ROLE, configuration=config)
+    huge, ok = talk(manager, started.id, "the amount is " + "9" * 400, "the amount is 2.5")
+    assert huge.response.startswith("That is not a possible amount: input should have at most 100 digits.")
+    assert json.loads(huge.results or "") == {} and not huge.dialogue_terminal
+    assert json.loads(ok.results or "") == {"amount": 2.5}
+    (done,) = talk(manager, started.id, "1,000,000,000,000,000,000,000,000")
+    assert done.dialogue_terminal and json.loads(done.results or "") == {"amount": 2.5, "n": 10**24}
