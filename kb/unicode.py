@@ -5,9 +5,11 @@ Lone surrogates (U+D800..U+DFFF) are not valid Unicode: Python strings may hold 
 literal holding one is stored fine and then breaks every answer that names it (JSON, RDF exports,
 the journal). The C0 controls other than tab, newline and carriage return, and U+FFFE/U+FFFF,
 are valid Unicode that XML 1.0 cannot carry, not even as a character reference: a KB holding one
-exports RDF/XML (and TriX) that no parser loads back. Terms holding either are refused on the way
-in, with the place named, and nothing of the request is applied; every other character
-round-trips through every export format.
+exports RDF/XML (and TriX) that no parser loads back. An IRI holding a space or one of
+``<>"{}|^`\\`` (which Turtle's ``\\u`` escapes let in) cannot be written as Turtle or N-Triples at
+all, nor loaded back from RDF/XML. Terms holding any of these are refused on the way in, with the
+place named, and nothing of the request is applied; every other character round-trips through
+every export format.
 """
 
 from __future__ import annotations
@@ -15,13 +17,17 @@ from __future__ import annotations
 import re
 from collections.abc import Iterable
 
-from rdflib import Literal
+from rdflib import Literal, URIRef
 
 from kb.errors import InvalidCharacter, InvalidUnicode
 
 _SURROGATE = re.compile("[\ud800-\udfff]")
 # What XML 1.0's Char production leaves out, less the surrogates (refused as invalid above).
 _UNCARRIED = re.compile("[\x00-\x08\x0b\x0c\x0e-\x1f\ufffe\uffff]")
+# What N-Triples' IRIREF production leaves out (the C0 controls are refused above).
+_NOT_IN_IRI = re.compile('[\x00-\x20<>"{}|^`\\\\]')
+# Any character one of the three checks refuses in an IRI.
+_SUSPECT_IRI = re.compile('[\x00-\x20<>"{}|^`\\\\\ud800-\udfff\ufffe\uffff]')
 
 
 def surrogate_at(text: str) -> int | None:
@@ -48,6 +54,15 @@ def check_carried(text: str, what: str) -> None:
                                f"could not be exported and loaded back; remove it")
 
 
+def check_iri(iri: str, what: str) -> None:
+    """Raise ``InvalidCharacter`` naming ``what`` if ``iri`` holds a character no IRI may hold."""
+    found = _NOT_IN_IRI.search(iri)
+    if found is not None:
+        raise InvalidCharacter(f"{what} is an IRI holding {found.group()!r} (U+{ord(found.group()):04X}) at "
+                               f"character {found.start()}, a character no IRI may hold: Turtle and "
+                               f"N-Triples could not write it; percent-encode it")
+
+
 def carried(text: str) -> str:
     """``text`` without the characters ``check_carried`` refuses (for a record made of words
     someone said, where they are noise)."""
@@ -56,9 +71,14 @@ def carried(text: str) -> str:
 
 def check_terms(terms: Iterable[object], what: str) -> None:
     """``check_text`` and ``check_carried`` on each RDF term (a literal's datatype and language
-    included)."""
+    included), ``check_iri`` on each IRI (a datatype included)."""
     for term in terms:
-        if isinstance(term, str):
+        if isinstance(term, URIRef):
+            if _SUSPECT_IRI.search(term) is not None:  # one search for the many IRIs of a bulk load
+                check_text(term, what)
+                check_carried(term, what)
+                check_iri(term, what)
+        elif isinstance(term, str):
             check_text(term, what)
             check_carried(term, what)
         if isinstance(term, Literal):
@@ -66,3 +86,5 @@ def check_terms(terms: Iterable[object], what: str) -> None:
                 if part is not None:
                     check_text(part, what)
                     check_carried(part, what)
+            if term.datatype is not None:
+                check_iri(term.datatype, what)

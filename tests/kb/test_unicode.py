@@ -150,3 +150,31 @@ def test_every_export_carries_the_awkward_characters() -> None:
         for fmt in EXPORTS:
             back = parse_data(kb.export(fmt.name), fmt.name)
             assert [str(o) for _s, _p, o in back] == [f"a{AWKWARD}b"], fmt.name
+
+
+# --- characters no IRI may hold (red team round 3 rerun) ------------------------------------------
+
+IRI_WRITES: dict[str, Callable[[KB], object]] = {
+    "load_data turtle, backslash": lambda kb: kb.load_data('<http://x.org/a\\u005C> <http://x.org/b> "c" .', "turtle"),
+    "load_data turtle, <": lambda kb: kb.load_data('<http://x.org/a> <http://x.org/b> <http://x.org/\\u003C> .',
+                                                   "turtle"),
+    "load_data turtle, quote in a datatype": lambda kb: kb.load_data(
+        '<http://x.org/a> <http://x.org/b> "c"^^<http://x.org/dt\\u0022> .', "turtle"),
+    "load_data turtle, space": lambda kb: kb.load_data('<http://x.org/a\\u0020b> <http://x.org/b> "c" .', "turtle"),
+    "load_data json-ld, > in an @id": lambda kb: kb.load_data('{"@id": "http://x.org/a>", "http://x.org/b": "c"}',
+                                                             "json-ld"),
+    "load_data n-triples escape, |": lambda kb: kb.load_data('<http://x.org/a\\u007C> <http://x.org/b> "c" .\n', "nt"),
+    "load_data json-ld, { in a datatype": lambda kb: kb.load_data(
+        '{"@id": "http://x.org/a", "http://x.org/b": {"@value": "c", "@type": "http://x.org/{dt}"}}', "json-ld"),
+}
+
+
+@pytest.mark.parametrize("write", list(IRI_WRITES), ids=list(IRI_WRITES))
+def test_an_iri_holding_what_no_iri_may_hold_is_refused_and_changes_nothing(kb: KB, write: str) -> None:
+    before = (kb.revision, kb.export("nt"))
+    with pytest.raises(InvalidCharacter, match=r"is an IRI holding .* \(U\+00[2-7][0-9A-F]\) at character \d+, "
+                                               r"a character no IRI may hold"):
+        IRI_WRITES[write](kb)
+    assert (kb.revision, kb.export("nt")) == before
+    for fmt in EXPORTS:  # what the KB holds still exports, and loads back
+        parse_data(kb.export(fmt.name), fmt.name)
