@@ -163,7 +163,7 @@ def _parser() -> argparse.ArgumentParser:
     doctor.add_argument("--config", type=Path, help="TOML or JSON settings file (or $SITUATED_CONFIG)")
     doctor.add_argument("--strict", action="store_true", help="warnings (no Chromium) also exit 1")
     doctor.set_defaults(**{_PARSER: doctor})
-    data = sub.add_parser("data", help="check or repair a data folder (--data): journal and snapshot")
+    data = sub.add_parser("data", help="check or repair a data folder (DIR): journal and snapshot")
     data.add_argument("action", choices=["check", "repair"], help="check: report, exit 1 if damaged; "
                       "repair (service stopped): keep every intact record, the damaged files beside them")
     data.add_argument("dir", type=Path, help="the data folder")
@@ -200,6 +200,8 @@ def _run_service(args: argparse.Namespace, extensions: Sequence[Extension] = (),
                              writer_url=args.writer)
     backend_of(settings)  # a bad backend spec is reported before anything starts
     check_scene(settings.scene)  # so is a scene that cannot be loaded (else: a start-up traceback)
+    if settings.data_dir is not None:
+        _make_data_dir(settings.data_dir)  # and a data folder that cannot be made
     if settings.data_dir is not None and settings.data_dir.is_dir():
         report = check_data(settings.data_dir)  # damage is reported plainly, not as a traceback
         if report.damaged:
@@ -212,6 +214,15 @@ def _run_service(args: argparse.Namespace, extensions: Sequence[Extension] = (),
     uvicorn.run(create_app(settings, extensions=extensions), host=settings.host, port=settings.port,
                 ws="websockets-sansio", ws_max_size=settings.limits.max_body_bytes, log_level="info",
                 log_config=log_config())
+
+
+def _make_data_dir(path: Path) -> None:
+    if path.exists() and not path.is_dir():
+        raise CommandError(f"data folder '{path}' is not a folder: give --data a folder (made if missing)")
+    try:
+        path.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise CommandError(f"cannot make data folder '{path}': {exc.strerror}") from None
 
 
 # --- KB access, in-process or remote ----------------------------------------------------------------

@@ -298,6 +298,21 @@ def test_serve_with_a_scene_it_cannot_load_says_so_in_one_line(tmp_path: Path) -
         assert "Traceback" not in done.stderr
 
 
+def test_serve_with_a_data_folder_it_cannot_make_says_so_in_one_line(tmp_path: Path) -> None:
+    """Once a 106-line traceback from the start-up (red team round 3 rerun: --data /proc/1/x)."""
+    (tmp_path / "afile").write_text("not a folder")
+    cases = {"afile": "data folder 'afile' is not a folder",
+             "afile/data": "cannot make data folder 'afile/data': Not a directory"}
+    for data, says in cases.items():
+        done = subprocess.run([sys.executable, "-m", "api.cli", "serve", "--scene", "none", "--data", data,
+                               "--port", str(_free_port())], capture_output=True, text=True, cwd=tmp_path,
+                              timeout=120, env={**os.environ, "PYTHONPATH": str(REPO)})
+        assert done.returncode == 2, done.stderr[-2000:]
+        (line,) = done.stderr.splitlines()
+        assert line.startswith(f"situated serve: {says}"), done.stderr[-2000:]
+    assert (tmp_path / "afile").read_text() == "not a folder"
+
+
 @pytest.mark.parametrize("command", ["chat", "doctor"])
 def test_the_kinds_of_scene_are_all_named(command: str, tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     scene = tmp_path / "room.png"
