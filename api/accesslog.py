@@ -6,32 +6,24 @@ Clients that cannot set a header pass the service token in the URL (``?token=`` 
 outgoing URLs may hold secrets too: a webhook's ``https://user:pass@host/?token=...``, a model
 server's ``?key=...``, which httpx logs with every request (``httpx``). A filter on those loggers
 replaces the values of such parameters, and a URL's credentials, before any handler formats the
-record; ``redact`` does the same for text the service shows (/health's reasons and names).
+record; ``redact`` (dialogue.urlsecrets) does the same for text the service shows (/health's reasons
+and names). httpx's line per request is not logged at all (only its warnings): a webhook's URL may
+hold its secret in the path, which no filter can tell (the couriers name their URL without it).
 """
 
 from __future__ import annotations
 
 import copy
 import logging
-import re
 from typing import Any
 
 import httpx
 from uvicorn.config import LOGGING_CONFIG
 
-REDACTED = "[redacted]"
-# URL parameters whose value is a secret, by the names services give them.
-_SECRET_PARAMETER = re.compile(
-    r"([?&](?:access_token|token|api_key|apikey|api-key|key|password|passwd|secret|sig|signature|auth)=)"
-    r"[^&#\s\"']*", re.IGNORECASE)
-_URL_CREDENTIALS = re.compile(r"(\b[a-z][a-z0-9+.-]*://)[^/?#@\s\"']+@", re.IGNORECASE)
+from dialogue.urlsecrets import REDACTED, redact
+
+__all__ = ["REDACTED", "RedactTokens", "log_config", "redact", "redact_client_logs", "redacted"]
 _LOGGERS = ("uvicorn.access", "uvicorn.error", "httpx")
-
-
-def redact(text: str) -> str:
-    """``text`` with the value of every secret URL parameter (``token=``, ``access_token=``,
-    ``key=``, ``password=``...) and every URL's credentials (``user:pass@``) replaced."""
-    return _URL_CREDENTIALS.sub(rf"\g<1>{REDACTED}@", _SECRET_PARAMETER.sub(rf"\g<1>{REDACTED}", text))
 
 
 def redacted(value: Any) -> Any:
@@ -58,8 +50,10 @@ class RedactTokens(logging.Filter):
 
 def redact_client_logs() -> None:
     """Put ``RedactTokens`` on the logger of the service's HTTP client (httpx), once: it logs
-    every request's URL, a webhook's or a model server's with its secrets."""
+    every request's URL, a webhook's or a model server's with its secrets; and keep only its
+    warnings (its request lines name a webhook's path, which may be its secret)."""
     logger = logging.getLogger("httpx")
+    logger.setLevel(logging.WARNING)
     if not any(isinstance(f, RedactTokens) for f in logger.filters):
         logger.addFilter(RedactTokens())
 
@@ -70,4 +64,5 @@ def log_config() -> dict[str, Any]:
     config.setdefault("filters", {})["redact_tokens"] = {"()": RedactTokens}
     for name in _LOGGERS:
         config["loggers"].setdefault(name, {})["filters"] = ["redact_tokens"]
+    config["loggers"]["httpx"]["level"] = "WARNING"
     return config

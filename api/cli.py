@@ -24,6 +24,7 @@ from api.humans import known_humans, render
 from api.ros import cli as ros_cli
 from api.settings import SettingsError, load_settings
 from dialogue.errors import DialogueError
+from dialogue.urlsecrets import redact
 from kb import KB, KbError
 from kb.datadir import check as check_data
 from kb.datadir import repair as repair_data
@@ -209,8 +210,8 @@ def _run_service(args: argparse.Namespace, extensions: Sequence[Extension] = (),
     # Start-up progress (journal recovery, ontology files, the scene) is logged by situated.*.
     logging.basicConfig(level=logging.INFO, format="%(levelname)s:     %(name)s: %(message)s")
     role = "" if settings.role == "standalone" else f"; {settings.role} of {settings.store}"
-    _say(f"situated: serving on http://{settings.host}:{settings.port}{also} (model: {settings.llm}; "
-         f"scene: {settings.scene or 'none'}{role}); loading the KB...")
+    _say(redact(f"situated: serving on http://{settings.host}:{settings.port}{also} (model: {settings.llm}; "
+                f"scene: {settings.scene or 'none'}{role}); loading the KB..."))
     uvicorn.run(create_app(settings, extensions=extensions), host=settings.host, port=settings.port,
                 ws="websockets-sansio", ws_max_size=settings.limits.max_body_bytes, log_level="info",
                 log_config=log_config())

@@ -8,8 +8,9 @@ the whole delivery, not each read, so a receiver trickling a byte at a time is a
 reported as such) is retried with a backoff that doubles, then given up (counted); events are
 delivered in order per URL. While a URL's deliveries fail, `/health` reports it degraded, with
 the reason and the counts; once it recovers, it is ok, with the counts as long as any intent was
-lost (given up or dropped). A URL's credentials and secret parameters are never shown: /health
-and the log name it redacted (api.accesslog).
+lost (given up or dropped). A URL's credentials, secret parameters and path (where Slack's and
+Discord's webhooks hold their secret) are never shown: /health and the log name it without them
+(dialogue.urlsecrets).
 """
 
 from __future__ import annotations
@@ -19,9 +20,9 @@ from collections.abc import Sequence
 
 import httpx
 
-from api.accesslog import redact
 from api.courier import Courier, DeliveryConfig
 from dialogue.pushed.events import Pushed
+from dialogue.urlsecrets import hide_path, redact
 
 
 class Webhook(Courier[Pushed]):
@@ -30,7 +31,7 @@ class Webhook(Courier[Pushed]):
     read)."""
 
     def __init__(self, url: str, config: DeliveryConfig) -> None:
-        super().__init__(redact(url), config, "webhook_failing")
+        super().__init__(hide_path(url), config, "webhook_failing")
         self.url = url
         self._loop: asyncio.AbstractEventLoop | None = None
         self._client: httpx.AsyncClient | None = None
@@ -50,7 +51,7 @@ class Webhook(Courier[Pushed]):
             return (f"slow receiver: no whole answer within {self.config.timeout:g} s "
                     "(the delivery's time in all)")
         except httpx.HTTPError as exc:
-            return redact(f"{type(exc).__name__}: {exc}")
+            return redact(f"{type(exc).__name__}: {exc}".replace(self.url, self.name))
         if response.is_success:
             return None
         return f"HTTP {response.status_code}"

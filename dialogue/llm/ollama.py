@@ -16,6 +16,7 @@ import ollama
 
 from dialogue.llm.base import ChatModel, ChatRequest, ChatResult, ModelError
 from dialogue.llm.connection import LoopClient
+from dialogue.urlsecrets import redact
 
 DEFAULT_HOST = "http://127.0.0.1:11434"
 
@@ -53,11 +54,11 @@ class OllamaModel(ChatModel):
 
     @property
     def name(self) -> str:
-        return f"ollama:{self.model}@{self.host}"
+        return f"ollama:{self.model}@{redact(self.host)}"
 
     @property
     def setup_hint(self) -> str:
-        return (f"start Ollama at {self.host} (ollama serve) and pull the model "
+        return (f"start Ollama at {redact(self.host)} (ollama serve) and pull the model "
                 f"(ollama pull {self.model}), or fix the URL in --llm")
 
     async def aclose(self) -> None:
@@ -65,7 +66,7 @@ class OllamaModel(ChatModel):
 
     async def probe(self, timeout: float) -> dict[str, Any]:
         """Lists the server's models: any answer but a server error means it is up."""
-        url = self.host.rstrip("/") + "/api/tags"
+        url = redact(self.host.rstrip("/") + "/api/tags")
         try:
             async with asyncio.timeout(timeout):
                 await self.client.get().list()
@@ -107,9 +108,10 @@ class OllamaModel(ChatModel):
             message = f"ollama cannot load {self.model} (HTTP {exc.status_code}): {exc.error}"
             raise ModelError(message) from None
         except (ConnectionError, httpx.HTTPError) as exc:
-            raise ModelError(f"ollama unreachable at {self.host}: {exc}") from None
+            raise ModelError(f"ollama unreachable at {redact(self.host)}: {exc}") from None
         except ValueError as exc:  # the client parses the body: not JSON, or not a chat response
-            raise ModelError(f"ollama at {self.host} answered a body that is not a chat response") from exc
+            raise ModelError(f"ollama at {redact(self.host)} answered a body that is not a chat "
+                             "response") from exc
 
     async def chat(self, request: ChatRequest, timeout: float) -> ChatResult:
         payload = self.payload(request)
@@ -122,9 +124,9 @@ class OllamaModel(ChatModel):
         except ollama.ResponseError as exc:
             raise ModelError(f"ollama error (HTTP {exc.status_code}): {exc.error}") from None
         except (ConnectionError, httpx.HTTPError) as exc:
-            raise ModelError(f"ollama unreachable at {self.host}: {exc}") from None
+            raise ModelError(f"ollama unreachable at {redact(self.host)}: {exc}") from None
         except ValueError as exc:  # the client parses the body: not JSON, or not a chat response
-            raise ModelError(f"ollama at {self.host} answered a body that is not a chat response: "
+            raise ModelError(f"ollama at {redact(self.host)} answered a body that is not a chat response: "
                              f"{str(exc)[:200]}") from None
         content = response.message.content or ""
         reason = response.done_reason

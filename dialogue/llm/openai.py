@@ -2,7 +2,9 @@
 
 Only OpenAI fields are sent (D16): `response_format` in the variant the server accepts, with
 explicit `temperature` and `max_tokens` (Ollama's /v1 forces 1.0 when they are absent). One client
-per model, made on the first turn and kept (dialogue.llm.connection), closed by `aclose()`.
+per model, made on the first turn and kept (dialogue.llm.connection), closed by `aclose()`. The
+base URL may carry a query (a server's `?key=`): the endpoints' paths are joined to its path, and
+the URL is named with its secrets redacted (dialogue.urlsecrets) in the name and every error.
 """
 
 from __future__ import annotations
@@ -15,6 +17,7 @@ import httpx
 
 from dialogue.llm.base import ChatModel, ChatRequest, ChatResult, ModelError
 from dialogue.llm.connection import LoopClient
+from dialogue.urlsecrets import redact
 
 ResponseFormat = Literal["json_schema", "json_object"]
 DEFAULT_BASE_URL = "http://127.0.0.1:8080/v1"
@@ -48,15 +51,21 @@ class OpenAIModel(ChatModel):
 
     @property
     def name(self) -> str:
-        return f"openai:{self.model}@{self.base_url}"
+        return f"openai:{self.model}@{redact(self.base_url)}"
 
     @property
     def setup_hint(self) -> str:
-        return (f"start the OpenAI-compatible server at {self.base_url} serving {self.model!r}, or fix "
-                "the model name or URL in --llm")
+        return (f"start the OpenAI-compatible server at {redact(self.base_url)} serving {self.model!r}, "
+                "or fix the model name or URL in --llm")
 
     async def aclose(self) -> None:
         await self.client.aclose()
+
+    def _endpoint(self, path: str) -> tuple[httpx.URL, str]:
+        """The URL of ``path`` under the base URL (its query kept), and how it is named."""
+        base = httpx.URL(self.base_url)
+        url = base.copy_with(path=base.path.rstrip("/") + path)
+        return url, redact(str(url))
 
     def _headers(self) -> dict[str, str]:
         key = os.environ.get(self.options.api_key_env)
@@ -64,13 +73,13 @@ class OpenAIModel(ChatModel):
 
     async def probe(self, timeout: float) -> dict[str, Any]:
         """Lists the server's models: any answer but a server error means it is up."""
-        url = self.base_url + "/models"
+        url, shown = self._endpoint("/models")
         try:
             response = await self.client.get().get(url, headers=self._headers(), timeout=timeout)
         except httpx.HTTPError as exc:
-            return {"remote": True, "reachable": False, "detail": f"{url}: {exc!r}"}
+            return {"remote": True, "reachable": False, "detail": redact(f"{shown}: {exc!r}")}
         return {"remote": True, "reachable": response.status_code < 500,
-                "detail": f"{url}: HTTP {response.status_code}"}
+                "detail": f"{shown}: HTTP {response.status_code}"}
 
     def payload(self, request: ChatRequest) -> dict[str, Any]:
         opts = self.options
@@ -94,24 +103,24 @@ class OpenAIModel(ChatModel):
 
     async def chat(self, request: ChatRequest, timeout: float) -> ChatResult:
         headers = self._headers()
-        url = f"{self.base_url}/chat/completions"
+        url, shown = self._endpoint("/chat/completions")
         try:
             response = await self.client.get().post(
                 url, json=self.payload(request), headers=headers, timeout=timeout
             )
         except httpx.TimeoutException:
-            raise ModelError(f"{url} did not answer within {timeout:.1f} s") from None
+            raise ModelError(f"{shown} did not answer within {timeout:.1f} s") from None
         except httpx.HTTPError as exc:
-            raise ModelError(f"{url} unreachable: {exc}") from None
+            raise ModelError(redact(f"{shown} unreachable: {exc}")) from None
         if response.status_code != 200:
-            raise ModelError(f"{url} answered HTTP {response.status_code}: {response.text[:200]}")
+            raise ModelError(f"{shown} answered HTTP {response.status_code}: {response.text[:200]}")
         try:
             body = response.json()
             choice = body["choices"][0]
             content = choice["message"].get("content") or ""
             reason = choice.get("finish_reason")
         except (ValueError, KeyError, IndexError, TypeError, AttributeError):
-            raise ModelError(f"{url} answered an unexpected body: {response.text[:200]}") from None
+            raise ModelError(f"{shown} answered an unexpected body: {response.text[:200]}") from None
         if reason == "length":
             raise ModelError(f"answer truncated at max_tokens={self.options.max_tokens}")
         if not isinstance(content, str) or not content.strip():

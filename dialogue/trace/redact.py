@@ -1,5 +1,7 @@
 """Traces with secrets taken out: the service's token (a person may say or paste it; a prompt may
-quote it), `token=` URL parameters and the credentials of a URL (`https://user:key@host`).
+quote it), secret URL parameters (`token=`, `key=`...) and the credentials of a URL
+(`https://user:key@host`), as dialogue.urlsecrets finds them (a model server's URL is in the
+errors a trace records).
 
 >>> from dialogue.trace.record import TraceRecorder
 >>> trace = TraceRecorder(input="my token is s3cret, see http://bob:pw@host/?token=abc").finish(
@@ -10,22 +12,19 @@ quote it), `token=` URL parameters and the credentials of a URL (`https://user:k
 
 from __future__ import annotations
 
-import re
 from collections.abc import Iterable, Sequence
 from typing import Any
 
 from dialogue.trace.record import TurnTrace
+from dialogue.urlsecrets import REDACTED, redact
 
-REDACTED = "[redacted]"
-_TOKEN_PARAMETER = re.compile(r"([?&](?:access_)?token=)[^&\s\"]*", re.IGNORECASE)
-_URL_CREDENTIALS = re.compile(r"(\b[a-z][a-z0-9+.-]*://)[^/@\s\"]+@", re.IGNORECASE)
+__all__ = ["REDACTED", "redacted"]
 
 
 def _clean(text: str, secrets: Sequence[str]) -> str:
     for secret in secrets:
         text = text.replace(secret, REDACTED)
-    text = _TOKEN_PARAMETER.sub(rf"\g<1>{REDACTED}", text)
-    return _URL_CREDENTIALS.sub(rf"\g<1>{REDACTED}@", text)
+    return redact(text)
 
 
 def _walk(value: Any, secrets: Sequence[str]) -> Any:

@@ -332,3 +332,19 @@ def test_an_unknown_option_is_told_with_the_usage_of_its_command(words: list[str
                           timeout=120)
     assert done.returncode == 2 and done.stderr.startswith(f"usage: {prog} "), done.stderr
     assert done.stderr.rstrip().endswith(f"{prog}: error: unrecognized arguments: --bogus"), done.stderr
+
+
+def test_the_start_up_line_shows_no_secret_of_the_model_url(tmp_path: Path) -> None:
+    """Red team round 3 rerun: the line `serve` prints first (kept in every service log) showed the
+    model server URL's `?key=`."""
+    proc = subprocess.Popen([sys.executable, "-m", "api.cli", "serve", "--scene", "none", "--port", str(_free_port()),
+                             "--llm", "hybrid:openai:m@http://127.0.0.1:9/v1?key=k3y&room=4"],
+                            stderr=subprocess.PIPE, text=True, cwd=tmp_path, env={**os.environ, "PYTHONPATH": str(REPO)})
+    try:
+        assert proc.stderr is not None
+        first = proc.stderr.readline()
+    finally:
+        proc.terminate()
+        proc.communicate(timeout=60)
+    assert first.startswith("situated: serving on") and "key=[redacted]&room=4; scene: none" in first, first
+    assert "k3y" not in first

@@ -239,3 +239,27 @@ def test_webhook_and_model_urls_show_no_secrets(live_factory: Any, receiver: Rec
     for secret in ("pa55word", "s3cr3t", "k3y"):
         assert secret not in shown, secret
     assert "[redacted]" in json.dumps(anonymous) and "room=4" in json.dumps(anonymous)
+
+
+def test_secrets_in_a_webhooks_path_or_parameters_and_the_models_key_are_never_shown(
+        live_factory: Any, receiver: Receiver, caplog: pytest.LogCaptureFixture) -> None:
+    """Red team round 3 rerun: a Slack-style path secret, `auth_token=`, `client_secret=`,
+    `x-api-key=` and `access-token=` were in anonymous /health and the log of every delivery, and
+    the model URL's `key=` in the log, the turn's error and its trace (an anonymous read)."""
+    receiver.failing = True
+    secret_hook = (receiver.url + "/services/T000/B000/PATHSECRET?auth_token=s1&client_secret=s2&x-api-key=s3"
+                   "&access-token=s4&room=4")
+    intents = IntentSettings(webhooks=[secret_hook], webhook_retries=0)
+    caplog.set_level(logging.INFO)
+    live: Live = live_factory(scene_settings(intents=intents,
+                                             llm="hybrid:openai:tiny@http://127.0.0.1:9/v1?key=k3y&api_key=k4y"))
+    turn = say(live, "blorp the zingy wibble please")
+    assert turn["error_msg"], "the model server is unreachable: the turn says why"
+    wait_until(lambda: live.services.webhooks.hooks[0].counts.failed >= 1)
+    anonymous = json.dumps(live.client.get("/health").json())
+    traces = live.client.get("/dialogues/default/turns").text
+    shown = anonymous + caplog.text + json.dumps(turn) + traces
+    assert "webhook_0" in anonymous and "room=4" in anonymous and "127.0.0.1:9/v1" in traces
+    for secret in ("PATHSECRET", "s1", "s2", "s3", "s4", "k3y", "k4y"):
+        assert f"{secret}&" not in shown and f"{secret}\"" not in shown and f"/{secret}" not in shown, secret
+        assert f"={secret}" not in shown, secret

@@ -125,3 +125,19 @@ def test_probe_lists_the_models_with_the_turns_client(status: int, reachable: bo
 def test_probe_of_an_unreachable_server() -> None:
     health = asyncio.run(OpenAIModel("m", free_port_url() + "/v1").probe(1.0))
     assert health["remote"] is True and health["reachable"] is False and "/v1/models" in str(health["detail"])
+
+
+def test_a_base_url_with_a_key_keeps_its_query_and_never_shows_the_key() -> None:
+    """Red team round 3 rerun: `...?key=K` once became `/v1?key=K/chat/completions` (the path glued
+    to the key), and the key was in the model's name, every error, the log and the turns' traces."""
+    with fake_server() as server:
+        server.replies.append((200, reply(ANSWER)))
+        server.replies.append((503, {"error": "loading"}))
+        model = OpenAIModel("m", server.url + "/v1?key=k3y&room=4")
+        asyncio.run(model.chat(request(), timeout=5))
+        with pytest.raises(ModelError) as failed:
+            asyncio.run(model.chat(request(), timeout=5))
+        probed = asyncio.run(model.probe(timeout=5))
+    assert server.requests[0][0] == "/v1/chat/completions?key=k3y&room=4"
+    for shown in (model.name, model.setup_hint, str(failed.value), probed["detail"]):
+        assert "k3y" not in shown and "key=[redacted]&room=4" in shown, shown

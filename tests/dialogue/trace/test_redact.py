@@ -18,3 +18,17 @@ def test_every_text_is_cleaned_and_the_rest_kept() -> None:
     assert clean.input == f"the token is {REDACTED}" and clean.exchanges[0].json_schema["enum"][1] == "cup_1"
     assert clean.exchanges[0].model == f"openai:m@http://{REDACTED}@host:1"
     assert redacted(trace, []).input == "the token is tok-123"  # no token configured: nothing to hide
+
+
+def test_a_model_servers_key_is_cleaned_from_the_errors_a_trace_records() -> None:
+    """Red team round 3 rerun: `GET /dialogues/{id}/turns` (an anonymous read) once showed the
+    `?key=` and `api_key=` of the model server's URL in a failed turn's error."""
+    recorder = TraceRecorder(input="hello")
+    exchange = recorder.request("openai:m@http://host:1/v1?key=k3y", [("user", "hello")], {})
+    recorder.answered(exchange, None, None, 0.0,
+                      error="http://host:1/v1/chat/completions?key=k3y&api_key=k4y answered HTTP 500")
+    trace = recorder.finish(response="Sorry", backend="fallback", answered_by=None,
+                            error_msg="openai:m@http://host:1/v1?x-api-key=k5y: unreachable")
+    text = redacted(trace, []).model_dump_json(by_alias=True)
+    assert not [secret for secret in ("k3y", "k4y", "k5y") if secret in text], text
+    assert f"x-api-key={REDACTED}" in text and f"api_key={REDACTED}" in text
