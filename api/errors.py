@@ -31,6 +31,7 @@ from dialogue.speakers import NotAPerson
 from kb import KbError
 from kb.errors import (
     ModelLimit,
+    NotSerialisable,
     QueryTimeout,
     QueryTooLarge,
     ReasoningTooLarge,
@@ -178,6 +179,10 @@ async def _query_too_large(request: Request, exc: Exception) -> JSONResponse:
     return error_response(413, "query_too_large", f"{exc} (the service's limit)")
 
 
+async def _not_serialisable(request: Request, exc: Exception) -> JSONResponse:
+    return error_response(406, "not_acceptable", str(exc))
+
+
 async def _tbox_too_large(request: Request, exc: Exception) -> JSONResponse:
     return error_response(413, "tbox_too_large", f"{exc} (the service's limit)")
 
@@ -228,6 +233,7 @@ def install_error_handlers(app: FastAPI) -> None:
     app.add_exception_handler(QueryTooLarge, _query_too_large)
     app.add_exception_handler(TBoxTooLarge, _tbox_too_large)
     app.add_exception_handler(ReasoningTooLarge, _reasoning_too_large)
+    app.add_exception_handler(NotSerialisable, _not_serialisable)
     app.add_exception_handler(StorageFull, _storage_full)  # before KbError's 400: more specific
     app.add_exception_handler(StorageError, _storage_error)
     app.add_exception_handler(DialogueError, _dialogue_error)

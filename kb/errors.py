@@ -68,6 +68,12 @@ class QueryTooLarge(KbError):
     run, or stopped; nothing changed)."""
 
 
+class NotSerialisable(KbError):
+    """A graph that the format asked for cannot write: RDF/XML names a predicate as an XML element,
+    so a predicate that no XML name ends (``http://x.org/p/``, ``http://x.org/1``) has no RDF/XML
+    form. Nothing is wrong with the graph; another format writes it."""
+
+
 class TBoxTooLarge(KbError):
     """A write whose TBox change would cost the reasoner more than the KB allows (nothing of it
     was written)."""

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import json
 from collections.abc import Callable, Iterable, Iterator
+from contextlib import contextmanager
 from functools import lru_cache
 from importlib.resources import files
 from io import BytesIO, StringIO
@@ -20,7 +21,7 @@ from rdflib.exceptions import ParserError
 from rdflib.store import Store
 
 from kb import ntriples
-from kb.errors import KbError
+from kb.errors import KbError, NotSerialisable
 from kb.formats import EXPORTS, Syntax, export_format, format_of_path, rdf_format
 from kb.terms import ORO, PREFIXES, Triple
 from kb.unicode import check_terms
@@ -190,7 +191,20 @@ def to_graph(triples: Iterable[Triple]) -> Graph:
 
 
 def serialize(triples: Iterable[Triple], fmt: str) -> bytes:
-    return to_graph(triples).serialize(format=export_format(fmt).name, encoding="utf-8")
+    name = export_format(fmt).name
+    with unwritable(name):
+        return to_graph(triples).serialize(format=name, encoding="utf-8")
+
+
+@contextmanager
+def unwritable(fmt: str) -> Iterator[None]:
+    """rdflib's serialisers raise ValueError for a graph the format cannot write (RDF/XML: a
+    predicate no XML name ends); said as ``NotSerialisable``, naming the format."""
+    try:
+        yield
+    except ValueError as exc:
+        raise NotSerialisable(f"{fmt} cannot write this graph ({exc}); ask for another format, e.g. "
+                              "text/turtle, application/n-triples or application/ld+json") from None
 
 
 def _nothing_to_refuse(data: str | bytes, source: str) -> None:

@@ -24,6 +24,7 @@ from rdflib.term import Node as RdfNode
 from kb.deadline import Deadline, TimedIndex
 from kb.errors import InvalidSparql, KbError, QueryEvaluationError, QueryTooLarge, UnsupportedUpdate
 from kb.index import TripleIndex
+from kb.rdfio import unwritable
 from kb.sparqlbudget import bound, check_size
 from kb.sparqlexpr import EVALUATION_ERRORS
 from kb.sparqlparse import Parser, parse
@@ -234,7 +235,8 @@ def serialize(result: Result, fmt: str) -> bytes:
     format rdflib writes."""
     if fmt == "tsv":  # rdflib has no TSV results serialiser
         return _tsv(result)
-    return result.serialize(format=fmt, encoding="utf-8") or b""
+    with unwritable(fmt):  # a CONSTRUCT's graph in RDF/XML: a predicate no XML name ends
+        return result.serialize(format=fmt, encoding="utf-8") or b""
 
 
 def _tsv(result: Result) -> bytes:

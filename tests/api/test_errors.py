@@ -72,3 +72,20 @@ def test_not_acceptable_and_unsupported_media(live: Live) -> None:
     _assert_shape(live.client.get("/kb/export", headers={"accept": "image/png"}), 406, "not_acceptable")
     _assert_shape(live.client.post("/kb/load", content=b"x", headers={"content-type": "image/png"}),
                   415, "unsupported_media_type")
+
+
+def test_a_graph_rdf_xml_cannot_write_is_a_406_naming_other_formats(live: Live) -> None:
+    """Red team round 3 rerun: one anonymous CONSTRUCT of a predicate no XML name ends
+    (`http://x.org/p/`), asked as RDF/XML, answered 500; so did every RDF/XML export once a write
+    had put such a predicate in the KB."""
+    construct = 'CONSTRUCT { <http://x.org/a> <http://x.org/p/> "c" } WHERE {}'
+    refused = live.client.post("/sparql", data={"query": construct}, headers={"accept": "application/rdf+xml"})
+    body = _assert_shape(refused, 406, "not_acceptable")
+    assert "xml cannot write this graph" in body["message"] and "text/turtle" in body["message"]
+    as_turtle = live.client.post("/sparql", data={"query": construct}, headers={"accept": "text/turtle"})
+    assert as_turtle.status_code == 200 and "<http://x.org/p/>" in as_turtle.text
+    loaded = live.client.post("/kb/load", content=b'<http://x.org/a> <http://x.org/1> "c" .',
+                              headers={"content-type": "text/turtle"})
+    assert loaded.status_code == 200, loaded.text
+    _assert_shape(live.client.get("/kb/export", headers={"accept": "application/rdf+xml"}), 406, "not_acceptable")
+    assert live.client.get("/kb/export", headers={"accept": "application/n-triples"}).status_code == 200
