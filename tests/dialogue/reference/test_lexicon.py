@@ -1,3 +1,5 @@
+import time
+
 import pytest
 
 from dialogue.reference.english import tokens
@@ -141,4 +143,19 @@ def test_a_closed_compound_is_named_by_its_general_noun_yielding_to_the_kbs_own(
     lex = Lexicon(build_snapshot(kb))
     assert [(n.entity, n.lexical) for n in lex.names_at(["bench"], 0)] == [("wb_1", True)]
     assert lex.names_at(["board"], 0) == []  # a cupboard is no board
+    kb.close()
+
+
+def test_a_label_of_a_million_letters_costs_one_pass() -> None:
+    """Red team round 3 rerun: one scene entity labelled with a million letters (a body within the
+    limit) kept every dialogue turn unanswered past 200 s, its deadline 5 s, as the lexicon tried
+    each split of the word for a compound's head, copying the rest at each."""
+    kb = KB()
+    kb.update(["myself rdf:type Robot", "box_h rdf:type Artifact", f'box_h rdfs:label "{"x" * 1_000_000}"',
+               "myself sees box_h", "wb_1 rdf:type Artifact", f'wb_1 rdfs:label "{"y" * 100_000}bench"',
+               "myself sees wb_1"])  # fmt: skip
+    started = time.monotonic()
+    lex = Lexicon(build_snapshot(kb))
+    assert time.monotonic() - started < 30, "one pass over the labels, not one per letter"
+    assert [n.entity for n in lex.names_at(["bench"], 0)] == []  # no word of its own before "bench"
     kb.close()
