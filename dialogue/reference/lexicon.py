@@ -238,9 +238,12 @@ def _names(entity: Entity) -> list[Name]:
     # "handbag", "a drink" for the "lemonade"): the lexicon file's, which yield to the KB's own
     # names (`Name.lexical`).
     syn = synonyms(phrase)
+    longest = syn.longest
     for text in (*entity.labels, *entity.class_names):
         said = phrase(text)
-        for k in range(len(said)):
+        # Only the endings a synonym may be: each one tried is a copy (a label of 30,000 words
+        # once made every split of it one, minutes of work for every turn).
+        for k in range(max(0, len(said) - longest), len(said)):
             for other in syn.of(said[k:]):
                 add(" ".join((*said[:k], *other)), "synonym")
                 if k:

@@ -10,7 +10,7 @@ from __future__ import annotations
 from collections import defaultdict
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
-from functools import lru_cache
+from functools import cached_property, lru_cache
 from importlib import resources
 
 Phrase = tuple[str, ...]
@@ -32,6 +32,11 @@ class Synonyms:
     #: tried only when nothing has the specific name ("kind < general" lines only: "the lemonade"
     #: is no other drink).
     general: Mapping[Phrase, tuple[Phrase, ...]]
+
+    @cached_property
+    def longest(self) -> int:
+        """The most words of a phrase `of` or `broader_than` knows: a longer one has nothing."""
+        return max((len(p) for p in (*self.others, *self.broader)), default=0)
 
     def of(self, phrase: Sequence[str]) -> tuple[Phrase, ...]:
         return self.others.get(tuple(phrase), ())

@@ -159,3 +159,16 @@ def test_a_label_of_a_million_letters_costs_one_pass() -> None:
     assert time.monotonic() - started < 30, "one pass over the labels, not one per letter"
     assert [n.entity for n in lex.names_at(["bench"], 0)] == []  # no word of its own before "bench"
     kb.close()
+
+
+def test_a_label_of_many_words_costs_one_pass() -> None:
+    """Red team round 3 rerun: a label saying "mobile phone" 32,000 times took 254 s to read into
+    the lexicon (every ending of it was looked up as a synonym, each a copy)."""
+    kb = KB()
+    kb.update(["myself rdf:type Robot", "box_h rdf:type Artifact", f'box_h rdfs:label "{" ".join(["mobile phone"] * 30_000)}"',
+               "myself sees box_h", "ph_1 rdf:type Artifact", 'ph_1 rdfs:label "mobile phone"', "myself sees ph_1"])  # fmt: skip
+    started = time.monotonic()
+    lex = Lexicon(build_snapshot(kb))
+    assert time.monotonic() - started < 30, "one pass over the labels, not one per word"
+    assert "ph_1" in [n.entity for n in lex.names_at(["cell", "phone"], 0)]  # synonyms still found
+    kb.close()
