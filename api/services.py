@@ -27,8 +27,8 @@ from dialogue.memory.people import People
 from dialogue.memory.reconcile import Reconciler
 from dialogue.observers import TurnObserver
 from dialogue.pushed.bus import IntentBus, clock_first
-from dialogue.sessions import DialogueManager
-from dialogue.sparqlsessions import SparqlSessions
+from dialogue.sessions.manager import DialogueManager
+from dialogue.sessions.sparql import SparqlSessions
 from kb import KB, KbError
 from kb.errors import StorageError
 from kb.journal import Journal

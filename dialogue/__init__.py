@@ -5,13 +5,13 @@ Public API (exported here, see ``__all__``; nothing is done at import time):
 - `dialogue.engine.DialogueEngine(kb, model=None, config=EngineConfig(...))`, then
   `await engine.turn(text, speaker=user_id, history=[Utterance...], locale=None) -> TurnResult`
   (`response`, `intents` (dialogue.intents.Intent), `error_msg`, `backend`, `clarify`);
-- `dialogue.sessions.DialogueManager(engine, store=None)`: `start(role, locale)`, `get(id)`, `end(id)`,
-  `ids()` (and their `*_async` forms for async code), `await interact(user_id, text,
+- `dialogue.sessions.manager.DialogueManager(engine, store=None)`: `start(role, locale)`, `get(id)`,
+  `end(id)`, `ids()` (and their `*_async` forms for async code), `await interact(user_id, text,
   dialogue_id="default", locale=None, response_expected=True, history=None)`; errors are
   `SessionError` (`UnknownDialogue` for an id no dialogue has; every error of the package is a
   `DialogueError`); `store` is a
-  `dialogue.sessionstore.SessionStore`: `MemorySessions` (default) or
-  `dialogue.sparqlsessions.SparqlSessions(endpoint)` (shared by processes on one SPARQL store);
+  `dialogue.sessions.store.SessionStore`: `MemorySessions` (default) or
+  `dialogue.sessions.sparql.SparqlSessions(endpoint)` (shared by processes on one SPARQL store);
 - `dialogue.llm.spec.parse_spec("rules" | "ollama:gemma3:1b[@URL]" | "openai:MODEL[@URL]" |
   "openai-json:MODEL[@URL]" | "hybrid:<llm spec>") -> Backend(model, spec)`; errors are `SpecError`;
   `dialogue.llm.hybrid.HybridModel(inner)` is what a `hybrid:` spec builds; `await model.aclose()`
@@ -21,8 +21,8 @@ Public API (exported here, see ``__all__``; nothing is done at import time):
 
 Modules: intents (Intent.msg catalogue), schema (answer models, per-turn JSON schema), situation
 (snapshot as sentences), validate (model answer -> grounded intents), prompts, history, engine,
-sessions (+ sessionstore, sparqlsessions: where dialogue state lives; turnqueue: one turn at a
-time), roles (default, ask), locales, speakers, errors; ask/ (the __ask__ role's form), trace/
+roles (default, ask), locales, speakers, errors; sessions/ (the dialogue manager; where dialogue
+state lives, in memory or a SPARQL store; one turn at a time); ask/ (the __ask__ role's form), trace/
 (every turn's record); reference/ (grounding: the KB snapshot; lexicon / resolution / clarify:
 referents), rules/ (words, commands, questions, answers, interpret: the offline grammar), llm/
 (backends), evaluation/ (the eval tool),
@@ -37,7 +37,7 @@ from dialogue.intents import Intent
 from dialogue.llm.base import ChatModel, ModelError
 from dialogue.llm.hybrid import HybridModel
 from dialogue.llm.spec import SpecError, parse_spec
-from dialogue.sessions import DialogueManager
+from dialogue.sessions.manager import DialogueManager
 
 __all__ = [
     "ChatModel",

@@ -23,7 +23,7 @@ from dialogue.engine import DialogueEngine, TurnResult
 from dialogue.errors import DialogueError
 from dialogue.history import Utterance, role_of
 from dialogue.rolestate import Progress
-from dialogue.sessionstore import DEFAULT_ROLE
+from dialogue.sessions.store import DEFAULT_ROLE
 from dialogue.trace.record import TraceRecorder
 
 

@@ -53,7 +53,7 @@ def test_every_dialogue_error_has_the_one_root() -> None:
     from dialogue.llm.spec import SpecError
     from dialogue.prompts import PromptError
     from dialogue.schema import AnswerError
-    from dialogue.sessionstore import StateError
+    from dialogue.sessions.store import StateError
 
     for error in (EvalError, IntentError, ModelError, SpecError, PromptError, AnswerError, StateError,
                   dialogue.SessionError):

@@ -2,7 +2,7 @@
 
 An interaction is the 3.0 incremental shape (`user_id`, `input`; the service keeps the history) or
 the 4.0 stateless one (`role`, `history`, `summary`: the caller keeps the history; the last
-utterance of `history` is the input when `input` is not given). See `dialogue.sessions`.
+utterance of `history` is the input when `input` is not given). See `dialogue.sessions.manager`.
 """
 
 from __future__ import annotations
@@ -23,7 +23,7 @@ from dialogue.history import ASSISTANT_USER_ID, Utterance
 from dialogue.intents import Intent
 from dialogue.locales import normalise_locale
 from dialogue.rolestate import Progress, Status
-from dialogue.sessions import (
+from dialogue.sessions.manager import (
     DEFAULT_ROLE,
     DialogueExists,
     DialogueManager,

@@ -18,7 +18,7 @@ from api.deps import Credentials, ServicesDep, SettingsDep
 from api.errors import ApiError
 from api.limits import check_length
 from dialogue.engine import TurnResult
-from dialogue.sessions import DialogueManager, SessionError, check_utterance, said_nothing
+from dialogue.sessions.manager import DialogueManager, SessionError, check_utterance, said_nothing
 from kb import KbError
 from kb.protocol import KnowledgeBase
 

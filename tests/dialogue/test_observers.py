@@ -7,7 +7,7 @@ import asyncio
 from dialogue.engine import DialogueEngine, EngineConfig
 from dialogue.llm.testing import ScriptedModel
 from dialogue.observers import TurnRecord
-from dialogue.sessions import DialogueManager
+from dialogue.sessions.manager import DialogueManager
 from kb import KB
 
 

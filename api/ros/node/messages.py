@@ -10,7 +10,7 @@ from typing import Any
 from hri_actions_msgs.msg import Intent as IntentMessage
 
 from dialogue.intents import Intent
-from dialogue.sessions import DEFAULT_DIALOGUE
+from dialogue.sessions.store import DEFAULT_DIALOGUE
 
 #: The nil UUID (all zeros, an unset ROS field) addresses the service's `default` dialogue, which
 #: always exists: a caller that starts no dialogue talks in the one REST and the viewer share.

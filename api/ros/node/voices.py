@@ -31,7 +31,7 @@ from dialogue.engine import TurnResult
 from dialogue.entries import entry_locale
 from dialogue.errors import DialogueError, SessionError
 from dialogue.intents import UNKNOWN_AGENT
-from dialogue.sessions import DEFAULT_DIALOGUE
+from dialogue.sessions.store import DEFAULT_DIALOGUE
 
 log = logging.getLogger("situated.ros")
 SPEECH = r"/humans/voices/([^/]+)/speech"

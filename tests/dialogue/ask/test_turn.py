@@ -13,7 +13,7 @@ from dialogue.history import ASSISTANT_USER_ID, SYSTEM_USER_ID, Utterance
 from dialogue.intents import RAW_USER_INPUT
 from dialogue.llm.hybrid import HybridModel
 from dialogue.llm.testing import ScriptedModel
-from dialogue.sessions import DialogueManager
+from dialogue.sessions.manager import DialogueManager
 from kb import KB
 from tests.dialogue.ask.conftest import NINA, PROPERTIES
 

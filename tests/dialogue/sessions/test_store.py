@@ -3,7 +3,7 @@ import json
 import pytest
 
 from dialogue.history import ASSISTANT_USER_ID, Utterance
-from dialogue.sessionstore import DEFAULT_DIALOGUE, DialogueState, MemorySessions, StateError
+from dialogue.sessions.store import DEFAULT_DIALOGUE, DialogueState, MemorySessions, StateError
 
 
 def test_state_round_trips_through_ascii_json() -> None:

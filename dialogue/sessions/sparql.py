@@ -1,13 +1,13 @@
 """Dialogue sessions in a SPARQL 1.1 store, shared by every service process that uses the store.
 
 In the graph ``layout.dialogues`` each dialogue ``layout.dialogue(id)`` has two triples: its state
-as one JSON literal (``sit:dialogueState``, see dialogue.sessionstore.DialogueState) and when it
+as one JSON literal (``sit:dialogueState``, see dialogue.sessions.store.DialogueState) and when it
 was last saved (``sit:touched``, an ``xsd:dateTime``) that orders the eviction. A load is one
 SELECT; a save, a delete, an id listing are one request each. Every request is written with
 kb.sparqlstore.text from rdflib terms, so no id or text can break out of its term.
 
 Each update request is applied whole or not at all by the store; concurrent saves of one dialogue
-from different processes are not merged: the last one wins (see dialogue.sessions).
+from different processes are not merged: the last one wins (see dialogue.sessions.manager).
 """
 
 from __future__ import annotations
@@ -18,7 +18,7 @@ from urllib.parse import unquote
 
 from rdflib import Literal, URIRef, Variable
 
-from dialogue.sessionstore import DEFAULT_DIALOGUE, DialogueState, StateError, check_bound
+from dialogue.sessions.store import DEFAULT_DIALOGUE, DialogueState, StateError, check_bound
 from kb.sparqlstore.endpoint import SparqlEndpoint
 from kb.sparqlstore.layout import SIT
 from kb.sparqlstore.text import term

@@ -4,11 +4,11 @@
 and system roles (D14); `response_expected=False` only records. A turn on a dialogue sees that
 dialogue's history, and the answer (with the user's words) is appended after the turn.
 
-The dialogues live in a `SessionStore` (dialogue.sessionstore): in this process's memory by default,
-or in a store several service processes share (dialogue.sparqlsessions), so a dialogue started on
+The dialogues live in a `SessionStore` (dialogue.sessions.store): in this process's memory by default,
+or in a store several service processes share (dialogue.sessions.sparql), so a dialogue started on
 one process continues on another, a clarifying question asked by one included. Each turn loads the
 dialogue's state when it starts and saves it when it ends. The turns of one dialogue run one at a
-time in arrival order (dialogue.turnqueue), yet each turn answers by its own deadline counted from
+time in arrival order (dialogue.sessions.turnqueue), yet each turn answers by its own deadline counted from
 its arrival: a turn whose deadline passes while earlier ones run gets the engine's polite fallback at
 once, and is recorded (its words and that reply) when its place in the queue comes. This holds within
 one process only: two processes running turns on the same dialogue at once both load the same
@@ -41,7 +41,7 @@ from dialogue.history import ASSISTANT_USER_ID, SYSTEM_USER_ID, History, Utteran
 from dialogue.observers import TurnObserver, TurnRecord, notify
 from dialogue.roles import Roles
 from dialogue.rolestate import Progress
-from dialogue.sessionstore import (
+from dialogue.sessions.store import (
     DEFAULT_DIALOGUE,
     DEFAULT_ROLE,
     DialogueState,
@@ -50,9 +50,9 @@ from dialogue.sessionstore import (
     StateError,
     check_bound,
 )
+from dialogue.sessions.turnqueue import TurnQueue
 from dialogue.trace.record import TraceRecorder
 from dialogue.trace.store import TraceStore
-from dialogue.turnqueue import TurnQueue
 from kb.errors import KbError, StoreUnavailable
 
 __all__ = [

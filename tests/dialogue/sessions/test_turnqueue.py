@@ -6,7 +6,7 @@ import asyncio
 
 import pytest
 
-from dialogue.turnqueue import TurnQueue
+from dialogue.sessions.turnqueue import TurnQueue
 
 
 def test_late_work_keeps_its_place_and_other_dialogues_do_not_wait() -> None:

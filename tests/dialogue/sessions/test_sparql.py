@@ -19,9 +19,9 @@ from dialogue.engine import DialogueEngine
 from dialogue.history import ASSISTANT_USER_ID, Utterance
 from dialogue.llm.base import ChatRequest, ModelError
 from dialogue.llm.testing import FunctionModel
-from dialogue.sessions import DEFAULT_DIALOGUE, DialogueManager, SessionError
-from dialogue.sessionstore import DialogueState
-from dialogue.sparqlsessions import STATE, TOUCHED, SparqlSessions
+from dialogue.sessions.manager import DEFAULT_DIALOGUE, DialogueManager, SessionError
+from dialogue.sessions.sparql import STATE, TOUCHED, SparqlSessions
+from dialogue.sessions.store import DialogueState
 from kb import KB
 from kb.errors import StoreUnavailable
 from kb.sparqlstore import text as sparqltext

@@ -11,7 +11,13 @@ from dialogue.llm.base import ChatRequest
 from dialogue.llm.testing import FunctionModel, ScriptedModel
 from dialogue.roles import UnknownRole
 from dialogue.rolestate import Progress
-from dialogue.sessions import DEFAULT_DIALOGUE, DialogueExists, DialogueManager, SessionError, UnknownDialogue
+from dialogue.sessions.manager import (
+    DEFAULT_DIALOGUE,
+    DialogueExists,
+    DialogueManager,
+    SessionError,
+    UnknownDialogue,
+)
 from kb import KB, KbError
 
 
