@@ -24,7 +24,7 @@ Modules: intents (Intent.msg catalogue), schema (answer models, per-turn JSON sc
 roles (default, ask), locales, speakers, errors; sessions/ (the dialogue manager; where dialogue
 state lives, in memory or a SPARQL store; one turn at a time); ask/ (the __ask__ role's form), trace/
 (every turn's record); reference/ (grounding: the KB snapshot; lexicon / resolution / clarify:
-referents), rules/ (words, commands, questions, answers, interpret: the offline grammar), llm/
+referents), understanding/ (words, commands, questions, answers, interpret: the offline rules), llm/
 (backends), evaluation/ (the eval tool),
 memory/ (what people tell the robot: claims, statements, learn, provenance, people), pushed/ (the
 intent bus), observers (after each turn), initiative (engaging and greeting people).

@@ -13,9 +13,9 @@ from dialogue.llm.base import ChatModel, ChatRequest, ChatResult, EarlyAnswer, T
 from dialogue.memory.reading import Reading, read_turn
 from dialogue.prompts import FREE_FORM_OBJECT
 from dialogue.reference.lexicon import Lexicon, LexiconCache
-from dialogue.rules.interpret import Interpreter
-from dialogue.rules.outcome import Outcome
 from dialogue.schema import ChatbotResponse, UserIntent
+from dialogue.understanding.interpret import Interpreter
+from dialogue.understanding.outcome import Outcome
 
 
 def _wish(outcome: Outcome) -> UserIntent:

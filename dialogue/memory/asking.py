@@ -7,7 +7,7 @@
 
 The answer comes from the robot's model, and from what others said when it has not adopted it
 (dialogue.memory.learn). "Whose mug is this?" and "where are my keys?" are the situation questions
-of the rules (dialogue.rules.questions): what was adopted is in the situation like any fact.
+of the rules (dialogue.understanding.questions): what was adopted is in the situation like any fact.
 """
 
 from __future__ import annotations
@@ -18,8 +18,8 @@ from dialogue.history import Utterance
 from dialogue.reference.english import word_set
 from dialogue.reference.lexicon import Lexicon
 from dialogue.reference.resolution import PERSON, antecedent, content_words, resolve
-from dialogue.rules.utterance import normalise
 from dialogue.schema import FactClaim
+from dialogue.understanding.utterance import normalise
 
 Words = tuple[str, ...]
 _LIKE = word_set("like love enjoy adore")

@@ -3,7 +3,7 @@ the red one or the blue one?" -> "the red one" learns that the red mug is theirs
 
 The statement is read again with its ambiguous phrase completed by the answer ("the red one" for
 "the mug": "red mug"; "the one on the shelf": "mug on the shelf"), as the command grammar completes
-a pending request (dialogue.rules.interpret).
+a pending request (dialogue.understanding.interpret).
 """
 
 from __future__ import annotations
@@ -14,7 +14,7 @@ from dialogue.history import Utterance
 from dialogue.memory.statements import Statements, Told, Words
 from dialogue.reference.english import word_set
 from dialogue.reference.lexicon import Lexicon
-from dialogue.rules.utterance import normalise
+from dialogue.understanding.utterance import normalise
 
 _ONE = word_set("one ones")
 _EMPHASIS = word_set("obviously definitely clearly surely certainly yes yeah yep sure please thanks the a an")

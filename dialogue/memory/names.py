@@ -14,7 +14,7 @@ from __future__ import annotations
 from lemminflect import getAllLemmas, getInflection
 
 from dialogue.reference.english import FUNCTION_WORDS, word_set
-from dialogue.rules.words import NEEDS
+from dialogue.understanding.words import NEEDS
 
 Words = tuple[str, ...]
 #: Longest name a person may give (characters).

@@ -27,11 +27,11 @@ from dialogue.memory.names import clean_name, given_name, name_like
 from dialogue.reference.english import phrases, word_set
 from dialogue.reference.grounding import Entity, Kind
 from dialogue.reference.resolution import PLACE
-from dialogue.rules.clauses import clauses as run_on_clauses
-from dialogue.rules.speech import original_text
-from dialogue.rules.utterance import asked_verb, normalise
-from dialogue.rules.words import GREETINGS, SOCIAL
 from dialogue.schema import FactClaim
+from dialogue.understanding.clauses import clauses as run_on_clauses
+from dialogue.understanding.speech import original_text
+from dialogue.understanding.utterance import asked_verb, normalise
+from dialogue.understanding.words import GREETINGS, SOCIAL
 
 __all__ = ["Statements", "Told", "Words"]
 

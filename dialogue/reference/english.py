@@ -1,9 +1,9 @@
-"""Closed-class English: the one tokeniser, and the word lists that the grammar (dialogue.rules) and
+"""Closed-class English: the one tokeniser, and the word lists that the grammar (dialogue.understanding) and
 reference resolution both read.
 
 Only function words live here (determiners, pronouns, prepositions by what they introduce, colour
 and position words); nouns always come from the KB (dialogue.reference.lexicon), and the grammar's
-own lists (politeness, greetings, verb frames) are in dialogue.rules.
+own lists (politeness, greetings, verb frames) are in dialogue.understanding.
 """
 
 from __future__ import annotations

@@ -7,7 +7,7 @@ from dialogue.reference.headnoun import resolve_head
 from dialogue.reference.resolution import THING, resolve
 from kb import KB
 from tests.dialogue.conftest import lexicon_of, scene_kb
-from tests.dialogue.rules.test_interpret import say
+from tests.dialogue.understanding.test_interpret import say
 
 
 @pytest.mark.parametrize(

@@ -65,7 +65,7 @@ def test_everyday_names_of_the_lexicon_file(office: KB, label: str, said: str) -
 
 
 def test_how_many_counts_irregular_plurals(office: KB) -> None:
-    from tests.dialogue.rules.test_interpret import say
+    from tests.dialogue.understanding.test_interpret import say
 
     office.update([f"{k} rdf:type Artifact" for k in ("knife_1", "knife_2")])
     office.update([f'{k} rdfs:label "knife"' for k in ("knife_1", "knife_2")])

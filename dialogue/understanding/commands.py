@@ -1,0 +1,375 @@
+"""Reading an utterance's words: its act (a request, a question, a greeting, thanks, a refusal) and,
+for a request, the verb frame it fits (dialogue.understanding.frames) with each role's phrase (D11).
+
+Only words are looked at: which entity a phrase names is decided later against the KB
+(dialogue.understanding.interpret), so no noun is written here.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import replace
+
+from dialogue.reference.english import DETERMINERS, FUNCTION_WORDS, MANY, ME, MODIFIER_START, PERSONAL, Words
+from dialogue.understanding.constructions import Said
+from dialogue.understanding.frames import CONSTRUCTIONS, Row, verb_index
+from dialogue.understanding.parsed import Act, Parse
+from dialogue.understanding.questions import question as _question
+from dialogue.understanding.speech import starts, strip_politeness
+from dialogue.understanding.utterance import normalise, strip_vocative, verb_lemma
+from dialogue.understanding.words import (
+    ADJUNCTS,
+    ATTENTION,
+    AWAY,
+    DURATIONS,
+    GOAL_PARTICLES,
+    GREETINGS,
+    HALTS,
+    HERE,
+    IF_MODALS,
+    JOINED_PREPOSITIONS,
+    MANNER,
+    NP_START,
+    PATHS,
+    POLITE_IF,
+    RESULTS,
+    SOCIAL,
+    THEIR_SUBJECTS,
+    THERE,
+    TIME_CONJUNCTIONS,
+    WHILE,
+    purpose,
+)
+
+__all__ = ["Parse", "Words", "parse"]
+
+#: Pointing words and what they point at, longest first: the speaker, or the place just spoken of.
+_POINTING = sorted([(p, ("me",)) for p in HERE] + [(p, ("there",)) for p in THERE], key=lambda p: -len(p[0]))
+
+
+def parse(text: str, robot_name: str = "") -> Parse:
+    words = strip_vocative(strip_politeness(normalise(text), robot_name), robot_name)
+    if not words:
+        return Parse("unknown", words=())
+    words[0] = verb_lemma(words[0])  # "(would you mind) picking up the cup"
+    if words[0] == "no" and len(words) > 1 and words[1] not in {"need", "more", "thanks", "thank"}:
+        words = strip_politeness(words[1:], robot_name)
+    if len(words) > 1 and words[0] in HALTS and _negation(words[1:]):  # "stop, don't go"
+        words = words[1:]
+    if words and _negation(words):
+        return Parse("negated", words=tuple(words))
+    if _conditional(words):  # "if Declan comes by, give him the menu": not now
+        return Parse("conditional", words=tuple(words))
+    if not words:
+        return Parse("unknown", words=())
+    if words[0] in {"thanks", "thank"} or words == ["cheers"]:
+        # "thanks, now put it on the shelf": the thanks is a preamble to the request
+        tail = strip_politeness(words[2:] if words[:2] == ["thank", "you"] else words[1:], robot_name)
+        return _request(text, tail) or _aside("thanks", words, tail)
+    if tuple(words) in SOCIAL and words[:1] != ["how"]:
+        return Parse("greeting", words=tuple(words))
+    # "welcome Lucia" asks the robot to greet her; "welcome back" is a greeting.
+    welcoming = words[0] == "welcome" and words[1:] and words[1] not in {"back", "home", "to", "everyone"}
+    for g in () if welcoming else GREETINGS:
+        if starts(words, g):
+            rest = strip_vocative(strip_politeness(words[len(g) :], robot_name), robot_name)
+            if tuple(rest) in SOCIAL:
+                return Parse("greeting", words=tuple(words))
+            # "Good morning Maria" is still a greeting; "hi, grab the cup" is a request; "hello
+            # robot, what's your name" a greeting and a question.
+            after = _request(text, rest)
+            if after is not None and after.act == "question" and g not in ATTENTION:
+                return replace(after, greeted=True)
+            return after or _aside("greeting", words, rest)
+    return _question(words) or command(text, words)
+
+
+#: At most this many words after a greeting or thanks are part of it ("good morning Mr Ito").
+_ASIDE = 3
+
+
+def _aside(act: Act, words: list[str], rest: list[str]) -> Parse:
+    """A greeting or thanks, unless more follows it than a name: then what follows was not
+    understood ("hey robot the red case is mine can you..."), and nor is the whole."""
+    return Parse(act, words=tuple(words)) if len(rest) <= _ASIDE else Parse("unknown", words=tuple(words))
+
+
+def _request(text: str, words: list[str]) -> Parse | None:
+    """What follows a greeting or thanks, if it is a question or command."""
+    if not words:
+        return None
+    after = _question(words) or command(text, words)
+    return after if after.act != "unknown" else None
+
+
+def command(original: str, words: list[str]) -> Parse:
+    """The request the words make: the first construction or verb frame that fits them."""
+    w = _joined(words)
+    said = Said("", w, w, original)
+    for construction in CONSTRUCTIONS:
+        found = construction(said)
+        if found is not None:
+            return found
+    if w:
+        w = (verb_lemma(w[0]), *w[1:])
+    for verb, row in verb_index().get(w[0], ()) if w else ():
+        if tuple(w[: len(verb)]) != verb:
+            continue
+        # what to say is said as it was ("out of paper"), the roles of a frame read joined
+        rest = tuple(words[len(verb) :]) if row.frame.special is not None else w[len(verb) :]
+        found = _fit(row, Said(" ".join(verb), rest, w, original))
+        if found is not None:
+            return found
+    return Parse("unknown", words=w)
+
+
+def _joined(words: list[str]) -> Words:
+    """ "next to" as one word ("beside"), so that its "to" is never taken for a recipient's ("out
+    of the way" stays: an adjunct, no place)."""
+    out: list[str] = []
+    for i, word in enumerate(words):
+        way = word == "of" and words[i + 1 : i + 3][-1:] == ["way"]
+        if out and (out[-1], word) in JOINED_PREPOSITIONS and len(out) > 1 and not way:
+            out[-1] = JOINED_PREPOSITIONS[(out[-1], word)]
+        else:
+            out.append(word)
+    return tuple(out)
+
+
+def _fit(row: Row, said: Said) -> Parse | None:
+    """The row's reading of what follows the verb, or None when the row does not fit it."""
+    frame, rest = row.frame, said.rest
+    if frame.special is not None:
+        return frame.special(said)
+    if frame.intent is None and not frame.serial:  # a verb no intent says ("hand out the sheets")
+        return Parse("unknown", words=said.words)
+    if frame.serial:  # "go get the cup", "come say hello to Ana"
+        return command(said.original, list(rest)) if rest and verb_lemma(rest[0]) in verb_index() else None
+    if frame.whole and rest:
+        return None
+    rest, adjuncts = _adjuncts(rest, row)
+    direct, slots, marks = _segments(rest, row)
+    if direct:
+        direct = _which_one_back(direct, slots, marks, row)
+    if frame.here is not None and not (frame.dative and direct[:1] and direct[0] in ME):
+        # ("fetch me that lamp over there": there is where the lamp is)
+        # "leave it over there", "come here", "lead the way"; dropped when the place is also named
+        # ("lead the way to the lobby").
+        # ("wait for me there": what for says no place, the pointing word after it does)
+        aside = "extra" if not direct and "extra" in slots else None
+        words = slots[aside] if aside is not None else direct
+        pointed = next((p for p in _POINTING if words[-len(p[0]) :] == p[0]), None)
+        if pointed is not None and not (frame.there_only and pointed[1] != ("there",)):
+            if aside is None:
+                direct = direct[: -len(pointed[0])]
+            else:
+                slots[aside] = words[: -len(pointed[0])]
+            slots.setdefault(frame.here, pointed[1])
+    if "extra" in slots:  # what a role the intent does not ground says is an adjunct ("for the van")
+        adjuncts = (*adjuncts, (marks.pop("extra"), *slots.pop("extra")))
+    direct = _without_particles(direct, row)
+    if direct[-1:] and direct[-1] in RESULTS:  # "get the room ready": no intent of the robot's
+        return Parse("unknown", words=said.words)
+    if not direct and not slots and set(adjuncts) & _AWAY:
+        return None  # "get out of my way": where not to be is all it says (no thing to get)
+    if not direct and frame.direct is not None:
+        direct = _second_phrase(slots)  # "bring to Ana the tray"
+    if frame.dative is not None and direct[:1] and direct[0] in ME and marks.get("recipient") == "to":
+        # "bring me the keys to the red car": the keys of the car, brought to the speaker
+        direct = (*direct[1:], "to", *slots.pop("recipient"))
+        slots["recipient"] = ("me",)
+        del marks["recipient"]
+    elif frame.dative is not None and direct[:1] and direct[0] in ME and marks.get("recipient") == "for":
+        # "pass me the drill for Marcus", "get me a cloth for the spill": the speaker is handed it,
+        # whoever or whatever it is for
+        adjuncts = (*adjuncts, ("for", *slots.pop("recipient")))
+        slots["recipient"], direct = ("me",), direct[1:]
+        del marks["recipient"]
+    if frame.dative is not None and "recipient" not in slots and direct:
+        # "get Ines her phone": someone, then a noun phrase of its own
+        before = frame.dative == "before" and _someone(direct[0]) and _own_phrase_after(direct)
+        if direct[0] in ME:  # "get me a cup"
+            slots["recipient"], direct = ("me",), direct[1:]
+        elif frame.dative == "any" or before:  # "give Ines her phone": the interpreter splits it
+            return Parse("command", frame.intent, {"rest": direct}, words=said.words, double_object=True,
+                         adjuncts=adjuncts)  # fmt: skip
+    if direct and frame.direct is None:
+        return None
+    if direct and frame.direct is not None:
+        slots[frame.direct] = direct
+    if frame.only is not None and not set(slots.get(frame.direct or "", ("",))) <= frame.only:
+        return None
+    if any(role not in slots for role in frame.requires):
+        return None
+    implicit = frozenset(r for r in frame.defaults if r not in slots)
+    slots = {**{r: frame.defaults[r] for r in implicit}, **slots}
+    text = frame.text(said.verb, said.rest) if frame.text is not None else None
+    return Parse("command", frame.intent, slots, text=text, words=said.words, adjuncts=adjuncts,
+                 implicit=implicit, marks=marks)  # fmt: skip
+
+
+_OWN_PHRASE = NP_START | {"her"}
+_AWAY = frozenset(AWAY)
+
+
+def _someone(word: str) -> bool:
+    """Whether a word may start the phrase of a person ("him", "Ines"), not of a thing ("all", "the")
+    nor a person's thing ("Noor's scarf")."""
+    if word.endswith("'s"):
+        return False
+    return word in PERSONAL or word == "them" or word not in FUNCTION_WORDS | DETERMINERS | MANY
+
+
+def _own_phrase_after(direct: Words) -> bool:
+    """Whether a noun phrase of its own starts within the next words after the first ("Ines *her*
+    phone", "Mr Ito *the* menu"), not after a preposition ("Noor's scarf off *the* chair")."""
+    starts = range(1, min(4, len(direct)))
+    return any(direct[i] in _OWN_PHRASE and direct[i - 1] not in MODIFIER_START for i in starts)
+
+
+def _segments(rest: Words, row: Row) -> tuple[Words, dict[str, Words], dict[str, str]]:
+    """The words before any of the row's prepositions (the direct role's), and each role's phrase:
+    from its preposition to the next role's (a role's preposition said again stays in its phrase:
+    "put the cup on the tray on the table"), and the preposition of each."""
+    direct: list[str] = []
+    slots: dict[str, list[str]] = {}
+    marks: dict[str, str] = {}
+    current = direct
+    i = 0
+    while i < len(rest):
+        marker = next((m for m in row.slots if rest[i : i + len(m[0])] == m[0] and m[1] not in slots), None)
+        if marker is not None and marker[0][0] in GOAL_PARTICLES and not _phrase_at(rest, i + 1):
+            marker = None  # "go down to the cellar": a particle; "go down the garden": where to
+        if marker is not None and purpose(rest[i : i + 2]) is None:  # "something to eat" is no recipient
+            current = slots[marker[1]] = []
+            marks[marker[1]] = " ".join(marker[0])
+            i += len(marker[0])
+            continue
+        current.append(rest[i])
+        i += 1
+    # "take the calculator to": a role cut short is still said (asked for), never dropped
+    cut = {r for r, words in slots.items() if not words and marks[r] in _CUT_SHORT and current is words}
+    return tuple(direct), {role: tuple(words) for role, words in slots.items() if words or role in cut}, marks
+
+
+#: Prepositions that never end a request as a particle: a role said with one and nothing after it was
+#: cut short ("give it to"), where "come in", "hold on" end with a particle.
+_CUT_SHORT = frozenset({"to", "towards", "into", "onto"})
+
+
+def _which_one_back(direct: Words, slots: dict[str, Words], marks: dict[str, str], row: Row) -> Words:
+    """ "put the goggles on the front bench back on the shelf": a place said before "back" and the
+    role's preposition again says which thing (the goggles on the front bench), the one after it
+    where the thing goes. The direct phrase with its modifier; the role's phrase is cut to the
+    place after "back"."""
+    for preposition, role in row.slots:
+        words = slots.get(role, ())
+        for i in range(1, len(words) - len(preposition)):
+            if words[i] == "back" and words[i + 1 : i + 1 + len(preposition)] == preposition:
+                slots[role] = words[i + 1 + len(preposition) :]
+                first, marks[role] = marks[role], " ".join(preposition)
+                return (*direct, *first.split(), *words[:i])
+    return direct
+
+
+def _phrase_at(words: Words, i: int) -> bool:
+    """Whether a noun phrase starts at i: a determiner, or a word that is no function word ("plot
+    12", "Ana's desk")."""
+    return i < len(words) and (words[i] in NP_START or words[i] not in FUNCTION_WORDS)
+
+
+def _second_phrase(slots: dict[str, Words]) -> Words:
+    """When nothing follows the verb directly, a second noun phrase after a role's own ("to Ana the
+    tray", "to Fenna her keys") is the direct one; it is taken out of that role's phrase."""
+    for role, words in slots.items():
+        for i in range(1, len(words)):
+            starts = words[i] in NP_START or (words[i] == "her" and i + 1 < len(words))
+            if starts and words[i - 1] not in NP_START:
+                slots[role] = words[:i]
+                return words[i:]
+    return ()
+
+
+def _without_particles(words: Words, row: Row) -> Words:
+    """Particles next to the verb, at the end, or before a preposition ("pick the cup up from the
+    table"), never inside a phrase ("the back door")."""
+    if not row.particles:
+        return words
+    out = list(words)
+    while out and out[0] in row.particles:
+        out.pop(0)
+    while out and out[-1] in row.particles:
+        out.pop()
+    return tuple(w for i, w in enumerate(out) if w not in row.particles or not _before_preposition(out, i))
+
+
+def _before_preposition(words: list[str], i: int) -> bool:
+    return i + 1 < len(words) and words[i + 1] in MODIFIER_START
+
+
+def _adjuncts(rest: Words, row: Row) -> tuple[Words, tuple[Words, ...]]:
+    """The words without their adjuncts ("through the main door", "on my behalf", "when you can",
+    "carefully"), and the adjuncts. A phrase starting with one of the row's own prepositions is
+    one of its roles, not an adjunct."""
+    own = {m[0][0] for m in row.slots}
+    out: list[str] = []
+    found: list[Words] = []
+    i = 0
+    while i < len(rest):
+        end = _adjunct_end(rest, i, own)
+        if end > i:
+            found.append(rest[i:end])
+            i = end
+        else:
+            out.append(rest[i])
+            i += 1
+    return tuple(out), tuple(found)
+
+
+def _adjunct_end(rest: Words, i: int, own: set[str]) -> int:
+    word = rest[i]
+    lasting = next((len(p) for p in DURATIONS if rest[i : i + len(p)] == p), 0)
+    if lasting:  # "wait in the hall for now", "bring the fan for now"
+        return i + lasting
+    by_doing = word == "by" and i + 1 < len(rest) and rest[i + 1].endswith("ing")  # "by crossing the hall"
+    # "down the hall to the garage": the way, when the place comes after it
+    way = word in GOAL_PARTICLES & own and bool(set(rest[i + 1 :]) & (own - GOAL_PARTICLES))
+    # "take Aisha down the corridor to the staff room": the way, between the thing or person and
+    # where they go, for a verb of carrying or guiding too
+    way = way or (i > 0 and word in GOAL_PARTICLES and rest[i + 1 : i + 2] != () and rest[i + 1] in NP_START
+                  and bool(set(rest[i + 2 :]) & (own - GOAL_PARTICLES)))  # fmt: skip
+    if word in own and not by_doing and not way:
+        return i
+    said_how = _said_how(rest, i)
+    if said_how:
+        return i + said_how
+    if word in PATHS or by_doing or way:
+        end, stop = i + 1, (own - GOAL_PARTICLES) | PATHS
+        while end < len(rest) and rest[end] not in stop and not _said_how(rest, end):
+            end += 1
+        # "through the main door" has a phrase; "walk through to the lounge" is a particle.
+        return end if end > i + 1 else i
+    return i
+
+
+def _negation(words: Sequence[str]) -> bool:
+    return words[0] in {"don't", "never", "no"} or starts(words, ["do", "not"])
+
+
+def _conditional(words: Sequence[str]) -> bool:
+    """Whether the request is said under a condition of something to happen first ("if I nod off,
+    could you..."), not a polite "if" ("if you could...", "if I could have the bill")."""
+    if words[:1] != ["if"] or len(words) < 4 or any(starts(words, p) for p in POLITE_IF):
+        return False
+    return words[2] not in IF_MODALS
+
+
+def _said_how(rest: Words, i: int) -> int:
+    """The length of the phrase of manner or time that starts at i ("when you can", "carefully", a
+    clause of time to the end: "while he waits"), or 0."""
+    if rest[i] in MANNER:
+        return 1
+    subject = rest[i + 1] if i + 1 < len(rest) else ""
+    if i > 0 and (rest[i] in WHILE or (rest[i] in TIME_CONJUNCTIONS and subject in THEIR_SUBJECTS)):
+        return len(rest) - i
+    return next((len(p) for p in ADJUNCTS if rest[i : i + len(p)] == p), 0)

@@ -1,0 +1,317 @@
+"""The few requests a frame row cannot say, as small functions the frame table refers to.
+
+Each takes what was said (`Said`) and returns a `Parse`, or None when it does not apply (the grammar
+then tries the next row). Quoted speech, needs ("I'm parched"), wishes ("I want X", "I want to go to
+X"), "help me get to X", "show me the cup" (a question), "greet everyone", "do you like..." (a
+yes/no question, not an activity).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+
+from lemminflect import getLemma
+
+from dialogue import intents as I
+from dialogue.reference.english import FUNCTION_WORDS, ME, Words, phrases, word_set
+from dialogue.understanding.clauses import finite
+from dialogue.understanding.parsed import Parse
+from dialogue.understanding.speech import QUOTED, expanded, message, original_text, split_at, starts
+from dialogue.understanding.words import (
+    ADJUNCTS,
+    DONE,
+    EVERYONE,
+    GOES,
+    GOES_PARTICLES,
+    INTENSIFIERS,
+    NEEDS,
+    NOT_WISHERS,
+    NP_START,
+    PLACES,
+    THEIR_WANTS,
+    WANT_VERBS,
+    WANTS,
+    WISHERS,
+)
+
+#: Prepositions of a place a thing goes, longest first; "to" and "at" say no place to put it
+#: ("goes to town"), only one to take it to after a request to take another thing there.
+_PLACES = sorted(phrases(PLACES), key=len, reverse=True)
+_NOT_PUT = frozenset({("to",), ("at",)})
+#: Subjects that never name a thing to put ("I go in the morning", "you belong here").
+NOT_THINGS = word_set("i we you he she what where who which how why when there")
+
+
+@dataclass(frozen=True)
+class Said:
+    #: The verb phrase as the table has it ("pick", "get hold of"; "" before any verb is read).
+    verb: str
+    #: The words after the verb phrase (all the words when `verb` is "").
+    rest: Words
+    #: All the utterance's words, and the original text (for quotes and casing).
+    words: Words
+    original: str
+
+    def command(self, intent: str, text: str | None = None, **slots: Words) -> Parse:
+        if "recipient" in slots:  # "tell Ana from me that...": whom, not on whose behalf
+            slots["recipient"] = _without_adjunct(slots["recipient"])
+        return Parse("command", intent, dict(slots), text=text, words=self.words)
+
+
+def _without_adjunct(words: Words) -> Words:
+    """The words without an adjunct at their end ("ana from me", "ana on my behalf")."""
+    found = next((a for a in ADJUNCTS if len(words) > len(a) and words[-len(a) :] == a), None)
+    return words[: -len(found)] if found is not None else words
+
+
+# -- before any verb: what the whole utterance says ----------------------------------------------
+def need(said: Said) -> Parse | None:
+    """ "I'm really parched", "we are starving": something of the class that meets the need."""
+    w = said.words
+    if w[:2] not in {("i", "am"), ("we", "are")}:
+        return None
+    rest = [x for x in w[2:] if x not in INTENSIFIERS]
+    wanted = NEEDS.get(rest[0]) if len(rest) == 1 else None
+    return said.command(I.BRING_OBJECT, object=(wanted,), recipient=("me",)) if wanted else None
+
+
+def going(said: Said) -> Parse | None:
+    """ "I want to go to X", "Ellen needs to get to X": take them there."""
+    w = said.words
+    for i in range(len(w) - 4):
+        wants = w[i] in WANT_VERBS or w[i : i + 2] in {("would", "like"), ("has", "to"), ("have", "to")}
+        at = i + (2 if w[i] == "would" else 1)
+        goes = w[at : at + 1] == ("to",) and w[at + 1 : at + 2] in {("go",), ("get",)}
+        if wants and goes and w[at + 2 : at + 3] == ("to",) and w[at + 3 :]:
+            who = w[:i]
+            return said.command(I.GUIDE, recipient=("me",) if who in {(), ("i",), ("we",)} else who,
+                                goal=w[at + 3 :])  # fmt: skip
+    return None
+
+
+def wanting(said: Said) -> Parse | None:
+    """ "I would like the apple", "can I have a tea": bring it to the speaker."""
+    for lead in WANTS:
+        if starts(said.words, lead) and len(said.words) > len(lead):
+            wanted = said.words[len(lead) :]
+            if wanted[:1] != ("to",) and wanted[:2] != ("a", "hand"):  # "give me a hand to the door"
+                return said.command(I.BRING_OBJECT, object=wanted, recipient=("me",))
+    return None
+
+
+def their_wish(said: Said) -> Parse | None:
+    """ "Ahmed would like the photo album", "he needs his glasses": bring it to them."""
+    w = said.words
+    for i in range(1, min(len(w), 4)):
+        who = w[:i]
+        lead = next((p for p in THEIR_WANTS if w[i : i + len(p)] == p), None)
+        if lead is None:
+            continue
+        wanted = w[i + len(lead) :]
+        person = who in {(x,) for x in WISHERS} or not set(who) & (NOT_WISHERS | WISHERS | ME)
+        if person and wanted and wanted[0] != "to":
+            return said.command(I.BRING_OBJECT, object=wanted, recipient=_pronoun(who))
+        return None
+    return None
+
+
+def _pronoun(who: Words) -> Words:
+    """ "he", "she", "they" refer to someone the conversation named."""
+    return {"he": ("him",), "she": ("her",), "they": ("them",)}.get(who[0], who) if len(who) == 1 else who
+
+
+def belonging(said: Said) -> Parse | None:
+    """ "the butter goes back in the fridge", "this belongs on the shelf": put it there."""
+    found = where_it_goes(said.words)
+    if found is None or found[1] in _NOT_PUT:  # "goes to town" is no place to put it
+        return None
+    thing, place, where = found
+    parse = said.command(I.PLACE_OBJECT, object=thing, recipient=where)
+    return replace(parse, marks={"recipient": " ".join(place)})
+
+
+def where_it_goes(w: Words) -> tuple[Words, Words, Words] | None:
+    """ "the butter goes back in the fridge", "the soup goes to table two": the thing, the
+    preposition and the place; None when the words say no such thing."""
+    for i in range(1, min(len(w) - 2, 6)):
+        lead = next((p for p in GOES if w[i : i + len(p)] == p), None)
+        if lead is None:
+            continue
+        thing, rest = w[:i], w[i + len(lead) :]
+        while rest[:1] and rest[0] in GOES_PARTICLES:
+            rest = rest[1:]
+        place = next((p for p in _PLACES if rest[: len(p)] == p), None)
+        if place is None or not rest[len(place) :] or thing[0] in NOT_THINGS:
+            return None
+        return thing, place, rest[len(place) :]
+    return None
+
+
+def enough(said: Said) -> Parse | None:
+    """ "that is enough (now)": stop."""
+    if said.words[:2] == ("that", "is") and "enough" in said.words:
+        return said.command(I.STOP_ACTIVITY)
+    return None
+
+
+# -- after a verb ---------------------------------------------------------------------------------
+def a_hand(said: Said) -> Parse | None:
+    """ "give George a hand getting to the courtyard" is helping him get there."""
+    rest = said.rest
+    at = next((i for i in range(len(rest) - 1) if rest[i : i + 2] == ("a", "hand")), None)
+    if at is None or at == 0:
+        return None
+    after = rest[at + 2 :]
+    after = after[1:] if after[:1] in {("getting",), ("with",)} else after
+    return helping(Said("help", (*rest[:at], *after), said.words, said.original))
+
+
+def helping(said: Said) -> Parse | None:
+    """ "help me get to the bathroom": take them there."""
+    found = split_at(said.rest, ["get to", "to"]) if "to" in said.rest else None
+    if found is None or not found[0] or not found[2]:
+        return None
+    return said.command(I.GUIDE, recipient=found[0], goal=found[2])
+
+
+def showing(said: Said) -> Parse | None:
+    """ "show me the scissors" asks where they are; "show me the way (to X)" is guiding, and so is
+    "show George where the lounge is"."""
+    if "where" in said.rest[1:]:
+        at = said.rest.index("where")
+        place = said.rest[at + 1 :]
+        place = place[:-1] if place[-1:] in {("is",), ("are",)} else place
+        return said.command(I.GUIDE, recipient=said.rest[:at] or ("me",), goal=place) if place else None
+    if "way" in said.rest or "to" in said.rest or set(said.rest[-1:]) & _SHOWN:
+        return None  # ("show Ana out": guiding her, not where she is)
+    thing = said.rest[1:] if said.rest[:1] and said.rest[0] in ME else said.rest
+    return Parse("question", question="where", slots={"thing": thing}, words=said.words)
+
+
+#: "show Ana in", "show them round": the way someone is shown, guiding them.
+_SHOWN = word_set("in out round around up down through along back")
+
+
+def everyone(said: Said) -> Parse | None:
+    """ "greet everyone": no one recipient, a greeting said aloud."""
+    if said.rest in EVERYONE:
+        return Parse("greeting", words=said.words, slots={"everyone": said.rest})
+    return None
+
+
+def asking(said: Said) -> Parse | None:
+    """ "do you like music" is a yes/no question, "do the dishes" a request."""
+    if said.rest[:1] and said.rest[0] not in DONE:
+        return Parse("unknown", words=said.words)
+    return None
+
+
+def letting_know(said: Said) -> Parse | None:
+    """ "let Tom know that dinner is ready" is "tell Tom that...". """
+    if "know" not in said.rest:
+        return None
+    return speech(Said("tell", tuple(x for x in said.rest if x != "know"), said.words, said.original))
+
+
+def _plural(word: str) -> bool:
+    """Whether a noun is a plural ("kids", "children")."""
+    lemmas = getLemma(word, "NOUN")
+    return bool(lemmas) and lemmas[0] != word
+
+
+#: Words that start the clause of a message after the person told ("tell Noor *it*'s time").
+_SUBJECTS = word_set("it he she they we i you there")
+
+
+def _clause_start(rest: Words) -> int | None:
+    """Where a clause with a subject of its own starts after the person told, if one does: a subject
+    pronoun ("tell Noor *it*'s time"), or a noun phrase and its verb ("tell Kasia *her courgettes
+    are* ready", "tell Ana *the taxi is* here")."""
+    starts = (i for i in range(1, len(rest) - 1) if rest[i] in _SUBJECTS or _subject_phrase(rest, i))
+    return next(starts, None)
+
+
+#: Verbs that follow a subject whatever it is.
+_VERBS_OF_ANY = word_set("is are was were has have had will would can could should must may might")
+
+
+#: At most this many words of a subject before its verb ("the customer for the grey car has...").
+_SUBJECT_WORDS = 6
+
+
+def _subject_phrase(rest: Words, i: int) -> bool:
+    """Whether a noun phrase starts at i and its verb follows it ("her courgettes are", "the film
+    starts", "the customer for the grey car has")."""
+    if (rest[i] not in NP_START and rest[i] != "her") or i + 1 >= len(rest) or rest[i + 1] in FUNCTION_WORDS:
+        return False
+    for k in range(i + 2, min(len(rest), i + 1 + _SUBJECT_WORDS)):
+        if rest[k] in _VERBS_OF_ANY or finite(rest[k], third_person=True):
+            return True
+        if rest[k] in {"that", "to", "and", "or"}:
+            return False
+    return False
+
+
+def speech(said: Said) -> Parse:
+    """What to say, to whom: quoted words kept as they are, "tell X that/to...", "say X to Y"."""
+    verb, rest, original = said.verb, said.rest, said.original
+    quoted = QUOTED.search(original)
+    if quoted:
+        # The quoted words are the text; the recipient is found outside the quotes only.
+        outside = expanded(original[: quoted.start()] + " " + original[quoted.end() :])
+        rest = tuple(outside[outside.index(verb) + 1 :]) if verb in outside else ()
+        rest = tuple(x for x in rest if x not in {"that", "please"})
+        recipient = rest[1:] if rest[:1] == ("to",) else rest
+        return said.command(I.SAY, text=quoted.group(1).strip(), recipient=recipient)
+    unknown = Parse("unknown", words=(verb, *rest))
+    if rest[:1] and rest[0] in {"goodbye", "bye"} and "to" in rest:
+        return said.command(I.SAY, text="goodbye", recipient=rest[rest.index("to") + 1 :])
+    if verb in {"tell", "inform", "remind", "ask"}:
+        found = split_at(rest, ["that", "to", "about"])
+        clause = _clause_start(rest) if verb != "ask" else None
+        if clause is not None and (found is None or clause < len(found[0])):
+            # "tell Noor it's time to go": the message is a clause of its own, its "to" is its own
+            found = rest[:clause], "", rest[clause:]
+        if found is not None:
+            recipient, sep, text = found
+            text = ("please", *text) if sep == "to" else text
+            if sep == "about" or (verb == "ask" and sep != "to"):
+                return unknown
+        elif verb == "ask":  # "ask Ana if she wants tea": a question to put, not words to say
+            return unknown
+        else:  # "tell Maria", "tell my mum": a name, or a determiner and its noun
+            n = 2 if rest[:1] and rest[0] in NP_START else 1
+            recipient, text = rest[:n], rest[n:]
+        if recipient[:1] and recipient[0] in ME:  # "tell me a joke": small talk, not a SAY intent
+            return unknown
+        if len(recipient) == 2 and recipient[0] in {"the", "all"} and _plural(recipient[1]):
+            return unknown  # "tell the kids": several people, whom one intent cannot say
+
+        if not text:  # "tell Maria": the interpreter asks what to say
+            return said.command(I.SAY, recipient=recipient)
+        words = message(original, text[1:] if text[0] == "please" else text)
+        said_text = f"please {words}" if text[0] == "please" else words
+        return said.command(I.SAY, text=said_text, recipient=recipient)
+    if rest[:1] == ("to",):  # "say to Sandeep that the film starts soon": to whom, then what
+        return _said_to(said, rest[1:])
+    found = split_at(rest, ["to"])
+    text_words, recipient = (found[0], found[2]) if found is not None else (rest, ())
+    if not text_words:
+        return unknown
+    return said.command(I.SAY, text=original_text(original, text_words), recipient=recipient)
+
+
+def _said_to(said: Said, rest: Words) -> Parse:
+    """ "(say) to Sandeep that the film starts soon", "(say) to Ana it's time": the person, then the
+    message ("that" or a clause of its own starts it)."""
+    found = split_at(rest, ["that"])
+    clause = _clause_start(rest)
+    if found is not None and (clause is None or len(found[0]) <= clause):
+        recipient, text = found[0], found[2]
+    elif clause is not None:
+        recipient, text = rest[:clause], rest[clause:]
+    else:
+        return Parse("unknown", words=said.words)
+    if not text:
+        return said.command(I.SAY, recipient=recipient)
+    return said.command(I.SAY, text=message(said.original, text), recipient=recipient)

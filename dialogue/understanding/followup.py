@@ -1,0 +1,305 @@
+"""Answers to the robot's last question: a fragment that completes the pending request ("the red
+one", "mine, obviously", "the pink one, it's Carla's"), a yes or a no to "Do you mean the flat
+brush?", and a yes to an offer ("Would you like me to bring you a basket?" "yes please"); a
+correction of the request just made ("sorry, I meant screen two"); and the same request for another
+thing ("and the soup goes to table two" after "take the steak to table four").
+
+The robot's question must be the latest utterance (system notes aside); a fragment or a confirmation
+re-reads the request said right before it, an accepted offer is read as the request the robot made.
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+from typing import TYPE_CHECKING
+
+from dialogue import intents as I
+from dialogue.history import Utterance
+from dialogue.prompts import FREE_FORM_OBJECT
+from dialogue.reference.english import MODIFIER_START, Words, phrases, tokens, word_set
+from dialogue.reference.grounding import Kind
+from dialogue.reference.resolution import ROLE_KINDS, content_words, resolve
+from dialogue.understanding.clauses import clauses, described, description
+from dialogue.understanding.commands import parse
+from dialogue.understanding.constructions import where_it_goes
+from dialogue.understanding.outcome import Outcome
+from dialogue.understanding.parsed import Parse
+from dialogue.understanding.speech import expanded, plain, strip_politeness
+from dialogue.understanding.words import INTERJECTIONS, NP_START, OWNERS, PLACES
+
+if TYPE_CHECKING:
+    from dialogue.understanding.interpret import Interpreter
+
+_ONE = frozenset({"one", "ones"})
+#: A fragment answering "Where should I put it?" may start with its preposition ("on the shelf").
+_PLACES = phrases(PLACES)
+#: How the robot offers to do something ("Would you like me to bring you a basket?"), and how it
+#: offers a thing ("Would you like a towel?": brought to the person asked).
+_OFFERS = phrases(
+    "would you like me to|do you want me to|shall i|should i|want me to|can i|may i|would it help if i"
+)
+_OFFERS_A_THING = phrases("would you like|do you want|can i get you|could i get you|shall i get you")
+#: The robot's words for the person it speaks to, said back by that person.
+_SWAPPED = {"you": "me", "your": "my", "yourself": "myself", "yours": "mine"}
+#: How the robot asks whether it guessed right ("Do you mean the flat brush?").
+_CONFIRMS = phrases("do you mean|did you mean|you mean|is it|was it|is that|are you talking about")
+#: Words that accept an offer or confirm a guess, and those of which one must be said.
+_ACCEPTING = word_set(
+    "yes yeah yep yup sure ok okay please go ahead do it that would be great lovely perfect thanks thank "
+    "you absolutely of course why not brilliant fine alright right correct exactly one the this on then "
+    "cheers"
+)
+_YES = word_set("yes yeah yep yup sure ok okay please absolutely correct exactly")
+_YES_PHRASES = phrases("go on|go ahead|do it|why not|of course|that would be great|that would be lovely")
+#: Ways of saying no ("nope, the other one").
+_NO = {"nope": "no", "nah": "no"}
+_OTHER = word_set("other another")
+
+
+def accepts(words: list[str]) -> bool:
+    """Whether the words only say yes ("yes please", "go on then", "that'd be lovely")."""
+    if not words or not set(words) <= _ACCEPTING:
+        return False
+    said = tuple(words)
+    return bool(set(words) & _YES) or any(p in _spans(said, len(p)) for p in _YES_PHRASES)
+
+
+def _spans(words: Words, n: int) -> set[Words]:
+    return {words[i : i + n] for i in range(len(words) - n + 1)}
+
+
+def follow_up(reader: Interpreter, p: Parse, text: str) -> Outcome | None:
+    """What the words answer of the robot's last question, or None when they answer none."""
+    spoken = [i for i, u in enumerate(reader.history) if u.role != "system"]
+    if not spoken:
+        return None
+    question = reader.history[spoken[-1]]
+    if question.role != "assistant" or not question.text.rstrip().endswith("?"):
+        return None
+    answer = [_NO.get(w, w) for w in expanded(text)]
+    said = [w for w in answer if w != "no"]
+    accepted = offer(reader, question, said)
+    if accepted is not None:
+        return accepted
+    if len(spoken) < 2 or reader.history[spoken[-2]].role != "user":
+        return None
+    before = spoken[-2]
+    earlier = reader.within(reader.history[:before])
+    pending = parse(reader.history[before].text, reader.robot_name)
+    if pending.act != "command":
+        return None
+    first = earlier.act(pending)
+    if first.open_role is None:
+        return None
+    confirmed = confirmation(earlier, pending, first, question, answer)
+    if confirmed is not None:
+        return _sure(confirmed)
+    fragment, more = _fragment(p, text)
+    if not fragment:
+        return None
+    merged = _merged(fragment, first)
+    if more is not None:  # "the pink one, it's Carla's"
+        merged = described(merged, more)
+    role = first.open_role
+    if role == "object" and pending.intent in FREE_FORM_OBJECT:  # "What should I say?" "Dinner is ready"
+        pending = replace(pending, text=text.strip().rstrip(".!?").strip() or None)
+    outcome = earlier.act(pending, {role: merged})
+    if outcome.intent is None and not outcome.clarify:
+        return None
+    return _sure(outcome)
+
+
+def _sure(outcome: Outcome) -> Outcome:
+    """A request completed by a follow-up is a little less sure than one said whole."""
+    return replace(outcome, confidence=0.8, more=())
+
+
+def _fragment(p: Parse, text: str) -> tuple[Words, Words | None]:
+    """The words of the answer ("mine, obviously": whose it is, without the interjection), and what
+    a clause after it says of the thing ("..., it's Carla's"), if one does."""
+    said = clauses(text)
+    more = description(said[1]) if len(said) == 2 else None
+    words = tokens(said[0]) if more is not None else p.words
+    return tuple(OWNERS.get(w, w) for w in words if w not in INTERJECTIONS), more
+
+
+def _merged(fragment: Words, first: Outcome) -> Words:
+    """The fragment with the pending request's phrase: "the red one" and "the cup" make "the red
+    cup"; prepositions stay ("the novel" + "book from the shelf" keeps "book" as the head)."""
+    if first.open_phrase:
+        phrase = tuple(w for w in first.open_phrase if w not in {"the", "a", "an"})
+        if not set(fragment) & _ONE:
+            return (*fragment, *phrase)
+        return tuple(x for w in fragment for x in (phrase if w in _ONE else (w,)))
+    for loc in _PLACES:
+        if fragment[: len(loc)] == loc:
+            return fragment[len(loc) :]
+    return fragment
+
+
+def offer(reader: Interpreter, question: Utterance, said: list[str]) -> Outcome | None:
+    """ "yes please" to "Would you like me to bring you a basket?": the request the robot offered,
+    in the words of the person who accepts it ("bring me a basket")."""
+    if not accepts(said):
+        return None
+    request = _offered(expanded(question.text.rstrip(" ?")))
+    outcome = reader.act(parse(" ".join(request), reader.robot_name)) if request else None
+    if outcome is None or outcome.intent is None:
+        return None
+    return _sure(outcome)
+
+
+def _offered(asked: list[str]) -> list[str]:
+    """The request an offer makes, in the words of the person offered it ([] when it makes none)."""
+    for lead in _OFFERS:
+        at = next((i for i in range(len(asked)) if tuple(asked[i : i + len(lead)]) == lead), None)
+        if at is not None:
+            return [_SWAPPED.get(w, w) for w in asked[at + len(lead) :]]
+    for lead in _OFFERS_A_THING:  # "Would you like a towel?"
+        if tuple(asked[: len(lead)]) == lead and asked[len(lead) :]:
+            return ["bring", "me", *asked[len(lead) :]]
+    return []
+
+
+def confirmation(earlier: Interpreter, pending: Parse, first: Outcome, question: Utterance,
+                 said: list[str]) -> Outcome | None:  # fmt: skip
+    """ "yes" or "no, the other one" to "Do you mean the flat brush?": the thing the robot guessed,
+    or the one other thing the pending request's phrase names."""
+    asked = expanded(question.text.rstrip(" ?"))
+    lead = next((c for c in _CONFIRMS if tuple(asked[: len(c)]) == c), None)
+    role = first.open_role
+    if lead is None or role is None or not first.open_phrase:
+        return None
+    kinds = ROLE_KINDS.get(pending.intent or "", {}).get(role)
+    if kinds is None:
+        return None
+    candidates = resolve(earlier.lexicon, first.open_phrase, kinds).matches
+    guessed = resolve(earlier.lexicon, asked[len(lead) :], kinds).one
+    if guessed is None or guessed not in candidates:
+        return None
+    if said[:1] == ["no"] and set(said) & _OTHER:  # "no the other one"
+        others = [e for e in candidates if e.id != guessed.id]
+        meant = others[0] if len(others) == 1 else None
+    elif said[:1] != ["no"] and accepts(said):
+        meant = guessed
+    else:
+        return None
+    if meant is None:
+        return None
+    outcome = earlier.act(pending, {role: tuple(tokens(meant.id))})
+    return outcome if outcome.intent is not None else None
+
+
+#: How a speaker says that the request just made named the wrong thing or place ("sorry, I meant
+#: screen two"), after the words that only soften it ("sorry", "no", "oops").
+_CORRECTING = phrases("i meant|i mean|i said|make that|make it|i was meaning|what i meant was")
+_SOFTENING = word_set("no oops oh whoops sorry my bad")
+
+
+def correction(reader: Interpreter, text: str) -> Outcome | None:
+    """ "sorry, I meant screen two" after "take the booster seat to screen 1": the last request again,
+    with the phrase of the role that names the same kind of thing (a place for a place, a thing for
+    a thing) replaced."""
+    parts = [strip_politeness([w for w in plain(part) if w not in _SOFTENING]) for part in text.split(",")]
+    words = [w for part in parts for w in part]
+    lead = next((c for c in _CORRECTING if tuple(words[: len(c)]) == c), None)
+    fragment = tuple(words[len(lead) :]) if lead is not None else _not_that(tuple(words))
+    if lead is None and set(words) & _OTHER and set(content_words(words)) <= _OTHER | _ONE:
+        fragment = tuple(words)  # "no, the other one"
+    if len(parts) == 2 and parts[0][:1] == ["not"] and parts[1]:  # "not the shed, the porch"
+        fragment = tuple(parts[1])
+    for loc in _PLACES:  # "I meant on the shelf"
+        if fragment[: len(loc)] == loc and fragment[len(loc) :]:
+            fragment = fragment[len(loc) :]
+            break
+    if not content_words(fragment):
+        return None
+    asked = [i for i, u in enumerate(reader.history) if u.role == "user"]
+    if not asked:
+        return None
+    earlier = reader.within(reader.history[: asked[-1]])
+    pending = parse(reader.history[asked[-1]].text, reader.robot_name)
+    if pending.act != "command" or pending.intent is None:
+        return None
+    before = earlier.act(pending)
+    slots = pending.slots
+    if pending.double_object and "rest" in slots:  # "fetch Ana the mug": whose phrase is whose
+        slots = earlier.refs.split_double_object(slots["rest"])
+    fits: list[tuple[int, Outcome]] = []
+    for role in ROLE_KINDS.get(pending.intent, {}):
+        said = slots.get(role, ())
+        was = before.roles.get(role)
+        if not content_words(said) or was is None:
+            continue
+        instead = _the_other(earlier, fragment, said, was, ROLE_KINDS[pending.intent][role])
+        outcome = earlier.act(pending, {role: instead or _instead(fragment, said)})
+        now = outcome.roles.get(role)
+        if outcome.intent is None or now is None or now == was:
+            continue
+        old, new = earlier.snapshot.get(was), earlier.snapshot.get(now)
+        if old is None or new is None or old.kind != new.kind:
+            continue  # "I meant screen two" corrects a place, never the thing carried there
+        fits.append((len(set(old.classes) & set(new.classes)), outcome))
+    fits.sort(key=lambda f: -f[0])
+    if not fits or (len(fits) > 1 and fits[0][0] == fits[1][0]):
+        return None
+    return _sure(fits[0][1])
+
+
+def _the_other(earlier: Interpreter, fragment: Words, said: Words, was: str,
+               kinds: frozenset[Kind]) -> Words | None:  # fmt: skip
+    """ "no, the other one" after "bring me the black umbrella": the one other thing the head of the
+    phrase names (the red umbrella), as its id; None when that is not what was said or several are."""
+    if not set(fragment) & _OTHER or not set(content_words(fragment)) <= _OTHER | _ONE:
+        return None
+    named = resolve(earlier.lexicon, _instead(("the", "one"), said), kinds).matches
+    others = [e for e in named if e.id != was]
+    return tuple(tokens(others[0].id)) if len(others) == 1 and len(named) == 2 else None
+
+
+def _not_that(words: Words) -> Words:
+    """ "not the shed, the porch" or "the porch, not the shed": the phrase meant (() if none is)."""
+    if "not" not in words:
+        return ()
+    at = words.index("not")
+    if at > 0:
+        return words[:at]
+    starts = (j for j in range(2, len(words)) if words[j] in NP_START and words[j - 1] not in NP_START)
+    again = next(starts, None)
+    return words[again:] if again is not None else ()
+
+
+def _instead(fragment: Words, said: Words) -> Words:
+    """The fragment, its "one" said with the head of the phrase it replaces ("the red one" for "the
+    blue cup": the red cup)."""
+    core: list[str] = []
+    for w in said:
+        if w in MODIFIER_START and core:
+            break
+        core.append(w)
+    head = content_words(core)[-1:] if content_words(core) else []
+    return tuple(x for w in fragment for x in (head if w in _ONE and head else [w]))
+
+
+def continuation(reader: Interpreter, text: str) -> Outcome | None:
+    """ "and the soup goes to table two", "and the soup to table two" after "take the steak to table
+    four": the request just made (a bringing) again, for another thing and place. Alone, "X goes to
+    Y" says no request."""
+    words = tuple(strip_politeness(plain(text)))
+    found = where_it_goes(words)
+    if found is None and "to" in words[1:-1]:  # said without its verb
+        at = words.index("to")
+        found = words[:at], ("to",), words[at + 1 :]
+    if found is None or found[1] != ("to",):
+        return None
+    asked = [i for i, u in enumerate(reader.history) if u.role == "user"]
+    if not asked:
+        return None
+    pending = parse(reader.history[asked[-1]].text, reader.robot_name)
+    if pending.act != "command" or pending.intent != I.BRING_OBJECT:
+        return None
+    thing, _, place = found
+    again = Parse("command", I.BRING_OBJECT, {"object": thing, "recipient": place}, words=(*thing, *place),
+                  marks={"recipient": "to"})  # fmt: skip
+    outcome = reader.act(again)
+    return _sure(outcome) if outcome.intent is not None else None

@@ -1,0 +1,49 @@
+"""Words of the grammar a speech recogniser writes as their homophones: "the pear of goggles" (a
+pair of), "go to the prep room write now" (right now), "wait their for the van" (there).
+
+A homophone is read as the grammar's word only where the grammar's word makes a phrase of the
+grammar and the word as written does not: a measure before "of" (MEASURES: "pair of", "piece of"),
+an adjunct or a politeness said at the end ("right now", "right away"), a pointing word where no
+noun follows a possessive ("wait their for the van", "leave it their"). A word the KB has a name
+with is never read otherwise ("the pear" in a greengrocer's).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+from dialogue.reference.english import FUNCTION_WORDS, MEASURES, NUMBERS, POSSESSIVES
+from dialogue.reference.lexicon import Lexicon
+from dialogue.understanding.words import ADJUNCTS, HERE, HOMOPHONES, NP_START, POLITE_SUFFIXES, THERE
+
+#: Phrases a homophone may be read into, by their first word: adjuncts and politeness at the end.
+_PHRASES = tuple(p for p in (*ADJUNCTS, *POLITE_SUFFIXES) if len(p) > 1)
+_POINTING = frozenset(p[0] for p in (*HERE, *THERE) if len(p) == 1)
+
+
+def misheard(words: Sequence[str], n: int, lexicon: Lexicon) -> str | None:
+    """The grammar's word the n-th word is a homophone of, where only that word makes sense."""
+    word = words[n]
+    others = [w for group in HOMOPHONES if word in group for w in group if w != word]
+    if not others or lexicon.knows(word):
+        return None
+    after = words[n + 1] if n + 1 < len(words) else ""
+    for other in others:
+        if other in MEASURES and after == "of" and n > 0 and words[n - 1] in NP_START:
+            return other  # "the pear of goggles"
+        if n > 0 and any(_said(words, n, p, other) for p in _PHRASES if p[0] == other):
+            return other  # "write now"
+        if other in _POINTING and word in POSSESSIVES and n > 0 and _no_noun(after):
+            return other  # "wait their for the van"
+    return None
+
+
+def _said(words: Sequence[str], n: int, phrase: tuple[str, ...], first: str) -> bool:
+    """Whether the phrase, its first word read as `first`, is said at n ("write now" as "right now")."""
+    return tuple((first, *words[n + 1 : n + len(phrase)])) == phrase and not any(
+        p == tuple(words[n : n + len(p)]) for p in _PHRASES)
+
+
+def _no_noun(after: str) -> bool:
+    """Whether what follows a possessive is no noun phrase (a preposition, a conjunction, nothing)."""
+    return not after or (after in FUNCTION_WORDS and after not in NUMBERS and after not in NP_START)

@@ -1,0 +1,393 @@
+"""The rules interpreter: a parsed utterance, grounded against the KB lexicon, to a reply and an intent.
+
+Every referent is resolved here to exactly one KB entity (or the speaker for "me"); otherwise the
+outcome has no intent and the reply says what is unknown or asks which one was meant. A fragment
+answering the robot's last question ("the red one") completes the request found in the history.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import replace
+
+from dialogue import intents as I
+from dialogue.history import Utterance
+from dialogue.reference.english import PARTS, POSSESSIVES, Words, tokens
+from dialogue.reference.grounding import Kind
+from dialogue.reference.lexicon import Lexicon
+from dialogue.reference.resolution import (
+    ANYWHERE,
+    PERSON,
+    PLACE,
+    ROLE_KINDS,
+    antecedent,
+    content_words,
+    is_pronoun,
+    resolve,
+)  # fmt: skip
+from dialogue.understanding import answers
+from dialogue.understanding.clauses import clauses, described, description
+from dialogue.understanding.commands import parse
+from dialogue.understanding.compound import Part, conjuncts, coordinated, unprefixed
+from dialogue.understanding.followup import accepts, continuation, correction, follow_up
+from dialogue.understanding.letters import joined
+from dialogue.understanding.outcome import Outcome, Ref
+from dialogue.understanding.parsed import Parse
+from dialogue.understanding.referents import RELATIONAL, Referents
+from dialogue.understanding.replies import acknowledgement, vocative
+from dialogue.understanding.speech import expanded
+from dialogue.understanding.spelling import corrected
+from dialogue.understanding.terse import terse
+from dialogue.understanding.utterance import cleaned
+
+#: Pronouns of a person a question may be about ("do you know where she is").
+_SOMEONE = frozenset({"he", "she", "him", "her"})
+#: How sure the rules are of a turn in which they corrected a slip ("plase", "thremos").
+SPELT_CONFIDENCE = 0.7
+
+
+class Interpreter:
+    def __init__(
+        self, lexicon: Lexicon, speaker: str, history: Sequence[Utterance] = (), robot_name: str = "robot"
+    ) -> None:
+        self.lexicon = lexicon
+        self.snapshot = lexicon.snapshot
+        self.speaker = speaker
+        self.history = tuple(history)
+        self.robot_name = robot_name
+        self.refs = Referents(lexicon, speaker, self.history)
+
+    def within(self, history: Sequence[Utterance]) -> Interpreter:
+        """The same reader with another conversation before the words it reads."""
+        return Interpreter(self.lexicon, self.speaker, history, self.robot_name)
+
+    def interpret(self, text: str) -> Outcome:
+        spelled = corrected(joined(text, self.lexicon), self.lexicon)  # "the s u v brochure"
+        clean = cleaned(spelled.text)
+        reader = self
+        if clean.taken_back and parse(clean.taken_back, self.robot_name).act != "unknown":
+            # "hand Ravi the uh no wait hand him the stapler": what was taken back is context
+            context = (*self.history, Utterance(self.speaker, clean.taken_back))
+            reader = Interpreter(self.lexicon, self.speaker, context, self.robot_name)
+        outcome = reader._read(clean.text)
+        if not spelled.corrections:
+            return outcome
+        # A corrected slip makes the whole turn less sure; a name read from a slip is a guess.
+        steps = outcome.steps()
+        unsure = [replace(o, confidence=min(o.confidence, SPELT_CONFIDENCE), more=()) for o in steps]
+        return replace(unsure[0], more=tuple(unsure[1:]), guessed=spelled.guessed or outcome.guesses)
+
+    def _read(self, text: str) -> Outcome:
+        addressed = self._to_someone_else(text)
+        if addressed is not None:  # "lily put your book on the shelf": Lily is asked, not the robot
+            return Outcome(f"I think that was for {addressed}.")
+        if text.lower().startswith("if "):  # the condition covers every part ("if Ana comes, ...")
+            whole = parse(text, self.robot_name)
+            if whole.act == "conditional":
+                return self.act(whole)
+        said_terse = self._terse(text)
+        if said_terse is not None:
+            return said_terse
+        parts = conjuncts(text)
+        if parts:
+            combined = self._compound(parts)
+            if combined is not None:
+                return combined
+        return self._single(text, terse_read=False)  # (tried above, before the parts)
+
+    def _to_someone_else(self, text: str) -> str | None:
+        """The name of the person present a request is said to, when it starts with their name and
+        speaks of their things ("your book"); None when it may be the robot's."""
+        words = tokens(text)
+        if len(words) < 3 or "your" not in words[1:]:
+            return None
+        person = resolve(self.lexicon, words[:1], PERSON).one
+        if person is None or not person.seen or person.id == self.speaker:
+            return None
+        return person.name
+
+    def _compound(self, parts: Sequence[Part]) -> Outcome | None:
+        """ "go to the kitchen and take the plate": every part read in order, each with the parts
+        before it as context for its pronouns ("take the book and put it in the oven")."""
+        done: list[Outcome] = []
+        cannot: list[str] = []
+        context: list[Utterance] = []
+        aside = False
+        for n, part in enumerate(parts):
+            reader = self.within((*self.history, *context))
+            context.append(Utterance(self.speaker, part.text))
+            if n == 0 and part.verb is None:
+                continue  # a preamble ("hey there", "thanks", "the denim jacket"): context for the rest
+            if part.aside and n < len(parts) - 1:
+                aside = True  # "move out of the way and go to the door": the going does it
+                continue
+            outcome = reader._single(part.text)
+            if outcome.intent is not None and done and (outcome.intent, outcome.roles) == (
+                done[-1].intent, done[-1].roles):
+                continue  # "go to the shed and wait there": one move
+            if outcome.intent is not None:
+                done.append(outcome)
+                if outcome.roles.get("object") in self.snapshot.entities:
+                    # "get the teddy off the bench and give it to Zara": "it" is what was taken
+                    context.append(Utterance(self.speaker, outcome.roles["object"]))
+            elif outcome.clarify:
+                return outcome  # ask about this part first: nothing is done until it is clear
+            elif part.no_intent:
+                cannot.append(part.text)
+            else:  # a part that fails says why; one not understood makes the whole not understood
+                return outcome if outcome.understood else None
+        if not done or (aside and not {o.intent for o in done} & {I.MOVE_TO, I.GUIDE}):
+            return None  # (out of the way, then no going anywhere: not understood)
+        acks = [done[0].reply] + [f"Then {unprefixed(o.reply)}" for o in done[1:]]
+        acks += [f"I can't {c} myself." for c in cannot]
+        return replace(done[0], reply=" ".join(acks), more=tuple(done[1:]))
+
+    def _terse(self, text: str) -> Outcome | None:
+        """ "Orchid put on counter", "Go workstand", "dining room, now please": the request said in
+        the grammar's order, when that is one (what was said is context: "Edna cardigan, put on
+        her chair" is Edna's chair)."""
+        said = terse(text, self.lexicon, self.robot_name)
+        if said is None:
+            return None
+        outcome = self.within((*self.history, Utterance(self.speaker, text)))._single(said, terse_read=False)
+        return outcome if outcome.intent is not None else None
+
+    def _single(self, text: str, terse_read: bool = True) -> Outcome:
+        if terse_read and (outcome := self._terse(text)) is not None:
+            return outcome
+        p = parse(text, self.robot_name)
+        if p.act != "unknown" and accepts(expanded(text)):  # "go on then" to "Shall I fetch it?"
+            accepted = follow_up(self, p, text)
+            if accepted is not None:
+                return accepted
+        not_understood = Outcome("Sorry, I did not understand that.", understood=False)
+        if p.act == "unknown":  # an answer to the robot's question, or "sorry, I meant screen two"
+            outcome = follow_up(self, p, text) or correction(self, text) or continuation(self, text)
+            outcome = outcome or not_understood
+        else:
+            outcome = self.act(p)
+        ungrounded = p.act == "command" and outcome.intent is None and not outcome.clarify
+        failed = not outcome.understood or ungrounded
+        return self._clause_by_clause(text, outcome) if failed else outcome
+
+    def _clause_by_clause(self, text: str, whole: Outcome) -> Outcome:
+        """ "The denim jacket. Pick it up." or "Felix wants the remote, can you hand it to him?": when
+        the whole utterance is not one request, the last clause that is one is read with the clauses
+        before it as context for its pronouns."""
+        said = clauses(text)
+        if len(said) < 2:
+            return whole
+        question: Outcome | None = None
+        failed: Outcome | None = None
+        for i in range(len(said) - 1, -1, -1):
+            context = tuple(Utterance(self.speaker, c) for c in said[:i])
+            reader = Interpreter(self.lexicon, self.speaker, (*self.history, *context), self.robot_name)
+            p = parse(said[i], self.robot_name)
+            if p.act in {"command", "question"}:
+                # "fetch my bag its the blue one": what the next clause says of the thing asked for
+                more = description(said[i + 1]) if i + 1 < len(said) and p.slots.get("object") else None
+                outcome = reader.act(p, {"object": described(p.slots["object"], more)} if more else None)
+                if outcome.intent is not None:
+                    return outcome
+                # A complete request in an earlier clause beats asking about an incomplete later one.
+                if question is None and (outcome.clarify or (p.act == "question" and outcome.understood)):
+                    question = outcome
+                # Why a request alone fails says it better than the run-on whole ("...the sink theres a
+                # spill": no sink, not no "sink spill").
+                elif p.act == "command" and outcome.understood and not outcome.clarify:
+                    failed = outcome
+        return question or failed or whole
+
+    def act(self, p: Parse, overrides: dict[str, Words] | None = None) -> Outcome:
+        if p.act == "greeting" and "everyone" in p.slots:  # no single recipient: greet verbally only
+            return Outcome("Hello everyone!")
+        if p.act == "greeting":
+            hello = f"Hello{vocative(self.snapshot, self.speaker)}!"
+            return self._intent(I.GREET, {"recipient": self.speaker}, hello)
+        if p.act == "negated":
+            return Outcome("OK, I won't do that.")
+        if p.act == "conditional":  # the rules act now or never: asked again, then
+            return Outcome("I can't wait for that myself: tell me again when it happens.")
+        if p.act == "thanks":
+            return Outcome("You're welcome!")
+        if p.act == "question" and p.greeted:  # "hello robot, what's your name": both
+            answer = self._answer(p)
+            if not answer.understood or answer.clarify:
+                return answer
+            hello = f"Hello{vocative(self.snapshot, self.speaker)}!"
+            return self._intent(I.GREET, {"recipient": self.speaker}, f"{hello} {answer.reply}")
+        if p.act == "question":
+            return self._answer(p)
+        if p.act == "command" and p.intent is not None:
+            return self._command(p, overrides or {})
+        return Outcome("Sorry, I did not understand that.", understood=False)
+
+    # -- questions -------------------------------------------------------------------------------
+    def _answer(self, p: Parse) -> Outcome:
+        thing = p.slots.get("thing", ()) or p.slots.get("place", ())
+        someone = set(content_words(thing)) <= _SOMEONE and bool(content_words(thing))  # "where is she"
+        about = p.question in {"where", "can_see", "what_is", "what_on", "whose"}
+        if about and (is_pronoun(thing) or someone):
+            kinds = PERSON if someone else ANYWHERE
+            ref = antecedent(self.lexicon, self.history, kinds, speaker=self.speaker)
+            if ref is not None:
+                thing = tuple(tokens(ref.id))
+        _, owner = self.refs.possessive(thing, p.slots)  # "where is my mug": the speaker's
+        content = content_words(thing)
+        unsure = self.refs.half_known(content) or self.refs.strange(content)  # "how many bks": a doubt
+        if content and unsure and not resolve(self.lexicon, thing, ANYWHERE).matches:
+            return Outcome("Sorry, I don't know how to answer that.", understood=False)
+        match p.question:
+            case "what_see":
+                return Outcome(answers.what_do_you_see(self.snapshot, self.speaker))
+            case "who_see":
+                return Outcome(answers.who_do_you_see(self.snapshot, self.speaker))
+            case "where":
+                return Outcome(answers.where_is(self.lexicon, thing, self.speaker, owner))
+            case "what_on":
+                asked = " ".join(p.slots.get("relation", ()))
+                reply, clarify = answers.what_is_on(self.lexicon, thing, asked)
+                return Outcome(reply, clarify=clarify)
+            case "who_in":
+                reply, clarify = answers.who_is_in(self.lexicon, thing, self.speaker)
+                return Outcome(reply, clarify=clarify)
+            case "what_near":
+                reply, clarify = answers.what_is_near(self.lexicon, thing, p.slots.get("relation", ()))
+                return Outcome(reply, clarify=clarify)
+            case "can_see":
+                return Outcome(answers.can_you_see(self.lexicon, thing, self.speaker, owner))
+            case "what_is":
+                return Outcome(answers.what_is(self.lexicon, thing, self.speaker, owner))
+            case "which_see":
+                return Outcome(answers.which_do_you_see(self.lexicon, thing))
+            case "how_many":
+                return Outcome(answers.how_many(self.lexicon, thing))
+            case "colour":
+                return Outcome(answers.colour_of(self.lexicon, thing, self.speaker, owner))
+            case "whose":
+                return Outcome(answers.whose(self.lexicon, thing, self.speaker, owner))
+            case "name":
+                return Outcome(f"My name is {self.robot_name}.")
+            case "how_are_you":
+                return Outcome("I'm fine, thank you!")
+        return Outcome("Sorry, I don't know how to answer that.", understood=False)
+
+    # -- commands --------------------------------------------------------------------------------
+    def _command(self, p: Parse, overrides: dict[str, Words]) -> Outcome:
+        whole = self._one_command(p, overrides)
+        # "bring me the bread and the jam", "greet Ana and Tom": one intent per thing or person
+        # named, in order (people only where a role is a person's: one cup goes to one person).
+        role = "object" if "object" in p.slots else "recipient"
+        person = ROLE_KINDS.get(p.intent or "", {}).get("recipient") == PERSON
+        things = coordinated(p.slots.get(role, ())) if role not in overrides else []
+        if role == "recipient" and not person:
+            things = []
+        if role == "object" and not things and role not in overrides:
+            things = self.refs.every(p.slots.get(role, ()))  # "all the plates": each plate there is
+        if whole.intent is not None or whole.clarify or not things:
+            return whole
+        if len(things) == 1:
+            return self._one_command(p, {**overrides, role: things[0]})
+        each = [self._one_command(p, {**overrides, role: t}) for t in things]
+        if any(o.intent is None for o in each):
+            return next(o for o in each if o.intent is None)
+        acks = [each[0].reply] + [f"Then {unprefixed(o.reply)}" for o in each[1:]]
+        return replace(each[0], reply=" ".join(acks), more=tuple(each[1:]))
+
+    def _one_command(self, p: Parse, overrides: dict[str, Words]) -> Outcome:
+        intent = p.intent or ""
+        slots = {**p.slots, **overrides}
+        if p.double_object and "rest" in slots:
+            slots = {**self.refs.split_double_object(slots.pop("rest")), **overrides}
+        if intent in {I.BRING_OBJECT, I.PLACE_OBJECT} and "recipient" in slots:
+            # "take Maria to the kitchen", "walk Mr Ito back to the car park": guiding, not carrying
+            who = tuple(w for w in slots.get("object", ()) if w not in RELATIONAL)
+            # (never to a person: "take them to her" carries them to her)
+            if self.refs.person_as_object(who) is not None and who:
+                if self.refs.a_person(slots["recipient"]) or slots["recipient"] in {("here",), ("there",)}:
+                    # "bring Sam here": a person brought to a person is no intent the rules have
+                    return Outcome("Sorry, I did not understand that.", understood=False)
+                intent, slots = I.GUIDE, {"recipient": who, "goal": slots["recipient"]}
+            elif intent == I.PLACE_OBJECT and self.refs.named_person(slots["recipient"]):
+                intent = I.BRING_OBJECT  # "return the stapler to Carol": carried to a person
+        if intent == I.BRING_OBJECT and self.refs.a_place(slots.get("object", ())):
+            # "I need the lifts": a place is where to be taken, not a thing to carry
+            intent, slots = I.GUIDE, {"recipient": slots.get("recipient", ("me",)), "goal": slots["object"]}
+        if intent == I.GUIDE and "goal" in p.implicit and "goal" not in overrides:
+            there = antecedent(self.lexicon, self.history, PLACE, place=True, speaker=self.speaker)
+            if there is None:  # "take me", with no place spoken of
+                return self._missing(intent, "goal", p)
+        if intent == I.GREET and "recipient" in p.implicit and "recipient" not in overrides:
+            # "this is Callum, say hello": whom the same utterance introduced, else the speaker
+            person = antecedent(self.lexicon, self._this_turn(), PERSON, speaker=self.speaker)
+            slots["recipient"] = tuple(tokens(person.id)) if person is not None else ("me",)
+        implicit = "recipient" in p.implicit or not content_words(slots.get("recipient", ()))
+        if intent == I.GUIDE and slots.get("goal") == ("there",) and implicit:
+            # "Ellen needs the utility room, lead the way": the person just spoken of, else the speaker.
+            person = antecedent(self.lexicon, self.history, PERSON, speaker=self.speaker)
+            slots["recipient"] = tuple(tokens(person.id)) if person is not None else ("me",)
+        if "object" in slots:  # "I need biscuits, can you get me some": some of those
+            slots["object"] = self.refs.some_of(slots["object"])
+        roles: dict[str, str] = {}
+        refs: dict[str, Ref] = {}
+        spec = I.CATALOGUE[intent]
+        for role, kinds in ROLE_KINDS.get(intent, {}).items():
+            words = slots.get(role, ())
+            if not content_words(words) and words not in {("there",), ("over", "there")}:
+                if role in spec.required:
+                    return self._missing(intent, role, p, roles.get("recipient"))
+                continue
+            whose = self.refs.possessive(words, slots) if role == "object" else self._whose(words, kinds)
+            words, owner = whose
+            others = [w for r, w in slots.items() if r != role]
+            ref = self.refs.ground(words, kinds, role, owner, others)
+            if ref.problem is not None:
+                return ref.problem
+            refs[role] = ref
+            roles[role] = self.speaker if ref.speaker else (ref.entity.id if ref.entity else "")
+        if p.text is not None:
+            roles["object"] = p.text
+        elif intent in {I.SAY, I.START_ACTIVITY, I.PERFORM_MOTION, I.PRESENT_CONTENT}:
+            return self._missing(intent, "object", p)
+        # The place said back with the preposition it was said with, unless a part of it was named
+        # ("in the centre of the table" is put on the table).
+        place = slots.get("recipient", ())
+        said = None if set(place) & PARTS and "of" in place else p.marks.get("recipient")
+        reply = acknowledgement(self.snapshot, self.speaker, intent, roles, refs, said)
+        if intent == I.GREET and roles.get("recipient") == self.speaker:  # "say hello": to the speaker
+            reply = f"Hello{vocative(self.snapshot, self.speaker)}!"
+        if any(ref.guessed for ref in refs.values()):  # "go to bay mine": a guess, less sure
+            return Outcome(reply, intent, roles, SPELT_CONFIDENCE, guessed=True)
+        return self._intent(intent, roles, reply)
+
+    def _whose(self, words: Words, kinds: frozenset[Kind]) -> tuple[Words, str | None]:
+        """ "go to my desk", "put it on Ana's shelf": a place said with whose it is, when that names
+        one (a person's phrase keeps its possessive: "my son" is no son of the KB's)."""
+        if not words or words[0] not in POSSESSIVES:  # "platform 4 my train's late" says no one's place
+            return words, None
+        bare, owner = self.refs.possessive(words, {})
+        if owner is None or resolve(self.lexicon, bare, kinds, owner=owner).one is None:
+            return words, None
+        return bare, owner
+
+    def _this_turn(self) -> tuple[Utterance, ...]:
+        """What the speaker said since the robot last spoke (the earlier clauses of this turn)."""
+        said = [i for i, u in enumerate(self.history) if u.role == "assistant"]
+        return self.history[said[-1] + 1 :] if said else self.history
+
+    def _missing(self, intent: str, role: str, p: Parse, whom: str | None = None) -> Outcome:
+        # ("show Ana in": where to take her, not "you")
+        them = "you" if whom in {None, self.speaker} else self.snapshot.name_of(whom or "")
+        asks = {
+            (I.PLACE_OBJECT, "recipient"): "Where should I put it?",
+            (I.MOVE_TO, "goal"): "Where should I go?",
+            (I.GUIDE, "goal"): f"Where should I take {them}?",
+            (I.SAY, "object"): "What should I say?",
+            (I.START_ACTIVITY, "object"): "Which activity should I start?",
+        }
+        what = {"object": "what", "recipient": "to whom", "goal": "where"}.get(role, "what")
+        q = asks.get((intent, role), f"Sorry, {what} exactly?")
+        return Outcome(q, clarify=True, open_role=role)
+
+    def _intent(self, intent: str, roles: dict[str, str], reply: str, confidence: float = 0.9) -> Outcome:
+        return Outcome(reply, intent, roles, confidence)

@@ -1,0 +1,46 @@
+"""What the rules make of an utterance: a reply, maybe intents (in order), and how sure they are."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from dialogue.reference.english import Words
+from dialogue.reference.grounding import Entity
+
+
+@dataclass(frozen=True)
+class Outcome:
+    reply: str
+    intent: str | None = None
+    roles: dict[str, str] = field(default_factory=dict)
+    confidence: float = 0.9
+    understood: bool = True
+    clarify: bool = False
+    #: For a follow-up turn: the role whose phrase was ambiguous (or missing), and that phrase.
+    open_role: str | None = None
+    open_phrase: Words = ()
+    #: The intents that follow this one in a compound request, in order.
+    more: tuple[Outcome, ...] = ()
+    #: A misspelt word was read as a name the KB has ("the thremos"): which thing is meant is a
+    #: guess (dialogue.understanding.spelling), which a hybrid model leaves to its model.
+    guessed: bool = False
+
+    def steps(self) -> tuple[Outcome, ...]:
+        """This outcome and the ones that follow it."""
+        return (self, *self.more)
+
+    @property
+    def guesses(self) -> bool:
+        """Whether this outcome or one that follows it is a guess."""
+        return any(o.guessed for o in self.steps())
+
+
+@dataclass(frozen=True)
+class Ref:
+    """What a noun phrase grounded to: one entity, the speaker, or the outcome that says why not."""
+
+    entity: Entity | None = None
+    speaker: bool = False
+    #: The entity was read from a misheard or mistyped name ("bay mine"): a guess.
+    guessed: bool = False
+    problem: Outcome | None = None

@@ -1,0 +1,249 @@
+"""Speech-recogniser and chat text as plain words: contractions without apostrophes, fillers,
+stutters, politeness; and the way back from words to the original text (its casing, its quotes).
+
+Nothing here knows a verb: self-repairs and vocatives, which need the grammar's verbs, are in
+dialogue.understanding.utterance.
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Sequence
+from functools import lru_cache
+
+from lemminflect import getAllLemmas
+
+from dialogue.reference.english import (
+    DETERMINERS,
+    FUNCTION_WORDS,
+    NUMBERS,
+    SPOKEN_NUMBERS,
+    Words,
+    lowered,
+    spans,
+    tokens,
+    word_set,
+)
+from dialogue.understanding.words import (
+    ASKING,
+    CHAT,
+    CONTRACTIONS,
+    DURATIONS,
+    FILLER_PAIRS,
+    FILLERS,
+    NP_START,
+    POLITE_PREFIXES,
+    POLITE_SUFFIXES,
+    ROBOT_SUFFIXES,
+    WH,
+)
+
+#: Words after "its" that make it "it is": adverbs no noun phrase starts with.
+_NOT_NOUNS = word_set(
+    "not just still already really so very too over gone all fine ok okay right mine yours hers ours theirs"
+)
+
+QUOTED = re.compile(r"[\"\u201c\u201d]([^\"\u201c\u201d]+)[\"\u201c\u201d]")
+
+
+def expanded(text: str) -> list[str]:
+    """The text's words with contractions expanded ("wheres" -> "where is"; "its" -> "it is" where
+    no noun follows it: "its on the bench", "its empty", but "its lid")."""
+    words = tokens(text)
+    out: list[str] = []
+    for i, w in enumerate(words):
+        if i > 0 and _numbering(w, words[i + 1] if i + 1 < len(words) else ""):
+            continue  # "screen number two", "room no 4": the number names it
+        if w == "its" and _is_it_is(tuple(words[i + 1 : i + 3])):
+            out += ["it", "is"]
+        elif w in CHAT and i > 0 and words[i - 1] in NP_START:
+            out.append(w)  # "the atm": the cash machine, not "at the moment"
+        else:
+            out += CONTRACTIONS.get(w, (w,))
+    return out
+
+
+#: Words that only say a number follows ("number", "no." before a digit).
+_NUMBERING = word_set("number num nr no")
+_NUMBER_WORDS = frozenset(w for words in SPOKEN_NUMBERS.values() for w in words)
+
+
+def _numbering(word: str, after: str) -> bool:
+    """Whether the word only announces the number after it ("no" only before digits: "no one")."""
+    return word in _NUMBERING and (after.isdigit() or (word != "no" and after in _NUMBER_WORDS))
+
+
+@lru_cache(maxsize=4096)
+def _is_it_is(after: tuple[str, ...]) -> bool:
+    """Whether "its" before these words is "it's" written without its apostrophe: before a function
+    word ("its the tall one", "its on the shelf"), a participle ("its stopped raining") or a last
+    adjective ("its empty"); a possessive has a noun after it."""
+    if not after:
+        return True
+    nxt = after[0]
+    if nxt in FUNCTION_WORDS or nxt in DETERMINERS or nxt in _NOT_NOUNS:
+        return True
+    if len(after) == 1 and nxt.endswith("'s"):  # "its Carla's": whose it is
+        return True
+    lemmas = getAllLemmas(nxt)
+    if nxt.endswith(("ed", "ing", "en")) and "VERB" in lemmas and "NOUN" not in lemmas:
+        return True
+    return len(after) == 1 and "ADJ" in lemmas
+
+
+def plain(text: str) -> list[str]:
+    """The text's words with contractions expanded and fillers and stutters removed."""
+    return unrepeated(without_fillers(expanded(text)))
+
+
+def without_fillers(words: list[str]) -> list[str]:
+    """ "put the uh candle", "pick up the uh you know the cup": fillers wherever they are, "you know"
+    mid-sentence but not in "do you know where..."."""
+    words = [w for w in words if w not in FILLERS]
+    drop: set[int] = set()
+    for i in range(1, len(words) - 1):
+        nxt = words[i + 2] if i + 2 < len(words) else ""
+        if tuple(words[i : i + 2]) in FILLER_PAIRS and words[i - 1] not in ASKING and nxt not in WH | ASKING:
+            drop.update((i, i + 1))
+    return [w for i, w in enumerate(words) if i not in drop]
+
+
+#: Words after which "me" before a noun is "my" (British and Irish speech: "pick up me zimmer frame"):
+#: a verb's particle, or "me" itself ("fetch me me cardigan": to me, my cardigan).
+_MY_AFTER = word_set("me up down out off away")
+_NO_NOUN = FUNCTION_WORDS | NP_START
+
+
+def my_for_me(words: list[str]) -> list[str]:
+    """ "me" said for "my" before a noun, where "me" could be no object: after a particle or another "me"."""
+    out = list(words)
+    for i in range(1, len(out) - 1):
+        if out[i] == "me" and out[i - 1] in _MY_AFTER and out[i + 1] not in _NO_NOUN:
+            out[i] = "my"
+    return out
+
+
+def unrepeated(words: list[str]) -> list[str]:
+    """ "put the put the knife", "the the jumper": an immediately repeated run of 1-3 words once."""
+    out: list[str] = []
+    for w in words:
+        out.append(w)
+        for n in (1, 2, 3):
+            if len(out) >= 2 * n and out[-n:] == out[-2 * n : -n] and not out[-1].isdigit():
+                del out[-n:]
+                break
+    return out
+
+
+def original_text(text: str, words: Sequence[str]) -> str:
+    """The part of the original text that the (normalised) words came from, with its casing."""
+    if len(lowered(text)) != len(text) or not words:
+        return " ".join(words)
+    found = [(w, start, end) for word, start, end in spans(text) for w in CONTRACTIONS.get(word, (word,))]
+    n = len(words)
+    for i in range(len(found) - n + 1):
+        if all(found[i + k][0] == words[k] for k in range(n)):
+            return text[found[i][1] : found[i + n - 1][2]]
+    return " ".join(words)
+
+
+def message(text: str, words: Sequence[str]) -> str:
+    """What to say, as said: the original text from `words` to the end of the utterance, less the
+    politeness addressed to the robot ("tell Ana her taxi is here now please": "her taxi is here
+    now"; `words` were read without the "now", which is the message's)."""
+    if len(lowered(text)) != len(text) or not words:
+        return original_text(text, words)
+    found = [(w, start, end) for word, start, end in spans(text) for w in CONTRACTIONS.get(word, (word,))]
+    n = len(words)
+    at = next((i for i in range(len(found) - n + 1) if [f[0] for f in found[i : i + n]] == list(words)), None)
+    if at is None:
+        return original_text(text, words)
+    tail = found[at:]
+    dropped = True
+    while dropped and len(tail) > n:
+        dropped = False
+        if tail[-1][0] in FILLERS:
+            tail, dropped = tail[:-1], True
+            continue
+        for suffix in ROBOT_SUFFIXES:
+            if len(tail) - len(suffix) >= n and tuple(t[0] for t in tail[-len(suffix) :]) == suffix:
+                tail, dropped = tail[: -len(suffix)], True
+                break
+    return text[tail[0][1] : tail[-1][2]]
+
+
+def starts(words: Sequence[str], prefix: Sequence[str]) -> bool:
+    return len(prefix) <= len(words) and tuple(words[: len(prefix)]) == tuple(prefix)
+
+
+@lru_cache(maxsize=64)
+def _openings(robot_name: str) -> dict[str, tuple[Words, ...]]:
+    """The polite openings (and the robot's name) by first word, the longest first: "would you be
+    able to" before "would you"."""
+    name = tuple(expanded(robot_name)) if robot_name else ()
+    by_first: dict[str, list[Words]] = {}
+    for p in (*POLITE_PREFIXES, name):
+        if p:
+            by_first.setdefault(p[0], []).append(p)
+    return {w: tuple(sorted(ps, key=len, reverse=True)) for w, ps in by_first.items()}
+
+
+def strip_politeness(words: list[str], robot_name: str = "") -> list[str]:
+    openings = _openings(robot_name)
+    changed = True
+    while changed and words:
+        changed = False
+        for p in openings.get(words[0], ()):
+            # "can you see" is a question, not a polite request: keep it; "could we get the bill"
+            # is a wish (dialogue.understanding.constructions.wanting), not "get the bill".
+            if starts(words, p) and not _asking(p, words[len(p) :]):
+                words = words[len(p) :]
+                changed = True
+                break
+        for s in _SUFFIXES:
+            # ("wait in the hall for now": "for now" says how long, its "now" is no politeness)
+            dangling = len(words) > len(s) and words[-len(s) - 1] in _LEFT_BEHIND
+            if s and len(words) > len(s) and tuple(words[-len(s) :]) == s and not dangling:
+                words = words[: -len(s)]
+                changed = True
+                break
+    return words
+
+
+#: Prepositions that a politeness word at the end completes ("for now", "till then", "by now"), or
+#: whose object a word naming the listener is ("take it to sir": whom, not a tag).
+_LEFT_BEHIND = word_set("for till until by from since to with")
+#: The politeness at the end, longest first ("right now" before its "now").
+_SUFFIXES = sorted(POLITE_SUFFIXES, key=len, reverse=True)
+#: After "could we", "can we": words that ask for a thing to be brought ("could we get the bill",
+#: "can we have two coffees"), when a noun phrase follows them ("can we get over to the desk" goes).
+_WISHING = word_set("get have")
+
+
+def _asking(opening: Words, after: list[str]) -> bool:
+    """Whether a polite opening is part of what is asked: "can you *see*...", "could we *get the*..."
+    (a wish of the speaker's; "could we get the menu to Ana" is a request to bring it to her)."""
+    if opening[-1] == "you":
+        return after[:1] == ["see"]
+    if opening[-1] != "we" or len(after) < 2 or after[0] not in _WISHING or _for_someone(after[2:]):
+        return False
+    return after[1] in NUMBERS or after[1] not in FUNCTION_WORDS
+
+
+def _for_someone(words: list[str]) -> bool:
+    """Whether the words name whom or where a thing is for ("to Ana", "for table 4"; "for now" not)."""
+    for i, w in enumerate(words):
+        lasting = any(tuple(words[i : i + len(d)]) == d for d in DURATIONS)
+        if w == "to" or (w == "for" and not lasting):
+            return True
+    return False
+
+
+def split_at(words: Sequence[str], separators: Sequence[str]) -> tuple[Words, str, Words] | None:
+    """First occurrence (after position 0) of any separator phrase: (before, separator, after)."""
+    seps = [tuple(s.split()) for s in separators]
+    for i in range(1, len(words)):
+        for sep in seps:
+            if tuple(words[i : i + len(sep)]) == sep:
+                return tuple(words[:i]), " ".join(sep), tuple(words[i + len(sep) :])
+    return None

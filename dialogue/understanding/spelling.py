@@ -1,0 +1,270 @@
+"""Keyboard and recogniser typos ("teh", "plase", "thremos"): a word that nothing accounts
+for, corrected to the one word of the vocabulary it is a slip of.
+
+The vocabulary is what the rules can understand: the grammar's own words (its word lists and verb
+frames) and every word of every name the KB accounts for (the lexicon's vocabulary, so it follows
+the KB). rapidfuzz finds the vocabulary words within one or two edits (optimal string alignment:
+a swap of two letters is one edit); those are then priced as typing slips: a missed or doubled
+letter or a neighbouring key costs 1, two letters swapped or a double letter typed once or a letter
+typed twice 0.8, a key far away 1.5, and in a word of
+four letters or fewer only a swap or a neighbouring key counts ("lego" is not a slip of "leg"). A
+word is corrected
+only when exactly one vocabulary word is the cheapest within 1 (2 for words of eight letters or
+more); two at the same price are ambiguous and nothing is changed.
+
+Never corrected: names (a capital not at the start of a sentence), words of the vocabulary, known
+English words (lemminflect's lexicon: "lamp" is not
+a slip of "lamb" even when only a lamb is known), numbers, words with an apostrophe, and quoted text
+(said as it is). A correction to a name (a referent) is a guess about what is meant, which the
+caller may leave to a model (dialogue.llm.hybrid); one to a grammar word is not.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Iterator
+from dataclasses import dataclass
+from functools import cache
+from types import ModuleType
+
+from lemminflect import getAllLemmas, getInflection
+from rapidfuzz import process
+from rapidfuzz.distance import OSA
+
+from dialogue.reference import english
+from dialogue.reference.english import ME, NUMBERS, PRONOUNS, lowered, phrases, spans
+from dialogue.reference.lexicon import Lexicon, singular
+from dialogue.understanding import questions, words
+from dialogue.understanding.frames import FRAMES
+from dialogue.understanding.homophones import misheard
+from dialogue.understanding.names import heard_name
+from dialogue.understanding.speech import QUOTED
+from dialogue.understanding.words import CARRY_PARTICLES, MOTION_PARTICLES, NP_START, PATHS, PREPOSITION_SLIPS
+
+_ROWS = ("qwertyuiop", "asdfghjkl", "zxcvbnm")
+_OFFSETS = (0.0, 0.25, 0.75)  # how far each row of a keyboard is shifted to the right
+_KEYS = {k: (r, c + _OFFSETS[r]) for r, row in enumerate(_ROWS) for c, k in enumerate(row)}
+_FAR_KEY = 1.5
+#: Two letters typed in the wrong order, the commonest slip of fast typing ("teh"): a little cheaper
+#: than a neighbouring key, so that "teh" is "the", not "ten".
+_SWAP = 0.8
+_DOUBLE = 0.8
+_SHORT = 4
+#: Word lists of the grammar's modules whose words are content words, not the grammar's own.
+_NOT_GRAMMAR = frozenset({"HOMOPHONES", "NEEDS", "PREPOSITION_SLIPS"})
+_LONG = 8
+#: Words after which "were" at the start of an utterance can only be "where".
+_ASKED = frozenset({"is", "are", "did", "do", "does", "can", "could", "should", "has", "have", "was"})
+#: Who a preposition may introduce without an article ("four me": for me; "2 him").
+_PEOPLE = ME | {"him", "her", "them"}
+#: Particles of the way after which a preposition says where ("show him through two surgery one").
+_WAY = frozenset(MOTION_PARTICLES.split()) | frozenset(CARRY_PARTICLES.split()) | PATHS
+
+
+@dataclass(frozen=True)
+class Correction:
+    said: str
+    meant: str
+    #: The word is a name the KB accounts for: the correction is a guess about which thing is meant.
+    referent: bool
+
+
+@dataclass(frozen=True)
+class Spelled:
+    text: str
+    corrections: tuple[Correction, ...] = ()
+
+    @property
+    def guessed(self) -> bool:
+        return any(c.referent for c in self.corrections)
+
+
+def corrected(text: str, lexicon: Lexicon) -> Spelled:
+    """The text with each slip corrected (outside quotes), and the corrections made."""
+    quoted = [m.span() for m in QUOTED.finditer(text)]
+    fixes: list[tuple[int, int, Correction]] = []
+    words = spans(text)
+    said = [w for w, _, _ in words]
+    for n, (word, start, end) in enumerate(words):
+        if any(a <= start < b for a, b in quoted) or _named(text, start):
+            continue
+        if n == 0 and word == "were" and words[1:2] and words[1][0] in _ASKED:
+            # "were is the globe": "where" as a recogniser writes it
+            fixes.append((start, end, Correction(word, "where", False)))
+            continue
+        if 0 < n < len(words) - 1 and word in PREPOSITION_SLIPS:
+            if _slipped_preposition(said, n, lexicon):
+                fixes.append((start, end, Correction(word, PREPOSITION_SLIPS[word], False)))
+            continue
+        heard = misheard(said, n, lexicon)  # "the pear of goggles", "write now", "wait their"
+        if heard is not None:
+            fixes.append((start, end, Correction(word, heard, False)))
+            continue
+        if not _suspect(word, lexicon):
+            continue
+        split = _run_together(word)  # "goto"
+        if split is not None:
+            fixes.append((start, end, Correction(word, split, False)))
+            continue
+        # a person's name in another spelling before a slip of a word ("steven" is Stephen, not "seven")
+        someone = n == 0 or said[n - 1] not in NP_START  # ("the kat" is no Kate)
+        meant = (heard_name(word, lexicon) if someone else None) or _meant(word, lexicon)
+        if meant is not None:
+            fixes.append((start, end, Correction(word, meant, meant not in grammar_words())))
+    if not fixes:
+        return Spelled(text)
+    if len(lowered(text)) != len(text):  # offsets of the lowered text are not the original's
+        return Spelled(" ".join(_fixed_words(text, fixes)), tuple(f[2] for f in fixes))
+    out, last = [], 0
+    for start, end, fix in fixes:
+        out += [text[last:start], fix.meant.capitalize() if text[start].isupper() else fix.meant]
+        last = end
+    return Spelled("".join([*out, text[last:]]), tuple(f[2] for f in fixes))
+
+
+def _slipped_preposition(words: list[str], n: int, lexicon: Lexicon) -> bool:
+    """Whether the n-th word is a preposition heard or typed as another word ("walk too the gate",
+    "milk form the jug", "take it 2 Carol", "get the ladle four me", "take the soup two table
+    four"): before a noun phrase, a person (a name, "me", "him"), or a name of the KB said without
+    its article after a noun phrase that has ended or a particle of the way ("through two surgery
+    one"). A real number is never lost: a number before a
+    plural ("two apples"), a number ending a name ("table two"), after a determiner ("the two")."""
+    before, after = words[n - 1], words[n + 1]
+    if before in NP_START or before.isdigit() or before in NUMBERS or not _ended(words, n, lexicon):
+        return False  # ("platform 4 my train's late": the number of a name)
+    if after in NP_START or after in _PEOPLE or _someone(lexicon, words, n + 1):
+        return True
+    if not lexicon.names_at(words, n + 1) or singular(after) != after:
+        return False
+    return before in PRONOUNS or before in _WAY or lexicon.knows(before)
+
+
+def _ended(words: list[str], n: int, lexicon: Lexicon) -> bool:
+    """Whether no name of the KB goes on into the n-th word ("table two", "screen 2")."""
+    starts = range(max(0, n - 4), n)
+    return not any(len(name.words) > n - j for j in starts for name in lexicon.names_at(words, j))
+
+
+def _someone(lexicon: Lexicon, words: list[str], i: int) -> bool:
+    """Whether the name of a person of the KB starts at the i-th word ("ola", "dr mensah")."""
+    found = (lexicon.snapshot.get(n.entity) for n in lexicon.names_at(words, i))
+    return any(e is not None and e.kind == "person" for e in found)
+
+
+def _named(text: str, start: int) -> bool:
+    """A capital not at the start of a sentence: a name, written as meant ("greet Tim", not Tom)."""
+    before = text[:start].rstrip()
+    return text[start : start + 1].isupper() and bool(before) and before[-1] not in ".!?\"“"
+
+
+def _fixed_words(text: str, fixes: list[tuple[int, int, Correction]]) -> list[str]:
+    meant = {start: fix.meant for start, _, fix in fixes}
+    return [meant.get(start, word) for word, start, _ in spans(text)]
+
+
+#: The shortest part of a word typed together with the next ("goto": "go" and "to").
+_PART = 2
+
+
+def _run_together(word: str) -> str | None:
+    """Two words of the grammar typed as one ("goto", "infront", "bringme"), when only one cut makes
+    two of them ("someones" is someone's, not "some ones")."""
+    if word.endswith("s") and (word[:-1] in grammar_words() or getAllLemmas(word[:-1])):
+        return None
+    cuts = [(word[:k], word[k:]) for k in range(_PART, len(word) - _PART + 1)]
+    found = [f"{a} {b}" for a, b in cuts if a in grammar_words() and b in grammar_words()]
+    return found[0] if len(found) == 1 else None
+
+
+def _suspect(word: str, lexicon: Lexicon) -> bool:
+    """Whether nothing accounts for the word: not the grammar's, not the KB's, not English."""
+    if len(word) < 3 or not word.isalpha() or word in grammar_words() or lexicon.knows(word):
+        return False
+    return not getAllLemmas(word)
+
+
+def _meant(word: str, lexicon: Lexicon) -> str | None:
+    """The one word the word is a slip of; a plural's slip ("tisues") is the plural of the word its
+    singular is a slip of (the KB's names are indexed singular: "box of tissues" by "tissue")."""
+    meant = _nearest(word, lexicon)
+    if len(word) <= _SHORT or not word.endswith("s") or (meant is not None and not lexicon.knows(meant)):
+        return meant
+    one = _nearest(word[:-1], lexicon)
+    if one is None or one not in lexicon.vocabulary or meant not in {None, one}:
+        return meant
+    plurals = getInflection(one, "NNS")  # ("glases": glasses, not glass)
+    return plurals[0] if plurals else meant
+
+
+def _nearest(word: str, lexicon: Lexicon) -> str | None:
+    limit = 2 if len(word) >= _LONG else 1
+    choices = _choices(lexicon)
+    near = process.extract(word, choices, scorer=OSA.distance, score_cutoff=limit, limit=None)
+    priced = sorted((typing_cost(word, choice), choice) for choice, _, _ in near)
+    if not priced or priced[0][0] > limit or (len(priced) > 1 and priced[1][0] == priced[0][0]):
+        return None
+    return priced[0][1]
+
+
+def _choices(lexicon: Lexicon) -> list[str]:
+    return [*grammar_words(), *(w for w in lexicon.vocabulary if w not in grammar_words())]
+
+
+def typing_cost(said: str, meant: str) -> float:
+    """The price of `said` as a slip of `meant` (optimal string alignment, keyboard-weighted)."""
+    short = len(meant) <= _SHORT
+    gap = 2.0 if short else 1.0  # a short word with a letter missing or added is another word
+    previous2: list[float] = []
+    previous = [j * gap for j in range(len(meant) + 1)]
+    for i, a in enumerate(said, 1):
+        row = [i * gap]
+        for j, b in enumerate(meant, 1):
+            # a doubled letter typed once or a letter typed twice ("helo", "tabble") is the commonest
+            # slip of all after a swap
+            extra = _DOUBLE if not short and i > 1 and a == said[i - 2] else gap
+            missed = _DOUBLE if not short and j > 1 and b == meant[j - 2] else gap
+            cost = min(previous[j] + extra, row[j - 1] + missed, previous[j - 1] + _key_distance(a, b))
+            if i > 1 and j > 1 and a == meant[j - 2] and said[i - 2] == b:
+                cost = min(cost, previous2[j - 2] + _SWAP)
+            row.append(cost)
+        previous2, previous = previous, row
+    return previous[-1]
+
+
+def _key_distance(a: str, b: str) -> float:
+    if a == b:
+        return 0.0
+    ka, kb = _KEYS.get(a), _KEYS.get(b)
+    if ka is None or kb is None:
+        return _FAR_KEY
+    return 1.0 if abs(ka[0] - kb[0]) <= 1 and abs(ka[1] - kb[1]) <= 1 else _FAR_KEY
+
+
+@cache
+def grammar_words() -> frozenset[str]:
+    """Every word the grammar itself uses: its word lists and the words of its verb frames."""
+    found: set[str] = set()
+    for module in (english, words, questions):
+        found.update(_module_words(module))
+    for frame in FRAMES:
+        texts = (frame.verbs, frame.particles, *frame.slots.values())
+        found.update(w for text in texts for p in phrases(text) for w in p)
+    return frozenset(w for w in found if w.isalpha())
+
+
+def _module_words(module: ModuleType) -> Iterator[str]:
+    for name, value in vars(module).items():
+        if name in _NOT_GRAMMAR:
+            continue
+        if name.isupper() or (name.startswith("_") and name[1:].isupper()):
+            yield from _strings(value)
+
+
+def _strings(value: object) -> Iterator[str]:
+    if isinstance(value, str):
+        yield from value.replace("|", " ").split()
+    elif isinstance(value, dict):
+        yield from _strings(tuple(value))
+        yield from _strings(tuple(value.values()))
+    elif isinstance(value, Iterable) and isinstance(value, (frozenset, set, tuple, list)):
+        for item in value:
+            yield from _strings(item)

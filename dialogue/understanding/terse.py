@@ -1,0 +1,90 @@
+"""Terse and non-native requests, said again in the order the grammar reads: the thing or place
+fronted before the verb ("Orchid put on counter", "Back yard, go"), a subject "you" before the verb
+("You pick watering can"), a verb with no preposition before a place ("Go workstand"), no verb at
+all ("Sunflowers into tall vase", "Dining room, now please").
+
+Only phrases that are exactly a name the KB knows are moved: a fronted person's name stays a
+vocative ("John, go to the kitchen"), and a bare phrase is a place to go only when it names one
+whole ("dining room"), never when it merely contains one.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+from dialogue.reference.english import FUNCTION_WORDS, Words
+from dialogue.reference.grounding import Kind
+from dialogue.reference.lexicon import Lexicon
+from dialogue.reference.resolution import PLACE, ZONE, resolve
+from dialogue.understanding.frames import verbs
+from dialogue.understanding.speech import strip_politeness
+from dialogue.understanding.utterance import asked_verb, normalise
+from dialogue.understanding.words import NP_START, TERSE_MOTION, TERSE_PLACING
+
+#: Subjects said before an imperative by a speaker of another language ("you go office").
+_SUBJECTS = frozenset({"you", "robot"})
+
+
+def terse(text: str, lexicon: Lexicon, robot_name: str = "") -> str | None:
+    """The request said in the grammar's order, or None when the text is no terse request."""
+    words = strip_politeness(normalise(text), robot_name)
+    subject = False
+    while words[:1] and words[0] in _SUBJECTS | {robot_name} and len(words) > 1:
+        words, subject = words[1:], True
+    if not words:
+        return None
+    at = next((i for i, w in enumerate(words) if asked_verb(w) in verbs()), None)
+    if at is None:
+        return _verbless(words, lexicon)
+    verb, front, rest = asked_verb(words[at]) or words[at], words[:at], words[at + 1 :]
+    if front:
+        named = _named(front, lexicon)
+        if named is None:
+            return None
+        rest = [*named, *rest]
+    if verb in TERSE_MOTION and rest and rest[0] not in FUNCTION_WORDS and _a_place(rest, lexicon):
+        return " ".join((verb, "to", *rest))  # "go workstand", "back yard, go"
+    return " ".join((verb, *rest)) if front or (subject and at == 0) else None
+
+
+def _verbless(words: list[str], lexicon: Lexicon) -> str | None:
+    """ "dining room": go there; "sunflowers into tall vase": put them there."""
+    if _a_place(words, lexicon, ZONE):  # a place alone is a room or area, never a thing
+        return " ".join(("go", "to", *words))
+    at = next((i for i, w in enumerate(words) if w in TERSE_PLACING), None)
+    if at is None or at == 0 or _named(words[:at], lexicon) is None:
+        return None
+    return " ".join(("put", *words))
+
+
+def _named(words: Sequence[str], lexicon: Lexicon) -> Words | None:
+    """The phrase as the grammar reads it when it is exactly names the KB knows (a determiner
+    before it allowed): one thing or place ("birthday card"), or a person's then a thing ("edna
+    cardigan": Edna's cardigan); else None."""
+    bare = list(words[1:]) if words[:1] and words[0] in NP_START else list(words)
+    found = lexicon.mentions(bare)
+    named = {i for m in found for i in range(m.start, m.end)}
+    if not bare or any(w in FUNCTION_WORDS for i, w in enumerate(bare) if i not in named):
+        return None  # ("you go", "I need", "it is"): a clause, no phrase
+    people = [m for m in found if all(lexicon.is_person(e) for e in m.entities)]
+    if people and people[0].start == 0 and len(people) == 1 and people[0].end < len(bare):
+        # "edna cardigan": Edna's cardigan, when that is a thing
+        owner, thing = bare[: people[0].end], bare[people[0].end :]
+        return (*owner[:-1], f"{owner[-1]}'s", *thing) if _a_thing(thing, lexicon) else None
+    return tuple(words) if not people and _a_thing(bare, lexicon) else None
+
+
+def _a_thing(words: Sequence[str], lexicon: Lexicon) -> bool:
+    """Whether the words name a thing or place the KB has (one or more: "sunflowers")."""
+    return bool(resolve(lexicon, words, PLACE).matches)
+
+
+def _a_place(words: Sequence[str], lexicon: Lexicon, kinds: frozenset[Kind] = PLACE) -> bool:
+    """Whether the words are exactly the name of one place (a zone, or a thing to go to after a
+    verb of motion)."""
+    found = lexicon.mentions(words)
+    if len(found) != 1 or (found[0].start, found[0].end) != (0, len(words)):
+        return False
+    if any(lexicon.is_person(e) for e in found[0].entities):
+        return False
+    return resolve(lexicon, words, kinds).one is not None

@@ -1,0 +1,138 @@
+"""An utterance's words as the grammar reads them: plain words (dialogue.understanding.speech) with the
+self-repairs applied and a leading vocative dropped, and verbs as lemmas. These need the verbs of
+the frame table ("bring me the uh no wait *put* the candle...", "john *can you* go...").
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import lru_cache
+
+from lemminflect import getAllLemmas, getInflection
+
+from dialogue.reference.english import MODIFIER_START, phrases
+from dialogue.understanding.frames import known_verbs, verbs
+from dialogue.understanding.speech import expanded, my_for_me, plain, starts, strip_politeness, unrepeated
+from dialogue.understanding.words import (
+    AUXILIARIES,
+    FILLERS,
+    LEAD_FILLERS,
+    NOT_VOCATIVE,
+    NP_START,
+    PLACES,
+    POLITE_PREFIXES,
+    REPAIRS,
+)
+
+
+@lru_cache(maxsize=4096)
+def verb_lemma(word: str) -> str:
+    """The table's verb a word is an inflection of ("picking" -> "pick", "took" -> "take", "puts"
+    -> "put"), else the word unchanged. Auxiliaries stay ("does you..." is not "do")."""
+    known = known_verbs()
+    if word in known or word in AUXILIARIES:
+        return word
+    lemmas: tuple[str, ...] = getAllLemmas(word).get("VERB", ())
+    return next((lemma for lemma in lemmas if lemma in known), word)
+
+
+@lru_cache(maxsize=4096)
+def asked_verb(word: str) -> str | None:
+    """The table's verb when the word is one as a request says it: the bare verb, or its -ing form
+    after "would you mind" ("picking"); None otherwise. "Someone *left* the keys" is no request,
+    so a past or third-person form never makes the word before it a vocative."""
+    lemma = verb_lemma(word)
+    if lemma not in known_verbs():
+        return None
+    return lemma if word == lemma or word in getInflection(lemma, "VBG") else None
+
+
+def normalise(text: str) -> list[str]:
+    """Lower-case words with contractions expanded, fillers and stutters removed and a self-repair
+    applied ("put the put the knife uh on the table", "bring me the uh no wait put the candle...")."""
+    return repaired(plain(text))
+
+
+_MARKERS = frozenset(REPAIRS)
+_MARKER_STARTS = frozenset(m[0] for m in REPAIRS)
+#: Prepositions that start a place said again ("...on the trolley no on the desk").
+_PLACE_WORDS = frozenset(w for p in phrases(PLACES) for w in p[:1])
+
+
+@dataclass(frozen=True)
+class Cleaned:
+    """An utterance with its stutters and self-repair resolved."""
+
+    text: str
+    #: What a self-repair took back ("hand Ravi the uh no wait..."): no request any more, but what
+    #: its pronouns may refer to ("...bring her the muffin").
+    taken_back: str = ""
+
+
+def cleaned(text: str) -> Cleaned:
+    """The text with stutters and self-repairs resolved, when it has any (else unchanged, so that
+    quoted words and casing survive): what a compound request is cut in."""
+    words = [w for w in expanded(text) if w not in FILLERS]
+    before, fixed = repair(unrepeated(my_for_me(words)))
+    if fixed == words:
+        return Cleaned(text)
+    return Cleaned(" ".join(fixed), " ".join(before) if before != fixed[: len(before)] else "")
+
+
+def repaired(words: list[str]) -> list[str]:
+    return repair(words)[1]
+
+
+def repair(words: list[str]) -> tuple[list[str], list[str]]:
+    """The words a self-repair took back and what the utterance says with it applied: after the
+    last repair marker, a new request replaces the one before it ("bring me the uh no wait put the
+    candle..."), a noun phrase the last one ("pick up the black umbrella no the yellow one": the
+    yellow umbrella)."""
+    for i in range(len(words) - 1, 0, -1):
+        for marker in (*REPAIRS, ("no",)):
+            if tuple(words[i : i + len(marker)]) != marker:
+                continue
+            after = words[i + len(marker) :]
+            # "no wait" rather than its "wait" alone: the whole marker is taken back
+            start = next((i - k for k in (2, 1) if tuple(words[i - k : i + len(marker)]) in _MARKERS), i)
+            if after[:1] and after[0] in _MARKER_STARTS:
+                continue  # "no wait ...": the longer marker, read at its own place
+            request = strip_politeness(after)
+            if request and asked_verb(request[0]) in verbs():
+                return words[:start], after
+            if request and (request[0] in NP_START or request[0] in _PLACE_WORDS):
+                fixed = _rephrased(words[:start], request)
+                if fixed is not None:
+                    return words[:start], fixed
+    return words, words
+
+
+def _rephrased(before: list[str], phrase: list[str]) -> list[str] | None:
+    """The request said before a repair with its last noun phrase said again (its head for "one"),
+    or its last place ("put it on the shelf no wait on the desk")."""
+    if phrase[0] in _PLACE_WORDS:
+        at = max((j for j in range(1, len(before)) if before[j] in _PLACE_WORDS), default=None)
+        return None if at is None else [*before[:at], *phrase]
+    starts = [j for j in range(1, len(before)) if before[j] in NP_START and before[j - 1] not in NP_START]
+    if not starts:
+        return None
+    replaced = before[starts[-1] :]
+    head = next((w for w, nxt in zip(replaced, [*replaced[1:], ""], strict=True)
+                 if nxt in MODIFIER_START or not nxt), None)  # fmt: skip
+    if head is None or head in NP_START:
+        return None
+    return [*before[: starts[-1]], *(head if w in {"one", "ones"} else w for w in phrase)]
+
+
+def strip_vocative(words: list[str], robot_name: str = "") -> list[str]:
+    """ "john can you go to the bathroom", "michael go to the kitchen": the addressee's name (one
+    word before a request) is not part of the request."""
+    commands = verbs()
+    while len(words) > 2 and words[0] in LEAD_FILLERS and asked_verb(words[1]) in commands:
+        words = words[1:]
+    if len(words) < 3 or words[0] in NOT_VOCATIVE or words[0] in commands or not words[0].isalpha():
+        return words
+    polite = any(starts(words[1:], p) and p[-1:] == ("you",) for p in POLITE_PREFIXES)
+    if polite or asked_verb(words[1]) in commands:
+        return strip_politeness(words[1:], robot_name)
+    return words

@@ -1,0 +1,98 @@
+"""Compound requests: cut into parts in order, each part read with the earlier ones as context."""
+
+import pytest
+
+from dialogue import intents as I
+from dialogue.understanding.compound import conjuncts
+from kb import KB
+from tests.dialogue.understanding.test_interpret import say
+
+
+@pytest.mark.parametrize(
+    ("text", "parts"),
+    [
+        ("go to the kitchen and take the plate", ["go to the kitchen", "take the plate"]),
+        ("take the book, then put it in the oven", ["take the book", "put it in the oven"]),
+        ("go to the bathroom take the rag", ["go to the bathroom", "take the rag"]),
+        ("go to the sofa and search for the pillow", ["go to the sofa", "search for the pillow"]),
+        ("bring me the cereals and the milk", []),  # one command, two things
+        ("put the salt and pepper on the table", []),
+        ('say "stop and wait" to Carol', []),  # a quotation is one text
+        ("go get a book for me", []),
+        # "go" before a verb starts a request after a remark; a verb after a modal is the remark's own
+        ("omar is at the door go say hi to him", ["omar is at the door", "go say hi to him"]),
+        ("mia can't find her pen, can you take it to her", ["mia can't find her pen", "can you take it to her"]),
+        ("omar is in the shed tell him lunch is ready", ["omar is in the shed", "tell him lunch is ready"]),
+        # "and" as chat writes it; other chat words cut nothing ("cn u go...": "u" is "you")
+        ("fetch the tray n put it on the shelf", ["fetch the tray", "put it on the shelf"]),
+        ("cn u go to the shed", ["cn u", "go to the shed"]),
+        # an action the robot has no intent for is a part of its own, kept in the reply
+        ("go to the shed and see if the hose is there", ["go to the shed", "see if the hose is there"]),
+        # a greeting asked for after a remark
+        ("ola is here say hi", ["ola is here", "say hi"]),
+    ],
+)
+def test_parts(text: str, parts: list[str]) -> None:
+    assert [p.text for p in conjuncts(text)] == parts
+
+
+def test_every_intent_in_order_with_pronouns_across_parts(office: KB) -> None:
+    out = say(office, "take the stapler and put it on the shelf")
+    assert [(o.intent, o.roles) for o in out.steps()] == [
+        (I.GRAB_OBJECT, {"object": "stapler_1"}),
+        (I.PLACE_OBJECT, {"object": "stapler_1", "recipient": "shelf_9"}),
+    ]
+    assert "stapler" in out.reply and out.reply.count("OK") == 1
+
+
+def test_three_parts_without_conjunctions(office: KB) -> None:
+    out = say(office, "go to the desk take the pear and bring it to Carol")
+    assert [o.intent for o in out.steps()] == [I.MOVE_TO, I.GRAB_OBJECT, I.BRING_OBJECT]
+    assert out.steps()[2].roles == {"object": "pear_1", "recipient": "person_carol"}
+
+
+def test_a_part_with_no_intent_is_kept_in_the_reply(office: KB) -> None:
+    out = say(office, "go to the desk and look for the umbrella")
+    assert [o.intent for o in out.steps()] == [I.MOVE_TO]
+    assert "look for the umbrella" in out.reply and out.understood
+
+
+def test_a_part_that_fails_says_why_and_nothing_is_done(office: KB) -> None:
+    out = say(office, "take the stapler and put it on the moon")
+    assert out.intent is None and out.more == () and "moon" in out.reply
+
+
+def test_an_ambiguous_part_is_asked_about_first(office: KB) -> None:
+    out = say(office, "go to the desk and take the mug")
+    assert out.clarify and out.intent is None and "Which" in out.reply
+
+
+def test_coordinated_things_are_one_intent_each(office: KB) -> None:
+    out = say(office, "pick up the stapler and the pear")
+    assert [(o.intent, o.roles) for o in out.steps()] == [
+        (I.GRAB_OBJECT, {"object": "stapler_1"}),
+        (I.GRAB_OBJECT, {"object": "pear_1"}),
+    ]
+
+
+def test_a_greeting_before_a_compound_is_context(office: KB) -> None:
+    out = say(office, "hi there, go to the desk and take the pear")
+    assert [o.intent for o in out.steps()] == [I.MOVE_TO, I.GRAB_OBJECT]
+
+
+def test_a_greeting_before_the_first_command_keeps_the_command(office: KB) -> None:
+    out = say(office, "hey robot take the stapler and put it on the shelf")
+    assert [o.intent for o in out.steps()] == [I.GRAB_OBJECT, I.PLACE_OBJECT]
+
+
+def test_a_part_that_only_says_where_not_to_be_is_an_aside() -> None:
+    parts = conjuncts("could you get out of the way and go to the shelf")
+    assert [(p.text, p.aside) for p in parts] == [("could you get out of the way", True), ("go to the shelf", False)]
+    assert not any(p.aside for p in conjuncts("get the stapler and go to the shelf"))
+
+
+def test_a_part_asking_for_a_state_is_kept_in_the_reply(office: KB) -> None:
+    parts = conjuncts("go to the bathroom and get it ready")
+    assert [p.no_intent for p in parts] == [False, True]
+    out = say(office, "go too the bathroom and get it ready")
+    assert (out.intent, out.roles) == (I.MOVE_TO, {"goal": "bathroom"}) and "can't get it ready" in out.reply
