@@ -19,7 +19,7 @@ from dialogue.reference.english import word_set
 from dialogue.reference.lexicon import Lexicon
 from dialogue.reference.resolution import PERSON, antecedent, content_words, resolve
 from dialogue.schema import FactClaim
-from dialogue.understanding.utterance import normalise
+from dialogue.understanding.speech.repair import normalise
 
 Words = tuple[str, ...]
 _LIKE = word_set("like love enjoy adore")

@@ -28,9 +28,9 @@ from dialogue.reference.english import phrases, word_set
 from dialogue.reference.grounding import Entity, Kind
 from dialogue.reference.resolution import PLACE
 from dialogue.schema import FactClaim
-from dialogue.understanding.clauses import clauses as run_on_clauses
-from dialogue.understanding.speech import original_text
-from dialogue.understanding.utterance import asked_verb, normalise
+from dialogue.understanding.speech.clauses import clauses as run_on_clauses
+from dialogue.understanding.speech.plain import original_text
+from dialogue.understanding.speech.repair import asked_verb, normalise
 from dialogue.understanding.words import GREETINGS, SOCIAL
 
 __all__ = ["Statements", "Told", "Words"]

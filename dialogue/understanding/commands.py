@@ -15,8 +15,8 @@ from dialogue.understanding.constructions import Said
 from dialogue.understanding.frames import CONSTRUCTIONS, Row, verb_index
 from dialogue.understanding.parsed import Act, Parse
 from dialogue.understanding.questions import question as _question
-from dialogue.understanding.speech import starts, strip_politeness
-from dialogue.understanding.utterance import normalise, strip_vocative, verb_lemma
+from dialogue.understanding.speech.plain import starts, strip_politeness
+from dialogue.understanding.speech.repair import normalise, strip_vocative, verb_lemma
 from dialogue.understanding.words import (
     ADJUNCTS,
     ATTENTION,

@@ -14,9 +14,9 @@ from lemminflect import getLemma
 
 from dialogue import intents as I
 from dialogue.reference.english import FUNCTION_WORDS, ME, Words, phrases, word_set
-from dialogue.understanding.clauses import finite
 from dialogue.understanding.parsed import Parse
-from dialogue.understanding.speech import QUOTED, expanded, message, original_text, split_at, starts
+from dialogue.understanding.speech.clauses import finite
+from dialogue.understanding.speech.plain import QUOTED, expanded, message, original_text, split_at, starts
 from dialogue.understanding.words import (
     ADJUNCTS,
     DONE,

@@ -22,7 +22,7 @@ class Outcome:
     #: The intents that follow this one in a compound request, in order.
     more: tuple[Outcome, ...] = ()
     #: A misspelt word was read as a name the KB has ("the thremos"): which thing is meant is a
-    #: guess (dialogue.understanding.spelling), which a hybrid model leaves to its model.
+    #: guess (dialogue.understanding.speech.spelling), which a hybrid model leaves to its model.
     guessed: bool = False
 
     def steps(self) -> tuple[Outcome, ...]:

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 from dialogue.reference.english import COLOURS, Words, word_set
 from dialogue.understanding.parsed import Parse
-from dialogue.understanding.speech import split_at, starts
+from dialogue.understanding.speech.plain import split_at, starts
 from dialogue.understanding.words import WH, purpose
 
 _SEES: tuple[Words, ...] = tuple(

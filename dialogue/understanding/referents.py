@@ -43,10 +43,10 @@ from dialogue.reference.resolution import (
     resolve,
     said_phrase,
 )
-from dialogue.understanding.clauses import described
 from dialogue.understanding.compound import alternatives
 from dialogue.understanding.outcome import Outcome, Ref
-from dialogue.understanding.sounds import slipped as heard_as
+from dialogue.understanding.speech.clauses import described
+from dialogue.understanding.speech.sounds import slipped as heard_as
 from dialogue.understanding.words import NP_START, TAGS, purpose
 
 #: Spatial or comparative qualifiers the KB does not model (dropped when they block a match).

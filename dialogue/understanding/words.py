@@ -35,7 +35,7 @@ _SPOKEN: dict[str, Words] = {
 }  # fmt: skip
 #: Chat abbreviations, read as the words they stand for ("can u get my bag n bring it over", "go bk
 #: to the desk", "whats on the counter rn"). Words spelled out letter by letter ("s u v") are
-#: joined before these are read (dialogue.understanding.letters).
+#: joined before these are read (dialogue.understanding.speech.letters).
 #: After a determiner, an abbreviation is read as written: a noun ("where is the atm").
 CHAT: dict[str, Words] = {
     "u": ("you",), "ya": ("you",), "r": ("are",), "ur": ("your",), "n": ("and",), "b4": ("before",),

@@ -6,9 +6,10 @@ from collections.abc import Iterator
 import pytest
 
 from dialogue import intents as I
-from dialogue.understanding import frames, utterance
+from dialogue.understanding import frames
 from dialogue.understanding.commands import parse
 from dialogue.understanding.frames import FRAMES, Frame
+from dialogue.understanding.speech import repair
 from kb import KB
 from tests.dialogue.understanding.test_interpret import say
 
@@ -123,13 +124,13 @@ def test_a_place_is_said_back_with_its_preposition(office: KB) -> None:
 
 @pytest.fixture
 def extra_row(monkeypatch: pytest.MonkeyPatch) -> Iterator[None]:
-    for cached in (frames.verb_index, frames.verbs, frames.known_verbs, utterance.verb_lemma):
+    for cached in (frames.verb_index, frames.verbs, frames.known_verbs, repair.verb_lemma):
         cached.cache_clear()
     row = Frame("ferry|cart", I.BRING_OBJECT, direct="object", slots={"recipient": "to|over to"})
     monkeypatch.setattr(frames, "FRAMES", (*FRAMES, row))
     yield
     monkeypatch.undo()
-    for cached in (frames.verb_index, frames.verbs, frames.known_verbs, utterance.verb_lemma):
+    for cached in (frames.verb_index, frames.verbs, frames.known_verbs, repair.verb_lemma):
         cached.cache_clear()
 
 

@@ -4,8 +4,8 @@ import pytest
 
 from dialogue import intents as I
 from dialogue.understanding.commands import parse
-from dialogue.understanding.speech import expanded, strip_politeness
-from dialogue.understanding.utterance import Cleaned, cleaned, normalise
+from dialogue.understanding.speech.plain import expanded, strip_politeness
+from dialogue.understanding.speech.repair import Cleaned, cleaned, normalise
 
 
 @pytest.mark.parametrize(

@@ -4,9 +4,9 @@ import pytest
 
 from dialogue import intents as I
 from dialogue.history import Utterance
-from dialogue.understanding.clauses import clauses, described, description
 from dialogue.understanding.interpret import Interpreter
 from dialogue.understanding.outcome import Outcome
+from dialogue.understanding.speech.clauses import clauses, described, description
 from kb import KB
 from tests.dialogue.conftest import lexicon_of, scene_kb
 

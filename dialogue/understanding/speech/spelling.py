@@ -35,9 +35,9 @@ from dialogue.reference.english import ME, NUMBERS, PRONOUNS, lowered, phrases, 
 from dialogue.reference.lexicon import Lexicon, singular
 from dialogue.understanding import questions, words
 from dialogue.understanding.frames import FRAMES
-from dialogue.understanding.homophones import misheard
-from dialogue.understanding.names import heard_name
-from dialogue.understanding.speech import QUOTED
+from dialogue.understanding.speech.heardnames import heard_name
+from dialogue.understanding.speech.homophones import misheard
+from dialogue.understanding.speech.plain import QUOTED
 from dialogue.understanding.words import CARRY_PARTICLES, MOTION_PARTICLES, NP_START, PATHS, PREPOSITION_SLIPS
 
 _ROWS = ("qwertyuiop", "asdfghjkl", "zxcvbnm")

@@ -24,7 +24,7 @@ from dialogue.reference.english import DETERMINERS, MODIFIER_START, Words
 from dialogue.reference.grounding import Entity, Kind
 from dialogue.reference.lexicon import Lexicon
 from dialogue.reference.resolution import resolve
-from dialogue.understanding.spelling import typing_cost
+from dialogue.understanding.speech.spelling import typing_cost
 from dialogue.understanding.words import HOMOPHONES
 
 #: At most this many letters apart (optimal string alignment) for a word heard for another.

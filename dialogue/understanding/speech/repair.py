@@ -1,4 +1,4 @@
-"""An utterance's words as the grammar reads them: plain words (dialogue.understanding.speech) with the
+"""An utterance's words as the grammar reads them: plain words (dialogue.understanding.speech.plain) with the
 self-repairs applied and a leading vocative dropped, and verbs as lemmas. These need the verbs of
 the frame table ("bring me the uh no wait *put* the candle...", "john *can you* go...").
 """
@@ -12,7 +12,14 @@ from lemminflect import getAllLemmas, getInflection
 
 from dialogue.reference.english import MODIFIER_START, phrases
 from dialogue.understanding.frames import known_verbs, verbs
-from dialogue.understanding.speech import expanded, my_for_me, plain, starts, strip_politeness, unrepeated
+from dialogue.understanding.speech.plain import (
+    expanded,
+    my_for_me,
+    plain,
+    starts,
+    strip_politeness,
+    unrepeated,
+)
 from dialogue.understanding.words import (
     AUXILIARIES,
     FILLERS,

@@ -4,7 +4,7 @@ correct word, never when two words are as close."""
 import pytest
 
 from dialogue import intents as I
-from dialogue.understanding.spelling import corrected, grammar_words, typing_cost
+from dialogue.understanding.speech.spelling import corrected, grammar_words, typing_cost
 from kb import KB
 from tests.dialogue.conftest import lexicon_of, scene_kb
 from tests.dialogue.understanding.test_interpret import say

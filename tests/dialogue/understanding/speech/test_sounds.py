@@ -7,7 +7,7 @@ from dialogue.reference.english import tokens
 from dialogue.reference.resolution import THING
 from dialogue.understanding.interpret import Interpreter
 from dialogue.understanding.outcome import Outcome
-from dialogue.understanding.sounds import slipped, slips, sounds_alike
+from dialogue.understanding.speech.sounds import slipped, slips, sounds_alike
 from kb import KB
 from tests.dialogue.conftest import lexicon_of, scene_kb
 

@@ -2,7 +2,7 @@
 stutters, politeness; and the way back from words to the original text (its casing, its quotes).
 
 Nothing here knows a verb: self-repairs and vocatives, which need the grammar's verbs, are in
-dialogue.understanding.utterance.
+dialogue.understanding.speech.repair.
 """
 
 from __future__ import annotations

@@ -3,7 +3,7 @@
 import pytest
 
 from dialogue import intents as I
-from dialogue.understanding.names import heard_name, sound_key
+from dialogue.understanding.speech.heardnames import heard_name, sound_key
 from kb import KB
 from tests.dialogue.conftest import lexicon_of, scene_kb
 from tests.dialogue.understanding.test_interpret import say

@@ -32,7 +32,7 @@ from dialogue.reference.english import (
     spans,
     word_set,
 )
-from dialogue.understanding.speech import expanded, strip_politeness
+from dialogue.understanding.speech.plain import expanded, strip_politeness
 from dialogue.understanding.words import NP_START, OWNERS, TAGS
 
 #: Punctuation and dashes end a clause.
