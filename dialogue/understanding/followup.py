@@ -19,10 +19,10 @@ from dialogue.prompts import FREE_FORM_OBJECT
 from dialogue.reference.english import MODIFIER_START, Words, phrases, tokens, word_set
 from dialogue.reference.grounding import Kind
 from dialogue.reference.resolution import ROLE_KINDS, content_words, resolve
-from dialogue.understanding.commands import parse
-from dialogue.understanding.constructions import where_it_goes
 from dialogue.understanding.outcome import Outcome
 from dialogue.understanding.parsed import Parse
+from dialogue.understanding.requests.commands import parse
+from dialogue.understanding.requests.constructions import where_it_goes
 from dialogue.understanding.speech.clauses import clauses, described, description
 from dialogue.understanding.speech.plain import expanded, plain, strip_politeness
 from dialogue.understanding.words import INTERJECTIONS, NP_START, OWNERS, PLACES

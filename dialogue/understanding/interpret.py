@@ -26,19 +26,19 @@ from dialogue.reference.resolution import (
     resolve,
 )  # fmt: skip
 from dialogue.understanding import answers
-from dialogue.understanding.commands import parse
-from dialogue.understanding.compound import Part, conjuncts, coordinated, unprefixed
 from dialogue.understanding.followup import accepts, continuation, correction, follow_up
 from dialogue.understanding.outcome import Outcome, Ref
 from dialogue.understanding.parsed import Parse
-from dialogue.understanding.referents import RELATIONAL, Referents
 from dialogue.understanding.replies import acknowledgement, vocative
+from dialogue.understanding.requests.commands import parse
+from dialogue.understanding.requests.compound import Part, conjuncts, coordinated, unprefixed
+from dialogue.understanding.requests.referents import RELATIONAL, Referents
+from dialogue.understanding.requests.terse import terse
 from dialogue.understanding.speech.clauses import clauses, described, description
 from dialogue.understanding.speech.letters import joined
 from dialogue.understanding.speech.plain import expanded
 from dialogue.understanding.speech.repair import cleaned
 from dialogue.understanding.speech.spelling import corrected
-from dialogue.understanding.terse import terse
 
 #: Pronouns of a person a question may be about ("do you know where she is").
 _SOMEONE = frozenset({"he", "she", "him", "her"})

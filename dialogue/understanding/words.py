@@ -1,8 +1,9 @@
 """The grammar's word lists, in one place: how people pad, repair and soften what they ask, and the
 prepositions, particles and adjuncts of requests.
 
-Data only. Verbs are in the frame table (dialogue.understanding.frames), closed-class English shared with
-reference resolution in dialogue.reference.english, and nouns always come from the KB.
+Data only. Verbs are in the frame table (dialogue.understanding.requests.frames), closed-class
+English shared with reference resolution in dialogue.reference.english, and nouns always come from
+the KB.
 """
 
 from __future__ import annotations

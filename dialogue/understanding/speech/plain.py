@@ -195,7 +195,7 @@ def strip_politeness(words: list[str], robot_name: str = "") -> list[str]:
         changed = False
         for p in openings.get(words[0], ()):
             # "can you see" is a question, not a polite request: keep it; "could we get the bill"
-            # is a wish (dialogue.understanding.constructions.wanting), not "get the bill".
+            # is a wish (dialogue.understanding.requests.constructions.wanting), not "get the bill".
             if starts(words, p) and not _asking(p, words[len(p) :]):
                 words = words[len(p) :]
                 changed = True

@@ -11,7 +11,7 @@ from functools import lru_cache
 from lemminflect import getAllLemmas, getInflection
 
 from dialogue.reference.english import MODIFIER_START, phrases
-from dialogue.understanding.frames import known_verbs, verbs
+from dialogue.understanding.requests.frames import known_verbs, verbs
 from dialogue.understanding.speech.plain import (
     expanded,
     my_for_me,

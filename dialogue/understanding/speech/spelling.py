@@ -34,7 +34,7 @@ from dialogue.reference import english
 from dialogue.reference.english import ME, NUMBERS, PRONOUNS, lowered, phrases, spans
 from dialogue.reference.lexicon import Lexicon, singular
 from dialogue.understanding import questions, words
-from dialogue.understanding.frames import FRAMES
+from dialogue.understanding.requests.frames import FRAMES
 from dialogue.understanding.speech.heardnames import heard_name
 from dialogue.understanding.speech.homophones import misheard
 from dialogue.understanding.speech.plain import QUOTED

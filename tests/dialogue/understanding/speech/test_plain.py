@@ -3,7 +3,7 @@
 import pytest
 
 from dialogue import intents as I
-from dialogue.understanding.commands import parse
+from dialogue.understanding.requests.commands import parse
 from dialogue.understanding.speech.plain import expanded, strip_politeness
 from dialogue.understanding.speech.repair import Cleaned, cleaned, normalise
 

@@ -6,7 +6,7 @@ role (`slots`, found in any order: "bring the tray to Ana" and "bring to Ana the
 particles dropped around them ("pick *up*", "head *over* to"), the role that a bare "here"/"there"
 fills, and which roles must be said for the row to apply. Verbs are lemmas, so "picking", "took"
 and "puts" need no row of their own; multi-word verbs ("get hold of", "make your way") are phrases.
-What a row cannot say is a small function of dialogue.understanding.constructions, named in the row.
+What a row cannot say is a small function of dialogue.understanding.requests.constructions, named in the row.
 
 Rows are tried longest verb phrase first, then in table order; the first that fits wins. To add a
 verb, add it to a row (or add a row).
@@ -21,8 +21,8 @@ from typing import Literal
 
 from dialogue import intents as I
 from dialogue.reference.english import ME, Words, phrases, word_set
-from dialogue.understanding import constructions as C
 from dialogue.understanding.parsed import Parse
+from dialogue.understanding.requests import constructions as C
 from dialogue.understanding.words import (
     ACTIVITY_FILLER,
     CARRY_PARTICLES,

@@ -3,7 +3,7 @@
 import pytest
 
 from dialogue import intents as I
-from dialogue.understanding.compound import conjuncts
+from dialogue.understanding.requests.compound import conjuncts
 from kb import KB
 from tests.dialogue.understanding.test_interpret import say
 

@@ -1,7 +1,7 @@
 import pytest
 
 from dialogue import intents as I
-from dialogue.understanding.commands import parse
+from dialogue.understanding.requests.commands import parse
 from kb import KB
 from tests.dialogue.understanding.test_interpret import say
 

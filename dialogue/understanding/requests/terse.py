@@ -16,7 +16,7 @@ from dialogue.reference.english import FUNCTION_WORDS, Words
 from dialogue.reference.grounding import Kind
 from dialogue.reference.lexicon import Lexicon
 from dialogue.reference.resolution import PLACE, ZONE, resolve
-from dialogue.understanding.frames import verbs
+from dialogue.understanding.requests.frames import verbs
 from dialogue.understanding.speech.plain import strip_politeness
 from dialogue.understanding.speech.repair import asked_verb, normalise
 from dialogue.understanding.words import NP_START, TERSE_MOTION, TERSE_PLACING

@@ -6,9 +6,9 @@ from collections.abc import Iterator
 import pytest
 
 from dialogue import intents as I
-from dialogue.understanding import frames
-from dialogue.understanding.commands import parse
-from dialogue.understanding.frames import FRAMES, Frame
+from dialogue.understanding.requests import frames
+from dialogue.understanding.requests.commands import parse
+from dialogue.understanding.requests.frames import FRAMES, Frame
 from dialogue.understanding.speech import repair
 from kb import KB
 from tests.dialogue.understanding.test_interpret import say

@@ -43,8 +43,8 @@ from dialogue.reference.resolution import (
     resolve,
     said_phrase,
 )
-from dialogue.understanding.compound import alternatives
 from dialogue.understanding.outcome import Outcome, Ref
+from dialogue.understanding.requests.compound import alternatives
 from dialogue.understanding.speech.clauses import described
 from dialogue.understanding.speech.sounds import slipped as heard_as
 from dialogue.understanding.words import NP_START, TAGS, purpose

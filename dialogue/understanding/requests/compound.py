@@ -11,7 +11,7 @@ from dataclasses import dataclass
 
 from dialogue.reference.english import Words, phrases, spans, word_set
 from dialogue.reference.resolution import content_words
-from dialogue.understanding.frames import verbs
+from dialogue.understanding.requests.frames import verbs
 from dialogue.understanding.speech.plain import QUOTED, starts, strip_politeness
 from dialogue.understanding.speech.repair import asked_verb, normalise, strip_vocative
 from dialogue.understanding.words import AWAY, CHAT, GREETINGS, NO_INTENT_VERBS, RESULTS

@@ -4,7 +4,7 @@ import pytest
 
 from dialogue import intents as I
 from dialogue.understanding.interpret import Interpreter
-from dialogue.understanding.terse import terse
+from dialogue.understanding.requests.terse import terse
 from kb import KB
 from tests.dialogue.conftest import lexicon_of
 

@@ -1,5 +1,5 @@
 """Reading an utterance's words: its act (a request, a question, a greeting, thanks, a refusal) and,
-for a request, the verb frame it fits (dialogue.understanding.frames) with each role's phrase (D11).
+for a request, the verb frame it fits (dialogue.understanding.requests.frames) with each role's phrase (D11).
 
 Only words are looked at: which entity a phrase names is decided later against the KB
 (dialogue.understanding.interpret), so no noun is written here.
@@ -11,10 +11,10 @@ from collections.abc import Sequence
 from dataclasses import replace
 
 from dialogue.reference.english import DETERMINERS, FUNCTION_WORDS, MANY, ME, MODIFIER_START, PERSONAL, Words
-from dialogue.understanding.constructions import Said
-from dialogue.understanding.frames import CONSTRUCTIONS, Row, verb_index
 from dialogue.understanding.parsed import Act, Parse
 from dialogue.understanding.questions import question as _question
+from dialogue.understanding.requests.constructions import Said
+from dialogue.understanding.requests.frames import CONSTRUCTIONS, Row, verb_index
 from dialogue.understanding.speech.plain import starts, strip_politeness
 from dialogue.understanding.speech.repair import normalise, strip_vocative, verb_lemma
 from dialogue.understanding.words import (
