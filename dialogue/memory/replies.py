@@ -11,7 +11,7 @@ from dialogue.memory.learn import Outcome, Settled
 from dialogue.reference.english import tokens
 from dialogue.reference.grounding import Snapshot
 from dialogue.reference.lexicon import singular
-from dialogue.understanding.answers import listing, the
+from dialogue.understanding.questions.answers import listing, the
 
 _PREPOSITION = {"isIn": "in", "isOn": "on"}
 _OK = "OK, "

@@ -94,7 +94,7 @@ class Statements(Likings):
     def read(self, text: str) -> Told | None:
         """The facts of a turn of statements, or None when the turn is not one."""
         if text.rstrip().endswith("?"):
-            return None  # a question (dialogue.memory.asking reads those about what was told)
+            return None  # a question (dialogue.understanding.questions.told reads those about what was told)
         told = Told()
         # run-on clauses too: "my keys are in the drawer can you get them" is no statement only
         clauses = [part for c in _CLAUSES.split(text) if c.strip() for part in run_on_clauses(c)]

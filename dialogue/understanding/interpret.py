@@ -25,10 +25,10 @@ from dialogue.reference.resolution import (
     is_pronoun,
     resolve,
 )  # fmt: skip
-from dialogue.understanding import answers
 from dialogue.understanding.followup import accepts, continuation, correction, follow_up
 from dialogue.understanding.outcome import Outcome, Ref
 from dialogue.understanding.parsed import Parse
+from dialogue.understanding.questions import answers
 from dialogue.understanding.replies import acknowledgement, vocative
 from dialogue.understanding.requests.commands import parse
 from dialogue.understanding.requests.compound import Part, conjuncts, coordinated, unprefixed

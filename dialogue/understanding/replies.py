@@ -4,8 +4,8 @@ from __future__ import annotations
 
 from dialogue import intents as I
 from dialogue.reference.grounding import Snapshot
-from dialogue.understanding import answers
 from dialogue.understanding.outcome import Ref
+from dialogue.understanding.questions import answers
 
 
 def vocative(snapshot: Snapshot, speaker: str) -> str:

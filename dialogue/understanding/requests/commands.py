@@ -12,7 +12,7 @@ from dataclasses import replace
 
 from dialogue.reference.english import DETERMINERS, FUNCTION_WORDS, MANY, ME, MODIFIER_START, PERSONAL, Words
 from dialogue.understanding.parsed import Act, Parse
-from dialogue.understanding.questions import question as _question
+from dialogue.understanding.questions.grammar import question as _question
 from dialogue.understanding.requests.constructions import Said
 from dialogue.understanding.requests.frames import CONSTRUCTIONS, Row, verb_index
 from dialogue.understanding.speech.plain import starts, strip_politeness

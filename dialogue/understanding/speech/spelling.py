@@ -33,7 +33,8 @@ from rapidfuzz.distance import OSA
 from dialogue.reference import english
 from dialogue.reference.english import ME, NUMBERS, PRONOUNS, lowered, phrases, spans
 from dialogue.reference.lexicon import Lexicon, singular
-from dialogue.understanding import questions, words
+from dialogue.understanding import words
+from dialogue.understanding.questions import grammar as questions
 from dialogue.understanding.requests.frames import FRAMES
 from dialogue.understanding.speech.heardnames import heard_name
 from dialogue.understanding.speech.homophones import misheard

@@ -5,9 +5,9 @@ from __future__ import annotations
 import pytest
 
 from dialogue.history import Utterance
-from dialogue.memory.asking import Asking
+from dialogue.understanding.questions.told import Asking
 from kb import KB
-from tests.dialogue.memory.conftest import lexicon_of
+from tests.dialogue.conftest import lexicon_of
 
 BOB = "person_bob"
 

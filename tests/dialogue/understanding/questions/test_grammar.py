@@ -2,7 +2,7 @@
 
 import pytest
 
-from dialogue.understanding.questions import question
+from dialogue.understanding.questions.grammar import question
 from dialogue.understanding.speech.plain import expanded
 from kb import KB
 from tests.dialogue.understanding.test_interpret import say

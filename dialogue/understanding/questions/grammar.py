@@ -1,7 +1,7 @@
 """Questions about the situation ("what do you see", "where is X"...), on whole words.
 
 The result is a `Parse` with `act="question"`, a question kind and the phrase it is about; the
-answer is computed from the KB snapshot in dialogue.understanding.answers.
+answer is computed from the KB snapshot in dialogue.understanding.questions.answers.
 """
 
 from __future__ import annotations

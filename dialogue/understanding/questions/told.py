@@ -7,7 +7,7 @@
 
 The answer comes from the robot's model, and from what others said when it has not adopted it
 (dialogue.memory.learn). "Whose mug is this?" and "where are my keys?" are the situation questions
-of the rules (dialogue.understanding.questions): what was adopted is in the situation like any fact.
+of the rules (dialogue.understanding.questions.grammar): what was adopted is in the situation like any fact.
 """
 
 from __future__ import annotations
