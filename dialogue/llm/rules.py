@@ -10,12 +10,12 @@ from __future__ import annotations
 import json
 
 from dialogue.llm.base import ChatModel, ChatRequest, ChatResult, EarlyAnswer, TurnContext
-from dialogue.memory.reading import Reading, read_turn
 from dialogue.prompts import FREE_FORM_OBJECT
 from dialogue.reference.lexicon import Lexicon, LexiconCache
 from dialogue.schema import ChatbotResponse, UserIntent
 from dialogue.understanding.interpret import Interpreter
 from dialogue.understanding.outcome import Outcome
+from dialogue.understanding.statements.reading import Reading, read_turn
 
 
 def _wish(outcome: Outcome) -> UserIntent:

@@ -5,10 +5,10 @@ a question (`object` None: "what does Alice like?" -> `person_alice likes ?`). T
 closed table: each names its KB property, the kinds of entity its subject and object may be, and
 which values a new one replaces (a name replaces a name, a place a place, a liking its opposite).
 
-Claims come from the rules (dialogue.memory.statements) or from a model's answer (`facts`, whose
-ids are grounded here exactly as intent roles are: an id of the snapshot, or a name that resolves
-to one entity of the right kind; an ambiguous one becomes a clarifying question, an unknown one an
-`AnswerError` that the repair request sends back).
+Claims come from the rules (dialogue.understanding.statements.grammar) or from a model's answer
+(`facts`, whose ids are grounded here exactly as intent roles are: an id of the snapshot, or a name
+that resolves to one entity of the right kind; an ambiguous one becomes a clarifying question, an
+unknown one an `AnswerError` that the repair request sends back).
 """
 
 from __future__ import annotations
@@ -17,13 +17,13 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Literal
 
-from dialogue.memory.names import clean_name
 from dialogue.reference.clarify import question as clarifying_question
 from dialogue.reference.english import tokens
 from dialogue.reference.grounding import Kind
 from dialogue.reference.lexicon import Lexicon
 from dialogue.reference.resolution import ANYWHERE, PERSON, resolve_id
 from dialogue.schema import AnswerError, FactClaim
+from dialogue.understanding.statements.names import clean_name
 
 #: How the object of a claim is read: a KB entity id, words naming a kind (a class of the KB,
 #: found when the claim is learnt: "tea"), or a name (a literal: "Bob").

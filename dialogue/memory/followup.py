@@ -11,10 +11,10 @@ from __future__ import annotations
 from collections.abc import Sequence
 
 from dialogue.history import Utterance
-from dialogue.memory.statements import Statements, Told, Words
 from dialogue.reference.english import word_set
 from dialogue.reference.lexicon import Lexicon
 from dialogue.understanding.speech.repair import normalise
+from dialogue.understanding.statements.grammar import Statements, Told, Words
 
 _ONE = word_set("one ones")
 _EMPHASIS = word_set("obviously definitely clearly surely certainly yes yeah yep sure please thanks the a an")

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from dialogue.memory.names import clean_name, given_name, name_like
+from dialogue.understanding.statements.names import clean_name, given_name, name_like
 
 
 def test_names_as_told() -> None:

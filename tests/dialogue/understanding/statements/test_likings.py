@@ -5,7 +5,7 @@ from __future__ import annotations
 import pytest
 
 from kb import KB
-from tests.dialogue.memory.test_statements import BOB, facts
+from tests.dialogue.understanding.statements.test_grammar import BOB, facts
 
 
 @pytest.mark.parametrize(("text", "expected"), [

@@ -6,24 +6,21 @@
     the keys are in the drawer · I left my glasses on the sofa -> <thing> isIn / isOn <place>
     I like tea · Alice hates coffee · I don't like the radio  -> <person> likes / dislikes <kind or thing>
 
-Likings are read by dialogue.memory.likings, the phrases grounded by dialogue.memory.clause (the
-reader this grammar is built on). A turn is claimed only when every clause of it is a statement (or
-a greeting before one); referents are resolved against the lexicon as the command grammar's are (one
-entity, a clarifying question when several fit, "I don't know any..." when none does: nothing is
-invented). A liking's object may also be a kind ("tea"): its words are passed on and found among the
-KB's classes when learnt. What only looks like a statement is left to the other rules: a liking of
-what happens or of doing something ("I like it when you dance", "I like to dance", "I like that"),
-and where the speaker is said of anything but a zone or furniture the KB knows ("I'm on my way",
-"I'm on the phone").
+Likings are read by dialogue.understanding.statements.likings, the phrases grounded by
+dialogue.understanding.statements.clause (the reader this grammar is built on). A turn is claimed
+only when every clause of it is a statement (or a greeting before one); referents are resolved
+against the lexicon as the command grammar's are (one entity, a clarifying question when several
+fit, "I don't know any..." when none does: nothing is invented). A liking's object may also be a
+kind ("tea"): its words are passed on and found among the KB's classes when learnt. What only looks
+like a statement is left to the other rules: a liking of what happens or of doing something ("I like
+it when you dance", "I like to dance", "I like that"), and where the speaker is said of anything but
+a zone or furniture the KB knows ("I'm on my way", "I'm on the phone").
 """
 
 from __future__ import annotations
 
 import re
 
-from dialogue.memory.clause import Refused, Told, Unclaimed, Words, fact
-from dialogue.memory.likings import Likings
-from dialogue.memory.names import clean_name, given_name, name_like
 from dialogue.reference.english import phrases, word_set
 from dialogue.reference.grounding import Entity, Kind
 from dialogue.reference.resolution import PLACE
@@ -31,6 +28,9 @@ from dialogue.schema import FactClaim
 from dialogue.understanding.speech.clauses import clauses as run_on_clauses
 from dialogue.understanding.speech.plain import original_text
 from dialogue.understanding.speech.repair import asked_verb, normalise
+from dialogue.understanding.statements.clause import Refused, Told, Unclaimed, Words, fact
+from dialogue.understanding.statements.likings import Likings
+from dialogue.understanding.statements.names import clean_name, given_name, name_like
 from dialogue.understanding.words import GREETINGS, SOCIAL
 
 __all__ = ["Statements", "Told", "Words"]

@@ -5,9 +5,9 @@ from __future__ import annotations
 import pytest
 
 from dialogue.history import ASSISTANT_USER_ID, Utterance
-from dialogue.memory.statements import Statements
+from dialogue.understanding.statements.grammar import Statements
 from kb import KB
-from tests.dialogue.memory.conftest import lexicon_of
+from tests.dialogue.conftest import lexicon_of
 
 BOB = "person_bob"
 

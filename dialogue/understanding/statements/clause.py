@@ -4,8 +4,8 @@ A `ClauseReader` holds one speaker's lexicon and history and grounds the phrases
 entity of the wanted kinds ("the red mug", "my keys": whose it is said to be), or a person ("I",
 "Alice", "she"). A phrase that names nothing leaves the clause to the other rules (`Unclaimed`), or
 is refused with a reply ("Sorry, I don't know any umbrella.", a clarifying question: `Refused`).
-The grammar itself is dialogue.memory.statements (names, ownership, places) and
-dialogue.memory.likings (preferences).
+The grammar itself is dialogue.understanding.statements.grammar (names, ownership, places) and
+dialogue.understanding.statements.likings (preferences).
 """
 
 from __future__ import annotations

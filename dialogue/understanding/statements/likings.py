@@ -11,10 +11,10 @@ from __future__ import annotations
 
 from lemminflect import getAllLemmas
 
-from dialogue.memory.clause import ClauseReader, Unclaimed, Words, fact
 from dialogue.reference.english import word_set
 from dialogue.reference.resolution import ANYWHERE
 from dialogue.schema import FactClaim
+from dialogue.understanding.statements.clause import ClauseReader, Unclaimed, Words, fact
 
 _INTENSIFIERS = word_set("really truly absolutely quite totally just")
 _LIKE = word_set("like likes love loves enjoy enjoys adore adores prefer prefers")
