@@ -19,7 +19,6 @@ from pydantic import BaseModel, ConfigDict, ValidationError
 
 from dialogue.ask.fields import Clause, ReadContext, find, pool
 from dialogue.ask.form import AskForm, Clarifying, FormField, FormState
-from dialogue.ask.read import Reading
 from dialogue.history import Utterance
 from dialogue.llm.base import ChatMessage
 from dialogue.prompts import PromptSet, history_message, load_template, render
@@ -28,6 +27,7 @@ from dialogue.reference.lexicon import Lexicon
 from dialogue.reference.resolution import resolve_id
 from dialogue.schema import MAX_TEXT, AnswerError, validated
 from dialogue.situation import describe
+from dialogue.understanding.followups.form import Reading
 
 MAX_IDS = 60
 #: Keys of a field's schema that are not JSON Schema (or not for the model).

@@ -5,7 +5,7 @@ A field that could not be obtained after `MAX_TRIES` answers is given up: the fo
 (its key is omitted from the results, never invented).
 
 >>> from dialogue.ask.form import parse_configuration
->>> from dialogue.ask.read import Reading
+>>> from dialogue.understanding.followups.form import Reading
 >>> form = parse_configuration('{"question": "How old are you?", "result_schema_properties": '
 ...     '{"age": {"type": "integer", "minimum": 0, "maximum": 130}}}')
 >>> state = opening_state(form)
@@ -23,10 +23,10 @@ from collections.abc import Callable, Sequence
 
 from dialogue.ask.fields import pool
 from dialogue.ask.form import AskForm, Clarifying, FieldKind, FormField, FormState
-from dialogue.ask.read import Reading
 from dialogue.reference.clarify import MAX_OPTIONS, describe_options
 from dialogue.reference.clarify import question as clarifying_question
 from dialogue.reference.grounding import Entity, Snapshot
+from dialogue.understanding.followups.form import Reading
 
 MAX_TRIES = 3
 DONE = "Thank you."

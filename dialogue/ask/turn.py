@@ -26,7 +26,6 @@ from dialogue import intents as I
 from dialogue.ask.form import AskForm, FormState, parse_configuration
 from dialogue.ask.model import AskPrompts, ask_schema, entity_ids, parse_ask_answer, reading_of
 from dialogue.ask.progress import advance, opening_state, question_for
-from dialogue.ask.read import Reading, read_answer
 from dialogue.engine import NO_ANSWER_IN_TIME, RULES_ENGLISH_ONLY, SORRY, DialogueEngine, TurnResult
 from dialogue.history import Utterance, role_of
 from dialogue.llm.base import ChatMessage, ChatModel, ChatRequest, ModelError, TurnContext
@@ -35,6 +34,7 @@ from dialogue.reference.lexicon import Lexicon
 from dialogue.rolestate import Progress
 from dialogue.schema import AnswerError
 from dialogue.trace.record import TraceRecorder
+from dialogue.understanding.followups.form import Reading, read_answer
 
 log = logging.getLogger(__name__)
 OVER = "this ask dialogue is over (its results are final); start a new one to ask again"

@@ -25,7 +25,7 @@ from dialogue.reference.resolution import (
     is_pronoun,
     resolve,
 )  # fmt: skip
-from dialogue.understanding.followup import accepts, continuation, correction, follow_up
+from dialogue.understanding.followups.request import accepts, continuation, correction, follow_up
 from dialogue.understanding.outcome import Outcome, Ref
 from dialogue.understanding.parsed import Parse
 from dialogue.understanding.questions import answers

@@ -60,7 +60,7 @@ class ClauseReader:
         self.snapshot = lexicon.snapshot
         self.speaker = speaker
         #: Phrases read as other words: an ambiguous one completed by the answer to the robot's
-        #: question (dialogue.memory.followup).
+        #: question (dialogue.understanding.followups.statement).
         self.overrides = dict(overrides or {})
         #: The phrase the last clarifying question was about.
         self.open_phrase: Words | None = None

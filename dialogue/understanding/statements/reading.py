@@ -10,9 +10,9 @@ from dataclasses import dataclass
 
 from dialogue import intents as I
 from dialogue.history import Utterance
-from dialogue.memory.followup import follow_up
 from dialogue.reference.lexicon import Lexicon
 from dialogue.schema import ChatbotResponse, UserIntent
+from dialogue.understanding.followups.statement import follow_up
 from dialogue.understanding.questions.told import Asking
 from dialogue.understanding.statements.grammar import Statements
 

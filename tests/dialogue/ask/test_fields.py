@@ -7,8 +7,8 @@ from typing import Any
 
 from dialogue.ask.fields import Clause, ReadContext, find
 from dialogue.ask.form import AskForm, FormState
-from dialogue.ask.read import read_answer
 from dialogue.reference.lexicon import Lexicon
+from dialogue.understanding.followups.form import read_answer
 from tests.dialogue.ask.conftest import NINA, form_of
 from tests.dialogue.conftest import lexicon_of, scene_kb
 

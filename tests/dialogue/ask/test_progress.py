@@ -4,8 +4,8 @@ from __future__ import annotations
 
 from dialogue.ask.form import AskForm, Clarifying
 from dialogue.ask.progress import MAX_TRIES, advance, opening_state, question_for
-from dialogue.ask.read import Reading, read_answer
 from dialogue.reference.lexicon import Lexicon
+from dialogue.understanding.followups.form import Reading, read_answer
 from tests.dialogue.ask.conftest import NINA, form_of
 
 

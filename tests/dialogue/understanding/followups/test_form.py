@@ -3,8 +3,8 @@
 from __future__ import annotations
 
 from dialogue.ask.form import AskForm, FormState
-from dialogue.ask.read import read_answer
 from dialogue.reference.lexicon import Lexicon
+from dialogue.understanding.followups.form import read_answer
 from tests.dialogue.ask.conftest import NINA, form_of
 
 
