@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import ast
+from graphlib import CycleError, TopologicalSorter
 from pathlib import Path
 
 import pytest
@@ -50,3 +51,38 @@ def test_the_evaluation_tool_is_not_imported_by_run_time_code() -> None:
         )
     ]
     assert users == []
+
+
+def _module(path: Path) -> str:
+    parts = path.relative_to(ROOT).with_suffix("").parts
+    return ".".join(parts[:-1] if parts[-1] == "__init__" else parts)
+
+
+def imported_modules(path: Path, modules: set[str]) -> set[str]:
+    """The project's modules a file imports (a name imported from a package is its submodule when
+    it is one), type-checking imports included: a cycle is one whatever guards it."""
+    found: set[str] = set()
+    for node in ast.walk(ast.parse(path.read_text(), str(path))):
+        if isinstance(node, ast.Import):
+            found.update(alias.name for alias in node.names)
+        elif isinstance(node, ast.ImportFrom) and node.module and node.level == 0:
+            found.update(f"{node.module}.{a.name}" if f"{node.module}.{a.name}" in modules else node.module
+                         for a in node.names)  # fmt: skip
+    return found & modules
+
+
+def test_no_module_of_dialogue_imports_one_that_imports_it_back() -> None:
+    paths = {_module(path): path for path in sorted((ROOT / "dialogue").rglob("*.py"))}
+    graph = {name: imported_modules(path, set(paths)) - {name} for name, path in paths.items()}
+    try:
+        list(TopologicalSorter(graph).static_order())
+    except CycleError as cycle:
+        pytest.fail(f"an import cycle: {' -> '.join(cycle.args[1])}")
+
+
+#: dialogue/ keeps at most this many modules at its top level; the rest are folders, one per concept.
+TOP_LEVEL_MODULES = 16
+
+
+def test_dialogue_keeps_few_modules_at_its_top_level() -> None:
+    assert len(list((ROOT / "dialogue").glob("*.py"))) <= TOP_LEVEL_MODULES

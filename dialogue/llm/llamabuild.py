@@ -11,13 +11,10 @@ from __future__ import annotations
 import re
 from dataclasses import dataclass
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import Any, Protocol
 
-from dialogue.llm.base import ModelError
+from dialogue.llm.base import ChatResult, ModelError
 from dialogue.llm.worker import WorkerCrashed
-
-if TYPE_CHECKING:  # llamacpp checks its own build with this module
-    from dialogue.llm.llamacpp import LlamaCppModel
 
 #: Keep in step with .ci/run.
 LLAMA_CPP_VERSION = "0.3.36"
@@ -49,6 +46,20 @@ def cpu_flags(cpuinfo: Path = Path("/proc/cpuinfo")) -> list[str]:
     return []
 
 
+class LocalModel(Protocol):
+    """What the check asks of a local model (dialogue.llm.llamacpp's, which checks its own build with
+    this module: it is not imported here)."""
+
+    @property
+    def name(self) -> str: ...
+
+    async def build_info(self) -> str: ...
+
+    async def complete(
+        self, messages: list[dict[str, str]], schema: dict[str, Any], timeout: float
+    ) -> ChatResult: ...
+
+
 @dataclass(frozen=True)
 class BuildCheck:
     ok: bool
@@ -59,7 +70,7 @@ class BuildCheck:
     crashed: bool = False
 
 
-async def check_build(model: LlamaCppModel, timeout: float = 120.0) -> BuildCheck:
+async def check_build(model: LocalModel, timeout: float = 120.0) -> BuildCheck:
     """Ask `model`'s worker for its build's CPU features, then for one tiny completion."""
     try:
         build = await model.build_info()

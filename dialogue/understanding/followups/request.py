@@ -10,25 +10,40 @@ re-reads the request said right before it, an accepted offer is read as the requ
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import replace
-from typing import TYPE_CHECKING
+from typing import Protocol
 
 from dialogue import intents as I
 from dialogue.history import Utterance
 from dialogue.prompts import FREE_FORM_OBJECT
 from dialogue.reference.english import MODIFIER_START, Words, phrases, tokens, word_set
-from dialogue.reference.grounding import Kind
+from dialogue.reference.grounding import Kind, Snapshot
+from dialogue.reference.lexicon import Lexicon
 from dialogue.reference.resolution import ROLE_KINDS, content_words, resolve
 from dialogue.understanding.outcome import Outcome
 from dialogue.understanding.parsed import Parse
 from dialogue.understanding.requests.commands import parse
 from dialogue.understanding.requests.constructions import where_it_goes
+from dialogue.understanding.requests.referents import Referents
 from dialogue.understanding.speech.clauses import clauses, described, description
 from dialogue.understanding.speech.plain import expanded, plain, strip_politeness
 from dialogue.understanding.words import INTERJECTIONS, NP_START, OWNERS, PLACES
 
-if TYPE_CHECKING:
-    from dialogue.understanding.interpret import Interpreter
+
+class Reader(Protocol):
+    """What reads an answer to the robot's question: the interpreter (dialogue.understanding.interpret,
+    which reads follow-ups with this module: it is not imported here)."""
+
+    lexicon: Lexicon
+    snapshot: Snapshot
+    robot_name: str
+    history: tuple[Utterance, ...]
+    refs: Referents
+
+    def within(self, history: Sequence[Utterance]) -> Reader: ...
+
+    def act(self, p: Parse, overrides: dict[str, Words] | None = None) -> Outcome: ...
 
 _ONE = frozenset({"one", "ones"})
 #: A fragment answering "Where should I put it?" may start with its preposition ("on the shelf").
@@ -68,7 +83,7 @@ def _spans(words: Words, n: int) -> set[Words]:
     return {words[i : i + n] for i in range(len(words) - n + 1)}
 
 
-def follow_up(reader: Interpreter, p: Parse, text: str) -> Outcome | None:
+def follow_up(reader: Reader, p: Parse, text: str) -> Outcome | None:
     """What the words answer of the robot's last question, or None when they answer none."""
     spoken = [i for i, u in enumerate(reader.history) if u.role != "system"]
     if not spoken:
@@ -137,7 +152,7 @@ def _merged(fragment: Words, first: Outcome) -> Words:
     return fragment
 
 
-def offer(reader: Interpreter, question: Utterance, said: list[str]) -> Outcome | None:
+def offer(reader: Reader, question: Utterance, said: list[str]) -> Outcome | None:
     """ "yes please" to "Would you like me to bring you a basket?": the request the robot offered,
     in the words of the person who accepts it ("bring me a basket")."""
     if not accepts(said):
@@ -161,7 +176,7 @@ def _offered(asked: list[str]) -> list[str]:
     return []
 
 
-def confirmation(earlier: Interpreter, pending: Parse, first: Outcome, question: Utterance,
+def confirmation(earlier: Reader, pending: Parse, first: Outcome, question: Utterance,
                  said: list[str]) -> Outcome | None:  # fmt: skip
     """ "yes" or "no, the other one" to "Do you mean the flat brush?": the thing the robot guessed,
     or the one other thing the pending request's phrase names."""
@@ -196,7 +211,7 @@ _CORRECTING = phrases("i meant|i mean|i said|make that|make it|i was meaning|wha
 _SOFTENING = word_set("no oops oh whoops sorry my bad")
 
 
-def correction(reader: Interpreter, text: str) -> Outcome | None:
+def correction(reader: Reader, text: str) -> Outcome | None:
     """ "sorry, I meant screen two" after "take the booster seat to screen 1": the last request again,
     with the phrase of the role that names the same kind of thing (a place for a place, a thing for
     a thing) replaced."""
@@ -246,7 +261,7 @@ def correction(reader: Interpreter, text: str) -> Outcome | None:
     return _sure(fits[0][1])
 
 
-def _the_other(earlier: Interpreter, fragment: Words, said: Words, was: str,
+def _the_other(earlier: Reader, fragment: Words, said: Words, was: str,
                kinds: frozenset[Kind]) -> Words | None:  # fmt: skip
     """ "no, the other one" after "bring me the black umbrella": the one other thing the head of the
     phrase names (the red umbrella), as its id; None when that is not what was said or several are."""
@@ -281,7 +296,7 @@ def _instead(fragment: Words, said: Words) -> Words:
     return tuple(x for w in fragment for x in (head if w in _ONE and head else [w]))
 
 
-def continuation(reader: Interpreter, text: str) -> Outcome | None:
+def continuation(reader: Reader, text: str) -> Outcome | None:
     """ "and the soup goes to table two", "and the soup to table two" after "take the steak to table
     four": the request just made (a bringing) again, for another thing and place. Alone, "X goes to
     Y" says no request."""
