@@ -43,9 +43,10 @@ from typing import Any
 from bench.progress import step
 from dialogue.earlyack import acks_to, read_ack
 from dialogue.engine import DialogueEngine, EngineConfig
-from dialogue.llm.base import ChatModel, ChatRequest, ChatResult
+from dialogue.llm.base import ChatRequest, ChatResult
 from dialogue.llm.llamacpp import LlamaCppModel, LocalModelUnavailable, llama_cpp_available, smollm2_path
 from dialogue.llm.stream import TextSink
+from dialogue.llm.wrapper import WrapperModel
 from kb import KB
 from scene.world import load_any_scene
 
@@ -136,17 +137,14 @@ class _Turn:
     ack: float | None = None
 
 
-class _Timed(ChatModel):
+class _Timed(WrapperModel):
     """The model, with each request timed; streams note when the first word of the ack was out."""
 
     def __init__(self, model: LlamaCppModel) -> None:
+        super().__init__(model)
         self.model = model
         self.requests: list[_Request] = []
         self.first_word: float | None = None
-
-    @property
-    def name(self) -> str:
-        return self.model.name
 
     def _note(self, started: float, result: ChatResult | None) -> None:
         """Every request is noted, a failed one (truncated, say) with its time only."""

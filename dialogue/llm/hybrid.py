@@ -1,28 +1,32 @@
 """Hybrid: the offline rules first, another model only for what they do not understand.
 
-A wrapper model, like pydantic-ai's FallbackModel: it composes two backends instead of a flag
-threaded through the engine. The engine asks it `prescreen` (the rules' answer, no prompt built:
-as fast as the rules alone) and sends the turns it did not answer to `llm`, the inner model. Used on
-its own, `chat` does both steps in order. Everything else (preloading, the doctor's check, closing)
-is the inner model's.
+A wrapper model (dialogue.llm.wrapper), like pydantic-ai's FallbackModel: it composes two backends
+instead of a flag threaded through the engine. The engine asks it `prescreen` (the rules' answer, no
+prompt built: as fast as the rules alone) and sends the turns it did not answer to `llm`, the inner
+model. Used on its own, `chat` does both steps in order. Everything else (preloading, the doctor's
+check, closing) is the inner model's.
 """
 
 from __future__ import annotations
 
-from typing import Any
-
-from dialogue.llm.base import ChatModel, ChatRequest, ChatResult, EarlyAnswer, SelfCheck, TurnContext
+from dialogue.llm.base import ChatModel, ChatRequest, ChatResult, EarlyAnswer, TurnContext
 from dialogue.llm.rules import RulesModel
+from dialogue.llm.wrapper import WrapperModel
 
 
-class HybridModel(ChatModel):
+class HybridModel(WrapperModel):
     def __init__(self, inner: ChatModel, rules: RulesModel | None = None) -> None:
         if inner.llm is None:
             # Rules behind rules would only ever answer "not understood" twice.
             raise ValueError(f"hybrid needs a model that reads prompts behind the rules, not {inner.name!r}")
-        self.inner = inner
+        super().__init__(inner)
         # A name read from a misspelt word is a guess: the model sees the words and the situation.
         self.rules = rules or RulesModel(take_guesses=False)
+
+    @property
+    def inner(self) -> ChatModel:
+        """The model behind the rules."""
+        return self.wrapped
 
     @property
     def name(self) -> str:
@@ -42,19 +46,3 @@ class HybridModel(ChatModel):
             if first.understood:
                 return first
         return await self.inner.chat(request, timeout)
-
-    @property
-    def setup_hint(self) -> str:
-        return self.inner.setup_hint
-
-    async def self_check(self, timeout: float) -> SelfCheck | None:
-        return await self.inner.self_check(timeout)
-
-    async def probe(self, timeout: float) -> dict[str, Any]:
-        return await self.inner.probe(timeout)
-
-    async def preload(self) -> None:
-        await self.inner.preload()
-
-    async def aclose(self) -> None:
-        await self.inner.aclose()
