@@ -303,7 +303,7 @@ class TripleIndex:
         may change the index while iterating."""
         yield from list(self.scan(s, p, o))
 
-    def scan(self, s: Node | None, p: Node | None, o: Node | None) -> Iterator[Triple]:
+    def scan(self, s: Node | None, p: Node | None, o: Node | None) -> Iterator[Triple]:  # noqa: C901
         """Like ``triples`` but without copying: the index must not change while iterating
         (the KB lock guarantees it for queries)."""
         if s is not None:

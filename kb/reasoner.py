@@ -175,7 +175,7 @@ class Reasoner:
             if all((s, tp, m) in self.closure for m in tb.members[cls]):
                 yield (s, tp, cls)
 
-    def derivable(self, triple: Triple) -> bool:
+    def derivable(self, triple: Triple) -> bool:  # noqa: C901
         """True if one rule step derives ``triple`` from the closure without using itself."""
         if triple in self.asserted:
             return True

@@ -73,7 +73,7 @@ class CompiledTBox:
                         yield (prop, RDFS.subPropertyOf, sup)
 
 
-def compile_tbox(triples: Iterable[Triple], bounds: TBoxBounds | None = None) -> CompiledTBox:
+def compile_tbox(triples: Iterable[Triple], bounds: TBoxBounds | None = None) -> CompiledTBox:  # noqa: C901
     """Build the rule tables from a model's asserted triples (only schema triples are read).
     With ``bounds``, ``TBoxTooLarge`` as soon as the closed hierarchies pass them."""
     class_edges: dict[Node, set[Node]] = defaultdict(set)

@@ -202,7 +202,7 @@ class Lexicon:
         return word.isdigit() or singular(word) in self.vocabulary
 
 
-def _names(entity: Entity) -> list[Name]:
+def _names(entity: Entity) -> list[Name]:  # noqa: C901
     out: list[Name] = []
     seen: set[tuple[str, ...]] = set()
 

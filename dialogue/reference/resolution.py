@@ -111,7 +111,7 @@ def is_pronoun(words: Sequence[str]) -> bool:
     return len(content) == 1 and content[0] in PRONOUNS
 
 
-def resolve(
+def resolve(  # noqa: C901
     lexicon: Lexicon, words: Sequence[str], kinds: Collection[Kind] = ALL_KINDS, *, owner: str | None = None
 ) -> Resolution:
     """Entities of the given kinds that the phrase names (see the module docstring)."""

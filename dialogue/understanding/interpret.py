@@ -223,7 +223,7 @@ class Interpreter:
         return Outcome("Sorry, I did not understand that.", understood=False)
 
     # -- questions -------------------------------------------------------------------------------
-    def _answer(self, p: Parse) -> Outcome:
+    def _answer(self, p: Parse) -> Outcome:  # noqa: C901
         thing = p.slots.get("thing", ()) or p.slots.get("place", ())
         someone = set(content_words(thing)) <= _SOMEONE and bool(content_words(thing))  # "where is she"
         about = p.question in {"where", "can_see", "what_is", "what_on", "whose"}
@@ -294,7 +294,7 @@ class Interpreter:
         acks = [each[0].reply] + [f"Then {unprefixed(o.reply)}" for o in each[1:]]
         return replace(each[0], reply=" ".join(acks), more=tuple(each[1:]))
 
-    def _one_command(self, p: Parse, overrides: dict[str, Words]) -> Outcome:
+    def _one_command(self, p: Parse, overrides: dict[str, Words]) -> Outcome:  # noqa: C901
         intent = p.intent or ""
         slots = {**p.slots, **overrides}
         if p.double_object and "rest" in slots:

@@ -57,7 +57,7 @@ def _strip_ends(thing: Words, lead: frozenset[str], tail: frozenset[str]) -> Wor
     return thing
 
 
-def question(words: list[str]) -> Parse | None:
+def question(words: list[str]) -> Parse | None:  # noqa: C901
     w = tuple(words)
     if w[:2] in {("tell", "me"), ("show", "me")} and len(w) > 2 and w[2] in WH | {"about"}:
         if w[2] == "about":

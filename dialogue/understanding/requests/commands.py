@@ -136,7 +136,7 @@ def _joined(words: list[str]) -> Words:
     return tuple(out)
 
 
-def _fit(row: Row, said: Said) -> Parse | None:
+def _fit(row: Row, said: Said) -> Parse | None:  # noqa: C901
     """The row's reading of what follows the verb, or None when the row does not fit it."""
     frame, rest = row.frame, said.rest
     if frame.special is not None:

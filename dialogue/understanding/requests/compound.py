@@ -67,7 +67,7 @@ def _verb(text: str) -> str | None:
     return asked_verb(words[0])
 
 
-def conjuncts(text: str) -> list[Part]:
+def conjuncts(text: str) -> list[Part]:  # noqa: C901
     """The commands of a compound request in order, or [] when the text is one request."""
     if QUOTED.search(text):  # "say 'stop and wait' to Tom": the quote is one text
         return []

@@ -170,7 +170,7 @@ class Referents:
         person = person or antecedent(self.lexicon, self.history, PERSON, speaker=self.speaker)
         return rest, person.id if person is not None else None
 
-    def ground(
+    def ground(  # noqa: C901
         self,
         words: Words,
         kinds: frozenset[Kind],

@@ -79,7 +79,7 @@ def _maybe_crash(config: dict[str, Any], where: str) -> None:
         CRASHES[config["crash"]]()
 
 
-def install(folder_name: str) -> None:
+def install(folder_name: str) -> None:  # noqa: C901
     """Runs in the worker process: make `import llama_cpp` find the fake."""
     folder = Path(folder_name)
 
