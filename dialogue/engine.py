@@ -37,6 +37,7 @@ from dialogue.reference.relevance import mentioned, ranked
 from dialogue.schema import AnswerError, SchemaCandidates, parse_answer, turn_schema
 from dialogue.speakers import NOT_PEOPLE, admit, check_speaker
 from dialogue.trace.record import AnsweredBy, TraceRecorder, TurnTrace
+from dialogue.understanding.language import Language
 from dialogue.validate import Grounded, ground_answer
 from kb import KbError
 from kb.protocol import KnowledgeBase
@@ -109,6 +110,7 @@ class DialogueEngine:
         config: EngineConfig | None = None,
         prompts: PromptSet | None = None,
         memory: Memory | None = None,
+        language: Language | None = None,
     ) -> None:
         self.kb = kb
         #: Learns what people tell the robot (default: the `people` trust policy).
@@ -117,7 +119,9 @@ class DialogueEngine:
         self.model: ChatModel = model or RulesModel()
         self.prompts = prompts or PromptSet.load()
         self.grounder = Grounder(self.config.max_snapshot_entities, self.config.lang)
-        self._lexicons = LexiconCache()
+        #: The language the rules read and the KB's names are said in (English by default), read once.
+        self.language = language or Language.load()
+        self._lexicons = LexiconCache(self.language)
         self._rebuilds: dict[int, asyncio.Task[tuple[Snapshot, Lexicon]]] = {}
 
     def ground(self) -> tuple[Snapshot, Lexicon]:

@@ -14,6 +14,7 @@ from dialogue.prompts import FREE_FORM_OBJECT
 from dialogue.reference.lexicon import Lexicon, LexiconCache
 from dialogue.schema import ChatbotResponse, UserIntent
 from dialogue.understanding.interpret import Interpreter
+from dialogue.understanding.language import Language
 from dialogue.understanding.outcome import Outcome
 from dialogue.understanding.statements.reading import Reading, read_turn
 
@@ -41,7 +42,10 @@ RULES = "rules"
 class RulesModel(ChatModel):
     """Answers every turn it understands in `prescreen`, without a prompt; reads no prompt itself."""
 
-    def __init__(self, take_guesses: bool = True) -> None:
+    def __init__(self, take_guesses: bool = True, language: Language | None = None) -> None:
+        #: The language of the lexicons this model makes itself, for contexts that bring none
+        #: (English when not given, read then).
+        self.language = language
         self._lexicons: LexiconCache | None = None  # only for contexts that bring no lexicon
         #: Whether a turn in which a misspelt word was read as a KB name ("the thremos") is
         #: answered (alone, the rules' best reading), or left to the model behind (hybrid).
@@ -71,7 +75,8 @@ class RulesModel(ChatModel):
         lexicon = context.lexicon
         if lexicon is None or lexicon.snapshot is not context.snapshot:
             if self._lexicons is None:
-                self._lexicons = LexiconCache()
+                self.language = self.language or Language.load()
+                self._lexicons = LexiconCache(self.language)
             lexicon = self._lexicons.get(context.snapshot)
         return lexicon
 

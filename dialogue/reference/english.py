@@ -1,9 +1,8 @@
-"""Closed-class English: the one tokeniser, and the word lists that the grammar (dialogue.understanding) and
-reference resolution both read.
+"""The one tokeniser, and the helpers that read word lists.
 
-Only function words live here (determiners, pronouns, prepositions by what they introduce, colour
-and position words); nouns always come from the KB (dialogue.reference.lexicon), and the grammar's
-own lists (politeness, greetings, verb frames) are in dialogue.understanding.
+The words themselves are data: closed-class words, prepositions and the grammar's words are in the
+language folder (dialogue.understanding.language, `lang/en/`); nouns always come from the KB
+(dialogue.reference.lexicon).
 """
 
 from __future__ import annotations
@@ -46,6 +45,8 @@ def phrases(text: str) -> tuple[Words, ...]:
     return tuple(tuple(p.split()) for p in text.split("|"))
 
 
+# -- being moved to the language folder (lang/en/words.toml, prepositions.toml): the grammar's modules
+# still read these while they are converted one by one; their values equal the data's.
 #: Words that never distinguish a referent.
 DETERMINERS = word_set(
     "the a an some any this that these those my your our its one ones please thing there here"

@@ -13,33 +13,54 @@ from __future__ import annotations
 from collections.abc import Collection, Sequence
 from dataclasses import dataclass
 
-from dialogue.reference.english import (
-    COLOURS,
-    DETERMINERS,
-    MANY,
-    MODIFIER_START,
-    PARTS,
-    POSITIONS,
-    SUPPORT_PREPOSITIONS,
-    tokens,
-    word_set,
-)
+from dialogue.reference.english import tokens
 from dialogue.reference.grounding import Entity, Kind
 from dialogue.reference.lexicon import Lexicon, norm, phrase, singular
 from dialogue.reference.synonyms import synonyms
+from dialogue.understanding.language import Language
 
-#: Qualifiers of position or size the KB does not model: never a head, never evidence.
-_QUALIFIERS = POSITIONS | word_set("hand down up upper lower main")
-_SKIP = (DETERMINERS - MODIFIER_START) | word_set("please either is are was were be being it")
-#: Words of a clause, never of a noun phrase's core: subject pronouns, modals, negations.
-_CLAUSE_WORDS = word_set(
-    "i you he she we they cannot can't could would should must shall don't didn't not"
-)
-#: Determiners that start a noun phrase of their own after a core has begun.
-_NEW_PHRASE = word_set("the a an my your his her our their these those")
-#: Coordinated or quantified phrases name several things: never one by its head ("the cereals and
-#: the milk", "both cups").
-_SEVERAL = MANY | {"or"}
+
+@dataclass(frozen=True)
+class _Words:
+    """The language's words a head is found with (lang/<code>/words.toml, [head_noun])."""
+
+    #: Qualifiers of position or size the KB does not model: never a head, never evidence.
+    qualifiers: frozenset[str]
+    skip: frozenset[str]
+    #: Words of a clause, never of a noun phrase's core.
+    clause: frozenset[str]
+    #: Determiners that start a noun phrase of their own after a core has begun.
+    new_phrase: frozenset[str]
+    #: Coordinated or quantified phrases name several things: never one by its head.
+    several: frozenset[str]
+    determiners: frozenset[str]
+    modifier_start: frozenset[str]
+    support: frozenset[str]
+    colours: frozenset[str]
+    parts: frozenset[str]
+    #: Prepositions of a thing nearby, and the relations of the KB (`isNextTo`, `near`,
+    #: `isBelow`...) that say it ("the printer by the window").
+    beside: dict[str, frozenset[str]]
+    #: Phrases of a thing nearby read as one preposition ("next to": "beside").
+    joined: frozenset[tuple[str, ...]]
+
+
+def _words(lang: Language) -> _Words:
+    head, closed = lang.words.head_noun, lang.words
+    return _Words(
+        qualifiers=closed.positions | head.qualifiers,
+        skip=(closed.determiners - lang.modifier_start) | head.skipped,
+        clause=head.clause_words,
+        new_phrase=head.new_phrase,
+        several=closed.many | head.several,
+        determiners=closed.determiners,
+        modifier_start=lang.modifier_start,
+        support=lang.support,
+        colours=closed.colours,
+        parts=closed.parts,
+        beside=lang.prepositions.column("evidence"),
+        joined=frozenset(lang.prepositions.having("beside")),
+    )
 
 
 @dataclass(frozen=True)
@@ -51,51 +72,52 @@ class _Phrase:
     dangling: bool = False
 
 
-def _split(words: Sequence[str]) -> _Phrase:
-    words = [w for w in words if w not in _SKIP]
+def _split(lang: _Words, words: Sequence[str]) -> _Phrase:
+    modifier_start = lang.modifier_start
+    words = [w for w in words if w not in lang.skip]
     core: list[str] = []
     i = 0
-    while i < len(words) and (words[i] not in MODIFIER_START or not core):
-        if words[i] not in MODIFIER_START and words[i] not in DETERMINERS:
+    while i < len(words) and (words[i] not in modifier_start or not core):
+        if words[i] not in modifier_start and words[i] not in lang.determiners:
             core.append(words[i])
         i += 1
     mods: list[tuple[str, tuple[str, ...]]] = []
     dangling = False
     while i < len(words):
         prep, i = words[i], i + 1
-        if prep in {"next", "close"} and words[i : i + 1] == ["to"]:  # "next to", "close to": one word
+        if (prep, *words[i : i + 1]) in lang.joined:  # "next to", "close to": one word
             prep, i = "beside", i + 1
         np: list[str] = []
-        while i < len(words) and words[i] not in MODIFIER_START:
+        while i < len(words) and words[i] not in modifier_start:
             np.append(words[i])
             i += 1
         if np:
             mods.append((prep, tuple(np)))
         dangling = dangling or (not np and i == len(words))
-    core_words = tuple(w for w in core if w not in _QUALIFIERS) or tuple(core)
+    core_words = tuple(w for w in core if w not in lang.qualifiers) or tuple(core)
     # "the head of the table": the part's owner is the head.
-    if core_words and core_words[-1] in PARTS and mods and mods[0][0] == "of":
-        return _split(mods[0][1] + tuple(w for p, np in mods[1:] for w in (p, *np)))
+    if core_words and core_words[-1] in lang.parts and mods and mods[0][0] == "of":
+        return _split(lang, mods[0][1] + tuple(w for p, np in mods[1:] for w in (p, *np)))
     return _Phrase(core_words, tuple(mods), dangling)
 
 
-def _clause(words: Sequence[str]) -> bool:
+def _clause(lang: _Words, words: Sequence[str]) -> bool:
     """Whether the words before the phrase's first modifier run on into another phrase or a clause
     ("my torch I can't see the clock", "gate 9 my bus is late"): no head."""
     begun = False
     for word in words:
-        if begun and word in MODIFIER_START:
+        if begun and word in lang.modifier_start:
             return False
-        if word in _CLAUSE_WORDS or (begun and word in _NEW_PHRASE):
+        if word in lang.clause or (begun and word in lang.new_phrase):
             return True
-        begun = begun or word not in DETERMINERS
+        begun = begun or word not in lang.determiners
     return False
 
 
-def _colours(entity: Entity) -> frozenset[str]:
-    said = {w for label in entity.labels for w in tokens(label) if w in COLOURS}
+def _colours(lang: _Words, entity: Entity) -> frozenset[str]:
+    said = {w for label in entity.labels for w in tokens(label) if w in lang.colours}
     if entity.colour:
-        said |= {w for w in tokens(entity.colour) if w in COLOURS}
+        said |= {w for w in tokens(entity.colour) if w in lang.colours}
     return frozenset(said)
 
 
@@ -115,7 +137,7 @@ def _name_starts(lexicon: Lexicon, np: Sequence[str]) -> dict[str, int]:
     if not found and np:
         # ("the paperback" for the book: only a thing the KB itself calls a book, never one the
         # lexicon file makes a book; "the banana" is no apple because both are fruit)
-        for general in synonyms(phrase).kind_of(phrase(np[-1])):
+        for general in synonyms(lexicon.lang, phrase).kind_of(phrase(np[-1])):
             own = {n.entity for n in lexicon.names_at(general, 0) if len(n.words) == len(general)
                    and not n.lexical}  # fmt: skip
             found.update(dict.fromkeys(own, len(np) - 1))
@@ -130,9 +152,10 @@ def _entities(lexicon: Lexicon, np: Sequence[str]) -> list[Entity]:
 
 def resolve_head(lexicon: Lexicon, words: Sequence[str], kinds: Collection[Kind]) -> list[Entity]:
     """Entities of `kinds` the phrase's head noun names that no modifier contradicts, best first."""
-    if _SEVERAL & set(words) or _clause(words):
+    lang = lexicon.lang.derived(_words)
+    if lang.several & set(words) or _clause(lang, words):
         return []
-    phrase = _split(words)
+    phrase = _split(lang, words)
     if not phrase.core or phrase.dangling:  # a modifier cut short may have named anything
         return []
     snapshot = lexicon.snapshot
@@ -140,7 +163,7 @@ def resolve_head(lexicon: Lexicon, words: Sequence[str], kinds: Collection[Kind]
     heads = snapshot.among(starts, kinds)
     scored: list[tuple[int, Entity]] = []
     for entity in heads:
-        score = _evidence(lexicon, entity, phrase, starts[entity.id])
+        score = _evidence(lexicon, lang, entity, phrase, starts[entity.id])
         if score is not None:
             scored.append((score, entity))
     if not scored:
@@ -148,7 +171,7 @@ def resolve_head(lexicon: Lexicon, words: Sequence[str], kinds: Collection[Kind]
     best = max(s for s, _ in scored)
     found = snapshot.in_order(e for s, e in scored if s == best)
     seen = {e.seen for e in found}
-    if len(seen) > 1 and _told_apart_by_nothing(lexicon, found, phrase.core, starts):
+    if len(seen) > 1 and _told_apart_by_nothing(lexicon, lang, found, phrase.core, starts):
         # "the staff room" among the waiting room the robot sees and rooms it does not: the one it
         # sees is not meant any more than the others (when it sees all or none, it asks which)
         return []
@@ -156,24 +179,17 @@ def resolve_head(lexicon: Lexicon, words: Sequence[str], kinds: Collection[Kind]
 
 
 def _told_apart_by_nothing(
-    lexicon: Lexicon, found: Sequence[Entity], core: Sequence[str], starts: dict[str, int]
+    lexicon: Lexicon, lang: _Words, found: Sequence[Entity], core: Sequence[str], starts: dict[str, int]
 ) -> bool:
     """Whether a word of the core before the candidates' names, said to tell them apart, holds for
     none of them ("the staff room" among several rooms)."""
-    said = [set(norm(core[: starts[e.id]])) - COLOURS for e in found]
+    said = [set(norm(core[: starts[e.id]])) - lang.colours for e in found]
     unconfirmed = set.intersection(*said) if said else set()
     for entity in found:
         unconfirmed -= lexicon.attributes.get(entity.id, frozenset())
     return bool(unconfirmed)
 
 
-#: Prepositions of a thing nearby, and the relations of the KB (`isNextTo`, `near`, `isBelow`...)
-#: that say it ("the printer by the window").
-_BESIDE: dict[str, frozenset[str]] = {
-    **dict.fromkeys(("by", "beside", "near", "nearest", "alongside"), frozenset({"next to", "near"})),
-    **dict.fromkeys(("below", "beneath"), frozenset({"under"})),
-    "behind": frozenset({"behind"}), "above": frozenset({"above"}),
-}  # fmt: skip
 #: How much a fact of the relation itself weighs, against the weaker evidence of sharing a zone.
 _RELATED, _SAME_ZONE = 2, 1
 
@@ -191,28 +207,28 @@ def _nearby(lexicon: Lexicon, entity: Entity, said: frozenset[str], places: Sequ
     return 0
 
 
-def _evidence(lexicon: Lexicon, entity: Entity, phrase: _Phrase, name_start: int) -> int | None:
+def _evidence(lexicon: Lexicon, lang: _Words, entity: Entity, phrase: _Phrase, name_start: int) -> int | None:
     """How many modifiers hold for the entity, or None when one contradicts a known fact. The words
     of the core its own name spans count as modifiers that hold ("tea cup" names the teacup fully,
     the espresso cup only by "cup")."""
     attrs = lexicon.attributes.get(entity.id, frozenset())
-    colours = _colours(entity)
+    colours = _colours(lang, entity)
     score = len(phrase.core) - 1 - name_start
     for word in norm(phrase.core[:name_start]):
         people = {e.id for e in _entities(lexicon, (word,)) if e.kind == "person"}
         if word in attrs:
             score += 1
-        elif word in COLOURS and colours:
+        elif word in lang.colours and colours:
             return None  # "the green cup" when the cup is known to be red
         elif people and entity.owner is not None:
             if entity.owner not in people:
                 return None  # "Dan's mug" when the mug is known to be Bob's
             score += 1
     for prep, np in phrase.modifiers:
-        if prep in _BESIDE:
-            score += _nearby(lexicon, entity, _BESIDE[prep], _entities(lexicon, np))
+        if prep in lang.beside:
+            score += _nearby(lexicon, entity, lang.beside[prep], _entities(lexicon, np))
             continue
-        if prep not in SUPPORT_PREPOSITIONS:
+        if prep not in lang.support:
             continue
         places = _entities(lexicon, np)
         if not places:

@@ -16,10 +16,11 @@ from typing import Any, NamedTuple
 
 from lemminflect import getAllLemmas, getLemma
 
-from dialogue.reference.english import COMPOUND_HEADS, DETERMINERS, TITLES, other_numbers, tokens, word_set
+from dialogue.reference.english import tokens, word_set
 from dialogue.reference.grounding import Entity, Snapshot
 from dialogue.reference.layered import GONE, Gone, Layered, layered, rebucket
-from dialogue.reference.synonyms import synonyms
+from dialogue.reference.synonyms import Synonyms, synonyms
+from dialogue.understanding.language import Language
 
 #: Function words ending in -s that a noun lemmatiser would "singularise" ("was" -> "wa").
 _NOT_PLURAL = word_set("is was has does this his us yes its as thus plus whereas always sometimes perhaps")
@@ -72,10 +73,17 @@ class Lexicon:
     previous one's, only those are indexed again (the indexes are copied, the entries they touch
     replaced), so a KB change costs work proportional to what changed; otherwise the entries of
     entities that did not change are reused.
+
+    The names are said in `lang` (its lexicon file, titles, number words), which the lexicon
+    carries to what reads words against it.
     """
 
-    def __init__(self, snapshot: Snapshot, previous: Lexicon | None = None) -> None:
+    def __init__(self, snapshot: Snapshot, lang: Language, previous: Lexicon | None = None) -> None:
         self.snapshot = snapshot
+        self.lang = lang
+        self._said = _Said(lang)
+        if previous is not None and previous.lang is not lang:
+            previous = None  # (names said in another language share nothing)
         changed = snapshot.changed_since(previous.snapshot.revision) if previous is not None else None
         if previous is not None and changed is not None:
             self._update(previous, changed)
@@ -88,7 +96,7 @@ class Lexicon:
         entries: dict[str, tuple[Entity, _Entry]] = {}
         old = previous._entries if previous is not None else Layered()
         for entity in snapshot.entities.values():
-            entry = _reuse(old.get(entity.id), entity)
+            entry = _reuse(old.get(entity.id), entity, self._said)
             entries[entity.id] = (entity, entry)
             for name in entry.names:
                 by_words[name.words][name] = None
@@ -127,7 +135,7 @@ class Lexicon:
         for entity_id in sorted(changed, key=self.snapshot.order_key):
             kept = previous._entries.get(entity_id)
             entity = self.snapshot.get(entity_id)
-            entry = _reuse(kept, entity) if entity is not None else None
+            entry = _reuse(kept, entity, self._said) if entity is not None else None
             entries[entity_id] = (entity, entry) if entity is not None and entry is not None else GONE
             attributes[entity_id] = entry.qualifiers if entry is not None else GONE
             before, after = kept[1] if kept is not None else _NO_ENTRY, entry or _NO_ENTRY
@@ -202,87 +210,106 @@ class Lexicon:
         return word.isdigit() or singular(word) in self.vocabulary
 
 
-def _names(entity: Entity) -> list[Name]:  # noqa: C901
-    out: list[Name] = []
-    seen: set[tuple[str, ...]] = set()
+class _Said:
+    """How the names of a language are said otherwise: its lexicon file, titles, number words."""
 
-    def add(text: str, source: str) -> None:
-        words = norm(tokens(text))
-        if words and words not in seen and not (len(words) == 1 and words[0] in DETERMINERS):
-            seen.add(words)
-            out.append(Name(words, entity.id, source))
+    def __init__(self, lang: Language) -> None:
+        self.lang = lang
+        self.synonyms: Synonyms = synonyms(lang, phrase)
+        self.determiners = lang.words.determiners
+        self.compound_heads = lang.words.compound_heads
+        self.head_sizes = sorted({len(head) for head in self.compound_heads if len(head) > 2}, reverse=True)
+        #: Each title to the other words said for it ("mister" for "mr").
+        self.titles = {w: tuple(o for o in group if o != w) for group in lang.words.titles for w in group}
 
-    for label in entity.labels:
-        add(label, "label")
-        numbered = other_numbers(tokens(label))
-        if numbered is not None:  # "screen two" for "screen 2", "table 9" for "table nine"
-            add(" ".join(numbered), "label")
-        for other in said_otherwise(tokens(label)):
-            add(" ".join(other), "label")
-    add(entity.id, "id")
-    for class_name in entity.class_names:
-        add(class_name, "class")
-    # The head noun of a multi-word name names the thing too: "the mug" for the "green mug",
-    # "the remote" for the "TV remote"; the other words stay usable as qualifiers.
-    for text in (*entity.labels, *entity.class_names):
-        words = tokens(text)
-        if len(words) > 1 and not {"or", "and"} & set(words):  # "food or drink" is no drink
-            add(words[-1], "head")
-        if len(words) == 2 and all(w.isalpha() for w in words):
-            add("".join(words), "joined")  # "the eyeglass" for the "eye glass" (the converse of names_at)
-        tail = _compound_head(words[-1]) if words else None
-        if tail is not None:  # "the bench" for the "workbench", yielding to a bench of the KB's own
-            add(" ".join((*words[:-1], tail)) if len(words) > 1 else tail, "kind")
-    # Other ways of saying a name or its ending ("cell phone" for the "mobile phone", "the fridge"
-    # for the "kitchen refrigerator"), and the general names of its kind ("the bag" for the
-    # "handbag", "a drink" for the "lemonade"): the lexicon file's, which yield to the KB's own
-    # names (`Name.lexical`).
-    syn = synonyms(phrase)
-    longest = syn.longest
-    for text in (*entity.labels, *entity.class_names):
-        said = phrase(text)
-        # Only the endings a synonym may be: each one tried is a copy (a label of 30,000 words
-        # once made every split of it one, minutes of work for every turn).
-        for k in range(max(0, len(said) - longest), len(said)):
-            for other in syn.of(said[k:]):
-                add(" ".join((*said[:k], *other)), "synonym")
-                if k:
-                    add(" ".join(other), "synonym")
-            alike = (said[k:], *syn.of(said[k:]))
-            for general in (g for o in alike for g in syn.broader_than(o)):
-                add(" ".join(general), "kind")
-    return out
+    def names(self, entity: Entity) -> list[Name]:  # noqa: C901
+        out: list[Name] = []
+        seen: set[tuple[str, ...]] = set()
 
+        def add(text: str, source: str) -> None:
+            words = norm(tokens(text))
+            if words and words not in seen and not (len(words) == 1 and words[0] in self.determiners):
+                seen.add(words)
+                out.append(Name(words, entity.id, source))
 
-def _compound_head(word: str) -> str | None:
-    """The general noun a closed compound ends with ("workbench": "bench"), if it is one of
-    `COMPOUND_HEADS` after a word of its own (of 3 letters or more); None otherwise. Only the
-    endings as long as a head are tried, the longest first: trying every split copied the word's
-    rest at each, which a label of a million letters made minutes of work for every turn."""
-    for size in _HEAD_SIZES:
-        k = len(word) - size
-        if k >= 3 and word[k:] in COMPOUND_HEADS and getAllLemmas(word[:k]):
-            return word[k:]
-    return None
+        for label in entity.labels:
+            add(label, "label")
+            numbered = self.lang.words.other_numbers(tokens(label))
+            if numbered is not None:  # "screen two" for "screen 2", "table 9" for "table nine"
+                add(" ".join(numbered), "label")
+            for other in self.otherwise(tokens(label)):
+                add(" ".join(other), "label")
+        add(entity.id, "id")
+        for class_name in entity.class_names:
+            add(class_name, "class")
+        # The head noun of a multi-word name names the thing too: "the mug" for the "green mug",
+        # "the remote" for the "TV remote"; the other words stay usable as qualifiers.
+        for text in (*entity.labels, *entity.class_names):
+            words = tokens(text)
+            if len(words) > 1 and not {"or", "and"} & set(words):  # "food or drink" is no drink
+                add(words[-1], "head")
+            if len(words) == 2 and all(w.isalpha() for w in words):
+                add("".join(words), "joined")  # "the eyeglass" for the "eye glass" (the converse of names_at)
+            tail = self._compound_head(words[-1]) if words else None
+            if tail is not None:  # "the bench" for the "workbench", yielding to a bench of the KB's own
+                add(" ".join((*words[:-1], tail)) if len(words) > 1 else tail, "kind")
+        # Other ways of saying a name or its ending ("cell phone" for the "mobile phone", "the fridge"
+        # for the "kitchen refrigerator"), and the general names of its kind ("the bag" for the
+        # "handbag", "a drink" for the "lemonade"): the lexicon file's, which yield to the KB's own
+        # names (`Name.lexical`).
+        syn = self.synonyms
+        longest = syn.longest
+        for text in (*entity.labels, *entity.class_names):
+            said = phrase(text)
+            # Only the endings a synonym may be: each one tried is a copy (a label of 30,000 words
+            # once made every split of it one, minutes of work for every turn).
+            for k in range(max(0, len(said) - longest), len(said)):
+                for other in syn.of(said[k:]):
+                    add(" ".join((*said[:k], *other)), "synonym")
+                    if k:
+                        add(" ".join(other), "synonym")
+                alike = (said[k:], *syn.of(said[k:]))
+                for general in (g for o in alike for g in syn.broader_than(o)):
+                    add(" ".join(general), "kind")
+        return out
 
+    def _compound_head(self, word: str) -> str | None:
+        """The general noun a closed compound ends with ("workbench": "bench"), if it is one of the
+        language's compound heads after a word of its own (of 3 letters or more); None otherwise.
+        Only the endings as long as a head are tried, the longest first: trying every split copied
+        the word's rest at each, which a label of a million letters made minutes of work for every
+        turn."""
+        for size in self.head_sizes:
+            k = len(word) - size
+            if k >= 3 and word[k:] in self.compound_heads and getAllLemmas(word[:k]):
+                return word[k:]
+        return None
 
-_HEAD_SIZES = sorted({len(head) for head in COMPOUND_HEADS if len(head) > 2}, reverse=True)
+    def otherwise(self, words: Sequence[str]) -> list[tuple[str, ...]]:
+        """Other ways a label is said: a possessive without its apostrophe, as a recogniser or a
+        typist writes it ("hygienists room", "hygienist room" for the "hygienist's room"), and a title
+        in full or short ("mister kowalski" for "Mr Kowalski")."""
+        out: list[tuple[str, ...]] = []
+        if any(w.endswith("'s") for w in words):
+            out.append(tuple(w.removesuffix("'s") for w in words))
+        if len(words) > 1 and words[0] in self.titles:
+            out += [(title, *words[1:]) for title in self.titles[words[0]]]
+        return out
 
-
-#: Each title to the other words said for it ("mister" for "mr").
-_TITLES = {w: tuple(o for o in group if o != w) for group in TITLES for w in group}
-
-
-def said_otherwise(words: Sequence[str]) -> list[tuple[str, ...]]:
-    """Other ways a label is said: a possessive without its apostrophe, as a recogniser or a typist
-    writes it ("hygienists room", "hygienist room" for the "hygienist's room"), and a title in full
-    or short ("mister kowalski" for "Mr Kowalski")."""
-    out: list[tuple[str, ...]] = []
-    if any(w.endswith("'s") for w in words):
-        out.append(tuple(w.removesuffix("'s") for w in words))
-    if len(words) > 1 and words[0] in _TITLES:
-        out += [(title, *words[1:]) for title in _TITLES[words[0]]]
-    return out
+    def entry(self, entity: Entity) -> _Entry:
+        label_words = frozenset(w for label in entity.labels
+                                for said in (tokens(label), *self.otherwise(tokens(label)))
+                                for w in norm(said))
+        words: set[str] = set(label_words)
+        if entity.colour:
+            words.update(norm(tokens(entity.colour)))
+        for class_name in entity.class_names:
+            words.update(norm(tokens(class_name)))
+        syn = self.synonyms
+        words.update(o[0] for w in tuple(words) for o in syn.of((w,)) if len(o) == 1)
+        names = self.names(entity)
+        qualifiers = frozenset(words)
+        return _Entry(names, qualifiers, label_words, qualifiers.union(*(n.words for n in names)))
 
 
 class _Entry(NamedTuple):
@@ -306,42 +333,29 @@ def _own(changes: dict[Any, Any], source: Mapping[Any, Any], key: Any, empty: Ca
     return changes[key]
 
 
-def _reuse(kept: tuple[Entity, _Entry] | None, entity: Entity) -> _Entry:
-    return kept[1] if kept is not None and kept[0] == entity else _entry(entity)
-
-
-def _entry(entity: Entity) -> _Entry:
-    label_words = frozenset(w for label in entity.labels
-                            for said in (tokens(label), *said_otherwise(tokens(label))) for w in norm(said))
-    words: set[str] = set(label_words)
-    if entity.colour:
-        words.update(norm(tokens(entity.colour)))
-    for class_name in entity.class_names:
-        words.update(norm(tokens(class_name)))
-    syn = synonyms(phrase)
-    words.update(o[0] for w in tuple(words) for o in syn.of((w,)) if len(o) == 1)
-    names = _names(entity)
-    qualifiers = frozenset(words)
-    return _Entry(names, qualifiers, label_words, qualifiers.union(*(n.words for n in names)))
+def _reuse(kept: tuple[Entity, _Entry] | None, entity: Entity, said: _Said) -> _Entry:
+    return kept[1] if kept is not None and kept[0] == entity else said.entry(entity)
 
 
 class LexiconCache:
-    """One lexicon per snapshot revision (snapshots are immutable, so this is safe to share)."""
+    """One lexicon per snapshot revision (snapshots are immutable, so this is safe to share), its
+    names said in `lang`."""
 
-    def __init__(self) -> None:
+    def __init__(self, lang: Language) -> None:
+        self.lang = lang
         self._lock = threading.Lock()
         self._lexicon: Lexicon | None = None
         # The lemma tables and the synonyms file load on first use (a few hundred ms): here, when
         # an engine is made, rather than inside its first turn's deadline.
         singular("cups")
-        synonyms(phrase)
+        synonyms(lang, phrase)
 
     def get(self, snapshot: Snapshot) -> Lexicon:
         with self._lock:
             lex = self._lexicon
         if lex is not None and lex.snapshot is snapshot:
             return lex
-        lex = Lexicon(snapshot, lex)
+        lex = Lexicon(snapshot, self.lang, lex)
         with self._lock:
             self._lexicon = lex
         return lex

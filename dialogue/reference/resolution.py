@@ -17,31 +17,14 @@ from lemminflect import getAllLemmas
 
 from dialogue import intents as I
 from dialogue.history import Utterance
-from dialogue.reference.english import (
-    CONTAINERS,
-    DETERMINERS,
-    LOCATIVE,
-    MEASURES,
-    NEUTER,
-    PERSONAL,
-    PRONOUNS,
-    tokens,
-    word_set,
-)
+from dialogue.reference.english import tokens
 from dialogue.reference.grounding import Entity, Kind
 from dialogue.reference.headnoun import resolve_head
 from dialogue.reference.lexicon import Lexicon, Mention, norm
+from dialogue.understanding.language import Language
 
-#: Words allowed inside a phrase without qualifying anything ("the cup that is on the table").
-_GLUE = DETERMINERS | word_set(
-    "on in at of from off near inside onto into top which is are with colour color called named labelled "
-    "labeled kind type next to and"
-)
-_LOCATIVE = LOCATIVE
 #: The ontology's class of what a bottle, a can or a packet holds.
 FOOD_OR_DRINK = "cyc:FoodOrDrink"
-#: Words that end a noun phrase's core: its head is the last content word before the first of them.
-_CORE_END = _LOCATIVE | word_set("of with next that which")
 
 ALL_KINDS: frozenset[Kind] = frozenset({"person", "zone", "robot", "thing"})
 
@@ -80,41 +63,40 @@ class Resolution:
         return len(self.matches) > 1
 
 
-def content_words(words: Sequence[str]) -> list[str]:
-    return [w for i, w in enumerate(words) if not _glue(words, i)]
+def content_words(lang: Language, words: Sequence[str]) -> list[str]:
+    glue = lang.glue
+    return [w for i, w in enumerate(words) if not _glue(glue, words, i)]
 
 
-def _glue(words: Sequence[str], i: int) -> bool:
+def _glue(glue: frozenset[str], words: Sequence[str], i: int) -> bool:
     """Whether the i-th word qualifies nothing: "top" only in "on top of" ("the top shelf" is one)."""
     if words[i] == "top":
         return tuple(words[i + 1 : i + 2]) == ("of",)
-    return words[i] in _GLUE
+    return words[i] in glue
 
 
-#: Words said with a pronoun that are not it ("the", "please": "bring it over please").
-_NOT_SAID = word_set("the please again too over")
-
-
-def said_phrase(words: Sequence[str]) -> str:
+def said_phrase(lang: Language, words: Sequence[str]) -> str:
     """A phrase as a reply says it back: without its leading determiners, its prepositions kept
     ("my mug in the fridge": "mug in the fridge")."""
+    glue = lang.glue
     out = [w for w in words if w != "please"]
-    while out and (out[0] in DETERMINERS or out[0] in _GLUE or out[0] in {"his", "her", "their"}):
+    while out and (out[0] in lang.words.determiners or out[0] in glue or out[0] in {"his", "her", "their"}):
         out.pop(0)
-    while out and out[-1] in _GLUE:
+    while out and out[-1] in glue:
         out.pop()
     return " ".join(out)
 
 
-def is_pronoun(words: Sequence[str]) -> bool:
-    content = [w for w in words if w not in _NOT_SAID - {"over"}]
-    return len(content) == 1 and content[0] in PRONOUNS
+def is_pronoun(lang: Language, words: Sequence[str]) -> bool:
+    content = [w for w in words if w not in lang.words.not_said - {"over"}]
+    return len(content) == 1 and content[0] in lang.words.pronouns
 
 
 def resolve(  # noqa: C901
     lexicon: Lexicon, words: Sequence[str], kinds: Collection[Kind] = ALL_KINDS, *, owner: str | None = None
 ) -> Resolution:
     """Entities of the given kinds that the phrase names (see the module docstring)."""
+    lang = lexicon.lang
     phrase = " ".join(words)
     words = [w[:-2] if w.endswith("'s") and len(w) > 2 else w for w in words]  # "ines's" names Ines
     normed = norm(words)
@@ -132,10 +114,11 @@ def resolve(  # noqa: C901
             if not name.lexical:
                 own_name.add(name.entity)
     snapshot = lexicon.snapshot
-    content = [i for i in range(len(words)) if not _glue(words, i)]
-    head = _head(words, content)
-    # "the ones on the bench": no noun before the preposition, and never the bench itself
-    core_end = next((i for i, w in enumerate(words) if w in _LOCATIVE), len(words))  # ("one of the baskets")
+    content = [i for i in range(len(words)) if not _glue(lang.glue, words, i)]
+    head = _head(lang, words, content)
+    # "the ones on the bench": no noun before the preposition, and never the bench itself ("one of
+    # the baskets")
+    core_end = next((i for i, w in enumerate(words) if w in lang.locative), len(words))
     only_one = head is None and {"one", "ones"} & set(words[:core_end])
 
     def named(entity: Entity | None) -> bool:
@@ -175,10 +158,10 @@ def resolve(  # noqa: C901
         matches = _by_qualifiers(lexicon, [normed[i] for i in content], kinds)
     if not matches and content:
         matches = resolve_head(lexicon, words, kinds)
-    counted = _counted(words) if not matches and content else ()
+    counted = _counted(lang, words) if not matches and content else ()
     if counted:  # "a pair of 3D glasses": the glasses
         matches = list(resolve(lexicon, counted, kinds, owner=owner).matches)
-    contents = _contents(words, normed) if not matches and content else ()
+    contents = _contents(lang, words, normed) if not matches and content else ()
     if contents:  # what a container holds is food or drink ("a bottle of umbrella" is nothing)
         held = resolve(lexicon, contents, kinds, owner=owner).matches
         matches = [e for e in held if FOOD_OR_DRINK in e.classes]
@@ -216,21 +199,22 @@ def compared(word: str) -> str:
     return word
 
 
-def _counted(words: Sequence[str]) -> tuple[str, ...]:
+def _counted(lang: Language, words: Sequence[str]) -> tuple[str, ...]:
     """ "a pair of glasses" -> "glasses": what a measure of it names; () when no measure is said."""
-    at = next((i for i in range(len(words) - 2) if words[i] in MEASURES and words[i + 1] == "of"), None)
+    measures = lang.words.measures
+    at = next((i for i in range(len(words) - 2) if words[i] in measures and words[i + 1] == "of"), None)
     return () if at is None else tuple(words[at + 2 :])
 
 
-def _contents(words: Sequence[str], normed: Sequence[str]) -> tuple[str, ...]:
+def _contents(lang: Language, words: Sequence[str], normed: Sequence[str]) -> tuple[str, ...]:
     """ "the beer cans" -> "the beer", "a can of beer" -> "beer": what a container named by a word
     the KB has no thing for holds (the caller tried the container first); () when there is none."""
     for i, word in enumerate(normed):
-        if word not in CONTAINERS:
+        if word not in lang.words.containers:
             continue
         if words[i + 1 : i + 2] == ["of"] and words[i + 2 :]:
             return tuple(words[i + 2 :])
-        if i > 0 and words[i - 1] not in _GLUE:
+        if i > 0 and words[i - 1] not in lang.glue:
             return (*words[:i], *words[i + 1 :])
     return ()
 
@@ -246,11 +230,12 @@ def _by_qualifiers(lexicon: Lexicon, qualifiers: Sequence[str], kinds: Collectio
     return out
 
 
-def _head(words: Sequence[str], content: Sequence[int]) -> int | None:
+def _head(lang: Language, words: Sequence[str], content: Sequence[int]) -> int | None:
     """The index of the head noun: the last content word before a preposition ends the core."""
+    core_end = lang.locative | lang.words.core_end
     head = None
     for i in content:
-        if any(w in _CORE_END for w in words[:i]):
+        if any(w in core_end for w in words[:i]):
             break
         head = i
     return head
@@ -275,18 +260,18 @@ def resolve_id(lexicon: Lexicon, value: str, kinds: Collection[Kind] = ALL_KINDS
     if entity is not None:
         return Resolution(value, (entity,) if entity.kind in kinds else ())
     words = tokens(value)
-    if not content_words(words):
+    if not content_words(lexicon.lang, words):
         return Resolution(value, ())
     return resolve(lexicon, words, kinds)
 
 
-def pronoun_kinds(words: Sequence[str], kinds: Collection[Kind]) -> frozenset[Kind]:
+def pronoun_kinds(lang: Language, words: Sequence[str], kinds: Collection[Kind]) -> frozenset[Kind]:
     """The kinds a pronoun may refer to among `kinds`: "her" and "him" only ever a person, "it"
     never one ("take it to her": the thing to the person)."""
-    said = {w for w in words if w not in _NOT_SAID}
-    if said and said <= PERSONAL:
+    said = {w for w in words if w not in lang.words.not_said}
+    if said and said <= lang.words.personal:
         return frozenset(kinds) & PERSON
-    if said and said <= NEUTER:
+    if said and said <= lang.words.neuter:
         return frozenset(kinds) - PERSON
     return frozenset(kinds)
 
@@ -311,7 +296,7 @@ def antecedent(
         text, owners = _owners(turn, speaker)
         words = [w[:-2] if w.endswith("'s") and len(w) > 2 else w for w in tokens(text)]
         mentions = lexicon.mentions(words)
-        places = {e for m in mentions if _after_locative(words, m.start) for e in m.entities}
+        places = {e for m in mentions if _after_locative(lexicon.lang, words, m.start) for e in m.entities}
         found: list[tuple[bool, int, Entity]] = []
         before: Mention | None = None
         for mention in mentions:
@@ -321,7 +306,7 @@ def antecedent(
                 owner = _owner_before(lexicon, words, mention.start, owners, before)
                 typed = _described(lexicon, _narrowed(typed, owner, places), words, mention.start)
             before = mention
-            locative = _after_locative(words, mention.start)
+            locative = _after_locative(lexicon.lang, words, mention.start)
             # "my keys are on the counter, get them": "them" is not where the keys are
             if len(typed) != 1 or (locative and not place and typed[0].kind != "person"):
                 continue
@@ -344,8 +329,8 @@ def _owners(turn: str | Utterance, speaker: str | None) -> tuple[str, dict[str, 
     return turn.text, {}
 
 
-def _after_locative(words: Sequence[str], start: int) -> bool:
-    return any(w in _LOCATIVE for w in words[max(0, start - 2) : start])
+def _after_locative(lang: Language, words: Sequence[str], start: int) -> bool:
+    return any(w in lang.locative for w in words[max(0, start - 2) : start])
 
 
 def _owner_before(
@@ -365,7 +350,8 @@ def _described(lexicon: Lexicon, typed: list[Entity], words: Sequence[str], star
     words), when any are."""
     said: list[str] = []
     at = start - 1
-    while at >= 0 and len(said) < 3 and words[at] not in _GLUE and words[at] not in PRONOUNS:
+    glue, pronouns = lexicon.lang.glue, lexicon.lang.words.pronouns
+    while at >= 0 and len(said) < 3 and words[at] not in glue and words[at] not in pronouns:
         said.append(words[at])
         at -= 1
     if not said:

@@ -1,8 +1,9 @@
-"""Other ways of saying a name: synonyms, kinds and general names, as data
-(`dialogue/reference/lexicon.txt`: "a = b", "kind < general", "general > kind kind").
+"""Other ways of saying a name: synonyms, kinds and general names, as data (a language's
+`lexicon.txt`, `dialogue/understanding/lang/en/lexicon.txt`: "a = b", "kind < general", "general >
+kind kind").
 
-The file is read once, on first use. Phrases are normalised by the caller's function (the lexicon's
-noun lemmas), so "fridges" and "refrigerators" meet.
+The file is parsed once per language, on first use. Phrases are normalised by the caller's function
+(the lexicon's noun lemmas), so "fridges" and "refrigerators" meet.
 """
 
 from __future__ import annotations
@@ -10,8 +11,9 @@ from __future__ import annotations
 from collections import defaultdict
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
-from functools import cached_property, lru_cache
-from importlib import resources
+from functools import cached_property
+
+from dialogue.understanding.language import Language
 
 Phrase = tuple[str, ...]
 Normaliser = Callable[[str], Phrase]
@@ -84,8 +86,17 @@ def parse(text: str, normalise: Normaliser) -> Synonyms:
     return Synonyms(frozen(others), frozen(broader), frozen(general))
 
 
-@lru_cache(maxsize=4)
-def synonyms(normalise: Normaliser) -> Synonyms:
-    """The packaged synonyms, normalised with `normalise` (read on first use)."""
-    text = resources.files("dialogue.reference").joinpath("lexicon.txt").read_text(encoding="utf-8")
-    return parse(text, normalise)
+def synonyms(lang: Language, normalise: Normaliser) -> Synonyms:
+    """The language's synonyms, normalised with `normalise` (parsed on first use, kept with the
+    language)."""
+    return lang.derived(_Parsed(normalise))
+
+
+@dataclass(frozen=True)
+class _Parsed:
+    """The synonyms of a language normalised one way (a key of the language's derived tables)."""
+
+    normalise: Normaliser
+
+    def __call__(self, lang: Language) -> Synonyms:
+        return parse(lang.lexicon, self.normalise)

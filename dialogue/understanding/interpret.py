@@ -51,6 +51,7 @@ class Interpreter:
         self, lexicon: Lexicon, speaker: str, history: Sequence[Utterance] = (), robot_name: str = "robot"
     ) -> None:
         self.lexicon = lexicon
+        self.lang = lexicon.lang
         self.snapshot = lexicon.snapshot
         self.speaker = speaker
         self.history = tuple(history)
@@ -225,15 +226,16 @@ class Interpreter:
     # -- questions -------------------------------------------------------------------------------
     def _answer(self, p: Parse) -> Outcome:  # noqa: C901
         thing = p.slots.get("thing", ()) or p.slots.get("place", ())
-        someone = set(content_words(thing)) <= _SOMEONE and bool(content_words(thing))  # "where is she"
+        said = content_words(self.lang, thing)
+        someone = set(said) <= _SOMEONE and bool(said)  # "where is she"
         about = p.question in {"where", "can_see", "what_is", "what_on", "whose"}
-        if about and (is_pronoun(thing) or someone):
+        if about and (is_pronoun(self.lang, thing) or someone):
             kinds = PERSON if someone else ANYWHERE
             ref = antecedent(self.lexicon, self.history, kinds, speaker=self.speaker)
             if ref is not None:
                 thing = tuple(tokens(ref.id))
         _, owner = self.refs.possessive(thing, p.slots)  # "where is my mug": the speaker's
-        content = content_words(thing)
+        content = content_words(self.lang, thing)
         unsure = self.refs.half_known(content) or self.refs.strange(content)  # "how many bks": a doubt
         if content and unsure and not resolve(self.lexicon, thing, ANYWHERE).matches:
             return Outcome("Sorry, I don't know how to answer that.", understood=False)
@@ -279,7 +281,7 @@ class Interpreter:
         # named, in order (people only where a role is a person's: one cup goes to one person).
         role = "object" if "object" in p.slots else "recipient"
         person = ROLE_KINDS.get(p.intent or "", {}).get("recipient") == PERSON
-        things = coordinated(p.slots.get(role, ())) if role not in overrides else []
+        things = coordinated(self.lang, p.slots.get(role, ())) if role not in overrides else []
         if role == "recipient" and not person:
             things = []
         if role == "object" and not things and role not in overrides:
@@ -321,7 +323,7 @@ class Interpreter:
             # "this is Callum, say hello": whom the same utterance introduced, else the speaker
             person = antecedent(self.lexicon, self._this_turn(), PERSON, speaker=self.speaker)
             slots["recipient"] = tuple(tokens(person.id)) if person is not None else ("me",)
-        implicit = "recipient" in p.implicit or not content_words(slots.get("recipient", ()))
+        implicit = "recipient" in p.implicit or not content_words(self.lang, slots.get("recipient", ()))
         if intent == I.GUIDE and slots.get("goal") == ("there",) and implicit:
             # "Ellen needs the utility room, lead the way": the person just spoken of, else the speaker.
             person = antecedent(self.lexicon, self.history, PERSON, speaker=self.speaker)
@@ -333,7 +335,7 @@ class Interpreter:
         spec = I.CATALOGUE[intent]
         for role, kinds in ROLE_KINDS.get(intent, {}).items():
             words = slots.get(role, ())
-            if not content_words(words) and words not in {("there",), ("over", "there")}:
+            if not content_words(self.lang, words) and words not in {("there",), ("over", "there")}:
                 if role in spec.required:
                     return self._missing(intent, role, p, roles.get("recipient"))
                 continue

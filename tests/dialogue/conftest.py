@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import functools
 from collections.abc import Iterator
 from pathlib import Path
 
@@ -9,6 +10,7 @@ import pytest
 
 from dialogue.reference.grounding import Snapshot, build_snapshot
 from dialogue.reference.lexicon import Lexicon
+from dialogue.understanding.language import Language
 from kb import KB
 
 EVAL_DIR = Path(__file__).parent / "eval"
@@ -28,8 +30,14 @@ def scene_kb(name: str | None = None, *facts: str) -> KB:
     return kb
 
 
+@functools.cache
+def english() -> Language:
+    """English, read once for the whole test session (an engine reads its own)."""
+    return Language.load("en")
+
+
 def lexicon_of(kb: KB) -> Lexicon:
-    return Lexicon(build_snapshot(kb))
+    return Lexicon(build_snapshot(kb), english())
 
 
 @pytest.fixture

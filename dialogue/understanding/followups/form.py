@@ -10,10 +10,11 @@ clarifying question. "Never mind" cancels the form; "I don't know" or "skip" giv
 >>> from dialogue.ask.form import parse_configuration
 >>> from dialogue.reference.grounding import build_snapshot
 >>> from dialogue.reference.lexicon import Lexicon
+>>> from dialogue.understanding.language import Language
 >>> from kb import KB
 >>> form = parse_configuration('{"question": "Age and pets?", "result_schema_properties": '
 ...     '{"age": {"type": "integer", "minimum": 0}, "pets": {"type": "boolean"}}}')
->>> lexicon = Lexicon(build_snapshot(KB()))
+>>> lexicon = Lexicon(build_snapshot(KB()), Language.load("en"))
 >>> read_answer(form, FormState(asked="age"), "thirty-four, and no", lexicon, "alice").values
 {'age': 34}
 >>> read_answer(form, FormState(asked="pets"), "nope", lexicon, "alice").values

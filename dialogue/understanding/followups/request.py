@@ -21,6 +21,7 @@ from dialogue.reference.english import MODIFIER_START, Words, phrases, tokens, w
 from dialogue.reference.grounding import Kind, Snapshot
 from dialogue.reference.lexicon import Lexicon
 from dialogue.reference.resolution import ROLE_KINDS, content_words, resolve
+from dialogue.understanding.language import Language
 from dialogue.understanding.outcome import Outcome
 from dialogue.understanding.parsed import Parse
 from dialogue.understanding.requests.commands import parse
@@ -219,7 +220,8 @@ def correction(reader: Reader, text: str) -> Outcome | None:
     words = [w for part in parts for w in part]
     lead = next((c for c in _CORRECTING if tuple(words[: len(c)]) == c), None)
     fragment = tuple(words[len(lead) :]) if lead is not None else _not_that(tuple(words))
-    if lead is None and set(words) & _OTHER and set(content_words(words)) <= _OTHER | _ONE:
+    lang = reader.lexicon.lang
+    if lead is None and set(words) & _OTHER and set(content_words(lang, words)) <= _OTHER | _ONE:
         fragment = tuple(words)  # "no, the other one"
     if len(parts) == 2 and parts[0][:1] == ["not"] and parts[1]:  # "not the shed, the porch"
         fragment = tuple(parts[1])
@@ -227,7 +229,7 @@ def correction(reader: Reader, text: str) -> Outcome | None:
         if fragment[: len(loc)] == loc and fragment[len(loc) :]:
             fragment = fragment[len(loc) :]
             break
-    if not content_words(fragment):
+    if not content_words(lang, fragment):
         return None
     asked = [i for i, u in enumerate(reader.history) if u.role == "user"]
     if not asked:
@@ -244,10 +246,10 @@ def correction(reader: Reader, text: str) -> Outcome | None:
     for role in ROLE_KINDS.get(pending.intent, {}):
         said = slots.get(role, ())
         was = before.roles.get(role)
-        if not content_words(said) or was is None:
+        if not content_words(lang, said) or was is None:
             continue
         instead = _the_other(earlier, fragment, said, was, ROLE_KINDS[pending.intent][role])
-        outcome = earlier.act(pending, {role: instead or _instead(fragment, said)})
+        outcome = earlier.act(pending, {role: instead or _instead(lang, fragment, said)})
         now = outcome.roles.get(role)
         if outcome.intent is None or now is None or now == was:
             continue
@@ -265,9 +267,9 @@ def _the_other(earlier: Reader, fragment: Words, said: Words, was: str,
                kinds: frozenset[Kind]) -> Words | None:  # fmt: skip
     """ "no, the other one" after "bring me the black umbrella": the one other thing the head of the
     phrase names (the red umbrella), as its id; None when that is not what was said or several are."""
-    if not set(fragment) & _OTHER or not set(content_words(fragment)) <= _OTHER | _ONE:
+    if not set(fragment) & _OTHER or not set(content_words(earlier.lexicon.lang, fragment)) <= _OTHER | _ONE:
         return None
-    named = resolve(earlier.lexicon, _instead(("the", "one"), said), kinds).matches
+    named = resolve(earlier.lexicon, _instead(earlier.lexicon.lang, ("the", "one"), said), kinds).matches
     others = [e for e in named if e.id != was]
     return tuple(tokens(others[0].id)) if len(others) == 1 and len(named) == 2 else None
 
@@ -284,7 +286,7 @@ def _not_that(words: Words) -> Words:
     return words[again:] if again is not None else ()
 
 
-def _instead(fragment: Words, said: Words) -> Words:
+def _instead(lang: Language, fragment: Words, said: Words) -> Words:
     """The fragment, its "one" said with the head of the phrase it replaces ("the red one" for "the
     blue cup": the red cup)."""
     core: list[str] = []
@@ -292,7 +294,7 @@ def _instead(fragment: Words, said: Words) -> Words:
         if w in MODIFIER_START and core:
             break
         core.append(w)
-    head = content_words(core)[-1:] if content_words(core) else []
+    head = content_words(lang, core)[-1:] if content_words(lang, core) else []
     return tuple(x for w in fragment for x in (head if w in _ONE and head else [w]))
 
 

@@ -120,7 +120,7 @@ def where_is(lexicon: Lexicon, words: Sequence[str], speaker: str, owner: str | 
             return f"{'You are' if me else 'I am'} {where}."
         return f"Sorry, I don't know where {'you are' if me else 'I am'}."
     found = resolve(lexicon, words, ALL_KINDS, owner=owner)
-    phrase = " ".join(content_words(words)) or "that"
+    phrase = " ".join(content_words(lexicon.lang, words)) or "that"
     if not found.matches:
         return f"Sorry, I don't know where the {phrase} is: I don't know any {phrase}."
     sentences = []
@@ -148,7 +148,7 @@ def what_is_on(lexicon: Lexicon, words: Sequence[str], asked: str = "") -> tuple
     """The answer, and whether it is a clarifying question."""
     snapshot = lexicon.snapshot
     found = resolve(lexicon, words, frozenset({"thing", "zone"}))
-    content = content_words(words)
+    content = content_words(lexicon.lang, words)
     phrase = " ".join(content) or "that"
     if found.ambiguous and _plural(content):  # "what is on the shelves": each of them
         return " ".join(_on(snapshot, place, asked) for place in found.matches[:MAX_PLACES]), False
@@ -173,7 +173,7 @@ def what_is_near(lexicon: Lexicon, words: Sequence[str], relation: Sequence[str]
     is a clarifying question (which window)."""
     snapshot = lexicon.snapshot
     found = resolve(lexicon, words, frozenset({"thing", "zone"}))
-    content = content_words(words)
+    content = content_words(lexicon.lang, words)
     if found.ambiguous:
         return clarifying_question(snapshot, found.matches, singular(content[-1]) if content else None), True
     said = " ".join(relation)
@@ -211,7 +211,7 @@ def _on(snapshot: Snapshot, place: Entity, asked: str = "") -> str:
 def can_you_see(lexicon: Lexicon, words: Sequence[str], speaker: str, owner: str | None = None) -> str:
     snapshot = lexicon.snapshot
     found = resolve(lexicon, words, ALL_KINDS, owner=owner)
-    phrase = said_phrase(words) or "that"
+    phrase = said_phrase(lexicon.lang, words) or "that"
     if not found.matches:
         return f"No, I don't see any {phrase}."
     seen = [e for e in found.matches if e.seen]
@@ -227,7 +227,7 @@ def can_you_see(lexicon: Lexicon, words: Sequence[str], speaker: str, owner: str
 def what_is(lexicon: Lexicon, words: Sequence[str], speaker: str, owner: str | None = None) -> str:
     snapshot = lexicon.snapshot
     found = resolve(lexicon, words, ALL_KINDS, owner=owner)
-    phrase = " ".join(content_words(words)) or "that"
+    phrase = " ".join(content_words(lexicon.lang, words)) or "that"
     if not found.matches:
         return f"Sorry, I don't know what {phrase} is."
     e = found.matches[0]
@@ -241,7 +241,7 @@ def which_do_you_see(lexicon: Lexicon, words: Sequence[str]) -> str:
     found = resolve(lexicon, words, frozenset({"thing", "person"}))
     seen = [e for e in found.matches if e.seen]
     if not seen:
-        return f"I don't see any {said_phrase(words) or 'such thing'}."
+        return f"I don't see any {said_phrase(lexicon.lang, words) or 'such thing'}."
     snapshot = lexicon.snapshot
     coloured = [f"the {e.colour} {n[4:]}" if e.colour and n.startswith("the ") and e.colour not in n else n
                 for e, n in zip(seen, told_apart(seen), strict=True)]  # fmt: skip
@@ -251,7 +251,7 @@ def which_do_you_see(lexicon: Lexicon, words: Sequence[str]) -> str:
 
 def how_many(lexicon: Lexicon, words: Sequence[str]) -> str:
     found = resolve(lexicon, words, frozenset({"thing", "person"}))
-    phrase = said_phrase(words) or "things"
+    phrase = said_phrase(lexicon.lang, words) or "things"
     seen = [e for e in found.matches if e.seen]
     if not seen:
         return f"I don't see any {phrase}."
@@ -313,6 +313,6 @@ def _about_each_thing(lexicon: Lexicon, words: Sequence[str], sentence: Callable
     phrase says whose: "my mug"); `sentence` is told whether there are several, to tell them apart."""
     found = resolve(lexicon, words, frozenset({"thing"}), owner=owner)
     if not found.matches:
-        return f"Sorry, I don't know any {' '.join(content_words(words)) or 'such thing'}."
+        return f"Sorry, I don't know any {' '.join(content_words(lexicon.lang, words)) or 'such thing'}."
     several = len(found.matches) > 1
     return " ".join(sentence(e, several) for e in found.matches[:3])

@@ -82,7 +82,7 @@ class Asking:
         if words in {("he",), ("she",), ("they",)}:
             found = antecedent(self.lexicon, self.history, PERSON, speaker=self.speaker)
             return found.id if found is not None else None
-        if not content_words(words):
+        if not content_words(self.lexicon.lang, words):
             return None
         found = resolve(self.lexicon, words, PERSON).one
         return found.id if found is not None else None

@@ -11,6 +11,7 @@ from dataclasses import dataclass
 
 from dialogue.reference.english import Words, phrases, spans, word_set
 from dialogue.reference.resolution import content_words
+from dialogue.understanding.language import Language
 from dialogue.understanding.requests.frames import verbs
 from dialogue.understanding.speech.plain import QUOTED, starts, strip_politeness
 from dialogue.understanding.speech.repair import asked_verb, normalise, strip_vocative
@@ -138,7 +139,7 @@ def _one_word(word: str) -> str:
     return said[0] if len(said) == 1 and said[0] in _CONJUNCTIONS else word
 
 
-def alternatives(words: Words) -> list[Words]:
+def alternatives(lang: Language, words: Words) -> list[Words]:
     """ "an apple or an orange" -> ["an apple", "an orange"]; [] without "or"."""
     if "or" not in words:
         return []
@@ -148,10 +149,10 @@ def alternatives(words: Words) -> list[Words]:
             out.append(())
         else:
             out[-1] = (*out[-1], w)
-    return out if all(content_words(t) for t in out) else []
+    return out if all(content_words(lang, t) for t in out) else []
 
 
-def coordinated(words: Words) -> list[Words]:
+def coordinated(lang: Language, words: Words) -> list[Words]:
     """ "the cereals and the milk" -> ["the cereals", "the milk"]; [] when there is no "and"."""
     if "and" not in words:
         return []
@@ -164,7 +165,7 @@ def coordinated(words: Words) -> list[Words]:
         else:
             current.append(w)
     out.append(tuple(current))
-    return out if all(content_words(t) for t in out) else []
+    return out if all(content_words(lang, t) for t in out) else []
 
 
 def unprefixed(reply: str) -> str:

@@ -43,6 +43,7 @@ from dialogue.reference.resolution import (
     resolve,
     said_phrase,
 )
+from dialogue.understanding.language import Language
 from dialogue.understanding.outcome import Outcome, Ref
 from dialogue.understanding.requests.compound import alternatives
 from dialogue.understanding.speech.clauses import described
@@ -68,6 +69,7 @@ _SOME = word_set("some one any few couple more")
 class Referents:
     def __init__(self, lexicon: Lexicon, speaker: str, history: Sequence[Utterance] = ()) -> None:
         self.lexicon = lexicon
+        self.lang = lexicon.lang
         self.snapshot = lexicon.snapshot
         self.speaker = speaker
         self.history = tuple(history)
@@ -76,9 +78,9 @@ class Referents:
         """ "bring Maria the book": the longest leading phrase naming one person is the recipient."""
         for k in range(len(rest) - 1, 0, -1):
             head, tail = rest[:k], rest[k:]
-            if not content_words(tail) or self._whose(head[-1]):
+            if not content_words(self.lang, tail) or self._whose(head[-1]):
                 continue  # "fetch Marco's jacket": whose the thing is, not to whom
-            people = content_words(head)
+            people = content_words(self.lang, head)
             named = set(people) <= ME or resolve(self.lexicon, head, PERSON).one is not None
             # "bring him the bottle": a person pronoun the conversation resolves.
             said = set(people) <= {"him", "her", "them"} and self.person_as_object(head) is not None
@@ -119,30 +121,34 @@ class Referents:
 
     def a_place(self, words: Words) -> bool:
         """Whether the phrase names one place (a zone of the KB) and no thing ("the lifts")."""
-        if not content_words(words) or is_pronoun(words) or resolve(self.lexicon, words, THING).matches:
+        if not content_words(self.lang, words) or is_pronoun(self.lang, words):
+            return False
+        if resolve(self.lexicon, words, THING).matches:
             return False
         return resolve(self.lexicon, words, ZONE).one is not None
 
     def a_person(self, words: Words) -> bool:
         """Whether the phrase is someone: a person's name, a person pronoun or the speaker."""
-        content = set(content_words(words))
+        content = set(content_words(self.lang, words))
         return bool(content) and (content <= PERSONAL | ME or self.named_person(words))
 
     def named_person(self, words: Words) -> bool:
         """Whether the phrase names one person of the KB (not a pronoun, not the speaker's "me")."""
-        if not content_words(words) or is_pronoun(words) or set(content_words(words)) & ME:
+        content = content_words(self.lang, words)
+        if not content or is_pronoun(self.lang, words) or set(content) & ME:
             return False
         return resolve(self.lexicon, words, PERSON).one is not None
 
     def person_as_object(self, words: Words) -> Entity | None:
-        if content_words(words) and set(content_words(words)) <= ME:
+        content = content_words(self.lang, words)
+        if content and set(content) <= ME:
             return self.snapshot.get(self.speaker) or Entity(self.speaker, "you", (), (), (), "person", True)
-        if content_words(words) and set(content_words(words)) <= {"him", "her", "them"}:
+        if content and set(content) <= {"him", "her", "them"}:
             # "them" is people only when no thing was spoken of ("take them to her": the specs)
-            if not set(content_words(words)) <= PERSONAL and antecedent(self.lexicon, self.history, THING):
+            if not set(content) <= PERSONAL and antecedent(self.lexicon, self.history, THING):
                 return None
             return antecedent(self.lexicon, self.history, PERSON, speaker=self.speaker)
-        if not content_words(words) or is_pronoun(words):
+        if not content or is_pronoun(self.lang, words):
             return None
         return resolve(self.lexicon, words, PERSON).one
 
@@ -158,7 +164,7 @@ class Referents:
         """ "my phone", "give Ines her phone": the phrase without the possessive, and whose it is."""
         rest = tuple(w for w in words if w not in POSSESSIVES)
         said = [w for w in words if w in POSSESSIVES]
-        if not said or not content_words(rest):
+        if not said or not content_words(self.lang, rest):
             return words, None
         if said[0] in {"my", "our"}:
             return rest, self.speaker
@@ -184,13 +190,13 @@ class Referents:
         wanted = purpose(tuple(bare_words[1:])) if bare_words[:1] in (["something"], ["anything"]) else None
         if wanted is not None:  # "something to eat": food; "something to cut this with": a cutting tool
             words = wanted
-        words = _apposed(_not_the_other(_placed_pronoun(words)))
-        content = content_words(words)
+        words = _apposed(_not_the_other(self.lang, _placed_pronoun(words)))
+        content = content_words(self.lang, words)
         if "person" in kinds and content and set(content) <= ME | {"here"}:
             return Ref(speaker=True)
         bare = {w for w in words if w not in {"the", "over", "please"}}
-        if is_pronoun(words) or (bare and bare <= {"him", "her", "there"}):
-            kinds = pronoun_kinds(words, kinds)
+        if is_pronoun(self.lang, words) or (bare and bare <= {"him", "her", "there"}):
+            kinds = pronoun_kinds(self.lang, words, kinds)
             if not kinds:  # "go and get him": a person where the request wants a thing
                 return Ref(problem=Outcome("Sorry, I did not understand that.", understood=False))
             found = self.named_in(said) if kinds == PERSON else None
@@ -222,7 +228,7 @@ class Referents:
         if slipped is not None:
             return Ref(entity=slipped, guessed=True)
         loose = tuple(w for w in words if w not in RELATIONAL)
-        if res.ambiguous and loose != tuple(words) and content_words(loose):
+        if res.ambiguous and loose != tuple(words) and content_words(self.lang, loose):
             # "the box of plasters back": a position word kept the name from matching
             one = resolve(self.lexicon, loose, kinds, owner=owner).one
             if one is not None:
@@ -230,7 +236,7 @@ class Referents:
         if res.ambiguous:
             q = clarifying_question(self.snapshot, res.matches, self._noun(words, res.matches))
             return Ref(problem=Outcome(q, clarify=True, open_role=role, open_phrase=words))
-        if loose != tuple(words) and content_words(loose):
+        if loose != tuple(words) and content_words(self.lang, loose):
             # "the cup on the left": spatial relations are not in the KB; if the rest of the phrase
             # names one thing, that is it, else ask which one.
             res = resolve(self.lexicon, loose, kinds, owner=owner)
@@ -247,7 +253,7 @@ class Referents:
             return place
         if set(words) & MANY:  # "the cup and the apple", "both cups": more than one intent can carry
             return Ref(problem=Outcome("Sorry, one thing at a time, please.", understood=False))
-        for alternative in alternatives(words):  # "an apple or an orange": either will do
+        for alternative in alternatives(self.lang, words):  # "an apple or an orange": either will do
             ref = self.ground(alternative, kinds, role, owner)
             if ref.entity is not None or ref.speaker:
                 return ref
@@ -299,7 +305,7 @@ class Referents:
             if w in MODIFIER_START and core:
                 break
             core.append(w)
-        content = content_words(core)
+        content = content_words(self.lang, core)
         if not content:
             return None
         noun = singular(content[-1])
@@ -312,7 +318,7 @@ class Referents:
         if role != "recipient" or "zone" not in kinds or "person" in kinds:
             return None
         at = max((i for i, w in enumerate(words) if w in SUPPORT_PREPOSITIONS and i > 0), default=None)
-        if at is None or not content_words(words[at + 1 :]):
+        if at is None or not content_words(self.lang, words[at + 1 :]):
             return None
         ref = self.ground(words[at + 1 :], kinds, role, owner)
         return ref if ref.entity is not None else None
@@ -348,7 +354,7 @@ class Referents:
             return f"Sorry, I don't know where the {phrase} is."
         if "person" in kinds and resolve(self.lexicon, content, ANYWHERE).matches == ():
             return f"Sorry, I don't know who or where {phrase.title()} is."
-        return f"Sorry, I don't see any {said_phrase(words) or phrase}."
+        return f"Sorry, I don't see any {said_phrase(self.lang, words) or phrase}."
 
 
 def _apposed(words: Words) -> Words:
@@ -371,7 +377,7 @@ def _placed_pronoun(words: Words) -> Words:
     return words
 
 
-def _not_the_other(words: Words) -> Words:
+def _not_the_other(lang: Language, words: Words) -> Words:
     """ "the box of gloves not the plasters": the thing meant, without the one it is not."""
     at = next((i for i in range(1, len(words)) if words[i] == "not" and words[i + 1 : i + 2]), None)
-    return words if at is None or not content_words(words[:at]) else words[:at]
+    return words if at is None or not content_words(lang, words[:at]) else words[:at]

@@ -72,7 +72,7 @@ class ClauseReader:
         if words in {("he",), ("she",)}:
             found = antecedent(self.lexicon, self.history, PERSON, speaker=self.speaker)
             return found.id if found is not None else None
-        if not content_words(words) or not all(w.isalpha() for w in words):
+        if not content_words(self.lexicon.lang, words) or not all(w.isalpha() for w in words):
             return None
         res = resolve(self.lexicon, words, PERSON)
         if res.ambiguous:
@@ -89,7 +89,7 @@ class ClauseReader:
         said = [w for w in words if w in POSSESSIVES]
         owner = self.speaker if said[:1] in (["my"], ["our"]) else None
         bare = tuple(w for w in words if w not in POSSESSIVES)
-        if not content_words(bare) or is_pronoun(bare):
+        if not content_words(self.lexicon.lang, bare) or is_pronoun(self.lexicon.lang, bare):
             found = None if fits is not None else antecedent(
                 self.lexicon, self.history, kinds, speaker=self.speaker
             )
@@ -107,8 +107,8 @@ class ClauseReader:
             return res.one.id, owner
         if res.ambiguous:
             raise Refused(clarifying_question(self.snapshot, res.matches), clarify=True)
-        if any(not self.lexicon.knows(w) for w in content_words(bare)) and any(
-            self.lexicon.knows(w) for w in content_words(bare)
+        if any(not self.lexicon.knows(w) for w in content_words(self.lexicon.lang, bare)) and any(
+            self.lexicon.knows(w) for w in content_words(self.lexicon.lang, bare)
         ):
             raise Unclaimed  # names the KB knows among words it does not: leave it to a model
-        raise Refused(f"Sorry, I don't know any {' '.join(content_words(bare))}.")
+        raise Refused(f"Sorry, I don't know any {' '.join(content_words(self.lexicon.lang, bare))}.")

@@ -10,6 +10,7 @@ from dialogue.ask.form import AskForm, parse_configuration
 from dialogue.reference.grounding import build_snapshot
 from dialogue.reference.lexicon import Lexicon
 from kb import KB
+from tests.dialogue.conftest import english
 
 NINA = "person_nina"
 PROPERTIES = {
@@ -34,4 +35,4 @@ def form() -> AskForm:
 
 @pytest.fixture
 def lexicon(cups: KB) -> Lexicon:
-    return Lexicon(build_snapshot(cups))
+    return Lexicon(build_snapshot(cups), english())

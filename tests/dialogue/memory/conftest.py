@@ -5,6 +5,7 @@ from __future__ import annotations
 from dialogue.reference.grounding import Snapshot, build_snapshot
 from dialogue.reference.lexicon import Lexicon
 from kb import KB
+from tests.dialogue.conftest import english
 
 
 def snapshot_of(kb: KB) -> Snapshot:
@@ -12,4 +13,4 @@ def snapshot_of(kb: KB) -> Snapshot:
 
 
 def lexicon_of(kb: KB) -> Lexicon:
-    return Lexicon(build_snapshot(kb))
+    return Lexicon(build_snapshot(kb), english())

@@ -8,6 +8,7 @@ from hypothesis import strategies as st
 from dialogue.reference.grounding import Entity, Grounder, Snapshot, build_snapshot
 from dialogue.reference.lexicon import Lexicon, LexiconCache
 from kb import KB
+from tests.dialogue.conftest import english
 
 BASE = [
     "myself rdf:type Robot", "kitchen rdf:type ZoneOfInterest", 'kitchen rdfs:label "kitchen"',
@@ -71,7 +72,7 @@ def _lexicon_state(lex: Lexicon) -> tuple[object, ...]:
 def test_maintained_snapshot_and_lexicon_equal_a_full_build(commits: list[tuple[str, list[str], list[str]]]) -> None:
     kb = KB()
     kb.update(BASE)
-    grounder, lexicons = Grounder(), LexiconCache()
+    grounder, lexicons = Grounder(), LexiconCache(english())
     lexicons.get(grounder.snapshot(kb))
     for action, first, second in commits:
         if action == "update":
@@ -88,7 +89,7 @@ def test_maintained_snapshot_and_lexicon_equal_a_full_build(commits: list[tuple[
         assert maintained == fresh
         assert list(maintained.entities) == list(fresh.entities)  # the same deterministic order
         _assert_contents(maintained)
-        assert _lexicon_state(lexicons.get(maintained)) == _lexicon_state(Lexicon(fresh))
+        assert _lexicon_state(lexicons.get(maintained)) == _lexicon_state(Lexicon(fresh, english()))
 
 
 def test_a_commit_updates_only_what_it_touched() -> None:
@@ -139,21 +140,21 @@ def test_a_lexicon_that_missed_snapshots_catches_up_from_their_steps() -> None:
     kb = KB()
     kb.update(BASE)
     grounder = Grounder()
-    first = Lexicon(grounder.snapshot(kb))
+    first = Lexicon(grounder.snapshot(kb), english())
     kb.update(["cup_1 rdf:type dbr:Cup", "cup_1 isIn kitchen"])
     grounder.snapshot(kb)  # a snapshot this lexicon never sees
     kb.update(['cup_1 rdfs:label "blue mug"', "myself sees cup_1"])
     latest = grounder.snapshot(kb)
     assert latest.changed_since(first.snapshot.revision) == {"cup_1"}
-    caught_up = Lexicon(latest, first)
+    caught_up = Lexicon(latest, english(), first)
     assert caught_up._entries["kitchen"] is first._entries["kitchen"]  # updated from the steps, not rebuilt
-    assert _lexicon_state(caught_up) == _lexicon_state(Lexicon(build_snapshot(kb)))
+    assert _lexicon_state(caught_up) == _lexicon_state(Lexicon(build_snapshot(kb), english()))
 
 
 def test_an_updated_lexicon_knows_the_new_words_and_forgets_the_old() -> None:
     kb = KB()
     kb.update([*BASE, "cup_1 rdf:type Artifact", 'cup_1 rdfs:label "teacup"', "cup_1 isIn kitchen"])
-    grounder, lexicons = Grounder(), LexiconCache()
+    grounder, lexicons = Grounder(), LexiconCache(english())
     first = lexicons.get(grounder.snapshot(kb))
     assert first.knows("teacup") and not first.knows("refrigerator")
     kb.apply(add=['cup_1 rdfs:label "kitchen fridge"'], remove=['cup_1 rdfs:label "teacup"'])

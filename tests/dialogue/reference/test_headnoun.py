@@ -90,7 +90,7 @@ def test_either_of_two_alternatives(office: KB) -> None:
 
 
 def test_a_kind_word_names_the_general_thing_and_colour_still_filters(office: KB) -> None:
-    out = say(office, "bring me the yellow teacup")  # "teacup" < "cup" (dialogue/reference/lexicon.txt)
+    out = say(office, "bring me the yellow teacup")  # "teacup" < "cup" (lang/en/lexicon.txt)
     assert (out.intent, out.roles) == (I.BRING_OBJECT, {"object": "mug_yellow", "recipient": "person_bob"})
 
 

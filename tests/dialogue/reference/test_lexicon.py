@@ -6,6 +6,7 @@ from dialogue.reference.english import tokens
 from dialogue.reference.grounding import build_snapshot
 from dialogue.reference.lexicon import Lexicon, LexiconCache, singular
 from kb import KB
+from tests.dialogue.conftest import english
 
 
 def test_tokens_and_singular() -> None:
@@ -16,7 +17,7 @@ def test_tokens_and_singular() -> None:
 
 
 def test_names_come_from_labels_ids_classes_and_heads(office: KB) -> None:
-    lex = Lexicon(build_snapshot(office))
+    lex = Lexicon(build_snapshot(office), english())
     mug = {n.words for n in lex.names_at(["green", "mug"], 0)}
     assert ("green", "mug") in mug
     assert {n.entity for n in lex.names_at(["mug"], 0)} == {"mug_green", "mug_yellow"}  # head noun
@@ -26,7 +27,7 @@ def test_names_come_from_labels_ids_classes_and_heads(office: KB) -> None:
 
 
 def test_mentions_are_longest_first(office: KB) -> None:
-    lex = Lexicon(build_snapshot(office))
+    lex = Lexicon(build_snapshot(office), english())
     mentions = lex.mentions(tokens("the yellow mug is on the desk"))
     assert [(m.start, m.end, set(m.entities)) for m in mentions] == [
         (1, 3, {"mug_yellow"}), (6, 7, {"desk_1"}),
@@ -34,7 +35,7 @@ def test_mentions_are_longest_first(office: KB) -> None:
 
 
 def test_unchanged_entities_are_reused_across_revisions(office: KB) -> None:
-    cache = LexiconCache()
+    cache = LexiconCache(english())
     first = cache.get(build_snapshot(office))
     office.update(["laptop_1 hasColor black"])
     second = cache.get(build_snapshot(office))
@@ -51,7 +52,7 @@ def test_plurals_are_noun_lemmas() -> None:
 
 def test_synonyms_name_the_kbs_things(office: KB) -> None:
     office.update(["fridge_1 rdf:type Artifact", 'fridge_1 rdfs:label "kitchen fridge"', "myself sees fridge_1"])
-    lex = Lexicon(build_snapshot(office))
+    lex = Lexicon(build_snapshot(office), english())
     assert {n.entity for n in lex.names_at(["refrigerator"], 0)} == {"fridge_1"}
     assert {n.entity for n in lex.names_at(["kitchen", "refrigerator"], 0)} == {"fridge_1"}
     assert "gray" in lex.attributes["laptop_1"] and "grey" in lex.attributes["laptop_1"]
@@ -60,7 +61,7 @@ def test_synonyms_name_the_kbs_things(office: KB) -> None:
 @pytest.mark.parametrize(("label", "said"), [("wrench", "spanner"), ("tire", "tyre"), ("bill", "check")])
 def test_everyday_names_of_the_lexicon_file(office: KB, label: str, said: str) -> None:
     office.update(["t_1 rdf:type Artifact", f't_1 rdfs:label "{label}"', "myself sees t_1"])
-    lex = Lexicon(build_snapshot(office))
+    lex = Lexicon(build_snapshot(office), english())
     assert {n.entity for n in lex.names_at([said], 0)} == {"t_1"}
 
 
@@ -76,13 +77,13 @@ def test_how_many_counts_irregular_plurals(office: KB) -> None:
 
 def test_a_closed_compound_said_apart_names_the_thing(office: KB) -> None:
     office.update(["box_1 rdf:type Artifact", 'box_1 rdfs:label "toolbox"', "myself sees box_1"])
-    lex = Lexicon(build_snapshot(office))
+    lex = Lexicon(build_snapshot(office), english())
     assert [(n.entity, n.words) for n in lex.names_at(["tool", "boxes"], 0)] == [("box_1", ("tool", "boxes"))]
 
 
 def test_a_coordinated_class_name_gives_no_head(office: KB) -> None:
     # "food or drink" names neither a drink nor a food by its last word
-    lex = Lexicon(build_snapshot(office))
+    lex = Lexicon(build_snapshot(office), english())
     heads = {n.words for n in lex.names_at(["drink"], 0) if n.entity == "pear_1"}
     assert ("drink",) not in heads
 
@@ -93,7 +94,7 @@ def test_a_number_in_a_name_is_said_in_digits_or_in_words() -> None:
         "bay_4 rdf:type ZoneOfInterest", 'bay_4 rdfs:label "loading bay 4"',
         "court_9 rdf:type ZoneOfInterest", 'court_9 rdfs:label "court nine"',
     ])  # fmt: skip
-    lex = Lexicon(build_snapshot(kb))
+    lex = Lexicon(build_snapshot(kb), english())
     assert {n.entity for n in lex.names_at(tokens("loading bay four"), 0)} == {"bay_4"}
     assert {n.entity for n in lex.names_at(tokens("court 9"), 0)} == {"court_9"}
     assert {n.entity for n in lex.names_at(tokens("court nine"), 0)} == {"court_9"}
@@ -108,7 +109,7 @@ def test_a_possessive_label_is_said_without_its_apostrophe_and_a_title_in_full_o
         "room_w rdf:type ZoneOfInterest", 'room_w rdfs:label "waiting room"', "myself sees room_w",
         "p_k rdf:type Human", 'p_k rdfs:label "Mr Kowalski"', "p_d rdf:type Human", 'p_d rdfs:label "Doctor Ali"',
     ])  # fmt: skip
-    lex = Lexicon(build_snapshot(kb))
+    lex = Lexicon(build_snapshot(kb), english())
     for said in ("hygienists room", "hygienist room", "hygienist's room"):
         assert {n.entity for n in lex.names_at(tokens(said), 0) if len(n.words) == 2} == {"room_h"}, said
     assert lex.knows("hygienists")
@@ -130,7 +131,7 @@ def test_a_possessive_label_is_said_without_its_apostrophe_and_a_title_in_full_o
 def test_everyday_names_of_labelled_things(label: str, said: str) -> None:
     kb = KB()
     kb.update(["t1 rdf:type Artifact", f't1 rdfs:label "{label}"', "myself sees t1"])
-    lex = Lexicon(build_snapshot(kb))
+    lex = Lexicon(build_snapshot(kb), english())
     assert {n.entity for n in lex.names_at(tokens(said), 0)} == {"t1"}
     kb.close()
 
@@ -140,7 +141,7 @@ def test_a_closed_compound_is_named_by_its_general_noun_yielding_to_the_kbs_own(
     kb.update(["myself rdf:type Robot",
                "wb_1 rdf:type Artifact", 'wb_1 rdfs:label "workbench"', "myself sees wb_1",
                "cb_1 rdf:type Artifact", 'cb_1 rdfs:label "cupboard"', "myself sees cb_1"])  # fmt: skip
-    lex = Lexicon(build_snapshot(kb))
+    lex = Lexicon(build_snapshot(kb), english())
     assert [(n.entity, n.lexical) for n in lex.names_at(["bench"], 0)] == [("wb_1", True)]
     assert lex.names_at(["board"], 0) == []  # a cupboard is no board
     kb.close()
@@ -155,7 +156,7 @@ def test_a_label_of_a_million_letters_costs_one_pass() -> None:
                "myself sees box_h", "wb_1 rdf:type Artifact", f'wb_1 rdfs:label "{"y" * 100_000}bench"',
                "myself sees wb_1"])  # fmt: skip
     started = time.monotonic()
-    lex = Lexicon(build_snapshot(kb))
+    lex = Lexicon(build_snapshot(kb), english())
     assert time.monotonic() - started < 30, "one pass over the labels, not one per letter"
     assert [n.entity for n in lex.names_at(["bench"], 0)] == []  # no word of its own before "bench"
     kb.close()
@@ -168,7 +169,7 @@ def test_a_label_of_many_words_costs_one_pass() -> None:
     kb.update(["myself rdf:type Robot", "box_h rdf:type Artifact", f'box_h rdfs:label "{" ".join(["mobile phone"] * 30_000)}"',
                "myself sees box_h", "ph_1 rdf:type Artifact", 'ph_1 rdfs:label "mobile phone"', "myself sees ph_1"])  # fmt: skip
     started = time.monotonic()
-    lex = Lexicon(build_snapshot(kb))
+    lex = Lexicon(build_snapshot(kb), english())
     assert time.monotonic() - started < 30, "one pass over the labels, not one per word"
     assert "ph_1" in [n.entity for n in lex.names_at(["cell", "phone"], 0)]  # synonyms still found
     kb.close()

@@ -9,6 +9,7 @@ from dialogue.reference.grounding import build_snapshot
 from dialogue.reference.lexicon import Lexicon
 from dialogue.reference.relevance import mentioned, ranked
 from kb import KB
+from tests.dialogue.conftest import english
 
 ALICE = "person_alice"
 
@@ -44,7 +45,7 @@ def test_500_visible_objects_put_the_apple_on_the_shelf_grounds() -> None:
 def test_the_speaker_people_present_and_mentioned_things_come_first() -> None:
     kb = crowded()
     snapshot = build_snapshot(kb)
-    named = mentioned(Lexicon(snapshot), "put the apple on the shelf")
+    named = mentioned(Lexicon(snapshot, english()), "put the apple on the shelf")
     assert sorted(named) == ["apple_1", "shelf_1"]
     kept = [e.id for e in ranked(snapshot, ALICE, 10, named)]
     assert kept[:2] == [ALICE, "myself"]
@@ -70,4 +71,4 @@ def test_the_schema_enums_follow_the_ranking() -> None:
 def test_the_rules_understand_entities_beyond_the_prompts_share() -> None:
     snapshot = build_snapshot(crowded())
     assert len(snapshot.entities) > 500 and "zz_jar" in snapshot.entities  # unseen, sorted last
-    assert {e for m in Lexicon(snapshot).mentions(["jar"]) for e in m.entities} == {"zz_jar"}
+    assert {e for m in Lexicon(snapshot, english()).mentions(["jar"]) for e in m.entities} == {"zz_jar"}

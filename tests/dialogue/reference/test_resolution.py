@@ -1,11 +1,16 @@
 import pytest
 
 from dialogue.history import ASSISTANT_USER_ID, Utterance
+from dialogue.reference import resolution
 from dialogue.reference.english import tokens
 from dialogue.reference.grounding import Kind
-from dialogue.reference.resolution import ANYWHERE, antecedent, pronoun_kinds, resolve, resolve_id
+from dialogue.reference.resolution import ANYWHERE, antecedent, resolve, resolve_id
 from kb import KB
-from tests.dialogue.conftest import lexicon_of, scene_kb
+from tests.dialogue.conftest import english, lexicon_of, scene_kb
+
+
+def pronoun_kinds(words: list[str], kinds: frozenset[Kind]) -> frozenset[Kind]:
+    return resolution.pronoun_kinds(english(), words, kinds)
 
 THING: frozenset[Kind] = frozenset({"thing"})
 PERSON: frozenset[Kind] = frozenset({"person"})

@@ -1,7 +1,14 @@
 import pytest
 
+from dialogue.reference import synonyms as packaged
 from dialogue.reference.lexicon import phrase
-from dialogue.reference.synonyms import SynonymError, parse, synonyms
+from dialogue.reference.synonyms import Normaliser, SynonymError, Synonyms, parse
+from tests.dialogue.conftest import english
+
+
+def synonyms(normalise: Normaliser) -> Synonyms:
+    """The packaged lexicon file's (English)."""
+    return packaged.synonyms(english(), normalise)
 
 
 def test_groups_and_kinds() -> None:
