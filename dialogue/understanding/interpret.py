@@ -64,9 +64,9 @@ class Interpreter:
 
     def interpret(self, text: str) -> Outcome:
         spelled = corrected(joined(text, self.lexicon), self.lexicon)  # "the s u v brochure"
-        clean = cleaned(spelled.text)
+        clean = cleaned(self.lang, spelled.text)
         reader = self
-        if clean.taken_back and parse(clean.taken_back, self.robot_name).act != "unknown":
+        if clean.taken_back and parse(self.lang, clean.taken_back, self.robot_name).act != "unknown":
             # "hand Ravi the uh no wait hand him the stapler": what was taken back is context
             context = (*self.history, Utterance(self.speaker, clean.taken_back))
             reader = Interpreter(self.lexicon, self.speaker, context, self.robot_name)
@@ -83,13 +83,13 @@ class Interpreter:
         if addressed is not None:  # "lily put your book on the shelf": Lily is asked, not the robot
             return Outcome(f"I think that was for {addressed}.")
         if text.lower().startswith("if "):  # the condition covers every part ("if Ana comes, ...")
-            whole = parse(text, self.robot_name)
+            whole = parse(self.lang, text, self.robot_name)
             if whole.act == "conditional":
                 return self.act(whole)
         said_terse = self._terse(text)
         if said_terse is not None:
             return said_terse
-        parts = conjuncts(text)
+        parts = conjuncts(self.lang, text)
         if parts:
             combined = self._compound(parts)
             if combined is not None:
@@ -156,8 +156,9 @@ class Interpreter:
     def _single(self, text: str, terse_read: bool = True) -> Outcome:
         if terse_read and (outcome := self._terse(text)) is not None:
             return outcome
-        p = parse(text, self.robot_name)
-        if p.act != "unknown" and accepts(expanded(text)):  # "go on then" to "Shall I fetch it?"
+        p = parse(self.lang, text, self.robot_name)
+        # "go on then" to "Shall I fetch it?"
+        if p.act != "unknown" and accepts(self.lang, expanded(self.lang, text)):
             accepted = follow_up(self, p, text)
             if accepted is not None:
                 return accepted
@@ -175,7 +176,7 @@ class Interpreter:
         """ "The denim jacket. Pick it up." or "Felix wants the remote, can you hand it to him?": when
         the whole utterance is not one request, the last clause that is one is read with the clauses
         before it as context for its pronouns."""
-        said = clauses(text)
+        said = clauses(self.lang, text)
         if len(said) < 2:
             return whole
         question: Outcome | None = None
@@ -183,11 +184,14 @@ class Interpreter:
         for i in range(len(said) - 1, -1, -1):
             context = tuple(Utterance(self.speaker, c) for c in said[:i])
             reader = Interpreter(self.lexicon, self.speaker, (*self.history, *context), self.robot_name)
-            p = parse(said[i], self.robot_name)
+            p = parse(self.lang, said[i], self.robot_name)
             if p.act in {"command", "question"}:
                 # "fetch my bag its the blue one": what the next clause says of the thing asked for
-                more = description(said[i + 1]) if i + 1 < len(said) and p.slots.get("object") else None
-                outcome = reader.act(p, {"object": described(p.slots["object"], more)} if more else None)
+                more = None
+                if i + 1 < len(said) and p.slots.get("object"):
+                    more = description(self.lang, said[i + 1])
+                with_more = {"object": described(self.lang, p.slots["object"], more)} if more else None
+                outcome = reader.act(p, with_more)
                 if outcome.intent is not None:
                     return outcome
                 # A complete request in an earlier clause beats asking about an incomplete later one.

@@ -72,7 +72,7 @@ _NO = {"nope": "no", "nah": "no"}
 _OTHER = word_set("other another")
 
 
-def accepts(words: list[str]) -> bool:
+def accepts(lang: Language, words: list[str]) -> bool:
     """Whether the words only say yes ("yes please", "go on then", "that'd be lovely")."""
     if not words or not set(words) <= _ACCEPTING:
         return False
@@ -92,7 +92,8 @@ def follow_up(reader: Reader, p: Parse, text: str) -> Outcome | None:
     question = reader.history[spoken[-1]]
     if question.role != "assistant" or not question.text.rstrip().endswith("?"):
         return None
-    answer = [_NO.get(w, w) for w in expanded(text)]
+    lang = reader.lexicon.lang
+    answer = [_NO.get(w, w) for w in expanded(lang, text)]
     said = [w for w in answer if w != "no"]
     accepted = offer(reader, question, said)
     if accepted is not None:
@@ -101,7 +102,7 @@ def follow_up(reader: Reader, p: Parse, text: str) -> Outcome | None:
         return None
     before = spoken[-2]
     earlier = reader.within(reader.history[:before])
-    pending = parse(reader.history[before].text, reader.robot_name)
+    pending = parse(lang, reader.history[before].text, reader.robot_name)
     if pending.act != "command":
         return None
     first = earlier.act(pending)
@@ -110,12 +111,12 @@ def follow_up(reader: Reader, p: Parse, text: str) -> Outcome | None:
     confirmed = confirmation(earlier, pending, first, question, answer)
     if confirmed is not None:
         return _sure(confirmed)
-    fragment, more = _fragment(p, text)
+    fragment, more = _fragment(lang, p, text)
     if not fragment:
         return None
     merged = _merged(fragment, first)
     if more is not None:  # "the pink one, it's Carla's"
-        merged = described(merged, more)
+        merged = described(lang, merged, more)
     role = first.open_role
     if role == "object" and pending.intent in FREE_FORM_OBJECT:  # "What should I say?" "Dinner is ready"
         pending = replace(pending, text=text.strip().rstrip(".!?").strip() or None)
@@ -130,11 +131,11 @@ def _sure(outcome: Outcome) -> Outcome:
     return replace(outcome, confidence=0.8, more=())
 
 
-def _fragment(p: Parse, text: str) -> tuple[Words, Words | None]:
+def _fragment(lang: Language, p: Parse, text: str) -> tuple[Words, Words | None]:
     """The words of the answer ("mine, obviously": whose it is, without the interjection), and what
     a clause after it says of the thing ("..., it's Carla's"), if one does."""
-    said = clauses(text)
-    more = description(said[1]) if len(said) == 2 else None
+    said = clauses(lang, text)
+    more = description(lang, said[1]) if len(said) == 2 else None
     words = tokens(said[0]) if more is not None else p.words
     return tuple(OWNERS.get(w, w) for w in words if w not in INTERJECTIONS), more
 
@@ -156,10 +157,11 @@ def _merged(fragment: Words, first: Outcome) -> Words:
 def offer(reader: Reader, question: Utterance, said: list[str]) -> Outcome | None:
     """ "yes please" to "Would you like me to bring you a basket?": the request the robot offered,
     in the words of the person who accepts it ("bring me a basket")."""
-    if not accepts(said):
+    lang = reader.lexicon.lang
+    if not accepts(lang, said):
         return None
-    request = _offered(expanded(question.text.rstrip(" ?")))
-    outcome = reader.act(parse(" ".join(request), reader.robot_name)) if request else None
+    request = _offered(expanded(lang, question.text.rstrip(" ?")))
+    outcome = reader.act(parse(lang, " ".join(request), reader.robot_name)) if request else None
     if outcome is None or outcome.intent is None:
         return None
     return _sure(outcome)
@@ -181,7 +183,8 @@ def confirmation(earlier: Reader, pending: Parse, first: Outcome, question: Utte
                  said: list[str]) -> Outcome | None:  # fmt: skip
     """ "yes" or "no, the other one" to "Do you mean the flat brush?": the thing the robot guessed,
     or the one other thing the pending request's phrase names."""
-    asked = expanded(question.text.rstrip(" ?"))
+    lang = earlier.lexicon.lang
+    asked = expanded(lang, question.text.rstrip(" ?"))
     lead = next((c for c in _CONFIRMS if tuple(asked[: len(c)]) == c), None)
     role = first.open_role
     if lead is None or role is None or not first.open_phrase:
@@ -196,7 +199,7 @@ def confirmation(earlier: Reader, pending: Parse, first: Outcome, question: Utte
     if said[:1] == ["no"] and set(said) & _OTHER:  # "no the other one"
         others = [e for e in candidates if e.id != guessed.id]
         meant = others[0] if len(others) == 1 else None
-    elif said[:1] != ["no"] and accepts(said):
+    elif said[:1] != ["no"] and accepts(lang, said):
         meant = guessed
     else:
         return None
@@ -216,11 +219,12 @@ def correction(reader: Reader, text: str) -> Outcome | None:
     """ "sorry, I meant screen two" after "take the booster seat to screen 1": the last request again,
     with the phrase of the role that names the same kind of thing (a place for a place, a thing for
     a thing) replaced."""
-    parts = [strip_politeness([w for w in plain(part) if w not in _SOFTENING]) for part in text.split(",")]
+    lang = reader.lexicon.lang
+    parts = [strip_politeness(lang, [w for w in plain(lang, part) if w not in _SOFTENING])
+             for part in text.split(",")]  # fmt: skip
     words = [w for part in parts for w in part]
     lead = next((c for c in _CORRECTING if tuple(words[: len(c)]) == c), None)
     fragment = tuple(words[len(lead) :]) if lead is not None else _not_that(tuple(words))
-    lang = reader.lexicon.lang
     if lead is None and set(words) & _OTHER and set(content_words(lang, words)) <= _OTHER | _ONE:
         fragment = tuple(words)  # "no, the other one"
     if len(parts) == 2 and parts[0][:1] == ["not"] and parts[1]:  # "not the shed, the porch"
@@ -235,7 +239,7 @@ def correction(reader: Reader, text: str) -> Outcome | None:
     if not asked:
         return None
     earlier = reader.within(reader.history[: asked[-1]])
-    pending = parse(reader.history[asked[-1]].text, reader.robot_name)
+    pending = parse(lang, reader.history[asked[-1]].text, reader.robot_name)
     if pending.act != "command" or pending.intent is None:
         return None
     before = earlier.act(pending)
@@ -302,8 +306,9 @@ def continuation(reader: Reader, text: str) -> Outcome | None:
     """ "and the soup goes to table two", "and the soup to table two" after "take the steak to table
     four": the request just made (a bringing) again, for another thing and place. Alone, "X goes to
     Y" says no request."""
-    words = tuple(strip_politeness(plain(text)))
-    found = where_it_goes(words)
+    lang = reader.lexicon.lang
+    words = tuple(strip_politeness(lang, plain(lang, text)))
+    found = where_it_goes(lang, words)
     if found is None and "to" in words[1:-1]:  # said without its verb
         at = words.index("to")
         found = words[:at], ("to",), words[at + 1 :]
@@ -312,7 +317,7 @@ def continuation(reader: Reader, text: str) -> Outcome | None:
     asked = [i for i, u in enumerate(reader.history) if u.role == "user"]
     if not asked:
         return None
-    pending = parse(reader.history[asked[-1]].text, reader.robot_name)
+    pending = parse(lang, reader.history[asked[-1]].text, reader.robot_name)
     if pending.act != "command" or pending.intent != I.BRING_OBJECT:
         return None
     thing, _, place = found

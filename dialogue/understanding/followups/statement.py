@@ -35,7 +35,7 @@ def follow_up(text: str, lexicon: Lexicon, speaker: str, history: Sequence[Utter
     phrase = earlier.open_phrase
     if first is None or not first.clarify or phrase is None:
         return None
-    fragment: Words = tuple(w for w in normalise(text) if w not in _EMPHASIS)
+    fragment: Words = tuple(w for w in normalise(lexicon.lang, text) if w not in _EMPHASIS)
     if not fragment:
         return None
     head = tuple(w for w in phrase if w not in {"the", "a", "an"})

@@ -7,6 +7,7 @@ answer is computed from the KB snapshot in dialogue.understanding.questions.answ
 from __future__ import annotations
 
 from dialogue.reference.english import COLOURS, Words, word_set
+from dialogue.understanding.language import Language
 from dialogue.understanding.parsed import Parse
 from dialogue.understanding.speech.plain import split_at, starts
 from dialogue.understanding.words import WH, purpose
@@ -57,7 +58,7 @@ def _strip_ends(thing: Words, lead: frozenset[str], tail: frozenset[str]) -> Wor
     return thing
 
 
-def question(words: list[str]) -> Parse | None:  # noqa: C901
+def question(lang: Language, words: list[str]) -> Parse | None:  # noqa: C901
     w = tuple(words)
     if w[:2] in {("tell", "me"), ("show", "me")} and len(w) > 2 and w[2] in WH | {"about"}:
         if w[2] == "about":

@@ -40,11 +40,12 @@ class Asking:
 
     def __init__(self, lexicon: Lexicon, speaker: str, history: Sequence[Utterance] = ()) -> None:
         self.lexicon = lexicon
+        self.lang = lexicon.lang
         self.speaker = speaker
         self.history = tuple(history)
 
     def read(self, text: str) -> list[FactClaim] | None:
-        w = tuple(normalise(text))
+        w = tuple(normalise(self.lang, text))
         while w and w[-1] in _TAIL:
             w = w[:-1]
         if w in _WHO_AM_I:
@@ -82,7 +83,7 @@ class Asking:
         if words in {("he",), ("she",), ("they",)}:
             found = antecedent(self.lexicon, self.history, PERSON, speaker=self.speaker)
             return found.id if found is not None else None
-        if not content_words(self.lexicon.lang, words):
+        if not content_words(self.lang, words):
             return None
         found = resolve(self.lexicon, words, PERSON).one
         return found.id if found is not None else None

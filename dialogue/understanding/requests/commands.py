@@ -11,6 +11,7 @@ from collections.abc import Sequence
 from dataclasses import replace
 
 from dialogue.reference.english import DETERMINERS, FUNCTION_WORDS, MANY, ME, MODIFIER_START, PERSONAL, Words
+from dialogue.understanding.language import Language
 from dialogue.understanding.parsed import Act, Parse
 from dialogue.understanding.questions.grammar import question as _question
 from dialogue.understanding.requests.constructions import Said
@@ -47,13 +48,13 @@ __all__ = ["Parse", "Words", "parse"]
 _POINTING = sorted([(p, ("me",)) for p in HERE] + [(p, ("there",)) for p in THERE], key=lambda p: -len(p[0]))
 
 
-def parse(text: str, robot_name: str = "") -> Parse:
-    words = strip_vocative(strip_politeness(normalise(text), robot_name), robot_name)
+def parse(lang: Language, text: str, robot_name: str = "") -> Parse:
+    words = strip_vocative(lang, strip_politeness(lang, normalise(lang, text), robot_name), robot_name)
     if not words:
         return Parse("unknown", words=())
-    words[0] = verb_lemma(words[0])  # "(would you mind) picking up the cup"
+    words[0] = verb_lemma(lang, words[0])  # "(would you mind) picking up the cup"
     if words[0] == "no" and len(words) > 1 and words[1] not in {"need", "more", "thanks", "thank"}:
-        words = strip_politeness(words[1:], robot_name)
+        words = strip_politeness(lang, words[1:], robot_name)
     if len(words) > 1 and words[0] in HALTS and _negation(words[1:]):  # "stop, don't go"
         words = words[1:]
     if words and _negation(words):
@@ -64,24 +65,24 @@ def parse(text: str, robot_name: str = "") -> Parse:
         return Parse("unknown", words=())
     if words[0] in {"thanks", "thank"} or words == ["cheers"]:
         # "thanks, now put it on the shelf": the thanks is a preamble to the request
-        tail = strip_politeness(words[2:] if words[:2] == ["thank", "you"] else words[1:], robot_name)
-        return _request(text, tail) or _aside("thanks", words, tail)
+        tail = strip_politeness(lang, words[2:] if words[:2] == ["thank", "you"] else words[1:], robot_name)
+        return _request(lang, text, tail) or _aside("thanks", words, tail)
     if tuple(words) in SOCIAL and words[:1] != ["how"]:
         return Parse("greeting", words=tuple(words))
     # "welcome Lucia" asks the robot to greet her; "welcome back" is a greeting.
     welcoming = words[0] == "welcome" and words[1:] and words[1] not in {"back", "home", "to", "everyone"}
     for g in () if welcoming else GREETINGS:
         if starts(words, g):
-            rest = strip_vocative(strip_politeness(words[len(g) :], robot_name), robot_name)
+            rest = strip_vocative(lang, strip_politeness(lang, words[len(g) :], robot_name), robot_name)
             if tuple(rest) in SOCIAL:
                 return Parse("greeting", words=tuple(words))
             # "Good morning Maria" is still a greeting; "hi, grab the cup" is a request; "hello
             # robot, what's your name" a greeting and a question.
-            after = _request(text, rest)
+            after = _request(lang, text, rest)
             if after is not None and after.act == "question" and g not in ATTENTION:
                 return replace(after, greeted=True)
             return after or _aside("greeting", words, rest)
-    return _question(words) or command(text, words)
+    return _question(lang, words) or command(lang, text, words)
 
 
 #: At most this many words after a greeting or thanks are part of it ("good morning Mr Ito").
@@ -94,30 +95,30 @@ def _aside(act: Act, words: list[str], rest: list[str]) -> Parse:
     return Parse(act, words=tuple(words)) if len(rest) <= _ASIDE else Parse("unknown", words=tuple(words))
 
 
-def _request(text: str, words: list[str]) -> Parse | None:
+def _request(lang: Language, text: str, words: list[str]) -> Parse | None:
     """What follows a greeting or thanks, if it is a question or command."""
     if not words:
         return None
-    after = _question(words) or command(text, words)
+    after = _question(lang, words) or command(lang, text, words)
     return after if after.act != "unknown" else None
 
 
-def command(original: str, words: list[str]) -> Parse:
+def command(lang: Language, original: str, words: list[str]) -> Parse:
     """The request the words make: the first construction or verb frame that fits them."""
     w = _joined(words)
-    said = Said("", w, w, original)
+    said = Said(lang, "", w, w, original)
     for construction in CONSTRUCTIONS:
         found = construction(said)
         if found is not None:
             return found
     if w:
-        w = (verb_lemma(w[0]), *w[1:])
-    for verb, row in verb_index().get(w[0], ()) if w else ():
+        w = (verb_lemma(lang, w[0]), *w[1:])
+    for verb, row in verb_index(lang).get(w[0], ()) if w else ():
         if tuple(w[: len(verb)]) != verb:
             continue
         # what to say is said as it was ("out of paper"), the roles of a frame read joined
         rest = tuple(words[len(verb) :]) if row.frame.special is not None else w[len(verb) :]
-        found = _fit(row, Said(" ".join(verb), rest, w, original))
+        found = _fit(row, Said(lang, " ".join(verb), rest, w, original))
         if found is not None:
             return found
     return Parse("unknown", words=w)
@@ -144,7 +145,9 @@ def _fit(row: Row, said: Said) -> Parse | None:  # noqa: C901
     if frame.intent is None and not frame.serial:  # a verb no intent says ("hand out the sheets")
         return Parse("unknown", words=said.words)
     if frame.serial:  # "go get the cup", "come say hello to Ana"
-        return command(said.original, list(rest)) if rest and verb_lemma(rest[0]) in verb_index() else None
+        lang = said.lang
+        serial = rest and verb_lemma(lang, rest[0]) in verb_index(lang)
+        return command(lang, said.original, list(rest)) if serial else None
     if frame.whole and rest:
         return None
     rest, adjuncts = _adjuncts(rest, row)

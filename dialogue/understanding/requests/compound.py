@@ -56,25 +56,25 @@ class Part:
     aside: bool = False
 
 
-def _verb(text: str) -> str | None:
-    words = strip_politeness(normalise(text))
+def _verb(lang: Language, text: str) -> str | None:
+    words = strip_politeness(lang, normalise(lang, text))
     for greeting in GREETINGS:  # "hey robot take the book"
         if starts(words, greeting) and len(words) > len(greeting):
-            words = strip_politeness(words[len(greeting) :])
+            words = strip_politeness(lang, words[len(greeting) :])
             break
-    words = strip_vocative(words)
+    words = strip_vocative(lang, words)
     if not words:
         return None
-    return asked_verb(words[0])
+    return asked_verb(lang, words[0])
 
 
-def conjuncts(text: str) -> list[Part]:  # noqa: C901
+def conjuncts(lang: Language, text: str) -> list[Part]:  # noqa: C901
     """The commands of a compound request in order, or [] when the text is one request."""
     if QUOTED.search(text):  # "say 'stop and wait' to Tom": the quote is one text
         return []
     # (a conjunction as chat writes it: "get my bag n bring it over")
     toks = [(_one_word(word), start, end) for word, start, end in spans(text, marks=True)]
-    no_cut_after = _NO_CUT_AFTER | verbs() | _CONJUNCTIONS
+    no_cut_after = _NO_CUT_AFTER | verbs(lang) | _CONJUNCTIONS
     cuts: list[tuple[int, int]] = []  # (index of the first word of the new part, index after the cut)
     for i, (word, _, _) in enumerate(toks):
         if i == 0:
@@ -90,7 +90,7 @@ def conjuncts(text: str) -> list[Part]:  # noqa: C901
         elif word in _BARE_VERBS and toks[i - 1][0] not in no_cut_after:
             nxt = toks[i + 1][0] if i + 1 < len(toks) else ""
             # "...he is at the door go say hi to him": "go" or "come" before a verb starts a request too
-            serial = word in _SERIAL and asked_verb(nxt) in verbs()
+            serial = word in _SERIAL and asked_verb(lang, nxt) in verbs(lang)
             if nxt in _OBJECT_START or serial:
                 cuts.append((i, i))
     if not cuts:
@@ -106,7 +106,7 @@ def conjuncts(text: str) -> list[Part]:  # noqa: C901
         if s >= e:
             continue
         piece = text[toks[s][1] : toks[e - 1][2]]
-        if parts and _verb(piece) is None:  # "the cereals and the milk": not a new command
+        if parts and _verb(lang, piece) is None:  # "the cereals and the milk": not a new command
             parts[-1] = (parts[-1][0], e)
         else:
             parts.append((s, e))
@@ -115,19 +115,19 @@ def conjuncts(text: str) -> list[Part]:  # noqa: C901
     out = []
     for s, e in parts:
         piece = text[toks[s][1] : toks[e - 1][2]].strip(" ,;")
-        verb = _verb(piece)
+        verb = _verb(lang, piece)
         # ("go to the x-ray room and get it ready": no intent says the getting ready)
-        said = normalise(piece)
+        said = normalise(lang, piece)
         result = verb is not None and bool(said) and said[-1] in RESULTS
-        out.append(Part(piece, verb, verb in NO_INTENT_VERBS or result, _away(piece)))
+        out.append(Part(piece, verb, verb in NO_INTENT_VERBS or result, _away(lang, piece)))
     return out
 
 
-def _away(text: str) -> bool:
+def _away(lang: Language, text: str) -> bool:
     """Whether a request only says where not to be ("get out of the way", "move out of my way")."""
-    words = strip_vocative(strip_politeness(normalise(text)))
+    words = strip_vocative(lang, strip_politeness(lang, normalise(lang, text)))
     rest = tuple(w for w in words[1:] if w not in _A_BIT)
-    return bool(words) and asked_verb(words[0]) in verbs() and rest in AWAY
+    return bool(words) and asked_verb(lang, words[0]) in verbs(lang) and rest in AWAY
 
 
 _A_BIT = word_set("a bit little")

@@ -14,6 +14,7 @@ from lemminflect import getLemma
 
 from dialogue import intents as I
 from dialogue.reference.english import FUNCTION_WORDS, ME, Words, phrases, word_set
+from dialogue.understanding.language import Language
 from dialogue.understanding.parsed import Parse
 from dialogue.understanding.speech.clauses import finite
 from dialogue.understanding.speech.plain import QUOTED, expanded, message, original_text, split_at, starts
@@ -44,6 +45,8 @@ NOT_THINGS = word_set("i we you he she what where who which how why when there")
 
 @dataclass(frozen=True)
 class Said:
+    #: The language the words are read in.
+    lang: Language
     #: The verb phrase as the table has it ("pick", "get hold of"; "" before any verb is read).
     verb: str
     #: The words after the verb phrase (all the words when `verb` is "").
@@ -122,7 +125,7 @@ def _pronoun(who: Words) -> Words:
 
 def belonging(said: Said) -> Parse | None:
     """ "the butter goes back in the fridge", "this belongs on the shelf": put it there."""
-    found = where_it_goes(said.words)
+    found = where_it_goes(said.lang, said.words)
     if found is None or found[1] in _NOT_PUT:  # "goes to town" is no place to put it
         return None
     thing, place, where = found
@@ -130,7 +133,7 @@ def belonging(said: Said) -> Parse | None:
     return replace(parse, marks={"recipient": " ".join(place)})
 
 
-def where_it_goes(w: Words) -> tuple[Words, Words, Words] | None:
+def where_it_goes(lang: Language, w: Words) -> tuple[Words, Words, Words] | None:
     """ "the butter goes back in the fridge", "the soup goes to table two": the thing, the
     preposition and the place; None when the words say no such thing."""
     for i in range(1, min(len(w) - 2, 6)):
@@ -163,7 +166,7 @@ def a_hand(said: Said) -> Parse | None:
         return None
     after = rest[at + 2 :]
     after = after[1:] if after[:1] in {("getting",), ("with",)} else after
-    return helping(Said("help", (*rest[:at], *after), said.words, said.original))
+    return helping(Said(said.lang, "help", (*rest[:at], *after), said.words, said.original))
 
 
 def helping(said: Said) -> Parse | None:
@@ -210,7 +213,8 @@ def letting_know(said: Said) -> Parse | None:
     """ "let Tom know that dinner is ready" is "tell Tom that...". """
     if "know" not in said.rest:
         return None
-    return speech(Said("tell", tuple(x for x in said.rest if x != "know"), said.words, said.original))
+    told = tuple(x for x in said.rest if x != "know")
+    return speech(Said(said.lang, "tell", told, said.words, said.original))
 
 
 def _plural(word: str) -> bool:
@@ -258,7 +262,7 @@ def speech(said: Said) -> Parse:
     quoted = QUOTED.search(original)
     if quoted:
         # The quoted words are the text; the recipient is found outside the quotes only.
-        outside = expanded(original[: quoted.start()] + " " + original[quoted.end() :])
+        outside = expanded(said.lang, original[: quoted.start()] + " " + original[quoted.end() :])
         rest = tuple(outside[outside.index(verb) + 1 :]) if verb in outside else ()
         rest = tuple(x for x in rest if x not in {"that", "please"})
         recipient = rest[1:] if rest[:1] == ("to",) else rest
@@ -289,7 +293,7 @@ def speech(said: Said) -> Parse:
 
         if not text:  # "tell Maria": the interpreter asks what to say
             return said.command(I.SAY, recipient=recipient)
-        words = message(original, text[1:] if text[0] == "please" else text)
+        words = message(said.lang, original, text[1:] if text[0] == "please" else text)
         said_text = f"please {words}" if text[0] == "please" else words
         return said.command(I.SAY, text=said_text, recipient=recipient)
     if rest[:1] == ("to",):  # "say to Sandeep that the film starts soon": to whom, then what
@@ -298,7 +302,7 @@ def speech(said: Said) -> Parse:
     text_words, recipient = (found[0], found[2]) if found is not None else (rest, ())
     if not text_words:
         return unknown
-    return said.command(I.SAY, text=original_text(original, text_words), recipient=recipient)
+    return said.command(I.SAY, text=original_text(said.lang, original, text_words), recipient=recipient)
 
 
 def _said_to(said: Said, rest: Words) -> Parse:
@@ -314,4 +318,4 @@ def _said_to(said: Said, rest: Words) -> Parse:
         return Parse("unknown", words=said.words)
     if not text:
         return said.command(I.SAY, recipient=recipient)
-    return said.command(I.SAY, text=message(said.original, text), recipient=recipient)
+    return said.command(I.SAY, text=message(said.lang, said.original, text), recipient=recipient)

@@ -21,6 +21,7 @@ from typing import Literal
 
 from dialogue import intents as I
 from dialogue.reference.english import ME, Words, phrases, word_set
+from dialogue.understanding.language import Language
 from dialogue.understanding.parsed import Parse
 from dialogue.understanding.requests import constructions as C
 from dialogue.understanding.words import (
@@ -210,7 +211,7 @@ class Row:
 
 
 @cache
-def verb_index() -> dict[str, tuple[tuple[Words, Row], ...]]:
+def verb_index(lang: Language) -> dict[str, tuple[tuple[Words, Row], ...]]:
     """First word of a verb phrase -> (phrase, row), longest phrase first, then in table order."""
     index: dict[str, list[tuple[Words, Row]]] = {}
     for order, frame in enumerate(FRAMES):
@@ -223,12 +224,12 @@ def verb_index() -> dict[str, tuple[tuple[Words, Row], ...]]:
 
 
 @cache
-def verbs() -> frozenset[str]:
+def verbs(lang: Language) -> frozenset[str]:
     """Every word a request may start with (the first words of the table's verb phrases)."""
-    return frozenset(verb_index())
+    return frozenset(verb_index(lang))
 
 
 @cache
-def known_verbs() -> frozenset[str]:
+def known_verbs(lang: Language) -> frozenset[str]:
     """The table's verbs and the actions the robot has no intent for ("find", "open")."""
-    return verbs() | NO_INTENT_VERBS
+    return verbs(lang) | NO_INTENT_VERBS

@@ -190,7 +190,7 @@ class Referents:
         wanted = purpose(tuple(bare_words[1:])) if bare_words[:1] in (["something"], ["anything"]) else None
         if wanted is not None:  # "something to eat": food; "something to cut this with": a cutting tool
             words = wanted
-        words = _apposed(_not_the_other(self.lang, _placed_pronoun(words)))
+        words = _apposed(self.lang, _not_the_other(self.lang, _placed_pronoun(words)))
         content = content_words(self.lang, words)
         if "person" in kinds and content and set(content) <= ME | {"here"}:
             return Ref(speaker=True)
@@ -357,14 +357,14 @@ class Referents:
         return f"Sorry, I don't see any {said_phrase(self.lang, words) or phrase}."
 
 
-def _apposed(words: Words) -> Words:
+def _apposed(lang: Language, words: Words) -> Words:
     """ "my mug the yellow one": a second phrase of "one" says which the first is ("my yellow mug")."""
     if "one" not in words and "ones" not in words:
         return words
     for j in range(1, len(words)):
         if words[j] in NP_START and words[j - 1] not in NP_START and words[j - 1] not in MODIFIER_START:
             if "one" in words[j:] or "ones" in words[j:]:
-                return described(words[:j], words[j:])
+                return described(lang, words[:j], words[j:])
             return words
     return words
 

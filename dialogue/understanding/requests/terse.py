@@ -27,16 +27,17 @@ _SUBJECTS = frozenset({"you", "robot"})
 
 def terse(text: str, lexicon: Lexicon, robot_name: str = "") -> str | None:
     """The request said in the grammar's order, or None when the text is no terse request."""
-    words = strip_politeness(normalise(text), robot_name)
+    lang = lexicon.lang
+    words = strip_politeness(lang, normalise(lang, text), robot_name)
     subject = False
     while words[:1] and words[0] in _SUBJECTS | {robot_name} and len(words) > 1:
         words, subject = words[1:], True
     if not words:
         return None
-    at = next((i for i, w in enumerate(words) if asked_verb(w) in verbs()), None)
+    at = next((i for i, w in enumerate(words) if asked_verb(lang, w) in verbs(lang)), None)
     if at is None:
         return _verbless(words, lexicon)
-    verb, front, rest = asked_verb(words[at]) or words[at], words[:at], words[at + 1 :]
+    verb, front, rest = asked_verb(lang, words[at]) or words[at], words[:at], words[at + 1 :]
     if front:
         named = _named(front, lexicon)
         if named is None:

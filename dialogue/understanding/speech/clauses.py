@@ -32,6 +32,7 @@ from dialogue.reference.english import (
     spans,
     word_set,
 )
+from dialogue.understanding.language import Language
 from dialogue.understanding.speech.plain import expanded, strip_politeness
 from dialogue.understanding.words import NP_START, OWNERS, TAGS
 
@@ -69,21 +70,21 @@ _THINKING = (("i", "think"), ("i", "believe"), ("i", "guess"), ("probably",), ("
 _PUT = word_set("left put placed dropped saw had")
 
 
-def clauses(text: str) -> list[str]:
+def clauses(lang: Language, text: str) -> list[str]:
     """The text's clauses, as parts of the original text (its casing kept), in order."""
     out: list[str] = []
     for piece in _BREAK.split(text):
         if piece.strip():
-            out.extend(_run_on(piece.strip()))
+            out.extend(_run_on(lang, piece.strip()))
     return out
 
 
-def _run_on(text: str) -> list[str]:
+def _run_on(lang: Language, text: str) -> list[str]:
     """A clause without punctuation cut where a new clause starts."""
     if len(lowered(text)) != len(text):
         return [text]
     toks = spans(text)
-    words = [expanded(w) for w, _, _ in toks]
+    words = [expanded(lang, w) for w, _, _ in toks]
     cuts = [i for i in range(1, len(toks)) if _starts_clause(words, i)]
     if not cuts:
         return [text]
@@ -165,11 +166,11 @@ def finite(word: str, third_person: bool) -> bool:
     return False
 
 
-def description(text: str) -> Words | None:
+def description(lang: Language, text: str) -> Words | None:
     """What a clause that describes the thing just asked for says of it ("it's the blue one by the
     door": the blue one by the door; "I think they're in the hall": in the hall; "I left it
     on the bench": on the bench), or None when the clause is not one."""
-    words = strip_politeness(expanded(text))
+    words = strip_politeness(lang, expanded(lang, text))
     for lead in _THINKING:
         if tuple(words[: len(lead)]) == lead:
             words = words[len(lead) :]
@@ -185,7 +186,7 @@ def description(text: str) -> Words | None:
     return rest if located or one or whose else None
 
 
-def described(thing: Words, said: Words) -> Words:
+def described(lang: Language, thing: Words, said: Words) -> Words:
     """The request's phrase for a thing with what a later clause said of it: "my bag" and "the
     blue one by the door" make "my blue bag by the door"."""
     if said[0] in MODIFIER_START:

@@ -24,6 +24,7 @@ from dialogue.reference.english import (
     tokens,
     word_set,
 )
+from dialogue.understanding.language import Language
 from dialogue.understanding.words import (
     ASKING,
     CHAT,
@@ -46,7 +47,7 @@ _NOT_NOUNS = word_set(
 QUOTED = re.compile(r"[\"\u201c\u201d]([^\"\u201c\u201d]+)[\"\u201c\u201d]")
 
 
-def expanded(text: str) -> list[str]:
+def expanded(lang: Language, text: str) -> list[str]:
     """The text's words with contractions expanded ("wheres" -> "where is"; "its" -> "it is" where
     no noun follows it: "its on the bench", "its empty", but "its lid")."""
     words = tokens(text)
@@ -91,12 +92,12 @@ def _is_it_is(after: tuple[str, ...]) -> bool:
     return len(after) == 1 and "ADJ" in lemmas
 
 
-def plain(text: str) -> list[str]:
+def plain(lang: Language, text: str) -> list[str]:
     """The text's words with contractions expanded and fillers and stutters removed."""
-    return unrepeated(without_fillers(expanded(text)))
+    return unrepeated(without_fillers(lang, expanded(lang, text)))
 
 
-def without_fillers(words: list[str]) -> list[str]:
+def without_fillers(lang: Language, words: list[str]) -> list[str]:
     """ "put the uh candle", "pick up the uh you know the cup": fillers wherever they are, "you know"
     mid-sentence but not in "do you know where..."."""
     words = [w for w in words if w not in FILLERS]
@@ -114,7 +115,7 @@ _MY_AFTER = word_set("me up down out off away")
 _NO_NOUN = FUNCTION_WORDS | NP_START
 
 
-def my_for_me(words: list[str]) -> list[str]:
+def my_for_me(lang: Language, words: list[str]) -> list[str]:
     """ "me" said for "my" before a noun, where "me" could be no object: after a particle or another "me"."""
     out = list(words)
     for i in range(1, len(out) - 1):
@@ -135,7 +136,7 @@ def unrepeated(words: list[str]) -> list[str]:
     return out
 
 
-def original_text(text: str, words: Sequence[str]) -> str:
+def original_text(lang: Language, text: str, words: Sequence[str]) -> str:
     """The part of the original text that the (normalised) words came from, with its casing."""
     if len(lowered(text)) != len(text) or not words:
         return " ".join(words)
@@ -147,17 +148,17 @@ def original_text(text: str, words: Sequence[str]) -> str:
     return " ".join(words)
 
 
-def message(text: str, words: Sequence[str]) -> str:
+def message(lang: Language, text: str, words: Sequence[str]) -> str:
     """What to say, as said: the original text from `words` to the end of the utterance, less the
     politeness addressed to the robot ("tell Ana her taxi is here now please": "her taxi is here
     now"; `words` were read without the "now", which is the message's)."""
     if len(lowered(text)) != len(text) or not words:
-        return original_text(text, words)
+        return original_text(lang, text, words)
     found = [(w, start, end) for word, start, end in spans(text) for w in CONTRACTIONS.get(word, (word,))]
     n = len(words)
     at = next((i for i in range(len(found) - n + 1) if [f[0] for f in found[i : i + n]] == list(words)), None)
     if at is None:
-        return original_text(text, words)
+        return original_text(lang, text, words)
     tail = found[at:]
     dropped = True
     while dropped and len(tail) > n:
@@ -177,10 +178,10 @@ def starts(words: Sequence[str], prefix: Sequence[str]) -> bool:
 
 
 @lru_cache(maxsize=64)
-def _openings(robot_name: str) -> dict[str, tuple[Words, ...]]:
+def _openings(lang: Language, robot_name: str) -> dict[str, tuple[Words, ...]]:
     """The polite openings (and the robot's name) by first word, the longest first: "would you be
     able to" before "would you"."""
-    name = tuple(expanded(robot_name)) if robot_name else ()
+    name = tuple(expanded(lang, robot_name)) if robot_name else ()
     by_first: dict[str, list[Words]] = {}
     for p in (*POLITE_PREFIXES, name):
         if p:
@@ -188,8 +189,8 @@ def _openings(robot_name: str) -> dict[str, tuple[Words, ...]]:
     return {w: tuple(sorted(ps, key=len, reverse=True)) for w, ps in by_first.items()}
 
 
-def strip_politeness(words: list[str], robot_name: str = "") -> list[str]:
-    openings = _openings(robot_name)
+def strip_politeness(lang: Language, words: list[str], robot_name: str = "") -> list[str]:
+    openings = _openings(lang, robot_name)
     changed = True
     while changed and words:
         changed = False

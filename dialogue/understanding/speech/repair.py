@@ -11,6 +11,7 @@ from functools import lru_cache
 from lemminflect import getAllLemmas, getInflection
 
 from dialogue.reference.english import MODIFIER_START, phrases
+from dialogue.understanding.language import Language
 from dialogue.understanding.requests.frames import known_verbs, verbs
 from dialogue.understanding.speech.plain import (
     expanded,
@@ -33,10 +34,10 @@ from dialogue.understanding.words import (
 
 
 @lru_cache(maxsize=4096)
-def verb_lemma(word: str) -> str:
+def verb_lemma(lang: Language, word: str) -> str:
     """The table's verb a word is an inflection of ("picking" -> "pick", "took" -> "take", "puts"
     -> "put"), else the word unchanged. Auxiliaries stay ("does you..." is not "do")."""
-    known = known_verbs()
+    known = known_verbs(lang)
     if word in known or word in AUXILIARIES:
         return word
     lemmas: tuple[str, ...] = getAllLemmas(word).get("VERB", ())
@@ -44,20 +45,20 @@ def verb_lemma(word: str) -> str:
 
 
 @lru_cache(maxsize=4096)
-def asked_verb(word: str) -> str | None:
+def asked_verb(lang: Language, word: str) -> str | None:
     """The table's verb when the word is one as a request says it: the bare verb, or its -ing form
     after "would you mind" ("picking"); None otherwise. "Someone *left* the keys" is no request,
     so a past or third-person form never makes the word before it a vocative."""
-    lemma = verb_lemma(word)
-    if lemma not in known_verbs():
+    lemma = verb_lemma(lang, word)
+    if lemma not in known_verbs(lang):
         return None
     return lemma if word == lemma or word in getInflection(lemma, "VBG") else None
 
 
-def normalise(text: str) -> list[str]:
+def normalise(lang: Language, text: str) -> list[str]:
     """Lower-case words with contractions expanded, fillers and stutters removed and a self-repair
     applied ("put the put the knife uh on the table", "bring me the uh no wait put the candle...")."""
-    return repaired(plain(text))
+    return repaired(lang, plain(lang, text))
 
 
 _MARKERS = frozenset(REPAIRS)
@@ -76,21 +77,21 @@ class Cleaned:
     taken_back: str = ""
 
 
-def cleaned(text: str) -> Cleaned:
+def cleaned(lang: Language, text: str) -> Cleaned:
     """The text with stutters and self-repairs resolved, when it has any (else unchanged, so that
     quoted words and casing survive): what a compound request is cut in."""
-    words = [w for w in expanded(text) if w not in FILLERS]
-    before, fixed = repair(unrepeated(my_for_me(words)))
+    words = [w for w in expanded(lang, text) if w not in FILLERS]
+    before, fixed = repair(lang, unrepeated(my_for_me(lang, words)))
     if fixed == words:
         return Cleaned(text)
     return Cleaned(" ".join(fixed), " ".join(before) if before != fixed[: len(before)] else "")
 
 
-def repaired(words: list[str]) -> list[str]:
-    return repair(words)[1]
+def repaired(lang: Language, words: list[str]) -> list[str]:
+    return repair(lang, words)[1]
 
 
-def repair(words: list[str]) -> tuple[list[str], list[str]]:
+def repair(lang: Language, words: list[str]) -> tuple[list[str], list[str]]:
     """The words a self-repair took back and what the utterance says with it applied: after the
     last repair marker, a new request replaces the one before it ("bring me the uh no wait put the
     candle..."), a noun phrase the last one ("pick up the black umbrella no the yellow one": the
@@ -104,8 +105,8 @@ def repair(words: list[str]) -> tuple[list[str], list[str]]:
             start = next((i - k for k in (2, 1) if tuple(words[i - k : i + len(marker)]) in _MARKERS), i)
             if after[:1] and after[0] in _MARKER_STARTS:
                 continue  # "no wait ...": the longer marker, read at its own place
-            request = strip_politeness(after)
-            if request and asked_verb(request[0]) in verbs():
+            request = strip_politeness(lang, after)
+            if request and asked_verb(lang, request[0]) in verbs(lang):
                 return words[:start], after
             if request and (request[0] in NP_START or request[0] in _PLACE_WORDS):
                 fixed = _rephrased(words[:start], request)
@@ -131,15 +132,15 @@ def _rephrased(before: list[str], phrase: list[str]) -> list[str] | None:
     return [*before[: starts[-1]], *(head if w in {"one", "ones"} else w for w in phrase)]
 
 
-def strip_vocative(words: list[str], robot_name: str = "") -> list[str]:
+def strip_vocative(lang: Language, words: list[str], robot_name: str = "") -> list[str]:
     """ "john can you go to the bathroom", "michael go to the kitchen": the addressee's name (one
     word before a request) is not part of the request."""
-    commands = verbs()
-    while len(words) > 2 and words[0] in LEAD_FILLERS and asked_verb(words[1]) in commands:
+    commands = verbs(lang)
+    while len(words) > 2 and words[0] in LEAD_FILLERS and asked_verb(lang, words[1]) in commands:
         words = words[1:]
     if len(words) < 3 or words[0] in NOT_VOCATIVE or words[0] in commands or not words[0].isalpha():
         return words
     polite = any(starts(words[1:], p) and p[-1:] == ("you",) for p in POLITE_PREFIXES)
-    if polite or asked_verb(words[1]) in commands:
-        return strip_politeness(words[1:], robot_name)
+    if polite or asked_verb(lang, words[1]) in commands:
+        return strip_politeness(lang, words[1:], robot_name)
     return words

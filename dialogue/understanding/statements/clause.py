@@ -57,6 +57,7 @@ class ClauseReader:
     def __init__(self, lexicon: Lexicon, speaker: str, history: Sequence[Utterance] = (),
                  overrides: Mapping[Words, Words] | None = None) -> None:
         self.lexicon = lexicon
+        self.lang = lexicon.lang
         self.snapshot = lexicon.snapshot
         self.speaker = speaker
         #: Phrases read as other words: an ambiguous one completed by the answer to the robot's
@@ -72,7 +73,7 @@ class ClauseReader:
         if words in {("he",), ("she",)}:
             found = antecedent(self.lexicon, self.history, PERSON, speaker=self.speaker)
             return found.id if found is not None else None
-        if not content_words(self.lexicon.lang, words) or not all(w.isalpha() for w in words):
+        if not content_words(self.lang, words) or not all(w.isalpha() for w in words):
             return None
         res = resolve(self.lexicon, words, PERSON)
         if res.ambiguous:
@@ -89,7 +90,7 @@ class ClauseReader:
         said = [w for w in words if w in POSSESSIVES]
         owner = self.speaker if said[:1] in (["my"], ["our"]) else None
         bare = tuple(w for w in words if w not in POSSESSIVES)
-        if not content_words(self.lexicon.lang, bare) or is_pronoun(self.lexicon.lang, bare):
+        if not content_words(self.lang, bare) or is_pronoun(self.lang, bare):
             found = None if fits is not None else antecedent(
                 self.lexicon, self.history, kinds, speaker=self.speaker
             )
@@ -107,8 +108,8 @@ class ClauseReader:
             return res.one.id, owner
         if res.ambiguous:
             raise Refused(clarifying_question(self.snapshot, res.matches), clarify=True)
-        if any(not self.lexicon.knows(w) for w in content_words(self.lexicon.lang, bare)) and any(
-            self.lexicon.knows(w) for w in content_words(self.lexicon.lang, bare)
+        if any(not self.lexicon.knows(w) for w in content_words(self.lang, bare)) and any(
+            self.lexicon.knows(w) for w in content_words(self.lang, bare)
         ):
             raise Unclaimed  # names the KB knows among words it does not: leave it to a model
-        raise Refused(f"Sorry, I don't know any {' '.join(content_words(self.lexicon.lang, bare))}.")
+        raise Refused(f"Sorry, I don't know any {' '.join(content_words(self.lang, bare))}.")

@@ -97,12 +97,12 @@ class Statements(Likings):
             return None  # a question (dialogue.understanding.questions.told reads those about what was told)
         told = Told()
         # run-on clauses too: "my keys are in the drawer can you get them" is no statement only
-        clauses = [part for c in _CLAUSES.split(text) if c.strip() for part in run_on_clauses(c)]
+        clauses = [part for c in _CLAUSES.split(text) if c.strip() for part in run_on_clauses(self.lang, c)]
         correcting = False
         refused: Refused | None = None  # said once every clause is known to be a statement
         try:
             for clause in clauses:
-                words = self._lead(normalise(clause))
+                words = self._lead(normalise(self.lang, clause))
                 if not words:
                     continue
                 if self._greeting(words):
@@ -159,12 +159,12 @@ class Statements(Likings):
         for lead, surely in _NAME_LEADS:
             rest = w[len(lead) :]
             if w[: len(lead)] == lead and rest:
-                if not (given_name(rest) if surely else name_like(rest, original_text(clause, list(rest)))):
+                if not (given_name(self.lang, rest) if surely else self._name_like(rest, clause)):
                     raise Unclaimed  # "my name is not important", "call me later"
                 return [self._named(self.speaker, rest, clause)]
-        if w[-3:] == ("is", "my", "name") and given_name(w[:-3]):  # "Bob is my name"
+        if w[-3:] == ("is", "my", "name") and given_name(self.lang, w[:-3]):  # "Bob is my name"
             return [self._named(self.speaker, w[:-3], clause)]
-        if w[:2] == ("i", "am") and name_like(w[2:], original_text(clause, list(w[2:]))):
+        if w[:2] == ("i", "am") and self._name_like(w[2:], clause):
             return [self._named(self.speaker, w[2:], clause)]
         if w[:2] in {("his", "name"), ("her", "name"), ("their", "name")} and w[2:3] in {("is",), ("'s",)}:
             return [self._named(self._stranger(), w[3:], clause)]
@@ -172,18 +172,21 @@ class Statements(Likings):
             rest = w[2:] if w[0] != "meet" else w[1:]
             if rest[:1] == ("my",) and rest[1:2] and rest[1] in _FRIEND:
                 rest = rest[2:]
-            if name_like(rest, original_text(clause, list(rest))) and not self._known_words(rest):
+            if self._name_like(rest, clause) and not self._known_words(rest):
                 who = self.speaker if self._asked_name() else self._stranger()
                 return [self._named(who, rest, clause)]
             return None
         answer = w[2:] if w[:2] == ("it", "is") else w
-        if (correcting or self._asked_name()) and name_like(answer, original_text(clause, list(answer))):
+        if (correcting or self._asked_name()) and self._name_like(answer, clause):
             who = self._last_named() if correcting else self.speaker
             return [self._named(who, answer, clause)]
         return None
 
+    def _name_like(self, words: Words, clause: str) -> bool:
+        return name_like(self.lang, words, original_text(self.lang, clause, list(words)))
+
     def _named(self, who: str, words: Words, clause: str) -> FactClaim:
-        name = clean_name(original_text(clause, list(words)))
+        name = clean_name(original_text(self.lang, clause, list(words)))
         if not name:
             raise Unclaimed  # longer than any name
         return fact(who, "name", name)
@@ -255,7 +258,7 @@ class Statements(Likings):
             return self._placed(w[verb + 1 :]) if w[verb] in _PUT else None
         for i in range(1, len(w) - 1):
             if w[i] in _BE:
-                if i > 1 and w[0] == asked_verb(w[0]):
+                if i > 1 and w[0] == asked_verb(self.lang, w[0]):
                     return None  # a request ("tell Ana her taxi is on time"), not a subject ("water is...")
                 return self._where(w[:i], w[i + 1 :])
         return None

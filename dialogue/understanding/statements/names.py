@@ -14,6 +14,7 @@ from __future__ import annotations
 from lemminflect import getAllLemmas, getInflection
 
 from dialogue.reference.english import FUNCTION_WORDS, word_set
+from dialogue.understanding.language import Language
 from dialogue.understanding.words import NEEDS
 
 Words = tuple[str, ...]
@@ -41,7 +42,7 @@ def clean_name(text: str) -> str:
     return name if name != name.lower() else name.title()
 
 
-def name_like(words: Words, original: str) -> bool:
+def name_like(lang: Language, words: Words, original: str) -> bool:
     """Whether the words of "I'm X" are a name: one to three words, none a function word, and
     (for lower-case speech-recogniser text) none an adjective, adverb, participle or number."""
     # ("I'm peckish": a need the rules' grammar reads, whatever a lemmatiser knows of the word)
@@ -52,7 +53,7 @@ def name_like(words: Words, original: str) -> bool:
     return not any(w in FUNCTION_WORDS or _descriptive(w) for w in words) and not words[0].endswith("ing")
 
 
-def given_name(words: Words) -> bool:
+def given_name(lang: Language, words: Words) -> bool:
     """Whether the words after "my name is" are a name: "not ...", "a ..." are not."""
     return 1 <= len(words) <= 4 and not any(w in NOT_NAMES for w in words)
 

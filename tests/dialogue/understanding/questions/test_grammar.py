@@ -2,10 +2,20 @@
 
 import pytest
 
-from dialogue.understanding.questions.grammar import question
-from dialogue.understanding.speech.plain import expanded
+from dialogue.understanding.parsed import Parse
+from dialogue.understanding.questions import grammar
+from dialogue.understanding.speech import plain
 from kb import KB
+from tests.dialogue.conftest import english
 from tests.dialogue.understanding.test_interpret import say
+
+
+def question(words: list[str]) -> Parse | None:
+    return grammar.question(english(), words)
+
+
+def expanded(text: str) -> list[str]:
+    return plain.expanded(english(), text)
 
 
 @pytest.mark.parametrize(

@@ -1,9 +1,16 @@
 import pytest
 
 from dialogue import intents as I
-from dialogue.understanding.requests.commands import parse
+from dialogue.understanding.parsed import Parse
+from dialogue.understanding.requests import commands
 from kb import KB
+from tests.dialogue.conftest import english
 from tests.dialogue.understanding.test_interpret import say
+
+
+def parse(text: str, robot_name: str = "") -> Parse:
+    """The grammar's reading of the words (in English)."""
+    return commands.parse(english(), text, robot_name)
 
 
 @pytest.mark.parametrize(

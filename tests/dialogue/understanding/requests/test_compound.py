@@ -3,9 +3,15 @@
 import pytest
 
 from dialogue import intents as I
-from dialogue.understanding.requests.compound import conjuncts
+from dialogue.understanding.requests import compound
+from dialogue.understanding.requests.compound import Part
 from kb import KB
+from tests.dialogue.conftest import english
 from tests.dialogue.understanding.test_interpret import say
+
+
+def conjuncts(text: str) -> list[Part]:
+    return compound.conjuncts(english(), text)
 
 
 @pytest.mark.parametrize(

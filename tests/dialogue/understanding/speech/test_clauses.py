@@ -6,9 +6,21 @@ from dialogue import intents as I
 from dialogue.history import Utterance
 from dialogue.understanding.interpret import Interpreter
 from dialogue.understanding.outcome import Outcome
-from dialogue.understanding.speech.clauses import clauses, described, description
+from dialogue.understanding.speech import clauses as cut
 from kb import KB
-from tests.dialogue.conftest import lexicon_of, scene_kb
+from tests.dialogue.conftest import english, lexicon_of, scene_kb
+
+
+def clauses(text: str) -> list[str]:
+    return cut.clauses(english(), text)
+
+
+def described(thing: tuple[str, ...], said: tuple[str, ...]) -> tuple[str, ...]:
+    return cut.described(english(), thing, said)
+
+
+def description(text: str) -> tuple[str, ...] | None:
+    return cut.description(english(), text)
 
 SPEAKER = "person_kim"
 

@@ -3,9 +3,32 @@
 import pytest
 
 from dialogue import intents as I
-from dialogue.understanding.requests.commands import parse
-from dialogue.understanding.speech.plain import expanded, strip_politeness
-from dialogue.understanding.speech.repair import Cleaned, cleaned, normalise
+from dialogue.understanding.parsed import Parse
+from dialogue.understanding.requests import commands
+from dialogue.understanding.speech import plain, repair
+from dialogue.understanding.speech.repair import Cleaned
+from tests.dialogue.conftest import english
+
+
+def parse(text: str, robot_name: str = "") -> Parse:
+    """The grammar's reading of the words (in English)."""
+    return commands.parse(english(), text, robot_name)
+
+
+def expanded(text: str) -> list[str]:
+    return plain.expanded(english(), text)
+
+
+def strip_politeness(words: list[str], robot_name: str = "") -> list[str]:
+    return plain.strip_politeness(english(), words, robot_name)
+
+
+def cleaned(text: str) -> Cleaned:
+    return repair.cleaned(english(), text)
+
+
+def normalise(text: str) -> list[str]:
+    return repair.normalise(english(), text)
 
 
 @pytest.mark.parametrize(

@@ -2,7 +2,17 @@
 
 from __future__ import annotations
 
-from dialogue.understanding.statements.names import clean_name, given_name, name_like
+from dialogue.understanding.statements import names
+from dialogue.understanding.statements.names import clean_name
+from tests.dialogue.conftest import english
+
+
+def name_like(words: tuple[str, ...], original: str) -> bool:
+    return names.name_like(english(), words, original)
+
+
+def given_name(words: tuple[str, ...]) -> bool:
+    return names.given_name(english(), words)
 
 
 def test_names_as_told() -> None:
