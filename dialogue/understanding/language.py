@@ -5,6 +5,7 @@ One folder per language, data only (the shape of Home Assistant's intents reposi
 
     words.toml         closed-class words: determiners, pronouns, colours, numbers...
     prepositions.toml  one table of prepositions, each with what it introduces
+    speech.toml        speech and chat forms: contractions, fillers, politeness, repairs, clauses
 
 and `lexicon.txt`, other ways of saying a name (dialogue.reference.synonyms). A file a language
 does not have is a table it leaves empty.
@@ -17,17 +18,17 @@ Nothing is read at import time, and nothing keeps a language behind the caller's
 from __future__ import annotations
 
 import tomllib
-from collections.abc import Callable, Sequence
+from collections.abc import Callable
 from functools import cached_property
 from importlib import resources
 from importlib.resources.abc import Traversable
-from typing import Annotated, Any, TypeVar, cast
+from typing import Any, TypeVar, cast
 
-from pydantic import BaseModel, BeforeValidator, ConfigDict, ValidationError
+from pydantic import ValidationError
 
 from dialogue.errors import DialogueError
+from dialogue.understanding.tables import ClosedWords, Prepositions, SpeechWords, Table
 
-Words = tuple[str, ...]
 T = TypeVar("T")
 
 #: The packaged languages' folders.
@@ -37,146 +38,6 @@ PACKAGE = "dialogue.understanding"
 class LanguageError(DialogueError):
     """A language folder that cannot be read: missing, or a file that is not what it must be (the
     message names the file and the table)."""
-
-
-def _words(value: Any) -> Any:
-    """ "a b c" (or ["a", "b"]) -> the words."""
-    if isinstance(value, str):
-        return value.split()
-    return value
-
-
-def _phrases(value: Any) -> Any:
-    """ "a b|c" (or ["a b", "c"]) -> (("a", "b"), ("c",)), in order."""
-    if isinstance(value, str):
-        value = value.split("|")
-    if isinstance(value, list):
-        return [tuple(p.split()) if isinstance(p, str) else p for p in value]
-    return value
-
-
-WordSet = Annotated[frozenset[str], BeforeValidator(_words)]
-WordList = Annotated[tuple[str, ...], BeforeValidator(_words)]
-Phrases = Annotated[tuple[Words, ...], BeforeValidator(_phrases)]
-
-
-class Table(BaseModel):
-    """The tables of one file; a table the file leaves out is empty."""
-
-    model_config = ConfigDict(frozen=True, extra="forbid")
-
-
-class HeadNounWords(Table):
-    """`words.toml` [head_noun]: the words of a noun phrase's head, read by dialogue.reference.headnoun."""
-
-    qualifiers: WordSet = frozenset()
-    skipped: WordSet = frozenset()
-    clause_words: WordSet = frozenset()
-    new_phrase: WordSet = frozenset()
-    several: WordSet = frozenset()
-
-
-class ClosedWords(Table):
-    """`words.toml`: closed-class words."""
-
-    determiners: WordSet = frozenset()
-    pronouns: WordSet = frozenset()
-    personal: WordSet = frozenset()
-    neuter: WordSet = frozenset()
-    possessives: WordSet = frozenset()
-    me: WordSet = frozenset()
-    colours: WordSet = frozenset()
-    positions: WordSet = frozenset()
-    parts: WordSet = frozenset()
-    containers: WordSet = frozenset()
-    compound_heads: WordSet = frozenset()
-    measures: WordSet = frozenset()
-    many: WordSet = frozenset()
-    relativisers: WordSet = frozenset()
-    titles: Phrases = ()
-    numbers: WordSet = frozenset()
-    units: WordList = ()
-    tens: WordList = ()
-    function_words: WordSet = frozenset()
-    glue: WordSet = frozenset()
-    core_end: WordSet = frozenset()
-    not_said: WordSet = frozenset()
-    head_noun: HeadNounWords = HeadNounWords()
-
-    @cached_property
-    def spoken_numbers(self) -> dict[str, Words]:
-        """Numbers below a hundred as said in words ("7" -> ("seven",), "21" -> ("twenty", "one"))."""
-        units = self.units
-        tens = {str(20 + 10 * t + u): (w, units[u]) if u else (w,)
-                for t, w in enumerate(self.tens) for u in range(10)}  # fmt: skip
-        return {**{str(n): (w,) for n, w in enumerate(units)}, **tens}
-
-    @cached_property
-    def written(self) -> dict[Words, str]:
-        return {words: digits for digits, words in self.spoken_numbers.items()}
-
-    @cached_property
-    def any_function_word(self) -> frozenset[str]:
-        """Closed-class words in general (pronouns, prepositions, conjunctions, auxiliaries, number
-        words): always words of the language, whatever a lexicon of content words says."""
-        return self.numbers | self.function_words
-
-    def other_numbers(self, words: Sequence[str]) -> Words | None:
-        """The words with each number below a hundred written the other way: "plot 7" -> "plot
-        seven", "table nine" -> "table 9", "gate twenty one" -> "gate 21"; None when they have no
-        number."""
-        written, spoken = self.written, self.spoken_numbers
-        out: list[str] = []
-        i = 0
-        while i < len(words):
-            pair, one = tuple(words[i : i + 2]), (words[i],)
-            if len(pair) == 2 and pair in written:
-                out.append(written[pair])
-                i += 2
-                continue
-            out.extend(spoken.get(words[i]) or ((written[one],) if one in written else one))
-            i += 1
-        return tuple(out) if out != list(words) else None
-
-
-class Preposition(Table):
-    """One row of the preposition table (its columns are described in prepositions.toml)."""
-
-    model_config = ConfigDict(frozen=True, extra="forbid", alias_generator=lambda n: n.replace("_", "-"))
-
-    uses: WordSet = frozenset()
-    said_back: str | None = None
-    relations: frozenset[str] = frozenset()
-    evidence: frozenset[str] = frozenset()
-    states: str | None = None
-    says: str | None = None
-    reads_as: str | None = None
-
-
-class Prepositions(Table):
-    """`prepositions.toml`: one table of prepositions (single words and phrases), in order."""
-
-    prepositions: dict[str, Preposition] = {}
-
-    def having(self, use: str) -> tuple[Words, ...]:
-        """The prepositions that have a use, as phrases, in the table's order."""
-        return tuple(tuple(p.split()) for p, row in self.prepositions.items() if use in row.uses)
-
-    def words(self, use: str) -> frozenset[str]:
-        """The one-word prepositions that have a use."""
-        return frozenset(p[0] for p in self.having(use) if len(p) == 1)
-
-    def longest_first(self, use: str) -> tuple[Words, ...]:
-        """The prepositions that have a use, longest first (then in the table's order): the first
-        that a text starts with is the longest it starts with ("on top of" before "on")."""
-        return tuple(sorted(self.having(use), key=len, reverse=True))
-
-    def row(self, words: Sequence[str]) -> Preposition | None:
-        return self.prepositions.get(" ".join(words))
-
-    def column(self, name: str) -> dict[str, Any]:
-        """Each preposition that has a value in a column, with it ("said_back": "beside" -> "next to")."""
-        return {p: v for p, row in self.prepositions.items() if (v := getattr(row, name))}
 
 
 def _table(folder: Traversable, name: str, model: type[Table]) -> Any:
@@ -201,6 +62,7 @@ class Language:
         self.code = code
         self.words: ClosedWords = _table(folder, "words", ClosedWords)
         self.prepositions: Prepositions = _table(folder, "prepositions", Prepositions)
+        self.speech: SpeechWords = _table(folder, "speech", SpeechWords)
         lexicon = folder / "lexicon.txt"
         #: Other ways of saying a name (dialogue.reference.synonyms parses it).
         self.lexicon = lexicon.read_text(encoding="utf-8") if lexicon.is_file() else ""

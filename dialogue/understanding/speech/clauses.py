@@ -22,52 +22,43 @@ from itertools import pairwise
 
 from lemminflect import getAllLemmas, getInflection
 
-from dialogue.reference.english import (
-    DETERMINERS,
-    FUNCTION_WORDS,
-    MODIFIER_START,
-    Words,
-    lowered,
-    phrases,
-    spans,
-    word_set,
-)
+from dialogue.reference.english import Words, lowered, spans
 from dialogue.understanding.language import Language
 from dialogue.understanding.speech.plain import expanded, strip_politeness
-from dialogue.understanding.words import NP_START, OWNERS, TAGS
 
 #: Punctuation and dashes end a clause.
 _BREAK = re.compile(r"[.;!?,]+(?:\s+|$)|\s+(?:-|\u2013|\u2014)\s+")
-#: A polite request said mid-utterance starts a clause of its own.
-_ASKS = phrases("could you|can you|would you|will you|please|can i have|could i have|may i have|can i get|"
-                "could i get|do you know where|do you know who|do you know if|do you know whether|"
-                "do you know what|any idea where|any idea who")
-#: Subjects that are no one in particular ("pick up the umbrella *someone left* it here").
-_INDEFINITE = word_set("someone somebody everyone everybody nobody anyone anybody")
-_SUBJECTS = word_set("i he she it we they you there") | _INDEFINITE
-#: Verbs that follow any subject: auxiliaries, modals and their negations.
-_AUXILIARIES = word_set(
-    "am is are was were has have had will would can cannot could should might must shall may do does did "
-    "don't didn't doesn't won't wouldn't couldn't shouldn't isn't aren't wasn't just really also"
-)
-#: Words after which a subject pronoun is an object or a clause the verb takes ("tell him she is...").
-_TAKES_CLAUSE = word_set(
-    "that if whether when because so tell ask let make have help and or but think believe guess reckon "
-    "suppose know hope say said where who what which how why"
-)
-#: Verbs whose object comes before the clause they take ("tell him she's here").
-_TELLING = word_set("tell told ask remind warn inform show promise let")
-#: Conjunctions that start a clause of reason after a request ("... because she has to take them").
-_REASONS = word_set("because cos cause since as so")
-#: Words that soften a request said after a remark ("you're blocking the door *maybe* go...").
-_HEDGES = word_set("maybe perhaps just now then so")
-#: Words naming the listener at the end of a remark ("you're in the way *mate* go...").
-_TAGS = frozenset(w for p in phrases(TAGS) for w in p[-1:])
-#: Words a described thing is said with: "it's the tall one", "I think they're in the drawer".
-_DESCRIBING = (("it", "is"), ("they", "are"), ("it", "was"), ("they", "were"), ("it", "should", "be"))
-_THINKING = (("i", "think"), ("i", "believe"), ("i", "guess"), ("probably",), ("maybe",), ("i", "reckon"))
-#: "the cup I left on the table": a clause of the speaker's that says where the thing was put.
-_PUT = word_set("left put placed dropped saw had")
+
+
+class _Clauses:
+    """A language's words of clauses (`speech.toml` [clauses]), as the functions below read them
+    (made once per language)."""
+
+    def __init__(self, lang: Language) -> None:
+        said, closed = lang.speech.clauses, lang.words
+        #: A polite request said mid-utterance starts a clause of its own.
+        self.asks = said.asks
+        #: Subjects that are no one in particular ("pick up the umbrella *someone left* it here").
+        self.indefinite = said.indefinite
+        self.subjects = said.subjects | said.indefinite
+        #: Verbs that follow any subject: auxiliaries, modals and their negations.
+        self.auxiliaries = said.auxiliaries
+        #: Words after which a subject pronoun is an object or a clause the verb takes.
+        self.takes_clause = said.takes_clause
+        #: Verbs whose object comes before the clause they take ("tell him she's here").
+        self.telling = said.telling
+        self.reasons = said.reasons
+        self.hedges = said.hedges
+        #: Words naming the listener at the end of a remark ("you're in the way *mate* go...").
+        self.tags = frozenset(w for p in lang.speech.tags for w in p[-1:])
+        self.describing = said.describing
+        self.thinking = said.thinking
+        self.put = said.put
+        self.np_start = closed.np_start
+        self.modifier_start = lang.modifier_start
+        self.function_words = closed.any_function_word
+        self.determiners = closed.determiners
+        self.owners = closed.owners
 
 
 def clauses(lang: Language, text: str) -> list[str]:
@@ -83,66 +74,75 @@ def _run_on(lang: Language, text: str) -> list[str]:
     """A clause without punctuation cut where a new clause starts."""
     if len(lowered(text)) != len(text):
         return [text]
+    said = lang.derived(_Clauses)
     toks = spans(text)
     words = [expanded(lang, w) for w, _, _ in toks]
-    cuts = [i for i in range(1, len(toks)) if _starts_clause(words, i)]
+    cuts = [i for i in range(1, len(toks)) if _starts_clause(said, words, i)]
     if not cuts:
         return [text]
     bounds = [0, *cuts, len(toks)]
     return [text[toks[a][1] : toks[b - 1][2]] for a, b in pairwise(bounds) if b > a]
 
 
-def _starts_clause(words: list[list[str]], i: int) -> bool:
+def _starts_clause(said: _Clauses, words: list[list[str]], i: int) -> bool:
     """Whether the i-th word (each word with its contraction expanded) starts a clause."""
     flat = [w for ws in words[i:] for w in ws]
     before = words[i - 1][-1]
-    asked = next((a for a in _ASKS if tuple(flat[: len(a)]) == a), None)
+    asked = next((a for a in said.asks if tuple(flat[: len(a)]) == a), None)
     if asked is not None:
         after = flat[len(asked) : len(asked) + 1]
-        if asked[-1] == "you" and (not after or after[0] in _SUBJECTS - {"you"}):
+        if asked[-1] == "you" and (not after or after[0] in said.subjects - {"you"}):
             return False  # a tag: "pick up my frame would you (it's fallen over)"
         return before not in {"you", "i", "that", "if", "and", "or"}
-    told = i > 1 and words[i - 2][-1] in _TELLING
-    if before in _TAKES_CLAUSE or before in _AUXILIARIES or told or len(flat) < 2:
+    told = i > 1 and words[i - 2][-1] in said.telling
+    if before in said.takes_clause or before in said.auxiliaries or told or len(flat) < 2:
         return False  # "I think it's...", "tell him she's here"; "can I have": a question's order
     first, second = flat[0], flat[1]
-    if first in _HEDGES and before not in _SUBJECTS and _bare_verb(second):
+    if first in said.hedges and before not in said.subjects and _bare_verb(said, second):
         return True  # "move out of the way a bit *maybe go* over to the counter"
-    tagged = i > 1 and before in _TAGS and words[i - 2][-1] not in _SUBJECTS | NP_START
-    if tagged and _bare_verb(first):
+    tagged = i > 1 and before in said.tags and words[i - 2][-1] not in said.subjects | said.np_start
+    if tagged and _bare_verb(said, first):
         return True  # "you're in the way mate *go* over by the door"
-    if first in _REASONS:  # "... because she has to take them before dinner"
-        return len(flat) > 2 and second in _SUBJECTS and _subject_verb(second, flat[2])
-    if first in _SUBJECTS:
-        return _subject_verb(first, second)
-    if before in NP_START or before in MODIFIER_START or first in FUNCTION_WORDS - NP_START - {"her"}:
+    if first in said.reasons:  # "... because she has to take them before dinner"
+        return len(flat) > 2 and second in said.subjects and _subject_verb(said, second, flat[2])
+    if first in said.subjects:
+        return _subject_verb(said, first, second)
+    np_start, function_words = said.np_start, said.function_words
+    if before in np_start or before in said.modifier_start or first in function_words - np_start - {"her"}:
         return False
-    if first in NP_START or first == "her":  # "the bus leaves soon": a phrase of one or two words, its verb
-        return any(_agrees(flat, k) for k in (2, 3) if not set(flat[1:k]) & (FUNCTION_WORDS | DETERMINERS))
+    if first in np_start or first == "her":  # "the bus leaves soon": a phrase of one or two words, its verb
+        closed = function_words | said.determiners
+        return any(_agrees(said, flat, k) for k in (2, 3) if not set(flat[1:k]) & closed)
     # "Omar wants a word": a word that is a name or a noun, then its verb
-    name = first.isalpha() and first not in _AUXILIARIES and not set(getAllLemmas(first)) - {"NOUN", "PROPN"}
-    return name and _agrees(flat, 1)
+    noun = not set(getAllLemmas(first)) - {"NOUN", "PROPN"}
+    return first.isalpha() and first not in said.auxiliaries and noun and _agrees(said, flat, 1)
+
+
+def _bare_verb(said: _Clauses, word: str) -> bool:
+    """Whether the word is a verb as a request starts with it ("go", "put"), not in a tense."""
+    return _verb_lemma_itself(word) and word not in said.function_words
 
 
 @lru_cache(maxsize=4096)
-def _bare_verb(word: str) -> bool:
-    """Whether the word is a verb as a request starts with it ("go", "put"), not in a tense."""
-    return word in getAllLemmas(word).get("VERB", ()) and word not in FUNCTION_WORDS
+def _verb_lemma_itself(word: str) -> bool:
+    """Whether the word is a verb's lemma ("go", "put"; not "went")."""
+    return word in getAllLemmas(word).get("VERB", ())
 
 
-def _subject_verb(subject: str, verb: str) -> bool:
+def _subject_verb(said: _Clauses, subject: str, verb: str) -> bool:
     """Whether a subject pronoun and the word after it start a clause ("she is", "I can't")."""
     if subject == "you":
-        return verb in _AUXILIARIES and verb not in {"do", "does", "did", "just", "really", "also"}
-    return verb in _AUXILIARIES or finite(verb, third_person=subject in {"he", "she", "it"} | _INDEFINITE)
+        return verb in said.auxiliaries and verb not in {"do", "does", "did", "just", "really", "also"}
+    third = subject in {"he", "she", "it"} | said.indefinite
+    return verb in said.auxiliaries or finite(verb, third_person=third)
 
 
-def _agrees(flat: list[str], k: int) -> bool:
+def _agrees(said: _Clauses, flat: list[str], k: int) -> bool:
     """Whether the word at k is a verb agreeing with the noun phrase before it."""
     if k >= len(flat):
         return False
     verb, after = flat[k], flat[k + 1] if k + 1 < len(flat) else ""
-    if after == "you" and verb in _AUXILIARIES:
+    if after == "you" and verb in said.auxiliaries:
         return False  # "(pick up) my frame would you": a tag question's order, no subject before it
     if verb in {"is", "was", "has"}:
         return True
@@ -151,8 +151,8 @@ def _agrees(flat: list[str], k: int) -> bool:
         return False
     # "the class starts soon", "the baby needs a nap"; but "the reading glasses (on the table)" is
     # a plural noun: one that may be either is a verb only before an adverb or an object
-    adverb = after not in FUNCTION_WORDS and set(getAllLemmas(after)) == {"ADV"}
-    return "NOUN" not in lemmas or after in NP_START or adverb
+    adverb = after not in said.function_words and set(getAllLemmas(after)) == {"ADV"}
+    return "NOUN" not in lemmas or after in said.np_start or adverb
 
 
 @lru_cache(maxsize=4096)
@@ -170,29 +170,31 @@ def description(lang: Language, text: str) -> Words | None:
     """What a clause that describes the thing just asked for says of it ("it's the blue one by the
     door": the blue one by the door; "I think they're in the hall": in the hall; "I left it
     on the bench": on the bench), or None when the clause is not one."""
+    clause = lang.derived(_Clauses)
     words = strip_politeness(lang, expanded(lang, text))
-    for lead in _THINKING:
+    for lead in clause.thinking:
         if tuple(words[: len(lead)]) == lead:
             words = words[len(lead) :]
-    said = next((len(d) for d in _DESCRIBING if tuple(words[: len(d)]) == d), None)
-    if said is None and words[:1] == ["i"] and words[1:2] and words[1] in _PUT:
+    said = next((len(d) for d in clause.describing if tuple(words[: len(d)]) == d), None)
+    if said is None and words[:1] == ["i"] and words[1:2] and words[1] in clause.put:
         said = 3 if words[2:3] in (["it"], ["them"]) else 2
     if said is None:
         return None
     rest = tuple(words[said:])
-    located = rest[:1] and rest[0] in MODIFIER_START and len(rest) > 1
-    one = rest[:1] and rest[0] in NP_START and ("one" in rest or "ones" in rest)
-    whose = len(rest) == 1 and (rest[0].endswith("'s") or rest[0] in OWNERS)  # "it's Carla's"
+    located = rest[:1] and rest[0] in clause.modifier_start and len(rest) > 1
+    one = rest[:1] and rest[0] in clause.np_start and ("one" in rest or "ones" in rest)
+    whose = len(rest) == 1 and (rest[0].endswith("'s") or rest[0] in clause.owners)  # "it's Carla's"
     return rest if located or one or whose else None
 
 
 def described(lang: Language, thing: Words, said: Words) -> Words:
     """The request's phrase for a thing with what a later clause said of it: "my bag" and "the
     blue one by the door" make "my blue bag by the door"."""
-    if said[0] in MODIFIER_START:
+    np_start = lang.words.np_start
+    if said[0] in lang.modifier_start:
         return (*thing, *said)
     if len(said) == 1:  # whose it is: "the pink phone" and "Carla's" make "Carla's pink phone"
-        return (OWNERS.get(said[0], said[0]), *(w for w in thing if w not in NP_START))
-    lead = tuple(w for w in thing if w in NP_START)
-    head = tuple(w for w in thing if w not in NP_START)
+        return (lang.words.owners.get(said[0], said[0]), *(w for w in thing if w not in np_start))
+    lead = tuple(w for w in thing if w in np_start)
+    head = tuple(w for w in thing if w not in np_start)
     return (*lead, *(x for w in said[1:] for x in (head if w in {"one", "ones"} else (w,))))

@@ -14,14 +14,13 @@ from functools import lru_cache
 
 from jellyfish import metaphone
 
-from dialogue.reference.english import TITLES, tokens
+from dialogue.reference.english import tokens
 from dialogue.reference.lexicon import Lexicon
 
 #: Sounds that barely sound after the first one: "RHS" (rhys) is "RS" (reese).
 _FAINT = str.maketrans("", "", "HWY")
 #: A key this short ("T") says too little of a name to match it by its sound.
 _SHORTEST = 2
-_TITLE_WORDS = frozenset(w for group in TITLES for w in group)
 
 
 @lru_cache(maxsize=4096)
@@ -36,11 +35,12 @@ def heard_name(word: str, lexicon: Lexicon) -> str | None:
     key = sound_key(word)
     if len(key) < _SHORTEST:
         return None
+    titles = frozenset(w for group in lexicon.lang.words.titles for w in group)
     found = {
         said
         for person in lexicon.snapshot.of_kind("person")
         for label in person.labels
         for said in tokens(label)
-        if said != word and said not in _TITLE_WORDS and said.isalpha() and sound_key(said) == key
+        if said != word and said not in titles and said.isalpha() and sound_key(said) == key
     }
     return found.pop() if len(found) == 1 else None

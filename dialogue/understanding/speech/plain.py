@@ -13,83 +13,97 @@ from functools import lru_cache
 
 from lemminflect import getAllLemmas
 
-from dialogue.reference.english import (
-    DETERMINERS,
-    FUNCTION_WORDS,
-    NUMBERS,
-    SPOKEN_NUMBERS,
-    Words,
-    lowered,
-    spans,
-    tokens,
-    word_set,
-)
+from dialogue.reference.english import Words, lowered, spans, tokens
 from dialogue.understanding.language import Language
-from dialogue.understanding.words import (
-    ASKING,
-    CHAT,
-    CONTRACTIONS,
-    DURATIONS,
-    FILLER_PAIRS,
-    FILLERS,
-    NP_START,
-    POLITE_PREFIXES,
-    POLITE_SUFFIXES,
-    ROBOT_SUFFIXES,
-    WH,
-)
-
-#: Words after "its" that make it "it is": adverbs no noun phrase starts with.
-_NOT_NOUNS = word_set(
-    "not just still already really so very too over gone all fine ok okay right mine yours hers ours theirs"
-)
+from dialogue.understanding.words import DURATIONS
 
 QUOTED = re.compile(r"[\"\u201c\u201d]([^\"\u201c\u201d]+)[\"\u201c\u201d]")
+
+
+class _Speech:
+    """A language's speech and chat forms, as the functions below read them (made once per language:
+    `lang.derived(_Speech)`)."""
+
+    def __init__(self, lang: Language) -> None:
+        speech, closed = lang.speech, lang.words
+        self.lang = lang
+        self.written = speech.written
+        self.chat = speech.chat
+        self.np_start = closed.np_start
+        self.fillers = speech.fillers
+        self.filler_pairs = speech.filler_pairs
+        self.asking = speech.asking
+        self.wh_or_asking = closed.wh | speech.asking
+        self.numbering = speech.numbering
+        self.number_words = frozenset(w for words in closed.spoken_numbers.values() for w in words)
+        self.not_nouns = speech.not_nouns
+        self.function_words = closed.any_function_word
+        self.numbers = closed.numbers
+        self.determiners = closed.determiners
+        self.my_after = speech.my_after
+        self.no_noun = closed.any_function_word | closed.np_start
+        self.robot_suffixes = speech.robot_suffixes
+        #: The politeness at the end, longest first ("right now" before its "now").
+        self.suffixes = sorted(speech.all_polite_suffixes, key=len, reverse=True)
+        #: Prepositions that a politeness word at the end completes ("for now", "till then", "by
+        #: now"), or whose object a word naming the listener is ("take it to sir": whom, not a tag).
+        self.left_behind = lang.prepositions.words("completes")
+        #: After "could we", "can we": words that ask for a thing to be brought ("could we get the
+        #: bill", "can we have two coffees"), when a noun phrase follows them ("can we get over to
+        #: the desk" goes).
+        self.wishing = speech.wishing
+        self.durations = DURATIONS
+        self.polite_prefixes = speech.polite_prefixes
+        self.is_it_is = lru_cache(maxsize=4096)(self._is_it_is)
+        self.openings = lru_cache(maxsize=64)(self._openings)
+
+    def _is_it_is(self, after: tuple[str, ...]) -> bool:
+        """Whether "its" before these words is "it's" written without its apostrophe: before a
+        function word ("its the tall one", "its on the shelf"), a participle ("its stopped raining")
+        or a last adjective ("its empty"); a possessive has a noun after it."""
+        if not after:
+            return True
+        nxt = after[0]
+        if nxt in self.function_words or nxt in self.determiners or nxt in self.not_nouns:
+            return True
+        if len(after) == 1 and nxt.endswith("'s"):  # "its Carla's": whose it is
+            return True
+        lemmas = getAllLemmas(nxt)
+        if nxt.endswith(("ed", "ing", "en")) and "VERB" in lemmas and "NOUN" not in lemmas:
+            return True
+        return len(after) == 1 and "ADJ" in lemmas
+
+    def _openings(self, robot_name: str) -> dict[str, tuple[Words, ...]]:
+        """The polite openings (and the robot's name) by first word, the longest first: "would you
+        be able to" before "would you"."""
+        name = tuple(expanded(self.lang, robot_name)) if robot_name else ()
+        by_first: dict[str, list[Words]] = {}
+        for p in (*self.polite_prefixes, name):
+            if p:
+                by_first.setdefault(p[0], []).append(p)
+        return {w: tuple(sorted(ps, key=len, reverse=True)) for w, ps in by_first.items()}
+
+    def numbering_word(self, word: str, after: str) -> bool:
+        """Whether the word only announces the number after it ("no" only before digits: "no one")."""
+        return word in self.numbering and (after.isdigit() or (word != "no" and after in self.number_words))
 
 
 def expanded(lang: Language, text: str) -> list[str]:
     """The text's words with contractions expanded ("wheres" -> "where is"; "its" -> "it is" where
     no noun follows it: "its on the bench", "its empty", but "its lid")."""
+    said = lang.derived(_Speech)
     words = tokens(text)
     out: list[str] = []
     for i, w in enumerate(words):
-        if i > 0 and _numbering(w, words[i + 1] if i + 1 < len(words) else ""):
+        if i > 0 and said.numbering_word(w, words[i + 1] if i + 1 < len(words) else ""):
             continue  # "screen number two", "room no 4": the number names it
-        if w == "its" and _is_it_is(tuple(words[i + 1 : i + 3])):
+        if w == "its" and said.is_it_is(tuple(words[i + 1 : i + 3])):
             out += ["it", "is"]
-        elif w in CHAT and i > 0 and words[i - 1] in NP_START:
+        elif w in said.chat and i > 0 and words[i - 1] in said.np_start:
             out.append(w)  # "the atm": the cash machine, not "at the moment"
         else:
-            out += CONTRACTIONS.get(w, (w,))
+            out += said.written.get(w, (w,))
     return out
-
-
-#: Words that only say a number follows ("number", "no." before a digit).
-_NUMBERING = word_set("number num nr no")
-_NUMBER_WORDS = frozenset(w for words in SPOKEN_NUMBERS.values() for w in words)
-
-
-def _numbering(word: str, after: str) -> bool:
-    """Whether the word only announces the number after it ("no" only before digits: "no one")."""
-    return word in _NUMBERING and (after.isdigit() or (word != "no" and after in _NUMBER_WORDS))
-
-
-@lru_cache(maxsize=4096)
-def _is_it_is(after: tuple[str, ...]) -> bool:
-    """Whether "its" before these words is "it's" written without its apostrophe: before a function
-    word ("its the tall one", "its on the shelf"), a participle ("its stopped raining") or a last
-    adjective ("its empty"); a possessive has a noun after it."""
-    if not after:
-        return True
-    nxt = after[0]
-    if nxt in FUNCTION_WORDS or nxt in DETERMINERS or nxt in _NOT_NOUNS:
-        return True
-    if len(after) == 1 and nxt.endswith("'s"):  # "its Carla's": whose it is
-        return True
-    lemmas = getAllLemmas(nxt)
-    if nxt.endswith(("ed", "ing", "en")) and "VERB" in lemmas and "NOUN" not in lemmas:
-        return True
-    return len(after) == 1 and "ADJ" in lemmas
 
 
 def plain(lang: Language, text: str) -> list[str]:
@@ -100,26 +114,24 @@ def plain(lang: Language, text: str) -> list[str]:
 def without_fillers(lang: Language, words: list[str]) -> list[str]:
     """ "put the uh candle", "pick up the uh you know the cup": fillers wherever they are, "you know"
     mid-sentence but not in "do you know where..."."""
-    words = [w for w in words if w not in FILLERS]
+    said = lang.derived(_Speech)
+    words = [w for w in words if w not in said.fillers]
     drop: set[int] = set()
     for i in range(1, len(words) - 1):
         nxt = words[i + 2] if i + 2 < len(words) else ""
-        if tuple(words[i : i + 2]) in FILLER_PAIRS and words[i - 1] not in ASKING and nxt not in WH | ASKING:
+        pair = tuple(words[i : i + 2]) in said.filler_pairs
+        if pair and words[i - 1] not in said.asking and nxt not in said.wh_or_asking:
             drop.update((i, i + 1))
     return [w for i, w in enumerate(words) if i not in drop]
 
 
-#: Words after which "me" before a noun is "my" (British and Irish speech: "pick up me zimmer frame"):
-#: a verb's particle, or "me" itself ("fetch me me cardigan": to me, my cardigan).
-_MY_AFTER = word_set("me up down out off away")
-_NO_NOUN = FUNCTION_WORDS | NP_START
-
-
 def my_for_me(lang: Language, words: list[str]) -> list[str]:
-    """ "me" said for "my" before a noun, where "me" could be no object: after a particle or another "me"."""
+    """ "me" said for "my" before a noun, where "me" could be no object: after a particle or another
+    "me" (British and Irish speech: "pick up me zimmer frame", "fetch me me cardigan")."""
+    said = lang.derived(_Speech)
     out = list(words)
     for i in range(1, len(out) - 1):
-        if out[i] == "me" and out[i - 1] in _MY_AFTER and out[i + 1] not in _NO_NOUN:
+        if out[i] == "me" and out[i - 1] in said.my_after and out[i + 1] not in said.no_noun:
             out[i] = "my"
     return out
 
@@ -140,7 +152,8 @@ def original_text(lang: Language, text: str, words: Sequence[str]) -> str:
     """The part of the original text that the (normalised) words came from, with its casing."""
     if len(lowered(text)) != len(text) or not words:
         return " ".join(words)
-    found = [(w, start, end) for word, start, end in spans(text) for w in CONTRACTIONS.get(word, (word,))]
+    written = lang.speech.written
+    found = [(w, start, end) for word, start, end in spans(text) for w in written.get(word, (word,))]
     n = len(words)
     for i in range(len(found) - n + 1):
         if all(found[i + k][0] == words[k] for k in range(n)):
@@ -154,7 +167,8 @@ def message(lang: Language, text: str, words: Sequence[str]) -> str:
     now"; `words` were read without the "now", which is the message's)."""
     if len(lowered(text)) != len(text) or not words:
         return original_text(lang, text, words)
-    found = [(w, start, end) for word, start, end in spans(text) for w in CONTRACTIONS.get(word, (word,))]
+    said = lang.derived(_Speech)
+    found = [(w, start, end) for word, start, end in spans(text) for w in said.written.get(word, (word,))]
     n = len(words)
     at = next((i for i in range(len(found) - n + 1) if [f[0] for f in found[i : i + n]] == list(words)), None)
     if at is None:
@@ -163,10 +177,10 @@ def message(lang: Language, text: str, words: Sequence[str]) -> str:
     dropped = True
     while dropped and len(tail) > n:
         dropped = False
-        if tail[-1][0] in FILLERS:
+        if tail[-1][0] in said.fillers:
             tail, dropped = tail[:-1], True
             continue
-        for suffix in ROBOT_SUFFIXES:
+        for suffix in said.robot_suffixes:
             if len(tail) - len(suffix) >= n and tuple(t[0] for t in tail[-len(suffix) :]) == suffix:
                 tail, dropped = tail[: -len(suffix)], True
                 break
@@ -177,33 +191,22 @@ def starts(words: Sequence[str], prefix: Sequence[str]) -> bool:
     return len(prefix) <= len(words) and tuple(words[: len(prefix)]) == tuple(prefix)
 
 
-@lru_cache(maxsize=64)
-def _openings(lang: Language, robot_name: str) -> dict[str, tuple[Words, ...]]:
-    """The polite openings (and the robot's name) by first word, the longest first: "would you be
-    able to" before "would you"."""
-    name = tuple(expanded(lang, robot_name)) if robot_name else ()
-    by_first: dict[str, list[Words]] = {}
-    for p in (*POLITE_PREFIXES, name):
-        if p:
-            by_first.setdefault(p[0], []).append(p)
-    return {w: tuple(sorted(ps, key=len, reverse=True)) for w, ps in by_first.items()}
-
-
 def strip_politeness(lang: Language, words: list[str], robot_name: str = "") -> list[str]:
-    openings = _openings(lang, robot_name)
+    said = lang.derived(_Speech)
+    openings = said.openings(robot_name)
     changed = True
     while changed and words:
         changed = False
         for p in openings.get(words[0], ()):
             # "can you see" is a question, not a polite request: keep it; "could we get the bill"
             # is a wish (dialogue.understanding.requests.constructions.wanting), not "get the bill".
-            if starts(words, p) and not _asking(p, words[len(p) :]):
+            if starts(words, p) and not _asking(said, p, words[len(p) :]):
                 words = words[len(p) :]
                 changed = True
                 break
-        for s in _SUFFIXES:
+        for s in said.suffixes:
             # ("wait in the hall for now": "for now" says how long, its "now" is no politeness)
-            dangling = len(words) > len(s) and words[-len(s) - 1] in _LEFT_BEHIND
+            dangling = len(words) > len(s) and words[-len(s) - 1] in said.left_behind
             if s and len(words) > len(s) and tuple(words[-len(s) :]) == s and not dangling:
                 words = words[: -len(s)]
                 changed = True
@@ -211,30 +214,20 @@ def strip_politeness(lang: Language, words: list[str], robot_name: str = "") -> 
     return words
 
 
-#: Prepositions that a politeness word at the end completes ("for now", "till then", "by now"), or
-#: whose object a word naming the listener is ("take it to sir": whom, not a tag).
-_LEFT_BEHIND = word_set("for till until by from since to with")
-#: The politeness at the end, longest first ("right now" before its "now").
-_SUFFIXES = sorted(POLITE_SUFFIXES, key=len, reverse=True)
-#: After "could we", "can we": words that ask for a thing to be brought ("could we get the bill",
-#: "can we have two coffees"), when a noun phrase follows them ("can we get over to the desk" goes).
-_WISHING = word_set("get have")
-
-
-def _asking(opening: Words, after: list[str]) -> bool:
+def _asking(said: _Speech, opening: Words, after: list[str]) -> bool:
     """Whether a polite opening is part of what is asked: "can you *see*...", "could we *get the*..."
     (a wish of the speaker's; "could we get the menu to Ana" is a request to bring it to her)."""
     if opening[-1] == "you":
         return after[:1] == ["see"]
-    if opening[-1] != "we" or len(after) < 2 or after[0] not in _WISHING or _for_someone(after[2:]):
+    if opening[-1] != "we" or len(after) < 2 or after[0] not in said.wishing or _for_someone(said, after[2:]):
         return False
-    return after[1] in NUMBERS or after[1] not in FUNCTION_WORDS
+    return after[1] in said.numbers or after[1] not in said.function_words
 
 
-def _for_someone(words: list[str]) -> bool:
+def _for_someone(said: _Speech, words: list[str]) -> bool:
     """Whether the words name whom or where a thing is for ("to Ana", "for table 4"; "for now" not)."""
     for i, w in enumerate(words):
-        lasting = any(tuple(words[i : i + len(d)]) == d for d in DURATIONS)
+        lasting = any(tuple(words[i : i + len(d)]) == d for d in said.durations)
         if w == "to" or (w == "for" and not lasting):
             return True
     return False

@@ -10,7 +10,6 @@ from functools import lru_cache
 
 from lemminflect import getAllLemmas, getInflection
 
-from dialogue.reference.english import MODIFIER_START, phrases
 from dialogue.understanding.language import Language
 from dialogue.understanding.requests.frames import known_verbs, verbs
 from dialogue.understanding.speech.plain import (
@@ -21,16 +20,25 @@ from dialogue.understanding.speech.plain import (
     strip_politeness,
     unrepeated,
 )
-from dialogue.understanding.words import (
-    AUXILIARIES,
-    FILLERS,
-    LEAD_FILLERS,
-    NOT_VOCATIVE,
-    NP_START,
-    PLACES,
-    POLITE_PREFIXES,
-    REPAIRS,
-)
+
+
+class _Repairs:
+    """A language's self-repairs and vocatives, as the functions below read them (made once per
+    language)."""
+
+    def __init__(self, lang: Language) -> None:
+        speech = lang.speech
+        self.repairs = speech.repairs
+        self.markers = frozenset(speech.repairs)
+        self.marker_starts = frozenset(m[0] for m in speech.repairs)
+        #: Prepositions that start a place said again ("...on the trolley no on the desk").
+        self.place_words = frozenset(w for p in lang.prepositions.having("place") for w in p[:1])
+        self.np_start = lang.words.np_start
+        self.modifier_start = lang.modifier_start
+        self.fillers = speech.fillers
+        self.lead_fillers = speech.lead_fillers
+        self.not_vocative = speech.not_vocative
+        self.polite_prefixes = speech.polite_prefixes
 
 
 @lru_cache(maxsize=4096)
@@ -38,7 +46,7 @@ def verb_lemma(lang: Language, word: str) -> str:
     """The table's verb a word is an inflection of ("picking" -> "pick", "took" -> "take", "puts"
     -> "put"), else the word unchanged. Auxiliaries stay ("does you..." is not "do")."""
     known = known_verbs(lang)
-    if word in known or word in AUXILIARIES:
+    if word in known or word in lang.speech.auxiliaries:
         return word
     lemmas: tuple[str, ...] = getAllLemmas(word).get("VERB", ())
     return next((lemma for lemma in lemmas if lemma in known), word)
@@ -61,12 +69,6 @@ def normalise(lang: Language, text: str) -> list[str]:
     return repaired(lang, plain(lang, text))
 
 
-_MARKERS = frozenset(REPAIRS)
-_MARKER_STARTS = frozenset(m[0] for m in REPAIRS)
-#: Prepositions that start a place said again ("...on the trolley no on the desk").
-_PLACE_WORDS = frozenset(w for p in phrases(PLACES) for w in p[:1])
-
-
 @dataclass(frozen=True)
 class Cleaned:
     """An utterance with its stutters and self-repair resolved."""
@@ -80,7 +82,7 @@ class Cleaned:
 def cleaned(lang: Language, text: str) -> Cleaned:
     """The text with stutters and self-repairs resolved, when it has any (else unchanged, so that
     quoted words and casing survive): what a compound request is cut in."""
-    words = [w for w in expanded(lang, text) if w not in FILLERS]
+    words = [w for w in expanded(lang, text) if w not in lang.speech.fillers]
     before, fixed = repair(lang, unrepeated(my_for_me(lang, words)))
     if fixed == words:
         return Cleaned(text)
@@ -96,38 +98,40 @@ def repair(lang: Language, words: list[str]) -> tuple[list[str], list[str]]:
     last repair marker, a new request replaces the one before it ("bring me the uh no wait put the
     candle..."), a noun phrase the last one ("pick up the black umbrella no the yellow one": the
     yellow umbrella)."""
+    said = lang.derived(_Repairs)
     for i in range(len(words) - 1, 0, -1):
-        for marker in (*REPAIRS, ("no",)):
+        for marker in (*said.repairs, ("no",)):
             if tuple(words[i : i + len(marker)]) != marker:
                 continue
             after = words[i + len(marker) :]
             # "no wait" rather than its "wait" alone: the whole marker is taken back
-            start = next((i - k for k in (2, 1) if tuple(words[i - k : i + len(marker)]) in _MARKERS), i)
-            if after[:1] and after[0] in _MARKER_STARTS:
+            start = next((i - k for k in (2, 1) if tuple(words[i - k : i + len(marker)]) in said.markers), i)
+            if after[:1] and after[0] in said.marker_starts:
                 continue  # "no wait ...": the longer marker, read at its own place
             request = strip_politeness(lang, after)
             if request and asked_verb(lang, request[0]) in verbs(lang):
                 return words[:start], after
-            if request and (request[0] in NP_START or request[0] in _PLACE_WORDS):
-                fixed = _rephrased(words[:start], request)
+            if request and (request[0] in said.np_start or request[0] in said.place_words):
+                fixed = _rephrased(said, words[:start], request)
                 if fixed is not None:
                     return words[:start], fixed
     return words, words
 
 
-def _rephrased(before: list[str], phrase: list[str]) -> list[str] | None:
+def _rephrased(said: _Repairs, before: list[str], phrase: list[str]) -> list[str] | None:
     """The request said before a repair with its last noun phrase said again (its head for "one"),
     or its last place ("put it on the shelf no wait on the desk")."""
-    if phrase[0] in _PLACE_WORDS:
-        at = max((j for j in range(1, len(before)) if before[j] in _PLACE_WORDS), default=None)
+    if phrase[0] in said.place_words:
+        at = max((j for j in range(1, len(before)) if before[j] in said.place_words), default=None)
         return None if at is None else [*before[:at], *phrase]
-    starts = [j for j in range(1, len(before)) if before[j] in NP_START and before[j - 1] not in NP_START]
+    np_start = said.np_start
+    starts = [j for j in range(1, len(before)) if before[j] in np_start and before[j - 1] not in np_start]
     if not starts:
         return None
     replaced = before[starts[-1] :]
     head = next((w for w, nxt in zip(replaced, [*replaced[1:], ""], strict=True)
-                 if nxt in MODIFIER_START or not nxt), None)  # fmt: skip
-    if head is None or head in NP_START:
+                 if nxt in said.modifier_start or not nxt), None)  # fmt: skip
+    if head is None or head in np_start:
         return None
     return [*before[: starts[-1]], *(head if w in {"one", "ones"} else w for w in phrase)]
 
@@ -135,12 +139,13 @@ def _rephrased(before: list[str], phrase: list[str]) -> list[str] | None:
 def strip_vocative(lang: Language, words: list[str], robot_name: str = "") -> list[str]:
     """ "john can you go to the bathroom", "michael go to the kitchen": the addressee's name (one
     word before a request) is not part of the request."""
+    said = lang.derived(_Repairs)
     commands = verbs(lang)
-    while len(words) > 2 and words[0] in LEAD_FILLERS and asked_verb(lang, words[1]) in commands:
+    while len(words) > 2 and words[0] in said.lead_fillers and asked_verb(lang, words[1]) in commands:
         words = words[1:]
-    if len(words) < 3 or words[0] in NOT_VOCATIVE or words[0] in commands or not words[0].isalpha():
+    if len(words) < 3 or words[0] in said.not_vocative or words[0] in commands or not words[0].isalpha():
         return words
-    polite = any(starts(words[1:], p) and p[-1:] == ("you",) for p in POLITE_PREFIXES)
+    polite = any(starts(words[1:], p) and p[-1:] == ("you",) for p in said.polite_prefixes)
     if polite or asked_verb(lang, words[1]) in commands:
         return strip_politeness(lang, words[1:], robot_name)
     return words

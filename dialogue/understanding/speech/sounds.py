@@ -20,12 +20,11 @@ from jellyfish import metaphone
 from rapidfuzz import process
 from rapidfuzz.distance import OSA
 
-from dialogue.reference.english import DETERMINERS, MODIFIER_START, Words
+from dialogue.reference.english import Words
 from dialogue.reference.grounding import Entity, Kind
 from dialogue.reference.lexicon import Lexicon
 from dialogue.reference.resolution import resolve
 from dialogue.understanding.speech.spelling import typing_cost
-from dialogue.understanding.words import HOMOPHONES
 
 #: At most this many letters apart (optimal string alignment) for a word heard for another.
 _HEARD = 2
@@ -37,10 +36,10 @@ def slips(word: str, lexicon: Lexicon) -> list[str]:
     """Words of the KB's names that `word` may have been heard or typed for: a homophone ("for":
     "four"), a word that sounds alike ("blew": "blue") or one slip of a neighbouring key ("mine":
     "nine")."""
-    sounds = [w for group in HOMOPHONES if word in group for w in group if w != word]
+    sounds = [w for group in lexicon.lang.speech.homophones if word in group for w in group if w != word]
     vocabulary = list(lexicon.vocabulary)
     near = process.extract(word, vocabulary, scorer=OSA.distance, score_cutoff=_HEARD, limit=None)
-    typed = [c for c, d, _ in near if c != word and d <= 1 and typing_cost(word, c) <= 1]
+    typed = [c for c, d, _ in near if c != word and d <= 1 and typing_cost(lexicon.lang, word, c) <= 1]
     heard = [c for c, _, _ in near if c != word and sounds_alike(word, c)]
     return list(dict.fromkeys(w for w in (*sounds, *typed, *heard) if lexicon.knows(w)))
 
@@ -55,10 +54,11 @@ def sounds_alike(said: str, meant: str) -> bool:
 def slipped(lexicon: Lexicon, words: Words, kinds: Collection[Kind], owner: str | None) -> Entity | None:
     """The one thing the phrase names when a word of it (or two words said for one) is read as a
     slip of a word of the KB's names (see the module docstring), or None."""
+    determiners, modifier_start = lexicon.lang.words.determiners, lexicon.lang.modifier_start
     found: set[str] = set()
     for i, word in enumerate(words):
         last = i == len(words) - 1
-        if word in DETERMINERS or (word in MODIFIER_START and not last):
+        if word in determiners or (word in modifier_start and not last):
             continue
         if not lexicon.knows(word):
             for other in slips(word, lexicon):
@@ -67,7 +67,7 @@ def slipped(lexicon: Lexicon, words: Words, kinds: Collection[Kind], owner: str 
                 if one is not None and _named_with(lexicon, one, trial, i):
                     found.add(one.id)
         pair = words[i : i + 2]
-        if len(pair) == 2 and pair[1] not in DETERMINERS and not all(lexicon.knows(w) for w in pair):
+        if len(pair) == 2 and pair[1] not in determiners and not all(lexicon.knows(w) for w in pair):
             # "the pen sill", "the kit chin": two words heard for one
             for other in slips("".join(pair), lexicon):
                 one = resolve(lexicon, (*words[:i], other, *words[i + 2 :]), kinds, owner=owner).one

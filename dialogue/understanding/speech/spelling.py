@@ -31,19 +31,17 @@ from rapidfuzz import process
 from rapidfuzz.distance import OSA
 
 from dialogue.reference import english
-from dialogue.reference.english import ME, NUMBERS, PRONOUNS, lowered, phrases, spans
+from dialogue.reference.english import lowered, phrases, spans
 from dialogue.reference.lexicon import Lexicon, singular
 from dialogue.understanding import words
+from dialogue.understanding.language import Language
 from dialogue.understanding.questions import grammar as questions
 from dialogue.understanding.requests.frames import FRAMES
 from dialogue.understanding.speech.heardnames import heard_name
 from dialogue.understanding.speech.homophones import misheard
 from dialogue.understanding.speech.plain import QUOTED
-from dialogue.understanding.words import CARRY_PARTICLES, MOTION_PARTICLES, NP_START, PATHS, PREPOSITION_SLIPS
+from dialogue.understanding.words import CARRY_PARTICLES, MOTION_PARTICLES
 
-_ROWS = ("qwertyuiop", "asdfghjkl", "zxcvbnm")
-_OFFSETS = (0.0, 0.25, 0.75)  # how far each row of a keyboard is shifted to the right
-_KEYS = {k: (r, c + _OFFSETS[r]) for r, row in enumerate(_ROWS) for c, k in enumerate(row)}
 _FAR_KEY = 1.5
 #: Two letters typed in the wrong order, the commonest slip of fast typing ("teh"): a little cheaper
 #: than a neighbouring key, so that "teh" is "the", not "ten".
@@ -53,12 +51,29 @@ _SHORT = 4
 #: Word lists of the grammar's modules whose words are content words, not the grammar's own.
 _NOT_GRAMMAR = frozenset({"HOMOPHONES", "NEEDS", "PREPOSITION_SLIPS"})
 _LONG = 8
-#: Words after which "were" at the start of an utterance can only be "where".
-_ASKED = frozenset({"is", "are", "did", "do", "does", "can", "could", "should", "has", "have", "was"})
-#: Who a preposition may introduce without an article ("four me": for me; "2 him").
-_PEOPLE = ME | {"him", "her", "them"}
-#: Particles of the way after which a preposition says where ("show him through two surgery one").
-_WAY = frozenset(MOTION_PARTICLES.split()) | frozenset(CARRY_PARTICLES.split()) | PATHS
+
+
+class _Slips:
+    """A language's words of typing and hearing slips (made once per language)."""
+
+    def __init__(self, lang: Language) -> None:
+        speech, closed = lang.speech, lang.words
+        keyboard = speech.spelling
+        #: Each key of the keyboard, by its row and how far along it is.
+        self.keys = {k: (r, c + keyboard.offsets[r]) for r, row in enumerate(keyboard.keyboard)
+                     for c, k in enumerate(row)}  # fmt: skip
+        #: Words after which "were" at the start of an utterance can only be "where".
+        self.asked = speech.spelling.asked
+        self.slips = speech.preposition_slips
+        #: Who a preposition may introduce without an article ("four me": for me; "2 him").
+        self.people = closed.me | {"him", "her", "them"}
+        #: Particles of the way after which a preposition says where ("show him through two surgery
+        #: one").
+        particles = frozenset(MOTION_PARTICLES.split()) | frozenset(CARRY_PARTICLES.split())
+        self.way = particles | lang.prepositions.words("path")
+        self.np_start = closed.np_start
+        self.numbers = closed.numbers
+        self.pronouns = closed.pronouns
 
 
 @dataclass(frozen=True)
@@ -81,6 +96,7 @@ class Spelled:
 
 def corrected(text: str, lexicon: Lexicon) -> Spelled:
     """The text with each slip corrected (outside quotes), and the corrections made."""
+    slips = lexicon.lang.derived(_Slips)
     quoted = [m.span() for m in QUOTED.finditer(text)]
     fixes: list[tuple[int, int, Correction]] = []
     words = spans(text)
@@ -88,13 +104,13 @@ def corrected(text: str, lexicon: Lexicon) -> Spelled:
     for n, (word, start, end) in enumerate(words):
         if any(a <= start < b for a, b in quoted) or _named(text, start):
             continue
-        if n == 0 and word == "were" and words[1:2] and words[1][0] in _ASKED:
+        if n == 0 and word == "were" and words[1:2] and words[1][0] in slips.asked:
             # "were is the globe": "where" as a recogniser writes it
             fixes.append((start, end, Correction(word, "where", False)))
             continue
-        if 0 < n < len(words) - 1 and word in PREPOSITION_SLIPS:
-            if _slipped_preposition(said, n, lexicon):
-                fixes.append((start, end, Correction(word, PREPOSITION_SLIPS[word], False)))
+        if 0 < n < len(words) - 1 and word in slips.slips:
+            if _slipped_preposition(slips, said, n, lexicon):
+                fixes.append((start, end, Correction(word, slips.slips[word], False)))
             continue
         heard = misheard(said, n, lexicon)  # "the pear of goggles", "write now", "wait their"
         if heard is not None:
@@ -107,7 +123,7 @@ def corrected(text: str, lexicon: Lexicon) -> Spelled:
             fixes.append((start, end, Correction(word, split, False)))
             continue
         # a person's name in another spelling before a slip of a word ("steven" is Stephen, not "seven")
-        someone = n == 0 or said[n - 1] not in NP_START  # ("the kat" is no Kate)
+        someone = n == 0 or said[n - 1] not in slips.np_start  # ("the kat" is no Kate)
         meant = (heard_name(word, lexicon) if someone else None) or _meant(word, lexicon)
         if meant is not None:
             fixes.append((start, end, Correction(word, meant, meant not in grammar_words())))
@@ -122,7 +138,7 @@ def corrected(text: str, lexicon: Lexicon) -> Spelled:
     return Spelled("".join([*out, text[last:]]), tuple(f[2] for f in fixes))
 
 
-def _slipped_preposition(words: list[str], n: int, lexicon: Lexicon) -> bool:
+def _slipped_preposition(slips: _Slips, words: list[str], n: int, lexicon: Lexicon) -> bool:
     """Whether the n-th word is a preposition heard or typed as another word ("walk too the gate",
     "milk form the jug", "take it 2 Carol", "get the ladle four me", "take the soup two table
     four"): before a noun phrase, a person (a name, "me", "him"), or a name of the KB said without
@@ -130,13 +146,15 @@ def _slipped_preposition(words: list[str], n: int, lexicon: Lexicon) -> bool:
     one"). A real number is never lost: a number before a
     plural ("two apples"), a number ending a name ("table two"), after a determiner ("the two")."""
     before, after = words[n - 1], words[n + 1]
-    if before in NP_START or before.isdigit() or before in NUMBERS or not _ended(words, n, lexicon):
+    if before in slips.np_start or before.isdigit() or before in slips.numbers:
+        return False
+    if not _ended(words, n, lexicon):
         return False  # ("platform 4 my train's late": the number of a name)
-    if after in NP_START or after in _PEOPLE or _someone(lexicon, words, n + 1):
+    if after in slips.np_start or after in slips.people or _someone(lexicon, words, n + 1):
         return True
     if not lexicon.names_at(words, n + 1) or singular(after) != after:
         return False
-    return before in PRONOUNS or before in _WAY or lexicon.knows(before)
+    return before in slips.pronouns or before in slips.way or lexicon.knows(before)
 
 
 def _ended(words: list[str], n: int, lexicon: Lexicon) -> bool:
@@ -200,7 +218,7 @@ def _nearest(word: str, lexicon: Lexicon) -> str | None:
     limit = 2 if len(word) >= _LONG else 1
     choices = _choices(lexicon)
     near = process.extract(word, choices, scorer=OSA.distance, score_cutoff=limit, limit=None)
-    priced = sorted((typing_cost(word, choice), choice) for choice, _, _ in near)
+    priced = sorted((typing_cost(lexicon.lang, word, choice), choice) for choice, _, _ in near)
     if not priced or priced[0][0] > limit or (len(priced) > 1 and priced[1][0] == priced[0][0]):
         return None
     return priced[0][1]
@@ -210,8 +228,9 @@ def _choices(lexicon: Lexicon) -> list[str]:
     return [*grammar_words(), *(w for w in lexicon.vocabulary if w not in grammar_words())]
 
 
-def typing_cost(said: str, meant: str) -> float:
+def typing_cost(lang: Language, said: str, meant: str) -> float:
     """The price of `said` as a slip of `meant` (optimal string alignment, keyboard-weighted)."""
+    keys = lang.derived(_Slips).keys
     short = len(meant) <= _SHORT
     gap = 2.0 if short else 1.0  # a short word with a letter missing or added is another word
     previous2: list[float] = []
@@ -223,7 +242,7 @@ def typing_cost(said: str, meant: str) -> float:
             # slip of all after a swap
             extra = _DOUBLE if not short and i > 1 and a == said[i - 2] else gap
             missed = _DOUBLE if not short and j > 1 and b == meant[j - 2] else gap
-            cost = min(previous[j] + extra, row[j - 1] + missed, previous[j - 1] + _key_distance(a, b))
+            cost = min(previous[j] + extra, row[j - 1] + missed, previous[j - 1] + _key_distance(keys, a, b))
             if i > 1 and j > 1 and a == meant[j - 2] and said[i - 2] == b:
                 cost = min(cost, previous2[j - 2] + _SWAP)
             row.append(cost)
@@ -231,10 +250,10 @@ def typing_cost(said: str, meant: str) -> float:
     return previous[-1]
 
 
-def _key_distance(a: str, b: str) -> float:
+def _key_distance(keys: dict[str, tuple[int, float]], a: str, b: str) -> float:
     if a == b:
         return 0.0
-    ka, kb = _KEYS.get(a), _KEYS.get(b)
+    ka, kb = keys.get(a), keys.get(b)
     if ka is None or kb is None:
         return _FAR_KEY
     return 1.0 if abs(ka[0] - kb[0]) <= 1 and abs(ka[1] - kb[1]) <= 1 else _FAR_KEY

@@ -4,10 +4,15 @@ correct word, never when two words are as close."""
 import pytest
 
 from dialogue import intents as I
-from dialogue.understanding.speech.spelling import corrected, grammar_words, typing_cost
+from dialogue.understanding.speech import spelling
+from dialogue.understanding.speech.spelling import corrected, grammar_words
 from kb import KB
-from tests.dialogue.conftest import lexicon_of, scene_kb
+from tests.dialogue.conftest import english, lexicon_of, scene_kb
 from tests.dialogue.understanding.test_interpret import say
+
+
+def typing_cost(said: str, meant: str) -> float:
+    return spelling.typing_cost(english(), said, meant)
 
 
 def _things(*labels: str) -> KB:

@@ -1,0 +1,224 @@
+"""The tables of a language folder's files, as typed models (dialogue.understanding.language reads
+them): one model per file, a table a file leaves out empty, any other key refused."""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from functools import cached_property
+from typing import Annotated, Any
+
+from pydantic import BaseModel, BeforeValidator, ConfigDict
+
+Words = tuple[str, ...]
+
+
+def _words(value: Any) -> Any:
+    """ "a b c" (or ["a", "b"]) -> the words."""
+    if isinstance(value, str):
+        return value.split()
+    return value
+
+
+def _phrases(value: Any) -> Any:
+    """ "a b|c" (or ["a b", "c"]) -> (("a", "b"), ("c",)), in order."""
+    if isinstance(value, str):
+        value = value.split("|")
+    if isinstance(value, list):
+        return [tuple(p.split()) if isinstance(p, str) else p for p in value]
+    return value
+
+
+def _phrase(value: Any) -> Any:
+    """ "what is" -> ("what", "is")."""
+    return tuple(value.split()) if isinstance(value, str) else value
+
+
+WordSet = Annotated[frozenset[str], BeforeValidator(_words)]
+WordList = Annotated[tuple[str, ...], BeforeValidator(_words)]
+Phrases = Annotated[tuple[Words, ...], BeforeValidator(_phrases)]
+PhraseSet = Annotated[frozenset[Words], BeforeValidator(_phrases)]
+Phrase = Annotated[Words, BeforeValidator(_phrase)]
+
+
+class Table(BaseModel):
+    """The tables of one file; a table the file leaves out is empty."""
+
+    model_config = ConfigDict(frozen=True, extra="forbid")
+
+
+class HeadNounWords(Table):
+    """`words.toml` [head_noun]: the words of a noun phrase's head, read by dialogue.reference.headnoun."""
+
+    qualifiers: WordSet = frozenset()
+    skipped: WordSet = frozenset()
+    clause_words: WordSet = frozenset()
+    new_phrase: WordSet = frozenset()
+    several: WordSet = frozenset()
+
+
+class ClosedWords(Table):
+    """`words.toml`: closed-class words."""
+
+    determiners: WordSet = frozenset()
+    pronouns: WordSet = frozenset()
+    personal: WordSet = frozenset()
+    neuter: WordSet = frozenset()
+    possessives: WordSet = frozenset()
+    me: WordSet = frozenset()
+    colours: WordSet = frozenset()
+    positions: WordSet = frozenset()
+    parts: WordSet = frozenset()
+    containers: WordSet = frozenset()
+    compound_heads: WordSet = frozenset()
+    measures: WordSet = frozenset()
+    many: WordSet = frozenset()
+    relativisers: WordSet = frozenset()
+    np_start: WordSet = frozenset()
+    owners: dict[str, str] = {}
+    wh: WordSet = frozenset()
+    titles: Phrases = ()
+    numbers: WordSet = frozenset()
+    units: WordList = ()
+    tens: WordList = ()
+    function_words: WordSet = frozenset()
+    glue: WordSet = frozenset()
+    core_end: WordSet = frozenset()
+    not_said: WordSet = frozenset()
+    head_noun: HeadNounWords = HeadNounWords()
+
+    @cached_property
+    def spoken_numbers(self) -> dict[str, Words]:
+        """Numbers below a hundred as said in words ("7" -> ("seven",), "21" -> ("twenty", "one"))."""
+        units = self.units
+        tens = {str(20 + 10 * t + u): (w, units[u]) if u else (w,)
+                for t, w in enumerate(self.tens) for u in range(10)}  # fmt: skip
+        return {**{str(n): (w,) for n, w in enumerate(units)}, **tens}
+
+    @cached_property
+    def written(self) -> dict[Words, str]:
+        return {words: digits for digits, words in self.spoken_numbers.items()}
+
+    @cached_property
+    def any_function_word(self) -> frozenset[str]:
+        """Closed-class words in general (pronouns, prepositions, conjunctions, auxiliaries, number
+        words): always words of the language, whatever a lexicon of content words says."""
+        return self.numbers | self.function_words
+
+    def other_numbers(self, words: Sequence[str]) -> Words | None:
+        """The words with each number below a hundred written the other way: "plot 7" -> "plot
+        seven", "table nine" -> "table 9", "gate twenty one" -> "gate 21"; None when they have no
+        number."""
+        written, spoken = self.written, self.spoken_numbers
+        out: list[str] = []
+        i = 0
+        while i < len(words):
+            pair, one = tuple(words[i : i + 2]), (words[i],)
+            if len(pair) == 2 and pair in written:
+                out.append(written[pair])
+                i += 2
+                continue
+            out.extend(spoken.get(words[i]) or ((written[one],) if one in written else one))
+            i += 1
+        return tuple(out) if out != list(words) else None
+
+
+class Preposition(Table):
+    """One row of the preposition table (its columns are described in prepositions.toml)."""
+
+    model_config = ConfigDict(frozen=True, extra="forbid", alias_generator=lambda n: n.replace("_", "-"))
+
+    uses: WordSet = frozenset()
+    said_back: str | None = None
+    relations: frozenset[str] = frozenset()
+    evidence: frozenset[str] = frozenset()
+    states: str | None = None
+    says: str | None = None
+    reads_as: str | None = None
+
+
+class Prepositions(Table):
+    """`prepositions.toml`: one table of prepositions (single words and phrases), in order."""
+
+    prepositions: dict[str, Preposition] = {}
+
+    def having(self, use: str) -> tuple[Words, ...]:
+        """The prepositions that have a use, as phrases, in the table's order."""
+        return tuple(tuple(p.split()) for p, row in self.prepositions.items() if use in row.uses)
+
+    def words(self, use: str) -> frozenset[str]:
+        """The one-word prepositions that have a use."""
+        return frozenset(p[0] for p in self.having(use) if len(p) == 1)
+
+    def longest_first(self, use: str) -> tuple[Words, ...]:
+        """The prepositions that have a use, longest first (then in the table's order): the first
+        that a text starts with is the longest it starts with ("on top of" before "on")."""
+        return tuple(sorted(self.having(use), key=len, reverse=True))
+
+    def row(self, words: Sequence[str]) -> Preposition | None:
+        return self.prepositions.get(" ".join(words))
+
+    def column(self, name: str) -> dict[str, Any]:
+        """Each preposition that has a value in a column, with it ("said_back": "beside" -> "next to")."""
+        return {p: v for p, row in self.prepositions.items() if (v := getattr(row, name))}
+
+
+class ClauseWords(Table):
+    """`speech.toml` [clauses]: where a run-on utterance is cut into clauses."""
+
+    asks: Phrases = ()
+    indefinite: WordSet = frozenset()
+    subjects: WordSet = frozenset()
+    auxiliaries: WordSet = frozenset()
+    takes_clause: WordSet = frozenset()
+    telling: WordSet = frozenset()
+    reasons: WordSet = frozenset()
+    hedges: WordSet = frozenset()
+    describing: Phrases = ()
+    thinking: Phrases = ()
+    put: WordSet = frozenset()
+
+
+class SpellingWords(Table):
+    """`speech.toml` [spelling]: how a typo is found."""
+
+    asked: WordSet = frozenset()
+    keyboard: tuple[str, ...] = ()
+    offsets: tuple[float, ...] = ()
+
+
+class SpeechWords(Table):
+    """`speech.toml`: speech and chat forms."""
+
+    fillers: WordSet = frozenset()
+    filler_pairs: PhraseSet = frozenset()
+    asking: WordSet = frozenset()
+    lead_fillers: WordSet = frozenset()
+    repairs: Phrases = ()
+    polite_prefixes: Phrases = ()
+    robot_suffixes: Phrases = ()
+    polite_suffixes: Phrases = ()
+    tags: Phrases = ()
+    not_vocative: WordSet = frozenset()
+    auxiliaries: WordSet = frozenset()
+    homophones: Phrases = ()
+    not_nouns: WordSet = frozenset()
+    numbering: WordSet = frozenset()
+    my_after: WordSet = frozenset()
+    wishing: WordSet = frozenset()
+    preposition_slips: dict[str, str] = {}
+    contractions: dict[str, Phrase] = {}
+    chat: dict[str, Phrase] = {}
+    clauses: ClauseWords = ClauseWords()
+    spelling: SpellingWords = SpellingWords()
+
+    @cached_property
+    def written(self) -> dict[str, Words]:
+        """Every written form read as other words: contractions, with or without the apostrophe,
+        and chat."""
+        return {**self.contractions, **self.chat}
+
+    @cached_property
+    def all_polite_suffixes(self) -> Phrases:
+        """The politeness at the end of a request: the robot's, the others, and the tags ("the yellow
+        one mate", "over here love")."""
+        return (*self.robot_suffixes, *self.polite_suffixes, *self.tags)
