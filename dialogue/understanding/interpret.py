@@ -32,7 +32,7 @@ from dialogue.understanding.questions import answers
 from dialogue.understanding.replies import acknowledgement, vocative
 from dialogue.understanding.requests.commands import parse
 from dialogue.understanding.requests.compound import Part, conjuncts, coordinated, unprefixed
-from dialogue.understanding.requests.referents import RELATIONAL, Referents
+from dialogue.understanding.requests.referents import Referents, relational
 from dialogue.understanding.requests.terse import terse
 from dialogue.understanding.speech.clauses import clauses, described, description
 from dialogue.understanding.speech.letters import joined
@@ -307,7 +307,7 @@ class Interpreter:
             slots = {**self.refs.split_double_object(slots.pop("rest")), **overrides}
         if intent in {I.BRING_OBJECT, I.PLACE_OBJECT} and "recipient" in slots:
             # "take Maria to the kitchen", "walk Mr Ito back to the car park": guiding, not carrying
-            who = tuple(w for w in slots.get("object", ()) if w not in RELATIONAL)
+            who = tuple(w for w in slots.get("object", ()) if w not in relational(self.lang))
             # (never to a person: "take them to her" carries them to her)
             if self.refs.person_as_object(who) is not None and who:
                 if self.refs.a_person(slots["recipient"]) or slots["recipient"] in {("here",), ("there",)}:

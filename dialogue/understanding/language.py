@@ -6,6 +6,10 @@ One folder per language, data only (the shape of Home Assistant's intents reposi
     words.toml         closed-class words: determiners, pronouns, colours, numbers...
     prepositions.toml  one table of prepositions, each with what it introduces
     speech.toml        speech and chat forms: contractions, fillers, politeness, repairs, clauses
+    social.toml        greetings and what is said with them
+    frames.toml        the verb frames of requests
+    requests.toml      the other words of requests: adjuncts, wishes, needs, compound and terse ones
+    followups.toml     the words of answers to the robot's question
 
 and `lexicon.txt`, other ways of saying a name (dialogue.reference.synonyms). A file a language
 does not have is a table it leaves empty.
@@ -27,7 +31,16 @@ from typing import Any, TypeVar, cast
 from pydantic import ValidationError
 
 from dialogue.errors import DialogueError
-from dialogue.understanding.tables import ClosedWords, Prepositions, SpeechWords, Table
+from dialogue.understanding.tables import (
+    ClosedWords,
+    FollowupWords,
+    FrameTable,
+    Prepositions,
+    RequestWords,
+    SocialWords,
+    SpeechWords,
+    Table,
+)
 
 T = TypeVar("T")
 
@@ -63,6 +76,10 @@ class Language:
         self.words: ClosedWords = _table(folder, "words", ClosedWords)
         self.prepositions: Prepositions = _table(folder, "prepositions", Prepositions)
         self.speech: SpeechWords = _table(folder, "speech", SpeechWords)
+        self.social: SocialWords = _table(folder, "social", SocialWords)
+        self.requests: RequestWords = _table(folder, "requests", RequestWords)
+        self.frames: FrameTable = _table(folder, "frames", FrameTable)
+        self.followups: FollowupWords = _table(folder, "followups", FollowupWords)
         lexicon = folder / "lexicon.txt"
         #: Other ways of saying a name (dialogue.reference.synonyms parses it).
         self.lexicon = lexicon.read_text(encoding="utf-8") if lexicon.is_file() else ""

@@ -5,9 +5,9 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from functools import cached_property
-from typing import Annotated, Any
+from typing import Annotated, Any, Literal
 
-from pydantic import BaseModel, BeforeValidator, ConfigDict
+from pydantic import BaseModel, BeforeValidator, ConfigDict, Field
 
 Words = tuple[str, ...]
 
@@ -222,3 +222,137 @@ class SpeechWords(Table):
         """The politeness at the end of a request: the robot's, the others, and the tags ("the yellow
         one mate", "over here love")."""
         return (*self.robot_suffixes, *self.polite_suffixes, *self.tags)
+
+
+class ConstructionWords(Table):
+    """`requests.toml` [constructions]: the words of the small constructions."""
+
+    not_things: WordSet = frozenset()
+    shown: WordSet = frozenset()
+    subjects: WordSet = frozenset()
+    verbs_of_any: WordSet = frozenset()
+
+
+class CompoundWords(Table):
+    """`requests.toml` [compound]: where a compound request is cut."""
+
+    conjunctions: WordSet = frozenset()
+    bare_verbs: WordSet = frozenset()
+    serial: WordSet = frozenset()
+    greeting: PhraseSet = frozenset()
+    object_start: WordSet = frozenset()
+    no_cut_after: WordSet = frozenset()
+    a_bit: WordSet = frozenset()
+
+
+class TerseWords(Table):
+    """`requests.toml` [terse]: terse requests."""
+
+    subjects: WordSet = frozenset()
+
+
+class ReferentWords(Table):
+    """`requests.toml` [referents]: the words a role's phrase is grounded with."""
+
+    relational: WordSet = frozenset()
+    accounted: WordSet = frozenset()
+    every: WordSet = frozenset()
+    some: WordSet = frozenset()
+
+
+class RequestWords(Table):
+    """`requests.toml`: the words of requests."""
+
+    here: Phrases = ()
+    there: Phrases = ()
+    adjuncts: Phrases = ()
+    away: Phrases = ()
+    durations: Phrases = ()
+    while_: WordSet = Field(frozenset(), alias="while")
+    time_conjunctions: WordSet = frozenset()
+    their_subjects: WordSet = frozenset()
+    polite_if: Phrases = ()
+    if_modals: WordSet = frozenset()
+    halts: WordSet = frozenset()
+    manner: WordSet = frozenset()
+    wants: Phrases = ()
+    want_verbs: WordSet = frozenset()
+    their_wants: Phrases = ()
+    wishers: WordSet = frozenset()
+    not_wishers: WordSet = frozenset()
+    intensifiers: WordSet = frozenset()
+    done: WordSet = frozenset()
+    goes: Phrases = ()
+    goes_particles: WordSet = frozenset()
+    terse_motion: WordSet = frozenset()
+    everyone: PhraseSet = frozenset()
+    stop_filler: WordSet = frozenset()
+    activity_filler: WordSet = frozenset()
+    results: WordSet = frozenset()
+    no_intent_verbs: WordSet = frozenset()
+    needs: dict[str, str] = {}
+    purposes: dict[str, Phrase] = {}
+    constructions: ConstructionWords = ConstructionWords()
+    compound: CompoundWords = CompoundWords()
+    terse: TerseWords = TerseWords()
+    referents: ReferentWords = ReferentWords()
+
+    @cached_property
+    def all_adjuncts(self) -> Phrases:
+        """Every phrase that says how or when: the adjuncts, the durations, where not to be."""
+        return (*self.adjuncts, *self.durations, *self.away)
+
+    def purpose(self, words: Words) -> Words | None:
+        """The kind of thing "to eat", "to cut this with" (the words after "something") name, if any."""
+        return self.purposes.get(words[1]) if len(words) > 1 and words[0] == "to" else None
+
+
+class SocialWords(Table):
+    """`social.toml`: greetings and what is said with them."""
+
+    greetings: Phrases = ()
+    attention: PhraseSet = frozenset()
+    social: PhraseSet = frozenset()
+
+    @cached_property
+    def greetings_longest_first(self) -> Phrases:
+        """The greetings, longest first: "hello there" before "hello"."""
+        return tuple(sorted(self.greetings, key=len, reverse=True))
+
+
+class FrameRow(Table):
+    """`frames.toml` [[frame]]: one verb frame, as the file says it (dialogue.understanding.requests.frames
+    reads it into a `Frame`)."""
+
+    model_config = ConfigDict(frozen=True, extra="forbid", alias_generator=lambda n: n.replace("_", "-"))
+
+    verbs: str
+    intent: str | None = None
+    direct: str | None = None
+    slots: dict[str, str] = {}
+    particles: str = ""
+    here: str | None = None
+    there_only: bool = False
+    dative: Literal["me", "any", "before"] | None = None
+    only: str | None = None
+    requires: tuple[str, ...] = ()
+    defaults: dict[str, Phrase] = {}
+    whole: bool = False
+    text: Literal["verb", "activity", "doing", "stopping"] | None = None
+    named: str | None = None
+    special: str | None = None
+    serial: bool = False
+
+
+class FrameTable(Table):
+    """`frames.toml`: the verb frames, their groups of words, the constructions tried before them."""
+
+    constructions: tuple[str, ...] = ()
+    groups: dict[str, str] = {}
+    frame: tuple[FrameRow, ...] = ()
+
+
+class FollowupWords(Table):
+    """`followups.toml`: the words of answers to the robot's question."""
+
+    interjections: WordSet = frozenset()

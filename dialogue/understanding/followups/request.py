@@ -29,7 +29,6 @@ from dialogue.understanding.requests.constructions import where_it_goes
 from dialogue.understanding.requests.referents import Referents
 from dialogue.understanding.speech.clauses import clauses, described, description
 from dialogue.understanding.speech.plain import expanded, plain, strip_politeness
-from dialogue.understanding.words import INTERJECTIONS, NP_START, OWNERS, PLACES
 
 
 class Reader(Protocol):
@@ -47,8 +46,6 @@ class Reader(Protocol):
     def act(self, p: Parse, overrides: dict[str, Words] | None = None) -> Outcome: ...
 
 _ONE = frozenset({"one", "ones"})
-#: A fragment answering "Where should I put it?" may start with its preposition ("on the shelf").
-_PLACES = phrases(PLACES)
 #: How the robot offers to do something ("Would you like me to bring you a basket?"), and how it
 #: offers a thing ("Would you like a towel?": brought to the person asked).
 _OFFERS = phrases(
@@ -114,7 +111,7 @@ def follow_up(reader: Reader, p: Parse, text: str) -> Outcome | None:
     fragment, more = _fragment(lang, p, text)
     if not fragment:
         return None
-    merged = _merged(fragment, first)
+    merged = _merged(lang, fragment, first)
     if more is not None:  # "the pink one, it's Carla's"
         merged = described(lang, merged, more)
     role = first.open_role
@@ -137,10 +134,11 @@ def _fragment(lang: Language, p: Parse, text: str) -> tuple[Words, Words | None]
     said = clauses(lang, text)
     more = description(lang, said[1]) if len(said) == 2 else None
     words = tokens(said[0]) if more is not None else p.words
-    return tuple(OWNERS.get(w, w) for w in words if w not in INTERJECTIONS), more
+    owners, interjections = lang.words.owners, lang.followups.interjections
+    return tuple(owners.get(w, w) for w in words if w not in interjections), more
 
 
-def _merged(fragment: Words, first: Outcome) -> Words:
+def _merged(lang: Language, fragment: Words, first: Outcome) -> Words:
     """The fragment with the pending request's phrase: "the red one" and "the cup" make "the red
     cup"; prepositions stay ("the novel" + "book from the shelf" keeps "book" as the head)."""
     if first.open_phrase:
@@ -148,7 +146,8 @@ def _merged(fragment: Words, first: Outcome) -> Words:
         if not set(fragment) & _ONE:
             return (*fragment, *phrase)
         return tuple(x for w in fragment for x in (phrase if w in _ONE else (w,)))
-    for loc in _PLACES:
+    # (a fragment answering "Where should I put it?" may start with its preposition: "on the shelf")
+    for loc in lang.prepositions.longest_first("place"):
         if fragment[: len(loc)] == loc:
             return fragment[len(loc) :]
     return fragment
@@ -224,12 +223,12 @@ def correction(reader: Reader, text: str) -> Outcome | None:
              for part in text.split(",")]  # fmt: skip
     words = [w for part in parts for w in part]
     lead = next((c for c in _CORRECTING if tuple(words[: len(c)]) == c), None)
-    fragment = tuple(words[len(lead) :]) if lead is not None else _not_that(tuple(words))
+    fragment = tuple(words[len(lead) :]) if lead is not None else _not_that(lang, tuple(words))
     if lead is None and set(words) & _OTHER and set(content_words(lang, words)) <= _OTHER | _ONE:
         fragment = tuple(words)  # "no, the other one"
     if len(parts) == 2 and parts[0][:1] == ["not"] and parts[1]:  # "not the shed, the porch"
         fragment = tuple(parts[1])
-    for loc in _PLACES:  # "I meant on the shelf"
+    for loc in lang.prepositions.longest_first("place"):  # "I meant on the shelf"
         if fragment[: len(loc)] == loc and fragment[len(loc) :]:
             fragment = fragment[len(loc) :]
             break
@@ -278,14 +277,15 @@ def _the_other(earlier: Reader, fragment: Words, said: Words, was: str,
     return tuple(tokens(others[0].id)) if len(others) == 1 and len(named) == 2 else None
 
 
-def _not_that(words: Words) -> Words:
+def _not_that(lang: Language, words: Words) -> Words:
     """ "not the shed, the porch" or "the porch, not the shed": the phrase meant (() if none is)."""
     if "not" not in words:
         return ()
     at = words.index("not")
     if at > 0:
         return words[:at]
-    starts = (j for j in range(2, len(words)) if words[j] in NP_START and words[j - 1] not in NP_START)
+    np_start = lang.words.np_start
+    starts = (j for j in range(2, len(words)) if words[j] in np_start and words[j - 1] not in np_start)
     again = next(starts, None)
     return words[again:] if again is not None else ()
 

@@ -10,7 +10,6 @@ from dialogue.reference.english import COLOURS, Words, word_set
 from dialogue.understanding.language import Language
 from dialogue.understanding.parsed import Parse
 from dialogue.understanding.speech.plain import split_at, starts
-from dialogue.understanding.words import WH, purpose
 
 _SEES: tuple[Words, ...] = tuple(
     tuple(p.split()) for p in ("do you see", "can you see", "could you see", "have you seen", "did you see",
@@ -59,13 +58,14 @@ def _strip_ends(thing: Words, lead: frozenset[str], tail: frozenset[str]) -> Wor
 
 
 def question(lang: Language, words: list[str]) -> Parse | None:  # noqa: C901
+    wh = lang.words.wh
     w = tuple(words)
-    if w[:2] in {("tell", "me"), ("show", "me")} and len(w) > 2 and w[2] in WH | {"about"}:
+    if w[:2] in {("tell", "me"), ("show", "me")} and len(w) > 2 and w[2] in wh | {"about"}:
         if w[2] == "about":
             return _q("what_is", w, thing=w[3:])
         w = w[2:]
     for lead in _INDIRECT:
-        if starts(w, lead) and w[len(lead) : len(lead) + 1] and w[len(lead)] in WH:
+        if starts(w, lead) and w[len(lead) : len(lead) + 1] and w[len(lead)] in wh:
             w = w[len(lead) :]
             break
     head = w[:1]
@@ -90,7 +90,7 @@ def question(lang: Language, words: list[str]) -> Parse | None:  # noqa: C901
         if starts(w, lead):
             thing = _strip_ends(w[len(lead) :], frozenset(), _NEARBY)  # "is there any fruit around"
             if thing[:1] in {("anything",), ("something",)}:
-                return _anything(w, thing[1:])
+                return _anything(lang, w, thing[1:])
             return _q("can_see", w, thing=thing)
     if head in {("is",), ("are",)} and len(w) > 2 and w[-1] in _THERE:
         return _q("can_see", w, thing=w[1:-1])  # "is Maria here?"
@@ -99,7 +99,7 @@ def question(lang: Language, words: list[str]) -> Parse | None:  # noqa: C901
     if head == ("how",):
         social = starts(w, ("how", "are", "you")) or starts(w, ("how", "is", "it", "going"))
         return _q("how_are_you" if social else "other", w)
-    if head and head[0] in WH:
+    if head and head[0] in wh:
         return _q("other", w)
     return None
 
@@ -183,9 +183,9 @@ def _someone_elses(rest: Words) -> bool:
     return bool(set(rest) & _OTHERS) or any(x.endswith("'s") for x in rest) or "of" in rest
 
 
-def _anything(w: Words, rest: Words) -> Parse:
+def _anything(lang: Language, w: Words, rest: Words) -> Parse:
     """ "is there anything on the table", "do you see anything to eat", "can you see anything"."""
-    wanted = purpose(rest[:2])
+    wanted = lang.requests.purpose(rest[:2])
     if wanted is not None:
         return _q("can_see", w, thing=(*wanted, *rest[2:]))
     found = split_at(("x", *rest), _LOCATIVES)

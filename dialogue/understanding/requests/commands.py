@@ -10,56 +10,74 @@ from __future__ import annotations
 from collections.abc import Sequence
 from dataclasses import replace
 
-from dialogue.reference.english import DETERMINERS, FUNCTION_WORDS, MANY, ME, MODIFIER_START, PERSONAL, Words
+from dialogue.reference.english import Words
 from dialogue.understanding.language import Language
 from dialogue.understanding.parsed import Act, Parse
 from dialogue.understanding.questions.grammar import question as _question
 from dialogue.understanding.requests.constructions import Said
-from dialogue.understanding.requests.frames import CONSTRUCTIONS, Row, verb_index
+from dialogue.understanding.requests.frames import Row, Special, constructions, verb_index
 from dialogue.understanding.speech.plain import starts, strip_politeness
 from dialogue.understanding.speech.repair import normalise, strip_vocative, verb_lemma
-from dialogue.understanding.words import (
-    ADJUNCTS,
-    ATTENTION,
-    AWAY,
-    DURATIONS,
-    GOAL_PARTICLES,
-    GREETINGS,
-    HALTS,
-    HERE,
-    IF_MODALS,
-    JOINED_PREPOSITIONS,
-    MANNER,
-    NP_START,
-    PATHS,
-    POLITE_IF,
-    RESULTS,
-    SOCIAL,
-    THEIR_SUBJECTS,
-    THERE,
-    TIME_CONJUNCTIONS,
-    WHILE,
-    purpose,
-)
 
 __all__ = ["Parse", "Words", "parse"]
 
-#: Pointing words and what they point at, longest first: the speaker, or the place just spoken of.
-_POINTING = sorted([(p, ("me",)) for p in HERE] + [(p, ("there",)) for p in THERE], key=lambda p: -len(p[0]))
+
+class _Grammar:
+    """The language's words a request is read with (made once per language)."""
+
+    def __init__(self, lang: Language) -> None:
+        closed, said, social = lang.words, lang.requests, lang.social
+        self.determiners = closed.determiners
+        self.function_words = closed.any_function_word
+        self.many = closed.many
+        self.me = closed.me
+        self.modifier_start = lang.modifier_start
+        self.personal = closed.personal
+        self.np_start = closed.np_start
+        self.adjuncts = said.all_adjuncts
+        self.away = frozenset(said.away)
+        self.durations = said.durations
+        self.halts = said.halts
+        self.if_modals = said.if_modals
+        self.manner = said.manner
+        self.polite_if = said.polite_if
+        self.results = said.results
+        self.their_subjects = said.their_subjects
+        self.time_conjunctions = said.time_conjunctions
+        self.while_ = said.while_
+        self.purpose = said.purpose
+        self.greetings = social.greetings_longest_first
+        self.attention = social.attention
+        self.social = social.social
+        self.goal_particles = lang.prepositions.words("goal-particle")
+        self.paths = lang.prepositions.words("path")
+        #: Two-word prepositions read as one word, so that their "to" is never taken for a
+        #: recipient's ("next to": "beside").
+        self.joined = {tuple(p.split()): one for p, one in lang.prepositions.column("reads_as").items()}
+        #: Prepositions that never end a request as a particle: a role said with one and nothing
+        #: after it was cut short ("give it to"), where "come in", "hold on" end with a particle.
+        self.cut_short = lang.prepositions.words("cut-short")
+        #: Pointing words and what they point at, longest first: the speaker, or the place just
+        #: spoken of.
+        self.pointing = sorted([(p, ("me",)) for p in said.here] + [(p, ("there",)) for p in said.there],
+                               key=lambda p: -len(p[0]))  # fmt: skip
+        self.own_phrase = closed.np_start | {"her"}
+        self.constructions: tuple[Special, ...] = constructions(lang)
 
 
 def parse(lang: Language, text: str, robot_name: str = "") -> Parse:
+    g = lang.derived(_Grammar)
     words = strip_vocative(lang, strip_politeness(lang, normalise(lang, text), robot_name), robot_name)
     if not words:
         return Parse("unknown", words=())
     words[0] = verb_lemma(lang, words[0])  # "(would you mind) picking up the cup"
     if words[0] == "no" and len(words) > 1 and words[1] not in {"need", "more", "thanks", "thank"}:
         words = strip_politeness(lang, words[1:], robot_name)
-    if len(words) > 1 and words[0] in HALTS and _negation(words[1:]):  # "stop, don't go"
+    if len(words) > 1 and words[0] in g.halts and _negation(words[1:]):  # "stop, don't go"
         words = words[1:]
     if words and _negation(words):
         return Parse("negated", words=tuple(words))
-    if _conditional(words):  # "if Declan comes by, give him the menu": not now
+    if _conditional(g, words):  # "if Declan comes by, give him the menu": not now
         return Parse("conditional", words=tuple(words))
     if not words:
         return Parse("unknown", words=())
@@ -67,19 +85,20 @@ def parse(lang: Language, text: str, robot_name: str = "") -> Parse:
         # "thanks, now put it on the shelf": the thanks is a preamble to the request
         tail = strip_politeness(lang, words[2:] if words[:2] == ["thank", "you"] else words[1:], robot_name)
         return _request(lang, text, tail) or _aside("thanks", words, tail)
-    if tuple(words) in SOCIAL and words[:1] != ["how"]:
+    if tuple(words) in g.social and words[:1] != ["how"]:
         return Parse("greeting", words=tuple(words))
     # "welcome Lucia" asks the robot to greet her; "welcome back" is a greeting.
     welcoming = words[0] == "welcome" and words[1:] and words[1] not in {"back", "home", "to", "everyone"}
-    for g in () if welcoming else GREETINGS:
-        if starts(words, g):
-            rest = strip_vocative(lang, strip_politeness(lang, words[len(g) :], robot_name), robot_name)
-            if tuple(rest) in SOCIAL:
+    for greeting in () if welcoming else g.greetings:
+        if starts(words, greeting):
+            polite = strip_politeness(lang, words[len(greeting) :], robot_name)
+            rest = strip_vocative(lang, polite, robot_name)
+            if tuple(rest) in g.social:
                 return Parse("greeting", words=tuple(words))
             # "Good morning Maria" is still a greeting; "hi, grab the cup" is a request; "hello
             # robot, what's your name" a greeting and a question.
             after = _request(lang, text, rest)
-            if after is not None and after.act == "question" and g not in ATTENTION:
+            if after is not None and after.act == "question" and greeting not in g.attention:
                 return replace(after, greeted=True)
             return after or _aside("greeting", words, rest)
     return _question(lang, words) or command(lang, text, words)
@@ -105,9 +124,10 @@ def _request(lang: Language, text: str, words: list[str]) -> Parse | None:
 
 def command(lang: Language, original: str, words: list[str]) -> Parse:
     """The request the words make: the first construction or verb frame that fits them."""
-    w = _joined(words)
+    g = lang.derived(_Grammar)
+    w = _joined(g, words)
     said = Said(lang, "", w, w, original)
-    for construction in CONSTRUCTIONS:
+    for construction in g.constructions:
         found = construction(said)
         if found is not None:
             return found
@@ -124,14 +144,14 @@ def command(lang: Language, original: str, words: list[str]) -> Parse:
     return Parse("unknown", words=w)
 
 
-def _joined(words: list[str]) -> Words:
+def _joined(g: _Grammar, words: list[str]) -> Words:
     """ "next to" as one word ("beside"), so that its "to" is never taken for a recipient's ("out
     of the way" stays: an adjunct, no place)."""
     out: list[str] = []
     for i, word in enumerate(words):
         way = word == "of" and words[i + 1 : i + 3][-1:] == ["way"]
-        if out and (out[-1], word) in JOINED_PREPOSITIONS and len(out) > 1 and not way:
-            out[-1] = JOINED_PREPOSITIONS[(out[-1], word)]
+        if out and (out[-1], word) in g.joined and len(out) > 1 and not way:
+            out[-1] = g.joined[(out[-1], word)]
         else:
             out.append(word)
     return tuple(out)
@@ -140,6 +160,7 @@ def _joined(words: list[str]) -> Words:
 def _fit(row: Row, said: Said) -> Parse | None:  # noqa: C901
     """The row's reading of what follows the verb, or None when the row does not fit it."""
     frame, rest = row.frame, said.rest
+    g = said.lang.derived(_Grammar)
     if frame.special is not None:
         return frame.special(said)
     if frame.intent is None and not frame.serial:  # a verb no intent says ("hand out the sheets")
@@ -150,18 +171,18 @@ def _fit(row: Row, said: Said) -> Parse | None:  # noqa: C901
         return command(lang, said.original, list(rest)) if serial else None
     if frame.whole and rest:
         return None
-    rest, adjuncts = _adjuncts(rest, row)
-    direct, slots, marks = _segments(rest, row)
+    rest, adjuncts = _adjuncts(g, rest, row)
+    direct, slots, marks = _segments(g, rest, row)
     if direct:
         direct = _which_one_back(direct, slots, marks, row)
-    if frame.here is not None and not (frame.dative and direct[:1] and direct[0] in ME):
+    if frame.here is not None and not (frame.dative and direct[:1] and direct[0] in g.me):
         # ("fetch me that lamp over there": there is where the lamp is)
         # "leave it over there", "come here", "lead the way"; dropped when the place is also named
         # ("lead the way to the lobby").
         # ("wait for me there": what for says no place, the pointing word after it does)
         aside = "extra" if not direct and "extra" in slots else None
         words = slots[aside] if aside is not None else direct
-        pointed = next((p for p in _POINTING if words[-len(p[0]) :] == p[0]), None)
+        pointed = next((p for p in g.pointing if words[-len(p[0]) :] == p[0]), None)
         if pointed is not None and not (frame.there_only and pointed[1] != ("there",)):
             if aside is None:
                 direct = direct[: -len(pointed[0])]
@@ -170,19 +191,19 @@ def _fit(row: Row, said: Said) -> Parse | None:  # noqa: C901
             slots.setdefault(frame.here, pointed[1])
     if "extra" in slots:  # what a role the intent does not ground says is an adjunct ("for the van")
         adjuncts = (*adjuncts, (marks.pop("extra"), *slots.pop("extra")))
-    direct = _without_particles(direct, row)
-    if direct[-1:] and direct[-1] in RESULTS:  # "get the room ready": no intent of the robot's
+    direct = _without_particles(g, direct, row)
+    if direct[-1:] and direct[-1] in g.results:  # "get the room ready": no intent of the robot's
         return Parse("unknown", words=said.words)
-    if not direct and not slots and set(adjuncts) & _AWAY:
+    if not direct and not slots and set(adjuncts) & g.away:
         return None  # "get out of my way": where not to be is all it says (no thing to get)
     if not direct and frame.direct is not None:
-        direct = _second_phrase(slots)  # "bring to Ana the tray"
-    if frame.dative is not None and direct[:1] and direct[0] in ME and marks.get("recipient") == "to":
+        direct = _second_phrase(g, slots)  # "bring to Ana the tray"
+    if frame.dative is not None and direct[:1] and direct[0] in g.me and marks.get("recipient") == "to":
         # "bring me the keys to the red car": the keys of the car, brought to the speaker
         direct = (*direct[1:], "to", *slots.pop("recipient"))
         slots["recipient"] = ("me",)
         del marks["recipient"]
-    elif frame.dative is not None and direct[:1] and direct[0] in ME and marks.get("recipient") == "for":
+    elif frame.dative is not None and direct[:1] and direct[0] in g.me and marks.get("recipient") == "for":
         # "pass me the drill for Marcus", "get me a cloth for the spill": the speaker is handed it,
         # whoever or whatever it is for
         adjuncts = (*adjuncts, ("for", *slots.pop("recipient")))
@@ -190,8 +211,8 @@ def _fit(row: Row, said: Said) -> Parse | None:  # noqa: C901
         del marks["recipient"]
     if frame.dative is not None and "recipient" not in slots and direct:
         # "get Ines her phone": someone, then a noun phrase of its own
-        before = frame.dative == "before" and _someone(direct[0]) and _own_phrase_after(direct)
-        if direct[0] in ME:  # "get me a cup"
+        before = frame.dative == "before" and _someone(g, direct[0]) and _own_phrase_after(g, direct)
+        if direct[0] in g.me:  # "get me a cup"
             slots["recipient"], direct = ("me",), direct[1:]
         elif frame.dative == "any" or before:  # "give Ines her phone": the interpreter splits it
             return Parse("command", frame.intent, {"rest": direct}, words=said.words, double_object=True,
@@ -206,31 +227,29 @@ def _fit(row: Row, said: Said) -> Parse | None:  # noqa: C901
         return None
     implicit = frozenset(r for r in frame.defaults if r not in slots)
     slots = {**{r: frame.defaults[r] for r in implicit}, **slots}
-    text = frame.text(said.verb, said.rest) if frame.text is not None else None
+    text = frame.text(said.lang, said.verb, said.rest) if frame.text is not None else None
     return Parse("command", frame.intent, slots, text=text, words=said.words, adjuncts=adjuncts,
                  implicit=implicit, marks=marks)  # fmt: skip
 
 
-_OWN_PHRASE = NP_START | {"her"}
-_AWAY = frozenset(AWAY)
 
 
-def _someone(word: str) -> bool:
+def _someone(g: _Grammar, word: str) -> bool:
     """Whether a word may start the phrase of a person ("him", "Ines"), not of a thing ("all", "the")
     nor a person's thing ("Noor's scarf")."""
     if word.endswith("'s"):
         return False
-    return word in PERSONAL or word == "them" or word not in FUNCTION_WORDS | DETERMINERS | MANY
+    return word in g.personal or word == "them" or word not in g.function_words | g.determiners | g.many
 
 
-def _own_phrase_after(direct: Words) -> bool:
+def _own_phrase_after(g: _Grammar, direct: Words) -> bool:
     """Whether a noun phrase of its own starts within the next words after the first ("Ines *her*
     phone", "Mr Ito *the* menu"), not after a preposition ("Noor's scarf off *the* chair")."""
     starts = range(1, min(4, len(direct)))
-    return any(direct[i] in _OWN_PHRASE and direct[i - 1] not in MODIFIER_START for i in starts)
+    return any(direct[i] in g.own_phrase and direct[i - 1] not in g.modifier_start for i in starts)
 
 
-def _segments(rest: Words, row: Row) -> tuple[Words, dict[str, Words], dict[str, str]]:
+def _segments(g: _Grammar, rest: Words, row: Row) -> tuple[Words, dict[str, Words], dict[str, str]]:
     """The words before any of the row's prepositions (the direct role's), and each role's phrase:
     from its preposition to the next role's (a role's preposition said again stays in its phrase:
     "put the cup on the tray on the table"), and the preposition of each."""
@@ -241,9 +260,9 @@ def _segments(rest: Words, row: Row) -> tuple[Words, dict[str, Words], dict[str,
     i = 0
     while i < len(rest):
         marker = next((m for m in row.slots if rest[i : i + len(m[0])] == m[0] and m[1] not in slots), None)
-        if marker is not None and marker[0][0] in GOAL_PARTICLES and not _phrase_at(rest, i + 1):
+        if marker is not None and marker[0][0] in g.goal_particles and not _phrase_at(g, rest, i + 1):
             marker = None  # "go down to the cellar": a particle; "go down the garden": where to
-        if marker is not None and purpose(rest[i : i + 2]) is None:  # "something to eat" is no recipient
+        if marker is not None and g.purpose(rest[i : i + 2]) is None:  # "something to eat" is no recipient
             current = slots[marker[1]] = []
             marks[marker[1]] = " ".join(marker[0])
             i += len(marker[0])
@@ -251,13 +270,10 @@ def _segments(rest: Words, row: Row) -> tuple[Words, dict[str, Words], dict[str,
         current.append(rest[i])
         i += 1
     # "take the calculator to": a role cut short is still said (asked for), never dropped
-    cut = {r for r, words in slots.items() if not words and marks[r] in _CUT_SHORT and current is words}
+    cut = {r for r, words in slots.items() if not words and marks[r] in g.cut_short and current is words}
     return tuple(direct), {role: tuple(words) for role, words in slots.items() if words or role in cut}, marks
 
 
-#: Prepositions that never end a request as a particle: a role said with one and nothing after it was
-#: cut short ("give it to"), where "come in", "hold on" end with a particle.
-_CUT_SHORT = frozenset({"to", "towards", "into", "onto"})
 
 
 def _which_one_back(direct: Words, slots: dict[str, Words], marks: dict[str, str], row: Row) -> Words:
@@ -275,25 +291,25 @@ def _which_one_back(direct: Words, slots: dict[str, Words], marks: dict[str, str
     return direct
 
 
-def _phrase_at(words: Words, i: int) -> bool:
+def _phrase_at(g: _Grammar, words: Words, i: int) -> bool:
     """Whether a noun phrase starts at i: a determiner, or a word that is no function word ("plot
     12", "Ana's desk")."""
-    return i < len(words) and (words[i] in NP_START or words[i] not in FUNCTION_WORDS)
+    return i < len(words) and (words[i] in g.np_start or words[i] not in g.function_words)
 
 
-def _second_phrase(slots: dict[str, Words]) -> Words:
+def _second_phrase(g: _Grammar, slots: dict[str, Words]) -> Words:
     """When nothing follows the verb directly, a second noun phrase after a role's own ("to Ana the
     tray", "to Fenna her keys") is the direct one; it is taken out of that role's phrase."""
     for role, words in slots.items():
         for i in range(1, len(words)):
-            starts = words[i] in NP_START or (words[i] == "her" and i + 1 < len(words))
-            if starts and words[i - 1] not in NP_START:
+            starts = words[i] in g.np_start or (words[i] == "her" and i + 1 < len(words))
+            if starts and words[i - 1] not in g.np_start:
                 slots[role] = words[:i]
                 return words[i:]
     return ()
 
 
-def _without_particles(words: Words, row: Row) -> Words:
+def _without_particles(g: _Grammar, words: Words, row: Row) -> Words:
     """Particles next to the verb, at the end, or before a preposition ("pick the cup up from the
     table"), never inside a phrase ("the back door")."""
     if not row.particles:
@@ -303,14 +319,14 @@ def _without_particles(words: Words, row: Row) -> Words:
         out.pop(0)
     while out and out[-1] in row.particles:
         out.pop()
-    return tuple(w for i, w in enumerate(out) if w not in row.particles or not _before_preposition(out, i))
+    return tuple(w for i, w in enumerate(out) if w not in row.particles or not _before_preposition(g, out, i))
 
 
-def _before_preposition(words: list[str], i: int) -> bool:
-    return i + 1 < len(words) and words[i + 1] in MODIFIER_START
+def _before_preposition(g: _Grammar, words: list[str], i: int) -> bool:
+    return i + 1 < len(words) and words[i + 1] in g.modifier_start
 
 
-def _adjuncts(rest: Words, row: Row) -> tuple[Words, tuple[Words, ...]]:
+def _adjuncts(g: _Grammar, rest: Words, row: Row) -> tuple[Words, tuple[Words, ...]]:
     """The words without their adjuncts ("through the main door", "on my behalf", "when you can",
     "carefully"), and the adjuncts. A phrase starting with one of the row's own prepositions is
     one of its roles, not an adjunct."""
@@ -319,7 +335,7 @@ def _adjuncts(rest: Words, row: Row) -> tuple[Words, tuple[Words, ...]]:
     found: list[Words] = []
     i = 0
     while i < len(rest):
-        end = _adjunct_end(rest, i, own)
+        end = _adjunct_end(g, rest, i, own)
         if end > i:
             found.append(rest[i:end])
             i = end
@@ -329,26 +345,27 @@ def _adjuncts(rest: Words, row: Row) -> tuple[Words, tuple[Words, ...]]:
     return tuple(out), tuple(found)
 
 
-def _adjunct_end(rest: Words, i: int, own: set[str]) -> int:
+def _adjunct_end(g: _Grammar, rest: Words, i: int, own: set[str]) -> int:
     word = rest[i]
-    lasting = next((len(p) for p in DURATIONS if rest[i : i + len(p)] == p), 0)
+    lasting = next((len(p) for p in g.durations if rest[i : i + len(p)] == p), 0)
     if lasting:  # "wait in the hall for now", "bring the fan for now"
         return i + lasting
     by_doing = word == "by" and i + 1 < len(rest) and rest[i + 1].endswith("ing")  # "by crossing the hall"
     # "down the hall to the garage": the way, when the place comes after it
-    way = word in GOAL_PARTICLES & own and bool(set(rest[i + 1 :]) & (own - GOAL_PARTICLES))
+    way = word in g.goal_particles & own and bool(set(rest[i + 1 :]) & (own - g.goal_particles))
     # "take Aisha down the corridor to the staff room": the way, between the thing or person and
     # where they go, for a verb of carrying or guiding too
-    way = way or (i > 0 and word in GOAL_PARTICLES and rest[i + 1 : i + 2] != () and rest[i + 1] in NP_START
-                  and bool(set(rest[i + 2 :]) & (own - GOAL_PARTICLES)))  # fmt: skip
+    particle = i > 0 and word in g.goal_particles
+    way = way or (particle and rest[i + 1 : i + 2] != () and rest[i + 1] in g.np_start
+                  and bool(set(rest[i + 2 :]) & (own - g.goal_particles)))  # fmt: skip
     if word in own and not by_doing and not way:
         return i
-    said_how = _said_how(rest, i)
+    said_how = _said_how(g, rest, i)
     if said_how:
         return i + said_how
-    if word in PATHS or by_doing or way:
-        end, stop = i + 1, (own - GOAL_PARTICLES) | PATHS
-        while end < len(rest) and rest[end] not in stop and not _said_how(rest, end):
+    if word in g.paths or by_doing or way:
+        end, stop = i + 1, (own - g.goal_particles) | g.paths
+        while end < len(rest) and rest[end] not in stop and not _said_how(g, rest, end):
             end += 1
         # "through the main door" has a phrase; "walk through to the lounge" is a particle.
         return end if end > i + 1 else i
@@ -359,20 +376,20 @@ def _negation(words: Sequence[str]) -> bool:
     return words[0] in {"don't", "never", "no"} or starts(words, ["do", "not"])
 
 
-def _conditional(words: Sequence[str]) -> bool:
+def _conditional(g: _Grammar, words: Sequence[str]) -> bool:
     """Whether the request is said under a condition of something to happen first ("if I nod off,
     could you..."), not a polite "if" ("if you could...", "if I could have the bill")."""
-    if words[:1] != ["if"] or len(words) < 4 or any(starts(words, p) for p in POLITE_IF):
+    if words[:1] != ["if"] or len(words) < 4 or any(starts(words, p) for p in g.polite_if):
         return False
-    return words[2] not in IF_MODALS
+    return words[2] not in g.if_modals
 
 
-def _said_how(rest: Words, i: int) -> int:
+def _said_how(g: _Grammar, rest: Words, i: int) -> int:
     """The length of the phrase of manner or time that starts at i ("when you can", "carefully", a
     clause of time to the end: "while he waits"), or 0."""
-    if rest[i] in MANNER:
+    if rest[i] in g.manner:
         return 1
     subject = rest[i + 1] if i + 1 < len(rest) else ""
-    if i > 0 and (rest[i] in WHILE or (rest[i] in TIME_CONJUNCTIONS and subject in THEIR_SUBJECTS)):
+    if i > 0 and (rest[i] in g.while_ or (rest[i] in g.time_conjunctions and subject in g.their_subjects)):
         return len(rest) - i
-    return next((len(p) for p in ADJUNCTS if rest[i : i + len(p)] == p), 0)
+    return next((len(p) for p in g.adjuncts if rest[i : i + len(p)] == p), 0)

@@ -9,39 +9,42 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from dialogue.reference.english import Words, phrases, spans, word_set
+from dialogue.reference.english import Words, spans
 from dialogue.reference.resolution import content_words
 from dialogue.understanding.language import Language
 from dialogue.understanding.requests.frames import verbs
 from dialogue.understanding.speech.plain import QUOTED, starts, strip_politeness
 from dialogue.understanding.speech.repair import asked_verb, normalise, strip_vocative
-from dialogue.understanding.words import AWAY, CHAT, GREETINGS, NO_INTENT_VERBS, RESULTS
-
-_CONJUNCTIONS = word_set("and then , ; afterwards")
-#: Verbs that start a new command even with no conjunction before them, when followed by one of
-#: `_OBJECT_START` ("go to the bathroom take the rag"): never nouns in a command's phrases.
-_BARE_VERBS = word_set(
-    "take bring go put place grab fetch get find search give open move tell ask remind greet carry guide"
-)
-_SERIAL = word_set("go come")
-#: A greeting asked for starts a request of its own, whatever came before it ("Agnes is here say hi").
-_GREETING = frozenset(phrases("say hello|say hi|say hiya|say goodbye|say bye|wave hello|wave hi"))
 
 
-def _greeting_at(toks: list[tuple[str, int, int]], i: int) -> bool:
-    return i + 1 < len(toks) and (toks[i][0], toks[i + 1][0]) in _GREETING
-_OBJECT_START = word_set(
-    "the a an my your his her this that these those it them me us him to into some all both"
-)
-#: Words after which a verb continues the same command ("you take", "to take", "go get"), besides
-#: the verbs of the grammar.
-_NO_CUT_AFTER = word_set(
-    "to you i we and then please can could would will go come let just also should must not don't never "
-    "us me robot or but if when while before after so and the a an my your his her this that some "
-    # after a modal or a negation a verb is that clause's own ("she can't find her keys")
-    "cannot can't cant couldn't couldnt won't wont wouldn't wouldnt shouldn't don't dont doesn't doesnt "
-    "didn't didnt do does did might may shall"
-)
+class _Words:
+    """The language's words of compound requests (`requests.toml` [compound]; made once per language)."""
+
+    def __init__(self, lang: Language) -> None:
+        said = lang.requests.compound
+        self.conjunctions = said.conjunctions
+        #: Verbs that start a new command even with no conjunction before them, when followed by
+        #: one of `object_start` ("go to the bathroom take the rag"): never nouns in a command's
+        #: phrases.
+        self.bare_verbs = said.bare_verbs
+        self.serial = said.serial
+        #: A greeting asked for starts a request of its own, whatever came before it ("Agnes is
+        #: here say hi").
+        self.greeting = said.greeting
+        self.object_start = said.object_start
+        #: Words after which a verb continues the same command ("you take", "to take", "go get"),
+        #: besides the verbs of the grammar.
+        self.no_cut_after = said.no_cut_after
+        self.a_bit = said.a_bit
+        self.away = lang.requests.away
+        self.chat = lang.speech.chat
+        self.greetings = lang.social.greetings_longest_first
+        self.no_intent_verbs = lang.requests.no_intent_verbs
+        self.results = lang.requests.results
+
+
+def _greeting_at(c: _Words, toks: list[tuple[str, int, int]], i: int) -> bool:
+    return i + 1 < len(toks) and (toks[i][0], toks[i + 1][0]) in c.greeting
 
 
 @dataclass(frozen=True)
@@ -49,7 +52,7 @@ class Part:
     text: str
     #: The verb the part starts with (None for a preamble such as "thanks" or "hello").
     verb: str | None
-    #: The part's verb is one the robot has no intent for ("find", "turn on"), see NO_INTENT_VERBS.
+    #: The part's verb is one the robot has no intent for ("find", "turn on"; `requests.toml`).
     no_intent: bool
     #: The part only says where not to be ("move out of the way and go to the door"): what the
     #: parts after it do.
@@ -58,7 +61,7 @@ class Part:
 
 def _verb(lang: Language, text: str) -> str | None:
     words = strip_politeness(lang, normalise(lang, text))
-    for greeting in GREETINGS:  # "hey robot take the book"
+    for greeting in lang.social.greetings_longest_first:  # "hey robot take the book"
         if starts(words, greeting) and len(words) > len(greeting):
             words = strip_politeness(lang, words[len(greeting) :])
             break
@@ -72,26 +75,27 @@ def conjuncts(lang: Language, text: str) -> list[Part]:  # noqa: C901
     """The commands of a compound request in order, or [] when the text is one request."""
     if QUOTED.search(text):  # "say 'stop and wait' to Tom": the quote is one text
         return []
+    c = lang.derived(_Words)
     # (a conjunction as chat writes it: "get my bag n bring it over")
-    toks = [(_one_word(word), start, end) for word, start, end in spans(text, marks=True)]
-    no_cut_after = _NO_CUT_AFTER | verbs(lang) | _CONJUNCTIONS
+    toks = [(_one_word(c, word), start, end) for word, start, end in spans(text, marks=True)]
+    no_cut_after = c.no_cut_after | verbs(lang) | c.conjunctions
     cuts: list[tuple[int, int]] = []  # (index of the first word of the new part, index after the cut)
     for i, (word, _, _) in enumerate(toks):
         if i == 0:
             continue
-        if word in _CONJUNCTIONS:
+        if word in c.conjunctions:
             j = i
-            while j < len(toks) and toks[j][0] in _CONJUNCTIONS:
+            while j < len(toks) and toks[j][0] in c.conjunctions:
                 j += 1
             if j < len(toks) and (not cuts or cuts[-1][1] <= i):
                 cuts.append((i, j))
-        elif _greeting_at(toks, i) and toks[i - 1][0] not in no_cut_after:
+        elif _greeting_at(c, toks, i) and toks[i - 1][0] not in no_cut_after:
             cuts.append((i, i))  # "Agnes is here say hi"
-        elif word in _BARE_VERBS and toks[i - 1][0] not in no_cut_after:
+        elif word in c.bare_verbs and toks[i - 1][0] not in no_cut_after:
             nxt = toks[i + 1][0] if i + 1 < len(toks) else ""
             # "...he is at the door go say hi to him": "go" or "come" before a verb starts a request too
-            serial = word in _SERIAL and asked_verb(lang, nxt) in verbs(lang)
-            if nxt in _OBJECT_START or serial:
+            serial = word in c.serial and asked_verb(lang, nxt) in verbs(lang)
+            if nxt in c.object_start or serial:
                 cuts.append((i, i))
     if not cuts:
         return []
@@ -118,25 +122,23 @@ def conjuncts(lang: Language, text: str) -> list[Part]:  # noqa: C901
         verb = _verb(lang, piece)
         # ("go to the x-ray room and get it ready": no intent says the getting ready)
         said = normalise(lang, piece)
-        result = verb is not None and bool(said) and said[-1] in RESULTS
-        out.append(Part(piece, verb, verb in NO_INTENT_VERBS or result, _away(lang, piece)))
+        result = verb is not None and bool(said) and said[-1] in c.results
+        out.append(Part(piece, verb, verb in c.no_intent_verbs or result, _away(lang, piece)))
     return out
 
 
 def _away(lang: Language, text: str) -> bool:
     """Whether a request only says where not to be ("get out of the way", "move out of my way")."""
+    c = lang.derived(_Words)
     words = strip_vocative(lang, strip_politeness(lang, normalise(lang, text)))
-    rest = tuple(w for w in words[1:] if w not in _A_BIT)
-    return bool(words) and asked_verb(lang, words[0]) in verbs(lang) and rest in AWAY
+    rest = tuple(w for w in words[1:] if w not in c.a_bit)
+    return bool(words) and asked_verb(lang, words[0]) in verbs(lang) and rest in c.away
 
 
-_A_BIT = word_set("a bit little")
-
-
-def _one_word(word: str) -> str:
+def _one_word(c: _Words, word: str) -> str:
     """The conjunction a chat abbreviation stands for ("n" for "and"), else the word as written."""
-    said = CHAT.get(word, (word,))
-    return said[0] if len(said) == 1 and said[0] in _CONJUNCTIONS else word
+    said = c.chat.get(word, (word,))
+    return said[0] if len(said) == 1 and said[0] in c.conjunctions else word
 
 
 def alternatives(lang: Language, words: Words) -> list[Words]:

@@ -13,34 +13,45 @@ from dataclasses import dataclass, replace
 from lemminflect import getLemma
 
 from dialogue import intents as I
-from dialogue.reference.english import FUNCTION_WORDS, ME, Words, phrases, word_set
+from dialogue.reference.english import Words
 from dialogue.understanding.language import Language
 from dialogue.understanding.parsed import Parse
 from dialogue.understanding.speech.clauses import finite
 from dialogue.understanding.speech.plain import QUOTED, expanded, message, original_text, split_at, starts
-from dialogue.understanding.words import (
-    ADJUNCTS,
-    DONE,
-    EVERYONE,
-    GOES,
-    GOES_PARTICLES,
-    INTENSIFIERS,
-    NEEDS,
-    NOT_WISHERS,
-    NP_START,
-    PLACES,
-    THEIR_WANTS,
-    WANT_VERBS,
-    WANTS,
-    WISHERS,
-)
 
-#: Prepositions of a place a thing goes, longest first; "to" and "at" say no place to put it
-#: ("goes to town"), only one to take it to after a request to take another thing there.
-_PLACES = sorted(phrases(PLACES), key=len, reverse=True)
-_NOT_PUT = frozenset({("to",), ("at",)})
-#: Subjects that never name a thing to put ("I go in the morning", "you belong here").
-NOT_THINGS = word_set("i we you he she what where who which how why when there")
+
+class _Words:
+    """The language's words of the small constructions (made once per language)."""
+
+    def __init__(self, lang: Language) -> None:
+        said, closed, words = lang.requests, lang.words, lang.requests.constructions
+        #: Prepositions of a place a thing goes, longest first; "to" and "at" say no place to put it
+        #: ("goes to town"), only one to take it to after a request to take another thing there.
+        self.places = lang.prepositions.longest_first("place")
+        self.not_put = frozenset(lang.prepositions.having("no-put"))
+        #: Subjects that never name a thing to put ("I go in the morning", "you belong here").
+        self.not_things = words.not_things
+        #: "show Ana in", "show them round": the way someone is shown, guiding them.
+        self.shown = words.shown
+        #: Words that start the clause of a message after the person told ("tell Noor *it*'s time").
+        self.subjects = words.subjects
+        #: Verbs that follow a subject whatever it is.
+        self.verbs_of_any = words.verbs_of_any
+        self.adjuncts = said.all_adjuncts
+        self.done = said.done
+        self.everyone = said.everyone
+        self.goes = said.goes
+        self.goes_particles = said.goes_particles
+        self.intensifiers = said.intensifiers
+        self.needs = said.needs
+        self.wants = said.wants
+        self.want_verbs = said.want_verbs
+        self.their_wants = said.their_wants
+        self.wishers = said.wishers
+        self.not_wishers = said.not_wishers
+        self.np_start = closed.np_start
+        self.function_words = closed.any_function_word
+        self.me = closed.me
 
 
 @dataclass(frozen=True)
@@ -57,32 +68,34 @@ class Said:
 
     def command(self, intent: str, text: str | None = None, **slots: Words) -> Parse:
         if "recipient" in slots:  # "tell Ana from me that...": whom, not on whose behalf
-            slots["recipient"] = _without_adjunct(slots["recipient"])
+            slots["recipient"] = _without_adjunct(self.lang.derived(_Words), slots["recipient"])
         return Parse("command", intent, dict(slots), text=text, words=self.words)
 
 
-def _without_adjunct(words: Words) -> Words:
+def _without_adjunct(c: _Words, words: Words) -> Words:
     """The words without an adjunct at their end ("ana from me", "ana on my behalf")."""
-    found = next((a for a in ADJUNCTS if len(words) > len(a) and words[-len(a) :] == a), None)
+    found = next((a for a in c.adjuncts if len(words) > len(a) and words[-len(a) :] == a), None)
     return words[: -len(found)] if found is not None else words
 
 
 # -- before any verb: what the whole utterance says ----------------------------------------------
 def need(said: Said) -> Parse | None:
     """ "I'm really parched", "we are starving": something of the class that meets the need."""
+    c = said.lang.derived(_Words)
     w = said.words
     if w[:2] not in {("i", "am"), ("we", "are")}:
         return None
-    rest = [x for x in w[2:] if x not in INTENSIFIERS]
-    wanted = NEEDS.get(rest[0]) if len(rest) == 1 else None
+    rest = [x for x in w[2:] if x not in c.intensifiers]
+    wanted = c.needs.get(rest[0]) if len(rest) == 1 else None
     return said.command(I.BRING_OBJECT, object=(wanted,), recipient=("me",)) if wanted else None
 
 
 def going(said: Said) -> Parse | None:
     """ "I want to go to X", "Ellen needs to get to X": take them there."""
+    c = said.lang.derived(_Words)
     w = said.words
     for i in range(len(w) - 4):
-        wants = w[i] in WANT_VERBS or w[i : i + 2] in {("would", "like"), ("has", "to"), ("have", "to")}
+        wants = w[i] in c.want_verbs or w[i : i + 2] in {("would", "like"), ("has", "to"), ("have", "to")}
         at = i + (2 if w[i] == "would" else 1)
         goes = w[at : at + 1] == ("to",) and w[at + 1 : at + 2] in {("go",), ("get",)}
         if wants and goes and w[at + 2 : at + 3] == ("to",) and w[at + 3 :]:
@@ -94,7 +107,8 @@ def going(said: Said) -> Parse | None:
 
 def wanting(said: Said) -> Parse | None:
     """ "I would like the apple", "can I have a tea": bring it to the speaker."""
-    for lead in WANTS:
+    c = said.lang.derived(_Words)
+    for lead in c.wants:
         if starts(said.words, lead) and len(said.words) > len(lead):
             wanted = said.words[len(lead) :]
             if wanted[:1] != ("to",) and wanted[:2] != ("a", "hand"):  # "give me a hand to the door"
@@ -104,14 +118,15 @@ def wanting(said: Said) -> Parse | None:
 
 def their_wish(said: Said) -> Parse | None:
     """ "Ahmed would like the photo album", "he needs his glasses": bring it to them."""
+    c = said.lang.derived(_Words)
     w = said.words
     for i in range(1, min(len(w), 4)):
         who = w[:i]
-        lead = next((p for p in THEIR_WANTS if w[i : i + len(p)] == p), None)
+        lead = next((p for p in c.their_wants if w[i : i + len(p)] == p), None)
         if lead is None:
             continue
         wanted = w[i + len(lead) :]
-        person = who in {(x,) for x in WISHERS} or not set(who) & (NOT_WISHERS | WISHERS | ME)
+        person = who in {(x,) for x in c.wishers} or not set(who) & (c.not_wishers | c.wishers | c.me)
         if person and wanted and wanted[0] != "to":
             return said.command(I.BRING_OBJECT, object=wanted, recipient=_pronoun(who))
         return None
@@ -125,8 +140,9 @@ def _pronoun(who: Words) -> Words:
 
 def belonging(said: Said) -> Parse | None:
     """ "the butter goes back in the fridge", "this belongs on the shelf": put it there."""
+    c = said.lang.derived(_Words)
     found = where_it_goes(said.lang, said.words)
-    if found is None or found[1] in _NOT_PUT:  # "goes to town" is no place to put it
+    if found is None or found[1] in c.not_put:  # "goes to town" is no place to put it
         return None
     thing, place, where = found
     parse = said.command(I.PLACE_OBJECT, object=thing, recipient=where)
@@ -136,15 +152,16 @@ def belonging(said: Said) -> Parse | None:
 def where_it_goes(lang: Language, w: Words) -> tuple[Words, Words, Words] | None:
     """ "the butter goes back in the fridge", "the soup goes to table two": the thing, the
     preposition and the place; None when the words say no such thing."""
+    c = lang.derived(_Words)
     for i in range(1, min(len(w) - 2, 6)):
-        lead = next((p for p in GOES if w[i : i + len(p)] == p), None)
+        lead = next((p for p in c.goes if w[i : i + len(p)] == p), None)
         if lead is None:
             continue
         thing, rest = w[:i], w[i + len(lead) :]
-        while rest[:1] and rest[0] in GOES_PARTICLES:
+        while rest[:1] and rest[0] in c.goes_particles:
             rest = rest[1:]
-        place = next((p for p in _PLACES if rest[: len(p)] == p), None)
-        if place is None or not rest[len(place) :] or thing[0] in NOT_THINGS:
+        place = next((p for p in c.places if rest[: len(p)] == p), None)
+        if place is None or not rest[len(place) :] or thing[0] in c.not_things:
             return None
         return thing, place, rest[len(place) :]
     return None
@@ -180,31 +197,32 @@ def helping(said: Said) -> Parse | None:
 def showing(said: Said) -> Parse | None:
     """ "show me the scissors" asks where they are; "show me the way (to X)" is guiding, and so is
     "show George where the lounge is"."""
+    c = said.lang.derived(_Words)
     if "where" in said.rest[1:]:
         at = said.rest.index("where")
         place = said.rest[at + 1 :]
         place = place[:-1] if place[-1:] in {("is",), ("are",)} else place
         return said.command(I.GUIDE, recipient=said.rest[:at] or ("me",), goal=place) if place else None
-    if "way" in said.rest or "to" in said.rest or set(said.rest[-1:]) & _SHOWN:
+    if "way" in said.rest or "to" in said.rest or set(said.rest[-1:]) & c.shown:
         return None  # ("show Ana out": guiding her, not where she is)
-    thing = said.rest[1:] if said.rest[:1] and said.rest[0] in ME else said.rest
+    thing = said.rest[1:] if said.rest[:1] and said.rest[0] in c.me else said.rest
     return Parse("question", question="where", slots={"thing": thing}, words=said.words)
 
 
-#: "show Ana in", "show them round": the way someone is shown, guiding them.
-_SHOWN = word_set("in out round around up down through along back")
 
 
 def everyone(said: Said) -> Parse | None:
     """ "greet everyone": no one recipient, a greeting said aloud."""
-    if said.rest in EVERYONE:
+    c = said.lang.derived(_Words)
+    if said.rest in c.everyone:
         return Parse("greeting", words=said.words, slots={"everyone": said.rest})
     return None
 
 
 def asking(said: Said) -> Parse | None:
     """ "do you like music" is a yes/no question, "do the dishes" a request."""
-    if said.rest[:1] and said.rest[0] not in DONE:
+    c = said.lang.derived(_Words)
+    if said.rest[:1] and said.rest[0] not in c.done:
         return Parse("unknown", words=said.words)
     return None
 
@@ -223,33 +241,31 @@ def _plural(word: str) -> bool:
     return bool(lemmas) and lemmas[0] != word
 
 
-#: Words that start the clause of a message after the person told ("tell Noor *it*'s time").
-_SUBJECTS = word_set("it he she they we i you there")
 
 
-def _clause_start(rest: Words) -> int | None:
+def _clause_start(c: _Words, rest: Words) -> int | None:
     """Where a clause with a subject of its own starts after the person told, if one does: a subject
     pronoun ("tell Noor *it*'s time"), or a noun phrase and its verb ("tell Kasia *her courgettes
     are* ready", "tell Ana *the taxi is* here")."""
-    starts = (i for i in range(1, len(rest) - 1) if rest[i] in _SUBJECTS or _subject_phrase(rest, i))
+    starts = (i for i in range(1, len(rest) - 1) if rest[i] in c.subjects or _subject_phrase(c, rest, i))
     return next(starts, None)
 
 
-#: Verbs that follow a subject whatever it is.
-_VERBS_OF_ANY = word_set("is are was were has have had will would can could should must may might")
 
 
 #: At most this many words of a subject before its verb ("the customer for the grey car has...").
 _SUBJECT_WORDS = 6
 
 
-def _subject_phrase(rest: Words, i: int) -> bool:
+def _subject_phrase(c: _Words, rest: Words, i: int) -> bool:
     """Whether a noun phrase starts at i and its verb follows it ("her courgettes are", "the film
     starts", "the customer for the grey car has")."""
-    if (rest[i] not in NP_START and rest[i] != "her") or i + 1 >= len(rest) or rest[i + 1] in FUNCTION_WORDS:
+    if (rest[i] not in c.np_start and rest[i] != "her") or i + 1 >= len(rest):
+        return False
+    if rest[i + 1] in c.function_words:
         return False
     for k in range(i + 2, min(len(rest), i + 1 + _SUBJECT_WORDS)):
-        if rest[k] in _VERBS_OF_ANY or finite(rest[k], third_person=True):
+        if rest[k] in c.verbs_of_any or finite(rest[k], third_person=True):
             return True
         if rest[k] in {"that", "to", "and", "or"}:
             return False
@@ -258,6 +274,7 @@ def _subject_phrase(rest: Words, i: int) -> bool:
 
 def speech(said: Said) -> Parse:
     """What to say, to whom: quoted words kept as they are, "tell X that/to...", "say X to Y"."""
+    c = said.lang.derived(_Words)
     verb, rest, original = said.verb, said.rest, said.original
     quoted = QUOTED.search(original)
     if quoted:
@@ -272,7 +289,7 @@ def speech(said: Said) -> Parse:
         return said.command(I.SAY, text="goodbye", recipient=rest[rest.index("to") + 1 :])
     if verb in {"tell", "inform", "remind", "ask"}:
         found = split_at(rest, ["that", "to", "about"])
-        clause = _clause_start(rest) if verb != "ask" else None
+        clause = _clause_start(c, rest) if verb != "ask" else None
         if clause is not None and (found is None or clause < len(found[0])):
             # "tell Noor it's time to go": the message is a clause of its own, its "to" is its own
             found = rest[:clause], "", rest[clause:]
@@ -284,9 +301,9 @@ def speech(said: Said) -> Parse:
         elif verb == "ask":  # "ask Ana if she wants tea": a question to put, not words to say
             return unknown
         else:  # "tell Maria", "tell my mum": a name, or a determiner and its noun
-            n = 2 if rest[:1] and rest[0] in NP_START else 1
+            n = 2 if rest[:1] and rest[0] in c.np_start else 1
             recipient, text = rest[:n], rest[n:]
-        if recipient[:1] and recipient[0] in ME:  # "tell me a joke": small talk, not a SAY intent
+        if recipient[:1] and recipient[0] in c.me:  # "tell me a joke": small talk, not a SAY intent
             return unknown
         if len(recipient) == 2 and recipient[0] in {"the", "all"} and _plural(recipient[1]):
             return unknown  # "tell the kids": several people, whom one intent cannot say
@@ -309,7 +326,7 @@ def _said_to(said: Said, rest: Words) -> Parse:
     """ "(say) to Sandeep that the film starts soon", "(say) to Ana it's time": the person, then the
     message ("that" or a clause of its own starts it)."""
     found = split_at(rest, ["that"])
-    clause = _clause_start(rest)
+    clause = _clause_start(said.lang.derived(_Words), rest)
     if found is not None and (clause is None or len(found[0]) <= clause):
         recipient, text = found[0], found[2]
     elif clause is not None:

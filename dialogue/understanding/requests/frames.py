@@ -1,67 +1,71 @@
-"""The grammar of requests as data: verb frames.
+"""The grammar of requests as data: verb frames, read from the language's `frames.toml`.
 
-A row says which verb phrases ask for an intent and how the words after the verb fill its roles:
+A frame says which verb phrases ask for an intent and how the words after the verb fill its roles:
 the role of the words right after the verb (`direct`), the prepositions that introduce each other
 role (`slots`, found in any order: "bring the tray to Ana" and "bring to Ana the tray"), the
 particles dropped around them ("pick *up*", "head *over* to"), the role that a bare "here"/"there"
-fills, and which roles must be said for the row to apply. Verbs are lemmas, so "picking", "took"
-and "puts" need no row of their own; multi-word verbs ("get hold of", "make your way") are phrases.
-What a row cannot say is a small function of dialogue.understanding.requests.constructions, named in the row.
+fills, and which roles must be said for the frame to apply. Verbs are lemmas, so "picking", "took"
+and "puts" need no frame of their own; multi-word verbs ("get hold of", "make your way") are phrases.
+What a frame cannot say is a small function of dialogue.understanding.requests.constructions, named
+in the frame.
 
-Rows are tried longest verb phrase first, then in table order; the first that fits wins. To add a
-verb, add it to a row (or add a row).
+Frames are tried longest verb phrase first, then in the file's order; the first that fits wins. To
+add a verb, add it to a frame (or add a frame).
 """
 
 from __future__ import annotations
 
+import re
 from collections.abc import Callable
 from dataclasses import dataclass, field
-from functools import cache
 from typing import Literal
 
-from dialogue import intents as I
-from dialogue.reference.english import ME, Words, phrases, word_set
-from dialogue.understanding.language import Language
+from dialogue.reference.english import Words, phrases, word_set
+from dialogue.understanding.language import Language, LanguageError
 from dialogue.understanding.parsed import Parse
 from dialogue.understanding.requests import constructions as C
-from dialogue.understanding.words import (
-    ACTIVITY_FILLER,
-    CARRY_PARTICLES,
-    GOALS,
-    MOTION_GOALS,
-    MOTION_PARTICLES,
-    NO_INTENT_VERBS,
-    PLACES,
-    STOP_FILLER,
-)
+from dialogue.understanding.tables import FrameRow
 
-#: How a row makes the free-form text of its intent from (verb, words after it).
-Text = Callable[[str, Words], str | None]
+#: How a frame makes the free-form text of its intent from (its language, the verb, the words after it).
+Text = Callable[[Language, str, Words], str | None]
 Special = Callable[[C.Said], Parse | None]
 
 
 def _named(name: str) -> Text:
-    return lambda verb, rest: name
+    return lambda lang, verb, rest: name
 
 
-def _verb(verb: str, rest: Words) -> str:
+def _verb(lang: Language, verb: str, rest: Words) -> str:
     return verb
 
 
-def _activity(verb: str, rest: Words) -> str | None:
+def _activity(lang: Language, verb: str, rest: Words) -> str | None:
     """ "play a game with me" -> "play_game"; "start (to) vacuum" -> "vacuum"."""
     words = rest[1:] if rest[:1] == ("to",) else rest
     words = words[: words.index("for")] if "for" in words[1:] else words  # ("story time for the little ones")
-    return "_".join(w for w in words if w not in ACTIVITY_FILLER) or None
+    return "_".join(w for w in words if w not in lang.requests.activity_filler) or None
 
 
-def _doing(verb: str, rest: Words) -> str | None:
+def _doing(lang: Language, verb: str, rest: Words) -> str | None:
     """ "water the plants" -> "water_plants": the verb names the activity."""
-    return _activity(verb, (*verb.split(), *rest))
+    return _activity(lang, verb, (*verb.split(), *rest))
 
 
-def _stopping(verb: str, rest: Words) -> str | None:
-    return "_".join(w for w in rest if w not in STOP_FILLER) or None
+def _stopping(lang: Language, verb: str, rest: Words) -> str | None:
+    return "_".join(w for w in rest if w not in lang.requests.stop_filler) or None
+
+
+#: How a frame's text is made, by the name the file gives it.
+TEXTS: dict[str, Text] = {"verb": _verb, "activity": _activity, "doing": _doing, "stopping": _stopping}
+#: The constructions a frame may name (`special`), and those tried before any verb is read.
+SPECIALS: dict[str, Special] = {
+    "everyone": C.everyone, "speech": C.speech, "letting_know": C.letting_know, "helping": C.helping,
+    "a_hand": C.a_hand, "showing": C.showing, "asking": C.asking,
+}  # fmt: skip
+WHOLE_UTTERANCE: dict[str, Special] = {
+    "need": C.need, "going": C.going, "wanting": C.wanting, "their_wish": C.their_wish,
+    "belonging": C.belonging, "enough": C.enough,
+}  # fmt: skip
 
 
 @dataclass(frozen=True)
@@ -86,118 +90,72 @@ class Frame:
     dative: Literal["me", "any", "before"] | None = None
     #: The only words the direct role may be ("take *me* to the kitchen").
     only: frozenset[str] | None = None
-    #: Roles that must be said for the row to apply (else the next row is tried).
+    #: Roles that must be said for the frame to apply (else the next frame is tried).
     requires: tuple[str, ...] = ()
     #: A role's value when it is not said (it is then marked implicit).
     defaults: dict[str, Words] = field(default_factory=dict)
     #: The verb phrase is all there is ("sleep"), not the start of a longer request.
     whole: bool = False
     text: Text | None = None
-    #: A function for what the row cannot say; it returns None when it does not apply.
+    #: A function for what the frame cannot say; it returns None when it does not apply.
     special: Special | None = None
     #: "go (and) get the cup": a verb after this one is the request.
     serial: bool = False
 
 
-_GRAB = "grab|take|get|collect|lift|grasp|seize|hold|pick"
-_BRING = "bring|hand|give|pass|fetch|deliver|carry|wheel|push|drag|pull|slide|shift"
-_THROW = "chuck|throw|toss|bung|lob"
-_PLACE = f"put|place|set|lay|drop|leave|stick|stack|release|rest|hang|store|park|shove|dump|pop|{_THROW}"
-_MOVE = (
-    "go|move|navigate|drive|walk|head|come|return|proceed|roll|stand|pop|nip|hop|make your way|"
-    "find your way"
-)
-_GUIDE = "guide|lead|escort|accompany|show|direct"
-#: Verbs that only ever say where to go: "get over to the desk", "run to the kitchen" ("get the cup",
-#: "run the dishwasher" are other rows').
-_GO = "get|swing|hurry|rush|dash|wander|run|scoot|zip"
-_STAY = "wait|stay|remain|hang on|hang about|hang around|sit"
-_AT = "in|inside|at|by|near|beside|outside|on|under|behind"
-#: "wait *out* in the courtyard", "stay *over* by the door", "wait *downstairs* in the hall"
-_OUT = "out over back down up outside upstairs downstairs"
-#: Particles of the way someone is taken: "show Ana *out* to the terrace", "walk me *back*".
-_ALONG = "over back through out in up down round around along"
-_SAY = "say|tell|announce|repeat|inform|remind|ask"
-_TO_SOMEONE = "to|towards|for|into"
+_GROUP = re.compile(r"@([\w-]+)")
 
-FRAMES: tuple[Frame, ...] = (
-    # The robot itself.
-    Frame("wake up", I.WAKEUP, direct="extra"),
-    Frame("wake|wakeup", I.WAKEUP, whole=True),
-    Frame("go to sleep|take a break", I.SUSPEND, direct="extra"),
-    Frame("sleep|suspend|standby|stand by|rest|power down", I.SUSPEND, whole=True),
-    Frame("stop|cancel|halt|abort|quit|cease|end|pause|interrupt|shut up|enough", I.STOP_ACTIVITY,
-          direct="activity", text=_stopping),
-    # People.
-    Frame("greet", special=C.everyone),
-    Frame("greet|welcome|say hello to|say hi to|wave hello to|wave hi to", I.GREET, direct="recipient"),
-    # "this is Callum, say hello": the person just introduced (else the speaker)
-    Frame("say hello|say hi|say hiya|wave hello|wave hi|say good morning|say good afternoon|"
-          "say good evening", I.GREET, whole=True, defaults={"recipient": ("me",)}),
-    Frame("look at|turn to|turn towards|face|engage with|talk to|talk with|speak to|speak with|"
-          "interact with|interact to|engage to", I.ENGAGE_WITH, direct="recipient"),
-    Frame("dance|wave|nod|bow|clap|point|spin|jump|salute", I.PERFORM_MOTION, direct="manner",
-          slots={"recipient": "to|at"}, text=_verb),
-    Frame("shake hands|shake", I.PERFORM_MOTION, direct="manner", slots={"recipient": "with|to|at"},
-          text=_named("shake_hands")),
-    Frame(_SAY, special=C.speech),
-    Frame("let", special=C.letting_know),
-    Frame("help", special=C.helping),
-    Frame("give", special=C.a_hand),
-    Frame("show", special=C.showing),
-    # "show Noor (the) way to the exit": the way is no one's name; "show Ana out to the terrace",
-    # "see Mr Ito up to his room": the particle says the way
-    Frame(_GUIDE, I.GUIDE, direct="recipient", slots={"goal": "to|towards|into"}, here="goal",
-          particles=f"way {_ALONG}", defaults={"recipient": ("me",)}),
-    # "take me (there)": the place just spoken of ("I need the lifts, can you take me")
-    Frame("take|walk", I.GUIDE, direct="recipient", slots={"goal": "to|towards|into"}, here="goal",
-          particles=_ALONG, only=ME, defaults={"goal": ("there",)}),
-    Frame("bring", I.GUIDE, direct="recipient", slots={"goal": "to|towards|into"}, here="goal",
-          particles="over back through", only=ME, requires=("goal",)),
-    # Going somewhere.
-    Frame("go|come", serial=True),
-    Frame("approach|enter|reach|visit", I.MOVE_TO, direct="goal", requires=("goal",)),
-    # "come back", "come over": to the speaker
-    Frame("come|come back|come over|come closer|come along", I.MOVE_TO, whole=True,
-          defaults={"goal": ("me",)}),
-    Frame(_MOVE, I.MOVE_TO, slots={"goal": MOTION_GOALS}, particles=MOTION_PARTICLES, here="goal",
-          requires=("goal",)),
-    # "go and wait in the courtyard", "stay by the door": be there ("wait for me" is no place)
-    # ("go to the shed and wait there": the place just spoken of)
-    # ("wait there for the van": what for changes nothing)
-    Frame(_STAY, I.MOVE_TO, slots={"goal": _AT, "extra": "for|until|till"}, particles=f"there {_OUT}",
-          here="goal", there_only=True, requires=("goal",)),
-    Frame(_GO, I.MOVE_TO, slots={"goal": MOTION_GOALS}, particles=MOTION_PARTICLES, here="goal",
-          requires=("goal",)),
-    Frame(_MOVE, I.PLACE_OBJECT, direct="object", slots={"recipient": GOALS}, particles="back away down over",
-          requires=("object", "recipient")),
-    # Handing things out to everyone: no intent says it ("hand out the worksheets" is no bringing).
-    Frame("hand out|give out|pass out|pass round|pass around|hand round|hand around|share out"),
-    # Things.
-    # "chuck me the remote", "throw the ball to me"; "chuck the rag in the sink" is the next row's
-    Frame(_THROW, I.BRING_OBJECT, direct="object", slots={"recipient": "to"}, particles=CARRY_PARTICLES,
-          dative="before", requires=("recipient",)),
-    Frame(_PLACE, I.PLACE_OBJECT, direct="object", slots={"recipient": PLACES}, here="recipient",
-          particles="down away back over out up"),
-    Frame(_BRING, I.BRING_OBJECT, direct="object", slots={"recipient": _TO_SOMEONE}, here="recipient",
-          particles=CARRY_PARTICLES, dative="any"),
-    # "get me a cup", "take Ines her phone"
-    Frame(_GRAB, I.BRING_OBJECT, direct="object", slots={"recipient": _TO_SOMEONE}, particles=CARRY_PARTICLES,
-          dative="before", requires=("recipient",)),
-    Frame(f"{_GRAB}|get hold of|take hold of|grab hold of|catch hold of", I.GRAB_OBJECT, direct="object",
-          particles="up down out"),
-    # Activities.
-    Frame("do", special=C.asking),
-    Frame("start|begin|launch|run|resume|do|perform|commence|kick off|get started with|get going with|"
-          "crack on with|start off", I.START_ACTIVITY, direct="activity",
-          text=_activity),
-    Frame("clean|tidy|vacuum|hoover|sweep|mop|wash|dust|cook|water|iron|fold|patrol|charge|sing|exercise|"
-          "wipe|organise|organize|prepare|make|cleaning|vacuuming|tidying|play", I.START_ACTIVITY,
-          direct="activity", text=_doing),
-)  # fmt: skip
 
-#: What the whole utterance may say before any verb is read ("I'm parched", "I want the apple").
-CONSTRUCTIONS: tuple[Special, ...] = (C.need, C.going, C.wanting, C.their_wish, C.belonging, C.enough)
+def _expanded(lang: Language, text: str, seen: tuple[str, ...] = ()) -> str:
+    """The text with each "@name" replaced: a group of the file, or the prepositions that have a use."""
+
+    def group(m: re.Match[str]) -> str:
+        name = m.group(1)
+        found = lang.prepositions.having(name)
+        if name in lang.frames.groups and found:
+            raise LanguageError(f"{lang.code}/frames.toml: {name!r} is a group and a use of prepositions")
+        if name in lang.frames.groups and name not in seen:
+            return _expanded(lang, lang.frames.groups[name], (*seen, name))
+        if not found:
+            raise LanguageError(f"{lang.code}/frames.toml: no group or preposition use {name!r} ({text!r})")
+        return "|".join(" ".join(p) for p in found)
+
+    return _GROUP.sub(group, text)
+
+
+def _frame(lang: Language, row: FrameRow) -> Frame:
+    if row.special is not None and row.special not in SPECIALS:
+        raise LanguageError(f"{lang.code}/frames.toml: no construction {row.special!r} ({row.verbs!r})")
+    only = lang.words.me if row.only == "@me" else word_set(_expanded(lang, row.only)) if row.only else None
+    text = TEXTS[row.text] if row.text is not None else _named(row.named) if row.named is not None else None
+    return Frame(
+        verbs=_expanded(lang, row.verbs), intent=row.intent, direct=row.direct,
+        slots={role: _expanded(lang, preps) for role, preps in row.slots.items()},
+        particles=_expanded(lang, row.particles), here=row.here, there_only=row.there_only,
+        dative=row.dative, only=only, requires=row.requires, defaults=dict(row.defaults), whole=row.whole,
+        text=text, special=SPECIALS[row.special] if row.special is not None else None, serial=row.serial,
+    )  # fmt: skip
+
+
+def frames(lang: Language) -> tuple[Frame, ...]:
+    """The language's verb frames, in the file's order (read once per language)."""
+    return lang.derived(_frames)
+
+
+def _frames(lang: Language) -> tuple[Frame, ...]:
+    return tuple(_frame(lang, row) for row in lang.frames.frame)
+
+
+def constructions(lang: Language) -> tuple[Special, ...]:
+    """What the whole utterance may say before any verb is read ("I'm parched", "I want the apple")."""
+    return lang.derived(_constructions)
+
+
+def _constructions(lang: Language) -> tuple[Special, ...]:
+    unknown = [name for name in lang.frames.constructions if name not in WHOLE_UTTERANCE]
+    if unknown:
+        raise LanguageError(f"{lang.code}/frames.toml: no construction {unknown[0]!r}")
+    return tuple(WHOLE_UTTERANCE[name] for name in lang.frames.constructions)
 
 
 @dataclass(frozen=True)
@@ -210,11 +168,14 @@ class Row:
     slots: tuple[tuple[Words, str], ...]  # (preposition, role), longest preposition first
 
 
-@cache
 def verb_index(lang: Language) -> dict[str, tuple[tuple[Words, Row], ...]]:
-    """First word of a verb phrase -> (phrase, row), longest phrase first, then in table order."""
+    """First word of a verb phrase -> (phrase, row), longest phrase first, then in the frames' order."""
+    return lang.derived(_verb_index)
+
+
+def _verb_index(lang: Language) -> dict[str, tuple[tuple[Words, Row], ...]]:
     index: dict[str, list[tuple[Words, Row]]] = {}
-    for order, frame in enumerate(FRAMES):
+    for order, frame in enumerate(frames(lang)):
         slots = sorted(((p, role) for role, preps in frame.slots.items() for p in phrases(preps)),
                        key=lambda s: -len(s[0]))  # fmt: skip
         row = Row(frame, order, word_set(frame.particles), tuple(slots))
@@ -223,13 +184,19 @@ def verb_index(lang: Language) -> dict[str, tuple[tuple[Words, Row], ...]]:
     return {w: tuple(sorted(rows, key=lambda r: (-len(r[0]), r[1].order))) for w, rows in index.items()}
 
 
-@cache
 def verbs(lang: Language) -> frozenset[str]:
-    """Every word a request may start with (the first words of the table's verb phrases)."""
+    """Every word a request may start with (the first words of the frames' verb phrases)."""
+    return lang.derived(_verbs)
+
+
+def _verbs(lang: Language) -> frozenset[str]:
     return frozenset(verb_index(lang))
 
 
-@cache
 def known_verbs(lang: Language) -> frozenset[str]:
-    """The table's verbs and the actions the robot has no intent for ("find", "open")."""
-    return verbs(lang) | NO_INTENT_VERBS
+    """The frames' verbs and the actions the robot has no intent for ("find", "open")."""
+    return lang.derived(_known_verbs)
+
+
+def _known_verbs(lang: Language) -> frozenset[str]:
+    return verbs(lang) | lang.requests.no_intent_verbs

@@ -12,23 +12,7 @@ from lemminflect import getAllLemmas
 
 from dialogue.history import Utterance
 from dialogue.reference.clarify import question as clarifying_question
-from dialogue.reference.english import (
-    COLOURS,
-    DETERMINERS,
-    FUNCTION_WORDS,
-    MANY,
-    ME,
-    MODIFIER_START,
-    PARTS,
-    PERSONAL,
-    POSITIONS,
-    POSSESSIVES,
-    SUPPORT_PREPOSITIONS,
-    Words,
-    phrases,
-    tokens,
-    word_set,
-)
+from dialogue.reference.english import Words, tokens
 from dialogue.reference.grounding import Entity, Kind
 from dialogue.reference.lexicon import Lexicon, singular
 from dialogue.reference.resolution import (
@@ -48,28 +32,45 @@ from dialogue.understanding.outcome import Outcome, Ref
 from dialogue.understanding.requests.compound import alternatives
 from dialogue.understanding.speech.clauses import described
 from dialogue.understanding.speech.sounds import slipped as heard_as
-from dialogue.understanding.words import NP_START, TAGS, purpose
-
-#: Spatial or comparative qualifiers the KB does not model (dropped when they block a match).
-RELATIONAL = POSITIONS | word_set("over yonder")
-#: Words that need no name in the KB to be understood in a phrase.
-_ACCOUNTED = RELATIONAL | COLOURS | ME | word_set(
-    "it them him her here there over something anything around nearby about"
-)
 
 
-#: Words that address someone without naming them ("take it to sir"): whom the KB calls otherwise.
-_ADDRESS = frozenset(w for p in phrases(TAGS) for w in p) - POSSESSIVES
+def relational(lang: Language) -> frozenset[str]:
+    """Spatial or comparative qualifiers the KB does not model (dropped when they block a match)."""
+    return lang.words.positions | lang.requests.referents.relational
 
-_EVERY = word_set("all both every each")
-#: Words that say how much of a thing, not which ("get me some", "bring me a couple").
-_SOME = word_set("some one any few couple more")
+
+class _Words:
+    """The language's words a role's phrase is grounded with (made once per language)."""
+
+    def __init__(self, lang: Language) -> None:
+        closed, said = lang.words, lang.requests.referents
+        self.relational = relational(lang)
+        #: Words that need no name in the KB to be understood in a phrase.
+        self.accounted = self.relational | closed.colours | closed.me | said.accounted
+        #: Words that address someone without naming them ("take it to sir"): whom the KB calls
+        #: otherwise.
+        self.address = frozenset(w for p in lang.speech.tags for w in p) - closed.possessives
+        self.every = said.every
+        #: Words that say how much of a thing, not which ("get me some", "bring me a couple").
+        self.some = said.some
+        self.determiners = closed.determiners
+        self.function_words = closed.any_function_word
+        self.many = closed.many
+        self.me = closed.me
+        self.modifier_start = lang.modifier_start
+        self.parts = closed.parts
+        self.personal = closed.personal
+        self.possessives = closed.possessives
+        self.support = lang.support
+        self.np_start = closed.np_start
+        self.purpose = lang.requests.purpose
 
 
 class Referents:
     def __init__(self, lexicon: Lexicon, speaker: str, history: Sequence[Utterance] = ()) -> None:
         self.lexicon = lexicon
         self.lang = lexicon.lang
+        self.said = lexicon.lang.derived(_Words)
         self.snapshot = lexicon.snapshot
         self.speaker = speaker
         self.history = tuple(history)
@@ -81,11 +82,11 @@ class Referents:
             if not content_words(self.lang, tail) or self._whose(head[-1]):
                 continue  # "fetch Marco's jacket": whose the thing is, not to whom
             people = content_words(self.lang, head)
-            named = set(people) <= ME or resolve(self.lexicon, head, PERSON).one is not None
+            named = set(people) <= self.said.me or resolve(self.lexicon, head, PERSON).one is not None
             # "bring him the bottle": a person pronoun the conversation resolves.
             said = set(people) <= {"him", "her", "them"} and self.person_as_object(head) is not None
             # "bring her the muffin": "her" before a determiner is no possessive, whoever she is
-            said = said or (set(head) <= PERSONAL and tail[0] in DETERMINERS)
+            said = said or (set(head) <= self.said.personal and tail[0] in self.said.determiners)
             if people and (named or said):
                 return {"object": tail, "recipient": head}
         return {"object": rest, "recipient": ("me",)}
@@ -104,9 +105,9 @@ class Referents:
     def every(self, words: Words) -> list[Words]:
         """ "all the plates", "both cups": each thing the phrase names, as its id ([] when the phrase
         is not quantified, or names nothing)."""
-        if not set(words) & _EVERY or set(words) & {"and", "or"}:
+        if not set(words) & self.said.every or set(words) & {"and", "or"}:
             return []
-        rest = tuple(w for w in words if w not in _EVERY and w != "of")
+        rest = tuple(w for w in words if w not in self.said.every and w != "of")
         return [tuple(tokens(e.id)) for e in resolve(self.lexicon, rest, THING).matches]
 
     def named_in(self, phrases: Sequence[Words]) -> Entity | None:
@@ -130,22 +131,22 @@ class Referents:
     def a_person(self, words: Words) -> bool:
         """Whether the phrase is someone: a person's name, a person pronoun or the speaker."""
         content = set(content_words(self.lang, words))
-        return bool(content) and (content <= PERSONAL | ME or self.named_person(words))
+        return bool(content) and (content <= self.said.personal | self.said.me or self.named_person(words))
 
     def named_person(self, words: Words) -> bool:
         """Whether the phrase names one person of the KB (not a pronoun, not the speaker's "me")."""
         content = content_words(self.lang, words)
-        if not content or is_pronoun(self.lang, words) or set(content) & ME:
+        if not content or is_pronoun(self.lang, words) or set(content) & self.said.me:
             return False
         return resolve(self.lexicon, words, PERSON).one is not None
 
     def person_as_object(self, words: Words) -> Entity | None:
         content = content_words(self.lang, words)
-        if content and set(content) <= ME:
+        if content and set(content) <= self.said.me:
             return self.snapshot.get(self.speaker) or Entity(self.speaker, "you", (), (), (), "person", True)
         if content and set(content) <= {"him", "her", "them"}:
             # "them" is people only when no thing was spoken of ("take them to her": the specs)
-            if not set(content) <= PERSONAL and antecedent(self.lexicon, self.history, THING):
+            if not set(content) <= self.said.personal and antecedent(self.lexicon, self.history, THING):
                 return None
             return antecedent(self.lexicon, self.history, PERSON, speaker=self.speaker)
         if not content or is_pronoun(self.lang, words):
@@ -155,15 +156,15 @@ class Referents:
     def some_of(self, words: Words) -> Words:
         """ "some", "one", "a couple" said for a thing: the thing the conversation just named ("I
         need biscuits, can you get me some"), as its id; the words as they are when none was."""
-        if not set(words) <= _SOME | {"a", "of", "them"} or not set(words) & _SOME:
+        if not set(words) <= self.said.some | {"a", "of", "them"} or not set(words) & self.said.some:
             return words
         found = antecedent(self.lexicon, self.history, THING, speaker=self.speaker)
         return tuple(tokens(found.id)) if found is not None else words
 
     def possessive(self, words: Words, slots: dict[str, Words]) -> tuple[Words, str | None]:
         """ "my phone", "give Ines her phone": the phrase without the possessive, and whose it is."""
-        rest = tuple(w for w in words if w not in POSSESSIVES)
-        said = [w for w in words if w in POSSESSIVES]
+        rest = tuple(w for w in words if w not in self.said.possessives)
+        said = [w for w in words if w in self.said.possessives]
         if not said or not content_words(self.lang, rest):
             return words, None
         if said[0] in {"my", "our"}:
@@ -172,7 +173,7 @@ class Referents:
             return rest, self.snapshot.robot
         # "his/her/their": the person the same request names, else the one the conversation last named.
         other = slots.get("recipient", ())
-        person = None if set(other) & ME else self.person_as_object(other)
+        person = None if set(other) & self.said.me else self.person_as_object(other)
         person = person or antecedent(self.lexicon, self.history, PERSON, speaker=self.speaker)
         return rest, person.id if person is not None else None
 
@@ -186,13 +187,14 @@ class Referents:
     ) -> Ref:
         """The entity a role's phrase names; `said` are the request's other phrases, where a person
         pronoun finds the one person they name ("take Ravi's scarf to him")."""
-        bare_words = [w for w in words if w not in DETERMINERS]
-        wanted = purpose(tuple(bare_words[1:])) if bare_words[:1] in (["something"], ["anything"]) else None
+        bare_words = [w for w in words if w not in self.said.determiners]
+        something = bare_words[:1] in (["something"], ["anything"])
+        wanted = self.said.purpose(tuple(bare_words[1:])) if something else None
         if wanted is not None:  # "something to eat": food; "something to cut this with": a cutting tool
             words = wanted
-        words = _apposed(self.lang, _not_the_other(self.lang, _placed_pronoun(words)))
+        words = _apposed(self.lang, _not_the_other(self.lang, _placed_pronoun(self.lang, words)))
         content = content_words(self.lang, words)
-        if "person" in kinds and content and set(content) <= ME | {"here"}:
+        if "person" in kinds and content and set(content) <= self.said.me | {"here"}:
             return Ref(speaker=True)
         bare = {w for w in words if w not in {"the", "over", "please"}}
         if is_pronoun(self.lang, words) or (bare and bare <= {"him", "her", "there"}):
@@ -215,7 +217,8 @@ class Referents:
                     )
                 )
             return Ref(entity=found)
-        if "person" in kinds and content and set(content) <= _ADDRESS and not self.named_person(words):
+        addressed = "person" in kinds and content and set(content) <= self.said.address
+        if addressed and not self.named_person(words):
             # "take my calculator to sir": someone the KB knows by name, which one a model may know
             return Ref(problem=Outcome("Sorry, I did not understand that.", understood=False))
         res = resolve(self.lexicon, words, kinds, owner=owner)
@@ -227,7 +230,7 @@ class Referents:
         slipped = heard_as(self.lexicon, words, kinds, owner)
         if slipped is not None:
             return Ref(entity=slipped, guessed=True)
-        loose = tuple(w for w in words if w not in RELATIONAL)
+        loose = tuple(w for w in words if w not in self.said.relational)
         if res.ambiguous and loose != tuple(words) and content_words(self.lang, loose):
             # "the box of plasters back": a position word kept the name from matching
             one = resolve(self.lexicon, loose, kinds, owner=owner).one
@@ -251,19 +254,20 @@ class Referents:
         place = self._put_by(words, kinds, role, owner)
         if place is not None:
             return place
-        if set(words) & MANY:  # "the cup and the apple", "both cups": more than one intent can carry
+        # "the cup and the apple", "both cups": more than one intent can carry
+        if set(words) & self.said.many:
             return Ref(problem=Outcome("Sorry, one thing at a time, please.", understood=False))
         for alternative in alternatives(self.lang, words):  # "an apple or an orange": either will do
             ref = self.ground(alternative, kinds, role, owner)
             if ref.entity is not None or ref.speaker:
                 return ref
-        if self.half_known(content) or set(content) <= RELATIONAL | PARTS:
+        if self.half_known(content) or set(content) <= self.said.relational | self.said.parts:
             # "to the front", "on the left": whereabouts of nothing named, which a model may know.
             # Names the KB knows among words it does not ("mr ito back", "the trousers out"): the
             # phrase was not understood, which is not the same as "there is no such thing".
             return Ref(problem=Outcome("Sorry, I did not understand that.", understood=False))
         other = resolve(self.lexicon, words, ANYWHERE - kinds).matches if ANYWHERE - kinds else ()
-        if other or ("person" in kinds and words[:1] and words[0] in POSSESSIVES):
+        if other or ("person" in kinds and words[:1] and words[0] in self.said.possessives):
             # "go and get Ben from the garden": a person where a thing is wanted, no intent the rules
             # have, or a place ("pop plot 12 down"): not "I don't see any plot 12"; "my son":
             # someone the KB knows only by how the speaker is related to them
@@ -272,7 +276,7 @@ class Referents:
         if {"one", "ones"} & set(words):
             # "the ones on the bench": which ones the conversation means, not that no bench is here
             return Ref(problem=Outcome("Sorry, I did not understand that.", understood=False))
-        if self.strange(content) or (kinds == PERSON and not set(words) & DETERMINERS):
+        if self.strange(content) or (kinds == PERSON and not set(words) & self.said.determiners):
             # "I don't see any bk": only true of a kind the rules know; of a word they do not, it is
             # a doubt, for a model to read ("bk" is "back" in chat); so is a name no one has here, a
             # recogniser's spelling of one a model may see in the situation ("chevonne": Siobhan)
@@ -285,15 +289,17 @@ class Referents:
         at the head of the phrase, with words before it the KB cannot check and modifiers after it:
         that thing, when one thing has the label."""
         for start in range(len(words)):
-            if words[start] in MODIFIER_START:
+            if words[start] in self.said.modifier_start:
                 return None  # (a title inside a modifier names where, not what)
             titles = {n.entity: n for n in self.lexicon.names_at(words, start)
-                      if n.source == "label" and len(n.words) > 2 and set(n.words[1:-1]) & MODIFIER_START}
+                      if n.source == "label" and len(n.words) > 2
+                      and set(n.words[1:-1]) & self.said.modifier_start}  # fmt: skip
             if titles:
                 name = next(iter(titles.values()))
                 after = words[start + len(name.words) :]
                 entity = self.snapshot.get(name.entity) if len(titles) == 1 else None
-                if entity is None or entity.kind not in kinds or (after and after[0] not in MODIFIER_START):
+                modified = not after or after[0] in self.said.modifier_start
+                if entity is None or entity.kind not in kinds or not modified:
                     return None
                 return entity
         return None
@@ -302,7 +308,7 @@ class Referents:
         """The noun said for all the candidates ("a drink"), if the phrase ends its core with one."""
         core: list[str] = []
         for w in words:
-            if w in MODIFIER_START and core:
+            if w in self.said.modifier_start and core:
                 break
             core.append(w)
         content = content_words(self.lang, core)
@@ -317,7 +323,7 @@ class Referents:
         place is where to put it (the verb's), the first only says whereabouts on it."""
         if role != "recipient" or "zone" not in kinds or "person" in kinds:
             return None
-        at = max((i for i, w in enumerate(words) if w in SUPPORT_PREPOSITIONS and i > 0), default=None)
+        at = max((i for i, w in enumerate(words) if w in self.said.support and i > 0), default=None)
         if at is None or not content_words(self.lang, words[at + 1 :]):
             return None
         ref = self.ground(words[at + 1 :], kinds, role, owner)
@@ -332,18 +338,18 @@ class Referents:
         return any(
             not self.lexicon.knows(w) and "NOUN" in getAllLemmas(w)
             for w in tokens(last.text)
-            if w.isalpha() and w not in FUNCTION_WORDS | _ACCOUNTED
+            if w.isalpha() and w not in self.said.function_words | self.said.accounted
         )
 
     def strange(self, content: Sequence[str]) -> list[str]:
         """The words of a phrase that nothing accounts for: no name or qualifier of the KB, no word of
         English (lemminflect's lexicon), no number or function word ("bk", "thingummy")."""
-        return [w for w in content if not self.lexicon.knows(w) and w not in _ACCOUNTED
-                and w not in FUNCTION_WORDS and not getAllLemmas(w.removesuffix("'s"))]  # fmt: skip
+        return [w for w in content if not self.lexicon.knows(w) and w not in self.said.accounted
+                and w not in self.said.function_words and not getAllLemmas(w.removesuffix("'s"))]  # fmt: skip
 
     def half_known(self, content: Sequence[str]) -> bool:
         """Whether some words of a phrase are names of the KB and others are words it does not know."""
-        unknown = [w for w in content if not self.lexicon.knows(w) and w not in _ACCOUNTED]
+        unknown = [w for w in content if not self.lexicon.knows(w) and w not in self.said.accounted]
         return 0 < len(unknown) < len(content)
 
     def unknown(self, content: Sequence[str], kinds: Collection[Kind], words: Sequence[str] = ()) -> str:
@@ -362,17 +368,18 @@ def _apposed(lang: Language, words: Words) -> Words:
     if "one" not in words and "ones" not in words:
         return words
     for j in range(1, len(words)):
-        if words[j] in NP_START and words[j - 1] not in NP_START and words[j - 1] not in MODIFIER_START:
+        np_start = lang.words.np_start
+        if words[j] in np_start and words[j - 1] not in np_start and words[j - 1] not in lang.modifier_start:
             if "one" in words[j:] or "ones" in words[j:]:
                 return described(lang, words[:j], words[j:])
             return words
     return words
 
 
-def _placed_pronoun(words: Words) -> Words:
+def _placed_pronoun(lang: Language, words: Words) -> Words:
     """ "it off the shelf", "them from the table": the pronoun; where it is only says where to take it
     from (the thing is the one the conversation named)."""
-    if len(words) > 2 and words[0] in {"it", "them"} and words[1] in SUPPORT_PREPOSITIONS:
+    if len(words) > 2 and words[0] in {"it", "them"} and words[1] in lang.support:
         return words[:1]
     return words
 

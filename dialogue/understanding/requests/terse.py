@@ -12,17 +12,13 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
-from dialogue.reference.english import FUNCTION_WORDS, Words
+from dialogue.reference.english import Words
 from dialogue.reference.grounding import Kind
 from dialogue.reference.lexicon import Lexicon
 from dialogue.reference.resolution import PLACE, ZONE, resolve
 from dialogue.understanding.requests.frames import verbs
 from dialogue.understanding.speech.plain import strip_politeness
 from dialogue.understanding.speech.repair import asked_verb, normalise
-from dialogue.understanding.words import NP_START, TERSE_MOTION, TERSE_PLACING
-
-#: Subjects said before an imperative by a speaker of another language ("you go office").
-_SUBJECTS = frozenset({"you", "robot"})
 
 
 def terse(text: str, lexicon: Lexicon, robot_name: str = "") -> str | None:
@@ -30,7 +26,8 @@ def terse(text: str, lexicon: Lexicon, robot_name: str = "") -> str | None:
     lang = lexicon.lang
     words = strip_politeness(lang, normalise(lang, text), robot_name)
     subject = False
-    while words[:1] and words[0] in _SUBJECTS | {robot_name} and len(words) > 1:
+    # ("you go office": a subject said before an imperative by a speaker of another language)
+    while words[:1] and words[0] in lang.requests.terse.subjects | {robot_name} and len(words) > 1:
         words, subject = words[1:], True
     if not words:
         return None
@@ -43,7 +40,8 @@ def terse(text: str, lexicon: Lexicon, robot_name: str = "") -> str | None:
         if named is None:
             return None
         rest = [*named, *rest]
-    if verb in TERSE_MOTION and rest and rest[0] not in FUNCTION_WORDS and _a_place(rest, lexicon):
+    motion = verb in lang.requests.terse_motion and rest and rest[0] not in lang.words.any_function_word
+    if motion and _a_place(rest, lexicon):
         return " ".join((verb, "to", *rest))  # "go workstand", "back yard, go"
     return " ".join((verb, *rest)) if front or (subject and at == 0) else None
 
@@ -52,7 +50,8 @@ def _verbless(words: list[str], lexicon: Lexicon) -> str | None:
     """ "dining room": go there; "sunflowers into tall vase": put them there."""
     if _a_place(words, lexicon, ZONE):  # a place alone is a room or area, never a thing
         return " ".join(("go", "to", *words))
-    at = next((i for i, w in enumerate(words) if w in TERSE_PLACING), None)
+    placing = lexicon.lang.prepositions.words("terse-place")
+    at = next((i for i, w in enumerate(words) if w in placing), None)
     if at is None or at == 0 or _named(words[:at], lexicon) is None:
         return None
     return " ".join(("put", *words))
@@ -62,10 +61,11 @@ def _named(words: Sequence[str], lexicon: Lexicon) -> Words | None:
     """The phrase as the grammar reads it when it is exactly names the KB knows (a determiner
     before it allowed): one thing or place ("birthday card"), or a person's then a thing ("edna
     cardigan": Edna's cardigan); else None."""
-    bare = list(words[1:]) if words[:1] and words[0] in NP_START else list(words)
+    closed = lexicon.lang.words
+    bare = list(words[1:]) if words[:1] and words[0] in closed.np_start else list(words)
     found = lexicon.mentions(bare)
     named = {i for m in found for i in range(m.start, m.end)}
-    if not bare or any(w in FUNCTION_WORDS for i, w in enumerate(bare) if i not in named):
+    if not bare or any(w in closed.any_function_word for i, w in enumerate(bare) if i not in named):
         return None  # ("you go", "I need", "it is"): a clause, no phrase
     people = [m for m in found if all(lexicon.is_person(e) for e in m.entities)]
     if people and people[0].start == 0 and len(people) == 1 and people[0].end < len(bare):

@@ -14,7 +14,6 @@ from collections.abc import Sequence
 
 from dialogue.reference.lexicon import Lexicon
 from dialogue.understanding.language import Language
-from dialogue.understanding.words import ADJUNCTS, HERE, THERE
 
 
 class _Homophones:
@@ -24,8 +23,9 @@ class _Homophones:
         closed = lang.words
         self.homophones = lang.speech.homophones
         #: Phrases a homophone may be read into, by their first word: adjuncts and politeness at the end.
-        self.phrases = tuple(p for p in (*ADJUNCTS, *lang.speech.all_polite_suffixes) if len(p) > 1)
-        self.pointing = frozenset(p[0] for p in (*HERE, *THERE) if len(p) == 1)
+        said = lang.requests
+        self.phrases = tuple(p for p in (*said.all_adjuncts, *lang.speech.all_polite_suffixes) if len(p) > 1)
+        self.pointing = frozenset(p[0] for p in (*said.here, *said.there) if len(p) == 1)
         self.measures = closed.measures
         self.possessives = closed.possessives
         self.np_start = closed.np_start

@@ -4,7 +4,7 @@ into the word the KB knows.
 A recogniser writes an initialism it hears letter by letter as single letters; a person typing may
 too. A run of two or more single letters or digits is joined when the joined word is a word of the
 KB's names (the lexicon's vocabulary); otherwise the letters stay as they are (chat's "u" and "n"
-are read later as "you" and "and": dialogue.understanding.words.CHAT). Nothing here is a guess: the letters
+are read later as "you" and "and": the language's chat forms). Nothing here is a guess: the letters
 say the word.
 """
 

@@ -15,7 +15,6 @@ from lemminflect import getAllLemmas
 
 from dialogue.reference.english import Words, lowered, spans, tokens
 from dialogue.understanding.language import Language
-from dialogue.understanding.words import DURATIONS
 
 QUOTED = re.compile(r"[\"\u201c\u201d]([^\"\u201c\u201d]+)[\"\u201c\u201d]")
 
@@ -52,7 +51,7 @@ class _Speech:
         #: bill", "can we have two coffees"), when a noun phrase follows them ("can we get over to
         #: the desk" goes).
         self.wishing = speech.wishing
-        self.durations = DURATIONS
+        self.durations = lang.requests.durations
         self.polite_prefixes = speech.polite_prefixes
         self.is_it_is = lru_cache(maxsize=4096)(self._is_it_is)
         self.openings = lru_cache(maxsize=64)(self._openings)

@@ -23,24 +23,20 @@ from __future__ import annotations
 
 from collections.abc import Iterable, Iterator
 from dataclasses import dataclass
-from functools import cache
 from types import ModuleType
 
 from lemminflect import getAllLemmas, getInflection
 from rapidfuzz import process
 from rapidfuzz.distance import OSA
 
-from dialogue.reference import english
 from dialogue.reference.english import lowered, phrases, spans
 from dialogue.reference.lexicon import Lexicon, singular
-from dialogue.understanding import words
 from dialogue.understanding.language import Language
 from dialogue.understanding.questions import grammar as questions
-from dialogue.understanding.requests.frames import FRAMES
+from dialogue.understanding.requests.frames import frames
 from dialogue.understanding.speech.heardnames import heard_name
 from dialogue.understanding.speech.homophones import misheard
 from dialogue.understanding.speech.plain import QUOTED
-from dialogue.understanding.words import CARRY_PARTICLES, MOTION_PARTICLES
 
 _FAR_KEY = 1.5
 #: Two letters typed in the wrong order, the commonest slip of fast typing ("teh"): a little cheaper
@@ -48,8 +44,6 @@ _FAR_KEY = 1.5
 _SWAP = 0.8
 _DOUBLE = 0.8
 _SHORT = 4
-#: Word lists of the grammar's modules whose words are content words, not the grammar's own.
-_NOT_GRAMMAR = frozenset({"HOMOPHONES", "NEEDS", "PREPOSITION_SLIPS"})
 _LONG = 8
 
 
@@ -69,7 +63,8 @@ class _Slips:
         self.people = closed.me | {"him", "her", "them"}
         #: Particles of the way after which a preposition says where ("show him through two surgery
         #: one").
-        particles = frozenset(MOTION_PARTICLES.split()) | frozenset(CARRY_PARTICLES.split())
+        groups = lang.frames.groups
+        particles = frozenset(groups.get("motion", "").split()) | frozenset(groups.get("carry", "").split())
         self.way = particles | lang.prepositions.words("path")
         self.np_start = closed.np_start
         self.numbers = closed.numbers
@@ -118,7 +113,7 @@ def corrected(text: str, lexicon: Lexicon) -> Spelled:
             continue
         if not _suspect(word, lexicon):
             continue
-        split = _run_together(word)  # "goto"
+        split = _run_together(lexicon.lang, word)  # "goto"
         if split is not None:
             fixes.append((start, end, Correction(word, split, False)))
             continue
@@ -126,7 +121,7 @@ def corrected(text: str, lexicon: Lexicon) -> Spelled:
         someone = n == 0 or said[n - 1] not in slips.np_start  # ("the kat" is no Kate)
         meant = (heard_name(word, lexicon) if someone else None) or _meant(word, lexicon)
         if meant is not None:
-            fixes.append((start, end, Correction(word, meant, meant not in grammar_words())))
+            fixes.append((start, end, Correction(word, meant, meant not in grammar_words(lexicon.lang))))
     if not fixes:
         return Spelled(text)
     if len(lowered(text)) != len(text):  # offsets of the lowered text are not the original's
@@ -184,19 +179,20 @@ def _fixed_words(text: str, fixes: list[tuple[int, int, Correction]]) -> list[st
 _PART = 2
 
 
-def _run_together(word: str) -> str | None:
+def _run_together(lang: Language, word: str) -> str | None:
     """Two words of the grammar typed as one ("goto", "infront", "bringme"), when only one cut makes
     two of them ("someones" is someone's, not "some ones")."""
-    if word.endswith("s") and (word[:-1] in grammar_words() or getAllLemmas(word[:-1])):
+    grammar = grammar_words(lang)
+    if word.endswith("s") and (word[:-1] in grammar or getAllLemmas(word[:-1])):
         return None
     cuts = [(word[:k], word[k:]) for k in range(_PART, len(word) - _PART + 1)]
-    found = [f"{a} {b}" for a, b in cuts if a in grammar_words() and b in grammar_words()]
+    found = [f"{a} {b}" for a, b in cuts if a in grammar and b in grammar]
     return found[0] if len(found) == 1 else None
 
 
 def _suspect(word: str, lexicon: Lexicon) -> bool:
     """Whether nothing accounts for the word: not the grammar's, not the KB's, not English."""
-    if len(word) < 3 or not word.isalpha() or word in grammar_words() or lexicon.knows(word):
+    if len(word) < 3 or not word.isalpha() or word in grammar_words(lexicon.lang) or lexicon.knows(word):
         return False
     return not getAllLemmas(word)
 
@@ -225,7 +221,8 @@ def _nearest(word: str, lexicon: Lexicon) -> str | None:
 
 
 def _choices(lexicon: Lexicon) -> list[str]:
-    return [*grammar_words(), *(w for w in lexicon.vocabulary if w not in grammar_words())]
+    grammar = grammar_words(lexicon.lang)
+    return [*grammar, *(w for w in lexicon.vocabulary if w not in grammar)]
 
 
 def typing_cost(lang: Language, said: str, meant: str) -> float:
@@ -259,13 +256,48 @@ def _key_distance(keys: dict[str, tuple[int, float]], a: str, b: str) -> float:
     return 1.0 if abs(ka[0] - kb[0]) <= 1 and abs(ka[1] - kb[1]) <= 1 else _FAR_KEY
 
 
-@cache
-def grammar_words() -> frozenset[str]:
-    """Every word the grammar itself uses: its word lists and the words of its verb frames."""
-    found: set[str] = set()
-    for module in (english, words, questions):
-        found.update(_module_words(module))
-    for frame in FRAMES:
+def grammar_words(lang: Language) -> frozenset[str]:
+    """Every word the grammar itself uses: its word lists and the words of its verb frames (read
+    once per language)."""
+    return lang.derived(_grammar_words)
+
+
+#: The uses of the preposition table whose prepositions are the grammar's words.
+_GRAMMAR_PREPOSITIONS = (
+    "support", "locative", "modifier", "place", "goal", "goal-particle", "path", "terse-place",
+)  # fmt: skip
+
+
+def _grammar_tables(lang: Language) -> tuple[object, ...]:
+    """The tables whose words are the grammar's own: not the words of content (homophones, needs,
+    preposition slips), nor those only one reader keeps to itself (a clause's, a statement's)."""
+    closed, speech, said, social = lang.words, lang.speech, lang.requests, lang.social
+    return (
+        closed.determiners, closed.pronouns, closed.personal, closed.neuter, closed.possessives, closed.me,
+        closed.colours, closed.positions, closed.parts, closed.containers, closed.compound_heads,
+        closed.measures, closed.many, closed.relativisers, closed.titles, closed.any_function_word,
+        closed.written, closed.np_start, closed.owners, closed.wh,
+        *(lang.prepositions.having(use) for use in _GRAMMAR_PREPOSITIONS),
+        lang.prepositions.column("reads_as"),
+        speech.written, speech.fillers, speech.filler_pairs, speech.asking, speech.repairs,
+        speech.polite_prefixes, speech.all_polite_suffixes, speech.not_vocative, speech.lead_fillers,
+        speech.auxiliaries,
+        social.greetings, social.attention, social.social,
+        said.here, said.there, said.all_adjuncts, said.while_, said.time_conjunctions, said.their_subjects,
+        said.polite_if, said.if_modals, said.halts, said.manner, said.wants, said.want_verbs,
+        said.their_wants, said.wishers, said.not_wishers, said.purposes, said.intensifiers, said.done,
+        said.goes, said.goes_particles, said.terse_motion, said.everyone, said.stop_filler,
+        said.activity_filler, said.results, said.no_intent_verbs,
+        lang.followups.interjections,
+        *(lang.frames.groups.get(name, "") for name in ("motion", "carry")),
+    )
+
+
+def _grammar_words(lang: Language) -> frozenset[str]:
+    found: set[str] = set(_module_words(questions))
+    for table in _grammar_tables(lang):
+        found.update(_strings(table))
+    for frame in frames(lang):
         texts = (frame.verbs, frame.particles, *frame.slots.values())
         found.update(w for text in texts for p in phrases(text) for w in p)
     return frozenset(w for w in found if w.isalpha())
@@ -273,8 +305,6 @@ def grammar_words() -> frozenset[str]:
 
 def _module_words(module: ModuleType) -> Iterator[str]:
     for name, value in vars(module).items():
-        if name in _NOT_GRAMMAR:
-            continue
         if name.isupper() or (name.startswith("_") and name[1:].isupper()):
             yield from _strings(value)
 

@@ -25,13 +25,13 @@ from dialogue.reference.english import phrases, word_set
 from dialogue.reference.grounding import Entity, Kind
 from dialogue.reference.resolution import PLACE
 from dialogue.schema import FactClaim
+from dialogue.understanding.language import Language
 from dialogue.understanding.speech.clauses import clauses as run_on_clauses
 from dialogue.understanding.speech.plain import original_text
 from dialogue.understanding.speech.repair import asked_verb, normalise
 from dialogue.understanding.statements.clause import Refused, Told, Unclaimed, Words, fact
 from dialogue.understanding.statements.likings import Likings
 from dialogue.understanding.statements.names import clean_name, given_name, name_like
-from dialogue.understanding.words import GREETINGS, SOCIAL
 
 __all__ = ["Statements", "Told", "Words"]
 
@@ -76,14 +76,17 @@ def _holds_people(entity: Entity) -> bool:
     return entity.kind == "zone" or _FURNITURE in entity.classes
 
 
-#: Greetings said before more words in the same clause, longest first ("hi there my name is...");
-#: "morning", "evening" and "welcome" may be what a statement is about.
-_OPENINGS = [g for g in GREETINGS if g not in phrases("morning|evening|afternoon|welcome")]
+def _openings(lang: Language) -> list[Words]:
+    """Greetings said before more words in the same clause, longest first ("hi there my name
+    is..."); "morning", "evening" and "welcome" may be what a statement is about."""
+    topics = phrases("morning|evening|afternoon|welcome")
+    return [g for g in lang.social.greetings_longest_first if g not in topics]
 
 
-def _after_greeting(words: Words) -> Words | None:
+def _after_greeting(lang: Language, words: Words) -> Words | None:
     """The words after a greeting that opens them, when more follows it."""
-    found = next((g for g in _OPENINGS if words[: len(g)] == g and len(words) > len(g)), None)
+    openings = lang.derived(_openings)
+    found = next((g for g in openings if words[: len(g)] == g and len(words) > len(g)), None)
     return words[len(found) :] if found is not None else None
 
 
@@ -108,7 +111,7 @@ class Statements(Likings):
                 if self._greeting(words):
                     told.greeted = True
                     continue
-                after = _after_greeting(words)
+                after = _after_greeting(self.lang, words)
                 if after is not None:  # "hiya my name is Frank" ("hiya what's on the desk" asks)
                     told.greeted, words = True, self._lead(list(after))
                     if not words:
@@ -136,11 +139,12 @@ class Statements(Likings):
             words = words[:-1]
         return tuple(words)
 
-    @staticmethod
-    def _greeting(words: Words) -> bool:
-        if words in SOCIAL:
+    def _greeting(self, words: Words) -> bool:
+        social = self.lang.social.social
+        if words in social:
             return True
-        return any(words[: len(g)] == g and words[len(g) :] in SOCIAL | {()} for g in GREETINGS)
+        return any(words[: len(g)] == g and words[len(g) :] in social | {()}
+                   for g in self.lang.social.greetings_longest_first)  # fmt: skip
 
     # -- one clause ----------------------------------------------------------------------------
     def _statement(self, w: Words, clause: str) -> list[FactClaim]:

@@ -15,7 +15,6 @@ from lemminflect import getAllLemmas, getInflection
 
 from dialogue.reference.english import FUNCTION_WORDS, word_set
 from dialogue.understanding.language import Language
-from dialogue.understanding.words import NEEDS
 
 Words = tuple[str, ...]
 #: Longest name a person may give (characters).
@@ -46,7 +45,8 @@ def name_like(lang: Language, words: Words, original: str) -> bool:
     """Whether the words of "I'm X" are a name: one to three words, none a function word, and
     (for lower-case speech-recogniser text) none an adjective, adverb, participle or number."""
     # ("I'm peckish": a need the rules' grammar reads, whatever a lemmatiser knows of the word)
-    if not 1 <= len(words) <= 3 or any(w in NOT_NAMES or w in NEEDS or not w.isalpha() for w in words):
+    needs = lang.requests.needs
+    if not 1 <= len(words) <= 3 or any(w in NOT_NAMES or w in needs or not w.isalpha() for w in words):
         return False
     if original != original.lower():  # written casing tells names apart: "I'm Frank", "I'm frank"
         return all(part[:1].isupper() for part in original.split())

@@ -1,16 +1,19 @@
 """The verb-frame table: verbs as lemmas, multi-word verbs, roles found by their prepositions in any
 order, particles, adjuncts, and a row being all it takes to add a verb."""
 
+import shutil
 from collections.abc import Iterator
+from importlib import resources
+from pathlib import Path
 
 import pytest
 
 from dialogue import intents as I
+from dialogue.understanding.language import Language
 from dialogue.understanding.parsed import Parse
-from dialogue.understanding.requests import commands, frames
-from dialogue.understanding.requests.frames import FRAMES, Frame
-from dialogue.understanding.speech import repair
+from dialogue.understanding.requests import commands
 from kb import KB
+from tests.dialogue import conftest
 from tests.dialogue.conftest import english
 from tests.dialogue.understanding.test_interpret import say
 
@@ -128,16 +131,27 @@ def test_a_place_is_said_back_with_its_preposition(office: KB) -> None:
     assert say(office, "put the pear on the desk").reply == "OK, I will put the pear on the desk."
 
 
+#: One more frame of frames.toml, as a language folder says it.
+EXTRA_ROW = f"""
+[[frame]]
+verbs = "ferry|cart"
+intent = "{I.BRING_OBJECT}"
+direct = "object"
+slots = {{ recipient = "to|over to" }}
+"""
+
+
 @pytest.fixture
-def extra_row(monkeypatch: pytest.MonkeyPatch) -> Iterator[None]:
-    for cached in (frames.verb_index, frames.verbs, frames.known_verbs, repair.verb_lemma):
-        cached.cache_clear()
-    row = Frame("ferry|cart", I.BRING_OBJECT, direct="object", slots={"recipient": "to|over to"})
-    monkeypatch.setattr(frames, "FRAMES", (*FRAMES, row))
+def extra_row(monkeypatch: pytest.MonkeyPatch, tmp_path: Path) -> Iterator[None]:
+    """English with one more frame, read from a copy of its folder (the session's English is left as
+    it is)."""
+    folder = tmp_path / "en"
+    shutil.copytree(Path(str(resources.files("dialogue.understanding") / "lang" / "en")), folder)
+    with (folder / "frames.toml").open("a") as frames_file:
+        frames_file.write(EXTRA_ROW)
+    extended = Language.read(folder)
+    monkeypatch.setattr(conftest, "english", lambda: extended)
     yield
-    monkeypatch.undo()
-    for cached in (frames.verb_index, frames.verbs, frames.known_verbs, repair.verb_lemma):
-        cached.cache_clear()
 
 
 def test_a_row_is_all_it_takes_to_add_a_verb(extra_row: None, office: KB) -> None:

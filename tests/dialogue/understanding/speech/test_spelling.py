@@ -5,7 +5,7 @@ import pytest
 
 from dialogue import intents as I
 from dialogue.understanding.speech import spelling
-from dialogue.understanding.speech.spelling import corrected, grammar_words
+from dialogue.understanding.speech.spelling import corrected
 from kb import KB
 from tests.dialogue.conftest import english, lexicon_of, scene_kb
 from tests.dialogue.understanding.test_interpret import say
@@ -13,6 +13,10 @@ from tests.dialogue.understanding.test_interpret import say
 
 def typing_cost(said: str, meant: str) -> float:
     return spelling.typing_cost(english(), said, meant)
+
+
+def grammar_words() -> frozenset[str]:
+    return spelling.grammar_words(english())
 
 
 def _things(*labels: str) -> KB:
