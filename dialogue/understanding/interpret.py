@@ -40,8 +40,6 @@ from dialogue.understanding.speech.plain import expanded
 from dialogue.understanding.speech.repair import cleaned
 from dialogue.understanding.speech.spelling import corrected
 
-#: Pronouns of a person a question may be about ("do you know where she is").
-_SOMEONE = frozenset({"he", "she", "him", "her"})
 #: How sure the rules are of a turn in which they corrected a slip ("plase", "thremos").
 SPELT_CONFIDENCE = 0.7
 
@@ -231,7 +229,8 @@ class Interpreter:
     def _answer(self, p: Parse) -> Outcome:  # noqa: C901
         thing = p.slots.get("thing", ()) or p.slots.get("place", ())
         said = content_words(self.lang, thing)
-        someone = set(said) <= _SOMEONE and bool(said)  # "where is she"
+        # "where is she": a person a question may be about ("do you know where she is")
+        someone = set(said) <= self.lang.questions.situation.someone_said and bool(said)
         about = p.question in {"where", "can_see", "what_is", "what_on", "whose"}
         if about and (is_pronoun(self.lang, thing) or someone):
             kinds = PERSON if someone else ANYWHERE

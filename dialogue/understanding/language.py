@@ -10,6 +10,7 @@ One folder per language, data only (the shape of Home Assistant's intents reposi
     frames.toml        the verb frames of requests
     requests.toml      the other words of requests: adjuncts, wishes, needs, compound and terse ones
     followups.toml     the words of answers to the robot's question
+    questions.toml     the words of questions about the situation and about what people told
 
 and `lexicon.txt`, other ways of saying a name (dialogue.reference.synonyms). A file a language
 does not have is a table it leaves empty.
@@ -36,6 +37,7 @@ from dialogue.understanding.tables import (
     FollowupWords,
     FrameTable,
     Prepositions,
+    QuestionWords,
     RequestWords,
     SocialWords,
     SpeechWords,
@@ -80,6 +82,7 @@ class Language:
         self.requests: RequestWords = _table(folder, "requests", RequestWords)
         self.frames: FrameTable = _table(folder, "frames", FrameTable)
         self.followups: FollowupWords = _table(folder, "followups", FollowupWords)
+        self.questions: QuestionWords = _table(folder, "questions", QuestionWords)
         lexicon = folder / "lexicon.txt"
         #: Other ways of saying a name (dialogue.reference.synonyms parses it).
         self.lexicon = lexicon.read_text(encoding="utf-8") if lexicon.is_file() else ""

@@ -160,14 +160,6 @@ def what_is_on(lexicon: Lexicon, words: Sequence[str], asked: str = "") -> tuple
     return _on(snapshot, place, asked), False
 
 
-#: The relations of the snapshot (dialogue.reference.facts.RELATIONS) each way of asking names.
-_RELATED: dict[str, frozenset[str]] = {
-    **dict.fromkeys(("next", "close", "near", "beside", "by"), frozenset({"next to", "near"})),
-    **dict.fromkeys(("underneath", "below", "beneath"), frozenset({"under"})),
-    "in": frozenset({"in front of"}), "behind": frozenset({"behind"}), "above": frozenset({"above"}),
-}  # fmt: skip
-
-
 def what_is_near(lexicon: Lexicon, words: Sequence[str], relation: Sequence[str]) -> tuple[str, bool]:
     """ "What's next to the window?": the things a spatial fact puts there; and whether the answer
     is a clarifying question (which window)."""
@@ -180,7 +172,9 @@ def what_is_near(lexicon: Lexicon, words: Sequence[str], relation: Sequence[str]
     phrase = " ".join(content) or "that"
     if found.one is None:
         return f"Sorry, I don't know any {phrase}.", False
-    place, wanted = found.one, _RELATED.get(relation[0], frozenset())
+    # (the relations of the snapshot, dialogue.reference.facts.RELATIONS, each way of asking names)
+    row = lexicon.lang.prepositions.row(relation)
+    place, wanted = found.one, row.relations if row is not None else frozenset()
     near = [e for e in snapshot.entities.values()
             if e.kind == "thing" and any(r in wanted and o == place.id for r, o in e.relations)]  # fmt: skip
     if not near:

@@ -15,25 +15,12 @@ from __future__ import annotations
 from collections.abc import Sequence
 
 from dialogue.history import Utterance
-from dialogue.reference.english import word_set
 from dialogue.reference.lexicon import Lexicon
 from dialogue.reference.resolution import PERSON, antecedent, content_words, resolve
 from dialogue.schema import FactClaim
 from dialogue.understanding.speech.repair import normalise
 
 Words = tuple[str, ...]
-_LIKE = word_set("like love enjoy adore")
-_HATE = word_set("hate dislike detest")
-_WHO_AM_I: frozenset[Words] = frozenset(
-    tuple(p.split()) for p in ("what is my name", "who am i", "do you know my name",
-                               "do you remember my name", "do you know who i am", "do you remember me",
-                               "do you know me", "do you remember who i am", "what am i called",
-                               "what did i say my name was")
-)  # fmt: skip
-_TAIL = word_set("please then again now robot")
-#: "what is her name?": the possessive as the pronoun of the person just spoken of.
-_PRONOUN_OF: dict[Words, Words] = {("his",): ("he",), ("her",): ("she",), ("their",): ("they",)}
-
 
 class Asking:
     """Reads questions about told facts against a lexicon, for one speaker."""
@@ -41,30 +28,34 @@ class Asking:
     def __init__(self, lexicon: Lexicon, speaker: str, history: Sequence[Utterance] = ()) -> None:
         self.lexicon = lexicon
         self.lang = lexicon.lang
+        self.said = lexicon.lang.questions.told
+        #: "what is her name?": the possessive as the pronoun of the person just spoken of.
+        self.pronoun_of: dict[Words, Words] = {(whose,): who for whose, who in self.said.pronoun_of.items()}
         self.speaker = speaker
         self.history = tuple(history)
 
     def read(self, text: str) -> list[FactClaim] | None:
         w = tuple(normalise(self.lang, text))
-        while w and w[-1] in _TAIL:
+        while w and w[-1] in self.said.tail:
             w = w[:-1]
-        if w in _WHO_AM_I:
+        if w in self.said.who_am_i:
             return [FactClaim(subject=self.speaker, predicate="name", object=None)]
         if w[:5] == ("what", "is", "the", "name", "of") and w[5:]:  # "what is the name of Alice?"
             who = self._person(w[5:])
             return [FactClaim(subject=who, predicate="name", object=None)] if who is not None else None
         if w[:2] == ("what", "is") and w[-1:] == ("name",) and len(w) > 3:  # "what is her name?"
             whose = w[2:-1]
-            who = self._person(_PRONOUN_OF.get(whose, ())) if whose in _PRONOUN_OF else self._owner(whose)
+            pronoun = self.pronoun_of.get(whose)
+            who = self._person(pronoun) if pronoun is not None else self._owner(whose)
             return [FactClaim(subject=who, predicate="name", object=None)] if who is not None else None
         if w[:1] != ("what",) or len(w) < 4 or w[1] not in {"do", "does", "don't"}:
             return None
         negated = w[1] == "don't" or w[-2:-1] == ("not",)
         verb = w[-1]
         subject = w[2:-2] if w[-2:-1] == ("not",) else w[2:-1]
-        if verb in _LIKE:
+        if verb in self.said.like:
             predicate = "dislikes" if negated else "likes"
-        elif verb in _HATE and not negated:
+        elif verb in self.said.hate and not negated:
             predicate = "dislikes"
         else:
             return None

@@ -23,7 +23,6 @@ from __future__ import annotations
 
 from collections.abc import Iterable, Iterator
 from dataclasses import dataclass
-from types import ModuleType
 
 from lemminflect import getAllLemmas, getInflection
 from rapidfuzz import process
@@ -32,7 +31,6 @@ from rapidfuzz.distance import OSA
 from dialogue.reference.english import lowered, phrases, spans
 from dialogue.reference.lexicon import Lexicon, singular
 from dialogue.understanding.language import Language
-from dialogue.understanding.questions import grammar as questions
 from dialogue.understanding.requests.frames import frames
 from dialogue.understanding.speech.heardnames import heard_name
 from dialogue.understanding.speech.homophones import misheard
@@ -264,7 +262,8 @@ def grammar_words(lang: Language) -> frozenset[str]:
 
 #: The uses of the preposition table whose prepositions are the grammar's words.
 _GRAMMAR_PREPOSITIONS = (
-    "support", "locative", "modifier", "place", "goal", "goal-particle", "path", "terse-place",
+    "support", "locative", "modifier", "place", "goal", "goal-particle", "path", "terse-place", "asked-on",
+    "asked-near", "place-start",
 )  # fmt: skip
 
 
@@ -272,6 +271,7 @@ def _grammar_tables(lang: Language) -> tuple[object, ...]:
     """The tables whose words are the grammar's own: not the words of content (homophones, needs,
     preposition slips), nor those only one reader keeps to itself (a clause's, a statement's)."""
     closed, speech, said, social = lang.words, lang.speech, lang.requests, lang.social
+    asked = lang.questions.situation
     return (
         closed.determiners, closed.pronouns, closed.personal, closed.neuter, closed.possessives, closed.me,
         closed.colours, closed.positions, closed.parts, closed.containers, closed.compound_heads,
@@ -289,24 +289,21 @@ def _grammar_tables(lang: Language) -> tuple[object, ...]:
         said.goes, said.goes_particles, said.terse_motion, said.everyone, said.stop_filler,
         said.activity_filler, said.results, said.no_intent_verbs,
         lang.followups.interjections,
+        asked.sees, asked.where_leads, asked.on_glue, asked.who_not_a_name, asked.see_words,
+        asked.colour_words, asked.indirect, asked.be, asked.someone, asked.else_, asked.owners, asked.nearby,
+        asked.others, asked.there, asked.asking_verbs, asked.asked_subjects, asked.count_tail,
         *(lang.frames.groups.get(name, "") for name in ("motion", "carry")),
     )
 
 
 def _grammar_words(lang: Language) -> frozenset[str]:
-    found: set[str] = set(_module_words(questions))
+    found: set[str] = set()
     for table in _grammar_tables(lang):
         found.update(_strings(table))
     for frame in frames(lang):
         texts = (frame.verbs, frame.particles, *frame.slots.values())
         found.update(w for text in texts for p in phrases(text) for w in p)
     return frozenset(w for w in found if w.isalpha())
-
-
-def _module_words(module: ModuleType) -> Iterator[str]:
-    for name, value in vars(module).items():
-        if name.isupper() or (name.startswith("_") and name[1:].isupper()):
-            yield from _strings(value)
 
 
 def _strings(value: object) -> Iterator[str]:
