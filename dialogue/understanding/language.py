@@ -11,6 +11,7 @@ One folder per language, data only (the shape of Home Assistant's intents reposi
     requests.toml      the other words of requests: adjuncts, wishes, needs, compound and terse ones
     followups.toml     the words of answers to the robot's question
     questions.toml     the words of questions about the situation and about what people told
+    statements.toml    the words of statements: names, ownership, places, likings
 
 and `lexicon.txt`, other ways of saying a name (dialogue.reference.synonyms). A file a language
 does not have is a table it leaves empty.
@@ -41,6 +42,7 @@ from dialogue.understanding.tables import (
     RequestWords,
     SocialWords,
     SpeechWords,
+    StatementWords,
     Table,
 )
 
@@ -83,6 +85,7 @@ class Language:
         self.frames: FrameTable = _table(folder, "frames", FrameTable)
         self.followups: FollowupWords = _table(folder, "followups", FollowupWords)
         self.questions: QuestionWords = _table(folder, "questions", QuestionWords)
+        self.statements: StatementWords = _table(folder, "statements", StatementWords)
         lexicon = folder / "lexicon.txt"
         #: Other ways of saying a name (dialogue.reference.synonyms parses it).
         self.lexicon = lexicon.read_text(encoding="utf-8") if lexicon.is_file() else ""

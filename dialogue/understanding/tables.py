@@ -3,6 +3,7 @@ them): one model per file, a table a file leaves out empty, any other key refuse
 
 from __future__ import annotations
 
+import re
 from collections.abc import Sequence
 from functools import cached_property
 from typing import Annotated, Any, Literal
@@ -38,6 +39,8 @@ WordList = Annotated[tuple[str, ...], BeforeValidator(_words)]
 Phrases = Annotated[tuple[Words, ...], BeforeValidator(_phrases)]
 PhraseSet = Annotated[frozenset[Words], BeforeValidator(_phrases)]
 Phrase = Annotated[Words, BeforeValidator(_phrase)]
+#: A regular expression (flags inline: "(?i)").
+Pattern = Annotated[re.Pattern[str], BeforeValidator(lambda v: re.compile(v) if isinstance(v, str) else v)]
 
 
 class Table(BaseModel):
@@ -356,6 +359,60 @@ class FollowupWords(Table):
     """`followups.toml`: the words of answers to the robot's question."""
 
     interjections: WordSet = frozenset()
+    one: WordSet = frozenset()
+    offers: Phrases = ()
+    offers_a_thing: Phrases = ()
+    swapped: dict[str, str] = {}
+    confirms: Phrases = ()
+    accepting: WordSet = frozenset()
+    yes: WordSet = frozenset()
+    yes_phrases: Phrases = ()
+    no: dict[str, str] = {}
+    other: WordSet = frozenset()
+    correcting: Phrases = ()
+    softening: WordSet = frozenset()
+    emphasis: WordSet = frozenset()
+
+
+class LikingWords(Table):
+    """`statements.toml` [likings]: "I like tea", "I'm fond of tea", "tea is my favourite"."""
+
+    intensifiers: WordSet = frozenset()
+    like: WordSet = frozenset()
+    hate: WordSet = frozenset()
+    favourite: WordSet = frozenset()
+    over: WordSet = frozenset()
+    happenings: WordSet = frozenset()
+    appraised: PhraseSet = frozenset()
+    clause: WordSet = frozenset()
+    leads: dict[str, str] = {}
+
+
+class NameWords(Table):
+    """`statements.toml` [names]: which words can be a person's name."""
+
+    not_names: WordSet = frozenset()
+
+
+class StatementWords(Table):
+    """`statements.toml`: the words of statements."""
+
+    clauses: Pattern = re.compile(r"(?!)")
+    leads: WordSet = frozenset()
+    by_the_way: Phrase = ()
+    asking: WordSet = frozenset()
+    friends: WordSet = frozenset()
+    put: WordSet = frozenset()
+    be: WordSet = frozenset()
+    polite: PhraseSet = frozenset()
+    no: PhraseSet = frozenset()
+    name_asked: tuple[str, ...] = ()
+    name_leads_surely: Phrases = ()
+    name_leads: Phrases = ()
+    pointed: PhraseSet = frozenset()
+    greeting_topics: Phrases = ()
+    likings: LikingWords = LikingWords()
+    names: NameWords = NameWords()
 
 
 class SituationQuestionWords(Table):

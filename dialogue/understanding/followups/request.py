@@ -17,7 +17,7 @@ from typing import Protocol
 from dialogue import intents as I
 from dialogue.history import Utterance
 from dialogue.prompts import FREE_FORM_OBJECT
-from dialogue.reference.english import MODIFIER_START, Words, phrases, tokens, word_set
+from dialogue.reference.english import MODIFIER_START, Words, tokens
 from dialogue.reference.grounding import Kind, Snapshot
 from dialogue.reference.lexicon import Lexicon
 from dialogue.reference.resolution import ROLE_KINDS, content_words, resolve
@@ -45,36 +45,13 @@ class Reader(Protocol):
 
     def act(self, p: Parse, overrides: dict[str, Words] | None = None) -> Outcome: ...
 
-_ONE = frozenset({"one", "ones"})
-#: How the robot offers to do something ("Would you like me to bring you a basket?"), and how it
-#: offers a thing ("Would you like a towel?": brought to the person asked).
-_OFFERS = phrases(
-    "would you like me to|do you want me to|shall i|should i|want me to|can i|may i|would it help if i"
-)
-_OFFERS_A_THING = phrases("would you like|do you want|can i get you|could i get you|shall i get you")
-#: The robot's words for the person it speaks to, said back by that person.
-_SWAPPED = {"you": "me", "your": "my", "yourself": "myself", "yours": "mine"}
-#: How the robot asks whether it guessed right ("Do you mean the flat brush?").
-_CONFIRMS = phrases("do you mean|did you mean|you mean|is it|was it|is that|are you talking about")
-#: Words that accept an offer or confirm a guess, and those of which one must be said.
-_ACCEPTING = word_set(
-    "yes yeah yep yup sure ok okay please go ahead do it that would be great lovely perfect thanks thank "
-    "you absolutely of course why not brilliant fine alright right correct exactly one the this on then "
-    "cheers"
-)
-_YES = word_set("yes yeah yep yup sure ok okay please absolutely correct exactly")
-_YES_PHRASES = phrases("go on|go ahead|do it|why not|of course|that would be great|that would be lovely")
-#: Ways of saying no ("nope, the other one").
-_NO = {"nope": "no", "nah": "no"}
-_OTHER = word_set("other another")
-
-
 def accepts(lang: Language, words: list[str]) -> bool:
     """Whether the words only say yes ("yes please", "go on then", "that'd be lovely")."""
-    if not words or not set(words) <= _ACCEPTING:
+    if not words or not set(words) <= lang.followups.accepting:
         return False
     said = tuple(words)
-    return bool(set(words) & _YES) or any(p in _spans(said, len(p)) for p in _YES_PHRASES)
+    yes = lang.followups
+    return bool(set(words) & yes.yes) or any(p in _spans(said, len(p)) for p in yes.yes_phrases)
 
 
 def _spans(words: Words, n: int) -> set[Words]:
@@ -90,7 +67,7 @@ def follow_up(reader: Reader, p: Parse, text: str) -> Outcome | None:
     if question.role != "assistant" or not question.text.rstrip().endswith("?"):
         return None
     lang = reader.lexicon.lang
-    answer = [_NO.get(w, w) for w in expanded(lang, text)]
+    answer = [lang.followups.no.get(w, w) for w in expanded(lang, text)]
     said = [w for w in answer if w != "no"]
     accepted = offer(reader, question, said)
     if accepted is not None:
@@ -143,9 +120,9 @@ def _merged(lang: Language, fragment: Words, first: Outcome) -> Words:
     cup"; prepositions stay ("the novel" + "book from the shelf" keeps "book" as the head)."""
     if first.open_phrase:
         phrase = tuple(w for w in first.open_phrase if w not in {"the", "a", "an"})
-        if not set(fragment) & _ONE:
+        if not set(fragment) & lang.followups.one:
             return (*fragment, *phrase)
-        return tuple(x for w in fragment for x in (phrase if w in _ONE else (w,)))
+        return tuple(x for w in fragment for x in (phrase if w in lang.followups.one else (w,)))
     # (a fragment answering "Where should I put it?" may start with its preposition: "on the shelf")
     for loc in lang.prepositions.longest_first("place"):
         if fragment[: len(loc)] == loc:
@@ -159,20 +136,20 @@ def offer(reader: Reader, question: Utterance, said: list[str]) -> Outcome | Non
     lang = reader.lexicon.lang
     if not accepts(lang, said):
         return None
-    request = _offered(expanded(lang, question.text.rstrip(" ?")))
+    request = _offered(lang, expanded(lang, question.text.rstrip(" ?")))
     outcome = reader.act(parse(lang, " ".join(request), reader.robot_name)) if request else None
     if outcome is None or outcome.intent is None:
         return None
     return _sure(outcome)
 
 
-def _offered(asked: list[str]) -> list[str]:
+def _offered(lang: Language, asked: list[str]) -> list[str]:
     """The request an offer makes, in the words of the person offered it ([] when it makes none)."""
-    for lead in _OFFERS:
+    for lead in lang.followups.offers:
         at = next((i for i in range(len(asked)) if tuple(asked[i : i + len(lead)]) == lead), None)
         if at is not None:
-            return [_SWAPPED.get(w, w) for w in asked[at + len(lead) :]]
-    for lead in _OFFERS_A_THING:  # "Would you like a towel?"
+            return [lang.followups.swapped.get(w, w) for w in asked[at + len(lead) :]]
+    for lead in lang.followups.offers_a_thing:  # "Would you like a towel?"
         if tuple(asked[: len(lead)]) == lead and asked[len(lead) :]:
             return ["bring", "me", *asked[len(lead) :]]
     return []
@@ -184,7 +161,7 @@ def confirmation(earlier: Reader, pending: Parse, first: Outcome, question: Utte
     or the one other thing the pending request's phrase names."""
     lang = earlier.lexicon.lang
     asked = expanded(lang, question.text.rstrip(" ?"))
-    lead = next((c for c in _CONFIRMS if tuple(asked[: len(c)]) == c), None)
+    lead = next((c for c in lang.followups.confirms if tuple(asked[: len(c)]) == c), None)
     role = first.open_role
     if lead is None or role is None or not first.open_phrase:
         return None
@@ -195,7 +172,7 @@ def confirmation(earlier: Reader, pending: Parse, first: Outcome, question: Utte
     guessed = resolve(earlier.lexicon, asked[len(lead) :], kinds).one
     if guessed is None or guessed not in candidates:
         return None
-    if said[:1] == ["no"] and set(said) & _OTHER:  # "no the other one"
+    if said[:1] == ["no"] and set(said) & lang.followups.other:  # "no the other one"
         others = [e for e in candidates if e.id != guessed.id]
         meant = others[0] if len(others) == 1 else None
     elif said[:1] != ["no"] and accepts(lang, said):
@@ -208,10 +185,6 @@ def confirmation(earlier: Reader, pending: Parse, first: Outcome, question: Utte
     return outcome if outcome.intent is not None else None
 
 
-#: How a speaker says that the request just made named the wrong thing or place ("sorry, I meant
-#: screen two"), after the words that only soften it ("sorry", "no", "oops").
-_CORRECTING = phrases("i meant|i mean|i said|make that|make it|i was meaning|what i meant was")
-_SOFTENING = word_set("no oops oh whoops sorry my bad")
 
 
 def correction(reader: Reader, text: str) -> Outcome | None:
@@ -219,12 +192,13 @@ def correction(reader: Reader, text: str) -> Outcome | None:
     with the phrase of the role that names the same kind of thing (a place for a place, a thing for
     a thing) replaced."""
     lang = reader.lexicon.lang
-    parts = [strip_politeness(lang, [w for w in plain(lang, part) if w not in _SOFTENING])
+    parts = [strip_politeness(lang, [w for w in plain(lang, part) if w not in lang.followups.softening])
              for part in text.split(",")]  # fmt: skip
     words = [w for part in parts for w in part]
-    lead = next((c for c in _CORRECTING if tuple(words[: len(c)]) == c), None)
+    lead = next((c for c in lang.followups.correcting if tuple(words[: len(c)]) == c), None)
     fragment = tuple(words[len(lead) :]) if lead is not None else _not_that(lang, tuple(words))
-    if lead is None and set(words) & _OTHER and set(content_words(lang, words)) <= _OTHER | _ONE:
+    other, one = lang.followups.other, lang.followups.one
+    if lead is None and set(words) & other and set(content_words(lang, words)) <= other | one:
         fragment = tuple(words)  # "no, the other one"
     if len(parts) == 2 and parts[0][:1] == ["not"] and parts[1]:  # "not the shed, the porch"
         fragment = tuple(parts[1])
@@ -270,9 +244,11 @@ def _the_other(earlier: Reader, fragment: Words, said: Words, was: str,
                kinds: frozenset[Kind]) -> Words | None:  # fmt: skip
     """ "no, the other one" after "bring me the black umbrella": the one other thing the head of the
     phrase names (the red umbrella), as its id; None when that is not what was said or several are."""
-    if not set(fragment) & _OTHER or not set(content_words(earlier.lexicon.lang, fragment)) <= _OTHER | _ONE:
+    lang = earlier.lexicon.lang
+    other, one = lang.followups.other, lang.followups.one
+    if not set(fragment) & other or not set(content_words(lang, fragment)) <= other | one:
         return None
-    named = resolve(earlier.lexicon, _instead(earlier.lexicon.lang, ("the", "one"), said), kinds).matches
+    named = resolve(earlier.lexicon, _instead(lang, ("the", "one"), said), kinds).matches
     others = [e for e in named if e.id != was]
     return tuple(tokens(others[0].id)) if len(others) == 1 and len(named) == 2 else None
 
@@ -299,7 +275,7 @@ def _instead(lang: Language, fragment: Words, said: Words) -> Words:
             break
         core.append(w)
     head = content_words(lang, core)[-1:] if content_words(lang, core) else []
-    return tuple(x for w in fragment for x in (head if w in _ONE and head else [w]))
+    return tuple(x for w in fragment for x in (head if w in lang.followups.one and head else [w]))
 
 
 def continuation(reader: Reader, text: str) -> Outcome | None:

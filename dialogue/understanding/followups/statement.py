@@ -11,13 +11,9 @@ from __future__ import annotations
 from collections.abc import Sequence
 
 from dialogue.history import Utterance
-from dialogue.reference.english import word_set
 from dialogue.reference.lexicon import Lexicon
 from dialogue.understanding.speech.repair import normalise
 from dialogue.understanding.statements.grammar import Statements, Told, Words
-
-_ONE = word_set("one ones")
-_EMPHASIS = word_set("obviously definitely clearly surely certainly yes yeah yep sure please thanks the a an")
 
 
 def follow_up(text: str, lexicon: Lexicon, speaker: str, history: Sequence[Utterance]) -> Told | None:
@@ -35,12 +31,13 @@ def follow_up(text: str, lexicon: Lexicon, speaker: str, history: Sequence[Utter
     phrase = earlier.open_phrase
     if first is None or not first.clarify or phrase is None:
         return None
-    fragment: Words = tuple(w for w in normalise(lexicon.lang, text) if w not in _EMPHASIS)
+    said = lexicon.lang.followups
+    fragment: Words = tuple(w for w in normalise(lexicon.lang, text) if w not in said.emphasis)
     if not fragment:
         return None
     head = tuple(w for w in phrase if w not in {"the", "a", "an"})
-    if set(fragment) & _ONE:  # "the red one": the phrase's words in place of "one"
-        merged = tuple(x for w in fragment for x in (head if w in _ONE else (w,)))
+    if set(fragment) & said.one:  # "the red one": the phrase's words in place of "one"
+        merged = tuple(x for w in fragment for x in (head if w in said.one else (w,)))
     else:
         merged = (*fragment, *head)
     told = Statements(lexicon, speaker, before, {phrase: merged}).read(request.text)

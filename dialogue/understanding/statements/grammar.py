@@ -21,7 +21,6 @@ from __future__ import annotations
 
 import re
 
-from dialogue.reference.english import phrases, word_set
 from dialogue.reference.grounding import Entity, Kind
 from dialogue.reference.resolution import PLACE
 from dialogue.schema import FactClaim
@@ -38,60 +37,55 @@ __all__ = ["Statements", "Told", "Words"]
 ME = "me"
 _HOLDERS: frozenset[Kind] = frozenset({"thing", "person"})
 _THING: frozenset[Kind] = frozenset({"thing"})
-_CLAUSES = re.compile(r"[.;!?,]+(?:\s+|$)|\s+(?=and\s+(?:i|my|the|this|that|he|she|it)\b)", re.I)
-_LEADS = word_set("well oh so ok okay actually also and anyway listen hey robot")
-_BY_THE_WAY = ("by", "the", "way")
-#: A clause starting with one of these asks something: questions are not statements.
-_ASKING = word_set("do does did is are was were can could would will shall should may might must have has")
-_FRIEND = word_set(
-    "friend wife husband partner son daughter mother mum mom father dad brother sister colleague boss "
-    "neighbour neighbor guest grandmother grandfather granny grandma grandpa aunt uncle cousin"
-)
-_PUT = word_set("left put placed keep kept stored leave")
-#: Locative prepositions, longest first, and the property each states.
-_IN = {("on", "top", "of"): "isOn", ("in",): "isIn", ("inside",): "isIn", ("into",): "isIn", ("on",): "isOn",
-       ("onto",): "isOn"}  # fmt: skip
-_BE = word_set("is are")
-_POLITE: frozenset[Words] = frozenset({("please",), ("thanks",), ("thank", "you"), ("ok",), ("okay",)})
-_NO: frozenset[Words] = frozenset({("no",), ("nope",), ("no", "no"), ("wrong",), ("that", "is", "wrong"),
-                                   ("not", "quite"), ("sorry",), ("no", "sorry")})
-_NAME_ASKED = ("your name", "what should i call you")
 #: What a person may be in or on: a zone, or furniture (not "on the phone").
 _FURNITURE = "cyc:FurniturePiece"
-#: What introduces the speaker's name, and whether it says a name surely ("my name is frank") or
-#: only when the words look like one ("call me later" is no name).
-_NAME_LEADS: tuple[tuple[Words, bool], ...] = tuple(
-    (tuple(lead.split()), surely)
-    for leads, surely in (("my name is|my name's|name's|i am called|the name is", True),
-                          ("call me|you can call me|people call me|they call me|everyone calls me|"
-                           "my friends call me", False))
-    for lead in leads.split("|")
-)
-#: "this is my phone", "these are my keys": what the speaker points at is theirs.
-_POINTED: frozenset[Words] = frozenset({("this", "is"), ("that", "is"), ("it", "is"), ("these", "are"),
-                                        ("those", "are"), ("they", "are")})
+class _Words:
+    """The language's words of statements (`statements.toml`; made once per language)."""
+
+    def __init__(self, lang: Language) -> None:
+        said = lang.statements
+        self.clauses = said.clauses
+        self.leads = said.leads
+        self.by_the_way = said.by_the_way
+        #: A clause starting with one of these asks something: questions are not statements.
+        self.asking = said.asking
+        self.friends = said.friends
+        self.put = said.put
+        #: Locative prepositions, longest first, and the property each states.
+        self.states = {tuple(p.split()): state for p, state in lang.prepositions.column("states").items()}
+        self.be = said.be
+        self.polite = said.polite
+        self.no = said.no
+        self.name_asked = said.name_asked
+        #: What introduces the speaker's name, and whether it says a name surely ("my name is frank")
+        #: or only when the words look like one ("call me later" is no name).
+        self.name_leads = (*((lead, True) for lead in said.name_leads_surely),
+                           *((lead, False) for lead in said.name_leads))  # fmt: skip
+        #: "this is my phone", "these are my keys": what the speaker points at is theirs.
+        self.pointed = said.pointed
+        #: Greetings said before more words in the same clause, longest first ("hi there my name
+        #: is..."); "morning", "evening" and "welcome" may be what a statement is about.
+        self.openings = [g for g in lang.social.greetings_longest_first if g not in said.greeting_topics]
 
 
 def _holds_people(entity: Entity) -> bool:
     return entity.kind == "zone" or _FURNITURE in entity.classes
 
 
-def _openings(lang: Language) -> list[Words]:
-    """Greetings said before more words in the same clause, longest first ("hi there my name
-    is..."); "morning", "evening" and "welcome" may be what a statement is about."""
-    topics = phrases("morning|evening|afternoon|welcome")
-    return [g for g in lang.social.greetings_longest_first if g not in topics]
-
-
 def _after_greeting(lang: Language, words: Words) -> Words | None:
     """The words after a greeting that opens them, when more follows it."""
-    openings = lang.derived(_openings)
+    openings = lang.derived(_Words).openings
     found = next((g for g in openings if words[: len(g)] == g and len(words) > len(g)), None)
     return words[len(found) :] if found is not None else None
 
 
 class Statements(Likings):
     """Reads statements against a lexicon, for one speaker and the dialogue's history."""
+
+    @property
+    def said(self) -> _Words:
+        """The language's words of statements."""
+        return self.lang.derived(_Words)
 
 
     def read(self, text: str) -> Told | None:
@@ -100,7 +94,8 @@ class Statements(Likings):
             return None  # a question (dialogue.understanding.questions.told reads those about what was told)
         told = Told()
         # run-on clauses too: "my keys are in the drawer can you get them" is no statement only
-        clauses = [part for c in _CLAUSES.split(text) if c.strip() for part in run_on_clauses(self.lang, c)]
+        clauses = [part for c in self.said.clauses.split(text) if c.strip()
+                   for part in run_on_clauses(self.lang, c)]  # fmt: skip
         correcting = False
         refused: Refused | None = None  # said once every clause is known to be a statement
         try:
@@ -116,9 +111,9 @@ class Statements(Likings):
                     told.greeted, words = True, self._lead(list(after))
                     if not words:
                         continue
-                if words in _POLITE:
+                if words in self.said.polite:
                     continue
-                if words in _NO:  # "no, it's Rob": what follows corrects the robot
+                if words in self.said.no:  # "no, it's Rob": what follows corrects the robot
                     correcting = True
                     continue
                 try:
@@ -131,10 +126,9 @@ class Statements(Likings):
             return Told(reply=refused.reply, clarify=refused.clarify)
         return told if told.facts else None
 
-    @staticmethod
-    def _lead(words: list[str]) -> Words:
-        while words and (words[0] in _LEADS or tuple(words[:3]) == _BY_THE_WAY):
-            words = words[3:] if tuple(words[:3]) == _BY_THE_WAY else words[1:]
+    def _lead(self, words: list[str]) -> Words:
+        while words and (words[0] in self.said.leads or tuple(words[:3]) == self.said.by_the_way):
+            words = words[3:] if tuple(words[:3]) == self.said.by_the_way else words[1:]
         while len(words) > 1 and words[-1] in {"please", "thanks"}:
             words = words[:-1]
         return tuple(words)
@@ -148,7 +142,7 @@ class Statements(Likings):
 
     # -- one clause ----------------------------------------------------------------------------
     def _statement(self, w: Words, clause: str) -> list[FactClaim]:
-        if w[0] in _ASKING or w[0] in {"what", "where", "who", "which", "whose", "how", "why", "when"}:
+        if w[0] in self.said.asking:
             raise Unclaimed
         for reader in (self._name, self._preference, self._ownership, self._location):
             facts = reader(w, clause)
@@ -160,7 +154,7 @@ class Statements(Likings):
         correcting = w[:1] == ("no",)
         if correcting:
             w = self._lead(list(w[1:]))
-        for lead, surely in _NAME_LEADS:
+        for lead, surely in self.said.name_leads:
             rest = w[len(lead) :]
             if w[: len(lead)] == lead and rest:
                 if not (given_name(self.lang, rest) if surely else self._name_like(rest, clause)):
@@ -174,7 +168,7 @@ class Statements(Likings):
             return [self._named(self._stranger(), w[3:], clause)]
         if w[:2] in {("this", "is"), ("here", "is"), ("meet",)} or w[:1] == ("meet",):
             rest = w[2:] if w[0] != "meet" else w[1:]
-            if rest[:1] == ("my",) and rest[1:2] and rest[1] in _FRIEND:
+            if rest[:1] == ("my",) and rest[1:2] and rest[1] in self.said.friends:
                 rest = rest[2:]
             if self._name_like(rest, clause) and not self._known_words(rest):
                 who = self.speaker if self._asked_name() else self._stranger()
@@ -214,7 +208,7 @@ class Statements(Likings):
 
     def _asked_name(self) -> bool:
         last = self._robot_said().lower()
-        return last.rstrip().endswith("?") and any(p in last for p in _NAME_ASKED)
+        return last.rstrip().endswith("?") and any(p in last for p in self.said.name_asked)
 
     def _last_named(self) -> str:
         """Whose name the robot's last reply said: "no, it's Rob" corrects it (the speaker first)."""
@@ -230,7 +224,7 @@ class Statements(Likings):
 
 
     def _ownership(self, w: Words, clause: str) -> list[FactClaim] | None:
-        if len(w) > 2 and w[-1] == "mine" and w[-2] in _BE:
+        if len(w) > 2 and w[-1] == "mine" and w[-2] in self.said.be:
             thing, _ = self._entity(w[:-2], _THING)
             return [fact(thing, "belongsTo", self.speaker)]
         for verb in (("belongs", "to"), ("belong", "to")):
@@ -241,10 +235,10 @@ class Statements(Likings):
                         raise Refused(f"Sorry, I don't know anyone called {' '.join(w[i + 2:]).title()}.")
                     thing, _ = self._entity(w[:i], _THING)
                     return [fact(thing, "belongsTo", self.speaker if owner == ME else owner)]
-        if w[:2] in _POINTED and w[2:3] == ("my",) and w[3:]:
+        if w[:2] in self.said.pointed and w[2:3] == ("my",) and w[3:]:
             thing, _ = self._entity(w[3:], _THING)
             return [fact(thing, "belongsTo", self.speaker)]
-        if len(w) > 2 and w[-2] in _BE and w[-1].endswith("'s"):
+        if len(w) > 2 and w[-2] in self.said.be and w[-1].endswith("'s"):
             owner = self._person((w[-1][:-2],))
             if owner is not None:
                 thing, _ = self._entity(w[:-2], _THING)
@@ -259,9 +253,9 @@ class Statements(Likings):
             return self._where(("me",), w[2:], people_in=True)
         if w[:1] == ("i",) and len(w) > 3:
             verb = 2 if w[1] == "have" else 1
-            return self._placed(w[verb + 1 :]) if w[verb] in _PUT else None
+            return self._placed(w[verb + 1 :]) if w[verb] in self.said.put else None
         for i in range(1, len(w) - 1):
-            if w[i] in _BE:
+            if w[i] in self.said.be:
                 if i > 1 and w[0] == asked_verb(self.lang, w[0]):
                     return None  # a request ("tell Ana her taxi is on time"), not a subject ("water is...")
                 return self._where(w[:i], w[i + 1 :])
@@ -272,7 +266,7 @@ class Statements(Likings):
         the kitchen", "I'm on the sofa") only a zone or furniture the KB knows is a place; other
         words are an idiom ("I'm on my way", "I'm in trouble", "I'm on the phone")."""
         rest = rest[1:] if rest[:1] in {("now",), ("still",), ("usually",), ("always",)} else rest
-        for prep, predicate in _IN.items():
+        for prep, predicate in self.said.states.items():
             place = rest[len(prep) :]
             if rest[: len(prep)] == prep and place and people_in:
                 here, _ = self._entity(place, PLACE, _holds_people)
@@ -283,7 +277,7 @@ class Statements(Likings):
 
     def _placed(self, rest: Words) -> list[FactClaim] | None:
         for i in range(1, len(rest)):
-            for prep, predicate in _IN.items():
+            for prep, predicate in self.said.states.items():
                 if rest[i : i + len(prep)] == prep and rest[i + len(prep) :]:
                     return self._at(rest[:i], predicate, rest[i + len(prep) :])
         return None

@@ -11,36 +11,42 @@ from __future__ import annotations
 
 from lemminflect import getAllLemmas
 
-from dialogue.reference.english import word_set
 from dialogue.reference.resolution import ANYWHERE
 from dialogue.schema import FactClaim
+from dialogue.understanding.language import Language
 from dialogue.understanding.statements.clause import ClauseReader, Unclaimed, Words, fact
 
-_INTENSIFIERS = word_set("really truly absolutely quite totally just")
-_LIKE = word_set("like likes love loves enjoy enjoys adore adores prefer prefers")
-_HATE = word_set("hate hates dislike dislikes detest detests loathe loathes")
-#: Whole leads that say a liking of what follows ("I'm fond of tea", "I'm not a fan of coffee").
-_LEADS: dict[Words, str] = {
-    **{tuple(f"i am {p} of".split()): "likes" for p in ("fond", "a fan", "a big fan", "a huge fan")},
-    **{tuple(f"i am {p} of".split()): "dislikes"
-       for p in ("not fond", "not a fan", "no fan", "not a big fan")},
-    ("i", "cannot", "stand"): "dislikes",
-}
-_FAVOURITE = word_set("favourite favorite")
-#: What a preference is over ("I prefer tea to coffee").
-_OVER = word_set("to over than")
-#: A liking of what happens or of doing something ("I like it when...", "I like to dance"): no thing.
-_HAPPENINGS = word_set("it to when whenever if how what where while")
-#: A bare "this", "that": an appraisal of what just happened or was said, not of a thing.
-_APPRAISED: frozenset[Words] = frozenset({("this",), ("that",), ("these",), ("those",), ("them",)})
-#: Words that start a clause inside the object ("I like the way you talk").
-_CLAUSE = word_set("i you he she we they when whenever if because while")
+
+class _Words:
+    """The language's words of likings (`statements.toml` [likings]; made once per language)."""
+
+    def __init__(self, lang: Language) -> None:
+        said = lang.statements.likings
+        self.intensifiers = said.intensifiers
+        self.like = said.like
+        self.hate = said.hate
+        #: Whole leads that say a liking of what follows ("I'm fond of tea", "I'm not a fan of coffee").
+        self.leads = {tuple(lead.split()): predicate for lead, predicate in said.leads.items()}
+        self.favourite = said.favourite
+        #: What a preference is over ("I prefer tea to coffee").
+        self.over = said.over
+        #: A liking of what happens or of doing something ("I like it when...", "I like to dance").
+        self.happenings = said.happenings
+        #: A bare "this", "that": an appraisal of what just happened or was said, not of a thing.
+        self.appraised = said.appraised
+        #: Words that start a clause inside the object ("I like the way you talk").
+        self.clause = said.clause
 
 
 class Likings(ClauseReader):
+    @property
+    def liked(self) -> _Words:
+        """The language's words of likings."""
+        return self.lang.derived(_Words)
+
     def _preference(self, w: Words, clause: str) -> list[FactClaim] | None:
-        w = tuple(x for x in w if x not in _INTENSIFIERS)
-        for lead, predicate in _LEADS.items():
+        w = tuple(x for x in w if x not in self.liked.intensifiers)
+        for lead, predicate in self.liked.leads.items():
             if w[: len(lead)] == lead and w[len(lead) :]:
                 return [fact(self.speaker, predicate, self._liked(w[len(lead) :]))]
         favourite = self._favourite(w)
@@ -54,9 +60,9 @@ class Likings(ClauseReader):
                 verb, negated = cut + 1, True
             if verb + 1 >= len(w):
                 continue
-            if w[verb] in _LIKE:
+            if w[verb] in self.liked.like:
                 predicate = "dislikes" if negated else "likes"
-            elif w[verb] in _HATE and not negated:
+            elif w[verb] in self.liked.hate and not negated:
                 predicate = "dislikes"
             else:
                 continue
@@ -64,17 +70,16 @@ class Likings(ClauseReader):
             if who is not None:
                 liked = w[verb + 1 :]
                 if w[verb].startswith("prefer"):  # "I prefer tea to coffee": a liking of tea
-                    liked = next((liked[:i] for i, x in enumerate(liked) if x in _OVER), liked)
+                    liked = next((liked[:i] for i, x in enumerate(liked) if x in self.liked.over), liked)
                 return [fact(who, predicate, self._liked(liked))]
         return None
 
-    @staticmethod
-    def _favourite(w: Words) -> Words | None:
+    def _favourite(self, w: Words) -> Words | None:
         """What "tea is my favourite (drink)" or "my favourite drink is tea" says the speaker likes."""
-        if w[:2] in {("my", f) for f in _FAVOURITE} and "is" in w[2:4]:
+        if w[:2] in {("my", f) for f in self.liked.favourite} and "is" in w[2:4]:
             return w[w.index("is", 2) + 1 :] or None
         for i in range(1, len(w) - 2):
-            if w[i : i + 2] == ("is", "my") and w[i + 2] in _FAVOURITE:
+            if w[i : i + 2] == ("is", "my") and w[i + 2] in self.liked.favourite:
                 return w[:i]
         return None
 
@@ -84,7 +89,9 @@ class Likings(ClauseReader):
         words = tuple(w for w in words if w not in {"very", "much", "really", "so", "a", "lot", "too"})
         if words and words[0].endswith("ing") and "VERB" in getAllLemmas(words[0]):
             raise Unclaimed  # "I hate marking lab reports": an activity, no thing or kind of the KB
-        if not words or words[0] in _HAPPENINGS or words in _APPRAISED or _CLAUSE & set(words[1:]):
+        liked = self.liked
+        happening = words[:1] and words[0] in liked.happenings
+        if not words or happening or words in liked.appraised or liked.clause & set(words[1:]):
             raise Unclaimed  # "I like it when you dance", "I like to dance", "I like that": no thing
         if words and words[0] in {"the", "this", "that", "my", "your", "his", "her"}:
             return self._entity(words, ANYWHERE)[0]

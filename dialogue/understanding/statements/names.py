@@ -13,17 +13,11 @@ from __future__ import annotations
 
 from lemminflect import getAllLemmas, getInflection
 
-from dialogue.reference.english import FUNCTION_WORDS, word_set
 from dialogue.understanding.language import Language
 
 Words = tuple[str, ...]
 #: Longest name a person may give (characters).
 MAX_NAME = 60
-#: Words of "I'm X" that are no name ("I'm back", "I'm the cook", "I'm not sure").
-NOT_NAMES = word_set(
-    "a an the not no so very just here there back home in on at from with going done fine ok okay sorry "
-    "ready sure afraid looking trying still also only really quite too that this it what who your my"
-)
 #: Parts of speech a lower-case word of a name is not.
 _NOT_NAME_POS = frozenset({"ADJ", "ADV", "AUX"})
 _QUOTES = str.maketrans({q: " " for q in "\"“”«»"})
@@ -45,17 +39,18 @@ def name_like(lang: Language, words: Words, original: str) -> bool:
     """Whether the words of "I'm X" are a name: one to three words, none a function word, and
     (for lower-case speech-recogniser text) none an adjective, adverb, participle or number."""
     # ("I'm peckish": a need the rules' grammar reads, whatever a lemmatiser knows of the word)
-    needs = lang.requests.needs
-    if not 1 <= len(words) <= 3 or any(w in NOT_NAMES or w in needs or not w.isalpha() for w in words):
+    needs, not_names = lang.requests.needs, lang.statements.names.not_names
+    if not 1 <= len(words) <= 3 or any(w in not_names or w in needs or not w.isalpha() for w in words):
         return False
     if original != original.lower():  # written casing tells names apart: "I'm Frank", "I'm frank"
         return all(part[:1].isupper() for part in original.split())
-    return not any(w in FUNCTION_WORDS or _descriptive(w) for w in words) and not words[0].endswith("ing")
+    closed = lang.words.any_function_word
+    return not any(w in closed or _descriptive(w) for w in words) and not words[0].endswith("ing")
 
 
 def given_name(lang: Language, words: Words) -> bool:
     """Whether the words after "my name is" are a name: "not ...", "a ..." are not."""
-    return 1 <= len(words) <= 4 and not any(w in NOT_NAMES for w in words)
+    return 1 <= len(words) <= 4 and not any(w in lang.statements.names.not_names for w in words)
 
 
 def _descriptive(word: str) -> bool:
