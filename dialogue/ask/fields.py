@@ -6,7 +6,8 @@ candidates when an entity field's words name several entities. None: the clause 
 that field. Booleans and free strings are claimed only by the field being asked or named ("yes"
 says nothing about a field nobody asked about); numbers, enum values and entities by their type.
 
->>> clause = Clause.of("I'm twenty-three")
+>>> from dialogue.understanding.language import Language
+>>> clause = Clause.of(Language.load("en"), "I'm twenty-three")
 >>> clause.numbers
 (Decimal('23'),)
 """
@@ -27,134 +28,39 @@ from dialogue.reference.english import tokens
 from dialogue.reference.grounding import Entity, Snapshot
 from dialogue.reference.lexicon import Lexicon, norm, singular
 from dialogue.reference.resolution import ALL_KINDS, resolve
+from dialogue.understanding.language import Language
 
-YES = frozenset(
-    {
-        "yes",
-        "yeah",
-        "yep",
-        "yup",
-        "yea",
-        "aye",
-        "sure",
-        "certainly",
-        "definitely",
-        "absolutely",
-        "correct",
-        "right",
-        "true",
-        "affirmative",
-        "indeed",
-        "ok",
-        "okay",
-        "alright",
-        "course",
-    }
-)
-NO = frozenset(
-    {
-        "no",
-        "nope",
-        "nah",
-        "never",
-        "negative",
-        "false",
-        "not",
-        "don't",
-        "dont",
-        "doesn't",
-        "isn't",
-        "haven't",
-        "hasn't",
-        "wasn't",
-        "aren't",
-        "won't",
-        "nothing",
-        "none",
-    }
-)
-#: Words said before an answer that are not part of it ("it's Bob", "I'd like the red cup").
-LEAD_INS = frozenset(
-    {
-        "i",
-        "i'm",
-        "im",
-        "i'd",
-        "id",
-        "am",
-        "is",
-        "it",
-        "it's",
-        "its",
-        "that",
-        "that's",
-        "thats",
-        "like",
-        "want",
-        "would",
-        "take",
-        "choose",
-        "pick",
-        "please",
-        "well",
-        "so",
-        "um",
-        "uh",
-        "er",
-        "hmm",
-        "okay",
-        "ok",
-        "the",
-        "a",
-        "an",
-        "say",
-        "think",
-        "guess",
-        "maybe",
-        "probably",
-        "prefer",
-        "rather",
-        "have",
-        "one",
-        "answer",
-        "call",
-        "me",
-        "they",
-        "my",
-        "name's",
-        "years",
-        "year",
-        "old",
-        "of",
-        "course",
-        "actually",
-        "no",
-        "sorry",
-        "oh",
-    }
-)
-_LEAD_IN_TEXT = re.compile(
-    r"^(?:(?:well|so|um+|uh+|er|oh|ok(?:ay)?|yes|yeah|no|actually|sorry)\b[,\s]*)*"
-    r"(?:(?:it'?s|it is|that'?s|that is|i'?m|i am|call me|they call me|i'?d say|i think|i guess|"
-    r"the answer is|my answer is)\b\s*)?",
-    re.IGNORECASE,
-)
-#: A question back ("why do you want to know", "what do you mean", "pardon"), never a free string.
-QUESTION_BACK = re.compile(
-    r"\s*(?:why|what|pardon|huh|come again|excuse me"
-    r"|(?:can|could|would|will|do|did|does|are|is)\s+(?:you|i|we)|how\s+(?:do|does|did|can|come|about))\b",
-    re.IGNORECASE,
-)
-_NUMBER = re.compile(r"(?<![\w.])((?:minus|negative)\s+|-)?(\d+(?:\.\d+)?)(?![\w]|\.\d)", re.IGNORECASE)
-#: "one" after a determiner is a pronoun ("the red one", "that one"), not a number.
-_PRONOUN_ONE = re.compile(
-    r"\b(the|this|that|which|another|each|every|no|any)\b([^,;.]*?)\bone\b", re.IGNORECASE
-)
-#: Words by which the speaker names themself.
-SELF = frozenset({"me", "myself"})
-_THOUSANDS = re.compile(r"(?<=\d),(?=\d{3}\b)")
-_HALF = re.compile(r"\b(\d+) and a half\b", re.IGNORECASE)
-ORDINALS = {"first": 0, "second": 1, "third": 2, "fourth": 3, "last": -1}
+
+class _Words:
+    """The language's words of answers (`ask.toml`; made once per language)."""
+
+    def __init__(self, lang: Language) -> None:
+        said = lang.ask
+        self.code = lang.code
+        self.yes = said.yes
+        self.no = said.no
+        #: No-words that turn a yes-word next to them into a no ("certainly not", "not true").
+        self.negators = said.no - said.not_negators
+        #: Words said before an answer that are not part of it ("it's Bob", "I'd like the red cup").
+        self.lead_ins = said.lead_ins
+        self.lead_in_text = said.lead_in_text
+        #: A question back ("why do you want to know", "what do you mean", "pardon"), never a free
+        #: string.
+        self.question_back = said.question_back
+        self.number = said.number
+        #: "one" after a determiner is a pronoun ("the red one", "that one"), not a number.
+        self.pronoun_one = said.pronoun_one
+        self.thousands = said.thousands
+        self.half = said.half
+        self.field_value = said.field_value
+        #: Words by which the speaker names themself.
+        self.self_ = said.self_
+        self.ordinals = said.ordinals
+        #: Said as a whole, these decide, the longest first: "why not" is a yes, "of course not" a no.
+        self.boolean_phrases: tuple[tuple[tuple[str, ...], bool], ...] = tuple(
+            (tuple(tokens(phrase)), value)
+            for phrase, value in sorted(said.boolean_phrases.items(), key=lambda item: -len(item[0]))
+        )
 
 
 @dataclass(frozen=True)
@@ -167,10 +73,12 @@ class Clause:
     numbers: tuple[Decimal, ...]
 
     @classmethod
-    def of(cls, text: str) -> Clause:
-        digits = alpha2digit(_PRONOUN_ONE.sub("\\1\\2\u2060", text), "en", threshold=0)
-        digits = _HALF.sub(r"\1.5", _THOUSANDS.sub("", digits))
-        numbers = tuple((-1 if m.group(1) else 1) * Decimal(m.group(2)) for m in _NUMBER.finditer(digits))
+    def of(cls, lang: Language, text: str) -> Clause:
+        """The clause of `text`, its numbers read in `lang` (in words by text2num: "twenty-three")."""
+        said = lang.derived(_Words)
+        digits = alpha2digit(said.pronoun_one.sub("\\1\\2\u2060", text), said.code, threshold=0)
+        digits = said.half.sub(r"\1.5", said.thousands.sub("", digits))
+        numbers = tuple((-1 if m.group(1) else 1) * Decimal(m.group(2)) for m in said.number.finditer(digits))
         return cls(text.strip(), tuple(tokens(text)), numbers)
 
     def has(self, words: Sequence[str]) -> int | None:
@@ -208,53 +116,27 @@ def checked(form_field: FormField, value: Any, said: str) -> Found:
     return Found(value, problem, said=said) if problem else Found(held, said=said)
 
 
-#: Said as a whole, these decide, the longest first: "why not" is a yes, "of course not" a no.
-BOOLEAN_PHRASES: tuple[tuple[tuple[str, ...], bool], ...] = tuple(
-    (tuple(tokens(phrase)), value)
-    for phrase, value in sorted(
-        {
-            "of course not": False,
-            "don't think so": False,
-            "do not think so": False,
-            "rather not": False,
-            "why not": True,
-            "no problem": True,
-            "not a problem": True,
-            "don't mind": True,
-            "do not mind": True,
-            "would love": True,
-            "i'd love": True,
-            "think so": True,
-            "guess so": True,
-            "go ahead": True,
-            "please do": True,
-        }.items(),
-        key=lambda item: -len(item[0]),
-    )
-)
-#: No-words that turn a yes-word next to them into a no ("certainly not", "not true").
-NEGATORS = NO - {"no", "nope", "nah", "negative", "false", "nothing", "none"}
-
-
-def _polarity(words: Sequence[str]) -> list[bool]:
+def _polarity(answer: _Words, words: Sequence[str]) -> list[bool]:
     """Each yes or no said in `words`; a yes-word with a negator beside it is one no."""
     said: list[bool] = []
     used: set[int] = set()
     for i, word in enumerate(words):
-        if i in used or word not in YES:
+        if i in used or word not in answer.yes:
             continue
-        around = [j for j in (i - 1, i + 1) if 0 <= j < len(words) and words[j] in NEGATORS and j not in used]
+        around = [j for j in (i - 1, i + 1)
+                  if 0 <= j < len(words) and words[j] in answer.negators and j not in used]  # fmt: skip
         used.update([i, *around[:1]])
         said.append(not around)
-    said += [False for i, word in enumerate(words) if word in NO and i not in used]
+    said += [False for i, word in enumerate(words) if word in answer.no and i not in used]
     return said
 
 
 def find_boolean(form_field: FormField, clause: Clause, ctx: ReadContext) -> Found | None:
-    for phrase, value in BOOLEAN_PHRASES:
+    answer = ctx.lexicon.lang.derived(_Words)
+    for phrase, value in answer.boolean_phrases:
         if clause.has(phrase) is not None:
             return Found(value, said=clause.text)
-    said = set(_polarity(clause.words))
+    said = set(_polarity(answer, clause.words))
     return Found(said.pop(), said=clause.text) if len(said) == 1 else None
 
 
@@ -288,26 +170,27 @@ def find_enum(form_field: FormField, clause: Clause, ctx: ReadContext) -> Found 
     # "light blue" and "blue": the longest value said is the one meant.
     hits = [h for h in hits if not any(h != o and str(h) in str(o) for o in hits)]
     if not hits and (form_field.name == ctx.asked or form_field.name in ctx.named):
-        hits = _by_a_word(form_field, clause)
+        hits = _by_a_word(ctx.lexicon.lang.derived(_Words), form_field, clause)
     return Found(hits[0], said=clause.text) if len(hits) == 1 else None
 
 
-def _by_a_word(form_field: FormField, clause: Clause) -> list[Any]:
+def _by_a_word(answer: _Words, form_field: FormField, clause: Clause) -> list[Any]:
     """ "chocolate" for "hot chocolate": the values one of whose words the clause says (answering
     this field only: a word is weak evidence)."""
-    said = set(norm([w for w in clause.words if w not in LEAD_INS]))
+    said = set(norm([w for w in clause.words if w not in answer.lead_ins]))
     return [v for v in form_field.enum if isinstance(v, str) and said & set(norm(tokens(v)))]
 
 
 def find_string(form_field: FormField, clause: Clause, ctx: ReadContext) -> Found | None:
+    answer = ctx.lexicon.lang.derived(_Words)
     text = clause.text
-    if QUESTION_BACK.match(text) or text.endswith("?"):  # "why do you want to know?" is no name
+    if answer.question_back.match(text) or text.endswith("?"):  # "why do you want to know?" is no name
         return None
     start = clause.has(tokens(form_field.words)) if form_field.name in ctx.named else None
     if start is not None:  # "my name is Bob": what follows the field's words (and "is", ":")
-        after = re.split(r"\b(?:is|are|was|'s)\b|:", text, maxsplit=1)
+        after = answer.field_value.split(text, maxsplit=1)
         text = after[1] if len(after) == 2 else ""
-    text = _LEAD_IN_TEXT.sub("", text).strip(" \t,.;:!?\"'")
+    text = answer.lead_in_text.sub("", text).strip(" \t,.;:!?\"'")
     return checked(form_field, text, clause.text) if text else None
 
 
@@ -322,18 +205,20 @@ def pool(form_field: FormField, snapshot: Snapshot) -> list[Entity]:
 
 def find_entity(form_field: FormField, clause: Clause, ctx: ReadContext) -> Found | None:
     lexicon, snapshot = ctx.lexicon, ctx.lexicon.snapshot
+    answer = lexicon.lang.derived(_Words)
     offered = [e for e in (snapshot.get(i) for i in ctx.clarifying.get(form_field.name, ())) if e is not None]
     choices = offered or pool(form_field, snapshot)
     ids = {e.id for e in choices}
     # An id typed as it is, used only when no noun phrase names a choice: an id may also be a word
     # ("cup" in the demo scene), and "the blue cup" means the blue one whatever the others are called.
-    typed = next((w for w in re.findall(r"[\w:.\-()]+", clause.text) if w in ids and w not in SELF), None)
+    self_ = answer.self_
+    typed = next((w for w in re.findall(r"[\w:.\-()]+", clause.text) if w in ids and w not in self_), None)
     if offered:
-        for word, index in ORDINALS.items():
+        for word, index in answer.ordinals.items():
             if word in clause.words:
                 return Found(offered[index].id, said=word)
     # "myself" is the speaker, never the robot whose id it is.
-    words = [w for w in clause.words if (w not in LEAD_INS or w in ("my", "one")) and w not in SELF]
+    words = [w for w in clause.words if (w not in answer.lead_ins or w in ("my", "one")) and w not in self_]
     owner = ctx.speaker if "my" in words else None
     for start in range(len(words)):  # the noun phrase ends the clause: "I'd like the red cup"
         phrase = words[start:]
@@ -363,7 +248,7 @@ def find_entity(form_field: FormField, clause: Clause, ctx: ReadContext) -> Foun
     if typed is not None:
         return Found(typed, said=typed)
     spoken = clause.words
-    me = [i for i, w in enumerate(spoken) if w in SELF and not (i and spoken[i - 1] in NEGATORS)]
+    me = [i for i, w in enumerate(spoken) if w in self_ and not (i and spoken[i - 1] in answer.negators)]
     if ctx.speaker in ids and me:  # "to me" (not "not me"): the speaker, when the field may name them
         return Found(ctx.speaker, said=spoken[me[0]])
     return None

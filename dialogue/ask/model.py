@@ -182,7 +182,7 @@ def _value(form_field: FormField, value: Any, lexicon: Lexicon, speaker: str, re
     except ValidationError as exc:
         errors = exc.errors()
         if isinstance(value, str):  # "34 years": what the rules read in the words
-            hit = find(form_field, Clause.of(value), ReadContext(lexicon, speaker, asked=name))
+            hit = find(form_field, Clause.of(lexicon.lang, value), ReadContext(lexicon, speaker, asked=name))
             if hit is not None and hit.problem is None and not hit.candidates:
                 reading.values[name] = hit.value
                 return

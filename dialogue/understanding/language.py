@@ -12,6 +12,7 @@ One folder per language, data only (the shape of Home Assistant's intents reposi
     followups.toml     the words of answers to the robot's question
     questions.toml     the words of questions about the situation and about what people told
     statements.toml    the words of statements: names, ownership, places, likings
+    ask.toml           the ask role's words: yes and no, numbers, cancelling and skipping
 
 and `lexicon.txt`, other ways of saying a name (dialogue.reference.synonyms). A file a language
 does not have is a table it leaves empty.
@@ -34,6 +35,7 @@ from pydantic import ValidationError
 
 from dialogue.errors import DialogueError
 from dialogue.understanding.tables import (
+    AskWords,
     ClosedWords,
     FollowupWords,
     FrameTable,
@@ -86,6 +88,7 @@ class Language:
         self.followups: FollowupWords = _table(folder, "followups", FollowupWords)
         self.questions: QuestionWords = _table(folder, "questions", QuestionWords)
         self.statements: StatementWords = _table(folder, "statements", StatementWords)
+        self.ask: AskWords = _table(folder, "ask", AskWords)
         lexicon = folder / "lexicon.txt"
         #: Other ways of saying a name (dialogue.reference.synonyms parses it).
         self.lexicon = lexicon.read_text(encoding="utf-8") if lexicon.is_file() else ""

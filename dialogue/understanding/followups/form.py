@@ -23,7 +23,6 @@ clarifying question. "Never mind" cancels the form; "I don't know" or "skip" giv
 
 from __future__ import annotations
 
-import re
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -32,27 +31,6 @@ from dialogue.ask.form import AskForm, Clarifying, FormState
 from dialogue.reference.english import tokens
 from dialogue.reference.grounding import Entity
 from dialogue.reference.lexicon import Lexicon
-
-_CANCEL = re.compile(
-    r"\b(?:never ?mind|forget (?:it|about it)|cancel(?: that| it)?|stop asking|leave it|let'?s stop|"
-    r"i don'?t want to (?:answer|say|tell|do this|continue)|i'?d rather not (?:answer|continue)|"
-    r"none of your business|enough)\b",
-    re.IGNORECASE,
-)
-_SKIP = re.compile(
-    r"\b(?:skip(?: it| that| this)?|pass|i don'?t know|i do not know|dunno|no idea|not sure|i'?m not sure|"
-    r"i'?d rather not (?:say|tell|answer)|rather not say|i'?d prefer not to|i prefer not to|"
-    r"i won'?t (?:say|tell)|i will not (?:say|tell)|not telling|can'?t remember|don'?t remember)\b",
-    re.IGNORECASE,
-)
-_CORRECTION = frozenset({"no", "actually", "sorry", "wait", "oops", "correction", "rather", "mean", "meant"})
-#: Where an answer is cut into clauses; never inside a number ("a hundred and five", "1,500",
-#: "two and a half").
-_SPLIT = re.compile(
-    r"\s*(?:(?:[;!?]|(?<!\d),|,(?!\d{3}\b))+|\.(?=\s|$)|\bbut\b|\balso\b|\bplus\b"
-    r"|(?<!hundred )(?<!thousand )(?<!million )(?<!billion )\band\b(?!\s+a\s+half\b))\s*",
-    re.IGNORECASE,
-)
 
 
 @dataclass
@@ -115,7 +93,8 @@ def _choose(
 
 def read_answer(form: AskForm, state: FormState, text: str, lexicon: Lexicon, speaker: str) -> Reading:
     reading = Reading()
-    if _CANCEL.search(text):
+    said = lexicon.lang.ask.answers  # (cancel, skip, corrections, where an answer is cut)
+    if said.cancel.search(text):
         reading.cancel = True
         reading.notes.append(f"cancelled: {text!r}")
         return reading
@@ -124,7 +103,7 @@ def read_answer(form: AskForm, state: FormState, text: str, lexicon: Lexicon, sp
     # "no, I'm 34" corrects; a bare "no" to a yes/no question answers it.
     correcting = (
         bool(words)
-        and words[0] in _CORRECTION
+        and words[0] in said.correction
         and not (
             asked is not None
             and asked.kind == "boolean"
@@ -133,12 +112,12 @@ def read_answer(form: AskForm, state: FormState, text: str, lexicon: Lexicon, sp
         )
     )
     clarifying = {state.clarifying.field: state.clarifying.candidates} if state.clarifying else {}
-    for part in _SPLIT.split(text):
+    for part in said.split.split(text):
         if not part.strip():
             continue
-        clause = Clause.of(part)
+        clause = Clause.of(lexicon.lang, part)
         named = _named(form, clause)
-        if _SKIP.search(part):
+        if said.skip.search(part):
             target = next((n for n in form.names if n in named), state.asked)
             if target is not None and target not in reading.values:
                 reading.skipped.append(target)

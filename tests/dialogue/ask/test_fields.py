@@ -5,12 +5,21 @@ from __future__ import annotations
 import json
 from typing import Any
 
-from dialogue.ask.fields import Clause, ReadContext, find
+from dialogue.ask import fields
+from dialogue.ask.fields import ReadContext, find
 from dialogue.ask.form import AskForm, FormState
 from dialogue.reference.lexicon import Lexicon
 from dialogue.understanding.followups.form import read_answer
 from tests.dialogue.ask.conftest import NINA, form_of
-from tests.dialogue.conftest import lexicon_of, scene_kb
+from tests.dialogue.conftest import english, lexicon_of, scene_kb
+
+
+class Clause:
+    """Clauses read in English (dialogue.ask.fields.Clause reads them in a language)."""
+
+    @staticmethod
+    def of(text: str) -> fields.Clause:
+        return fields.Clause.of(english(), text)
 
 
 def found(form: AskForm, lexicon: Lexicon, name: str, text: str, asked: str | None = None,
