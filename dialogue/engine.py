@@ -197,7 +197,7 @@ class DialogueEngine:
             log.warning("what %r said was not learnt: %s", speaker, exc)
             return replace(result, response="Sorry, I could not remember that.",
                            error_msg=f"the KB refused what was learnt: {exc}")
-        said = confirmation(settled, snapshot, speaker)
+        said = confirmation(self.language, settled, snapshot, speaker)
         kept = result.response if result.intents else ""
         return replace(result, response=" ".join(p for p in (kept, said) if p))
 

@@ -93,7 +93,7 @@ def _roles(wish: UserIntent, lexicon: Lexicon, speaker: str) -> tuple[dict[str, 
         if found.one is not None:
             data[field] = found.one.id
         elif found.ambiguous:
-            return data, clarifying_question(lexicon.snapshot, found.matches)
+            return data, clarifying_question(lexicon.lang, lexicon.snapshot, found.matches)
         else:
             # The first of the situation's order (what the robot sees, people, places): naming
             # them costs what they are, not the size of the world.

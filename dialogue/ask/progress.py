@@ -26,6 +26,7 @@ from dialogue.ask.form import AskForm, Clarifying, FieldKind, FormField, FormSta
 from dialogue.reference.clarify import MAX_OPTIONS, describe_options
 from dialogue.reference.clarify import question as clarifying_question
 from dialogue.reference.grounding import Entity, Snapshot
+from dialogue.reference.lexicon import Lexicon
 from dialogue.understanding.followups.form import Reading
 
 MAX_TRIES = 3
@@ -77,11 +78,11 @@ def problem_line(form_field: FormField, problem: str) -> str:
     return f"That is not a possible {form_field.words}: {problem.lower()}."
 
 
-def _options(snapshot: Snapshot, entities: Sequence[Entity]) -> list[str]:
+def _options(lexicon: Lexicon, entities: Sequence[Entity]) -> list[str]:
     """How the choices are said: people by their names, things by what tells them apart."""
     if entities and all(e.kind == "person" for e in entities):
         return [e.name for e in entities]
-    return describe_options(snapshot, entities)
+    return describe_options(lexicon.lang, lexicon.snapshot, entities)
 
 
 #: What the form's own question is followed by when it is asked again, by the field's kind.
@@ -109,7 +110,7 @@ def _listed(form_field: FormField, snapshot: Snapshot | None) -> list[Entity]:
     return choices if 1 < len(choices) <= MAX_OPTIONS else []
 
 
-def asking(form: AskForm, name: str, snapshot: Snapshot | None = None) -> tuple[str, list[Entity]]:
+def asking(form: AskForm, name: str, lexicon: Lexicon | None = None) -> tuple[str, list[Entity]]:
     """How the robot asks for one field — its description when it is a question, the form's question
     for the first field, else by the field's kind — and the entities the question offers."""
     form_field = form.field(name)
@@ -119,21 +120,22 @@ def asking(form: AskForm, name: str, snapshot: Snapshot | None = None) -> tuple[
     if name == form.fields[0].name or len(form.required) == 1:
         hint = _HINTS.get(form_field.kind)
         return form.question + (hint(form_field) if hint else ""), []
+    snapshot = lexicon.snapshot if lexicon is not None else None
     listed = _listed(form_field, snapshot) if form_field.kind == "entity" else []
-    options = _options(snapshot, listed) if snapshot is not None and listed else []
+    options = _options(lexicon, listed) if lexicon is not None and listed else []
     return _QUESTIONS.get(form_field.kind, _open_question)(form_field, options), listed
 
 
-def question_for(form: AskForm, name: str, snapshot: Snapshot | None = None) -> str:
+def question_for(form: AskForm, name: str, lexicon: Lexicon | None = None) -> str:
     """How the robot asks for one field (`asking`)."""
-    return asking(form, name, snapshot)[0]
+    return asking(form, name, lexicon)[0]
 
 
 def advance(
     form: AskForm,
     state: FormState,
     reading: Reading,
-    snapshot: Snapshot | None = None,
+    lexicon: Lexicon | None = None,
     options: Sequence[Entity] = (),
 ) -> tuple[FormState, str]:
     """The form once `reading` is applied, and the robot's next line."""
@@ -158,19 +160,19 @@ def advance(
         lines.append(NOT_UNDERSTOOD)
     if reading.clarify is not None and reading.clarify.field not in new.given_up:
         new.clarifying, new.asked = reading.clarify, reading.clarify.field
-        if snapshot is not None and options:
-            return new, " ".join([*lines, clarifying_question(snapshot, options)])
+        if lexicon is not None and options:
+            return new, " ".join([*lines, clarifying_question(lexicon.lang, lexicon.snapshot, options)])
     missing = _missing(form, new)
     if not missing:
         new.status, new.asked, new.clarifying = "done", None, None
         return new, DONE if new.values else "OK."
-    if new.clarifying is not None and new.clarifying.field in missing and snapshot is not None:
-        offered = [e for e in (snapshot.get(i) for i in new.clarifying.candidates) if e is not None]
+    if new.clarifying is not None and new.clarifying.field in missing and lexicon is not None:
+        offered = [e for e in (lexicon.snapshot.get(i) for i in new.clarifying.candidates) if e is not None]
         if offered:
             new.asked = new.clarifying.field
-            return new, " ".join([*lines, clarifying_question(snapshot, offered)])
+            return new, " ".join([*lines, clarifying_question(lexicon.lang, lexicon.snapshot, offered)])
     new.asked = new.asked if new.asked in missing else missing[0]
-    line, offered = asking(form, new.asked, snapshot)
+    line, offered = asking(form, new.asked, lexicon)
     # The entities the question lists are the choices, in the order said ("the second one").
     new.clarifying = Clarifying(field=new.asked, candidates=[e.id for e in offered]) if offered else None
     return new, " ".join([*lines, line])

@@ -46,7 +46,7 @@ def replay(form: AskForm, history: Sequence[Utterance], lexicon: Lexicon) -> For
     for utterance in history:
         if utterance.role == "user" and not state.terminal:
             reading = read_answer(form, state, utterance.text, lexicon, utterance.speaker)
-            state, _line = advance(form, state, reading, lexicon.snapshot, reading.clarify_options)
+            state, _line = advance(form, state, reading, lexicon, reading.clarify_options)
     return state
 
 
@@ -144,7 +144,7 @@ class AskRole:
             ), state
         if role_of(speaker) != "user":  # a system update, the robot's own words: no answer of the person
             trace.note(f"{speaker}'s input is no answer: the form is unchanged")
-            again = question_for(form, state.asked, lexicon.snapshot) if state.asked else ""
+            again = question_for(form, state.asked, lexicon) if state.asked else ""
             unchanged = TurnResult(again, (), backend="form", dialogue_terminal=False,
                                    results=state.results())
             return unchanged, state
@@ -174,7 +174,7 @@ class AskRole:
             intents, understood = (I.raw_user_input(text, source=speaker, locale=locale),), False
         for note in reading.notes:
             trace.note(note)
-        new, line = advance(form, state, reading, lexicon.snapshot, reading.clarify_options)
+        new, line = advance(form, state, reading, lexicon, reading.clarify_options)
         if ack and ack.strip() and not english and reading.clarify is None:
             line = ack.strip()  # the model speaks the dialogue's language; the form's lines are English
         clarify = new.clarifying is not None and not new.terminal

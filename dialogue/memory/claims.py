@@ -154,7 +154,7 @@ def _entity(
     if found is not None and found.one is not None:
         return found.one.id, None
     if found is not None and found.ambiguous:
-        return "", clarifying_question(lexicon.snapshot, found.matches)
+        return "", clarifying_question(lexicon.lang, lexicon.snapshot, found.matches)
     allowed = sorted(e.id for e in lexicon.snapshot.entities.values() if e.kind in kinds)[:30]
     raise AnswerError(f"{where} {value!r} is not the id of a {'/'.join(sorted(kinds))} in the situation; "
                       f"use one of {allowed}")

@@ -9,56 +9,70 @@ from __future__ import annotations
 from dialogue.memory.claims import Claim
 from dialogue.memory.learn import Outcome, Settled
 from dialogue.reference.english import tokens
-from dialogue.reference.grounding import Snapshot
+from dialogue.reference.grounding import Entity, Snapshot
 from dialogue.reference.lexicon import singular
-from dialogue.understanding.questions.answers import listing, the
-
-_PREPOSITION = {"isIn": "in", "isOn": "on"}
-_OK = "OK, "
+from dialogue.understanding.language import Language
+from dialogue.understanding.replies import capitalised, listing, the
+from dialogue.understanding.replies import say as _say
 
 
 class _Namer:
-    """Names for a turn's sentences: entities as the rules name them, kinds and names as told."""
+    """Names for a turn's sentences (said in the language's words: its `replies.toml` [learnt]):
+    entities as the rules name them, kinds and names as told."""
 
-    def __init__(self, snapshot: Snapshot, speaker: str, names: dict[str, str]) -> None:
+    def __init__(self, lang: Language, snapshot: Snapshot, speaker: str, names: dict[str, str]) -> None:
+        self.lang = lang
         self.snapshot = snapshot
         self.speaker = speaker
         self.names = names
+        #: The preposition each property a place is told with is said with ("isIn": "in").
+        self.prepositions = {state: p for p, state in lang.prepositions.column("says").items()}
+        self.you = self.say("naming.you")
+
+    def say(self, key: str, **slots: object) -> str:
+        return _say(self.lang, key, **slots)
 
     def __call__(self, term: str) -> str:
         if term == self.snapshot.robot:
-            return "me"  # "OK, you like me."
+            return self.say("naming.me")  # "OK, you like me."
         entity = self.snapshot.get(term)
         if entity is None:
             return self.names.get(term) or self.snapshot.name_of(term)
-        named = the(self.snapshot, entity, self.speaker)
+        named = the(self.lang, self.snapshot, entity, self.speaker)
         if entity.colour and entity.colour not in named and self._shared(entity.id, named):
-            return named.replace("the ", f"the {entity.colour} ", 1)  # "the red mug", of two mugs
+            # "the red mug", of two mugs
+            coloured = self.say("naming.the_coloured", colour=entity.colour, name="")
+            return named.replace(self.say("naming.the", name=""), coloured, 1)
         return named
 
     def _shared(self, term: str, named: str) -> bool:
         """Whether another thing of the situation goes by the same name."""
-        return any(e.id != term and e.kind == "thing" and the(self.snapshot, e, self.speaker) == named
-                   for e in self.snapshot.visible())
+        return any(e.id != term and e.kind == "thing" and self._the(e) == named
+                   for e in self.snapshot.visible())  # fmt: skip
 
-    def person(self, term: str, fallback: str = "they") -> str:
+    def _the(self, entity: Entity) -> str:
+        return the(self.lang, self.snapshot, entity, self.speaker)
+
+    def person(self, term: str, fallback: str | None = None) -> str:
         if term == self.speaker:
-            return "you"
+            return self.you
         entity = self.snapshot.get(term)
-        return entity.name if entity is not None and entity.labels else fallback
+        if entity is not None and entity.labels:
+            return entity.name
+        return fallback if fallback is not None else self.say("learnt.they")
 
     def owner(self, term: str) -> str:
-        return "yours" if term == self.speaker else f"{self.person(term, 'someone else')}'s"
+        if term == self.speaker:
+            return self.say("learnt.yours")
+        return self.say("learnt.owners", who=self.person(term, self.say("learnt.someone_else")))
 
+    def be(self, name: str) -> str:
+        words = tokens(name)
+        plural = bool(words) and singular(words[-1]) != words[-1] and name != self.you
+        return self.say("learnt.are" if plural or name == self.you else "learnt.is")
 
-def _be(name: str) -> str:
-    words = tokens(name)
-    plural = bool(words) and singular(words[-1]) != words[-1] and name != "you"
-    return "are" if plural or name == "you" else "is"
-
-
-def _cap(sentence: str) -> str:
-    return sentence[:1].upper() + sentence[1:]
+    def at(self, prop: str) -> str:
+        return self.prepositions.get(prop) or self.say("learnt.at")
 
 
 def clause(claim: Claim, name: _Namer, obj: str | None = None) -> str:
@@ -67,16 +81,26 @@ def clause(claim: Claim, name: _Namer, obj: str | None = None) -> str:
     who = name.person(claim.subject, name(claim.subject))
     match claim.predicate:
         case "name":
-            return f"your name is {value}" if claim.subject == name.speaker else f"{who}'s name is {value}"
+            if claim.subject == name.speaker:
+                return name.say("learnt.your_name", value=value)
+            return name.say("learnt.name_of", who=who, value=value)
         case "belongsTo":
-            return f"{name(claim.subject)} {_be(name(claim.subject))} {name.owner(value)}"
+            thing = name(claim.subject)
+            return name.say("learnt.belongs", thing=thing, be=name.be(thing), owner=name.owner(value))
         case "isIn" | "isOn":
             thing = name(claim.subject)
-            return f"{thing} {_be(thing)} {_PREPOSITION[claim.predicate]} {name(value)}"
+            return name.say("learnt.placed", thing=thing, be=name.be(thing),
+                            preposition=name.at(claim.predicate), place=name(value))  # fmt: skip
         case "likes":
-            return f"{who} {'like' if who == 'you' else 'likes'} {name(value)}"
+            key = "learnt.you_like" if who == name.you else "learnt.likes"
+            return name.say(key, who=who, value=name(value))
         case _:
-            return f"{who} {'don' if who == 'you' else 'doesn'}'t like {name(value)}"
+            key = "learnt.you_dislike" if who == name.you else "learnt.dislikes"
+            return name.say(key, who=who, value=name(value))
+
+
+#: What each status of a claim that is no name says, around the claim as a clause.
+_SAID_OF = {"adopted": "learnt.adopted", "known": "learnt.known", "believed": "learnt.believed"}
 
 
 def sentence(outcome: Outcome, name: _Namer) -> str:
@@ -84,18 +108,14 @@ def sentence(outcome: Outcome, name: _Namer) -> str:
     match outcome.status:
         case "adopted" | "known" if claim.predicate == "name":
             return _named(outcome, name)
-        case "adopted":
-            return f"OK, {clause(claim, name, outcome.object)}."
-        case "known":
-            return f"I know, {clause(claim, name, outcome.object)}."
-        case "believed":
-            return f"OK, I'll remember that you said {clause(claim, name, outcome.object)}."
+        case "adopted" | "known" | "believed":
+            return name.say(_SAID_OF[outcome.status], clause=clause(claim, name, outcome.object))
         case "perceived":
             return _perceived(outcome, name)
         case "disputed":
             return _disputed(outcome, name)
         case "unknown":
-            return f"Sorry, I don't know what {outcome.object} {_be(outcome.object or '')}."
+            return name.say("learnt.unknown_kind", kind=outcome.object, be=name.be(outcome.object or ""))
         case _:
             return _answer(outcome, name)
 
@@ -103,27 +123,29 @@ def sentence(outcome: Outcome, name: _Namer) -> str:
 def _named(outcome: Outcome, name: _Namer) -> str:
     told = outcome.object or ""
     if outcome.replaced:
-        return f"Got it: {told}, not {listing(list(outcome.replaced))}."
+        return name.say("learnt.renamed", name=told, before=listing(name.lang, list(outcome.replaced)))
     if outcome.status == "known":
-        return f"I know, {told}." if outcome.claim.subject == name.speaker else f"Yes, that's {told}."
-    return f"Nice to meet you, {told}."
+        yours = outcome.claim.subject == name.speaker
+        return name.say("learnt.known_yours" if yours else "learnt.known_theirs", name=told)
+    return name.say("learnt.nice_to_meet", name=told)
 
 
 def _perceived(outcome: Outcome, name: _Namer) -> str:
     claim = outcome.claim
     held = outcome.held
     if claim.predicate == "name":
-        whom = "you" if claim.subject == name.speaker else "them"
-        return f"I know {whom} as {listing([v for _, v in held])}, though."
-    if claim.predicate in _PREPOSITION:
+        yours = claim.subject == name.speaker
+        return name.say("learnt.known_as_you" if yours else "learnt.known_as_them",
+                        names=listing(name.lang, [v for _, v in held]))  # fmt: skip
+    if claim.predicate in name.prepositions:
         thing = name(claim.subject)
-        places = listing([f"{_PREPOSITION.get(p, 'at')} {name(v)}" for p, v in held])
+        places = listing(name.lang, [f"{name.at(p)} {name(v)}" for p, v in held])
         entity = name.snapshot.get(claim.subject)
         if entity is not None and entity.seen:
-            return f"I can see {thing} {places}, though."
-        return f"As far as I know, {thing} {_be(thing)} {places}."
+            return name.say("learnt.seen_at", thing=thing, places=places)
+        return name.say("learnt.far_as_i_know_at", thing=thing, be=name.be(thing), places=places)
     facts = [clause(Claim(claim.subject, _predicate(p), v), name) for p, v in held]
-    return f"As far as I know, {listing(facts)}."
+    return name.say("learnt.far_as_i_know", facts=listing(name.lang, facts))
 
 
 def _disputed(outcome: Outcome, name: _Namer) -> str:
@@ -131,10 +153,11 @@ def _disputed(outcome: Outcome, name: _Namer) -> str:
     claim = outcome.claim
     (by, value), = outcome.hearsay
     if claim.predicate == "name":
-        return f"I know someone else called {value}."
+        return name.say("learnt.someone_else_called", name=value)
     thing = name(claim.subject)
-    owner = "theirs" if by == value else name.owner(value)
-    return f"{_cap(name.person(by, 'someone'))} told me {thing} {_be(thing)} {owner}."
+    owner = name.say("learnt.theirs") if by == value else name.owner(value)
+    who = name.person(by, name.say("learnt.someone"))
+    return capitalised(name.say("learnt.told_me_owned", who=who, thing=thing, be=name.be(thing), owner=owner))
 
 
 def _predicate(prop: str) -> str:
@@ -145,44 +168,50 @@ def _answer(outcome: Outcome, name: _Namer) -> str:
     claim = outcome.claim
     values = [v for _, v in outcome.held]
     if values and claim.predicate == "name" and claim.subject != name.speaker:
-        return f"That's {listing(values)}."  # "what is her name?"
+        return name.say("learnt.that_is", names=listing(name.lang, values))  # "what is her name?"
     if values:
         facts = [clause(Claim(claim.subject, claim.predicate, v), name) for v in values]
         if claim.predicate in {"likes", "dislikes"} and len(values) > 1:
-            return _cap(f"{clause(claim, name, listing([name(v) for v in values]))}.")
-        return _cap(f"{listing(facts)}.")
+            return capitalised(f"{clause(claim, name, listing(name.lang, [name(v) for v in values]))}.")
+        return capitalised(f"{listing(name.lang, facts)}.")
     if outcome.hearsay:
-        said = [f"{name.person(who, 'someone')} told me {clause(claim, name, v)}"
-                for who, v in outcome.hearsay[:3]]
-        return _cap(f"{listing(said)}.")
+        said = [name.say("learnt.told_me", who=name.person(who, name.say("learnt.someone")),
+                         clause=clause(claim, name, v)) for who, v in outcome.hearsay[:3]]  # fmt: skip
+        return capitalised(f"{listing(name.lang, said)}.")
     return _unknown_answer(claim, name)
 
 
 def _unknown_answer(claim: Claim, name: _Namer) -> str:
     who = name.person(claim.subject, name(claim.subject))
+    yours = who == name.you
     match claim.predicate:
         case "name" if claim.subject == name.speaker:
-            return "I don't know your name yet. What is it?"
+            return name.say("learnt.name_unknown_yours")
         case "name":
-            return f"I don't know {name.person(claim.subject, 'their')}'s name.".replace("their's", "their")
+            whose = name.person(claim.subject, "")
+            if not whose:
+                return name.say("learnt.name_unknown_theirs")
+            return name.say("learnt.name_unknown", whose=whose)
         case "belongsTo":
-            return f"I don't know whose {name(claim.subject).removeprefix('the ')} is."
+            thing = name(claim.subject).removeprefix(name.say("naming.the", name=""))
+            return name.say("learnt.owner_unknown", thing=thing)
         case "isIn" | "isOn":
             thing = name(claim.subject)
-            return f"I don't know where {thing} {_be(thing)}."
+            return name.say("learnt.place_unknown", thing=thing, be=name.be(thing))
         case "likes":
-            return f"I don't know what {who} {'like' if who == 'you' else 'likes'}."
+            return name.say("learnt.likes_unknown_yours" if yours else "learnt.likes_unknown", who=who)
         case _:
-            return f"I don't know what {who} {'dislike' if who == 'you' else 'dislikes'}."
+            return name.say("learnt.dislikes_unknown_yours" if yours else "learnt.dislikes_unknown", who=who)
 
 
-def confirmation(settled: Settled, snapshot: Snapshot, speaker: str) -> str:
+def confirmation(lang: Language, settled: Settled, snapshot: Snapshot, speaker: str) -> str:
     """The reply to a turn's claims, one sentence each, in order, without repeats."""
-    name = _Namer(snapshot, speaker, settled.names)
+    name = _Namer(lang, snapshot, speaker, settled.names)
+    ok, also = name.say("learnt.ok"), name.say("learnt.and")
     sentences: list[str] = []
     for said in dict.fromkeys(sentence(o, name) for o in settled.outcomes):
-        if sentences and sentences[-1].startswith(_OK) and said.startswith(_OK):  # "OK, a and b."
-            sentences[-1] = f"{sentences[-1][:-1]} and {said[len(_OK):]}"
+        if sentences and sentences[-1].startswith(ok) and said.startswith(ok):  # "OK, a and b."
+            sentences[-1] = f"{sentences[-1][:-1]}{also}{said[len(ok):]}"
         else:
             sentences.append(said)
     return " ".join(sentences)

@@ -12,7 +12,7 @@ from dataclasses import replace
 
 from dialogue import intents as I
 from dialogue.history import Utterance
-from dialogue.reference.english import PARTS, POSSESSIVES, Words, tokens
+from dialogue.reference.english import Words, tokens
 from dialogue.reference.grounding import Kind
 from dialogue.reference.lexicon import Lexicon
 from dialogue.reference.resolution import (
@@ -29,9 +29,9 @@ from dialogue.understanding.followups.request import accepts, continuation, corr
 from dialogue.understanding.outcome import Outcome, Ref
 from dialogue.understanding.parsed import Parse
 from dialogue.understanding.questions import answers
-from dialogue.understanding.replies import acknowledgement, vocative
+from dialogue.understanding.replies import acknowledgement, hello, say, then
 from dialogue.understanding.requests.commands import parse
-from dialogue.understanding.requests.compound import Part, conjuncts, coordinated, unprefixed
+from dialogue.understanding.requests.compound import Part, conjuncts, coordinated
 from dialogue.understanding.requests.referents import Referents, relational
 from dialogue.understanding.requests.terse import terse
 from dialogue.understanding.speech.clauses import clauses, described, description
@@ -42,6 +42,16 @@ from dialogue.understanding.speech.spelling import corrected
 
 #: How sure the rules are of a turn in which they corrected a slip ("plase", "thremos").
 SPELT_CONFIDENCE = 0.7
+#: The question that asks for a role not said (`replies.toml` [request]), by intent and role, and
+#: by role alone.
+_ASKED = {
+    (I.PLACE_OBJECT, "recipient"): "request.where_put", (I.MOVE_TO, "goal"): "request.where_go",
+    (I.GUIDE, "goal"): "request.where_take", (I.SAY, "object"): "request.what_say",
+    (I.START_ACTIVITY, "object"): "request.which_activity",
+}  # fmt: skip
+_EXACTLY = {
+    "object": "request.what_exactly", "recipient": "request.whom_exactly", "goal": "request.where_exactly",
+}  # fmt: skip
 
 
 class Interpreter:
@@ -79,7 +89,7 @@ class Interpreter:
     def _read(self, text: str) -> Outcome:
         addressed = self._to_someone_else(text)
         if addressed is not None:  # "lily put your book on the shelf": Lily is asked, not the robot
-            return Outcome(f"I think that was for {addressed}.")
+            return Outcome(say(self.lang, "request.for_someone_else", name=addressed))
         if text.lower().startswith("if "):  # the condition covers every part ("if Ana comes, ...")
             whole = parse(self.lang, text, self.robot_name)
             if whole.act == "conditional":
@@ -137,8 +147,8 @@ class Interpreter:
                 return outcome if outcome.understood else None
         if not done or (aside and not {o.intent for o in done} & {I.MOVE_TO, I.GUIDE}):
             return None  # (out of the way, then no going anywhere: not understood)
-        acks = [done[0].reply] + [f"Then {unprefixed(o.reply)}" for o in done[1:]]
-        acks += [f"I can't {c} myself." for c in cannot]
+        acks = [then(self.lang, [o.reply for o in done])]
+        acks += [say(self.lang, "request.cannot", action=c) for c in cannot]
         return replace(done[0], reply=" ".join(acks), more=tuple(done[1:]))
 
     def _terse(self, text: str) -> Outcome | None:
@@ -160,7 +170,7 @@ class Interpreter:
             accepted = follow_up(self, p, text)
             if accepted is not None:
                 return accepted
-        not_understood = Outcome("Sorry, I did not understand that.", understood=False)
+        not_understood = Outcome(say(self.lang, "sorry.not_understood"), understood=False)
         if p.act == "unknown":  # an answer to the robot's question, or "sorry, I meant screen two"
             outcome = follow_up(self, p, text) or correction(self, text) or continuation(self, text)
             outcome = outcome or not_understood
@@ -203,27 +213,27 @@ class Interpreter:
 
     def act(self, p: Parse, overrides: dict[str, Words] | None = None) -> Outcome:
         if p.act == "greeting" and "everyone" in p.slots:  # no single recipient: greet verbally only
-            return Outcome("Hello everyone!")
+            return Outcome(say(self.lang, "social.hello_everyone"))
         if p.act == "greeting":
-            hello = f"Hello{vocative(self.snapshot, self.speaker)}!"
-            return self._intent(I.GREET, {"recipient": self.speaker}, hello)
+            greeting = hello(self.lang, self.snapshot, self.speaker)
+            return self._intent(I.GREET, {"recipient": self.speaker}, greeting)
         if p.act == "negated":
-            return Outcome("OK, I won't do that.")
+            return Outcome(say(self.lang, "social.wont"))
         if p.act == "conditional":  # the rules act now or never: asked again, then
-            return Outcome("I can't wait for that myself: tell me again when it happens.")
+            return Outcome(say(self.lang, "social.later"))
         if p.act == "thanks":
-            return Outcome("You're welcome!")
+            return Outcome(say(self.lang, "social.welcome"))
         if p.act == "question" and p.greeted:  # "hello robot, what's your name": both
             answer = self._answer(p)
             if not answer.understood or answer.clarify:
                 return answer
-            hello = f"Hello{vocative(self.snapshot, self.speaker)}!"
-            return self._intent(I.GREET, {"recipient": self.speaker}, f"{hello} {answer.reply}")
+            greeting = hello(self.lang, self.snapshot, self.speaker)
+            return self._intent(I.GREET, {"recipient": self.speaker}, f"{greeting} {answer.reply}")
         if p.act == "question":
             return self._answer(p)
         if p.act == "command" and p.intent is not None:
             return self._command(p, overrides or {})
-        return Outcome("Sorry, I did not understand that.", understood=False)
+        return Outcome(say(self.lang, "sorry.not_understood"), understood=False)
 
     # -- questions -------------------------------------------------------------------------------
     def _answer(self, p: Parse) -> Outcome:  # noqa: C901
@@ -241,12 +251,12 @@ class Interpreter:
         content = content_words(self.lang, thing)
         unsure = self.refs.half_known(content) or self.refs.strange(content)  # "how many bks": a doubt
         if content and unsure and not resolve(self.lexicon, thing, ANYWHERE).matches:
-            return Outcome("Sorry, I don't know how to answer that.", understood=False)
+            return Outcome(say(self.lang, "sorry.no_answer"), understood=False)
         match p.question:
             case "what_see":
-                return Outcome(answers.what_do_you_see(self.snapshot, self.speaker))
+                return Outcome(answers.what_do_you_see(self.lang, self.snapshot, self.speaker))
             case "who_see":
-                return Outcome(answers.who_do_you_see(self.snapshot, self.speaker))
+                return Outcome(answers.who_do_you_see(self.lang, self.snapshot, self.speaker))
             case "where":
                 return Outcome(answers.where_is(self.lexicon, thing, self.speaker, owner))
             case "what_on":
@@ -272,10 +282,10 @@ class Interpreter:
             case "whose":
                 return Outcome(answers.whose(self.lexicon, thing, self.speaker, owner))
             case "name":
-                return Outcome(f"My name is {self.robot_name}.")
+                return Outcome(say(self.lang, "social.robot_name", name=self.robot_name))
             case "how_are_you":
-                return Outcome("I'm fine, thank you!")
-        return Outcome("Sorry, I don't know how to answer that.", understood=False)
+                return Outcome(say(self.lang, "social.fine"))
+        return Outcome(say(self.lang, "sorry.no_answer"), understood=False)
 
     # -- commands --------------------------------------------------------------------------------
     def _command(self, p: Parse, overrides: dict[str, Words]) -> Outcome:
@@ -296,8 +306,7 @@ class Interpreter:
         each = [self._one_command(p, {**overrides, role: t}) for t in things]
         if any(o.intent is None for o in each):
             return next(o for o in each if o.intent is None)
-        acks = [each[0].reply] + [f"Then {unprefixed(o.reply)}" for o in each[1:]]
-        return replace(each[0], reply=" ".join(acks), more=tuple(each[1:]))
+        return replace(each[0], reply=then(self.lang, [o.reply for o in each]), more=tuple(each[1:]))
 
     def _one_command(self, p: Parse, overrides: dict[str, Words]) -> Outcome:  # noqa: C901
         intent = p.intent or ""
@@ -311,7 +320,7 @@ class Interpreter:
             if self.refs.person_as_object(who) is not None and who:
                 if self.refs.a_person(slots["recipient"]) or slots["recipient"] in {("here",), ("there",)}:
                     # "bring Sam here": a person brought to a person is no intent the rules have
-                    return Outcome("Sorry, I did not understand that.", understood=False)
+                    return Outcome(say(self.lang, "sorry.not_understood"), understood=False)
                 intent, slots = I.GUIDE, {"recipient": who, "goal": slots["recipient"]}
             elif intent == I.PLACE_OBJECT and self.refs.named_person(slots["recipient"]):
                 intent = I.BRING_OBJECT  # "return the stapler to Carol": carried to a person
@@ -357,10 +366,10 @@ class Interpreter:
         # The place said back with the preposition it was said with, unless a part of it was named
         # ("in the centre of the table" is put on the table).
         place = slots.get("recipient", ())
-        said = None if set(place) & PARTS and "of" in place else p.marks.get("recipient")
-        reply = acknowledgement(self.snapshot, self.speaker, intent, roles, refs, said)
+        said = None if set(place) & self.lang.words.parts and "of" in place else p.marks.get("recipient")
+        reply = acknowledgement(self.lang, self.snapshot, self.speaker, intent, roles, refs, said)
         if intent == I.GREET and roles.get("recipient") == self.speaker:  # "say hello": to the speaker
-            reply = f"Hello{vocative(self.snapshot, self.speaker)}!"
+            reply = hello(self.lang, self.snapshot, self.speaker)
         if any(ref.guessed for ref in refs.values()):  # "go to bay mine": a guess, less sure
             return Outcome(reply, intent, roles, SPELT_CONFIDENCE, guessed=True)
         return self._intent(intent, roles, reply)
@@ -368,7 +377,7 @@ class Interpreter:
     def _whose(self, words: Words, kinds: frozenset[Kind]) -> tuple[Words, str | None]:
         """ "go to my desk", "put it on Ana's shelf": a place said with whose it is, when that names
         one (a person's phrase keeps its possessive: "my son" is no son of the KB's)."""
-        if not words or words[0] not in POSSESSIVES:  # "platform 4 my train's late" says no one's place
+        if not words or words[0] not in self.lang.words.possessives:  # "platform 4 my train's late": no one's
             return words, None
         bare, owner = self.refs.possessive(words, {})
         if owner is None or resolve(self.lexicon, bare, kinds, owner=owner).one is None:
@@ -382,17 +391,10 @@ class Interpreter:
 
     def _missing(self, intent: str, role: str, p: Parse, whom: str | None = None) -> Outcome:
         # ("show Ana in": where to take her, not "you")
-        them = "you" if whom in {None, self.speaker} else self.snapshot.name_of(whom or "")
-        asks = {
-            (I.PLACE_OBJECT, "recipient"): "Where should I put it?",
-            (I.MOVE_TO, "goal"): "Where should I go?",
-            (I.GUIDE, "goal"): f"Where should I take {them}?",
-            (I.SAY, "object"): "What should I say?",
-            (I.START_ACTIVITY, "object"): "Which activity should I start?",
-        }
-        what = {"object": "what", "recipient": "to whom", "goal": "where"}.get(role, "what")
-        q = asks.get((intent, role), f"Sorry, {what} exactly?")
-        return Outcome(q, clarify=True, open_role=role)
+        you = whom in {None, self.speaker}
+        them = say(self.lang, "naming.you") if you else self.snapshot.name_of(whom or "")
+        key = _ASKED.get((intent, role)) or _EXACTLY.get(role, "request.what_exactly")
+        return Outcome(say(self.lang, key, whom=them), clarify=True, open_role=role)
 
     def _intent(self, intent: str, roles: dict[str, str], reply: str, confidence: float = 0.9) -> Outcome:
         return Outcome(reply, intent, roles, confidence)

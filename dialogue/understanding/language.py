@@ -13,6 +13,7 @@ One folder per language, data only (the shape of Home Assistant's intents reposi
     questions.toml     the words of questions about the situation and about what people told
     statements.toml    the words of statements: names, ownership, places, likings
     ask.toml           the ask role's words: yes and no, numbers, cancelling and skipping
+    replies.toml       what the robot says, as templates
 
 and `lexicon.txt`, other ways of saying a name (dialogue.reference.synonyms). A file a language
 does not have is a table it leaves empty.
@@ -72,6 +73,20 @@ def _table(folder: Traversable, name: str, model: type[Table]) -> Any:
         raise LanguageError(f"{file}: {wrong}") from None
 
 
+def _replies(folder: Traversable) -> dict[str, dict[str, Any]]:
+    file = folder / "replies.toml"
+    if not file.is_file():
+        return {}
+    try:
+        sections = tomllib.loads(file.read_text(encoding="utf-8"))
+    except tomllib.TOMLDecodeError as exc:
+        raise LanguageError(f"{file}: not TOML: {exc}") from None
+    wrong = [name for name, section in sections.items() if not isinstance(section, dict)]
+    if wrong:
+        raise LanguageError(f"{file}: {wrong[0]!r} is no section of templates")
+    return sections
+
+
 class Language:
     """The tables of one language folder, read once."""
 
@@ -89,6 +104,8 @@ class Language:
         self.questions: QuestionWords = _table(folder, "questions", QuestionWords)
         self.statements: StatementWords = _table(folder, "statements", StatementWords)
         self.ask: AskWords = _table(folder, "ask", AskWords)
+        #: What the robot says, as templates by section (dialogue.understanding.replies renders them).
+        self.replies: dict[str, dict[str, Any]] = _replies(folder)
         lexicon = folder / "lexicon.txt"
         #: Other ways of saying a name (dialogue.reference.synonyms parses it).
         self.lexicon = lexicon.read_text(encoding="utf-8") if lexicon.is_file() else ""

@@ -1,71 +1,234 @@
-"""The rules' spoken acknowledgements: how a taken-on intent is said back to the person."""
+"""What the robot says: every reply of the offline understanding is a template of the language's
+`replies.toml`, rendered here. The readers decide which sentence and with what; the words are the
+language's.
+
+Besides `say` (a template, its slots filled), the naming every reply shares: how an entity is named
+in a sentence ("you", "Maria", "the cookbook", "screen 2"), a list of names ("two cups, a plate and
+Ana"), where a thing is ("on the table in the kitchen"), and how an intent taken on is said back
+(`acknowledgement`).
+"""
 
 from __future__ import annotations
 
+from collections import Counter
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+from typing import Any
+
 from dialogue import intents as I
-from dialogue.reference.grounding import Snapshot
+from dialogue.reference.english import tokens
+from dialogue.reference.grounding import Entity, Snapshot
+from dialogue.understanding.language import Language, LanguageError
 from dialogue.understanding.outcome import Ref
-from dialogue.understanding.questions import answers
+
+#: At most this many names in a list (the rest are counted: "3 more things").
+MAX_LISTED = 12
 
 
-def vocative(snapshot: Snapshot, speaker: str) -> str:
-    """A leading space and the name (" Alice") to address a speaker the KB knows by name, else nothing."""
+def template(lang: Language, key: str) -> Any:
+    """The language's template for `key` ("request.grab"), or its list or table ("naming.ok")."""
+    section, _, name = key.partition(".")
+    found = lang.replies.get(section, {}).get(name) if name else None
+    if found is None:
+        raise LanguageError(f"{lang.code}/replies.toml: no template {key!r}")
+    return found
+
+
+def say(lang: Language, key: str, **slots: object) -> str:
+    """The language's sentence for `key`, its slots filled."""
+    return str(template(lang, key)).format(**slots)
+
+
+def capitalised(text: str) -> str:
+    """The text with its first letter in capitals ("the keys are..." -> "The keys are...")."""
+    return text[:1].upper() + text[1:]
+
+
+def the(lang: Language, snapshot: Snapshot, entity: Entity, speaker: str = "") -> str:
+    """How to name an entity in a sentence: "you", "Maria", "the cookbook", "the cup"."""
+    if entity.id == speaker:
+        return say(lang, "naming.you")
+    if entity.kind == "person":
+        return entity.name if entity.labels else say(lang, "naming.a_person")
+    if entity.colour and not entity.labels and entity.colour not in entity.name:
+        return say(lang, "naming.the_coloured", colour=entity.colour, name=entity.name)
+    if entity.labels and _numbered(lang, entity.name):
+        return entity.name  # "screen 2", "gate nine": a name of its own, said without "the"
+    return say(lang, "naming.the", name=entity.name)
+
+
+def _numbered(lang: Language, name: str) -> bool:
+    """Whether a name ends with its number ("screen 2", "table four")."""
+    words = tokens(name)
+    spoken = {w for said in lang.words.spoken_numbers.values() for w in said} - {lang.words.units[0]}
+    return len(words) > 1 and (words[-1].isdigit() or words[-1] in spoken)
+
+
+def article(lang: Language, noun: str) -> str:
+    """A noun with its indefinite article ("a cup", "an apple")."""
+    vowel = noun[:1].lower() in str(template(lang, "naming.vowels"))
+    return say(lang, "naming.an" if vowel else "naming.a", noun=noun)
+
+
+def indefinite(lang: Language, entity: Entity) -> str:
+    if entity.kind == "person":
+        return entity.name if entity.labels else say(lang, "naming.a_person")
+    if entity.labels:
+        return say(lang, "naming.the", name=entity.labels[0])
+    return article(lang, entity.class_names[0] if entity.class_names else say(lang, "naming.thing"))
+
+
+def number(lang: Language, n: int) -> str:
+    """A count said in words up to ten ("two"), else in digits."""
+    words = lang.words.units[:11]
+    return words[n] if n < len(words) else str(n)
+
+
+def listing(lang: Language, items: Sequence[str]) -> str:
+    counts = Counter(items)
+    counted = tuple(template(lang, "naming.counted"))
+    parts: list[str] = []
+    for item, n in counts.items():
+        if n > 1 and item.startswith(counted):
+            parts.append(say(lang, "naming.several", count=number(lang, n), name=item.split(" ", 1)[1]))
+        else:
+            parts.append(item)
+    if len(parts) > MAX_LISTED:
+        parts = [*parts[:MAX_LISTED], say(lang, "naming.more", count=len(parts) - MAX_LISTED)]
+    if len(parts) == 1:
+        return parts[0]
+    return say(lang, "naming.separator").join(parts[:-1]) + say(lang, "naming.last_separator") + parts[-1]
+
+
+def location(lang: Language, snapshot: Snapshot, entity: Entity) -> str:
+    parts = []
+    if entity.support:
+        parts.append(say(lang, "naming.on", place=snapshot.name_of(entity.support)))
+    parts.extend(say(lang, "naming.related", preposition=prep, place=snapshot.name_of(other))
+                 for prep, other in entity.relations[:2])  # fmt: skip
+    if entity.zone:
+        parts.append(say(lang, "naming.in", place=snapshot.name_of(entity.zone)))
+    return " ".join(parts)
+
+
+def told_apart(lang: Language, entities: Sequence[Entity], snapshot: Snapshot | None = None) -> list[str]:
+    """Each entity as a listing names it; one that shares its name by its colour ("the red marker"),
+    else, given the snapshot, by whose it is ("Harold's spade") or where it is ("the spade in the
+    shed")."""
+    names = [indefinite(lang, e) for e in entities]
+    shared = {n for n in names if names.count(n) > 1}
+    the_ = say(lang, "naming.the", name="")
+    return [_apart(lang, e, n, snapshot) if n in shared and n.startswith(the_) else n
+            for e, n in zip(entities, names, strict=True)]  # fmt: skip
+
+
+def _apart(lang: Language, entity: Entity, name: str, snapshot: Snapshot | None) -> str:
+    bare = name[len(say(lang, "naming.the", name="")) :]
+    if entity.colour:
+        return say(lang, "naming.the_coloured", colour=entity.colour, name=bare)
+    owner = snapshot.get(entity.owner) if snapshot is not None and entity.owner else None
+    if owner is not None and owner.labels:
+        return say(lang, "naming.owned", owner=owner.name, name=bare)
+    where = location(lang, snapshot, entity) if snapshot is not None else ""
+    return f"{name} {where}" if where else name
+
+
+def hello(lang: Language, snapshot: Snapshot, speaker: str) -> str:
+    """A greeting, by name for a speaker the KB knows by name ("Hello Alice!")."""
     me = snapshot.get(speaker)
-    return f" {me.name}" if me is not None and me.labels else ""
+    if me is not None and me.labels:
+        return say(lang, "social.hello_you", name=me.name)
+    return say(lang, "social.hello")
 
 
-def _name(snapshot: Snapshot, speaker: str, ref: Ref | None) -> str:
+def unprefixed(lang: Language, reply: str) -> str:
+    """A later part of a compound reply: "OK, I will pick up the plate." -> "I will pick up the
+    plate." (one without the "OK" capitalised)."""
+    rest = reply
+    for prefix in template(lang, "naming.ok"):
+        rest = rest.removeprefix(prefix)
+    return capitalised(rest) if rest == reply else rest
+
+
+def then(lang: Language, replies: Sequence[str]) -> str:
+    """The replies of a compound request in one: the first, then each later one."""
+    return " ".join([replies[0], *(say(lang, "naming.then", reply=unprefixed(lang, r)) for r in replies[1:])])
+
+
+def _name(lang: Language, snapshot: Snapshot, speaker: str, ref: Ref | None) -> str:
     if ref is None:
-        return "it"
+        return say(lang, "naming.it")
     if ref.speaker:
-        return "you"
-    return answers.the(snapshot, ref.entity, speaker) if ref.entity else "it"
+        return say(lang, "naming.you")
+    return the(lang, snapshot, ref.entity, speaker) if ref.entity else say(lang, "naming.it")
 
 
-#: How a place said with a preposition is said back ("next to the laptop", not "on the laptop").
-_SAID_BACK = {"beside": "next to", "near": "near", "under": "under", "underneath": "under",
-              "beneath": "under", "below": "under", "in": "in", "into": "in", "inside": "in", "at": "at",
-              "by": "by", "behind": "behind", "against": "against", "in front of": "in front of"}  # fmt: skip
-#: "wave at Ana", "shake hands with Ana"; other motions are done for someone.
-_TOWARDS = {"wave": "at", "point": "at", "nod": "at", "smile": "at", "shake hands": "with"}
+@dataclass(frozen=True)
+class _Taken:
+    """An intent taken on, as it is said back: its roles named, its free text, how a place was said."""
+
+    lang: Language
+    obj: str
+    rec: str
+    goal: str
+    text: str
+    refs: dict[str, Ref]
+    said: str | None
+
+    def say(self, key: str, **slots: object) -> str:
+        return say(self.lang, key, **slots)
+
+    @property
+    def you(self) -> str:
+        return self.say("naming.you")
 
 
-def acknowledgement(snapshot: Snapshot, speaker: str, intent: str, roles: dict[str, str],
-                    refs: dict[str, Ref], said: str | None = None) -> str:
+def _place(t: _Taken) -> str:
+    obj = t.obj if "object" in t.refs else t.say("naming.it")
+    return t.say("request.place", object=obj, preposition=_put(t.lang, t.refs.get("recipient"), t.said),
+                 recipient=t.rec)  # fmt: skip
+
+
+def _motion(t: _Taken) -> str:
+    if "recipient" not in t.refs:
+        return t.say("request.motion", motion=t.text)
+    towards = template(t.lang, "request.towards").get(t.text, t.say("request.motion_for"))
+    return t.say("request.motion_to", motion=t.text, preposition=towards, recipient=t.rec)
+
+
+#: How each intent is said back.
+_SAID_BACK: dict[str, Callable[[_Taken], str]] = {
+    I.GRAB_OBJECT: lambda t: t.say("request.grab", object=t.obj),
+    I.BRING_OBJECT: lambda t: t.say("request.bring", object=t.obj, recipient=t.rec),
+    I.PLACE_OBJECT: _place,
+    I.MOVE_TO: lambda t: t.say("request.coming") if t.goal == t.you else t.say("request.going", goal=t.goal),
+    I.GUIDE: lambda t: (t.say("request.take_you", goal=t.goal) if t.rec == t.you
+                        else t.say("request.guide", recipient=t.rec, goal=t.goal)),
+    I.GREET: lambda t: t.say("request.greet", recipient=t.rec),
+    I.SAY: lambda t: (t.say("request.tell", recipient=t.rec, text=t.text) if "recipient" in t.refs
+                      else t.say("request.say", text=t.text)),
+    I.ENGAGE_WITH: lambda t: t.say("request.engage", recipient=t.rec),
+    I.PERFORM_MOTION: _motion,
+    I.START_ACTIVITY: lambda t: t.say("request.start", activity=t.text),
+    I.STOP_ACTIVITY: lambda t: t.say("request.stop_it", activity=t.text) if t.text else t.say("request.stop"),
+    I.WAKEUP: lambda t: t.say("request.wake"),
+    I.SUSPEND: lambda t: t.say("request.sleep"),
+}  # fmt: skip
+
+
+def acknowledgement(lang: Language, snapshot: Snapshot, speaker: str, intent: str, roles: dict[str, str],
+                    refs: dict[str, Ref], said: str | None = None) -> str:  # fmt: skip
     """What the robot says when it takes on an intent ("OK, I will bring the cup to you."); `said`
     is the preposition the person put the place with, if any."""
-    obj, rec, goal = (_name(snapshot, speaker, refs.get(r)) for r in ("object", "recipient", "goal"))
-    text = roles.get("object", "").replace("_", " ")
-    match intent:
-        case I.GRAB_OBJECT:
-            return f"OK, I will pick up {obj}."
-        case I.BRING_OBJECT:
-            return f"OK, I will bring {obj} to {rec}."
-        case I.PLACE_OBJECT:
-            ref = refs.get("recipient")
-            zone = ref is not None and ref.entity is not None and ref.entity.kind == "zone"
-            prep = _SAID_BACK.get(said or "", "in" if zone else "on")
-            return f"OK, I will put {obj if 'object' in refs else 'it'} {prep} {rec}."
-        case I.MOVE_TO:
-            return "OK, I am coming." if goal == "you" else f"OK, I am going to {goal}."
-        case I.GUIDE:
-            who = "take you" if rec == "you" else f"guide {rec}"
-            return f"OK, I will {who} to {goal}."
-        case I.GREET:
-            return f"OK, I will greet {rec}."
-        case I.SAY:
-            return f"OK, I will tell {rec}: {text}." if "recipient" in refs else f"OK: {text}."
-        case I.ENGAGE_WITH:
-            return f"OK, I will go and talk to {rec}."
-        case I.PERFORM_MOTION:
-            prep = _TOWARDS.get(text, "for")
-            return f"OK, I will {text} {prep} {rec}." if "recipient" in refs else f"OK, I will {text}."
-        case I.START_ACTIVITY:
-            return f"OK, I am starting: {text}."
-        case I.STOP_ACTIVITY:
-            return f"OK, I will stop {text}." if text else "OK, I am stopping."
-        case I.WAKEUP:
-            return "I am awake!"
-        case I.SUSPEND:
-            return "OK, I will go to sleep."
-    return "OK."
+    obj, rec, goal = (_name(lang, snapshot, speaker, refs.get(r)) for r in ("object", "recipient", "goal"))
+    taken = _Taken(lang, obj, rec, goal, roles.get("object", "").replace("_", " "), refs, said)
+    said_back = _SAID_BACK.get(intent)
+    return said_back(taken) if said_back is not None else say(lang, "request.done")
+
+
+def _put(lang: Language, ref: Ref | None, said: str | None) -> str:
+    """The preposition a place is said back with: the one it was said with ("next to the laptop"),
+    else in a zone, on a thing."""
+    zone = ref is not None and ref.entity is not None and ref.entity.kind == "zone"
+    back = lang.prepositions.column("said_back")
+    return str(back.get(said or "", say(lang, "request.in_zone" if zone else "request.on_thing")))

@@ -17,7 +17,7 @@ from typing import Protocol
 from dialogue import intents as I
 from dialogue.history import Utterance
 from dialogue.prompts import FREE_FORM_OBJECT
-from dialogue.reference.english import MODIFIER_START, Words, tokens
+from dialogue.reference.english import Words, tokens
 from dialogue.reference.grounding import Kind, Snapshot
 from dialogue.reference.lexicon import Lexicon
 from dialogue.reference.resolution import ROLE_KINDS, content_words, resolve
@@ -271,7 +271,7 @@ def _instead(lang: Language, fragment: Words, said: Words) -> Words:
     blue cup": the red cup)."""
     core: list[str] = []
     for w in said:
-        if w in MODIFIER_START and core:
+        if w in lang.modifier_start and core:
             break
         core.append(w)
     head = content_words(lang, core)[-1:] if content_words(lang, core) else []

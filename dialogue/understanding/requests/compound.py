@@ -168,9 +168,3 @@ def coordinated(lang: Language, words: Words) -> list[Words]:
             current.append(w)
     out.append(tuple(current))
     return out if all(content_words(lang, t) for t in out) else []
-
-
-def unprefixed(reply: str) -> str:
-    """ "OK, I will pick up the plate." -> "I will pick up the plate." """
-    rest = reply.removeprefix("OK, ").removeprefix("OK: ")
-    return rest[:1].upper() + rest[1:] if rest == reply else rest

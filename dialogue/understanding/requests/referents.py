@@ -29,6 +29,7 @@ from dialogue.reference.resolution import (
 )
 from dialogue.understanding.language import Language
 from dialogue.understanding.outcome import Outcome, Ref
+from dialogue.understanding.replies import say
 from dialogue.understanding.requests.compound import alternatives
 from dialogue.understanding.speech.clauses import described
 from dialogue.understanding.speech.sounds import slipped as heard_as
@@ -200,17 +201,18 @@ class Referents:
         if is_pronoun(self.lang, words) or (bare and bare <= {"him", "her", "there"}):
             kinds = pronoun_kinds(self.lang, words, kinds)
             if not kinds:  # "go and get him": a person where the request wants a thing
-                return Ref(problem=Outcome("Sorry, I did not understand that.", understood=False))
+                return Ref(problem=self._not_understood())
             found = self.named_in(said) if kinds == PERSON else None
             found = found or antecedent(self.lexicon, self.history, kinds, place=bare == {"there"},
                                         speaker=self.speaker)  # fmt: skip
             if found is None and self._unknown_just_said():
                 # "my case is by the door, bring it over": "it" is what the KB has no name for
-                return Ref(problem=Outcome("Sorry, I did not understand that.", understood=False))
+                return Ref(problem=self._not_understood())
             if found is None:
                 return Ref(
                     problem=Outcome(
-                        f'What do you mean by "{" ".join(content or sorted(bare))}"?',  # "there" is glue
+                        # ("there" is glue)
+                        say(self.lang, "sorry.what_meant", phrase=" ".join(content or sorted(bare))),
                         clarify=True,
                         open_role=role,
                         open_phrase=words,
@@ -220,7 +222,7 @@ class Referents:
         addressed = "person" in kinds and content and set(content) <= self.said.address
         if addressed and not self.named_person(words):
             # "take my calculator to sir": someone the KB knows by name, which one a model may know
-            return Ref(problem=Outcome("Sorry, I did not understand that.", understood=False))
+            return Ref(problem=self._not_understood())
         res = resolve(self.lexicon, words, kinds, owner=owner)
         if res.ambiguous and any(e.id == self.speaker for e in res.matches):
             # A speaker says "me", not "the person in the living room": a description is someone else.
@@ -237,7 +239,7 @@ class Referents:
             if one is not None:
                 return Ref(entity=one)
         if res.ambiguous:
-            q = clarifying_question(self.snapshot, res.matches, self._noun(words, res.matches))
+            q = clarifying_question(self.lang, self.snapshot, res.matches, self._noun(words, res.matches))
             return Ref(problem=Outcome(q, clarify=True, open_role=role, open_phrase=words))
         if loose != tuple(words) and content_words(self.lang, loose):
             # "the cup on the left": spatial relations are not in the KB; if the rest of the phrase
@@ -246,7 +248,7 @@ class Referents:
             if res.one is not None:
                 return Ref(entity=res.one)
             if res.ambiguous:
-                q = clarifying_question(self.snapshot, res.matches, self._noun(loose, res.matches))
+                q = clarifying_question(self.lang, self.snapshot, res.matches, self._noun(loose, res.matches))
                 return Ref(problem=Outcome(q, clarify=True, open_role=role, open_phrase=loose))
         titled = self._titled(words, kinds)
         if titled is not None:
@@ -256,7 +258,7 @@ class Referents:
             return place
         # "the cup and the apple", "both cups": more than one intent can carry
         if set(words) & self.said.many:
-            return Ref(problem=Outcome("Sorry, one thing at a time, please.", understood=False))
+            return Ref(problem=Outcome(say(self.lang, "sorry.one_at_a_time"), understood=False))
         for alternative in alternatives(self.lang, words):  # "an apple or an orange": either will do
             ref = self.ground(alternative, kinds, role, owner)
             if ref.entity is not None or ref.speaker:
@@ -265,23 +267,26 @@ class Referents:
             # "to the front", "on the left": whereabouts of nothing named, which a model may know.
             # Names the KB knows among words it does not ("mr ito back", "the trousers out"): the
             # phrase was not understood, which is not the same as "there is no such thing".
-            return Ref(problem=Outcome("Sorry, I did not understand that.", understood=False))
+            return Ref(problem=self._not_understood())
         other = resolve(self.lexicon, words, ANYWHERE - kinds).matches if ANYWHERE - kinds else ()
         if other or ("person" in kinds and words[:1] and words[0] in self.said.possessives):
             # "go and get Ben from the garden": a person where a thing is wanted, no intent the rules
             # have, or a place ("pop plot 12 down"): not "I don't see any plot 12"; "my son":
             # someone the KB knows only by how the speaker is related to them
-            return Ref(problem=Outcome("Sorry, I did not understand that.", understood=False))
+            return Ref(problem=self._not_understood())
         reply = self.unknown(content, kinds, words)
         if {"one", "ones"} & set(words):
             # "the ones on the bench": which ones the conversation means, not that no bench is here
-            return Ref(problem=Outcome("Sorry, I did not understand that.", understood=False))
+            return Ref(problem=self._not_understood())
         if self.strange(content) or (kinds == PERSON and not set(words) & self.said.determiners):
             # "I don't see any bk": only true of a kind the rules know; of a word they do not, it is
             # a doubt, for a model to read ("bk" is "back" in chat); so is a name no one has here, a
             # recogniser's spelling of one a model may see in the situation ("chevonne": Siobhan)
             return Ref(problem=Outcome(reply, understood=False))
         return Ref(problem=Outcome(reply))
+
+    def _not_understood(self) -> Outcome:
+        return Outcome(say(self.lang, "sorry.not_understood"), understood=False)
 
     def _titled(self, words: Words, kinds: frozenset[Kind]) -> Entity | None:
         """ "my reserved book murder on the orient express (on the reservations shelf under jeff)": a
@@ -355,12 +360,12 @@ class Referents:
     def unknown(self, content: Sequence[str], kinds: Collection[Kind], words: Sequence[str] = ()) -> str:
         phrase = " ".join(content)
         if kinds == PERSON:
-            return f"Sorry, I don't know anyone called {phrase.title()}."
+            return say(self.lang, "sorry.no_one_called", name=phrase.title())
         if "zone" in kinds and "person" not in kinds:
-            return f"Sorry, I don't know where the {phrase} is."
+            return say(self.lang, "sorry.no_place", phrase=phrase)
         if "person" in kinds and resolve(self.lexicon, content, ANYWHERE).matches == ():
-            return f"Sorry, I don't know who or where {phrase.title()} is."
-        return f"Sorry, I don't see any {said_phrase(self.lang, words) or phrase}."
+            return say(self.lang, "sorry.no_one_or_place", name=phrase.title())
+        return say(self.lang, "sorry.none_seen", phrase=said_phrase(self.lang, words) or phrase)
 
 
 def _apposed(lang: Language, words: Words) -> Words:

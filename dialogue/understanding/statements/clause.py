@@ -15,11 +15,11 @@ from dataclasses import dataclass, field
 
 from dialogue.history import Utterance
 from dialogue.reference.clarify import question as clarifying_question
-from dialogue.reference.english import POSSESSIVES
 from dialogue.reference.grounding import Entity, Kind
 from dialogue.reference.lexicon import Lexicon
 from dialogue.reference.resolution import PERSON, Resolution, antecedent, content_words, is_pronoun, resolve
 from dialogue.schema import FactClaim
+from dialogue.understanding.replies import say
 
 Words = tuple[str, ...]
 
@@ -77,7 +77,7 @@ class ClauseReader:
             return None
         res = resolve(self.lexicon, words, PERSON)
         if res.ambiguous:
-            raise Refused(clarifying_question(self.snapshot, res.matches), clarify=True)
+            raise Refused(clarifying_question(self.lang, self.snapshot, res.matches), clarify=True)
         return res.one.id if res.one is not None else None
 
     def _entity(self, words: Words, kinds: frozenset[Kind],
@@ -87,9 +87,10 @@ class ClauseReader:
         self.open_phrase, words = words, self.overrides.get(words, words)
         if "person" in kinds and words in {("me",), ("i",)}:
             return self.speaker, None
-        said = [w for w in words if w in POSSESSIVES]
+        possessives = self.lang.words.possessives
+        said = [w for w in words if w in possessives]
         owner = self.speaker if said[:1] in (["my"], ["our"]) else None
-        bare = tuple(w for w in words if w not in POSSESSIVES)
+        bare = tuple(w for w in words if w not in possessives)
         if not content_words(self.lang, bare) or is_pronoun(self.lang, bare):
             found = None if fits is not None else antecedent(
                 self.lexicon, self.history, kinds, speaker=self.speaker
@@ -97,7 +98,7 @@ class ClauseReader:
             if found is None and fits is not None:
                 raise Unclaimed
             if found is None:
-                raise Refused(f'What do you mean by "{" ".join(words)}"?', clarify=True)
+                raise Refused(say(self.lang, "sorry.what_meant", phrase=" ".join(words)), clarify=True)
             return found.id, owner
         res = resolve(self.lexicon, bare, kinds, owner=owner)
         if fits is not None:
@@ -107,9 +108,9 @@ class ClauseReader:
         if res.one is not None:
             return res.one.id, owner
         if res.ambiguous:
-            raise Refused(clarifying_question(self.snapshot, res.matches), clarify=True)
+            raise Refused(clarifying_question(self.lang, self.snapshot, res.matches), clarify=True)
         if any(not self.lexicon.knows(w) for w in content_words(self.lang, bare)) and any(
             self.lexicon.knows(w) for w in content_words(self.lang, bare)
         ):
             raise Unclaimed  # names the KB knows among words it does not: leave it to a model
-        raise Refused(f"Sorry, I don't know any {' '.join(content_words(self.lang, bare))}.")
+        raise Refused(say(self.lang, "sorry.unknown", phrase=" ".join(content_words(self.lang, bare))))

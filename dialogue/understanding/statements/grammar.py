@@ -25,6 +25,7 @@ from dialogue.reference.grounding import Entity, Kind
 from dialogue.reference.resolution import PLACE
 from dialogue.schema import FactClaim
 from dialogue.understanding.language import Language
+from dialogue.understanding.replies import say
 from dialogue.understanding.speech.clauses import clauses as run_on_clauses
 from dialogue.understanding.speech.plain import original_text
 from dialogue.understanding.speech.repair import asked_verb, normalise
@@ -199,8 +200,8 @@ class Statements(Likings):
         if len(unnamed) == 1:
             return unnamed[0].id
         if not unnamed:
-            raise Refused("Sorry, I don't see anyone here whose name I don't know.")
-        raise Refused("Sorry, I see more than one person I don't know: I can't tell who you mean.")
+            raise Refused(say(self.lang, "sorry.no_one_unnamed"))
+        raise Refused(say(self.lang, "sorry.several_unnamed"))
 
     def _robot_said(self) -> str:
         said = [u for u in self.history if u.role == "assistant"]
@@ -232,7 +233,8 @@ class Statements(Likings):
                 if w[i : i + 2] == verb:
                     owner = ME if w[i + 2 :] in {("me",), ("myself",)} else self._person(w[i + 2 :])
                     if owner is None:
-                        raise Refused(f"Sorry, I don't know anyone called {' '.join(w[i + 2:]).title()}.")
+                        called = " ".join(w[i + 2 :]).title()
+                        raise Refused(say(self.lang, "sorry.no_one_called", name=called))
                     thing, _ = self._entity(w[:i], _THING)
                     return [fact(thing, "belongsTo", self.speaker if owner == ME else owner)]
         if w[:2] in self.said.pointed and w[2:3] == ("my",) and w[3:]:

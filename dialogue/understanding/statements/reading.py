@@ -14,6 +14,7 @@ from dialogue.reference.lexicon import Lexicon
 from dialogue.schema import ChatbotResponse, UserIntent
 from dialogue.understanding.followups.statement import follow_up
 from dialogue.understanding.questions.told import Asking
+from dialogue.understanding.replies import say
 from dialogue.understanding.statements.grammar import Statements
 
 
@@ -36,5 +37,5 @@ def read_turn(text: str, lexicon: Lexicon, speaker: str, history: Sequence[Utter
     if told.reply is not None:
         return Reading(ChatbotResponse(verbal_ack=told.reply), clarify=told.clarify)
     greet = UserIntent(type=I.GREET, recipient=speaker, confidence=0.9) if told.greeted else None
-    hello = "Hello!" if greet else None
+    hello = say(lexicon.lang, "social.hello") if greet else None
     return Reading(ChatbotResponse(verbal_ack=hello, user_intent=greet, facts=told.facts))

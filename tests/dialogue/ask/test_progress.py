@@ -12,13 +12,13 @@ from tests.dialogue.ask.conftest import NINA, form_of
 def test_asks_only_for_what_is_missing_then_ends(form: AskForm, lexicon: Lexicon) -> None:
     state = opening_state(form)
     assert state.asked == "age"
-    state, line = advance(form, state, Reading(values={"age": 30, "name": "Nina"}), lexicon.snapshot)
+    state, line = advance(form, state, Reading(values={"age": 30, "name": "Nina"}), lexicon)
     assert state.asked == "colour" and line == "Which colour: red, green, light blue or blue?"
-    state, line = advance(form, state, Reading(values={"colour": "red"}), lexicon.snapshot)
+    state, line = advance(form, state, Reading(values={"colour": "red"}), lexicon)
     assert line == "Which cup: the blue cup or the red cup?"
-    state, line = advance(form, state, Reading(values={"cup": "cup_red"}), lexicon.snapshot)
+    state, line = advance(form, state, Reading(values={"cup": "cup_red"}), lexicon)
     assert line == "And tea: yes or no?"
-    state, line = advance(form, state, Reading(values={"tea": True, "friend": "person_oliver"}), lexicon.snapshot)
+    state, line = advance(form, state, Reading(values={"tea": True, "friend": "person_oliver"}), lexicon)
     assert (state.status, line, state.asked) == ("done", "Thank you.", None)
 
 
@@ -48,7 +48,7 @@ def test_skip_cancel_and_clarify(form: AskForm, lexicon: Lexicon) -> None:
     assert (state.status, line) == ("cancelled", "OK, never mind.")
     cups = tuple(lexicon.snapshot.entities[i] for i in ("cup_red", "cup_blue"))
     reading = Reading(clarify=Clarifying(field="cup", candidates=["cup_red", "cup_blue"]), clarify_options=cups)
-    state, line = advance(form, opening_state(form), reading, lexicon.snapshot, cups)
+    state, line = advance(form, opening_state(form), reading, lexicon, cups)
     assert state.asked == "cup" and line == "Which cup do you mean: the red cup or the blue cup?"
 
 
@@ -78,7 +78,7 @@ def test_the_entities_listed_in_a_question_are_offered(form: AskForm, lexicon: L
     """ "Which cup: the blue cup or the red cup?" then "the second one": the listed cups are the
     choices, in the order said (an ordinal was understood only after a clarifying question)."""
     state, line = advance(form, opening_state(form), Reading(values={"age": 30, "name": "Nina", "colour": "red"}),
-                          lexicon.snapshot)
+                          lexicon)
     assert line == "Which cup: the blue cup or the red cup?"
     assert state.clarifying == Clarifying(field="cup", candidates=["cup_blue", "cup_red"])
     reading = read_answer(form, state, "the second one", lexicon, NINA)

@@ -6,13 +6,14 @@ from dialogue.memory.claims import Claim
 from dialogue.memory.learn import Outcome, Settled
 from dialogue.memory.replies import confirmation
 from kb import KB
+from tests.dialogue.conftest import english
 from tests.dialogue.memory.conftest import snapshot_of
 
 BOB = "person_bob"
 
 
 def say(kb: KB, *outcomes: Outcome, names: dict[str, str] | None = None) -> str:
-    return confirmation(Settled(outcomes, names or {}), snapshot_of(kb), BOB)
+    return confirmation(english(), Settled(outcomes, names or {}), snapshot_of(kb), BOB)
 
 
 def test_confirmations(home: KB) -> None:

@@ -1,7 +1,14 @@
-from dialogue.reference.clarify import question
-from dialogue.reference.grounding import build_snapshot
+from collections.abc import Sequence
+
+from dialogue.reference import clarify
+from dialogue.reference.grounding import Entity, Snapshot, build_snapshot
 from kb import KB
-from tests.dialogue.conftest import scene_kb
+from tests.dialogue.conftest import english, scene_kb
+
+
+def question(snapshot: Snapshot, candidates: Sequence[Entity], noun: str | None = None) -> str:
+    """The clarifying question, in English."""
+    return clarify.question(english(), snapshot, candidates, noun)
 
 
 def test_labels_distinguish(cups: KB) -> None:
