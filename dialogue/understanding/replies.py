@@ -60,7 +60,7 @@ def the(lang: Language, snapshot: Snapshot, entity: Entity, speaker: str = "") -
 def _numbered(lang: Language, name: str) -> bool:
     """Whether a name ends with its number ("screen 2", "table four")."""
     words = tokens(name)
-    spoken = {w for said in lang.words.spoken_numbers.values() for w in said} - {lang.words.units[0]}
+    spoken = {w for said in lang.words.spoken_numbers.values() for w in said} - set(lang.words.units[:1])
     return len(words) > 1 and (words[-1].isdigit() or words[-1] in spoken)
 
 

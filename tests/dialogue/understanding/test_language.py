@@ -5,8 +5,12 @@ from pathlib import Path
 
 import pytest
 
+from dialogue import intents as I
+from dialogue.reference.grounding import build_snapshot
+from dialogue.reference.lexicon import Lexicon
+from dialogue.understanding.interpret import Interpreter
 from dialogue.understanding.language import Language, LanguageError
-from tests.dialogue.conftest import english
+from tests.dialogue.conftest import english, scene_kb
 
 
 def other_numbers(words: list[str]) -> tuple[str, ...] | None:
@@ -56,3 +60,26 @@ def test_what_a_language_leaves_out_is_empty(tmp_path: Path) -> None:
     lang = Language.read(tmp_path, "nl")
     assert lang.code == "nl" and lang.words.determiners == {"de", "het", "een"}
     assert lang.words.colours == frozenset() and lang.support == frozenset() and lang.lexicon == ""
+
+
+#: A tiny second language, as a folder of its own: a few words, one frame, a few replies.
+DUTCH = Path(__file__).parent / "lang" / "nl"
+
+
+def test_a_second_language_folder_reads_a_request_in_it() -> None:
+    """Adding a language is adding a folder: the same grammar reads a request in Dutch from a
+    folder of the tests, and says it back in Dutch."""
+    dutch = Language.read(DUTCH)
+    kb = scene_kb(None, 'cup_1 rdf:type dbr:Cup', 'cup_1 rdfs:label "beker"', "myself sees cup_1",
+                  "person_ana rdf:type Human", 'person_ana rdfs:label "Ana"', "myself sees person_ana")
+    lexicon = Lexicon(build_snapshot(kb), dutch)
+    out = Interpreter(lexicon, "person_bob").interpret("breng de beker naar Ana")
+    assert (out.intent, out.roles) == (I.BRING_OBJECT, {"object": "cup_1", "recipient": "person_ana"})
+    assert out.reply == "Goed, ik breng de beker naar Ana."
+    # English is not what this folder says
+    english_said = Interpreter(lexicon, "person_bob").interpret("bring the cup to Ana")
+    assert english_said.intent is None and english_said.reply == "Sorry, dat begreep ik niet."
+    # and the same request is English's own in English
+    said = Interpreter(Lexicon(build_snapshot(kb), english()), "person_bob").interpret("bring the beker to Ana")
+    assert (said.intent, said.roles) == (I.BRING_OBJECT, {"object": "cup_1", "recipient": "person_ana"})
+    kb.close()
