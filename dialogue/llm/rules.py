@@ -1,4 +1,4 @@
-"""The offline default model: the rules interpreter behind the ChatModel protocol.
+"""The offline default model: the readers of dialogue.understanding behind the ChatModel protocol.
 
 It reads the structured turn context (no prompt parsing) and answers in the same JSON as an LLM, so
 its output goes through the same validation and grounding as any model's. Nouns come from the KB
@@ -10,30 +10,10 @@ from __future__ import annotations
 import json
 
 from dialogue.llm.base import ChatModel, ChatRequest, ChatResult, EarlyAnswer, TurnContext
-from dialogue.prompts import FREE_FORM_OBJECT
 from dialogue.reference.lexicon import Lexicon, LexiconCache
-from dialogue.schema import ChatbotResponse, UserIntent
-from dialogue.understanding.interpret import Interpreter
 from dialogue.understanding.language import Language
 from dialogue.understanding.outcome import Outcome
-from dialogue.understanding.statements.reading import Reading, read_turn
-
-
-def _wish(outcome: Outcome) -> UserIntent:
-    roles = dict(outcome.roles)
-    free = roles.pop("object", None) if outcome.intent in FREE_FORM_OBJECT else None
-    return UserIntent(type=outcome.intent, input=free, confidence=outcome.confidence, **roles)
-
-
-def answer_of(outcome: Outcome) -> ChatbotResponse:
-    steps = [o for o in outcome.steps() if o.intent is not None]
-    if not steps:
-        return ChatbotResponse(verbal_ack=outcome.reply, user_intent=None)
-    wishes = [_wish(o) for o in steps]
-    return ChatbotResponse(
-        verbal_ack=outcome.reply, user_intent=wishes[0], user_intents=wishes if len(wishes) > 1 else None
-    )
-
+from dialogue.understanding.readers import Heard, Turn, interpreted, read
 
 #: The rules' name, the `backend` of the turns they answer.
 RULES = "rules"
@@ -60,16 +40,14 @@ class RulesModel(ChatModel):
         return None
 
     def prescreen(self, context: TurnContext) -> EarlyAnswer | None:
-        told = self.told(context)
-        if told is not None:  # what people tell or ask about what they know (dialogue.memory)
-            return EarlyAnswer(told.answer, RULES, clarify=told.clarify)
-        outcome = self.interpret(context)
-        if not self._claims(outcome):
+        heard = read(self._turn(context))
+        if not self._claims(heard):
             return None
-        return EarlyAnswer(answer_of(outcome), RULES, clarify=outcome.clarify)
+        return EarlyAnswer(heard.answer, RULES, clarify=heard.clarify)
 
-    def told(self, context: TurnContext) -> Reading | None:
-        return read_turn(context.text, self._lexicon(context), context.speaker, context.history)
+    def _turn(self, context: TurnContext) -> Turn:
+        lexicon = self._lexicon(context)
+        return Turn(context.text, lexicon, context.speaker, tuple(context.history), context.robot_name)
 
     def _lexicon(self, context: TurnContext) -> Lexicon:
         lexicon = context.lexicon
@@ -81,20 +59,19 @@ class RulesModel(ChatModel):
         return lexicon
 
     def interpret(self, context: TurnContext) -> Outcome:
-        lexicon = self._lexicon(context)
-        interpreter = Interpreter(lexicon, context.speaker, context.history, context.robot_name)
-        return interpreter.interpret(context.text)
+        """The interpreter's reading of the turn (its requests' reader alone)."""
+        return interpreted(self._turn(context))
 
     async def chat(self, request: ChatRequest, timeout: float) -> ChatResult:
-        told = self.told(request.context)
-        if told is not None:
-            return ChatResult(told.answer.model_dump_json(exclude_none=True), "stop")
-        outcome = self.interpret(request.context)
-        answer = answer_of(outcome)
+        heard = read(self._turn(request.context))
+        if heard.told:
+            return ChatResult(heard.answer.model_dump_json(exclude_none=True), "stop")
         # The tutorial's two keys, and the list only when there is more than one intent.
-        unused = {"user_intents"} if answer.user_intents is None else set()
-        content = json.dumps(answer.model_dump(exclude=unused | {"facts"}))
-        return ChatResult(content, "stop", understood=self._claims(outcome))
+        unused = {"user_intents"} if heard.answer.user_intents is None else set()
+        content = json.dumps(heard.answer.model_dump(exclude=unused | {"facts"}))
+        return ChatResult(content, "stop", understood=self._claims(heard))
 
-    def _claims(self, outcome: Outcome) -> bool:
-        return outcome.understood and (self.take_guesses or not outcome.guesses)
+    def _claims(self, heard: Heard) -> bool:
+        """What people know is always claimed; a request only when understood, and a guess only when
+        this model takes guesses."""
+        return heard.told or (heard.understood and (self.take_guesses or not heard.guessed))
