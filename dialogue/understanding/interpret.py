@@ -3,11 +3,16 @@
 Every referent is resolved here to exactly one KB entity (or the speaker for "me"); otherwise the
 outcome has no intent and the reply says what is unknown or asks which one was meant. A fragment
 answering the robot's last question ("the red one") completes the request found in the history.
+
+The stages, in order: the speech forms (letters joined, slips corrected, false starts cleaned), the
+request said to someone else, the terse request, the parts of a compound request, then each part's
+act (`ACTS`) or, with no act, its follow-up (`FOLLOW_UPS`), and the clauses one by one when the
+whole is not one request.
 """
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import replace
 
 from dialogue import intents as I
@@ -16,19 +21,17 @@ from dialogue.reference.english import Words, tokens
 from dialogue.reference.grounding import Kind
 from dialogue.reference.lexicon import Lexicon
 from dialogue.reference.resolution import (
-    ANYWHERE,
     PERSON,
     PLACE,
     ROLE_KINDS,
     antecedent,
     content_words,
-    is_pronoun,
     resolve,
 )  # fmt: skip
-from dialogue.understanding.followups.request import accepts, continuation, correction, follow_up
+from dialogue.understanding.followups.request import accepts, follow_up, followed_up
 from dialogue.understanding.outcome import Outcome, Ref
 from dialogue.understanding.parsed import Parse
-from dialogue.understanding.questions import answers
+from dialogue.understanding.questions import situation
 from dialogue.understanding.replies import acknowledgement, hello, say, then
 from dialogue.understanding.requests.commands import parse
 from dialogue.understanding.requests.compound import Part, conjuncts, coordinated
@@ -171,11 +174,8 @@ class Interpreter:
             if accepted is not None:
                 return accepted
         not_understood = Outcome(say(self.lang, "sorry.not_understood"), understood=False)
-        if p.act == "unknown":  # an answer to the robot's question, or "sorry, I meant screen two"
-            outcome = follow_up(self, p, text) or correction(self, text) or continuation(self, text)
-            outcome = outcome or not_understood
-        else:
-            outcome = self.act(p)
+        # No act: an answer to the robot's question, or "sorry, I meant screen two" (`FOLLOW_UPS`)
+        outcome = followed_up(self, p, text) or not_understood if p.act == "unknown" else self.act(p)
         ungrounded = p.act == "command" and outcome.intent is None and not outcome.clarify
         failed = not outcome.understood or ungrounded
         return self._clause_by_clause(text, outcome) if failed else outcome
@@ -212,83 +212,41 @@ class Interpreter:
         return question or failed or whole
 
     def act(self, p: Parse, overrides: dict[str, Words] | None = None) -> Outcome:
-        if p.act == "greeting" and "everyone" in p.slots:  # no single recipient: greet verbally only
+        """What the parse's act is read as (`ACTS`): social talk, a question, a request."""
+        read = ACTS.get(p.act)
+        if read is None:
+            return Outcome(say(self.lang, "sorry.not_understood"), understood=False)
+        return read(self, p, overrides or {})
+
+    # -- social talk -----------------------------------------------------------------------------
+    def _greeting(self, p: Parse, overrides: dict[str, Words]) -> Outcome:
+        if "everyone" in p.slots:  # no single recipient: greet verbally only
             return Outcome(say(self.lang, "social.hello_everyone"))
-        if p.act == "greeting":
-            greeting = hello(self.lang, self.snapshot, self.speaker)
-            return self._intent(I.GREET, {"recipient": self.speaker}, greeting)
-        if p.act == "negated":
-            return Outcome(say(self.lang, "social.wont"))
-        if p.act == "conditional":  # the rules act now or never: asked again, then
-            return Outcome(say(self.lang, "social.later"))
-        if p.act == "thanks":
-            return Outcome(say(self.lang, "social.welcome"))
-        if p.act == "question" and p.greeted:  # "hello robot, what's your name": both
-            answer = self._answer(p)
-            if not answer.understood or answer.clarify:
-                return answer
-            greeting = hello(self.lang, self.snapshot, self.speaker)
-            return self._intent(I.GREET, {"recipient": self.speaker}, f"{greeting} {answer.reply}")
-        if p.act == "question":
-            return self._answer(p)
-        if p.act == "command" and p.intent is not None:
-            return self._command(p, overrides or {})
-        return Outcome(say(self.lang, "sorry.not_understood"), understood=False)
+        greeting = hello(self.lang, self.snapshot, self.speaker)
+        return self._intent(I.GREET, {"recipient": self.speaker}, greeting)
+
+    def _negated(self, p: Parse, overrides: dict[str, Words]) -> Outcome:
+        return Outcome(say(self.lang, "social.wont"))
+
+    def _conditional(self, p: Parse, overrides: dict[str, Words]) -> Outcome:
+        return Outcome(say(self.lang, "social.later"))  # the rules act now or never: asked again, then
+
+    def _thanks(self, p: Parse, overrides: dict[str, Words]) -> Outcome:
+        return Outcome(say(self.lang, "social.welcome"))
 
     # -- questions -------------------------------------------------------------------------------
-    def _answer(self, p: Parse) -> Outcome:  # noqa: C901
-        thing = p.slots.get("thing", ()) or p.slots.get("place", ())
-        said = content_words(self.lang, thing)
-        # "where is she": a person a question may be about ("do you know where she is")
-        someone = set(said) <= self.lang.questions.situation.someone_said and bool(said)
-        about = p.question in {"where", "can_see", "what_is", "what_on", "whose"}
-        if about and (is_pronoun(self.lang, thing) or someone):
-            kinds = PERSON if someone else ANYWHERE
-            ref = antecedent(self.lexicon, self.history, kinds, speaker=self.speaker)
-            if ref is not None:
-                thing = tuple(tokens(ref.id))
-        _, owner = self.refs.possessive(thing, p.slots)  # "where is my mug": the speaker's
-        content = content_words(self.lang, thing)
-        unsure = self.refs.half_known(content) or self.refs.strange(content)  # "how many bks": a doubt
-        if content and unsure and not resolve(self.lexicon, thing, ANYWHERE).matches:
-            return Outcome(say(self.lang, "sorry.no_answer"), understood=False)
-        match p.question:
-            case "what_see":
-                return Outcome(answers.what_do_you_see(self.lang, self.snapshot, self.speaker))
-            case "who_see":
-                return Outcome(answers.who_do_you_see(self.lang, self.snapshot, self.speaker))
-            case "where":
-                return Outcome(answers.where_is(self.lexicon, thing, self.speaker, owner))
-            case "what_on":
-                asked = " ".join(p.slots.get("relation", ()))
-                reply, clarify = answers.what_is_on(self.lexicon, thing, asked)
-                return Outcome(reply, clarify=clarify)
-            case "who_in":
-                reply, clarify = answers.who_is_in(self.lexicon, thing, self.speaker)
-                return Outcome(reply, clarify=clarify)
-            case "what_near":
-                reply, clarify = answers.what_is_near(self.lexicon, thing, p.slots.get("relation", ()))
-                return Outcome(reply, clarify=clarify)
-            case "can_see":
-                return Outcome(answers.can_you_see(self.lexicon, thing, self.speaker, owner))
-            case "what_is":
-                return Outcome(answers.what_is(self.lexicon, thing, self.speaker, owner))
-            case "which_see":
-                return Outcome(answers.which_do_you_see(self.lexicon, thing))
-            case "how_many":
-                return Outcome(answers.how_many(self.lexicon, thing))
-            case "colour":
-                return Outcome(answers.colour_of(self.lexicon, thing, self.speaker, owner))
-            case "whose":
-                return Outcome(answers.whose(self.lexicon, thing, self.speaker, owner))
-            case "name":
-                return Outcome(say(self.lang, "social.robot_name", name=self.robot_name))
-            case "how_are_you":
-                return Outcome(say(self.lang, "social.fine"))
-        return Outcome(say(self.lang, "sorry.no_answer"), understood=False)
+    def _question(self, p: Parse, overrides: dict[str, Words]) -> Outcome:
+        answer = situation.answer(self, p)
+        if not p.greeted or not answer.understood or answer.clarify:
+            return answer
+        # "hello robot, what's your name": both
+        greeting = hello(self.lang, self.snapshot, self.speaker)
+        return self._intent(I.GREET, {"recipient": self.speaker}, f"{greeting} {answer.reply}")
 
     # -- commands --------------------------------------------------------------------------------
     def _command(self, p: Parse, overrides: dict[str, Words]) -> Outcome:
+        if p.intent is None:
+            return Outcome(say(self.lang, "sorry.not_understood"), understood=False)
         whole = self._one_command(p, overrides)
         # "bring me the bread and the jam", "greet Ana and Tom": one intent per thing or person
         # named, in order (people only where a role is a person's: one cup goes to one person).
@@ -398,3 +356,11 @@ class Interpreter:
 
     def _intent(self, intent: str, roles: dict[str, str], reply: str, confidence: float = 0.9) -> Outcome:
         return Outcome(reply, intent, roles, confidence)
+
+
+#: How each act the grammar reads is understood (an act not here is not: "unknown").
+ACTS: dict[str, Callable[[Interpreter, Parse, dict[str, Words]], Outcome]] = {
+    "greeting": Interpreter._greeting, "negated": Interpreter._negated,
+    "conditional": Interpreter._conditional, "thanks": Interpreter._thanks,
+    "question": Interpreter._question, "command": Interpreter._command,
+}  # fmt: skip

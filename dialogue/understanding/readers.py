@@ -6,9 +6,12 @@ Each reader says what it reads and returns what it heard, or None when the turn 
     told questions     questions about what people told ("what does Alice like?")
     statement answers  an answer to the robot's question about a statement ("the red one")
     statements         what people tell ("I'm Bob", "the keys are in the drawer", "I like tea")
-    requests           the interpreter (dialogue.understanding.interpret): requests, questions
-                       about the situation, social talk and answers to the robot's question about a
-                       request
+    requests           the interpreter (dialogue.understanding.interpret), which reads each act of
+                       the grammar by its row of `ACTS`: social talk, questions about the situation
+                       (dialogue.understanding.questions.situation, by kind: `QUESTIONS`) and
+                       requests; and an utterance with no act by the follow-ups in their order
+                       (dialogue.understanding.followups.request `FOLLOW_UPS`): an answer to the
+                       robot's question about a request, a correction, the same request again
 
 The ask role reads an answer to its form with its own reader (dialogue.understanding.followups.form,
 `FORM_ANSWERS`). What the rules answer goes through the same validation as a model's answer.

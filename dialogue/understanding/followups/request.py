@@ -10,40 +10,24 @@ re-reads the request said right before it, an accepted offer is read as the requ
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Callable
 from dataclasses import replace
-from typing import Protocol
 
 from dialogue import intents as I
 from dialogue.history import Utterance
 from dialogue.prompts import FREE_FORM_OBJECT
 from dialogue.reference.english import Words, tokens
-from dialogue.reference.grounding import Kind, Snapshot
-from dialogue.reference.lexicon import Lexicon
+from dialogue.reference.grounding import Kind
 from dialogue.reference.resolution import ROLE_KINDS, content_words, resolve
+from dialogue.understanding.context import Reader
 from dialogue.understanding.language import Language
 from dialogue.understanding.outcome import Outcome
 from dialogue.understanding.parsed import Parse
 from dialogue.understanding.requests.commands import parse
 from dialogue.understanding.requests.constructions import where_it_goes
-from dialogue.understanding.requests.referents import Referents
 from dialogue.understanding.speech.clauses import clauses, described, description
 from dialogue.understanding.speech.plain import expanded, plain, strip_politeness
 
-
-class Reader(Protocol):
-    """What reads an answer to the robot's question: the interpreter (dialogue.understanding.interpret,
-    which reads follow-ups with this module: it is not imported here)."""
-
-    lexicon: Lexicon
-    snapshot: Snapshot
-    robot_name: str
-    history: tuple[Utterance, ...]
-    refs: Referents
-
-    def within(self, history: Sequence[Utterance]) -> Reader: ...
-
-    def act(self, p: Parse, overrides: dict[str, Words] | None = None) -> Outcome: ...
 
 def accepts(lang: Language, words: list[str]) -> bool:
     """Whether the words only say yes ("yes please", "go on then", "that'd be lovely")."""
@@ -187,7 +171,7 @@ def confirmation(earlier: Reader, pending: Parse, first: Outcome, question: Utte
 
 
 
-def correction(reader: Reader, text: str) -> Outcome | None:
+def correction(reader: Reader, p: Parse, text: str) -> Outcome | None:
     """ "sorry, I meant screen two" after "take the booster seat to screen 1": the last request again,
     with the phrase of the role that names the same kind of thing (a place for a place, a thing for
     a thing) replaced."""
@@ -278,7 +262,7 @@ def _instead(lang: Language, fragment: Words, said: Words) -> Words:
     return tuple(x for w in fragment for x in (head if w in lang.followups.one and head else [w]))
 
 
-def continuation(reader: Reader, text: str) -> Outcome | None:
+def continuation(reader: Reader, p: Parse, text: str) -> Outcome | None:
     """ "and the soup goes to table two", "and the soup to table two" after "take the steak to table
     four": the request just made (a bringing) again, for another thing and place. Alone, "X goes to
     Y" says no request."""
@@ -301,3 +285,17 @@ def continuation(reader: Reader, text: str) -> Outcome | None:
                   marks={"recipient": "to"})  # fmt: skip
     outcome = reader.act(again)
     return _sure(outcome) if outcome.intent is not None else None
+
+
+#: What an utterance in which the grammar reads no act may be, in the order tried: an answer to the
+#: robot's question, a correction of the request just made, the same request for another thing.
+FOLLOW_UPS: tuple[Callable[[Reader, Parse, str], Outcome | None], ...] = (follow_up, correction, continuation)
+
+
+def followed_up(reader: Reader, p: Parse, text: str) -> Outcome | None:
+    """What the first follow-up that reads the utterance made of it (`FOLLOW_UPS`)."""
+    for read in FOLLOW_UPS:
+        outcome = read(reader, p, text)
+        if outcome is not None:
+            return outcome
+    return None

@@ -1,0 +1,114 @@
+"""The reader of questions about the situation ("where is my mug?", "what do you see?", "what's your
+name?"): what the question is about, grounded in its turn, then answered by its kind's row of
+`QUESTIONS` (the grammar's `question`, dialogue.understanding.questions.grammar)."""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+
+from dialogue.reference.english import Words, tokens
+from dialogue.reference.resolution import ANYWHERE, PERSON, antecedent, content_words, is_pronoun, resolve
+from dialogue.understanding.context import Context
+from dialogue.understanding.outcome import Outcome
+from dialogue.understanding.parsed import Parse
+from dialogue.understanding.questions import answers
+from dialogue.understanding.replies import say
+
+#: The questions whose subject may be a pronoun or someone spoken of ("where is she").
+_ABOUT = frozenset({"where", "can_see", "what_is", "what_on", "whose"})
+
+#: One kind of question answered: the turn, what it is about, whose that is, and the parse.
+Answer = Callable[[Context, Words, str | None, Parse], Outcome]
+
+
+def _what_see(c: Context, thing: Words, owner: str | None, p: Parse) -> Outcome:
+    return Outcome(answers.what_do_you_see(c.lang, c.snapshot, c.speaker))
+
+
+def _who_see(c: Context, thing: Words, owner: str | None, p: Parse) -> Outcome:
+    return Outcome(answers.who_do_you_see(c.lang, c.snapshot, c.speaker))
+
+
+def _where(c: Context, thing: Words, owner: str | None, p: Parse) -> Outcome:
+    return Outcome(answers.where_is(c.lexicon, thing, c.speaker, owner))
+
+
+def _what_on(c: Context, thing: Words, owner: str | None, p: Parse) -> Outcome:
+    asked = " ".join(p.slots.get("relation", ()))
+    reply, clarify = answers.what_is_on(c.lexicon, thing, asked)
+    return Outcome(reply, clarify=clarify)
+
+
+def _who_in(c: Context, thing: Words, owner: str | None, p: Parse) -> Outcome:
+    reply, clarify = answers.who_is_in(c.lexicon, thing, c.speaker)
+    return Outcome(reply, clarify=clarify)
+
+
+def _what_near(c: Context, thing: Words, owner: str | None, p: Parse) -> Outcome:
+    reply, clarify = answers.what_is_near(c.lexicon, thing, p.slots.get("relation", ()))
+    return Outcome(reply, clarify=clarify)
+
+
+def _can_see(c: Context, thing: Words, owner: str | None, p: Parse) -> Outcome:
+    return Outcome(answers.can_you_see(c.lexicon, thing, c.speaker, owner))
+
+
+def _what_is(c: Context, thing: Words, owner: str | None, p: Parse) -> Outcome:
+    return Outcome(answers.what_is(c.lexicon, thing, c.speaker, owner))
+
+
+def _which_see(c: Context, thing: Words, owner: str | None, p: Parse) -> Outcome:
+    return Outcome(answers.which_do_you_see(c.lexicon, thing))
+
+
+def _how_many(c: Context, thing: Words, owner: str | None, p: Parse) -> Outcome:
+    return Outcome(answers.how_many(c.lexicon, thing))
+
+
+def _colour(c: Context, thing: Words, owner: str | None, p: Parse) -> Outcome:
+    return Outcome(answers.colour_of(c.lexicon, thing, c.speaker, owner))
+
+
+def _whose(c: Context, thing: Words, owner: str | None, p: Parse) -> Outcome:
+    return Outcome(answers.whose(c.lexicon, thing, c.speaker, owner))
+
+
+def _name(c: Context, thing: Words, owner: str | None, p: Parse) -> Outcome:
+    return Outcome(say(c.lang, "social.robot_name", name=c.robot_name))
+
+
+def _how_are_you(c: Context, thing: Words, owner: str | None, p: Parse) -> Outcome:
+    return Outcome(say(c.lang, "social.fine"))
+
+
+#: Each kind of question and its answer (a kind not here has none).
+QUESTIONS: dict[str, Answer] = {
+    "what_see": _what_see, "who_see": _who_see, "where": _where, "what_on": _what_on,
+    "who_in": _who_in, "what_near": _what_near, "can_see": _can_see, "what_is": _what_is,
+    "which_see": _which_see, "how_many": _how_many, "colour": _colour, "whose": _whose,
+    "name": _name, "how_are_you": _how_are_you,
+}  # fmt: skip
+
+
+def answer(c: Context, p: Parse) -> Outcome:
+    """The answer to a question about the situation, or the reply that says there is none."""
+    thing = p.slots.get("thing", ()) or p.slots.get("place", ())
+    said = content_words(c.lang, thing)
+    # "where is she": a person a question may be about ("do you know where she is")
+    someone = set(said) <= c.lang.questions.situation.someone_said and bool(said)
+    if p.question in _ABOUT and (is_pronoun(c.lang, thing) or someone):
+        kinds = PERSON if someone else ANYWHERE
+        ref = antecedent(c.lexicon, c.history, kinds, speaker=c.speaker)
+        if ref is not None:
+            thing = tuple(tokens(ref.id))
+    _, owner = c.refs.possessive(thing, p.slots)  # "where is my mug": the speaker's
+    content = content_words(c.lang, thing)
+    unsure = c.refs.half_known(content) or c.refs.strange(content)  # "how many bks": a doubt
+    if content and unsure and not resolve(c.lexicon, thing, ANYWHERE).matches:
+        return _no_answer(c)
+    reply = QUESTIONS.get(p.question or "")
+    return reply(c, thing, owner, p) if reply is not None else _no_answer(c)
+
+
+def _no_answer(c: Context) -> Outcome:
+    return Outcome(say(c.lang, "sorry.no_answer"), understood=False)
