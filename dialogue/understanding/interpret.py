@@ -35,6 +35,7 @@ from dialogue.understanding.questions import situation
 from dialogue.understanding.replies import acknowledgement, hello, say, then
 from dialogue.understanding.requests.commands import parse
 from dialogue.understanding.requests.compound import Part, conjuncts, coordinated
+from dialogue.understanding.requests.ground import ground
 from dialogue.understanding.requests.referents import Referents, relational
 from dialogue.understanding.requests.terse import terse
 from dialogue.understanding.speech.clauses import clauses, described, description
@@ -312,7 +313,7 @@ class Interpreter:
             whose = self.refs.possessive(words, slots) if role == "object" else self._whose(words, kinds)
             words, owner = whose
             others = [w for r, w in slots.items() if r != role]
-            ref = self.refs.ground(words, kinds, role, owner, others)
+            ref = ground(self.refs, words, kinds, role, owner, others)
             if ref.problem is not None:
                 return ref.problem
             refs[role] = ref

@@ -1,38 +1,28 @@
-"""Noun phrases of a request grounded in the KB: one entity, the speaker, or why not (unknown, ambiguous,
-not understood); possessives ("my phone", "give Ines her phone") and double objects ("bring Maria the
-book") read against the people the KB knows and the conversation.
-"""
+"""What a request's noun phrases say of the KB's entities, before and while they are grounded
+(dialogue.understanding.requests.ground): possessives ("my phone", "give Ines her phone"), double
+objects ("bring Maria the book"), people, places, quantities, read against the people the KB knows
+and the conversation."""
 
 from __future__ import annotations
 
-from collections.abc import Collection, Sequence
-from dataclasses import replace
+from collections.abc import Sequence
 
 from lemminflect import getAllLemmas
 
 from dialogue.history import Utterance
-from dialogue.reference.clarify import question as clarifying_question
 from dialogue.reference.english import Words, tokens
-from dialogue.reference.grounding import Entity, Kind
-from dialogue.reference.lexicon import Lexicon, singular
+from dialogue.reference.grounding import Entity
+from dialogue.reference.lexicon import Lexicon
 from dialogue.reference.resolution import (
-    ANYWHERE,
     PERSON,
     THING,
     ZONE,
     antecedent,
     content_words,
     is_pronoun,
-    pronoun_kinds,
     resolve,
-    said_phrase,
 )
 from dialogue.understanding.language import Language
-from dialogue.understanding.outcome import Outcome, Ref
-from dialogue.understanding.replies import say
-from dialogue.understanding.requests.compound import alternatives
-from dialogue.understanding.speech.clauses import described
-from dialogue.understanding.speech.sounds import slipped as heard_as
 
 
 def relational(lang: Language) -> frozenset[str]:
@@ -178,174 +168,6 @@ class Referents:
         person = person or antecedent(self.lexicon, self.history, PERSON, speaker=self.speaker)
         return rest, person.id if person is not None else None
 
-    def ground(  # noqa: C901
-        self,
-        words: Words,
-        kinds: frozenset[Kind],
-        role: str,
-        owner: str | None = None,
-        said: Sequence[Words] = (),
-    ) -> Ref:
-        """The entity a role's phrase names; `said` are the request's other phrases, where a person
-        pronoun finds the one person they name ("take Ravi's scarf to him")."""
-        bare_words = [w for w in words if w not in self.said.determiners]
-        something = bare_words[:1] in (["something"], ["anything"])
-        wanted = self.said.purpose(tuple(bare_words[1:])) if something else None
-        if wanted is not None:  # "something to eat": food; "something to cut this with": a cutting tool
-            words = wanted
-        words = _apposed(self.lang, _not_the_other(self.lang, _placed_pronoun(self.lang, words)))
-        content = content_words(self.lang, words)
-        if "person" in kinds and content and set(content) <= self.said.me | {"here"}:
-            return Ref(speaker=True)
-        bare = {w for w in words if w not in {"the", "over", "please"}}
-        if is_pronoun(self.lang, words) or (bare and bare <= {"him", "her", "there"}):
-            kinds = pronoun_kinds(self.lang, words, kinds)
-            if not kinds:  # "go and get him": a person where the request wants a thing
-                return Ref(problem=self._not_understood())
-            found = self.named_in(said) if kinds == PERSON else None
-            found = found or antecedent(self.lexicon, self.history, kinds, place=bare == {"there"},
-                                        speaker=self.speaker)  # fmt: skip
-            if found is None and self._unknown_just_said():
-                # "my case is by the door, bring it over": "it" is what the KB has no name for
-                return Ref(problem=self._not_understood())
-            if found is None:
-                return Ref(
-                    problem=Outcome(
-                        # ("there" is glue)
-                        say(self.lang, "sorry.what_meant", phrase=" ".join(content or sorted(bare))),
-                        clarify=True,
-                        open_role=role,
-                        open_phrase=words,
-                    )
-                )
-            return Ref(entity=found)
-        addressed = "person" in kinds and content and set(content) <= self.said.address
-        if addressed and not self.named_person(words):
-            # "take my calculator to sir": someone the KB knows by name, which one a model may know
-            return Ref(problem=self._not_understood())
-        res = resolve(self.lexicon, words, kinds, owner=owner)
-        if res.ambiguous and any(e.id == self.speaker for e in res.matches):
-            # A speaker says "me", not "the person in the living room": a description is someone else.
-            res = replace(res, matches=tuple(e for e in res.matches if e.id != self.speaker))
-        if res.one is not None:
-            return Ref(entity=res.one)
-        slipped = heard_as(self.lexicon, words, kinds, owner)
-        if slipped is not None:
-            return Ref(entity=slipped, guessed=True)
-        loose = tuple(w for w in words if w not in self.said.relational)
-        if res.ambiguous and loose != tuple(words) and content_words(self.lang, loose):
-            # "the box of plasters back": a position word kept the name from matching
-            one = resolve(self.lexicon, loose, kinds, owner=owner).one
-            if one is not None:
-                return Ref(entity=one)
-        if res.ambiguous:
-            q = clarifying_question(self.lang, self.snapshot, res.matches, self._noun(words, res.matches))
-            return Ref(problem=Outcome(q, clarify=True, open_role=role, open_phrase=words))
-        if loose != tuple(words) and content_words(self.lang, loose):
-            # "the cup on the left": spatial relations are not in the KB; if the rest of the phrase
-            # names one thing, that is it, else ask which one.
-            res = resolve(self.lexicon, loose, kinds, owner=owner)
-            if res.one is not None:
-                return Ref(entity=res.one)
-            if res.ambiguous:
-                q = clarifying_question(self.lang, self.snapshot, res.matches, self._noun(loose, res.matches))
-                return Ref(problem=Outcome(q, clarify=True, open_role=role, open_phrase=loose))
-        titled = self._titled(words, kinds)
-        if titled is not None:
-            return Ref(entity=titled)
-        place = self._put_by(words, kinds, role, owner)
-        if place is not None:
-            return place
-        # "the cup and the apple", "both cups": more than one intent can carry
-        if set(words) & self.said.many:
-            return Ref(problem=Outcome(say(self.lang, "sorry.one_at_a_time"), understood=False))
-        for alternative in alternatives(self.lang, words):  # "an apple or an orange": either will do
-            ref = self.ground(alternative, kinds, role, owner)
-            if ref.entity is not None or ref.speaker:
-                return ref
-        if self.half_known(content) or set(content) <= self.said.relational | self.said.parts:
-            # "to the front", "on the left": whereabouts of nothing named, which a model may know.
-            # Names the KB knows among words it does not ("mr ito back", "the trousers out"): the
-            # phrase was not understood, which is not the same as "there is no such thing".
-            return Ref(problem=self._not_understood())
-        other = resolve(self.lexicon, words, ANYWHERE - kinds).matches if ANYWHERE - kinds else ()
-        if other or ("person" in kinds and words[:1] and words[0] in self.said.possessives):
-            # "go and get Ben from the garden": a person where a thing is wanted, no intent the rules
-            # have, or a place ("pop plot 12 down"): not "I don't see any plot 12"; "my son":
-            # someone the KB knows only by how the speaker is related to them
-            return Ref(problem=self._not_understood())
-        reply = self.unknown(content, kinds, words)
-        if {"one", "ones"} & set(words):
-            # "the ones on the bench": which ones the conversation means, not that no bench is here
-            return Ref(problem=self._not_understood())
-        if self.strange(content) or (kinds == PERSON and not set(words) & self.said.determiners):
-            # "I don't see any bk": only true of a kind the rules know; of a word they do not, it is
-            # a doubt, for a model to read ("bk" is "back" in chat); so is a name no one has here, a
-            # recogniser's spelling of one a model may see in the situation ("chevonne": Siobhan)
-            return Ref(problem=Outcome(reply, understood=False))
-        return Ref(problem=Outcome(reply))
-
-    def _not_understood(self) -> Outcome:
-        return Outcome(say(self.lang, "sorry.not_understood"), understood=False)
-
-    def _titled(self, words: Words, kinds: frozenset[Kind]) -> Entity | None:
-        """ "my reserved book murder on the orient express (on the reservations shelf under jeff)": a
-        thing said by the whole of a label of three words or more with a preposition in it (a title)
-        at the head of the phrase, with words before it the KB cannot check and modifiers after it:
-        that thing, when one thing has the label."""
-        for start in range(len(words)):
-            if words[start] in self.said.modifier_start:
-                return None  # (a title inside a modifier names where, not what)
-            titles = {n.entity: n for n in self.lexicon.names_at(words, start)
-                      if n.source == "label" and len(n.words) > 2
-                      and set(n.words[1:-1]) & self.said.modifier_start}  # fmt: skip
-            if titles:
-                name = next(iter(titles.values()))
-                after = words[start + len(name.words) :]
-                entity = self.snapshot.get(name.entity) if len(titles) == 1 else None
-                modified = not after or after[0] in self.said.modifier_start
-                if entity is None or entity.kind not in kinds or not modified:
-                    return None
-                return entity
-        return None
-
-    def _noun(self, words: Words, candidates: Sequence[Entity]) -> str | None:
-        """The noun said for all the candidates ("a drink"), if the phrase ends its core with one."""
-        core: list[str] = []
-        for w in words:
-            if w in self.said.modifier_start and core:
-                break
-            core.append(w)
-        content = content_words(self.lang, core)
-        if not content:
-            return None
-        noun = singular(content[-1])
-        named = {n.entity for n in self.lexicon.names_at([noun], 0) if len(n.words) == 1}
-        return noun if all(c.id in named for c in candidates) else None
-
-    def _put_by(self, words: Words, kinds: frozenset[Kind], role: str, owner: str | None) -> Ref | None:
-        """ "put the book next to the cup on the shelf" when the cup is not on the shelf: the last
-        place is where to put it (the verb's), the first only says whereabouts on it."""
-        if role != "recipient" or "zone" not in kinds or "person" in kinds:
-            return None
-        at = max((i for i, w in enumerate(words) if w in self.said.support and i > 0), default=None)
-        if at is None or not content_words(self.lang, words[at + 1 :]):
-            return None
-        ref = self.ground(words[at + 1 :], kinds, role, owner)
-        return ref if ref.entity is not None else None
-
-    def _unknown_just_said(self) -> bool:
-        """Whether the words just said before this request (the same utterance's earlier clause)
-        name something with a noun the KB does not know."""
-        last = self.history[-1] if self.history else None
-        if last is None or last.role != "user":
-            return False
-        return any(
-            not self.lexicon.knows(w) and "NOUN" in getAllLemmas(w)
-            for w in tokens(last.text)
-            if w.isalpha() and w not in self.said.function_words | self.said.accounted
-        )
-
     def strange(self, content: Sequence[str]) -> list[str]:
         """The words of a phrase that nothing accounts for: no name or qualifier of the KB, no word of
         English (lemminflect's lexicon), no number or function word ("bk", "thingummy")."""
@@ -356,40 +178,3 @@ class Referents:
         """Whether some words of a phrase are names of the KB and others are words it does not know."""
         unknown = [w for w in content if not self.lexicon.knows(w) and w not in self.said.accounted]
         return 0 < len(unknown) < len(content)
-
-    def unknown(self, content: Sequence[str], kinds: Collection[Kind], words: Sequence[str] = ()) -> str:
-        phrase = " ".join(content)
-        if kinds == PERSON:
-            return say(self.lang, "sorry.no_one_called", name=phrase.title())
-        if "zone" in kinds and "person" not in kinds:
-            return say(self.lang, "sorry.no_place", phrase=phrase)
-        if "person" in kinds and resolve(self.lexicon, content, ANYWHERE).matches == ():
-            return say(self.lang, "sorry.no_one_or_place", name=phrase.title())
-        return say(self.lang, "sorry.none_seen", phrase=said_phrase(self.lang, words) or phrase)
-
-
-def _apposed(lang: Language, words: Words) -> Words:
-    """ "my mug the yellow one": a second phrase of "one" says which the first is ("my yellow mug")."""
-    if "one" not in words and "ones" not in words:
-        return words
-    for j in range(1, len(words)):
-        np_start = lang.words.np_start
-        if words[j] in np_start and words[j - 1] not in np_start and words[j - 1] not in lang.modifier_start:
-            if "one" in words[j:] or "ones" in words[j:]:
-                return described(lang, words[:j], words[j:])
-            return words
-    return words
-
-
-def _placed_pronoun(lang: Language, words: Words) -> Words:
-    """ "it off the shelf", "them from the table": the pronoun; where it is only says where to take it
-    from (the thing is the one the conversation named)."""
-    if len(words) > 2 and words[0] in {"it", "them"} and words[1] in lang.support:
-        return words[:1]
-    return words
-
-
-def _not_the_other(lang: Language, words: Words) -> Words:
-    """ "the box of gloves not the plasters": the thing meant, without the one it is not."""
-    at = next((i for i in range(1, len(words)) if words[i] == "not" and words[i + 1 : i + 2]), None)
-    return words if at is None or not content_words(lang, words[:at]) else words[:at]

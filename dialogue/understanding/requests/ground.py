@@ -1,0 +1,350 @@
+"""A role's phrase grounded in the KB: one entity, the speaker, or the outcome that says why not.
+
+Grounding is an ordered tuple of small steps (`STEPS`, in the manner of CoreNLP's coreference
+sieves): each reads the phrase and either decides (a `Ref`) or leaves it to the next. What no step
+decides is a thing, a place or a person not here (`_none_here`).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Collection, Sequence
+from dataclasses import dataclass, replace
+from functools import cached_property
+
+from lemminflect import getAllLemmas
+
+from dialogue.reference.clarify import question as clarifying_question
+from dialogue.reference.english import Words, tokens
+from dialogue.reference.grounding import Entity, Kind
+from dialogue.reference.lexicon import singular
+from dialogue.reference.resolution import (
+    ANYWHERE,
+    PERSON,
+    Resolution,
+    antecedent,
+    content_words,
+    is_pronoun,
+    pronoun_kinds,
+    resolve,
+    said_phrase,
+)
+from dialogue.understanding.language import Language
+from dialogue.understanding.outcome import Outcome, Ref
+from dialogue.understanding.replies import say
+from dialogue.understanding.requests.compound import alternatives
+from dialogue.understanding.requests.referents import Referents
+from dialogue.understanding.speech.clauses import described
+from dialogue.understanding.speech.sounds import slipped as heard_as
+
+
+@dataclass(frozen=True)
+class Phrase:
+    """A role's phrase as the steps read it, with what they read of it worked out once."""
+
+    refs: Referents
+    words: Words
+    kinds: frozenset[Kind]
+    role: str
+    owner: str | None
+    #: The request's other phrases, where a person pronoun finds the one person they name.
+    said: Sequence[Words]
+
+    @cached_property
+    def content(self) -> list[str]:
+        return content_words(self.refs.lang, self.words)
+
+    @cached_property
+    def resolved(self) -> Resolution:
+        """What the phrase names (a description of several people is not the speaker's)."""
+        res = resolve(self.refs.lexicon, self.words, self.kinds, owner=self.owner)
+        if res.ambiguous and any(e.id == self.refs.speaker for e in res.matches):
+            # A speaker says "me", not "the person in the living room": a description is someone else.
+            res = replace(res, matches=tuple(e for e in res.matches if e.id != self.refs.speaker))
+        return res
+
+    @cached_property
+    def loose(self) -> Words:
+        """The phrase without its spatial or comparative qualifiers, which the KB does not model."""
+        return tuple(w for w in self.words if w not in self.refs.said.relational)
+
+    @property
+    def loosened(self) -> bool:
+        """Whether qualifiers were dropped and something is left."""
+        return self.loose != tuple(self.words) and bool(content_words(self.refs.lang, self.loose))
+
+    def not_understood(self) -> Ref:
+        return Ref(problem=Outcome(say(self.refs.lang, "sorry.not_understood"), understood=False))
+
+    def which(self, matches: Sequence[Entity], words: Words) -> Ref:
+        """The question that asks which of the matches the phrase meant."""
+        refs = self.refs
+        q = clarifying_question(refs.lang, refs.snapshot, matches, _noun(refs, words, matches))
+        return Ref(problem=Outcome(q, clarify=True, open_role=self.role, open_phrase=words))
+
+
+def ground(
+    refs: Referents,
+    words: Words,
+    kinds: frozenset[Kind],
+    role: str,
+    owner: str | None = None,
+    said: Sequence[Words] = (),
+) -> Ref:
+    """The entity a role's phrase names; `said` are the request's other phrases, where a person
+    pronoun finds the one person they name ("take Ravi's scarf to him")."""
+    phrase = Phrase(refs, _prepared(refs, words), kinds, role, owner, said)
+    for step in STEPS:
+        ref = step(phrase)
+        if ref is not None:
+            return ref
+    return _none_here(phrase)
+
+
+def _prepared(refs: Referents, words: Words) -> Words:
+    """The phrase as the steps read it: "something to eat" is food, "it off the shelf" is "it", "the
+    box of gloves not the plasters" the box of gloves, "my mug the yellow one" my yellow mug."""
+    lang = refs.lang
+    bare_words = [w for w in words if w not in refs.said.determiners]
+    something = bare_words[:1] in (["something"], ["anything"])
+    wanted = refs.said.purpose(tuple(bare_words[1:])) if something else None
+    if wanted is not None:  # "something to eat": food; "something to cut this with": a cutting tool
+        words = wanted
+    return _apposed(lang, _not_the_other(lang, _placed_pronoun(lang, words)))
+
+
+# -- the steps, in order -------------------------------------------------------------------------
+def _the_speaker(p: Phrase) -> Ref | None:
+    """ "me", "here" where a person is wanted: the speaker."""
+    if "person" in p.kinds and p.content and set(p.content) <= p.refs.said.me | {"here"}:
+        return Ref(speaker=True)
+    return None
+
+
+def _pronoun(p: Phrase) -> Ref | None:
+    """ "it", "him", "there": the one the request or the conversation names, else which is meant."""
+    refs = p.refs
+    bare = {w for w in p.words if w not in {"the", "over", "please"}}
+    if not (is_pronoun(refs.lang, p.words) or (bare and bare <= {"him", "her", "there"})):
+        return None
+    kinds = pronoun_kinds(refs.lang, p.words, p.kinds)
+    if not kinds:  # "go and get him": a person where the request wants a thing
+        return p.not_understood()
+    found = refs.named_in(p.said) if kinds == PERSON else None
+    there = bare == {"there"}
+    found = found or antecedent(refs.lexicon, refs.history, kinds, place=there, speaker=refs.speaker)
+    if found is None and _unknown_just_said(refs):
+        # "my case is by the door, bring it over": "it" is what the KB has no name for
+        return p.not_understood()
+    if found is None:
+        # ("there" is glue)
+        meant = say(refs.lang, "sorry.what_meant", phrase=" ".join(p.content or sorted(bare)))
+        return Ref(problem=Outcome(meant, clarify=True, open_role=p.role, open_phrase=p.words))
+    return Ref(entity=found)
+
+
+def _addressed(p: Phrase) -> Ref | None:
+    """ "take my calculator to sir": someone the KB knows by name, which one a model may know."""
+    addressed = "person" in p.kinds and p.content and set(p.content) <= p.refs.said.address
+    return p.not_understood() if addressed and not p.refs.named_person(p.words) else None
+
+
+def _named(p: Phrase) -> Ref | None:
+    """The one entity the phrase names."""
+    one = p.resolved.one
+    return Ref(entity=one) if one is not None else None
+
+
+def _slipped(p: Phrase) -> Ref | None:
+    """ "bay mine": the one name a slip of the ear or the keys is of, a guess."""
+    slipped = heard_as(p.refs.lexicon, p.words, p.kinds, p.owner)
+    return Ref(entity=slipped, guessed=True) if slipped is not None else None
+
+
+def _qualified(p: Phrase) -> Ref | None:
+    """ "the box of plasters back": a position word kept the name from matching."""
+    if not (p.resolved.ambiguous and p.loosened):
+        return None
+    one = resolve(p.refs.lexicon, p.loose, p.kinds, owner=p.owner).one
+    return Ref(entity=one) if one is not None else None
+
+
+def _ambiguous(p: Phrase) -> Ref | None:
+    """Several things the phrase names: which one."""
+    return p.which(p.resolved.matches, p.words) if p.resolved.ambiguous else None
+
+
+def _placed(p: Phrase) -> Ref | None:
+    """ "the cup on the left": spatial relations are not in the KB; if the rest of the phrase names
+    one thing, that is it, else which one."""
+    if not p.loosened:
+        return None
+    res = resolve(p.refs.lexicon, p.loose, p.kinds, owner=p.owner)
+    if res.one is not None:
+        return Ref(entity=res.one)
+    return p.which(res.matches, p.loose) if res.ambiguous else None
+
+
+def _titled(p: Phrase) -> Ref | None:
+    """ "my reserved book murder on the orient express (on the reservations shelf under jeff)": a
+    thing said by the whole of a label of three words or more with a preposition in it (a title)
+    at the head of the phrase, with words before it the KB cannot check and modifiers after it:
+    that thing, when one thing has the label."""
+    refs, words = p.refs, p.words
+    for start in range(len(words)):
+        if words[start] in refs.said.modifier_start:
+            return None  # (a title inside a modifier names where, not what)
+        titles = {n.entity: n for n in refs.lexicon.names_at(words, start)
+                  if n.source == "label" and len(n.words) > 2
+                  and set(n.words[1:-1]) & refs.said.modifier_start}  # fmt: skip
+        if titles:
+            name = next(iter(titles.values()))
+            after = words[start + len(name.words) :]
+            entity = refs.snapshot.get(name.entity) if len(titles) == 1 else None
+            modified = not after or after[0] in refs.said.modifier_start
+            if entity is None or entity.kind not in p.kinds or not modified:
+                return None
+            return Ref(entity=entity)
+    return None
+
+
+def _put_by(p: Phrase) -> Ref | None:
+    """ "put the book next to the cup on the shelf" when the cup is not on the shelf: the last
+    place is where to put it (the verb's), the first only says whereabouts on it."""
+    if p.role != "recipient" or "zone" not in p.kinds or "person" in p.kinds:
+        return None
+    words = p.words
+    at = max((i for i, w in enumerate(words) if w in p.refs.said.support and i > 0), default=None)
+    if at is None or not content_words(p.refs.lang, words[at + 1 :]):
+        return None
+    ref = ground(p.refs, words[at + 1 :], p.kinds, p.role, p.owner)
+    return ref if ref.entity is not None else None
+
+
+def _many(p: Phrase) -> Ref | None:
+    """ "the cup and the apple", "both cups": more than one intent can carry."""
+    if set(p.words) & p.refs.said.many:
+        return Ref(problem=Outcome(say(p.refs.lang, "sorry.one_at_a_time"), understood=False))
+    return None
+
+
+def _either(p: Phrase) -> Ref | None:
+    """ "an apple or an orange": either will do."""
+    for alternative in alternatives(p.refs.lang, p.words):
+        ref = ground(p.refs, alternative, p.kinds, p.role, p.owner)
+        if ref.entity is not None or ref.speaker:
+            return ref
+    return None
+
+
+def _whereabouts(p: Phrase) -> Ref | None:
+    """ "to the front", "on the left": whereabouts of nothing named, which a model may know. Names
+    the KB knows among words it does not ("mr ito back", "the trousers out"): the phrase was not
+    understood, which is not the same as "there is no such thing"."""
+    said = p.refs.said
+    if p.refs.half_known(p.content) or set(p.content) <= said.relational | said.parts:
+        return p.not_understood()
+    return None
+
+
+def _another_kind(p: Phrase) -> Ref | None:
+    """ "go and get Ben from the garden": a person where a thing is wanted, no intent the rules have,
+    or a place ("pop plot 12 down"): not "I don't see any plot 12"; "my son": someone the KB knows
+    only by how the speaker is related to them."""
+    others = ANYWHERE - p.kinds
+    other = resolve(p.refs.lexicon, p.words, others).matches if others else ()
+    if other or ("person" in p.kinds and p.words[:1] and p.words[0] in p.refs.said.possessives):
+        return p.not_understood()
+    return None
+
+
+def _ones(p: Phrase) -> Ref | None:
+    """ "the ones on the bench": which ones the conversation means, not that no bench is here."""
+    return p.not_understood() if {"one", "ones"} & set(p.words) else None
+
+
+#: The steps of grounding, in the order they are tried.
+STEPS: tuple[Callable[[Phrase], Ref | None], ...] = (
+    _the_speaker, _pronoun, _addressed, _named, _slipped, _qualified, _ambiguous, _placed, _titled,
+    _put_by, _many, _either, _whereabouts, _another_kind, _ones,
+)  # fmt: skip
+
+
+def _none_here(p: Phrase) -> Ref:
+    """What no step grounded: nothing such is here. "I don't see any bk" is only true of a kind the
+    rules know; of a word they do not, it is a doubt, for a model to read ("bk" is "back" in chat);
+    so is a name no one has here, a recogniser's spelling of one a model may see in the situation
+    ("chevonne": Siobhan)."""
+    refs = p.refs
+    reply = unknown(refs, p.content, p.kinds, p.words)
+    if refs.strange(p.content) or (p.kinds == PERSON and not set(p.words) & refs.said.determiners):
+        return Ref(problem=Outcome(reply, understood=False))
+    return Ref(problem=Outcome(reply))
+
+
+def unknown(
+    refs: Referents, content: Sequence[str], kinds: Collection[Kind], words: Sequence[str] = ()
+) -> str:
+    """The reply that says nothing the phrase names is here."""
+    lang, phrase = refs.lang, " ".join(content)
+    if kinds == PERSON:
+        return say(lang, "sorry.no_one_called", name=phrase.title())
+    if "zone" in kinds and "person" not in kinds:
+        return say(lang, "sorry.no_place", phrase=phrase)
+    if "person" in kinds and resolve(refs.lexicon, content, ANYWHERE).matches == ():
+        return say(lang, "sorry.no_one_or_place", name=phrase.title())
+    return say(lang, "sorry.none_seen", phrase=said_phrase(lang, words) or phrase)
+
+
+def _noun(refs: Referents, words: Words, candidates: Sequence[Entity]) -> str | None:
+    """The noun said for all the candidates ("a drink"), if the phrase ends its core with one."""
+    core: list[str] = []
+    for w in words:
+        if w in refs.said.modifier_start and core:
+            break
+        core.append(w)
+    content = content_words(refs.lang, core)
+    if not content:
+        return None
+    noun = singular(content[-1])
+    named = {n.entity for n in refs.lexicon.names_at([noun], 0) if len(n.words) == 1}
+    return noun if all(c.id in named for c in candidates) else None
+
+
+def _unknown_just_said(refs: Referents) -> bool:
+    """Whether the words just said before this request (the same utterance's earlier clause) name
+    something with a noun the KB does not know."""
+    last = refs.history[-1] if refs.history else None
+    if last is None or last.role != "user":
+        return False
+    return any(
+        not refs.lexicon.knows(w) and "NOUN" in getAllLemmas(w)
+        for w in tokens(last.text)
+        if w.isalpha() and w not in refs.said.function_words | refs.said.accounted
+    )
+
+
+def _apposed(lang: Language, words: Words) -> Words:
+    """ "my mug the yellow one": a second phrase of "one" says which the first is ("my yellow mug")."""
+    if "one" not in words and "ones" not in words:
+        return words
+    for j in range(1, len(words)):
+        np_start = lang.words.np_start
+        if words[j] in np_start and words[j - 1] not in np_start and words[j - 1] not in lang.modifier_start:
+            if "one" in words[j:] or "ones" in words[j:]:
+                return described(lang, words[:j], words[j:])
+            return words
+    return words
+
+
+def _placed_pronoun(lang: Language, words: Words) -> Words:
+    """ "it off the shelf", "them from the table": the pronoun; where it is only says where to take it
+    from (the thing is the one the conversation named)."""
+    if len(words) > 2 and words[0] in {"it", "them"} and words[1] in lang.support:
+        return words[:1]
+    return words
+
+
+def _not_the_other(lang: Language, words: Words) -> Words:
+    """ "the box of gloves not the plasters": the thing meant, without the one it is not."""
+    at = next((i for i in range(1, len(words)) if words[i] == "not" and words[i + 1 : i + 2]), None)
+    return words if at is None or not content_words(lang, words[:at]) else words[:at]
