@@ -35,19 +35,17 @@ from typing import Any, TypeVar, cast
 from pydantic import ValidationError
 
 from dialogue.errors import DialogueError
-from dialogue.understanding.tables import (
-    AskWords,
-    ClosedWords,
-    FollowupWords,
-    FrameTable,
-    Prepositions,
-    QuestionWords,
-    RequestWords,
-    SocialWords,
-    SpeechWords,
-    StatementWords,
-    Table,
-)
+from dialogue.understanding.tables.ask import AskWords
+from dialogue.understanding.tables.base import Table
+from dialogue.understanding.tables.followups import FollowupWords
+from dialogue.understanding.tables.frames import FrameTable
+from dialogue.understanding.tables.prepositions import Prepositions
+from dialogue.understanding.tables.questions import QuestionWords
+from dialogue.understanding.tables.requests import RequestWords
+from dialogue.understanding.tables.social import SocialWords
+from dialogue.understanding.tables.speech import SpeechWords
+from dialogue.understanding.tables.statements import StatementWords
+from dialogue.understanding.tables.words import ClosedWords
 
 T = TypeVar("T")
 

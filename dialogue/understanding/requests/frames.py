@@ -24,7 +24,7 @@ from dialogue.reference.english import Words, phrases, word_set
 from dialogue.understanding.language import Language, LanguageError
 from dialogue.understanding.parsed import Parse
 from dialogue.understanding.requests import constructions as C
-from dialogue.understanding.tables import FrameRow
+from dialogue.understanding.tables.frames import FrameRow
 
 #: How a frame makes the free-form text of its intent from (its language, the verb, the words after it).
 Text = Callable[[Language, str, Words], str | None]

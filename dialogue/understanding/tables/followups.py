@@ -1,0 +1,28 @@
+"""The model of `followups.toml`: the words of answers to the robot's question."""
+
+from __future__ import annotations
+
+from dialogue.understanding.tables.base import (
+    Phrases,
+    Table,
+    WordSet,
+)
+
+
+class FollowupWords(Table):
+    """`followups.toml`: the words of answers to the robot's question."""
+
+    interjections: WordSet = frozenset()
+    one: WordSet = frozenset()
+    offers: Phrases = ()
+    offers_a_thing: Phrases = ()
+    swapped: dict[str, str] = {}
+    confirms: Phrases = ()
+    accepting: WordSet = frozenset()
+    yes: WordSet = frozenset()
+    yes_phrases: Phrases = ()
+    no: dict[str, str] = {}
+    other: WordSet = frozenset()
+    correcting: Phrases = ()
+    softening: WordSet = frozenset()
+    emphasis: WordSet = frozenset()

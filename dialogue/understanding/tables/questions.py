@@ -1,0 +1,53 @@
+"""The model of `questions.toml`: the words of questions about the situation and about what people told."""
+
+from __future__ import annotations
+
+from pydantic import Field
+
+from dialogue.understanding.tables.base import (
+    Phrase,
+    Phrases,
+    PhraseSet,
+    Table,
+    WordSet,
+)
+
+
+class SituationQuestionWords(Table):
+    """`questions.toml` [situation]: the words of questions about the situation."""
+
+    sees: Phrases = ()
+    where_leads: Phrases = ()
+    on_glue: WordSet = frozenset()
+    who_not_a_name: WordSet = frozenset()
+    see_words: WordSet = frozenset()
+    colour_words: WordSet = frozenset()
+    indirect: Phrases = ()
+    be: WordSet = frozenset()
+    someone: WordSet = frozenset()
+    else_: WordSet = Field(default=frozenset(), validation_alias="else")
+    owners: WordSet = frozenset()
+    nearby: WordSet = frozenset()
+    others: WordSet = frozenset()
+    there: WordSet = frozenset()
+    asking_verbs: WordSet = frozenset()
+    asked_subjects: WordSet = frozenset()
+    count_tail: WordSet = frozenset()
+    someone_said: WordSet = frozenset()
+
+
+class ToldQuestionWords(Table):
+    """`questions.toml` [told]: the words of questions about what people told."""
+
+    like: WordSet = frozenset()
+    hate: WordSet = frozenset()
+    who_am_i: PhraseSet = frozenset()
+    tail: WordSet = frozenset()
+    pronoun_of: dict[str, Phrase] = {}
+
+
+class QuestionWords(Table):
+    """`questions.toml`: the words of questions."""
+
+    situation: SituationQuestionWords = SituationQuestionWords()
+    told: ToldQuestionWords = ToldQuestionWords()

@@ -1,0 +1,99 @@
+"""The model of `requests.toml`: the other words of requests."""
+
+from __future__ import annotations
+
+from functools import cached_property
+
+from pydantic import Field
+
+from dialogue.understanding.tables.base import (
+    Phrase,
+    Phrases,
+    PhraseSet,
+    Table,
+    Words,
+    WordSet,
+)
+
+
+class ConstructionWords(Table):
+    """`requests.toml` [constructions]: the words of the small constructions."""
+
+    not_things: WordSet = frozenset()
+    shown: WordSet = frozenset()
+    subjects: WordSet = frozenset()
+    verbs_of_any: WordSet = frozenset()
+
+
+class CompoundWords(Table):
+    """`requests.toml` [compound]: where a compound request is cut."""
+
+    conjunctions: WordSet = frozenset()
+    bare_verbs: WordSet = frozenset()
+    serial: WordSet = frozenset()
+    greeting: PhraseSet = frozenset()
+    object_start: WordSet = frozenset()
+    no_cut_after: WordSet = frozenset()
+    a_bit: WordSet = frozenset()
+
+
+class TerseWords(Table):
+    """`requests.toml` [terse]: terse requests."""
+
+    subjects: WordSet = frozenset()
+
+
+class ReferentWords(Table):
+    """`requests.toml` [referents]: the words a role's phrase is grounded with."""
+
+    relational: WordSet = frozenset()
+    accounted: WordSet = frozenset()
+    every: WordSet = frozenset()
+    some: WordSet = frozenset()
+
+
+class RequestWords(Table):
+    """`requests.toml`: the words of requests."""
+
+    here: Phrases = ()
+    there: Phrases = ()
+    adjuncts: Phrases = ()
+    away: Phrases = ()
+    durations: Phrases = ()
+    while_: WordSet = Field(default=frozenset(), validation_alias="while")
+    time_conjunctions: WordSet = frozenset()
+    their_subjects: WordSet = frozenset()
+    polite_if: Phrases = ()
+    if_modals: WordSet = frozenset()
+    halts: WordSet = frozenset()
+    manner: WordSet = frozenset()
+    wants: Phrases = ()
+    want_verbs: WordSet = frozenset()
+    their_wants: Phrases = ()
+    wishers: WordSet = frozenset()
+    not_wishers: WordSet = frozenset()
+    intensifiers: WordSet = frozenset()
+    done: WordSet = frozenset()
+    goes: Phrases = ()
+    goes_particles: WordSet = frozenset()
+    terse_motion: WordSet = frozenset()
+    everyone: PhraseSet = frozenset()
+    stop_filler: WordSet = frozenset()
+    activity_filler: WordSet = frozenset()
+    results: WordSet = frozenset()
+    no_intent_verbs: WordSet = frozenset()
+    needs: dict[str, str] = {}
+    purposes: dict[str, Phrase] = {}
+    constructions: ConstructionWords = ConstructionWords()
+    compound: CompoundWords = CompoundWords()
+    terse: TerseWords = TerseWords()
+    referents: ReferentWords = ReferentWords()
+
+    @cached_property
+    def all_adjuncts(self) -> Phrases:
+        """Every phrase that says how or when: the adjuncts, the durations, where not to be."""
+        return (*self.adjuncts, *self.durations, *self.away)
+
+    def purpose(self, words: Words) -> Words | None:
+        """The kind of thing "to eat", "to cut this with" (the words after "something") name, if any."""
+        return self.purposes.get(words[1]) if len(words) > 1 and words[0] == "to" else None

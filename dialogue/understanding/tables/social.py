@@ -1,0 +1,24 @@
+"""The model of `social.toml`: greetings and what is said with them."""
+
+from __future__ import annotations
+
+from functools import cached_property
+
+from dialogue.understanding.tables.base import (
+    Phrases,
+    PhraseSet,
+    Table,
+)
+
+
+class SocialWords(Table):
+    """`social.toml`: greetings and what is said with them."""
+
+    greetings: Phrases = ()
+    attention: PhraseSet = frozenset()
+    social: PhraseSet = frozenset()
+
+    @cached_property
+    def greetings_longest_first(self) -> Phrases:
+        """The greetings, longest first: "hello there" before "hello"."""
+        return tuple(sorted(self.greetings, key=len, reverse=True))

@@ -1,0 +1,55 @@
+"""The model of `statements.toml`: the words of statements."""
+
+from __future__ import annotations
+
+import re
+
+from dialogue.understanding.tables.base import (
+    Pattern,
+    Phrase,
+    Phrases,
+    PhraseSet,
+    Table,
+    WordSet,
+)
+
+
+class LikingWords(Table):
+    """`statements.toml` [likings]: "I like tea", "I'm fond of tea", "tea is my favourite"."""
+
+    intensifiers: WordSet = frozenset()
+    like: WordSet = frozenset()
+    hate: WordSet = frozenset()
+    favourite: WordSet = frozenset()
+    over: WordSet = frozenset()
+    happenings: WordSet = frozenset()
+    appraised: PhraseSet = frozenset()
+    clause: WordSet = frozenset()
+    leads: dict[str, str] = {}
+
+
+class NameWords(Table):
+    """`statements.toml` [names]: which words can be a person's name."""
+
+    not_names: WordSet = frozenset()
+
+
+class StatementWords(Table):
+    """`statements.toml`: the words of statements."""
+
+    clauses: Pattern = re.compile(r"(?!)")
+    leads: WordSet = frozenset()
+    by_the_way: Phrase = ()
+    asking: WordSet = frozenset()
+    friends: WordSet = frozenset()
+    put: WordSet = frozenset()
+    be: WordSet = frozenset()
+    polite: PhraseSet = frozenset()
+    no: PhraseSet = frozenset()
+    name_asked: tuple[str, ...] = ()
+    name_leads_surely: Phrases = ()
+    name_leads: Phrases = ()
+    pointed: PhraseSet = frozenset()
+    greeting_topics: Phrases = ()
+    likings: LikingWords = LikingWords()
+    names: NameWords = NameWords()
