@@ -14,6 +14,7 @@ from dialogue.reference.lexicon import Lexicon, LexiconCache
 from dialogue.understanding.language import Language
 from dialogue.understanding.outcome import Outcome
 from dialogue.understanding.readers import Heard, Turn, interpreted, read
+from dialogue.understanding.said import Said
 
 #: The rules' name, the `backend` of the turns they answer.
 RULES = "rules"
@@ -47,7 +48,8 @@ class RulesModel(ChatModel):
 
     def _turn(self, context: TurnContext) -> Turn:
         lexicon = self._lexicon(context)
-        return Turn(context.text, lexicon, context.speaker, tuple(context.history), context.robot_name)
+        said = Said(lexicon.lang, context.text)  # read once, by every reader
+        return Turn(said, lexicon, context.speaker, tuple(context.history), context.robot_name)
 
     def _lexicon(self, context: TurnContext) -> Lexicon:
         lexicon = context.lexicon

@@ -38,6 +38,7 @@ from dialogue.understanding.requests.compound import Part, conjuncts, coordinate
 from dialogue.understanding.requests.ground import ground
 from dialogue.understanding.requests.referents import Referents, relational
 from dialogue.understanding.requests.terse import terse
+from dialogue.understanding.said import Said, Text
 from dialogue.understanding.speech.clauses import clauses, described, description
 from dialogue.understanding.speech.letters import joined
 from dialogue.understanding.speech.plain import expanded
@@ -74,44 +75,48 @@ class Interpreter:
         """The same reader with another conversation before the words it reads."""
         return Interpreter(self.lexicon, self.speaker, history, self.robot_name)
 
-    def interpret(self, text: str) -> Outcome:
-        spelled = corrected(joined(text, self.lexicon), self.lexicon)  # "the s u v brochure"
-        clean = cleaned(self.lang, spelled.text)
+    def interpret(self, text: Text) -> Outcome:
+        said = Said.read(self.lang, text)
+        letters = said.rewritten(joined(said, self.lexicon))  # "the s u v brochure"
+        spelled = corrected(letters, self.lexicon)
+        heard = letters.rewritten(spelled.text, spelled.corrections)
+        clean = cleaned(self.lang, heard)
         reader = self
-        if clean.taken_back and parse(self.lang, clean.taken_back, self.robot_name).act != "unknown":
+        taken_back = heard.of(clean.taken_back) if clean.taken_back else None
+        if taken_back is not None and parse(self.lang, taken_back, self.robot_name).act != "unknown":
             # "hand Ravi the uh no wait hand him the stapler": what was taken back is context
             context = (*self.history, Utterance(self.speaker, clean.taken_back))
             reader = Interpreter(self.lexicon, self.speaker, context, self.robot_name)
-        outcome = reader._read(clean.text)
-        if not spelled.corrections:
+        outcome = reader._read(heard.of(clean.text))
+        if not heard.taken:
             return outcome
         # A corrected slip makes the whole turn less sure; a name read from a slip is a guess.
         steps = outcome.steps()
         unsure = [replace(o, confidence=min(o.confidence, SPELT_CONFIDENCE), more=()) for o in steps]
-        return replace(unsure[0], more=tuple(unsure[1:]), guessed=spelled.guessed or outcome.guesses)
+        return replace(unsure[0], more=tuple(unsure[1:]), guessed=heard.guessed or outcome.guesses)
 
-    def _read(self, text: str) -> Outcome:
-        addressed = self._to_someone_else(text)
+    def _read(self, heard: Said) -> Outcome:
+        addressed = self._to_someone_else(heard)
         if addressed is not None:  # "lily put your book on the shelf": Lily is asked, not the robot
             return Outcome(say(self.lang, "request.for_someone_else", name=addressed))
-        if text.lower().startswith("if "):  # the condition covers every part ("if Ana comes, ...")
-            whole = parse(self.lang, text, self.robot_name)
+        if heard.text.lower().startswith("if "):  # the condition covers every part ("if Ana comes, ...")
+            whole = parse(self.lang, heard, self.robot_name)
             if whole.act == "conditional":
                 return self.act(whole)
-        said_terse = self._terse(text)
+        said_terse = self._terse(heard)
         if said_terse is not None:
             return said_terse
-        parts = conjuncts(self.lang, text)
+        parts = conjuncts(self.lang, heard)
         if parts:
-            combined = self._compound(parts)
+            combined = self._compound(heard, parts)
             if combined is not None:
                 return combined
-        return self._single(text, terse_read=False)  # (tried above, before the parts)
+        return self._single(heard, terse_read=False)  # (tried above, before the parts)
 
-    def _to_someone_else(self, text: str) -> str | None:
+    def _to_someone_else(self, heard: Said) -> str | None:
         """The name of the person present a request is said to, when it starts with their name and
         speaks of their things ("your book"); None when it may be the robot's."""
-        words = tokens(text)
+        words = list(heard.tokens)
         if len(words) < 3 or "your" not in words[1:]:
             return None
         person = resolve(self.lexicon, words[:1], PERSON).one
@@ -119,7 +124,7 @@ class Interpreter:
             return None
         return person.name
 
-    def _compound(self, parts: Sequence[Part]) -> Outcome | None:
+    def _compound(self, heard: Said, parts: Sequence[Part]) -> Outcome | None:
         """ "go to the kitchen and take the plate": every part read in order, each with the parts
         before it as context for its pronouns ("take the book and put it in the oven")."""
         done: list[Outcome] = []
@@ -134,7 +139,7 @@ class Interpreter:
             if part.aside and n < len(parts) - 1:
                 aside = True  # "move out of the way and go to the door": the going does it
                 continue
-            outcome = reader._single(part.text)
+            outcome = reader._single(heard.of(part.text))
             if outcome.intent is not None and done and (outcome.intent, outcome.roles) == (
                 done[-1].intent, done[-1].roles):
                 continue  # "go to the shed and wait there": one move
@@ -155,37 +160,38 @@ class Interpreter:
         acks += [say(self.lang, "request.cannot", action=c) for c in cannot]
         return replace(done[0], reply=" ".join(acks), more=tuple(done[1:]))
 
-    def _terse(self, text: str) -> Outcome | None:
+    def _terse(self, heard: Said) -> Outcome | None:
         """ "Orchid put on counter", "Go workstand", "dining room, now please": the request said in
         the grammar's order, when that is one (what was said is context: "Edna cardigan, put on
         her chair" is Edna's chair)."""
-        said = terse(text, self.lexicon, self.robot_name)
+        said = terse(heard, self.lexicon, self.robot_name)
         if said is None:
             return None
-        outcome = self.within((*self.history, Utterance(self.speaker, text)))._single(said, terse_read=False)
+        context = (*self.history, Utterance(self.speaker, heard.text))
+        outcome = self.within(context)._single(heard.of(said), terse_read=False)
         return outcome if outcome.intent is not None else None
 
-    def _single(self, text: str, terse_read: bool = True) -> Outcome:
-        if terse_read and (outcome := self._terse(text)) is not None:
+    def _single(self, heard: Said, terse_read: bool = True) -> Outcome:
+        if terse_read and (outcome := self._terse(heard)) is not None:
             return outcome
-        p = parse(self.lang, text, self.robot_name)
+        p = parse(self.lang, heard, self.robot_name)
         # "go on then" to "Shall I fetch it?"
-        if p.act != "unknown" and accepts(self.lang, expanded(self.lang, text)):
-            accepted = follow_up(self, p, text)
+        if p.act != "unknown" and accepts(self.lang, expanded(self.lang, heard)):
+            accepted = follow_up(self, p, heard)
             if accepted is not None:
                 return accepted
         not_understood = Outcome(say(self.lang, "sorry.not_understood"), understood=False)
         # No act: an answer to the robot's question, or "sorry, I meant screen two" (`FOLLOW_UPS`)
-        outcome = followed_up(self, p, text) or not_understood if p.act == "unknown" else self.act(p)
+        outcome = followed_up(self, p, heard) or not_understood if p.act == "unknown" else self.act(p)
         ungrounded = p.act == "command" and outcome.intent is None and not outcome.clarify
         failed = not outcome.understood or ungrounded
-        return self._clause_by_clause(text, outcome) if failed else outcome
+        return self._clause_by_clause(heard, outcome) if failed else outcome
 
-    def _clause_by_clause(self, text: str, whole: Outcome) -> Outcome:
+    def _clause_by_clause(self, heard: Said, whole: Outcome) -> Outcome:
         """ "The denim jacket. Pick it up." or "Felix wants the remote, can you hand it to him?": when
         the whole utterance is not one request, the last clause that is one is read with the clauses
         before it as context for its pronouns."""
-        said = clauses(self.lang, text)
+        said = clauses(self.lang, heard)
         if len(said) < 2:
             return whole
         question: Outcome | None = None
@@ -193,12 +199,12 @@ class Interpreter:
         for i in range(len(said) - 1, -1, -1):
             context = tuple(Utterance(self.speaker, c) for c in said[:i])
             reader = Interpreter(self.lexicon, self.speaker, (*self.history, *context), self.robot_name)
-            p = parse(self.lang, said[i], self.robot_name)
+            p = parse(self.lang, heard.of(said[i]), self.robot_name)
             if p.act in {"command", "question"}:
                 # "fetch my bag its the blue one": what the next clause says of the thing asked for
                 more = None
                 if i + 1 < len(said) and p.slots.get("object"):
-                    more = description(self.lang, said[i + 1])
+                    more = description(self.lang, heard.of(said[i + 1]))
                 with_more = {"object": described(self.lang, p.slots["object"], more)} if more else None
                 outcome = reader.act(p, with_more)
                 if outcome.intent is not None:

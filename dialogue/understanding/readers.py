@@ -13,8 +13,10 @@ Each reader says what it reads and returns what it heard, or None when the turn 
                        (dialogue.understanding.followups.request `FOLLOW_UPS`): an answer to the
                        robot's question about a request, a correction, the same request again
 
-The ask role reads an answer to its form with its own reader (dialogue.understanding.followups.form,
-`FORM_ANSWERS`). What the rules answer goes through the same validation as a model's answer.
+Every reader reads the same `Said` (dialogue.understanding.said): the turn's words, tokenised and
+normalised once. The ask role reads an answer to its form with its own reader,
+dialogue.understanding.followups.form (`read_answer`: each clause to one field). What the rules
+answer goes through the same validation as a model's answer.
 """
 
 from __future__ import annotations
@@ -32,15 +34,17 @@ from dialogue.understanding.interpret import Interpreter
 from dialogue.understanding.outcome import Outcome
 from dialogue.understanding.questions.told import Asking
 from dialogue.understanding.replies import say
+from dialogue.understanding.said import Said
 from dialogue.understanding.statements.clause import Told
 from dialogue.understanding.statements.grammar import Statements
 
 
 @dataclass(frozen=True)
 class Turn:
-    """What the readers read: the words said, by whom, after what, against which KB names."""
+    """What the readers read: the words said (read once, dialogue.understanding.said), by whom,
+    after what, against which KB names."""
 
-    text: str
+    said: Said
     lexicon: Lexicon
     speaker: str
     history: tuple[Utterance, ...] = ()
@@ -85,16 +89,16 @@ def _told(turn: Turn, told: Told | None) -> Heard | None:
 
 
 def _told_questions(turn: Turn) -> Heard | None:
-    asked = Asking(turn.lexicon, turn.speaker, turn.history).read(turn.text)
+    asked = Asking(turn.lexicon, turn.speaker, turn.history).read(turn.said)
     return Heard(ChatbotResponse(facts=asked), told=True) if asked is not None else None
 
 
 def _statement_answers(turn: Turn) -> Heard | None:
-    return _told(turn, follow_up(turn.text, turn.lexicon, turn.speaker, turn.history))
+    return _told(turn, follow_up(turn.said, turn.lexicon, turn.speaker, turn.history))
 
 
 def _statements(turn: Turn) -> Heard | None:
-    return _told(turn, Statements(turn.lexicon, turn.speaker, turn.history).read(turn.text))
+    return _told(turn, Statements(turn.lexicon, turn.speaker, turn.history).read(turn.said))
 
 
 def _wish(outcome: Outcome) -> UserIntent:
@@ -116,7 +120,7 @@ def answer_of(outcome: Outcome) -> ChatbotResponse:
 
 def interpreted(turn: Turn) -> Outcome:
     """The interpreter's reading of the turn (dialogue.understanding.interpret)."""
-    return Interpreter(turn.lexicon, turn.speaker, turn.history, turn.robot_name).interpret(turn.text)
+    return Interpreter(turn.lexicon, turn.speaker, turn.history, turn.robot_name).interpret(turn.said)
 
 
 def _requests(turn: Turn) -> Heard:

@@ -31,6 +31,7 @@ from dialogue.ask.form import AskForm, Clarifying, FormState
 from dialogue.reference.english import tokens
 from dialogue.reference.grounding import Entity
 from dialogue.reference.lexicon import Lexicon
+from dialogue.understanding.said import Said, Text
 
 
 @dataclass
@@ -91,14 +92,17 @@ def _choose(
     return None
 
 
-def read_answer(form: AskForm, state: FormState, text: str, lexicon: Lexicon, speaker: str) -> Reading:
+def read_answer(form: AskForm, state: FormState, answer: Text, lexicon: Lexicon, speaker: str) -> Reading:
+    """What an answer to the form fills, corrects, refuses or gives up, and whether it cancels."""
     reading = Reading()
+    heard = Said.read(lexicon.lang, answer)
+    text = heard.text
     said = lexicon.lang.ask.answers  # (cancel, skip, corrections, where an answer is cut)
     if said.cancel.search(text):
         reading.cancel = True
         reading.notes.append(f"cancelled: {text!r}")
         return reading
-    words = tokens(text)
+    words = list(heard.tokens)
     asked = form.field(state.asked) if state.asked in form.names else None
     # "no, I'm 34" corrects; a bare "no" to a yes/no question answers it.
     correcting = (

@@ -25,6 +25,7 @@ from dialogue.understanding.outcome import Outcome
 from dialogue.understanding.parsed import Parse
 from dialogue.understanding.requests.commands import parse
 from dialogue.understanding.requests.constructions import where_it_goes
+from dialogue.understanding.said import Said
 from dialogue.understanding.speech.clauses import clauses, described, description
 from dialogue.understanding.speech.plain import expanded, plain, strip_politeness
 
@@ -42,7 +43,7 @@ def _spans(words: Words, n: int) -> set[Words]:
     return {words[i : i + n] for i in range(len(words) - n + 1)}
 
 
-def follow_up(reader: Reader, p: Parse, text: str) -> Outcome | None:
+def follow_up(reader: Reader, p: Parse, heard: Said) -> Outcome | None:
     """What the words answer of the robot's last question, or None when they answer none."""
     spoken = [i for i, u in enumerate(reader.history) if u.role != "system"]
     if not spoken:
@@ -51,7 +52,7 @@ def follow_up(reader: Reader, p: Parse, text: str) -> Outcome | None:
     if question.role != "assistant" or not question.text.rstrip().endswith("?"):
         return None
     lang = reader.lexicon.lang
-    answer = [lang.followups.no.get(w, w) for w in expanded(lang, text)]
+    answer = [lang.followups.no.get(w, w) for w in expanded(lang, heard)]
     said = [w for w in answer if w != "no"]
     accepted = offer(reader, question, said)
     if accepted is not None:
@@ -69,7 +70,7 @@ def follow_up(reader: Reader, p: Parse, text: str) -> Outcome | None:
     confirmed = confirmation(earlier, pending, first, question, answer)
     if confirmed is not None:
         return _sure(confirmed)
-    fragment, more = _fragment(lang, p, text)
+    fragment, more = _fragment(lang, p, heard)
     if not fragment:
         return None
     merged = _merged(lang, fragment, first)
@@ -77,7 +78,7 @@ def follow_up(reader: Reader, p: Parse, text: str) -> Outcome | None:
         merged = described(lang, merged, more)
     role = first.open_role
     if role == "object" and pending.intent in FREE_FORM_OBJECT:  # "What should I say?" "Dinner is ready"
-        pending = replace(pending, text=text.strip().rstrip(".!?").strip() or None)
+        pending = replace(pending, text=heard.text.strip().rstrip(".!?").strip() or None)
     outcome = earlier.act(pending, {role: merged})
     if outcome.intent is None and not outcome.clarify:
         return None
@@ -89,12 +90,12 @@ def _sure(outcome: Outcome) -> Outcome:
     return replace(outcome, confidence=0.8, more=())
 
 
-def _fragment(lang: Language, p: Parse, text: str) -> tuple[Words, Words | None]:
+def _fragment(lang: Language, p: Parse, heard: Said) -> tuple[Words, Words | None]:
     """The words of the answer ("mine, obviously": whose it is, without the interjection), and what
     a clause after it says of the thing ("..., it's Carla's"), if one does."""
-    said = clauses(lang, text)
-    more = description(lang, said[1]) if len(said) == 2 else None
-    words = tokens(said[0]) if more is not None else p.words
+    said = clauses(lang, heard)
+    more = description(lang, heard.of(said[1])) if len(said) == 2 else None
+    words = heard.of(said[0]).tokens if more is not None else p.words
     owners, interjections = lang.words.owners, lang.followups.interjections
     return tuple(owners.get(w, w) for w in words if w not in interjections), more
 
@@ -171,13 +172,14 @@ def confirmation(earlier: Reader, pending: Parse, first: Outcome, question: Utte
 
 
 
-def correction(reader: Reader, p: Parse, text: str) -> Outcome | None:
+def correction(reader: Reader, p: Parse, heard: Said) -> Outcome | None:
     """ "sorry, I meant screen two" after "take the booster seat to screen 1": the last request again,
     with the phrase of the role that names the same kind of thing (a place for a place, a thing for
     a thing) replaced."""
     lang = reader.lexicon.lang
-    parts = [strip_politeness(lang, [w for w in plain(lang, part) if w not in lang.followups.softening])
-             for part in text.split(",")]  # fmt: skip
+    softening = lang.followups.softening
+    parts = [strip_politeness(lang, [w for w in plain(lang, heard.of(part)) if w not in softening])
+             for part in heard.text.split(",")]  # fmt: skip
     words = [w for part in parts for w in part]
     lead = next((c for c in lang.followups.correcting if tuple(words[: len(c)]) == c), None)
     fragment = tuple(words[len(lead) :]) if lead is not None else _not_that(lang, tuple(words))
@@ -262,12 +264,12 @@ def _instead(lang: Language, fragment: Words, said: Words) -> Words:
     return tuple(x for w in fragment for x in (head if w in lang.followups.one and head else [w]))
 
 
-def continuation(reader: Reader, p: Parse, text: str) -> Outcome | None:
+def continuation(reader: Reader, p: Parse, heard: Said) -> Outcome | None:
     """ "and the soup goes to table two", "and the soup to table two" after "take the steak to table
     four": the request just made (a bringing) again, for another thing and place. Alone, "X goes to
     Y" says no request."""
     lang = reader.lexicon.lang
-    words = tuple(strip_politeness(lang, plain(lang, text)))
+    words = tuple(strip_politeness(lang, plain(lang, heard)))
     found = where_it_goes(lang, words)
     if found is None and "to" in words[1:-1]:  # said without its verb
         at = words.index("to")
@@ -289,13 +291,15 @@ def continuation(reader: Reader, p: Parse, text: str) -> Outcome | None:
 
 #: What an utterance in which the grammar reads no act may be, in the order tried: an answer to the
 #: robot's question, a correction of the request just made, the same request for another thing.
-FOLLOW_UPS: tuple[Callable[[Reader, Parse, str], Outcome | None], ...] = (follow_up, correction, continuation)
+FOLLOW_UPS: tuple[Callable[[Reader, Parse, Said], Outcome | None], ...] = (
+    follow_up, correction, continuation,
+)  # fmt: skip
 
 
-def followed_up(reader: Reader, p: Parse, text: str) -> Outcome | None:
+def followed_up(reader: Reader, p: Parse, heard: Said) -> Outcome | None:
     """What the first follow-up that reads the utterance made of it (`FOLLOW_UPS`)."""
     for read in FOLLOW_UPS:
-        outcome = read(reader, p, text)
+        outcome = read(reader, p, heard)
         if outcome is not None:
             return outcome
     return None

@@ -12,11 +12,12 @@ from collections.abc import Sequence
 
 from dialogue.history import Utterance
 from dialogue.reference.lexicon import Lexicon
+from dialogue.understanding.said import Text
 from dialogue.understanding.speech.repair import normalise
 from dialogue.understanding.statements.grammar import Statements, Told, Words
 
 
-def follow_up(text: str, lexicon: Lexicon, speaker: str, history: Sequence[Utterance]) -> Told | None:
+def follow_up(text: Text, lexicon: Lexicon, speaker: str, history: Sequence[Utterance]) -> Told | None:
     """The statement the robot asked about, completed by `text`; None when `text` answers no
     question of the robot's about a statement (or does not settle it)."""
     spoken = [i for i, u in enumerate(history) if u.role != "system"]

@@ -18,6 +18,7 @@ from dialogue.history import Utterance
 from dialogue.reference.lexicon import Lexicon
 from dialogue.reference.resolution import PERSON, antecedent, content_words, resolve
 from dialogue.schema import FactClaim
+from dialogue.understanding.said import Text
 from dialogue.understanding.speech.repair import normalise
 
 Words = tuple[str, ...]
@@ -34,7 +35,7 @@ class Asking:
         self.speaker = speaker
         self.history = tuple(history)
 
-    def read(self, text: str) -> list[FactClaim] | None:
+    def read(self, text: Text) -> list[FactClaim] | None:
         w = tuple(normalise(self.lang, text))
         while w and w[-1] in self.said.tail:
             w = w[:-1]

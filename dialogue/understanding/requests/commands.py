@@ -14,8 +14,9 @@ from dialogue.reference.english import Words
 from dialogue.understanding.language import Language
 from dialogue.understanding.parsed import Act, Parse
 from dialogue.understanding.questions.grammar import question as _question
-from dialogue.understanding.requests.constructions import Said
+from dialogue.understanding.requests.constructions import Framed
 from dialogue.understanding.requests.frames import Row, Special, constructions, verb_index
+from dialogue.understanding.said import Said, Text
 from dialogue.understanding.speech.plain import starts, strip_politeness
 from dialogue.understanding.speech.repair import normalise, strip_vocative, verb_lemma
 
@@ -65,9 +66,11 @@ class _Grammar:
         self.constructions: tuple[Special, ...] = constructions(lang)
 
 
-def parse(lang: Language, text: str, robot_name: str = "") -> Parse:
+def parse(lang: Language, said: Text, robot_name: str = "") -> Parse:
+    """What the grammar reads in the words: their act and, for a request, its frame's roles."""
     g = lang.derived(_Grammar)
-    words = strip_vocative(lang, strip_politeness(lang, normalise(lang, text), robot_name), robot_name)
+    text = said.text if isinstance(said, Said) else said
+    words = strip_vocative(lang, strip_politeness(lang, normalise(lang, said), robot_name), robot_name)
     if not words:
         return Parse("unknown", words=())
     words[0] = verb_lemma(lang, words[0])  # "(would you mind) picking up the cup"
@@ -126,7 +129,7 @@ def command(lang: Language, original: str, words: list[str]) -> Parse:
     """The request the words make: the first construction or verb frame that fits them."""
     g = lang.derived(_Grammar)
     w = _joined(g, words)
-    said = Said(lang, "", w, w, original)
+    said = Framed(lang, "", w, w, original)
     for construction in g.constructions:
         found = construction(said)
         if found is not None:
@@ -138,7 +141,7 @@ def command(lang: Language, original: str, words: list[str]) -> Parse:
             continue
         # what to say is said as it was ("out of paper"), the roles of a frame read joined
         rest = tuple(words[len(verb) :]) if row.frame.special is not None else w[len(verb) :]
-        found = _fit(row, Said(lang, " ".join(verb), rest, w, original))
+        found = _fit(row, Framed(lang, " ".join(verb), rest, w, original))
         if found is not None:
             return found
     return Parse("unknown", words=w)
@@ -157,7 +160,7 @@ def _joined(g: _Grammar, words: list[str]) -> Words:
     return tuple(out)
 
 
-def _fit(row: Row, said: Said) -> Parse | None:  # noqa: C901
+def _fit(row: Row, said: Framed) -> Parse | None:  # noqa: C901
     """The row's reading of what follows the verb, or None when the row does not fit it."""
     frame, rest = row.frame, said.rest
     g = said.lang.derived(_Grammar)

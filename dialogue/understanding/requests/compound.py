@@ -13,6 +13,7 @@ from dialogue.reference.english import Words, spans
 from dialogue.reference.resolution import content_words
 from dialogue.understanding.language import Language
 from dialogue.understanding.requests.frames import verbs
+from dialogue.understanding.said import Said, Text
 from dialogue.understanding.speech.plain import QUOTED, starts, strip_politeness
 from dialogue.understanding.speech.repair import asked_verb, normalise, strip_vocative
 
@@ -59,7 +60,7 @@ class Part:
     aside: bool = False
 
 
-def _verb(lang: Language, text: str) -> str | None:
+def _verb(lang: Language, text: Text) -> str | None:
     words = strip_politeness(lang, normalise(lang, text))
     for greeting in lang.social.greetings_longest_first:  # "hey robot take the book"
         if starts(words, greeting) and len(words) > len(greeting):
@@ -71,8 +72,10 @@ def _verb(lang: Language, text: str) -> str | None:
     return asked_verb(lang, words[0])
 
 
-def conjuncts(lang: Language, text: str) -> list[Part]:  # noqa: C901
+def conjuncts(lang: Language, said: Text) -> list[Part]:  # noqa: C901
     """The commands of a compound request in order, or [] when the text is one request."""
+    heard = Said.read(lang, said)
+    text = heard.text
     if QUOTED.search(text):  # "say 'stop and wait' to Tom": the quote is one text
         return []
     c = lang.derived(_Words)
@@ -110,7 +113,7 @@ def conjuncts(lang: Language, text: str) -> list[Part]:  # noqa: C901
         if s >= e:
             continue
         piece = text[toks[s][1] : toks[e - 1][2]]
-        if parts and _verb(lang, piece) is None:  # "the cereals and the milk": not a new command
+        if parts and _verb(lang, heard.of(piece)) is None:  # "the cereals and the milk": not a new command
             parts[-1] = (parts[-1][0], e)
         else:
             parts.append((s, e))
@@ -119,15 +122,15 @@ def conjuncts(lang: Language, text: str) -> list[Part]:  # noqa: C901
     out = []
     for s, e in parts:
         piece = text[toks[s][1] : toks[e - 1][2]].strip(" ,;")
-        verb = _verb(lang, piece)
+        verb = _verb(lang, heard.of(piece))
         # ("go to the x-ray room and get it ready": no intent says the getting ready)
-        said = normalise(lang, piece)
-        result = verb is not None and bool(said) and said[-1] in c.results
-        out.append(Part(piece, verb, verb in c.no_intent_verbs or result, _away(lang, piece)))
+        words = normalise(lang, heard.of(piece))
+        result = verb is not None and bool(words) and words[-1] in c.results
+        out.append(Part(piece, verb, verb in c.no_intent_verbs or result, _away(lang, heard.of(piece))))
     return out
 
 
-def _away(lang: Language, text: str) -> bool:
+def _away(lang: Language, text: Text) -> bool:
     """Whether a request only says where not to be ("get out of the way", "move out of my way")."""
     c = lang.derived(_Words)
     words = strip_vocative(lang, strip_politeness(lang, normalise(lang, text)))

@@ -1,9 +1,9 @@
 """The few requests a frame row cannot say, as small functions the frame table refers to.
 
-Each takes what was said (`Said`) and returns a `Parse`, or None when it does not apply (the grammar
-then tries the next row). Quoted speech, needs ("I'm parched"), wishes ("I want X", "I want to go to
-X"), "help me get to X", "show me the cup" (a question), "greet everyone", "do you like..." (a
-yes/no question, not an activity).
+Each takes the words as a frame reads them (`Framed`) and returns a `Parse`, or None when it does not
+apply (the grammar then tries the next row). Quoted speech, needs ("I'm parched"), wishes ("I want
+X", "I want to go to X"), "help me get to X", "show me the cup" (a question), "greet everyone", "do
+you like..." (a yes/no question, not an activity).
 """
 
 from __future__ import annotations
@@ -55,7 +55,9 @@ class _Words:
 
 
 @dataclass(frozen=True)
-class Said:
+class Framed:
+    """The words as a frame row reads them: its verb phrase and the words after it."""
+
     #: The language the words are read in.
     lang: Language
     #: The verb phrase as the table has it ("pick", "get hold of"; "" before any verb is read).
@@ -79,7 +81,7 @@ def _without_adjunct(c: _Words, words: Words) -> Words:
 
 
 # -- before any verb: what the whole utterance says ----------------------------------------------
-def need(said: Said) -> Parse | None:
+def need(said: Framed) -> Parse | None:
     """ "I'm really parched", "we are starving": something of the class that meets the need."""
     c = said.lang.derived(_Words)
     w = said.words
@@ -90,7 +92,7 @@ def need(said: Said) -> Parse | None:
     return said.command(I.BRING_OBJECT, object=(wanted,), recipient=("me",)) if wanted else None
 
 
-def going(said: Said) -> Parse | None:
+def going(said: Framed) -> Parse | None:
     """ "I want to go to X", "Ellen needs to get to X": take them there."""
     c = said.lang.derived(_Words)
     w = said.words
@@ -105,7 +107,7 @@ def going(said: Said) -> Parse | None:
     return None
 
 
-def wanting(said: Said) -> Parse | None:
+def wanting(said: Framed) -> Parse | None:
     """ "I would like the apple", "can I have a tea": bring it to the speaker."""
     c = said.lang.derived(_Words)
     for lead in c.wants:
@@ -116,7 +118,7 @@ def wanting(said: Said) -> Parse | None:
     return None
 
 
-def their_wish(said: Said) -> Parse | None:
+def their_wish(said: Framed) -> Parse | None:
     """ "Ahmed would like the photo album", "he needs his glasses": bring it to them."""
     c = said.lang.derived(_Words)
     w = said.words
@@ -138,7 +140,7 @@ def _pronoun(who: Words) -> Words:
     return {"he": ("him",), "she": ("her",), "they": ("them",)}.get(who[0], who) if len(who) == 1 else who
 
 
-def belonging(said: Said) -> Parse | None:
+def belonging(said: Framed) -> Parse | None:
     """ "the butter goes back in the fridge", "this belongs on the shelf": put it there."""
     c = said.lang.derived(_Words)
     found = where_it_goes(said.lang, said.words)
@@ -167,7 +169,7 @@ def where_it_goes(lang: Language, w: Words) -> tuple[Words, Words, Words] | None
     return None
 
 
-def enough(said: Said) -> Parse | None:
+def enough(said: Framed) -> Parse | None:
     """ "that is enough (now)": stop."""
     if said.words[:2] == ("that", "is") and "enough" in said.words:
         return said.command(I.STOP_ACTIVITY)
@@ -175,7 +177,7 @@ def enough(said: Said) -> Parse | None:
 
 
 # -- after a verb ---------------------------------------------------------------------------------
-def a_hand(said: Said) -> Parse | None:
+def a_hand(said: Framed) -> Parse | None:
     """ "give George a hand getting to the courtyard" is helping him get there."""
     rest = said.rest
     at = next((i for i in range(len(rest) - 1) if rest[i : i + 2] == ("a", "hand")), None)
@@ -183,10 +185,10 @@ def a_hand(said: Said) -> Parse | None:
         return None
     after = rest[at + 2 :]
     after = after[1:] if after[:1] in {("getting",), ("with",)} else after
-    return helping(Said(said.lang, "help", (*rest[:at], *after), said.words, said.original))
+    return helping(Framed(said.lang, "help", (*rest[:at], *after), said.words, said.original))
 
 
-def helping(said: Said) -> Parse | None:
+def helping(said: Framed) -> Parse | None:
     """ "help me get to the bathroom": take them there."""
     found = split_at(said.rest, ["get to", "to"]) if "to" in said.rest else None
     if found is None or not found[0] or not found[2]:
@@ -194,7 +196,7 @@ def helping(said: Said) -> Parse | None:
     return said.command(I.GUIDE, recipient=found[0], goal=found[2])
 
 
-def showing(said: Said) -> Parse | None:
+def showing(said: Framed) -> Parse | None:
     """ "show me the scissors" asks where they are; "show me the way (to X)" is guiding, and so is
     "show George where the lounge is"."""
     c = said.lang.derived(_Words)
@@ -211,7 +213,7 @@ def showing(said: Said) -> Parse | None:
 
 
 
-def everyone(said: Said) -> Parse | None:
+def everyone(said: Framed) -> Parse | None:
     """ "greet everyone": no one recipient, a greeting said aloud."""
     c = said.lang.derived(_Words)
     if said.rest in c.everyone:
@@ -219,7 +221,7 @@ def everyone(said: Said) -> Parse | None:
     return None
 
 
-def asking(said: Said) -> Parse | None:
+def asking(said: Framed) -> Parse | None:
     """ "do you like music" is a yes/no question, "do the dishes" a request."""
     c = said.lang.derived(_Words)
     if said.rest[:1] and said.rest[0] not in c.done:
@@ -227,12 +229,12 @@ def asking(said: Said) -> Parse | None:
     return None
 
 
-def letting_know(said: Said) -> Parse | None:
+def letting_know(said: Framed) -> Parse | None:
     """ "let Tom know that dinner is ready" is "tell Tom that...". """
     if "know" not in said.rest:
         return None
     told = tuple(x for x in said.rest if x != "know")
-    return speech(Said(said.lang, "tell", told, said.words, said.original))
+    return speech(Framed(said.lang, "tell", told, said.words, said.original))
 
 
 def _plural(word: str) -> bool:
@@ -272,7 +274,7 @@ def _subject_phrase(c: _Words, rest: Words, i: int) -> bool:
     return False
 
 
-def speech(said: Said) -> Parse:
+def speech(said: Framed) -> Parse:
     """What to say, to whom: quoted words kept as they are, "tell X that/to...", "say X to Y"."""
     c = said.lang.derived(_Words)
     verb, rest, original = said.verb, said.rest, said.original
@@ -322,7 +324,7 @@ def speech(said: Said) -> Parse:
     return said.command(I.SAY, text=original_text(said.lang, original, text_words), recipient=recipient)
 
 
-def _said_to(said: Said, rest: Words) -> Parse:
+def _said_to(said: Framed, rest: Words) -> Parse:
     """ "(say) to Sandeep that the film starts soon", "(say) to Ana it's time": the person, then the
     message ("that" or a clause of its own starts it)."""
     found = split_at(rest, ["that"])

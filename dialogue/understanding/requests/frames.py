@@ -28,7 +28,7 @@ from dialogue.understanding.tables.frames import FrameRow
 
 #: How a frame makes the free-form text of its intent from (its language, the verb, the words after it).
 Text = Callable[[Language, str, Words], str | None]
-Special = Callable[[C.Said], Parse | None]
+Special = Callable[[C.Framed], Parse | None]
 
 
 def _named(name: str) -> Text:

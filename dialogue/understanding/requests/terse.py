@@ -17,11 +17,12 @@ from dialogue.reference.grounding import Kind
 from dialogue.reference.lexicon import Lexicon
 from dialogue.reference.resolution import PLACE, ZONE, resolve
 from dialogue.understanding.requests.frames import verbs
+from dialogue.understanding.said import Text
 from dialogue.understanding.speech.plain import strip_politeness
 from dialogue.understanding.speech.repair import asked_verb, normalise
 
 
-def terse(text: str, lexicon: Lexicon, robot_name: str = "") -> str | None:
+def terse(text: Text, lexicon: Lexicon, robot_name: str = "") -> str | None:
     """The request said in the grammar's order, or None when the text is no terse request."""
     lang = lexicon.lang
     words = strip_politeness(lang, normalise(lang, text), robot_name)

@@ -22,8 +22,9 @@ from itertools import pairwise
 
 from lemminflect import getAllLemmas, getInflection
 
-from dialogue.reference.english import Words, lowered, spans
+from dialogue.reference.english import Words, lowered
 from dialogue.understanding.language import Language
+from dialogue.understanding.said import Said, Text
 from dialogue.understanding.speech.plain import expanded, strip_politeness
 
 #: Punctuation and dashes end a clause.
@@ -61,21 +62,26 @@ class _Clauses:
         self.owners = closed.owners
 
 
-def clauses(lang: Language, text: str) -> list[str]:
+def clauses(lang: Language, text: Text) -> list[str]:
     """The text's clauses, as parts of the original text (its casing kept), in order."""
+    return list(Said.read(lang, text).form(_clauses))
+
+
+def _clauses(u: Said) -> tuple[str, ...]:
     out: list[str] = []
-    for piece in _BREAK.split(text):
+    for piece in _BREAK.split(u.text):
         if piece.strip():
-            out.extend(_run_on(lang, piece.strip()))
-    return out
+            out.extend(_run_on(u.of(piece.strip())))
+    return tuple(out)
 
 
-def _run_on(lang: Language, text: str) -> list[str]:
+def _run_on(u: Said) -> list[str]:
     """A clause without punctuation cut where a new clause starts."""
+    lang, text = u.lang, u.text
     if len(lowered(text)) != len(text):
         return [text]
     said = lang.derived(_Clauses)
-    toks = spans(text)
+    toks = u.spans
     words = [expanded(lang, w) for w, _, _ in toks]
     cuts = [i for i in range(1, len(toks)) if _starts_clause(said, words, i)]
     if not cuts:
@@ -166,7 +172,7 @@ def finite(word: str, third_person: bool) -> bool:
     return False
 
 
-def description(lang: Language, text: str) -> Words | None:
+def description(lang: Language, text: Text) -> Words | None:
     """What a clause that describes the thing just asked for says of it ("it's the blue one by the
     door": the blue one by the door; "I think they're in the hall": in the hall; "I left it
     on the bench": on the bench), or None when the clause is not one."""

@@ -10,16 +10,18 @@ say the word.
 
 from __future__ import annotations
 
-from dialogue.reference.english import lowered, spans
+from dialogue.reference.english import lowered
 from dialogue.reference.lexicon import Lexicon
+from dialogue.understanding.said import Said, Text
 
 #: At least this many letters make a word spelled out ("a b" in "plan a b" would be two).
 _LEAST = 2
 
 
-def joined(text: str, lexicon: Lexicon) -> str:
+def joined(said: Text, lexicon: Lexicon) -> str:
     """The text with each run of single letters that spells a word of the KB joined into it."""
-    words = spans(text)
+    heard = Said.read(lexicon.lang, said)
+    text, words = heard.text, heard.spans
     if len(lowered(text)) != len(text) or not any(len(w) == 1 for w, _, _ in words):
         return text
     out: list[str] = []

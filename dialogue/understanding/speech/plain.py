@@ -13,8 +13,9 @@ from functools import lru_cache
 
 from lemminflect import getAllLemmas
 
-from dialogue.reference.english import Words, lowered, spans, tokens
+from dialogue.reference.english import Words, lowered, spans
 from dialogue.understanding.language import Language
+from dialogue.understanding.said import Said, Text
 
 QUOTED = re.compile(r"[\"\u201c\u201d]([^\"\u201c\u201d]+)[\"\u201c\u201d]")
 
@@ -87,11 +88,15 @@ class _Speech:
         return word in self.numbering and (after.isdigit() or (word != "no" and after in self.number_words))
 
 
-def expanded(lang: Language, text: str) -> list[str]:
+def expanded(lang: Language, text: Text) -> list[str]:
     """The text's words with contractions expanded ("wheres" -> "where is"; "its" -> "it is" where
     no noun follows it: "its on the bench", "its empty", but "its lid")."""
-    said = lang.derived(_Speech)
-    words = tokens(text)
+    return list(Said.read(lang, text).form(_expanded))
+
+
+def _expanded(u: Said) -> Words:
+    said = u.lang.derived(_Speech)
+    words = u.tokens
     out: list[str] = []
     for i, w in enumerate(words):
         if i > 0 and said.numbering_word(w, words[i + 1] if i + 1 < len(words) else ""):
@@ -102,12 +107,16 @@ def expanded(lang: Language, text: str) -> list[str]:
             out.append(w)  # "the atm": the cash machine, not "at the moment"
         else:
             out += said.written.get(w, (w,))
-    return out
+    return tuple(out)
 
 
-def plain(lang: Language, text: str) -> list[str]:
+def plain(lang: Language, text: Text) -> list[str]:
     """The text's words with contractions expanded and fillers and stutters removed."""
-    return unrepeated(without_fillers(lang, expanded(lang, text)))
+    return list(Said.read(lang, text).form(_plain))
+
+
+def _plain(u: Said) -> Words:
+    return tuple(unrepeated(without_fillers(u.lang, expanded(u.lang, u))))
 
 
 def without_fillers(lang: Language, words: list[str]) -> list[str]:

@@ -12,6 +12,7 @@ from lemminflect import getAllLemmas, getInflection
 
 from dialogue.understanding.language import Language
 from dialogue.understanding.requests.frames import known_verbs, verbs
+from dialogue.understanding.said import Said, Text
 from dialogue.understanding.speech.plain import (
     expanded,
     my_for_me,
@@ -63,10 +64,14 @@ def asked_verb(lang: Language, word: str) -> str | None:
     return lemma if word == lemma or word in getInflection(lemma, "VBG") else None
 
 
-def normalise(lang: Language, text: str) -> list[str]:
+def normalise(lang: Language, text: Text) -> list[str]:
     """Lower-case words with contractions expanded, fillers and stutters removed and a self-repair
     applied ("put the put the knife uh on the table", "bring me the uh no wait put the candle...")."""
-    return repaired(lang, plain(lang, text))
+    return list(Said.read(lang, text).form(_normalised))
+
+
+def _normalised(u: Said) -> tuple[str, ...]:
+    return tuple(repaired(u.lang, plain(u.lang, u)))
 
 
 @dataclass(frozen=True)
@@ -79,13 +84,18 @@ class Cleaned:
     taken_back: str = ""
 
 
-def cleaned(lang: Language, text: str) -> Cleaned:
+def cleaned(lang: Language, text: Text) -> Cleaned:
     """The text with stutters and self-repairs resolved, when it has any (else unchanged, so that
     quoted words and casing survive): what a compound request is cut in."""
-    words = [w for w in expanded(lang, text) if w not in lang.speech.fillers]
+    return Said.read(lang, text).form(_cleaned)
+
+
+def _cleaned(u: Said) -> Cleaned:
+    lang = u.lang
+    words = [w for w in expanded(lang, u) if w not in lang.speech.fillers]
     before, fixed = repair(lang, unrepeated(my_for_me(lang, words)))
     if fixed == words:
-        return Cleaned(text)
+        return Cleaned(u.text)
     return Cleaned(" ".join(fixed), " ".join(before) if before != fixed[: len(before)] else "")
 
 

@@ -28,10 +28,11 @@ from lemminflect import getAllLemmas, getInflection
 from rapidfuzz import process
 from rapidfuzz.distance import OSA
 
-from dialogue.reference.english import lowered, phrases, spans
+from dialogue.reference.english import lowered, phrases
 from dialogue.reference.lexicon import Lexicon, singular
 from dialogue.understanding.language import Language
 from dialogue.understanding.requests.frames import frames
+from dialogue.understanding.said import Said, Taken, Text
 from dialogue.understanding.speech.heardnames import heard_name
 from dialogue.understanding.speech.homophones import misheard
 from dialogue.understanding.speech.plain import QUOTED
@@ -70,63 +71,58 @@ class _Slips:
 
 
 @dataclass(frozen=True)
-class Correction:
-    said: str
-    meant: str
-    #: The word is a name the KB accounts for: the correction is a guess about which thing is meant.
-    referent: bool
-
-
-@dataclass(frozen=True)
 class Spelled:
     text: str
-    corrections: tuple[Correction, ...] = ()
+    #: Each word corrected, and what it was taken for (a guess when a name of the KB).
+    corrections: tuple[Taken, ...] = ()
 
     @property
     def guessed(self) -> bool:
-        return any(c.referent for c in self.corrections)
+        return any(c.guess for c in self.corrections)
 
 
-def corrected(text: str, lexicon: Lexicon) -> Spelled:
+def corrected(spoken: Text, lexicon: Lexicon) -> Spelled:
     """The text with each slip corrected (outside quotes), and the corrections made."""
     slips = lexicon.lang.derived(_Slips)
+    u = Said.read(lexicon.lang, spoken)
+    text = u.text
     quoted = [m.span() for m in QUOTED.finditer(text)]
-    fixes: list[tuple[int, int, Correction]] = []
-    words = spans(text)
+    fixes: list[tuple[int, int, Taken]] = []
+    words = u.spans
     said = [w for w, _, _ in words]
     for n, (word, start, end) in enumerate(words):
         if any(a <= start < b for a, b in quoted) or _named(text, start):
             continue
         if n == 0 and word == "were" and words[1:2] and words[1][0] in slips.asked:
             # "were is the globe": "where" as a recogniser writes it
-            fixes.append((start, end, Correction(word, "where", False)))
+            fixes.append((start, end, Taken(word, "where", False)))
             continue
         if 0 < n < len(words) - 1 and word in slips.slips:
             if _slipped_preposition(slips, said, n, lexicon):
-                fixes.append((start, end, Correction(word, slips.slips[word], False)))
+                fixes.append((start, end, Taken(word, slips.slips[word], False)))
             continue
         heard = misheard(said, n, lexicon)  # "the pear of goggles", "write now", "wait their"
         if heard is not None:
-            fixes.append((start, end, Correction(word, heard, False)))
+            fixes.append((start, end, Taken(word, heard, False)))
             continue
         if not _suspect(word, lexicon):
             continue
         split = _run_together(lexicon.lang, word)  # "goto"
         if split is not None:
-            fixes.append((start, end, Correction(word, split, False)))
+            fixes.append((start, end, Taken(word, split, False)))
             continue
         # a person's name in another spelling before a slip of a word ("steven" is Stephen, not "seven")
         someone = n == 0 or said[n - 1] not in slips.np_start  # ("the kat" is no Kate)
         meant = (heard_name(word, lexicon) if someone else None) or _meant(word, lexicon)
         if meant is not None:
-            fixes.append((start, end, Correction(word, meant, meant not in grammar_words(lexicon.lang))))
+            fixes.append((start, end, Taken(word, meant, meant not in grammar_words(lexicon.lang))))
     if not fixes:
         return Spelled(text)
     if len(lowered(text)) != len(text):  # offsets of the lowered text are not the original's
-        return Spelled(" ".join(_fixed_words(text, fixes)), tuple(f[2] for f in fixes))
+        return Spelled(" ".join(_fixed_words(u, fixes)), tuple(f[2] for f in fixes))
     out, last = [], 0
     for start, end, fix in fixes:
-        out += [text[last:start], fix.meant.capitalize() if text[start].isupper() else fix.meant]
+        out += [text[last:start], fix.taken_for.capitalize() if text[start].isupper() else fix.taken_for]
         last = end
     return Spelled("".join([*out, text[last:]]), tuple(f[2] for f in fixes))
 
@@ -168,9 +164,9 @@ def _named(text: str, start: int) -> bool:
     return text[start : start + 1].isupper() and bool(before) and before[-1] not in ".!?\"“"
 
 
-def _fixed_words(text: str, fixes: list[tuple[int, int, Correction]]) -> list[str]:
-    meant = {start: fix.meant for start, _, fix in fixes}
-    return [meant.get(start, word) for word, start, _ in spans(text)]
+def _fixed_words(u: Said, fixes: list[tuple[int, int, Taken]]) -> list[str]:
+    meant = {start: fix.taken_for for start, _, fix in fixes}
+    return [meant.get(start, word) for word, start, _ in u.spans]
 
 
 #: The shortest part of a word typed together with the next ("goto": "go" and "to").

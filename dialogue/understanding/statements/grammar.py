@@ -26,6 +26,7 @@ from dialogue.reference.resolution import PLACE
 from dialogue.schema import FactClaim
 from dialogue.understanding.language import Language
 from dialogue.understanding.replies import say
+from dialogue.understanding.said import Said, Text
 from dialogue.understanding.speech.clauses import clauses as run_on_clauses
 from dialogue.understanding.speech.plain import original_text
 from dialogue.understanding.speech.repair import asked_verb, normalise
@@ -89,19 +90,20 @@ class Statements(Likings):
         return self.lang.derived(_Words)
 
 
-    def read(self, text: str) -> Told | None:
+    def read(self, text: Text) -> Told | None:
         """The facts of a turn of statements, or None when the turn is not one."""
-        if text.rstrip().endswith("?"):
+        said = Said.read(self.lang, text)
+        if said.text.rstrip().endswith("?"):
             return None  # a question (dialogue.understanding.questions.told reads those about what was told)
         told = Told()
         # run-on clauses too: "my keys are in the drawer can you get them" is no statement only
-        clauses = [part for c in self.said.clauses.split(text) if c.strip()
-                   for part in run_on_clauses(self.lang, c)]  # fmt: skip
+        clauses = [part for c in self.said.clauses.split(said.text) if c.strip()
+                   for part in run_on_clauses(self.lang, said.of(c))]  # fmt: skip
         correcting = False
         refused: Refused | None = None  # said once every clause is known to be a statement
         try:
             for clause in clauses:
-                words = self._lead(normalise(self.lang, clause))
+                words = self._lead(normalise(self.lang, said.of(clause)))
                 if not words:
                     continue
                 if self._greeting(words):

@@ -1,0 +1,97 @@
+"""What was said in a turn, read once: the `Said` every stage of the offline understanding reads.
+
+The rules model makes one per turn (dialogue.understanding.readers) and hands it to each reader; a
+stage that reads words takes it (or, called on its own, a text it makes one of: `Said.read`). It
+holds
+
+    text       the words as said (or as a stage rewrote them: letters joined, slips corrected)
+    spans      each token with its start and end in the text (the one tokeniser, reference.english)
+    tokens     the tokens alone
+    taken      what words were taken for: each slip corrected, with the word it was read as
+
+and the forms the stages derive from it (`form`: the speech forms expanded, the plain words, the
+normalised words, the clauses, the text with its self-repairs resolved), each made once. The texts a
+stage cuts out of it (a clause, a part of a compound request, the text after a repair) are of the
+same turn (`of`): read once too, however many readers and stages read them. A form is made of the
+language's data and the text alone, never of the KB: the same words read the same in every reader.
+(The conversation before the turn is dialogue.history's: its utterances are texts, read when read.)
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass
+from functools import cached_property
+from typing import Any, TypeVar, cast
+
+from dialogue.reference.english import Words, spans
+from dialogue.understanding.language import Language
+
+T = TypeVar("T")
+
+
+@dataclass(frozen=True)
+class Taken:
+    """A word read as another: "teh" taken for "the", "thremos" for "thermos"."""
+
+    said: str
+    taken_for: str
+    #: The word was read as a name of the KB: which thing is meant is a guess.
+    guess: bool = False
+
+
+class Said:
+    """One text of a turn, and what has been read of it."""
+
+    def __init__(
+        self, lang: Language, text: str, taken: tuple[Taken, ...] = (), turn: dict[str, Said] | None = None
+    ) -> None:
+        self.lang = lang
+        self.text = text
+        self.taken = taken
+        #: The turn's texts read so far, this one among them (`of`).
+        self._turn = turn if turn is not None else {}
+        self._turn.setdefault(text, self)
+        self._forms: dict[Callable[[Said], Any], Any] = {}
+
+    @staticmethod
+    def read(lang: Language, text: Text) -> Said:
+        """What a stage reads of a text: the text of a turn as it is, any other text on its own."""
+        return text if isinstance(text, Said) else Said(lang, text)
+
+    def __repr__(self) -> str:
+        return f"Said({self.text!r})"
+
+    def of(self, text: str) -> Said:
+        """Another text of the same turn (a clause, a part of it), read once."""
+        said = self._turn.get(text)
+        return said if said is not None else Said(self.lang, text, self.taken, self._turn)
+
+    def rewritten(self, text: str, taken: tuple[Taken, ...] = ()) -> Said:
+        """The turn as a stage rewrote it: what it took words for added to what was taken before."""
+        if text == self.text and not taken:
+            return self
+        return Said(self.lang, text, (*self.taken, *taken), self._turn)
+
+    @cached_property
+    def spans(self) -> tuple[tuple[str, int, int], ...]:
+        return tuple(spans(self.text))
+
+    @cached_property
+    def tokens(self) -> Words:
+        return tuple(w for w, _, _ in self.spans)
+
+    @property
+    def guessed(self) -> bool:
+        """Whether a word was read as a name of the KB: which thing is meant is a guess."""
+        return any(t.guess for t in self.taken)
+
+    def form(self, make: Callable[[Said], T]) -> T:
+        """A form of the words (`make` of this text, immutable), made on first use."""
+        if make not in self._forms:
+            self._forms[make] = make(self)
+        return cast(T, self._forms[make])
+
+
+#: What a stage reads: a text of the turn, or a text read on its own.
+Text = Said | str
