@@ -35,12 +35,19 @@ from functools import partial
 from typing import Literal, ParamSpec, TypeVar
 
 from dialogue.engine import SORRY, DialogueEngine, TurnResult
-from dialogue.entries import answers, check_id, check_texts, check_utterance, entry_locale, said_nothing
 from dialogue.errors import DialogueExists, SessionError, UnknownDialogue
 from dialogue.history import ASSISTANT_USER_ID, SYSTEM_USER_ID, History, Utterance
 from dialogue.observers import TurnObserver, TurnRecord, notify
 from dialogue.roles import Roles
 from dialogue.rolestate import Progress
+from dialogue.sessions.entries import (
+    answers,
+    check_id,
+    check_texts,
+    check_utterance,
+    entry_locale,
+    said_nothing,
+)
 from dialogue.sessions.store import (
     DEFAULT_DIALOGUE,
     DEFAULT_ROLE,
@@ -220,7 +227,7 @@ class DialogueManager:
         summary: str | None = None,
         timeout: float | None = None,
     ) -> TurnResult:
-        """One DialogueInteraction (dialogue.entries: which entries are answered; an empty or
+        """One DialogueInteraction (dialogue.sessions.entries: which entries are answered; an empty or
         blank entry is legal). `history` replaces the stored one. With `role` (and its
         `configuration`) the turn is stateless (chatbot_msgs 4.0): nothing is read from or written to
         the store, `dialogue_id` only names the turn (its trace), `history` is the whole dialogue.

@@ -39,10 +39,10 @@ from chatbot_msgs.action import Dialogue
 from rclpy.action import ActionServer, CancelResponse, GoalResponse
 
 from api.ros.node.front import Front
-from dialogue.entries import entry_locale
 from dialogue.errors import DialogueError, UnknownDialogue
 from dialogue.observers import TurnRecord
 from dialogue.rolestate import Progress
+from dialogue.sessions.entries import entry_locale
 from kb.errors import StoreUnavailable
 
 log = logging.getLogger("situated.ros")

@@ -1,7 +1,7 @@
 """chatbot_msgs' DialogueInteraction (``/chatbot/dialogue_interaction``): one entry of a dialogue.
 
 The request's UUID names the dialogue (a ``/chatbot/start_dialogue`` goal's; the nil UUID is the
-service's ``default`` dialogue). Which entries are answered is the service's rule (dialogue.entries):
+service's ``default`` dialogue). Which entries are answered is the service's rule (dialogue.sessions.entries):
 ``response_expected`` false only records, ``__system__`` is a system update, ``__assistant__`` the
 robot's own words, an empty input is legal. The turn has the node's ``turn_deadline``, below a
 dialogue manager's 5 s: past it the reply is the polite fallback (``__raw_user_input__`` and an

@@ -28,9 +28,9 @@ from std_msgs.msg import String
 from api.ros.node.discovery import TopicWatch
 from api.ros.node.front import Front
 from dialogue.engine import TurnResult
-from dialogue.entries import entry_locale
 from dialogue.errors import DialogueError, SessionError
 from dialogue.intents import UNKNOWN_AGENT
+from dialogue.sessions.entries import entry_locale
 from dialogue.sessions.store import DEFAULT_DIALOGUE
 
 log = logging.getLogger("situated.ros")

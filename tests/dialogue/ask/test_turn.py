@@ -209,7 +209,7 @@ def test_a_system_update_or_the_robots_own_words_are_no_answer(cups: KB) -> None
     system, assistant, person = asyncio.run(run())
     assert (system.dialogue_terminal, system.results) == (False, "{}") and system.intents == ()
     assert system.response == "How old are you, and which cup?"
-    # The robot's own words are recorded, never answered (dialogue.entries).
+    # The robot's own words are recorded, never answered (dialogue.sessions.entries).
     assert (assistant.response, assistant.intents, assistant.dialogue_terminal) == ("", (), None)
     assert json.loads(person.results or "") == {"age": 34}
     # The same in the 4.0 shape, whose input is the history's last utterance.

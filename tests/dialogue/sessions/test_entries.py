@@ -4,9 +4,9 @@ from __future__ import annotations
 
 import pytest
 
-from dialogue.entries import answers, check_texts, check_utterance, entry_locale, said_nothing
 from dialogue.errors import SessionError
 from dialogue.history import Utterance
+from dialogue.sessions.entries import answers, check_texts, check_utterance, entry_locale, said_nothing
 
 
 @pytest.mark.parametrize(("user_id", "text", "expected", "answered"), [
