@@ -22,7 +22,7 @@ from dialogue.ask.turn import AskRole
 from dialogue.engine import DialogueEngine, TurnResult
 from dialogue.errors import DialogueError
 from dialogue.history import Utterance, role_of
-from dialogue.rolestate import Progress
+from dialogue.sessions.rolestate import Progress
 from dialogue.sessions.store import DEFAULT_ROLE
 from dialogue.trace.record import TraceRecorder
 

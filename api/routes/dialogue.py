@@ -22,7 +22,6 @@ from dialogue.engine import TurnResult
 from dialogue.history import ASSISTANT_USER_ID, Utterance
 from dialogue.intents import Intent
 from dialogue.locales import normalise_locale
-from dialogue.rolestate import Progress, Status
 from dialogue.sessions.manager import (
     DEFAULT_ROLE,
     DialogueExists,
@@ -30,6 +29,7 @@ from dialogue.sessions.manager import (
     DialogueState,
     UnknownDialogue,
 )
+from dialogue.sessions.rolestate import Progress, Status
 
 router = APIRouter(prefix="/dialogues", tags=["dialogue"])
 #: The id of the turn's trace, in the interaction's answer.

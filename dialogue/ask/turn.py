@@ -31,8 +31,8 @@ from dialogue.history import Utterance, role_of
 from dialogue.llm.base import ChatMessage, ChatModel, ChatRequest, ModelError, TurnContext
 from dialogue.locales import is_english, normalise_locale
 from dialogue.reference.lexicon import Lexicon
-from dialogue.rolestate import Progress
 from dialogue.schema import AnswerError
+from dialogue.sessions.rolestate import Progress
 from dialogue.trace.record import TraceRecorder
 from dialogue.understanding.followups.form import Reading, read_answer
 

@@ -39,7 +39,6 @@ from dialogue.errors import DialogueExists, SessionError, UnknownDialogue
 from dialogue.history import ASSISTANT_USER_ID, SYSTEM_USER_ID, History, Utterance
 from dialogue.observers import TurnObserver, TurnRecord, notify
 from dialogue.roles import Roles
-from dialogue.rolestate import Progress
 from dialogue.sessions.entries import (
     answers,
     check_id,
@@ -48,6 +47,7 @@ from dialogue.sessions.entries import (
     entry_locale,
     said_nothing,
 )
+from dialogue.sessions.rolestate import Progress
 from dialogue.sessions.store import (
     DEFAULT_DIALOGUE,
     DEFAULT_ROLE,

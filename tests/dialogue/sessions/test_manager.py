@@ -10,7 +10,6 @@ from dialogue.history import ASSISTANT_USER_ID, SYSTEM_USER_ID, Utterance
 from dialogue.llm.base import ChatRequest
 from dialogue.llm.testing import FunctionModel, ScriptedModel
 from dialogue.roles import UnknownRole
-from dialogue.rolestate import Progress
 from dialogue.sessions.manager import (
     DEFAULT_DIALOGUE,
     DialogueExists,
@@ -18,6 +17,7 @@ from dialogue.sessions.manager import (
     SessionError,
     UnknownDialogue,
 )
+from dialogue.sessions.rolestate import Progress
 from kb import KB, KbError
 
 

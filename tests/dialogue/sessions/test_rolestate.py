@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from dialogue.rolestate import CALLED_OFF, Progress
+from dialogue.sessions.rolestate import CALLED_OFF, Progress
 
 
 def test_only_a_dialogue_called_off_has_an_error() -> None:
