@@ -14,8 +14,8 @@ from __future__ import annotations
 
 from api.client import ClientError, ServiceClient
 from api.courier import Courier, DeliveryConfig
-from dialogue.observers import TurnRecord
 from dialogue.pushed.events import Emitted, emitted
+from dialogue.sessions.observers import TurnRecord
 
 
 class IntentRelay(Courier[Emitted]):

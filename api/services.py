@@ -25,9 +25,9 @@ from dialogue.llm.spec import SpecError, parse_spec
 from dialogue.memory.learn import Memory
 from dialogue.memory.people import People
 from dialogue.memory.reconcile import Reconciler
-from dialogue.observers import TurnObserver
 from dialogue.pushed.bus import IntentBus, clock_first
 from dialogue.sessions.manager import DialogueManager
+from dialogue.sessions.observers import TurnObserver
 from dialogue.sessions.sparql import SparqlSessions
 from kb import KB, KbError
 from kb.errors import StorageError

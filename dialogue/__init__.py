@@ -22,12 +22,13 @@ Public API (exported here, see ``__all__``; nothing is done at import time):
 Modules: intents (Intent.msg catalogue), schema (answer models, per-turn JSON schema), situation
 (snapshot as sentences), validate (model answer -> grounded intents), prompts, history, engine,
 roles (default, ask), locales, speakers, errors; sessions/ (the dialogue manager; where dialogue
-state lives, in memory or a SPARQL store; one turn at a time); ask/ (the __ask__ role's form), trace/
+state lives, in memory or a SPARQL store; one turn at a time; which entries are answered; what a
+role's state says; the observers told after each turn); ask/ (the __ask__ role's form), trace/
 (every turn's record); reference/ (grounding: the KB snapshot; lexicon / resolution / clarify:
 referents), understanding/ (words, commands, questions, answers, interpret: the offline rules), llm/
 (backends), evaluation/ (the eval tool),
 memory/ (what people tell the robot: claims, statements, learn, provenance, people), pushed/ (the
-intent bus), observers (after each turn), initiative (engaging and greeting people).
+intent bus), initiative (engaging and greeting people).
 """
 
 from dialogue.engine import DialogueEngine, EngineConfig, TurnResult

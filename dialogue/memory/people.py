@@ -28,7 +28,7 @@ from rdflib import XSD, Literal, URIRef
 from dialogue import intents as I
 from dialogue.memory.provenance import Told, told
 from dialogue.memory.recollections import LAST_SPOKE, SUMMARY, Recollections
-from dialogue.observers import TurnRecord
+from dialogue.sessions.observers import TurnRecord
 from dialogue.speakers import NOT_PEOPLE, NotAPerson, check_speaker, person_statement
 from kb import KbError
 from kb.protocol import KnowledgeBase

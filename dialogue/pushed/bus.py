@@ -31,8 +31,8 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 from dialogue.intents import Intent
-from dialogue.observers import TurnRecord
 from dialogue.pushed.events import IntentFilter, Origin, Pushed, emitted
+from dialogue.sessions.observers import TurnRecord
 
 Listener = Callable[[Pushed], None]
 #: Bytes of events a buffer (and a reader's queue) holds at most, by default.

@@ -20,7 +20,7 @@ from functools import cached_property
 from typing import Any, Literal
 
 from dialogue.intents import Intent
-from dialogue.observers import TurnRecord
+from dialogue.sessions.observers import TurnRecord
 
 Origin = Literal["dialogue", "initiative"]
 ORIGINS: frozenset[str] = frozenset({"dialogue", "initiative"})

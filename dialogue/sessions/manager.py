@@ -37,7 +37,6 @@ from typing import Literal, ParamSpec, TypeVar
 from dialogue.engine import SORRY, DialogueEngine, TurnResult
 from dialogue.errors import DialogueExists, SessionError, UnknownDialogue
 from dialogue.history import ASSISTANT_USER_ID, SYSTEM_USER_ID, History, Utterance
-from dialogue.observers import TurnObserver, TurnRecord, notify
 from dialogue.roles import Roles
 from dialogue.sessions.entries import (
     answers,
@@ -47,6 +46,7 @@ from dialogue.sessions.entries import (
     entry_locale,
     said_nothing,
 )
+from dialogue.sessions.observers import TurnObserver, TurnRecord, notify
 from dialogue.sessions.rolestate import Progress
 from dialogue.sessions.store import (
     DEFAULT_DIALOGUE,
@@ -98,7 +98,7 @@ class DialogueManager:
         observers: Sequence[TurnObserver] = (),
         recall: Callable[[str], Awaitable[str | None]] | None = None,
     ) -> None:
-        """`observers` are told of every turn once it has its result (dialogue.observers);
+        """`observers` are told of every turn once it has its result (dialogue.sessions.observers);
         `await recall(user_id)` gives a note about the speaker's earlier dialogues that a model
         reading prompts gets before the history (dialogue.memory.people), not blocking the loop."""
         check_bound(max_dialogues)

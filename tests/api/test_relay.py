@@ -12,7 +12,7 @@ from api.relay import IntentRelay
 from bench.oxigraph import free_port
 from dialogue import intents as I
 from dialogue.engine import TurnResult
-from dialogue.observers import TurnRecord
+from dialogue.sessions.observers import TurnRecord
 from tests.api.conftest import scene_settings
 from tests.api.test_webhooks import wait_until
 

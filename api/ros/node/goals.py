@@ -40,8 +40,8 @@ from rclpy.action import ActionServer, CancelResponse, GoalResponse
 
 from api.ros.node.front import Front
 from dialogue.errors import DialogueError, UnknownDialogue
-from dialogue.observers import TurnRecord
 from dialogue.sessions.entries import entry_locale
+from dialogue.sessions.observers import TurnRecord
 from dialogue.sessions.rolestate import Progress
 from kb.errors import StoreUnavailable
 

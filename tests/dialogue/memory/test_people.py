@@ -14,8 +14,8 @@ from dialogue.llm.testing import ScriptedModel
 from dialogue.memory.claims import Claim
 from dialogue.memory.people import MAX_NOTES, MAX_SUMMARY, People, Recollection, note, summarised
 from dialogue.memory.recollections import SUMMARY
-from dialogue.observers import TurnRecord
 from dialogue.sessions.manager import DialogueManager
+from dialogue.sessions.observers import TurnRecord
 from kb import KB
 from kb.journal import Journal
 from kb.terms import format_term

@@ -4,8 +4,8 @@ from __future__ import annotations
 
 from dialogue import intents as I
 from dialogue.engine import TurnResult
-from dialogue.observers import TurnRecord
 from dialogue.pushed.events import Emitted, emitted
+from dialogue.sessions.observers import TurnRecord
 
 
 def test_a_turns_intents_are_emitted_in_order_with_the_reply_on_the_first_and_the_turns_time() -> None:

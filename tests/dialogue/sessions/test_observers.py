@@ -6,8 +6,8 @@ import asyncio
 
 from dialogue.engine import DialogueEngine, EngineConfig
 from dialogue.llm.testing import ScriptedModel
-from dialogue.observers import TurnRecord
 from dialogue.sessions.manager import DialogueManager
+from dialogue.sessions.observers import TurnRecord
 from kb import KB
 
 
