@@ -202,7 +202,7 @@ def which_do_you_see(lexicon: Lexicon, words: Sequence[str]) -> str:
     seen = [e for e in found.matches if e.seen]
     if not seen:
         phrase = said_phrase(lang, words) or say(lang, "answers.such_thing")
-        return say(lang, "sorry.none_seen", phrase=phrase)
+        return say(lang, "answers.none_seen", phrase=phrase)
     snapshot = lexicon.snapshot
     the_ = say(lang, "naming.the", name="")
     coloured = [say(lang, "naming.the_coloured", colour=e.colour, name=n[len(the_) :])
@@ -218,7 +218,7 @@ def how_many(lexicon: Lexicon, words: Sequence[str]) -> str:
     phrase = said_phrase(lang, words) or say(lang, "answers.things")
     seen = [e for e in found.matches if e.seen]
     if not seen:
-        return say(lang, "sorry.none_seen", phrase=phrase)
+        return say(lang, "answers.none_seen", phrase=phrase)
     things = listing(lang, told_apart(lang, seen, lexicon.snapshot))
     return say(lang, "answers.count", count=number(lang, len(seen)), things=things)
 
