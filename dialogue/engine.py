@@ -38,6 +38,7 @@ from dialogue.schema import AnswerError, SchemaCandidates, parse_answer, turn_sc
 from dialogue.speakers import NOT_PEOPLE, admit, check_speaker
 from dialogue.trace.record import AnsweredBy, TraceRecorder, TurnTrace
 from dialogue.understanding.language import Language
+from dialogue.understanding.said import Said
 from dialogue.validate import Grounded, ground_answer
 from kb import KbError
 from kb.protocol import KnowledgeBase
@@ -218,9 +219,10 @@ class DialogueEngine:
         trace: TraceRecorder | None = None,
     ) -> _Turn:
         snapshot, lexicon = grounded
-        focus = ranked(snapshot, speaker, self.config.max_snapshot_entities, mentioned(lexicon, text))
+        said = Said(lexicon.lang, text)  # the turn's words, read once: what it names, and the rules
+        focus = ranked(snapshot, speaker, self.config.max_snapshot_entities, mentioned(lexicon, said.tokens))
         context = TurnContext(text, speaker, snapshot, history, locale, self.config.robot_name, tuple(focus),
-                              lexicon)
+                              lexicon, said)
         recorder = trace or TraceRecorder(speaker=speaker, input=text, locale=locale)
         shown = [e.id for e in focus]
         recorder.snapshot(snapshot.revision, len(snapshot.entities), [e.kind for e in focus], shown)

@@ -21,6 +21,7 @@ from dialogue.history import Utterance
 from dialogue.reference.grounding import Entity, Snapshot
 from dialogue.reference.lexicon import Lexicon
 from dialogue.schema import ChatbotResponse
+from dialogue.understanding.said import Said
 
 MessageRole = Literal["system", "user", "assistant"]
 
@@ -50,6 +51,9 @@ class TurnContext:
     #: The lexicon of `snapshot` the engine already keeps (the rules read it rather than keeping
     #: a second one of every entity); None: the model makes its own.
     lexicon: Lexicon | None = None
+    #: The turn's words as the engine read them, once (dialogue.understanding.said), in the
+    #: lexicon's language: the rules read these rather than the text again; None: read the text.
+    said: Said | None = None
 
 
 @dataclass(frozen=True)

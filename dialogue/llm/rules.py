@@ -48,7 +48,9 @@ class RulesModel(ChatModel):
 
     def _turn(self, context: TurnContext) -> Turn:
         lexicon = self._lexicon(context)
-        said = Said(lexicon.lang, context.text)  # read once, by every reader
+        said = context.said  # (the engine's reading of the words, when it made one)
+        if said is None or said.lang is not lexicon.lang or said.text != context.text:
+            said = Said(lexicon.lang, context.text)  # read once, by every reader
         return Turn(said, lexicon, context.speaker, tuple(context.history), context.robot_name)
 
     def _lexicon(self, context: TurnContext) -> Lexicon:

@@ -14,6 +14,8 @@ Words = tuple[str, ...]
 _TOKEN = re.compile(r"[a-z0-9]+(?:'[a-z]+)?")
 #: The same words, and the commas and semicolons that may end a part of a compound request.
 _TOKEN_OR_MARK = re.compile(r"[a-z0-9]+(?:'[a-z]+)?|,|;")
+#: The marks `spans` gives with `marks`: a scan with them, less them, is the scan without them.
+MARKS = frozenset({",", ";"})
 
 
 def lowered(text: str) -> str:

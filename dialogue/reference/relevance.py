@@ -11,17 +11,16 @@ visible things, mentioned ones), so the cost does not grow with the KB.
 from __future__ import annotations
 
 import heapq
-from collections.abc import Iterable
+from collections.abc import Iterable, Sequence
 
-from dialogue.reference.english import tokens
 from dialogue.reference.lexicon import Lexicon
 from dialogue.reference.snapshot import Entity, Snapshot
 
 
-def mentioned(lexicon: Lexicon, text: str) -> list[str]:
-    """Ids of the entities the utterance names (its words against the lexicon), in no particular
-    order: `ranked` orders them (a class word may name thousands; sorting them all is wasted)."""
-    return [e for m in lexicon.mentions(tokens(text)) for e in m.entities]
+def mentioned(lexicon: Lexicon, words: Sequence[str]) -> list[str]:
+    """Ids of the entities the utterance's words (its tokens) name, in no particular order:
+    `ranked` orders them (a class word may name thousands; sorting them all is wasted)."""
+    return [e for m in lexicon.mentions(list(words)) for e in m.entities]
 
 
 def ranked(snapshot: Snapshot, speaker: str, limit: int, mentions: Iterable[str] = ()) -> list[Entity]:

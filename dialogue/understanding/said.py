@@ -5,14 +5,17 @@ stage that reads words takes it (or, called on its own, a text it makes one of: 
 holds
 
     text       the words as said (or as a stage rewrote them: letters joined, slips corrected)
-    spans      each token with its start and end in the text (the one tokeniser, reference.english)
+    marked     each token, comma and semicolon with its start and end in the text: the text's one
+               scan by the one tokeniser (reference.english)
+    spans      each token with its start and end (`marked` less the marks)
     tokens     the tokens alone
     taken      what words were taken for: each slip corrected, with the word it was read as
 
 and the forms the stages derive from it (`form`: the speech forms expanded, the plain words, the
 normalised words, the clauses, the text with its self-repairs resolved), each made once. The texts a
 stage cuts out of it (a clause, a part of a compound request, the text after a repair) are of the
-same turn (`of`): read once too, however many readers and stages read them. A form is made of the
+same turn (`of`): read once too, however many readers and stages read them; a word of it read as a
+text of its own (`word`) is its own one token, never scanned again. A form is made of the
 language's data and the text alone, never of the KB: the same words read the same in every reader.
 (The conversation before the turn is dialogue.history's: its utterances are texts, read when read.)
 """
@@ -24,7 +27,7 @@ from dataclasses import dataclass
 from functools import cached_property
 from typing import Any, TypeVar, cast
 
-from dialogue.reference.english import Words, spans
+from dialogue.reference.english import MARKS, Words, spans
 from dialogue.understanding.language import Language
 
 T = TypeVar("T")
@@ -63,9 +66,19 @@ class Said:
         return f"Said({self.text!r})"
 
     def of(self, text: str) -> Said:
-        """Another text of the same turn (a clause, a part of it), read once."""
+        """Another text read in the same turn (a clause, a part of it, or an utterance before it
+        that a stage reads again: the request a follow-up answers), read once."""
         said = self._turn.get(text)
         return said if said is not None else Said(self.lang, text, self.taken, self._turn)
+
+    def word(self, token: str) -> Said:
+        """One of the turn's tokens as a text of its own: a token is its own one token, so it is
+        not scanned again."""
+        said = self._turn.get(token)
+        if said is None:
+            said = Said(self.lang, token, self.taken, self._turn)
+            said.__dict__["marked"] = ((token, 0, len(token)),)  # (what scanning it would give)
+        return said
 
     def rewritten(self, text: str, taken: tuple[Taken, ...] = ()) -> Said:
         """The turn as a stage rewrote it: what it took words for added to what was taken before."""
@@ -74,8 +87,12 @@ class Said:
         return Said(self.lang, text, (*self.taken, *taken), self._turn)
 
     @cached_property
+    def marked(self) -> tuple[tuple[str, int, int], ...]:
+        return tuple(spans(self.text, marks=True))
+
+    @cached_property
     def spans(self) -> tuple[tuple[str, int, int], ...]:
-        return tuple(spans(self.text))
+        return tuple(s for s in self.marked if s[0] not in MARKS)
 
     @cached_property
     def tokens(self) -> Words:

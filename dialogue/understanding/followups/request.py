@@ -61,7 +61,7 @@ def follow_up(reader: Reader, p: Parse, heard: Said) -> Outcome | None:
         return None
     before = spoken[-2]
     earlier = reader.within(reader.history[:before])
-    pending = parse(lang, reader.history[before].text, reader.robot_name)
+    pending = parse(lang, heard.of(reader.history[before].text), reader.robot_name)
     if pending.act != "command":
         return None
     first = earlier.act(pending)
@@ -198,7 +198,7 @@ def correction(reader: Reader, p: Parse, heard: Said) -> Outcome | None:
     if not asked:
         return None
     earlier = reader.within(reader.history[: asked[-1]])
-    pending = parse(lang, reader.history[asked[-1]].text, reader.robot_name)
+    pending = parse(lang, heard.of(reader.history[asked[-1]].text), reader.robot_name)
     if pending.act != "command" or pending.intent is None:
         return None
     before = earlier.act(pending)
@@ -279,7 +279,7 @@ def continuation(reader: Reader, p: Parse, heard: Said) -> Outcome | None:
     asked = [i for i, u in enumerate(reader.history) if u.role == "user"]
     if not asked:
         return None
-    pending = parse(lang, reader.history[asked[-1]].text, reader.robot_name)
+    pending = parse(lang, heard.of(reader.history[asked[-1]].text), reader.robot_name)
     if pending.act != "command" or pending.intent != I.BRING_OBJECT:
         return None
     thing, _, place = found

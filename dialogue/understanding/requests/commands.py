@@ -69,8 +69,8 @@ class _Grammar:
 def parse(lang: Language, said: Text, robot_name: str = "") -> Parse:
     """What the grammar reads in the words: their act and, for a request, its frame's roles."""
     g = lang.derived(_Grammar)
-    text = said.text if isinstance(said, Said) else said
-    words = strip_vocative(lang, strip_politeness(lang, normalise(lang, said), robot_name), robot_name)
+    heard = Said.read(lang, said)
+    words = strip_vocative(lang, strip_politeness(lang, normalise(lang, heard), robot_name), robot_name)
     if not words:
         return Parse("unknown", words=())
     words[0] = verb_lemma(lang, words[0])  # "(would you mind) picking up the cup"
@@ -87,7 +87,7 @@ def parse(lang: Language, said: Text, robot_name: str = "") -> Parse:
     if words[0] in {"thanks", "thank"} or words == ["cheers"]:
         # "thanks, now put it on the shelf": the thanks is a preamble to the request
         tail = strip_politeness(lang, words[2:] if words[:2] == ["thank", "you"] else words[1:], robot_name)
-        return _request(lang, text, tail) or _aside("thanks", words, tail)
+        return _request(lang, heard, tail) or _aside("thanks", words, tail)
     if tuple(words) in g.social and words[:1] != ["how"]:
         return Parse("greeting", words=tuple(words))
     # "welcome Lucia" asks the robot to greet her; "welcome back" is a greeting.
@@ -100,11 +100,11 @@ def parse(lang: Language, said: Text, robot_name: str = "") -> Parse:
                 return Parse("greeting", words=tuple(words))
             # "Good morning Maria" is still a greeting; "hi, grab the cup" is a request; "hello
             # robot, what's your name" a greeting and a question.
-            after = _request(lang, text, rest)
+            after = _request(lang, heard, rest)
             if after is not None and after.act == "question" and greeting not in g.attention:
                 return replace(after, greeted=True)
             return after or _aside("greeting", words, rest)
-    return _question(lang, words) or command(lang, text, words)
+    return _question(lang, words) or command(lang, heard, words)
 
 
 #: At most this many words after a greeting or thanks are part of it ("good morning Mr Ito").
@@ -117,15 +117,15 @@ def _aside(act: Act, words: list[str], rest: list[str]) -> Parse:
     return Parse(act, words=tuple(words)) if len(rest) <= _ASIDE else Parse("unknown", words=tuple(words))
 
 
-def _request(lang: Language, text: str, words: list[str]) -> Parse | None:
+def _request(lang: Language, heard: Said, words: list[str]) -> Parse | None:
     """What follows a greeting or thanks, if it is a question or command."""
     if not words:
         return None
-    after = _question(lang, words) or command(lang, text, words)
+    after = _question(lang, words) or command(lang, heard, words)
     return after if after.act != "unknown" else None
 
 
-def command(lang: Language, original: str, words: list[str]) -> Parse:
+def command(lang: Language, original: Said, words: list[str]) -> Parse:
     """The request the words make: the first construction or verb frame that fits them."""
     g = lang.derived(_Grammar)
     w = _joined(g, words)

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from dialogue.reference.english import Words, spans
+from dialogue.reference.english import Words
 from dialogue.reference.resolution import content_words
 from dialogue.understanding.language import Language
 from dialogue.understanding.requests.frames import verbs
@@ -80,7 +80,7 @@ def conjuncts(lang: Language, said: Text) -> list[Part]:  # noqa: C901
         return []
     c = lang.derived(_Words)
     # (a conjunction as chat writes it: "get my bag n bring it over")
-    toks = [(_one_word(c, word), start, end) for word, start, end in spans(text, marks=True)]
+    toks = [(_one_word(c, word), start, end) for word, start, end in heard.marked]
     no_cut_after = c.no_cut_after | verbs(lang) | c.conjunctions
     cuts: list[tuple[int, int]] = []  # (index of the first word of the new part, index after the cut)
     for i, (word, _, _) in enumerate(toks):

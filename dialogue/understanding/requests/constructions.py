@@ -16,6 +16,7 @@ from dialogue import intents as I
 from dialogue.reference.english import Words
 from dialogue.understanding.language import Language
 from dialogue.understanding.parsed import Parse
+from dialogue.understanding.said import Said
 from dialogue.understanding.speech.clauses import finite
 from dialogue.understanding.speech.plain import QUOTED, expanded, message, original_text, split_at, starts
 
@@ -66,7 +67,7 @@ class Framed:
     rest: Words
     #: All the utterance's words, and the original text (for quotes and casing).
     words: Words
-    original: str
+    original: Said
 
     def command(self, intent: str, text: str | None = None, **slots: Words) -> Parse:
         if "recipient" in slots:  # "tell Ana from me that...": whom, not on whose behalf
@@ -278,10 +279,10 @@ def speech(said: Framed) -> Parse:
     """What to say, to whom: quoted words kept as they are, "tell X that/to...", "say X to Y"."""
     c = said.lang.derived(_Words)
     verb, rest, original = said.verb, said.rest, said.original
-    quoted = QUOTED.search(original)
+    quoted = QUOTED.search(original.text)
     if quoted:
         # The quoted words are the text; the recipient is found outside the quotes only.
-        outside = expanded(said.lang, original[: quoted.start()] + " " + original[quoted.end() :])
+        outside = expanded(said.lang, original.text[: quoted.start()] + " " + original.text[quoted.end() :])
         rest = tuple(outside[outside.index(verb) + 1 :]) if verb in outside else ()
         rest = tuple(x for x in rest if x not in {"that", "please"})
         recipient = rest[1:] if rest[:1] == ("to",) else rest

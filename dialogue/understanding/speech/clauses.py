@@ -82,7 +82,7 @@ def _run_on(u: Said) -> list[str]:
         return [text]
     said = lang.derived(_Clauses)
     toks = u.spans
-    words = [expanded(lang, w) for w, _, _ in toks]
+    words = [expanded(lang, u.word(w)) for w, _, _ in toks]
     cuts = [i for i in range(1, len(toks)) if _starts_clause(said, words, i)]
     if not cuts:
         return [text]

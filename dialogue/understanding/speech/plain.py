@@ -13,7 +13,7 @@ from functools import lru_cache
 
 from lemminflect import getAllLemmas
 
-from dialogue.reference.english import Words, lowered, spans
+from dialogue.reference.english import Words, lowered
 from dialogue.understanding.language import Language
 from dialogue.understanding.said import Said, Text
 
@@ -156,12 +156,14 @@ def unrepeated(words: list[str]) -> list[str]:
     return out
 
 
-def original_text(lang: Language, text: str, words: Sequence[str]) -> str:
+def original_text(lang: Language, said: Text, words: Sequence[str]) -> str:
     """The part of the original text that the (normalised) words came from, with its casing."""
+    heard = Said.read(lang, said)
+    text = heard.text
     if len(lowered(text)) != len(text) or not words:
         return " ".join(words)
     written = lang.speech.written
-    found = [(w, start, end) for word, start, end in spans(text) for w in written.get(word, (word,))]
+    found = [(w, start, end) for word, start, end in heard.spans for w in written.get(word, (word,))]
     n = len(words)
     for i in range(len(found) - n + 1):
         if all(found[i + k][0] == words[k] for k in range(n)):
@@ -169,18 +171,20 @@ def original_text(lang: Language, text: str, words: Sequence[str]) -> str:
     return " ".join(words)
 
 
-def message(lang: Language, text: str, words: Sequence[str]) -> str:
+def message(lang: Language, spoken: Text, words: Sequence[str]) -> str:
     """What to say, as said: the original text from `words` to the end of the utterance, less the
     politeness addressed to the robot ("tell Ana her taxi is here now please": "her taxi is here
     now"; `words` were read without the "now", which is the message's)."""
+    heard = Said.read(lang, spoken)
+    text = heard.text
     if len(lowered(text)) != len(text) or not words:
-        return original_text(lang, text, words)
+        return original_text(lang, heard, words)
     said = lang.derived(_Speech)
-    found = [(w, start, end) for word, start, end in spans(text) for w in said.written.get(word, (word,))]
+    found = [(w, start, end) for word, start, end in heard.spans for w in said.written.get(word, (word,))]
     n = len(words)
     at = next((i for i in range(len(found) - n + 1) if [f[0] for f in found[i : i + n]] == list(words)), None)
     if at is None:
-        return original_text(lang, text, words)
+        return original_text(lang, heard, words)
     tail = found[at:]
     dropped = True
     while dropped and len(tail) > n:

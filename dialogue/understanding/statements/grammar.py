@@ -120,7 +120,7 @@ class Statements(Likings):
                     correcting = True
                     continue
                 try:
-                    told.facts += self._statement(("no", *words) if correcting else words, clause)
+                    told.facts += self._statement(("no", *words) if correcting else words, said.of(clause))
                 except Refused as refusal:
                     refused = refused or refusal
         except Unclaimed:
@@ -144,7 +144,7 @@ class Statements(Likings):
                    for g in self.lang.social.greetings_longest_first)  # fmt: skip
 
     # -- one clause ----------------------------------------------------------------------------
-    def _statement(self, w: Words, clause: str) -> list[FactClaim]:
+    def _statement(self, w: Words, clause: Said) -> list[FactClaim]:
         if w[0] in self.said.asking:
             raise Unclaimed
         for reader in (self._name, self._preference, self._ownership, self._location):
@@ -153,7 +153,7 @@ class Statements(Likings):
                 return facts
         raise Unclaimed
 
-    def _name(self, w: Words, clause: str) -> list[FactClaim] | None:
+    def _name(self, w: Words, clause: Said) -> list[FactClaim] | None:
         correcting = w[:1] == ("no",)
         if correcting:
             w = self._lead(list(w[1:]))
@@ -183,10 +183,10 @@ class Statements(Likings):
             return [self._named(who, answer, clause)]
         return None
 
-    def _name_like(self, words: Words, clause: str) -> bool:
+    def _name_like(self, words: Words, clause: Said) -> bool:
         return name_like(self.lang, words, original_text(self.lang, clause, list(words)))
 
-    def _named(self, who: str, words: Words, clause: str) -> FactClaim:
+    def _named(self, who: str, words: Words, clause: Said) -> FactClaim:
         name = clean_name(original_text(self.lang, clause, list(words)))
         if not name:
             raise Unclaimed  # longer than any name
@@ -226,7 +226,7 @@ class Statements(Likings):
 
 
 
-    def _ownership(self, w: Words, clause: str) -> list[FactClaim] | None:
+    def _ownership(self, w: Words, clause: Said) -> list[FactClaim] | None:
         if len(w) > 2 and w[-1] == "mine" and w[-2] in self.said.be:
             thing, _ = self._entity(w[:-2], _THING)
             return [fact(thing, "belongsTo", self.speaker)]
@@ -252,7 +252,7 @@ class Statements(Likings):
             return [fact(thing, "belongsTo", self.speaker)]
         return None
 
-    def _location(self, w: Words, clause: str) -> list[FactClaim] | None:
+    def _location(self, w: Words, clause: Said) -> list[FactClaim] | None:
         if w[:2] == ("i", "am"):
             return self._where(("me",), w[2:], people_in=True)
         if w[:1] == ("i",) and len(w) > 3:

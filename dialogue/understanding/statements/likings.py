@@ -14,6 +14,7 @@ from lemminflect import getAllLemmas
 from dialogue.reference.resolution import ANYWHERE
 from dialogue.schema import FactClaim
 from dialogue.understanding.language import Language
+from dialogue.understanding.said import Said
 from dialogue.understanding.statements.clause import ClauseReader, Unclaimed, Words, fact
 
 
@@ -44,7 +45,7 @@ class Likings(ClauseReader):
         """The language's words of likings."""
         return self.lang.derived(_Words)
 
-    def _preference(self, w: Words, clause: str) -> list[FactClaim] | None:
+    def _preference(self, w: Words, clause: Said) -> list[FactClaim] | None:
         w = tuple(x for x in w if x not in self.liked.intensifiers)
         for lead, predicate in self.liked.leads.items():
             if w[: len(lead)] == lead and w[len(lead) :]:

@@ -5,6 +5,7 @@ from __future__ import annotations
 import asyncio
 
 from dialogue.engine import DialogueEngine
+from dialogue.reference.english import tokens
 from dialogue.reference.grounding import build_snapshot
 from dialogue.reference.lexicon import Lexicon
 from dialogue.reference.relevance import mentioned, ranked
@@ -45,7 +46,7 @@ def test_500_visible_objects_put_the_apple_on_the_shelf_grounds() -> None:
 def test_the_speaker_people_present_and_mentioned_things_come_first() -> None:
     kb = crowded()
     snapshot = build_snapshot(kb)
-    named = mentioned(Lexicon(snapshot, english()), "put the apple on the shelf")
+    named = mentioned(Lexicon(snapshot, english()), tokens("put the apple on the shelf"))
     assert sorted(named) == ["apple_1", "shelf_1"]
     kept = [e.id for e in ranked(snapshot, ALICE, 10, named)]
     assert kept[:2] == [ALICE, "myself"]
