@@ -6,7 +6,7 @@ Clients that cannot set a header pass the service token in the URL (``?token=`` 
 outgoing URLs may hold secrets too: a webhook's ``https://user:pass@host/?token=...``, a model
 server's ``?key=...``, which httpx logs with every request (``httpx``). A filter on those loggers
 replaces the values of such parameters, and a URL's credentials, before any handler formats the
-record; ``redact`` (dialogue.urlsecrets) does the same for text the service shows (/health's reasons
+record; ``redact`` (dialogue.trace.urlsecrets) does the same for text the service shows (/health's reasons
 and names). httpx's line per request is not logged at all (only its warnings): a webhook's URL may
 hold its secret in the path, which no filter can tell (the couriers name their URL without it).
 """
@@ -20,7 +20,7 @@ from typing import Any
 import httpx
 from uvicorn.config import LOGGING_CONFIG
 
-from dialogue.urlsecrets import REDACTED, redact
+from dialogue.trace.urlsecrets import REDACTED, redact
 
 __all__ = ["REDACTED", "RedactTokens", "log_config", "redact", "redact_client_logs", "redacted"]
 _LOGGERS = ("uvicorn.access", "uvicorn.error", "httpx")

@@ -24,7 +24,7 @@ from api.humans import known_humans, render
 from api.ros import cli as ros_cli
 from api.settings import SettingsError, load_settings
 from dialogue.errors import DialogueError
-from dialogue.urlsecrets import redact
+from dialogue.trace.urlsecrets import redact
 from kb import KB, KbError
 from kb.datadir import check as check_data
 from kb.datadir import repair as repair_data

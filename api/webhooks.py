@@ -10,7 +10,7 @@ delivered in order per URL. While a URL's deliveries fail, `/health` reports it 
 the reason and the counts; once it recovers, it is ok, with the counts as long as any intent was
 lost (given up or dropped). A URL's credentials, secret parameters and path (where Slack's and
 Discord's webhooks hold their secret) are never shown: /health and the log name it without them
-(dialogue.urlsecrets).
+(dialogue.trace.urlsecrets).
 """
 
 from __future__ import annotations
@@ -22,7 +22,7 @@ import httpx
 
 from api.courier import Courier, DeliveryConfig
 from dialogue.pushed.events import Pushed
-from dialogue.urlsecrets import hide_path, redact
+from dialogue.trace.urlsecrets import hide_path, redact
 
 
 class Webhook(Courier[Pushed]):

@@ -16,7 +16,7 @@ import ollama
 
 from dialogue.llm.base import ChatModel, ChatRequest, ChatResult, ModelError
 from dialogue.llm.connection import LoopClient
-from dialogue.urlsecrets import redact
+from dialogue.trace.urlsecrets import redact
 
 DEFAULT_HOST = "http://127.0.0.1:11434"
 

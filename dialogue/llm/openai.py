@@ -4,7 +4,7 @@ Only OpenAI fields are sent (D16): `response_format` in the variant the server a
 explicit `temperature` and `max_tokens` (Ollama's /v1 forces 1.0 when they are absent). One client
 per model, made on the first turn and kept (dialogue.llm.connection), closed by `aclose()`. The
 base URL may carry a query (a server's `?key=`): the endpoints' paths are joined to its path, and
-the URL is named with its secrets redacted (dialogue.urlsecrets) in the name and every error.
+the URL is named with its secrets redacted (dialogue.trace.urlsecrets) in the name and every error.
 """
 
 from __future__ import annotations
@@ -17,7 +17,7 @@ import httpx
 
 from dialogue.llm.base import ChatModel, ChatRequest, ChatResult, ModelError
 from dialogue.llm.connection import LoopClient
-from dialogue.urlsecrets import redact
+from dialogue.trace.urlsecrets import redact
 
 ResponseFormat = Literal["json_schema", "json_object"]
 DEFAULT_BASE_URL = "http://127.0.0.1:8080/v1"

@@ -1,6 +1,6 @@
 """Traces with secrets taken out: the service's token (a person may say or paste it; a prompt may
 quote it), secret URL parameters (`token=`, `key=`...) and the credentials of a URL
-(`https://user:key@host`), as dialogue.urlsecrets finds them (a model server's URL is in the
+(`https://user:key@host`), as dialogue.trace.urlsecrets finds them (a model server's URL is in the
 errors a trace records).
 
 >>> from dialogue.trace.record import TraceRecorder
@@ -16,7 +16,7 @@ from collections.abc import Iterable, Sequence
 from typing import Any
 
 from dialogue.trace.record import TurnTrace
-from dialogue.urlsecrets import REDACTED, redact
+from dialogue.trace.urlsecrets import REDACTED, redact
 
 __all__ = ["REDACTED", "redacted"]
 

@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import pytest
 
-from dialogue.urlsecrets import REDACTED, hide_path, redact
+from dialogue.trace.urlsecrets import REDACTED, hide_path, redact
 
 
 @pytest.mark.parametrize("name", ["token", "access_token", "access-token", "auth_token", "private_token", "key",
