@@ -159,6 +159,33 @@ def classes_of(closure: TripleIndex, asserted: TripleIndex, term: Node, direct: 
     )
 
 
+def all_classes(closure: TripleIndex, asserted: TripleIndex, direct: bool) -> dict[str, list[str]]:
+    """``classes_of`` of every term that has a class, read class by class (one pass, no per-term
+    lookup): what a snapshot of the whole KB asks."""
+    found: dict[Node, list[str]] = {}
+    for klass, members in (asserted if direct else closure).by_predicate(RDF.type).items():
+        if not isinstance(klass, URIRef) or klass in HIDDEN_CLASSES:
+            continue
+        name = shorten_iri(str(klass))
+        for member in members:
+            found.setdefault(member, []).append(name)
+    named = {short: classes for member, classes in found.items() if isinstance(short := shorten(member), str)}
+    for classes in named.values():  # (blank nodes never appear in answers)
+        classes.sort()
+    return named
+
+
+def all_labels(closure: TripleIndex, lang: str | None) -> dict[str, str]:
+    """``label`` of every term that has an ``rdfs:label``, in one pass."""
+    subjects = {s for subjects in closure.by_predicate(RDFS.label).values() for s in subjects}
+    found: dict[str, str] = {}
+    for subject in subjects:
+        short = shorten(subject)
+        if isinstance(short, str):
+            found[short] = label(closure, subject, lang)
+    return found
+
+
 def about(closure: TripleIndex, term: Node | None, raw: str) -> list[Statement]:
     found: set[Triple] = set()
     if term is not None:

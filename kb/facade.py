@@ -15,9 +15,10 @@ from collections.abc import Callable, Iterable, Mapping, Sequence
 from pathlib import Path
 from typing import Any, Generic, Self, TypeVar
 
-from rdflib import Variable
+from rdflib import RDF, RDFS, Variable
 from rdflib.query import Result
 
+from kb import describe
 from kb.arguments import (
     Changes,
     Models_,
@@ -33,6 +34,7 @@ from kb.errors import KbError
 from kb.events import Callback, ErrorCallback, event_id
 from kb.formats import export_format
 from kb.gcpause import paused
+from kb.index import TripleIndex
 from kb.models import DEFAULT_MODEL
 from kb.query import Query
 from kb.rdfio import parse_data, read_location, serialize
@@ -122,6 +124,19 @@ class Facade(KnowledgeCoreSugar, ABC, Generic[M]):
     def classesof(self, term: str, direct: bool = False, models: Models_ = None) -> list[str]:
         """The classes of ``term`` (with ``direct``, only the most specific ones)."""
         return self._classes_of(parse_term(term), direct, models)
+
+    def all_classes(self, direct: bool = False, model: str | None = None) -> dict[str, list[str]]:
+        """``classesof`` of every term that has a class, at once (one model): what a view of the
+        whole KB reads, rather than asking term by term."""
+        model_names(model)
+        return self._all_classes(direct, model)
+
+    def all_labels(self, lang: str | None = None, model: str | None = None) -> dict[str, str]:
+        """``label`` of every term that has an ``rdfs:label``, at once (one model)."""
+        if lang is not None and not isinstance(lang, str):
+            raise KbError(f"lang must be a language code such as 'en', got {lang!r}")
+        model_names(model)
+        return self._all_labels(lang, model)
 
     def sparql(self, query: str, model: str | Sequence[str] | None = None, *,
                timeout: float | None = None, max_rows: int | None = None) -> dict[str, Any]:
@@ -316,6 +331,21 @@ class Facade(KnowledgeCoreSugar, ABC, Generic[M]):
 
     @abstractmethod
     def _classes_of(self, node: Node, direct: bool, models: Models_) -> list[str]: ...
+
+    def _all_classes(self, direct: bool, model: str | None) -> dict[str, list[str]]:
+        """From the model's triples; a backend with an index of its own answers faster."""
+        types = TripleIndex(by_object=False)
+        for s, p, o in self._triples(model, inferred=not direct):
+            if p == RDF.type:
+                types.add(s, p, o)
+        return describe.all_classes(types, types, direct)
+
+    def _all_labels(self, lang: str | None, model: str | None) -> dict[str, str]:
+        labels = TripleIndex(by_object=False)
+        for s, p, o in self._triples(model, inferred=True):
+            if p == RDFS.label:
+                labels.add(s, p, o)
+        return describe.all_labels(labels, lang)
 
     @abstractmethod
     def _sparql_result(self, query: str, model: Models_, deadline: Deadline | None,

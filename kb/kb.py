@@ -182,6 +182,16 @@ class KB(Facade[Model]):
                 found.update(describe.classes_of(model.closure, model.asserted, node, direct))
             return sorted(found)
 
+    def _all_classes(self, direct: bool, model: str | None) -> dict[str, list[str]]:
+        self._expire_due()
+        with self._lock:
+            target = self._one_model(model)
+            return describe.all_classes(target.closure, target.asserted, direct)
+
+    def _all_labels(self, lang: str | None, model: str | None) -> dict[str, str]:
+        with self._lock:
+            return describe.all_labels(self._one_model(model).closure, lang)
+
     def _sparql_result(self, query: str, model: Models_, deadline: Deadline | None,
                        max_rows: int | None) -> Result:
         checked = check_query(query, deadline)  # parsed before taking the KB: no write waits on it

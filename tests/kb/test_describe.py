@@ -442,6 +442,32 @@ def test_classesof_direct_and_inferred(world: KB) -> None:
     assert world.classesof("nobody") == []
 
 
+@pytest.mark.parametrize("direct", [False, True])
+def test_all_classes_are_classesof_of_every_typed_term(world: KB, direct: bool) -> None:
+    every = world.all_classes(direct)
+    assert every["cup_abcd"] == world.classesof("cup_abcd", direct)
+    assert every["alfred"] == world.classesof("alfred", direct)
+    assert "nobody" not in every and "sentence" not in every  # untyped: no entry
+    for term, classes in every.items():
+        assert classes == world.classesof(term, direct), term
+
+
+@pytest.mark.parametrize("lang", [None, "en", "fr"])
+def test_all_labels_are_the_label_of_every_labelled_term(world: KB, lang: str | None) -> None:
+    every = world.all_labels(lang)
+    assert every["book_1"] == "the red book" and "cup_abcd" not in every  # unlabelled: no entry
+    assert every["j1"] == world.label("j1", lang) and every["j3"] == world.label("j3", lang)
+    for term, text in every.items():
+        assert text == world.label(term, lang), term
+
+
+def test_bulk_reads_check_their_arguments(world: KB) -> None:
+    with pytest.raises(KbError, match="lang"):
+        world.all_labels(lang=3)  # type: ignore[arg-type]
+    with pytest.raises(KbError, match="nope"):
+        world.all_classes(model="nope")
+
+
 def test_term_errors_are_kb_errors(world: KB) -> None:
     for call in (world.details, world.label, world.classesof):
         with pytest.raises(KbError):
