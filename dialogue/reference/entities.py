@@ -1,11 +1,12 @@
 """The entities of the situation, maintained from what each commit changed.
 
 `EntityIndex` holds the mutable state behind the snapshots: the facts (`facts.Facts`), each
-candidate's classes and names (asked of the KB once, again only when its types or labels change),
-display names per term, and the entities in their deterministic order (a sorted list kept with
-`bisect`). A commit touching N statements costs O(N) KB questions and updates; `freeze` copies the
-state into an immutable `Snapshot` (the entities as a `layered.Layered` version of the last
-snapshot's, the order as a flat copy: no sorting and no KB access).
+candidate's classes and names (read for the whole KB at once by the first build, then asked of the
+KB again only when a term's types or labels change), display names per term, and the entities in
+their deterministic order (shared sorted chunks). A commit touching N statements costs O(N) KB
+questions and updates; `freeze` makes an immutable `Snapshot` of the state (the entities as a
+`layered.Layered` version of the last snapshot's: no sorting, no copy of the world, no KB access).
+Entities with the same classes share one tuple of classes and one of class names.
 """
 
 from __future__ import annotations
@@ -14,7 +15,7 @@ from collections import Counter
 from collections.abc import Iterable
 from dataclasses import dataclass
 
-from dialogue.reference.facts import PERSON_CLASSES, PLACES, ROBOT_ID, ZONE_CLASSES, Change, Facts, Triple
+from dialogue.reference.facts import PERSON_CLASSES, ROBOT_ID, ZONE_CLASSES, Change, Facts, Triple
 from dialogue.reference.layered import GONE, Layered, SortedChunks
 from dialogue.reference.snapshot import (
     IGNORED_CLASSES,
@@ -38,7 +39,10 @@ _KINDS: tuple[tuple[frozenset[str], Kind], ...] = (
 )
 
 
-@dataclass(frozen=True)
+_Strings = tuple[str, ...]
+
+
+@dataclass(frozen=True, slots=True)
 class _Core:
     """What the KB says of a term itself (asked again only when its types or labels change)."""
 
@@ -64,7 +68,17 @@ class EntityIndex:
         self._labels: dict[str, tuple[str, ...]] = {}
         self._display: dict[str, str] = {}
         self._class_words: dict[tuple[str, bool], tuple[str, ...]] = {}
-        self._users: dict[str, set[str]] = {}  # class -> terms whose core uses its words
+        #: Terms by the classes of their core, and each class to the class tuples it is in: whose
+        #: names change when a class's do (one entry per term, not one per term and class).
+        self._members: dict[tuple[str, ...], set[str]] = {}
+        self._users: dict[str, set[tuple[str, ...]]] = {}
+        self._shared: dict[_Strings, _Strings] = {}  # one copy of each tuple of classes or names
+        #: (classes, asserted classes) -> (the classes in entity order, their names); emptied when
+        #: a class's names change.
+        self._kinds: dict[tuple[_Strings, _Strings], tuple[_Strings, _Strings]] = {}
+        #: The whole KB's classes (all, then asserted) and display names, read once by the first
+        #: build and dropped after it.
+        self._bulk: tuple[dict[str, list[str]], dict[str, list[str]], dict[str, str]] | None = None
         self._hue_users: dict[str, set[str]] = {}  # colour value -> entities showing its name
         self._hue: dict[str, str] = {}
         self._placed: dict[str, tuple[str | None, ...]] = {}  # subject -> its shown support, zone
@@ -81,20 +95,23 @@ class EntityIndex:
         #: (rank, id) of every entity, sorted; shared by the snapshots it did not change in.
         self.order: SortedChunks[tuple[int, str]] | None = None  # None: built at the end of __init__
         self.skipped: set[str] = set()
-        self._prefetch_labels()
+        self._prefetch()
         for term in sorted(self.facts.candidates()):
             self.update(term)
+        self._bulk = None
         self.order = SortedChunks((rank, term) for term, rank in self._rank.items())
 
-    def _prefetch_labels(self) -> None:
-        # One join per candidate group instead of one query per entity (the per-query cost dominates).
-        for pattern in (f"{ROBOT_ID} sees ?x", "?x isIn ?y", "?x isOn ?y",
-                        *(f"?x rdf:type {c}" for c in sorted(PERSON_CLASSES | ZONE_CLASSES))):
-            for row in self.kb.find([pattern, "?x rdfs:label ?l"]):
-                values = self._labels.setdefault(str(row["x"]), ())
-                if isinstance(row["l"], str) and row["l"] not in values:
-                    self._labels[str(row["x"])] = (*values, row["l"])
-        for term in self.facts.candidates() - {ROBOT_ID}:  # covered by the joins: no label
+    def _prefetch(self) -> None:
+        """Every term's classes and labels at once: a few questions about the whole KB rather than
+        a few per entity (the per-question cost dominated a first build: seconds at 100k)."""
+        kb = self.kb
+        self._bulk = (kb.all_classes(), kb.all_classes(direct=True), kb.all_labels(self.lang))
+        labels: dict[str, list[str]] = {}
+        for row in kb.find("?x rdfs:label ?l"):  # sorted: each term's labels in the order `labels` gives
+            if isinstance(row["l"], str):
+                labels.setdefault(row["x"], []).append(row["l"])
+        self._labels = {term: tuple(dict.fromkeys(found)) for term, found in labels.items()}
+        for term in self.facts.candidates():  # none found: none to ask for
             self._labels.setdefault(term, ())
 
     def apply(self, added: Iterable[Triple], removed: Iterable[Triple]) -> set[str]:
@@ -112,13 +129,15 @@ class EntityIndex:
             self._forget(term)
             # Its name shows in others: its instances' class names, a colour's users, places.
             for asserted in (True, False):
-                self._class_words.pop((term, asserted), None)
-            deep |= self._users.get(term, set())
+                if self._class_words.pop((term, asserted), None) is not None:
+                    self._kinds.clear()
+            for classes in self._users.get(term, ()):
+                deep |= self._members.get(classes, set())
             shallow |= self._hue_users.get(term, set())
             if term in self.names:
                 self.names[term] = self.display(term)
         for term in deep:
-            self._cores.pop(term, None)
+            self._drop_core(term)
         for term in deep | shallow:
             self.update(term)
         return deep | shallow
@@ -129,8 +148,11 @@ class EntityIndex:
 
     def update(self, term: str) -> None:
         """Recompute one term's entity from the facts and its (cached) core."""
-        self._place(term)
-        core = self._core(term) if self.facts.is_candidate(term) else None
+        facts = self.facts
+        support, zone = facts.value("support", term), facts.value("zone", term)
+        relations = facts.relations(term, zone)
+        self._place(term, (support, zone, *(other for _prep, other in relations)))
+        core = self._core(term) if facts.is_candidate(term) else None
         seen = term in self.facts.seen
         if core is None or core.schema or (not core.typed and not seen):
             self._drop(term)
@@ -144,15 +166,11 @@ class EntityIndex:
         self.entities[term] = Entity(
             id=term, name=core.name, labels=core.labels, classes=core.classes,
             class_names=core.class_names, kind=core.kind, seen=seen,
-            support=self.facts.value("support", term), zone=self.facts.value("zone", term),
-            colour=self.display(hue) if hue else None,
-            engagement=self.facts.value("engagement", term), owner=self.facts.value("owner", term),
-            relations=self.facts.relations(term),
+            support=support, zone=zone, colour=self.display(hue) if hue else None,
+            engagement=facts.value("engagement", term), owner=facts.value("owner", term), relations=relations,
         )  # fmt: skip
         self._reorder(term, rank(self.entities[term]))
-        entity = self.entities[term]
-        inside = tuple(other for prep, other in entity.relations if prep == "in")
-        self._locate(term, (entity.support, entity.zone, *inside))
+        self._locate(term, (support, zone, *(other for prep, other in relations if prep == "in")))
 
     def freeze(self, revision: int, changed: tuple[tuple[int, frozenset[str]], ...] = ()) -> Snapshot:
         if self._frozen is None:
@@ -173,6 +191,35 @@ class EntityIndex:
 
     # --- names and classes ---------------------------------------------------------------------
 
+    def _drop_core(self, term: str) -> None:
+        core = self._cores.pop(term, None)
+        if core is not None and core.classes:
+            members = self._members[core.classes]
+            members.discard(term)
+            if not members:
+                del self._members[core.classes]
+                for klass in core.classes:
+                    users = self._users[klass]
+                    users.discard(core.classes)
+                    if not users:
+                        del self._users[klass]
+
+    def _classes(self, every: _Strings, asserted: _Strings) -> tuple[_Strings, _Strings]:
+        """A term's classes (its own first) and their names, by its classes and asserted classes:
+        made once for all the terms of the same classes."""
+        key = (every, asserted)
+        found = self._kinds.get(key)
+        if found is None:
+            direct = [c for c in asserted if c not in IGNORED_CLASSES]
+            inferred = sorted(c for c in every if c not in IGNORED_CLASSES and c not in direct)
+            classes = self._share((*direct, *inferred))
+            names = dict.fromkeys(name for c in classes for name in self._words(c, asserted=c in direct))
+            found = self._kinds[key] = (classes, self._share(tuple(names)))
+        return found
+
+    def _share(self, values: tuple[str, ...]) -> tuple[str, ...]:
+        return self._shared.setdefault(values, values)
+
     def labels(self, term: str) -> tuple[str, ...]:
         if term not in self._labels:
             found = self.kb.find(f"{_pattern_term(term)} rdfs:label ?l")
@@ -182,7 +229,12 @@ class EntityIndex:
     def display(self, term: str) -> str:
         """The label in the wanted language first (D17); other languages still match in the lexicon."""
         if term not in self._display:
-            self._display[term] = self.kb.label(term, self.lang) if self.labels(term) else readable_id(term)
+            shown = self._bulk[2].get(term) if self._bulk is not None else None
+            if shown is None:
+                shown = self.kb.label(term, self.lang) if self.labels(term) else readable_id(term)
+            elif not self.labels(term):  # only labels that are no text: named by its id, as `label` would
+                shown = readable_id(term)
+            self._display[term] = shown
         return self._display[term]
 
     def _words(self, klass: str, asserted: bool) -> tuple[str, ...]:
@@ -198,8 +250,9 @@ class EntityIndex:
     def _core(self, term: str) -> _Core | None:
         if term in self._cores:
             return self._cores[term]
+        bulk = self._bulk
         try:
-            all_classes = self.kb.classesof(term)
+            all_classes = bulk[0][term] if bulk is not None and term in bulk[0] else self.kb.classesof(term)
             labels = self.labels(term)
         except KbError:
             self._cores[term] = None  # a literal used as a place ("x isIn 'garden'") is not an entity
@@ -208,19 +261,18 @@ class EntityIndex:
             schema = _Core((), (), (), "thing", readable_id(term), schema=True, typed=True)
             self._cores[term] = schema
             return schema
-        direct = [c for c in self.kb.classesof(term, direct=True) if c not in IGNORED_CLASSES]
-        inferred = sorted(c for c in all_classes if c not in IGNORED_CLASSES and c not in direct)
-        class_names = tuple(dict.fromkeys(
-            name for c in (*direct, *inferred) for name in self._words(c, asserted=c in direct)
-        ))
-        for klass in (*direct, *inferred):
-            self._users.setdefault(klass, set()).add(term)
+        asserted = bulk[1].get(term, []) if bulk is not None and term in bulk[0] else \
+            self.kb.classesof(term, direct=True)
+        classes, class_names = self._classes(tuple(all_classes), tuple(asserted))
+        if classes:
+            self._members.setdefault(classes, set()).add(term)
+            for klass in classes:
+                self._users.setdefault(klass, set()).add(classes)
         own = tuple(dict.fromkeys([self.display(term), *labels])) if labels else ()
-        classes = set(all_classes)
-        kind: Kind = "robot" if term == ROBOT_ID else next((k for cs, k in _KINDS if classes & cs), "thing")
+        kinds = (k for cs, k in _KINDS if cs.intersection(all_classes))
+        kind: Kind = "robot" if term == ROBOT_ID else next(kinds, "thing")
         name = own[0] if own else (class_names[0] if class_names else readable_id(term))
-        core = _Core(own, (*direct, *inferred), class_names, kind, name, schema=False,
-                     typed=bool(all_classes))
+        core = _Core(own, classes, class_names, kind, name, schema=False, typed=bool(all_classes))
         self._cores[term] = core
         return core
 
@@ -282,11 +334,9 @@ class EntityIndex:
             self._hue[term] = hue
             self._hue_users.setdefault(hue, set()).add(term)
 
-    def _place(self, term: str) -> None:
+    def _place(self, term: str, shown: tuple[str | None, ...]) -> None:
         """Keep `names` to the display names of the supports, zones and related things some
-        subject shows."""
-        places = tuple(self.facts.value(table, term) for table in PLACES)
-        shown = (*places, *(other for _prep, other in self.facts.relations(term)))
+        subject shows (``shown``: its support, its zone, then the other things it relates to)."""
         old = self._placed.get(term, ())
         if shown == old:
             return

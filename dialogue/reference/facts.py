@@ -89,15 +89,19 @@ class Facts:
             return min(zones) if zones else min(values)
         return min(values)
 
-    def relations(self, term: str) -> tuple[tuple[str, str], ...]:
-        """The entity's other spatial facts: the other places it is in besides its zone ("in":
-        containers, the most specific places, before zones), then relation by relation, each by
-        sorted text."""
-        zone = self.value("zone", term)
-        places = sorted(self.tables["zone"].get(term, ()), key=lambda p: (p in self.zones, p))
-        inside = tuple(("in", other) for other in places if other != zone)
-        return inside + tuple((prep, other) for prop, prep in RELATIONS
-                              for other in sorted(self.tables[prop].get(term, ())))  # fmt: skip
+    def relations(self, term: str, zone: str | None) -> tuple[tuple[str, str], ...]:
+        """The entity's other spatial facts: the other places it is in besides its zone (``zone``,
+        its `value`) ("in": containers, the most specific places, before zones), then relation by
+        relation, each by sorted text."""
+        tables = self.tables
+        placed = tables["zone"].get(term, ())
+        inside: tuple[tuple[str, str], ...] = ()
+        if len(placed) > 1:
+            places = sorted(placed, key=lambda p: (p in self.zones, p))
+            inside = tuple(("in", other) for other in places if other != zone)
+        related = tuple((prep, other) for prop, prep in RELATIONS if term in tables[prop]
+                        for other in sorted(tables[prop][term]))  # fmt: skip
+        return inside + related if related else inside
 
     def is_candidate(self, term: str) -> bool:
         """Worth considering as an entity: seen, a person, a place, located, or the robot. Unseen,

@@ -47,7 +47,7 @@ IGNORED_CLASSES = frozenset(
 )
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, slots=True)
 class Entity:
     """One individual the dialogue may refer to. `id` is what intents carry (D17)."""
 
