@@ -1,4 +1,4 @@
-"""Names: indexing every name of every entity of a snapshot.
+"""Names: indexing every name of every entity of a snapshot (`naming` says what they are).
 
 Names come from the KB only (instance labels, ids, class labels of all classes including inferred
 superclasses, readable class ids), so a new object is understood as soon as it is in the KB. All
@@ -9,53 +9,18 @@ from __future__ import annotations
 
 import threading
 from collections import defaultdict
-from collections.abc import Callable, Mapping, Sequence
-from dataclasses import dataclass
-from functools import lru_cache
-from typing import Any, NamedTuple
+from collections.abc import Callable, Iterable, Iterator, Mapping, Sequence
+from collections.abc import Set as AbstractSet
+from dataclasses import dataclass, replace
+from typing import Any
 
-from lemminflect import getAllLemmas, getLemma
-
-from dialogue.reference.english import tokens, word_set
 from dialogue.reference.grounding import Entity, Snapshot
 from dialogue.reference.layered import GONE, Gone, Layered, layered, rebucket
-from dialogue.reference.synonyms import Synonyms, synonyms
+from dialogue.reference.naming import NO_ENTRY, Entry, Name, Naming, norm, phrase, singular
+from dialogue.reference.synonyms import synonyms
 from dialogue.understanding.language import Language
 
-#: Function words ending in -s that a noun lemmatiser would "singularise" ("was" -> "wa").
-_NOT_PLURAL = word_set("is was has does this his us yes its as thus plus whereas always sometimes perhaps")
-
-
-@lru_cache(maxsize=65536)
-def singular(word: str) -> str:
-    """The noun lemma of a word ("knives" -> "knife", "buses" -> "bus", "glasses" -> "glass")."""
-    if len(word) < 3 or not word.endswith("s") or word in _NOT_PLURAL or "'" in word:
-        return word
-    lemmas = getLemma(word, "NOUN", lemmatize_oov=True)
-    return lemmas[0] if lemmas else word
-
-
-def norm(words: Sequence[str]) -> tuple[str, ...]:
-    return tuple(singular(w) for w in words)
-
-
-def phrase(text: str) -> tuple[str, ...]:
-    """A text as normalised words (the form names are indexed in)."""
-    return norm(tokens(text))
-
-
-class Name(NamedTuple):
-    """One name of an entity (a tuple: hashed in C, and a class word's bucket holds thousands)."""
-
-    words: tuple[str, ...]
-    entity: str
-    source: str  # "label", "id", "class", "head", "joined", or the lexicon file's "synonym", "kind"
-
-    @property
-    def lexical(self) -> bool:
-        """Whether the name comes from the lexicon file rather than the KB's own names."""
-        return self.source in {"synonym", "kind"}
-
+__all__ = ["Lexicon", "LexiconCache", "Mention", "Name", "norm", "phrase", "singular"]
 
 @dataclass(frozen=True)
 class Mention:
@@ -69,6 +34,11 @@ class Lexicon:
     lengths of the names each first word starts: finding the names at a position costs a lookup
     per length, however many entities share a word.
 
+    An entity's names have two parts: its own (its labels, id and colour) and its kind's (the names
+    its classes give it, the same for every entity of the same classes). A kind's names are made
+    once and indexed once, with the entities of that kind: "cup" names a thousand cups through one
+    entry, and a cup that moves or changes colour is indexed again in its own few names only.
+
     Built from a `previous` lexicon: when the snapshot says which entities changed since the
     previous one's, only those are indexed again (the indexes are copied, the entries they touch
     replaced), so a KB change costs work proportional to what changed; otherwise the entries of
@@ -81,64 +51,121 @@ class Lexicon:
     def __init__(self, snapshot: Snapshot, lang: Language, previous: Lexicon | None = None) -> None:
         self.snapshot = snapshot
         self.lang = lang
-        self._said = _Said(lang)
         if previous is not None and previous.lang is not lang:
             previous = None  # (names said in another language share nothing)
+        self._naming: Naming = previous._naming if previous is not None else Naming(lang)
+        #: The entry of each kind (its class names), shared by every version: a kind's names never
+        #: change, only which entities are of it.
+        self._kinds: dict[tuple[str, ...], Entry] = previous._kinds if previous is not None else {}
+        #: The names of a kind word, one per entity of its kinds, made when first looked up.
+        self._found: dict[tuple[str, ...], tuple[frozenset[tuple[str, ...]], list[Name]]] = {}
         changed = snapshot.changed_since(previous.snapshot.revision) if previous is not None else None
         if previous is not None and changed is not None:
             self._update(previous, changed)
             return
         by_words: dict[tuple[str, ...], dict[Name, None]] = defaultdict(dict)
         lengths: dict[str, dict[int, int]] = defaultdict(dict)
-        attributes: dict[str, frozenset[str]] = {}
         by_label: dict[str, dict[str, None]] = defaultdict(dict)
         vocabulary: dict[str, int] = defaultdict(int)
-        entries: dict[str, tuple[Entity, _Entry]] = {}
+        entries: dict[str, tuple[Entity, Entry]] = {}
+        members: dict[tuple[str, ...], dict[str, None]] = defaultdict(dict)
+        kind_of: dict[str, tuple[str, ...]] = {}
         old = previous._entries if previous is not None else Layered()
         for entity in snapshot.entities.values():
-            entry = _reuse(old.get(entity.id), entity, self._said)
+            entry = _reuse(old.get(entity.id), entity, self._naming)
             entries[entity.id] = (entity, entry)
             for name in entry.names:
                 by_words[name.words][name] = None
                 counts = lengths[name.words[0]]
                 counts[len(name.words)] = counts.get(len(name.words), 0) + 1
-            attributes[entity.id] = entry.qualifiers
             for word in entry.label_words:
                 by_label[word][entity.id] = None
             for word in entry.words:
                 vocabulary[word] += 1
-        #: Names by their words, each bucket a set of names (a mapping to None, one removed in
-        #: O(1)); a bucket a class name shares with thousands of entities is layered, so a change
-        #: to one of them does not copy it (`layered.rebucket`).
+            if entity.class_names:
+                members[entity.class_names][entity.id] = None
+                kind_of[entity.id] = entity.class_names
+        kind_words: dict[tuple[str, ...], dict[tuple[str, ...], str]] = defaultdict(dict)
+        for kind in members:
+            self._count_kind(kind, 1, kind_words, lengths, vocabulary)
+        #: Each entity's own names, by their words (a set of names: a mapping to None, one removed
+        #: in O(1)); a bucket many entities share is layered (`layered.rebucket`).
         self._by_words: Layered[tuple[str, ...], Mapping[Name, None]] = Layered(
             {words: layered(names) for words, names in by_words.items()})
-        self.attributes: Layered[str, frozenset[str]] = Layered(attributes)
+        #: The kinds' names by their words: words -> {kind: the name's source}.
+        self._kind_words: Layered[tuple[str, ...], Mapping[tuple[str, ...], str]] = Layered(dict(kind_words))
+        #: The entities of each kind, and each entity's kind.
+        self._members: Layered[tuple[str, ...], Mapping[str, None]] = Layered(
+            {kind: layered(ids) for kind, ids in members.items()})
+        self._kind_of: Layered[str, tuple[str, ...]] = Layered(kind_of)
         #: Entities by each (singular) word of their own labels, for "the teddy" ("teddy bear").
         self.by_label_word: Layered[str, Mapping[str, None]] = Layered(
             {word: layered(ids) for word, ids in by_label.items()})
         #: Every (singular) word of every name and qualifier, what the KB can account for, with the
-        #: number of entities that have it (a word goes when its last entity drops it).
+        #: number of entities (and kinds) that have it (a word goes when its last one drops it).
         self.vocabulary: Layered[str, int] = Layered(dict(vocabulary))
-        self._entries: Layered[str, tuple[Entity, _Entry]] = Layered(entries)
+        #: Each entity's own entry (its labels, id and colour).
+        self._entries: Layered[str, tuple[Entity, Entry]] = Layered(entries)
         #: First word -> {name length: number of names}, longest first when read.
         self._lengths: Layered[str, dict[int, int]] = Layered(dict(lengths))
+
+    @property
+    def attributes(self) -> Mapping[str, AbstractSet[str]]:
+        """Each entity's qualifying words: its own (label words, colour) and its kind's."""
+        return _Attributes(self)
+
+    def _kind(self, kind: tuple[str, ...]) -> Entry:
+        found = self._kinds.get(kind)
+        if found is None:
+            found = self._kinds[kind] = self._naming.entry(Entity("", "", (), (), kind, "thing", False))
+        return found
+
+    def _count_kind(self, kind: tuple[str, ...], step: int, kind_words: dict[Any, Any],
+                    lengths: dict[str, dict[int, int]], vocabulary: dict[str, int],
+                    previous: Lexicon | None = None) -> None:
+        """Index a kind that gained its first entity (``step`` 1), or unindex one that lost its
+        last (-1); the changes go to the given dicts, copied from ``previous``'s when updating."""
+        entry = self._kind(kind)
+        for name in entry.names:
+            if previous is None:
+                kind_words[name.words][kind] = name.source
+                counts = lengths[name.words[0]]
+            else:
+                _own(kind_words, previous._kind_words, name.words, dict)[kind] = name.source
+                if step < 0:
+                    del kind_words[name.words][kind]
+                counts = _own(lengths, previous._lengths, name.words[0], dict)
+            counts[len(name.words)] = counts.get(len(name.words), 0) + step
+            if not counts[len(name.words)]:
+                del counts[len(name.words)]
+        for word in entry.words:
+            known = previous.vocabulary.get(word, 0) if previous is not None else 0
+            vocabulary[word] = vocabulary.get(word, known) + step
 
     def _update(self, previous: Lexicon, changed: frozenset[str]) -> None:
         # Only the changed entries are written, into small top layers (`Layered`); the buckets
         # they touch are copied first (shared with the previous lexicon).
-        entries: dict[str, tuple[Entity, _Entry] | Gone] = {}
-        attributes: dict[str, frozenset[str] | Gone] = {}
+        entries: dict[str, tuple[Entity, Entry] | Gone] = {}
         by_words: dict[tuple[str, ...], dict[Name, Gone | None]] = {}  # changes per bucket
         by_label: dict[str, dict[str, Gone | None]] = {}
         lengths: dict[str, dict[int, int]] = {}
         vocabulary: dict[str, int] = {}
+        kind_of: dict[str, tuple[str, ...] | Gone] = {}
+        members: dict[tuple[str, ...], dict[str, Gone | None]] = {}
         for entity_id in sorted(changed, key=self.snapshot.order_key):
             kept = previous._entries.get(entity_id)
             entity = self.snapshot.get(entity_id)
-            entry = _reuse(kept, entity, self._said) if entity is not None else None
+            entry = _reuse(kept, entity, self._naming) if entity is not None else None
             entries[entity_id] = (entity, entry) if entity is not None and entry is not None else GONE
-            attributes[entity_id] = entry.qualifiers if entry is not None else GONE
-            before, after = kept[1] if kept is not None else _NO_ENTRY, entry or _NO_ENTRY
+            was, now = previous._kind_of.get(entity_id), entity.class_names if entity is not None else None
+            if was != now:
+                kind_of[entity_id] = now or GONE
+                for kind, present in ((was, GONE), (now, None)):
+                    if kind:
+                        members.setdefault(kind, {})[entity_id] = present
+            before, after = kept[1] if kept is not None else NO_ENTRY, entry or NO_ENTRY
+            if before is after:
+                continue
             for word in before.words ^ after.words:
                 count = vocabulary.get(word, previous.vocabulary.get(word, 0))
                 vocabulary[word] = count + (1 if word in after.words else -1)
@@ -154,14 +181,61 @@ class Lexicon:
             for words, present in ((before.label_words, GONE), (after.label_words, None)):
                 for word in words:
                     by_label.setdefault(word, {})[entity_id] = present
+        kinds: dict[tuple[str, ...], Mapping[str, None] | Gone] = {}
+        kind_words: dict[tuple[str, ...], dict[tuple[str, ...], str]] = {}
+        for kind, change in members.items():
+            old = previous._members.get(kind)
+            kinds[kind] = new = rebucket(old, change)
+            if (old is None) != isinstance(new, Gone):  # a kind's first entity, or its last gone
+                self._count_kind(kind, 1 if old is None else -1, kind_words, lengths, vocabulary, previous)
         self._entries = previous._entries.evolve(entries)
-        self.attributes = previous.attributes.evolve(attributes)
         self._by_words = previous._by_words.evolve(
             {k: rebucket(previous._by_words.get(k), v) for k, v in by_words.items()})
         self.by_label_word = previous.by_label_word.evolve(
             {k: rebucket(previous.by_label_word.get(k), v) for k, v in by_label.items()})
         self._lengths = previous._lengths.evolve({k: v or GONE for k, v in lengths.items()})
         self.vocabulary = previous.vocabulary.evolve({k: v or GONE for k, v in vocabulary.items()})
+        self._kind_of = previous._kind_of.evolve(kind_of)
+        self._members = previous._members.evolve(kinds)
+        self._kind_words = previous._kind_words.evolve({k: v or GONE for k, v in kind_words.items()})
+        # The names found for a kind word stay right while no entity joined or left its kinds.
+        found = previous._found.copy()  # (a turn may be adding to it: copied at once)
+        self._found = {w: hit for w, hit in found.items()
+                       if not hit[0] & kinds.keys() and w not in kind_words}  # fmt: skip
+
+    def _named(self, words: tuple[str, ...]) -> list[Name]:
+        """The names that are these words: the entities' own, then their kinds' (an entity named
+        both ways once: by the KB's own name rather than by the lexicon file's, else by its own)."""
+        own = self._by_words.get(words, ())
+        kinds = self._kind_words.get(words)
+        if not kinds:
+            return list(own)
+        of_kinds = self._of_kinds(words, kinds)
+        if not own:
+            return of_kinds
+        own_lost: set[Name] = set()
+        kind_lost: set[str] = set()
+        for name in own:
+            kind = self._kind_of.get(name.entity)
+            source = kinds.get(kind) if kind is not None else None
+            if source is None:
+                continue
+            if name.lexical and source not in _LEXICAL:
+                own_lost.add(name)
+            else:
+                kind_lost.add(name.entity)
+        kept = [n for n in own if n not in own_lost]
+        return kept + ([n for n in of_kinds if n.entity not in kind_lost] if kind_lost else of_kinds)
+
+    def _of_kinds(self, words: tuple[str, ...], kinds: Mapping[tuple[str, ...], str]) -> list[Name]:
+        hit = self._found.get(words)
+        if hit is None:
+            names = [Name(words, entity, source) for kind, source in kinds.items()
+                     for entity in self._members.get(kind, ())]  # fmt: skip
+            if sum(len(n) for _kinds, n in self._found.values()) + len(names) > _MAX_FOUND:
+                self._found = {}  # (a bound on what is kept; looked up again when needed)
+            hit = self._found[words] = (frozenset(kinds), names)
+        return hit[1]
 
     def names_at(self, words: Sequence[str], start: int) -> list[Name]:
         """Every name that occurs in `words` starting at `start` (longest first)."""
@@ -170,16 +244,16 @@ class Lexicon:
         found: list[Name] = []
         for length in sorted(self._lengths.get(singular(words[start]), {}), reverse=True):
             if start + length <= len(words):
-                found += self._by_words.get(norm(words[start : start + length]), ())
+                found += self._named(norm(words[start : start + length]))
         word = words[start]
         if not found and len(word) > 3 and word.endswith("s") and word[:-1] in self._lengths:
             # "ravis scarf": a person's name with the possessive's apostrophe dropped
-            found += [n for n in self._by_words.get((word[:-1],), ()) if self.is_person(n.entity)]
+            found += [n for n in self._named((word[:-1],)) if self.is_person(n.entity)]
         if start + 1 < len(words):
             # "tea cup" for the "teacup", "tool box" for the "toolbox": a closed compound said apart.
             joined = singular(words[start] + words[start + 1])
             found += [Name((words[start], words[start + 1]), n.entity, n.source)
-                      for n in self._by_words.get((joined,), ())]  # fmt: skip
+                      for n in self._named((joined,))]  # fmt: skip
         return found
 
     def is_person(self, entity_id: str) -> bool:
@@ -210,121 +284,6 @@ class Lexicon:
         return word.isdigit() or singular(word) in self.vocabulary
 
 
-class _Said:
-    """How the names of a language are said otherwise: its lexicon file, titles, number words."""
-
-    def __init__(self, lang: Language) -> None:
-        self.lang = lang
-        self.synonyms: Synonyms = synonyms(lang, phrase)
-        self.determiners = lang.words.determiners
-        self.compound_heads = lang.words.compound_heads
-        self.head_sizes = sorted({len(head) for head in self.compound_heads if len(head) > 2}, reverse=True)
-        #: Each title to the other words said for it ("mister" for "mr").
-        self.titles = {w: tuple(o for o in group if o != w) for group in lang.words.titles for w in group}
-
-    def names(self, entity: Entity) -> list[Name]:  # noqa: C901
-        out: list[Name] = []
-        seen: set[tuple[str, ...]] = set()
-
-        def add(text: str, source: str) -> None:
-            words = norm(tokens(text))
-            if words and words not in seen and not (len(words) == 1 and words[0] in self.determiners):
-                seen.add(words)
-                out.append(Name(words, entity.id, source))
-
-        for label in entity.labels:
-            add(label, "label")
-            numbered = self.lang.words.other_numbers(tokens(label))
-            if numbered is not None:  # "screen two" for "screen 2", "table 9" for "table nine"
-                add(" ".join(numbered), "label")
-            for other in self.otherwise(tokens(label)):
-                add(" ".join(other), "label")
-        add(entity.id, "id")
-        for class_name in entity.class_names:
-            add(class_name, "class")
-        # The head noun of a multi-word name names the thing too: "the mug" for the "green mug",
-        # "the remote" for the "TV remote"; the other words stay usable as qualifiers.
-        for text in (*entity.labels, *entity.class_names):
-            words = tokens(text)
-            if len(words) > 1 and not {"or", "and"} & set(words):  # "food or drink" is no drink
-                add(words[-1], "head")
-            if len(words) == 2 and all(w.isalpha() for w in words):
-                add("".join(words), "joined")  # "the eyeglass" for the "eye glass" (the converse of names_at)
-            tail = self._compound_head(words[-1]) if words else None
-            if tail is not None:  # "the bench" for the "workbench", yielding to a bench of the KB's own
-                add(" ".join((*words[:-1], tail)) if len(words) > 1 else tail, "kind")
-        # Other ways of saying a name or its ending ("cell phone" for the "mobile phone", "the fridge"
-        # for the "kitchen refrigerator"), and the general names of its kind ("the bag" for the
-        # "handbag", "a drink" for the "lemonade"): the lexicon file's, which yield to the KB's own
-        # names (`Name.lexical`).
-        syn = self.synonyms
-        longest = syn.longest
-        for text in (*entity.labels, *entity.class_names):
-            said = phrase(text)
-            # Only the endings a synonym may be: each one tried is a copy (a label of 30,000 words
-            # once made every split of it one, minutes of work for every turn).
-            for k in range(max(0, len(said) - longest), len(said)):
-                for other in syn.of(said[k:]):
-                    add(" ".join((*said[:k], *other)), "synonym")
-                    if k:
-                        add(" ".join(other), "synonym")
-                alike = (said[k:], *syn.of(said[k:]))
-                for general in (g for o in alike for g in syn.broader_than(o)):
-                    add(" ".join(general), "kind")
-        return out
-
-    def _compound_head(self, word: str) -> str | None:
-        """The general noun a closed compound ends with ("workbench": "bench"), if it is one of the
-        language's compound heads after a word of its own (of 3 letters or more); None otherwise.
-        Only the endings as long as a head are tried, the longest first: trying every split copied
-        the word's rest at each, which a label of a million letters made minutes of work for every
-        turn."""
-        for size in self.head_sizes:
-            k = len(word) - size
-            if k >= 3 and word[k:] in self.compound_heads and getAllLemmas(word[:k]):
-                return word[k:]
-        return None
-
-    def otherwise(self, words: Sequence[str]) -> list[tuple[str, ...]]:
-        """Other ways a label is said: a possessive without its apostrophe, as a recogniser or a
-        typist writes it ("hygienists room", "hygienist room" for the "hygienist's room"), and a title
-        in full or short ("mister kowalski" for "Mr Kowalski")."""
-        out: list[tuple[str, ...]] = []
-        if any(w.endswith("'s") for w in words):
-            out.append(tuple(w.removesuffix("'s") for w in words))
-        if len(words) > 1 and words[0] in self.titles:
-            out += [(title, *words[1:]) for title in self.titles[words[0]]]
-        return out
-
-    def entry(self, entity: Entity) -> _Entry:
-        label_words = frozenset(w for label in entity.labels
-                                for said in (tokens(label), *self.otherwise(tokens(label)))
-                                for w in norm(said))
-        words: set[str] = set(label_words)
-        if entity.colour:
-            words.update(norm(tokens(entity.colour)))
-        for class_name in entity.class_names:
-            words.update(norm(tokens(class_name)))
-        syn = self.synonyms
-        words.update(o[0] for w in tuple(words) for o in syn.of((w,)) if len(o) == 1)
-        names = self.names(entity)
-        qualifiers = frozenset(words)
-        return _Entry(names, qualifiers, label_words, qualifiers.union(*(n.words for n in names)))
-
-
-class _Entry(NamedTuple):
-    """What one entity adds to the indexes (kept per entity, so an update can take it out again)."""
-
-    names: list[Name]
-    #: Qualifying words: label words, colour, class names ("red" in "red cup"), their synonyms.
-    qualifiers: frozenset[str]
-    label_words: frozenset[str]
-    #: Its share of the vocabulary: every word of its names and qualifiers.
-    words: frozenset[str]
-
-
-_NO_ENTRY = _Entry([], frozenset(), frozenset(), frozenset())
-
 
 def _own(changes: dict[Any, Any], source: Mapping[Any, Any], key: Any, empty: Callable[[], Any]) -> Any:
     """The copy of `source[key]` this update writes to (copied once)."""
@@ -333,29 +292,107 @@ def _own(changes: dict[Any, Any], source: Mapping[Any, Any], key: Any, empty: Ca
     return changes[key]
 
 
-def _reuse(kept: tuple[Entity, _Entry] | None, entity: Entity, said: _Said) -> _Entry:
-    return kept[1] if kept is not None and kept[0] == entity else said.entry(entity)
+def _reuse(kept: tuple[Entity, Entry] | None, entity: Entity, naming: Naming) -> Entry:
+    """The entity's own entry (its names without its kind's), reused while what it is made of holds."""
+    if kept is not None and kept[0].labels == entity.labels and kept[0].colour == entity.colour:
+        return kept[1]
+    return naming.entry(replace(entity, class_names=()))
+
+
+#: Sources of the names the lexicon file gives (`Name.lexical`).
+_LEXICAL = frozenset({"synonym", "kind"})
+#: Names of kind words kept between lookups, in all.
+_MAX_FOUND = 200_000
+
+
+class _Attributes(Mapping[str, AbstractSet[str]]):
+    """`Lexicon.attributes`: an entity's own qualifiers with its kind's, made when asked."""
+
+    __slots__ = ("_lexicon",)
+
+    def __init__(self, lexicon: Lexicon) -> None:
+        self._lexicon = lexicon
+
+    def __getitem__(self, entity_id: str) -> AbstractSet[str]:
+        own = self._lexicon._entries[entity_id][1].qualifiers
+        kind = self._lexicon._kind_of.get(entity_id)
+        if kind is None:
+            return own
+        theirs = self._lexicon._kind(kind).qualifiers
+        return _Both(own, theirs) if own else theirs
+
+    def get(self, key: str, default: Any = None) -> Any:
+        return self[key] if key in self._lexicon._entries else default
+
+    def __iter__(self) -> Iterator[str]:
+        return iter(self._lexicon._entries)
+
+    def __len__(self) -> int:
+        return len(self._lexicon._entries)
+
+
+class _Both(AbstractSet[str]):
+    """Two sets of words read as one, without making it."""
+
+    __slots__ = ("_one", "_other")
+
+    def __init__(self, one: frozenset[str], other: frozenset[str]) -> None:
+        self._one, self._other = one, other
+
+    def __contains__(self, word: object) -> bool:
+        return word in self._one or word in self._other
+
+    def __iter__(self) -> Iterator[str]:
+        yield from self._one
+        yield from (w for w in self._other if w not in self._one)
+
+    def __len__(self) -> int:
+        return len(self._one | self._other)
+
+    @classmethod
+    def _from_iterable(cls, words: Iterable[str]) -> frozenset[str]:  # type: ignore[override]
+        # what `set - both` and the other operators make: a plain frozenset
+        return frozenset(words)
 
 
 class LexiconCache:
-    """One lexicon per snapshot revision (snapshots are immutable, so this is safe to share), its
-    names said in `lang`."""
+    """The lexicons of the last few snapshots (snapshots are immutable, so this is safe to share):
+    a turn that holds a snapshot a little older than the latest still finds its lexicon."""
 
     def __init__(self, lang: Language) -> None:
         self.lang = lang
         self._lock = threading.Lock()
-        self._lexicon: Lexicon | None = None
+        self._build = threading.Lock()
+        self._recent: list[Lexicon] = []  # oldest first
         # The lemma tables and the synonyms file load on first use (a few hundred ms): here, when
         # an engine is made, rather than inside its first turn's deadline.
         singular("cups")
         synonyms(lang, phrase)
 
+    def made(self, snapshot: Snapshot) -> Lexicon | None:
+        """The lexicon of ``snapshot`` if it is made already (cheap: callable on an event loop)."""
+        with self._lock:
+            recent = self._recent
+        return next((lex for lex in reversed(recent) if lex.snapshot is snapshot), None)
+
     def get(self, snapshot: Snapshot) -> Lexicon:
-        with self._lock:
-            lex = self._lexicon
-        if lex is not None and lex.snapshot is snapshot:
+        found = self.made(snapshot)
+        if found is not None:
+            return found
+        with self._build:  # one at a time: a turn that needs the lexicon the worker makes waits for it
+            found = self.made(snapshot)
+            if found is not None:
+                return found
+            with self._lock:
+                recent = self._recent
+            # updated from the latest lexicon of an earlier revision (a later one cannot say what
+            # changed since: it would be rebuilt)
+            earlier = [lex for lex in recent if lex.snapshot.revision <= snapshot.revision]
+            lex = Lexicon(snapshot, self.lang, earlier[-1] if earlier else (recent[-1] if recent else None))
+            with self._lock:
+                self._recent = sorted([*recent, lex], key=lambda x: x.snapshot.revision)[-_RECENT:]
             return lex
-        lex = Lexicon(snapshot, self.lang, lex)
-        with self._lock:
-            self._lexicon = lex
-        return lex
+
+
+#: Lexicons a cache keeps.
+_RECENT = 3

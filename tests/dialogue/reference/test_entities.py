@@ -58,9 +58,12 @@ def _assert_contents(snapshot: Snapshot) -> None:
 
 
 def _lexicon_state(lex: Lexicon) -> tuple[object, ...]:
+    """What a lexicon answers: every entity's qualifiers, the names of every indexed words, the name
+    lengths by first word, the entities by label word and the vocabulary with its counts."""
+    named = {w: lex._named(w) for w in {*lex._by_words, *lex._kind_words}}
     return (
-        lex.attributes,
-        {w: sorted((n.words, n.entity, n.source) for n in names) for w, names in lex._by_words.items()},
+        {e: frozenset(words) for e, words in lex.attributes.items()},
+        {w: sorted((n.words, n.entity, n.source) for n in names) for w, names in named.items() if names},
         dict(lex._lengths),
         {w: sorted(ids) for w, ids in lex.by_label_word.items()},
         dict(lex.vocabulary),
