@@ -102,6 +102,7 @@ class Services:
 
     def stop(self) -> None:
         """Stop everything but the model (blocking), which `aclose` closes first."""
+        self.dialogues.engine.close()
         if self.world is not None:
             self.world.stop()
         if self.initiative is not None:
@@ -285,9 +286,9 @@ def start_services(settings: Settings, kb: KB | None = None, model: ChatModel | 
                         journal=journal, owns_kb=owns_kb, store=store, owns_model=model is None,
                         local_kb=the_kb, bus=bus, people=people)
     people.follow()  # the KB is recovered and loaded: the index starts from it
-    # The first snapshot is the one full build (seconds at 100k statements): made now, not by the
-    # first turn, which would pay it against its deadline. Later commits update it incrementally.
-    dialogues.engine.ground()
+    # The grounding follows the KB's commits on a worker thread, which makes the first snapshot
+    # (the one full build) now, while the service starts; a turn that comes before it waits for it.
+    dialogues.engine.follow()
     services.reconciler = Reconciler(dialogues.engine.memory)
     services.reconciler.start()
     services.initiative = Initiative(the_kb, bus, InitiativeConfig(settings.memory.greet,

@@ -119,11 +119,22 @@ class DialogueEngine:
         self.config = config or EngineConfig()
         self.model: ChatModel = model or RulesModel()
         self.prompts = prompts or PromptSet.load()
-        self.grounder = Grounder(self.config.max_snapshot_entities, self.config.lang)
         #: The language the rules read and the KB's names are said in (English by default), read once.
         self.language = language or Language.load()
         self._lexicons = LexiconCache(self.language)
+        # Whoever makes a snapshot makes its lexicon too: a turn that finds a snapshot finds both.
+        self.grounder = Grounder(self.config.max_snapshot_entities, self.config.lang, then=self._lexicons.get)
         self._rebuilds: dict[int, asyncio.Task[tuple[Snapshot, Lexicon]]] = {}
+
+    def follow(self) -> None:
+        """Keep the grounding current from the KB's commits on a worker thread (the service's
+        engine does): the first snapshot is built there, and a turn after any quiet spell finds
+        the changes taken up. Without it, each turn takes up the commits made since the last."""
+        self.grounder.follow(self.kb)
+
+    def close(self) -> None:
+        """Stop following the KB (the worker ends)."""
+        self.grounder.close()
 
     def ground(self) -> tuple[Snapshot, Lexicon]:
         """The current snapshot and its lexicon (blocking: KB queries on a revision change)."""
@@ -133,8 +144,9 @@ class DialogueEngine:
     async def ground_async(self) -> tuple[Snapshot, Lexicon]:
         revision = self.kb.revision
         cached = self.grounder.cached(revision)
-        if cached is not None:
-            return cached, self._lexicons.get(cached)
+        lexicon = self._lexicons.made(cached) if cached is not None else None
+        if cached is not None and lexicon is not None:
+            return cached, lexicon
         # rdflib work (and the lexicon rebuild) never runs on the event loop. One rebuild per
         # revision, shared by every turn that waits for it: with many dialogues, each KB change
         # would otherwise start as many identical rebuilds, all contending for the KB and the GIL.

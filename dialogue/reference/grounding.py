@@ -4,10 +4,16 @@ The first snapshot asks the KB a handful of set-wide questions (`entities.Entity
 that, each commit's added and removed statements update only what they touch, so a turn after a
 perception tick costs what the tick changed, not what the KB holds. A full rebuild happens only
 when the KB was cleared, its TBox changed, or it does not report its commits (a remote store).
+
+A grounder that `follow`s its KB takes the changes up as they come, on a worker thread of its own
+(the first build too), so that a turn finds the snapshot current, or a commit or two behind,
+whatever happened while nobody spoke: minutes of perception never become one long turn. The
+thread ends when the KB has been quiet for a while and starts again with the next commit.
 """
 
 from __future__ import annotations
 
+import logging
 import threading
 from collections.abc import Callable
 from typing import Any
@@ -17,8 +23,11 @@ from rdflib import RDF
 from dialogue.reference.entities import EntityIndex
 from dialogue.reference.facts import PERSON_CLASSES, ROBOT_ID, ZONE_CLASSES
 from dialogue.reference.snapshot import ROBOT_CLASSES, Entity, Kind, Snapshot, readable_id
+from kb.errors import KbError
 from kb.protocol import KnowledgeBase
 from kb.tbox import is_schema_triple
+
+log = logging.getLogger(__name__)
 
 __all__ = [
     "PERSON_CLASSES", "ROBOT_CLASSES", "ROBOT_ID", "ZONE_CLASSES",
@@ -29,6 +38,8 @@ __all__ = [
 MAX_PENDING = 200_000
 #: Snapshot steps a snapshot remembers (a lexicon that missed a few revisions still catches up).
 MAX_STEPS = 16
+#: Seconds a following grounder's worker waits for the next commit before it ends.
+IDLE = 2.0
 
 _Triples = list[tuple[Any, Any, Any]]
 
@@ -38,18 +49,26 @@ class Grounder:
 
     With a KB that reports its commits (``kb.KB.on_commit``), the commits' closure changes are
     queued (the listener runs under the KB's lock, so it only queues) and applied at the next
-    snapshot. ``max_entities`` is kept for the prompt's share (see ``relevance``): the snapshot
-    itself holds every entity, so the rules understand any of them.
+    snapshot, which a following grounder makes at once (`follow`). ``max_entities`` is kept for
+    the prompt's share (see ``relevance``): the snapshot itself holds every entity, so the rules
+    understand any of them. ``then`` is called with each new snapshot before anyone can have it
+    (the engine's lexicon of it: made by whoever makes the snapshot, never by a turn that finds it).
     """
 
-    def __init__(self, max_entities: int = 300, lang: str = "en") -> None:
+    def __init__(self, max_entities: int = 300, lang: str = "en",
+                 then: Callable[[Snapshot], object] | None = None) -> None:
         self.max_entities = max_entities
         self.lang = lang
+        self._then = then
+        self._wakeup = threading.Condition()  # a commit to take up, or the end of following
+        self._due = False
+        self._following = False
+        self._worker: threading.Thread | None = None
         self._lock = threading.Lock()  # guards the cache and the queue; never held while asking the KB
         self._build = threading.Lock()  # one build at a time: the index is mutable
         self._cached: Snapshot | None = None
         self._index: EntityIndex | None = None
-        self._watched: object | None = None
+        self._watched: KnowledgeBase | None = None
         self._unwatch: Callable[[], None] | None = None
         self._pending: list[tuple[_Triples, _Triples]] | None = None  # None: rebuild everything
         self._pending_size = 0
@@ -85,15 +104,64 @@ class Grounder:
                     changed |= index.apply(added, removed)
                 steps = (*previous.changed, (previous.revision, frozenset(changed)))[-MAX_STEPS:]
                 snap = index.freeze(revision, steps)
+            if self._then is not None:
+                self._then(snap)
             with self._lock:
                 self._cached = snap
             return snap
 
+    def follow(self, kb: KnowledgeBase) -> None:
+        """Keep the snapshot of ``kb`` current on a worker thread, from now on: the first one is
+        built there (a turn that comes before it is done waits for it), then each commit is taken
+        up as it comes. A KB that reports no commits is grounded turn by turn, as without."""
+        with self._lock:
+            if self._watched is not kb:
+                self._watch(kb)
+        with self._wakeup:
+            self._following = True
+        self._kick()
+
     def close(self) -> None:
+        with self._wakeup:
+            self._following = False
+            self._wakeup.notify_all()
+            worker = self._worker
+        if worker is not None and worker is not threading.current_thread():
+            worker.join(timeout=10)
         with self._lock:
             if self._unwatch is not None:
                 self._unwatch()
             self._unwatch, self._watched, self._pending = None, None, None
+
+    def _kick(self) -> None:
+        """A commit to take up: wake the worker, or start one (it ends after `IDLE` quiet seconds)."""
+        with self._wakeup:
+            if not self._following:
+                return
+            self._due = True
+            if self._worker is None:
+                self._worker = threading.Thread(target=self._follow, name="grounding", daemon=True)
+                self._worker.start()
+            else:
+                self._wakeup.notify()
+
+    def _follow(self) -> None:
+        while True:
+            with self._wakeup:
+                if not self._due and self._following:
+                    self._wakeup.wait(IDLE)
+                if not self._due or not self._following:
+                    self._worker = None
+                    return
+                self._due = False
+            with self._lock:
+                kb = self._watched
+            if kb is None:
+                continue
+            try:
+                self.snapshot(kb)
+            except KbError as exc:  # the KB refused a read (closed, or a store that went away)
+                log.warning("the grounding could not follow the KB: %s", exc)
 
     def _watch(self, kb: KnowledgeBase) -> None:
         if self._unwatch is not None:
@@ -107,33 +175,41 @@ class Grounder:
     def _changed(self, commit: Any) -> None:
         """Called by the KB under its lock with every commit: queue what it changed."""
         with self._lock:
-            if self._pending is None:
+            self._queue(commit)
+        self._kick()
+
+    def _queue(self, commit: Any) -> None:
+        if self._pending is None:
+            return
+        if getattr(commit, "cleared", None) is not None:
+            self._pending = None
+            return
+        for delta in commit.deltas:
+            if delta.model != "default":
+                continue
+            if any(map(is_schema_triple, (*delta.asserted_added, *delta.asserted_removed))):
+                self._pending = None  # the TBox changed: classes and names may all change
                 return
-            if getattr(commit, "cleared", None) is not None:
-                self._pending = None
-                return
-            for delta in commit.deltas:
-                if delta.model != "default":
-                    continue
-                if any(map(is_schema_triple, (*delta.asserted_added, *delta.asserted_removed))):
-                    self._pending = None  # the TBox changed: classes and names may all change
-                    return
-                if _retyped(delta):
-                    # a type asserted that was only inferred (or no longer asserted but still
-                    # inferred) changes no fact of the closure, yet which classes are the entity's
-                    # own (its name: "cup", not "mug"): rare, so everything is asked again
-                    self._pending = None
-                    return
-                self._pending.append((list(delta.added), list(delta.removed)))
-                self._pending_size += len(delta.added) + len(delta.removed)
-            if self._pending_size > MAX_PENDING:
-                self._pending = None
+            self._pending.append((list(delta.added), list(delta.removed)))
+            self._pending_size += len(delta.added) + len(delta.removed)
+            retyped = _retyped(delta)
+            if retyped:
+                # a type asserted that was only inferred (or no longer asserted but still
+                # inferred) changes no fact of the closure, yet which classes are the entity's
+                # own (its name: "cup", not "mug"): its classes are asked again
+                self._pending.append((retyped, []))
+        if self._pending_size > MAX_PENDING:
+            self._pending = None
 
 
-def _retyped(delta: Any) -> bool:
-    """Whether an asserted type changed that the closure's changes do not show."""
+def _retyped(delta: Any) -> list[tuple[Any, Any, Any]]:
+    """The asserted types that changed where the closure's changes do not show it (each still
+    holds in the closure: asserted and inferred, or no longer asserted but inferred)."""
     asserted = [t for t in (*delta.asserted_added, *delta.asserted_removed) if t[1] == RDF.type]
-    return bool(asserted) and not set(asserted) <= {*delta.added, *delta.removed}
+    if not asserted:
+        return []
+    shown = {*delta.added, *delta.removed}
+    return [t for t in asserted if t not in shown]
 
 
 def build_snapshot(kb: KnowledgeBase, max_entities: int = 300, lang: str = "en") -> Snapshot:

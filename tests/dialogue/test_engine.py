@@ -1,7 +1,9 @@
 import asyncio
+import threading
 import time
 from typing import Any
 
+import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
@@ -13,7 +15,7 @@ from dialogue.llm.hybrid import HybridModel
 from dialogue.llm.testing import FunctionModel, ScriptedModel
 from dialogue.schema import ChatbotResponse, UserIntent
 from kb import KB
-from tests.dialogue.conftest import scene_kb
+from tests.dialogue.conftest import scene_kb, scene_statements
 
 ALICE = "person_alice"
 
@@ -342,3 +344,56 @@ def test_a_hybrid_hands_another_language_to_its_model_told_to_answer_in_it(kitch
     english = ScriptedModel([grab])
     turn(DialogueEngine(kitchen, english), "take the cup", locale="en_GB")
     assert "Answer the person in" not in english.requests[0].messages[-1].content
+
+
+@pytest.mark.parametrize("following", [True, False])
+def test_a_turn_after_a_long_quiet_spell_answers_as_after_a_rebuild(following: bool) -> None:
+    kb = scene_kb("kitchen")
+    engine = DialogueEngine(kb)
+    if following:
+        engine.follow()
+    turn(engine, "hello")
+    zones = ["bedroom", "living_room", "kitchen"]
+    for n in range(2000):  # ends in the living room  # minutes of perception, nobody speaking: the cup goes round the rooms
+        kb.apply(add=[f"cup_1 isIn {zones[n % 3]}", f"person_tom looksAt apple_{n % 5}"],
+                 remove=[f"cup_1 isIn {zones[(n - 1) % 3]}", f"person_tom looksAt apple_{(n - 1) % 5}"])
+    kb.update(["cup_1 rdfs:label \"blue mug\""])
+    after = [turn(engine, said).response for said in ("where is the blue mug?", "what is in the bedroom?")]
+    rebuilt = DialogueEngine(kb)  # a grounding made from scratch
+    assert after == [turn(rebuilt, said).response for said in ("where is the blue mug?", "what is in the bedroom?")]
+    assert "living room" in after[0]  # where the last tick put it
+    engine.close()
+    kb.close()
+
+
+class _HeldKB(KB):
+    """A KB whose bulk read waits until released: a first snapshot that takes a while."""
+
+    def __init__(self) -> None:
+        super().__init__()
+        self.asked, self.release = threading.Event(), threading.Event()
+
+    def all_classes(self, direct: bool = False, model: str | None = None) -> dict[str, list[str]]:
+        self.asked.set()
+        self.release.wait(30)
+        return super().all_classes(direct, model)
+
+
+def test_a_turn_while_the_first_snapshot_is_built_waits_for_it_and_answers_right() -> None:
+    kb = _HeldKB()
+    kb.update(scene_statements("kitchen"))
+    engine = DialogueEngine(kb)
+    engine.follow()  # as the service starts: the first snapshot is built on the worker
+    assert kb.asked.wait(30)
+
+    async def ask() -> TurnResult:
+        pending = asyncio.create_task(engine.turn("where is the apple?", speaker=ALICE))
+        await asyncio.sleep(0.2)
+        assert not pending.done()  # never an answer from half a grounding
+        kb.release.set()
+        return await pending
+
+    result = asyncio.run(ask())
+    assert result.intents == () and "table" in result.response and not result.error_msg
+    engine.close()
+    kb.close()

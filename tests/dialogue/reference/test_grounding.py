@@ -1,4 +1,7 @@
-from dialogue.reference.grounding import Grounder, build_snapshot, readable_id
+import time
+from collections.abc import Callable
+
+from dialogue.reference.grounding import Grounder, Snapshot, build_snapshot, readable_id
 from kb import KB
 from tests.dialogue.conftest import scene_kb
 
@@ -134,5 +137,48 @@ def test_incremental_snapshots_follow_containers_and_places_becoming_zones() -> 
         else:
             kb.update([statement])
         assert grounder.snapshot(kb) == build_snapshot(kb)
+    grounder.close()
+    kb.close()
+
+
+def _until(done: Callable[[], bool], seconds: float = 20.0) -> None:
+    """Wait for a worker thread's effect (the bound is a safety net, far above the few ms it takes)."""
+    end = time.monotonic() + seconds
+    while not done():
+        assert time.monotonic() < end, "the worker never got there"
+        time.sleep(0.005)
+
+
+def test_a_following_grounder_takes_up_each_commit_without_a_turn(kitchen: KB) -> None:
+    made: list[Snapshot] = []
+    grounder = Grounder(then=made.append)
+    grounder.follow(kitchen)  # the first snapshot is built by the worker
+    _until(lambda: grounder.cached(kitchen.revision) is not None)
+    kitchen.update(["pear_1 rdf:type dbr:Pear", "myself sees pear_1"])
+    _until(lambda: grounder.cached(kitchen.revision) is not None)  # nobody asked for it
+    snap = grounder.cached(kitchen.revision)
+    assert snap is not None and "pear_1" in snap.entities and snap == build_snapshot(kitchen)
+    assert snap.changed  # taken up from the commit, not rebuilt
+    assert made[-1] is snap  # what comes with a snapshot (the engine's lexicon) made before it was shown
+    grounder.close()
+    before = kitchen.revision
+    kitchen.update(["person_tom looksAt cup_1"])
+    time.sleep(0.05)
+    assert kitchen.revision > before
+    assert grounder.cached(kitchen.revision) is None  # closed: no longer following
+
+
+def test_a_long_spell_of_perception_is_taken_up_as_it_comes() -> None:
+    kb = scene_kb("kitchen")
+    grounder = Grounder()
+    grounder.follow(kb)
+    zones = ["kitchen", "bedroom", "living_room"]
+    for n in range(600):  # a minute of perception at 10 Hz, and nobody speaks
+        kb.apply(add=[f"cup_1 isIn {zones[n % 3]}", f"person_tom looksAt thing_{n % 7}"],
+                 remove=[f"cup_1 isIn {zones[(n - 1) % 3]}", f"person_tom looksAt thing_{(n - 1) % 7}"])
+    _until(lambda: grounder.cached(kb.revision) is not None)
+    snap = grounder.cached(kb.revision)
+    assert snap is not None and snap.changed  # followed commit by commit, never rebuilt
+    assert snap == build_snapshot(kb) and snap.entities["cup_1"].zone == "living_room"
     grounder.close()
     kb.close()
