@@ -33,7 +33,7 @@ from dialogue.memory.replies import confirmation
 from dialogue.prompts import PromptSet
 from dialogue.reference.grounding import Entity, Grounder, Snapshot
 from dialogue.reference.lexicon import Lexicon, LexiconCache
-from dialogue.reference.relevance import mentioned, ranked
+from dialogue.reference.relevance import Focus, mentioned, ranked
 from dialogue.schema import AnswerError, SchemaCandidates, parse_answer, turn_schema
 from dialogue.speakers import NOT_PEOPLE, admit, check_speaker
 from dialogue.trace.record import AnsweredBy, TraceRecorder, TurnTrace
@@ -232,12 +232,14 @@ class DialogueEngine:
     ) -> _Turn:
         snapshot, lexicon = grounded
         said = Said(lexicon.lang, text)  # the turn's words, read once: what it names, and the rules
-        focus = ranked(snapshot, speaker, self.config.max_snapshot_entities, mentioned(lexicon, said.tokens))
-        context = TurnContext(text, speaker, snapshot, history, locale, self.config.robot_name, tuple(focus),
-                              lexicon, said)
         recorder = trace or TraceRecorder(speaker=speaker, input=text, locale=locale)
-        shown = [e.id for e in focus]
-        recorder.snapshot(snapshot.revision, len(snapshot.entities), [e.kind for e in focus], shown)
+        recorder.snapshot(snapshot.revision, len(snapshot.entities))
+        # Ranked only if a prompt or a schema reads it (never for a turn the rules answer).
+        focus = Focus(snapshot, speaker, self.config.max_snapshot_entities,
+                      lambda: mentioned(lexicon, said.tokens),
+                      then=lambda shown: recorder.shown([e.kind for e in shown], [e.id for e in shown]))
+        context = TurnContext(text, speaker, snapshot, history, locale, self.config.robot_name, focus,
+                              lexicon, said)
         return _Turn(text, speaker, locale, context, lexicon, recorder)
 
     async def check_speaker(self, speaker: str, what: str = "user_id") -> None:

@@ -13,6 +13,7 @@ defaults.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from typing import Any, Literal, Protocol, runtime_checkable
 
@@ -45,9 +46,9 @@ class TurnContext:
     history: tuple[Utterance, ...] = ()
     locale: str | None = None
     robot_name: str = "robot"
-    #: The entities the prompt and the schema show, most relevant first (`reference.relevance`);
-    #: None: ranked without the utterance.
-    focus: tuple[Entity, ...] | None = None
+    #: The entities the prompt and the schema show, most relevant first (`reference.relevance`;
+    #: the engine's is ranked when first read); None: ranked without the utterance.
+    focus: Sequence[Entity] | None = None
     #: The lexicon of `snapshot` the engine already keeps (the rules read it rather than keeping
     #: a second one of every entity); None: the model makes its own.
     lexicon: Lexicon | None = None

@@ -11,7 +11,8 @@ visible things, mentioned ones), so the cost does not grow with the KB.
 from __future__ import annotations
 
 import heapq
-from collections.abc import Iterable, Sequence
+from collections.abc import Callable, Iterable, Iterator, Sequence
+from typing import overload
 
 from dialogue.reference.lexicon import Lexicon
 from dialogue.reference.snapshot import Entity, Snapshot
@@ -57,3 +58,40 @@ def ranked(snapshot: Snapshot, speaker: str, limit: int, mentions: Iterable[str]
     if add(map(snapshot.get, places)):
         add(snapshot.entities.values())  # lazily, in order: stops once the share is full
     return list(kept.values())
+
+
+class Focus(Sequence[Entity]):
+    """`ranked`, worked out when first read: a turn the rules answer builds no prompt and no schema,
+    and ranks nothing (a third of a rules turn went to a ranking nobody read). ``then`` is told
+    the ranking once it is made (the turn's trace)."""
+
+    __slots__ = ("_limit", "_mentions", "_ranked", "_snapshot", "_speaker", "_then")
+
+    def __init__(self, snapshot: Snapshot, speaker: str, limit: int, mentions: Callable[[], Iterable[str]],
+                 then: Callable[[Sequence[Entity]], object] | None = None) -> None:
+        self._snapshot, self._speaker, self._limit = snapshot, speaker, limit
+        self._mentions, self._then = mentions, then
+        self._ranked: tuple[Entity, ...] | None = None
+
+    @property
+    def entities(self) -> tuple[Entity, ...]:
+        if self._ranked is None:
+            self._ranked = tuple(ranked(self._snapshot, self._speaker, self._limit, self._mentions()))
+            if self._then is not None:
+                self._then(self._ranked)
+        return self._ranked
+
+    @overload
+    def __getitem__(self, index: int) -> Entity: ...
+
+    @overload
+    def __getitem__(self, index: slice) -> Sequence[Entity]: ...
+
+    def __getitem__(self, index: int | slice) -> Entity | Sequence[Entity]:
+        return self.entities[index]
+
+    def __len__(self) -> int:
+        return len(self.entities)
+
+    def __iter__(self) -> Iterator[Entity]:
+        return iter(self.entities)

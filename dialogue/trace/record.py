@@ -81,7 +81,8 @@ class SnapshotSummary(BaseModel):
 
     revision: int
     entities: int
-    #: Kinds of the prompt's entities; counting the whole KB's would cost a turn O(KB size).
+    #: Kinds of the prompt's entities; counting the whole KB's would cost a turn O(KB size). Empty
+    #: when the turn built no prompt (the rules answered it).
     by_kind: dict[str, int]
     #: The most relevant entities of the turn (what the prompt and the schema show first).
     focus: list[str]
@@ -164,11 +165,19 @@ class TraceRecorder:
         finally:
             self.trace.stages.append(Stage(name=name, ms=_ms(start)))
 
-    def snapshot(self, revision: int, entities: int, kinds: Sequence[str], focus: Sequence[str]) -> None:
-        """`entities`: how many the snapshot holds; `kinds` and `focus`: of the prompt's entities."""
+    def snapshot(self, revision: int, entities: int, kinds: Sequence[str] = (),
+                 focus: Sequence[str] = ()) -> None:
+        """`entities`: how many the snapshot holds; `kinds` and `focus`: of the prompt's entities
+        (none when the turn built no prompt: `shown` adds them when it does)."""
         self.trace.snapshot = SnapshotSummary(
             revision=revision, entities=entities, by_kind=dict(Counter(kinds)), focus=list(focus[:12])
         )
+
+    def shown(self, kinds: Sequence[str], focus: Sequence[str]) -> None:
+        """The kinds and ids of the entities the turn's prompt and schema show."""
+        if self.trace.snapshot is not None:
+            self.trace.snapshot.by_kind = dict(Counter(kinds))
+            self.trace.snapshot.focus = list(focus[:12])
 
     def request(
         self, model: str, messages: Sequence[tuple[str, str]], schema: dict[str, Any], repair: bool = False
@@ -227,4 +236,10 @@ class TraceRecorder:
         trace.repaired = bool(trace.validation_errors) and answered_by == "model" and not error_msg
         if not trace.stages or trace.stages[-1].name != "total":
             trace.stages.append(Stage(name="total", ms=_ms(self._start)))
-        return trace.model_copy(deep=True)
+        # What the recorder could still change is copied, one level deep (a deep copy of the
+        # pydantic models was a tenth of a rules turn): its lists, and each exchange.
+        kept = ("stages", "validation_errors", "notes", "intents")
+        lists = {name: list(getattr(trace, name)) for name in kept}
+        exchanges = [exchange.model_copy() for exchange in trace.exchanges]
+        snapshot = trace.snapshot.model_copy() if trace.snapshot is not None else None
+        return trace.model_copy(update={**lists, "exchanges": exchanges, "snapshot": snapshot})

@@ -28,7 +28,10 @@ def test_the_trace_of_rules_model_and_repair_turns(live_factory: Callable[..., L
     latest, first = body["turns"]
     assert TOKEN not in str(body)
     assert first["answered_by"] == "rules" and first["exchanges"] == [] and first["input"] == "pick up the cup"
-    assert first["intents"][0]["data"] == {"object": "cup_1"} and first["snapshot"]["by_kind"]["person"] == 2
+    assert first["intents"][0]["data"] == {"object": "cup_1"}
+    # the rules answered: no prompt was built, so none of its entities are listed
+    assert first["snapshot"]["entities"] > 0 and first["snapshot"]["by_kind"] == {} and not first["snapshot"]["focus"]
+    assert latest["snapshot"]["by_kind"]["person"] == 2 and "person_alice" in latest["snapshot"]["focus"]
     assert latest["answered_by"] == "model" and latest["backend"] == "scripted" and latest["repaired"] is True
     bad, repair = latest["exchanges"]
     assert bad["raw_answer"] == "{oops" and "not valid JSON" in bad["error"]

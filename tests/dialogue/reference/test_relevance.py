@@ -3,12 +3,13 @@
 from __future__ import annotations
 
 import asyncio
+from collections.abc import Sequence
 
 from dialogue.engine import DialogueEngine
 from dialogue.reference.english import tokens
-from dialogue.reference.grounding import build_snapshot
+from dialogue.reference.grounding import Entity, build_snapshot
 from dialogue.reference.lexicon import Lexicon
-from dialogue.reference.relevance import mentioned, ranked
+from dialogue.reference.relevance import Focus, mentioned, ranked
 from kb import KB
 from tests.dialogue.conftest import english
 
@@ -73,3 +74,26 @@ def test_the_rules_understand_entities_beyond_the_prompts_share() -> None:
     snapshot = build_snapshot(crowded())
     assert len(snapshot.entities) > 500 and "zz_jar" in snapshot.entities  # unseen, sorted last
     assert {e for m in Lexicon(snapshot, english()).mentions(["jar"]) for e in m.entities} == {"zz_jar"}
+
+
+def test_the_focus_is_ranked_only_when_read_and_once() -> None:
+    snapshot = build_snapshot(crowded(3))
+    asked: list[str] = []
+    told: list[Sequence[Entity]] = []
+
+    def mentions() -> list[str]:
+        asked.append("mentions")
+        return ["apple_1"]
+
+    focus = Focus(snapshot, ALICE, 7, mentions, then=told.append)
+    assert asked == [] and told == []  # nothing done until read
+    assert [e.id for e in focus] == [e.id for e in ranked(snapshot, ALICE, 7, ["apple_1"])]
+    assert focus[0].id == ALICE and len(focus) == 7
+    assert asked == ["mentions"] and len(told) == 1  # ranked once, and told once
+
+
+def test_a_turn_the_rules_answer_ranks_nothing() -> None:
+    engine = DialogueEngine(crowded())
+    trace = asyncio.run(engine.turn("put the apple on the shelf", speaker=ALICE)).trace
+    assert trace is not None and trace.answered_by == "rules"
+    assert trace.snapshot is not None and trace.snapshot.entities > 500 and trace.snapshot.focus == []
