@@ -40,17 +40,22 @@ class History:
             raise ValueError("history limits must be positive")
         self.max_chars = max_chars
         self._items: deque[Utterance] = deque(maxlen=max_turns)
+        self._chars = 0  # of the texts kept: a turn's history is rebuilt one add at a time
 
     def add(self, speaker: str, text: str) -> None:
         """Keep an utterance; a blank one says nothing and is not kept."""
         if not text.strip():
             return
+        if len(self._items) == self._items.maxlen:  # the oldest goes to make room
+            self._chars -= len(self._items[0].text)
         self._items.append(Utterance(speaker, text))
-        while len(self._items) > 1 and sum(len(u.text) for u in self._items) > self.max_chars:
-            self._items.popleft()
+        self._chars += len(text)
+        while len(self._items) > 1 and self._chars > self.max_chars:
+            self._chars -= len(self._items.popleft().text)
 
     def clear(self) -> None:
         self._items.clear()
+        self._chars = 0
 
     def __iter__(self) -> Iterator[Utterance]:
         return iter(tuple(self._items))

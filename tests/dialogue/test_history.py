@@ -1,4 +1,6 @@
 import pytest
+from hypothesis import given
+from hypothesis import strategies as st
 
 from dialogue.history import ASSISTANT_USER_ID, SYSTEM_USER_ID, History, role_of
 
@@ -20,3 +22,19 @@ def test_history_is_bounded_by_turns_and_characters() -> None:
     assert len(history) == 1
     with pytest.raises(ValueError, match="positive"):
         History(max_turns=0)
+
+
+@given(st.integers(1, 6), st.integers(1, 60), st.lists(st.text(max_size=30), max_size=40))
+def test_the_kept_utterances_are_the_latest_that_fit(max_turns: int, max_chars: int, texts: list[str]) -> None:
+    history = History(max_turns, max_chars)
+    said: list[str] = []  # a blank text says nothing and is never kept
+    for text in texts:
+        history.add("p", text)
+        if text.strip():
+            said.append(text)
+        # what must be kept: the latest `max_turns`, then the oldest dropped while over `max_chars`
+        # (the latest one always)
+        expected = said[-max_turns:]
+        while len(expected) > 1 and sum(map(len, expected)) > max_chars:
+            expected.pop(0)
+        assert [u.text for u in history] == expected
