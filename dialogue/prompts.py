@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import string
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from importlib import resources
 
 from dialogue.errors import DialogueError
@@ -80,6 +80,10 @@ def history_message(utterance: Utterance) -> ChatMessage:
     return ChatMessage(utterance.role, utterance.text)
 
 
+#: System prompts a prompt set keeps rendered.
+_SYSTEMS_KEPT = 16
+
+
 @dataclass
 class PromptSet:
     """The loaded templates; load once (e.g. per engine), render every turn."""
@@ -89,13 +93,22 @@ class PromptSet:
     repair: string.Template
     #: Said after the turn when the dialogue is not in English (the situation stays in English).
     language: string.Template
+    _systems: dict[tuple[str, tuple[str, ...]], str] = field(default_factory=dict, init=False, repr=False,
+                                                             compare=False)
 
     @classmethod
     def load(cls, package: str = "prompts") -> PromptSet:
         return cls(*(load_template(name, package) for name in TEMPLATE_NAMES))
 
     def system_prompt(self, robot_name: str, intents: Sequence[str] = EXTRACTABLE) -> str:
-        return render(self.system, {"robot_name": robot_name, "intent_list": intent_list(intents)})
+        key = (robot_name, tuple(intents))
+        said = self._systems.get(key)
+        if said is None:  # the same every turn: rendered once (a few, kept)
+            said = render(self.system, {"robot_name": robot_name, "intent_list": intent_list(intents)})
+            if len(self._systems) >= _SYSTEMS_KEPT:
+                self._systems.clear()
+            self._systems[key] = said
+        return said
 
     def messages(self, context: TurnContext, intents: Sequence[str] = EXTRACTABLE) -> tuple[ChatMessage, ...]:
         situation = describe(context.snapshot, context.speaker, context.focus).text

@@ -185,11 +185,13 @@ class TraceRecorder:
         """Record a request about to be sent; fill in its answer on the returned exchange."""
         if len(self.trace.exchanges) >= MAX_EXCHANGES:
             return None
-        exchange = Exchange(
+        # Built without validation: every value is of its field's type here, and validating the
+        # schema and each message of the history again cost more than the rest of a model turn.
+        exchange = Exchange.model_construct(
             model=model,
             repair=repair,
-            schema=schema,
-            messages=[Message(role=r, content=clip(c)) for r, c in messages],
+            json_schema=schema,
+            messages=[Message.model_construct(role=r, content=clip(c)) for r, c in messages],
         )
         self.trace.exchanges.append(exchange)
         return exchange
