@@ -31,6 +31,7 @@ from dialogue.sessions.observers import TurnObserver
 from dialogue.sessions.sparql import SparqlSessions
 from kb import KB, KbError
 from kb.errors import StorageError
+from kb.gcpause import settle
 from kb.journal import Journal
 from kb.protocol import KnowledgeBase
 from kb.reasonbudget import ReasoningBounds
@@ -288,7 +289,8 @@ def start_services(settings: Settings, kb: KB | None = None, model: ChatModel | 
     people.follow()  # the KB is recovered and loaded: the index starts from it
     # The grounding follows the KB's commits on a worker thread, which makes the first snapshot
     # (the one full build) now, while the service starts; a turn that comes before it waits for it.
-    dialogues.engine.follow()
+    # Once built, the KB and the grounding are what the service keeps: out of the collector's way.
+    dialogues.engine.follow(built=settle)
     services.reconciler = Reconciler(dialogues.engine.memory)
     services.reconciler.start()
     services.initiative = Initiative(the_kb, bus, InitiativeConfig(settings.memory.greet,

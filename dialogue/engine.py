@@ -18,7 +18,7 @@ from __future__ import annotations
 import asyncio
 import logging
 import time
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, replace
 
 from dialogue import intents as I
@@ -126,11 +126,12 @@ class DialogueEngine:
         self.grounder = Grounder(self.config.max_snapshot_entities, self.config.lang, then=self._lexicons.get)
         self._rebuilds: dict[int, asyncio.Task[tuple[Snapshot, Lexicon]]] = {}
 
-    def follow(self) -> None:
+    def follow(self, built: Callable[[], object] | None = None) -> None:
         """Keep the grounding current from the KB's commits on a worker thread (the service's
         engine does): the first snapshot is built there, and a turn after any quiet spell finds
-        the changes taken up. Without it, each turn takes up the commits made since the last."""
-        self.grounder.follow(self.kb)
+        the changes taken up. Without it, each turn takes up the commits made since the last.
+        ``built`` is called after each full build of the grounding."""
+        self.grounder.follow(self.kb, built)
 
     def close(self) -> None:
         """Stop following the KB (the worker ends)."""

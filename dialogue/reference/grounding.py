@@ -24,6 +24,7 @@ from dialogue.reference.entities import EntityIndex
 from dialogue.reference.facts import PERSON_CLASSES, ROBOT_ID, ZONE_CLASSES
 from dialogue.reference.snapshot import ROBOT_CLASSES, Entity, Kind, Snapshot, readable_id
 from kb.errors import KbError
+from kb.gcpause import BULK, paused
 from kb.protocol import KnowledgeBase
 from kb.tbox import is_schema_triple
 
@@ -64,6 +65,7 @@ class Grounder:
         self._due = False
         self._following = False
         self._worker: threading.Thread | None = None
+        self._built: Callable[[], object] | None = None
         self._lock = threading.Lock()  # guards the cache and the queue; never held while asking the KB
         self._build = threading.Lock()  # one build at a time: the index is mutable
         self._cached: Snapshot | None = None
@@ -95,9 +97,11 @@ class Grounder:
                 self._pending_size = 0
                 previous = self._cached
             index = self._index
+            built = pending is None or index is None or previous is None
             if pending is None or index is None or previous is None:
-                index = self._index = EntityIndex(kb, self.lang)
-                snap = index.freeze(revision)
+                with paused(BULK):  # hundreds of thousands of objects made to last: no collection pass
+                    index = self._index = EntityIndex(kb, self.lang)
+                    snap = index.freeze(revision)
             else:
                 changed: set[str] = set()
                 for added, removed in pending:
@@ -105,16 +109,22 @@ class Grounder:
                 steps = (*previous.changed, (previous.revision, frozenset(changed)))[-MAX_STEPS:]
                 snap = index.freeze(revision, steps)
             if self._then is not None:
-                self._then(snap)
+                with paused(BULK if built else 0):
+                    self._then(snap)
             with self._lock:
                 self._cached = snap
-            return snap
+                settled = self._built
+        if built and settled is not None:
+            settled()
+        return snap
 
-    def follow(self, kb: KnowledgeBase) -> None:
+    def follow(self, kb: KnowledgeBase, built: Callable[[], object] | None = None) -> None:
         """Keep the snapshot of ``kb`` current on a worker thread, from now on: the first one is
         built there (a turn that comes before it is done waits for it), then each commit is taken
-        up as it comes. A KB that reports no commits is grounded turn by turn, as without."""
+        up as it comes. A KB that reports no commits is grounded turn by turn, as without.
+        ``built`` is called after each full build (the service settles what it made)."""
         with self._lock:
+            self._built = built
             if self._watched is not kb:
                 self._watch(kb)
         with self._wakeup:

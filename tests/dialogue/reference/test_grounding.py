@@ -182,3 +182,17 @@ def test_a_long_spell_of_perception_is_taken_up_as_it_comes() -> None:
     assert snap == build_snapshot(kb) and snap.entities["cup_1"].zone == "living_room"
     grounder.close()
     kb.close()
+
+
+def test_a_following_grounder_says_when_it_built_everything_and_only_then(kitchen: KB) -> None:
+    builds: list[int] = []
+    grounder = Grounder()
+    grounder.follow(kitchen, built=lambda: builds.append(kitchen.revision))
+    _until(lambda: grounder.cached(kitchen.revision) is not None)
+    assert builds == [kitchen.revision]  # the first snapshot
+    kitchen.update(["pear_1 rdf:type dbr:Pear", "myself sees pear_1"])
+    _until(lambda: grounder.cached(kitchen.revision) is not None)
+    kitchen.update(['dbr:Pear rdfs:subClassOf dbr:Apple'])  # a TBox change: everything again
+    _until(lambda: grounder.cached(kitchen.revision) is not None)
+    assert len(builds) == 2 and builds[-1] == kitchen.revision
+    grounder.close()
