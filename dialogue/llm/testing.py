@@ -27,10 +27,21 @@ def _result(answer: Answer) -> ChatResult:
     return ChatResult(answer)
 
 
+#: Requests a test model keeps (each holds its turn's snapshot: a long-running service kept them all).
+KEPT = 100
+
+
+def _keep(requests: list[ChatRequest], request: ChatRequest) -> None:
+    requests.append(request)
+    if len(requests) > KEPT:
+        del requests[0]
+
+
 class ScriptedModel(ChatModel):
     """Answers from a queue: a JSON string, a dict (dumped), a ChatResult, or an exception to raise.
 
-    Every request is recorded in `requests`. `delay` seconds are slept before each answer (to test
+    Every request is recorded in `requests` (the last `KEPT`: a benchmark's service answers
+    thousands). `delay` seconds are slept before each answer (to test
     deadlines). An exhausted script is a ModelError, never a silent default answer.
 
     It also streams (dialogue.llm.stream): `chat_stream` hands out the answer in pieces of
@@ -63,7 +74,7 @@ class ScriptedModel(ChatModel):
         self._answers.extend(answers)
 
     async def chat(self, request: ChatRequest, timeout: float) -> ChatResult:
-        self.requests.append(request)
+        _keep(self.requests, request)
         if self.delay:
             await asyncio.sleep(self.delay)
         if not self._answers:
@@ -88,14 +99,14 @@ class FunctionModel(ChatModel):
     def __init__(self, function: Responder, *, name: str = "function") -> None:
         self.function = function
         self._name = name
-        self.requests: list[ChatRequest] = []
+        self.requests: list[ChatRequest] = []  # (the last `KEPT`: see ScriptedModel)
 
     @property
     def name(self) -> str:
         return self._name
 
     async def chat(self, request: ChatRequest, timeout: float) -> ChatResult:
-        self.requests.append(request)
+        _keep(self.requests, request)
         answer = self.function(request)
         if isinstance(answer, Awaitable):
             answer = await answer
