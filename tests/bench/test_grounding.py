@@ -22,3 +22,12 @@ def test_bad_rounds_are_refused(capsys: pytest.CaptureFixture[str]) -> None:
         cli(["bench", "grounding", "--rounds", "0"])
     assert exc.value.code == 2
     assert "--rounds must be at least 1, not 0" in capsys.readouterr().err
+
+
+def test_quiet_spells_have_a_row_per_spell_beside_the_turn_after_one_tick() -> None:
+    out = bench.grounding.spells_table((1500,), (1,), 1)
+    rows = [line.split() for line in out.splitlines() if line.strip()[:1].isdigit()]
+    assert [row[1] for row in rows] == ["1"]
+    assert all(len(row) == 6 and all(float(v.replace(",", "")) > 0 for v in row[:5]) for row in rows)
+    assert all(row[5] in ("0/1", "1/1") for row in rows)  # whether the worker was behind after the spell
+    assert "baseline" in out and "load average" in out
