@@ -34,7 +34,7 @@ from scene.world import check_scene, load_any_scene
 if TYPE_CHECKING:
     from api.app import Extension
 
-BENCHES = ("kb", "scene", "dialogue", "grounding", "http", "load", "store", "backend")
+BENCHES = ("kb", "scene", "dialogue", "grounding", "startup", "http", "load", "store", "backend")
 #: Not in `all`: model needs the optional local model (the `local` extra) and takes minutes; ros
 #: needs ROS 2 (a sourced environment, or --prefix DIR built by `situated ros install`).
 OPTIONAL_BENCHES = ("model", "ros")
