@@ -36,8 +36,9 @@ if TYPE_CHECKING:
 
 BENCHES = ("kb", "scene", "dialogue", "grounding", "startup", "http", "load", "store", "backend")
 #: Not in `all`: model needs the optional local model (the `local` extra) and takes minutes; ros
-#: needs ROS 2 (a sourced environment, or --prefix DIR built by `situated ros install`).
-OPTIONAL_BENCHES = ("model", "ros")
+#: needs ROS 2 (a sourced environment, or --prefix DIR built by `situated ros install`); soak runs
+#: for as many minutes as it is asked (an hour by default).
+OPTIONAL_BENCHES = ("model", "ros", "soak")
 # tests/api/test_cli.py runs every example below, so they cannot drift from what works.
 KITCHEN = "tests/dialogue/eval/scenes/kitchen.txt"
 EXAMPLES = f"""examples (file paths are those of a clone of the repository):
@@ -171,8 +172,9 @@ def _parser() -> argparse.ArgumentParser:
     data.set_defaults(**{_PARSER: data})
 
     bench = sub.add_parser("bench", help="run benchmarks: " + ", ".join(BENCHES) + ", all (those), "
-                                         "model (the local LLM path; the local extra) or ros (over ROS 2 "
-                                         "beside HTTP and in process; --prefix DIR)")
+                                         "model (the local LLM path; the local extra), ros (over ROS 2 "
+                                         "beside HTTP and in process; --prefix DIR) or soak (the service "
+                                         "over --minutes N)")
     bench.add_argument("which", nargs="?", default="all", choices=[*BENCHES, *OPTIONAL_BENCHES, "all"])
     bench.set_defaults(**{_PARSER: bench})
     bench.add_argument("args", nargs=argparse.REMAINDER, help="passed to the benchmark")
