@@ -245,11 +245,13 @@ class DialogueEngine:
 
     async def check_speaker(self, speaker: str, what: str = "user_id") -> None:
         """Refuse (dialogue.speakers.NotAPerson) a speaker's id that names something of the KB that is
-        no person; a person of the snapshot passes without a KB read."""
+        no person; a person of the current snapshot passes without a KB read. Never waits for the
+        grounding: it comes before a turn's deadline is set (a snapshot not made yet, the first one
+        at start, takes seconds), and the KB can always say it."""
         if speaker in NOT_PEOPLE:
             return
-        snapshot, _ = await self.ground_async()
-        entity = snapshot.get(speaker)
+        snapshot = self.grounder.cached(self.kb.revision)
+        entity = snapshot.get(speaker) if snapshot is not None else None
         if entity is None or entity.kind != "person":
             await asyncio.to_thread(check_speaker, self.kb, speaker, what)
 

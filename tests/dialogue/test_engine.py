@@ -14,6 +14,8 @@ from dialogue.llm.base import ChatRequest, EarlyAnswer, ModelError, TurnContext
 from dialogue.llm.hybrid import HybridModel
 from dialogue.llm.testing import FunctionModel, ScriptedModel
 from dialogue.schema import ChatbotResponse, UserIntent
+from dialogue.sessions import DialogueManager
+from dialogue.speakers import NotAPerson
 from kb import KB
 from tests.dialogue.conftest import scene_kb, scene_statements
 
@@ -397,3 +399,41 @@ def test_a_turn_while_the_first_snapshot_is_built_waits_for_it_and_answers_right
     assert result.intents == () and "table" in result.response and not result.error_msg
     engine.close()
     kb.close()
+
+
+def test_a_speaker_is_checked_without_waiting_for_the_first_snapshot() -> None:
+    kb = _HeldKB()
+    kb.update(scene_statements("kitchen"))
+    engine = DialogueEngine(kb)
+    engine.follow()
+    assert kb.asked.wait(30)
+
+    async def check() -> None:
+        await engine.check_speaker(ALICE)  # the KB says it while the grounding is being built
+        with pytest.raises(NotAPerson):
+            await engine.check_speaker("cup_1")
+
+    try:
+        asyncio.run(check())
+        assert engine.grounder.cached(kb.revision) is None  # it was still being built
+    finally:
+        kb.release.set()
+        engine.close()
+        kb.close()
+
+
+def test_a_dialogue_turn_before_the_first_snapshot_answers_by_its_deadline() -> None:
+    kb = _HeldKB()
+    kb.update(scene_statements("kitchen"))
+    engine = DialogueEngine(kb, config=EngineConfig(deadline=0.5))
+    engine.follow()
+    assert kb.asked.wait(30)
+    try:
+        result = asyncio.run(DialogueManager(engine).interact(ALICE, "where is the apple?"))
+        # its deadline passed while the grounding was built: the fallback, not a wait for the build
+        assert result.backend == "fallback" and "deadline" in result.error_msg
+        assert not kb.release.is_set()
+    finally:
+        kb.release.set()
+        engine.close()
+        kb.close()
