@@ -14,7 +14,7 @@ from dialogue.llm.base import ChatRequest, EarlyAnswer, ModelError, TurnContext
 from dialogue.llm.hybrid import HybridModel
 from dialogue.llm.testing import FunctionModel, ScriptedModel
 from dialogue.schema import ChatbotResponse, UserIntent
-from dialogue.sessions import DialogueManager
+from dialogue.sessions.manager import DialogueManager
 from dialogue.speakers import NotAPerson
 from kb import KB
 from tests.dialogue.conftest import scene_kb, scene_statements
