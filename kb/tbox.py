@@ -73,7 +73,7 @@ class CompiledTBox:
                         yield (prop, RDFS.subPropertyOf, sup)
 
 
-def compile_tbox(triples: Iterable[Triple], bounds: TBoxBounds | None = None) -> CompiledTBox:  # noqa: C901
+def compile_tbox(triples: Iterable[Triple], bounds: TBoxBounds | None = None) -> CompiledTBox:
     """Build the rule tables from a model's asserted triples (only schema triples are read).
     With ``bounds``, ``TBoxTooLarge`` as soon as the closed hierarchies pass them."""
     class_edges: dict[Node, set[Node]] = defaultdict(set)
@@ -90,40 +90,34 @@ def compile_tbox(triples: Iterable[Triple], bounds: TBoxBounds | None = None) ->
     first: dict[Node, Node] = {}
     rest: dict[Node, Node] = {}
 
+    # What each schema predicate adds, by table: one dict lookup a triple instead of a chain of
+    # rdflib term comparisons (a KB compiles the whole ontology whenever it is made).
+    linked: dict[Node, tuple[dict[Node, set[Node]], bool]] = {  # (edges, both ways)
+        RDFS.subClassOf: (class_edges, False), OWL.equivalentClass: (class_edges, True),
+        RDFS.subPropertyOf: (prop_edges, False), OWL.equivalentProperty: (prop_edges, True),
+        RDFS.domain: (domains, False), RDFS.range: (ranges, False), OWL.inverseOf: (inverses, True),
+    }
+    single: dict[Node, dict[Node, Node]] = {
+        OWL.onProperty: on_property, OWL.hasValue: has_value, OWL.intersectionOf: intersection_lists,
+        OWL.unionOf: union_lists, RDF.first: first, RDF.rest: rest,
+    }
+    typed: dict[Node, set[Node]] = {OWL.SymmetricProperty: symmetric, OWL.TransitiveProperty: transitive}
+    rdf_type = RDF.type
     for s, p, o in triples:
-        if p == RDFS.subClassOf:
-            class_edges[s].add(o)
-        elif p == OWL.equivalentClass:
-            class_edges[s].add(o)
-            class_edges[o].add(s)
-        elif p == RDFS.subPropertyOf:
-            prop_edges[s].add(o)
-        elif p == OWL.equivalentProperty:
-            prop_edges[s].add(o)
-            prop_edges[o].add(s)
-        elif p == RDFS.domain:
-            domains[s].add(o)
-        elif p == RDFS.range:
-            ranges[s].add(o)
-        elif p == OWL.inverseOf:
-            inverses[s].add(o)
-            inverses[o].add(s)
-        elif p == RDF.type and o == OWL.SymmetricProperty:
-            symmetric.add(s)
-        elif p == RDF.type and o == OWL.TransitiveProperty:
-            transitive.add(s)
-        elif p == OWL.onProperty:
-            on_property[s] = o
-        elif p == OWL.hasValue:
-            has_value[s] = o
-        elif p == OWL.intersectionOf:
-            intersection_lists[s] = o
-        elif p == OWL.unionOf:
-            union_lists[s] = o
-        elif p == RDF.first:
-            first[s] = o
-        elif p == RDF.rest:
-            rest[s] = o
+        link = linked.get(p)
+        if link is not None:
+            edges, both = link
+            edges[s].add(o)
+            if both:
+                edges[o].add(s)
+        elif p == rdf_type:
+            kind = typed.get(o)
+            if kind is not None:
+                kind.add(s)
+        else:
+            value = single.get(p)
+            if value is not None:
+                value[s] = o
 
     members: dict[Node, tuple[Node, ...]] = {}
     for cls, head in intersection_lists.items():

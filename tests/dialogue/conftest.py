@@ -32,7 +32,7 @@ def scene_kb(name: str | None = None, *facts: str) -> KB:
 
 @functools.cache
 def english() -> Language:
-    """English, read once for the whole test session (an engine reads its own)."""
+    """English, as every engine reads it (a packaged language is read once per process)."""
     return Language.load("en")
 
 

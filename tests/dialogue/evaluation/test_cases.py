@@ -14,17 +14,24 @@ from tests.dialogue.conftest import EVAL_DIR
 from tests.dialogue.llm.fakeserver import fake_server
 from tests.dialogue.llm.test_openai import reply as openai_reply
 
-
-def test_dev_set_with_rules_scores_at_least_95_percent() -> None:
-    report = run(EVAL_DIR / "dev.jsonl", "rules")
-    assert report.total == 50
-    assert report.score >= 0.95, [(r.case.id, r.problems) for r in report.results if not r.passed]
+#: Every set the rules are measured on in this repository (tests/dialogue/eval/: the shared development
+#: set's copy and the sets written without sight of the parser, each tuned on after its first run).
+EVAL_SETS = sorted(EVAL_DIR.glob("*.jsonl"))
 
 
-def test_unseen_phrasings_and_scene_score_at_least_95_percent() -> None:
-    report = run(EVAL_DIR / "extra.jsonl", "rules")
-    assert report.total >= 170
-    assert report.score >= 0.95, [(r.case.id, r.problems) for r in report.results if not r.passed]
+@pytest.mark.parametrize("path", EVAL_SETS, ids=lambda p: p.stem)
+def test_every_set_keeps_the_rules_claims_right_and_its_score(path: Path) -> None:
+    """Issue 29: a wrong claim is the worst outcome (the robot acts on the wrong thing), so every set
+    keeps the precision of the rules' claims at 0.97 or more, and its score at 0.90 or more."""
+    report = run(path, "rules")
+    wrong = [(r.case.id, r.problems) for r in report.claims if not r.passed]
+    assert report.claim_precision is not None and report.claim_precision >= 0.97, wrong
+    assert report.score >= 0.90, [(r.case.id, r.problems) for r in report.results if not r.passed]
+
+
+def test_the_measured_sets_are_all_there() -> None:
+    assert len(EVAL_SETS) >= 14 and {"dev", "extra", "multi"} <= {p.stem for p in EVAL_SETS}
+    assert sum(len(load_cases(p)) for p in EVAL_SETS) >= 1_450
 
 
 def test_main_prints_table_and_one_json_line(capsys: pytest.CaptureFixture[str], tmp_path: Path) -> None:
