@@ -38,7 +38,7 @@ from api.services import Services
 from api.settings import Settings
 from bench.http import SCENE
 from bench.progress import step
-from bench.rosclient import PATTERNS, SPEAKER, UTTERANCE, WARM_UP
+from bench.rosclient import EXECUTORS, PATTERNS, SPEAKER, UTTERANCE, WARM_UP
 from kb import KB
 
 TARGET_MS = 2.0
@@ -95,9 +95,9 @@ def _queries(kb: KB, count: int) -> list[float]:
 class Client:
     """bench.rosclient in its own process, one block of calls per request."""
 
-    def __init__(self, url: str, log: Path) -> None:
+    def __init__(self, url: str, log: Path, executor: str) -> None:
         self.log = log.open("wb")
-        command = [sys.executable, "-m", "bench.rosclient", "--url", url]
+        command = [sys.executable, "-m", "bench.rosclient", "--url", url, "--executor", executor]
         self.proc = subprocess.Popen(command, stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=self.log,
                                      text=True)
         self._read()  # ready: warmed up
@@ -123,7 +123,7 @@ class Client:
         self.log.close()
 
 
-def run(count: int, block: int, seconds: float) -> tuple[str, bool]:
+def run(count: int, block: int, seconds: float, executor: str = EXECUTORS[0]) -> tuple[str, bool]:
     """Measure (in ROS's environment, on the domain the environment names)."""
     from api.ros.node import front  # rclpy: only now
 
@@ -145,7 +145,7 @@ def run(count: int, block: int, seconds: float) -> tuple[str, bool]:
     try:
         with serve_in_thread(app) as url:
             step("ros", "the client process: warming up")
-            client = Client(url, Path(os.environ["ROS_LOG_DIR"]) / "client.log")
+            client = Client(url, Path(os.environ["ROS_LOG_DIR"]) / "client.log", executor)
             try:
                 in_process(WARM_UP)
                 _queries(kb, WARM_UP)
@@ -176,6 +176,8 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--count", type=int, default=500, help="calls per measure (default 500)")
     parser.add_argument("--block", type=int, default=50, help="calls per measure and block (default 50)")
     parser.add_argument("--seconds", type=float, default=300.0, help="time cap of the measures (default 300)")
+    parser.add_argument("--client-executor", choices=EXECUTORS, default=EXECUTORS[0],
+                        help="the rclpy executor of the client process (default: events, as the node's)")
     parser.add_argument("--domain", type=int, choices=DOMAINS, metavar=f"{DOMAINS[0]}-{DOMAINS[-1]}",
                         help="the DDS domain of the benchmark's graph (default: a random one)")
     args = parser.parse_args(argv)
@@ -192,7 +194,7 @@ def main(argv: list[str] | None = None) -> int:
         print(f"situated bench ros: {exc}", file=sys.stderr)
         return 2
     step("ros", f"graph on DDS domain {os.environ['ROS_DOMAIN_ID']}, discovery on this machine only")
-    report, ok = run(args.count, args.block, args.seconds)
+    report, ok = run(args.count, args.block, args.seconds, args.client_executor)
     print(report)
     return 0 if ok else 1
 

@@ -36,17 +36,23 @@ def timed(call: Callable[[], None], count: int) -> list[float]:
     return latencies
 
 
+#: The client's executor: rclpy's EventsExecutor (the middleware's events, as the service's node) or
+#: its SingleThreadedExecutor (a wait set rebuilt in Python per spin).
+EXECUTORS = ("events", "single")
+
+
 class Ros:
     """One node; a call spins it in the calling thread until the response is there (as a
     synchronous client does: no thread hands the response over)."""
 
-    def __init__(self) -> None:
+    def __init__(self, executor: str) -> None:
         import rclpy
         from rclpy.executors import SingleThreadedExecutor
+        from rclpy.experimental.events_executor import EventsExecutor
 
         rclpy.init()
         self.node = rclpy.create_node("situated_bench_client")
-        self.executor = SingleThreadedExecutor()
+        self.executor = EventsExecutor() if executor == "events" else SingleThreadedExecutor()
         self.executor.add_node(self.node)
 
     def caller(self, kind: Any, name: str, request: Any,
@@ -74,11 +80,12 @@ def has_intents(response: Any) -> None:
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(prog="python -m bench.rosclient", description=__doc__)
     parser.add_argument("--url", required=True)
+    parser.add_argument("--executor", choices=EXECUTORS, default=EXECUTORS[0])
     args = parser.parse_args(argv)
     from chatbot_msgs.srv import DialogueInteraction
     from kb_msgs.srv import Query
 
-    ros = Ros()
+    ros = Ros(args.executor)
     # The nil UUID: the service's default dialogue, the one the HTTP requests talk in too.
     turn = DialogueInteraction.Request(user_id=SPEAKER, input=UTTERANCE, response_expected=True)
     ros_turn = ros.caller(DialogueInteraction, "/chatbot/dialogue_interaction", turn, has_intents)

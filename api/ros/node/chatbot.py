@@ -16,8 +16,7 @@ from api.ros.node.interaction import Interaction
 def attach(front: Front) -> Callable[[], None]:
     node = front.chatbot_node
     goals = DialogueGoals(front)
-    service = node.create_service(DialogueInteraction, "~/dialogue_interaction", Interaction(front, goals),
-                                  callback_group=front.group)
+    service = node.create_service(DialogueInteraction, "~/dialogue_interaction", Interaction(front, goals))
 
     def detach() -> None:
         node.destroy_service(service)

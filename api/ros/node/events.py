@@ -94,7 +94,7 @@ def attach(front: Front) -> Callable[[], None]:
         response.id, response.topic = topic.sub_id, topic.topic.name
         return response
 
-    service = node.create_service(Event, "events", on_request, callback_group=front.group)
+    service = node.create_service(Event, "events", on_request)
     # A thread of its own, not a ROS timer: it sleeps when there is nothing to do (a 20 ms rclpy
     # timer costs about 4% of a core).
     sweeper = Sweeper(topics)

@@ -98,8 +98,8 @@ class DialogueGoals:
         self._closing = False
         self.server = ActionServer(self.node, Dialogue, "~/start_dialogue", execute_callback=self._finish,
                                    goal_callback=self._check, handle_accepted_callback=self._start,
-                                   cancel_callback=self._cancel, callback_group=front.group)
-        self.timer = self.node.create_timer(TICK, self._tick, callback_group=front.group)
+                                   cancel_callback=self._cancel)
+        self.timer = self.node.create_timer(TICK, self._tick)
         self.dialogues.add_observer(self._observe)
 
     # --- a goal comes ---------------------------------------------------------------------------------

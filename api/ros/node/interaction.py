@@ -8,6 +8,10 @@ dialogue manager's 5 s: past it the reply is the polite fallback (``__raw_user_i
 ``error_msg``), never no answer. A request the service refuses — an unknown dialogue, an input
 longer than REST takes (``max_input_chars``), a locale that is no language tag — gets an empty
 response and ``error_msg`` saying why; nothing is recorded.
+
+The callback is a coroutine: the ``/chatbot`` executor runs it as a task that awaits the turn on the
+app's loop (``Front.awaited``), so a slow turn does not hold up the node's other callbacks, nor the
+other turns.
 """
 
 from __future__ import annotations
@@ -23,7 +27,7 @@ from api.ros.node.messages import dialogue_id, intent_messages
 from dialogue.engine import TurnResult
 from dialogue.errors import DialogueError, UnknownDialogue
 
-#: Seconds the executor thread waits past the turn's deadline for its answer (recording included).
+#: Seconds the callback waits past the turn's deadline for its answer (recording included).
 GRACE = 0.5
 START_HINT = "a dialogue is started by a /chatbot/start_dialogue goal, whose UUID is its id"
 
@@ -35,11 +39,11 @@ class Interaction:
         self.dialogues = front.services.dialogues
         self.limit = front.services.settings.limits.max_input_chars
 
-    def __call__(self, request: Any, response: Any) -> Any:
+    async def __call__(self, request: Any, response: Any) -> Any:
         response.response, response.intents, response.error_msg = "", [], ""
         try:
             check_length(request.input, self.limit, "input")
-            result = self._turn(dialogue_id(request.dialogue_id), request)
+            result = await self._turn(dialogue_id(request.dialogue_id), request)
         except UnknownDialogue as exc:
             response.error_msg = f"{exc}; {START_HINT}"
             return response
@@ -54,21 +58,21 @@ class Interaction:
         response.error_msg = result.error_msg
         return response
 
-    def _turn(self, dialogue: str, request: Any) -> TurnResult:
+    async def _turn(self, dialogue: str, request: Any) -> TurnResult:
         try:
-            return self._run(dialogue, request)
+            return await self._run(dialogue, request)
         except UnknownDialogue:
             if not self.goals.settle():  # no goal was being opened: truly unknown
                 raise
-            return self._run(dialogue, request)
+            return await self._run(dialogue, request)
 
-    def _run(self, dialogue: str, request: Any) -> TurnResult:
+    async def _run(self, dialogue: str, request: Any) -> TurnResult:
         deadline = self.front.parameters.turn_deadline
         turn = self.dialogues.interact(request.user_id, request.input, dialogue_id=dialogue,
                                        locale=request.locale or None,
                                        response_expected=request.response_expected, timeout=deadline)
         try:
-            return self.front.on_loop(turn, deadline + GRACE)
+            return await self.front.awaited(turn, deadline + GRACE)
         except FutureTimeout:
             return self.dialogues.engine.fallback(request.input, request.user_id or "__unknown__",
                                                   request.locale or None,

@@ -167,7 +167,7 @@ def attach(front: Front) -> Callable[[], None]:
              ("query", Query, handlers.query), ("about", About, handlers.about),
              ("label", About, handlers.label), ("details", About, handlers.details),
              ("lookup", Lookup, handlers.lookup), ("sparql", Sparql, handlers.sparql))
-    made = [node.create_service(kind, name, handler, callback_group=front.group)
+    made = [node.create_service(kind, name, handler)
             for name, kind, handler in table]
 
     def fact(method: str) -> Callable[[Any], None]:
@@ -178,7 +178,7 @@ def attach(front: Front) -> Callable[[], None]:
                 node.get_logger().error(f"/kb/{method} of {message.data!r} refused: {response.error_msg}")
         return on_message
 
-    subscriptions = [node.create_subscription(String, topic, fact(method), 10, callback_group=front.group)
+    subscriptions = [node.create_subscription(String, topic, fact(method), 10)
                      for topic, method in (("add_fact", "update"), ("remove_fact", "retract"))]
 
     def detach() -> None:

@@ -70,10 +70,8 @@ class Locales:
 def attach(front: Front) -> Callable[[], None]:
     locales = Locales(front)
     node = front.chatbot_node
-    service = node.create_service(GetLocales, "~/get_supported_locales", locales.get,
-                                  callback_group=front.group)
-    action = ActionServer(node, SetLocale, "~/set_default_locale", execute_callback=locales.set_default,
-                          callback_group=front.group)
+    service = node.create_service(GetLocales, "~/get_supported_locales", locales.get)
+    action = ActionServer(node, SetLocale, "~/set_default_locale", execute_callback=locales.set_default)
 
     def detach() -> None:
         action.destroy()

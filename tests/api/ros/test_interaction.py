@@ -6,8 +6,11 @@ dialogue manager's 5 s, polite fallback included."""
 from __future__ import annotations
 
 import json
+import time
 import uuid
 from collections.abc import Callable
+from concurrent.futures import ThreadPoolExecutor
+from pathlib import Path
 from typing import Any
 
 from api.settings import Settings
@@ -74,3 +77,27 @@ def test_a_model_that_never_answers_gets_the_polite_fallback_before_a_5_s_caller
     assert answer["response"] == SORRY and answer["error_msg"]
     assert [i["intent"] for i in answer["intents"]] == ["__raw_user_input__"]
     assert json.loads(answer["intents"][0]["data"]) == {"input": "glorp the frobnicator"}
+
+
+def test_a_turn_awaited_holds_up_neither_the_chatbot_nor_the_kb(
+        ros_node_factory: Callable[..., RosNode], probe: Probe, silent_model: str, ros_env: dict[str, str],
+        tmp_path: Path) -> None:
+    ros_node_factory("--scene", "none", "--llm", silent_model)
+    other = Probe(ros_env, tmp_path / "other.log")
+    calls = {"/chatbot/get_supported_locales": ("i18n_msgs/srv/GetLocales", {}),
+             "/kb/query": ("kb_msgs/srv/Query", {"patterns": ["?s rdf:type owl:Class"]})}
+    try:
+        # Every client has found its service first (only recorded: the model is not asked).
+        say(probe, "__assistant__", "Hello.", response_expected=False)
+        for service, (kind, request) in calls.items():
+            other.call(service, kind, **request)
+        with ThreadPoolExecutor(1) as pool:
+            # The model never answers: this turn is awaited until the turn's deadline (4 s).
+            turn = pool.submit(say, probe, "person_alice", "glorp the frobnicator", response_expected=True)
+            time.sleep(1.0)  # the turn is being awaited by now
+            answers = [other.call(service, kind, **request) for service, (kind, request) in calls.items()]
+            assert not turn.done()  # both were answered while the turn was still being awaited
+            assert answers[0]["locales"] == [] and answers[1]["success"] is True
+            assert turn.result(30)["response"] == SORRY
+    finally:
+        other.close()
