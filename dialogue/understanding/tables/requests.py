@@ -82,6 +82,7 @@ class RequestWords(Table):
     activity_filler: WordSet = frozenset()
     results: WordSet = frozenset()
     no_intent_verbs: WordSet = frozenset()
+    abilities: Phrases = ()
     needs: dict[str, str] = {}
     purposes: dict[str, Phrase] = {}
     constructions: ConstructionWords = ConstructionWords()
