@@ -57,6 +57,8 @@ _ASKED = {
     (I.GUIDE, "goal"): "request.where_take", (I.SAY, "object"): "request.what_say",
     (I.START_ACTIVITY, "object"): "request.which_activity",
 }  # fmt: skip
+#: What a question of ability may ask of a verb alone ("can you dance?", "can you cook?"): a skill.
+_SKILLS = frozenset({I.PERFORM_MOTION, I.START_ACTIVITY})
 _EXACTLY = {
     "object": "request.what_exactly", "recipient": "request.whom_exactly", "goal": "request.where_exactly",
 }  # fmt: skip
@@ -155,7 +157,7 @@ class Interpreter:
         not_understood = Outcome(say(self.lang, "sorry.not_understood"), understood=False)
         # No act: an answer to the robot's question, or "sorry, I meant screen two" (`FOLLOW_UPS`)
         outcome = followed_up(self, p, heard) or not_understood if p.act == "unknown" else self.act(p)
-        if outcome.intent is not None and self._ability(heard, p):  # "can you dance?": maybe only asked
+        if outcome.intent in _SKILLS and self._ability(heard, p):  # "can you dance?": maybe only asked
             outcome = replace(outcome, unsure=True)
         ungrounded = p.act == "command" and outcome.intent is None and not outcome.clarify
         failed = not outcome.understood or ungrounded
@@ -172,6 +174,8 @@ class Interpreter:
         """Whether a phrase the intent grounds no role of names someone ("salute Olu in the meeting
         room", "water jug to Edith"): words the reading cannot account for."""
         grounded = ROLE_KINDS.get(intent, {})
+        if intent == I.STOP_ACTIVITY:  # whatever is said to be stopped, the robot stops
+            return False
         for role, words in slots.items():
             if role in grounded or role == "rest":
                 continue
