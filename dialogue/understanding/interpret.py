@@ -105,7 +105,7 @@ class Interpreter:
         addressed = self._to_someone_else(heard)
         if addressed is not None:  # "lily put your book on the shelf": Lily is asked, not the robot
             return Outcome(say(self.lang, "request.for_someone_else", name=addressed))
-        if heard.text.lower().startswith("if "):  # the condition covers every part ("if Ana comes, ...")
+        if self._conditioned(heard):  # the condition covers every part ("if Ana comes, ...")
             whole = parse(self.lang, heard, self.robot_name)
             if whole.act == "conditional":
                 return self.act(whole)
@@ -118,6 +118,11 @@ class Interpreter:
             if combined is not None:
                 return combined
         return self._single(heard, terse_read=False)  # (tried above, before the parts)
+
+    def _conditioned(self, heard: Said) -> bool:
+        """Whether the words start with a condition ("if Ana comes", "when the bell goes")."""
+        said = tuple(expanded(self.lang, heard))
+        return said[:1] == ("if",) or any(said[: len(c)] == c for c in self.lang.requests.conditions)
 
     def _to_someone_else(self, heard: Said) -> str | None:
         """The name of the person present a request is said to, when it starts with their name and

@@ -65,6 +65,8 @@ class RequestWords(Table):
     their_subjects: WordSet = frozenset()
     polite_if: Phrases = ()
     if_modals: WordSet = frozenset()
+    conditions: Phrases = ()
+    not_conditions: WordSet = frozenset()
     halts: WordSet = frozenset()
     manner: WordSet = frozenset()
     wants: Phrases = ()

@@ -396,6 +396,32 @@ def test_a_polite_if_is_no_condition(text: str) -> None:
     assert parse(text).act != "conditional"
 
 
+@pytest.mark.parametrize(
+    "text",
+    ["when the bell goes, could you take the register to the office", "after lunch take me to the day room",
+     "when the train stops get my rucksack down", "after my appointment, bring me the novel",
+     "say hi to her when she comes in", "bring Ana the menu once she sits down",
+     "as soon as the kettle boils pour me a tea"],
+)  # fmt: skip
+def test_a_request_for_when_something_yet_to_happen_has_happened_is_no_request_now(text: str) -> None:
+    assert parse(text).act == "conditional"
+
+
+@pytest.mark.parametrize(
+    "text",
+    ["when you get a chance, bring me the menu", "bring me the menu when you can", "hand Femi a magazine while he waits",
+     "put the milk back before it goes off", "when is lunch", "when did you last clean the kitchen",
+     "once more, bring me the menu"],
+)  # fmt: skip
+def test_a_clause_of_time_that_says_no_later_moment_is_no_condition(text: str) -> None:
+    assert parse(text).act != "conditional"
+
+
+def test_a_request_under_a_condition_is_said_back_as_not_now(office: KB) -> None:
+    out = say(office, "when Carol comes in, give her the pear")
+    assert out.intent is None and out.more == () and "when it happens" in out.reply
+
+
 @pytest.mark.parametrize("text", ["stop, don't go", "no stop dont go", "wait don't go"])
 def test_stop_before_a_negated_request_is_the_negation(text: str) -> None:
     assert parse(text).act == "negated"
