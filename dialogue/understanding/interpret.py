@@ -294,6 +294,11 @@ class Interpreter:
         if intent == I.BRING_OBJECT and self.refs.a_place(slots.get("object", ())):
             # "I need the lifts": a place is where to be taken, not a thing to carry
             intent, slots = I.GUIDE, {"recipient": slots.get("recipient", ("me",)), "goal": slots["object"]}
+        if intent == I.GUIDE and self.refs.named_person(slots.get("goal", ())):
+            # "take me to Marcus": to where he is (unknown: no place, said so by the grounding)
+            person = resolve(self.lexicon, slots["goal"], PERSON).one
+            if person is not None and person.zone and not self.refs.a_place(slots["goal"]):
+                slots["goal"] = tuple(tokens(person.zone))
         if intent == I.GUIDE and "goal" in p.implicit and "goal" not in overrides:
             there = antecedent(self.lexicon, self.history, PLACE, place=True, speaker=self.speaker)
             if there is None:  # "take me", with no place spoken of

@@ -21,6 +21,7 @@ class ConstructionWords(Table):
 
     not_things: WordSet = frozenset()
     shown: WordSet = frozenset()
+    finding_the_way: Phrases = ()
     subjects: WordSet = frozenset()
     verbs_of_any: WordSet = frozenset()
 

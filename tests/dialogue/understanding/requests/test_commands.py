@@ -425,3 +425,21 @@ def test_a_request_under_a_condition_is_said_back_as_not_now(office: KB) -> None
 @pytest.mark.parametrize("text", ["stop, don't go", "no stop dont go", "wait don't go"])
 def test_stop_before_a_negated_request_is_the_negation(text: str) -> None:
     assert parse(text).act == "negated"
+
+
+@pytest.mark.parametrize(
+    "text",
+    ["escort Carol until reaching the bathroom", "escort Carol until you get to the bathroom",
+     "accompany Carol to the bathroom", "help Carol find the way to the bathroom",
+     "help Carol find her way to the bathroom", "show Carol the way from the office to the bathroom",
+     "one more thing: lead Carol to the bathroom"],
+)  # fmt: skip
+def test_who_is_guided_and_where_never_a_person_named_by_the_way(office: KB, text: str) -> None:
+    out = say(office, text)
+    assert (out.intent, out.roles) == (I.GUIDE, {"recipient": "person_carol", "goal": "bathroom"})
+
+
+def test_a_person_to_be_taken_to_is_where_they_are(office: KB) -> None:
+    office.update(["person_dan isIn hallway"])
+    out = say(office, "take me to Dan")
+    assert (out.intent, out.roles) == (I.GUIDE, {"recipient": "person_bob", "goal": "hallway"})
