@@ -189,6 +189,15 @@ def a_hand(said: Framed) -> Parse | None:
     return helping(Framed(said.lang, "help", (*rest[:at], *after), said.words, said.original))
 
 
+def company(said: Framed) -> Parse | None:
+    """ "keep Edith company (for ten minutes)": engaging with her; anything else kept is no request."""
+    rest = said.rest
+    at = next((i for i, w in enumerate(rest) if w == "company"), None)
+    if not at or (rest[at + 1 :] and rest[at + 1] != "for"):  # (how long changes nothing)
+        return None
+    return said.command(I.ENGAGE_WITH, recipient=rest[:at])
+
+
 def helping(said: Framed) -> Parse | None:
     """ "help me get to the bathroom", "help Ana find the way to the exit": take them there (the
     way said after the person is no part of their name)."""

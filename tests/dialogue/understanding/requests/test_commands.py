@@ -443,3 +443,18 @@ def test_a_person_to_be_taken_to_is_where_they_are(office: KB) -> None:
     office.update(["person_dan isIn hallway"])
     out = say(office, "take me to Dan")
     assert (out.intent, out.roles) == (I.GUIDE, {"recipient": "person_bob", "goal": "hallway"})
+
+
+@pytest.mark.parametrize(
+    "text",
+    ["chat to Carol", "have a chat with Carol", "go and have a little chat with Carol", "keep Carol company",
+     "keep Carol company for ten minutes, would you?", "go n have a natter with carol",
+     "could you go and sit with Carol for a minute"],
+)  # fmt: skip
+def test_engaging_said_as_company_or_a_chat(office: KB, text: str) -> None:
+    out = say(office, text)
+    assert (out.intent, out.roles) == (I.ENGAGE_WITH, {"recipient": "person_carol"})
+
+
+def test_keeping_a_thing_is_no_company(office: KB) -> None:
+    assert say(office, "keep the pear on the desk").intent is None
