@@ -39,7 +39,7 @@ from dialogue.understanding.requests.commands import parse
 from dialogue.understanding.requests.compound import conjuncts, coordinated
 from dialogue.understanding.requests.ground import ground
 from dialogue.understanding.requests.referents import Referents, relational
-from dialogue.understanding.requests.sequence import compound
+from dialogue.understanding.requests.sequence import compound, wished
 from dialogue.understanding.requests.terse import terse
 from dialogue.understanding.said import Said, Text
 from dialogue.understanding.speech.clauses import clauses, described, description
@@ -210,7 +210,7 @@ class Interpreter:
                 with_more = {"object": described(self.lang, p.slots["object"], more)} if more else None
                 outcome = reader.act(p, with_more)
                 if outcome.intent is not None:
-                    return outcome
+                    return wished(self, heard, said[:i], outcome)
                 # A complete request in an earlier clause beats asking about an incomplete later one.
                 if question is None and (outcome.clarify or (p.act == "question" and outcome.understood)):
                     question = outcome

@@ -43,6 +43,8 @@ def compound(reader: Reader, heard: Said, parts: Sequence[Part]) -> Outcome | No
             aside = True  # "move out of the way and go to the door": the going does it
             continue
         outcome = within.part(heard.of(part.text))
+        if n == 1 and parts[0].verb is None:  # "I want the pear, can you get it": brought to me
+            outcome = wished(reader, heard, [parts[0].text], outcome)
         if outcome.intent is not None and done and (outcome.intent, outcome.roles) == (
             done[-1].intent, done[-1].roles):
             continue  # "go to the shed and wait there": one move
@@ -68,6 +70,20 @@ def compound(reader: Reader, heard: Said, parts: Sequence[Part]) -> Outcome | No
     if whole.doubts:  # each part said back in the question
         return proposed(lang, whole, [o.reply for o in done], unable)
     return whole
+
+
+def wished(reader: Reader, heard: Said, before: Sequence[str], outcome: Outcome) -> Outcome:
+    """ "I want the pear, can you get it", "Felix needs his glasses, could you grab them": a thing
+    taken that an earlier clause or part (`before`) wished for is brought to whoever wished for it."""
+    for i in range(len(before) - 1, -1, -1) if outcome.intent == I.GRAB_OBJECT else ():
+        p = parse(reader.lang, heard.of(before[i]), reader.robot_name)
+        if p.act != "command" or p.intent != I.BRING_OBJECT:
+            continue
+        context = (*reader.history, *(Utterance(reader.speaker, c) for c in before[:i]))
+        wish = reader.within(context).act(p)
+        if wish.intent == I.BRING_OBJECT and wish.roles.get("object") == outcome.roles.get("object"):
+            return wish
+    return outcome
 
 
 def _asks(reader: Reader, part: Said) -> bool:

@@ -35,3 +35,25 @@ def test_retrieve_and_remove_take_a_thing(office: KB) -> None:
     for verb in ("retrieve", "remove"):
         out = say(office, f"{verb} the stapler from the desk and put it on the shelf")
         assert [o.intent for o in out.steps()] == [I.GRAB_OBJECT, I.PLACE_OBJECT]
+
+
+def test_a_thing_wished_for_then_asked_to_be_taken_is_brought_to_whoever_wished(office: KB) -> None:
+    for text in ("I want the pear, can you get it", "I want the pear. Can you get it?"):
+        out = say(office, text)
+        assert (out.intent, out.roles) == (I.BRING_OBJECT, {"object": "pear_1", "recipient": BOB})
+    out = say(office, "Carol needs the stapler, could you grab it")
+    assert (out.intent, out.roles) == (I.BRING_OBJECT, {"object": "stapler_1", "recipient": "person_carol"})
+    # with no wish before it, taking is taking
+    assert say(office, "the stapler, can you grab it").intent == I.GRAB_OBJECT
+
+
+def test_the_other_request_forms(office: KB) -> None:
+    assert say(office, "let's go to the bathroom").roles == {"goal": "bathroom"}
+    assert say(office, "catch the pear").intent == I.GRAB_OBJECT
+    assert (say(office, "get the pear from the desk").intent) == I.GRAB_OBJECT
+    out = say(office, "At the desk, bring Carol the pear")
+    assert (out.intent, out.roles) == (I.BRING_OBJECT, {"object": "pear_1", "recipient": "person_carol"})
+    out = say(office, "dear robot, bring me the pear")
+    assert (out.intent, out.roles) == (I.BRING_OBJECT, {"object": "pear_1", "recipient": BOB})
+    out = say(office, "Carol is sitting by the desk, could you bring her the pear")
+    assert (out.intent, out.roles) == (I.BRING_OBJECT, {"object": "pear_1", "recipient": "person_carol"})
