@@ -184,6 +184,7 @@ class Interpreter:
         for role, words in slots.items():
             if role in grounded or role == "rest":
                 continue
+            words = words[: words.index("for")] if "for" in words else words  # ("the tour for Jonas": his)
             named = (resolve(self.lexicon, (w,), PERSON).one for w in content_words(self.lang, words))
             if any(person is not None for person in named):
                 return True

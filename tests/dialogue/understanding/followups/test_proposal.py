@@ -41,6 +41,8 @@ def test_a_person_named_where_the_reading_has_no_role_for_them_is_proposed(studi
     out = _asked(studio, "salute Tam in the hall")
     assert out.reply == "Shall I salute?"
     assert say(studio, "salute", speaker=JO).intent == I.PERFORM_MOTION
+    # whom it is for is accounted for
+    assert say(studio, "start the drum practice for Tam", speaker=JO).intent == I.START_ACTIVITY
 
 
 @pytest.mark.parametrize("answer", ["yes", "yes please", "sure, go ahead", "please do"])
