@@ -42,6 +42,7 @@ class _Grammar:
         self.if_modals = said.if_modals
         self.conditions = said.conditions
         self.not_conditions = said.not_conditions
+        self.your_time = said.your_time
         self.manner = said.manner
         self.polite_if = said.polite_if
         self.results = said.results
@@ -391,6 +392,10 @@ def _conditional(g: _Grammar, words: Sequence[str]) -> bool:
     return words[2] not in g.if_modals
 
 
+#: How many words of a condition may say it is the robot's own time ("you have got a minute").
+_YOUR_TIME = 5
+
+
 def _later(lang: Language, words: list[str]) -> bool:
     """Whether a request is said after a condition yet to happen ("when the bell goes, could you...",
     "after lunch take me to the day room", "when the train stops get my rucksack down")."""
@@ -399,6 +404,9 @@ def _later(lang: Language, words: list[str]) -> bool:
     if said is None or len(words) < len(said) + 2 or words[len(said)] in g.not_conditions:
         return False
     if any(starts(words, polite) for polite in g.adjuncts):  # "when you get a chance, ..."
+        return False
+    clause = words[len(said) : len(said) + _YOUR_TIME]
+    if clause[:1] == ["you"] and set(clause) & g.your_time:  # "when you've got a minute, ..."
         return False
     for i in range(len(said) + 1, len(words)):
         rest = strip_politeness(lang, words[i:])

@@ -68,6 +68,7 @@ class RequestWords(Table):
     if_modals: WordSet = frozenset()
     conditions: Phrases = ()
     not_conditions: WordSet = frozenset()
+    your_time: WordSet = frozenset()
     halts: WordSet = frozenset()
     manner: WordSet = frozenset()
     wants: Phrases = ()
