@@ -82,6 +82,8 @@ class TurnResult:
     clarify: bool = False
     #: False when no backend understood the input (the reply says so).
     understood: bool = True
+    #: The reply proposes a reading and asks whether to act on it ("Shall I...?"), acting on none.
+    confirm: bool = False
     #: A role's dialogue is over (the ask role: every field obtained, or the person cancelled).
     dialogue_terminal: bool | None = None
     #: The role's results, a JSON object string (the ask role: the fields obtained).
@@ -307,7 +309,7 @@ class DialogueEngine:
             return None
         clarify = grounded.clarify or early.clarify
         return TurnResult(grounded.reply, grounded.intents, backend=early.backend, clarify=clarify,
-                          claims=grounded.claims)
+                          claims=grounded.claims, confirm=early.confirm)
 
     def schema_for(
         self, snapshot: Snapshot, speaker: str, focus: Sequence[Entity] | None = None

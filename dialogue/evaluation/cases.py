@@ -3,7 +3,8 @@
 Each case gets a fresh KB: the default ontology, the case's scene (`scenes/<name>.txt` next to the
 cases file) and its extra facts. `format_report` prints a table per intent and the failures;
 `summary()` is the JSON line `{"total", "passed", "score", "rules_claims", "by_intent", "failures"}`.
-The rules' claims are the turns the rules answered as understood (alone or in front of a model):
+The rules' claims are the turns the rules answered as understood (alone or in front of a model),
+a reading they only propose ("Shall I...?", acting on nothing until confirmed) not among them:
 their precision (how many of them were right) says whether the rules hand over what they do not
 understand, which a hybrid model depends on. All cases run on one event loop, so a backend keeps one
 HTTP client for the whole set; it is closed at the end.
@@ -80,8 +81,10 @@ class Report:
 
     @property
     def claims(self) -> list[CaseResult]:
-        """The turns the rules answered as understood (rules mode, or in front of a model)."""
-        return [r for r in self.results if r.result.backend == RULES and r.result.understood]
+        """The turns the rules answered as understood (rules mode, or in front of a model), but for
+        the readings they only proposed (in front of a model, those are the model's)."""
+        return [r for r in self.results
+                if r.result.backend == RULES and r.result.understood and not r.result.confirm]  # fmt: skip
 
     @property
     def claim_precision(self) -> float | None:

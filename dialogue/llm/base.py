@@ -94,6 +94,9 @@ class EarlyAnswer:
     backend: str
     #: The answer asks the speaker which referent they meant.
     clarify: bool = False
+    #: The answer proposes a reading and asks whether to act on it ("Shall I...?"): no claim of
+    #: understanding, its intents held until the speaker says yes.
+    confirm: bool = False
 
 
 @dataclass(frozen=True)

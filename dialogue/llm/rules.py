@@ -44,7 +44,7 @@ class RulesModel(ChatModel):
         heard = read(self._turn(context))
         if not self._claims(heard):
             return None
-        return EarlyAnswer(heard.answer, RULES, clarify=heard.clarify)
+        return EarlyAnswer(heard.answer, RULES, clarify=heard.clarify, confirm=heard.proposes)
 
     def _turn(self, context: TurnContext) -> Turn:
         lexicon = self._lexicon(context)
@@ -76,6 +76,8 @@ class RulesModel(ChatModel):
         return ChatResult(content, "stop", understood=self._claims(heard))
 
     def _claims(self, heard: Heard) -> bool:
-        """What people know is always claimed; a request only when understood, and a guess only when
-        this model takes guesses."""
-        return heard.told or (heard.understood and (self.take_guesses or not heard.guessed))
+        """What people know is always claimed; a request only when understood, and a guess or a
+        reading proposed for want of evidence ("Shall I...?") only when this model takes guesses (a
+        model behind it reads those instead)."""
+        sure = not heard.guessed and not heard.proposes
+        return heard.told or (heard.understood and (self.take_guesses or sure))

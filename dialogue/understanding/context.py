@@ -15,6 +15,7 @@ from dialogue.understanding.language import Language
 from dialogue.understanding.outcome import Outcome
 from dialogue.understanding.parsed import Parse
 from dialogue.understanding.requests.referents import Referents
+from dialogue.understanding.said import Said, Text
 
 
 class Context(Protocol):
@@ -35,3 +36,7 @@ class Reader(Context, Protocol):
     def within(self, history: Sequence[Utterance]) -> Reader: ...
 
     def act(self, p: Parse, overrides: dict[str, Words] | None = None) -> Outcome: ...
+
+    def interpret(self, text: Text) -> Outcome: ...
+
+    def part(self, heard: Said) -> Outcome: ...

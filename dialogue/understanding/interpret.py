@@ -28,15 +28,18 @@ from dialogue.reference.resolution import (
     content_words,
     resolve,
 )  # fmt: skip
-from dialogue.understanding.followups.request import accepts, follow_up, followed_up
+from dialogue.understanding.followups.accepting import accepts
+from dialogue.understanding.followups.proposal import proposed
+from dialogue.understanding.followups.request import follow_up, followed_up
 from dialogue.understanding.outcome import Outcome, Ref
 from dialogue.understanding.parsed import Parse
 from dialogue.understanding.questions import situation
 from dialogue.understanding.replies import acknowledgement, hello, say, then
 from dialogue.understanding.requests.commands import parse
-from dialogue.understanding.requests.compound import Part, conjuncts, coordinated
+from dialogue.understanding.requests.compound import conjuncts, coordinated
 from dialogue.understanding.requests.ground import ground
 from dialogue.understanding.requests.referents import Referents, relational
+from dialogue.understanding.requests.sequence import compound, wished
 from dialogue.understanding.requests.terse import terse
 from dialogue.understanding.said import Said, Text
 from dialogue.understanding.speech.clauses import clauses, described, description
@@ -54,6 +57,8 @@ _ASKED = {
     (I.GUIDE, "goal"): "request.where_take", (I.SAY, "object"): "request.what_say",
     (I.START_ACTIVITY, "object"): "request.which_activity",
 }  # fmt: skip
+#: What a question of ability may ask of a verb alone ("can you dance?", "can you cook?"): a skill.
+_SKILLS = frozenset({I.PERFORM_MOTION, I.START_ACTIVITY})
 _EXACTLY = {
     "object": "request.what_exactly", "recipient": "request.whom_exactly", "goal": "request.where_exactly",
 }  # fmt: skip
@@ -88,18 +93,19 @@ class Interpreter:
             context = (*self.history, Utterance(self.speaker, clean.taken_back))
             reader = Interpreter(self.lexicon, self.speaker, context, self.robot_name)
         outcome = reader._read(heard.of(clean.text))
-        if not heard.taken:
-            return outcome
-        # A corrected slip makes the whole turn less sure; a name read from a slip is a guess.
-        steps = outcome.steps()
-        unsure = [replace(o, confidence=min(o.confidence, SPELT_CONFIDENCE), more=()) for o in steps]
-        return replace(unsure[0], more=tuple(unsure[1:]), guessed=heard.guessed or outcome.guesses)
+        if heard.taken:
+            # A corrected slip makes the whole turn less sure; a name read from a slip is a guess.
+            steps = outcome.steps()
+            unsure = [replace(o, confidence=min(o.confidence, SPELT_CONFIDENCE), more=()) for o in steps]
+            outcome = replace(unsure[0], more=tuple(unsure[1:]), guessed=heard.guessed or outcome.guesses)
+        # A reading without full evidence is never acted on: it is proposed ("Shall I ...?").
+        return proposed(self.lang, outcome) if outcome.doubts and outcome.intent is not None else outcome
 
     def _read(self, heard: Said) -> Outcome:
         addressed = self._to_someone_else(heard)
         if addressed is not None:  # "lily put your book on the shelf": Lily is asked, not the robot
             return Outcome(say(self.lang, "request.for_someone_else", name=addressed))
-        if heard.text.lower().startswith("if "):  # the condition covers every part ("if Ana comes, ...")
+        if self._conditioned(heard):  # the condition covers every part ("if Ana comes, ...")
             whole = parse(self.lang, heard, self.robot_name)
             if whole.act == "conditional":
                 return self.act(whole)
@@ -108,10 +114,15 @@ class Interpreter:
             return said_terse
         parts = conjuncts(self.lang, heard)
         if parts:
-            combined = self._compound(heard, parts)
+            combined = compound(self, heard, parts)
             if combined is not None:
                 return combined
         return self._single(heard, terse_read=False)  # (tried above, before the parts)
+
+    def _conditioned(self, heard: Said) -> bool:
+        """Whether the words start with a condition ("if Ana comes", "when the bell goes")."""
+        said = tuple(expanded(self.lang, heard))
+        return said[:1] == ("if",) or any(said[: len(c)] == c for c in self.lang.requests.conditions)
 
     def _to_someone_else(self, heard: Said) -> str | None:
         """The name of the person present a request is said to, when it starts with their name and
@@ -124,41 +135,9 @@ class Interpreter:
             return None
         return person.name
 
-    def _compound(self, heard: Said, parts: Sequence[Part]) -> Outcome | None:
-        """ "go to the kitchen and take the plate": every part read in order, each with the parts
-        before it as context for its pronouns ("take the book and put it in the oven")."""
-        done: list[Outcome] = []
-        cannot: list[str] = []
-        context: list[Utterance] = []
-        aside = False
-        for n, part in enumerate(parts):
-            reader = self.within((*self.history, *context))
-            context.append(Utterance(self.speaker, part.text))
-            if n == 0 and part.verb is None:
-                continue  # a preamble ("hey there", "thanks", "the denim jacket"): context for the rest
-            if part.aside and n < len(parts) - 1:
-                aside = True  # "move out of the way and go to the door": the going does it
-                continue
-            outcome = reader._single(heard.of(part.text))
-            if outcome.intent is not None and done and (outcome.intent, outcome.roles) == (
-                done[-1].intent, done[-1].roles):
-                continue  # "go to the shed and wait there": one move
-            if outcome.intent is not None:
-                done.append(outcome)
-                if outcome.roles.get("object") in self.snapshot.entities:
-                    # "get the teddy off the bench and give it to Zara": "it" is what was taken
-                    context.append(Utterance(self.speaker, outcome.roles["object"]))
-            elif outcome.clarify:
-                return outcome  # ask about this part first: nothing is done until it is clear
-            elif part.no_intent:
-                cannot.append(part.text)
-            else:  # a part that fails says why; one not understood makes the whole not understood
-                return outcome if outcome.understood else None
-        if not done or (aside and not {o.intent for o in done} & {I.MOVE_TO, I.GUIDE}):
-            return None  # (out of the way, then no going anywhere: not understood)
-        acks = [then(self.lang, [o.reply for o in done])]
-        acks += [say(self.lang, "request.cannot", action=c) for c in cannot]
-        return replace(done[0], reply=" ".join(acks), more=tuple(done[1:]))
+    def part(self, heard: Said) -> Outcome:
+        """One part of a compound request, read as a request of its own."""
+        return self._single(heard)
 
     def _terse(self, heard: Said) -> Outcome | None:
         """ "Orchid put on counter", "Go workstand", "dining room, now please": the request said in
@@ -183,9 +162,33 @@ class Interpreter:
         not_understood = Outcome(say(self.lang, "sorry.not_understood"), understood=False)
         # No act: an answer to the robot's question, or "sorry, I meant screen two" (`FOLLOW_UPS`)
         outcome = followed_up(self, p, heard) or not_understood if p.act == "unknown" else self.act(p)
+        if outcome.intent in _SKILLS and self._ability(heard, p):  # "can you dance?": maybe only asked
+            outcome = replace(outcome, unsure=True)
         ungrounded = p.act == "command" and outcome.intent is None and not outcome.clarify
         failed = not outcome.understood or ungrounded
         return self._clause_by_clause(heard, outcome) if failed else outcome
+
+    def _ability(self, heard: Said, p: Parse) -> bool:
+        """Whether the words ask what the robot can do, of a verb alone ("can you dance?", "are you
+        able to cook"): a question that may ask no more than that."""
+        said = tuple(expanded(self.lang, heard))
+        asked = any(said[: len(a)] == a for a in self.lang.requests.abilities)
+        return asked and p.act == "command" and len(p.words) == 1
+
+    def _unaccounted(self, intent: str, slots: dict[str, Words]) -> bool:
+        """Whether a phrase the intent grounds no role of names someone ("salute Olu in the meeting
+        room", "water jug to Edith"): words the reading cannot account for."""
+        grounded = ROLE_KINDS.get(intent, {})
+        if intent == I.STOP_ACTIVITY:  # whatever is said to be stopped, the robot stops
+            return False
+        for role, words in slots.items():
+            if role in grounded or role == "rest":
+                continue
+            words = words[: words.index("for")] if "for" in words else words  # ("the tour for Jonas": his)
+            named = (resolve(self.lexicon, (w,), PERSON).one for w in content_words(self.lang, words))
+            if any(person is not None for person in named):
+                return True
+        return False
 
     def _clause_by_clause(self, heard: Said, whole: Outcome) -> Outcome:
         """ "The denim jacket. Pick it up." or "Felix wants the remote, can you hand it to him?": when
@@ -208,7 +211,7 @@ class Interpreter:
                 with_more = {"object": described(self.lang, p.slots["object"], more)} if more else None
                 outcome = reader.act(p, with_more)
                 if outcome.intent is not None:
-                    return outcome
+                    return wished(self, heard, said[:i], outcome)
                 # A complete request in an earlier clause beats asking about an incomplete later one.
                 if question is None and (outcome.clarify or (p.act == "question" and outcome.understood)):
                     question = outcome
@@ -292,6 +295,11 @@ class Interpreter:
         if intent == I.BRING_OBJECT and self.refs.a_place(slots.get("object", ())):
             # "I need the lifts": a place is where to be taken, not a thing to carry
             intent, slots = I.GUIDE, {"recipient": slots.get("recipient", ("me",)), "goal": slots["object"]}
+        if intent == I.GUIDE and self.refs.named_person(slots.get("goal", ())):
+            # "take me to Marcus": to where he is (unknown: no place, said so by the grounding)
+            person = resolve(self.lexicon, slots["goal"], PERSON).one
+            if person is not None and person.zone and not self.refs.a_place(slots["goal"]):
+                slots["goal"] = tuple(tokens(person.zone))
         if intent == I.GUIDE and "goal" in p.implicit and "goal" not in overrides:
             there = antecedent(self.lexicon, self.history, PLACE, place=True, speaker=self.speaker)
             if there is None:  # "take me", with no place spoken of
@@ -337,7 +345,7 @@ class Interpreter:
             reply = hello(self.lang, self.snapshot, self.speaker)
         if any(ref.guessed for ref in refs.values()):  # "go to bay mine": a guess, less sure
             return Outcome(reply, intent, roles, SPELT_CONFIDENCE, guessed=True)
-        return self._intent(intent, roles, reply)
+        return replace(self._intent(intent, roles, reply), unsure=self._unaccounted(intent, slots))
 
     def _whose(self, words: Words, kinds: frozenset[Kind]) -> tuple[Words, str | None]:
         """ "go to my desk", "put it on Ana's shelf": a place said with whose it is, when that names

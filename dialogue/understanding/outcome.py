@@ -24,6 +24,12 @@ class Outcome:
     #: A misspelt word was read as a name the KB has ("the thremos"): which thing is meant is a
     #: guess (dialogue.understanding.speech.spelling), which a hybrid model leaves to its model.
     guessed: bool = False
+    #: The reading lacks evidence (a word it cannot account for, a frame that only half fits): it is
+    #: not acted on but proposed (`proposed`).
+    unsure: bool = False
+    #: A confirmation question ("Shall I bring Jordan the soap?"): the reading it proposes, acted on
+    #: when the speaker says yes (dialogue.understanding.followups.proposal).
+    proposal: Outcome | None = None
 
     def steps(self) -> tuple[Outcome, ...]:
         """This outcome and the ones that follow it."""
@@ -33,6 +39,11 @@ class Outcome:
     def guesses(self) -> bool:
         """Whether this outcome or one that follows it is a guess."""
         return any(o.guessed for o in self.steps())
+
+    @property
+    def doubts(self) -> bool:
+        """Whether this outcome or one that follows it lacks evidence."""
+        return any(o.unsure for o in self.steps())
 
 
 @dataclass(frozen=True)

@@ -66,6 +66,8 @@ class Heard:
     told: bool = False
     #: The interpreter's reading of a request, when the requests' reader heard it.
     outcome: Outcome | None = None
+    #: The answer proposes a reading the rules lack evidence for ("Shall I...?"), acting on none.
+    proposes: bool = False
 
 
 @dataclass(frozen=True)
@@ -126,7 +128,7 @@ def interpreted(turn: Turn) -> Outcome:
 def _requests(turn: Turn) -> Heard:
     outcome = interpreted(turn)
     return Heard(answer_of(outcome), clarify=outcome.clarify, understood=outcome.understood,
-                 guessed=outcome.guesses, outcome=outcome)  # fmt: skip
+                 guessed=outcome.guesses, outcome=outcome, proposes=outcome.proposal is not None)  # fmt: skip
 
 
 #: The readers of the default role, in the order they are tried: the first that hears the turn

@@ -141,6 +141,13 @@ def hello(lang: Language, snapshot: Snapshot, speaker: str) -> str:
     return say(lang, "social.hello")
 
 
+def said_back(lang: Language, text: str) -> str:
+    """The speaker's words as the robot says them back to the speaker ("tell me where my keys are"
+    -> "tell you where your keys are")."""
+    back: dict[str, str] = template(lang, "naming.back")
+    return " ".join(back.get(w.lower(), w) for w in text.split())
+
+
 def unprefixed(lang: Language, reply: str) -> str:
     """A later part of a compound reply: "OK, I will pick up the plate." -> "I will pick up the
     plate." (one without the "OK" capitalised)."""

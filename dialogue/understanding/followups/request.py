@@ -20,6 +20,8 @@ from dialogue.reference.english import Words, tokens
 from dialogue.reference.grounding import Kind
 from dialogue.reference.resolution import ROLE_KINDS, content_words, resolve
 from dialogue.understanding.context import Reader
+from dialogue.understanding.followups import proposal
+from dialogue.understanding.followups.accepting import accepts
 from dialogue.understanding.language import Language
 from dialogue.understanding.outcome import Outcome
 from dialogue.understanding.parsed import Parse
@@ -28,19 +30,6 @@ from dialogue.understanding.requests.constructions import where_it_goes
 from dialogue.understanding.said import Said
 from dialogue.understanding.speech.clauses import clauses, described, description
 from dialogue.understanding.speech.plain import expanded, plain, strip_politeness
-
-
-def accepts(lang: Language, words: list[str]) -> bool:
-    """Whether the words only say yes ("yes please", "go on then", "that'd be lovely")."""
-    if not words or not set(words) <= lang.followups.accepting:
-        return False
-    said = tuple(words)
-    yes = lang.followups
-    return bool(set(words) & yes.yes) or any(p in _spans(said, len(p)) for p in yes.yes_phrases)
-
-
-def _spans(words: Words, n: int) -> set[Words]:
-    return {words[i : i + n] for i in range(len(words) - n + 1)}
 
 
 def follow_up(reader: Reader, p: Parse, heard: Said) -> Outcome | None:
@@ -54,6 +43,9 @@ def follow_up(reader: Reader, p: Parse, heard: Said) -> Outcome | None:
     lang = reader.lexicon.lang
     answer = [lang.followups.no.get(w, w) for w in expanded(lang, heard)]
     said = [w for w in answer if w != "no"]
+    confirmed = proposal.answered(reader, answer)
+    if confirmed is not None:  # "yes" or "no" to "Shall I bring the soap to Jordan?"
+        return confirmed
     accepted = offer(reader, question, said)
     if accepted is not None:
         return accepted

@@ -18,7 +18,7 @@ from dialogue.understanding.requests.constructions import Framed
 from dialogue.understanding.requests.frames import Row, Special, constructions, verb_index
 from dialogue.understanding.said import Said, Text
 from dialogue.understanding.speech.plain import starts, strip_politeness
-from dialogue.understanding.speech.repair import normalise, strip_vocative, verb_lemma
+from dialogue.understanding.speech.repair import asked_verb, normalise, strip_vocative, verb_lemma
 
 __all__ = ["Parse", "Words", "parse"]
 
@@ -40,6 +40,9 @@ class _Grammar:
         self.durations = said.durations
         self.halts = said.halts
         self.if_modals = said.if_modals
+        self.conditions = said.conditions
+        self.not_conditions = said.not_conditions
+        self.your_time = said.your_time
         self.manner = said.manner
         self.polite_if = said.polite_if
         self.results = said.results
@@ -80,7 +83,7 @@ def parse(lang: Language, said: Text, robot_name: str = "") -> Parse:
         words = words[1:]
     if words and _negation(words):
         return Parse("negated", words=tuple(words))
-    if _conditional(g, words):  # "if Declan comes by, give him the menu": not now
+    if _conditional(g, words) or _later(lang, words):  # "if Declan comes by, give him the menu"
         return Parse("conditional", words=tuple(words))
     if not words:
         return Parse("unknown", words=())
@@ -175,6 +178,8 @@ def _fit(row: Row, said: Framed) -> Parse | None:  # noqa: C901
     if frame.whole and rest:
         return None
     rest, adjuncts = _adjuncts(g, rest, row)
+    if _when(g, adjuncts):  # "say hi to her when she comes in": not now
+        return Parse("conditional", words=said.words)
     direct, slots, marks = _segments(g, rest, row)
     if direct:
         direct = _which_one_back(direct, slots, marks, row)
@@ -385,6 +390,37 @@ def _conditional(g: _Grammar, words: Sequence[str]) -> bool:
     if words[:1] != ["if"] or len(words) < 4 or any(starts(words, p) for p in g.polite_if):
         return False
     return words[2] not in g.if_modals
+
+
+#: How many words of a condition may say it is the robot's own time ("you have got a minute").
+_YOUR_TIME = 5
+
+
+def _later(lang: Language, words: list[str]) -> bool:
+    """Whether a request is said after a condition yet to happen ("when the bell goes, could you...",
+    "after lunch take me to the day room", "when the train stops get my rucksack down")."""
+    g = lang.derived(_Grammar)
+    said = next((c for c in g.conditions if starts(words, c)), None)
+    if said is None or len(words) < len(said) + 2 or words[len(said)] in g.not_conditions:
+        return False
+    if any(starts(words, polite) for polite in g.adjuncts):  # "when you get a chance, ..."
+        return False
+    clause = words[len(said) : len(said) + _YOUR_TIME]
+    if clause[:1] == ["you"] and set(clause) & g.your_time:  # "when you've got a minute, ..."
+        return False
+    for i in range(len(said) + 1, len(words)):
+        rest = strip_politeness(lang, words[i:])
+        if rest and (rest != words[i:] or asked_verb(lang, words[i]) is not None):
+            # ("..., could you take", "... get my rucksack down", "... pour me a tea")
+            return asked_verb(lang, rest[0]) is not None
+    return False
+
+
+def _when(g: _Grammar, adjuncts: tuple[Words, ...]) -> bool:
+    """Whether a clause of time after the request says when it is to be done, later ("say hi to her
+    *when she comes in*"), rather than how long or while what ("while he waits")."""
+    return any(starts(a, c) and len(a) > len(c) and a[len(c)] in g.their_subjects
+               for a in adjuncts for c in g.conditions)  # fmt: skip
 
 
 def _said_how(g: _Grammar, rest: Words, i: int) -> int:

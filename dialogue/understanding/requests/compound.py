@@ -9,10 +9,12 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from lemminflect import getAllLemmas
+
 from dialogue.reference.english import Words
 from dialogue.reference.resolution import content_words
 from dialogue.understanding.language import Language
-from dialogue.understanding.requests.frames import verbs
+from dialogue.understanding.requests.frames import known_verbs, verbs
 from dialogue.understanding.said import Said, Text
 from dialogue.understanding.speech.plain import QUOTED, starts, strip_politeness
 from dialogue.understanding.speech.repair import asked_verb, normalise, strip_vocative
@@ -60,7 +62,9 @@ class Part:
     aside: bool = False
 
 
-def _verb(lang: Language, text: Text) -> str | None:
+def _verb(lang: Language, text: Text, later: bool = False) -> str | None:
+    """The verb a part starts with; of a later part, also one no frame knows, said before what it
+    is done to ("... and *inspect* it", "... and *count* the chairs")."""
     words = strip_politeness(lang, normalise(lang, text))
     for greeting in lang.social.greetings_longest_first:  # "hey robot take the book"
         if starts(words, greeting) and len(words) > len(greeting):
@@ -69,7 +73,12 @@ def _verb(lang: Language, text: Text) -> str | None:
     words = strip_vocative(lang, words)
     if not words:
         return None
-    return asked_verb(lang, words[0])
+    known = asked_verb(lang, words[0])
+    if known is not None or not later or len(words) < 2:
+        return known
+    c = lang.derived(_Words)
+    verb = words[0] in getAllLemmas(words[0]).get("VERB", ())  # a verb as said to do it, not "chairs"
+    return words[0] if verb and words[1] in c.object_start else None
 
 
 def conjuncts(lang: Language, said: Text) -> list[Part]:  # noqa: C901
@@ -113,20 +122,22 @@ def conjuncts(lang: Language, said: Text) -> list[Part]:  # noqa: C901
         if s >= e:
             continue
         piece = text[toks[s][1] : toks[e - 1][2]]
-        if parts and _verb(lang, heard.of(piece)) is None:  # "the cereals and the milk": not a new command
+        if parts and _verb(lang, heard.of(piece), later=True) is None:  # "the cereals and the milk": one
             parts[-1] = (parts[-1][0], e)
         else:
             parts.append((s, e))
     if len(parts) < 2:
         return []
     out = []
-    for s, e in parts:
+    for n, (s, e) in enumerate(parts):
         piece = text[toks[s][1] : toks[e - 1][2]].strip(" ,;")
-        verb = _verb(lang, heard.of(piece))
+        verb = _verb(lang, heard.of(piece), later=n > 0)
         # ("go to the x-ray room and get it ready": no intent says the getting ready)
         words = normalise(lang, heard.of(piece))
         result = verb is not None and bool(words) and words[-1] in c.results
-        out.append(Part(piece, verb, verb in c.no_intent_verbs or result, _away(lang, heard.of(piece))))
+        unknown = verb is not None and verb not in known_verbs(lang)  # "... and count the chairs"
+        no_intent = verb in c.no_intent_verbs or result or unknown
+        out.append(Part(piece, verb, no_intent, _away(lang, heard.of(piece))))
     return out
 
 

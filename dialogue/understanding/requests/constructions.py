@@ -189,12 +189,25 @@ def a_hand(said: Framed) -> Parse | None:
     return helping(Framed(said.lang, "help", (*rest[:at], *after), said.words, said.original))
 
 
+def company(said: Framed) -> Parse | None:
+    """ "keep Edith company (for ten minutes)": engaging with her; anything else kept is no request."""
+    rest = said.rest
+    at = next((i for i, w in enumerate(rest) if w == "company"), None)
+    if not at or (rest[at + 1 :] and rest[at + 1] != "for"):  # (how long changes nothing)
+        return None
+    return said.command(I.ENGAGE_WITH, recipient=rest[:at])
+
+
 def helping(said: Framed) -> Parse | None:
-    """ "help me get to the bathroom": take them there."""
+    """ "help me get to the bathroom", "help Ana find the way to the exit": take them there (the
+    way said after the person is no part of their name)."""
     found = split_at(said.rest, ["get to", "to"]) if "to" in said.rest else None
     if found is None or not found[0] or not found[2]:
         return None
-    return said.command(I.GUIDE, recipient=found[0], goal=found[2])
+    who = found[0]
+    ways = sorted(said.lang.requests.constructions.finding_the_way, key=len, reverse=True)
+    way = next((w for w in ways if len(who) > len(w) and who[-len(w) :] == w), ())
+    return said.command(I.GUIDE, recipient=who[: len(who) - len(way)], goal=found[2])
 
 
 def showing(said: Framed) -> Parse | None:

@@ -60,7 +60,7 @@ TEXTS: dict[str, Text] = {"verb": _verb, "activity": _activity, "doing": _doing,
 #: The constructions a frame may name (`special`), and those tried before any verb is read.
 SPECIALS: dict[str, Special] = {
     "everyone": C.everyone, "speech": C.speech, "letting_know": C.letting_know, "helping": C.helping,
-    "a_hand": C.a_hand, "showing": C.showing, "asking": C.asking,
+    "a_hand": C.a_hand, "showing": C.showing, "asking": C.asking, "company": C.company,
 }  # fmt: skip
 WHOLE_UTTERANCE: dict[str, Special] = {
     "need": C.need, "going": C.going, "wanting": C.wanting, "their_wish": C.their_wish,

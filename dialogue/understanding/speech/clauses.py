@@ -27,8 +27,8 @@ from dialogue.understanding.language import Language
 from dialogue.understanding.said import Said, Text
 from dialogue.understanding.speech.plain import expanded, strip_politeness
 
-#: Punctuation and dashes end a clause.
-_BREAK = re.compile(r"[.;!?,]+(?:\s+|$)|\s+(?:-|\u2013|\u2014)\s+")
+#: Punctuation and dashes end a clause ("one more thing: lead Marcus to the study").
+_BREAK = re.compile(r"[.;:!?,]+(?:\s+|$)|\s+(?:-|\u2013|\u2014)\s+")
 
 
 class _Clauses:

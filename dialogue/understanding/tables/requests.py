@@ -21,6 +21,7 @@ class ConstructionWords(Table):
 
     not_things: WordSet = frozenset()
     shown: WordSet = frozenset()
+    finding_the_way: Phrases = ()
     subjects: WordSet = frozenset()
     verbs_of_any: WordSet = frozenset()
 
@@ -65,6 +66,9 @@ class RequestWords(Table):
     their_subjects: WordSet = frozenset()
     polite_if: Phrases = ()
     if_modals: WordSet = frozenset()
+    conditions: Phrases = ()
+    not_conditions: WordSet = frozenset()
+    your_time: WordSet = frozenset()
     halts: WordSet = frozenset()
     manner: WordSet = frozenset()
     wants: Phrases = ()
@@ -82,6 +86,7 @@ class RequestWords(Table):
     activity_filler: WordSet = frozenset()
     results: WordSet = frozenset()
     no_intent_verbs: WordSet = frozenset()
+    abilities: Phrases = ()
     needs: dict[str, str] = {}
     purposes: dict[str, Phrase] = {}
     constructions: ConstructionWords = ConstructionWords()

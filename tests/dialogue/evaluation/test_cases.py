@@ -121,6 +121,14 @@ def test_rules_claims_are_the_turns_the_rules_answered(tmp_path: Path) -> None:
     assert overall.split()[1:4] == ["2", "3", "0.67"] and overall.endswith("rules' claims: 1/2 right (precision 0.50)")
 
 
+def test_a_reading_the_rules_only_propose_is_no_claim(tmp_path: Path) -> None:
+    dance = {"id": "dance", "input": "can you dance?", "expect": {"intent": "__intent_perform_motion__"}}
+    report = run(write_cases(tmp_path, GRAB_CUP, dance), "rules")
+    (proposed,) = [r for r in report.results if r.case.id == "dance"]
+    assert proposed.result.confirm and proposed.result.response == "Shall I dance?" and not proposed.passed
+    assert [r.case.id for r in report.claims] == ["right"] and report.claim_precision == 1.0
+
+
 def test_turns_the_model_answered_behind_the_rules_are_not_claims(tmp_path: Path) -> None:
     model = HybridModel(ScriptedModel([{"verbal_ack": "It is sunny.", "user_intent": None}]))
     report = run(write_cases(tmp_path, GRAB_CUP, WEATHER), model=model)

@@ -137,6 +137,16 @@ def test_a_name_read_from_a_typo_is_left_to_the_model_behind_the_rules(kitchen: 
     assert kept.intents[0].confidence < 0.9
 
 
+def test_a_reading_the_rules_would_only_propose_goes_to_the_model_behind_them(kitchen: KB) -> None:
+    # Alone, the rules ask ("Shall I dance?") and act on nothing; behind them, the model reads it.
+    alone = RulesModel().prescreen(TurnContext("can you dance?", ALICE, build_snapshot(kitchen)))
+    assert alone is not None and alone.confirm and alone.clarify and alone.answer.user_intent is None
+    assert alone.answer.verbal_ack == "Shall I dance?"
+    inner = Recording(SUNNY)
+    engine = DialogueEngine(kitchen, HybridModel(inner))
+    assert turn(engine, "can you dance?").backend == "inner" and len(inner.requests) == 1
+
+
 def test_a_word_the_rules_do_not_know_goes_to_the_model_not_to_i_dont_see_any(kitchen: KB) -> None:
     # "bring me the glorp": the rules cannot tell a thing the scene lacks from a word they do not know
     alone = DialogueEngine(kitchen, RulesModel())

@@ -396,6 +396,66 @@ def test_a_polite_if_is_no_condition(text: str) -> None:
     assert parse(text).act != "conditional"
 
 
+@pytest.mark.parametrize(
+    "text",
+    ["when the bell goes, could you take the register to the office", "after lunch take me to the day room",
+     "when the train stops get my rucksack down", "after my appointment, bring me the novel",
+     "say hi to her when she comes in", "bring Ana the menu once she sits down",
+     "as soon as the kettle boils pour me a tea"],
+)  # fmt: skip
+def test_a_request_for_when_something_yet_to_happen_has_happened_is_no_request_now(text: str) -> None:
+    assert parse(text).act == "conditional"
+
+
+@pytest.mark.parametrize(
+    "text",
+    ["when you get a chance, bring me the menu", "bring me the menu when you can", "hand Femi a magazine while he waits",
+     "put the milk back before it goes off", "when is lunch", "when did you last clean the kitchen",
+     "once more, bring me the menu", "when you've got a minute can you start tidying the shelves",
+     "once you're free, bring me the menu"],
+)  # fmt: skip
+def test_a_clause_of_time_that_says_no_later_moment_is_no_condition(text: str) -> None:
+    assert parse(text).act != "conditional"
+
+
+def test_a_request_under_a_condition_is_said_back_as_not_now(office: KB) -> None:
+    out = say(office, "when Carol comes in, give her the pear")
+    assert out.intent is None and out.more == () and "when it happens" in out.reply
+
+
 @pytest.mark.parametrize("text", ["stop, don't go", "no stop dont go", "wait don't go"])
 def test_stop_before_a_negated_request_is_the_negation(text: str) -> None:
     assert parse(text).act == "negated"
+
+
+@pytest.mark.parametrize(
+    "text",
+    ["escort Carol until reaching the bathroom", "escort Carol until you get to the bathroom",
+     "accompany Carol to the bathroom", "help Carol find the way to the bathroom",
+     "help Carol find her way to the bathroom", "show Carol the way from the office to the bathroom",
+     "one more thing: lead Carol to the bathroom"],
+)  # fmt: skip
+def test_who_is_guided_and_where_never_a_person_named_by_the_way(office: KB, text: str) -> None:
+    out = say(office, text)
+    assert (out.intent, out.roles) == (I.GUIDE, {"recipient": "person_carol", "goal": "bathroom"})
+
+
+def test_a_person_to_be_taken_to_is_where_they_are(office: KB) -> None:
+    office.update(["person_dan isIn hallway"])
+    out = say(office, "take me to Dan")
+    assert (out.intent, out.roles) == (I.GUIDE, {"recipient": "person_bob", "goal": "hallway"})
+
+
+@pytest.mark.parametrize(
+    "text",
+    ["chat to Carol", "have a chat with Carol", "go and have a little chat with Carol", "keep Carol company",
+     "keep Carol company for ten minutes, would you?", "go n have a natter with carol",
+     "could you go and sit with Carol for a minute"],
+)  # fmt: skip
+def test_engaging_said_as_company_or_a_chat(office: KB, text: str) -> None:
+    out = say(office, text)
+    assert (out.intent, out.roles) == (I.ENGAGE_WITH, {"recipient": "person_carol"})
+
+
+def test_keeping_a_thing_is_no_company(office: KB) -> None:
+    assert say(office, "keep the pear on the desk").intent is None

@@ -36,6 +36,12 @@ def conjuncts(text: str) -> list[Part]:
         ("go to the shed and see if the hose is there", ["go to the shed", "see if the hose is there"]),
         # a greeting asked for after a remark
         ("ola is here say hi", ["ola is here", "say hi"]),
+        # a verb no frame knows, said before what it is done to, starts a part of its own
+        ("take the pear and inspect it", ["take the pear", "inspect it"]),
+        ("go to the hall and count the chairs", ["go to the hall", "count the chairs"]),
+        # a noun after "and" does not ("plate" is a verb too, but nothing follows it)
+        ("bring me the fork and plate", []),
+        ("put the mug and saucer on the tray", []),
     ],
 )
 def test_parts(text: str, parts: list[str]) -> None:
@@ -102,3 +108,8 @@ def test_a_part_asking_for_a_state_is_kept_in_the_reply(office: KB) -> None:
     assert [p.no_intent for p in parts] == [False, True]
     out = say(office, "go too the bathroom and get it ready")
     assert (out.intent, out.roles) == (I.MOVE_TO, {"goal": "bathroom"}) and "can't get it ready" in out.reply
+
+
+def test_a_part_whose_verb_no_frame_knows_is_one_the_robot_cannot_do() -> None:
+    parts = conjuncts("greet Ana and offer her a coffee")
+    assert [(p.verb, p.no_intent) for p in parts] == [("greet", False), ("offer", True)]

@@ -1,0 +1,110 @@
+"""A compound request read part by part ("go to the kitchen and take the plate"): what each part
+asks for, in order, and what the parts say together.
+
+Each part is read as a request of its own, with the parts before it as context for its pronouns
+("take the book and put it in the oven"). A part the robot has no intent for ("... and inspect it",
+"... and count the chairs", "... and tell me how many there are") does not sink the others: they are
+done and the reply says which part cannot be. A thing fetched and then handed on or put somewhere
+("fetch the juice from the fridge and give it to Amara") is taken, not brought to the speaker first.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import replace
+
+from dialogue import intents as I
+from dialogue.history import Utterance
+from dialogue.understanding.context import Reader
+from dialogue.understanding.followups.proposal import proposed
+from dialogue.understanding.outcome import Outcome, Ref
+from dialogue.understanding.replies import acknowledgement, said_back, say, then
+from dialogue.understanding.requests.commands import parse
+from dialogue.understanding.requests.compound import Part
+from dialogue.understanding.said import Said
+
+#: What a thing carried on to someone or somewhere is, carried first: taken.
+_HANDED_ON = frozenset({I.BRING_OBJECT, I.PLACE_OBJECT})
+
+
+def compound(reader: Reader, heard: Said, parts: Sequence[Part]) -> Outcome | None:
+    """Every part read in order: the intents, or the question about a part that must come first, or
+    None when a part is not understood (the whole is then read otherwise)."""
+    done: list[Outcome] = []
+    cannot: list[str] = []
+    context: list[Utterance] = []
+    aside = False
+    for n, part in enumerate(parts):
+        within = reader.within((*reader.history, *context))
+        context.append(Utterance(reader.speaker, part.text))
+        if n == 0 and part.verb is None:
+            continue  # a preamble ("hey there", "thanks", "the denim jacket"): context for the rest
+        if part.aside and n < len(parts) - 1:
+            aside = True  # "move out of the way and go to the door": the going does it
+            continue
+        outcome = within.part(heard.of(part.text))
+        if n == 1 and parts[0].verb is None:  # "I want the pear, can you get it": brought to me
+            outcome = wished(reader, heard, [parts[0].text], outcome)
+        if outcome.intent is not None and done and (outcome.intent, outcome.roles) == (
+            done[-1].intent, done[-1].roles):
+            continue  # "go to the shed and wait there": one move
+        if outcome.intent is not None:
+            done.append(outcome)
+            if outcome.roles.get("object") in reader.snapshot.entities:
+                # "get the teddy off the bench and give it to Zara": "it" is what was taken
+                context.append(Utterance(reader.speaker, outcome.roles["object"]))
+        elif outcome.clarify:
+            return outcome  # ask about this part first: nothing is done until it is clear
+        elif part.no_intent or (done and _asks(reader, heard.of(part.text))):
+            # ("go to the kitchen and tell me what's there": answered now, it would answer wrong)
+            cannot.append(part.text)
+        else:  # a part that fails says why; one not understood makes the whole not understood
+            return outcome if outcome.understood else None
+    if not done or (aside and not {o.intent for o in done} & {I.MOVE_TO, I.GUIDE}):
+        return None  # (out of the way, then no going anywhere: not understood)
+    done = _taken_first(reader, done)
+    lang = reader.lang
+    acks = [then(lang, [o.reply for o in done])]
+    unable = [say(lang, "request.cannot", action=said_back(lang, c)) for c in cannot]
+    whole = replace(done[0], reply=" ".join([*acks, *unable]), more=tuple(done[1:]))
+    if whole.doubts:  # each part said back in the question
+        return proposed(lang, whole, [o.reply for o in done], unable)
+    return whole
+
+
+def wished(reader: Reader, heard: Said, before: Sequence[str], outcome: Outcome) -> Outcome:
+    """ "I want the pear, can you get it", "Felix needs his glasses, could you grab them": a thing
+    taken that an earlier clause or part (`before`) wished for is brought to whoever wished for it."""
+    for i in range(len(before) - 1, -1, -1) if outcome.intent == I.GRAB_OBJECT else ():
+        p = parse(reader.lang, heard.of(before[i]), reader.robot_name)
+        if p.act != "command" or p.intent != I.BRING_OBJECT:
+            continue
+        context = (*reader.history, *(Utterance(reader.speaker, c) for c in before[:i]))
+        wish = reader.within(context).act(p)
+        if wish.intent == I.BRING_OBJECT and wish.roles.get("object") == outcome.roles.get("object"):
+            return wish
+    return outcome
+
+
+def _asks(reader: Reader, part: Said) -> bool:
+    """Whether a part asks a question about the situation ("tell me how many mugs there are")."""
+    return parse(reader.lang, part, reader.robot_name).act == "question"
+
+
+def _taken_first(reader: Reader, done: list[Outcome]) -> list[Outcome]:
+    """ "fetch the juice and give it to Amara", "bring the mug and put it on the tray": a thing
+    brought to the speaker and then carried on elsewhere is taken first, not brought."""
+    out = list(done)
+    for i in range(len(out) - 1):
+        first, after = out[i], out[i + 1]
+        thing = first.roles.get("object")
+        if first.intent != I.BRING_OBJECT or first.roles.get("recipient") != reader.speaker:
+            continue
+        entity = reader.snapshot.get(thing or "")
+        if after.intent not in _HANDED_ON or after.roles.get("object") != thing or entity is None:
+            continue
+        roles = {"object": entity.id}
+        reply = acknowledgement(reader.lang, reader.snapshot, reader.speaker, I.GRAB_OBJECT, roles,
+                                {"object": Ref(entity)})  # fmt: skip
+        out[i] = replace(first, intent=I.GRAB_OBJECT, roles=roles, reply=reply)
+    return out

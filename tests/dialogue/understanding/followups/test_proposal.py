@@ -1,0 +1,71 @@
+"""A reading the rules lack evidence for is proposed, never acted on; "yes" acts on it, "no" drops it."""
+
+import pytest
+
+from dialogue import intents as I
+from dialogue.understanding.outcome import Outcome
+from kb import KB
+from tests.dialogue.conftest import scene_kb
+from tests.dialogue.understanding.test_interpret import say
+
+JO = "person_jo"
+
+
+@pytest.fixture
+def studio() -> KB:
+    return scene_kb(
+        None,
+        "myself rdf:type Robot",
+        "hall rdf:type ZoneOfInterest", 'hall rdfs:label "hall"',
+        f"{JO} rdf:type Human", f'{JO} rdfs:label "Jo"', f"myself sees {JO}",
+        "person_tam rdf:type Human", 'person_tam rdfs:label "Tam"', "myself sees person_tam",
+        "drum_1 rdf:type Artifact", 'drum_1 rdfs:label "drum"', "myself sees drum_1",
+    )  # fmt: skip
+
+
+def _asked(studio: KB, text: str) -> Outcome:
+    out = say(studio, text, speaker=JO)
+    assert out.intent is None and out.clarify and out.proposal is not None
+    return out
+
+
+def test_a_question_of_what_the_robot_can_do_is_proposed_not_acted_on(studio: KB) -> None:
+    out = _asked(studio, "can you dance?")
+    assert out.reply == "Shall I dance?"
+    assert out.proposal is not None and out.proposal.intent == I.PERFORM_MOTION
+    # the same verb asked for is done at once
+    assert say(studio, "dance", speaker=JO).intent == I.PERFORM_MOTION
+
+
+def test_a_person_named_where_the_reading_has_no_role_for_them_is_proposed(studio: KB) -> None:
+    out = _asked(studio, "salute Tam in the hall")
+    assert out.reply == "Shall I salute?"
+    assert say(studio, "salute", speaker=JO).intent == I.PERFORM_MOTION
+    # whom it is for is accounted for
+    assert say(studio, "start the drum practice for Tam", speaker=JO).intent == I.START_ACTIVITY
+
+
+@pytest.mark.parametrize("answer", ["yes", "yes please", "sure, go ahead", "please do"])
+def test_yes_acts_on_the_reading_proposed(studio: KB, answer: str) -> None:
+    history = [("user", "can you dance?"), ("robot", "Shall I dance?")]
+    out = say(studio, answer, speaker=JO, history=history)
+    assert (out.intent, out.roles) == (I.PERFORM_MOTION, {"object": "dance"})
+    assert out.confidence < 0.9  # confirmed, not said whole
+
+
+@pytest.mark.parametrize("answer", ["no", "nope", "no thanks"])
+def test_no_drops_it(studio: KB, answer: str) -> None:
+    out = say(studio, answer, speaker=JO, history=[("user", "can you dance?"), ("robot", "Shall I dance?")])
+    assert out.intent is None and out.understood and not out.clarify
+
+
+def test_anything_else_is_a_new_turn(studio: KB) -> None:
+    history = [("user", "can you dance?"), ("robot", "Shall I dance?")]
+    out = say(studio, "go to the hall", speaker=JO, history=history)
+    assert (out.intent, out.roles) == (I.MOVE_TO, {"goal": "hall"})
+
+
+def test_yes_acts_on_what_the_request_before_the_question_proposed(studio: KB) -> None:
+    history = [("user", "salute Tam in the hall"), ("robot", "Shall I salute?")]
+    out = say(studio, "yeah", speaker=JO, history=history)
+    assert (out.intent, out.roles) == (I.PERFORM_MOTION, {"object": "salute"})

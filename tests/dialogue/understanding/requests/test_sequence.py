@@ -1,0 +1,59 @@
+"""A compound request read part by part: what cannot be done is said, what is carried on is taken."""
+
+from dialogue import intents as I
+from kb import KB
+from tests.dialogue.understanding.test_interpret import BOB, say
+
+
+def test_a_part_the_robot_has_no_intent_for_does_not_sink_the_others(office: KB) -> None:
+    out = say(office, "go to the desk and count the staplers")
+    assert [(o.intent, o.roles) for o in out.steps()] == [(I.MOVE_TO, {"goal": "desk_1"})]
+    assert "can't count the staplers" in out.reply
+
+
+def test_a_question_after_an_action_is_not_answered_now(office: KB) -> None:
+    out = say(office, "go to the desk and tell me what is on it")
+    assert [o.intent for o in out.steps()] == [I.MOVE_TO]
+    assert "can't tell you what is on it" in out.reply  # said back to the speaker
+
+
+def test_a_thing_fetched_and_handed_on_is_taken_first(office: KB) -> None:
+    out = say(office, "fetch the pear from the desk and give it to Carol")
+    assert [(o.intent, o.roles) for o in out.steps()] == [
+        (I.GRAB_OBJECT, {"object": "pear_1"}),
+        (I.BRING_OBJECT, {"object": "pear_1", "recipient": "person_carol"}),
+    ]
+    assert out.reply.startswith("OK, I will pick up the pear.")
+
+
+def test_a_thing_fetched_for_the_speaker_alone_is_brought(office: KB) -> None:
+    out = say(office, "fetch the pear and go to the desk")
+    assert (out.intent, out.roles) == (I.BRING_OBJECT, {"object": "pear_1", "recipient": BOB})
+
+
+def test_retrieve_and_remove_take_a_thing(office: KB) -> None:
+    for verb in ("retrieve", "remove"):
+        out = say(office, f"{verb} the stapler from the desk and put it on the shelf")
+        assert [o.intent for o in out.steps()] == [I.GRAB_OBJECT, I.PLACE_OBJECT]
+
+
+def test_a_thing_wished_for_then_asked_to_be_taken_is_brought_to_whoever_wished(office: KB) -> None:
+    for text in ("I want the pear, can you get it", "I want the pear. Can you get it?"):
+        out = say(office, text)
+        assert (out.intent, out.roles) == (I.BRING_OBJECT, {"object": "pear_1", "recipient": BOB})
+    out = say(office, "Carol needs the stapler, could you grab it")
+    assert (out.intent, out.roles) == (I.BRING_OBJECT, {"object": "stapler_1", "recipient": "person_carol"})
+    # with no wish before it, taking is taking
+    assert say(office, "the stapler, can you grab it").intent == I.GRAB_OBJECT
+
+
+def test_the_other_request_forms(office: KB) -> None:
+    assert say(office, "let's go to the bathroom").roles == {"goal": "bathroom"}
+    assert say(office, "catch the pear").intent == I.GRAB_OBJECT
+    assert (say(office, "get the pear from the desk").intent) == I.GRAB_OBJECT
+    out = say(office, "At the desk, bring Carol the pear")
+    assert (out.intent, out.roles) == (I.BRING_OBJECT, {"object": "pear_1", "recipient": "person_carol"})
+    out = say(office, "dear robot, bring me the pear")
+    assert (out.intent, out.roles) == (I.BRING_OBJECT, {"object": "pear_1", "recipient": BOB})
+    out = say(office, "Carol is sitting by the desk, could you bring her the pear")
+    assert (out.intent, out.roles) == (I.BRING_OBJECT, {"object": "pear_1", "recipient": "person_carol"})
