@@ -8,9 +8,10 @@ A word the KB does not know is replaced by such a slip of a word of the KB's nam
 one) only when that makes the phrase name exactly one thing, and only when the slip is part of a name
 said with other words ("bay nine", "blue water bottle") or two said words make it (a single word heard
 for a single other word, "cup" for "cap", is too weak a clue). A word said short ("the mic" for
-the "microphone", "the amp"), the start of one word of the KB's names whose rest is no word of its
-own ("cup" is not said for the "cupboard"), is that word when that makes the phrase name exactly one
-thing. The thing found is a guess (dialogue.llm.hybrid leaves such turns to its model).
+the "microphone", "the amp"), the start of one word of the names of the things in sight whose rest
+is no word of its own ("cup" is not said for the "cupboard"), is that word when that makes the
+phrase name exactly one thing. The thing found is a guess (dialogue.llm.hybrid leaves such turns
+to its model).
 """
 
 from __future__ import annotations
@@ -107,6 +108,9 @@ def clipped(lexicon: Lexicon, words: Words, kinds: Collection[Kind], owner: str 
 
 
 def _longer(word: str, lexicon: Lexicon) -> list[str]:
-    """Words of the KB's names that start with the word and go on with no word of their own."""
-    return [w for w in lexicon.vocabulary if w.startswith(word) and len(w) >= len(word) + _CLIPPED
+    """Words of the names of the things in sight that start with the word and go on with no word
+    of their own (only those: a KB's whole vocabulary is too many to try every turn)."""
+    attributes = lexicon.attributes
+    said = {w for e in lexicon.snapshot.visible() for w in attributes.get(e.id, ())}
+    return [w for w in said if w.startswith(word) and len(w) >= len(word) + _CLIPPED
             and not getAllLemmas(w[len(word) :])]  # fmt: skip

@@ -29,7 +29,7 @@ def flat() -> KB:
         "towel_w rdf:type Cloth", 'towel_w rdfs:label "towel"', "towel_w hasColor white",
         "towel_w isIn lounge", "myself sees towel_w",
         "towel_b rdf:type Cloth", 'towel_b rdfs:label "towel"', "towel_b hasColor blue", "towel_b isIn bathroom",
-        "mic_1 rdf:type Artifact", 'mic_1 rdfs:label "microphone"', "mic_1 isOn desk_1",
+        "mic_1 rdf:type Artifact", 'mic_1 rdfs:label "microphone"', "mic_1 isOn desk_1", "myself sees mic_1",
         "picks_1 rdf:type Artifact", 'picks_1 rdfs:label "guitar picks"', "picks_1 isOn desk_1",
         "stool_1 rdf:type cyc:FurniturePiece", 'stool_1 rdfs:label "stool"', "stool_1 isMovable true",
         "stool_1 isIn lounge",
