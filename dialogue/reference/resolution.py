@@ -24,6 +24,8 @@ from dialogue.reference.english import tokens
 from dialogue.reference.grounding import Entity, Kind
 from dialogue.reference.headnoun import resolve_head
 from dialogue.reference.lexicon import Lexicon, Mention, norm
+from dialogue.reference.naming import phrase
+from dialogue.reference.synonyms import synonyms
 from dialogue.understanding.language import Language
 
 #: The ontology's class of what a bottle, a can or a packet holds.
@@ -173,7 +175,8 @@ def resolve(  # noqa: C901
     # "the kitchen table" is the one named so, before a table that is in the kitchen.
     matches = [e for e in matches if all(i in cover[e.id] for i in content)] or matches
     # "the desk" is the thing called so, before the "standing desk" it is only the end of.
-    matches = [e for e in matches if _called(e, whole.get(e.id, ()))] or matches
+    said = tuple(normed[i] for i in content)
+    matches = [e for e in matches if _called(lexicon, e, whole.get(e.id, ()), said)] or matches
     if not matches and content:
         matches = _by_label_words(lexicon, [normed[i] for i in content], kinds)
     if not matches and content and {"one", "ones"} & set(words):
@@ -212,14 +215,18 @@ def _named_after(span: frozenset[int] | None, head: int) -> bool:
     return span is not None and bool(span) and head not in span and min(span) > head
 
 
-def _called(entity: Entity, sources: Collection[str]) -> bool:
+def _called(lexicon: Lexicon, entity: Entity, sources: Collection[str], said: tuple[str, ...]) -> bool:
     """Whether one of the entity's own names is all the words said: its label, or, for a thing
-    with no label, the name of its class ("the sofa" for an unlabelled couch, not the "TV couch").
+    with no label, the name of its own class or another way of saying it ("the sofa" for an
+    unlabelled couch, not the "TV couch"; never a class it is a kind of: a pear is no "plant").
     A thing with a colour is not called only that: the "vase" that is blue is the blue vase as much
     as the others are the glass vase and the tall vase ("the vase" is asked about)."""
-    if entity.colour is not None:
+    if entity.colour is not None or not sources:
         return False
-    return "label" in sources or (not entity.labels and bool({"class", "synonym"} & set(sources)))
+    if entity.labels:
+        return "label" in sources
+    name = phrase(entity.name)
+    return said == name or said in synonyms(lexicon.lang, phrase).of(name)
 
 
 def _settled(near: Sequence[Entity], owner: str | None, own_name: Collection[str]) -> bool:
