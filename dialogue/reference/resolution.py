@@ -24,8 +24,7 @@ from dialogue.reference.english import tokens
 from dialogue.reference.grounding import Entity, Kind
 from dialogue.reference.headnoun import resolve_head
 from dialogue.reference.lexicon import Lexicon, Mention, norm
-from dialogue.reference.naming import phrase
-from dialogue.reference.synonyms import synonyms
+from dialogue.reference.naming import phrase as name_words
 from dialogue.understanding.language import Language
 
 #: The ontology's class of what a bottle, a can or a packet holds.
@@ -176,7 +175,10 @@ def resolve(  # noqa: C901
     matches = [e for e in matches if all(i in cover[e.id] for i in content)] or matches
     # "the desk" is the thing called so, before the "standing desk" it is only the end of.
     said = tuple(normed[i] for i in content)
-    matches = [e for e in matches if _called(lexicon, e, whole.get(e.id, ()), said)] or matches
+    called = [e for e in matches if _called(e, whole.get(e.id, ()))]
+    # (unless another is called so too but for its colour: "the cup" of a cup and a red cup is asked)
+    if called and not any(e not in called and name_words(e.name) == said for e in matches):
+        matches = called
     if not matches and content:
         matches = _by_label_words(lexicon, [normed[i] for i in content], kinds)
     if not matches and content and {"one", "ones"} & set(words):
@@ -215,18 +217,12 @@ def _named_after(span: frozenset[int] | None, head: int) -> bool:
     return span is not None and bool(span) and head not in span and min(span) > head
 
 
-def _called(lexicon: Lexicon, entity: Entity, sources: Collection[str], said: tuple[str, ...]) -> bool:
-    """Whether one of the entity's own names is all the words said: its label, or, for a thing
-    with no label, the name of its own class or another way of saying it ("the sofa" for an
-    unlabelled couch, not the "TV couch"; never a class it is a kind of: a pear is no "plant").
-    A thing with a colour is not called only that: the "vase" that is blue is the blue vase as much
-    as the others are the glass vase and the tall vase ("the vase" is asked about)."""
-    if entity.colour is not None or not sources:
-        return False
-    if entity.labels:
-        return "label" in sources
-    name = phrase(entity.name)
-    return said == name or said in synonyms(lexicon.lang, phrase).of(name)
+def _called(entity: Entity, sources: Collection[str]) -> bool:
+    """Whether the entity's label is all the words said ("the desk", not the "standing desk"). A
+    thing with a colour is not called only that: the "vase" that is blue is the blue vase as much as
+    the others are the glass vase and the tall vase ("the vase" is asked about). A thing with no
+    label is called by its class as all its kind are (a cup among a "red cup" and a "blue cup")."""
+    return entity.colour is None and bool(entity.labels) and "label" in sources
 
 
 def _settled(near: Sequence[Entity], owner: str | None, own_name: Collection[str]) -> bool:
