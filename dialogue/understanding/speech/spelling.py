@@ -198,11 +198,11 @@ def _meant(word: str, lexicon: Lexicon) -> str | None:
     """The one word the word is a slip of; a plural's slip ("tisues") is the plural of the word its
     singular is a slip of (the KB's names are indexed singular: "box of tissues" by "tissue"). A
     word heard for the one word of the KB's names that sounds the same ("guitar pics": picks) is
-    that word before any slip of the keys."""
-    heard = _sounding(word, lexicon)
-    if heard is not None:
-        return heard
+    that word before a slip of the keys to another name (but not to a word of the grammar)."""
     meant = _nearest(word, lexicon)
+    heard = None if meant in grammar_words(lexicon.lang) else _sounding(word, lexicon)
+    if heard is not None:  # ("plase" is a slip of "please", a word of the grammar, as before)
+        return heard
     if len(word) <= _SHORT or not word.endswith("s") or (meant is not None and not lexicon.knows(meant)):
         return meant
     one = _nearest(word[:-1], lexicon)
