@@ -168,6 +168,7 @@ class EntityIndex:
             class_names=core.class_names, kind=core.kind, seen=seen,
             support=support, zone=zone, colour=self.display(hue) if hue else None,
             engagement=facts.value("engagement", term), owner=facts.value("owner", term), relations=relations,
+            movable=_boolean(facts.value("movable", term)),
         )  # fmt: skip
         self._reorder(term, rank(self.entities[term]))
         self._locate(term, (support, zone, *(other for prep, other in relations if prep == "in")))
@@ -360,3 +361,10 @@ class EntityIndex:
 def _pattern_term(term: str) -> str:
     """A term as the KB printed it, made usable in a pattern again (full IRIs need angle brackets)."""
     return f"<{term}>" if "://" in term else term
+
+
+def _boolean(value: str | None) -> bool | None:
+    """A boolean fact's value as the KB gives it ("true", "False", "1"...), None when absent."""
+    if value is None:
+        return None
+    return value.strip().lower() in {"true", "1"}

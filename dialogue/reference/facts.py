@@ -27,6 +27,7 @@ PROPERTIES = {
     "hasColor": "colour",
     "belongsTo": "owner",
     "engagementLevel": "engagement",
+    "isMovable": "movable",
 }
 #: Spatial relations beyond support and zone, with the preposition that says them in a reply; each
 #: fills its own table (an entity shows all their values, relation by relation, by sorted text).

@@ -104,7 +104,8 @@ class Naming:
         # "the remote" for the "TV remote"; the other words stay usable as qualifiers.
         for text in (*entity.labels, *entity.class_names):
             words = tokens(text)
-            if len(words) > 1 and not {"or", "and"} & set(words):  # "food or drink" is no drink
+            # "food or drink" is no drink; "cheese and onion crisps" are crisps
+            if len(words) > 1 and words[-2] not in {"or", "and"}:
                 add(words[-1], "head")
             if len(words) == 2 and all(w.isalpha() for w in words):
                 add("".join(words), "joined")  # "the eyeglass" for the "eye glass" (the converse of names_at)

@@ -3,8 +3,10 @@
 A phrase matches an entity when one of the entity's names occurs in it and every other content word
 qualifies the entity: a word of its labels or class names ("red" for the "red cup"), its colour
 (`hasColor white`), a name of its support or zone ("the cup on the table", "the kitchen table"), or
-of its owner ("Ines's phone", `belongsTo`). Visible entities are preferred to known but unseen ones,
-and, when the caller knows whose thing is meant ("my phone"), that person's things.
+of its owner ("Ines's phone", `belongsTo`). When the caller knows whose thing is meant ("my phone"),
+that person's things are preferred; visible entities are preferred to unseen ones, but for a thing
+to fetch (`sight=False`) only among more than a clarifying question can list (of two towels, the
+one in sight is not "the towel" to bring: which is asked).
 """
 
 from __future__ import annotations
@@ -17,14 +19,19 @@ from lemminflect import getAllLemmas
 
 from dialogue import intents as I
 from dialogue.history import Utterance
+from dialogue.reference.clarify import MAX_OPTIONS
 from dialogue.reference.english import tokens
 from dialogue.reference.grounding import Entity, Kind
 from dialogue.reference.headnoun import resolve_head
 from dialogue.reference.lexicon import Lexicon, Mention, norm
+from dialogue.reference.naming import phrase as name_words
 from dialogue.understanding.language import Language
 
 #: The ontology's class of what a bottle, a can or a packet holds.
 FOOD_OR_DRINK = "cyc:FoodOrDrink"
+
+#: Up to this many entities named by a phrase's words, all are looked at (no sight-first shortcut).
+FEW_NAMED = 64
 
 ALL_KINDS: frozenset[Kind] = frozenset({"person", "zone", "robot", "thing"})
 
@@ -93,9 +100,15 @@ def is_pronoun(lang: Language, words: Sequence[str]) -> bool:
 
 
 def resolve(  # noqa: C901
-    lexicon: Lexicon, words: Sequence[str], kinds: Collection[Kind] = ALL_KINDS, *, owner: str | None = None
+    lexicon: Lexicon,
+    words: Sequence[str],
+    kinds: Collection[Kind] = ALL_KINDS,
+    *,
+    owner: str | None = None,
+    sight: bool = True,
 ) -> Resolution:
-    """Entities of the given kinds that the phrase names (see the module docstring)."""
+    """Entities of the given kinds that the phrase names (see the module docstring); with `sight`
+    False, the things in sight are not preferred among a few (a thing to fetch: which is asked)."""
     lang = lexicon.lang
     phrase = " ".join(words)
     words = [w[:-2] if w.endswith("'s") and len(w) > 2 else w for w in words]  # "ines's" names Ines
@@ -103,6 +116,9 @@ def resolve(  # noqa: C901
     bases = [compared(w) for w in normed]  # "bigger": big
     cover: dict[str, frozenset[int]] = {}  # entity -> the word positions its names span
     own_name: set[str] = set()  # entities a name of the KB's own (not the lexicon file's) occurs for
+    content = [i for i in range(len(words)) if not _glue(lang.glue, words, i)]
+    said_whole = frozenset(content)
+    whole: dict[str, set[str]] = {}  # entity -> the sources of its names that are all the words said
     for start in range(len(words)):
         spans: dict[int, frozenset[int]] = {}  # shared: a class word's name is thousands of things'
         for name in lexicon.names_at(words, start):
@@ -113,8 +129,9 @@ def resolve(  # noqa: C901
             cover[name.entity] = span if before is None else before | span
             if not name.lexical:
                 own_name.add(name.entity)
+            if span == said_whole:
+                whole.setdefault(name.entity, set()).add(name.source)
     snapshot = lexicon.snapshot
-    content = [i for i in range(len(words)) if not _glue(lang.glue, words, i)]
     head = _head(lang, words, content)
     # "the ones on the bench": no noun before the preposition, and never the bench itself ("one of
     # the baskets")
@@ -143,21 +160,35 @@ def resolve(  # noqa: C901
     def everything() -> list[Entity]:
         return snapshot.among(cover, kinds)
 
-    if owner is None:  # the things in sight, without looking at the others
-        near = snapshot.seen_among(cover)
-    else:
-        near = [e for e in everything() if e.seen or (owner is not None and e.owner == owner)]
-    matches = [e for e in near if named(e)]
-    if not _settled(matches, owner, own_name):
+    # A few things named, to fetch or one of them called just what is said: all of them.
+    if (not sight or whole) and len(cover) <= FEW_NAMED:
         matches = [e for e in everything() if named(e)]
+    else:
+        if owner is None:  # the things in sight, without looking at the others
+            near = snapshot.seen_among(cover)
+        else:
+            near = [e for e in everything() if e.seen or (owner is not None and e.owner == owner)]
+        matches = [e for e in near if named(e)]
+        if not _settled(matches, owner, own_name):
+            matches = [e for e in everything() if named(e)]
     # "the kitchen table" is the one named so, before a table that is in the kitchen.
     matches = [e for e in matches if all(i in cover[e.id] for i in content)] or matches
+    # "the desk" is the thing called so, before the "standing desk" it is only the end of.
+    said = tuple(normed[i] for i in content)
+    called = [e for e in matches if _called(e, whole.get(e.id, ()))]
+    # (unless another is called so too but for its colour: "the cup" of a cup and a red cup is asked)
+    if called and not any(e not in called and name_words(e.name) == said for e in matches):
+        matches = called
     if not matches and content:
         matches = _by_label_words(lexicon, [normed[i] for i in content], kinds)
     if not matches and content and {"one", "ones"} & set(words):
         matches = _by_qualifiers(lexicon, [normed[i] for i in content], kinds)
     if not matches and content:
         matches = resolve_head(lexicon, words, kinds)
+    # "the bread on the bread shelf": the shelf is where, not what ("the side of the bath" is the
+    # bath; "a tin of soup", "a pair of goggles" are read below without the measure)
+    if head is not None and words[head] not in lang.words.parts | lang.words.positions:
+        matches = [e for e in matches if not _named_after(cover.get(e.id), head)]
     counted = _counted(lang, words) if not matches and content else ()
     if counted:  # "a pair of 3D glasses": the glasses
         matches = list(resolve(lexicon, counted, kinds, owner=owner).matches)
@@ -172,9 +203,26 @@ def resolve(  # noqa: C901
     matches = owned or matches
     # "the bathroom" is the room labelled so, not the toilets the lexicon file says it may be.
     matches = [e for e in matches if e.id in own_name] or matches
-    seen = [e for e in matches if e.seen]
+    # Without `sight`, sight narrows only a word that names more things than a question can list:
+    # of two towels, the one in sight is not "the towel" to fetch (which is asked), of hundreds of
+    # apples it is.
+    seen = [e for e in matches if e.seen] if sight or len(matches) > MAX_OPTIONS else []
     # Sorted last: a class word names thousands of things of which a handful are in sight.
     return Resolution(phrase, tuple(snapshot.in_order(seen or matches)))
+
+
+def _named_after(span: frozenset[int] | None, head: int) -> bool:
+    """Whether an entity's names occur in the phrase only after its head noun (in what qualifies
+    the head: a place, an owner), so that it is not the thing the phrase names."""
+    return span is not None and bool(span) and head not in span and min(span) > head
+
+
+def _called(entity: Entity, sources: Collection[str]) -> bool:
+    """Whether the entity's label is all the words said ("the desk", not the "standing desk"). A
+    thing with a colour is not called only that: the "vase" that is blue is the blue vase as much as
+    the others are the glass vase and the tall vase ("the vase" is asked about). A thing with no
+    label is called by its class as all its kind are (a cup among a "red cup" and a "blue cup")."""
+    return entity.colour is None and bool(entity.labels) and "label" in sources
 
 
 def _settled(near: Sequence[Entity], owner: str | None, own_name: Collection[str]) -> bool:

@@ -67,6 +67,20 @@ class Entity:
     engagement: str | None = None
     #: Other spatial facts, as (preposition, entity id): ("next to", "bed_1") for `isNextTo`.
     relations: tuple[tuple[str, str], ...] = ()
+    #: Whether it can be picked up and carried (`isMovable`); None when the KB does not say.
+    movable: bool | None = None
+
+
+#: The ontology's class of furniture: it stays where it is unless the KB says it can be moved.
+FURNITURE = "cyc:FurniturePiece"
+
+
+def fixed(entity: Entity) -> bool:
+    """Whether the thing cannot be picked up or carried: the KB says it is not movable, or it is
+    furniture the KB does not say is (people and places are never carried as objects anyway)."""
+    if entity.movable is not None:
+        return not entity.movable
+    return FURNITURE in entity.classes
 
 
 #: Ranks of the deterministic order: seen by the robot, people, places, other located things.

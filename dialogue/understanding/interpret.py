@@ -55,6 +55,7 @@ SPELT_CONFIDENCE = 0.7
 _ASKED = {
     (I.PLACE_OBJECT, "recipient"): "request.where_put", (I.MOVE_TO, "goal"): "request.where_go",
     (I.GUIDE, "goal"): "request.where_take", (I.SAY, "object"): "request.what_say",
+    (I.GUIDE, "recipient"): "request.who_take",
     (I.START_ACTIVITY, "object"): "request.which_activity",
 }  # fmt: skip
 #: What a question of ability may ask of a verb alone ("can you dance?", "can you cook?"): a skill.
@@ -324,6 +325,9 @@ class Interpreter:
                 if role in spec.required:
                     return self._missing(intent, role, p, roles.get("recipient"))
                 continue
+            if content_words(self.lang, words)[:1] in ([w] for w in self.lang.words.indefinite):
+                # "guide somebody there", "put it somewhere safe": who or where is asked
+                return self._missing(intent, role, p, roles.get("recipient"))
             whose = self.refs.possessive(words, slots) if role == "object" else self._whose(words, kinds)
             words, owner = whose
             others = [w for r, w in slots.items() if r != role]

@@ -89,7 +89,17 @@ def _fragment(lang: Language, p: Parse, heard: Said) -> tuple[Words, Words | Non
     more = description(lang, heard.of(said[1])) if len(said) == 2 else None
     words = heard.of(said[0]).tokens if more is not None else p.words
     owners, interjections = lang.words.owners, lang.followups.interjections
-    return tuple(owners.get(w, w) for w in words if w not in interjections), more
+    return tuple(owners.get(w, w) for w in _unapproved(lang, words) if w not in interjections), more
+
+
+def _unapproved(lang: Language, words: Words) -> Words:
+    """The answer without what the speaker thinks of it: "on the till counter's fine" is "on the
+    till counter", "the red one is good" "the red one"."""
+    if len(words) < 2 or words[-1] not in lang.followups.approving:
+        return words
+    if words[-2] == "is":
+        return words[:-2]
+    return (*words[:-2], words[-2].removesuffix("'s")) if words[-2].endswith("'s") else words
 
 
 def _merged(lang: Language, fragment: Words, first: Outcome) -> Words:

@@ -1,5 +1,10 @@
 """Questions about the situation ("what do you see", "where is X"...), on whole words.
 
+A where-question is said many ways ("where did we put X", "where'd I leave my X", "where would I
+find X", "has anyone seen X", "(do you happen to know) where X went", "which room is X in"), a
+who-question about a place too ("who's waiting at reception", "tell me the name of the person in
+the break room").
+
 The result is a `Parse` with `act="question"`, a question kind and the phrase it is about; the
 answer is computed from the KB snapshot in dialogue.understanding.questions.answers.
 """
@@ -46,6 +51,13 @@ class _Words:
         self.count_tail = said.count_tail
         self.place_starts = prepositions.words("place-start")
         self.purpose = lang.requests.purpose
+        self.seen_by_anyone = said.seen_by_anyone
+        self.placing = said.placing
+        self.asker = said.asker
+        self.gone = said.gone
+        self.rooms = said.rooms
+        self.name_of = said.name_of
+        self.whoever = said.whoever
 
 
 def _q(kind: str, w: Words, **slots: Words) -> Parse:
@@ -71,6 +83,12 @@ def question(lang: Language, words: list[str]) -> Parse | None:  # noqa: C901
         if starts(w, lead) and w[len(lead) : len(lead) + 1] and w[len(lead)] in q.wh:
             w = w[len(lead) :]
             break
+    named = _name_of(q, w)
+    if named is not None:  # "tell me the name of the person in the break room"
+        return named
+    for lead in q.seen_by_anyone:  # "has anyone seen my keys": where they are
+        if starts(w, lead) and _strip_ends(w[len(lead) :], frozenset(), q.nearby):
+            return _q("where", w, thing=_strip_ends(w[len(lead) :], frozenset(), q.nearby))
     head = w[:1]
     if _anybody(q, w):  # "is anybody else here", "is there anyone around"
         return _q("who_see", w)
@@ -81,10 +99,10 @@ def question(lang: Language, words: list[str]) -> Parse | None:  # noqa: C901
     if head == ("who",):
         if "you" in w and "are" in w and "see" not in w:
             return _q("name", w)
-        if w[1:2] == ("is",) and w[2:] and w[2] not in q.who_not_a_name:
+        if w[1:2] == ("is",) and w[2:] and w[2] not in q.who_not_a_name and not _who_at(q, w[1:]):
             return _q("what_is", w, thing=w[2:])
-        at = w[2:3] in {("at",), ("in",), ("inside",)} and w[1:2] in {("is",), ("are",)} and len(w) > 3
-        return _q("who_in", w, place=w[3:]) if at else _q("who_see", w)  # "who's at the box office"
+        at = _who_at(q, w[1:])  # "who's at the box office", "who is waiting at reception"
+        return _q("who_in", w, place=at) if at else _q("who_see", w)
     if head == ("where",):
         return _where(q, w)
     if starts(w, ("how", "many")):
@@ -107,6 +125,37 @@ def question(lang: Language, words: list[str]) -> Parse | None:  # noqa: C901
     return None
 
 
+
+
+_AT = frozenset({"at", "in", "inside", "on", "by"})
+
+
+def _who_at(q: _Words, rest: Words) -> Words:
+    """The place of "who is at X", "who is on the shop floor", "who's waiting at reception", "who's
+    getting ready in X" (a verb of being somewhere between, with a word of its own), else ()."""
+    if not rest[:1] or rest[0] not in q.be:
+        return ()
+    at = 1
+    if rest[1:2] and rest[1].endswith("ing") and rest[1] not in _AT:
+        at = 3 if rest[2:3] and rest[2] not in _AT else 2
+    return rest[at + 1 :] if rest[at : at + 1] and rest[at] in _AT and len(rest) > at + 1 else ()
+
+
+def _name_of(q: _Words, w: Words) -> Parse | None:
+    """ "tell me the name of the person in the break room", "what's the name of the man at
+    reception": who is there."""
+    if starts(w, ("tell", "me")) or (w[:1] == ("what",) and w[1:2] and w[1] in q.be):
+        rest = w[2:]
+    else:
+        return None
+    lead = next((lead for lead in q.name_of if starts(rest, lead)), None)
+    if lead is None:
+        return None
+    who = rest[len(lead) :]
+    who = who[1:] if who[:1] == ("the",) else who
+    if len(who) < 3 or who[0] not in q.whoever or who[1] not in _AT:
+        return None
+    return _q("who_in", w, place=who[2:])
 
 
 def _counted(q: _Words, rest: Words) -> Words:
@@ -134,6 +183,8 @@ def _anybody(q: _Words, w: Words) -> bool:
 
 def _what(q: _Words, w: Words) -> Parse:
     rest = w[1:]
+    if w[0] == "which" and len(rest) > 3 and rest[0] in q.rooms and rest[1] in q.be and rest[-1] == "in":
+        return _q("where", w, thing=rest[2:-1])  # "which room is the novel in"
     if len(rest) > 2 and rest[-2] in q.be and (rest[-1] in q.owners or rest[-1].endswith("'s")):
         return _q("whose", w, thing=rest[:-2])  # "which suitcase is mine": whose each one is
     if w[0] == "which" and 1 < len(rest) < 5 and rest[-2] in q.be and rest[-1] in q.colours:
@@ -216,6 +267,11 @@ def _where(q: _Words, w: Words) -> Parse:
     went = rest[-1:] and rest[-1] in {"go", "gone", "went"} and rest[:1] and rest[0] in {"did", "has", "have"}
     if gone or went:
         return _q("where", w, thing=rest[1:-1])
+    if len(rest) > 1 and rest[-1] in q.gone and rest[0] not in q.asker:
+        return _q("where", w, thing=rest[:-1])  # "(do you happen to know) where the stapler went"
+    placed = _placed_thing(q, rest)
+    if placed:  # "where did we put the tape", "where would I find a pear", "where Dana left her phone"
+        return _q("where", w, thing=placed)
     if len(rest) > 1 and rest[-1] in q.be and rest[0] not in q.be:
         return _q("where", w, thing=rest[:-1])  # the indirect order: "(do you know) where the keys are"
     if rest in {("am", "i"), ("are", "we")}:
@@ -230,3 +286,16 @@ def _where(q: _Words, w: Words) -> Parse:
             if thing:
                 return _q("where", w, thing=thing)
     return _q("other", w)
+
+
+def _placed_thing(q: _Words, rest: Words) -> Words:
+    """The thing of "where did we put X", "where would I find X", "where Dana left her X": the
+    words after a verb of putting or finding, when only an auxiliary and who did it (a pronoun, or
+    one word: a name) come before it; () otherwise."""
+    at = next((i for i, x in enumerate(rest[:4]) if x in q.placing), None)
+    if at is None or not rest[at + 1 :]:
+        return ()
+    before = [x for x in rest[:at] if x not in q.asker]
+    if len(before) > 1 or (before and rest[:1] and rest[0] in q.be):
+        return ()
+    return _strip_ends(rest[at + 1 :], frozenset(), q.nearby | {"located", "now", "placed", "kept"})

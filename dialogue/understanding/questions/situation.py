@@ -7,7 +7,15 @@ from __future__ import annotations
 from collections.abc import Callable
 
 from dialogue.reference.english import Words, tokens
-from dialogue.reference.resolution import ANYWHERE, PERSON, antecedent, content_words, is_pronoun, resolve
+from dialogue.reference.resolution import (
+    ANYWHERE,
+    PERSON,
+    antecedent,
+    content_words,
+    is_pronoun,
+    pronoun_kinds,
+    resolve,
+)
 from dialogue.understanding.context import Context
 from dialogue.understanding.outcome import Outcome
 from dialogue.understanding.parsed import Parse
@@ -97,10 +105,11 @@ def answer(c: Context, p: Parse) -> Outcome:
     # "where is she": a person a question may be about ("do you know where she is")
     someone = set(said) <= c.lang.questions.situation.someone_said and bool(said)
     if p.question in _ABOUT and (is_pronoun(c.lang, thing) or someone):
-        kinds = PERSON if someone else ANYWHERE
+        kinds = PERSON if someone else pronoun_kinds(c.lang, thing, ANYWHERE)  # "it" is no one
         ref = antecedent(c.lexicon, c.history, kinds, speaker=c.speaker)
-        if ref is not None:
-            thing = tuple(tokens(ref.id))
+        if ref is None:  # "where did you put it" with nothing spoken of: what "it" is, a model may know
+            return _no_answer(c)
+        thing = tuple(tokens(ref.id))
     _, owner = c.refs.possessive(thing, p.slots)  # "where is my mug": the speaker's
     content = content_words(c.lang, thing)
     unsure = c.refs.half_known(content) or c.refs.strange(content)  # "how many bks": a doubt

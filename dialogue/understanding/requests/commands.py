@@ -65,6 +65,7 @@ class _Grammar:
         #: spoken of.
         self.pointing = sorted([(p, ("me",)) for p in said.here] + [(p, ("there",)) for p in said.there],
                                key=lambda p: -len(p[0]))  # fmt: skip
+        self.somewhere = said.somewhere
         self.own_phrase = closed.np_start | {"her"}
         self.constructions: tuple[Special, ...] = constructions(lang)
 
@@ -197,6 +198,9 @@ def _fit(row: Row, said: Framed) -> Parse | None:  # noqa: C901
             else:
                 slots[aside] = words[: -len(pointed[0])]
             slots.setdefault(frame.here, pointed[1])
+        at = next((i for i, w in enumerate(direct) if i and w in g.somewhere), None)
+        if at is not None and frame.here not in slots:  # "put it somewhere safe": where is asked
+            direct, slots[frame.here] = direct[:at], direct[at:]
     if "extra" in slots:  # what a role the intent does not ground says is an adjunct ("for the van")
         adjuncts = (*adjuncts, (marks.pop("extra"), *slots.pop("extra")))
     direct = _without_particles(g, direct, row)

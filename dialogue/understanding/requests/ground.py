@@ -28,12 +28,14 @@ from dialogue.reference.resolution import (
     resolve,
     said_phrase,
 )
+from dialogue.reference.snapshot import fixed
 from dialogue.understanding.language import Language
 from dialogue.understanding.outcome import Outcome, Ref
-from dialogue.understanding.replies import say
+from dialogue.understanding.replies import say, the
 from dialogue.understanding.requests.compound import alternatives
 from dialogue.understanding.requests.referents import Referents
 from dialogue.understanding.speech.clauses import described
+from dialogue.understanding.speech.sounds import clipped as said_short
 from dialogue.understanding.speech.sounds import slipped as heard_as
 
 
@@ -56,7 +58,8 @@ class Phrase:
     @cached_property
     def resolved(self) -> Resolution:
         """What the phrase names (a description of several people is not the speaker's)."""
-        res = resolve(self.refs.lexicon, self.words, self.kinds, owner=self.owner)
+        sight = self.role != "object"  # a thing to fetch: of two towels, which is asked
+        res = resolve(self.refs.lexicon, self.words, self.kinds, owner=self.owner, sight=sight)
         if res.ambiguous and any(e.id == self.refs.speaker for e in res.matches):
             # A speaker says "me", not "the person in the living room": a description is someone else.
             res = replace(res, matches=tuple(e for e in res.matches if e.id != self.refs.speaker))
@@ -96,8 +99,18 @@ def ground(
     for step in STEPS:
         ref = step(phrase)
         if ref is not None:
-            return ref
+            return _carried(phrase, ref)
     return _none_here(phrase)
+
+
+def _carried(p: Phrase, ref: Ref) -> Ref:
+    """A request's object is picked up or carried: furniture, or what the KB says cannot be moved,
+    is answered with why not ("grab the sofa"), never an intent the robot cannot carry out."""
+    entity = ref.entity
+    if p.role != "object" or entity is None or not fixed(entity):
+        return ref
+    name = the(p.refs.lang, p.refs.snapshot, entity)
+    return Ref(problem=Outcome(say(p.refs.lang, "sorry.fixed", thing=name)))
 
 
 def _prepared(refs: Referents, words: Words) -> Words:
@@ -158,6 +171,14 @@ def _slipped(p: Phrase) -> Ref | None:
     """ "bay mine": the one name a slip of the ear or the keys is of, a guess."""
     slipped = heard_as(p.refs.lexicon, p.words, p.kinds, p.owner)
     return Ref(entity=slipped, guessed=True) if slipped is not None else None
+
+
+def _clipped(p: Phrase) -> Ref | None:
+    """ "the mic": the one name a word said short is the start of, a guess."""
+    if p.resolved.matches:
+        return None
+    found = said_short(p.refs.lexicon, p.words, p.kinds, p.owner)
+    return Ref(entity=found, guessed=True) if found is not None else None
 
 
 def _qualified(p: Phrase) -> Ref | None:
@@ -264,7 +285,7 @@ def _ones(p: Phrase) -> Ref | None:
 
 #: The steps of grounding, in the order they are tried.
 STEPS: tuple[Callable[[Phrase], Ref | None], ...] = (
-    _the_speaker, _pronoun, _addressed, _named, _slipped, _qualified, _ambiguous, _placed, _titled,
+    _the_speaker, _pronoun, _addressed, _named, _slipped, _clipped, _qualified, _ambiguous, _placed, _titled,
     _put_by, _many, _either, _whereabouts, _another_kind, _ones,
 )  # fmt: skip
 

@@ -7,8 +7,11 @@ one ("the pen sill", "the kit chin"); a typist hits a neighbouring key ("bay min
 A word the KB does not know is replaced by such a slip of a word of the KB's names (or two words by
 one) only when that makes the phrase name exactly one thing, and only when the slip is part of a name
 said with other words ("bay nine", "blue water bottle") or two said words make it (a single word heard
-for a single other word, "cup" for "cap", is too weak a clue). The thing found is a guess
-(dialogue.llm.hybrid leaves such turns to its model).
+for a single other word, "cup" for "cap", is too weak a clue). A word said short ("the mic" for
+the "microphone", "the amp"), the start of one word of the names of the things in sight whose rest
+is no word of its own ("cup" is not said for the "cupboard"), is that word when that makes the
+phrase name exactly one thing. The thing found is a guess (dialogue.llm.hybrid leaves such turns
+to its model).
 """
 
 from __future__ import annotations
@@ -17,6 +20,7 @@ from collections.abc import Collection
 from functools import lru_cache
 
 from jellyfish import metaphone
+from lemminflect import getAllLemmas
 from rapidfuzz import process
 from rapidfuzz.distance import OSA
 
@@ -24,12 +28,10 @@ from dialogue.reference.english import Words
 from dialogue.reference.grounding import Entity, Kind
 from dialogue.reference.lexicon import Lexicon
 from dialogue.reference.resolution import resolve
-from dialogue.understanding.speech.spelling import typing_cost
+from dialogue.understanding.speech.spelling import SHORTEST_KEY, typing_cost
 
 #: At most this many letters apart (optimal string alignment) for a word heard for another.
 _HEARD = 2
-#: A metaphone key this short ("T" for "to") says too little of a word to match it by its sound.
-_SHORTEST_KEY = 2
 
 
 def slips(word: str, lexicon: Lexicon) -> list[str]:
@@ -48,7 +50,7 @@ def slips(word: str, lexicon: Lexicon) -> list[str]:
 def sounds_alike(said: str, meant: str) -> bool:
     """Whether two words have the same metaphone key, of at least two sounds."""
     key = metaphone(said)
-    return len(key) >= _SHORTEST_KEY and key == metaphone(meant)
+    return len(key) >= SHORTEST_KEY and key == metaphone(meant)
 
 
 def slipped(lexicon: Lexicon, words: Words, kinds: Collection[Kind], owner: str | None) -> Entity | None:
@@ -84,3 +86,31 @@ def _named_with(lexicon: Lexicon, entity: Entity, words: Words, i: int) -> bool:
             if name.entity == entity.id and len(name.words) > 1 and start + len(name.words) > i:
                 return True
     return False
+
+
+#: A word said short has at least this many letters ("mic", "amp"), and leaves at least as many.
+_CLIPPED = 3
+
+
+def clipped(lexicon: Lexicon, words: Words, kinds: Collection[Kind], owner: str | None) -> Entity | None:
+    """The one thing the phrase names when a word of it is read as the start of a longer word of
+    the KB's names ("the mic": the microphone), or None (see the module docstring)."""
+    determiners = lexicon.lang.words.determiners
+    found: set[str] = set()
+    for i, word in enumerate(words):
+        if word in determiners or len(word) < _CLIPPED or not word.isalpha():
+            continue
+        for other in _longer(word, lexicon):
+            one = resolve(lexicon, (*words[:i], other, *words[i + 1 :]), kinds, owner=owner).one
+            if one is not None:
+                found.add(one.id)
+    return lexicon.snapshot.get(next(iter(found))) if len(found) == 1 else None
+
+
+def _longer(word: str, lexicon: Lexicon) -> list[str]:
+    """Words of the names of the things in sight that start with the word and go on with no word
+    of their own (only those: a KB's whole vocabulary is too many to try every turn)."""
+    attributes = lexicon.attributes
+    said = {w for e in lexicon.snapshot.visible() for w in attributes.get(e.id, ())}
+    return [w for w in said if w.startswith(word) and len(w) >= len(word) + _CLIPPED
+            and not getAllLemmas(w[len(word) :])]  # fmt: skip

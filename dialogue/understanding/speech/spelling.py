@@ -24,6 +24,7 @@ from __future__ import annotations
 from collections.abc import Iterable, Iterator
 from dataclasses import dataclass
 
+from jellyfish import metaphone
 from lemminflect import getAllLemmas, getInflection
 from rapidfuzz import process
 from rapidfuzz.distance import OSA
@@ -44,6 +45,8 @@ _SWAP = 0.8
 _DOUBLE = 0.8
 _SHORT = 4
 _LONG = 8
+#: A metaphone key this short ("T" for "to") says too little of a word to match it by its sound.
+SHORTEST_KEY = 2
 
 
 class _Slips:
@@ -193,14 +196,37 @@ def _suspect(word: str, lexicon: Lexicon) -> bool:
 
 def _meant(word: str, lexicon: Lexicon) -> str | None:
     """The one word the word is a slip of; a plural's slip ("tisues") is the plural of the word its
-    singular is a slip of (the KB's names are indexed singular: "box of tissues" by "tissue")."""
+    singular is a slip of (the KB's names are indexed singular: "box of tissues" by "tissue"). A
+    word heard for the one word of the KB's names that sounds the same ("guitar pics": picks) is
+    that word before a slip of the keys to another name (but not to a word of the grammar)."""
     meant = _nearest(word, lexicon)
+    heard = None if meant in grammar_words(lexicon.lang) else _sounding(word, lexicon)
+    if heard is not None:  # ("plase" is a slip of "please", a word of the grammar, as before)
+        return heard
     if len(word) <= _SHORT or not word.endswith("s") or (meant is not None and not lexicon.knows(meant)):
         return meant
     one = _nearest(word[:-1], lexicon)
     if one is None or one not in lexicon.vocabulary or meant not in {None, one}:
         return meant
     plurals = getInflection(one, "NNS")  # ("glases": glasses, not glass)
+    return plurals[0] if plurals else meant
+
+
+def _sounding(word: str, lexicon: Lexicon) -> str | None:
+    """The one word of the KB's names a letter apart, and no shorter, that sounds as the word
+    does (its singular, for a plural: the names are indexed singular), said in the word's number;
+    else None."""
+    one = singular(word)
+    key = metaphone(one)
+    if len(key) < SHORTEST_KEY:
+        return None
+    near = process.extract(one, list(lexicon.vocabulary), scorer=OSA.distance, score_cutoff=1, limit=None)
+    # (a recogniser drops no letter of what it heard: "lego" is not heard for "leg")
+    alike = {c for c, _, _ in near if c != one and len(c) >= len(one) and metaphone(c) == key}
+    if len(alike) != 1:
+        return None
+    meant = alike.pop()
+    plurals = getInflection(meant, "NNS") if one != word else ()
     return plurals[0] if plurals else meant
 
 

@@ -13,6 +13,7 @@ class FollowupWords(Table):
     """`followups.toml`: the words of answers to the robot's question."""
 
     interjections: WordSet = frozenset()
+    approving: WordSet = frozenset()
     one: WordSet = frozenset()
     offers: Phrases = ()
     offers_a_thing: Phrases = ()

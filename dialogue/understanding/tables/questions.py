@@ -34,6 +34,13 @@ class SituationQuestionWords(Table):
     asked_subjects: WordSet = frozenset()
     count_tail: WordSet = frozenset()
     someone_said: WordSet = frozenset()
+    seen_by_anyone: Phrases = ()
+    placing: WordSet = frozenset()
+    asker: WordSet = frozenset()
+    gone: WordSet = frozenset()
+    rooms: WordSet = frozenset()
+    name_of: Phrases = ()
+    whoever: WordSet = frozenset()
 
 
 class ToldQuestionWords(Table):

@@ -58,6 +58,7 @@ class RequestWords(Table):
 
     here: Phrases = ()
     there: Phrases = ()
+    somewhere: WordSet = frozenset()
     adjuncts: Phrases = ()
     away: Phrases = ()
     durations: Phrases = ()

@@ -33,6 +33,7 @@ class ClosedWords(Table):
     neuter: WordSet = frozenset()
     possessives: WordSet = frozenset()
     me: WordSet = frozenset()
+    indefinite: WordSet = frozenset()
     colours: WordSet = frozenset()
     positions: WordSet = frozenset()
     parts: WordSet = frozenset()

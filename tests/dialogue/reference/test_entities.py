@@ -29,6 +29,7 @@ statement = st.one_of(
     st.builds("myself sees {}".format, st.sampled_from(OBJECTS)),
     st.builds("{} engagementLevel {}".format, st.sampled_from(["person_ann", "person_bo"]),
               st.sampled_from(["engaged", "disengaged"])),
+    st.builds("{} isMovable {}".format, st.sampled_from(SUBJECTS), st.sampled_from(["true", "false"])),
     st.just("dbr:Mug rdfs:subClassOf dbr:Cup"),  # a TBox change: the full rebuild path
     st.just("thing_2 rdf:type dbr:Mug"),
 )

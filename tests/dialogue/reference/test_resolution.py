@@ -15,6 +15,7 @@ def pronoun_kinds(words: list[str], kinds: frozenset[Kind]) -> frozenset[Kind]:
 THING: frozenset[Kind] = frozenset({"thing"})
 PERSON: frozenset[Kind] = frozenset({"person"})
 ZONE: frozenset[Kind] = frozenset({"zone"})
+PLACE: frozenset[Kind] = frozenset({"zone", "thing"})
 
 
 def ids(kb: KB, phrase: str, kinds: frozenset[Kind] = THING) -> list[str]:
@@ -276,4 +277,75 @@ def test_a_comparative_qualifies_by_its_adjective(phrase: str, expected: list[st
                "jug_small rdf:type Artifact", 'jug_small rdfs:label "small jug"', "myself sees jug_small")  # fmt: skip
     assert ids(kb, phrase) == expected
     assert ids(kb, "the bigger one") == ["jug_big"]
+    kb.close()
+
+
+def _flat(*facts: str) -> KB:
+    """A flat with two towels (one in sight), a cabinet and a bathroom cabinet, a desk and a
+    standing desk, an unlabelled sofa and a TV couch, and a bread shelf with a loaf on it."""
+    return _shop(
+        "kitchen rdf:type ZoneOfInterest", 'kitchen rdfs:label "kitchen"',
+        "bathroom rdf:type ZoneOfInterest", 'bathroom rdfs:label "bathroom"',
+        "towel_w rdf:type Cloth", 'towel_w rdfs:label "towel"', "towel_w isIn kitchen", "myself sees towel_w",
+        "towel_b rdf:type Cloth", 'towel_b rdfs:label "towel"', "towel_b isIn bathroom",
+        "cab_1 rdf:type cyc:FurniturePiece", 'cab_1 rdfs:label "cabinet"', "cab_1 isIn kitchen",
+        "cab_2 rdf:type cyc:FurniturePiece", 'cab_2 rdfs:label "bathroom cabinet"', "cab_2 isIn bathroom",
+        "desk_1 rdf:type dbr:Table_(furniture)", 'desk_1 rdfs:label "desk"', "desk_1 isIn kitchen",
+        "desk_2 rdf:type dbr:Table_(furniture)", 'desk_2 rdfs:label "standing desk"', "desk_2 isIn kitchen",
+        "sofa_1 rdf:type dbr:Couch", "sofa_1 isIn kitchen",
+        "sofa_2 rdf:type dbr:Couch", 'sofa_2 rdfs:label "TV couch"', "sofa_2 isIn kitchen",
+        "shelf_1 rdf:type dbr:Shelf_(storage)", 'shelf_1 rdfs:label "bread shelf"', "shelf_1 isIn kitchen",
+        "loaf_1 rdf:type cyc:Food", 'loaf_1 rdfs:label "sourdough loaf"', "loaf_1 isOn shelf_1",
+        "crisps_1 rdf:type cyc:Food", 'crisps_1 rdfs:label "ready salted crisps"', "crisps_1 isIn kitchen",
+        "crisps_2 rdf:type cyc:Food", 'crisps_2 rdfs:label "cheese and onion crisps"', "crisps_2 isIn kitchen",
+        *facts,
+    )  # fmt: skip
+
+
+@pytest.mark.parametrize(
+    ("phrase", "expected"),
+    [
+        ("the desk", ["desk_1"]),  # called so, not only ending so
+        ("the standing desk", ["desk_2"]),
+        ("the cabinet", ["cab_1"]),
+        ("the cabinet in the bathroom", ["cab_2"]),
+        ("the tv couch", ["sofa_2"]),
+    ],
+)
+def test_a_thing_called_exactly_what_is_said_is_that_thing(phrase: str, expected: list[str]) -> None:
+    kb = _flat()
+    assert ids(kb, phrase) == expected
+    kb.close()
+
+
+def test_a_kind_several_things_share_is_ambiguous_and_sight_chooses_only_when_asked_to() -> None:
+    kb = _flat()
+    lex = lexicon_of(kb)
+    assert ids(kb, "the towel") == ["towel_w"]  # a place or a question: the one in sight
+    fetched = resolve(lex, tokens("the towel"), THING, sight=False)
+    assert sorted(e.id for e in fetched.matches) == ["towel_b", "towel_w"]  # a thing to fetch: asked
+    # "cheese and onion crisps" are crisps as much as the "ready salted crisps" are
+    assert sorted(ids(kb, "the crisps")) == ["crisps_1", "crisps_2"]
+    assert ids(kb, "the cheese and onion crisps") == ["crisps_2"]
+    kb.close()
+    kb = _many(150, "apple", "seen_a rdf:type Artifact", 'seen_a rdfs:label "apple"', "myself sees seen_a")
+    many = resolve(lexicon_of(kb), tokens("the apple"), THING, sight=False)
+    assert [e.id for e in many.matches] == ["seen_a"]  # more than a question can list: the one in sight
+    kb.close()
+
+
+def test_the_place_a_thing_is_said_to_be_on_is_not_the_thing() -> None:
+    kb = _flat()
+    assert ids(kb, "the bread on the bread shelf") == []  # not the shelf: no bread is known
+    assert ids(kb, "the loaf on the bread shelf") == ["loaf_1"]
+    assert ids(kb, "the side of the bread shelf", PLACE) == ["shelf_1"]  # a part of it is it
+    kb.close()
+
+
+def test_a_thing_with_no_label_is_not_called_by_a_class_it_is_a_kind_of() -> None:
+    kb = _flat(
+        "pear_1 rdf:type dbr:Pear", "pear_1 isIn kitchen",
+        "plant_1 rdf:type dbr:Plant", 'plant_1 rdfs:label "tomato plant"', "plant_1 isIn kitchen",
+    )  # fmt: skip
+    assert sorted(ids(kb, "the plant")) == ["pear_1", "plant_1"]  # a pear is no more "the plant"
     kb.close()

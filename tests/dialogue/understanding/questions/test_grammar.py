@@ -6,7 +6,7 @@ from dialogue.understanding.parsed import Parse
 from dialogue.understanding.questions import grammar
 from dialogue.understanding.speech import plain
 from kb import KB
-from tests.dialogue.conftest import english
+from tests.dialogue.conftest import english, scene_kb
 from tests.dialogue.understanding.test_interpret import say
 
 
@@ -72,3 +72,62 @@ def test_where_has_a_thing_gone_said_with_is(office: KB) -> None:
     p = question(expanded("wheres my mug gone"))
     assert p is not None and (p.question, p.slots["thing"]) == ("where", ("my", "mug"))
     assert "desk" in say(office, "er wheres the green mug gone").reply
+
+
+@pytest.mark.parametrize(
+    ("text", "thing"),
+    [
+        ("where did we put the stapler", ("the", "stapler")),
+        ("where'd I leave my umbrella", ("my", "umbrella")),
+        ("where would I find a pear", ("a", "pear")),
+        ("please where I can find the laptop", ("the", "laptop")),
+        ("any idea where Carol left her notebook", ("her", "notebook")),
+        ("do you happen to know where the stapler went", ("the", "stapler")),
+        ("has anyone seen the umbrella", ("the", "umbrella")),
+        ("which room is the umbrella in", ("the", "umbrella")),
+    ],
+)
+def test_where_questions_said_otherwise_ask_where_the_thing_is(text: str, thing: tuple[str, ...]) -> None:
+    words = expanded(text)
+    words = words[1:] if words[0] == "please" else words
+    p = question(words)
+    assert p is not None and (p.question, p.slots["thing"]) == ("where", thing)
+
+
+def test_where_questions_said_otherwise_are_answered(office: KB) -> None:
+    assert "hallway" in say(office, "Has anyone seen the umbrella?").reply
+    assert "desk" in say(office, "Where did we put the stapler?").reply
+    assert "hallway" in say(office, "Which room is the umbrella in?").reply
+    # A verb of putting with more than a name before it is no where-question of this form.
+    assert question(expanded("where is the man who left the umbrella")) != Parse(
+        "question", question="where", slots={"thing": ("the", "umbrella")}
+    )
+
+
+def test_where_is_it_with_nothing_spoken_of_is_not_answered(office: KB) -> None:
+    out = say(office, "where did you put it")
+    assert not out.understood and "it" not in out.reply.split()
+
+
+@pytest.mark.parametrize(
+    ("text", "place"),
+    [
+        ("who is waiting in the office", ("the", "office")),
+        ("who's on the shop floor", ("the", "shop", "floor")),
+        ("who is at the desk", ("the", "desk")),
+        ("tell me the name of the person in the office", ("the", "office")),
+        ("what's the name of the man in the hallway", ("the", "hallway")),
+    ],
+)
+def test_who_questions_about_a_place_ask_who_is_there(text: str, place: tuple[str, ...]) -> None:
+    p = question(expanded(text))
+    assert p is not None and (p.question, p.slots["place"]) == ("who_in", place)
+
+
+def test_who_is_there_is_answered_with_names() -> None:
+    kb = scene_kb("office", "person_dan isIn hallway")
+    assert "Dan" in say(kb, "Tell me the name of the person in the hallway.").reply
+    assert "Dan" in say(kb, "Who's waiting in the hallway?").reply
+    kb.close()
+    who = question(expanded("who is Carol"))  # a name, not a place
+    assert who is not None and who.question == "what_is"

@@ -7,7 +7,7 @@ from dialogue.reference.english import tokens
 from dialogue.reference.resolution import THING
 from dialogue.understanding.interpret import Interpreter
 from dialogue.understanding.outcome import Outcome
-from dialogue.understanding.speech.sounds import slipped, slips, sounds_alike
+from dialogue.understanding.speech.sounds import clipped, slipped, slips, sounds_alike
 from kb import KB
 from tests.dialogue.conftest import lexicon_of, scene_kb
 
@@ -71,3 +71,22 @@ def test_two_words_read_as_one_must_name_one_thing(studio: KB) -> None:
 def test_a_place_misheard_in_two_words(studio: KB) -> None:
     out = say(studio, "go to the kit chin")
     assert (out.intent, out.roles, out.guessed) == (I.MOVE_TO, {"goal": "kitchen_1"}, True), out.reply
+
+
+def test_a_word_said_short_is_the_one_longer_name_it_starts() -> None:
+    kb = scene_kb(
+        None,
+        "mic_1 rdf:type Artifact", 'mic_1 rdfs:label "microphone"', "myself sees mic_1",
+        "amp_1 rdf:type Artifact", 'amp_1 rdfs:label "amplifier"', "myself sees amp_1",
+        "board_1 rdf:type Artifact", 'board_1 rdfs:label "cupboard"', "myself sees board_1",
+        "cab_1 rdf:type Artifact", 'cab_1 rdfs:label "cabinet"', "myself sees cab_1",
+        "cab_2 rdf:type Artifact", 'cab_2 rdfs:label "cabbage"', "myself sees cab_2",
+    )  # fmt: skip
+    lex = lexicon_of(kb)
+    found = clipped(lex, tokens("the mic"), THING, None)
+    assert found is not None and found.id == "mic_1"
+    found = clipped(lex, tokens("the amp"), THING, None)
+    assert found is not None and found.id == "amp_1"
+    assert clipped(lex, tokens("the cup"), THING, None) is None  # "cupboard" goes on with a word: "board"
+    assert clipped(lex, tokens("the cab"), THING, None) is None  # the cabinet or the cabbage: not one
+    kb.close()

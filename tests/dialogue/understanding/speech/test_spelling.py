@@ -207,3 +207,10 @@ def test_a_homophone_the_kb_names_is_never_read_otherwise() -> None:
     kb = _things("pear", "basket")
     assert corrected("bring me the pear of the basket", lexicon_of(kb)).text == "bring me the pear of the basket"
     kb.close()
+
+
+def test_a_word_heard_for_the_one_name_that_sounds_the_same_is_that_name() -> None:
+    kb = _things("guitar picks", "studio lamp")
+    fixed = corrected("bring me the guitar pics", lexicon_of(kb))
+    assert fixed.text == "bring me the guitar picks" and fixed.guessed
+    kb.close()

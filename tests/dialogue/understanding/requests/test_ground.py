@@ -1,0 +1,100 @@
+"""Grounding a request's phrases: what is fetched must be movable, a thing called exactly what is
+said is that thing, a kind several things share is asked about, a role nobody named yet is asked."""
+
+import pytest
+
+from dialogue import intents as I
+from kb import KB
+from tests.dialogue.conftest import scene_kb
+from tests.dialogue.understanding.test_interpret import say
+
+LEON = "person_leon"
+
+
+@pytest.fixture
+def flat() -> KB:
+    kb = scene_kb(
+        None,
+        "myself rdf:type Robot",
+        "lounge rdf:type ZoneOfInterest", 'lounge rdfs:label "lounge"',
+        "bathroom rdf:type ZoneOfInterest", 'bathroom rdfs:label "bathroom"',
+        "person_leon rdf:type Human", 'person_leon rdfs:label "Leon"', "person_leon isIn lounge",
+        "person_dana rdf:type Human", 'person_dana rdfs:label "Dana"', "person_dana isIn lounge",
+        "sofa_1 rdf:type dbr:Couch", "sofa_1 isIn lounge", "myself sees sofa_1",
+        "sofa_2 rdf:type dbr:Couch", 'sofa_2 rdfs:label "TV couch"', "sofa_2 isIn lounge",
+        "lamp_1 rdf:type Artifact", 'lamp_1 rdfs:label "floor lamp"', "lamp_1 isMovable false",
+        "lamp_1 isIn lounge",
+        "desk_1 rdf:type dbr:Table_(furniture)", 'desk_1 rdfs:label "desk"', "desk_1 isIn lounge",
+        "desk_2 rdf:type dbr:Table_(furniture)", 'desk_2 rdfs:label "standing desk"', "desk_2 isIn lounge",
+        "towel_w rdf:type Cloth", 'towel_w rdfs:label "towel"', "towel_w hasColor white",
+        "towel_w isIn lounge", "myself sees towel_w",
+        "towel_b rdf:type Cloth", 'towel_b rdfs:label "towel"', "towel_b hasColor blue", "towel_b isIn bathroom",
+        "mic_1 rdf:type Artifact", 'mic_1 rdfs:label "microphone"', "mic_1 isOn desk_1", "myself sees mic_1",
+        "picks_1 rdf:type Artifact", 'picks_1 rdfs:label "guitar picks"', "picks_1 isOn desk_1",
+        "stool_1 rdf:type cyc:FurniturePiece", 'stool_1 rdfs:label "stool"', "stool_1 isMovable true",
+        "stool_1 isIn lounge",
+    )  # fmt: skip
+    yield kb
+    kb.close()
+
+
+@pytest.mark.parametrize(
+    "text",
+    ["Grab the TV couch then!", "move the floor lamp to the bathroom", "lift the desk",
+     "carry the floor lamp to me"],
+)  # fmt: skip
+def test_what_cannot_be_moved_is_answered_with_why_not(flat: KB, text: str) -> None:
+    out = say(flat, text, LEON)
+    assert out.intent is None and out.understood and not out.clarify
+    assert "can't move" in out.reply
+
+
+def test_furniture_the_kb_says_is_movable_is_carried(flat: KB) -> None:
+    out = say(flat, "bring me the stool", LEON)
+    assert (out.intent, out.roles) == (I.BRING_OBJECT, {"object": "stool_1", "recipient": LEON})
+
+
+def test_a_thing_called_exactly_so_is_that_thing(flat: KB) -> None:
+    assert say(flat, "go to the desk", LEON).roles == {"goal": "desk_1"}
+    assert say(flat, "put the blue towel on the desk", LEON).roles == {
+        "object": "towel_b", "recipient": "desk_1"}  # fmt: skip
+
+
+def test_a_thing_to_fetch_that_several_share_is_asked_about_in_sight_or_not(flat: KB) -> None:
+    out = say(flat, "Get me the towel, would you?", LEON)
+    assert out.intent is None and out.clarify and "white" in out.reply and "blue" in out.reply
+    answered = say(flat, "The blue one.", LEON, [("user", "Get me the towel, would you?"), ("robot", out.reply)])
+    assert (answered.intent, answered.roles) == (I.BRING_OBJECT, {"object": "towel_b", "recipient": LEON})
+
+
+def test_a_describing_clause_picks_the_thing(flat: KB) -> None:
+    out = say(flat, "Pick up the towel that's in the bathroom.", LEON)
+    assert (out.intent, out.roles) == (I.GRAB_OBJECT, {"object": "towel_b"})
+
+
+@pytest.mark.parametrize(
+    ("text", "asked", "answer", "roles"),
+    [
+        ("Could you guide somebody to the bathroom for me?", "Who", "Dana.",
+         {"recipient": "person_dana", "goal": "bathroom"}),
+        ("Can you guide Dana somewhere?", "Where", "To the bathroom, please.",
+         {"recipient": "person_dana", "goal": "bathroom"}),
+        ("Put the microphone somewhere safe.", "Where", "On the desk's fine.",
+         {"object": "mic_1", "recipient": "desk_1"}),
+    ],
+)  # fmt: skip
+def test_a_role_nobody_named_yet_is_asked_and_the_answer_completes_it(
+    flat: KB, text: str, asked: str, answer: str, roles: dict[str, str]
+) -> None:
+    out = say(flat, text, LEON)
+    assert out.intent is None and out.clarify and out.reply.startswith(asked)
+    done = say(flat, answer, LEON, [("user", text), ("robot", out.reply)])
+    assert done.roles == roles, done.reply
+
+
+def test_a_word_heard_wrong_or_said_short_is_the_one_thing_it_fits_a_guess(flat: KB) -> None:
+    picks = say(flat, "bring me the guitar pics", LEON)
+    assert picks.roles == {"object": "picks_1", "recipient": LEON} and picks.guessed
+    mic = say(flat, "pass me the mic", LEON)
+    assert mic.roles == {"object": "mic_1", "recipient": LEON} and mic.guessed
+    assert say(flat, "pass me the to", LEON).intent is None  # too short to be said short for anything
