@@ -8,7 +8,6 @@ running service with ``--url`` (token from ``--token`` or ``$SITUATED_TOKEN``); 
 from __future__ import annotations
 
 import argparse
-import asyncio
 import importlib
 import json
 import logging
@@ -128,7 +127,8 @@ def _parser() -> argparse.ArgumentParser:
     chat.set_defaults(**{_PARSER: chat})
     _remote_options(chat)
     chat.add_argument("--llm", default="rules", help="in-process model backend, as for serve (default rules)")
-    chat.add_argument("--user", default="__unknown_agent__", help="speaker id (default __unknown_agent__)")
+    chat.add_argument("--user", help="speaker id, known or new (e.g. person_bob); default: the robot asks "
+                      "your name (with --say or --ask: __unknown_agent__, nobody)")
     chat.add_argument("--say", action="append", help="say this and exit (repeatable); default: read stdin")
     chat.add_argument("--ask", metavar="QUESTION", help="start an ask dialogue (the __ask__ role) with this "
                       "question; it ends when its --field values are obtained")
@@ -286,93 +286,10 @@ def _humans(args: argparse.Namespace) -> int:
 
 # --- chat ------------------------------------------------------------------------------------------
 
-def _show(reply: dict[str, Any]) -> None:
-    print(f"robot: {reply['response']}")
-    if reply.get("dialogue_terminal"):
-        print(f"  results: {reply.get('results', '{}')}")
-    for intent in reply["intents"]:
-        print(f"  intent {intent['intent']} {json.dumps(intent['data'], ensure_ascii=False)} "
-              f"(confidence {intent['confidence']})")
-    if reply.get("error_msg"):
-        print(f"  error: {reply['error_msg']}")
-
-
-def _lines(args: argparse.Namespace) -> Iterator[str]:
-    if args.say:  # blank ones are no turn, as blank lines are not
-        yield from (text.strip() for text in args.say if text.strip())
-        return
-    interactive = sys.stdin.isatty()
-    while True:
-        if interactive:
-            print("you: ", end="", flush=True)
-        line = sys.stdin.readline()
-        if not line:
-            return
-        if line.strip():
-            yield line.strip()
-
-
 def _chat(args: argparse.Namespace) -> int:
-    if not args.say:
-        where = args.url or f"an in-process KB (scene: {args.scene})"
-        _say(f"situated chat: talking to {where} as {args.user}; one line per turn; "
-             "Ctrl-D (end of input) or Ctrl-C to leave")
-    try:
-        return _converse(args)
-    except KeyboardInterrupt:
-        _say("")  # leave the terminal on a fresh line after the prompt
-        return 0
+    from api.chat import run
 
-
-def _role(args: argparse.Namespace) -> tuple[str, str]:
-    """The dialogue's role and configuration: __ask__ with --ask and --field, else the default."""
-    from dialogue.ask.form import ASK_ROLE, AskError, configuration_of
-
-    if args.ask is None:
-        if args.field:
-            raise AskError("--field needs --ask QUESTION")
-        return "__default__", "{}"
-    if not args.field:
-        raise AskError("--ask needs at least one --field NAME:TYPE")
-    return ASK_ROLE, configuration_of(args.ask, args.field)
-
-
-def _converse(args: argparse.Namespace) -> int:
-    role, configuration = _role(args)
-    if args.url:
-        with ServiceClient(args.url, args.token or os.environ.get("SITUATED_TOKEN")) as client:
-            started = client.start_role(role, configuration, args.locale)
-            if started.get("response"):
-                print(f"robot: {started['response']}")
-            for text in _lines(args):
-                reply = client.interact(started["dialogue_id"], args.user, text)
-                _show(reply)
-                if reply.get("dialogue_terminal"):
-                    break
-        return 0
-    return asyncio.run(_chat_in_process(args, role, configuration))
-
-
-async def _chat_in_process(args: argparse.Namespace, role: str, configuration: str) -> int:
-    from api.services import build_dialogues
-
-    settings = load_settings(llm=args.llm, scene=args.scene)
-    with _kb(args) as kb:
-        dialogues = build_dialogues(settings, kb)
-        try:
-            dialogue = await dialogues.start_async(role, args.locale, configuration)
-            if dialogues.opening_line(dialogue):
-                print(f"robot: {dialogues.opening_line(dialogue)}")
-            for text in _lines(args):
-                result = await dialogues.interact(args.user, text, dialogue_id=dialogue.id)
-                _show({"response": result.response, "intents": [i.model_dump() for i in result.intents],
-                       "error_msg": result.error_msg, "dialogue_terminal": result.dialogue_terminal,
-                       "results": result.results})
-                if result.dialogue_terminal:
-                    break
-        finally:
-            await dialogues.engine.model.aclose()  # its HTTP client or worker process
-    return 0
+    return run(args, _kb, _say)
 
 
 # --- data ------------------------------------------------------------------------------------------

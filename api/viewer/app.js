@@ -5,9 +5,11 @@ import { Graph } from "./graph.js";
 import { Concepts } from "./concepts.js";
 import { traceToggle } from "./trace.js";
 import { describe, isRecord, keyOf } from "./provenance.js";
-import { el, isQuestion, statementOf, termButton } from "./ui.js";
+import { breakable, el, isQuestion, statementOf, termButton } from "./ui.js";
 
 const ROOT = "myself";
+// The speaker when none is given: ROS4HRI's nobody, which the service never adds to the KB.
+const NOBODY = "__unknown_agent__";
 
 const $ = (selector) => document.querySelector(selector);
 
@@ -25,7 +27,7 @@ class Viewer {
     this.bindControls();
     this.connectEvents();
     await this.activate(ROOT);
-    this.fillHumans();
+    await this.fillHumans();
   }
 
   // ---- graph and concept panel ---------------------------------------------------------------
@@ -97,7 +99,8 @@ class Viewer {
       const cells = triple.map((term, j) => el("td", {},
         j !== 1 && typeof term === "string" && !(j === 2 && this.concepts.isDatatype(triple[1]))
           ? termButton(term, null, (t) => this.activate(t), term === d.id)
-          : el("span", { class: j === 1 ? "pred" : "literal" }, j === 2 && typeof term === "string" ? JSON.stringify(term) : String(term))));
+          : j === 1 ? el("span", { class: "pred" }, ...breakable(term))
+            : el("span", { class: "literal" }, typeof term === "string" ? JSON.stringify(term) : String(term))));
       const retract = el("button", { type: "button", class: "small", title: `Put "${statement}" in the form to retract it` }, "retract…");
       retract.addEventListener("click", () => {
         $("#statements").value = statement;
@@ -106,7 +109,7 @@ class Viewer {
       });
       const actions = el("td", { class: "actions" }, origin === "inferred" ? el("span", { class: "tag inferred" }, "inferred") : retract);
       if (told) {
-        actions.prepend(el("span", { class: "tag told", title: "learnt from dialogue" }, describe(told)));
+        cells[1].append(el("span", { class: "tag told", title: "learnt from dialogue" }, describe(told)));
         return el("tr", { class: "told", "data-told-by": told.who }, ...cells, actions);
       }
       return el("tr", { class: origin || "" }, ...cells, actions);
@@ -204,7 +207,7 @@ class Viewer {
     });
     $("#chat").addEventListener("submit", (event) => { event.preventDefault(); this.sendChat(); });
     const user = $("#user-id");
-    user.value = sessionStorage.getItem("situated.user") || user.value;
+    user.value = sessionStorage.getItem("situated.user") || "";
     user.addEventListener("change", () => sessionStorage.setItem("situated.user", user.value.trim()));
   }
 
@@ -258,7 +261,7 @@ class Viewer {
   async sendChat() {
     const input = $("#chat-input");
     const text = input.value.trim();
-    const userId = $("#user-id").value.trim() || "user";
+    const userId = $("#user-id").value.trim() || NOBODY;
     if (!text) return;
     input.value = "";
     const log = $("#chat-log");
@@ -285,10 +288,16 @@ class Viewer {
     log.scrollTop = log.scrollHeight;
   }
 
+  // The people the speaker field suggests; with no speaker chosen yet, it speaks as a person the
+  // robot sees (else one the KB knows): a chat makes no new person of the KB unless asked to.
   async fillHumans() {
     try {
-      const rows = await api.query(["?h rdf:type Human"]);
-      $("#known-humans").replaceChildren(...rows.map((r) => el("option", { value: r.h })));
+      const [known, seen] = await Promise.all([
+        api.query(["?h rdf:type Human"]), api.query(["myself sees ?h", "?h rdf:type Human"])]);
+      const ids = (rows) => rows.map((r) => r.h).sort();
+      $("#known-humans").replaceChildren(...ids(known).map((h) => el("option", { value: h })));
+      const user = $("#user-id");
+      if (!user.value.trim()) user.value = ids(seen)[0] || ids(known)[0] || NOBODY;
     } catch {
       // Suggestions only; the field still takes any id.
     }

@@ -10,10 +10,24 @@ export function el(name, attrs = {}, ...children) {
   return node;
 }
 
+// Names longer than this may wrap between the words inside them (living_room stays whole).
+const LONG_NAME = 12;
+
+// A name that may wrap only between its words, never inside one: after a prefix's colon or a space,
+// and in a long name after an underscore or a dash and where a camelCase word starts
+// ("cyc:object|Found|In|Location").
+export function breakable(text) {
+  const names = String(text).split(/(?<=[:\s/])/u);
+  const parts = names.flatMap((name) => (name.length > LONG_NAME
+    ? name.split(/(?<=[_\-])|(?<=[a-z0-9])(?=[A-Z])/u) : [name]));
+  return parts.flatMap((part, i) => (i ? [document.createElement("wbr"), part] : [part]));
+}
+
 // A term shown as a button that opens it in the graph.
 export function termButton(term, label, onOpen, current = false) {
   const text = label && label !== term ? `${label} (${term})` : term;
-  const button = el("button", { type: "button", class: `term${current ? " current" : ""}`, title: `Show ${term}` }, text);
+  const button = el("button", { type: "button", class: `term${current ? " current" : ""}`, title: `Show ${term}` },
+    ...breakable(text));
   button.addEventListener("click", () => onOpen(term));
   return button;
 }

@@ -4,7 +4,8 @@ A finder says what value of its field a clause gives (`Found`), with the reason 
 cannot be used (a number out of bounds, a thing that is not of the field's class), or the
 candidates when an entity field's words name several entities. None: the clause says nothing for
 that field. Booleans and free strings are claimed only by the field being asked or named ("yes"
-says nothing about a field nobody asked about); numbers, enum values and entities by their type.
+says nothing about a field nobody asked about), a boolean also by a clause opening with its yes or
+no when the question asked for it among others; numbers, enum values and entities by their type.
 
 >>> from dialogue.understanding.language import Language
 >>> clause = Clause.of(Language.load("en"), "I'm twenty-three")
@@ -109,6 +110,8 @@ class ReadContext:
     named: frozenset[str] = frozenset()
     #: Candidates of a clarifying question about this field, in the order they were offered.
     clarifying: dict[str, list[str]] = field(default_factory=dict)
+    #: Other fields the robot's last question asked for (the form's own question asks for them all).
+    covered: frozenset[str] = frozenset()
 
 
 def checked(form_field: FormField, value: Any, said: str) -> Found:
@@ -276,5 +279,22 @@ NEEDS_FOCUS: frozenset[FieldKind] = frozenset({"boolean", "string"})
 
 def find(form_field: FormField, clause: Clause, ctx: ReadContext) -> Found | None:
     if form_field.kind in NEEDS_FOCUS and form_field.name != ctx.asked and form_field.name not in ctx.named:
-        return None
+        # A yes/no field the question asked for among others takes a clause that opens with its
+        # yes or no: "I'm 34 and yes I love tea", "34, and no".
+        if form_field.kind != "boolean" or form_field.name not in ctx.covered:
+            return None
+        return find_boolean(form_field, clause, ctx) if _opens_with_yes_or_no(clause, ctx) else None
     return FINDERS[form_field.kind](form_field, clause, ctx)
+
+
+def _opens_with_yes_or_no(clause: Clause, ctx: ReadContext) -> bool:
+    """Whether the clause's first word past its lead-ins ("well", "I"...) says yes or no, or one of
+    the phrases that do ("of course not") starts it."""
+    answer = ctx.lexicon.lang.derived(_Words)
+    said = answer.yes | answer.no
+    start = next((i for i, w in enumerate(clause.words) if w in said or w not in answer.lead_ins), None)
+    if start is None:
+        return False
+    if clause.words[start] in said:
+        return True
+    return any(clause.has(phrase) == start for phrase, _ in answer.boolean_phrases)

@@ -150,6 +150,15 @@ class AskForm:
     def names(self) -> tuple[str, ...]:
         return tuple(f.name for f in self.fields)
 
+    def own_question_for(self, name: str) -> bool:
+        """Whether the robot asks for field `name` with the form's own question, which asks for every
+        field at once (the first field's, or the one required field's), rather than one of its own
+        (a description that is a question)."""
+        description = self.field(name).schema.get("description")
+        if isinstance(description, str) and description.strip().endswith("?"):
+            return False
+        return name == self.fields[0].name or len(self.required) == 1
+
 
 def _field(name: str, schema: Any) -> FormField:
     where = f"field {name!r}"

@@ -117,7 +117,7 @@ def asking(form: AskForm, name: str, lexicon: Lexicon | None = None) -> tuple[st
     description = form_field.schema.get("description")
     if isinstance(description, str) and description.strip().endswith("?"):
         return description.strip(), []
-    if name == form.fields[0].name or len(form.required) == 1:
+    if form.own_question_for(name):
         hint = _HINTS.get(form_field.kind)
         return form.question + (hint(form_field) if hint else ""), []
     snapshot = lexicon.snapshot if lexicon is not None else None

@@ -5,9 +5,13 @@ from __future__ import annotations
 import json
 from collections.abc import Callable
 
-from api.settings import Settings
+import httpx
+
+from api.settings import IntentSettings, Settings
 from dialogue.llm.testing import ScriptedModel
-from tests.api.conftest import SCENE, Live
+from tests.api.conftest import SCENE, Live, scene_settings
+from tests.api.test_intents import sse
+from tests.api.test_webhooks import Receiver, wait_until
 
 ASK = {"name": "__ask__", "configuration": json.dumps({
     "question": "How old are you?", "result_schema_properties": {"age": {"type": "integer", "minimum": 0}}})}
@@ -82,3 +86,36 @@ def test_bad_4_0_requests(live: Live) -> None:
         refused = client.post("/dialogues/x/interactions", content=json.dumps(body),  # \ud800 escaped
                               headers={"Content-Type": "application/json"})
         assert refused.status_code == status and message in refused.json()["message"], (body, refused.text)
+
+
+def test_a_4_0_turn_notifies_like_any_turn(live_factory: Callable[..., Live]) -> None:
+    """Issue 30, class 9: a stateless turn's intents reach the stream and the webhooks, and its
+    speaker's memory (last spoke, summary) is updated, as an incremental turn's are (the ROS node's
+    `/intents`: tests/api/ros/test_intents.py)."""
+    receiver = Receiver()
+    receiver.failing = False
+    try:
+        live = live_factory(scene_settings(intents=IntentSettings(webhooks=[receiver.url])))
+        before = live.client.get("/people/person_tom/memory").json()
+        assert (before["last_spoke"], before["summary"]) == (None, "")
+        n = live.services.bus.first - 1
+        with httpx.Client(base_url=live.url, timeout=60) as client, \
+                client.stream("GET", "/intents/stream", params={"after": n}) as stream:
+            events = sse(stream.iter_lines())
+            assert next(events)[0] == "hello"
+            reply = live.client.post("/dialogues/dm-owned/interactions", json={
+                "role": {"name": "__default__"}, "history": [
+                    {"speaker": "__assistant__", "text": "Hello Tom!"},
+                    {"speaker": "person_tom", "text": "please bring me the cup"}]}).json()
+            assert reply["intents"][0]["intent"] == "__intent_bring_object__"
+            name, ident, pushed = next(events)
+        assert (name, ident, pushed["seq"], pushed["dialogue_id"]) == ("intent", str(n + 1), n + 1, "dm-owned")
+        assert pushed["intent"] == reply["intents"][0] and pushed["response"] == reply["response"]
+        wait_until(lambda: len(receiver.accepted) == 1)
+        assert receiver.accepted[0]["intent"] == reply["intents"][0] and receiver.accepted[0]["seq"] == n + 1
+        wait_until(lambda: live.client.get("/people/person_tom/memory").json()["last_spoke"] is not None)
+        summary = live.client.get("/people/person_tom/memory").json()["summary"]
+        assert summary.endswith('asked "please bring me the cup"')
+        assert "dm-owned" not in live.services.dialogues.ids()  # still stateless: nothing stored
+    finally:
+        receiver.close()

@@ -3,7 +3,9 @@
 An answer is cut into clauses ("I'm 34 and my name is Bob", "the red cup, and yes"); each clause
 fills one field: the field it names ("my age is 34"), else the field being clarified, else the field
 asked, else the one open field its value fits (a number, an enum value, an entity of the field's
-class), else — when the answer corrects ("no, I'm 34", "actually...") — the one filled field it fits.
+class; a yes or no opening a clause, "I'm 34 and yes I love tea", when the form's own question asked
+for every field and one yes/no field is open), else — when the answer corrects ("no, I'm 34",
+"actually...") — the one filled field it fits.
 A value its field cannot hold is a problem (said back, then asked again), several entities a
 clarifying question. "Never mind" cancels the form; "I don't know" or "skip" gives up the field.
 
@@ -16,7 +18,7 @@ clarifying question. "Never mind" cancels the form; "I don't know" or "skip" giv
 ...     '{"age": {"type": "integer", "minimum": 0}, "pets": {"type": "boolean"}}}')
 >>> lexicon = Lexicon(build_snapshot(KB()), Language.load("en"))
 >>> read_answer(form, FormState(asked="age"), "thirty-four, and no", lexicon, "alice").values
-{'age': 34}
+{'age': 34, 'pets': False}
 >>> read_answer(form, FormState(asked="pets"), "nope", lexicon, "alice").values
 {'pets': False}
 """
@@ -92,6 +94,15 @@ def _choose(
     return None
 
 
+def _covered(form: AskForm, state: FormState) -> frozenset[str]:
+    """The fields besides the one asked that the robot's last question asked for: all of them when
+    it was the form's own question, none when it was a field's own or a clarifying question."""
+    asked = state.asked
+    if asked not in form.names or state.clarifying is not None or not form.own_question_for(asked):
+        return frozenset()
+    return frozenset(n for n in form.names if n != asked)
+
+
 def read_answer(form: AskForm, state: FormState, answer: Text, lexicon: Lexicon, speaker: str) -> Reading:
     """What an answer to the form fills, corrects, refuses or gives up, and whether it cancels."""
     reading = Reading()
@@ -116,6 +127,9 @@ def read_answer(form: AskForm, state: FormState, answer: Text, lexicon: Lexicon,
         )
     )
     clarifying = {state.clarifying.field: state.clarifying.candidates} if state.clarifying else {}
+    # A leading "no" that may correct a value given before answers no other field; before any value,
+    # there is nothing to correct ("no I don't, and I'm 30").
+    covered = frozenset() if correcting and state.values else _covered(form, state)
     for part in said.split.split(text):
         if not part.strip():
             continue
@@ -127,7 +141,7 @@ def read_answer(form: AskForm, state: FormState, answer: Text, lexicon: Lexicon,
                 reading.skipped.append(target)
                 reading.notes.append(f"{target}: given up ({part.strip()!r})")
             continue
-        ctx = ReadContext(lexicon, speaker, state.asked, named, clarifying)
+        ctx = ReadContext(lexicon, speaker, state.asked, named, clarifying, covered)
         found = {f.name: hit for f in form.fields if (hit := find(f, clause, ctx)) is not None}
         target = _choose(form, state, reading, found, named, correcting)
         if target is None:

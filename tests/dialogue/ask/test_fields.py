@@ -52,6 +52,18 @@ def test_booleans_answer_only_the_field_asked(form: AskForm, lexicon: Lexicon) -
     assert found(form, lexicon, "tea", "yes and no", asked="tea") is None
 
 
+def test_a_yes_or_no_opening_a_clause_answers_a_field_the_question_covered(form: AskForm, lexicon: Lexicon) -> None:
+    asked_with_the_rest = ReadContext(lexicon, NINA, "age", covered=frozenset({"tea", "name"}))
+    for text, value in [("yes I love tea", True), ("no I don't", False), ("well, of course not", False),
+                        ("of course", True), ("I don't", False)]:
+        hit = find(form.field("tea"), Clause.of(text), asked_with_the_rest)
+        assert hit is not None and hit.value is value, text
+    # A yes or no inside the clause, not opening it, is no answer to a field not asked by itself.
+    assert find(form.field("tea"), Clause.of("I think Bob doesn't"), asked_with_the_rest) is None
+    # Nor is a free string read for a covered field: only yes/no fields take this reading.
+    assert find(form.field("name"), Clause.of("yes"), asked_with_the_rest) is None
+
+
 def test_enum_values_longest_first(form: AskForm, lexicon: Lexicon) -> None:
     assert found(form, lexicon, "colour", "light blue please") == "light blue"
     assert found(form, lexicon, "colour", "I like blue") == "blue"

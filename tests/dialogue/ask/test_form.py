@@ -46,6 +46,18 @@ def test_required_and_field_words() -> None:
     assert form.field("favourite_colour").words == "favourite colour" and form.field("petName").words == "pet"
 
 
+def test_the_forms_own_question_asks_for_every_field() -> None:
+    properties = {"age": {"type": "integer"}, "tea": {"type": "boolean"},
+                  "pet": {"type": "string", "description": "What is your pet called?"}}
+    form = parse_configuration(json.dumps({"question": "Age, tea and pet?", "result_schema_properties": properties}))
+    assert form.own_question_for("age")  # the first field is asked by the form's question
+    assert not form.own_question_for("tea")  # "And tea: yes or no?"
+    assert not form.own_question_for("pet")  # its own question
+    single = parse_configuration(json.dumps({"question": "Tea?", "required": ["tea"],
+                                             "result_schema_properties": properties}))
+    assert single.own_question_for("tea")
+
+
 @pytest.mark.parametrize(("configuration", "message"), [
     ("not json", "not JSON"),
     ('["a"]', "must be a JSON object"),

@@ -49,6 +49,27 @@ def test_rules_fill_the_form_with_a_clarification_and_a_correction(cups: KB) -> 
                            (ASSISTANT_USER_ID, first.response)]
 
 
+def test_one_answer_with_a_yes_said_inside_it_fills_both_fields(cups: KB) -> None:
+    """Issue 30, class 8, through the dialogue manager: the form's question asks for the age and
+    whether Nina likes tea; one answer gives both, the yes said inside it."""
+    config = json.dumps({"question": "How old are you, and do you like tea?",
+                         "result_schema_properties": {"age": PROPERTIES["age"], "likes_tea": {"type": "boolean"}}})
+    manager = DialogueManager(DialogueEngine(cups))
+    both = manager.start(ASK_ROLE, configuration=config)
+    (result,) = talk(manager, both.id, "I'm 34 and yes I love tea")
+    assert (result.response, result.dialogue_terminal) == ("Thank you.", True)
+    assert json.loads(result.results or "") == {"age": 34, "likes_tea": True} and result.intents == ()
+    # Said the other way round, with a no.
+    other = manager.start(ASK_ROLE, configuration=config)
+    (result,) = talk(manager, other.id, "no I don't, and I'm thirty")
+    assert result.dialogue_terminal and json.loads(result.results or "") == {"likes_tea": False, "age": 30}
+    # After the age alone, the robot asks for the rest by itself, and a bare answer fills it.
+    step = manager.start(ASK_ROLE, configuration=config)
+    first, second = talk(manager, step.id, "34", "yep")
+    assert first.response == "And likes tea: yes or no?" and not first.dialogue_terminal
+    assert second.dialogue_terminal and json.loads(second.results or "") == {"age": 34, "likes_tea": True}
+
+
 def test_a_correction_before_the_end(cups: KB) -> None:
     manager = DialogueManager(DialogueEngine(cups))
     d = manager.start(ASK_ROLE, configuration=CONFIG)

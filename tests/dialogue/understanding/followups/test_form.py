@@ -85,3 +85,29 @@ def test_a_question_back_or_a_refusal_is_no_free_string(lexicon: Lexicon) -> Non
     for text in ("I'd rather not tell you", "I prefer not to say", "I won't tell you"):
         assert read_answer(form, FormState(asked="name"), text, lexicon, NINA).skipped == ["name"], text
     assert read_answer(form, FormState(asked="name"), "it's Will", lexicon, NINA).values == {"name": "Will"}
+
+
+def test_a_yes_or_no_said_among_other_answers_fills_the_yes_no_field(lexicon: Lexicon) -> None:
+    """Issue 30, class 8: the form's own question asked for every field, so a yes or no opening a
+    clause of the answer fills the one yes/no field still open, whatever it is called."""
+    form = form_of(age={"type": "integer"}, likes_tea={"type": "boolean"})
+    asked = FormState(asked="age")
+    for text, values in [("I'm 34 and yes I love tea", {"age": 34, "likes_tea": True}),
+                         ("34, yes", {"age": 34, "likes_tea": True}),
+                         ("nope, and I am thirty", {"likes_tea": False, "age": 30}),
+                         ("I am 34 and no I don't", {"age": 34, "likes_tea": False})]:
+        assert read_answer(form, asked, text, lexicon, NINA).values == values, text
+    # A "no" first may correct what was said before; then it answers no yes/no field by itself.
+    assert read_answer(form, FormState(values={"likes_tea": True}, asked="age"), "no, I'm 34", lexicon,
+                       NINA).values == {"age": 34}
+    # Before any value there is nothing to correct: it is the answer.
+    assert read_answer(form, asked, "no, I'm 34", lexicon, NINA).values == {"likes_tea": False, "age": 34}
+    # Asked "And likes tea: yes or no?" after the age, the answer is read as before.
+    assert read_answer(form, FormState(values={"age": 34}, asked="likes_tea"), "yes", lexicon, NINA).values == {
+        "likes_tea": True}
+    # A field's own question covers no other field: "yes" to the age question is no tea.
+    own = form_of(age={"type": "integer", "description": "How old are you?"}, likes_tea={"type": "boolean"})
+    assert read_answer(own, asked, "34, yes", lexicon, NINA).values == {"age": 34}
+    # Two yes/no fields open: which one a bare yes answers is not guessed.
+    two = form_of(age={"type": "integer"}, tea={"type": "boolean"}, coffee={"type": "boolean"})
+    assert read_answer(two, asked, "34, yes", lexicon, NINA).values == {"age": 34}
