@@ -344,7 +344,8 @@ class Interpreter:
         # ("in the centre of the table" is put on the table).
         place = slots.get("recipient", ())
         said = None if set(place) & self.lang.words.parts and "of" in place else p.marks.get("recipient")
-        reply = acknowledgement(self.lang, self.snapshot, self.speaker, intent, roles, refs, said)
+        reply = acknowledgement(self.lang, self.snapshot, self.speaker, intent, roles, refs, said,
+                                self.lexicon.shares_name)
         if intent == I.GREET and roles.get("recipient") == self.speaker:  # "say hello": to the speaker
             reply = hello(self.lang, self.snapshot, self.speaker)
         if any(ref.guessed for ref in refs.values()):  # "go to bay mine": a guess, less sure
