@@ -34,7 +34,7 @@ from dialogue.understanding.followups.request import follow_up, followed_up
 from dialogue.understanding.outcome import Outcome, Ref
 from dialogue.understanding.parsed import Parse
 from dialogue.understanding.questions import situation
-from dialogue.understanding.replies import acknowledgement, hello, say, then
+from dialogue.understanding.replies import abilities, acknowledgement, goodbye, hello, say, then
 from dialogue.understanding.requests.commands import parse
 from dialogue.understanding.requests.compound import conjuncts, coordinated
 from dialogue.understanding.requests.ground import ground
@@ -245,6 +245,15 @@ class Interpreter:
     def _thanks(self, p: Parse, overrides: dict[str, Words]) -> Outcome:
         return Outcome(say(self.lang, "social.welcome"))
 
+    def _farewell(self, p: Parse, overrides: dict[str, Words]) -> Outcome:
+        return Outcome(goodbye(self.lang, self.snapshot, self.speaker))
+
+    def _abilities(self, p: Parse, overrides: dict[str, Words]) -> Outcome:
+        return Outcome(abilities(self.lang))
+
+    def _joke(self, p: Parse, overrides: dict[str, Words]) -> Outcome:
+        return Outcome(say(self.lang, "social.no_jokes"))
+
     # -- questions -------------------------------------------------------------------------------
     def _question(self, p: Parse, overrides: dict[str, Words]) -> Outcome:
         answer = situation.answer(self, p)
@@ -382,5 +391,6 @@ class Interpreter:
 ACTS: dict[str, Callable[[Interpreter, Parse, dict[str, Words]], Outcome]] = {
     "greeting": Interpreter._greeting, "negated": Interpreter._negated,
     "conditional": Interpreter._conditional, "thanks": Interpreter._thanks,
+    "farewell": Interpreter._farewell, "abilities": Interpreter._abilities, "joke": Interpreter._joke,
     "question": Interpreter._question, "command": Interpreter._command,
 }  # fmt: skip

@@ -159,6 +159,21 @@ def said_back(lang: Language, text: str) -> str:
     return " ".join(back.get(w.lower(), w) for w in text.split())
 
 
+def goodbye(lang: Language, snapshot: Snapshot, speaker: str) -> str:
+    """A farewell, by name for a speaker the KB knows by name ("Goodbye Alice, see you soon!")."""
+    me = snapshot.get(speaker)
+    if me is not None and me.labels:
+        return say(lang, "social.goodbye_you", name=me.name)
+    return say(lang, "social.goodbye")
+
+
+def abilities(lang: Language) -> str:
+    """What the robot can do: each intent of the catalogue it acts on, as the language says it."""
+    said = template(lang, "abilities.intents")
+    can = [str(said[intent]) for intent in I.CATALOGUE if intent in said]
+    return say(lang, "abilities.can", abilities=listing(lang, can))
+
+
 def unprefixed(lang: Language, reply: str) -> str:
     """A later part of a compound reply: "OK, I will pick up the plate." -> "I will pick up the
     plate." (one without the "OK" capitalised)."""

@@ -51,6 +51,16 @@ def who_do_you_see(lang: Language, snapshot: Snapshot, speaker: str) -> str:
     return say(lang, "answers.see", things=listing(lang, _people(lang, people, speaker)))
 
 
+def how_many_people(lang: Language, snapshot: Snapshot, speaker: str) -> str:
+    """ "How many people can you see?": the people "who do you see?" names, counted."""
+    people = [e for e in snapshot.visible() if e.kind == "person"]
+    if not people:
+        return say(lang, "answers.no_one_seen")
+    noun = say(lang, "answers.person" if len(people) == 1 else "answers.people")
+    return say(lang, "answers.count_of", count=number(lang, len(people)), noun=noun,
+               things=listing(lang, _people(lang, people, speaker)))
+
+
 def who_is_in(lexicon: Lexicon, words: Sequence[str], speaker: str) -> tuple[str, bool]:
     """ "Who's at the box office?": the people the KB puts there; and whether the answer is a
     clarifying question (which office)."""

@@ -70,6 +70,9 @@ def _which_see(c: Context, thing: Words, owner: str | None, p: Parse) -> Outcome
 
 
 def _how_many(c: Context, thing: Words, owner: str | None, p: Parse) -> Outcome:
+    said = set(content_words(c.lang, thing))
+    if said and said <= c.lang.questions.situation.someone:  # "how many people": who is seen
+        return Outcome(answers.how_many_people(c.lang, c.snapshot, c.speaker))
     return Outcome(answers.how_many(c.lexicon, thing))
 
 
