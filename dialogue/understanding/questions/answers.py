@@ -9,7 +9,7 @@ from dialogue.reference.clarify import describe_options
 from dialogue.reference.clarify import question as clarifying_question
 from dialogue.reference.grounding import Entity, Snapshot
 from dialogue.reference.lexicon import Lexicon, singular
-from dialogue.reference.resolution import ALL_KINDS, content_words, resolve, said_phrase
+from dialogue.reference.resolution import ALL_KINDS, PERSON, content_words, resolve, said_phrase
 from dialogue.understanding.inflection import is_plural, plural_of
 from dialogue.understanding.language import Language
 from dialogue.understanding.replies import (
@@ -24,6 +24,7 @@ from dialogue.understanding.replies import (
     the,
     told_apart,
 )
+from dialogue.understanding.speech.plain import split_at
 
 #: Places described at most in one answer about several ("what is on the shelves").
 MAX_PLACES = 3
@@ -184,6 +185,25 @@ def _on(lang: Language, snapshot: Snapshot, place: Entity, asked: str = "") -> s
         within = place.kind == "zone" or asked in template(lang, "answers.asked_in")
         return say(lang, "answers.nothing_in" if within else "answers.nothing_on", place=place.name)
     return " ".join(sentences)
+
+
+def is_there(lexicon: Lexicon, words: Sequence[str], speaker: str, locatives: Sequence[str]) -> str | None:
+    """ "Is Marcus in the kitchen?": where the KB puts a person, said first ("No, as far as I know
+    Marcus is in the study."); None when the words are not one person and one place."""
+    snapshot, lang = lexicon.snapshot, lexicon.lang
+    cut = split_at(words, locatives)
+    if cut is None:
+        return None
+    who = resolve(lexicon, cut[0], PERSON).one
+    place = resolve(lexicon, cut[2], frozenset({"zone", "thing"})).one
+    if who is None or place is None or who.id == speaker:
+        return None
+    name, where = the(lang, snapshot, who, speaker), location(lang, snapshot, who)
+    if not where:  # seen, nowhere in particular: what is seen answers
+        return None if who.seen else say(lang, "answers.unknown_where_is", name=name)
+    there = place.id in (who.zone, who.support) or ("in", place.id) in who.relations
+    reply = say(lang, "answers.known_there" if there else "answers.known_elsewhere", name=name, where=where)
+    return reply if who.seen else reply + say(lang, "answers.unseen_them")
 
 
 def can_you_see(lexicon: Lexicon, words: Sequence[str], speaker: str, owner: str | None = None) -> str:

@@ -17,7 +17,8 @@ PORCH = [
     'porch rdf:type ZoneOfInterest', 'porch rdfs:label "porch"',
     'person_lou rdf:type Human', 'person_lou rdfs:label "Lou"', "person_lou isIn porch", "myself sees person_lou",
     'person_bo rdf:type Human', 'person_bo rdfs:label "Bo"', "person_bo isIn porch", "myself sees person_bo",
-    'person_kim rdf:type Human', 'person_kim rdfs:label "Kim"',
+    'person_kim rdf:type Human', 'person_kim rdfs:label "Kim"', "person_kim isIn garage",
+    'garage rdf:type ZoneOfInterest', 'garage rdfs:label "garage"',
     'lamp_1 rdf:type Artifact', 'lamp_1 rdfs:label "lamp"', "lamp_1 isIn porch", "myself sees lamp_1",
 ]  # fmt: skip
 
@@ -32,6 +33,11 @@ def talk() -> Iterator[Talk]:
 def test_counting_people_agrees_with_naming_them(talk: Talk) -> None:
     assert talk("who do you see?").reply == "I see Bo and you."
     assert talk("how many people can you see?").reply == "I see two people: Bo and you."
+
+
+def test_whether_someone_is_somewhere_starts_with_what_the_kb_says(talk: Talk) -> None:
+    assert talk("is Kim in the garage?").reply == "Yes, as far as I know Kim is in the garage. I don't see them right now."
+    assert talk("is Kim on the porch?").reply == "No, as far as I know Kim is in the garage. I don't see them right now."
 
 
 def test_what_the_robot_can_do_is_said_from_its_intents(talk: Talk) -> None:
