@@ -18,7 +18,7 @@ from dataclasses import replace
 from dialogue import intents as I
 from dialogue.history import Utterance
 from dialogue.reference.english import Words, tokens
-from dialogue.reference.grounding import Kind
+from dialogue.reference.grounding import Entity, Kind
 from dialogue.reference.lexicon import Lexicon
 from dialogue.reference.resolution import (
     PERSON,
@@ -34,7 +34,7 @@ from dialogue.understanding.followups.request import follow_up, followed_up
 from dialogue.understanding.outcome import Outcome, Ref
 from dialogue.understanding.parsed import Parse
 from dialogue.understanding.questions import situation
-from dialogue.understanding.replies import abilities, acknowledgement, goodbye, hello, say, then
+from dialogue.understanding.replies import abilities, acknowledgement, goodbye, hello, say, then, whose_it_is
 from dialogue.understanding.requests.commands import parse
 from dialogue.understanding.requests.compound import conjuncts, coordinated
 from dialogue.understanding.requests.ground import ground
@@ -327,6 +327,7 @@ class Interpreter:
             slots["object"] = self.refs.some_of(slots["object"])
         roles: dict[str, str] = {}
         refs: dict[str, Ref] = {}
+        mine: list[Entity] = []  # things said to be the speaker's ("my book")
         spec = I.CATALOGUE[intent]
         for role, kinds in ROLE_KINDS.get(intent, {}).items():
             words = slots.get(role, ())
@@ -345,6 +346,8 @@ class Interpreter:
                 return ref.problem
             refs[role] = ref
             roles[role] = self.speaker if ref.speaker else (ref.entity.id if ref.entity else "")
+            if owner == self.speaker and ref.entity is not None and ref.entity.kind == "thing":
+                mine.append(ref.entity)
         if p.text is not None:
             roles["object"] = p.text
         elif intent in {I.SAY, I.START_ACTIVITY, I.PERFORM_MOTION, I.PRESENT_CONTENT}:
@@ -357,6 +360,9 @@ class Interpreter:
                                 self.lexicon.shares_name)
         if intent == I.GREET and roles.get("recipient") == self.speaker:  # "say hello": to the speaker
             reply = hello(self.lang, self.snapshot, self.speaker)
+        notes = [whose_it_is(self.lang, self.snapshot, e, self.speaker)
+                 for e in mine if e.owner != self.speaker]  # fmt: skip
+        reply = " ".join([*notes, reply])  # "my book" that is Marcus's: said before acting
         if any(ref.guessed for ref in refs.values()):  # "go to bay mine": a guess, less sure
             return Outcome(reply, intent, roles, SPELT_CONFIDENCE, guessed=True)
         return replace(self._intent(intent, roles, reply), unsure=self._unaccounted(intent, slots))

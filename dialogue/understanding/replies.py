@@ -159,6 +159,16 @@ def said_back(lang: Language, text: str) -> str:
     return " ".join(back.get(w.lower(), w) for w in text.split())
 
 
+def whose_it_is(lang: Language, snapshot: Snapshot, entity: Entity, speaker: str) -> str:
+    """What the KB says of whose a thing called the speaker's is: another's ("The book is Marcus's,
+    not yours."), or nobody's ("As far as I know, the diary is nobody's.")."""
+    name = the(lang, snapshot, entity, speaker)
+    owner = snapshot.get(entity.owner) if entity.owner else None
+    if owner is None:
+        return say(lang, "naming.nobodys", name=name)
+    return capitalised(say(lang, "naming.not_yours", name=name, owner=the(lang, snapshot, owner, speaker)))
+
+
 def goodbye(lang: Language, snapshot: Snapshot, speaker: str) -> str:
     """A farewell, by name for a speaker the KB knows by name ("Goodbye Alice, see you soon!")."""
     me = snapshot.get(speaker)
