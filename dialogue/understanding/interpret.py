@@ -346,7 +346,9 @@ class Interpreter:
                 return ref.problem
             refs[role] = ref
             roles[role] = self.speaker if ref.speaker else (ref.entity.id if ref.entity else "")
-            if owner == self.speaker and ref.entity is not None and ref.entity.kind == "thing":
+            # "my stapler" (not "the folder on my desk": whose the desk is)
+            said_mine = slots.get(role, ())[:1] == (self.lang.words.owners["mine"],)
+            if said_mine and owner == self.speaker and ref.entity is not None and ref.entity.kind == "thing":
                 mine.append(ref.entity)
         if p.text is not None:
             roles["object"] = p.text

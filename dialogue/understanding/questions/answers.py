@@ -266,7 +266,7 @@ def how_many(lexicon: Lexicon, words: Sequence[str]) -> str:
     options = describe_options(lang, lexicon.snapshot, seen) if len(seen) > 1 and content else []
     if options and not any(e.id in o for e, o in zip(seen, options, strict=True)):
         # several of the kind asked about, each as a person tells it apart: "the blue one"
-        noun = plural_of(singular(content[-1]))
+        noun = plural_of(" ".join([*content[:-1], singular(content[-1])]))  # "watering cans"
         return say(lang, "answers.count_of", count=count, noun=noun, things=listing(lang, options))
     things = listing(lang, told_apart(lang, seen, lexicon.snapshot))
     return say(lang, "answers.count", count=count, things=things)
