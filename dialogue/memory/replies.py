@@ -8,9 +8,8 @@ from __future__ import annotations
 
 from dialogue.memory.claims import Claim
 from dialogue.memory.learn import Outcome, Settled
-from dialogue.reference.english import tokens
 from dialogue.reference.grounding import Entity, Snapshot
-from dialogue.reference.lexicon import singular
+from dialogue.understanding.inflection import plural_name
 from dialogue.understanding.language import Language
 from dialogue.understanding.replies import capitalised, listing, the
 from dialogue.understanding.replies import say as _say
@@ -67,9 +66,8 @@ class _Namer:
         return self.say("learnt.owners", who=self.person(term, self.say("learnt.someone_else")))
 
     def be(self, name: str) -> str:
-        words = tokens(name)
-        plural = bool(words) and singular(words[-1]) != words[-1] and name != self.you
-        return self.say("learnt.are" if plural or name == self.you else "learnt.is")
+        # (number by the head noun's English, not its spelling: "Ines is", "the keys are")
+        return self.say("learnt.are" if name == self.you or plural_name(name) else "learnt.is")
 
     def at(self, prop: str) -> str:
         return self.prepositions.get(prop) or self.say("learnt.at")

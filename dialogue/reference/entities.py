@@ -21,6 +21,8 @@ from dialogue.reference.snapshot import (
     IGNORED_CLASSES,
     ROBOT_CLASSES,
     SCHEMA_TYPES,
+    VALUE_CLASSES,
+    VALUE_TERMS,
     Entity,
     EntityTable,
     Kind,
@@ -51,7 +53,7 @@ class _Core:
     class_names: tuple[str, ...]
     kind: Kind
     name: str
-    #: A schema term (class, property...): never an entity.
+    #: A schema term (class, property...) or one of the ontology's values (a colour): never an entity.
     schema: bool
     #: Has any class: an unseen untyped term is no entity either.
     typed: bool
@@ -258,7 +260,7 @@ class EntityIndex:
         except KbError:
             self._cores[term] = None  # a literal used as a place ("x isIn 'garden'") is not an entity
             return None
-        if set(all_classes) & SCHEMA_TYPES:
+        if set(all_classes) & (SCHEMA_TYPES | VALUE_CLASSES) or term in VALUE_TERMS:
             schema = _Core((), (), (), "thing", readable_id(term), schema=True, typed=True)
             self._cores[term] = schema
             return schema

@@ -63,6 +63,9 @@ class Facts:
         self.seen: set[str] = set()
         self.people: set[str] = set()
         self.zones: set[str] = set()
+        #: Terms with a label, and their labels: a thing the KB names is known even where nobody
+        #: has seen or put it ("the diary", told of but never located).
+        self.labelled: dict[str, set[str]] = {}
         self.tables: dict[str, dict[str, set[str]]] = {name: {} for name in _TABLES.values()}
 
     @classmethod
@@ -72,6 +75,8 @@ class Facts:
         facts.seen = {str(r["x"]) for r in kb.find(f"{ROBOT_ID} sees ?x")}
         facts.people = {str(r["x"]) for c in sorted(PERSON_CLASSES) for r in kb.find(f"?x rdf:type {c}")}
         facts.zones = {str(r["x"]) for c in sorted(ZONE_CLASSES) for r in kb.find(f"?x rdf:type {c}")}
+        for row in kb.find("?x rdfs:label ?l"):
+            facts.labelled.setdefault(str(row["x"]), set()).add(str(row["l"]))
         for prop, name in _TABLES.items():
             table = facts.tables[name]
             for row in kb.find(f"?x {prop} ?y"):
@@ -105,8 +110,9 @@ class Facts:
         return inside + related if related else inside
 
     def is_candidate(self, term: str) -> bool:
-        """Worth considering as an entity: seen, a person, a place, located, or the robot. Unseen,
-        unplaced individuals are mostly the ontology's own (colours, sizes, postures)."""
+        """Worth considering as an entity: seen, a person, a place, located, named, or the robot.
+        Of the named ones, schema terms and the ontology's values (colours, sizes, postures) are
+        told apart by their classes (`entities`)."""
         return (
             term == ROBOT_ID
             or term in self.seen
@@ -114,11 +120,12 @@ class Facts:
             or term in self.zones
             or term in self.tables["support"]
             or term in self.tables["zone"]
+            or term in self.labelled
         )
 
     def candidates(self) -> set[str]:
         located = (*self.tables["support"], *self.tables["zone"])
-        return {ROBOT_ID, *self.seen, *self.people, *self.zones, *located}
+        return {ROBOT_ID, *self.seen, *self.people, *self.zones, *located, *self.labelled}
 
     def apply(self, added: Iterable[Triple], removed: Iterable[Triple], change: Change) -> None:
         """One commit's closure changes (removals first, as the writer applies them)."""
@@ -131,6 +138,11 @@ class Facts:
     def _apply(self, s: str, p: str, o: str, present: bool, change: Change) -> None:
         if p in DEEP:
             change.deep.add(s)
+            if p == "rdfs:label":
+                labels = self.labelled.setdefault(s, set())
+                _set(labels, o, present)
+                if not labels:
+                    del self.labelled[s]
             if p == "rdf:type":
                 for classes, members in ((PERSON_CLASSES, self.people), (ZONE_CLASSES, self.zones)):
                     if o in classes:

@@ -256,6 +256,18 @@ class Lexicon:
                       for n in self._named((joined,))]  # fmt: skip
         return found
 
+    def shares_name(self, entity: Entity) -> bool:
+        """Whether another entity is called what this one is (two mugs, a thousand cups): a reply
+        then names it as a person tells it apart ("the red mug"). Counted, not listed."""
+        words = phrase(entity.name)
+        if any(n.entity != entity.id for n in self._by_words.get(words, ())):
+            return True
+        for kind in self._kind_words.get(words) or ():
+            members = self._members.get(kind) or {}
+            if len(members) > (1 if entity.id in members else 0):
+                return True
+        return False
+
     def is_person(self, entity_id: str) -> bool:
         entity = self.snapshot.get(entity_id)
         return entity is not None and entity.kind == "person"

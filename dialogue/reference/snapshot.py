@@ -45,6 +45,14 @@ SCHEMA_TYPES = frozenset(
 IGNORED_CLASSES = frozenset(
     {"owl:Thing", "rdfs:Resource", "owl:NamedIndividual", "ActiveConcept", "owl:Nothing"}
 )
+#: Classes whose members are values said of things (a colour, a size, a posture), never things a
+#: person talks about: the ontology names them, and a named term of these classes is no entity.
+VALUE_CLASSES = frozenset(
+    {"cyc:Color", "Size", "Shape", "Posture", "EngagementLevel", "Situation", "cyc:Situation"}
+)
+
+#: The ontology's value for a place nobody knows ("isIn unknownLocation"): no thing of its own.
+VALUE_TERMS = frozenset({"unknownLocation"})
 
 
 @dataclass(frozen=True, slots=True)

@@ -18,7 +18,7 @@ from dataclasses import replace
 from dialogue import intents as I
 from dialogue.history import Utterance
 from dialogue.reference.english import Words, tokens
-from dialogue.reference.grounding import Kind
+from dialogue.reference.grounding import Entity, Kind
 from dialogue.reference.lexicon import Lexicon
 from dialogue.reference.resolution import (
     PERSON,
@@ -34,7 +34,7 @@ from dialogue.understanding.followups.request import follow_up, followed_up
 from dialogue.understanding.outcome import Outcome, Ref
 from dialogue.understanding.parsed import Parse
 from dialogue.understanding.questions import situation
-from dialogue.understanding.replies import acknowledgement, hello, say, then
+from dialogue.understanding.replies import abilities, acknowledgement, goodbye, hello, say, then, whose_it_is
 from dialogue.understanding.requests.commands import parse
 from dialogue.understanding.requests.compound import conjuncts, coordinated
 from dialogue.understanding.requests.ground import ground
@@ -245,6 +245,15 @@ class Interpreter:
     def _thanks(self, p: Parse, overrides: dict[str, Words]) -> Outcome:
         return Outcome(say(self.lang, "social.welcome"))
 
+    def _farewell(self, p: Parse, overrides: dict[str, Words]) -> Outcome:
+        return Outcome(goodbye(self.lang, self.snapshot, self.speaker))
+
+    def _abilities(self, p: Parse, overrides: dict[str, Words]) -> Outcome:
+        return Outcome(abilities(self.lang))
+
+    def _joke(self, p: Parse, overrides: dict[str, Words]) -> Outcome:
+        return Outcome(say(self.lang, "social.no_jokes"))
+
     # -- questions -------------------------------------------------------------------------------
     def _question(self, p: Parse, overrides: dict[str, Words]) -> Outcome:
         answer = situation.answer(self, p)
@@ -318,6 +327,7 @@ class Interpreter:
             slots["object"] = self.refs.some_of(slots["object"])
         roles: dict[str, str] = {}
         refs: dict[str, Ref] = {}
+        mine: list[Entity] = []  # things said to be the speaker's ("my book")
         spec = I.CATALOGUE[intent]
         for role, kinds in ROLE_KINDS.get(intent, {}).items():
             words = slots.get(role, ())
@@ -336,6 +346,10 @@ class Interpreter:
                 return ref.problem
             refs[role] = ref
             roles[role] = self.speaker if ref.speaker else (ref.entity.id if ref.entity else "")
+            # "my stapler" (not "the folder on my desk": whose the desk is)
+            said_mine = slots.get(role, ())[:1] == (self.lang.words.owners["mine"],)
+            if said_mine and owner == self.speaker and ref.entity is not None and ref.entity.kind == "thing":
+                mine.append(ref.entity)
         if p.text is not None:
             roles["object"] = p.text
         elif intent in {I.SAY, I.START_ACTIVITY, I.PERFORM_MOTION, I.PRESENT_CONTENT}:
@@ -344,9 +358,13 @@ class Interpreter:
         # ("in the centre of the table" is put on the table).
         place = slots.get("recipient", ())
         said = None if set(place) & self.lang.words.parts and "of" in place else p.marks.get("recipient")
-        reply = acknowledgement(self.lang, self.snapshot, self.speaker, intent, roles, refs, said)
+        reply = acknowledgement(self.lang, self.snapshot, self.speaker, intent, roles, refs, said,
+                                self.lexicon.shares_name)
         if intent == I.GREET and roles.get("recipient") == self.speaker:  # "say hello": to the speaker
             reply = hello(self.lang, self.snapshot, self.speaker)
+        notes = [whose_it_is(self.lang, self.snapshot, e, self.speaker)
+                 for e in mine if e.owner != self.speaker]  # fmt: skip
+        reply = " ".join([*notes, reply])  # "my book" that is Marcus's: said before acting
         if any(ref.guessed for ref in refs.values()):  # "go to bay mine": a guess, less sure
             return Outcome(reply, intent, roles, SPELT_CONFIDENCE, guessed=True)
         return replace(self._intent(intent, roles, reply), unsure=self._unaccounted(intent, slots))
@@ -381,5 +399,6 @@ class Interpreter:
 ACTS: dict[str, Callable[[Interpreter, Parse, dict[str, Words]], Outcome]] = {
     "greeting": Interpreter._greeting, "negated": Interpreter._negated,
     "conditional": Interpreter._conditional, "thanks": Interpreter._thanks,
+    "farewell": Interpreter._farewell, "abilities": Interpreter._abilities, "joke": Interpreter._joke,
     "question": Interpreter._question, "command": Interpreter._command,
 }  # fmt: skip

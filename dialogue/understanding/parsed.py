@@ -7,7 +7,8 @@ from typing import Literal
 
 from dialogue.reference.english import Words
 
-Act = Literal["command", "question", "greeting", "negated", "conditional", "thanks", "unknown"]
+Act = Literal["command", "question", "greeting", "negated", "conditional", "thanks", "farewell",
+              "abilities", "joke", "unknown"]
 
 __all__ = ["Act", "Parse", "Words"]
 

@@ -44,8 +44,12 @@ def capitalised(text: str) -> str:
     return text[:1].upper() + text[1:]
 
 
-def the(lang: Language, snapshot: Snapshot, entity: Entity, speaker: str = "") -> str:
-    """How to name an entity in a sentence: "you", "Maria", "the cookbook", "the cup"."""
+def the(lang: Language, snapshot: Snapshot, entity: Entity, speaker: str = "", apart: bool = False) -> str:
+    """How to name an entity in a sentence: "you", "Maria", "the cookbook", "the cup"; `apart`: a
+    thing that shares its name with others, as a person tells it from them ("the red mug",
+    "Harold's spade", "the spade in the shed")."""
+    if apart and entity.kind == "thing" and entity.id != speaker:
+        return _apart(lang, entity, the(lang, snapshot, entity, speaker), snapshot, speaker)
     if entity.id == speaker:
         return say(lang, "naming.you")
     if entity.kind == "person":
@@ -122,10 +126,17 @@ def told_apart(lang: Language, entities: Sequence[Entity], snapshot: Snapshot | 
             for e, n in zip(entities, names, strict=True)]  # fmt: skip
 
 
-def _apart(lang: Language, entity: Entity, name: str, snapshot: Snapshot | None) -> str:
-    bare = name[len(say(lang, "naming.the", name="")) :]
+def _apart(lang: Language, entity: Entity, name: str, snapshot: Snapshot | None, speaker: str = "") -> str:
+    the_ = say(lang, "naming.the", name="")
+    if not name.startswith(the_):
+        return name  # "screen 2": a name of its own
+    bare = name[len(the_) :]
+    if entity.colour and entity.colour in tokens(bare):
+        return name  # "the black phone": told apart already
     if entity.colour:
         return say(lang, "naming.the_coloured", colour=entity.colour, name=bare)
+    if speaker and entity.owner == speaker:
+        return say(lang, "naming.yours", name=bare)
     owner = snapshot.get(entity.owner) if snapshot is not None and entity.owner else None
     if owner is not None and owner.labels:
         return say(lang, "naming.owned", owner=owner.name, name=bare)
@@ -148,6 +159,31 @@ def said_back(lang: Language, text: str) -> str:
     return " ".join(back.get(w.lower(), w) for w in text.split())
 
 
+def whose_it_is(lang: Language, snapshot: Snapshot, entity: Entity, speaker: str) -> str:
+    """What the KB says of whose a thing called the speaker's is: another's ("The book is Marcus's,
+    not yours."), or nobody's ("As far as I know, the diary is nobody's.")."""
+    name = the(lang, snapshot, entity, speaker)
+    owner = snapshot.get(entity.owner) if entity.owner else None
+    if owner is None:
+        return say(lang, "naming.nobodys", name=name)
+    return capitalised(say(lang, "naming.not_yours", name=name, owner=the(lang, snapshot, owner, speaker)))
+
+
+def goodbye(lang: Language, snapshot: Snapshot, speaker: str) -> str:
+    """A farewell, by name for a speaker the KB knows by name ("Goodbye Alice, see you soon!")."""
+    me = snapshot.get(speaker)
+    if me is not None and me.labels:
+        return say(lang, "social.goodbye_you", name=me.name)
+    return say(lang, "social.goodbye")
+
+
+def abilities(lang: Language) -> str:
+    """What the robot can do: each intent of the catalogue it acts on, as the language says it."""
+    said = template(lang, "abilities.intents")
+    can = [str(said[intent]) for intent in I.CATALOGUE if intent in said]
+    return say(lang, "abilities.can", abilities=listing(lang, can))
+
+
 def unprefixed(lang: Language, reply: str) -> str:
     """A later part of a compound reply: "OK, I will pick up the plate." -> "I will pick up the
     plate." (one without the "OK" capitalised)."""
@@ -162,12 +198,15 @@ def then(lang: Language, replies: Sequence[str]) -> str:
     return " ".join([replies[0], *(say(lang, "naming.then", reply=unprefixed(lang, r)) for r in replies[1:])])
 
 
-def _name(lang: Language, snapshot: Snapshot, speaker: str, ref: Ref | None) -> str:
+def _name(lang: Language, snapshot: Snapshot, speaker: str, ref: Ref | None,
+          namesakes: Callable[[Entity], bool]) -> str:  # fmt: skip
     if ref is None:
         return say(lang, "naming.it")
     if ref.speaker:
         return say(lang, "naming.you")
-    return the(lang, snapshot, ref.entity, speaker) if ref.entity else say(lang, "naming.it")
+    if ref.entity is None:
+        return say(lang, "naming.it")
+    return the(lang, snapshot, ref.entity, speaker, apart=namesakes(ref.entity))
 
 
 @dataclass(frozen=True)
@@ -224,10 +263,13 @@ _SAID_BACK: dict[str, Callable[[_Taken], str]] = {
 
 
 def acknowledgement(lang: Language, snapshot: Snapshot, speaker: str, intent: str, roles: dict[str, str],
-                    refs: dict[str, Ref], said: str | None = None) -> str:  # fmt: skip
-    """What the robot says when it takes on an intent ("OK, I will bring the cup to you."); `said`
-    is the preposition the person put the place with, if any."""
-    obj, rec, goal = (_name(lang, snapshot, speaker, refs.get(r)) for r in ("object", "recipient", "goal"))
+                    refs: dict[str, Ref], said: str | None = None,
+                    namesakes: Callable[[Entity], bool] = lambda _e: False) -> str:  # fmt: skip
+    """What the robot says when it takes on an intent ("OK, I will bring the red mug to you."); `said`
+    is the preposition the person put the place with, if any; `namesakes` says which things share
+    their name with others (told apart as they are named)."""
+    obj, rec, goal = (_name(lang, snapshot, speaker, refs.get(r), namesakes)
+                      for r in ("object", "recipient", "goal"))  # fmt: skip
     taken = _Taken(lang, obj, rec, goal, roles.get("object", "").replace("_", " "), refs, said)
     said_back = _SAID_BACK.get(intent)
     return said_back(taken) if said_back is not None else say(lang, "request.done")

@@ -5,11 +5,12 @@ from __future__ import annotations
 
 from collections.abc import Callable, Sequence
 
+from dialogue.reference.clarify import describe_options
 from dialogue.reference.clarify import question as clarifying_question
-from dialogue.reference.english import tokens
 from dialogue.reference.grounding import Entity, Snapshot
 from dialogue.reference.lexicon import Lexicon, singular
-from dialogue.reference.resolution import ALL_KINDS, content_words, resolve, said_phrase
+from dialogue.reference.resolution import ALL_KINDS, PERSON, content_words, resolve, said_phrase
+from dialogue.understanding.inflection import is_plural, plural_of
 from dialogue.understanding.language import Language
 from dialogue.understanding.replies import (
     article,
@@ -23,6 +24,7 @@ from dialogue.understanding.replies import (
     the,
     told_apart,
 )
+from dialogue.understanding.speech.plain import split_at
 
 #: Places described at most in one answer about several ("what is on the shelves").
 MAX_PLACES = 3
@@ -30,7 +32,7 @@ MAX_PLACES = 3
 
 def what_do_you_see(lang: Language, snapshot: Snapshot, speaker: str = "") -> str:
     you = say(lang, "naming.you")
-    things = [indefinite(lang, e) for e in snapshot.visible() if e.kind == "thing"]
+    things = told_apart(lang, [e for e in snapshot.visible() if e.kind == "thing"], snapshot)
     people = [you if e.id == speaker else indefinite(lang, e)
               for e in snapshot.visible() if e.kind == "person"]  # fmt: skip
     if not things and not people:
@@ -50,6 +52,16 @@ def who_do_you_see(lang: Language, snapshot: Snapshot, speaker: str) -> str:
     return say(lang, "answers.see", things=listing(lang, _people(lang, people, speaker)))
 
 
+def how_many_people(lang: Language, snapshot: Snapshot, speaker: str) -> str:
+    """ "How many people can you see?": the people "who do you see?" names, counted."""
+    people = [e for e in snapshot.visible() if e.kind == "person"]
+    if not people:
+        return say(lang, "answers.no_one_seen")
+    noun = say(lang, "answers.person" if len(people) == 1 else "answers.people")
+    return say(lang, "answers.count_of", count=number(lang, len(people)), noun=noun,
+               things=listing(lang, _people(lang, people, speaker)))
+
+
 def who_is_in(lexicon: Lexicon, words: Sequence[str], speaker: str) -> tuple[str, bool]:
     """ "Who's at the box office?": the people the KB puts there; and whether the answer is a
     clarifying question (which office)."""
@@ -65,7 +77,8 @@ def who_is_in(lexicon: Lexicon, words: Sequence[str], speaker: str) -> tuple[str
     if not there:
         return say(lang, "answers.no_one_in", place=the(lang, snapshot, place)), False
     people = listing(lang, _people(lang, there, speaker))
-    return say(lang, "answers.people_in", place=the(lang, snapshot, place), people=people), False
+    return say(lang, "answers.people_in", place=the(lang, snapshot, place), people=people,
+               there=_there(lang, there)), False
 
 
 def where_is(lexicon: Lexicon, words: Sequence[str], speaker: str, owner: str | None = None) -> str:
@@ -87,19 +100,21 @@ def where_is(lexicon: Lexicon, words: Sequence[str], speaker: str, owner: str | 
 def _where(lexicon: Lexicon, e: Entity, speaker: str) -> str:
     """Where one thing the phrase names is, as a sentence."""
     snapshot, lang = lexicon.snapshot, lexicon.lang
-    name = the(lang, snapshot, e, speaker)
+    name = the(lang, snapshot, e, speaker, apart=lexicon.shares_name(e))
     where = location(lang, snapshot, e)
-    plural = _plural(tokens(name))  # "the keys are", "I don't see them"
+    # "the keys are", "Ines is"; a person is "them" when not seen (the KB says no one's gender)
+    plural = is_plural(e)
+    them = plural or e.kind == "person"
     if e.id == speaker:
         return say(lang, "answers.right_here")
     if where:
-        tail = "" if e.seen else say(lang, "answers.unseen_them" if plural else "answers.unseen_it")
+        tail = "" if e.seen else say(lang, "answers.unseen_them" if them else "answers.unseen_it")
         key = "answers.are_at" if plural else "answers.is_at"
         return capitalised(say(lang, key, name=name, where=where)) + tail
     if e.seen and e.kind == "person":
         return say(lang, "answers.person_here", name=name)
     if e.seen:
-        return say(lang, "answers.seen_them_somewhere" if plural else "answers.seen_it_somewhere", name=name)
+        return say(lang, "answers.seen_them_somewhere" if them else "answers.seen_it_somewhere", name=name)
     return say(lang, "answers.unknown_where_are" if plural else "answers.unknown_where_is", name=name)
 
 
@@ -141,7 +156,14 @@ def what_is_near(lexicon: Lexicon, words: Sequence[str], relation: Sequence[str]
     if not near:
         return say(lang, "answers.nothing_related", relation=said, place=there), False
     things = listing(lang, told_apart(lang, near, snapshot))
-    return capitalised(say(lang, "answers.related", relation=said, place=there, things=things)), False
+    return capitalised(say(lang, "answers.related", relation=said, place=there, things=things,
+                           there=_there(lang, near))), False
+
+
+def _there(lang: Language, things: Sequence[Entity]) -> str:
+    """ "there is" one thing, "there are" several or one that is many ("the keys")."""
+    several = len(things) > 1 or (len(things) == 1 and is_plural(things[0]))
+    return say(lang, "answers.there_are" if several else "answers.there_is")
 
 
 def _plural(content: Sequence[str]) -> bool:
@@ -152,16 +174,36 @@ def _on(lang: Language, snapshot: Snapshot, place: Entity, asked: str = "") -> s
     """What is on (or in) one place, as a sentence: in a zone, on a support, in a container (the
     fridge: what `isIn` it)."""
     held = [e for e in snapshot.placed_at(place.id) if e.kind == "thing"]
-    inside = told_apart(lang, [e for e in held if e.zone == place.id or ("in", place.id) in e.relations])
-    on = told_apart(lang, [e for e in held if e.support == place.id])
+    inside = [e for e in held if e.zone == place.id or ("in", place.id) in e.relations]
+    on = [e for e in held if e.support == place.id]
     held_by = (("answers.things_in", inside), ("answers.things_on", on))
-    sentences = [say(lang, key, place=place.name, things=listing(lang, items))
+    sentences = [say(lang, key, place=place.name, things=listing(lang, told_apart(lang, items)),
+                     there=_there(lang, items))
                  for key, items in held_by if items]  # fmt: skip
     if not sentences:
         # as asked: "what's in the box"
         within = place.kind == "zone" or asked in template(lang, "answers.asked_in")
         return say(lang, "answers.nothing_in" if within else "answers.nothing_on", place=place.name)
     return " ".join(sentences)
+
+
+def is_there(lexicon: Lexicon, words: Sequence[str], speaker: str, locatives: Sequence[str]) -> str | None:
+    """ "Is Marcus in the kitchen?": where the KB puts a person, said first ("No, as far as I know
+    Marcus is in the study."); None when the words are not one person and one place."""
+    snapshot, lang = lexicon.snapshot, lexicon.lang
+    cut = split_at(words, locatives)
+    if cut is None:
+        return None
+    who = resolve(lexicon, cut[0], PERSON).one
+    place = resolve(lexicon, cut[2], frozenset({"zone", "thing"})).one
+    if who is None or place is None or who.id == speaker:
+        return None
+    name, where = the(lang, snapshot, who, speaker), location(lang, snapshot, who)
+    if not where:  # seen, nowhere in particular: what is seen answers
+        return None if who.seen else say(lang, "answers.unknown_where_is", name=name)
+    there = place.id in (who.zone, who.support) or ("in", place.id) in who.relations
+    reply = say(lang, "answers.known_there" if there else "answers.known_elsewhere", name=name, where=where)
+    return reply if who.seen else reply + say(lang, "answers.unseen_them")
 
 
 def can_you_see(lexicon: Lexicon, words: Sequence[str], speaker: str, owner: str | None = None) -> str:
@@ -219,8 +261,15 @@ def how_many(lexicon: Lexicon, words: Sequence[str]) -> str:
     seen = [e for e in found.matches if e.seen]
     if not seen:
         return say(lang, "answers.none_seen", phrase=phrase)
+    count = number(lang, len(seen))
+    content = content_words(lang, words)
+    options = describe_options(lang, lexicon.snapshot, seen) if len(seen) > 1 and content else []
+    if options and not any(e.id in o for e, o in zip(seen, options, strict=True)):
+        # several of the kind asked about, each as a person tells it apart: "the blue one"
+        noun = plural_of(" ".join([*content[:-1], singular(content[-1])]))  # "watering cans"
+        return say(lang, "answers.count_of", count=count, noun=noun, things=listing(lang, options))
     things = listing(lang, told_apart(lang, seen, lexicon.snapshot))
-    return say(lang, "answers.count", count=number(lang, len(seen)), things=things)
+    return say(lang, "answers.count", count=count, things=things)
 
 
 def colour_of(lexicon: Lexicon, words: Sequence[str], speaker: str, owner: str | None = None) -> str:
@@ -245,7 +294,7 @@ def whose(lexicon: Lexicon, words: Sequence[str], speaker: str, owner: str | Non
         if several and e.colour and e.colour not in name and name.startswith(the_):
             # "which suitcase is mine": the red one
             name = say(lang, "naming.the_coloured", colour=e.colour, name=name[len(the_) :])
-        plural = _plural(tokens(name))
+        plural = is_plural(e)
         held = snapshot.get(e.owner) if e.owner else None
         where = location(lang, snapshot, e) if several else ""
         named = f"{name}{' ' + where if where else ''}"

@@ -17,6 +17,7 @@ from dialogue.reference.resolution import (
     resolve,
 )
 from dialogue.understanding.context import Context
+from dialogue.understanding.language import Language
 from dialogue.understanding.outcome import Outcome
 from dialogue.understanding.parsed import Parse
 from dialogue.understanding.questions import answers
@@ -58,7 +59,16 @@ def _what_near(c: Context, thing: Words, owner: str | None, p: Parse) -> Outcome
 
 
 def _can_see(c: Context, thing: Words, owner: str | None, p: Parse) -> Outcome:
-    return Outcome(answers.can_you_see(c.lexicon, thing, c.speaker, owner))
+    locatives = c.lang.derived(_Locatives).said
+    placed = answers.is_there(c.lexicon, thing, c.speaker, locatives) if owner is None else None
+    return Outcome(placed or answers.can_you_see(c.lexicon, thing, c.speaker, owner))
+
+
+class _Locatives:
+    """The prepositions a question puts someone somewhere with ("is Marcus *in* the kitchen")."""
+
+    def __init__(self, lang: Language) -> None:
+        self.said = tuple(" ".join(p) for p in lang.prepositions.having("asked-on"))
 
 
 def _what_is(c: Context, thing: Words, owner: str | None, p: Parse) -> Outcome:
@@ -70,6 +80,9 @@ def _which_see(c: Context, thing: Words, owner: str | None, p: Parse) -> Outcome
 
 
 def _how_many(c: Context, thing: Words, owner: str | None, p: Parse) -> Outcome:
+    said = set(content_words(c.lang, thing))
+    if said and said <= c.lang.questions.situation.someone:  # "how many people": who is seen
+        return Outcome(answers.how_many_people(c.lang, c.snapshot, c.speaker))
     return Outcome(answers.how_many(c.lexicon, thing))
 
 

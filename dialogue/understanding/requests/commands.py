@@ -53,6 +53,9 @@ class _Grammar:
         self.greetings = social.greetings_longest_first
         self.attention = social.attention
         self.social = social.social
+        #: Talk the robot answers in words alone, each act by its phrases.
+        self.talk: tuple[tuple[Act, frozenset[tuple[str, ...]]], ...] = (
+            ("farewell", social.farewells), ("abilities", social.abilities), ("joke", social.jokes))
         self.goal_particles = lang.prepositions.words("goal-particle")
         self.paths = lang.prepositions.words("path")
         #: Two-word prepositions read as one word, so that their "to" is never taken for a
@@ -94,6 +97,9 @@ def parse(lang: Language, said: Text, robot_name: str = "") -> Parse:
         return _request(lang, heard, tail) or _aside("thanks", words, tail)
     if tuple(words) in g.social and words[:1] != ["how"]:
         return Parse("greeting", words=tuple(words))
+    for act, phrases in g.talk:  # "bye", "what can you do?", "tell me a joke"
+        if tuple(words) in phrases:
+            return Parse(act, words=tuple(words))
     # "welcome Lucia" asks the robot to greet her; "welcome back" is a greeting.
     welcoming = words[0] == "welcome" and words[1:] and words[1] not in {"back", "home", "to", "everyone"}
     for greeting in () if welcoming else g.greetings:

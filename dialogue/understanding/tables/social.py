@@ -17,6 +17,9 @@ class SocialWords(Table):
     greetings: Phrases = ()
     attention: PhraseSet = frozenset()
     social: PhraseSet = frozenset()
+    farewells: PhraseSet = frozenset()
+    abilities: PhraseSet = frozenset()
+    jokes: PhraseSet = frozenset()
 
     @cached_property
     def greetings_longest_first(self) -> Phrases:

@@ -190,3 +190,20 @@ def test_what_each_place_holds_follows_moves_and_removals() -> None:
     assert [e.id for e in gone.placed_at("kitchen")] == ["table_1"]
     _assert_contents(gone)
     assert [e.id for e in first.placed_at("kitchen")] == ["book_1", "cup_1", "table_1"]  # immutable
+
+
+def test_a_named_thing_nobody_has_placed_is_an_entity_and_the_ontologys_values_are_not() -> None:
+    kb = KB()
+    kb.update([*BASE, "diary_1 rdf:type Artifact"])
+    grounder = Grounder()
+    assert "diary_1" not in grounder.snapshot(kb).entities  # typed, unnamed, unplaced: nothing to say
+    kb.update(['diary_1 rdfs:label "diary"'])
+    diary = grounder.snapshot(kb).entities["diary_1"]
+    assert (diary.name, diary.kind, diary.support, diary.zone, diary.seen) == ("diary", "thing", None, None, False)
+    assert {n.entity for n in Lexicon(grounder.snapshot(kb), english()).names_at(["diary"], 0)} == {"diary_1"}
+    kb.remove(['diary_1 rdfs:label "diary"'])
+    assert "diary_1" not in grounder.snapshot(kb).entities
+    # Colours, sizes, postures, engagement levels and the unknown location are named by the
+    # ontology: values, never things.
+    values = {"red", "large", "sitting", "engaged", "unknownLocation", "current_world_state"}
+    assert not values & set(build_snapshot(kb).entities)

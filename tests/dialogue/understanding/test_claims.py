@@ -290,7 +290,7 @@ def test_a_place_named_only_by_a_position_word_is_left_to_a_model() -> None:
 
 
 def test_things_sharing_a_name_are_told_apart_by_colour() -> None:
-    assert say(_classroom(), "how many markers are there").reply == "I see two: the blue marker and the red marker."
+    assert say(_classroom(), "how many markers are there").reply == "I see two markers: the blue one and the red one."
     assert "the red marker" in say(_classroom(), "which marker is red").reply
 
 

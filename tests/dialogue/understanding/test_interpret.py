@@ -456,7 +456,7 @@ def _nursery() -> KB:
 
 def test_where_a_thing_is_says_the_container_it_is_in_before_the_zone() -> None:
     kb = _nursery()
-    assert say(kb, "where is the green yoyo").reply == "The yoyo is in the crate in the den."
+    assert say(kb, "where is the green yoyo").reply == "The green yoyo is in the crate in the den."
     assert say(kb, "what's in the crate?").reply == "In the crate, there is the yoyo."
     assert say(kb, "what is on the bench").reply == "On the bench, there is the yoyo."
     assert say(kb, "pick up the yoyo in the crate").roles == {"object": "yoyo_1"}
@@ -601,7 +601,7 @@ def test_a_name_ending_with_its_number_is_said_without_the() -> None:
 
 
 def test_things_sharing_a_name_without_a_colour_are_told_apart_by_owner_or_place() -> None:
-    assert say(_yard(), "how many rakes have we got").reply == "I see two: Ola's rake and the rake in the shed."
+    assert say(_yard(), "how many rakes have we got").reply == "I see two rakes: Ola's and the one in the shed."
 
 
 def test_what_is_next_to_a_thing_and_what_is_in_an_empty_one() -> None:

@@ -37,7 +37,7 @@ def test_how_many_counts_the_words_before_the_questions_own_clause(text: str, th
 
 def test_how_many_have_we_got_is_answered(office: KB) -> None:
     assert say(office, "how many mugs have we got").reply == (
-        "I see two: the green mug and the yellow mug.")  # fmt: skip
+        "I see two mugs: the green mug and the yellow mug.")  # fmt: skip
 
 
 @pytest.mark.parametrize(
