@@ -46,6 +46,7 @@ class SpeechWords(Table):
     asking: WordSet = frozenset()
     lead_fillers: WordSet = frozenset()
     repairs: Phrases = ()
+    cancels: Phrases = ()
     polite_prefixes: Phrases = ()
     robot_suffixes: Phrases = ()
     polite_suffixes: Phrases = ()
