@@ -20,6 +20,7 @@ from dialogue.reference.lexicon import singular
 from dialogue.reference.resolution import (
     ANYWHERE,
     PERSON,
+    THING,
     Resolution,
     antecedent,
     content_words,
@@ -161,6 +162,23 @@ def _addressed(p: Phrase) -> Ref | None:
     return p.not_understood() if addressed and not p.refs.named_person(p.words) else None
 
 
+def _owner(p: Phrase) -> Ref | None:
+    """ "give it to its owner": whom the KB says the one thing of the request belongs to."""
+    refs = p.refs
+    if "person" not in p.kinds or not p.content or not set(p.content) <= refs.said.owner:
+        return None
+    things = {ref.entity.id: ref.entity for words in p.said
+              if (ref := ground(refs, words, THING, "object")).entity is not None}  # fmt: skip
+    if len(things) != 1:
+        return p.not_understood()
+    thing = next(iter(things.values()))
+    owner = refs.snapshot.get(thing.owner) if thing.owner else None
+    if owner is None:
+        name = the(refs.lang, refs.snapshot, thing)
+        return Ref(problem=Outcome(say(refs.lang, "answers.owner_unknown", name=name)))
+    return Ref(entity=owner)
+
+
 def _named(p: Phrase) -> Ref | None:
     """The one entity the phrase names."""
     one = p.resolved.one
@@ -285,8 +303,8 @@ def _ones(p: Phrase) -> Ref | None:
 
 #: The steps of grounding, in the order they are tried.
 STEPS: tuple[Callable[[Phrase], Ref | None], ...] = (
-    _the_speaker, _pronoun, _addressed, _named, _slipped, _clipped, _qualified, _ambiguous, _placed, _titled,
-    _put_by, _many, _either, _whereabouts, _another_kind, _ones,
+    _the_speaker, _pronoun, _addressed, _owner, _named, _slipped, _clipped, _qualified, _ambiguous, _placed,
+    _titled, _put_by, _many, _either, _whereabouts, _another_kind, _ones,
 )  # fmt: skip
 
 

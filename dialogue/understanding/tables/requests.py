@@ -49,6 +49,7 @@ class ReferentWords(Table):
 
     relational: WordSet = frozenset()
     accounted: WordSet = frozenset()
+    owner: WordSet = frozenset()
     every: WordSet = frozenset()
     some: WordSet = frozenset()
 

@@ -98,3 +98,12 @@ def test_a_word_heard_wrong_or_said_short_is_the_one_thing_it_fits_a_guess(flat:
     mic = say(flat, "pass me the mic", LEON)
     assert mic.roles == {"object": "mic_1", "recipient": LEON} and mic.guessed
     assert say(flat, "pass me the to", LEON).intent is None  # too short to be said short for anything
+
+
+def test_its_owner_is_whom_the_kb_says_the_thing_belongs_to(flat: KB) -> None:
+    flat.update(["mic_1 belongsTo person_dana"])
+    out = say(flat, "grab the microphone and give it to its owner")
+    assert [(o.intent, o.roles) for o in out.steps()][-1] == (
+        I.BRING_OBJECT, {"object": "mic_1", "recipient": "person_dana"})
+    out = say(flat, "bring the guitar picks to their owner")  # the KB says of no owner: no guess
+    assert out.intent is None and out.more == ()
