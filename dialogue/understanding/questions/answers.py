@@ -69,6 +69,8 @@ def who_is_in(lexicon: Lexicon, words: Sequence[str], speaker: str) -> tuple[str
     found = resolve(lexicon, words, frozenset({"zone", "thing"}))
     if found.ambiguous:
         return clarifying_question(lang, snapshot, found.matches), True
+    if found.one is None and set(words) & lang.words.determiners:  # "who's in the kitchen", none here
+        return say(lang, "sorry.no_place", phrase=" ".join(content_words(lang, words))), False
     if found.one is None:  # "who's in today": no place, who is there
         return who_do_you_see(lang, snapshot, speaker), False
     place = found.one

@@ -131,3 +131,25 @@ def test_who_is_there_is_answered_with_names() -> None:
     kb.close()
     who = question(expanded("who is Carol"))  # a name, not a place
     assert who is not None and who.question == "what_is"
+
+
+@pytest.mark.parametrize(
+    ("text", "kind"),
+    [
+        ("who do you see", "who_see"),
+        ("who else is here", "who_see"),
+        ("who can you see right now", "who_see"),
+        # a word the who-seen question has no place for: some other question, not answered as it
+        ("who else lives here", "other"),
+        ("who works here", "other"),
+    ],
+)
+def test_a_who_question_is_who_is_seen_only_with_every_word_accounted(text: str, kind: str) -> None:
+    asked = question(text.split())
+    assert asked is not None and asked.question == kind
+
+
+def test_who_is_in_a_place_not_here_says_so(office: KB) -> None:
+    out = say(office, "who is in the kitchen?")
+    assert out.reply == "Sorry, I don't know where the kitchen is."
+    assert say(office, "who's in today?").reply == "I see you and Carol."  # no place: who is there
