@@ -374,6 +374,8 @@ class Interpreter:
         one (a person's phrase keeps its possessive: "my son" is no son of the KB's)."""
         if not words or words[0] not in self.lang.words.possessives:  # "platform 4 my train's late": no one's
             return words, None
+        if words[1:2] and words[1] in self.lang.modifier_start:  # "her in the bedroom": she, not hers
+            return words, None
         bare, owner = self.refs.possessive(words, {})
         if owner is None or resolve(self.lexicon, bare, kinds, owner=owner).one is None:
             return words, None

@@ -134,6 +134,27 @@ def _the_speaker(p: Phrase) -> Ref | None:
     return None
 
 
+def _someone_there(p: Phrase) -> Ref | None:
+    """ "bring it to her in the bedroom", "to the bakehouse for Tomás": a recipient said with where
+    they are is the person, not the place the phrase would otherwise name."""
+    refs, words = p.refs, p.words
+    if p.role != "recipient" or "person" not in p.kinds or len(words) < 3:
+        return None
+    for i in range(1, len(words) - 1):
+        if words[i] in refs.said.support:  # "her in the bedroom"
+            who, where = words[:i], words[i + 1 :]
+        elif words[i] in refs.said.beneficiary:  # "the bakehouse for Tomás"
+            where, who = words[:i], words[i + 1 :]
+        else:
+            continue
+        if resolve(refs.lexicon, where, frozenset({"zone"})).one is None:
+            continue
+        ref = ground(refs, who, PERSON, p.role, p.owner, p.said)
+        if ref.speaker or (ref.entity is not None and ref.entity.kind == "person"):
+            return ref
+    return None
+
+
 def _pronoun(p: Phrase) -> Ref | None:
     """ "it", "him", "there": the one the request or the conversation names, else which is meant."""
     refs = p.refs
@@ -303,8 +324,8 @@ def _ones(p: Phrase) -> Ref | None:
 
 #: The steps of grounding, in the order they are tried.
 STEPS: tuple[Callable[[Phrase], Ref | None], ...] = (
-    _the_speaker, _pronoun, _addressed, _owner, _named, _slipped, _clipped, _qualified, _ambiguous, _placed,
-    _titled, _put_by, _many, _either, _whereabouts, _another_kind, _ones,
+    _the_speaker, _someone_there, _pronoun, _addressed, _owner, _named, _slipped, _clipped, _qualified,
+    _ambiguous, _placed, _titled, _put_by, _many, _either, _whereabouts, _another_kind, _ones,
 )  # fmt: skip
 
 

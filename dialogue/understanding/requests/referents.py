@@ -43,6 +43,7 @@ class _Words:
         self.address = frozenset(w for p in lang.speech.tags for w in p) - closed.possessives
         self.every = said.every
         self.owner = said.owner
+        self.beneficiary = said.beneficiary
         #: Words that say how much of a thing, not which ("get me some", "bring me a couple").
         self.some = said.some
         self.determiners = closed.determiners

@@ -50,6 +50,7 @@ class ReferentWords(Table):
     relational: WordSet = frozenset()
     accounted: WordSet = frozenset()
     owner: WordSet = frozenset()
+    beneficiary: WordSet = frozenset()
     every: WordSet = frozenset()
     some: WordSet = frozenset()
 

@@ -107,3 +107,18 @@ def test_its_owner_is_whom_the_kb_says_the_thing_belongs_to(flat: KB) -> None:
         I.BRING_OBJECT, {"object": "mic_1", "recipient": "person_dana"})
     out = say(flat, "bring the guitar picks to their owner")  # the KB says of no owner: no guess
     assert out.intent is None and out.more == ()
+
+
+@pytest.mark.parametrize(
+    "text",
+    ["bring the microphone to the lounge for Dana", "bring the microphone to Dana in the lounge",
+     "take the microphone over to the lounge for Dana"],
+)  # fmt: skip
+def test_a_recipient_said_with_where_they_are_is_the_person(flat: KB, text: str) -> None:
+    out = say(flat, text)
+    assert (out.intent, out.roles) == (I.BRING_OBJECT, {"object": "mic_1", "recipient": "person_dana"})
+
+
+def test_a_place_said_alone_is_still_where_to_bring(flat: KB) -> None:
+    out = say(flat, "bring the microphone to the bathroom")
+    assert (out.intent, out.roles) == (I.BRING_OBJECT, {"object": "mic_1", "recipient": "bathroom"})
