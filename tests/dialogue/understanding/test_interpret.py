@@ -729,3 +729,18 @@ def test_her_before_a_preposition_is_the_person_not_whose_the_place_is() -> None
     out = say(kb, "pick up Alice's cookbook and bring it to her in the living room", speaker="person_ines")
     assert [(o.intent, o.roles) for o in out.steps()][-1] == (
         I.BRING_OBJECT, {"object": "book_1", "recipient": "person_alice"})
+
+
+@pytest.mark.parametrize(
+    "text",
+    ["Carol has just phoned: when she arrives, take her to the desk.",
+     "Carol rang. After her meeting, bring her the pear."],
+)  # fmt: skip
+def test_a_condition_said_after_a_remark_still_holds_the_request(office: KB, text: str) -> None:
+    out = say(office, text)
+    assert out.intent is None and out.more == () and "when it happens" in out.reply
+
+
+def test_a_moment_of_the_robots_own_doing_is_no_condition(office: KB) -> None:
+    out = say(office, "go to the desk. once there, pick up the pear")
+    assert [o.intent for o in out.steps()] == [I.MOVE_TO, I.GRAB_OBJECT]

@@ -412,7 +412,7 @@ def test_a_request_for_when_something_yet_to_happen_has_happened_is_no_request_n
     ["when you get a chance, bring me the menu", "bring me the menu when you can", "hand Femi a magazine while he waits",
      "put the milk back before it goes off", "when is lunch", "when did you last clean the kitchen",
      "once more, bring me the menu", "when you've got a minute can you start tidying the shelves",
-     "once you're free, bring me the menu"],
+     "once you're free, bring me the menu", "after that, bring me the menu", "once there, pick up the menu"],
 )  # fmt: skip
 def test_a_clause_of_time_that_says_no_later_moment_is_no_condition(text: str) -> None:
     assert parse(text).act != "conditional"
