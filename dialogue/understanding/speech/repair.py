@@ -20,6 +20,7 @@ from dialogue.understanding.speech.plain import (
     starts,
     strip_politeness,
     unrepeated,
+    without_fillers,
 )
 
 
@@ -93,7 +94,7 @@ def cleaned(lang: Language, text: Text) -> Cleaned:
 
 def _cleaned(u: Said) -> Cleaned:
     lang = u.lang
-    words = [w for w in expanded(lang, u) if w not in lang.speech.fillers]
+    words = without_fillers(lang, expanded(lang, u))
     before, fixed = repair(lang, unrepeated(my_for_me(lang, words)))
     if fixed == words:
         return Cleaned(u.text)

@@ -43,6 +43,7 @@ class SpeechWords(Table):
 
     fillers: WordSet = frozenset()
     filler_pairs: PhraseSet = frozenset()
+    searching: Phrases = ()
     asking: WordSet = frozenset()
     lead_fillers: WordSet = frozenset()
     repairs: Phrases = ()
