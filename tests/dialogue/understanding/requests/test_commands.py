@@ -450,7 +450,8 @@ def test_a_person_to_be_taken_to_is_where_they_are(office: KB) -> None:
     "text",
     ["chat to Carol", "have a chat with Carol", "go and have a little chat with Carol", "keep Carol company",
      "keep Carol company for ten minutes, would you?", "go n have a natter with carol",
-     "could you go and sit with Carol for a minute"],
+     "could you go and sit with Carol for a minute", "start a conversation with Carol",
+     "strike up a conversation with Carol", "start talking to Carol"],
 )  # fmt: skip
 def test_engaging_said_as_company_or_a_chat(office: KB, text: str) -> None:
     out = say(office, text)
