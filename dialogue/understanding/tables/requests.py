@@ -87,6 +87,7 @@ class RequestWords(Table):
     everyone: PhraseSet = frozenset()
     stop_filler: WordSet = frozenset()
     activity_filler: WordSet = frozenset()
+    activity_anaphora: WordSet = frozenset()
     results: WordSet = frozenset()
     no_intent_verbs: WordSet = frozenset()
     abilities: Phrases = ()
