@@ -139,6 +139,8 @@ def test_who_is_there_is_answered_with_names() -> None:
         ("who do you see", "who_see"),
         ("who else is here", "who_see"),
         ("who can you see right now", "who_see"),
+        ("who else is waiting", "who_see"),
+        ("who is here today", "who_see"),
         # a word the who-seen question has no place for: some other question, not answered as it
         ("who else lives here", "other"),
         ("who works here", "other"),
