@@ -135,8 +135,7 @@ def repair(lang: Language, words: list[str]) -> tuple[list[str], list[str]]:
 
 def _rephrased(said: _Repairs, before: list[str], phrase: list[str]) -> list[str] | None:
     """The request said before a repair with its last noun phrase said again (its head for "one"),
-    or its last place ("put it on the shelf no wait on the desk"); nothing to act on when it could
-    replace several."""
+    or its last place ("put it on the shelf no wait on the desk")."""
     if phrase[0] in said.place_words:
         at = max((j for j in range(1, len(before)) if before[j] in said.place_words), default=None)
         return None if at is None else [*before[:at], *phrase]
@@ -150,8 +149,6 @@ def _rephrased(said: _Repairs, before: list[str], phrase: list[str]) -> list[str
         end = next((j for j in range(at + 1, len(before)) if before[j] in said.place_words), len(before))
         if _head(said, before[at:end]) == phrase[-1] and phrase[-1] not in {"one", "ones"}:
             return [*before[:at], *phrase, *before[end:]]
-    if len(starts) > 1:
-        return []  # "put the sponge on the shelf... I mean the wire": which it replaces would be a guess
     head = _head(said, before[starts[-1] :])
     if head is None or head in np_start:
         return None
