@@ -105,7 +105,9 @@ def question(lang: Language, words: list[str]) -> Parse | None:  # noqa: C901
         at = _who_at(q, w[1:])  # "who's at the box office", "who is waiting at reception"
         if at:
             return _q("who_in", w, place=at)
-        return _q("who_see", w) if set(w[1:]) <= q.who_sees else _q("other", w)
+        # ("who else is down the allotment today": words besides the seeing question's, for the KB to know)
+        rest = tuple(x for x in w[1:] if x not in q.who_sees)
+        return _q("who_see", w, rest=rest) if rest else _q("who_see", w)
     if head == ("where",):
         return _where(q, w)
     if starts(w, ("how", "many")):
