@@ -106,10 +106,11 @@ class Interpreter:
         addressed = self._to_someone_else(heard)
         if addressed is not None:  # "lily put your book on the shelf": Lily is asked, not the robot
             return Outcome(say(self.lang, "request.for_someone_else", name=addressed))
-        if self._conditioned(heard):  # the condition covers every part ("if Ana comes, ...")
-            whole = parse(self.lang, heard, self.robot_name)
-            if whole.act == "conditional":
-                return self.act(whole)
+        for rest in self._from_each_clause(heard):  # the condition covers every part after it
+            if self._conditioned(rest):  # ("if Ana comes, ...", "Ana phoned: when she comes, ...")
+                whole = parse(self.lang, rest, self.robot_name)
+                if whole.act == "conditional":
+                    return self.act(whole)
         said_terse = self._terse(heard)
         if said_terse is not None:
             return said_terse
@@ -119,6 +120,15 @@ class Interpreter:
             if combined is not None:
                 return combined
         return self._single(heard, terse_read=False)  # (tried above, before the parts)
+
+    def _from_each_clause(self, heard: Said) -> list[Said]:
+        """The words from the start of each clause to the end: the whole first."""
+        text, out, at = heard.text, [heard], 0
+        for i, clause in enumerate(clauses(self.lang, heard)):
+            at = text.find(clause, at)
+            if i > 0 and at > 0:
+                out.append(heard.of(text[at:]))
+        return out
 
     def _conditioned(self, heard: Said) -> bool:
         """Whether the words start with a condition ("if Ana comes", "when the bell goes")."""
@@ -373,6 +383,8 @@ class Interpreter:
         """ "go to my desk", "put it on Ana's shelf": a place said with whose it is, when that names
         one (a person's phrase keeps its possessive: "my son" is no son of the KB's)."""
         if not words or words[0] not in self.lang.words.possessives:  # "platform 4 my train's late": no one's
+            return words, None
+        if words[1:2] and words[1] in self.lang.modifier_start:  # "her in the bedroom": she, not hers
             return words, None
         bare, owner = self.refs.possessive(words, {})
         if owner is None or resolve(self.lexicon, bare, kinds, owner=owner).one is None:

@@ -69,6 +69,8 @@ def who_is_in(lexicon: Lexicon, words: Sequence[str], speaker: str) -> tuple[str
     found = resolve(lexicon, words, frozenset({"zone", "thing"}))
     if found.ambiguous:
         return clarifying_question(lang, snapshot, found.matches), True
+    if found.one is None and set(words) & lang.words.determiners:  # "who's in the kitchen", none here
+        return say(lang, "sorry.no_place", phrase=" ".join(content_words(lang, words))), False
     if found.one is None:  # "who's in today": no place, who is there
         return who_do_you_see(lang, snapshot, speaker), False
     place = found.one
@@ -90,7 +92,8 @@ def where_is(lexicon: Lexicon, words: Sequence[str], speaker: str, owner: str | 
         if where:
             return say(lang, "answers.you_are" if me else "answers.i_am", where=where)
         return say(lang, "answers.where_you_unknown" if me else "answers.where_i_unknown")
-    found = resolve(lexicon, words, ALL_KINDS, owner=owner)
+    # ("where's the mug": of two, the one in sight is not the one meant more than the other: both)
+    found = resolve(lexicon, words, ALL_KINDS, owner=owner, sight=False)
     phrase = " ".join(content_words(lang, words)) or say(lang, "answers.that")
     if not found.matches:
         return say(lang, "answers.where_unknown", phrase=phrase)

@@ -28,6 +28,7 @@ class _Words:
         self.where_leads = said.where_leads
         self.on_glue = said.on_glue
         self.who_not_a_name = said.who_not_a_name
+        self.who_sees = said.who_sees | said.who_not_a_name | said.else_
         self.see_words = said.see_words
         self.colour_words = said.colour_words
         self.locatives = tuple(" ".join(p) for p in prepositions.having("asked-on"))
@@ -102,7 +103,11 @@ def question(lang: Language, words: list[str]) -> Parse | None:  # noqa: C901
         if w[1:2] == ("is",) and w[2:] and w[2] not in q.who_not_a_name and not _who_at(q, w[1:]):
             return _q("what_is", w, thing=w[2:])
         at = _who_at(q, w[1:])  # "who's at the box office", "who is waiting at reception"
-        return _q("who_in", w, place=at) if at else _q("who_see", w)
+        if at:
+            return _q("who_in", w, place=at)
+        # ("who else is down the allotment today": words besides the seeing question's, for the KB to know)
+        rest = tuple(x for x in w[1:] if x not in q.who_sees)
+        return _q("who_see", w, rest=rest) if rest else _q("who_see", w)
     if head == ("where",):
         return _where(q, w)
     if starts(w, ("how", "many")):

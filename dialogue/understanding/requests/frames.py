@@ -43,7 +43,10 @@ def _activity(lang: Language, verb: str, rest: Words) -> str | None:
     """ "play a game with me" -> "play_game"; "start (to) vacuum" -> "vacuum"."""
     words = rest[1:] if rest[:1] == ("to",) else rest
     words = words[: words.index("for")] if "for" in words[1:] else words  # ("story time for the little ones")
-    return "_".join(w for w in words if w not in lang.requests.activity_filler) or None
+    said = [w for w in words if w not in lang.requests.activity_filler]
+    if said[:1] and said[0] in lang.requests.activity_anaphora:  # "do the same with the blue one"
+        return None
+    return "_".join(said) or None
 
 
 def _doing(lang: Language, verb: str, rest: Words) -> str | None:

@@ -20,6 +20,7 @@ from dialogue.reference.lexicon import singular
 from dialogue.reference.resolution import (
     ANYWHERE,
     PERSON,
+    THING,
     Resolution,
     antecedent,
     content_words,
@@ -133,6 +134,27 @@ def _the_speaker(p: Phrase) -> Ref | None:
     return None
 
 
+def _someone_there(p: Phrase) -> Ref | None:
+    """ "bring it to her in the bedroom", "to the bakehouse for Tomás": a recipient said with where
+    they are is the person, not the place the phrase would otherwise name."""
+    refs, words = p.refs, p.words
+    if p.role != "recipient" or "person" not in p.kinds or len(words) < 3:
+        return None
+    for i in range(1, len(words) - 1):
+        if words[i] in refs.said.support:  # "her in the bedroom"
+            who, where = words[:i], words[i + 1 :]
+        elif words[i] in refs.said.beneficiary:  # "the bakehouse for Tomás"
+            where, who = words[:i], words[i + 1 :]
+        else:
+            continue
+        if resolve(refs.lexicon, where, frozenset({"zone"})).one is None:
+            continue
+        ref = ground(refs, who, PERSON, p.role, p.owner, p.said)
+        if ref.speaker or (ref.entity is not None and ref.entity.kind == "person"):
+            return ref
+    return None
+
+
 def _pronoun(p: Phrase) -> Ref | None:
     """ "it", "him", "there": the one the request or the conversation names, else which is meant."""
     refs = p.refs
@@ -159,6 +181,23 @@ def _addressed(p: Phrase) -> Ref | None:
     """ "take my calculator to sir": someone the KB knows by name, which one a model may know."""
     addressed = "person" in p.kinds and p.content and set(p.content) <= p.refs.said.address
     return p.not_understood() if addressed and not p.refs.named_person(p.words) else None
+
+
+def _owner(p: Phrase) -> Ref | None:
+    """ "give it to its owner": whom the KB says the one thing of the request belongs to."""
+    refs = p.refs
+    if "person" not in p.kinds or not p.content or not set(p.content) <= refs.said.owner:
+        return None
+    things = {ref.entity.id: ref.entity for words in p.said
+              if (ref := ground(refs, words, THING, "object")).entity is not None}  # fmt: skip
+    if len(things) != 1:
+        return p.not_understood()
+    thing = next(iter(things.values()))
+    owner = refs.snapshot.get(thing.owner) if thing.owner else None
+    if owner is None:
+        name = the(refs.lang, refs.snapshot, thing)
+        return Ref(problem=Outcome(say(refs.lang, "answers.owner_unknown", name=name)))
+    return Ref(entity=owner)
 
 
 def _named(p: Phrase) -> Ref | None:
@@ -285,8 +324,8 @@ def _ones(p: Phrase) -> Ref | None:
 
 #: The steps of grounding, in the order they are tried.
 STEPS: tuple[Callable[[Phrase], Ref | None], ...] = (
-    _the_speaker, _pronoun, _addressed, _named, _slipped, _clipped, _qualified, _ambiguous, _placed, _titled,
-    _put_by, _many, _either, _whereabouts, _another_kind, _ones,
+    _the_speaker, _someone_there, _pronoun, _addressed, _owner, _named, _slipped, _clipped, _qualified,
+    _ambiguous, _placed, _titled, _put_by, _many, _either, _whereabouts, _another_kind, _ones,
 )  # fmt: skip
 
 

@@ -42,6 +42,8 @@ class _Words:
         #: otherwise.
         self.address = frozenset(w for p in lang.speech.tags for w in p) - closed.possessives
         self.every = said.every
+        self.owner = said.owner
+        self.beneficiary = said.beneficiary
         #: Words that say how much of a thing, not which ("get me some", "bring me a couple").
         self.some = said.some
         self.determiners = closed.determiners
@@ -80,6 +82,13 @@ class Referents:
             said = said or (set(head) <= self.said.personal and tail[0] in self.said.determiners)
             if people and (named or said):
                 return {"object": tail, "recipient": head}
+        # "give daddy my drawing": words before the thing's phrase are whom, even when no one here is
+        # called so; never the speaker by default
+        at = next((i for i in range(1, len(rest)) if rest[i] in self.said.np_start), 0)
+        head = rest[:at]
+        plain = not any(self._whose(w) or w in self.said.modifier_start for w in head)  # not "Omar's hat off"
+        if head and plain and rest[0] not in self.said.np_start and content_words(self.lang, head):
+            return {"object": rest[len(head) :], "recipient": head}
         return {"object": rest, "recipient": ("me",)}
 
     def _whose(self, word: str) -> bool:

@@ -32,6 +32,7 @@ class _Speech:
         self.np_start = closed.np_start
         self.fillers = speech.fillers
         self.filler_pairs = speech.filler_pairs
+        self.searching = speech.searching
         self.asking = speech.asking
         self.wh_or_asking = closed.wh | speech.asking
         self.numbering = speech.numbering
@@ -121,10 +122,13 @@ def _plain(u: Said) -> Words:
 
 def without_fillers(lang: Language, words: list[str]) -> list[str]:
     """ "put the uh candle", "pick up the uh you know the cup": fillers wherever they are, "you know"
-    mid-sentence but not in "do you know where..."."""
+    mid-sentence but not in "do you know where...", a word searched for after the first word."""
     said = lang.derived(_Speech)
     words = [w for w in words if w not in said.fillers]
     drop: set[int] = set()
+    for i in range(1, len(words)):  # "pick up the... what's it called... the tongs"
+        found = next((s for s in said.searching if tuple(words[i : i + len(s)]) == s), None)
+        drop.update(range(i, i + len(found)) if found else ())
     for i in range(1, len(words) - 1):
         nxt = words[i + 2] if i + 2 < len(words) else ""
         pair = tuple(words[i : i + 2]) in said.filler_pairs

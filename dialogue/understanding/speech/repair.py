@@ -20,6 +20,7 @@ from dialogue.understanding.speech.plain import (
     starts,
     strip_politeness,
     unrepeated,
+    without_fillers,
 )
 
 
@@ -31,6 +32,7 @@ class _Repairs:
         speech = lang.speech
         self.repairs = speech.repairs
         self.markers = frozenset(speech.repairs)
+        self.cancels = speech.cancels
         self.marker_starts = frozenset(m[0] for m in speech.repairs)
         #: Prepositions that start a place said again ("...on the trolley no on the desk").
         self.place_words = frozenset(w for p in lang.prepositions.having("place") for w in p[:1])
@@ -92,7 +94,7 @@ def cleaned(lang: Language, text: Text) -> Cleaned:
 
 def _cleaned(u: Said) -> Cleaned:
     lang = u.lang
-    words = [w for w in expanded(lang, u) if w not in lang.speech.fillers]
+    words = without_fillers(lang, expanded(lang, u))
     before, fixed = repair(lang, unrepeated(my_for_me(lang, words)))
     if fixed == words:
         return Cleaned(u.text)
@@ -118,6 +120,9 @@ def repair(lang: Language, words: list[str]) -> tuple[list[str], list[str]]:
             start = next((i - k for k in (2, 1) if tuple(words[i - k : i + len(marker)]) in said.markers), i)
             if after[:1] and after[0] in said.marker_starts:
                 continue  # "no wait ...": the longer marker, read at its own place
+            cancel = next((c for c in said.cancels if tuple(after[-len(c) :]) == c), None)
+            if cancel is not None:  # "...no wait, it isn't yet. Never mind": nothing is asked any more
+                return words[:start], list(cancel)
             request = strip_politeness(lang, after)
             if request and asked_verb(lang, request[0]) in verbs(lang):
                 return words[:start], after
@@ -138,12 +143,22 @@ def _rephrased(said: _Repairs, before: list[str], phrase: list[str]) -> list[str
     starts = [j for j in range(1, len(before)) if before[j] in np_start and before[j - 1] not in np_start]
     if not starts:
         return None
-    replaced = before[starts[-1] :]
-    head = next((w for w, nxt in zip(replaced, [*replaced[1:], ""], strict=True)
-                 if nxt in said.modifier_start or not nxt), None)  # fmt: skip
+    # The phrase said again is the one of the same head ("put the grey suitcase on the rack... I mean
+    # the blue suitcase": the suitcase, not the rack), else the last.
+    for at in reversed(starts):
+        end = next((j for j in range(at + 1, len(before)) if before[j] in said.place_words), len(before))
+        if _head(said, before[at:end]) == phrase[-1] and phrase[-1] not in {"one", "ones"}:
+            return [*before[:at], *phrase, *before[end:]]
+    head = _head(said, before[starts[-1] :])
     if head is None or head in np_start:
         return None
     return [*before[: starts[-1]], *(head if w in {"one", "ones"} else w for w in phrase)]
+
+
+def _head(said: _Repairs, phrase: list[str]) -> str | None:
+    """A noun phrase's head: its word before a modifier or at its end."""
+    return next((w for w, nxt in zip(phrase, [*phrase[1:], ""], strict=True)
+                 if nxt in said.modifier_start or not nxt), None)  # fmt: skip
 
 
 def strip_vocative(lang: Language, words: list[str], robot_name: str = "") -> list[str]:

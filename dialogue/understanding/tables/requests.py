@@ -49,6 +49,8 @@ class ReferentWords(Table):
 
     relational: WordSet = frozenset()
     accounted: WordSet = frozenset()
+    owner: WordSet = frozenset()
+    beneficiary: WordSet = frozenset()
     every: WordSet = frozenset()
     some: WordSet = frozenset()
 
@@ -85,6 +87,7 @@ class RequestWords(Table):
     everyone: PhraseSet = frozenset()
     stop_filler: WordSet = frozenset()
     activity_filler: WordSet = frozenset()
+    activity_anaphora: WordSet = frozenset()
     results: WordSet = frozenset()
     no_intent_verbs: WordSet = frozenset()
     abilities: Phrases = ()

@@ -43,9 +43,11 @@ class SpeechWords(Table):
 
     fillers: WordSet = frozenset()
     filler_pairs: PhraseSet = frozenset()
+    searching: Phrases = ()
     asking: WordSet = frozenset()
     lead_fillers: WordSet = frozenset()
     repairs: Phrases = ()
+    cancels: Phrases = ()
     polite_prefixes: Phrases = ()
     robot_suffixes: Phrases = ()
     polite_suffixes: Phrases = ()

@@ -7,7 +7,7 @@ from dialogue.history import ASSISTANT_USER_ID, Utterance
 from dialogue.understanding.interpret import Interpreter
 from dialogue.understanding.outcome import Outcome
 from kb import KB
-from tests.dialogue.conftest import lexicon_of, scene_kb
+from tests.dialogue.conftest import HOME, lexicon_of, scene_kb
 
 BOB = "person_bob"
 
@@ -722,3 +722,25 @@ def test_a_request_said_to_someone_present_about_their_things_is_theirs(office: 
     assert say(office, "carol put the green mug on the desk").roles == {"object": "mug_green", "recipient": "desk_1"}
     # the speaker's own name is no one else's
     assert "I think that was for" not in say(office, "bob put your mug on the desk").reply
+
+
+def test_her_before_a_preposition_is_the_person_not_whose_the_place_is() -> None:
+    kb = scene_kb(None, *HOME)
+    out = say(kb, "pick up Alice's cookbook and bring it to her in the living room", speaker="person_ines")
+    assert [(o.intent, o.roles) for o in out.steps()][-1] == (
+        I.BRING_OBJECT, {"object": "book_1", "recipient": "person_alice"})
+
+
+@pytest.mark.parametrize(
+    "text",
+    ["Carol has just phoned: when she arrives, take her to the desk.",
+     "Carol rang. After her meeting, bring her the pear."],
+)  # fmt: skip
+def test_a_condition_said_after_a_remark_still_holds_the_request(office: KB, text: str) -> None:
+    out = say(office, text)
+    assert out.intent is None and out.more == () and "when it happens" in out.reply
+
+
+def test_a_moment_of_the_robots_own_doing_is_no_condition(office: KB) -> None:
+    out = say(office, "go to the desk. once there, pick up the pear")
+    assert [o.intent for o in out.steps()] == [I.MOVE_TO, I.GRAB_OBJECT]

@@ -131,3 +131,33 @@ def test_who_is_there_is_answered_with_names() -> None:
     kb.close()
     who = question(expanded("who is Carol"))  # a name, not a place
     assert who is not None and who.question == "what_is"
+
+
+@pytest.mark.parametrize(
+    ("text", "answered"),
+    [
+        ("who do you see", True),
+        ("who else is here", True),
+        ("who can you see right now", True),
+        ("who else is waiting", True),
+        ("who is here today", True),
+        ("who else is down the office today", True),
+        # a verb the seeing question has no place for: some other question, not answered as it
+        ("who else lives here", False),
+        ("who works here", False),
+        ("who am i", False),
+    ],
+)
+def test_a_who_question_is_who_is_seen_only_with_every_word_accounted(
+    office: KB, text: str, answered: bool
+) -> None:
+    asked = question(text.split())
+    assert asked is not None and asked.question == "who_see"
+    out = say(office, text)
+    assert out.understood is answered and (out.reply == "I see you and Carol.") is answered
+
+
+def test_who_is_in_a_place_not_here_says_so(office: KB) -> None:
+    out = say(office, "who is in the kitchen?")
+    assert out.reply == "Sorry, I don't know where the kitchen is."
+    assert say(office, "who's in today?").reply == "I see you and Carol."  # no place: who is there

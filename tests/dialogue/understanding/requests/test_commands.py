@@ -412,7 +412,7 @@ def test_a_request_for_when_something_yet_to_happen_has_happened_is_no_request_n
     ["when you get a chance, bring me the menu", "bring me the menu when you can", "hand Femi a magazine while he waits",
      "put the milk back before it goes off", "when is lunch", "when did you last clean the kitchen",
      "once more, bring me the menu", "when you've got a minute can you start tidying the shelves",
-     "once you're free, bring me the menu"],
+     "once you're free, bring me the menu", "after that, bring me the menu", "once there, pick up the menu"],
 )  # fmt: skip
 def test_a_clause_of_time_that_says_no_later_moment_is_no_condition(text: str) -> None:
     assert parse(text).act != "conditional"
@@ -450,7 +450,8 @@ def test_a_person_to_be_taken_to_is_where_they_are(office: KB) -> None:
     "text",
     ["chat to Carol", "have a chat with Carol", "go and have a little chat with Carol", "keep Carol company",
      "keep Carol company for ten minutes, would you?", "go n have a natter with carol",
-     "could you go and sit with Carol for a minute"],
+     "could you go and sit with Carol for a minute", "start a conversation with Carol",
+     "strike up a conversation with Carol", "start talking to Carol"],
 )  # fmt: skip
 def test_engaging_said_as_company_or_a_chat(office: KB, text: str) -> None:
     out = say(office, text)

@@ -42,6 +42,8 @@ def conjuncts(text: str) -> list[Part]:
         # a noun after "and" does not ("plate" is a verb too, but nothing follows it)
         ("bring me the fork and plate", []),
         ("put the mug and saucer on the tray", []),
+        # a phrase that says the order opens the later part, which is a request of its own
+        ("take the pear, and after that go to the desk", ["take the pear", "after that go to the desk"]),
     ],
 )
 def test_parts(text: str, parts: list[str]) -> None:
@@ -55,6 +57,14 @@ def test_every_intent_in_order_with_pronouns_across_parts(office: KB) -> None:
         (I.PLACE_OBJECT, {"object": "stapler_1", "recipient": "shelf_9"}),
     ]
     assert "stapler" in out.reply and out.reply.count("OK") == 1
+
+
+def test_a_part_opened_by_after_that_is_done_not_dropped(office: KB) -> None:
+    out = say(office, "take Carol to the bathroom, and once that is done bring me the pear")
+    assert [(o.intent, o.roles) for o in out.steps()] == [
+        (I.GUIDE, {"recipient": "person_carol", "goal": "bathroom"}),
+        (I.BRING_OBJECT, {"object": "pear_1", "recipient": "person_bob"}),
+    ]
 
 
 def test_three_parts_without_conjunctions(office: KB) -> None:

@@ -314,3 +314,9 @@ def test_what_the_waiting_is_for_is_an_adjunct() -> None:
 def test_an_activity_is_kicked_off_and_whom_it_is_for_is_not_its_name() -> None:
     p = parse("kick off story time for the little ones")
     assert (p.intent, p.text) == (I.START_ACTIVITY, "story_time")
+
+
+@pytest.mark.parametrize("text", ["now do the same with the blue one", "do that again", "start it"])
+def test_an_activity_said_only_by_what_was_done_before_is_none(office: KB, text: str) -> None:
+    out = say(office, text)
+    assert out.intent is None and out.more == ()

@@ -98,3 +98,27 @@ def test_a_word_heard_wrong_or_said_short_is_the_one_thing_it_fits_a_guess(flat:
     mic = say(flat, "pass me the mic", LEON)
     assert mic.roles == {"object": "mic_1", "recipient": LEON} and mic.guessed
     assert say(flat, "pass me the to", LEON).intent is None  # too short to be said short for anything
+
+
+def test_its_owner_is_whom_the_kb_says_the_thing_belongs_to(flat: KB) -> None:
+    flat.update(["mic_1 belongsTo person_dana"])
+    out = say(flat, "grab the microphone and give it to its owner")
+    assert [(o.intent, o.roles) for o in out.steps()][-1] == (
+        I.BRING_OBJECT, {"object": "mic_1", "recipient": "person_dana"})
+    out = say(flat, "bring the guitar picks to their owner")  # the KB says of no owner: no guess
+    assert out.intent is None and out.more == ()
+
+
+@pytest.mark.parametrize(
+    "text",
+    ["bring the microphone to the lounge for Dana", "bring the microphone to Dana in the lounge",
+     "take the microphone over to the lounge for Dana"],
+)  # fmt: skip
+def test_a_recipient_said_with_where_they_are_is_the_person(flat: KB, text: str) -> None:
+    out = say(flat, text)
+    assert (out.intent, out.roles) == (I.BRING_OBJECT, {"object": "mic_1", "recipient": "person_dana"})
+
+
+def test_a_place_said_alone_is_still_where_to_bring(flat: KB) -> None:
+    out = say(flat, "bring the microphone to the bathroom")
+    assert (out.intent, out.roles) == (I.BRING_OBJECT, {"object": "mic_1", "recipient": "bathroom"})

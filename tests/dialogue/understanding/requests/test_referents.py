@@ -103,3 +103,16 @@ def test_a_title_with_a_preposition_names_its_thing_whatever_is_said_around_it()
     # a title inside a modifier says where, not what
     assert said.interpret("get me the red box next to murder on the orient express").intent is None
     kb.close()
+
+
+@pytest.mark.parametrize("text", ["give daddy my pear", "bring granny the pear"])
+def test_whom_a_thing_is_given_to_is_never_the_speaker_by_default(text: str) -> None:
+    kb = scene_kb("office")
+    out = Interpreter(lexicon_of(kb), "person_bob", ()).interpret(text)
+    assert out.intent is None and text.split()[1].title() in out.reply
+
+
+def test_a_thing_given_with_no_one_said_is_for_the_speaker() -> None:
+    kb = scene_kb("office")
+    out = Interpreter(lexicon_of(kb), "person_bob", ()).interpret("pass the pear")
+    assert out.roles == {"object": "pear_1", "recipient": "person_bob"}

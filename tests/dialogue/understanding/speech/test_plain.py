@@ -7,7 +7,9 @@ from dialogue.understanding.parsed import Parse
 from dialogue.understanding.requests import commands
 from dialogue.understanding.speech import plain, repair
 from dialogue.understanding.speech.repair import Cleaned
+from kb import KB
 from tests.dialogue.conftest import english
+from tests.dialogue.understanding.test_interpret import say
 
 
 def parse(text: str, robot_name: str = "") -> Parse:
@@ -214,3 +216,20 @@ def test_more_chat_words(text: str, words: str) -> None:
 )
 def test_me_said_for_my_before_a_noun(text: str, meant: str) -> None:
     assert cleaned(text).text == meant
+
+
+@pytest.mark.parametrize(
+    ("text", "words"),
+    [
+        ("pick up the what's it called the tongs", "pick up the tongs"),
+        ("bring me the what do you call it the thingy the stapler", "bring me the stapler"),
+        ("what is it called", "what is it called"),  # said first: a question
+    ],
+)
+def test_a_word_searched_for_mid_request_is_dropped(text: str, words: str) -> None:
+    assert " ".join(normalise(text)) == words
+
+
+def test_a_word_searched_for_is_no_question_about_a_name(office: KB) -> None:
+    out = say(office, "pick up the... what's it called... the thingy, the pear")
+    assert (out.intent, out.roles) == (I.GRAB_OBJECT, {"object": "pear_1"})
