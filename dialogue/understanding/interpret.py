@@ -246,7 +246,7 @@ class Interpreter:
         return Outcome(say(self.lang, "social.welcome"))
 
     def _farewell(self, p: Parse, overrides: dict[str, Words]) -> Outcome:
-        return Outcome(goodbye(self.lang, self.snapshot, self.speaker))
+        return Outcome(goodbye(self.lang, self.snapshot, self.speaker), farewell=True)
 
     def _abilities(self, p: Parse, overrides: dict[str, Words]) -> Outcome:
         return Outcome(abilities(self.lang))
