@@ -103,7 +103,7 @@ def _where(lexicon: Lexicon, e: Entity, speaker: str) -> str:
     name = the(lang, snapshot, e, speaker, apart=lexicon.shares_name(e))
     where = location(lang, snapshot, e)
     # "the keys are", "Ines is"; a person is "them" when not seen (the KB says no one's gender)
-    plural = is_plural(e)
+    plural = is_plural(e, lang)
     them = plural or e.kind == "person"
     if e.id == speaker:
         return say(lang, "answers.right_here")
@@ -162,7 +162,7 @@ def what_is_near(lexicon: Lexicon, words: Sequence[str], relation: Sequence[str]
 
 def _there(lang: Language, things: Sequence[Entity]) -> str:
     """ "there is" one thing, "there are" several or one that is many ("the keys")."""
-    several = len(things) > 1 or (len(things) == 1 and is_plural(things[0]))
+    several = len(things) > 1 or (len(things) == 1 and is_plural(things[0], lang))
     return say(lang, "answers.there_are" if several else "answers.there_is")
 
 
@@ -294,7 +294,7 @@ def whose(lexicon: Lexicon, words: Sequence[str], speaker: str, owner: str | Non
         if several and e.colour and e.colour not in name and name.startswith(the_):
             # "which suitcase is mine": the red one
             name = say(lang, "naming.the_coloured", colour=e.colour, name=name[len(the_) :])
-        plural = is_plural(e)
+        plural = is_plural(e, lang)
         held = snapshot.get(e.owner) if e.owner else None
         where = location(lang, snapshot, e) if several else ""
         named = f"{name}{' ' + where if where else ''}"
