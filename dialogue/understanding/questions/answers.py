@@ -189,7 +189,9 @@ def _on(lang: Language, snapshot: Snapshot, place: Entity, asked: str = "") -> s
 
 def is_there(lexicon: Lexicon, words: Sequence[str], speaker: str, locatives: Sequence[str]) -> str | None:
     """ "Is Marcus in the kitchen?": where the KB puts a person, said first ("No, as far as I know
-    Marcus is in the study."); None when the words are not one person and one place."""
+    Marcus is in the study."), or that the robot sees them but knows no place ("I can see Bo, but I
+    don't know whether they are in the kitchen."); None when the words are not one person and one
+    place."""
     snapshot, lang = lexicon.snapshot, lexicon.lang
     cut = split_at(words, locatives)
     if cut is None:
@@ -199,8 +201,11 @@ def is_there(lexicon: Lexicon, words: Sequence[str], speaker: str, locatives: Se
     if who is None or place is None or who.id == speaker:
         return None
     name, where = the(lang, snapshot, who, speaker), location(lang, snapshot, who)
-    if not where:  # seen, nowhere in particular: what is seen answers
-        return None if who.seen else say(lang, "answers.unknown_where_is", name=name)
+    if not where and who.seen:  # seen, nowhere the KB says: that, and that the place is not known
+        asked = f"{cut[1]} {the(lang, snapshot, place, speaker)}"
+        return say(lang, "answers.seen_unplaced", name=name, where=asked)
+    if not where:
+        return say(lang, "answers.unknown_where_is", name=name)
     there = place.id in (who.zone, who.support) or ("in", place.id) in who.relations
     reply = say(lang, "answers.known_there" if there else "answers.known_elsewhere", name=name, where=where)
     return reply if who.seen else reply + say(lang, "answers.unseen_them")

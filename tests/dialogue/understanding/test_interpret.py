@@ -723,3 +723,13 @@ def test_a_request_said_to_someone_present_about_their_things_is_theirs(office: 
     assert say(office, "carol put the green mug on the desk").roles == {"object": "mug_green", "recipient": "desk_1"}
     # the speaker's own name is no one else's
     assert "I think that was for" not in say(office, "bob put your mug on the desk").reply
+
+
+def test_my_x_when_none_of_several_is_mine_says_so_before_asking_which() -> None:
+    kb = scene_kb(None, "myself rdf:type Robot", f"{BOB} rdf:type Human", f'{BOB} rdfs:label "Bob"',
+                  *(s for n in ("1", "2", "3") for s in (f"jar_{n} rdf:type Artifact", f'jar_{n} rdfs:label "jar"',
+                                                         f"myself sees jar_{n}")))  # fmt: skip
+    out = say(kb, "bring me my jar")
+    assert out.clarify and out.reply.startswith("As far as I know, none of the jars is yours. Which jar")
+    kb.update([f"jar_2 belongsTo {BOB}"])
+    assert say(kb, "bring me my jar").roles == {"object": "jar_2", "recipient": BOB}
