@@ -26,7 +26,7 @@ from dialogue.understanding.followups.accepting import accepts
 from dialogue.understanding.language import Language
 from dialogue.understanding.outcome import Outcome
 from dialogue.understanding.parsed import Parse
-from dialogue.understanding.replies import then
+from dialogue.understanding.replies import say, then
 from dialogue.understanding.requests.commands import parse
 from dialogue.understanding.requests.constructions import where_it_goes
 from dialogue.understanding.said import Said
@@ -51,13 +51,11 @@ def follow_up(reader: Reader, p: Parse, heard: Said) -> Outcome | None:
     accepted = offer(reader, question, said)
     if accepted is not None:
         return accepted
-    if len(spoken) < 2 or reader.history[spoken[-2]].role != "user":
+    found = _pending(reader, spoken, heard)
+    if found is None:
         return None
-    before = spoken[-2]
+    before, pending = found
     earlier = reader.within(reader.history[:before])
-    pending = parse(lang, heard.of(reader.history[before].text), reader.robot_name)
-    if pending.act != "command":
-        return None
     first = earlier.act(pending)
     if first.open_role is None:
         return None
@@ -78,6 +76,10 @@ def follow_up(reader: Reader, p: Parse, heard: Said) -> Outcome | None:
     outcome = earlier.act(pending, {role: merged})
     if outcome.intent is None and not outcome.clarify:
         return None
+    unknown = [w for w in content_words(lang, fragment) if w in lang.words.positions]
+    if outcome.clarify and unknown:  # "the left one": the KB says nothing of left and right
+        note = say(lang, "request.position_unknown", position=unknown[0])
+        return replace(_sure(outcome), reply=f"{note} {outcome.reply}")
     return _sure(outcome)
 
 
@@ -94,6 +96,25 @@ def _every(earlier: Reader, pending: Parse, first: Outcome) -> Outcome | None:
         return None
     said = then(earlier.lexicon.lang, [o.reply for o in each])
     return replace(_sure(each[0]), reply=said, more=tuple(_sure(o) for o in each[1:]))
+
+
+#: How many answers the same question may have had before this one ("the left one", asked again).
+_ASKED_AGAIN = 2
+
+
+def _pending(reader: Reader, spoken: list[int], heard: Said) -> tuple[int, Parse] | None:
+    """The request the robot's question is about, and where it was said: the person's words before
+    the question, or before answers that left the question asked again ("the left one")."""
+    lang, history = reader.lexicon.lang, reader.history
+    question = history[spoken[-1]].text
+    for at in range(len(spoken) - 2, max(-1, len(spoken) - 3 - 2 * _ASKED_AGAIN), -2):
+        said = history[spoken[at]]
+        if said.role != "user" or not question.endswith(history[spoken[at + 1]].text):
+            return None  # the question was not asked again: an older request is no longer pending
+        pending = parse(lang, heard.of(said.text), reader.robot_name)
+        if pending.act == "command":
+            return spoken[at], pending
+    return None
 
 
 def _sure(outcome: Outcome) -> Outcome:

@@ -83,3 +83,10 @@ def test_both_answers_which_one_with_each_of_them(talk: Talk) -> None:
     assert said.intents == ((I.BRING_OBJECT, {"object": "torch_b", "recipient": "person_nia"}),
                             (I.BRING_OBJECT, {"object": "torch_y", "recipient": "person_nia"}))
     assert talk("both").intents[0][0] == I.RAW_USER_INPUT  # nothing asked about any more
+
+
+def test_the_left_one_is_said_to_be_unknown_and_the_question_still_answered(talk: Talk) -> None:
+    asked = talk("pass me the torch").reply
+    said = talk("the left one")
+    assert said.intents == () and said.reply == f"Sorry, I can't tell which one is the left one. {asked}"
+    assert talk("the yellow one").intents == ((I.BRING_OBJECT, {"object": "torch_y", "recipient": "person_nia"}),)

@@ -182,3 +182,13 @@ def test_both_is_the_request_for_each_thing_asked_about(workshop: KB) -> None:
     assert [(o.intent, o.roles) for o in out.steps()] == [(I.GRAB_OBJECT, {"object": "cap_1"}),
                                                           (I.GRAB_OBJECT, {"object": "cap_2"})]
     assert out.reply == "OK, I will pick up the red cap. Then I will pick up the grey cap."
+
+
+def test_an_answer_after_the_question_was_asked_again_completes_the_request(workshop: KB) -> None:
+    question = "Which cap do you mean: the grey one or the red one?"
+    history = [("user", "pick up the cap"), ("robot", question), ("user", "the left one"),
+               ("robot", f"Sorry, I can't tell which one is the left one. {question}")]
+    assert say(workshop, "the red one", speaker=ANA, history=history).roles == {"object": "cap_1"}
+    # another question in between: the old request is no longer pending
+    history[3] = ("robot", "Where should I put it?")
+    assert say(workshop, "the red one", speaker=ANA, history=history).intent is None
