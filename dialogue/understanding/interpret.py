@@ -348,7 +348,7 @@ class Interpreter:
             refs[role] = ref
             roles[role] = self.speaker if ref.speaker else (ref.entity.id if ref.entity else "")
             # "my stapler" (not "the folder on my desk": whose the desk is)
-            said_mine = slots.get(role, ())[:1] == (self.lang.words.owners["mine"],)
+            said_mine = slots.get(role, ())[:1] == (self.lang.words.owners.get("mine"),)
             if said_mine and owner == self.speaker and ref.entity is not None and ref.entity.kind == "thing":
                 mine.append(ref.entity)
         if p.text is not None:
