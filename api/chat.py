@@ -31,8 +31,8 @@ Interact = Callable[[str, str], Awaitable[dict[str, Any]]]
 
 def show(reply: dict[str, Any]) -> None:
     print(f"robot: {reply['response']}")
-    if reply.get("dialogue_terminal"):
-        print(f"  results: {reply.get('results', '{}')}")
+    if reply.get("dialogue_terminal") and reply.get("results") is not None:  # a leave-taking has none
+        print(f"  results: {reply['results']}")
     for intent in reply["intents"]:
         print(f"  intent {intent['intent']} {json.dumps(intent['data'], ensure_ascii=False)} "
               f"(confidence {intent['confidence']})")

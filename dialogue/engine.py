@@ -84,7 +84,8 @@ class TurnResult:
     understood: bool = True
     #: The reply proposes a reading and asks whether to act on it ("Shall I...?"), acting on none.
     confirm: bool = False
-    #: A role's dialogue is over (the ask role: every field obtained, or the person cancelled).
+    #: A role's dialogue is over (the ask role: every field obtained, or the person cancelled; the
+    #: default role: the person took leave).
     dialogue_terminal: bool | None = None
     #: The role's results, a JSON object string (the ask role: the fields obtained).
     results: str | None = None
@@ -309,7 +310,7 @@ class DialogueEngine:
             return None
         clarify = grounded.clarify or early.clarify
         return TurnResult(grounded.reply, grounded.intents, backend=early.backend, clarify=clarify,
-                          claims=grounded.claims, confirm=early.confirm)
+                          claims=grounded.claims, confirm=early.confirm, dialogue_terminal=early.ends or None)
 
     def schema_for(
         self, snapshot: Snapshot, speaker: str, focus: Sequence[Entity] | None = None

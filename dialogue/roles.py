@@ -9,6 +9,10 @@ A role's configuration is chatbot_msgs' opaque JSON: the default role reads no k
 must be a JSON object (or nothing), as the contract says, so that a caller's mistake is refused.
 A system update (`__system__`) and the robot's own words (`__assistant__`) are no person's words:
 the default role has nothing to answer them (they are context for the next turns).
+
+A default dialogue is open until someone ends it or the person takes leave ("bye", "see you later"):
+that turn's result is `dialogue_terminal` and the dialogue is over (`done`, as a ROS Dialogue goal
+then succeeds); whoever speaks in it next opens it again, as people start talking again.
 """
 
 from __future__ import annotations
@@ -75,8 +79,13 @@ class Role(Protocol):
         ...
 
 
+#: The default role's state once the person took leave ("bye"); a later turn opens it again.
+TOOK_LEAVE = "took leave"
+
+
 class DefaultRole:
-    """The engine's own turn; the role keeps nothing."""
+    """The engine's own turn; the role keeps only whether the person took leave ("bye"): the
+    dialogue is then over (done, no results) until someone speaks in it again."""
 
     def __init__(self, engine: DialogueEngine) -> None:
         self.engine = engine
@@ -86,7 +95,7 @@ class DefaultRole:
         return "", ""
 
     def progress(self, role_state: str) -> Progress:
-        return Progress()  # a default dialogue is open until it is ended
+        return Progress("done") if role_state == TOOK_LEAVE else Progress()
 
     async def turn(
         self,
@@ -106,7 +115,7 @@ class DefaultRole:
         result = await self.engine.turn(
             text, speaker=speaker, history=history, locale=locale, deadline=deadline, trace=trace
         )
-        return result, role_state
+        return result, TOOK_LEAVE if result.dialogue_terminal else ""
 
 
 class Roles:

@@ -97,6 +97,8 @@ class EarlyAnswer:
     #: The answer proposes a reading and asks whether to act on it ("Shall I...?"): no claim of
     #: understanding, its intents held until the speaker says yes.
     confirm: bool = False
+    #: The person took leave ("bye"): the answer ends the conversation (the turn's `dialogue_terminal`).
+    ends: bool = False
 
 
 @dataclass(frozen=True)

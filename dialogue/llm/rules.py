@@ -44,7 +44,8 @@ class RulesModel(ChatModel):
         heard = read(self._turn(context))
         if not self._claims(heard):
             return None
-        return EarlyAnswer(heard.answer, RULES, clarify=heard.clarify, confirm=heard.proposes)
+        return EarlyAnswer(heard.answer, RULES, clarify=heard.clarify, confirm=heard.proposes,
+                           ends=heard.ends)
 
     def _turn(self, context: TurnContext) -> Turn:
         lexicon = self._lexicon(context)

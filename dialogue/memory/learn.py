@@ -285,6 +285,18 @@ class Memory:
 
     # -- questions --------------------------------------------------------------------------------
     def _answer(self, claim: Claim, names: dict[str, str]) -> Outcome:
+        """The question's answer; a property whose value replaces the one asked about answers it too
+        (one place: where a thing is, asked as isIn, found as isOn, "Ana told me the diary is on the
+        shelf"; not an opposite, per object: "what does Ana like?" is not answered by her dislikes)."""
+        outcome = self._answer_one(claim, names)
+        others = () if claim.spec.per_object else claim.spec.replaces
+        for prop in (p for p in others if p != claim.predicate):
+            if outcome.held or outcome.hearsay:
+                break
+            outcome = self._answer_one(replace(claim, predicate=prop), names)
+        return outcome
+
+    def _answer_one(self, claim: Claim, names: dict[str, str]) -> Outcome:
         prop = claim.spec.property
         pattern = f"{format_term(parse_name(claim.subject, 'subject'))} {prop} ?v"
         held = tuple(sorted({(prop, str(r["v"])) for r in self.kb.find([pattern])}))

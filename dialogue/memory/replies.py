@@ -67,7 +67,7 @@ class _Namer:
 
     def be(self, name: str) -> str:
         # (number by the head noun's English, not its spelling: "Ines is", "the keys are")
-        return self.say("learnt.are" if name == self.you or plural_name(name) else "learnt.is")
+        return self.say("learnt.are" if name == self.you or plural_name(name, self.lang) else "learnt.is")
 
     def at(self, prop: str) -> str:
         return self.prepositions.get(prop) or self.say("learnt.at")

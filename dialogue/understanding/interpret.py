@@ -31,6 +31,7 @@ from dialogue.reference.resolution import (
 from dialogue.understanding.followups.accepting import accepts
 from dialogue.understanding.followups.proposal import proposed
 from dialogue.understanding.followups.request import follow_up, followed_up
+from dialogue.understanding.inflection import plural_of
 from dialogue.understanding.outcome import Outcome, Ref
 from dialogue.understanding.parsed import Parse
 from dialogue.understanding.questions import situation
@@ -256,7 +257,7 @@ class Interpreter:
         return Outcome(say(self.lang, "social.welcome"))
 
     def _farewell(self, p: Parse, overrides: dict[str, Words]) -> Outcome:
-        return Outcome(goodbye(self.lang, self.snapshot, self.speaker))
+        return Outcome(goodbye(self.lang, self.snapshot, self.speaker), farewell=True)
 
     def _abilities(self, p: Parse, overrides: dict[str, Words]) -> Outcome:
         return Outcome(abilities(self.lang))
@@ -353,7 +354,7 @@ class Interpreter:
             others = [w for r, w in slots.items() if r != role]
             ref = ground(self.refs, words, kinds, role, owner, others)
             if ref.problem is not None:
-                return ref.problem
+                return self._none_yours(ref.problem, words, kinds) if owner == self.speaker else ref.problem
             refs[role] = ref
             roles[role] = self.speaker if ref.speaker else (ref.entity.id if ref.entity else "")
             # "my stapler" (not "the folder on my desk": whose the desk is)
@@ -378,6 +379,19 @@ class Interpreter:
         if any(ref.guessed for ref in refs.values()):  # "go to bay mine": a guess, less sure
             return Outcome(reply, intent, roles, SPELT_CONFIDENCE, guessed=True)
         return replace(self._intent(intent, roles, reply), unsure=self._unaccounted(intent, slots))
+
+    def _none_yours(self, problem: Outcome, words: Words, kinds: frozenset[Kind]) -> Outcome:
+        """ "give me my mug" when none of the mugs asked about is the speaker's: said so before
+        asking which ("Neither mug is yours. Which mug do you mean...?")."""
+        if not problem.clarify:
+            return problem
+        found = resolve(self.lexicon, words, kinds, sight=False).matches
+        if len(found) < 2 or any(e.owner == self.speaker for e in found):
+            return problem
+        noun = content_words(self.lang, words)[-1]
+        note = (say(self.lang, "naming.neither_yours", noun=noun) if len(found) == 2
+                else say(self.lang, "naming.none_yours", nouns=plural_of(noun)))
+        return replace(problem, reply=f"{note} {problem.reply}")
 
     def _whose(self, words: Words, kinds: frozenset[Kind]) -> tuple[Words, str | None]:
         """ "go to my desk", "put it on Ana's shelf": a place said with whose it is, when that names

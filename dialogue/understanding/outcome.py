@@ -30,6 +30,8 @@ class Outcome:
     #: A confirmation question ("Shall I bring Jordan the soap?"): the reading it proposes, acted on
     #: when the speaker says yes (dialogue.understanding.followups.proposal).
     proposal: Outcome | None = None
+    #: The person took leave ("bye"): the conversation ends with this reply.
+    farewell: bool = False
 
     def steps(self) -> tuple[Outcome, ...]:
         """This outcome and the ones that follow it."""

@@ -68,6 +68,8 @@ class Heard:
     outcome: Outcome | None = None
     #: The answer proposes a reading the rules lack evidence for ("Shall I...?"), acting on none.
     proposes: bool = False
+    #: The person took leave: the conversation ends with this answer.
+    ends: bool = False
 
 
 @dataclass(frozen=True)
@@ -128,7 +130,8 @@ def interpreted(turn: Turn) -> Outcome:
 def _requests(turn: Turn) -> Heard:
     outcome = interpreted(turn)
     return Heard(answer_of(outcome), clarify=outcome.clarify, understood=outcome.understood,
-                 guessed=outcome.guesses, outcome=outcome, proposes=outcome.proposal is not None)  # fmt: skip
+                 guessed=outcome.guesses, outcome=outcome, proposes=outcome.proposal is not None,
+                 ends=outcome.farewell)  # fmt: skip
 
 
 #: The readers of the default role, in the order they are tried: the first that hears the turn

@@ -229,6 +229,12 @@ class _Taken:
         return self.say("naming.you")
 
 
+def _start(t: _Taken) -> str:
+    """An activity of the language's own words ("OK, I will follow you."), else by its name."""
+    own = template(t.lang, "request.activities").get(t.text)
+    return str(own) if own is not None else t.say("request.start", activity=t.text)
+
+
 def _place(t: _Taken) -> str:
     obj = t.obj if "object" in t.refs else t.say("naming.it")
     return t.say("request.place", object=obj, preposition=_put(t.lang, t.refs.get("recipient"), t.said),
@@ -255,7 +261,7 @@ _SAID_BACK: dict[str, Callable[[_Taken], str]] = {
                       else t.say("request.say", text=t.text)),
     I.ENGAGE_WITH: lambda t: t.say("request.engage", recipient=t.rec),
     I.PERFORM_MOTION: _motion,
-    I.START_ACTIVITY: lambda t: t.say("request.start", activity=t.text),
+    I.START_ACTIVITY: lambda t: _start(t),
     I.STOP_ACTIVITY: lambda t: t.say("request.stop_it", activity=t.text) if t.text else t.say("request.stop"),
     I.WAKEUP: lambda t: t.say("request.wake"),
     I.SUSPEND: lambda t: t.say("request.sleep"),

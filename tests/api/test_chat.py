@@ -93,3 +93,11 @@ def test_one_ctrl_c_ends_it_in_a_terminal() -> None:
             os.kill(pid, signal.SIGKILL)
             os.waitpid(pid, 0)
         os.close(terminal)
+
+
+def test_a_farewell_ends_the_chat_politely(monkeypatch: pytest.MonkeyPatch,
+                                           capsys: pytest.CaptureFixture[str]) -> None:
+    out = chat(monkeypatch, capsys, "hello\nsee you later\npick up the cup\n", "--scene", str(SCENE),
+               "--user", "person_tom")
+    assert out[-1] == "robot: Goodbye Tom, it was nice talking to you!"  # nothing after it is answered
+    assert not any("results" in line or "grab" in line for line in out)

@@ -100,6 +100,22 @@ def test_where_a_dialogue_is_and_how_it_ended_are_read_over_rest(live: Live) -> 
                                                        "status": "open", "results": "{}", "error_msg": ""}
 
 
+def test_a_default_dialogue_is_done_when_the_person_takes_leave(live: Live) -> None:
+    client = live.client
+    dialogue_id = client.post("/dialogues", json={}).json()["dialogue_id"]
+
+    def turn(text: str) -> dict[str, object]:
+        answer: dict[str, object] = client.post(f"/dialogues/{dialogue_id}/interactions",
+                                                json={"user_id": "person_alice", "input": text}).json()
+        return answer
+
+    bye = turn("goodbye robot")
+    assert bye["dialogue_terminal"] is True and bye["intents"] == []
+    assert client.get(f"/dialogues/{dialogue_id}").json()["status"] == "done"
+    assert "dialogue_terminal" not in turn("hello again")  # talking again opens it
+    assert client.get(f"/dialogues/{dialogue_id}").json()["status"] == "open"
+
+
 def test_default_dialogue_always_exists_and_records_without_reply(live: Live) -> None:
     client = live.client
     recorded = client.post("/dialogues/default/interactions",

@@ -7,7 +7,8 @@ import asyncio
 import pytest
 
 from dialogue.engine import DialogueEngine
-from dialogue.roles import BadConfiguration, DefaultRole, Roles, UnknownRole
+from dialogue.roles import TOOK_LEAVE, BadConfiguration, DefaultRole, Roles, UnknownRole
+from dialogue.sessions.rolestate import Progress
 from dialogue.trace.record import TraceRecorder
 from kb import KB
 
@@ -51,3 +52,18 @@ def test_the_default_role_has_no_answer_to_a_system_update(kitchen: KB) -> None:
     result = asyncio.run(run())
     assert (result.response, result.intents, result.error_msg) == ("", (), "")  # type: ignore[attr-defined]
     assert result.trace.answered_by == "recorded"  # type: ignore[attr-defined]
+
+
+def test_a_default_dialogue_is_over_once_the_person_took_leave(kitchen: KB) -> None:
+    role = Roles(DialogueEngine(kitchen)).get("__default__")
+
+    async def run(text: str) -> tuple[object, str]:
+        deadline = asyncio.get_running_loop().time() + 5
+        return await role.turn("{}", "", text, speaker="person_alice", history=(), locale=None,
+                               deadline=deadline, trace=TraceRecorder(dialogue_id="d"))
+
+    result, state = asyncio.run(run("goodbye"))
+    assert result.dialogue_terminal is True  # type: ignore[attr-defined]
+    assert state == TOOK_LEAVE and role.progress(state) == Progress("done")
+    result, state = asyncio.run(run("pick up the cup"))  # speaking again opens it
+    assert result.dialogue_terminal is None and role.progress(state) == Progress()  # type: ignore[attr-defined]

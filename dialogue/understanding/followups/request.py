@@ -1,7 +1,8 @@
 """Answers to the robot's last question: a fragment that completes the pending request ("the red
 one", "mine, obviously", "the pink one, it's Carla's"), a yes or a no to "Do you mean the flat
-brush?", and a yes to an offer ("Would you like me to bring you a basket?" "yes please"); a
-correction of the request just made ("sorry, I meant screen two"); and the same request for another
+brush?", a yes to an offer ("Would you like me to bring you a basket?" "yes please") and "both" to
+"Which mug do you mean...?"; a correction of the request just made ("sorry, I meant screen two", "no,
+the blue one"); and the same request for another
 thing ("and the soup goes to table two" after "take the steak to table four").
 
 The robot's question must be the latest utterance (system notes aside); a fragment or a confirmation
@@ -25,6 +26,7 @@ from dialogue.understanding.followups.accepting import accepts
 from dialogue.understanding.language import Language
 from dialogue.understanding.outcome import Outcome
 from dialogue.understanding.parsed import Parse
+from dialogue.understanding.replies import say, then
 from dialogue.understanding.requests.commands import parse
 from dialogue.understanding.requests.constructions import where_it_goes
 from dialogue.understanding.said import Said
@@ -49,19 +51,19 @@ def follow_up(reader: Reader, p: Parse, heard: Said) -> Outcome | None:
     accepted = offer(reader, question, said)
     if accepted is not None:
         return accepted
-    if len(spoken) < 2 or reader.history[spoken[-2]].role != "user":
+    found = _pending(reader, spoken, heard)
+    if found is None:
         return None
-    before = spoken[-2]
+    before, pending = found
     earlier = reader.within(reader.history[:before])
-    pending = parse(lang, heard.of(reader.history[before].text), reader.robot_name)
-    if pending.act != "command":
-        return None
     first = earlier.act(pending)
     if first.open_role is None:
         return None
     confirmed = confirmation(earlier, pending, first, question, answer)
     if confirmed is not None:
         return _sure(confirmed)
+    if tuple(said) in lang.followups.both:
+        return _every(earlier, pending, first)
     fragment, more = _fragment(lang, p, heard)
     if not fragment:
         return None
@@ -74,7 +76,45 @@ def follow_up(reader: Reader, p: Parse, heard: Said) -> Outcome | None:
     outcome = earlier.act(pending, {role: merged})
     if outcome.intent is None and not outcome.clarify:
         return None
+    unknown = [w for w in content_words(lang, fragment) if w in lang.words.positions]
+    if outcome.clarify and unknown:  # "the left one": the KB says nothing of left and right
+        note = say(lang, "request.position_unknown", position=unknown[0])
+        return replace(_sure(outcome), reply=f"{note} {outcome.reply}")
     return _sure(outcome)
+
+
+def _every(earlier: Reader, pending: Parse, first: Outcome) -> Outcome | None:
+    """ "both" to "Which mug do you mean: the blue one or the red one?": the request for each thing
+    the question told apart, in turn (None: it asked about no such things)."""
+    role = first.open_role
+    kinds = ROLE_KINDS.get(pending.intent or "", {}).get(role or "")
+    if role is None or kinds is None or not first.open_phrase:
+        return None
+    each = [earlier.act(pending, {role: tuple(tokens(e.id))})
+            for e in resolve(earlier.lexicon, first.open_phrase, kinds).matches]
+    if len(each) < 2 or any(o.intent is None for o in each):
+        return None
+    said = then(earlier.lexicon.lang, [o.reply for o in each])
+    return replace(_sure(each[0]), reply=said, more=tuple(_sure(o) for o in each[1:]))
+
+
+#: How many answers the same question may have had before this one ("the left one", asked again).
+_ASKED_AGAIN = 2
+
+
+def _pending(reader: Reader, spoken: list[int], heard: Said) -> tuple[int, Parse] | None:
+    """The request the robot's question is about, and where it was said: the person's words before
+    the question, or before answers that left the question asked again ("the left one")."""
+    lang, history = reader.lexicon.lang, reader.history
+    question = history[spoken[-1]].text
+    for at in range(len(spoken) - 2, max(-1, len(spoken) - 3 - 2 * _ASKED_AGAIN), -2):
+        said = history[spoken[at]]
+        if said.role != "user" or not question.endswith(history[spoken[at + 1]].text):
+            return None  # the question was not asked again: an older request is no longer pending
+        pending = parse(lang, heard.of(said.text), reader.robot_name)
+        if pending.act == "command":
+            return spoken[at], pending
+    return None
 
 
 def _sure(outcome: Outcome) -> Outcome:
@@ -179,21 +219,7 @@ def correction(reader: Reader, p: Parse, heard: Said) -> Outcome | None:
     with the phrase of the role that names the same kind of thing (a place for a place, a thing for
     a thing) replaced."""
     lang = reader.lexicon.lang
-    softening = lang.followups.softening
-    parts = [strip_politeness(lang, [w for w in plain(lang, heard.of(part)) if w not in softening])
-             for part in heard.text.split(",")]  # fmt: skip
-    words = [w for part in parts for w in part]
-    lead = next((c for c in lang.followups.correcting if tuple(words[: len(c)]) == c), None)
-    fragment = tuple(words[len(lead) :]) if lead is not None else _not_that(lang, tuple(words))
-    other, one = lang.followups.other, lang.followups.one
-    if lead is None and set(words) & other and set(content_words(lang, words)) <= other | one:
-        fragment = tuple(words)  # "no, the other one"
-    if len(parts) == 2 and parts[0][:1] == ["not"] and parts[1]:  # "not the shed, the porch"
-        fragment = tuple(parts[1])
-    for loc in lang.prepositions.longest_first("place"):  # "I meant on the shelf"
-        if fragment[: len(loc)] == loc and fragment[len(loc) :]:
-            fragment = fragment[len(loc) :]
-            break
+    fragment = _meant(lang, heard)
     if not content_words(lang, fragment):
         return None
     asked = [i for i, u in enumerate(reader.history) if u.role == "user"]
@@ -218,6 +244,8 @@ def correction(reader: Reader, p: Parse, heard: Said) -> Outcome | None:
         now = outcome.roles.get(role)
         if outcome.intent is None or now is None or now == was:
             continue
+        if any(v == now for r, v in outcome.roles.items() if r != role):
+            continue  # the red mug put on the red mug: the other role was meant
         old, new = earlier.snapshot.get(was), earlier.snapshot.get(now)
         if old is None or new is None or old.kind != new.kind:
             continue  # "I meant screen two" corrects a place, never the thing carried there
@@ -239,6 +267,35 @@ def _the_other(earlier: Reader, fragment: Words, said: Words, was: str,
     named = resolve(earlier.lexicon, _instead(lang, ("the", "one"), said), kinds).matches
     others = [e for e in named if e.id != was]
     return tuple(tokens(others[0].id)) if len(others) == 1 and len(named) == 2 else None
+
+
+def _meant(lang: Language, heard: Said) -> Words:
+    """What a correction says was meant ("I meant screen two", "not the shed, the porch", "no, the
+    other one", "no, the blue one"), without the preposition of a place; () when it says none."""
+    softening = lang.followups.softening
+    parts = [strip_politeness(lang, [w for w in plain(lang, heard.of(part)) if w not in softening])
+             for part in heard.text.split(",")]  # fmt: skip
+    words = [w for part in parts for w in part]
+    lead = next((c for c in lang.followups.correcting if tuple(words[: len(c)]) == c), None)
+    fragment = tuple(words[len(lead) :]) if lead is not None else _not_that(lang, tuple(words))
+    other, one = lang.followups.other, lang.followups.one
+    if lead is None and set(words) & other and set(content_words(lang, words)) <= other | one:
+        fragment = tuple(words)  # "no, the other one"
+    elif lead is None and not fragment and _said_no(lang, heard) and set(words) & one:
+        # "no, the blue one", "nope, the red one": the one meant, told apart by what it is
+        fragment = tuple(w for w in words if lang.followups.no.get(w, w) != "no")
+    if len(parts) == 2 and parts[0][:1] == ["not"] and parts[1]:  # "not the shed, the porch"
+        fragment = tuple(parts[1])
+    for loc in lang.prepositions.longest_first("place"):  # "I meant on the shelf"
+        if fragment[: len(loc)] == loc and fragment[len(loc) :]:
+            return fragment[len(loc) :]
+    return fragment
+
+
+def _said_no(lang: Language, heard: Said) -> bool:
+    """Whether the words start with a no ("no, the blue one", "nope, the big one")."""
+    first = plain(lang, heard)[:1]
+    return bool(first) and lang.followups.no.get(first[0], first[0]) == "no"
 
 
 def _not_that(lang: Language, words: Words) -> Words:

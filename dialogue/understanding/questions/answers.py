@@ -106,7 +106,7 @@ def _where(lexicon: Lexicon, e: Entity, speaker: str) -> str:
     name = the(lang, snapshot, e, speaker, apart=lexicon.shares_name(e))
     where = location(lang, snapshot, e)
     # "the keys are", "Ines is"; a person is "them" when not seen (the KB says no one's gender)
-    plural = is_plural(e)
+    plural = is_plural(e, lang)
     them = plural or e.kind == "person"
     if e.id == speaker:
         return say(lang, "answers.right_here")
@@ -165,7 +165,7 @@ def what_is_near(lexicon: Lexicon, words: Sequence[str], relation: Sequence[str]
 
 def _there(lang: Language, things: Sequence[Entity]) -> str:
     """ "there is" one thing, "there are" several or one that is many ("the keys")."""
-    several = len(things) > 1 or (len(things) == 1 and is_plural(things[0]))
+    several = len(things) > 1 or (len(things) == 1 and is_plural(things[0], lang))
     return say(lang, "answers.there_are" if several else "answers.there_is")
 
 
@@ -192,7 +192,9 @@ def _on(lang: Language, snapshot: Snapshot, place: Entity, asked: str = "") -> s
 
 def is_there(lexicon: Lexicon, words: Sequence[str], speaker: str, locatives: Sequence[str]) -> str | None:
     """ "Is Marcus in the kitchen?": where the KB puts a person, said first ("No, as far as I know
-    Marcus is in the study."); None when the words are not one person and one place."""
+    Marcus is in the study."), or that the robot sees them but knows no place ("I can see Bo, but I
+    don't know whether they are in the kitchen."); None when the words are not one person and one
+    place."""
     snapshot, lang = lexicon.snapshot, lexicon.lang
     cut = split_at(words, locatives)
     if cut is None:
@@ -202,8 +204,11 @@ def is_there(lexicon: Lexicon, words: Sequence[str], speaker: str, locatives: Se
     if who is None or place is None or who.id == speaker:
         return None
     name, where = the(lang, snapshot, who, speaker), location(lang, snapshot, who)
-    if not where:  # seen, nowhere in particular: what is seen answers
-        return None if who.seen else say(lang, "answers.unknown_where_is", name=name)
+    if not where and who.seen:  # seen, nowhere the KB says: that, and that the place is not known
+        asked = f"{cut[1]} {the(lang, snapshot, place, speaker)}"
+        return say(lang, "answers.seen_unplaced", name=name, where=asked)
+    if not where:
+        return say(lang, "answers.unknown_where_is", name=name)
     there = place.id in (who.zone, who.support) or ("in", place.id) in who.relations
     reply = say(lang, "answers.known_there" if there else "answers.known_elsewhere", name=name, where=where)
     return reply if who.seen else reply + say(lang, "answers.unseen_them")
@@ -297,7 +302,7 @@ def whose(lexicon: Lexicon, words: Sequence[str], speaker: str, owner: str | Non
         if several and e.colour and e.colour not in name and name.startswith(the_):
             # "which suitcase is mine": the red one
             name = say(lang, "naming.the_coloured", colour=e.colour, name=name[len(the_) :])
-        plural = is_plural(e)
+        plural = is_plural(e, lang)
         held = snapshot.get(e.owner) if e.owner else None
         where = location(lang, snapshot, e) if several else ""
         named = f"{name}{' ' + where if where else ''}"

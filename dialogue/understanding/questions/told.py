@@ -4,9 +4,12 @@
     what does Alice hate · what doesn't she like           -> <person> dislikes ?
     what's my name · who am I · do you know my name        -> <speaker> name ?
     what is her name · what is Alice's name                -> <person> name ?
+    where is the diary (no place in the robot's knowledge) -> <thing> isIn ?
 
 The answer comes from the robot's model, and from what others said when it has not adopted it
-(dialogue.memory.learn). "Whose mug is this?" and "where are my keys?" are the situation questions
+(dialogue.memory.learn): "where is the diary?" of a thing the robot has no place for, unseen, is
+answered with what someone told ("Ines told me the diary is in the drawer"), kept as their belief
+under the default trust policy. "Whose mug is this?" and "where are my keys?" are the situation questions
 of the rules (dialogue.understanding.questions.grammar): what was adopted is in the situation like any fact.
 """
 
@@ -16,7 +19,7 @@ from collections.abc import Sequence
 
 from dialogue.history import Utterance
 from dialogue.reference.lexicon import Lexicon
-from dialogue.reference.resolution import PERSON, antecedent, content_words, resolve
+from dialogue.reference.resolution import PERSON, THING, antecedent, content_words, resolve
 from dialogue.schema import FactClaim
 from dialogue.understanding.said import Text
 from dialogue.understanding.speech.repair import normalise
@@ -41,6 +44,9 @@ class Asking:
             w = w[:-1]
         if w in self.said.who_am_i:
             return [FactClaim(subject=self.speaker, predicate="name", object=None)]
+        unplaced = self._unplaced(w)
+        if unplaced is not None:
+            return [FactClaim(subject=unplaced, predicate="isIn", object=None)]
         if w[:5] == ("what", "is", "the", "name", "of") and w[5:]:  # "what is the name of Alice?"
             who = self._person(w[5:])
             return [FactClaim(subject=who, predicate="name", object=None)] if who is not None else None
@@ -62,6 +68,21 @@ class Asking:
             return None
         who = self._person(subject)
         return [FactClaim(subject=who, predicate=predicate, object=None)] if who is not None else None
+
+    def _unplaced(self, w: Words) -> str | None:
+        """The one thing "where is X" asks about when the robot knows no place for it nor sees it."""
+        lead = next((p for p in self.said.where if w[: len(p)] == p), None)
+        if lead is None:
+            return None
+        words = w[len(lead) :]
+        if lead[-1] == "where" and words[-1:] and words[-1] in self.said.where_end:
+            words = words[:-1]  # "do you know where the diary is"
+        if not content_words(self.lang, words):
+            return None
+        found = resolve(self.lexicon, words, THING).one
+        if found is None or found.kind != "thing" or found.seen:
+            return None
+        return None if found.support or found.zone or found.relations else found.id
 
     def _owner(self, words: Words) -> str | None:
         """The person of "Alice's" ("what is Alice's name?")."""

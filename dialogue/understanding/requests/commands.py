@@ -94,12 +94,13 @@ def parse(lang: Language, said: Text, robot_name: str = "") -> Parse:
     if words[0] in {"thanks", "thank"} or words == ["cheers"]:
         # "thanks, now put it on the shelf": the thanks is a preamble to the request
         tail = strip_politeness(lang, words[2:] if words[:2] == ["thank", "you"] else words[1:], robot_name)
-        return _request(lang, heard, tail) or _aside("thanks", words, tail)
+        # "thanks, bye": the leave-taking is what is answered
+        return _talk(g, tail, robot_name) or _request(lang, heard, tail) or _aside("thanks", words, tail)
     if tuple(words) in g.social and words[:1] != ["how"]:
         return Parse("greeting", words=tuple(words))
-    for act, phrases in g.talk:  # "bye", "what can you do?", "tell me a joke"
-        if tuple(words) in phrases:
-            return Parse(act, words=tuple(words))
+    talk = _talk(g, words, robot_name)
+    if talk is not None:
+        return talk
     # "welcome Lucia" asks the robot to greet her; "welcome back" is a greeting.
     welcoming = words[0] == "welcome" and words[1:] and words[1] not in {"back", "home", "to", "everyone"}
     for greeting in () if welcoming else g.greetings:
@@ -115,6 +116,15 @@ def parse(lang: Language, said: Text, robot_name: str = "") -> Parse:
                 return replace(after, greeted=True)
             return after or _aside("greeting", words, rest)
     return _question(lang, words) or command(lang, heard, words)
+
+
+def _talk(g: _Grammar, words: list[str], robot_name: str) -> Parse | None:
+    """ "bye", "what can you do?", "tell me a joke"; "goodbye robot", "bye Robbie": said to the robot."""
+    called = words[:-1] if len(words) > 1 and words[-1] in {"robot", robot_name.lower()} else words
+    for act, phrases in g.talk:
+        if tuple(called) in phrases:
+            return Parse(act, words=tuple(words))
+    return None
 
 
 #: At most this many words after a greeting or thanks are part of it ("good morning Mr Ito").

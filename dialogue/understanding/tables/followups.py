@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from dialogue.understanding.tables.base import (
     Phrases,
+    PhraseSet,
     Table,
     WordSet,
 )
@@ -27,3 +28,4 @@ class FollowupWords(Table):
     correcting: Phrases = ()
     softening: WordSet = frozenset()
     emphasis: WordSet = frozenset()
+    both: PhraseSet = frozenset()

@@ -52,6 +52,8 @@ class ToldQuestionWords(Table):
     who_am_i: PhraseSet = frozenset()
     tail: WordSet = frozenset()
     pronoun_of: dict[str, Phrase] = {}
+    where: Phrases = ()
+    where_end: WordSet = frozenset()
 
 
 class QuestionWords(Table):

@@ -40,6 +40,7 @@ class ClosedWords(Table):
     containers: WordSet = frozenset()
     compound_heads: WordSet = frozenset()
     measures: WordSet = frozenset()
+    plural_only: WordSet = frozenset()
     many: WordSet = frozenset()
     relativisers: WordSet = frozenset()
     np_start: WordSet = frozenset()

@@ -7,6 +7,7 @@ from collections.abc import Iterator
 import pytest
 
 from dialogue.understanding.inflection import plural_name, plural_noun, plural_of
+from tests.dialogue.conftest import english
 from tests.dialogue.conversations.talk import Talk
 
 FLAT = [
@@ -51,5 +52,30 @@ def test_things_are_as_many_as_their_names_say(talk: Talk) -> None:
 def test_number_by_the_english_lexicon() -> None:
     assert plural_noun("keys") and plural_noun("glasses")
     assert not any(plural_noun(w) for w in ("bus", "lens", "ines", "marcus", "mug"))
-    assert plural_name("reading glasses") and not plural_name("toy bus")
+    assert plural_name("reading glasses", english()) and not plural_name("toy bus", english())
     assert (plural_of("mug"), plural_of("box"), plural_of("reading glasses")) == ("mugs", "boxes", "reading glasses")
+
+
+SEWING = [
+    "myself rdf:type Robot",
+    'sewing_room rdf:type ZoneOfInterest', 'sewing_room rdfs:label "sewing room"',
+    'person_ada rdf:type Human', 'person_ada rdfs:label "Ada"', "person_ada isIn sewing_room",
+    "myself sees person_ada",
+    'scissors_1 rdf:type Artifact', 'scissors_1 rdfs:label "scissors"', "scissors_1 isIn sewing_room",
+    "myself sees scissors_1",
+    'trousers_1 rdf:type Artifact', 'trousers_1 rdfs:label "trousers"', "trousers_1 isIn sewing_room",
+    'goggles_1 rdf:type Artifact', 'goggles_1 rdfs:label "pair of goggles"', "goggles_1 isIn sewing_room",
+    "myself sees goggles_1",
+]  # fmt: skip
+
+
+def test_nouns_always_plural_are_and_a_pair_of_them_is() -> None:
+    talk = Talk(SEWING, "person_ada")
+    try:
+        assert talk("where are the scissors?").reply == "The scissors are in the sewing room."
+        assert talk("where are the trousers?").reply.startswith("The trousers are in the sewing room.")
+        assert talk("where is the pair of goggles?").reply == "The pair of goggles is in the sewing room."
+        assert talk("the trousers are mine").reply == "OK, the trousers are yours."
+        assert talk("the pair of goggles is mine").reply == "OK, the pair of goggles is yours."
+    finally:
+        talk.close()

@@ -184,3 +184,12 @@ def test_the_name_of_another_known_person_is_disputed_an_introduction_too(home: 
     assert statuses(settle(home, Claim(BOB, "name", "Alicia", "text"))) == ["adopted"]  # another name
     assert statuses(settle(home, Claim("person_alice", "name", "Alice", "text"), speaker="person_alice")) == [
         "known"]
+
+
+def test_where_a_thing_is_asked_as_in_is_found_on_too(home: KB) -> None:
+    home.update(['diary_1 rdf:type Artifact', 'diary_1 rdfs:label "diary"'])
+    settle(home, Claim("diary_1", "isOn", "drawer_1"), speaker="person_alice", trust=Trust.NONE)
+    where = settle(home, Claim("diary_1", "isIn", None)).outcomes[0]
+    assert (where.claim.predicate, where.held, where.hearsay) == ("isOn", (), (("person_alice", "drawer_1"),))
+    nowhere = settle(home, Claim("keys_1", "isOn", None)).outcomes[0]  # the robot's isIn holds it
+    assert nowhere.held == (("isIn", "kitchen"),)

@@ -163,3 +163,32 @@ def test_the_other_one_after_a_request_is_the_one_other_thing_its_head_names(wor
     # three saws: which other one is not known
     history = [("user", "bring me the hand saw"), ("robot", "OK, I will bring the hand saw to you.")]
     assert say(workshop, answer, speaker=ANA, history=history).intent is None
+
+
+def test_no_and_a_description_corrects_the_thing_just_asked_for(workshop: KB) -> None:
+    history = [("user", "hand me Raf's cap"), ("robot", "OK, I will bring Raf's cap to you.")]
+    for answer in ("no, the grey one", "nope, the grey one!"):
+        out = say(workshop, answer, speaker=ANA, history=history)
+        assert (out.intent, out.roles) == (I.BRING_OBJECT, {"object": "cap_2", "recipient": ANA})
+    assert say(workshop, "the grey one", speaker=ANA, history=history).intent is None  # no "no": no correction
+    # a correction never makes one thing both roles: the red cap put on the red cap
+    history = [("user", "put the grey cap on the rake"), ("robot", "OK, I will put the grey cap on the rake.")]
+    assert say(workshop, "no, the grey one", speaker=ANA, history=history).intent is None
+
+
+def test_both_is_the_request_for_each_thing_asked_about(workshop: KB) -> None:
+    history = [("user", "pick up the cap"), ("robot", "Which cap do you mean: the grey one or the red one?")]
+    out = say(workshop, "both please", speaker=ANA, history=history)
+    assert [(o.intent, o.roles) for o in out.steps()] == [(I.GRAB_OBJECT, {"object": "cap_1"}),
+                                                          (I.GRAB_OBJECT, {"object": "cap_2"})]
+    assert out.reply == "OK, I will pick up the red cap. Then I will pick up the grey cap."
+
+
+def test_an_answer_after_the_question_was_asked_again_completes_the_request(workshop: KB) -> None:
+    question = "Which cap do you mean: the grey one or the red one?"
+    history = [("user", "pick up the cap"), ("robot", question), ("user", "the left one"),
+               ("robot", f"Sorry, I can't tell which one is the left one. {question}")]
+    assert say(workshop, "the red one", speaker=ANA, history=history).roles == {"object": "cap_1"}
+    # another question in between: the old request is no longer pending
+    history[3] = ("robot", "Where should I put it?")
+    assert say(workshop, "the red one", speaker=ANA, history=history).intent is None

@@ -48,3 +48,11 @@ def test_someone_elses_name_is_asked_about_by_their_name_or_a_pronoun(home: KB) 
 @pytest.mark.parametrize("text", ["what do you see", "what does Zoe like", "whose mug is this", "what is it"])
 def test_other_questions_are_not_these(home: KB, text: str) -> None:
     assert asked(home, text) is None
+
+
+def test_where_a_thing_is_that_the_robot_has_no_place_for_asks_what_was_told(home: KB) -> None:
+    home.update(['diary_1 rdf:type Artifact', 'diary_1 rdfs:label "diary"'])
+    for text in ("where is the diary?", "do you know where the diary is", "any idea where the diary is?"):
+        assert asked(home, text) == [("diary_1", "isIn", None)]
+    home.update(["myself sees diary_1"])  # seen: the situation answers it, as it does a placed thing
+    assert asked(home, "where is the diary?") is None

@@ -460,3 +460,12 @@ def test_engaging_said_as_company_or_a_chat(office: KB, text: str) -> None:
 
 def test_keeping_a_thing_is_no_company(office: KB) -> None:
     assert say(office, "keep the pear on the desk").intent is None
+
+
+@pytest.mark.parametrize("text", ["bye", "goodbye robot", "see you later, Robbie", "thanks, bye", "thank you, see you"])
+def test_a_farewell_is_read_said_to_the_robot_or_after_thanks(text: str) -> None:
+    assert parse(text, robot_name="Robbie").act == "farewell"
+
+
+def test_a_name_after_a_farewell_that_is_not_the_robots_is_no_farewell() -> None:
+    assert parse("goodbye Ana", robot_name="Robbie").act != "farewell"

@@ -295,7 +295,14 @@ def test_wait_there_is_at_the_place_spoken_of_and_wait_here_is_no_place() -> Non
     p = parse("wait for me there")
     assert (p.intent, p.slots) == (I.MOVE_TO, {"goal": ("there",)})
     assert parse("stay over there").slots == {"goal": ("there",)}
-    assert parse("wait here").act == "unknown"
+    assert parse("wait here").intent == parse("stay put").intent == I.STOP_ACTIVITY  # staying put
+    assert parse("wait").act == parse("wait for me").act == "unknown"  # ("wait, ...": an interjection)
+
+
+def test_follow_me_is_an_activity_and_only_the_speaker_is_followed() -> None:
+    p = parse("follow me")
+    assert (p.intent, p.text) == (I.START_ACTIVITY, "follow")
+    assert parse("follow Oskar").intent is None
 
 
 def test_say_hello_alone_greets_someone_the_interpreter_finds() -> None:
