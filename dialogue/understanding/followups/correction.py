@@ -4,6 +4,8 @@ of thing replaced."""
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 from dialogue.reference.english import Words, tokens
 from dialogue.reference.grounding import Kind
 from dialogue.reference.resolution import ROLE_KINDS, content_words, resolve
@@ -19,30 +21,65 @@ from dialogue.understanding.speech.plain import plain, strip_politeness
 def correction(reader: Reader, p: Parse, heard: Said) -> Outcome | None:
     """ "sorry, I meant screen two" after "take the booster seat to screen 1": the last request again,
     with the phrase of the role that names the same kind of thing (a place for a place, a thing for
-    a thing) replaced."""
+    a thing) replaced; after a correction, the request as it corrected it ("no, the blue one" then
+    "no, the other one")."""
+    corrected = _corrected(reader, heard, _IN_A_ROW)
+    return corrected.outcome.followed_up() if corrected is not None else None
+
+
+#: How many corrections in a row may stand between a correction and the request it corrects.
+_IN_A_ROW = 3
+
+
+@dataclass(frozen=True)
+class _Standing:
+    """The request a correction corrects: the reader before it was said, its parse, the roles that
+    corrections replaced in it (by their words) and what it came to."""
+
+    earlier: Reader
+    pending: Parse
+    replaced: dict[str, Words]
+    outcome: Outcome
+
+
+def _standing(reader: Reader, heard: Said, depth: int) -> _Standing | None:
+    """The request the person's last words made, or, when they corrected one, that request as they
+    corrected it (at most `depth` corrections back)."""
     lang = reader.lexicon.lang
-    fragment = _meant(lang, heard)
-    if not content_words(lang, fragment):
-        return None
     asked = [i for i, u in enumerate(reader.history) if u.role == "user"]
     if not asked:
         return None
     earlier = reader.within(reader.history[: asked[-1]])
-    pending = parse(lang, heard.of(reader.history[asked[-1]].text), reader.robot_name)
-    if pending.act != "command" or pending.intent is None:
+    said = heard.of(reader.history[asked[-1]].text)
+    pending = parse(lang, said, reader.robot_name)
+    if pending.act == "command" and pending.intent is not None:
+        return _Standing(earlier, pending, {}, earlier.act(pending))
+    return _corrected(earlier, said, depth - 1) if depth > 0 else None
+
+
+def _corrected(reader: Reader, heard: Said, depth: int) -> _Standing | None:
+    """The standing request with the phrase the correction's words replace, if they replace one."""
+    lang = reader.lexicon.lang
+    fragment = _meant(lang, heard)
+    if not content_words(lang, fragment):
         return None
-    before = earlier.act(pending)
+    standing = _standing(reader, heard, depth)
+    if standing is None:
+        return None
+    earlier, pending, before = standing.earlier, standing.pending, standing.outcome
+    assert pending.intent is not None  # (a standing request is a command)
     slots = pending.slots
     if pending.double_object and "rest" in slots:  # "fetch Ana the mug": whose phrase is whose
         slots = earlier.refs.split_double_object(slots["rest"])
-    fits: list[tuple[int, Outcome]] = []
+    fits: list[tuple[int, _Standing]] = []
     for role in ROLE_KINDS.get(pending.intent, {}):
         said = slots.get(role, ())
         was = before.roles.get(role)
         if not content_words(lang, said) or was is None:
             continue
         instead = _the_other(earlier, fragment, said, was, ROLE_KINDS[pending.intent][role])
-        outcome = earlier.act(pending, {role: instead or _instead(lang, fragment, said)})
+        replaced = {**standing.replaced, role: instead or _instead(lang, fragment, said)}
+        outcome = earlier.act(pending, replaced)
         now = outcome.roles.get(role)
         if outcome.intent is None or now is None or now == was:
             continue
@@ -51,11 +88,12 @@ def correction(reader: Reader, p: Parse, heard: Said) -> Outcome | None:
         old, new = earlier.snapshot.get(was), earlier.snapshot.get(now)
         if old is None or new is None or old.kind != new.kind:
             continue  # "I meant screen two" corrects a place, never the thing carried there
-        fits.append((len(set(old.classes) & set(new.classes)), outcome))
+        shared = len(set(old.classes) & set(new.classes))
+        fits.append((shared, _Standing(earlier, pending, replaced, outcome)))
     fits.sort(key=lambda f: -f[0])
     if not fits or (len(fits) > 1 and fits[0][0] == fits[1][0]):
         return None
-    return fits[0][1].followed_up()
+    return fits[0][1]
 
 
 def _the_other(earlier: Reader, fragment: Words, said: Words, was: str,
