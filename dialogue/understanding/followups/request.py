@@ -16,6 +16,7 @@ from dataclasses import replace
 from dialogue import intents as I
 from dialogue.history import Utterance
 from dialogue.prompts import FREE_FORM_OBJECT
+from dialogue.reference.clarify import describe_options
 from dialogue.reference.english import Words, tokens
 from dialogue.reference.resolution import ROLE_KINDS, content_words, resolve
 from dialogue.understanding.context import Reader
@@ -62,10 +63,12 @@ def follow_up(reader: Reader, p: Parse, heard: Said) -> Outcome | None:
     if confirmed is not None:
         return confirmed.followed_up()
     if tuple(said) in lang.followups.both:
-        return _every(earlier, pending, first)
+        return _every(earlier, pending, first, question.text)
     fragment, more = _fragment(lang, p, heard)
     if not fragment:
         return None
+    if more is None and set(fragment) & lang.followups.joining:  # "the yellow one and the black one"
+        return _each(earlier, pending, first, fragment)
     merged = _merged(lang, fragment, first)
     if more is not None:  # "the pink one, it's Carla's"
         merged = described(lang, merged, more)
@@ -82,15 +85,41 @@ def follow_up(reader: Reader, p: Parse, heard: Said) -> Outcome | None:
     return outcome.followed_up()
 
 
-def _every(earlier: Reader, pending: Parse, first: Outcome) -> Outcome | None:
+def _every(earlier: Reader, pending: Parse, first: Outcome, asked: str) -> Outcome | None:
     """ "both" to "Which mug do you mean: the blue one or the red one?": the request for each thing
-    the question told apart, in turn (None: it asked about no such things)."""
+    the question told apart, in the order the question listed them (None: it asked about no such
+    things)."""
     role = first.open_role
     kinds = ROLE_KINDS.get(pending.intent or "", {}).get(role or "")
     if role is None or kinds is None or not first.open_phrase:
         return None
-    each = [earlier.act(pending, {role: tuple(tokens(e.id))})
-            for e in resolve(earlier.lexicon, first.open_phrase, kinds).matches]
+    lang = earlier.lexicon.lang
+    matches = resolve(earlier.lexicon, first.open_phrase, kinds).matches
+    listed = [asked.find(option) for option in describe_options(lang, earlier.snapshot, matches)]
+    order = sorted(range(len(matches)), key=lambda i: (listed[i] < 0, listed[i]))
+    return _several(earlier, [earlier.act(pending, {role: tuple(tokens(matches[i].id))}) for i in order])
+
+
+def _each(earlier: Reader, pending: Parse, first: Outcome, fragment: Words) -> Outcome | None:
+    """ "the yellow one and the black one" to "Which torch do you mean...?": the request for each
+    thing named, in the order said (None: the parts do not each name one other thing)."""
+    lang, role = earlier.lexicon.lang, first.open_role
+    if role is None:
+        return None
+    parts: list[list[str]] = [[]]
+    for w in fragment:
+        if w not in lang.followups.joining:
+            parts[-1].append(w)
+        elif parts[-1]:
+            parts.append([])
+    each = [earlier.act(pending, {role: _merged(lang, tuple(part), first)}) for part in parts if part]
+    if len({o.roles.get(role) for o in each}) < len(each):
+        return None  # one thing named twice, or a part that named nothing
+    return _several(earlier, each)
+
+
+def _several(earlier: Reader, each: list[Outcome]) -> Outcome | None:
+    """The requests in turn, said one after the other (None: fewer than two, or one not understood)."""
     if len(each) < 2 or any(o.intent is None for o in each):
         return None
     said = then(earlier.lexicon.lang, [o.reply for o in each])

@@ -29,3 +29,4 @@ class FollowupWords(Table):
     softening: WordSet = frozenset()
     emphasis: WordSet = frozenset()
     both: PhraseSet = frozenset()
+    joining: WordSet = frozenset()
