@@ -108,11 +108,20 @@ def location(lang: Language, snapshot: Snapshot, entity: Entity) -> str:
     parts = []
     if entity.support:
         parts.append(say(lang, "naming.on", place=snapshot.name_of(entity.support)))
-    parts.extend(say(lang, "naming.related", preposition=prep, place=snapshot.name_of(other))
+    parts.extend(say(lang, "naming.related", preposition=prep, place=_beside(lang, snapshot, entity, other))
                  for prep, other in entity.relations[:2])  # fmt: skip
     if entity.zone:
         parts.append(say(lang, "naming.in", place=snapshot.name_of(entity.zone)))
     return " ".join(parts)
+
+
+def _beside(lang: Language, snapshot: Snapshot, entity: Entity, other: str) -> str:
+    """The thing another is placed by, told from it by its colour when they share a name ("the
+    yellow torch is to the right of the black torch")."""
+    found = snapshot.get(other)
+    if found is None or found.name != entity.name or not found.colour or found.colour in found.name:
+        return snapshot.name_of(other)
+    return say(lang, "naming.coloured", colour=found.colour, name=found.name)
 
 
 def told_apart(lang: Language, entities: Sequence[Entity], snapshot: Snapshot | None = None) -> list[str]:

@@ -18,6 +18,7 @@ from dialogue.history import Utterance
 from dialogue.prompts import FREE_FORM_OBJECT
 from dialogue.reference.clarify import describe_options
 from dialogue.reference.english import Words, tokens
+from dialogue.reference.facts import RELATIONS
 from dialogue.reference.resolution import ROLE_KINDS, content_words, resolve
 from dialogue.understanding.context import Reader
 from dialogue.understanding.followups import proposal
@@ -67,8 +68,9 @@ def follow_up(reader: Reader, p: Parse, heard: Said) -> Outcome | None:
     fragment, more = _fragment(lang, p, heard)
     if not fragment:
         return None
-    if more is None and set(fragment) & lang.followups.joining:  # "the yellow one and the black one"
-        return _each(earlier, pending, first, fragment)
+    chosen = _chosen(earlier, pending, first, fragment) if more is None else None
+    if chosen is not None:
+        return chosen
     merged = _merged(lang, fragment, first)
     if more is not None:  # "the pink one, it's Carla's"
         merged = described(lang, merged, more)
@@ -124,6 +126,31 @@ def _several(earlier: Reader, each: list[Outcome]) -> Outcome | None:
         return None
     said = then(earlier.lexicon.lang, [o.reply for o in each])
     return replace(each[0].followed_up(), reply=said, more=tuple(o.followed_up() for o in each[1:]))
+
+
+def _chosen(earlier: Reader, pending: Parse, first: Outcome, fragment: Words) -> Outcome | None:
+    """An answer that picks among the things asked about other than by what they are: several in
+    turn ("the yellow one and then the black one"), or by their side ("the left one")."""
+    if set(fragment) & earlier.lexicon.lang.followups.joining:
+        return _each(earlier, pending, first, fragment)
+    return _on_the_side(earlier, pending, first, fragment)
+
+
+def _on_the_side(earlier: Reader, pending: Parse, first: Outcome, fragment: Words) -> Outcome | None:
+    """ "the left one" to "Which cup do you mean...?": the one thing asked about that the KB puts on
+    that side of every other (`leftOf`, `rightOf`, as the robot sees them); None when it says not."""
+    lang, role = earlier.lexicon.lang, first.open_role
+    sides = [lang.words.sides[w] for w in content_words(lang, fragment) if w in lang.words.sides]
+    kinds = ROLE_KINDS.get(pending.intent or "", {}).get(role or "")
+    side = dict(RELATIONS).get(sides[0]) if len(sides) == 1 else None
+    if side is None or role is None or kinds is None or not first.open_phrase:
+        return None
+    matches = resolve(earlier.lexicon, first.open_phrase, kinds).matches
+    placed = [e for e in matches if all((side, o.id) in e.relations for o in matches if o.id != e.id)]
+    if len(placed) != 1:
+        return None
+    outcome = earlier.act(pending, {role: tuple(tokens(placed[0].id))})
+    return outcome.followed_up() if outcome.intent is not None else None
 
 
 #: How many answers the same question may have had before this one ("the left one", asked again).

@@ -209,4 +209,25 @@ def test_things_named_one_after_another_are_each_meant_in_that_order(workshop: K
                                                           (I.GRAB_OBJECT, {"object": "cap_1"})]  # fmt: skip
     assert out.reply == "OK, I will pick up the grey cap. Then I will pick up the red cap."
     # the same one twice is not two things
-    assert say(workshop, "the red one and the red one", speaker=ANA, history=history).intent is None
+    assert len(say(workshop, "the red one and the red one", speaker=ANA, history=history).steps()) == 1
+
+
+def test_the_left_one_is_the_one_the_kb_puts_left_of_the_others(workshop: KB) -> None:
+    question = "Which cap do you mean: the grey one or the red one?"
+    history = [("user", "pick up the cap"), ("robot", question)]
+    workshop.add(["cap_1 leftOf cap_2"])  # as the robot sees them; the reasoner adds cap_2 rightOf cap_1
+    assert say(workshop, "the left one", speaker=ANA, history=history).roles == {"object": "cap_1"}
+    assert say(workshop, "the one on the right", speaker=ANA, history=history).roles == {"object": "cap_2"}
+    # where each is says which the other is
+    reply = say(workshop, "where is the red cap?", speaker=ANA).reply
+    assert reply.endswith("to the left of the grey cap."), reply
+
+
+def test_the_left_one_of_three_needs_one_left_of_every_other(workshop: KB) -> None:
+    question = "Which saw do you mean: the hand saw, the coping saw or the bow saw?"
+    history = [("user", "pick up the saw"), ("robot", question)]
+    workshop.add(["saw_1 leftOf saw_2"])  # nothing said of the bow saw
+    out = say(workshop, "the left one", speaker=ANA, history=history)
+    assert out.intent is None and out.reply.startswith("Sorry, I can't tell which one is the left one.")
+    workshop.add(["saw_3 rightOf saw_2"])  # left of both now, by the relation's transitivity
+    assert say(workshop, "the left one", speaker=ANA, history=history).roles == {"object": "saw_1"}
