@@ -241,7 +241,7 @@ class _Taken:
 def _start(t: _Taken) -> str:
     """An activity of the language's own words ("OK, I will follow you."), else by its name."""
     own = template(t.lang, "request.activities").get(t.text)
-    return str(own) if own is not None else t.say("request.start", activity=t.text)
+    return str(own).format(recipient=t.rec) if own is not None else t.say("request.start", activity=t.text)
 
 
 def _place(t: _Taken) -> str:
@@ -268,7 +268,8 @@ _SAID_BACK: dict[str, Callable[[_Taken], str]] = {
     I.GREET: lambda t: t.say("request.greet", recipient=t.rec),
     I.SAY: lambda t: (t.say("request.tell", recipient=t.rec, text=t.text) if "recipient" in t.refs
                       else t.say("request.say", text=t.text)),
-    I.ENGAGE_WITH: lambda t: t.say("request.engage", recipient=t.rec),
+    I.ENGAGE_WITH: lambda t: (t.say("request.engage_you") if t.rec == t.you
+                              else t.say("request.engage", recipient=t.rec)),
     I.PERFORM_MOTION: _motion,
     I.START_ACTIVITY: lambda t: _start(t),
     I.STOP_ACTIVITY: lambda t: t.say("request.stop_it", activity=t.text) if t.text else t.say("request.stop"),
