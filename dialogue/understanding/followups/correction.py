@@ -116,7 +116,8 @@ def _meant(lang: Language, heard: Said) -> Words:
     parts = [strip_politeness(lang, [w for w in plain(lang, heard.of(part)) if w not in softening])
              for part in heard.text.split(",")]  # fmt: skip
     words = [w for part in parts for w in part]
-    lead = next((c for c in lang.followups.correcting if tuple(words[: len(c)]) == c), None)
+    leads = (*lang.followups.correcting, *lang.followups.again)
+    lead = next((c for c in leads if tuple(words[: len(c)]) == c), None)
     fragment = tuple(words[len(lead) :]) if lead is not None else _not_that(lang, tuple(words))
     other, one = lang.followups.other, lang.followups.one
     if lead is None and set(words) & other and set(content_words(lang, words)) <= other | one:

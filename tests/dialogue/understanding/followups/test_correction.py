@@ -49,3 +49,14 @@ def test_a_correction_needs_a_request_at_the_end_of_its_corrections(pantry: KB) 
     far = _after("bring me the green jar", "no, the amber one", "no, the green one", "no, the amber one",
                  "no, the green one")  # fmt: skip
     assert say(pantry, "no, the other one", speaker=LEA, history=far).intent is None
+
+
+def test_the_same_again_with_another_thing_is_the_request_for_it(pantry: KB) -> None:
+    history = _after("take the green jar to the larder")
+    out = say(pantry, "now do the same with the amber one", speaker=LEA, history=history)
+    assert (out.intent, out.roles) == (I.BRING_OBJECT, {"object": "jar_2", "recipient": "larder"}), out.reply
+    out = say(pantry, "same for the pantry", speaker=LEA, history=history)
+    assert out.roles == {"object": "jar_1", "recipient": "pantry"}, out.reply
+    # with nothing done before it, nothing is done again
+    assert say(pantry, "do the same with the amber one", speaker=LEA).intent is None
+
