@@ -294,6 +294,18 @@ FOLLOW_UPS: tuple[Callable[[Reader, Parse, Said], Outcome | None], ...] = (
 )  # fmt: skip
 
 
+def said_first(reader: Reader, heard: Said, said: list[str]) -> Outcome | None:
+    """ "Oh, not the kitchen, the balcony. I want some fresh air.": an answer or a correction said in
+    the first clauses, the later ones saying why (and no request of their own that could be done)."""
+    for end in range(len(said) - 1, 0, -1):
+        first = heard.of(", ".join(said[:end]))
+        p = parse(reader.lexicon.lang, first, reader.robot_name)
+        outcome = followed_up(reader, p, first) if p.act == "unknown" else None
+        if outcome is not None and outcome.intent is not None:
+            return outcome
+    return None
+
+
 def followed_up(reader: Reader, p: Parse, heard: Said) -> Outcome | None:
     """What the first follow-up that reads the utterance made of it (`FOLLOW_UPS`)."""
     for read in FOLLOW_UPS:

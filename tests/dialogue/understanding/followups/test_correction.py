@@ -60,3 +60,8 @@ def test_the_same_again_with_another_thing_is_the_request_for_it(pantry: KB) -> 
     # with nothing done before it, nothing is done again
     assert say(pantry, "do the same with the amber one", speaker=LEA).intent is None
 
+
+def test_a_correction_said_before_why_is_the_correction(pantry: KB) -> None:
+    history = _after("take the green jar to the larder")
+    out = say(pantry, "oh, not the larder, the pantry. I want some fresh air.", speaker=LEA, history=history)
+    assert (out.intent, out.roles) == (I.BRING_OBJECT, {"object": "jar_1", "recipient": "pantry"}), out.reply
