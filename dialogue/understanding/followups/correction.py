@@ -72,6 +72,7 @@ def _corrected(reader: Reader, heard: Said, depth: int) -> _Standing | None:
     if pending.double_object and "rest" in slots:  # "fetch Ana the mug": whose phrase is whose
         slots = earlier.refs.split_double_object(slots["rest"])
     fits: list[tuple[int, _Standing]] = []
+    unsettled = 0
     for role in ROLE_KINDS.get(pending.intent, {}):
         said = slots.get(role, ())
         was = before.roles.get(role)
@@ -81,6 +82,7 @@ def _corrected(reader: Reader, heard: Said, depth: int) -> _Standing | None:
         replaced = {**standing.replaced, role: instead or _instead(lang, fragment, said)}
         outcome = earlier.act(pending, replaced)
         now = outcome.roles.get(role)
+        unsettled += outcome.clarify  # (a role the words name several things of)
         if outcome.intent is None or now is None or now == was:
             continue
         if any(v == now for r, v in outcome.roles.items() if r != role):
@@ -93,6 +95,9 @@ def _corrected(reader: Reader, heard: Said, depth: int) -> _Standing | None:
     fits.sort(key=lambda f: -f[0])
     if not fits or (len(fits) > 1 and fits[0][0] == fits[1][0]):
         return None
+    named = not set(fragment) & lang.followups.one  # ("the blue one": of the kind of the phrase it replaces)
+    if len(fits) + (unsettled if named else 0) > 1 and _again(lang, heard):
+        return None  # ("do the same with the bowl": a bowl put there, or the thing put on the bowl)
     return fits[0][1]
 
 
@@ -107,6 +112,13 @@ def _the_other(earlier: Reader, fragment: Words, said: Words, was: str,
     named = resolve(earlier.lexicon, _instead(lang, ("the", "one"), said), kinds).matches
     others = [e for e in named if e.id != was]
     return tuple(tokens(others[0].id)) if len(others) == 1 and len(named) == 2 else None
+
+
+def _again(lang: Language, heard: Said) -> bool:
+    """Whether the words ask for the request again with something else ("now do the same with the
+    bowl"): what they name may be any of its roles, and no likelier one is guessed."""
+    words = tuple(strip_politeness(lang, plain(lang, heard)))
+    return any(words[: len(a)] == a for a in lang.followups.again)
 
 
 def _meant(lang: Language, heard: Said) -> Words:

@@ -65,3 +65,15 @@ def test_a_correction_said_before_why_is_the_correction(pantry: KB) -> None:
     history = _after("take the green jar to the larder")
     out = say(pantry, "oh, not the larder, the pantry. I want some fresh air.", speaker=LEA, history=history)
     assert (out.intent, out.roles) == (I.BRING_OBJECT, {"object": "jar_1", "recipient": "pantry"}), out.reply
+
+
+def test_the_same_again_with_what_could_be_either_role_is_not_guessed(pantry: KB) -> None:
+    pantry.add(["tray_1 rdf:type Tray", 'tray_1 rdfs:label "tray"', "myself sees tray_1",
+                "jar_3 rdf:type Container", 'jar_3 rdfs:label "jar"', "jar_3 isIn larder"])  # fmt: skip
+    history = _after("put the green jar on the tray")
+    # the amber jar put on the tray, or the green jar put on the amber jar: not said which
+    assert say(pantry, "do the same with the amber jar", speaker=LEA, history=history).intent is None
+    # a jar (of two it might be) put on the tray, or the green jar put on the jar in sight
+    assert say(pantry, "do the same with the jar", speaker=LEA, history=history).intent is None
+    out = say(pantry, "do the same with the amber one", speaker=LEA, history=history)  # a jar: the thing
+    assert out.roles == {"object": "jar_2", "recipient": "tray_1"}, out.reply
