@@ -135,7 +135,12 @@ CATALOGUE: dict[str, IntentSpec] = {
             grounded=("recipient",),
         ),
         IntentSpec(
-            "START_ACTIVITY", START_ACTIVITY, "start a scripted activity", ("object",), ("other_data",)
+            "START_ACTIVITY",
+            START_ACTIVITY,
+            "start a scripted activity (following someone: whom, the recipient)",
+            ("object",),
+            ("recipient", "other_data"),
+            grounded=("recipient",),
         ),
         IntentSpec(
             "STOP_ACTIVITY", STOP_ACTIVITY, "stop an activity (the current one by default)", (), ("object",)

@@ -33,7 +33,8 @@ PROPERTIES = {
 #: fills its own table (an entity shows all their values, relation by relation, by sorted text).
 RELATIONS: tuple[tuple[str, str], ...] = (
     ("isNextTo", "next to"), ("cyc:near", "near"), ("isBelow", "under"), ("isAbove", "above"),
-    ("behind", "behind"), ("inFrontOf", "in front of"),
+    ("behind", "behind"), ("inFrontOf", "in front of"), ("leftOf", "to the left of"),
+    ("rightOf", "to the right of"),
 )  # fmt: skip
 #: Predicates whose change means an entity's classes or names must be asked again.
 DEEP = frozenset({"rdf:type", "rdfs:label"})

@@ -53,6 +53,7 @@ ROLE_KINDS: dict[str, dict[str, frozenset[Kind]]] = {
     I.SAY: {"recipient": PERSON},
     I.PERFORM_MOTION: {"recipient": PERSON},
     I.PRESENT_CONTENT: {"recipient": PERSON},
+    I.START_ACTIVITY: {"recipient": PERSON},
 }
 
 

@@ -30,7 +30,7 @@ from dialogue.reference.resolution import (
 )  # fmt: skip
 from dialogue.understanding.followups.accepting import accepts
 from dialogue.understanding.followups.proposal import proposed
-from dialogue.understanding.followups.request import follow_up, followed_up
+from dialogue.understanding.followups.request import follow_up, followed_up, said_first
 from dialogue.understanding.inflection import plural_of
 from dialogue.understanding.outcome import Outcome, Ref
 from dialogue.understanding.parsed import Parse
@@ -231,7 +231,7 @@ class Interpreter:
                 # spill": no sink, not no "sink spill").
                 elif p.act == "command" and outcome.understood and not outcome.clarify:
                     failed = outcome
-        return question or failed or whole
+        return question or said_first(self, heard, said) or failed or whole
 
     def act(self, p: Parse, overrides: dict[str, Words] | None = None) -> Outcome:
         """What the parse's act is read as (`ACTS`): social talk, a question, a request."""

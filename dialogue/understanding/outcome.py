@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 from dialogue.reference.english import Words
 from dialogue.reference.grounding import Entity
@@ -36,6 +36,11 @@ class Outcome:
     def steps(self) -> tuple[Outcome, ...]:
         """This outcome and the ones that follow it."""
         return (self, *self.more)
+
+    def followed_up(self) -> Outcome:
+        """The outcome as a follow-up completes it: a little less sure than a request said whole,
+        and without the steps that followed it."""
+        return replace(self, confidence=0.8, more=())
 
     @property
     def guesses(self) -> bool:

@@ -108,11 +108,20 @@ def location(lang: Language, snapshot: Snapshot, entity: Entity) -> str:
     parts = []
     if entity.support:
         parts.append(say(lang, "naming.on", place=snapshot.name_of(entity.support)))
-    parts.extend(say(lang, "naming.related", preposition=prep, place=snapshot.name_of(other))
+    parts.extend(say(lang, "naming.related", preposition=prep, place=_beside(lang, snapshot, entity, other))
                  for prep, other in entity.relations[:2])  # fmt: skip
     if entity.zone:
         parts.append(say(lang, "naming.in", place=snapshot.name_of(entity.zone)))
     return " ".join(parts)
+
+
+def _beside(lang: Language, snapshot: Snapshot, entity: Entity, other: str) -> str:
+    """The thing another is placed by, told from it by its colour when they share a name ("the
+    yellow torch is to the right of the black torch")."""
+    found = snapshot.get(other)
+    if found is None or found.name != entity.name or not found.colour or found.colour in found.name:
+        return snapshot.name_of(other)
+    return say(lang, "naming.coloured", colour=found.colour, name=found.name)
 
 
 def told_apart(lang: Language, entities: Sequence[Entity], snapshot: Snapshot | None = None) -> list[str]:
@@ -232,7 +241,7 @@ class _Taken:
 def _start(t: _Taken) -> str:
     """An activity of the language's own words ("OK, I will follow you."), else by its name."""
     own = template(t.lang, "request.activities").get(t.text)
-    return str(own) if own is not None else t.say("request.start", activity=t.text)
+    return str(own).format(recipient=t.rec) if own is not None else t.say("request.start", activity=t.text)
 
 
 def _place(t: _Taken) -> str:
@@ -259,7 +268,8 @@ _SAID_BACK: dict[str, Callable[[_Taken], str]] = {
     I.GREET: lambda t: t.say("request.greet", recipient=t.rec),
     I.SAY: lambda t: (t.say("request.tell", recipient=t.rec, text=t.text) if "recipient" in t.refs
                       else t.say("request.say", text=t.text)),
-    I.ENGAGE_WITH: lambda t: t.say("request.engage", recipient=t.rec),
+    I.ENGAGE_WITH: lambda t: (t.say("request.engage_you") if t.rec == t.you
+                              else t.say("request.engage", recipient=t.rec)),
     I.PERFORM_MOTION: _motion,
     I.START_ACTIVITY: lambda t: _start(t),
     I.STOP_ACTIVITY: lambda t: t.say("request.stop_it", activity=t.text) if t.text else t.say("request.stop"),

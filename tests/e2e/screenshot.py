@@ -1,7 +1,7 @@
 """Regenerate the README's viewer screenshot: ``python -m tests.e2e.screenshot docs/viewer.png``.
 
 Serves the app exactly as ``situated serve`` does by default (the packaged demo scene, the rules
-backend), expands a few concepts, runs a query and has a short chat, then saves a 1440x900 PNG.
+backend), expands a few concepts, runs a query and has a ten-turn chat, then saves a 1400x900 PNG.
 """
 
 from __future__ import annotations
@@ -16,12 +16,16 @@ from api.server import serve_in_thread
 from api.settings import Settings
 from tests.e2e.conftest import CHROMIUM, CHROMIUM_ARGS
 
+#: The chat's ten turns, as a first conversation with the demo scene goes.
+CHAT = ("hello", "what do you see?", "where is the apple?", "pick up the cup", "bring me the apple",
+        "what can you do?", "who do you see?", "follow me", "tell me a joke", "thank you")  # fmt: skip
+
 
 def main(out: Path) -> None:
     app = create_app(Settings())  # the defaults of `situated serve`: the demo scene, rules
     with serve_in_thread(app) as url, sync_playwright() as playwright:
         browser = playwright.chromium.launch(executable_path=str(CHROMIUM), args=CHROMIUM_ARGS)
-        page = browser.new_page(viewport={"width": 1440, "height": 900})
+        page = browser.new_page(viewport={"width": 1400, "height": 900})
         page.goto(url + "/")
         page.wait_for_selector('.node.expanded[data-id="myself"]')
         for term in ("table", "living_room", "myself"):
@@ -31,7 +35,7 @@ def main(out: Path) -> None:
         page.press("#patterns", "Control+Enter")
         page.wait_for_selector('#query-status[data-kind="ok"]')
         page.fill("#user-id", "person_alice")
-        for turn, text in enumerate(("what do you see?", "pick up the cup", "bring me the apple")):
+        for turn, text in enumerate(CHAT):
             page.fill("#chat-input", text)
             page.press("#chat-input", "Enter")
             page.locator(".msg.robot:not(.waiting)").nth(turn).wait_for()

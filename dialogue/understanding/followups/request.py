@@ -1,9 +1,8 @@
 """Answers to the robot's last question: a fragment that completes the pending request ("the red
 one", "mine, obviously", "the pink one, it's Carla's"), a yes or a no to "Do you mean the flat
 brush?", a yes to an offer ("Would you like me to bring you a basket?" "yes please") and "both" to
-"Which mug do you mean...?"; a correction of the request just made ("sorry, I meant screen two", "no,
-the blue one"); and the same request for another
-thing ("and the soup goes to table two" after "take the steak to table four").
+"Which mug do you mean...?"; and the same request for another thing ("and the soup goes to table
+two" after "take the steak to table four"). A correction of the request just made is `correction`'s.
 
 The robot's question must be the latest utterance (system notes aside); a fragment or a confirmation
 re-reads the request said right before it, an accepted offer is read as the request the robot made.
@@ -17,12 +16,14 @@ from dataclasses import replace
 from dialogue import intents as I
 from dialogue.history import Utterance
 from dialogue.prompts import FREE_FORM_OBJECT
+from dialogue.reference.clarify import describe_options
 from dialogue.reference.english import Words, tokens
-from dialogue.reference.grounding import Kind
+from dialogue.reference.facts import RELATIONS
 from dialogue.reference.resolution import ROLE_KINDS, content_words, resolve
 from dialogue.understanding.context import Reader
 from dialogue.understanding.followups import proposal
 from dialogue.understanding.followups.accepting import accepts
+from dialogue.understanding.followups.correction import correction
 from dialogue.understanding.language import Language
 from dialogue.understanding.outcome import Outcome
 from dialogue.understanding.parsed import Parse
@@ -61,12 +62,15 @@ def follow_up(reader: Reader, p: Parse, heard: Said) -> Outcome | None:
         return None
     confirmed = confirmation(earlier, pending, first, question, answer)
     if confirmed is not None:
-        return _sure(confirmed)
+        return confirmed.followed_up()
     if tuple(said) in lang.followups.both:
-        return _every(earlier, pending, first)
+        return _every(earlier, pending, first, question.text)
     fragment, more = _fragment(lang, p, heard)
     if not fragment:
         return None
+    chosen = _chosen(earlier, pending, first, fragment) if more is None else None
+    if chosen is not None:
+        return chosen
     merged = _merged(lang, fragment, first)
     if more is not None:  # "the pink one, it's Carla's"
         merged = described(lang, merged, more)
@@ -79,23 +83,74 @@ def follow_up(reader: Reader, p: Parse, heard: Said) -> Outcome | None:
     unknown = [w for w in content_words(lang, fragment) if w in lang.words.positions]
     if outcome.clarify and unknown:  # "the left one": the KB says nothing of left and right
         note = say(lang, "request.position_unknown", position=unknown[0])
-        return replace(_sure(outcome), reply=f"{note} {outcome.reply}")
-    return _sure(outcome)
+        return replace(outcome.followed_up(), reply=f"{note} {outcome.reply}")
+    return outcome.followed_up()
 
 
-def _every(earlier: Reader, pending: Parse, first: Outcome) -> Outcome | None:
+def _every(earlier: Reader, pending: Parse, first: Outcome, asked: str) -> Outcome | None:
     """ "both" to "Which mug do you mean: the blue one or the red one?": the request for each thing
-    the question told apart, in turn (None: it asked about no such things)."""
+    the question told apart, in the order the question listed them (None: it asked about no such
+    things)."""
     role = first.open_role
     kinds = ROLE_KINDS.get(pending.intent or "", {}).get(role or "")
     if role is None or kinds is None or not first.open_phrase:
         return None
-    each = [earlier.act(pending, {role: tuple(tokens(e.id))})
-            for e in resolve(earlier.lexicon, first.open_phrase, kinds).matches]
+    lang = earlier.lexicon.lang
+    matches = resolve(earlier.lexicon, first.open_phrase, kinds).matches
+    listed = [asked.find(option) for option in describe_options(lang, earlier.snapshot, matches)]
+    order = sorted(range(len(matches)), key=lambda i: (listed[i] < 0, listed[i]))
+    return _several(earlier, [earlier.act(pending, {role: tuple(tokens(matches[i].id))}) for i in order])
+
+
+def _each(earlier: Reader, pending: Parse, first: Outcome, fragment: Words) -> Outcome | None:
+    """ "the yellow one and the black one" to "Which torch do you mean...?": the request for each
+    thing named, in the order said (None: the parts do not each name one other thing)."""
+    lang, role = earlier.lexicon.lang, first.open_role
+    if role is None:
+        return None
+    parts: list[list[str]] = [[]]
+    for w in fragment:
+        if w not in lang.followups.joining:
+            parts[-1].append(w)
+        elif parts[-1]:
+            parts.append([])
+    each = [earlier.act(pending, {role: _merged(lang, tuple(part), first)}) for part in parts if part]
+    if len({o.roles.get(role) for o in each}) < len(each):
+        return None  # one thing named twice, or a part that named nothing
+    return _several(earlier, each)
+
+
+def _several(earlier: Reader, each: list[Outcome]) -> Outcome | None:
+    """The requests in turn, said one after the other (None: fewer than two, or one not understood)."""
     if len(each) < 2 or any(o.intent is None for o in each):
         return None
     said = then(earlier.lexicon.lang, [o.reply for o in each])
-    return replace(_sure(each[0]), reply=said, more=tuple(_sure(o) for o in each[1:]))
+    return replace(each[0].followed_up(), reply=said, more=tuple(o.followed_up() for o in each[1:]))
+
+
+def _chosen(earlier: Reader, pending: Parse, first: Outcome, fragment: Words) -> Outcome | None:
+    """An answer that picks among the things asked about other than by what they are: several in
+    turn ("the yellow one and then the black one"), or by their side ("the left one")."""
+    if set(fragment) & earlier.lexicon.lang.followups.joining:
+        return _each(earlier, pending, first, fragment)
+    return _on_the_side(earlier, pending, first, fragment)
+
+
+def _on_the_side(earlier: Reader, pending: Parse, first: Outcome, fragment: Words) -> Outcome | None:
+    """ "the left one" to "Which cup do you mean...?": the one thing asked about that the KB puts on
+    that side of every other (`leftOf`, `rightOf`, as the robot sees them); None when it says not."""
+    lang, role = earlier.lexicon.lang, first.open_role
+    sides = [lang.words.sides[w] for w in content_words(lang, fragment) if w in lang.words.sides]
+    kinds = ROLE_KINDS.get(pending.intent or "", {}).get(role or "")
+    side = dict(RELATIONS).get(sides[0]) if len(sides) == 1 else None
+    if side is None or role is None or kinds is None or not first.open_phrase:
+        return None
+    matches = resolve(earlier.lexicon, first.open_phrase, kinds).matches
+    placed = [e for e in matches if all((side, o.id) in e.relations for o in matches if o.id != e.id)]
+    if len(placed) != 1:
+        return None
+    outcome = earlier.act(pending, {role: tuple(tokens(placed[0].id))})
+    return outcome.followed_up() if outcome.intent is not None else None
 
 
 #: How many answers the same question may have had before this one ("the left one", asked again).
@@ -115,11 +170,6 @@ def _pending(reader: Reader, spoken: list[int], heard: Said) -> tuple[int, Parse
         if pending.act == "command":
             return spoken[at], pending
     return None
-
-
-def _sure(outcome: Outcome) -> Outcome:
-    """A request completed by a follow-up is a little less sure than one said whole."""
-    return replace(outcome, confidence=0.8, more=())
 
 
 def _fragment(lang: Language, p: Parse, heard: Said) -> tuple[Words, Words | None]:
@@ -167,7 +217,7 @@ def offer(reader: Reader, question: Utterance, said: list[str]) -> Outcome | Non
     outcome = reader.act(parse(lang, " ".join(request), reader.robot_name)) if request else None
     if outcome is None or outcome.intent is None:
         return None
-    return _sure(outcome)
+    return outcome.followed_up()
 
 
 def _offered(lang: Language, asked: list[str]) -> list[str]:
@@ -212,117 +262,6 @@ def confirmation(earlier: Reader, pending: Parse, first: Outcome, question: Utte
     return outcome if outcome.intent is not None else None
 
 
-
-
-def correction(reader: Reader, p: Parse, heard: Said) -> Outcome | None:
-    """ "sorry, I meant screen two" after "take the booster seat to screen 1": the last request again,
-    with the phrase of the role that names the same kind of thing (a place for a place, a thing for
-    a thing) replaced."""
-    lang = reader.lexicon.lang
-    fragment = _meant(lang, heard)
-    if not content_words(lang, fragment):
-        return None
-    asked = [i for i, u in enumerate(reader.history) if u.role == "user"]
-    if not asked:
-        return None
-    earlier = reader.within(reader.history[: asked[-1]])
-    pending = parse(lang, heard.of(reader.history[asked[-1]].text), reader.robot_name)
-    if pending.act != "command" or pending.intent is None:
-        return None
-    before = earlier.act(pending)
-    slots = pending.slots
-    if pending.double_object and "rest" in slots:  # "fetch Ana the mug": whose phrase is whose
-        slots = earlier.refs.split_double_object(slots["rest"])
-    fits: list[tuple[int, Outcome]] = []
-    for role in ROLE_KINDS.get(pending.intent, {}):
-        said = slots.get(role, ())
-        was = before.roles.get(role)
-        if not content_words(lang, said) or was is None:
-            continue
-        instead = _the_other(earlier, fragment, said, was, ROLE_KINDS[pending.intent][role])
-        outcome = earlier.act(pending, {role: instead or _instead(lang, fragment, said)})
-        now = outcome.roles.get(role)
-        if outcome.intent is None or now is None or now == was:
-            continue
-        if any(v == now for r, v in outcome.roles.items() if r != role):
-            continue  # the red mug put on the red mug: the other role was meant
-        old, new = earlier.snapshot.get(was), earlier.snapshot.get(now)
-        if old is None or new is None or old.kind != new.kind:
-            continue  # "I meant screen two" corrects a place, never the thing carried there
-        fits.append((len(set(old.classes) & set(new.classes)), outcome))
-    fits.sort(key=lambda f: -f[0])
-    if not fits or (len(fits) > 1 and fits[0][0] == fits[1][0]):
-        return None
-    return _sure(fits[0][1])
-
-
-def _the_other(earlier: Reader, fragment: Words, said: Words, was: str,
-               kinds: frozenset[Kind]) -> Words | None:  # fmt: skip
-    """ "no, the other one" after "bring me the black umbrella": the one other thing the head of the
-    phrase names (the red umbrella), as its id; None when that is not what was said or several are."""
-    lang = earlier.lexicon.lang
-    other, one = lang.followups.other, lang.followups.one
-    if not set(fragment) & other or not set(content_words(lang, fragment)) <= other | one:
-        return None
-    named = resolve(earlier.lexicon, _instead(lang, ("the", "one"), said), kinds).matches
-    others = [e for e in named if e.id != was]
-    return tuple(tokens(others[0].id)) if len(others) == 1 and len(named) == 2 else None
-
-
-def _meant(lang: Language, heard: Said) -> Words:
-    """What a correction says was meant ("I meant screen two", "not the shed, the porch", "no, the
-    other one", "no, the blue one"), without the preposition of a place; () when it says none."""
-    softening = lang.followups.softening
-    parts = [strip_politeness(lang, [w for w in plain(lang, heard.of(part)) if w not in softening])
-             for part in heard.text.split(",")]  # fmt: skip
-    words = [w for part in parts for w in part]
-    lead = next((c for c in lang.followups.correcting if tuple(words[: len(c)]) == c), None)
-    fragment = tuple(words[len(lead) :]) if lead is not None else _not_that(lang, tuple(words))
-    other, one = lang.followups.other, lang.followups.one
-    if lead is None and set(words) & other and set(content_words(lang, words)) <= other | one:
-        fragment = tuple(words)  # "no, the other one"
-    elif lead is None and not fragment and _said_no(lang, heard) and set(words) & one:
-        # "no, the blue one", "nope, the red one": the one meant, told apart by what it is
-        fragment = tuple(w for w in words if lang.followups.no.get(w, w) != "no")
-    if len(parts) == 2 and parts[0][:1] == ["not"] and parts[1]:  # "not the shed, the porch"
-        fragment = tuple(parts[1])
-    for loc in lang.prepositions.longest_first("place"):  # "I meant on the shelf"
-        if fragment[: len(loc)] == loc and fragment[len(loc) :]:
-            return fragment[len(loc) :]
-    return fragment
-
-
-def _said_no(lang: Language, heard: Said) -> bool:
-    """Whether the words start with a no ("no, the blue one", "nope, the big one")."""
-    first = plain(lang, heard)[:1]
-    return bool(first) and lang.followups.no.get(first[0], first[0]) == "no"
-
-
-def _not_that(lang: Language, words: Words) -> Words:
-    """ "not the shed, the porch" or "the porch, not the shed": the phrase meant (() if none is)."""
-    if "not" not in words:
-        return ()
-    at = words.index("not")
-    if at > 0:
-        return words[:at]
-    np_start = lang.words.np_start
-    starts = (j for j in range(2, len(words)) if words[j] in np_start and words[j - 1] not in np_start)
-    again = next(starts, None)
-    return words[again:] if again is not None else ()
-
-
-def _instead(lang: Language, fragment: Words, said: Words) -> Words:
-    """The fragment, its "one" said with the head of the phrase it replaces ("the red one" for "the
-    blue cup": the red cup)."""
-    core: list[str] = []
-    for w in said:
-        if w in lang.modifier_start and core:
-            break
-        core.append(w)
-    head = content_words(lang, core)[-1:] if content_words(lang, core) else []
-    return tuple(x for w in fragment for x in (head if w in lang.followups.one and head else [w]))
-
-
 def continuation(reader: Reader, p: Parse, heard: Said) -> Outcome | None:
     """ "and the soup goes to table two", "and the soup to table two" after "take the steak to table
     four": the request just made (a bringing) again, for another thing and place. Alone, "X goes to
@@ -345,7 +284,7 @@ def continuation(reader: Reader, p: Parse, heard: Said) -> Outcome | None:
     again = Parse("command", I.BRING_OBJECT, {"object": thing, "recipient": place}, words=(*thing, *place),
                   marks={"recipient": "to"})  # fmt: skip
     outcome = reader.act(again)
-    return _sure(outcome) if outcome.intent is not None else None
+    return outcome.followed_up() if outcome.intent is not None else None
 
 
 #: What an utterance in which the grammar reads no act may be, in the order tried: an answer to the
@@ -353,6 +292,18 @@ def continuation(reader: Reader, p: Parse, heard: Said) -> Outcome | None:
 FOLLOW_UPS: tuple[Callable[[Reader, Parse, Said], Outcome | None], ...] = (
     follow_up, correction, continuation,
 )  # fmt: skip
+
+
+def said_first(reader: Reader, heard: Said, said: list[str]) -> Outcome | None:
+    """ "Oh, not the kitchen, the balcony. I want some fresh air.": an answer or a correction said in
+    the first clauses, the later ones saying why (and no request of their own that could be done)."""
+    for end in range(len(said) - 1, 0, -1):
+        first = heard.of(", ".join(said[:end]))
+        p = parse(reader.lexicon.lang, first, reader.robot_name)
+        outcome = followed_up(reader, p, first) if p.act == "unknown" else None
+        if outcome is not None and outcome.intent is not None:
+            return outcome
+    return None
 
 
 def followed_up(reader: Reader, p: Parse, heard: Said) -> Outcome | None:

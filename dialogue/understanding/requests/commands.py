@@ -87,6 +87,8 @@ def parse(lang: Language, said: Text, robot_name: str = "") -> Parse:
         words = words[1:]
     if words and _negation(words):
         return Parse("negated", words=tuple(words))
+    if any(tuple(words[: len(a)]) == a for a in lang.followups.again):  # "do the same with the blue one"
+        return Parse("unknown", words=tuple(words))
     if _conditional(g, words) or _later(lang, words):  # "if Declan comes by, give him the menu"
         return Parse("conditional", words=tuple(words))
     if not words:

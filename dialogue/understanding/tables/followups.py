@@ -26,6 +26,8 @@ class FollowupWords(Table):
     no: dict[str, str] = {}
     other: WordSet = frozenset()
     correcting: Phrases = ()
+    again: Phrases = ()
     softening: WordSet = frozenset()
     emphasis: WordSet = frozenset()
     both: PhraseSet = frozenset()
+    joining: WordSet = frozenset()

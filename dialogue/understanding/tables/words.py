@@ -45,6 +45,7 @@ class ClosedWords(Table):
     relativisers: WordSet = frozenset()
     np_start: WordSet = frozenset()
     owners: dict[str, str] = {}
+    sides: dict[str, str] = {}
     wh: WordSet = frozenset()
     titles: Phrases = ()
     numbers: WordSet = frozenset()

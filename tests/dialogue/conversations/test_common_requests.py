@@ -56,8 +56,8 @@ def test_a_farewell_ends_the_turn_as_terminal(talk: Talk) -> None:
 
 def test_follow_me_starts_following_the_speaker(talk: Talk) -> None:
     for said in ("follow me", "please follow me", "can you follow us?"):
-        assert talk(said) == Said("OK, I will follow you.", ((I.START_ACTIVITY, {"object": "follow"}),))
-    assert talk("follow Oskar").intents[0][0] == I.RAW_USER_INPUT  # only the speaker is followed
+        following = ((I.START_ACTIVITY, {"object": "follow", "recipient": "person_nia"}),)
+        assert talk(said) == Said("OK, I will follow you.", following)
 
 
 def test_wait_here_stops_what_the_robot_is_about(talk: Talk) -> None:

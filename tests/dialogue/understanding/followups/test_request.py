@@ -179,9 +179,9 @@ def test_no_and_a_description_corrects_the_thing_just_asked_for(workshop: KB) ->
 def test_both_is_the_request_for_each_thing_asked_about(workshop: KB) -> None:
     history = [("user", "pick up the cap"), ("robot", "Which cap do you mean: the grey one or the red one?")]
     out = say(workshop, "both please", speaker=ANA, history=history)
-    assert [(o.intent, o.roles) for o in out.steps()] == [(I.GRAB_OBJECT, {"object": "cap_1"}),
-                                                          (I.GRAB_OBJECT, {"object": "cap_2"})]
-    assert out.reply == "OK, I will pick up the red cap. Then I will pick up the grey cap."
+    assert [(o.intent, o.roles) for o in out.steps()] == [(I.GRAB_OBJECT, {"object": "cap_2"}),
+                                                          (I.GRAB_OBJECT, {"object": "cap_1"})]
+    assert out.reply == "OK, I will pick up the grey cap. Then I will pick up the red cap."
 
 
 def test_an_answer_after_the_question_was_asked_again_completes_the_request(workshop: KB) -> None:
@@ -192,3 +192,42 @@ def test_an_answer_after_the_question_was_asked_again_completes_the_request(work
     # another question in between: the old request is no longer pending
     history[3] = ("robot", "Where should I put it?")
     assert say(workshop, "the red one", speaker=ANA, history=history).intent is None
+
+
+def test_both_is_each_thing_in_the_order_the_question_listed_them(workshop: KB) -> None:
+    for listed, order in (("the red one or the grey one", ["cap_1", "cap_2"]),
+                          ("the grey one or the red one", ["cap_2", "cap_1"])):  # fmt: skip
+        history = [("user", "grab the cap"), ("robot", f"Which cap do you mean: {listed}?")]
+        out = say(workshop, "both please", speaker=ANA, history=history)
+        assert [o.roles["object"] for o in out.steps()] == order, out.reply
+
+
+def test_things_named_one_after_another_are_each_meant_in_that_order(workshop: KB) -> None:
+    history = [("user", "grab the cap"), ("robot", "Which cap do you mean: the red one or the grey one?")]
+    out = say(workshop, "the grey one and then the red one", speaker=ANA, history=history)
+    assert [(o.intent, o.roles) for o in out.steps()] == [(I.GRAB_OBJECT, {"object": "cap_2"}),
+                                                          (I.GRAB_OBJECT, {"object": "cap_1"})]  # fmt: skip
+    assert out.reply == "OK, I will pick up the grey cap. Then I will pick up the red cap."
+    # the same one twice is not two things
+    assert len(say(workshop, "the red one and the red one", speaker=ANA, history=history).steps()) == 1
+
+
+def test_the_left_one_is_the_one_the_kb_puts_left_of_the_others(workshop: KB) -> None:
+    question = "Which cap do you mean: the grey one or the red one?"
+    history = [("user", "pick up the cap"), ("robot", question)]
+    workshop.add(["cap_1 leftOf cap_2"])  # as the robot sees them; the reasoner adds cap_2 rightOf cap_1
+    assert say(workshop, "the left one", speaker=ANA, history=history).roles == {"object": "cap_1"}
+    assert say(workshop, "the one on the right", speaker=ANA, history=history).roles == {"object": "cap_2"}
+    # where each is says which the other is
+    reply = say(workshop, "where is the red cap?", speaker=ANA).reply
+    assert reply.endswith("to the left of the grey cap."), reply
+
+
+def test_the_left_one_of_three_needs_one_left_of_every_other(workshop: KB) -> None:
+    question = "Which saw do you mean: the hand saw, the coping saw or the bow saw?"
+    history = [("user", "pick up the saw"), ("robot", question)]
+    workshop.add(["saw_1 leftOf saw_2"])  # nothing said of the bow saw
+    out = say(workshop, "the left one", speaker=ANA, history=history)
+    assert out.intent is None and out.reply.startswith("Sorry, I can't tell which one is the left one.")
+    workshop.add(["saw_3 rightOf saw_2"])  # left of both now, by the relation's transitivity
+    assert say(workshop, "the left one", speaker=ANA, history=history).roles == {"object": "saw_1"}

@@ -288,7 +288,7 @@ def test_getting_or_taking_someone_something_is_bringing_it(text: str, slots: di
 
 @pytest.mark.parametrize("text", ["wait for me", "stay"])
 def test_waiting_with_no_place_is_no_motion(text: str) -> None:
-    assert parse(text).intent is None
+    assert parse(text).intent in {None, I.STOP_ACTIVITY}
 
 
 def test_wait_there_is_at_the_place_spoken_of_and_wait_here_is_no_place() -> None:
@@ -296,13 +296,23 @@ def test_wait_there_is_at_the_place_spoken_of_and_wait_here_is_no_place() -> Non
     assert (p.intent, p.slots) == (I.MOVE_TO, {"goal": ("there",)})
     assert parse("stay over there").slots == {"goal": ("there",)}
     assert parse("wait here").intent == parse("stay put").intent == I.STOP_ACTIVITY  # staying put
-    assert parse("wait").act == parse("wait for me").act == "unknown"  # ("wait, ...": an interjection)
+    assert parse("wait").act == "unknown"  # ("wait, ...": an interjection)
+    # waiting for someone is staying where it is, whoever for
+    for said in ("wait for me", "wait for Oskar", "please wait for Ana"):
+        assert parse(said).intent == I.STOP_ACTIVITY, said
 
 
-def test_follow_me_is_an_activity_and_only_the_speaker_is_followed() -> None:
+def test_following_someone_is_an_activity_whom_to_follow_its_recipient() -> None:
     p = parse("follow me")
-    assert (p.intent, p.text) == (I.START_ACTIVITY, "follow")
-    assert parse("follow Oskar").intent is None
+    assert (p.intent, p.text, p.slots) == (I.START_ACTIVITY, "follow", {"recipient": ("me",)})
+    p = parse("follow Oskar")
+    assert (p.intent, p.text, p.slots) == (I.START_ACTIVITY, "follow", {"recipient": ("oskar",)})
+    assert parse("follow").intent is None  # whom is not said
+
+
+def test_staying_with_someone_is_engaging_with_them() -> None:
+    assert parse("stay with Alice").slots == {"recipient": ("alice",)}
+    assert parse("stay with me").intent == I.ENGAGE_WITH
 
 
 def test_say_hello_alone_greets_someone_the_interpreter_finds() -> None:
@@ -315,7 +325,7 @@ def test_say_hello_alone_greets_someone_the_interpreter_finds() -> None:
 def test_what_the_waiting_is_for_is_an_adjunct() -> None:
     p = parse("wait there for the delivery van")
     assert (p.intent, p.slots, p.adjuncts) == (I.MOVE_TO, {"goal": ("there",)}, (("for", "the", "delivery", "van"),))
-    assert parse("wait for me").intent is None
+    assert parse("wait for me").slots == {"awaited": ("me",)}  # no place
 
 
 def test_an_activity_is_kicked_off_and_whom_it_is_for_is_not_its_name() -> None:

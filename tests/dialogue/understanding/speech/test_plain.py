@@ -106,6 +106,7 @@ def test_a_message_keeps_the_words_said_after_it_but_not_the_politeness_to_the_r
     assert parse("tell ravi that the taxi is outside now please").text == "the taxi is outside now"
     assert parse("Tell Ravi the bus leaves again at noon, thanks").text == "the bus leaves again at noon"
     assert parse("tell ravi dinner is ready uh").text == "dinner is ready"
+    assert parse("tell ravi I am coming too").text == "I am coming too"
 
 
 @pytest.mark.parametrize(
@@ -160,6 +161,9 @@ def test_a_lead_and_a_thanks_of_their_own_are_politeness() -> None:
         # "for now" says how long: its "now" is no politeness
         ("wait by the door for now", "wait by the door for now"),
         ("wait by the door now", "wait by the door"),
+        # what adds a request to the ones before it changes nothing of it
+        ("bring theo the biscuit tin as well", "bring theo the biscuit tin"),
+        ("fetch me the saw too please", "fetch me the saw"),
     ],
 )
 def test_what_politeness_leaves_of_a_request(text: str, words: str) -> None:

@@ -1,0 +1,176 @@
+"""A correction of the request just made: "sorry, I meant screen two" after "take the booster seat
+to screen 1", "no, the blue one", "no, the other one"; the phrase of the role that names the same kind
+of thing replaced."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from dialogue.reference.english import Words, tokens
+from dialogue.reference.grounding import Kind
+from dialogue.reference.resolution import ROLE_KINDS, content_words, resolve
+from dialogue.understanding.context import Reader
+from dialogue.understanding.language import Language
+from dialogue.understanding.outcome import Outcome
+from dialogue.understanding.parsed import Parse
+from dialogue.understanding.requests.commands import parse
+from dialogue.understanding.said import Said
+from dialogue.understanding.speech.plain import plain, strip_politeness
+
+
+def correction(reader: Reader, p: Parse, heard: Said) -> Outcome | None:
+    """ "sorry, I meant screen two" after "take the booster seat to screen 1": the last request again,
+    with the phrase of the role that names the same kind of thing (a place for a place, a thing for
+    a thing) replaced; after a correction, the request as it corrected it ("no, the blue one" then
+    "no, the other one")."""
+    corrected = _corrected(reader, heard, _IN_A_ROW)
+    return corrected.outcome.followed_up() if corrected is not None else None
+
+
+#: How many corrections in a row may stand between a correction and the request it corrects.
+_IN_A_ROW = 3
+
+
+@dataclass(frozen=True)
+class _Standing:
+    """The request a correction corrects: the reader before it was said, its parse, the roles that
+    corrections replaced in it (by their words) and what it came to."""
+
+    earlier: Reader
+    pending: Parse
+    replaced: dict[str, Words]
+    outcome: Outcome
+
+
+def _standing(reader: Reader, heard: Said, depth: int) -> _Standing | None:
+    """The request the person's last words made, or, when they corrected one, that request as they
+    corrected it (at most `depth` corrections back)."""
+    lang = reader.lexicon.lang
+    asked = [i for i, u in enumerate(reader.history) if u.role == "user"]
+    if not asked:
+        return None
+    earlier = reader.within(reader.history[: asked[-1]])
+    said = heard.of(reader.history[asked[-1]].text)
+    pending = parse(lang, said, reader.robot_name)
+    if pending.act == "command" and pending.intent is not None:
+        return _Standing(earlier, pending, {}, earlier.act(pending))
+    return _corrected(earlier, said, depth - 1) if depth > 0 else None
+
+
+def _corrected(reader: Reader, heard: Said, depth: int) -> _Standing | None:
+    """The standing request with the phrase the correction's words replace, if they replace one."""
+    lang = reader.lexicon.lang
+    fragment = _meant(lang, heard)
+    if not content_words(lang, fragment):
+        return None
+    standing = _standing(reader, heard, depth)
+    if standing is None:
+        return None
+    earlier, pending, before = standing.earlier, standing.pending, standing.outcome
+    assert pending.intent is not None  # (a standing request is a command)
+    slots = pending.slots
+    if pending.double_object and "rest" in slots:  # "fetch Ana the mug": whose phrase is whose
+        slots = earlier.refs.split_double_object(slots["rest"])
+    fits: list[tuple[int, _Standing]] = []
+    unsettled = 0
+    for role in ROLE_KINDS.get(pending.intent, {}):
+        said = slots.get(role, ())
+        was = before.roles.get(role)
+        if not content_words(lang, said) or was is None:
+            continue
+        instead = _the_other(earlier, fragment, said, was, ROLE_KINDS[pending.intent][role])
+        replaced = {**standing.replaced, role: instead or _instead(lang, fragment, said)}
+        outcome = earlier.act(pending, replaced)
+        now = outcome.roles.get(role)
+        unsettled += outcome.clarify  # (a role the words name several things of)
+        if outcome.intent is None or now is None or now == was:
+            continue
+        if any(v == now for r, v in outcome.roles.items() if r != role):
+            continue  # the red mug put on the red mug: the other role was meant
+        old, new = earlier.snapshot.get(was), earlier.snapshot.get(now)
+        if old is None or new is None or old.kind != new.kind:
+            continue  # "I meant screen two" corrects a place, never the thing carried there
+        shared = len(set(old.classes) & set(new.classes))
+        fits.append((shared, _Standing(earlier, pending, replaced, outcome)))
+    fits.sort(key=lambda f: -f[0])
+    if not fits or (len(fits) > 1 and fits[0][0] == fits[1][0]):
+        return None
+    named = not set(fragment) & lang.followups.one  # ("the blue one": of the kind of the phrase it replaces)
+    if len(fits) + (unsettled if named else 0) > 1 and _again(lang, heard):
+        return None  # ("do the same with the bowl": a bowl put there, or the thing put on the bowl)
+    return fits[0][1]
+
+
+def _the_other(earlier: Reader, fragment: Words, said: Words, was: str,
+               kinds: frozenset[Kind]) -> Words | None:  # fmt: skip
+    """ "no, the other one" after "bring me the black umbrella": the one other thing the head of the
+    phrase names (the red umbrella), as its id; None when that is not what was said or several are."""
+    lang = earlier.lexicon.lang
+    other, one = lang.followups.other, lang.followups.one
+    if not set(fragment) & other or not set(content_words(lang, fragment)) <= other | one:
+        return None
+    named = resolve(earlier.lexicon, _instead(lang, ("the", "one"), said), kinds).matches
+    others = [e for e in named if e.id != was]
+    return tuple(tokens(others[0].id)) if len(others) == 1 and len(named) == 2 else None
+
+
+def _again(lang: Language, heard: Said) -> bool:
+    """Whether the words ask for the request again with something else ("now do the same with the
+    bowl"): what they name may be any of its roles, and no likelier one is guessed."""
+    words = tuple(strip_politeness(lang, plain(lang, heard)))
+    return any(words[: len(a)] == a for a in lang.followups.again)
+
+
+def _meant(lang: Language, heard: Said) -> Words:
+    """What a correction says was meant ("I meant screen two", "not the shed, the porch", "no, the
+    other one", "no, the blue one"), without the preposition of a place; () when it says none."""
+    softening = lang.followups.softening
+    parts = [strip_politeness(lang, [w for w in plain(lang, heard.of(part)) if w not in softening])
+             for part in heard.text.split(",")]  # fmt: skip
+    words = [w for part in parts for w in part]
+    leads = (*lang.followups.correcting, *lang.followups.again)
+    lead = next((c for c in leads if tuple(words[: len(c)]) == c), None)
+    fragment = tuple(words[len(lead) :]) if lead is not None else _not_that(lang, tuple(words))
+    other, one = lang.followups.other, lang.followups.one
+    if lead is None and set(words) & other and set(content_words(lang, words)) <= other | one:
+        fragment = tuple(words)  # "no, the other one"
+    elif lead is None and not fragment and _said_no(lang, heard) and set(words) & one:
+        # "no, the blue one", "nope, the red one": the one meant, told apart by what it is
+        fragment = tuple(w for w in words if lang.followups.no.get(w, w) != "no")
+    if len(parts) == 2 and parts[0][:1] == ["not"] and parts[1]:  # "not the shed, the porch"
+        fragment = tuple(parts[1])
+    for loc in lang.prepositions.longest_first("place"):  # "I meant on the shelf"
+        if fragment[: len(loc)] == loc and fragment[len(loc) :]:
+            return fragment[len(loc) :]
+    return fragment
+
+
+def _said_no(lang: Language, heard: Said) -> bool:
+    """Whether the words start with a no ("no, the blue one", "nope, the big one")."""
+    first = plain(lang, heard)[:1]
+    return bool(first) and lang.followups.no.get(first[0], first[0]) == "no"
+
+
+def _not_that(lang: Language, words: Words) -> Words:
+    """ "not the shed, the porch" or "the porch, not the shed": the phrase meant (() if none is)."""
+    if "not" not in words:
+        return ()
+    at = words.index("not")
+    if at > 0:
+        return words[:at]
+    np_start = lang.words.np_start
+    starts = (j for j in range(2, len(words)) if words[j] in np_start and words[j - 1] not in np_start)
+    again = next(starts, None)
+    return words[again:] if again is not None else ()
+
+
+def _instead(lang: Language, fragment: Words, said: Words) -> Words:
+    """The fragment, its "one" said with the head of the phrase it replaces ("the red one" for "the
+    blue cup": the red cup)."""
+    core: list[str] = []
+    for w in said:
+        if w in lang.modifier_start and core:
+            break
+        core.append(w)
+    head = content_words(lang, core)[-1:] if content_words(lang, core) else []
+    return tuple(x for w in fragment for x in (head if w in lang.followups.one and head else [w]))

@@ -1,0 +1,79 @@
+"""Corrections of the request just made, and of a correction just made."""
+
+import pytest
+
+from dialogue import intents as I
+from kb import KB
+from tests.dialogue.conftest import scene_kb
+from tests.dialogue.understanding.test_interpret import say
+
+LEA = "person_lea"
+
+
+@pytest.fixture
+def pantry() -> KB:
+    return scene_kb(
+        None,
+        "myself rdf:type Robot",
+        "pantry rdf:type ZoneOfInterest", 'pantry rdfs:label "pantry"',
+        "larder rdf:type ZoneOfInterest", 'larder rdfs:label "larder"',
+        f"{LEA} rdf:type Human", f'{LEA} rdfs:label "Lea"', f"myself sees {LEA}",
+        "person_tam rdf:type Human", 'person_tam rdfs:label "Tam"', "myself sees person_tam",
+        "jar_1 rdf:type Container", 'jar_1 rdfs:label "jar"', "jar_1 hasColor green", "myself sees jar_1",
+        "jar_2 rdf:type Container", 'jar_2 rdfs:label "jar"', "jar_2 hasColor amber", "myself sees jar_2",
+    )  # fmt: skip
+
+
+def _after(*turns: str) -> list[tuple[str, str]]:
+    """A conversation in which every turn of the person's was acknowledged."""
+    return [(who, text) for said in turns for who, text in (("user", said), ("robot", "OK."))]
+
+
+def test_a_correction_after_a_correction_corrects_the_request_as_corrected(pantry: KB) -> None:
+    history = _after("bring me the green jar", "no, the amber one")
+    out = say(pantry, "no, the other one", speaker=LEA, history=history)
+    assert (out.intent, out.roles) == (I.BRING_OBJECT, {"object": "jar_1", "recipient": LEA}), out.reply
+    # a correction of another role keeps what the first one corrected
+    out = say(pantry, "sorry, I meant to Tam", speaker=LEA, history=history)
+    assert out.roles == {"object": "jar_2", "recipient": "person_tam"}, out.reply
+    again = _after("bring me the green jar", "no, the amber one", "sorry, I meant to Tam")
+    assert say(pantry, "no, the green one", speaker=LEA, history=again).roles == {
+        "object": "jar_1", "recipient": "person_tam"}  # fmt: skip
+
+
+def test_a_correction_needs_a_request_at_the_end_of_its_corrections(pantry: KB) -> None:
+    # words that were no correction of anything leave nothing to correct
+    history = _after("the amber one")
+    assert say(pantry, "no, the other one", speaker=LEA, history=history).intent is None
+    # and corrections reach back a few steps only
+    far = _after("bring me the green jar", "no, the amber one", "no, the green one", "no, the amber one",
+                 "no, the green one")  # fmt: skip
+    assert say(pantry, "no, the other one", speaker=LEA, history=far).intent is None
+
+
+def test_the_same_again_with_another_thing_is_the_request_for_it(pantry: KB) -> None:
+    history = _after("take the green jar to the larder")
+    out = say(pantry, "now do the same with the amber one", speaker=LEA, history=history)
+    assert (out.intent, out.roles) == (I.BRING_OBJECT, {"object": "jar_2", "recipient": "larder"}), out.reply
+    out = say(pantry, "same for the pantry", speaker=LEA, history=history)
+    assert out.roles == {"object": "jar_1", "recipient": "pantry"}, out.reply
+    # with nothing done before it, nothing is done again
+    assert say(pantry, "do the same with the amber one", speaker=LEA).intent is None
+
+
+def test_a_correction_said_before_why_is_the_correction(pantry: KB) -> None:
+    history = _after("take the green jar to the larder")
+    out = say(pantry, "oh, not the larder, the pantry. I want some fresh air.", speaker=LEA, history=history)
+    assert (out.intent, out.roles) == (I.BRING_OBJECT, {"object": "jar_1", "recipient": "pantry"}), out.reply
+
+
+def test_the_same_again_with_what_could_be_either_role_is_not_guessed(pantry: KB) -> None:
+    pantry.add(["tray_1 rdf:type Tray", 'tray_1 rdfs:label "tray"', "myself sees tray_1",
+                "jar_3 rdf:type Container", 'jar_3 rdfs:label "jar"', "jar_3 isIn larder"])  # fmt: skip
+    history = _after("put the green jar on the tray")
+    # the amber jar put on the tray, or the green jar put on the amber jar: not said which
+    assert say(pantry, "do the same with the amber jar", speaker=LEA, history=history).intent is None
+    # a jar (of two it might be) put on the tray, or the green jar put on the jar in sight
+    assert say(pantry, "do the same with the jar", speaker=LEA, history=history).intent is None
+    out = say(pantry, "do the same with the amber one", speaker=LEA, history=history)  # a jar: the thing
+    assert out.roles == {"object": "jar_2", "recipient": "tray_1"}, out.reply
