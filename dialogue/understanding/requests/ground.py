@@ -330,13 +330,14 @@ STEPS: tuple[Callable[[Phrase], Ref | None], ...] = (
 
 
 def _none_here(p: Phrase) -> Ref:
-    """What no step grounded: nothing such is here. "I don't see any bk" is only true of a kind the
-    rules know; of a word they do not, it is a doubt, for a model to read ("bk" is "back" in chat);
-    so is a name no one has here, a recogniser's spelling of one a model may see in the situation
-    ("chevonne": Siobhan)."""
+    """What no step grounded: nothing such is here. "I don't see any mug" is only true of a kind the
+    KB names; of a word it does not, English or not, it is a doubt, for a model to read ("bk" is
+    "back" in chat, "bunny" may be the toy rabbit, "the remove" the remote misheard); so is a name
+    no one has here, a recogniser's spelling of one a model may see in the situation ("chevonne":
+    Siobhan, "armed": Ahmed)."""
     refs = p.refs
     reply = unknown(refs, p.content, p.kinds, p.words)
-    if refs.strange(p.content) or (p.kinds == PERSON and not set(p.words) & refs.said.determiners):
+    if refs.unnamed(p.content) or (p.kinds == PERSON and not set(p.words) & refs.said.determiners):
         return Ref(problem=Outcome(reply, understood=False))
     return Ref(problem=Outcome(reply))
 

@@ -187,3 +187,10 @@ class Referents:
         """Whether some words of a phrase are names of the KB and others are words it does not know."""
         unknown = [w for w in content if not self.lexicon.knows(w) and w not in self.said.accounted]
         return 0 < len(unknown) < len(content)
+    def unnamed(self, content: Sequence[str]) -> list[str]:
+        """The words of a phrase no name or qualifier of the KB accounts for, English or not ("bunny"
+        of a toy rabbit, "bagget" heard for a baguette): the rules cannot tell a thing that is not
+        here from a thing called otherwise, or misheard."""
+        return [w for w in content if not self.lexicon.knows(w) and w not in self.said.accounted
+                and w not in self.said.function_words]  # fmt: skip
+
