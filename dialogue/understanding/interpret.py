@@ -348,6 +348,9 @@ class Interpreter:
                 continue
             if content_words(self.lang, words)[:1] in ([w] for w in self.lang.words.indefinite):
                 # "guide somebody there", "put it somewhere safe": who or where is asked
+                if role in spec.required and set(words) & self.lang.words.demonstratives:
+                    # "bring me that one": what is pointed at, which the words do not say
+                    return Outcome(say(self.lang, "sorry.not_understood"), understood=False)
                 return self._missing(intent, role, p, roles.get("recipient"))
             whose = self.refs.possessive(words, slots) if role == "object" else self._whose(words, kinds)
             words, owner = whose

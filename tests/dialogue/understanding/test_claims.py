@@ -313,3 +313,13 @@ def test_a_word_nothing_accounts_for_is_a_doubt_not_an_absent_thing() -> None:
     # spelling of a name ("chevonne" for Siobhan) is for a model to read in the situation
     unknown = say(kb, "greet Zorblina")
     assert not unknown.understood and unknown.reply == "Sorry, I don't know anyone called Zorblina."
+
+
+def test_a_thing_pointed_at_by_a_word_alone_is_not_asked_about_but_handed_over() -> None:
+    # "bring me that one": what the speaker shows, which the words do not say (a model may see it)
+    kb = scene("mop_1 rdf:type Artifact", 'mop_1 rdfs:label "mop"', "myself sees mop_1")
+    for text in ("bring me that one", "pass me that, would you?", "grab this"):
+        out = say(kb, text)
+        assert not out.understood and out.intent is None, text
+    # an object not said at all is still asked for
+    assert say(kb, "bring me").clarify
