@@ -300,6 +300,9 @@ class Interpreter:
     def _one_command(self, p: Parse, overrides: dict[str, Words]) -> Outcome:  # noqa: C901
         intent = p.intent or ""
         slots = {**p.slots, **overrides}
+        if "object" not in overrides:  # ("the key card for room 309": one name, not a recipient)
+            slots, marks = self.refs.named_across(slots, p.marks)
+            p = replace(p, marks=marks)
         if p.double_object and "rest" in slots:
             slots = {**self.refs.split_double_object(slots.pop("rest")), **overrides}
         if intent in {I.BRING_OBJECT, I.PLACE_OBJECT} and "recipient" in slots:
@@ -311,8 +314,10 @@ class Interpreter:
                     # "bring Sam here": a person brought to a person is no intent the rules have
                     return Outcome(say(self.lang, "sorry.not_understood"), understood=False)
                 intent, slots = I.GUIDE, {"recipient": who, "goal": slots["recipient"]}
-            elif intent == I.PLACE_OBJECT and self.refs.named_person(slots["recipient"]):
-                intent = I.BRING_OBJECT  # "return the stapler to Carol": carried to a person
+            elif intent == I.PLACE_OBJECT and (
+                self.refs.named_person(slots["recipient"]) or self.refs.an_owner(slots["recipient"])
+            ):
+                intent = I.BRING_OBJECT  # "return the stapler to Carol", "... to its owner": to a person
         if intent == I.BRING_OBJECT and self.refs.a_place(slots.get("object", ())):
             # "I need the lifts": a place is where to be taken, not a thing to carry
             intent, slots = I.GUIDE, {"recipient": slots.get("recipient", ("me",)), "goal": slots["object"]}

@@ -109,6 +109,12 @@ def test_its_owner_is_whom_the_kb_says_the_thing_belongs_to(flat: KB) -> None:
     assert out.intent is None and out.more == ()
 
 
+def test_a_thing_returned_to_its_owner_is_brought_to_them_not_put_somewhere(flat: KB) -> None:
+    flat.update(["mic_1 belongsTo person_dana"])
+    out = say(flat, "could you return the microphone to its owner?", LEON)
+    assert (out.intent, out.roles) == (I.BRING_OBJECT, {"object": "mic_1", "recipient": "person_dana"})
+
+
 @pytest.mark.parametrize(
     "text",
     ["bring the microphone to the lounge for Dana", "bring the microphone to Dana in the lounge",
