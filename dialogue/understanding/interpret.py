@@ -328,8 +328,8 @@ class Interpreter:
                 slots["goal"] = tuple(tokens(person.zone))
         if intent == I.GUIDE and "goal" in p.implicit and "goal" not in overrides:
             there = antecedent(self.lexicon, self.history, PLACE, place=True, speaker=self.speaker)
-            if there is None:  # "take me", with no place spoken of
-                return self._missing(intent, "goal", p)
+            if there is None:  # "take me", "escort Carla", with no place spoken of: asked (whom named)
+                slots.pop("goal", None)
         if intent == I.GREET and "recipient" in p.implicit and "recipient" not in overrides:
             # "this is Callum, say hello": whom the same utterance introduced, else the speaker
             person = antecedent(self.lexicon, self._this_turn(), PERSON, speaker=self.speaker)
@@ -348,14 +348,14 @@ class Interpreter:
         for role, kinds in ROLE_KINDS.get(intent, {}).items():
             words = slots.get(role, ())
             if not content_words(self.lang, words) and words not in {("there",), ("over", "there")}:
+                if role in spec.required and set(words) & self.lang.words.demonstratives:
+                    # "bring me that one": what is pointed at, which the words do not say
+                    return Outcome(say(self.lang, "sorry.not_understood"), understood=False)
                 if role in spec.required:
                     return self._missing(intent, role, p, roles.get("recipient"))
                 continue
             if content_words(self.lang, words)[:1] in ([w] for w in self.lang.words.indefinite):
                 # "guide somebody there", "put it somewhere safe": who or where is asked
-                if role in spec.required and set(words) & self.lang.words.demonstratives:
-                    # "bring me that one": what is pointed at, which the words do not say
-                    return Outcome(say(self.lang, "sorry.not_understood"), understood=False)
                 return self._missing(intent, role, p, roles.get("recipient"))
             whose = self.refs.possessive(words, slots) if role == "object" else self._whose(words, kinds)
             words, owner = whose
