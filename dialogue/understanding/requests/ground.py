@@ -337,9 +337,28 @@ def _none_here(p: Phrase) -> Ref:
     Siobhan, "armed": Ahmed)."""
     refs = p.refs
     reply = unknown(refs, p.content, p.kinds, p.words)
-    if refs.unnamed(p.content) or (p.kinds == PERSON and not set(p.words) & refs.said.determiners):
+    # ("the bread on the bread shelf": "bread" only says which shelf, no loaf or baguette is called so)
+    if refs.unnamed(p.content) or _head_names_nothing(p) or (
+        p.kinds == PERSON and not set(p.words) & refs.said.determiners
+    ):
         return Ref(problem=Outcome(reply, understood=False))
     return Ref(problem=Outcome(reply))
+
+
+def _head_names_nothing(p: Phrase) -> bool:
+    """Whether the phrase's head noun, known to the KB only inside other names ("bread" of the "bread
+    shelf"), names nothing by itself: what the speaker calls so may be a thing called otherwise."""
+    if "thing" not in p.kinds or p.kinds == PERSON:
+        return False
+    core: list[str] = []
+    for w in p.words:
+        if w in p.refs.said.modifier_start and core:
+            break
+        core.append(w)
+    content = content_words(p.refs.lang, core)
+    if not content:
+        return False
+    return not any(len(n.words) == 1 for n in p.refs.lexicon.names_at([singular(content[-1])], 0))
 
 
 def unknown(

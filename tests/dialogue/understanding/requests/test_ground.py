@@ -128,3 +128,14 @@ def test_a_recipient_said_with_where_they_are_is_the_person(flat: KB, text: str)
 def test_a_place_said_alone_is_still_where_to_bring(flat: KB) -> None:
     out = say(flat, "bring the microphone to the bathroom")
     assert (out.intent, out.roles) == (I.BRING_OBJECT, {"object": "mic_1", "recipient": "bathroom"})
+
+
+def test_a_head_noun_known_only_inside_other_names_is_not_understood(flat: KB) -> None:
+    # "bread" names nothing here by itself, only the bread shelf: the loaf may be what is meant
+    flat.update(["shelf_b rdf:type Artifact", 'shelf_b rdfs:label "bread shelf"', "shelf_b isIn lounge",
+                 "loaf_1 rdf:type Artifact", 'loaf_1 rdfs:label "sourdough loaf"', "loaf_1 isOn shelf_b"])  # fmt: skip
+    out = say(flat, "grab the bread that's on the bread shelf", LEON)
+    assert out.intent is None and not out.understood
+    # a head noun that names things, none of them fitting, is answered
+    out = say(flat, "grab the microphone on the stool", LEON)
+    assert out.understood and "don't see any microphone" in out.reply
