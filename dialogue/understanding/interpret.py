@@ -18,7 +18,7 @@ from dataclasses import replace
 from dialogue import intents as I
 from dialogue.history import Utterance
 from dialogue.reference.english import Words, tokens
-from dialogue.reference.grounding import Entity, Kind
+from dialogue.reference.grounding import Entity
 from dialogue.reference.lexicon import Lexicon
 from dialogue.reference.resolution import (
     PERSON,
@@ -31,14 +31,14 @@ from dialogue.reference.resolution import (
 from dialogue.understanding.followups.accepting import accepts
 from dialogue.understanding.followups.proposal import proposed
 from dialogue.understanding.followups.request import follow_up, followed_up, said_first
-from dialogue.understanding.inflection import plural_of
 from dialogue.understanding.outcome import Outcome, Ref
 from dialogue.understanding.parsed import Parse
 from dialogue.understanding.questions import situation
-from dialogue.understanding.replies import abilities, acknowledgement, goodbye, hello, say, then, whose_it_is
+from dialogue.understanding.replies import acknowledgement, hello, say, then, whose_it_is
 from dialogue.understanding.requests.commands import parse
 from dialogue.understanding.requests.compound import conjuncts, coordinated
 from dialogue.understanding.requests.ground import ground
+from dialogue.understanding.requests.owners import none_yours, whose
 from dialogue.understanding.requests.referents import Referents, relational
 from dialogue.understanding.requests.sequence import compound, wished
 from dialogue.understanding.requests.terse import terse
@@ -48,6 +48,7 @@ from dialogue.understanding.speech.letters import joined
 from dialogue.understanding.speech.plain import expanded
 from dialogue.understanding.speech.repair import cleaned
 from dialogue.understanding.speech.spelling import corrected
+from dialogue.understanding.talk import TALK
 
 #: How sure the rules are of a turn in which they corrected a slip ("plase", "thremos").
 SPELT_CONFIDENCE = 0.7
@@ -240,31 +241,6 @@ class Interpreter:
             return Outcome(say(self.lang, "sorry.not_understood"), understood=False)
         return read(self, p, overrides or {})
 
-    # -- social talk -----------------------------------------------------------------------------
-    def _greeting(self, p: Parse, overrides: dict[str, Words]) -> Outcome:
-        if "everyone" in p.slots:  # no single recipient: greet verbally only
-            return Outcome(say(self.lang, "social.hello_everyone"))
-        greeting = hello(self.lang, self.snapshot, self.speaker)
-        return self._intent(I.GREET, {"recipient": self.speaker}, greeting)
-
-    def _negated(self, p: Parse, overrides: dict[str, Words]) -> Outcome:
-        return Outcome(say(self.lang, "social.wont"))
-
-    def _conditional(self, p: Parse, overrides: dict[str, Words]) -> Outcome:
-        return Outcome(say(self.lang, "social.later"))  # the rules act now or never: asked again, then
-
-    def _thanks(self, p: Parse, overrides: dict[str, Words]) -> Outcome:
-        return Outcome(say(self.lang, "social.welcome"))
-
-    def _farewell(self, p: Parse, overrides: dict[str, Words]) -> Outcome:
-        return Outcome(goodbye(self.lang, self.snapshot, self.speaker), farewell=True)
-
-    def _abilities(self, p: Parse, overrides: dict[str, Words]) -> Outcome:
-        return Outcome(abilities(self.lang))
-
-    def _joke(self, p: Parse, overrides: dict[str, Words]) -> Outcome:
-        return Outcome(say(self.lang, "social.no_jokes"))
-
     # -- questions -------------------------------------------------------------------------------
     def _question(self, p: Parse, overrides: dict[str, Words]) -> Outcome:
         answer = situation.answer(self, p)
@@ -300,6 +276,9 @@ class Interpreter:
     def _one_command(self, p: Parse, overrides: dict[str, Words]) -> Outcome:  # noqa: C901
         intent = p.intent or ""
         slots = {**p.slots, **overrides}
+        if "object" not in overrides:  # ("the key card for room 309": one name, not a recipient)
+            slots, marks = self.refs.named_across(slots, p.marks)
+            p = replace(p, marks=marks)
         if p.double_object and "rest" in slots:
             slots = {**self.refs.split_double_object(slots.pop("rest")), **overrides}
         if intent in {I.BRING_OBJECT, I.PLACE_OBJECT} and "recipient" in slots:
@@ -311,8 +290,10 @@ class Interpreter:
                     # "bring Sam here": a person brought to a person is no intent the rules have
                     return Outcome(say(self.lang, "sorry.not_understood"), understood=False)
                 intent, slots = I.GUIDE, {"recipient": who, "goal": slots["recipient"]}
-            elif intent == I.PLACE_OBJECT and self.refs.named_person(slots["recipient"]):
-                intent = I.BRING_OBJECT  # "return the stapler to Carol": carried to a person
+            elif intent == I.PLACE_OBJECT and (
+                self.refs.named_person(slots["recipient"]) or self.refs.an_owner(slots["recipient"])
+            ):
+                intent = I.BRING_OBJECT  # "return the stapler to Carol", "... to its owner": to a person
         if intent == I.BRING_OBJECT and self.refs.a_place(slots.get("object", ())):
             # "I need the lifts": a place is where to be taken, not a thing to carry
             intent, slots = I.GUIDE, {"recipient": slots.get("recipient", ("me",)), "goal": slots["object"]}
@@ -323,8 +304,8 @@ class Interpreter:
                 slots["goal"] = tuple(tokens(person.zone))
         if intent == I.GUIDE and "goal" in p.implicit and "goal" not in overrides:
             there = antecedent(self.lexicon, self.history, PLACE, place=True, speaker=self.speaker)
-            if there is None:  # "take me", with no place spoken of
-                return self._missing(intent, "goal", p)
+            if there is None:  # "take me", "escort Carla", with no place spoken of: asked (whom named)
+                slots.pop("goal", None)
         if intent == I.GREET and "recipient" in p.implicit and "recipient" not in overrides:
             # "this is Callum, say hello": whom the same utterance introduced, else the speaker
             person = antecedent(self.lexicon, self._this_turn(), PERSON, speaker=self.speaker)
@@ -343,18 +324,21 @@ class Interpreter:
         for role, kinds in ROLE_KINDS.get(intent, {}).items():
             words = slots.get(role, ())
             if not content_words(self.lang, words) and words not in {("there",), ("over", "there")}:
+                if role in spec.required and set(words) & self.lang.words.demonstratives:
+                    # "bring me that one": what is pointed at, which the words do not say
+                    return Outcome(say(self.lang, "sorry.not_understood"), understood=False)
                 if role in spec.required:
                     return self._missing(intent, role, p, roles.get("recipient"))
                 continue
             if content_words(self.lang, words)[:1] in ([w] for w in self.lang.words.indefinite):
                 # "guide somebody there", "put it somewhere safe": who or where is asked
                 return self._missing(intent, role, p, roles.get("recipient"))
-            whose = self.refs.possessive(words, slots) if role == "object" else self._whose(words, kinds)
-            words, owner = whose
+            owned = self.refs.possessive(words, slots) if role == "object" else whose(self, words, kinds)
+            words, owner = owned
             others = [w for r, w in slots.items() if r != role]
             ref = ground(self.refs, words, kinds, role, owner, others)
             if ref.problem is not None:
-                return self._none_yours(ref.problem, words, kinds) if owner == self.speaker else ref.problem
+                return none_yours(self, ref.problem, words, kinds) if owner == self.speaker else ref.problem
             refs[role] = ref
             roles[role] = self.speaker if ref.speaker else (ref.entity.id if ref.entity else "")
             # "my stapler" (not "the folder on my desk": whose the desk is)
@@ -380,31 +364,6 @@ class Interpreter:
             return Outcome(reply, intent, roles, SPELT_CONFIDENCE, guessed=True)
         return replace(self._intent(intent, roles, reply), unsure=self._unaccounted(intent, slots))
 
-    def _none_yours(self, problem: Outcome, words: Words, kinds: frozenset[Kind]) -> Outcome:
-        """ "give me my mug" when none of the mugs asked about is the speaker's: said so before
-        asking which ("Neither mug is yours. Which mug do you mean...?")."""
-        if not problem.clarify:
-            return problem
-        found = resolve(self.lexicon, words, kinds, sight=False).matches
-        if len(found) < 2 or any(e.owner == self.speaker for e in found):
-            return problem
-        noun = content_words(self.lang, words)[-1]
-        note = (say(self.lang, "naming.neither_yours", noun=noun) if len(found) == 2
-                else say(self.lang, "naming.none_yours", nouns=plural_of(noun)))
-        return replace(problem, reply=f"{note} {problem.reply}")
-
-    def _whose(self, words: Words, kinds: frozenset[Kind]) -> tuple[Words, str | None]:
-        """ "go to my desk", "put it on Ana's shelf": a place said with whose it is, when that names
-        one (a person's phrase keeps its possessive: "my son" is no son of the KB's)."""
-        if not words or words[0] not in self.lang.words.possessives:  # "platform 4 my train's late": no one's
-            return words, None
-        if words[1:2] and words[1] in self.lang.modifier_start:  # "her in the bedroom": she, not hers
-            return words, None
-        bare, owner = self.refs.possessive(words, {})
-        if owner is None or resolve(self.lexicon, bare, kinds, owner=owner).one is None:
-            return words, None
-        return bare, owner
-
     def _this_turn(self) -> tuple[Utterance, ...]:
         """What the speaker said since the robot last spoke (the earlier clauses of this turn)."""
         said = [i for i, u in enumerate(self.history) if u.role == "assistant"]
@@ -423,8 +382,5 @@ class Interpreter:
 
 #: How each act the grammar reads is understood (an act not here is not: "unknown").
 ACTS: dict[str, Callable[[Interpreter, Parse, dict[str, Words]], Outcome]] = {
-    "greeting": Interpreter._greeting, "negated": Interpreter._negated,
-    "conditional": Interpreter._conditional, "thanks": Interpreter._thanks,
-    "farewell": Interpreter._farewell, "abilities": Interpreter._abilities, "joke": Interpreter._joke,
-    "question": Interpreter._question, "command": Interpreter._command,
+    **TALK, "question": Interpreter._question, "command": Interpreter._command,
 }  # fmt: skip

@@ -62,9 +62,12 @@ def the(lang: Language, snapshot: Snapshot, entity: Entity, speaker: str = "", a
 
 
 def _numbered(lang: Language, name: str) -> bool:
-    """Whether a name ends with its number ("screen 2", "table four")."""
+    """Whether a name ends with its number ("screen 2", "table four"; not "the key card for room
+    309", whose number is another thing's)."""
     words = tokens(name)
     spoken = {w for said in lang.words.spoken_numbers.values() for w in said} - set(lang.words.units[:1])
+    if set(words[:-1]) & lang.words.any_function_word:
+        return False
     return len(words) > 1 and (words[-1].isdigit() or words[-1] in spoken)
 
 

@@ -80,8 +80,19 @@ def follow_up(reader: Reader, p: Parse, heard: Said) -> Outcome | None:
     outcome = earlier.act(pending, {role: merged})
     if outcome.intent is None and not outcome.clarify:
         return None
+    return _asked_again(reader, fragment, outcome) if outcome.clarify else outcome.followed_up()
+
+
+def _asked_again(reader: Reader, fragment: Words, outcome: Outcome) -> Outcome:
+    """An answer that leaves the question open: "the left one" (the KB says nothing of left and
+    right) is said so and asked again; "the flowery one" to "the floral teacup or the plain
+    teacup?", a word the KB names nothing with, may well be how the speaker says one of them:
+    asking again would claim neither fits, so it is not understood."""
+    lang = reader.lexicon.lang
+    if reader.refs.unnamed(content_words(lang, fragment)):
+        return Outcome(say(lang, "sorry.not_understood"), understood=False)
     unknown = [w for w in content_words(lang, fragment) if w in lang.words.positions]
-    if outcome.clarify and unknown:  # "the left one": the KB says nothing of left and right
+    if unknown:
         note = say(lang, "request.position_unknown", position=unknown[0])
         return replace(outcome.followed_up(), reply=f"{note} {outcome.reply}")
     return outcome.followed_up()

@@ -74,12 +74,14 @@ def who_is_in(lexicon: Lexicon, words: Sequence[str], speaker: str) -> tuple[str
     if found.one is None:  # "who's in today": no place, who is there
         return who_do_you_see(lang, snapshot, speaker), False
     place = found.one
-    there = [e for e in snapshot.entities.values()
-             if e.kind == "person" and place.id in (e.zone, e.support)]  # fmt: skip
+    # ("who is sitting at the lunch table": whom the KB puts next to it, or by it, too)
+    there = [e for e in snapshot.entities.values() if e.kind == "person"
+             and (place.id in (e.zone, e.support) or any(r == place.id for _, r in e.relations))]  # fmt: skip
+    at = "at" if place.kind == "thing" else "in"
     if not there:
-        return say(lang, "answers.no_one_in", place=the(lang, snapshot, place)), False
+        return say(lang, f"answers.no_one_{at}", place=the(lang, snapshot, place)), False
     people = listing(lang, _people(lang, there, speaker))
-    return say(lang, "answers.people_in", place=the(lang, snapshot, place), people=people,
+    return say(lang, f"answers.people_{at}", place=the(lang, snapshot, place), people=people,
                there=_there(lang, there)), False
 
 

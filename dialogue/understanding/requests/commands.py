@@ -7,7 +7,6 @@ Only words are looked at: which entity a phrase names is decided later against t
 
 from __future__ import annotations
 
-from collections.abc import Sequence
 from dataclasses import replace
 
 from dialogue.reference.english import Words
@@ -15,67 +14,20 @@ from dialogue.understanding.language import Language
 from dialogue.understanding.parsed import Act, Parse
 from dialogue.understanding.questions.grammar import question as _question
 from dialogue.understanding.requests.constructions import Framed
-from dialogue.understanding.requests.frames import Row, Special, constructions, verb_index
+from dialogue.understanding.requests.frames import Row, verb_index
+from dialogue.understanding.requests.timing import conditional, later, negation, when
+from dialogue.understanding.requests.vocabulary import Grammar
 from dialogue.understanding.said import Said, Text
 from dialogue.understanding.speech.plain import starts, strip_politeness
-from dialogue.understanding.speech.repair import asked_verb, normalise, strip_vocative, verb_lemma
+from dialogue.understanding.speech.repair import normalise, strip_vocative, verb_lemma
 
 __all__ = ["Parse", "Words", "parse"]
 
 
-class _Grammar:
-    """The language's words a request is read with (made once per language)."""
-
-    def __init__(self, lang: Language) -> None:
-        closed, said, social = lang.words, lang.requests, lang.social
-        self.determiners = closed.determiners
-        self.function_words = closed.any_function_word
-        self.many = closed.many
-        self.me = closed.me
-        self.modifier_start = lang.modifier_start
-        self.personal = closed.personal
-        self.np_start = closed.np_start
-        self.adjuncts = said.all_adjuncts
-        self.away = frozenset(said.away)
-        self.durations = said.durations
-        self.halts = said.halts
-        self.if_modals = said.if_modals
-        self.conditions = said.conditions
-        self.not_conditions = said.not_conditions
-        self.your_time = said.your_time
-        self.manner = said.manner
-        self.polite_if = said.polite_if
-        self.results = said.results
-        self.their_subjects = said.their_subjects
-        self.time_conjunctions = said.time_conjunctions
-        self.while_ = said.while_
-        self.purpose = said.purpose
-        self.greetings = social.greetings_longest_first
-        self.attention = social.attention
-        self.social = social.social
-        #: Talk the robot answers in words alone, each act by its phrases.
-        self.talk: tuple[tuple[Act, frozenset[tuple[str, ...]]], ...] = (
-            ("farewell", social.farewells), ("abilities", social.abilities), ("joke", social.jokes))
-        self.goal_particles = lang.prepositions.words("goal-particle")
-        self.paths = lang.prepositions.words("path")
-        #: Two-word prepositions read as one word, so that their "to" is never taken for a
-        #: recipient's ("next to": "beside").
-        self.joined = {tuple(p.split()): one for p, one in lang.prepositions.column("reads_as").items()}
-        #: Prepositions that never end a request as a particle: a role said with one and nothing
-        #: after it was cut short ("give it to"), where "come in", "hold on" end with a particle.
-        self.cut_short = lang.prepositions.words("cut-short")
-        #: Pointing words and what they point at, longest first: the speaker, or the place just
-        #: spoken of.
-        self.pointing = sorted([(p, ("me",)) for p in said.here] + [(p, ("there",)) for p in said.there],
-                               key=lambda p: -len(p[0]))  # fmt: skip
-        self.somewhere = said.somewhere
-        self.own_phrase = closed.np_start | {"her"}
-        self.constructions: tuple[Special, ...] = constructions(lang)
-
 
 def parse(lang: Language, said: Text, robot_name: str = "") -> Parse:
     """What the grammar reads in the words: their act and, for a request, its frame's roles."""
-    g = lang.derived(_Grammar)
+    g = lang.derived(Grammar)
     heard = Said.read(lang, said)
     words = strip_vocative(lang, strip_politeness(lang, normalise(lang, heard), robot_name), robot_name)
     if not words:
@@ -83,13 +35,13 @@ def parse(lang: Language, said: Text, robot_name: str = "") -> Parse:
     words[0] = verb_lemma(lang, words[0])  # "(would you mind) picking up the cup"
     if words[0] == "no" and len(words) > 1 and words[1] not in {"need", "more", "thanks", "thank"}:
         words = strip_politeness(lang, words[1:], robot_name)
-    if len(words) > 1 and words[0] in g.halts and _negation(words[1:]):  # "stop, don't go"
+    if len(words) > 1 and words[0] in g.halts and negation(words[1:]):  # "stop, don't go"
         words = words[1:]
-    if words and _negation(words):
+    if words and negation(words):
         return Parse("negated", words=tuple(words))
     if any(tuple(words[: len(a)]) == a for a in lang.followups.again):  # "do the same with the blue one"
         return Parse("unknown", words=tuple(words))
-    if _conditional(g, words) or _later(lang, words):  # "if Declan comes by, give him the menu"
+    if conditional(g, words) or later(lang, words):  # "if Declan comes by, give him the menu"
         return Parse("conditional", words=tuple(words))
     if not words:
         return Parse("unknown", words=())
@@ -120,7 +72,7 @@ def parse(lang: Language, said: Text, robot_name: str = "") -> Parse:
     return _question(lang, words) or command(lang, heard, words)
 
 
-def _talk(g: _Grammar, words: list[str], robot_name: str) -> Parse | None:
+def _talk(g: Grammar, words: list[str], robot_name: str) -> Parse | None:
     """ "bye", "what can you do?", "tell me a joke"; "goodbye robot", "bye Robbie": said to the robot."""
     called = words[:-1] if len(words) > 1 and words[-1] in {"robot", robot_name.lower()} else words
     for act, phrases in g.talk:
@@ -149,7 +101,7 @@ def _request(lang: Language, heard: Said, words: list[str]) -> Parse | None:
 
 def command(lang: Language, original: Said, words: list[str]) -> Parse:
     """The request the words make: the first construction or verb frame that fits them."""
-    g = lang.derived(_Grammar)
+    g = lang.derived(Grammar)
     w = _joined(g, words)
     said = Framed(lang, "", w, w, original)
     for construction in g.constructions:
@@ -169,7 +121,7 @@ def command(lang: Language, original: Said, words: list[str]) -> Parse:
     return Parse("unknown", words=w)
 
 
-def _joined(g: _Grammar, words: list[str]) -> Words:
+def _joined(g: Grammar, words: list[str]) -> Words:
     """ "next to" as one word ("beside"), so that its "to" is never taken for a recipient's ("out
     of the way" stays: an adjunct, no place)."""
     out: list[str] = []
@@ -185,7 +137,7 @@ def _joined(g: _Grammar, words: list[str]) -> Words:
 def _fit(row: Row, said: Framed) -> Parse | None:  # noqa: C901
     """The row's reading of what follows the verb, or None when the row does not fit it."""
     frame, rest = row.frame, said.rest
-    g = said.lang.derived(_Grammar)
+    g = said.lang.derived(Grammar)
     if frame.special is not None:
         return frame.special(said)
     if frame.intent is None and not frame.serial:  # a verb no intent says ("hand out the sheets")
@@ -197,7 +149,7 @@ def _fit(row: Row, said: Framed) -> Parse | None:  # noqa: C901
     if frame.whole and rest:
         return None
     rest, adjuncts = _adjuncts(g, rest, row)
-    if _when(g, adjuncts):  # "say hi to her when she comes in": not now
+    if when(g, adjuncts):  # "say hi to her when she comes in": not now
         return Parse("conditional", words=said.words)
     direct, slots, marks = _segments(g, rest, row)
     if direct:
@@ -264,7 +216,7 @@ def _fit(row: Row, said: Framed) -> Parse | None:  # noqa: C901
 
 
 
-def _someone(g: _Grammar, word: str) -> bool:
+def _someone(g: Grammar, word: str) -> bool:
     """Whether a word may start the phrase of a person ("him", "Ines"), not of a thing ("all", "the")
     nor a person's thing ("Noor's scarf")."""
     if word.endswith("'s"):
@@ -272,14 +224,14 @@ def _someone(g: _Grammar, word: str) -> bool:
     return word in g.personal or word == "them" or word not in g.function_words | g.determiners | g.many
 
 
-def _own_phrase_after(g: _Grammar, direct: Words) -> bool:
+def _own_phrase_after(g: Grammar, direct: Words) -> bool:
     """Whether a noun phrase of its own starts within the next words after the first ("Ines *her*
     phone", "Mr Ito *the* menu"), not after a preposition ("Noor's scarf off *the* chair")."""
     starts = range(1, min(4, len(direct)))
     return any(direct[i] in g.own_phrase and direct[i - 1] not in g.modifier_start for i in starts)
 
 
-def _segments(g: _Grammar, rest: Words, row: Row) -> tuple[Words, dict[str, Words], dict[str, str]]:
+def _segments(g: Grammar, rest: Words, row: Row) -> tuple[Words, dict[str, Words], dict[str, str]]:
     """The words before any of the row's prepositions (the direct role's), and each role's phrase:
     from its preposition to the next role's (a role's preposition said again stays in its phrase:
     "put the cup on the tray on the table"), and the preposition of each."""
@@ -321,13 +273,13 @@ def _which_one_back(direct: Words, slots: dict[str, Words], marks: dict[str, str
     return direct
 
 
-def _phrase_at(g: _Grammar, words: Words, i: int) -> bool:
+def _phrase_at(g: Grammar, words: Words, i: int) -> bool:
     """Whether a noun phrase starts at i: a determiner, or a word that is no function word ("plot
     12", "Ana's desk")."""
     return i < len(words) and (words[i] in g.np_start or words[i] not in g.function_words)
 
 
-def _second_phrase(g: _Grammar, slots: dict[str, Words]) -> Words:
+def _second_phrase(g: Grammar, slots: dict[str, Words]) -> Words:
     """When nothing follows the verb directly, a second noun phrase after a role's own ("to Ana the
     tray", "to Fenna her keys") is the direct one; it is taken out of that role's phrase."""
     for role, words in slots.items():
@@ -339,7 +291,7 @@ def _second_phrase(g: _Grammar, slots: dict[str, Words]) -> Words:
     return ()
 
 
-def _without_particles(g: _Grammar, words: Words, row: Row) -> Words:
+def _without_particles(g: Grammar, words: Words, row: Row) -> Words:
     """Particles next to the verb, at the end, or before a preposition ("pick the cup up from the
     table"), never inside a phrase ("the back door")."""
     if not row.particles:
@@ -352,11 +304,11 @@ def _without_particles(g: _Grammar, words: Words, row: Row) -> Words:
     return tuple(w for i, w in enumerate(out) if w not in row.particles or not _before_preposition(g, out, i))
 
 
-def _before_preposition(g: _Grammar, words: list[str], i: int) -> bool:
+def _before_preposition(g: Grammar, words: list[str], i: int) -> bool:
     return i + 1 < len(words) and words[i + 1] in g.modifier_start
 
 
-def _adjuncts(g: _Grammar, rest: Words, row: Row) -> tuple[Words, tuple[Words, ...]]:
+def _adjuncts(g: Grammar, rest: Words, row: Row) -> tuple[Words, tuple[Words, ...]]:
     """The words without their adjuncts ("through the main door", "on my behalf", "when you can",
     "carefully"), and the adjuncts. A phrase starting with one of the row's own prepositions is
     one of its roles, not an adjunct."""
@@ -375,7 +327,7 @@ def _adjuncts(g: _Grammar, rest: Words, row: Row) -> tuple[Words, tuple[Words, .
     return tuple(out), tuple(found)
 
 
-def _adjunct_end(g: _Grammar, rest: Words, i: int, own: set[str]) -> int:
+def _adjunct_end(g: Grammar, rest: Words, i: int, own: set[str]) -> int:
     word = rest[i]
     lasting = next((len(p) for p in g.durations if rest[i : i + len(p)] == p), 0)
     if lasting:  # "wait in the hall for now", "bring the fan for now"
@@ -402,50 +354,7 @@ def _adjunct_end(g: _Grammar, rest: Words, i: int, own: set[str]) -> int:
     return i
 
 
-def _negation(words: Sequence[str]) -> bool:
-    return words[0] in {"don't", "never", "no"} or starts(words, ["do", "not"])
-
-
-def _conditional(g: _Grammar, words: Sequence[str]) -> bool:
-    """Whether the request is said under a condition of something to happen first ("if I nod off,
-    could you..."), not a polite "if" ("if you could...", "if I could have the bill")."""
-    if words[:1] != ["if"] or len(words) < 4 or any(starts(words, p) for p in g.polite_if):
-        return False
-    return words[2] not in g.if_modals
-
-
-#: How many words of a condition may say it is the robot's own time ("you have got a minute").
-_YOUR_TIME = 5
-
-
-def _later(lang: Language, words: list[str]) -> bool:
-    """Whether a request is said after a condition yet to happen ("when the bell goes, could you...",
-    "after lunch take me to the day room", "when the train stops get my rucksack down")."""
-    g = lang.derived(_Grammar)
-    said = next((c for c in g.conditions if starts(words, c)), None)
-    if said is None or len(words) < len(said) + 2 or words[len(said)] in g.not_conditions:
-        return False
-    if any(starts(words, polite) for polite in g.adjuncts):  # "when you get a chance, ..."
-        return False
-    clause = words[len(said) : len(said) + _YOUR_TIME]
-    if clause[:1] == ["you"] and set(clause) & g.your_time:  # "when you've got a minute, ..."
-        return False
-    for i in range(len(said) + 1, len(words)):
-        rest = strip_politeness(lang, words[i:])
-        if rest and (rest != words[i:] or asked_verb(lang, words[i]) is not None):
-            # ("..., could you take", "... get my rucksack down", "... pour me a tea")
-            return asked_verb(lang, rest[0]) is not None
-    return False
-
-
-def _when(g: _Grammar, adjuncts: tuple[Words, ...]) -> bool:
-    """Whether a clause of time after the request says when it is to be done, later ("say hi to her
-    *when she comes in*"), rather than how long or while what ("while he waits")."""
-    return any(starts(a, c) and len(a) > len(c) and a[len(c)] in g.their_subjects
-               for a in adjuncts for c in g.conditions)  # fmt: skip
-
-
-def _said_how(g: _Grammar, rest: Words, i: int) -> int:
+def _said_how(g: Grammar, rest: Words, i: int) -> int:
     """The length of the phrase of manner or time that starts at i ("when you can", "carefully", a
     clause of time to the end: "while he waits"), or 0."""
     if rest[i] in g.manner:

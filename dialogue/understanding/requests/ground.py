@@ -8,20 +8,16 @@ decides is a thing, a place or a person not here (`_none_here`).
 from __future__ import annotations
 
 from collections.abc import Callable, Collection, Sequence
-from dataclasses import dataclass, replace
-from functools import cached_property
 
 from lemminflect import getAllLemmas
 
-from dialogue.reference.clarify import question as clarifying_question
 from dialogue.reference.english import Words, tokens
-from dialogue.reference.grounding import Entity, Kind
+from dialogue.reference.grounding import Kind
 from dialogue.reference.lexicon import singular
 from dialogue.reference.resolution import (
     ANYWHERE,
     PERSON,
     THING,
-    Resolution,
     antecedent,
     content_words,
     is_pronoun,
@@ -30,60 +26,13 @@ from dialogue.reference.resolution import (
     said_phrase,
 )
 from dialogue.reference.snapshot import fixed
-from dialogue.understanding.language import Language
 from dialogue.understanding.outcome import Outcome, Ref
 from dialogue.understanding.replies import say, the
 from dialogue.understanding.requests.compound import alternatives
+from dialogue.understanding.requests.phrase import Phrase, prepared
 from dialogue.understanding.requests.referents import Referents
-from dialogue.understanding.speech.clauses import described
 from dialogue.understanding.speech.sounds import clipped as said_short
 from dialogue.understanding.speech.sounds import slipped as heard_as
-
-
-@dataclass(frozen=True)
-class Phrase:
-    """A role's phrase as the steps read it, with what they read of it worked out once."""
-
-    refs: Referents
-    words: Words
-    kinds: frozenset[Kind]
-    role: str
-    owner: str | None
-    #: The request's other phrases, where a person pronoun finds the one person they name.
-    said: Sequence[Words]
-
-    @cached_property
-    def content(self) -> list[str]:
-        return content_words(self.refs.lang, self.words)
-
-    @cached_property
-    def resolved(self) -> Resolution:
-        """What the phrase names (a description of several people is not the speaker's)."""
-        sight = self.role != "object"  # a thing to fetch: of two towels, which is asked
-        res = resolve(self.refs.lexicon, self.words, self.kinds, owner=self.owner, sight=sight)
-        if res.ambiguous and any(e.id == self.refs.speaker for e in res.matches):
-            # A speaker says "me", not "the person in the living room": a description is someone else.
-            res = replace(res, matches=tuple(e for e in res.matches if e.id != self.refs.speaker))
-        return res
-
-    @cached_property
-    def loose(self) -> Words:
-        """The phrase without its spatial or comparative qualifiers, which the KB does not model."""
-        return tuple(w for w in self.words if w not in self.refs.said.relational)
-
-    @property
-    def loosened(self) -> bool:
-        """Whether qualifiers were dropped and something is left."""
-        return self.loose != tuple(self.words) and bool(content_words(self.refs.lang, self.loose))
-
-    def not_understood(self) -> Ref:
-        return Ref(problem=Outcome(say(self.refs.lang, "sorry.not_understood"), understood=False))
-
-    def which(self, matches: Sequence[Entity], words: Words) -> Ref:
-        """The question that asks which of the matches the phrase meant."""
-        refs = self.refs
-        q = clarifying_question(refs.lang, refs.snapshot, matches, _noun(refs, words, matches))
-        return Ref(problem=Outcome(q, clarify=True, open_role=self.role, open_phrase=words))
 
 
 def ground(
@@ -96,7 +45,7 @@ def ground(
 ) -> Ref:
     """The entity a role's phrase names; `said` are the request's other phrases, where a person
     pronoun finds the one person they name ("take Ravi's scarf to him")."""
-    phrase = Phrase(refs, _prepared(refs, words), kinds, role, owner, said)
+    phrase = Phrase(refs, prepared(refs, words), kinds, role, owner, said)
     for step in STEPS:
         ref = step(phrase)
         if ref is not None:
@@ -112,18 +61,6 @@ def _carried(p: Phrase, ref: Ref) -> Ref:
         return ref
     name = the(p.refs.lang, p.refs.snapshot, entity)
     return Ref(problem=Outcome(say(p.refs.lang, "sorry.fixed", thing=name)))
-
-
-def _prepared(refs: Referents, words: Words) -> Words:
-    """The phrase as the steps read it: "something to eat" is food, "it off the shelf" is "it", "the
-    box of gloves not the plasters" the box of gloves, "my mug the yellow one" my yellow mug."""
-    lang = refs.lang
-    bare_words = [w for w in words if w not in refs.said.determiners]
-    something = bare_words[:1] in (["something"], ["anything"])
-    wanted = refs.said.purpose(tuple(bare_words[1:])) if something else None
-    if wanted is not None:  # "something to eat": food; "something to cut this with": a cutting tool
-        words = wanted
-    return _apposed(lang, _not_the_other(lang, _placed_pronoun(lang, words)))
 
 
 # -- the steps, in order -------------------------------------------------------------------------
@@ -330,15 +267,35 @@ STEPS: tuple[Callable[[Phrase], Ref | None], ...] = (
 
 
 def _none_here(p: Phrase) -> Ref:
-    """What no step grounded: nothing such is here. "I don't see any bk" is only true of a kind the
-    rules know; of a word they do not, it is a doubt, for a model to read ("bk" is "back" in chat);
-    so is a name no one has here, a recogniser's spelling of one a model may see in the situation
-    ("chevonne": Siobhan)."""
+    """What no step grounded: nothing such is here. "I don't see any mug" is only true of a kind the
+    KB names; of a word it does not, English or not, it is a doubt, for a model to read ("bk" is
+    "back" in chat, "bunny" may be the toy rabbit, "the remove" the remote misheard); so is a name
+    no one has here, a recogniser's spelling of one a model may see in the situation ("chevonne":
+    Siobhan, "armed": Ahmed)."""
     refs = p.refs
     reply = unknown(refs, p.content, p.kinds, p.words)
-    if refs.strange(p.content) or (p.kinds == PERSON and not set(p.words) & refs.said.determiners):
+    # ("the bread on the bread shelf": "bread" only says which shelf, no loaf or baguette is called so)
+    if refs.unnamed(p.content) or _head_names_nothing(p) or (
+        p.kinds == PERSON and not set(p.words) & refs.said.determiners
+    ):
         return Ref(problem=Outcome(reply, understood=False))
     return Ref(problem=Outcome(reply))
+
+
+def _head_names_nothing(p: Phrase) -> bool:
+    """Whether the phrase's head noun, known to the KB only inside other names ("bread" of the "bread
+    shelf"), names nothing by itself: what the speaker calls so may be a thing called otherwise."""
+    if "thing" not in p.kinds or p.kinds == PERSON:
+        return False
+    core: list[str] = []
+    for w in p.words:
+        if w in p.refs.said.modifier_start and core:
+            break
+        core.append(w)
+    content = content_words(p.refs.lang, core)
+    if not content:
+        return False
+    return not any(len(n.words) == 1 for n in p.refs.lexicon.names_at([singular(content[-1])], 0))
 
 
 def unknown(
@@ -355,21 +312,6 @@ def unknown(
     return say(lang, "sorry.none_seen", phrase=said_phrase(lang, words) or phrase)
 
 
-def _noun(refs: Referents, words: Words, candidates: Sequence[Entity]) -> str | None:
-    """The noun said for all the candidates ("a drink"), if the phrase ends its core with one."""
-    core: list[str] = []
-    for w in words:
-        if w in refs.said.modifier_start and core:
-            break
-        core.append(w)
-    content = content_words(refs.lang, core)
-    if not content:
-        return None
-    noun = singular(content[-1])
-    named = {n.entity for n in refs.lexicon.names_at([noun], 0) if len(n.words) == 1}
-    return noun if all(c.id in named for c in candidates) else None
-
-
 def _unknown_just_said(refs: Referents) -> bool:
     """Whether the words just said before this request (the same utterance's earlier clause) name
     something with a noun the KB does not know."""
@@ -383,28 +325,3 @@ def _unknown_just_said(refs: Referents) -> bool:
     )
 
 
-def _apposed(lang: Language, words: Words) -> Words:
-    """ "my mug the yellow one": a second phrase of "one" says which the first is ("my yellow mug")."""
-    if "one" not in words and "ones" not in words:
-        return words
-    for j in range(1, len(words)):
-        np_start = lang.words.np_start
-        if words[j] in np_start and words[j - 1] not in np_start and words[j - 1] not in lang.modifier_start:
-            if "one" in words[j:] or "ones" in words[j:]:
-                return described(lang, words[:j], words[j:])
-            return words
-    return words
-
-
-def _placed_pronoun(lang: Language, words: Words) -> Words:
-    """ "it off the shelf", "them from the table": the pronoun; where it is only says where to take it
-    from (the thing is the one the conversation named)."""
-    if len(words) > 2 and words[0] in {"it", "them"} and words[1] in lang.support:
-        return words[:1]
-    return words
-
-
-def _not_the_other(lang: Language, words: Words) -> Words:
-    """ "the box of gloves not the plasters": the thing meant, without the one it is not."""
-    at = next((i for i in range(1, len(words)) if words[i] == "not" and words[i + 1 : i + 2]), None)
-    return words if at is None or not content_words(lang, words[:at]) else words[:at]

@@ -140,6 +140,39 @@ class Referents:
             return False
         return resolve(self.lexicon, words, PERSON).one is not None
 
+    def named_across(
+        self, slots: dict[str, Words], marks: dict[str, str]
+    ) -> tuple[dict[str, Words], dict[str, str]]:
+        """ "take the key card for room 309 to Mrs Okafor": a thing whose name the grammar cut at a
+        role's preposition is the thing called so, and the role is what follows its name (said
+        after a preposition of its own), when the words up to there are exactly one name."""
+        thing = slots.get("object", ())
+        for role, words in slots.items():
+            mark = marks.get(role)
+            if role == "object" or mark is None or not thing:
+                continue
+            for end in range(len(words), 0, -1):
+                named = (*thing, *mark.split(), *words[:end])
+                bare = named[1:] if named[0] in self.said.np_start else named
+                found = self.lexicon.mentions(bare)
+                if len(found) != 1 or (found[0].start, found[0].end) != (0, len(bare)):
+                    continue
+                if len(found[0].entities) != 1:
+                    break
+                rest, out = words[end:], {**slots, "object": named}
+                kept = {r: m for r, m in marks.items() if r != role}
+                if rest and rest[0] in self.said.function_words and rest[1:]:  # "... to Mrs Okafor"
+                    out[role], kept[role] = rest[1:], rest[0]
+                else:  # (the role said only as part of the name: read as the grammar cut it)
+                    break
+                return out, kept
+        return slots, marks
+
+    def an_owner(self, words: Words) -> bool:
+        """Whether the phrase is whom a thing belongs to ("its owner"): a person, whoever it is."""
+        content = content_words(self.lang, words)
+        return bool(content) and set(content) <= self.said.owner
+
     def person_as_object(self, words: Words) -> Entity | None:
         content = content_words(self.lang, words)
         if content and set(content) <= self.said.me:
@@ -182,6 +215,13 @@ class Referents:
         English (lemminflect's lexicon), no number or function word ("bk", "thingummy")."""
         return [w for w in content if not self.lexicon.knows(w) and w not in self.said.accounted
                 and w not in self.said.function_words and not getAllLemmas(w.removesuffix("'s"))]  # fmt: skip
+
+    def unnamed(self, content: Sequence[str]) -> list[str]:
+        """The words of a phrase no name or qualifier of the KB accounts for, English or not ("bunny"
+        of a toy rabbit, "bagget" heard for a baguette): the rules cannot tell a thing that is not
+        here from a thing called otherwise, or misheard."""
+        return [w for w in content if not self.lexicon.knows(w) and w not in self.said.accounted
+                and w not in self.said.function_words]  # fmt: skip
 
     def half_known(self, content: Sequence[str]) -> bool:
         """Whether some words of a phrase are names of the KB and others are words it does not know."""

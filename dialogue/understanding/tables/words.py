@@ -43,6 +43,7 @@ class ClosedWords(Table):
     plural_only: WordSet = frozenset()
     many: WordSet = frozenset()
     relativisers: WordSet = frozenset()
+    demonstratives: WordSet = frozenset()
     np_start: WordSet = frozenset()
     owners: dict[str, str] = {}
     sides: dict[str, str] = {}

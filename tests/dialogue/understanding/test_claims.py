@@ -301,10 +301,25 @@ def test_a_word_nothing_accounts_for_is_a_doubt_not_an_absent_thing() -> None:
     # claim to know what it is
     for text in ("fetch the zorp", "pick up the blorgs", "go to the zorp", "how many zorps are there"):
         assert not say(kb, text).understood, text
-    # an English noun the scene has none of is a thing the robot does not see: that is an answer
-    absent = say(kb, "fetch the hammer")
-    assert absent.understood and absent.reply == "Sorry, I don't see any hammer."
+    # an English noun the KB names nothing with is a doubt too: "bunny" may be the toy rabbit,
+    # "remove" the remote misheard; saying "I don't see any" would claim there is none
+    for text in ("fetch the hammer", "get my bunny", "bring me the remove"):
+        assert not say(kb, text).understood, text
+    # words the KB names, nothing here fitting them all, are a thing the robot does not see: an answer
+    kb.add(["mop_1 hasColor blue"])
+    absent = say(kb, "fetch the red mop")
+    assert absent.understood and absent.reply == "Sorry, I don't see any red mop."
     # a person's name the KB does not know is said to be unknown, but as a doubt: a recogniser's
     # spelling of a name ("chevonne" for Siobhan) is for a model to read in the situation
     unknown = say(kb, "greet Zorblina")
     assert not unknown.understood and unknown.reply == "Sorry, I don't know anyone called Zorblina."
+
+
+def test_a_thing_pointed_at_by_a_word_alone_is_not_asked_about_but_handed_over() -> None:
+    # "bring me that one": what the speaker shows, which the words do not say (a model may see it)
+    kb = scene("mop_1 rdf:type Artifact", 'mop_1 rdfs:label "mop"', "myself sees mop_1")
+    for text in ("bring me that one", "pass me that, would you?", "grab this"):
+        out = say(kb, text)
+        assert not out.understood and out.intent is None, text
+    # an object not said at all is still asked for
+    assert say(kb, "bring me").clarify

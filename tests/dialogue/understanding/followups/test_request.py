@@ -231,3 +231,13 @@ def test_the_left_one_of_three_needs_one_left_of_every_other(workshop: KB) -> No
     assert out.intent is None and out.reply.startswith("Sorry, I can't tell which one is the left one.")
     workshop.add(["saw_3 rightOf saw_2"])  # left of both now, by the relation's transitivity
     assert say(workshop, "the left one", speaker=ANA, history=history).roles == {"object": "saw_1"}
+
+
+def test_an_answer_with_a_word_the_kb_names_nothing_with_is_not_asked_again(workshop: KB) -> None:
+    # "the stripy one": maybe how the speaker tells one of them apart; asking again claims neither fits
+    history = [("user", "pick up the cap"), ("robot", "Which cap do you mean: the grey one or the red one?")]
+    out = say(workshop, "the stripy one, please", speaker=ANA, history=history)
+    assert out.intent is None and not out.understood
+    # "the left one", a position the KB says nothing of, is still said so and asked again
+    out = say(workshop, "the left one", speaker=ANA, history=history)
+    assert out.clarify and "left one" in out.reply

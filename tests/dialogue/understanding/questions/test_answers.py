@@ -21,3 +21,16 @@ def test_where_is_one_in_sight_and_one_not_names_both() -> None:
     )  # fmt: skip
     reply = say(kb, "where's the cup?").reply
     assert "red cup" in reply and "green cup" in reply and "shed" in reply
+
+
+def test_who_is_at_a_thing_names_whom_the_kb_puts_next_to_it() -> None:
+    kb = scene_kb(
+        None, "myself rdf:type Robot",
+        "hall rdf:type ZoneOfInterest", 'hall rdfs:label "hall"',
+        "desk_1 rdf:type Artifact", 'desk_1 rdfs:label "writing desk"', "desk_1 isIn hall",
+        "person_ina rdf:type Human", 'person_ina rdfs:label "Ina"', "person_ina isIn hall",
+        "person_ina isNextTo desk_1", "myself sees person_ina",
+        "lamp_1 rdf:type Artifact", 'lamp_1 rdfs:label "lamp"', "lamp_1 isIn hall",
+    )  # fmt: skip
+    assert say(kb, "who is sitting at the writing desk?").reply == "At the writing desk, there is Ina."
+    assert say(kb, "who is by the lamp").reply == "I don't know of anyone at the lamp."

@@ -109,6 +109,12 @@ def test_its_owner_is_whom_the_kb_says_the_thing_belongs_to(flat: KB) -> None:
     assert out.intent is None and out.more == ()
 
 
+def test_a_thing_returned_to_its_owner_is_brought_to_them_not_put_somewhere(flat: KB) -> None:
+    flat.update(["mic_1 belongsTo person_dana"])
+    out = say(flat, "could you return the microphone to its owner?", LEON)
+    assert (out.intent, out.roles) == (I.BRING_OBJECT, {"object": "mic_1", "recipient": "person_dana"})
+
+
 @pytest.mark.parametrize(
     "text",
     ["bring the microphone to the lounge for Dana", "bring the microphone to Dana in the lounge",
@@ -122,3 +128,14 @@ def test_a_recipient_said_with_where_they_are_is_the_person(flat: KB, text: str)
 def test_a_place_said_alone_is_still_where_to_bring(flat: KB) -> None:
     out = say(flat, "bring the microphone to the bathroom")
     assert (out.intent, out.roles) == (I.BRING_OBJECT, {"object": "mic_1", "recipient": "bathroom"})
+
+
+def test_a_head_noun_known_only_inside_other_names_is_not_understood(flat: KB) -> None:
+    # "bread" names nothing here by itself, only the bread shelf: the loaf may be what is meant
+    flat.update(["shelf_b rdf:type Artifact", 'shelf_b rdfs:label "bread shelf"', "shelf_b isIn lounge",
+                 "loaf_1 rdf:type Artifact", 'loaf_1 rdfs:label "sourdough loaf"', "loaf_1 isOn shelf_b"])  # fmt: skip
+    out = say(flat, "grab the bread that's on the bread shelf", LEON)
+    assert out.intent is None and not out.understood
+    # a head noun that names things, none of them fitting, is answered
+    out = say(flat, "grab the microphone on the stool", LEON)
+    assert out.understood and "don't see any microphone" in out.reply

@@ -116,3 +116,18 @@ def test_a_thing_given_with_no_one_said_is_for_the_speaker() -> None:
     kb = scene_kb("office")
     out = Interpreter(lexicon_of(kb), "person_bob", ()).interpret("pass the pear")
     assert out.roles == {"object": "pear_1", "recipient": "person_bob"}
+
+
+def test_a_name_the_grammar_cut_at_a_preposition_is_the_thing_called_so() -> None:
+    kb = scene_kb(
+        None,
+        f"{SPEAKER} rdf:type Human", f'{SPEAKER} rdfs:label "Kim"', f"myself sees {SPEAKER}",
+        "person_ravi rdf:type Human", 'person_ravi rdfs:label "Ravi"', "myself sees person_ravi",
+        "card_1 rdf:type Artifact", 'card_1 rdfs:label "key card for room 12"', "myself sees card_1",
+        "card_2 rdf:type Artifact", 'card_2 rdfs:label "key card for room 40"', "myself sees card_2",
+    )  # fmt: skip
+    out = Interpreter(lexicon_of(kb), SPEAKER).interpret("take the key card for room 40 to Ravi")
+    assert (out.intent, out.roles) == (I.BRING_OBJECT, {"object": "card_2", "recipient": "person_ravi"})
+    assert out.reply == "OK, I will bring the key card for room 40 to Ravi."
+    # a phrase that only starts a name is still the grammar's ("for room" is whom for)
+    assert Interpreter(lexicon_of(kb), SPEAKER).interpret("take the key card for Ravi").clarify

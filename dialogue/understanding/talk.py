@@ -1,0 +1,55 @@
+"""Social talk: the acts of the grammar that are neither a request nor a question about the
+situation, each answered by its row of `TALK` ("hello", "thanks", "bye", "what can you do?", "tell
+me a joke", "don't go", "if Ana comes, ...").
+
+A greeting is the one that acts (greeting the speaker, or everyone verbally only); a farewell ends
+the conversation; a request negated or under a condition yet to happen is not done now.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+
+from dialogue import intents as I
+from dialogue.reference.english import Words
+from dialogue.understanding.context import Context
+from dialogue.understanding.outcome import Outcome
+from dialogue.understanding.parsed import Parse
+from dialogue.understanding.replies import abilities, goodbye, hello, say
+
+
+def greeting(c: Context, p: Parse, overrides: dict[str, Words]) -> Outcome:
+    if "everyone" in p.slots:  # no single recipient: greet verbally only
+        return Outcome(say(c.lang, "social.hello_everyone"))
+    return Outcome(hello(c.lang, c.snapshot, c.speaker), I.GREET, {"recipient": c.speaker})
+
+
+def _negated(c: Context, p: Parse, overrides: dict[str, Words]) -> Outcome:
+    return Outcome(say(c.lang, "social.wont"))
+
+
+def _conditional(c: Context, p: Parse, overrides: dict[str, Words]) -> Outcome:
+    return Outcome(say(c.lang, "social.later"))  # the rules act now or never: asked again, then
+
+
+def _thanks(c: Context, p: Parse, overrides: dict[str, Words]) -> Outcome:
+    return Outcome(say(c.lang, "social.welcome"))
+
+
+def _farewell(c: Context, p: Parse, overrides: dict[str, Words]) -> Outcome:
+    return Outcome(goodbye(c.lang, c.snapshot, c.speaker), farewell=True)
+
+
+def _abilities(c: Context, p: Parse, overrides: dict[str, Words]) -> Outcome:
+    return Outcome(abilities(c.lang))
+
+
+def _joke(c: Context, p: Parse, overrides: dict[str, Words]) -> Outcome:
+    return Outcome(say(c.lang, "social.no_jokes"))
+
+
+#: How each act of social talk is answered.
+TALK: dict[str, Callable[[Context, Parse, dict[str, Words]], Outcome]] = {
+    "greeting": greeting, "negated": _negated, "conditional": _conditional, "thanks": _thanks,
+    "farewell": _farewell, "abilities": _abilities, "joke": _joke,
+}  # fmt: skip

@@ -1,0 +1,36 @@
+"""Whether a request is for now: negated, or under a condition yet to happen, not a polite one."""
+
+import pytest
+
+from dialogue.understanding.requests.timing import conditional, later, negation, when
+from dialogue.understanding.requests.vocabulary import Grammar
+from tests.dialogue.conftest import english
+
+
+def test_a_negated_request_is_not_for_now() -> None:
+    assert negation(["don't", "go", "to", "the", "kitchen"]) and negation(["do", "not", "move"])
+    assert not negation(["go", "to", "the", "kitchen"])
+
+
+@pytest.mark.parametrize(
+    ("text", "held"),
+    [("if i nod off could you close the door", True), ("if you could close the door", False),
+     ("if i could have the bill", False)],
+)  # fmt: skip
+def test_a_condition_is_held_a_polite_if_is_not(text: str, held: bool) -> None:
+    assert conditional(english().derived(Grammar), text.split()) is held
+
+
+@pytest.mark.parametrize(
+    ("text", "held"),
+    [("when the bell goes could you open the door", True), ("when you get a chance open the door", False),
+     ("after lunch take me to the day room", True)],
+)  # fmt: skip
+def test_a_request_after_a_condition_yet_to_happen_is_held(text: str, held: bool) -> None:
+    assert later(english(), text.split()) is held
+
+
+def test_a_clause_of_time_after_the_request_holds_it() -> None:
+    g = english().derived(Grammar)
+    assert when(g, (("when", "she", "comes", "in"),))
+    assert not when(g, (("carefully",),))
