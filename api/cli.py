@@ -28,6 +28,7 @@ from kb import KB, KbError
 from kb.datadir import check as check_data
 from kb.datadir import repair as repair_data
 from kb.errors import DataCorrupt
+from kb.rdfio import parse_location
 from scene.world import check_scene, load_any_scene
 
 if TYPE_CHECKING:
@@ -90,11 +91,19 @@ def _say(text: str) -> None:
     print(text, file=sys.stderr)
 
 
+def _ontology_option(parser: argparse.ArgumentParser, where: str = "") -> None:
+    parser.add_argument("--ontology", action="append", type=Path, metavar="FILE",
+                        help=f"{where}an extra OWL/RDF file (.ttl, .rdf/.owl, .nt; repeatable) loaded into "
+                             "the KB before the scene and reasoned with it (default: the settings' "
+                             "ontology_files)")
+
+
 def _remote_options(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--url", help="a running service, e.g. http://127.0.0.1:8000 (default: in-process)")
     parser.add_argument("--token", help="bearer token for --url (default: $SITUATED_TOKEN)")
     parser.add_argument("--scene", default="demo", help="in-process: the scene to load first: demo "
                         "(default), an .svg/.json scene, a .txt file of statements, or none")
+    _ontology_option(parser, "in-process: ")
 
 
 def _serve_options(serve: argparse.ArgumentParser) -> None:
@@ -103,6 +112,7 @@ def _serve_options(serve: argparse.ArgumentParser) -> None:
     serve.add_argument("--data", type=Path, help="data folder: every write journaled, recovered at start")
     serve.add_argument("--scene", help="demo (default), an .svg environment, a .json scene, a .txt file of "
                                        "statements, or none")
+    _ontology_option(serve)
     serve.add_argument("--llm", help="model backend: rules (default), ollama:MODEL[@URL], openai:MODEL@URL, "
                                      "openai-json:MODEL@URL (llama.cpp's server), llamacpp:PATH.gguf or "
                                      "llamacpp:smollm2 (the 'local' extra), hybrid:SPEC (rules first, the "
@@ -160,6 +170,8 @@ def _parser() -> argparse.ArgumentParser:
                                            "port); exit 1 on a problem")
     for option in ("--llm", "--scene", "--host"):
         doctor.add_argument(option, help=f"as for serve (default: the settings' {option[2:]})")
+    doctor.add_argument("--ontology", action="append", type=Path, metavar="FILE",
+                        help="as for serve (default: the settings' ontology_files)")
     doctor.add_argument("--port", type=int, help="as for serve (default: the settings' port)")
     doctor.add_argument("--data", type=Path, help="as for serve (default: the settings' data folder)")
     doctor.add_argument("--config", type=Path, help="TOML or JSON settings file (or $SITUATED_CONFIG)")
@@ -200,8 +212,11 @@ def _run_service(args: argparse.Namespace, extensions: Sequence[Extension] = (),
 
     settings = load_settings(args.config, host=args.host, port=args.port, data_dir=args.data,
                              scene=args.scene, llm=args.llm, token=args.token, store=args.store,
-                             writer_url=args.writer)
+                             writer_url=args.writer, ontology_files=args.ontology)
     backend_of(settings)  # a bad backend spec is reported before anything starts
+    if settings.role != "reader":  # a reader ignores them: they are the writer's
+        for path in settings.ontology_files:  # a file that does not parse, too
+            parse_location(str(path))
     check_scene(settings.scene)  # so is a scene that cannot be loaded (else: a start-up traceback)
     if settings.data_dir is not None:
         _make_data_dir(settings.data_dir)  # and a data folder that cannot be made
@@ -237,7 +252,11 @@ def _kb(args: argparse.Namespace) -> Iterator[Any]:
             yield client
         return
     _say("loading the KB...")
+    ontologies = load_settings(ontology_files=args.ontology).ontology_files
     with KB() as kb:
+        for path in ontologies:  # before the scene, as a service loads them
+            kb.load(str(path))
+            _say(f"loaded the ontology file {path}")
         if args.scene and args.scene != "none":
             _say(load_any_scene(kb, args.scene))
         yield kb
@@ -334,7 +353,7 @@ def _doctor(args: argparse.Namespace) -> int:
     from api.doctor import Doctor, exit_status, render
 
     settings = load_settings(args.config, host=args.host, port=args.port, data_dir=args.data,
-                             scene=args.scene, llm=args.llm)
+                             scene=args.scene, llm=args.llm, ontology_files=args.ontology)
     findings = Doctor(settings).run()
     print(render(findings))
     return exit_status(findings, args.strict)
