@@ -19,6 +19,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from api.client import ClientError, ServiceClient
+from api.guides import Guided, Kind, about, guide, listing, see
 from api.humans import known_humans, render
 from api.ros import cli as ros_cli
 from api.settings import SettingsError, load_settings
@@ -64,7 +65,8 @@ EXAMPLES = f"""examples (file paths are those of a clone of the repository):
   situated data check ./data                         is the journal/snapshot intact? (exit 1 if damaged)
   situated data repair ./data                        keep every intact record; damaged files kept beside
 Each command has its own help: situated COMMAND -h.
-Settings also come from SITUATED_* env vars and a TOML/JSON file (SITUATED_CONFIG or --config)."""
+Settings also come from SITUATED_* env vars and a TOML/JSON file (SITUATED_CONFIG or --config).
+An error names the guide that explains it."""
 
 
 # kb subcommand: what it does, its argument, an example of the argument (run by the tests).
@@ -125,7 +127,8 @@ def _serve_options(serve: argparse.ArgumentParser) -> None:
 
 
 def _parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(prog="situated", description=__doc__, epilog=EXAMPLES,
+    parser = argparse.ArgumentParser(prog="situated", description=__doc__,
+                                     epilog=f"{EXAMPLES}\n\nguides (docs/ in a clone):\n{listing()}",
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
     sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
 
@@ -214,10 +217,11 @@ def _run_service(args: argparse.Namespace, extensions: Sequence[Extension] = (),
                              scene=args.scene, llm=args.llm, token=args.token, store=args.store,
                              writer_url=args.writer, ontology_files=args.ontology)
     backend_of(settings)  # a bad backend spec is reported before anything starts
-    if settings.role != "reader":  # a reader ignores them: they are the writer's
-        for path in settings.ontology_files:  # a file that does not parse, too
-            parse_location(str(path))
-    check_scene(settings.scene)  # so is a scene that cannot be loaded (else: a start-up traceback)
+    with about(Kind.SCENES):
+        if settings.role != "reader":  # a reader ignores them: they are the writer's
+            for path in settings.ontology_files:  # a file that does not parse, too
+                parse_location(str(path))
+        check_scene(settings.scene)  # so is a scene that cannot be loaded (else: a start-up traceback)
     if settings.data_dir is not None:
         _make_data_dir(settings.data_dir)  # and a data folder that cannot be made
     if settings.data_dir is not None and settings.data_dir.is_dir():
@@ -254,11 +258,12 @@ def _kb(args: argparse.Namespace) -> Iterator[Any]:
     _say("loading the KB...")
     ontologies = load_settings(ontology_files=args.ontology).ontology_files
     with KB() as kb:
-        for path in ontologies:  # before the scene, as a service loads them
-            kb.load(str(path))
-            _say(f"loaded the ontology file {path}")
-        if args.scene and args.scene != "none":
-            _say(load_any_scene(kb, args.scene))
+        with about(Kind.SCENES):
+            for path in ontologies:  # before the scene, as a service loads them
+                kb.load(str(path))
+                _say(f"loaded the ontology file {path}")
+            if args.scene and args.scene != "none":
+                _say(load_any_scene(kb, args.scene))
         yield kb
 
 
@@ -324,7 +329,7 @@ def _data(args: argparse.Namespace) -> int:
 def _eval(args: argparse.Namespace) -> int:
     from dialogue.evaluation.command import main as evaluate
 
-    return evaluate(args.args)
+    return evaluate(args.args, guide=guide(Kind.EVALUATION))
 
 
 def _split_eval(argv: Sequence[str] | None) -> list[str] | None:
@@ -339,7 +344,8 @@ def _bench(args: argparse.Namespace) -> int:
         try:
             module = importlib.import_module(f"bench.{name}")
         except ModuleNotFoundError as exc:
-            _say(f"situated bench {name}: benchmark module bench.{name} is not available ({exc})")
+            _say(f"situated bench {name}: benchmark module bench.{name} is not available ({exc}; see "
+                 f"{guide(Kind.BENCHMARKS)})")
             status = 1
             continue
         if hasattr(module, "main"):
@@ -377,8 +383,9 @@ def main(argv: Sequence[str] | None = None) -> int:
         getattr(args, _PARSER, parser).error(f"unrecognized arguments: {' '.join(unknown)}")
     try:
         return COMMANDS[args.command](args)
-    except (KbError, ClientError, SettingsError, DialogueError, ros_cli.RosError, CommandError) as exc:
-        _say(f"situated {args.command}: {exc}")
+    except (KbError, ClientError, SettingsError, DialogueError, ros_cli.RosError, CommandError,
+            Guided) as exc:
+        _say(f"situated {args.command}: {exc}{see(exc)}")
         return 2
 
 

@@ -26,8 +26,11 @@ def default_cases() -> Path:
         return path
 
 
-def main(argv: Sequence[str] | None = None) -> int:
-    parser = argparse.ArgumentParser(prog="situated eval", description="Score dialogue cases (.jsonl).")
+def main(argv: Sequence[str] | None = None, guide: str = "") -> int:
+    """``guide``: the page that explains the command, named by its errors and help (the CLI's)."""
+    said = f" (see {guide})" if guide else ""
+    parser = argparse.ArgumentParser(prog="situated eval", description="Score dialogue cases (.jsonl).",
+                                     epilog=f"The case format and the sets: {guide}" if guide else None)
     parser.add_argument("cases", nargs="?", help="cases file; scenes are read from scenes/ next to it "
                         "(default: the HuRIC development set shipped in eval/huric/dev.jsonl)")
     parser.add_argument("--llm", default="rules", help="backend spec (default: rules)")
@@ -49,7 +52,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         try:
             comparison = compare(args.compare, args.llm, deadline=args.deadline, hybrid=args.hybrid)
         except (EvalError, ValueError) as exc:
-            print(f"error: {exc}", file=sys.stderr)
+            print(f"error: {exc}{said}", file=sys.stderr)
             return 2
         print(format_comparison(comparison))
         if args.json:
@@ -61,7 +64,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     try:
         report = run(args.cases, args.llm, deadline=args.deadline)
     except (EvalError, ValueError) as exc:
-        print(f"error: {exc}", file=sys.stderr)
+        print(f"error: {exc}{said}", file=sys.stderr)
         return 2
     print(format_report(report))
     if args.json:
