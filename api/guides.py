@@ -75,6 +75,11 @@ CLIENT_STATUS_KINDS: dict[int, Kind] = {401: Kind.SECURITY, 403: Kind.SECURITY, 
                                         429: Kind.SECURITY}
 
 
+#: `situated doctor`'s checks and the guide of each (what a failed or warned one points to).
+CHECK_KINDS: dict[str, Kind] = {"kb": Kind.SCENES, "data": Kind.KB, "model": Kind.MODELS,
+                                "chromium": Kind.SETUP, "port": Kind.SETUP}
+
+
 class Guided(Exception):
     """An error raised while the command read something of a known kind (``about``)."""
 

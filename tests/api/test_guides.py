@@ -64,3 +64,13 @@ def test_an_error_names_the_guide_that_explains_it(words: list[str], guide: str,
     assert main(words) == 2
     last = capsys.readouterr().err.strip().splitlines()[-1]
     assert last.endswith(f"(see {guide})"), last
+
+
+def test_a_doctor_finding_that_is_not_ok_names_its_guide() -> None:
+    from api.doctor import CHECKS, Finding, render
+
+    assert {check.__name__.removeprefix("check_").replace("data_dir", "data") for check in CHECKS} == {
+        "kb", "data", "model", "chromium", "port"}
+    text = render([Finding("model", "fail", "ollama: connection refused", "start ollama"),
+                   Finding("port", "ok", "127.0.0.1:8000 is free")])
+    assert "see: docs/models.md" in text and "docs/getting-started.md" not in text
