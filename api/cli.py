@@ -19,6 +19,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from api.client import ClientError, ServiceClient
+from api.guides import Guided, Kind, about, guide, listing, see
 from api.humans import known_humans, render
 from api.ros import cli as ros_cli
 from api.settings import SettingsError, load_settings
@@ -28,6 +29,7 @@ from kb import KB, KbError
 from kb.datadir import check as check_data
 from kb.datadir import repair as repair_data
 from kb.errors import DataCorrupt
+from kb.rdfio import parse_location
 from scene.world import check_scene, load_any_scene
 
 if TYPE_CHECKING:
@@ -63,7 +65,8 @@ EXAMPLES = f"""examples (file paths are those of a clone of the repository):
   situated data check ./data                         is the journal/snapshot intact? (exit 1 if damaged)
   situated data repair ./data                        keep every intact record; damaged files kept beside
 Each command has its own help: situated COMMAND -h.
-Settings also come from SITUATED_* env vars and a TOML/JSON file (SITUATED_CONFIG or --config)."""
+Settings also come from SITUATED_* env vars and a TOML/JSON file (SITUATED_CONFIG or --config).
+An error names the guide that explains it."""
 
 
 # kb subcommand: what it does, its argument, an example of the argument (run by the tests).
@@ -90,11 +93,19 @@ def _say(text: str) -> None:
     print(text, file=sys.stderr)
 
 
+def _ontology_option(parser: argparse.ArgumentParser, where: str = "") -> None:
+    parser.add_argument("--ontology", action="append", type=Path, metavar="FILE",
+                        help=f"{where}an extra OWL/RDF file (.ttl, .rdf/.owl, .nt; repeatable) loaded into "
+                             "the KB before the scene and reasoned with it (default: the settings' "
+                             "ontology_files)")
+
+
 def _remote_options(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--url", help="a running service, e.g. http://127.0.0.1:8000 (default: in-process)")
     parser.add_argument("--token", help="bearer token for --url (default: $SITUATED_TOKEN)")
     parser.add_argument("--scene", default="demo", help="in-process: the scene to load first: demo "
                         "(default), an .svg/.json scene, a .txt file of statements, or none")
+    _ontology_option(parser, "in-process: ")
 
 
 def _serve_options(serve: argparse.ArgumentParser) -> None:
@@ -103,6 +114,7 @@ def _serve_options(serve: argparse.ArgumentParser) -> None:
     serve.add_argument("--data", type=Path, help="data folder: every write journaled, recovered at start")
     serve.add_argument("--scene", help="demo (default), an .svg environment, a .json scene, a .txt file of "
                                        "statements, or none")
+    _ontology_option(serve)
     serve.add_argument("--llm", help="model backend: rules (default), ollama:MODEL[@URL], openai:MODEL@URL, "
                                      "openai-json:MODEL@URL (llama.cpp's server), llamacpp:PATH.gguf or "
                                      "llamacpp:smollm2 (the 'local' extra), hybrid:SPEC (rules first, the "
@@ -115,7 +127,8 @@ def _serve_options(serve: argparse.ArgumentParser) -> None:
 
 
 def _parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(prog="situated", description=__doc__, epilog=EXAMPLES,
+    parser = argparse.ArgumentParser(prog="situated", description=__doc__,
+                                     epilog=f"{EXAMPLES}\n\nguides (docs/ in a clone):\n{listing()}",
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
     sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
 
@@ -160,6 +173,8 @@ def _parser() -> argparse.ArgumentParser:
                                            "port); exit 1 on a problem")
     for option in ("--llm", "--scene", "--host"):
         doctor.add_argument(option, help=f"as for serve (default: the settings' {option[2:]})")
+    doctor.add_argument("--ontology", action="append", type=Path, metavar="FILE",
+                        help="as for serve (default: the settings' ontology_files)")
     doctor.add_argument("--port", type=int, help="as for serve (default: the settings' port)")
     doctor.add_argument("--data", type=Path, help="as for serve (default: the settings' data folder)")
     doctor.add_argument("--config", type=Path, help="TOML or JSON settings file (or $SITUATED_CONFIG)")
@@ -200,9 +215,13 @@ def _run_service(args: argparse.Namespace, extensions: Sequence[Extension] = (),
 
     settings = load_settings(args.config, host=args.host, port=args.port, data_dir=args.data,
                              scene=args.scene, llm=args.llm, token=args.token, store=args.store,
-                             writer_url=args.writer)
+                             writer_url=args.writer, ontology_files=args.ontology)
     backend_of(settings)  # a bad backend spec is reported before anything starts
-    check_scene(settings.scene)  # so is a scene that cannot be loaded (else: a start-up traceback)
+    with about(Kind.SCENES):
+        if settings.role != "reader":  # a reader ignores them: they are the writer's
+            for path in settings.ontology_files:  # a file that does not parse, too
+                parse_location(str(path))
+        check_scene(settings.scene)  # so is a scene that cannot be loaded (else: a start-up traceback)
     if settings.data_dir is not None:
         _make_data_dir(settings.data_dir)  # and a data folder that cannot be made
     if settings.data_dir is not None and settings.data_dir.is_dir():
@@ -237,9 +256,14 @@ def _kb(args: argparse.Namespace) -> Iterator[Any]:
             yield client
         return
     _say("loading the KB...")
+    ontologies = load_settings(ontology_files=args.ontology).ontology_files
     with KB() as kb:
-        if args.scene and args.scene != "none":
-            _say(load_any_scene(kb, args.scene))
+        with about(Kind.SCENES):
+            for path in ontologies:  # before the scene, as a service loads them
+                kb.load(str(path))
+                _say(f"loaded the ontology file {path}")
+            if args.scene and args.scene != "none":
+                _say(load_any_scene(kb, args.scene))
         yield kb
 
 
@@ -305,7 +329,7 @@ def _data(args: argparse.Namespace) -> int:
 def _eval(args: argparse.Namespace) -> int:
     from dialogue.evaluation.command import main as evaluate
 
-    return evaluate(args.args)
+    return evaluate(args.args, guide=guide(Kind.EVALUATION))
 
 
 def _split_eval(argv: Sequence[str] | None) -> list[str] | None:
@@ -320,7 +344,8 @@ def _bench(args: argparse.Namespace) -> int:
         try:
             module = importlib.import_module(f"bench.{name}")
         except ModuleNotFoundError as exc:
-            _say(f"situated bench {name}: benchmark module bench.{name} is not available ({exc})")
+            _say(f"situated bench {name}: benchmark module bench.{name} is not available ({exc}; see "
+                 f"{guide(Kind.BENCHMARKS)})")
             status = 1
             continue
         if hasattr(module, "main"):
@@ -334,7 +359,7 @@ def _doctor(args: argparse.Namespace) -> int:
     from api.doctor import Doctor, exit_status, render
 
     settings = load_settings(args.config, host=args.host, port=args.port, data_dir=args.data,
-                             scene=args.scene, llm=args.llm)
+                             scene=args.scene, llm=args.llm, ontology_files=args.ontology)
     findings = Doctor(settings).run()
     print(render(findings))
     return exit_status(findings, args.strict)
@@ -358,8 +383,9 @@ def main(argv: Sequence[str] | None = None) -> int:
         getattr(args, _PARSER, parser).error(f"unrecognized arguments: {' '.join(unknown)}")
     try:
         return COMMANDS[args.command](args)
-    except (KbError, ClientError, SettingsError, DialogueError, ros_cli.RosError, CommandError) as exc:
-        _say(f"situated {args.command}: {exc}")
+    except (KbError, ClientError, SettingsError, DialogueError, ros_cli.RosError, CommandError,
+            Guided) as exc:
+        _say(f"situated {args.command}: {exc}{see(exc)}")
         return 2
 
 

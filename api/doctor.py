@@ -19,6 +19,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Literal
 
+from api.guides import CHECK_KINDS, guide
 from api.settings import Settings
 from dialogue.engine import DialogueEngine, EngineConfig
 from dialogue.llm.base import ChatModel, ChatRequest, ModelError
@@ -187,6 +188,8 @@ def render(findings: list[Finding]) -> str:
         lines.append(f"{f.status.upper():<4}  {f.check:<{width}}  {f.detail}")
         if f.fix and f.status != "ok":
             lines.append(f"{'':<4}  {'':<{width}}  fix: {f.fix}")
+        if f.status != "ok" and f.check in CHECK_KINDS:
+            lines.append(f"{'':<4}  {'':<{width}}  see: {guide(CHECK_KINDS[f.check])}")
     return "\n".join(lines)
 
 

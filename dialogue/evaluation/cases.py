@@ -1,4 +1,4 @@
-"""Run dialogue evaluation cases (the shared/eval .jsonl format) and score them per intent.
+"""Run dialogue evaluation cases (the format of eval/README.md) and score them per intent.
 
 Each case gets a fresh KB: the default ontology, the case's scene (`scenes/<name>.txt` next to the
 cases file) and its extra facts. `format_report` prints a table per intent and the failures;

@@ -348,3 +348,65 @@ def test_the_start_up_line_shows_no_secret_of_the_model_url(tmp_path: Path) -> N
         proc.communicate(timeout=60)
     assert first.startswith("situated: serving on") and "key=[redacted]&room=4; scene: none" in first, first
     assert "k3y" not in first
+
+
+_VESSELS = """@prefix : <http://kb.openrobots.org#> .
+@prefix owl: <http://www.w3.org/2002/07/owl#> .
+@prefix rdfs: <http://www.w3.org/2000/01/rdf-schema#> .
+:Vessel a owl:Class ; rdfs:subClassOf :Artifact ; rdfs:label "vessel" .
+:Teapot a owl:Class ; rdfs:subClassOf :Vessel ; rdfs:label "teapot" .
+"""
+_VESSELS_NT = ("<http://kb.openrobots.org#Jug> <http://www.w3.org/2000/01/rdf-schema#subClassOf> "
+               "<http://kb.openrobots.org#Vessel> .\n")
+_TEAPOT_SCENE = "teapot_1 rdf:type Teapot\nteapot_1 isOn table_1\njug_1 rdf:type Jug\nmyself sees teapot_1\n"
+
+
+def _vessel_files(tmp_path: Path) -> tuple[Path, Path, Path]:
+    (tmp_path / "vessels.ttl").write_text(_VESSELS)
+    (tmp_path / "jugs.nt").write_text(_VESSELS_NT)
+    (tmp_path / "teapot.txt").write_text(_TEAPOT_SCENE)
+    return tmp_path / "vessels.ttl", tmp_path / "jugs.nt", tmp_path / "teapot.txt"
+
+
+def test_a_query_sees_the_types_extra_ontology_files_infer(tmp_path: Path,
+                                                            capsys: pytest.CaptureFixture[str]) -> None:
+    ttl, nt, scene = _vessel_files(tmp_path)
+    words = ["kb", "query", "?x rdf:type Vessel", "--scene", str(scene)]
+    assert main([*words, "--ontology", str(ttl), "--ontology", str(nt)]) == 0
+    assert sorted(row["x"] for row in json.loads(capsys.readouterr().out)) == ["jug_1", "teapot_1"]
+    assert main(words) == 0  # without the files, nothing is a Vessel
+    assert json.loads(capsys.readouterr().out) == []
+
+
+def test_a_chat_turn_grounds_a_class_an_extra_ontology_file_defines(tmp_path: Path,
+                                                                    capsys: pytest.CaptureFixture[str]) -> None:
+    ttl, _, scene = _vessel_files(tmp_path)
+    words = ["chat", "--scene", str(scene), "--user", "person_alice", "--say", "pick up the vessel"]
+    assert main([*words, "--ontology", str(ttl)]) == 0
+    assert '__intent_grab_object__ {"object": "teapot_1"}' in capsys.readouterr().out
+    assert main(words) == 0
+    assert "__intent_grab_object__" not in capsys.readouterr().out
+
+
+def test_the_settings_file_names_ontology_files_too(tmp_path: Path, monkeypatch: pytest.MonkeyPatch,
+                                                    capsys: pytest.CaptureFixture[str]) -> None:
+    ttl, _, scene = _vessel_files(tmp_path)
+    (tmp_path / "situated.json").write_text(json.dumps({"ontology_files": [str(ttl)]}))
+    monkeypatch.setenv("SITUATED_CONFIG", str(tmp_path / "situated.json"))
+    assert main(["kb", "query", "?x rdf:type Vessel", "--scene", str(scene)]) == 0
+    assert json.loads(capsys.readouterr().out) == [{"x": "teapot_1"}]
+
+
+def test_serve_with_an_ontology_file_it_cannot_load_says_so_and_starts_nothing(tmp_path: Path) -> None:
+    (tmp_path / "broken.ttl").write_text("@prefix : <http://kb.openrobots.org#> .\n:Teapot :subClassOf\n")
+    (tmp_path / "broken.rdf").write_text("<rdf:RDF xmlns:rdf='http://www.w3.org/1999/02/22-rdf-syntax-ns#'>")
+    cases = {"broken.ttl": "cannot parse broken.ttl as turtle: ", "broken.rdf": "cannot parse broken.rdf as xml: ",
+             "missing.owl": "cannot load 'missing.owl': no such file"}
+    for name, says in cases.items():
+        port = _free_port()
+        done = subprocess.run([sys.executable, "-m", "api.cli", "serve", "--scene", "none", "--ontology", name,
+                               "--port", str(port)], capture_output=True, text=True, cwd=tmp_path, timeout=120,
+                              env={**os.environ, "PYTHONPATH": str(REPO)})
+        assert done.returncode == 2, done.stderr[-2000:]
+        assert done.stderr.startswith(f"situated serve: {says}"), done.stderr[-2000:]
+        assert "serving on" not in done.stderr and "Traceback" not in done.stderr

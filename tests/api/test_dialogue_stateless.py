@@ -11,7 +11,8 @@ from api.settings import IntentSettings, Settings
 from dialogue.llm.testing import ScriptedModel
 from tests.api.conftest import SCENE, Live, scene_settings
 from tests.api.test_intents import sse
-from tests.api.test_webhooks import Receiver, wait_until
+from tests.api.test_webhooks import Receiver
+from tests.waiting import until
 
 ASK = {"name": "__ask__", "configuration": json.dumps({
     "question": "How old are you?", "result_schema_properties": {"age": {"type": "integer", "minimum": 0}}})}
@@ -111,9 +112,9 @@ def test_a_4_0_turn_notifies_like_any_turn(live_factory: Callable[..., Live]) ->
             name, ident, pushed = next(events)
         assert (name, ident, pushed["seq"], pushed["dialogue_id"]) == ("intent", str(n + 1), n + 1, "dm-owned")
         assert pushed["intent"] == reply["intents"][0] and pushed["response"] == reply["response"]
-        wait_until(lambda: len(receiver.accepted) == 1)
+        until(lambda: len(receiver.accepted) == 1)
         assert receiver.accepted[0]["intent"] == reply["intents"][0] and receiver.accepted[0]["seq"] == n + 1
-        wait_until(lambda: live.client.get("/people/person_tom/memory").json()["last_spoke"] is not None)
+        until(lambda: live.client.get("/people/person_tom/memory").json()["last_spoke"] is not None)
         summary = live.client.get("/people/person_tom/memory").json()["summary"]
         assert summary.endswith('asked "please bring me the cup"')
         assert "dm-owned" not in live.services.dialogues.ids()  # still stateless: nothing stored

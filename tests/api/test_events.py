@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import json
-import time
 from collections.abc import Iterator
 from typing import Any
 
@@ -14,6 +13,7 @@ from websockets.sync.client import connect
 
 from api.settings import Limits, Settings
 from tests.api.conftest import SCENE, Live
+from tests.waiting import until
 
 
 def _events(lines: Iterator[str]) -> Iterator[tuple[str, Any]]:
@@ -37,13 +37,6 @@ def _revise(live: Live, *statements: str, method: str = "add") -> None:
     assert response.status_code == 200, response.text
 
 
-def _wait_until(predicate: Any, timeout: float = 30.0) -> None:
-    deadline = time.monotonic() + timeout
-    while not predicate():
-        assert time.monotonic() < deadline, "condition not reached in time"
-        time.sleep(0.02)
-
-
 def test_sse_streams_new_rows_only_and_unsubscribes_on_disconnect(live: Live) -> None:
     params: list[tuple[str, str | int | float | bool | None]] = [
         ("pattern", "myself sees ?o"), ("pattern", "?o rdf:type dbr:Cup")]
@@ -60,7 +53,7 @@ def test_sse_streams_new_rows_only_and_unsubscribes_on_disconnect(live: Live) ->
         _revise(live, "cup_3 rdf:type dbr:Cup", "myself sees cup_3")
         assert next(events) == ("message", [{"o": "cup_3"}])
         assert live.services.hub.listener_count == 1
-    _wait_until(lambda: live.services.hub.listener_count == 0)
+    until(lambda: live.services.hub.listener_count == 0)
     assert live.services.kb.unsubscribe(subscribed["id"]) is False  # already gone
 
 
@@ -72,7 +65,7 @@ def test_sse_one_shot_ends_after_the_first_firing(live: Live) -> None:
         _revise(live, "person_tom sees myself")
         assert next(events) == ("message", [{"p": "person_tom"}])
         assert next(events) == ("end", {"reason": "one_shot"})
-    _wait_until(lambda: live.services.hub.listener_count == 0)
+    until(lambda: live.services.hub.listener_count == 0)
 
 
 def test_two_listeners_share_one_kb_subscription(live: Live) -> None:
@@ -86,7 +79,7 @@ def test_two_listeners_share_one_kb_subscription(live: Live) -> None:
         _revise(live, "plate_1 isOn table_1")
         assert next(a) == next(b) == ("message", [{"x": "plate_1"}])
         first.close()
-        _wait_until(lambda: live.services.hub.listener_count == 1)
+        until(lambda: live.services.hub.listener_count == 1)
         _revise(live, "fork_1 isOn table_1")
         assert next(b) == ("message", [{"x": "fork_1"}])
 
@@ -105,7 +98,7 @@ def test_websocket_streams_rows_over_a_real_socket(live: Live) -> None:
         _revise(live, "person_tom sees cup_1")
         assert json.loads(ws.recv(timeout=30)) == [{"h": "person_tom", "o": "cup_1"}]
         assert live.services.hub.listener_count == 1
-    _wait_until(lambda: live.services.hub.listener_count == 0)
+    until(lambda: live.services.hub.listener_count == 0)
 
 
 def test_websocket_one_shot_closes_and_bad_messages_are_refused(live: Live) -> None:
@@ -136,7 +129,7 @@ def test_subscriber_limit_is_429(live_factory) -> None:  # type: ignore[no-untyp
         with connect(live.ws_url + "/kb/events/ws") as ws:
             ws.send(json.dumps({"patterns": ["?a isOn ?b"]}))
             assert json.loads(ws.recv(timeout=30))["code"] == "too_many_subscribers"
-    _wait_until(lambda: live.services.hub.listener_count == 0)
+    until(lambda: live.services.hub.listener_count == 0)
     with connect(live.ws_url + "/kb/events/ws") as ws:
         ws.send(json.dumps({"patterns": ["?a isOn ?b"]}))
         assert "subscribed" in json.loads(ws.recv(timeout=30))

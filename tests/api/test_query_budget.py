@@ -23,6 +23,7 @@ from api.cli import main
 from api.settings import Limits, Settings
 from kb import KB
 from tests.api.conftest import SCENE, Live
+from tests.waiting import until
 
 GENEROUS = 30.0
 CARTESIAN_COUNT = "SELECT (COUNT(*) AS ?n) WHERE { ?a ?b ?c . ?d ?e ?f }"
@@ -136,13 +137,6 @@ def _events(response: httpx.Response) -> Iterator[tuple[str, Any]]:
             name = "message"
 
 
-def _wait_until(predicate: Callable[[], bool]) -> None:
-    deadline = time.monotonic() + GENEROUS
-    while not predicate():
-        assert time.monotonic() < deadline, "condition not reached in time"
-        time.sleep(0.02)
-
-
 SLOW_FEW_ROWS = ["* ?p *", "* ?q *", "* * *"]  # pairs of predicates: few rows, n³ steps
 
 
@@ -163,7 +157,7 @@ def test_a_subscription_past_the_limits_is_refused(live: Live, big_kb: KB) -> No
                 ws.recv(timeout=GENEROUS)
             assert closed.value.rcvd is not None and closed.value.rcvd.code == 1008
     assert len(big_kb.writer.subscriptions) == subscriptions
-    _wait_until(lambda: live.services.hub.listener_count == 0)
+    until(lambda: live.services.hub.listener_count == 0)
 
 
 def _cartesian(trigger: str) -> list[str]:
@@ -184,7 +178,7 @@ def test_a_live_subscription_past_the_budget_is_ended_with_the_error(live: Live,
         assert name == "error" and error["status"] == 503 and error["code"] == "query_timeout"
         assert error["details"] == {"timeout": 1.0} and "time budget of 1 s" in error["message"]
         assert list(events) == []  # the stream ends there
-    _wait_until(lambda: live.services.hub.listener_count == 0)
+    until(lambda: live.services.hub.listener_count == 0)
 
 
 def test_a_live_websocket_subscription_past_the_row_cap_is_ended_with_the_error(live: Live) -> None:
@@ -201,4 +195,4 @@ def test_a_live_websocket_subscription_past_the_row_cap_is_ended_with_the_error(
         with pytest.raises(ConnectionClosed) as closed:
             ws.recv(timeout=GENEROUS)
         assert closed.value.rcvd is not None and closed.value.rcvd.code == 1008
-    _wait_until(lambda: live.services.hub.listener_count == 0)
+    until(lambda: live.services.hub.listener_count == 0)

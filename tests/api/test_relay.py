@@ -14,7 +14,7 @@ from dialogue import intents as I
 from dialogue.engine import TurnResult
 from dialogue.sessions.observers import TurnRecord
 from tests.api.conftest import scene_settings
-from tests.api.test_webhooks import wait_until
+from tests.waiting import until
 
 TOKEN = "relay-token"
 TURN_AT = 1_750_000_000.5
@@ -36,7 +36,7 @@ def test_a_turns_intents_reach_the_writers_stream_in_order(live_factory: Any) ->
         before = writer.client.get("/intents").json()["last_seq"]
         record = turn()
         asyncio.run(relay.observe(record))
-        wait_until(lambda: relay.counts.delivered == 2)
+        until(lambda: relay.counts.delivered == 2)
     finally:
         relay.stop()
     pushed = writer.client.get("/intents", params={"after": before}).json()["intents"]
@@ -54,7 +54,7 @@ def test_a_writer_that_refuses_them_is_retried_then_given_up_and_health_says_so(
     relay.start()
     try:
         asyncio.run(relay.observe(turn()))  # returns at once: the relay works off the turn
-        wait_until(lambda: relay.counts.failed == 2)
+        until(lambda: relay.counts.failed == 2)
         status = relay.status()
         assert not status.ok and status.code == "intent_relay_failing"
         assert f"the writer at {writer.url}" in status.reason and "HTTP 403" in status.reason
@@ -71,7 +71,7 @@ def test_a_writer_that_cannot_be_reached_is_an_error_that_says_where() -> None:
     relay.start()
     try:
         asyncio.run(relay.observe(turn()))
-        wait_until(lambda: relay.counts.failed == 2)
+        until(lambda: relay.counts.failed == 2)
         assert "cannot be reached" in relay.status().reason
     finally:
         relay.stop()

@@ -3,8 +3,6 @@
 from __future__ import annotations
 
 import asyncio
-import time
-from collections.abc import Callable
 from pathlib import Path
 
 import pytest
@@ -14,6 +12,7 @@ from api.settings import Settings, SettingsError
 from dialogue.llm.openai import OpenAIModel
 from kb import KbError
 from tests.api.conftest import SCENE
+from tests.waiting import until
 
 
 def test_data_dir_journal_survives_a_restart(tmp_path: Path) -> None:
@@ -74,23 +73,15 @@ def test_aclose_closes_the_model_it_built_and_not_one_it_was_given() -> None:
     assert not inner.client.open and given_model.client.open
 
 
-def _until(done: Callable[[], bool], seconds: float = 30.0) -> None:
-    """Wait for the grounding worker's effect (the bound is a safety net, far above what it takes)."""
-    end = time.monotonic() + seconds
-    while not done():
-        assert time.monotonic() < end, "the grounding worker never got there"
-        time.sleep(0.005)
-
-
 def test_the_first_snapshot_is_built_at_start_and_followed_after(tmp_path: Path) -> None:
     services = start_services(Settings(scene=SCENE))
     try:
         engine = services.dialogues.engine
         kb = services.kb
         # Built by the grounding's worker as the service starts: no turn has run, nobody asked.
-        _until(lambda: engine.grounder.cached(kb.revision) is not None)
+        until(lambda: engine.grounder.cached(kb.revision) is not None)
         kb.update(["cup_9 rdf:type dbr:Cup", "myself sees cup_9"])
-        _until(lambda: engine.grounder.cached(kb.revision) is not None)
+        until(lambda: engine.grounder.cached(kb.revision) is not None)
         snapshot = engine.grounder.cached(kb.revision)
         assert snapshot is not None and snapshot.get("cup_9") is not None
         assert snapshot.changed  # taken up from the commit, not rebuilt

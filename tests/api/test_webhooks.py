@@ -6,7 +6,7 @@ import json
 import logging
 import threading
 import time
-from collections.abc import Callable, Iterator
+from collections.abc import Iterator
 from http.server import BaseHTTPRequestHandler, ThreadingHTTPServer
 from typing import Any
 
@@ -18,6 +18,7 @@ from api.webhooks import Webhook
 from dialogue import intents as I
 from dialogue.pushed.events import Pushed
 from tests.api.conftest import Live, scene_settings
+from tests.waiting import until
 
 
 class Receiver:
@@ -65,13 +66,6 @@ def receiver() -> Iterator[Receiver]:
     receiver.close()
 
 
-def wait_until(predicate: Callable[[], bool], timeout: float = 60.0) -> None:
-    deadline = time.monotonic() + timeout
-    while not predicate():
-        assert time.monotonic() < deadline, "condition not reached in time"
-        time.sleep(0.02)
-
-
 def hooked(live_factory: Any, receiver: Receiver, **values: Any) -> Live:
     intents = IntentSettings(webhooks=[receiver.url], webhook_backoff=0.05, webhook_max_backoff=0.2,
                              webhook_retries=100, **values)
@@ -96,18 +90,18 @@ def test_deliveries_are_retried_until_the_receiver_recovers_and_health_says_so(
     live = hooked(live_factory, receiver)
     n = live.services.bus.first - 1
     turn = say(live, "please bring me the cup")
-    wait_until(lambda: receiver.refused >= 2)
+    until(lambda: receiver.refused >= 2)
     status = health(live)
     assert status["status"] == "degraded"
     hook = status["components"]["webhook_0"]
     assert not hook["ok"] and hook["code"] == "webhook_failing" and "HTTP 500" in hook["reason"]
     assert any("webhook_0" in reason for reason in status["reasons"])
     receiver.failing = False
-    wait_until(lambda: len(receiver.accepted) == 1)
+    until(lambda: len(receiver.accepted) == 1)
     assert receiver.accepted[0]["intent"] == turn["intents"][0] and receiver.accepted[0]["seq"] == n + 1
-    wait_until(lambda: health(live)["status"] == "ok")
+    until(lambda: health(live)["status"] == "ok")
     say(live, "hello")
-    wait_until(lambda: len(receiver.accepted) == 2)
+    until(lambda: len(receiver.accepted) == 2)
     assert [body["seq"] for body in receiver.accepted] == [n + 1, n + 2]  # in order, each once
 
 
@@ -120,7 +114,7 @@ def test_a_turn_never_waits_for_a_webhook(live_factory: Any, receiver: Receiver)
     assert say(live, "bring me the cup")["intents"]  # answered while the first delivery still hangs
     assert receiver.accepted == []
     receiver.hold.set()
-    wait_until(lambda: [b["seq"] for b in receiver.accepted] == [n + 1, n + 2])
+    until(lambda: [b["seq"] for b in receiver.accepted] == [n + 1, n + 2])
 
 
 def test_an_intent_with_json_values_is_delivered_as_pushed(live_factory: Any, receiver: Receiver) -> None:
@@ -129,7 +123,7 @@ def test_an_intent_with_json_values_is_delivered_as_pushed(live_factory: Any, re
     intent = {"intent": "__intent_start_activity__", "source": "person_alice",
               "data": {"object": "quiz", "other_data": {"round": 3, "topics": ["art", "maths"], "hints": False}}}
     assert live.client.post("/intents", json={"intent": intent}).status_code == 200
-    wait_until(lambda: len(receiver.accepted) == 1)
+    until(lambda: len(receiver.accepted) == 1)
     assert receiver.accepted[0]["intent"]["data"] == intent["data"]
 
 
@@ -152,11 +146,11 @@ def test_a_delivery_given_up_after_its_retries_is_counted(receiver: Receiver) ->
     hook.start()
     try:
         hook.enqueue(pushed(1))
-        wait_until(lambda: hook.counts.failed == 1)
+        until(lambda: hook.counts.failed == 1)
         assert receiver.refused == 3  # the first attempt and two retries
         receiver.failing = False
         hook.enqueue(pushed(2))
-        wait_until(lambda: hook.counts.delivered == 1)
+        until(lambda: hook.counts.delivered == 1)
         status = hook.status()
         assert [b["seq"] for b in receiver.accepted] == [2] and status.ok
         # Recovered, but an intent was lost: /health still says how many.
@@ -210,7 +204,7 @@ def test_a_trickling_receiver_is_given_up_on_time_and_reported_slow(live_factory
         hook = live.services.webhooks.hooks[0]
         started = time.monotonic()
         say(live, "hello")
-        wait_until(lambda: hook.counts.failed == 1, timeout=30)
+        until(lambda: hook.counts.failed == 1, timeout=30)
         took = time.monotonic() - started
         assert took < 2.0 + 3, f"one delivery held the webhook {took:.1f} s; its timeout is 2 s"
         status = health(live)
@@ -229,10 +223,10 @@ def test_webhook_and_model_urls_show_no_secrets(live_factory: Any, receiver: Rec
     caplog.set_level(logging.INFO)
     live: Live = live_factory(scene_settings(intents=intents, llm="hybrid:openai:tiny@http://127.0.0.1:9/v1?key=k3y"))
     say(live, "hello")
-    wait_until(lambda: len(receiver.accepted) == 1)  # delivered, with its credentials
+    until(lambda: len(receiver.accepted) == 1)  # delivered, with its credentials
     receiver.failing = True
     say(live, "please bring me the cup")
-    wait_until(lambda: live.services.webhooks.hooks[0].counts.failed == 1)
+    until(lambda: live.services.webhooks.hooks[0].counts.failed == 1)
     anonymous = live.client.get("/health").json()
     shown = json.dumps(anonymous) + caplog.text
     assert "webhook_0" in json.dumps(anonymous) and "openai:tiny" in json.dumps(anonymous)
@@ -255,7 +249,7 @@ def test_secrets_in_a_webhooks_path_or_parameters_and_the_models_key_are_never_s
                                              llm="hybrid:openai:tiny@http://127.0.0.1:9/v1?key=k3y&api_key=k4y"))
     turn = say(live, "blorp the zingy wibble please")
     assert turn["error_msg"], "the model server is unreachable: the turn says why"
-    wait_until(lambda: live.services.webhooks.hooks[0].counts.failed >= 1)
+    until(lambda: live.services.webhooks.hooks[0].counts.failed >= 1)
     anonymous = json.dumps(live.client.get("/health").json())
     traces = live.client.get("/dialogues/default/turns").text
     shown = anonymous + caplog.text + json.dumps(turn) + traces

@@ -1,5 +1,6 @@
 """The viewer in a real browser: the service under uvicorn on a loopback port, Debian's Chromium
-driven headless by Playwright. Test modules skip themselves where /usr/bin/chromium is absent."""
+driven headless by Playwright. A test that drives the browser is marked `browser` and skipped where
+/usr/bin/chromium is absent (here, not in each module)."""
 
 from __future__ import annotations
 
@@ -20,6 +21,16 @@ CHROMIUM = Path("/usr/bin/chromium")
 CHROMIUM_ARGS = ["--no-sandbox", "--disable-gpu", "--no-first-run", "--disable-background-networking",
                  "--disable-component-update", "--disable-sync"]
 SCENE = Path(__file__).with_name("scene.txt")
+
+
+@pytest.hookimpl(tryfirst=True)  # before `-m "not browser"` deselects by the marks
+def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:
+    for item in items:
+        if "browser" in getattr(item, "fixturenames", ()):
+            item.add_marker(pytest.mark.browser)
+            if not CHROMIUM.exists():
+                item.add_marker(pytest.mark.skip(reason=f"{CHROMIUM} is not installed (apt-get install "
+                                                        "chromium); the browser tests need it"))
 
 
 @dataclass
@@ -81,8 +92,12 @@ def service(start_service: Callable[..., Service]) -> Service:
     return start_service()
 
 
+#: Opens the viewer of a service: the page and what it did that it should not (`open_viewer`).
+Opener = Callable[[Service], tuple[Any, PageWatch]]
+
+
 @pytest.fixture
-def open_viewer(browser: Any) -> Iterator[Callable[[Service], tuple[Any, PageWatch]]]:
+def open_viewer(browser: Any) -> Iterator[Opener]:
     """Open the viewer of a service in a fresh browser context; check the page stayed clean."""
     contexts: list[Any] = []
     watches: list[PageWatch] = []

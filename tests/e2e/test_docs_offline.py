@@ -11,13 +11,7 @@ from urllib.parse import urlsplit
 
 import pytest
 
-from tests.e2e.conftest import CHROMIUM, Service
-
-if not CHROMIUM.exists():
-    pytest.skip(f"{CHROMIUM} is not installed (apt-get install chromium); the browser tests need it",
-                allow_module_level=True)
-
-pytestmark = pytest.mark.browser
+from tests.e2e.conftest import Service
 
 LOOPBACK = {"127.0.0.1", "localhost", "::1", "[::1]"}
 

@@ -5,23 +5,10 @@ badge or button cut off."""
 
 from __future__ import annotations
 
-from collections.abc import Callable
-from typing import Any
+from playwright.sync_api import expect
 
-import pytest
+from tests.e2e.conftest import Opener, Service
 
-from tests.e2e.conftest import CHROMIUM, PageWatch, Service
-
-if CHROMIUM.exists():
-    from playwright.sync_api import expect
-
-if not CHROMIUM.exists():
-    pytest.skip(f"{CHROMIUM} is not installed (apt-get install chromium); the browser tests need it",
-                allow_module_level=True)
-
-pytestmark = pytest.mark.browser
-
-Opener = Callable[[Service], tuple[Any, PageWatch]]
 TURNS = ("hello", "what do you see?", "pick up the cup", "where is the cup?", "the cup is mine",
          "what is on the table?", "bring me the cup", "who is here?", "thank you", "what do you see?")
 

@@ -4,23 +4,11 @@
 from __future__ import annotations
 
 import re
-from collections.abc import Callable
 from typing import Any
 
-import pytest
+from playwright.sync_api import expect
 
-from tests.e2e.conftest import CHROMIUM, PageWatch, Service
-
-if CHROMIUM.exists():
-    from playwright.sync_api import expect
-
-if not CHROMIUM.exists():
-    pytest.skip(f"{CHROMIUM} is not installed (apt-get install chromium); the browser tests need it",
-                allow_module_level=True)
-
-pytestmark = pytest.mark.browser
-
-Opener = Callable[[Service], tuple[Any, PageWatch]]
+from tests.e2e.conftest import Opener, Service
 
 
 def chat(page: Any, speaker: str, text: str) -> str:

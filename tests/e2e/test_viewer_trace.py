@@ -3,30 +3,21 @@ and JSON schema sent, the raw answers, the validation error and the repair, and 
 
 from __future__ import annotations
 
-from collections.abc import Callable, Iterator
+from collections.abc import Iterator
 from contextlib import ExitStack
 from typing import Any
 
 import httpx
 import pytest
+from playwright.sync_api import expect
 
 from api.app import create_app
 from api.server import serve_in_thread
 from api.settings import Settings
 from dialogue.llm.hybrid import HybridModel
 from dialogue.llm.testing import ScriptedModel
-from tests.e2e.conftest import CHROMIUM, SCENE, PageWatch, Service
+from tests.e2e.conftest import SCENE, Opener, Service
 
-if CHROMIUM.exists():
-    from playwright.sync_api import expect
-
-if not CHROMIUM.exists():
-    pytest.skip(f"{CHROMIUM} is not installed (apt-get install chromium); the browser tests need it",
-                allow_module_level=True)
-
-pytestmark = pytest.mark.browser
-
-Opener = Callable[[Service], tuple[Any, PageWatch]]
 GRAB = {"verbal_ack": "I will take the cup.", "user_intent": {"type": "__intent_grab_object__", "object": "cup_1",
                                                                "recipient": None, "goal": None, "input": None}}
 

@@ -6,8 +6,7 @@ from __future__ import annotations
 
 import re
 import threading
-import time
-from collections.abc import Callable, Iterator
+from collections.abc import Iterator
 from typing import Any
 
 import pytest
@@ -15,6 +14,7 @@ import pytest
 from kb import KB, KbError
 from kb.events import event_id
 from tests.conftest import VARIANTS, kb_variant
+from tests.waiting import until
 
 
 class Recorder:
@@ -40,15 +40,6 @@ class FakeClock:
 
     def __call__(self) -> float:
         return self.now
-
-
-def wait_until(condition: Callable[[], bool], timeout: float = 30.0) -> bool:
-    deadline = time.monotonic() + timeout
-    while time.monotonic() < deadline:
-        if condition():
-            return True
-        time.sleep(0.005)
-    return condition()
 
 
 @pytest.fixture(params=VARIANTS)
@@ -229,7 +220,7 @@ def test_expiry_is_seen_by_subscriptions(timed_kb: KB, clock: FakeClock) -> None
     assert rec.take() == [[{"x": "lamp"}]]
     clock.now += 3
     timed_kb.expire()
-    assert wait_until(lambda: timed_kb["?x isOn table"] == [])
+    until(lambda: timed_kb["?x isOn table"] == [])
     assert rec.take() == []  # a row disappearing fires nothing
     timed_kb.add("lamp isOn table", lifespan=2)
     assert rec.take() == [[{"x": "lamp"}]]  # ... but its return does, because expiry re-evaluated
@@ -242,7 +233,7 @@ def test_expiry_of_a_supporting_fact_updates_inferred_rows(timed_kb: KB, clock: 
     assert rec.take() == [[{"place": "kitchen", "thing": "cup"}]]
     clock.now += 2
     timed_kb.expire()
-    assert wait_until(lambda: timed_kb["?place placeOf cup"] == [])
+    until(lambda: timed_kb["?place placeOf cup"] == [])
     timed_kb.add("cup isIn kitchen")
     assert rec.take() == [[{"place": "kitchen", "thing": "cup"}]]
 

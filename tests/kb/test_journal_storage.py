@@ -4,8 +4,7 @@ leaves no temporary file; a temporary file a crash left is removed at start."""
 
 from __future__ import annotations
 
-import time
-from collections.abc import Callable, Iterator
+from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
@@ -15,6 +14,7 @@ from kb.errors import StorageFull
 from kb.journal import JOURNAL, SNAPSHOT, SNAPSHOT_TMP, Journal
 from kb.records import scan
 from tests.smallfs import fill, small_fs
+from tests.waiting import until
 
 __all__ = ["small_fs"]
 
@@ -33,15 +33,6 @@ def _open(directory: Path, kbs: list[KB]) -> tuple[KB, Journal]:
     journal = Journal(directory)
     journal.recover(kb)
     return kb, journal
-
-
-def _wait_for(condition: Callable[[], bool], timeout: float = 20.0) -> bool:
-    deadline = time.monotonic() + timeout
-    while time.monotonic() < deadline:
-        if condition():
-            return True
-        time.sleep(0.02)
-    return condition()
 
 
 def test_a_refused_append_leaves_the_journal_and_the_kb_as_they_were(small_fs: Path, kbs: list[KB]) -> None:
@@ -83,12 +74,12 @@ def test_compaction_survives_a_full_disk_reports_it_and_retries(small_fs: Path, 
         kb += f"s{i} sees o{i}"
     filler = fill(small_fs)
     kb += "s4 sees o4"  # the fifth record still fits in the journal's last page; a snapshot does not
-    assert _wait_for(lambda: journal.compaction.get().failures >= 2), journal.compaction.get()
+    until(lambda: journal.compaction.get().failures >= 2), journal.compaction.get()
     status = journal.compaction.get()
     assert status.code == "storage_full" and "compaction failed" in status.reason and status.retry_in
     assert not (data / SNAPSHOT_TMP).exists() and not (data / SNAPSHOT).exists()
     filler.unlink()
-    assert _wait_for(lambda: journal.compaction.get().ok), journal.compaction.get()
+    until(lambda: journal.compaction.get().ok), journal.compaction.get()
     assert (data / SNAPSHOT).exists() and (data / JOURNAL).stat().st_size == 0
     assert journal.records_since_snapshot == 0
     kb += "s5 sees o5"

@@ -4,8 +4,7 @@ without a lifespan, and expiry behaving exactly like a retract (re-reasoning and
 
 from __future__ import annotations
 
-import time
-from collections.abc import Callable, Iterator
+from collections.abc import Iterator
 from typing import Any
 
 import pytest
@@ -15,6 +14,7 @@ from rdflib import URIRef
 
 from kb import KB, KbError
 from kb.lifespan import Expiries
+from tests.waiting import until
 
 ORO = "http://kb.openrobots.org#"
 T1 = (URIRef(ORO + "a"), URIRef(ORO + "p"), URIRef(ORO + "b"))
@@ -27,15 +27,6 @@ class FakeClock:
 
     def __call__(self) -> float:
         return self.now
-
-
-def wait_until(condition: Callable[[], bool], timeout: float = 30.0) -> bool:
-    deadline = time.monotonic() + timeout
-    while time.monotonic() < deadline:
-        if condition():
-            return True
-        time.sleep(0.005)
-    return condition()
 
 
 @pytest.fixture
@@ -177,7 +168,7 @@ def test_expiry_fires_events_like_a_retract(kb: KB, clock: FakeClock) -> None:
     kb.add("cup isOn table", lifespan=1)
     clock.now += 2
     kb.expire()
-    assert wait_until(lambda: kb["?x isOn table"] == [])
+    until(lambda: kb["?x isOn table"] == [])
     kb.add("cup isOn table", lifespan=1)
     assert calls == [[{"x": "cup"}], [{"x": "cup"}]]
 
@@ -187,7 +178,7 @@ def test_background_expiry(clock: FakeClock) -> None:
         k.add("cup isOn table", lifespan=0.5)
         clock.now += 1
         # The expiry thread collects it without any call on the KB.
-        assert wait_until(lambda: not k.is_asserted("cup isOn table"), timeout=30.0)
+        until(lambda: not k.is_asserted("cup isOn table"), timeout=30.0)
 
 
 @pytest.mark.parametrize("bad", [-1, "5", True, None, [1], float("nan")])
@@ -216,11 +207,11 @@ def test_expiry_thread_survives_a_failing_listener(clock: FakeClock) -> None:
         k += "cup rdf:type ActiveConcept"
         clock.now += 6
         # The expiry thread retracts the activation and the listener fails in that thread...
-        assert wait_until(lambda: not k.is_asserted("cup rdf:type ActiveConcept"))
+        until(lambda: not k.is_asserted("cup rdf:type ActiveConcept"))
         # ... and later lifespans must still be collected in the background.
         k.add("x sees y", lifespan=1)
         clock.now += 2
-        assert wait_until(lambda: not k.is_asserted("x sees y"), timeout=30.0)
+        until(lambda: not k.is_asserted("x sees y"), timeout=30.0)
 
 
 def test_replaced_value_takes_its_expiry_with_it(kb: KB, clock: FakeClock) -> None:

@@ -16,7 +16,6 @@ import socket
 import subprocess
 import sys
 import threading
-import time
 from collections.abc import Callable, Iterator
 from pathlib import Path
 from typing import Any
@@ -169,18 +168,6 @@ def ros_node_factory(ros_env: dict[str, str], tmp_path: Path) -> Iterator[Callab
 @pytest.fixture
 def ros_node(ros_node_factory: Callable[..., RosNode]) -> RosNode:
     return ros_node_factory()
-
-
-def eventually(check: Callable[[], Any], timeout: float = 30.0, every: float = 0.05) -> Any:
-    """``check()``'s first truthy value; AssertionError with its last value after ``timeout`` s (what
-    a graph does asynchronously: a message taken, a fact written)."""
-    end = time.monotonic() + timeout
-    value = check()
-    while not value and time.monotonic() < end:
-        time.sleep(every)
-        value = check()
-    assert value, f"still {value!r} after {timeout} s"
-    return value
 
 
 @pytest.fixture

@@ -7,7 +7,8 @@ from __future__ import annotations
 from collections.abc import Callable
 from typing import Any
 
-from tests.api.ros.conftest import Probe, RosNode, eventually
+from tests.api.ros.conftest import Probe, RosNode
+from tests.waiting import until
 
 ARRAY = "diagnostic_msgs/msg/DiagnosticArray"
 OK, WARN, ERROR = 0, 1, 2
@@ -28,7 +29,7 @@ def test_the_services_health_is_on_diagnostics(ros_node: RosNode, probe: Probe) 
     assert found["situated: model"]["message"] == "rules: in-process"
     probe.call("/kb/revise", "kb_msgs/srv/Revise", method="update", statements=["lamp_1 isOn desk_1"])
     revision = ros_node.http.get("/health").json()["kb"]["revision"]
-    eventually(lambda: int(statuses(probe)["situated: KB"]["values"]["revision"]) == revision)  # a later report
+    until(lambda: int(statuses(probe)["situated: KB"]["values"]["revision"]) == revision)  # a later report
 
 
 def test_a_model_that_does_not_answer_is_an_error_and_the_service_warns(

@@ -9,7 +9,8 @@ import signal
 import uuid
 from typing import Any
 
-from tests.api.ros.conftest import Probe, RosNode, eventually
+from tests.api.ros.conftest import Probe, RosNode
+from tests.waiting import until
 
 ACTION = "/chatbot/start_dialogue"
 DIALOGUE = "chatbot_msgs/action/Dialogue"
@@ -88,7 +89,7 @@ def test_a_goal_the_service_cannot_play_is_rejected_and_the_reason_logged(ros_no
         return [m["msg"] for m in probe.messages("/rosout", timeout=0.1)
                 if m["name"] == "chatbot" and "start_dialogue goal rejected" in m["msg"]]
 
-    reasons = eventually(lambda: len(logged()) == len(refused) and logged())
+    reasons = until(lambda: len(logged()) == len(refused) and logged())
     for (_name, _configuration, _locale, why), reason in zip(refused, reasons, strict=True):
         assert why in reason
 

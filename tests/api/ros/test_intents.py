@@ -7,7 +7,8 @@ import json
 from concurrent.futures import ThreadPoolExecutor
 from typing import Any
 
-from tests.api.ros.conftest import Probe, RosNode, eventually
+from tests.api.ros.conftest import Probe, RosNode
+from tests.waiting import until
 
 INTENT = "hri_actions_msgs/msg/Intent"
 
@@ -60,7 +61,7 @@ def test_an_intent_with_json_values_is_published_with_them(ros_node: RosNode, pr
     """`data` is a JSON string: values of any JSON type (an object in `other_data`) are in it as
     they were pushed."""
     probe("subscribe", topic="/intents", type=INTENT)
-    eventually(lambda: probe("publisher_count", topic="/intents")["matched"])  # else the message may go before
+    until(lambda: probe("publisher_count", topic="/intents")["matched"])  # else the message may go before
     data = {"object": "memory_game", "other_data": {"level": 2, "players": ["person_tom"], "timed": False}}
     pushed = ros_node.http.post("/intents", json={"intent": {"intent": "__intent_start_activity__", "data": data,
                                                              "source": "person_tom", "priority": 200}})

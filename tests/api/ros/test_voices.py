@@ -6,7 +6,8 @@ from __future__ import annotations
 import json
 from collections.abc import Callable
 
-from tests.api.ros.conftest import SCENE, Probe, RosNode, eventually
+from tests.api.ros.conftest import SCENE, Probe, RosNode
+from tests.waiting import until
 
 SPEECH = "hri_msgs/msg/LiveSpeech"
 STRING = "std_msgs/msg/String"
@@ -20,7 +21,7 @@ def test_a_voice_speaks_for_its_person_and_the_reply_is_said(ros_node_factory: C
     probe("subscribe", topic="/rosout", type="rcl_interfaces/msg/Log", latched=True)
     probe("publish", topic="/humans/persons/person_alice/voice_id", type=STRING, message={"data": "v1"},
           latched=True)
-    eventually(lambda: any(m["msg"] == "voice v1 is person_alice's" for m in probe.messages("/rosout", timeout=0)))
+    until(lambda: any(m["msg"] == "voice v1 is person_alice's" for m in probe.messages("/rosout", timeout=0)))
     speech = "/humans/voices/v1/speech"
     probe("publish", topic=speech, type=SPEECH, message={"incremental": "pick up"})  # not a turn
     probe("publish", topic=speech, type=SPEECH, message={"final": "pick up the cup", "language": "en-GB",

@@ -6,32 +6,25 @@ from collections.abc import Iterator
 
 import pytest
 
-from tests.dialogue.conversations.talk import Talk
+from tests.dialogue.conversations.talk import Talk, person, robot, talking, thing, zone
 
 WORKSHOP = [
-    "myself rdf:type Robot",
-    'workshop rdf:type ZoneOfInterest', 'workshop rdfs:label "workshop"',
-    'shed rdf:type ZoneOfInterest', 'shed rdfs:label "shed"',
-    'person_tess rdf:type Human', 'person_tess rdfs:label "Tess"', "person_tess isIn workshop",
-    "myself sees person_tess",
-    "bench_1 rdf:type dbr:Table_(furniture)", 'bench_1 rdfs:label "bench"', "bench_1 isIn workshop",
-    "myself sees bench_1",
-    'flask_green rdf:type dbr:Bottle', 'flask_green rdfs:label "flask"', "flask_green hasColor green",
-    "flask_green isOn bench_1", "myself sees flask_green",
-    'flask_grey rdf:type dbr:Bottle', 'flask_grey rdfs:label "flask"', "flask_grey hasColor grey",
-    "flask_grey isOn bench_1", "myself sees flask_grey",
+    *robot(), *zone("workshop", "workshop"), *zone("shed", "shed"),
+    *person("person_tess", "Tess", zone="workshop", seen=True),
+    *thing("bench_1", "dbr:Table_(furniture)", "bench", zone="workshop", seen=True),
+    *thing("flask_green", "dbr:Bottle", "flask", color="green", on="bench_1", seen=True),
+    *thing("flask_grey", "dbr:Bottle", "flask", color="grey", on="bench_1", seen=True),
     # Two spades told apart by whose they are, a lone saw by nothing.
-    'spade_1 rdf:type Artifact', 'spade_1 rdfs:label "spade"', "spade_1 belongsTo person_tess", "spade_1 isIn shed",
-    'spade_2 rdf:type Artifact', 'spade_2 rdfs:label "spade"', "spade_2 isIn shed",
-    'saw_1 rdf:type Artifact', 'saw_1 rdfs:label "saw"', "saw_1 isOn bench_1", "myself sees saw_1",
-]  # fmt: skip
+    *thing("spade_1", "Artifact", "spade", owner="person_tess", zone="shed"),
+    *thing("spade_2", "Artifact", "spade", zone="shed"),
+    *thing("saw_1", "Artifact", "saw", on="bench_1", seen=True),
+]
 
 
 @pytest.fixture
 def talk() -> Iterator[Talk]:
-    talk = Talk(WORKSHOP, "person_tess")
-    yield talk
-    talk.close()
+    with talking(WORKSHOP, "person_tess") as talk:
+        yield talk
 
 
 def test_an_intent_taken_on_names_the_thing_told_apart_with_its_id_unchanged(talk: Talk) -> None:

@@ -7,27 +7,21 @@ from collections.abc import Iterator
 
 import pytest
 
-from tests.dialogue.conversations.talk import Talk
+from tests.dialogue.conversations.talk import Talk, person, robot, talking, thing, zone
 
 OFFICE = [
-    "myself rdf:type Robot",
-    'office rdf:type ZoneOfInterest', 'office rdfs:label "office"',
-    'person_noor rdf:type Human', 'person_noor rdfs:label "Noor"', "person_noor isIn office",
-    "myself sees person_noor",
-    'person_abel rdf:type Human', 'person_abel rdfs:label "Abel"',
-    'stapler_1 rdf:type Artifact', 'stapler_1 rdfs:label "stapler"', "stapler_1 belongsTo person_abel",
-    "stapler_1 isIn office", "myself sees stapler_1",
-    'scarf_1 rdf:type Artifact', 'scarf_1 rdfs:label "scarf"', "scarf_1 isIn office", "myself sees scarf_1",
-    'badge_1 rdf:type Artifact', 'badge_1 rdfs:label "badge"', "badge_1 belongsTo person_noor",
-    "badge_1 isIn office", "myself sees badge_1",
-]  # fmt: skip
+    *robot(), *zone("office", "office"),
+    *person("person_noor", "Noor", zone="office", seen=True), *person("person_abel", "Abel"),
+    *thing("stapler_1", "Artifact", "stapler", owner="person_abel", zone="office", seen=True),
+    *thing("scarf_1", "Artifact", "scarf", zone="office", seen=True),
+    *thing("badge_1", "Artifact", "badge", owner="person_noor", zone="office", seen=True),
+]
 
 
 @pytest.fixture
 def talk() -> Iterator[Talk]:
-    talk = Talk(OFFICE, "person_noor")
-    yield talk
-    talk.close()
+    with talking(OFFICE, "person_noor") as talk:
+        yield talk
 
 
 def test_my_thing_that_is_someone_elses_is_said_whose_first(talk: Talk) -> None:

@@ -14,7 +14,8 @@ from kb import KbError
 from kb.errors import TooManyRows
 from kb.sparqlstore.remote import RemoteKB
 from tests.conftest import Replica
-from tests.kb.test_events import Recorder, wait_until
+from tests.kb.test_events import Recorder
+from tests.waiting import until
 
 Replicas = Callable[..., AbstractContextManager[Replica]]
 
@@ -28,8 +29,8 @@ def test_polling_sees_commits_made_by_the_writer(replicas: Replicas) -> None:
         sid = reader.subscribe("?x sees ?y", once, one_shot=True)
         assert len(_poll_threads(reader)) == 1
         writer.add("alfred sees cup")  # another process's write: the reader polls for it
-        assert wait_until(lambda: rec.calls == [[{"x": "alfred"}]])
-        assert wait_until(lambda: once.calls == [[{"x": "alfred", "y": "cup"}]])
+        until(lambda: rec.calls == [[{"x": "alfred"}]])
+        until(lambda: once.calls == [[{"x": "alfred", "y": "cup"}]])
         assert reader.unsubscribe(sid) is False  # the one-shot went after firing
         assert rec.take() == [[{"x": "alfred"}]]
         writer.remove("alfred sees cup")

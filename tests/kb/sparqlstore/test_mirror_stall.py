@@ -12,7 +12,6 @@ from __future__ import annotations
 import threading
 import time
 from collections.abc import Callable, Iterator
-from typing import TypeVar
 
 import httpx
 import pytest
@@ -25,8 +24,8 @@ from kb.sparqlstore.endpoint import SparqlEndpoint
 from kb.sparqlstore.mirror import SparqlMirror
 from kb.terms import parse_ground
 from tests.kb.sparqlstore.test_mirror import assert_same
+from tests.waiting import until
 
-T = TypeVar("T")
 WAIT = 30.0  # generous: the machine is shared
 
 
@@ -70,18 +69,6 @@ class HoldingTransport(httpx.BaseTransport):
         self.inner.close()
 
 
-def eventually(call: Callable[[], T], timeout: float = WAIT) -> T:
-    """``call()`` once the writer accepts writes again (it refuses them while it reconciles)."""
-    deadline = time.monotonic() + timeout
-    while True:
-        try:
-            return call()
-        except StoreUnavailable:
-            if time.monotonic() > deadline:
-                raise
-            time.sleep(0.05)
-
-
 def wait_in_sync(mirror: SparqlMirror, why: Callable[[], str], timeout: float = WAIT) -> None:
     deadline = time.monotonic() + timeout
     while mirror.stale:
@@ -118,7 +105,7 @@ def test_a_refused_update_delivered_late_does_not_change_the_store(
     with pytest.raises(StoreUnavailable):
         kb.update(["myself sees apple_1"])
     assert not kb.exist(["myself sees apple_1"])
-    eventually(lambda: kb.update(["myself sees book_1"]))
+    until(lambda: kb.update(["myself sees book_1"]) or True, WAIT, ignoring=(StoreUnavailable,))
     transport.deliver()  # the store resumes and gets the update the writer gave up on
     assert not holds(endpoint, "myself sees apple_1"), "a refused write reached the store"
     assert_same(kb, endpoint, mirror)
@@ -166,7 +153,7 @@ def test_while_the_outcome_is_unknown_writes_are_refused_without_touching_the_st
             assert mirror.status().refused >= 4
         finally:
             stallable.resume()
-        eventually(lambda: kb.update(["myself sees book_1"]))
+        until(lambda: kb.update(["myself sees book_1"]) or True, WAIT, ignoring=(StoreUnavailable,))
         assert_same(kb, endpoint, mirror)
     finally:
         mirror.detach()
@@ -198,7 +185,7 @@ def test_a_write_refused_during_a_stall_is_not_in_the_store_after_it_resumes(
         time.sleep(0.5)  # whatever the resumed store still had queued is processed by now
         assert not holds(probe, "myself sees apple_1")
         assert_same(kb, probe, mirror)
-        eventually(lambda: kb.update(["myself sees book_1"]))
+        until(lambda: kb.update(["myself sees book_1"]) or True, WAIT, ignoring=(StoreUnavailable,))
         assert_same(kb, probe, mirror)
     finally:
         mirror.detach()
