@@ -303,6 +303,8 @@ class DialogueEngine:
         early = self.model.prescreen(turn.context)
         if early is None:
             return None
+        if not early.understood:  # only why not: a model behind reads the turn, else the why is said
+            return None if self.model.llm is not None else self._declined(turn, early.answer.verbal_ack)
         try:
             grounded = ground_answer(early.answer, turn.lexicon, turn.speaker)
         except AnswerError as exc:  # the answer and the contract disagree: let the model (or fallback) answer
@@ -311,6 +313,11 @@ class DialogueEngine:
         clarify = grounded.clarify or early.clarify
         return TurnResult(grounded.reply, grounded.intents, backend=early.backend, clarify=clarify,
                           claims=grounded.claims, confirm=early.confirm, dialogue_terminal=early.ends or None)
+
+    def _declined(self, turn: _Turn, why: str | None) -> TurnResult:
+        """The turn no backend understood: the raw input for the middleware, and why (or that) not."""
+        raw = I.raw_user_input(turn.text, source=turn.speaker, locale=turn.locale)
+        return TurnResult(why or NOT_UNDERSTOOD, (raw,), backend=self.model.name, understood=False)
 
     def schema_for(
         self, snapshot: Snapshot, speaker: str, focus: Sequence[Entity] | None = None

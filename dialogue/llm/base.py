@@ -99,6 +99,10 @@ class EarlyAnswer:
     confirm: bool = False
     #: The person took leave ("bye"): the answer ends the conversation (the turn's `dialogue_terminal`).
     ends: bool = False
+    #: False: the model did not understand the turn and the answer is only why ("Sorry, I don't see
+    #: any bagget": a thing absent, or misheard?). A model behind reads the turn instead; alone,
+    #: the reason is a better reply than "I did not understand", and claims nothing.
+    understood: bool = True
 
 
 @dataclass(frozen=True)

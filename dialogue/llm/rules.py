@@ -43,6 +43,8 @@ class RulesModel(ChatModel):
     def prescreen(self, context: TurnContext) -> EarlyAnswer | None:
         heard = read(self._turn(context))
         if not self._claims(heard):
+            if heard.answer.verbal_ack and not heard.answer.user_intent and not heard.answer.user_intents:
+                return EarlyAnswer(heard.answer, RULES, understood=False)  # why not understood
             return None
         return EarlyAnswer(heard.answer, RULES, clarify=heard.clarify, confirm=heard.proposes,
                            ends=heard.ends)

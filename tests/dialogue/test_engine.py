@@ -192,7 +192,9 @@ def test_clarification_then_answer_through_history(cups: KB) -> None:
 def test_kb_changes_are_seen_by_the_next_turn() -> None:
     kb = scene_kb("kitchen")
     engine = DialogueEngine(kb)
-    assert turn(engine, "grab the pear").intents == ()
+    absent = turn(engine, "grab the pear")
+    assert not absent.understood and absent.response == "Sorry, I don't see any pear."
+    assert [i.intent for i in absent.intents] == [I.RAW_USER_INPUT]
     kb.update(["pear_1 rdf:type dbr:Pear", "myself sees pear_1"])
     assert turn(engine, "grab the pear").intents[0].data == {"object": "pear_1"}
 

@@ -4,6 +4,7 @@ from typing import Any
 
 import pytest
 
+from dialogue import intents as I
 from dialogue.engine import DialogueEngine, TurnResult
 from dialogue.llm.base import ChatMessage, ChatModel, ChatRequest, ModelError, SelfCheck, TurnContext
 from dialogue.llm.hybrid import HybridModel
@@ -55,7 +56,8 @@ def test_prescreen_is_the_rules_answer_and_the_llm_is_the_inner_model(kitchen: K
     early = model.prescreen(TurnContext("pick up the apple", ALICE, build_snapshot(kitchen)))
     assert early is not None and early.backend == "rules"
     assert early.answer.user_intent is not None and early.answer.user_intent.object == "apple_1"
-    assert model.prescreen(TurnContext("how is the weather today?", ALICE, build_snapshot(kitchen))) is None
+    declined = model.prescreen(TurnContext("how is the weather today?", ALICE, build_snapshot(kitchen)))
+    assert declined is not None and not declined.understood  # only why not: the inner model reads it
     assert inner.requests == []
 
 
@@ -151,7 +153,9 @@ def test_a_word_the_rules_do_not_know_goes_to_the_model_not_to_i_dont_see_any(ki
     # "bring me the glorp": the rules cannot tell a thing the scene lacks from a word they do not know
     alone = DialogueEngine(kitchen, RulesModel())
     said = turn(alone, "bring me the glorp")
-    assert not said.understood and said.response == "Sorry, I did not understand that."
+    # alone, they say why they did not understand, and act on nothing (the raw input is passed on)
+    assert not said.understood and said.response == "Sorry, I don't see any glorp."
+    assert [i.intent for i in said.intents] == [I.RAW_USER_INPUT]
     inner = Recording(SUNNY, SUNNY)
     engine = DialogueEngine(kitchen, HybridModel(inner))
     assert turn(engine, "bring me the glorp").backend == "inner" and len(inner.requests) == 1
