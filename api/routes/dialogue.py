@@ -13,8 +13,9 @@ from typing import Annotated, Any
 
 from fastapi import APIRouter, Depends, Request, Response
 from pydantic import AfterValidator, BaseModel, ConfigDict, Field, model_validator
+from starlette.requests import HTTPConnection
 
-from api.deps import ReadAccess, ServicesDep, WriteAccess
+from api.deps import ReadAccess, ServicesDep, WriteAccess, services_of
 from api.errors import ApiError
 from api.limits import check_count, check_length
 from api.turnevents import EVENT_STREAM, turn_events, wants_events
@@ -141,8 +142,8 @@ def _status(dialogue_id: str, role: str, locale: str | None, progress: Progress)
                           results=progress.results, error_msg=progress.error_msg)
 
 
-async def get_dialogues(services: ServicesDep) -> DialogueManager:
-    return services.dialogues
+async def get_dialogues(conn: HTTPConnection) -> DialogueManager:
+    return services_of(conn).dialogues
 
 
 Dialogues = Annotated[DialogueManager, Depends(get_dialogues)]

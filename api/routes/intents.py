@@ -10,11 +10,13 @@ from fastapi.responses import StreamingResponse
 from pydantic import BaseModel, ConfigDict, Field
 from sse_starlette import EventSourceResponse
 from starlette.concurrency import run_in_threadpool
+from starlette.requests import HTTPConnection
 
 from api.auth import authorise, token_from_header
-from api.deps import ReadAccess, ServicesDep, StreamReadAccess, WriteAccess
+from api.deps import ReadAccess, ServicesDep, StreamReadAccess, WriteAccess, services_of
 from api.errors import ApiError, error_body
 from api.intentstream import open_reader, resume_after, serve_websocket, stream_response, websocket_query
+from api.services import Services
 from dialogue.intents import Intent
 from dialogue.pushed.bus import IntentBus
 from dialogue.pushed.events import Emitted as Pushable
@@ -41,10 +43,15 @@ def intent_filter(source: Annotated[list[str] | None, Query(description="intent 
 Filter = Annotated[IntentFilter, Depends(intent_filter)]
 
 
-def _bus(services: ServicesDep) -> IntentBus:
+def _bus_of(services: Services) -> IntentBus:
     if services.bus is None:  # a reader forwards /intents to the writer before routing
         raise ApiError(503, "intents_elsewhere", "the intent stream is kept by the writer service")
     return services.bus
+
+
+async def _bus(conn: HTTPConnection) -> IntentBus:
+    # (async: FastAPI runs a plain function dependency on its thread pool, a hop per request)
+    return _bus_of(services_of(conn))
 
 
 Bus = Annotated[IntentBus, Depends(_bus)]
@@ -109,7 +116,7 @@ async def stream_ws(websocket: WebSocket, services: ServicesDep) -> None:
     presented = token_from_header(websocket.headers.get("authorization"))
     try:
         authorise(services.settings, presented or websocket.query_params.get("access_token"), write=False)
-        bus = _bus(services)
+        bus = _bus_of(services)
         reader = open_reader(bus, *websocket_query(websocket.query_params))
     except ApiError as exc:
         await websocket.send_json(error_body(exc.status, exc.code, exc.message, exc.details))

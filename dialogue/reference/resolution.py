@@ -145,6 +145,9 @@ def resolve(  # noqa: C901
         own = cover[entity.id]
         if not any(i in own for i in content):
             return False
+        rest = [i for i in content if i not in own]
+        if not rest:  # every word is the thing's own name: no qualifier or context to look up
+            return True
         attrs = lexicon.attributes.get(entity.id, frozenset())
         # "the seed shelf" is a shelf: the head is the thing's own word, never its support's.
         if head is not None and head not in own and normed[head] not in attrs:
@@ -154,7 +157,7 @@ def resolve(  # noqa: C901
         for other in (entity.support, entity.zone, entity.owner, *inside):
             if other is not None:
                 context |= cover.get(other, frozenset())
-        return all(i in own or i in context or normed[i] in attrs or bases[i] in attrs for i in content)
+        return all(i in context or normed[i] in attrs or bases[i] in attrs for i in rest)
 
     # A class word names thousands of things of which a handful are in sight or the speaker's:
     # those are tried first, and the rest only when they cannot settle the answer (see _settled).

@@ -86,6 +86,9 @@ def _replies(folder: Traversable) -> dict[str, dict[str, Any]]:
         raise LanguageError(f"{file}: {wrong[0]!r} is no section of templates")
     return sections
 
+#: What `Language.derived` holds for what it has not made yet (None may be made).
+_NOT_MADE = object()
+
 
 class Language:
     """The tables of one language folder, read once."""
@@ -114,9 +117,10 @@ class Language:
     def derived(self, make: Callable[[Language], T]) -> T:
         """What another module derives from this language's tables (its synonyms parsed, its verb
         index), made on first use and kept with the language (two threads may both make it once)."""
-        if make not in self._derived:
-            self._derived[make] = make(self)
-        return cast(T, self._derived[make])
+        made = self._derived.get(make, _NOT_MADE)
+        if made is _NOT_MADE:  # (one lookup: every stage of a turn asks for its tables many times)
+            made = self._derived[make] = make(self)
+        return cast(T, made)
 
     @classmethod
     def load(cls, code: str = "en") -> Language:

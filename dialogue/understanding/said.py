@@ -31,6 +31,8 @@ from dialogue.reference.english import MARKS, Words, spans
 from dialogue.understanding.language import Language
 
 T = TypeVar("T")
+#: What `Said.form` holds for a form not made yet (a form may be None).
+_NOT_MADE = object()
 
 
 @dataclass(frozen=True)
@@ -105,9 +107,10 @@ class Said:
 
     def form(self, make: Callable[[Said], T]) -> T:
         """A form of the words (`make` of this text, immutable), made on first use."""
-        if make not in self._forms:
-            self._forms[make] = make(self)
-        return cast(T, self._forms[make])
+        made = self._forms.get(make, _NOT_MADE)
+        if made is _NOT_MADE:
+            made = self._forms[make] = make(self)
+        return cast(T, made)
 
 
 #: What a stage reads: a text of the turn, or a text read on its own.

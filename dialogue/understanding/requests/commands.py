@@ -362,4 +362,4 @@ def _said_how(g: Grammar, rest: Words, i: int) -> int:
     subject = rest[i + 1] if i + 1 < len(rest) else ""
     if i > 0 and (rest[i] in g.while_ or (rest[i] in g.time_conjunctions and subject in g.their_subjects)):
         return len(rest) - i
-    return next((len(p) for p in g.adjuncts if rest[i : i + len(p)] == p), 0)
+    return next((len(p) for p in g.adjuncts_by_first.get(rest[i], ()) if rest[i : i + len(p)] == p), 0)

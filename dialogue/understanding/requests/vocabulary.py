@@ -3,6 +3,7 @@ requests.timing), gathered once per language (`Language.derived`)."""
 
 from __future__ import annotations
 
+from dialogue.reference.english import Words
 from dialogue.understanding.language import Language
 from dialogue.understanding.parsed import Act
 from dialogue.understanding.requests.frames import Special, constructions
@@ -21,6 +22,10 @@ class Grammar:
         self.personal = closed.personal
         self.np_start = closed.np_start
         self.adjuncts = said.all_adjuncts
+        #: The same by their first word, in their order: a word is compared with the few it starts.
+        self.adjuncts_by_first: dict[str, tuple[Words, ...]] = {}
+        for phrase in self.adjuncts:
+            self.adjuncts_by_first[phrase[0]] = (*self.adjuncts_by_first.get(phrase[0], ()), phrase)
         self.away = frozenset(said.away)
         self.durations = said.durations
         self.halts = said.halts

@@ -39,6 +39,10 @@ class _Clauses:
         said, closed = lang.speech.clauses, lang.words
         #: A polite request said mid-utterance starts a clause of its own.
         self.asks = said.asks
+        #: The same by their first word, in their order.
+        self.asks_at: dict[str, tuple[Words, ...]] = {}
+        for ask in self.asks:
+            self.asks_at[ask[0]] = (*self.asks_at.get(ask[0], ()), ask)
         #: Subjects that are no one in particular ("pick up the umbrella *someone left* it here").
         self.indefinite = said.indefinite
         self.subjects = said.subjects | said.indefinite
@@ -94,7 +98,8 @@ def _starts_clause(said: _Clauses, words: list[list[str]], i: int) -> bool:
     """Whether the i-th word (each word with its contraction expanded) starts a clause."""
     flat = [w for ws in words[i:] for w in ws]
     before = words[i - 1][-1]
-    asked = next((a for a in said.asks if tuple(flat[: len(a)]) == a), None)
+    asks = said.asks_at.get(flat[0], ()) if flat else ()
+    asked = next((a for a in asks if tuple(flat[: len(a)]) == a), None)
     if asked is not None:
         after = flat[len(asked) : len(asked) + 1]
         if asked[-1] == "you" and (not after or after[0] in said.subjects - {"you"}):

@@ -46,6 +46,12 @@ class _Speech:
         self.robot_suffixes = speech.robot_suffixes
         #: The politeness at the end, longest first ("right now" before its "now").
         self.suffixes = sorted(speech.all_polite_suffixes, key=len, reverse=True)
+        #: The same by their last word, still longest first: a turn tries only those its last word
+        #: can end (a few of some hundred).
+        self.suffixes_by_last: dict[str, tuple[Words, ...]] = {}
+        for suffix in self.suffixes:
+            if suffix:
+                self.suffixes_by_last[suffix[-1]] = (*self.suffixes_by_last.get(suffix[-1], ()), suffix)
         #: Prepositions that a politeness word at the end completes ("for now", "till then", "by
         #: now"), or whose object a word naming the listener is ("take it to sir": whom, not a tag).
         self.left_behind = lang.prepositions.words("completes")
@@ -220,10 +226,10 @@ def strip_politeness(lang: Language, words: list[str], robot_name: str = "") -> 
                 words = words[len(p) :]
                 changed = True
                 break
-        for s in said.suffixes:
+        for s in said.suffixes_by_last.get(words[-1], ()) if words else ():
             # ("wait in the hall for now": "for now" says how long, its "now" is no politeness)
             dangling = len(words) > len(s) and words[-len(s) - 1] in said.left_behind
-            if s and len(words) > len(s) and tuple(words[-len(s) :]) == s and not dangling:
+            if len(words) > len(s) and tuple(words[-len(s) :]) == s and not dangling:
                 words = words[: -len(s)]
                 changed = True
                 break

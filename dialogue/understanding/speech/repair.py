@@ -10,6 +10,7 @@ from functools import lru_cache
 
 from lemminflect import getAllLemmas, getInflection
 
+from dialogue.reference.english import Words
 from dialogue.understanding.language import Language
 from dialogue.understanding.requests.frames import known_verbs, verbs
 from dialogue.understanding.said import Said, Text
@@ -34,6 +35,10 @@ class _Repairs:
         self.markers = frozenset(speech.repairs)
         self.cancels = speech.cancels
         self.marker_starts = frozenset(m[0] for m in speech.repairs)
+        #: The markers a word may start, in the order they are tried ("no" alone last).
+        self.markers_at: dict[str, tuple[Words, ...]] = {}
+        for marker in (*speech.repairs, ("no",)):
+            self.markers_at[marker[0]] = (*self.markers_at.get(marker[0], ()), marker)
         #: Prepositions that start a place said again ("...on the trolley no on the desk").
         self.place_words = frozenset(w for p in lang.prepositions.having("place") for w in p[:1])
         self.np_start = lang.words.np_start
@@ -112,7 +117,7 @@ def repair(lang: Language, words: list[str]) -> tuple[list[str], list[str]]:
     yellow umbrella)."""
     said = lang.derived(_Repairs)
     for i in range(len(words) - 1, 0, -1):
-        for marker in (*said.repairs, ("no",)):
+        for marker in said.markers_at.get(words[i], ()):
             if tuple(words[i : i + len(marker)]) != marker:
                 continue
             after = words[i + len(marker) :]
