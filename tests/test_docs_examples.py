@@ -10,7 +10,8 @@ How a page writes a shell example (the convention this test reads):
 - The commands of one page run in order, in a shell (bash) at the repository's root, with this
   environment's ``situated`` first on the PATH and against one real server the test starts for the
   page: ``situated serve`` on a free port of 127.0.0.1 with the offline rules and the demo scene, a
-  data directory of its own; the page's ``localhost:8000`` is that server's address.
+  data directory of its own; the page's ``localhost:8000`` is that server's address, and its
+  ``--port 8999`` (a port the page means nothing listens on) a port free at the time.
 - Any other shell block (```` ```sh ````, for commands that install things or run until stopped)
   is not run, and must say why on the line before it: ``<!-- not run: REASON -->``.
 - A ``console`` block that needs a tool the default suite does not have says so on the line before
@@ -35,6 +36,7 @@ from pathlib import Path
 import httpx
 import pytest
 
+from bench.oxigraph import free_port
 from tests.reliability.server import ServerProcess
 
 ROOT = Path(__file__).parents[1]
@@ -172,6 +174,7 @@ def test_the_page_examples_print_what_the_page_shows(page: Path, tmp_path: Path)
         for block in runnable:
             for command in block.commands:
                 text = command.text.replace(SERVER, server.url.removeprefix("http://")) if server else command.text
+                text = text.replace("--port 8999", f"--port {free_port()}")
                 if block.mark == ("needs", "ros"):  # the prefix the ROS tests built, not the page's .ros
                     text = text.replace("--prefix .ros", '--prefix "$SITUATED_ROS_PREFIX"')
                 done = subprocess.run(["bash", "-c", text], cwd=ROOT, env=env, capture_output=True, text=True,
