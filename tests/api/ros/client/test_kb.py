@@ -13,7 +13,7 @@ from typing import Any
 
 from tests.api.ros.conftest import ROOT, RosNode
 
-#: README blocks that run under ROS against a node (`python` blocks run in tests/test_docs.py).
+#: Blocks of the README and the guides that run under ROS against a node (`python` blocks run in tests/test_docs.py).
 ROS_BLOCK = re.compile(r"```python ros\n(.*?)```", re.S)
 
 
@@ -25,9 +25,10 @@ def run_under_ros(code: str, env: dict[str, str], timeout: float = 120) -> tuple
     return json.loads(done.stdout.strip().splitlines()[-1]), done.stdout + done.stderr
 
 
-def test_the_readme_example_runs_against_the_node(ros_node: RosNode, ros_env: dict[str, str]) -> None:
-    blocks = ROS_BLOCK.findall((ROOT / "README.md").read_text())
-    assert blocks, "the README has a ROS example"
+def test_the_ros_guide_example_runs_against_the_node(ros_node: RosNode, ros_env: dict[str, str]) -> None:
+    blocks = [b for page in (ROOT / "README.md", *sorted((ROOT / "docs").glob("*.md")))
+              for b in ROS_BLOCK.findall(page.read_text())]
+    assert blocks, "the ROS guide has an example"
     code = textwrap.dedent(f"""
         import doctest, json, os
         blocks = {blocks!r}
