@@ -240,11 +240,12 @@ def _run_service(args: argparse.Namespace, extensions: Sequence[Extension] = (),
 
 def _make_data_dir(path: Path) -> None:
     if path.exists() and not path.is_dir():
-        raise CommandError(f"data folder '{path}' is not a folder: give --data a folder (made if missing)")
+        raise Guided(Kind.KB, CommandError(f"data folder '{path}' is not a folder: give --data a folder "
+                                           "(made if missing)"))
     try:
         path.mkdir(parents=True, exist_ok=True)
     except OSError as exc:
-        raise CommandError(f"cannot make data folder '{path}': {exc.strerror}") from None
+        raise Guided(Kind.KB, CommandError(f"cannot make data folder '{path}': {exc.strerror}")) from None
 
 
 # --- KB access, in-process or remote ----------------------------------------------------------------
@@ -273,9 +274,10 @@ def _print_json(value: Any) -> None:
 
 def _kb_command(args: argparse.Namespace) -> int:
     if args.kb_command in KB_WRITES and not args.url:
-        raise CommandError(f"{args.kb_command} changes the KB of a running service: give its --url (e.g. "
-                           "--url http://127.0.0.1:8000); without it the change would go to a throwaway "
-                           "in-process KB, gone when the command ends")
+        raise Guided(Kind.KB, CommandError(
+            f"{args.kb_command} changes the KB of a running service: give its --url (e.g. --url "
+            "http://127.0.0.1:8000); without it the change would go to a throwaway in-process KB, gone "
+            "when the command ends"))
     models = args.models or None
     with _kb(args) as kb:
         command = args.kb_command

@@ -56,6 +56,8 @@ def test_what_a_command_was_reading_decides_a_kb_error_s_kind() -> None:
     (["chat", "--scene", "none", "--ask", "How old are you?", "--say", "hi"], "docs/chatbot.md"),
     (["ros", "env", "--prefix", "no-such-prefix"], "docs/ros.md"),
     (["eval", "missing.jsonl"], "docs/evaluation.md"),
+    (["kb", "add", "cup_1 isOn table_1", "--scene", "none"], "docs/knowledge-base.md"),
+    (["serve", "--data", "/dev/null/data"], "docs/knowledge-base.md"),
 ])
 def test_an_error_names_the_guide_that_explains_it(words: list[str], guide: str, tmp_path: Path,
                                                    monkeypatch: pytest.MonkeyPatch,
