@@ -66,7 +66,7 @@ class Grounder:
         self._following = False
         self._worker: threading.Thread | None = None
         self._built: Callable[[], object] | None = None
-        self._lock = threading.Lock()  # guards the cache and the queue; never held while asking the KB
+        self._lock = threading.Lock()  # guards the cache and the queue; never held while calling the KB
         self._build = threading.Lock()  # one build at a time: the index is mutable
         self._cached: Snapshot | None = None
         self._index: EntityIndex | None = None
@@ -91,8 +91,10 @@ class Grounder:
             if cached is not None:
                 return cached
             with self._lock:
-                if self._watched is not kb:
-                    self._watch(kb)
+                watched = self._watched is kb
+            if not watched:
+                self._watch(kb)
+            with self._lock:
                 pending, self._pending = self._pending, ([] if self._unwatch is not None else None)
                 self._pending_size = 0
                 previous = self._cached
@@ -125,8 +127,9 @@ class Grounder:
         ``built`` is called after each full build (the service settles what it made)."""
         with self._lock:
             self._built = built
-            if self._watched is not kb:
-                self._watch(kb)
+            watched = self._watched is kb
+        if not watched:
+            self._watch(kb)
         with self._wakeup:
             self._following = True
         self._kick()
@@ -139,9 +142,9 @@ class Grounder:
         if worker is not None and worker is not threading.current_thread():
             worker.join(timeout=10)
         with self._lock:
-            if self._unwatch is not None:
-                self._unwatch()
-            self._unwatch, self._watched, self._pending = None, None, None
+            unwatch, self._unwatch, self._watched, self._pending = self._unwatch, None, None, None
+        if unwatch is not None:  # takes the KB's lock: never under ours (`_changed` takes them the other way)
+            unwatch()
 
     def _kick(self) -> None:
         """A commit to take up: wake the worker, or start one (it ends after `IDLE` quiet seconds)."""
@@ -174,13 +177,21 @@ class Grounder:
                 log.warning("the grounding could not follow the KB: %s", exc)
 
     def _watch(self, kb: KnowledgeBase) -> None:
-        if self._unwatch is not None:
-            self._unwatch()
-        self._watched, self._unwatch, self._pending, self._cached = kb, None, None, None
-        self._index = None
+        """Follow ``kb``'s commits from now on (everything rebuilt first). Called without our lock:
+        (un)registering takes the KB's lock, and the KB calls `_changed`, which takes ours, under
+        its lock — holding ours meanwhile would deadlock with a commit made at the same moment."""
+        with self._lock:
+            old, self._unwatch = self._unwatch, None
+            self._watched, self._pending, self._cached, self._index = kb, None, None, None
+        if old is not None:
+            old()
         on_commit = getattr(kb, "on_commit", None)
-        if callable(on_commit):
-            self._unwatch = on_commit(self._changed)
+        unwatch = on_commit(self._changed) if callable(on_commit) else None
+        with self._lock:
+            if self._watched is kb:
+                unwatch, self._unwatch = None, unwatch
+        if unwatch is not None:  # another KB was watched meanwhile: this registration is stale
+            unwatch()
 
     def _changed(self, commit: Any) -> None:
         """Called by the KB under its lock with every commit: queue what it changed."""

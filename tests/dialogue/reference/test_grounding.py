@@ -193,3 +193,30 @@ def test_a_following_grounder_says_when_it_built_everything_and_only_then(kitche
     until(lambda: grounder.cached(kitchen.revision) is not None)
     assert len(builds) == 2 and builds[-1] == kitchen.revision
     grounder.close()
+
+
+def test_closing_while_a_commit_is_told_deadlocks_nothing(kitchen: KB) -> None:
+    """The KB tells its listeners of a commit under its lock, and the grounder takes its own lock
+    then; closing (or watching) must not hold the grounder's lock while it waits for the KB's."""
+    import threading
+
+    telling, closing = threading.Event(), threading.Event()
+
+    def slow_listener(_commit: object) -> None:  # registered first: told before the grounder
+        telling.set()
+        closing.wait(5)
+        time.sleep(0.2)  # the close is now waiting for the KB's lock, which this commit holds
+
+    kitchen.on_commit(slow_listener)
+    grounder = Grounder()
+    grounder.follow(kitchen)
+    until(lambda: grounder.cached(kitchen.revision))
+    writer = threading.Thread(target=kitchen.update, args=(["cup_1 isOn shelf_1"],), daemon=True)
+    writer.start()
+    assert telling.wait(10)
+    closer = threading.Thread(target=grounder.close, daemon=True)
+    closer.start()
+    closing.set()
+    writer.join(30)
+    closer.join(30)
+    assert not writer.is_alive() and not closer.is_alive(), "the commit and the close wait for each other"
