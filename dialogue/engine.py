@@ -291,11 +291,11 @@ class DialogueEngine:
                 return fast
         llm = self.model.llm
         if llm is None:
-            raw = I.raw_user_input(text, source=speaker, locale=locale)
             if not english:
+                raw = I.raw_user_input(text, source=speaker, locale=locale)
                 return TurnResult("", (raw,), RULES_ENGLISH_ONLY.format(locale), backend=self.model.name,
                                   understood=False)
-            return TurnResult(NOT_UNDERSTOOD, (raw,), backend=self.model.name, understood=False)
+            return self._declined(turn, None)
         return await self._ask_model(turn, deadline, llm)
 
     def fast_path(self, turn: _Turn) -> TurnResult | None:
