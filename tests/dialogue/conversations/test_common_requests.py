@@ -10,7 +10,7 @@ from collections.abc import Iterator
 import pytest
 
 from dialogue import intents as I
-from tests.dialogue.conversations.talk import Said, Talk
+from tests.dialogue.conversations.talk import Said, Talk, talking
 
 WORKSHOP = [
     "myself rdf:type Robot",
@@ -28,9 +28,8 @@ WORKSHOP = [
 
 @pytest.fixture
 def talk() -> Iterator[Talk]:
-    talk = Talk(WORKSHOP, "person_nia")
-    yield talk
-    talk.close()
+    with talking(WORKSHOP, "person_nia") as talk:
+        yield talk
 
 
 def _over(talk: Talk) -> str:

@@ -8,7 +8,7 @@ import pytest
 
 from dialogue.understanding.inflection import plural_name, plural_noun, plural_of
 from tests.dialogue.conftest import english
-from tests.dialogue.conversations.talk import Talk
+from tests.dialogue.conversations.talk import Talk, talking
 
 FLAT = [
     "myself rdf:type Robot",
@@ -30,9 +30,8 @@ FLAT = [
 
 @pytest.fixture
 def talk() -> Iterator[Talk]:
-    talk = Talk(FLAT, "person_tomas")
-    yield talk
-    talk.close()
+    with talking(FLAT, "person_tomas") as talk:
+        yield talk
 
 
 def test_a_persons_name_ending_in_s_is_one_person_never_it(talk: Talk) -> None:

@@ -10,7 +10,7 @@ from collections.abc import Iterator
 import pytest
 
 from dialogue import intents as I
-from tests.dialogue.conversations.talk import Said, Talk
+from tests.dialogue.conversations.talk import Said, Talk, talking
 
 GREENHOUSE = [
     "myself rdf:type Robot",
@@ -39,9 +39,8 @@ ILSE, BRAM, WREN = "person_ilse", "person_bram", "person_wren"
 
 @pytest.fixture
 def talk() -> Iterator[Talk]:
-    talk = Talk(GREENHOUSE, ILSE)
-    yield talk
-    talk.close()
+    with talking(GREENHOUSE, ILSE) as talk:
+        yield talk
 
 
 def _bring(thing: str, to: str = ILSE) -> tuple[str, dict[str, object]]:

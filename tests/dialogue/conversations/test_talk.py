@@ -10,7 +10,7 @@ import pytest
 from dialogue import intents as I
 from dialogue.understanding.replies import abilities
 from tests.dialogue.conftest import english
-from tests.dialogue.conversations.talk import Talk
+from tests.dialogue.conversations.talk import Talk, talking
 
 PORCH = [
     "myself rdf:type Robot",
@@ -25,9 +25,8 @@ PORCH = [
 
 @pytest.fixture
 def talk() -> Iterator[Talk]:
-    talk = Talk(PORCH, "person_lou")
-    yield talk
-    talk.close()
+    with talking(PORCH, "person_lou") as talk:
+        yield talk
 
 
 def test_counting_people_agrees_with_naming_them(talk: Talk) -> None:

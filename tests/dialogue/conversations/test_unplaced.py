@@ -6,7 +6,7 @@ from collections.abc import Iterator
 
 import pytest
 
-from tests.dialogue.conversations.talk import Talk
+from tests.dialogue.conversations.talk import Talk, talking
 
 STUDY = [
     "myself rdf:type Robot",
@@ -22,9 +22,8 @@ STUDY = [
 
 @pytest.fixture
 def talk() -> Iterator[Talk]:
-    talk = Talk(STUDY, "person_hugo")
-    yield talk
-    talk.close()
+    with talking(STUDY, "person_hugo") as talk:
+        yield talk
 
 
 def test_where_a_known_thing_is_nobody_knows_yet_then_it_is_told(talk: Talk) -> None:

@@ -8,7 +8,7 @@ from collections.abc import Iterator
 import pytest
 
 from dialogue import intents as I
-from tests.dialogue.conversations.talk import Talk
+from tests.dialogue.conversations.talk import Talk, talking
 
 BAKERY = [
     "myself rdf:type Robot",
@@ -29,9 +29,8 @@ BAKERY = [
 
 @pytest.fixture
 def talk() -> Iterator[Talk]:
-    talk = Talk(BAKERY, "person_leni")
-    yield talk
-    talk.close()
+    with talking(BAKERY, "person_leni") as talk:
+        yield talk
 
 
 def test_my_x_when_neither_is_mine_says_so_before_asking_which(talk: Talk) -> None:
