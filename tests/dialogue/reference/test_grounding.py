@@ -1,3 +1,4 @@
+import threading
 import time
 
 from dialogue.reference.grounding import Grounder, Snapshot, build_snapshot, readable_id
@@ -198,8 +199,6 @@ def test_a_following_grounder_says_when_it_built_everything_and_only_then(kitche
 def test_closing_while_a_commit_is_told_deadlocks_nothing(kitchen: KB) -> None:
     """The KB tells its listeners of a commit under its lock, and the grounder takes its own lock
     then; closing (or watching) must not hold the grounder's lock while it waits for the KB's."""
-    import threading
-
     telling, closing = threading.Event(), threading.Event()
 
     def slow_listener(_commit: object) -> None:  # registered first: told before the grounder
