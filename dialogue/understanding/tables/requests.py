@@ -66,6 +66,8 @@ class RequestWords(Table):
     durations: Phrases = ()
     while_: WordSet = Field(default=frozenset(), validation_alias="while")
     time_conjunctions: WordSet = frozenset()
+    absent_speakers: WordSet = frozenset()
+    absences: WordSet = frozenset()
     their_subjects: WordSet = frozenset()
     polite_if: Phrases = ()
     if_modals: WordSet = frozenset()
