@@ -36,6 +36,7 @@ from dialogue.understanding.outcome import Outcome, Ref
 from dialogue.understanding.parsed import Parse
 from dialogue.understanding.questions import situation
 from dialogue.understanding.replies import acknowledgement, hello, say, then, whose_it_is
+from dialogue.understanding.requests.addressed import to_someone_else
 from dialogue.understanding.requests.commands import parse
 from dialogue.understanding.requests.compound import conjuncts, coordinated
 from dialogue.understanding.requests.ground import ground
@@ -110,7 +111,7 @@ class Interpreter:
         return proposed(self.lang, outcome) if outcome.doubts and outcome.intent is not None else outcome
 
     def _read(self, heard: Said) -> Outcome:
-        addressed = self._to_someone_else(heard)
+        addressed = to_someone_else(self.lexicon, heard, self.speaker, self.robot_name)
         if addressed is not None:  # "lily put your book on the shelf": Lily is asked, not the robot
             return Outcome(say(self.lang, "request.for_someone_else", name=addressed))
         for rest in self._from_each_clause(heard):  # the condition covers every part after it
@@ -152,17 +153,6 @@ class Interpreter:
         """Whether the words start with a condition ("if Ana comes", "when the bell goes")."""
         said = tuple(expanded(self.lang, heard))
         return said[:1] == ("if",) or any(said[: len(c)] == c for c in self.lang.requests.conditions)
-
-    def _to_someone_else(self, heard: Said) -> str | None:
-        """The name of the person present a request is said to, when it starts with their name and
-        speaks of their things ("your book"); None when it may be the robot's."""
-        words = list(heard.tokens)
-        if len(words) < 3 or "your" not in words[1:]:
-            return None
-        person = resolve(self.lexicon, words[:1], PERSON).one
-        if person is None or not person.seen or person.id == self.speaker:
-            return None
-        return person.name
 
     def part(self, heard: Said) -> Outcome:
         """One part of a compound request, read as a request of its own."""
