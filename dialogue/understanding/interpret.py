@@ -48,7 +48,7 @@ from dialogue.understanding.said import Said, Text
 from dialogue.understanding.speech.clauses import clauses, described, description
 from dialogue.understanding.speech.letters import joined
 from dialogue.understanding.speech.plain import expanded
-from dialogue.understanding.speech.repair import cleaned
+from dialogue.understanding.speech.repair import cleaned, restarted
 from dialogue.understanding.speech.spelling import corrected
 from dialogue.understanding.talk import TALK
 
@@ -91,6 +91,7 @@ class Interpreter:
 
     def interpret(self, text: Text) -> Outcome:
         said = Said.read(self.lang, text)
+        said = said.rewritten(restarted(said.text))  # "the box of para- paracetamol"
         letters = said.rewritten(joined(said, self.lexicon))  # "the s u v brochure"
         spelled = corrected(letters, self.lexicon)
         heard = letters.rewritten(spelled.text, spelled.corrections)
