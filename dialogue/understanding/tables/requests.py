@@ -24,6 +24,9 @@ class ConstructionWords(Table):
     finding_the_way: Phrases = ()
     subjects: WordSet = frozenset()
     verbs_of_any: WordSet = frozenset()
+    available: Phrases = ()
+    available_ends: WordSet = frozenset()
+    anything: WordSet = frozenset()
 
 
 class CompoundWords(Table):
