@@ -189,11 +189,13 @@ class Interpreter:
         return self._clause_by_clause(heard, outcome) if failed else outcome
 
     def _ability(self, heard: Said, p: Parse) -> bool:
-        """Whether the words ask what the robot can do, of a verb alone ("can you dance?", "are you
-        able to cook"): a question that may ask no more than that."""
+        """Whether the words ask what the robot can do, of a verb alone or a performance ("can you
+        dance?", "are you able to cook", "can you do a cartwheel"): a question that may ask no more
+        than that."""
         said = tuple(expanded(self.lang, heard))
         asked = any(said[: len(a)] == a for a in self.lang.requests.abilities)
-        return asked and p.act == "command" and len(p.words) == 1
+        performed = any(p.words[: len(f)] == f for f in self.lang.requests.performances)
+        return asked and p.act == "command" and (len(p.words) == 1 or performed)
 
     def _unaccounted(self, intent: str, slots: dict[str, Words]) -> bool:
         """Whether a phrase the intent grounds no role of names someone ("salute Olu in the meeting

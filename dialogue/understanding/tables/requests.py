@@ -96,6 +96,7 @@ class RequestWords(Table):
     results: WordSet = frozenset()
     no_intent_verbs: WordSet = frozenset()
     abilities: Phrases = ()
+    performances: Phrases = ()
     needs: dict[str, str] = {}
     purposes: dict[str, Phrase] = {}
     constructions: ConstructionWords = ConstructionWords()
