@@ -123,9 +123,10 @@ class Interpreter:
         corrected = self._corrected(heard)
         if corrected is not None:
             return corrected
-        said_terse = self._terse(heard)
-        if said_terse is not None:
-            return said_terse
+        for rest in self._from_each_clause(heard):  # ("Milo's mum asked: the thermometer, give to Milo")
+            said_terse = self._terse(rest)
+            if said_terse is not None:
+                return said_terse
         parts = conjuncts(self.lang, heard)
         if parts:
             combined = compound(self, heard, parts)
@@ -163,7 +164,9 @@ class Interpreter:
         """ "Orchid put on counter", "Go workstand", "dining room, now please": the request said in
         the grammar's order, when that is one (what was said is context: "Edna cardigan, put on
         her chair" is Edna's chair)."""
-        said = terse(heard, self.lexicon, self.robot_name)
+        last = self.history[-1] if self.history else None
+        answering = last is not None and last.role != "user" and last.text.rstrip().endswith("?")
+        said = terse(heard, self.lexicon, self.robot_name, answering)
         if said is None:
             return None
         context = (*self.history, Utterance(self.speaker, heard.text))
