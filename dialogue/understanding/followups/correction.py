@@ -60,7 +60,7 @@ def _standing(reader: Reader, heard: Said, depth: int) -> _Standing | None:
 def _corrected(reader: Reader, heard: Said, depth: int) -> _Standing | None:
     """The standing request with the phrase the correction's words replace, if they replace one."""
     lang = reader.lexicon.lang
-    fragment = _meant(lang, heard)
+    fragment, placed = _meant(lang, heard)
     if not content_words(lang, fragment):
         return None
     standing = _standing(reader, heard, depth)
@@ -74,6 +74,8 @@ def _corrected(reader: Reader, heard: Said, depth: int) -> _Standing | None:
     fits: list[tuple[int, _Standing]] = []
     unsettled = 0
     for role in ROLE_KINDS.get(pending.intent, {}):
+        if placed and role == "object":
+            continue  # ("no, on the luggage rack": where it goes, never the thing)
         said = slots.get(role, ())
         was = before.roles.get(role)
         if not content_words(lang, said) or was is None:
@@ -133,9 +135,10 @@ def _added(lang: Language, heard: Said) -> Words:
     return phrase[len(lead) :]
 
 
-def _meant(lang: Language, heard: Said) -> Words:
+def _meant(lang: Language, heard: Said) -> tuple[Words, bool]:
     """What a correction says was meant ("I meant screen two", "not the shed, the porch", "no, the
-    other one", "no, the blue one"), without the preposition of a place; () when it says none."""
+    other one", "no, the blue one"), without the preposition of a place, and whether it was said
+    with one; () when it says none."""
     softening = lang.followups.softening
     parts = [strip_politeness(lang, [w for w in plain(lang, heard.of(part)) if w not in softening])
              for part in heard.text.split(",")]  # fmt: skip
@@ -156,8 +159,8 @@ def _meant(lang: Language, heard: Said) -> Words:
         fragment = tuple(parts[1])
     for loc in lang.prepositions.longest_first("place"):  # "I meant on the shelf"
         if fragment[: len(loc)] == loc and fragment[len(loc) :]:
-            return fragment[len(loc) :]
-    return fragment
+            return fragment[len(loc) :], True
+    return fragment, False
 
 
 def _a_phrase(lang: Language, words: Words) -> bool:

@@ -99,3 +99,13 @@ def test_one_more_thing_said_with_too_is_the_request_again_for_it(pantry: KB) ->
     # thanks alone is only thanks; "too" with nothing asked before asks for nothing
     assert say(pantry, "thanks", speaker=LEA, history=history).intent is None
     assert say(pantry, "the amber one too", speaker=LEA).intent is None
+
+
+def test_a_correction_said_with_a_place_preposition_replaces_the_place(pantry: KB) -> None:
+    # (a jar and a box alike as a shelf and a box: the preposition tells which role)
+    pantry.add(["shelf_1 rdf:type Container", 'shelf_1 rdfs:label "shelf"', "myself sees shelf_1",
+                "box_1 rdf:type Container", 'box_1 rdfs:label "box"', "myself sees box_1"])  # fmt: skip
+    history = _after("put the green jar on the shelf")
+    for said in ("I meant on the box", "wait, no, on the box"):
+        out = say(pantry, said, speaker=LEA, history=history)
+        assert (out.intent, out.roles) == (I.PLACE_OBJECT, {"object": "jar_1", "recipient": "box_1"}), said
