@@ -29,12 +29,14 @@ from dialogue.reference.resolution import (
     resolve,
 )  # fmt: skip
 from dialogue.understanding.followups.accepting import accepts
+from dialogue.understanding.followups.correction import correction, opens_correction
 from dialogue.understanding.followups.proposal import proposed
 from dialogue.understanding.followups.request import follow_up, followed_up, said_first
 from dialogue.understanding.outcome import Outcome, Ref
 from dialogue.understanding.parsed import Parse
 from dialogue.understanding.questions import situation
 from dialogue.understanding.replies import acknowledgement, hello, say, then, whose_it_is
+from dialogue.understanding.requests.addressed import to_someone_else
 from dialogue.understanding.requests.commands import parse
 from dialogue.understanding.requests.compound import conjuncts, coordinated
 from dialogue.understanding.requests.ground import ground
@@ -46,7 +48,7 @@ from dialogue.understanding.said import Said, Text
 from dialogue.understanding.speech.clauses import clauses, described, description
 from dialogue.understanding.speech.letters import joined
 from dialogue.understanding.speech.plain import expanded
-from dialogue.understanding.speech.repair import cleaned
+from dialogue.understanding.speech.repair import cleaned, restarted
 from dialogue.understanding.speech.spelling import corrected
 from dialogue.understanding.talk import TALK
 
@@ -62,6 +64,10 @@ _ASKED = {
 }  # fmt: skip
 #: What a question of ability may ask of a verb alone ("can you dance?", "can you cook?"): a skill.
 _SKILLS = frozenset({I.PERFORM_MOTION, I.START_ACTIVITY})
+#: Acts a correction of the request just made may read as ("make that the study": an activity;
+#: "wait, no, on the bookcase": a refusal; "thanks! now the apple too": thanks): read as the
+#: correction when one fits.
+_CORRECTABLE = frozenset({"command", "negated", "thanks"})
 _EXACTLY = {
     "object": "request.what_exactly", "recipient": "request.whom_exactly", "goal": "request.where_exactly",
 }  # fmt: skip
@@ -85,6 +91,7 @@ class Interpreter:
 
     def interpret(self, text: Text) -> Outcome:
         said = Said.read(self.lang, text)
+        said = said.rewritten(restarted(said.text))  # "the box of para- paracetamol"
         letters = said.rewritten(joined(said, self.lexicon))  # "the s u v brochure"
         spelled = corrected(letters, self.lexicon)
         heard = letters.rewritten(spelled.text, spelled.corrections)
@@ -105,7 +112,7 @@ class Interpreter:
         return proposed(self.lang, outcome) if outcome.doubts and outcome.intent is not None else outcome
 
     def _read(self, heard: Said) -> Outcome:
-        addressed = self._to_someone_else(heard)
+        addressed = to_someone_else(self.lexicon, heard, self.speaker, self.robot_name)
         if addressed is not None:  # "lily put your book on the shelf": Lily is asked, not the robot
             return Outcome(say(self.lang, "request.for_someone_else", name=addressed))
         for rest in self._from_each_clause(heard):  # the condition covers every part after it
@@ -113,15 +120,27 @@ class Interpreter:
                 whole = parse(self.lang, rest, self.robot_name)
                 if whole.act == "conditional":
                     return self.act(whole)
-        said_terse = self._terse(heard)
-        if said_terse is not None:
-            return said_terse
+        corrected = self._corrected(heard)
+        if corrected is not None:
+            return corrected
+        for rest in self._from_each_clause(heard):  # ("Milo's mum asked: the thermometer, give to Milo")
+            said_terse = self._terse(rest)
+            if said_terse is not None:
+                return said_terse
         parts = conjuncts(self.lang, heard)
         if parts:
             combined = compound(self, heard, parts)
             if combined is not None:
                 return combined
         return self._single(heard, terse_read=False)  # (tried above, before the parts)
+
+    def _corrected(self, heard: Said) -> Outcome | None:
+        """ "Actually, make that the study", "wait, no, on the bookcase": a correction of the request
+        just made, though its words read as an activity or a refusal of their own."""
+        if not opens_correction(self.lang, heard):
+            return None
+        p = parse(self.lang, heard, self.robot_name)
+        return correction(self, p, heard) if p.act in _CORRECTABLE else None
 
     def _from_each_clause(self, heard: Said) -> list[Said]:
         """The words from the start of each clause to the end: the whole first."""
@@ -137,17 +156,6 @@ class Interpreter:
         said = tuple(expanded(self.lang, heard))
         return said[:1] == ("if",) or any(said[: len(c)] == c for c in self.lang.requests.conditions)
 
-    def _to_someone_else(self, heard: Said) -> str | None:
-        """The name of the person present a request is said to, when it starts with their name and
-        speaks of their things ("your book"); None when it may be the robot's."""
-        words = list(heard.tokens)
-        if len(words) < 3 or "your" not in words[1:]:
-            return None
-        person = resolve(self.lexicon, words[:1], PERSON).one
-        if person is None or not person.seen or person.id == self.speaker:
-            return None
-        return person.name
-
     def part(self, heard: Said) -> Outcome:
         """One part of a compound request, read as a request of its own."""
         return self._single(heard)
@@ -156,7 +164,9 @@ class Interpreter:
         """ "Orchid put on counter", "Go workstand", "dining room, now please": the request said in
         the grammar's order, when that is one (what was said is context: "Edna cardigan, put on
         her chair" is Edna's chair)."""
-        said = terse(heard, self.lexicon, self.robot_name)
+        last = self.history[-1] if self.history else None
+        answering = last is not None and last.role != "user" and last.text.rstrip().endswith("?")
+        said = terse(heard, self.lexicon, self.robot_name, answering)
         if said is None:
             return None
         context = (*self.history, Utterance(self.speaker, heard.text))
@@ -182,11 +192,13 @@ class Interpreter:
         return self._clause_by_clause(heard, outcome) if failed else outcome
 
     def _ability(self, heard: Said, p: Parse) -> bool:
-        """Whether the words ask what the robot can do, of a verb alone ("can you dance?", "are you
-        able to cook"): a question that may ask no more than that."""
+        """Whether the words ask what the robot can do, of a verb alone or a performance ("can you
+        dance?", "are you able to cook", "can you do a cartwheel"): a question that may ask no more
+        than that."""
         said = tuple(expanded(self.lang, heard))
         asked = any(said[: len(a)] == a for a in self.lang.requests.abilities)
-        return asked and p.act == "command" and len(p.words) == 1
+        performed = any(p.words[: len(f)] == f for f in self.lang.requests.performances)
+        return asked and p.act == "command" and (len(p.words) == 1 or performed)
 
     def _unaccounted(self, intent: str, slots: dict[str, Words]) -> bool:
         """Whether a phrase the intent grounds no role of names someone ("salute Olu in the meeting

@@ -60,7 +60,7 @@ def _standing(reader: Reader, heard: Said, depth: int) -> _Standing | None:
 def _corrected(reader: Reader, heard: Said, depth: int) -> _Standing | None:
     """The standing request with the phrase the correction's words replace, if they replace one."""
     lang = reader.lexicon.lang
-    fragment = _meant(lang, heard)
+    fragment, placed = _meant(lang, heard)
     if not content_words(lang, fragment):
         return None
     standing = _standing(reader, heard, depth)
@@ -74,6 +74,8 @@ def _corrected(reader: Reader, heard: Said, depth: int) -> _Standing | None:
     fits: list[tuple[int, _Standing]] = []
     unsettled = 0
     for role in ROLE_KINDS.get(pending.intent, {}):
+        if placed and role == "object":
+            continue  # ("no, on the luggage rack": where it goes, never the thing)
         said = slots.get(role, ())
         was = before.roles.get(role)
         if not content_words(lang, said) or was is None:
@@ -118,12 +120,25 @@ def _again(lang: Language, heard: Said) -> bool:
     """Whether the words ask for the request again with something else ("now do the same with the
     bowl"): what they name may be any of its roles, and no likelier one is guessed."""
     words = tuple(strip_politeness(lang, plain(lang, heard)))
-    return any(words[: len(a)] == a for a in lang.followups.again)
+    return any(words[: len(a)] == a for a in lang.followups.again) or bool(_added(lang, heard))
 
 
-def _meant(lang: Language, heard: Said) -> Words:
+def _added(lang: Language, heard: Said) -> Words:
+    """ "Now the apple too", "and Zara as well": the phrase said as one more for the request just
+    made (() when the words say none that way)."""
+    said = tuple(w for w in plain(lang, heard) if w not in lang.followups.softening)
+    end = next((a for a in lang.followups.additive if len(said) > len(a) and said[-len(a) :] == a), None)
+    if end is None:
+        return ()
+    phrase = said[: -len(end)]
+    lead = next((a for a in lang.followups.additive_leads if phrase[: len(a)] == a), ())
+    return phrase[len(lead) :]
+
+
+def _meant(lang: Language, heard: Said) -> tuple[Words, bool]:
     """What a correction says was meant ("I meant screen two", "not the shed, the porch", "no, the
-    other one", "no, the blue one"), without the preposition of a place; () when it says none."""
+    other one", "no, the blue one"), without the preposition of a place, and whether it was said
+    with one; () when it says none."""
     softening = lang.followups.softening
     parts = [strip_politeness(lang, [w for w in plain(lang, heard.of(part)) if w not in softening])
              for part in heard.text.split(",")]  # fmt: skip
@@ -131,24 +146,48 @@ def _meant(lang: Language, heard: Said) -> Words:
     leads = (*lang.followups.correcting, *lang.followups.again)
     lead = next((c for c in leads if tuple(words[: len(c)]) == c), None)
     fragment = tuple(words[len(lead) :]) if lead is not None else _not_that(lang, tuple(words))
+    if lead is None and not fragment:
+        fragment = _added(lang, heard)  # "now the apple too"
     other, one = lang.followups.other, lang.followups.one
     if lead is None and set(words) & other and set(content_words(lang, words)) <= other | one:
         fragment = tuple(words)  # "no, the other one"
-    elif lead is None and not fragment and _said_no(lang, heard) and set(words) & one:
-        # "no, the blue one", "nope, the red one": the one meant, told apart by what it is
-        fragment = tuple(w for w in words if lang.followups.no.get(w, w) != "no")
+    elif lead is None and not fragment and _said_no(lang, heard):
+        # "no, the blue one", "wait, no, on the bookcase": the one meant, told apart by what it is
+        rest = tuple(w for w in words if lang.followups.no.get(w, w) != "no")
+        fragment = rest if set(words) & one or _a_phrase(lang, rest) else ()
     if len(parts) == 2 and parts[0][:1] == ["not"] and parts[1]:  # "not the shed, the porch"
         fragment = tuple(parts[1])
     for loc in lang.prepositions.longest_first("place"):  # "I meant on the shelf"
         if fragment[: len(loc)] == loc and fragment[len(loc) :]:
-            return fragment[len(loc) :]
-    return fragment
+            return fragment[len(loc) :], True
+    return fragment, False
+
+
+def _a_phrase(lang: Language, words: Words) -> bool:
+    """Whether the words are a noun phrase or a place said with its preposition ("the study", "on
+    the bookcase"), not a clause ("that's Daniel's, mine is the orange one")."""
+    places = lang.prepositions.longest_first("place")
+    start = next((len(p) for p in places if words[: len(p)] == p), 0)
+    phrase = words[start:]
+    said = lang.words.head_noun
+    return bool(phrase) and phrase[0] in said.new_phrase and not set(phrase) & said.clause_words
 
 
 def _said_no(lang: Language, heard: Said) -> bool:
-    """Whether the words start with a no ("no, the blue one", "nope, the big one")."""
-    first = plain(lang, heard)[:1]
-    return bool(first) and lang.followups.no.get(first[0], first[0]) == "no"
+    """Whether the words start with a no, maybe softened ("no, the blue one", "wait, no, the big
+    one")."""
+    no, softening = lang.followups.no, lang.followups.softening
+    first = next((w for w in plain(lang, heard) if no.get(w, w) == "no" or w not in softening), None)
+    return first is not None and no.get(first, first) == "no"
+
+
+def opens_correction(lang: Language, heard: Said) -> bool:
+    """Whether the words open as a correction does ("make that the study", "wait, no, on the
+    bookcase", "thanks! now the apple too"): read as one before as a request, a refusal or thanks of
+    their own, if one fits."""
+    words = tuple(w for w in plain(lang, heard) if w not in lang.followups.softening)
+    opened = _said_no(lang, heard) or bool(_added(lang, heard))
+    return opened or any(words[: len(c)] == c for c in lang.followups.correcting)
 
 
 def _not_that(lang: Language, words: Words) -> Words:

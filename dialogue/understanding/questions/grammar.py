@@ -76,7 +76,8 @@ def _strip_ends(thing: Words, lead: frozenset[str], tail: frozenset[str]) -> Wor
 def question(lang: Language, words: list[str]) -> Parse | None:  # noqa: C901
     q = lang.derived(_Words)
     w = tuple(words)
-    if w[:2] in {("tell", "me"), ("show", "me")} and len(w) > 2 and w[2] in q.wh | {"about"}:
+    shown = w[:2] == ("show", "me") and w[2:3] != ("where",)  # ("show me where the lounge is": guiding)
+    if (w[:2] == ("tell", "me") or shown) and len(w) > 2 and w[2] in q.wh | {"about"}:
         if w[2] == "about":
             return _q("what_is", w, thing=w[3:])
         w = w[2:]

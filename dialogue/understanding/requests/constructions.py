@@ -45,6 +45,9 @@ class _Words:
         self.goes_particles = said.goes_particles
         self.intensifiers = said.intensifiers
         self.needs = said.needs
+        self.available = sorted(words.available, key=len, reverse=True)
+        self.available_ends = words.available_ends
+        self.anything = words.anything
         self.wants = said.wants
         self.want_verbs = said.want_verbs
         self.their_wants = said.their_wants
@@ -89,8 +92,29 @@ def need(said: Framed) -> Parse | None:
     if w[:2] not in {("i", "am"), ("we", "are")}:
         return None
     rest = [x for x in w[2:] if x not in c.intensifiers]
-    wanted = c.needs.get(rest[0]) if len(rest) == 1 else None
-    return said.command(I.BRING_OBJECT, object=(wanted,), recipient=("me",)) if wanted else None
+    wanted = c.needs.get(rest[0]) if rest else None
+    if wanted is None:
+        return None
+    if len(rest) == 1:
+        return said.command(I.BRING_OBJECT, object=(wanted,), recipient=("me",))
+    asked = _available(c, tuple(rest[1:]))  # "I'm parched, any tea going?": the tea
+    if asked[:1] and asked[0] in c.anything:  # "is there anything to eat": what meets the need
+        asked = (wanted,)
+    elif set(asked) & c.function_words:
+        return None
+    return said.command(I.BRING_OBJECT, object=asked, recipient=("me",)) if asked else None
+
+
+def _available(c: _Words, words: Words) -> Words:
+    """What a question of what there is asks about ("is there any juice", "any tea going"); ()
+    when the words are no such question."""
+    lead = next((a for a in c.available if words[: len(a)] == a), None)
+    if lead is None:
+        return ()
+    asked = words[len(lead) :]
+    while asked and asked[-1] in c.available_ends:
+        asked = asked[:-1]
+    return asked
 
 
 def going(said: Framed) -> Parse | None:

@@ -165,6 +165,17 @@ def _qualified(p: Phrase) -> Ref | None:
     return Ref(entity=one) if one is not None else None
 
 
+def _just_named(p: Phrase) -> Ref | None:
+    """ "give me the book" just after the robot said "a green mug and a crime novel": of the several
+    things the phrase names, the one the robot's last words named."""
+    history = p.refs.history
+    if not p.resolved.ambiguous or not history or history[-1].role == "user":
+        return None
+    named = {e for m in p.refs.lexicon.mentions(tokens(history[-1].text)) for e in m.entities}
+    meant = [e for e in p.resolved.matches if e.id in named]
+    return Ref(entity=meant[0]) if len(meant) == 1 else None
+
+
 def _ambiguous(p: Phrase) -> Ref | None:
     """Several things the phrase names: which one."""
     return p.which(p.resolved.matches, p.words) if p.resolved.ambiguous else None
@@ -262,7 +273,7 @@ def _ones(p: Phrase) -> Ref | None:
 #: The steps of grounding, in the order they are tried.
 STEPS: tuple[Callable[[Phrase], Ref | None], ...] = (
     _the_speaker, _someone_there, _pronoun, _addressed, _owner, _named, _slipped, _clipped, _qualified,
-    _ambiguous, _placed, _titled, _put_by, _many, _either, _whereabouts, _another_kind, _ones,
+    _just_named, _ambiguous, _placed, _titled, _put_by, _many, _either, _whereabouts, _another_kind, _ones,
 )  # fmt: skip
 
 

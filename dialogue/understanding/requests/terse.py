@@ -1,7 +1,8 @@
 """Terse and non-native requests, said again in the order the grammar reads: the thing or place
 fronted before the verb ("Orchid put on counter", "Back yard, go"), a subject "you" before the verb
 ("You pick watering can"), a verb with no preposition before a place ("Go workstand"), no verb at
-all ("Sunflowers into tall vase", "Dining room, now please").
+all ("Sunflowers into tall vase", "Dining room, now please", "Binoculars, please", "Radio to the
+skipper").
 
 Only phrases that are exactly a name the KB knows are moved: a fronted person's name stays a
 vocative ("John, go to the kitchen"), and a bare phrase is a place to go only when it names one
@@ -15,17 +16,22 @@ from collections.abc import Sequence
 from dialogue.reference.english import Words
 from dialogue.reference.grounding import Kind
 from dialogue.reference.lexicon import Lexicon
-from dialogue.reference.resolution import PLACE, ZONE, resolve
+from dialogue.reference.resolution import PERSON, PLACE, ZONE, resolve
+from dialogue.reference.snapshot import fixed
 from dialogue.understanding.requests.frames import verbs
 from dialogue.understanding.said import Text
 from dialogue.understanding.speech.plain import strip_politeness
 from dialogue.understanding.speech.repair import asked_verb, normalise
 
 
-def terse(text: Text, lexicon: Lexicon, robot_name: str = "") -> str | None:
-    """The request said in the grammar's order, or None when the text is no terse request."""
+def terse(text: Text, lexicon: Lexicon, robot_name: str = "", answering: bool = False) -> str | None:
+    """The request said in the grammar's order, or None when the text is no terse request. A thing
+    said alone is asked for only when politeness says it is a request, and never while `answering`
+    the robot's question (then it is the answer)."""
     lang = lexicon.lang
-    words = strip_politeness(lang, normalise(lang, text), robot_name)
+    said = normalise(lang, text)
+    words = strip_politeness(lang, said, robot_name)
+    asked = len(words) < len(said) and not answering  # ("binoculars, please")
     subject = False
     # ("you go office": a subject said before an imperative by a speaker of another language)
     while words[:1] and words[0] in lang.requests.terse.subjects | {robot_name} and len(words) > 1:
@@ -33,8 +39,10 @@ def terse(text: Text, lexicon: Lexicon, robot_name: str = "") -> str | None:
     if not words:
         return None
     at = next((i for i, w in enumerate(words) if asked_verb(lang, w) in verbs(lang)), None)
+    if at is not None and asked and _all_named(words, lexicon):
+        at = None  # ("sticks, please": the drumsticks, not "stick" said as a verb)
     if at is None:
-        return _verbless(words, lexicon)
+        return _verbless(words, lexicon) or (None if answering else _handed(words, lexicon, asked))
     verb, front, rest = asked_verb(lang, words[at]) or words[at], words[:at], words[at + 1 :]
     if front:
         named = _named(front, lexicon)
@@ -56,6 +64,33 @@ def _verbless(words: list[str], lexicon: Lexicon) -> str | None:
     if at is None or at == 0 or _named(words[:at], lexicon) is None:
         return None
     return " ".join(("put", *words))
+
+
+def _handed(words: list[str], lexicon: Lexicon, asked: bool) -> str | None:
+    """ "binoculars, please": bring them to the speaker; "radio to the skipper", "the headphones for
+    Maud": to the one person said after the thing."""
+    to = lexicon.lang.prepositions.words("terse-to")
+    at = next((i for i, w in enumerate(words) if w in to), None)
+    if at is None:
+        thing = _named(words, lexicon) if asked and _all_named(words, lexicon) else None
+        return " ".join(("bring", "me", *thing)) if thing and _movable(thing, lexicon) else None
+    thing = _named(words[:at], lexicon) if at and _all_named(words[:at], lexicon) else None
+    if thing is None or resolve(lexicon, words[at + 1 :], PERSON).one is None:
+        return None
+    return " ".join(("bring", *thing, "to", *words[at + 1 :]))
+
+
+def _all_named(words: Sequence[str], lexicon: Lexicon) -> bool:
+    """Whether every word but a determiner before them is of a name the KB knows ("the island
+    map"), no word of a request besides ("grab Ines's phone")."""
+    bare = list(words[1:]) if words[:1] and words[0] in lexicon.lang.words.np_start else list(words)
+    return sum(m.end - m.start for m in lexicon.mentions(bare)) == len(bare) > 0
+
+
+def _movable(words: Sequence[str], lexicon: Lexicon) -> bool:
+    """Whether the words name things only, of which none is fixed where it is (never a place)."""
+    things = resolve(lexicon, words, PLACE).matches
+    return bool(things) and all(t.kind == "thing" and not fixed(t) for t in things)
 
 
 def _named(words: Sequence[str], lexicon: Lexicon) -> Words | None:

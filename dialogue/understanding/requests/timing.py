@@ -53,4 +53,15 @@ def when(g: Grammar, adjuncts: tuple[Words, ...]) -> bool:
     """Whether a clause of time after the request says when it is to be done, later ("say hi to her
     *when she comes in*"), rather than how long or while what ("while he waits")."""
     return any(starts(a, c) and len(a) > len(c) and a[len(c)] in g.their_subjects
-               for a in adjuncts for c in g.conditions)  # fmt: skip
+               for a in adjuncts for c in g.conditions) or any(_absent(g, a) for a in adjuncts)  # fmt: skip
+
+
+#: How many words of a clause of time may say the speaker is away ("while we are both out").
+_ABSENT = 4
+
+
+def _absent(g: Grammar, adjunct: Words) -> bool:
+    """Whether a clause of time is the speaker's absence yet to come ("while I'm out")."""
+    if len(adjunct) < 3 or adjunct[0] not in g.while_ or adjunct[1] not in g.absent_speakers:
+        return False
+    return bool(set(adjunct[2 : 2 + _ABSENT]) & g.absences)

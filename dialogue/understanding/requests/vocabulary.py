@@ -39,6 +39,8 @@ class Grammar:
         self.their_subjects = said.their_subjects
         self.time_conjunctions = said.time_conjunctions
         self.while_ = said.while_
+        self.absent_speakers = said.absent_speakers
+        self.absences = said.absences
         self.purpose = said.purpose
         self.greetings = social.greetings_longest_first
         self.attention = social.attention

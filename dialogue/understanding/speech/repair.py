@@ -5,6 +5,7 @@ the frame table ("bring me the uh no wait *put* the candle...", "john *can you* 
 
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass
 from functools import lru_cache
 
@@ -79,6 +80,16 @@ def normalise(lang: Language, text: Text) -> list[str]:
 
 def _normalised(u: Said) -> tuple[str, ...]:
     return tuple(repaired(u.lang, plain(u.lang, u)))
+
+
+#: A word cut off with a dash and said again in full ("the box of para- paracetamol", "the ca— the
+#: capo" is a repeat of its own): the part before the dash starts the next word.
+_CUT_OFF = re.compile(r"\b(\w+)[-\u2013\u2014]\s+(?=\1\w)", re.IGNORECASE)
+
+
+def restarted(text: str) -> str:
+    """The text without the words cut off and said again in full ("para- paracetamol")."""
+    return _CUT_OFF.sub("", text)
 
 
 @dataclass(frozen=True)

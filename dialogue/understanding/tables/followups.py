@@ -27,6 +27,8 @@ class FollowupWords(Table):
     other: WordSet = frozenset()
     correcting: Phrases = ()
     again: Phrases = ()
+    additive: Phrases = ()
+    additive_leads: Phrases = ()
     softening: WordSet = frozenset()
     emphasis: WordSet = frozenset()
     both: PhraseSet = frozenset()

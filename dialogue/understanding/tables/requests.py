@@ -24,6 +24,9 @@ class ConstructionWords(Table):
     finding_the_way: Phrases = ()
     subjects: WordSet = frozenset()
     verbs_of_any: WordSet = frozenset()
+    available: Phrases = ()
+    available_ends: WordSet = frozenset()
+    anything: WordSet = frozenset()
 
 
 class CompoundWords(Table):
@@ -66,6 +69,8 @@ class RequestWords(Table):
     durations: Phrases = ()
     while_: WordSet = Field(default=frozenset(), validation_alias="while")
     time_conjunctions: WordSet = frozenset()
+    absent_speakers: WordSet = frozenset()
+    absences: WordSet = frozenset()
     their_subjects: WordSet = frozenset()
     polite_if: Phrases = ()
     if_modals: WordSet = frozenset()
@@ -91,6 +96,7 @@ class RequestWords(Table):
     results: WordSet = frozenset()
     no_intent_verbs: WordSet = frozenset()
     abilities: Phrases = ()
+    performances: Phrases = ()
     needs: dict[str, str] = {}
     purposes: dict[str, Phrase] = {}
     constructions: ConstructionWords = ConstructionWords()

@@ -77,3 +77,35 @@ def test_the_same_again_with_what_could_be_either_role_is_not_guessed(pantry: KB
     assert say(pantry, "do the same with the jar", speaker=LEA, history=history).intent is None
     out = say(pantry, "do the same with the amber one", speaker=LEA, history=history)  # a jar: the thing
     assert out.roles == {"object": "jar_2", "recipient": "tray_1"}, out.reply
+
+
+def test_a_correction_that_reads_as_a_request_or_a_refusal_of_its_own_is_the_correction(pantry: KB) -> None:
+    history = _after("take the green jar to the larder")
+    # "make that": an activity's verb; "wait, no": a refusal; both open a correction here
+    out = say(pantry, "Actually, make that the pantry.", speaker=LEA, history=history)
+    assert (out.intent, out.roles) == (I.BRING_OBJECT, {"object": "jar_1", "recipient": "pantry"}), out.reply
+    out = say(pantry, "Wait, no, to the pantry.", speaker=LEA, history=history)
+    assert out.roles == {"object": "jar_1", "recipient": "pantry"}, out.reply
+    # a refusal that names nothing instead stays a refusal; with no request before, nothing is corrected
+    assert say(pantry, "wait, no, don't", speaker=LEA, history=history).intent is None
+    assert say(pantry, "make that the pantry", speaker=LEA).intent != I.BRING_OBJECT
+
+
+def test_one_more_thing_said_with_too_is_the_request_again_for_it(pantry: KB) -> None:
+    history = _after("bring me the green jar")
+    for said in ("Thanks! Now the amber one too.", "and the amber one as well"):
+        out = say(pantry, said, speaker=LEA, history=history)
+        assert (out.intent, out.roles) == (I.BRING_OBJECT, {"object": "jar_2", "recipient": LEA}), said
+    # thanks alone is only thanks; "too" with nothing asked before asks for nothing
+    assert say(pantry, "thanks", speaker=LEA, history=history).intent is None
+    assert say(pantry, "the amber one too", speaker=LEA).intent is None
+
+
+def test_a_correction_said_with_a_place_preposition_replaces_the_place(pantry: KB) -> None:
+    # (a jar and a box alike as a shelf and a box: the preposition tells which role)
+    pantry.add(["shelf_1 rdf:type Container", 'shelf_1 rdfs:label "shelf"', "myself sees shelf_1",
+                "box_1 rdf:type Container", 'box_1 rdfs:label "box"', "myself sees box_1"])  # fmt: skip
+    history = _after("put the green jar on the shelf")
+    for said in ("I meant on the box", "wait, no, on the box"):
+        out = say(pantry, said, speaker=LEA, history=history)
+        assert (out.intent, out.roles) == (I.PLACE_OBJECT, {"object": "jar_1", "recipient": "box_1"}), said

@@ -37,6 +37,14 @@ def test_a_question_of_what_the_robot_can_do_is_proposed_not_acted_on(studio: KB
     assert say(studio, "dance", speaker=JO).intent == I.PERFORM_MOTION
 
 
+@pytest.mark.parametrize("text", ["can you play the drum for us", "can you do a cartwheel"])
+def test_a_performance_asked_of_the_robots_skills_is_proposed_not_acted_on(studio: KB, text: str) -> None:
+    assert _asked(studio, text).reply.startswith("Shall I")
+    # asked for, or an activity asked whether the robot can start it, it is started
+    assert say(studio, "play the drum", speaker=JO).intent == I.START_ACTIVITY
+    assert say(studio, "can you start the quiz", speaker=JO).intent == I.START_ACTIVITY
+
+
 def test_a_person_named_where_the_reading_has_no_role_for_them_is_proposed(studio: KB) -> None:
     out = _asked(studio, "salute Tam in the hall")
     assert out.reply == "Shall I salute?"

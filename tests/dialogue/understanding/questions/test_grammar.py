@@ -161,3 +161,12 @@ def test_who_is_in_a_place_not_here_says_so(office: KB) -> None:
     out = say(office, "who is in the kitchen?")
     assert out.reply == "Sorry, I don't know where the kitchen is."
     assert say(office, "who's in today?").reply == "I see you and Carol."  # no place: who is there
+
+
+def test_show_me_where_is_guiding_not_a_question() -> None:
+    # "show me where the lounge is": taken there (the frame of "show"); told, or shown what, asked
+    assert question(expanded("show me where the lounge is")) is None
+    asked = question(expanded("tell me where the lounge is"))
+    assert asked is not None and asked.question == "where"
+    shown = question(expanded("show me what is on the table"))
+    assert shown is not None and shown.question == "what_on"

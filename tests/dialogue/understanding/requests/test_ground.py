@@ -139,3 +139,14 @@ def test_a_head_noun_known_only_inside_other_names_is_not_understood(flat: KB) -
     # a head noun that names things, none of them fitting, is answered
     out = say(flat, "grab the microphone on the stool", LEON)
     assert out.understood and "don't see any microphone" in out.reply
+
+
+def test_of_several_things_the_one_the_robot_just_named_is_meant(flat: KB) -> None:
+    flat.add(["towel_g rdf:type Cloth", 'towel_g rdfs:label "beach towel"', "towel_g isIn bathroom"])
+    listed = [("user", "what's in the bathroom"), ("robot", "A beach towel and a stool.")]
+    out = say(flat, "give me the towel", LEON, listed)
+    assert (out.intent, out.roles) == (I.BRING_OBJECT, {"object": "towel_g", "recipient": LEON}), out.reply
+    # the robot named both, or spoke of neither, or the person spoke last: which one is asked
+    for history in ([("robot", "There is a beach towel and a towel.")], [("robot", "A stool.")],
+                    [*listed, ("user", "thanks")]):  # fmt: skip
+        assert say(flat, "give me the towel", LEON, history).clarify, history

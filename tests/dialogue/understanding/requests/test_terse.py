@@ -22,6 +22,12 @@ BOB = "person_bob"
         ("Pear put on shelf.", I.PLACE_OBJECT, {"object": "pear_1", "recipient": "shelf_9"}),
         ("Pear onto shelf, please.", I.PLACE_OBJECT, {"object": "pear_1", "recipient": "shelf_9"}),
         ("Stapler, take to Carol.", I.BRING_OBJECT, {"object": "stapler_1", "recipient": "person_carol"}),
+        ("Ari, stapler, please.", I.BRING_OBJECT, {"object": "stapler_1", "recipient": BOB}),
+        ("Stapler — to Carol — quick.", I.BRING_OBJECT, {"object": "stapler_1", "recipient": "person_carol"}),
+        ("the stapler for Carol", I.BRING_OBJECT, {"object": "stapler_1", "recipient": "person_carol"}),
+        # after a remark, the clauses to the end
+        ("Carol asked: the stapler, give to Carol.", I.BRING_OBJECT,
+         {"object": "stapler_1", "recipient": "person_carol"}),
     ],
 )
 def test_terse_requests_are_read_in_the_grammars_order(office: KB, text: str, intent: str, roles: dict) -> None:
@@ -35,3 +41,24 @@ def test_terse_requests_are_read_in_the_grammars_order(office: KB, text: str, in
 )
 def test_only_a_whole_known_phrase_is_moved(office: KB, text: str) -> None:
     assert terse(text, lexicon_of(office), "ari") is None
+
+
+@pytest.mark.parametrize(
+    "text",
+    # a thing alone is no request without politeness, nor a place or furniture with it, nor a thing
+    # given to what is no one
+    ["stapler", "the hallway, please", "the desk, please", "stapler to the hallway"],
+)
+def test_a_thing_alone_is_asked_for_only_when_politeness_says_so(office: KB, text: str) -> None:
+    out = Interpreter(lexicon_of(office), BOB, robot_name="Ari").interpret(text)
+    assert out.intent != I.BRING_OBJECT, out.reply
+
+
+def test_a_request_with_its_verb_and_politeness_is_not_read_as_a_thing_alone(office: KB) -> None:
+    out = Interpreter(lexicon_of(office), BOB, robot_name="Ari").interpret("Could you grab the stapler, please?")
+    assert (out.intent, out.roles) == (I.GRAB_OBJECT, {"object": "stapler_1"}), out.reply
+
+
+def test_a_thing_said_to_the_robots_question_is_the_answer_not_a_request(office: KB) -> None:
+    assert terse("stapler, please", lexicon_of(office), "ari") == "bring me stapler"
+    assert terse("stapler, please", lexicon_of(office), "ari", answering=True) is None

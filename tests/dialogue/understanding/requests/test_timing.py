@@ -34,3 +34,10 @@ def test_a_clause_of_time_after_the_request_holds_it() -> None:
     g = english().derived(Grammar)
     assert when(g, (("when", "she", "comes", "in"),))
     assert not when(g, (("carefully",),))
+
+
+def test_the_speakers_absence_yet_to_come_holds_the_request() -> None:
+    g = english().derived(Grammar)
+    assert when(g, (("while", "i", "am", "out"),)) and when(g, (("whilst", "we", "are", "both", "away"),))
+    # while someone waits, or the robot is out, is now
+    assert not when(g, (("while", "i", "wait"),)) and not when(g, (("while", "you", "are", "out"),))

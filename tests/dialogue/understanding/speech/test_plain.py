@@ -117,6 +117,8 @@ def test_a_message_keeps_the_words_said_after_it_but_not_the_politeness_to_the_r
         ("hey tiago pick up the red jumper", I.GRAB_OBJECT, {"object": ("the", "red", "jumper")}),
         ("listen go to the kitchen", I.MOVE_TO, {"goal": ("the", "kitchen")}),
         ("be a dear and fetch me the tape", I.BRING_OBJECT, {"object": ("the", "tape"), "recipient": ("me",)}),
+        ("would you mind terribly showing me where the bathroom is", I.GUIDE,
+         {"recipient": ("me",), "goal": ("the", "bathroom")}),
         ("I was wondering if you could get me the map", I.BRING_OBJECT,
          {"object": ("the", "map"), "recipient": ("me",)}),
         ("off you go to the shed", I.MOVE_TO, {"goal": ("the", "shed")}),

@@ -3,7 +3,7 @@
 import pytest
 
 from dialogue.understanding.speech import repair
-from dialogue.understanding.speech.repair import Cleaned
+from dialogue.understanding.speech.repair import Cleaned, restarted
 from kb import KB
 from tests.dialogue.conftest import english
 from tests.dialogue.understanding.test_interpret import say
@@ -50,3 +50,14 @@ def test_a_cancel_without_a_repair_is_what_a_message_says(office: KB) -> None:
 def test_the_right_thing_is_placed_after_the_repair(office: KB) -> None:
     out = say(office, "put the green mug on the shelf, sorry I mean the yellow mug")
     assert (out.intent, out.roles) == ("__intent_place_object__", {"object": "mug_yellow", "recipient": "shelf_9"})
+
+
+@pytest.mark.parametrize(
+    ("text", "said"),
+    [("take the box of para- paracetamol to Bea", "take the box of paracetamol to Bea"),
+     ("the pen– pencil", "the pencil"),
+     # a hyphen inside a word, or a word cut off that the next does not complete, stays
+     ("a well-known pen", "a well-known pen"), ("the tea- the mug", "the tea- the mug")],
+)  # fmt: skip
+def test_a_word_cut_off_and_said_again_in_full_is_said_once(text: str, said: str) -> None:
+    assert restarted(text) == said

@@ -1,0 +1,26 @@
+"""The small constructions of requests: a need said with a question of what there is."""
+
+import pytest
+
+from dialogue import intents as I
+from dialogue.understanding.requests.commands import parse
+from tests.dialogue.conftest import english
+
+
+@pytest.mark.parametrize(
+    ("text", "thing"),
+    [("I'm parched. Any tea going?", ("tea",)), ("im thirsty is there any juice", ("juice",)),
+     ("I'm really thirsty, have you got any lemonade left", ("lemonade",)),
+     # anything at all: whatever meets the need
+     ("im starving is there anything to eat", ("food",))],
+)  # fmt: skip
+def test_a_need_with_a_question_of_what_there_is_asks_for_that_thing(text: str, thing: tuple[str, ...]) -> None:
+    p = parse(english(), text)
+    assert (p.intent, p.slots) == (I.BRING_OBJECT, {"object": thing, "recipient": ("me",)})
+
+
+@pytest.mark.parametrize(
+    "text", ["I'm thirsty, is there any chance of that", "I'm thirsty, any of the red ones", "is there any tea"]
+)
+def test_a_question_of_what_there_is_without_a_need_or_a_thing_asks_for_none(text: str) -> None:
+    assert parse(english(), text).intent is None
