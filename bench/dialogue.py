@@ -7,12 +7,15 @@ Scene: the kitchen with 100 visible objects. Measured per turn (median over many
   snapshot is rebuilt from KB queries first;
 - rules fast path: interpreting the utterance with the rules and grounding the result;
 - full rules turn: `await engine.turn(...)` through the event loop.
-Target: <= 2 ms median for the warm overhead and the rules fast path.
+Target: <= 2 ms median for the warm overhead and the rules fast path. Each row gives the median
+wall time and the median CPU time (the process's) of a turn: on a shared machine the wall time
+waits for a core, the CPU time much less.
 """
 
 from __future__ import annotations
 
 import asyncio
+import os
 import statistics
 import time
 from collections.abc import Callable
@@ -70,13 +73,20 @@ def scene(n_objects: int = 100) -> KB:
     return kb
 
 
-def median_ms(fn: Callable[[], object], repeat: int) -> float:
-    times = []
+def _clocks() -> tuple[float, float]:
+    return time.perf_counter(), time.process_time()
+
+
+def medians(fn: Callable[[], object], repeat: int) -> tuple[float, float]:
+    """Median wall and CPU ms of `fn`, over `repeat` calls."""
+    wall, cpu = [], []
     for _ in range(repeat):
-        start = time.perf_counter()
+        start, start_cpu = _clocks()
         fn()
-        times.append(time.perf_counter() - start)
-    return statistics.median(times) * 1000
+        end, end_cpu = _clocks()
+        wall.append(end - start)
+        cpu.append(end_cpu - start_cpu)
+    return statistics.median(wall) * 1000, statistics.median(cpu) * 1000
 
 
 def run(n_objects: int = 100, repeat: int = 200) -> str:
@@ -106,27 +116,31 @@ def run(n_objects: int = 100, repeat: int = 200) -> str:
     def fast_path() -> None:
         engine.fast_path(engine.prepare(engine.ground(), next(utterances), speaker, (), None))
 
-    async def turns() -> list[float]:
-        times = []
+    async def turns() -> tuple[float, float]:
+        wall, cpu = [], []
         for i in range(repeat):
-            start = time.perf_counter()
+            start, start_cpu = _clocks()
             await engine.turn(UTTERANCES[i % len(UTTERANCES)], speaker=speaker)
-            times.append(time.perf_counter() - start)
-        return times
+            end, end_cpu = _clocks()
+            wall.append(end - start)
+            cpu.append(end_cpu - start_cpu)
+        return statistics.median(wall) * 1000, statistics.median(cpu) * 1000
 
     overhead()  # warm caches
     step("dialogue", f"turn overhead, {repeat} rounds")
-    rows = [("overhead, warm (ground+schema+prompt+validate+resolve)", median_ms(overhead, repeat))]
+    rows = [("overhead, warm (ground+schema+prompt+validate+resolve)", medians(overhead, repeat))]
     step("dialogue", "turn overhead right after a KB change")
     rows.append(("overhead, KB changed since last turn (snapshot rebuilt)",
-                 median_ms(overhead_changed, max(20, repeat // 10))))
+                 medians(overhead_changed, max(20, repeat // 10))))
     step("dialogue", "rules fast path")
-    rows.append(("rules fast path", median_ms(fast_path, repeat)))
+    rows.append(("rules fast path", medians(fast_path, repeat)))
     step("dialogue", "full rules turns through the event loop")
-    rows.append(("full rules turn (engine.turn, event loop)", statistics.median(asyncio.run(turns())) * 1000))
+    rows.append(("full rules turn (engine.turn, event loop)", asyncio.run(turns())))
     kb.close()
-    lines = [f"dialogue turn overhead, {n_objects} visible objects (median ms; target <= 2 ms)"]
-    lines += [f"  {name:58} {ms:8.3f}" for name, ms in rows]
+    load = ", ".join(f"{x:.2f}" for x in os.getloadavg())
+    lines = [f"dialogue turn overhead, {n_objects} visible objects (median ms; target <= 2 ms;"
+             f" load average {load})", f"  {'':58} {'wall':>8} {'cpu':>8}"]
+    lines += [f"  {name:58} {wall:8.3f} {cpu:8.3f}" for name, (wall, cpu) in rows]
     return "\n".join(lines)
 
 

@@ -1,11 +1,16 @@
 """HTTP overhead: ``situated bench http [--seconds 5] [--clients 1,8,32]``.
 
-Requests/s and p50/p99 latency of the dialogue interaction endpoint (an instant test model: the
-service itself is measured) and of ``/kb/query``, beside a bare FastAPI echo endpoint, at 1, 8 and
-32 concurrent clients, all in the same run against uvicorn on loopback. Each server runs in a child
-process of its own, so the load generator does not share its interpreter; each client is one
-keep-alive connection sending its requests back to back, each dialogue client in a dialogue of its
-own (as many robots or people talking at once). The load generator writes HTTP/1.1 itself on
+Requests/s and p50/p99 latency of the dialogue interaction endpoint and of ``/kb/query``, beside a
+bare FastAPI echo endpoint, at 1, 8 and 32 concurrent clients, all in the same run against uvicorn on
+loopback. The turn is measured twice: answered by the rules (the default backend, which build no
+prompt) and by an instant test model (every turn a model turn: its prompt, with the dialogue's
+history, its schema and its trace; the service itself is measured, not a model). Each server runs
+in a child process of its own, so the load generator does not share its interpreter; each client is
+one keep-alive connection sending its requests back to back, each dialogue client in a dialogue of
+its own (as many robots or people talking at once). Beside each row, the server's CPU time per
+request over the measure (user + system, read off its process): on a shared machine the req/s move
+with the load, while the CPU a request costs, against the echo's, says which share of the echo's
+throughput the same core's work would allow. The load generator writes HTTP/1.1 itself on
 asyncio streams: an HTTP client library costs more CPU per request than the echo it would measure.
 Targets (issue 32): each endpoint >= 50% of the echo's requests/s at every client count, its p99
 <= 3x the echo's. Loopback only.
@@ -27,6 +32,7 @@ from dataclasses import dataclass
 from typing import Any
 
 import httpx
+import psutil
 from fastapi import FastAPI
 
 from bench.progress import step
@@ -45,6 +51,10 @@ ANSWER = {"verbal_ack": "OK, I take the cup.",
 RATE_TARGET = 0.5
 P99_TARGET = 3.0
 CLIENTS = (1, 8, 32)
+ECHO = "POST /echo (bare FastAPI)"
+TURN_RULES = "POST /dialogues/{id}/interactions (rules)"
+TURN_MODEL = "POST /dialogues/{id}/interactions (test model)"
+NAME = len(TURN_MODEL)  # the endpoint column's width
 
 
 def echo_app() -> FastAPI:
@@ -69,7 +79,7 @@ def no_delay() -> httpx.HTTPTransport:
 
 
 def _serve(which: str, port: int) -> None:
-    """One server, in a child process: the echo, or the service with the instant model."""
+    """One server, in a child process: the echo, or the service with the rules or the instant model."""
     import uvicorn
 
     if which == "echo":
@@ -82,7 +92,7 @@ def _serve(which: str, port: int) -> None:
 
     kb = KB()
     kb.update(SCENE)
-    model = FunctionModel(instant_model, name="instant")
+    model = FunctionModel(instant_model, name="instant") if which == "model" else None
     app = create_app(Settings(scene=None, port=port), kb=kb, model=model)
     uvicorn.run(app, host=HOST, port=port, log_level="warning")
 
@@ -94,9 +104,22 @@ def _free_port() -> int:
         return port
 
 
+@dataclass(frozen=True)
+class Server:
+    """A server's port, and its process, whose CPU time tells what the requests cost it."""
+
+    port: int
+    process: psutil.Process
+
+    def cpu(self) -> float:
+        """Seconds of CPU (user + system) the server has used so far."""
+        times = self.process.cpu_times()
+        return float(times.user + times.system)
+
+
 @contextmanager
-def served(which: str) -> Iterator[int]:
-    """The port of a server started in a child process (spawned: nothing of this one shared)."""
+def served(which: str) -> Iterator[Server]:
+    """A server started in a child process (spawned: nothing of this one shared)."""
     port = _free_port()
     child = multiprocessing.get_context("spawn").Process(target=_serve, args=(which, port), daemon=True)
     child.start()
@@ -110,7 +133,8 @@ def served(which: str) -> Iterator[int]:
                 if not child.is_alive() or time.monotonic() > deadline:
                     raise RuntimeError(f"the {which} server did not start") from None
                 time.sleep(0.05)
-        yield port
+        assert child.pid is not None  # started
+        yield Server(port, psutil.Process(child.pid))
     finally:
         child.terminate()
         child.join(timeout=10)
@@ -158,6 +182,12 @@ class Result:
     count: int
     seconds: float
     latencies: list[float]
+    cpu: float | None = None  # the server's CPU seconds over the measure
+
+    @property
+    def cpu_ms(self) -> float | None:
+        """The server's CPU time per request, in ms."""
+        return None if self.cpu is None or not self.count else self.cpu / self.count * 1000
 
     @property
     def rate(self) -> float:
@@ -172,8 +202,9 @@ def _takes_the_cup(reply: dict[str, Any]) -> bool:
     return bool(intents) and intents[0].get("data", {}).get("object") == "cup_1"
 
 
-async def _load(port: int, clients: int, seconds: float, path: str, body: dict[str, Any],
-                dialogue: bool) -> tuple[list[float], float]:
+async def _load(server: Server, clients: int, seconds: float, path: str, body: dict[str, Any],
+                dialogue: bool) -> tuple[list[float], float, float]:
+    port = server.port
     connections = [await Connection.open(port) for _ in range(clients)]
     requests = []
     for connection in connections:
@@ -203,49 +234,61 @@ async def _load(port: int, clients: int, seconds: float, path: str, body: dict[s
 
     await asyncio.gather(*(client(c, r, 5) for c, r in zip(connections, requests, strict=True)))
     latencies.clear()
+    cpu = server.cpu()
     start = time.perf_counter()
     stop = start + seconds
     await asyncio.gather(*(client(c, r, 0) for c, r in zip(connections, requests, strict=True)))
     took = time.perf_counter() - start
+    cpu = server.cpu() - cpu
     for connection in connections:
         await connection.close()
-    return latencies, took
+    return latencies, took, cpu
 
 
-def measure(name: str, port: int, clients: int, seconds: float, path: str, body: dict[str, Any],
+def measure(name: str, server: Server, clients: int, seconds: float, path: str, body: dict[str, Any],
             dialogue: bool = False) -> Result:
     step("http", f"{name}, {clients} client{'s' if clients > 1 else ''}: {seconds:g} s")
-    latencies, took = asyncio.run(_load(port, clients, seconds, path, body, dialogue))
-    return Result(name, clients, len(latencies), took, latencies)
+    latencies, took, cpu = asyncio.run(_load(server, clients, seconds, path, body, dialogue))
+    return Result(name, clients, len(latencies), took, latencies, cpu)
+
+
+def _cpu_columns(r: Result, echo: Result) -> str:
+    """The server's CPU ms per request, and the echo's against it (the share of the echo's req/s the
+    same CPU allows)."""
+    if r.cpu_ms is None or echo.cpu_ms is None or not r.cpu_ms:
+        return f" {'-':>7} {'-':>8}"
+    return f" {r.cpu_ms:>7.2f} {echo.cpu_ms / r.cpu_ms:>8.0%}"
 
 
 def table(results: list[Result]) -> tuple[str, bool]:
-    lines = [f"{'endpoint':<37} {'clients':>7} {'requests':>8} {'req/s':>8} {'p50 ms':>7} {'p99 ms':>7}"
-             f" {'vs echo':>8} {'p99/echo':>8}"]
+    lines = [f"{'endpoint':<{NAME}} {'clients':>7} {'requests':>8} {'req/s':>8} {'p50 ms':>7} {'p99 ms':>7}"
+             f" {'vs echo':>8} {'p99/echo':>8} {'cpu ms':>7} {'by cpu':>8}"]
     ok = True
     echo: Result | None = None
     for r in results:
-        if r.name.startswith("POST /echo"):
+        if r.name == ECHO:
             echo = r
         assert echo is not None and echo.clients == r.clients  # the echo comes first at each count
         rate, tail = r.rate / echo.rate, r.percentile(99) / echo.percentile(99)
         if r is not echo:
             ok = ok and rate >= RATE_TARGET and tail <= P99_TARGET
-        lines.append(f"{r.name:<37} {r.clients:>7} {r.count:>8} {r.rate:>8.0f} {r.percentile(50):>7.2f}"
-                     f" {r.percentile(99):>7.2f} {rate:>7.0%} {tail:>8.2f}")
-    return "\n".join(lines), ok
+        lines.append(f"{r.name:<{NAME}} {r.clients:>7} {r.count:>8} {r.rate:>8.0f} {r.percentile(50):>7.2f}"
+                     f" {r.percentile(99):>7.2f} {rate:>7.0%} {tail:>8.2f}{_cpu_columns(r, echo)}")
+    legend = ("cpu ms: the server's CPU time per request over the measure; by cpu: the echo's against"
+              " it, the share of the echo's req/s that CPU allows whatever the machine's load")
+    return "\n".join([*lines, legend]), ok
 
 
 def run(seconds: float = 5.0, counts: tuple[int, ...] = CLIENTS) -> tuple[str, bool]:
     results: list[Result] = []
     turn = {"user_id": "person_alice", "input": "take the cup"}
     query = {"patterns": ["myself sees ?o"]}
-    with served("echo") as echo, served("service") as service:
+    with served("echo") as echo, served("model") as service, served("rules") as rules:
         for clients in counts:
-            results.append(measure("POST /echo (bare FastAPI)", echo, clients, seconds, "/echo", query))
+            results.append(measure(ECHO, echo, clients, seconds, "/echo", query))
             results.append(measure("POST /kb/query", service, clients, seconds, "/kb/query", query))
-            results.append(measure("POST /dialogues/{id}/interactions", service, clients, seconds, "", turn,
-                                   dialogue=True))
+            results.append(measure(TURN_RULES, rules, clients, seconds, "", turn, dialogue=True))
+            results.append(measure(TURN_MODEL, service, clients, seconds, "", turn, dialogue=True))
     report, ok = table(results)
     verdict = "meets" if ok else "MISSES"
     load = ", ".join(f"{x:.2f}" for x in os.getloadavg())

@@ -287,10 +287,7 @@ class DialogueManager:
                          deadline, self._late_observers)
 
     def _kept(self, state: DialogueState, history: Sequence[Utterance] | None) -> History:
-        kept = History(self.max_turns, self.max_chars)
-        for utterance in state.history if history is None else history:
-            kept.add(utterance.speaker, utterance.text)
-        return kept
+        return History.of(state.history if history is None else history, self.max_turns, self.max_chars)
 
     async def _run(
         self,

@@ -2,7 +2,7 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from dialogue.history import ASSISTANT_USER_ID, SYSTEM_USER_ID, History, role_of
+from dialogue.history import ASSISTANT_USER_ID, SYSTEM_USER_ID, History, Utterance, role_of
 
 
 def test_roles_of_special_user_ids() -> None:
@@ -38,3 +38,18 @@ def test_the_kept_utterances_are_the_latest_that_fit(max_turns: int, max_chars: 
         while len(expected) > 1 and sum(map(len, expected)) > max_chars:
             expected.pop(0)
         assert [u.text for u in history] == expected
+
+
+@given(st.integers(1, 6), st.integers(1, 60),
+       st.lists(st.tuples(st.sampled_from(["p", ASSISTANT_USER_ID]), st.text(max_size=30)), max_size=40))
+def test_a_history_made_at_once_keeps_what_adding_one_by_one_keeps(
+        max_turns: int, max_chars: int, said: list[tuple[str, str]]) -> None:
+    added = History(max_turns, max_chars)
+    for speaker, text in said:
+        added.add(speaker, text)
+    made = History.of([Utterance(s, t) for s, t in said], max_turns, max_chars)
+    assert made.snapshot() == added.snapshot()
+    # and both go on the same way
+    made.add("p", "x" * max_chars)
+    added.add("p", "x" * max_chars)
+    assert made.snapshot() == added.snapshot()
