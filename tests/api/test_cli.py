@@ -104,7 +104,8 @@ def test_eval_and_bench_delegate(capsys: pytest.CaptureFixture[str]) -> None:
     assert "POST /dialogues/{id}/interactions" in out and ">= 50% of the echo's req/s" in out
     # While it runs, each measure is announced on stderr; stdout is the table alone.
     assert [line.split(":")[1].split(",")[0].strip() for line in err.splitlines()] == [
-        "POST /echo (bare FastAPI)", "POST /kb/query", "POST /dialogues/{id}/interactions"]
+        "POST /echo (bare FastAPI)", "POST /kb/query", "POST /dialogues/{id}/interactions (rules)",
+        "POST /dialogues/{id}/interactions (test model)"]
     assert "situated bench" not in out
 
 
