@@ -87,8 +87,9 @@ def said_phrase(lang: Language, words: Sequence[str]) -> str:
     """A phrase as a reply says it back: without its leading determiners, its prepositions kept
     ("my mug in the fridge": "mug in the fridge")."""
     glue = lang.glue
+    leading = lang.words.determiners | glue | lang.words.unsaid_possessives
     out = [w for w in words if w != "please"]
-    while out and (out[0] in lang.words.determiners or out[0] in glue or out[0] in {"his", "her", "their"}):
+    while out and out[0] in leading:
         out.pop(0)
     while out and out[-1] in glue:
         out.pop()
@@ -114,7 +115,7 @@ def resolve(  # noqa: C901
     phrase = " ".join(words)
     words = [w[:-2] if w.endswith("'s") and len(w) > 2 else w for w in words]  # "ines's" names Ines
     normed = norm(words)
-    bases = [compared(w) for w in normed]  # "bigger": big
+    bases = [compared(lang, w) for w in normed]  # "bigger": big
     cover: dict[str, frozenset[int]] = {}  # entity -> the word positions its names span
     own_name: set[str] = set()  # entities a name of the KB's own (not the lexicon file's) occurs for
     content = [i for i in range(len(words)) if not _glue(lang.glue, words, i)]
@@ -137,7 +138,7 @@ def resolve(  # noqa: C901
     # "the ones on the bench": no noun before the preposition, and never the bench itself ("one of
     # the baskets")
     core_end = next((i for i, w in enumerate(words) if w in lang.locative), len(words))
-    only_one = head is None and {"one", "ones"} & set(words[:core_end])
+    only_one = head is None and lang.words.one & set(words[:core_end])
 
     def named(entity: Entity | None) -> bool:
         if entity is None or entity.kind not in kinds:
@@ -185,7 +186,7 @@ def resolve(  # noqa: C901
         matches = called
     if not matches and content:
         matches = _by_label_words(lexicon, [normed[i] for i in content], kinds)
-    if not matches and content and {"one", "ones"} & set(words):
+    if not matches and content and lang.words.one & set(words):
         matches = _by_qualifiers(lexicon, [normed[i] for i in content], kinds)
     if not matches and content:
         matches = resolve_head(lexicon, words, kinds)
@@ -242,9 +243,9 @@ def _settled(near: Sequence[Entity], owner: str | None, own_name: Collection[str
 
 
 @lru_cache(maxsize=4096)
-def compared(word: str) -> str:
+def compared(lang: Language, word: str) -> str:
     """The adjective a comparative or superlative compares by ("the bigger one": big), else the word."""
-    if word.endswith(("er", "est")):
+    if word.endswith(lang.words.compared):
         bases: tuple[str, ...] = getAllLemmas(word).get("ADJ", ())
         if bases and bases[0] != word:
             return bases[0]
@@ -273,7 +274,7 @@ def _contents(lang: Language, words: Sequence[str], normed: Sequence[str]) -> tu
 
 def _by_qualifiers(lexicon: Lexicon, qualifiers: Sequence[str], kinds: Collection[Kind]) -> list[Entity]:
     """ "the orange one": with no noun, the things every qualifier holds for (colour, label words)."""
-    said = [(w, compared(w)) for w in qualifiers]
+    said = [(w, compared(lexicon.lang, w)) for w in qualifiers]
     out = []
     for entity in lexicon.snapshot.entities.values():
         attrs = lexicon.attributes.get(entity.id, frozenset())
@@ -345,7 +346,7 @@ def antecedent(
     "Chloe's book") and by where the same turn puts it ("the ticket is on the low table").
     """
     for turn in reversed(history):
-        text, owners = _owners(turn, speaker)
+        text, owners = _owners(lexicon.lang, turn, speaker)
         words = [w[:-2] if w.endswith("'s") and len(w) > 2 else w for w in tokens(text)]
         mentions = lexicon.mentions(words)
         places = {e for m in mentions if _after_locative(lexicon.lang, words, m.start) for e in m.entities}
@@ -369,15 +370,15 @@ def antecedent(
     return None
 
 
-def _owners(turn: str | Utterance, speaker: str | None) -> tuple[str, dict[str, str]]:
+def _owners(lang: Language, turn: str | Utterance, speaker: str | None) -> tuple[str, dict[str, str]]:
     """The turn's text and whom its possessives name: "my" is the speaker's in a person's words,
     "your" the person spoken to in the robot's."""
     if isinstance(turn, str):
         return turn, {}
     if turn.role == "user":
-        return turn.text, {"my": turn.speaker, "our": turn.speaker}
+        return turn.text, dict.fromkeys(lang.words.speaker_possessives, turn.speaker)
     if turn.role == "assistant" and speaker is not None:
-        return turn.text, {"your": speaker}
+        return turn.text, dict.fromkeys(lang.words.addressee_possessives, speaker)
     return turn.text, {}
 
 
