@@ -63,6 +63,8 @@ class ClosedWords(Table):
     speaker_possessives: WordList = ()
     addressee_possessives: WordList = ()
     coordinators: WordSet = frozenset()
+    speaker_in_answer: frozenset[str] = frozenset()
+    speaker_in_fact: frozenset[str] = frozenset()
 
     @cached_property
     def spoken_numbers(self) -> dict[str, Words]:
