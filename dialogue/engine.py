@@ -32,7 +32,8 @@ from dialogue.memory.learn import Memory
 from dialogue.memory.replies import confirmation
 from dialogue.prompts import PromptSet
 from dialogue.reference.grounding import Entity, Grounder, Snapshot
-from dialogue.reference.lexicon import Lexicon, LexiconCache
+from dialogue.reference.lexicon import Lexicon
+from dialogue.reference.lexicons import LexiconCache
 from dialogue.reference.relevance import Focus, mentioned, ranked
 from dialogue.schema import AnswerError, SchemaCandidates, parse_answer, turn_schema
 from dialogue.speakers import NOT_PEOPLE, admit, check_speaker
