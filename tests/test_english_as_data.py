@@ -19,6 +19,7 @@ CLEAN = (
     "dialogue/validate.py",
     "dialogue/understanding/questions/grammar.py",
     "dialogue/understanding/statements/grammar.py",
+    "dialogue/understanding/statements/likings.py",
 )
 #: What the scanner takes for words there and is the code's own names, with why.
 NAMES = {
@@ -67,7 +68,6 @@ BUDGET = {
     "dialogue/understanding/speech/repair.py": 2,
     "dialogue/understanding/speech/spelling.py": 3,
     "dialogue/understanding/statements/clause.py": 2,
-    "dialogue/understanding/statements/likings.py": 5,
     "dialogue/understanding/talk.py": 1,
 }
 #: Sentences still written in Python outside the reply templates, per module, with why.

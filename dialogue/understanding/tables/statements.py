@@ -26,6 +26,12 @@ class LikingWords(Table):
     appraised: PhraseSet = frozenset()
     clause: WordSet = frozenset()
     leads: dict[str, str] = {}
+    negation: Phrases = ()
+    negated: WordSet = frozenset()
+    is_my: Phrase = ()
+    degree: WordSet = frozenset()
+    determined: WordSet = frozenset()
+    robot: WordSet = frozenset()
 
 
 class NameWords(Table):
