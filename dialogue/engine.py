@@ -32,12 +32,14 @@ from dialogue.memory.learn import Memory
 from dialogue.memory.replies import confirmation
 from dialogue.prompts import PromptSet
 from dialogue.reference.grounding import Entity, Grounder, Snapshot
-from dialogue.reference.lexicon import Lexicon, LexiconCache
+from dialogue.reference.lexicon import Lexicon
+from dialogue.reference.lexicons import LexiconCache
 from dialogue.reference.relevance import Focus, mentioned, ranked
 from dialogue.schema import AnswerError, SchemaCandidates, parse_answer, turn_schema
 from dialogue.speakers import NOT_PEOPLE, admit, check_speaker
 from dialogue.trace.record import AnsweredBy, TraceRecorder, TurnTrace
 from dialogue.understanding.language import Language
+from dialogue.understanding.replies import say
 from dialogue.understanding.said import Said
 from dialogue.validate import Grounded, ground_answer
 from kb import KbError
@@ -48,7 +50,6 @@ log = logging.getLogger(__name__)
 
 MAX_SCHEMA_IDS = 60
 SORRY = "Sorry, I can't answer right now."
-NOT_UNDERSTOOD = "Sorry, I did not understand that."
 NO_ANSWER_IN_TIME = "no answer by the turn's deadline"
 RULES_ENGLISH_ONLY = "the offline rules understand English only; a model backend (hybrid:...) reads locale {}"
 
@@ -212,7 +213,7 @@ class DialogueEngine:
             )
         except KbError as exc:
             log.warning("what %r said was not learnt: %s", speaker, exc)
-            return replace(result, response="Sorry, I could not remember that.",
+            return replace(result, response=say(self.language, "sorry.not_remembered"),
                            error_msg=f"the KB refused what was learnt: {exc}")
         said = confirmation(self.language, settled, snapshot, speaker)
         kept = result.response if result.intents else ""
@@ -317,7 +318,8 @@ class DialogueEngine:
     def _declined(self, turn: _Turn, why: str | None) -> TurnResult:
         """The turn no backend understood: the raw input for the middleware, and why (or that) not."""
         raw = I.raw_user_input(turn.text, source=turn.speaker, locale=turn.locale)
-        return TurnResult(why or NOT_UNDERSTOOD, (raw,), backend=self.model.name, understood=False)
+        why = why or say(self.language, "sorry.not_understood")
+        return TurnResult(why, (raw,), backend=self.model.name, understood=False)
 
     def schema_for(
         self, snapshot: Snapshot, speaker: str, focus: Sequence[Entity] | None = None
@@ -369,7 +371,7 @@ class DialogueEngine:
             turn.speaker,
             turn.locale,
             f"{model.name} gave no valid answer twice: " + " | then: ".join(errors),
-            reply=NOT_UNDERSTOOD,
+            reply=say(self.language, "sorry.not_understood"),
         )
         return replace(failed, understood=False)
 

@@ -16,12 +16,10 @@ from dialogue.reference.clarify import question as clarifying_question
 from dialogue.reference.lexicon import Lexicon
 from dialogue.reference.resolution import ROLE_KINDS, resolve_id
 from dialogue.schema import REFERENT_FIELDS, AnswerError, ChatbotResponse, UserIntent
+from dialogue.understanding.replies import say
 
 MAX_REPLY_CHARS = 600
-#: The reply when the intent would name a speaker who is not a KB entity (see dialogue.speakers).
-UNKNOWN_SPEAKER = "Sorry, I don't know who you are."
 MAX_FREE_TEXT_CHARS = 500
-_SPEAKER_WORDS = frozenset({"me", "user", "speaker", "myself", "the user", "the speaker"})
 #: Required person roles that default to the speaker when the model left them empty (D8 repair).
 _SPEAKER_DEFAULTS = {(I.GREET, "recipient"), (I.BRING_OBJECT, "recipient"), (I.GUIDE, "recipient")}
 
@@ -58,7 +56,8 @@ def ground_answer(
         if question is not None:
             return Grounded(question, (), clarify=True)
         if speaker in data.values() and lexicon.snapshot.get(speaker) is None:
-            return Grounded(UNKNOWN_SPEAKER, ())  # no intent names what is not a KB entity
+            # no intent names what is not a KB entity (see dialogue.speakers)
+            return Grounded(say(lexicon.lang, "sorry.unknown_speaker"), ())
         confidence = wish.confidence if wish.confidence is not None else default_confidence
         try:
             intents.append(I.make_intent(wish.type, data, source=speaker, confidence=confidence))
@@ -86,7 +85,8 @@ def _roles(wish: UserIntent, lexicon: Lexicon, speaker: str) -> tuple[dict[str, 
                 data[field] = speaker
             continue
         kind = kinds[field]
-        if "person" in kind and (value == speaker or value.strip().lower() in _SPEAKER_WORDS):
+        said = value.strip().lower()
+        if "person" in kind and (value == speaker or said in lexicon.lang.words.speaker_in_answer):
             data[field] = speaker
             continue
         found = resolve_id(lexicon, value.strip(), kind)

@@ -54,6 +54,11 @@ class _Words:
         self.thousands = said.thousands
         self.half = said.half
         self.field_value = said.field_value
+        #: Lead-in words kept in an answer's noun phrase ("my one", "the red one"), the one that
+        #: makes it the speaker's, and those that say nothing of the choices offered.
+        self.kept_lead_ins = said.kept_lead_ins
+        self.owned = said.owned
+        self.unqualifying = said.unqualifying
         #: Words by which the speaker names themself.
         self.self_ = said.self_
         self.ordinals = said.ordinals
@@ -221,8 +226,9 @@ def find_entity(form_field: FormField, clause: Clause, ctx: ReadContext) -> Foun
             if word in clause.words:
                 return Found(offered[index].id, said=word)
     # "myself" is the speaker, never the robot whose id it is.
-    words = [w for w in clause.words if (w not in answer.lead_ins or w in ("my", "one")) and w not in self_]
-    owner = ctx.speaker if "my" in words else None
+    kept = answer.kept_lead_ins
+    words = [w for w in clause.words if (w not in answer.lead_ins or w in kept) and w not in self_]
+    owner = ctx.speaker if answer.owned & set(words) else None
     for start in range(len(words)):  # the noun phrase ends the clause: "I'd like the red cup"
         phrase = words[start:]
         found = resolve(lexicon, phrase, ALL_KINDS, owner=owner)
@@ -237,7 +243,7 @@ def find_entity(form_field: FormField, clause: Clause, ctx: ReadContext) -> Foun
                 if all(
                     singular(w) in lexicon.attributes.get(e.id, ())
                     for w in phrase
-                    if w not in ("the", "one", "my")
+                    if w not in answer.unqualifying
                 )
             ]
         if len(fits) == 1:

@@ -28,11 +28,10 @@ from dialogue.reference.clarify import question as clarifying_question
 from dialogue.reference.grounding import Entity, Snapshot
 from dialogue.reference.lexicon import Lexicon
 from dialogue.understanding.followups.form import Reading
+from dialogue.understanding.language import Language
+from dialogue.understanding.replies import say, template
 
 MAX_TRIES = 3
-DONE = "Thank you."
-CANCELLED = "OK, never mind."
-NOT_UNDERSTOOD = "Sorry, I did not get that."
 
 
 def opening_state(form: AskForm) -> FormState:
@@ -46,36 +45,38 @@ def _missing(form: AskForm, state: FormState) -> list[str]:
     return [n for n in form.required if n not in state.values and n not in state.given_up]
 
 
-def _join(options: Sequence[str], word: str = "or") -> str:
-    return options[0] if len(options) == 1 else ", ".join(options[:-1]) + f" {word} " + options[-1]
+def _language(lexicon: Lexicon | None) -> Language:
+    """The turn's language (its lexicon's); a form used without one speaks the packaged default."""
+    return lexicon.lang if lexicon is not None else Language.load()
 
 
-def bounds(form_field: FormField) -> str:
+def _join(lang: Language, options: Sequence[str], word: str = "or") -> str:
+    if len(options) == 1:
+        return options[0]
+    return ", ".join(options[:-1]) + f" {say(lang, 'ask.' + word)} " + options[-1]
+
+
+def bounds(form_field: FormField, lang: Language | None = None) -> str:
     """What a number field accepts, said ("at least 0 and at most 130")."""
+    lang = lang or Language.load()
     schema = form_field.schema
-    said = [
-        f"{word} {schema[key]}"
-        for key, word in (
-            ("minimum", "at least"),
-            ("exclusiveMinimum", "more than"),
-            ("maximum", "at most"),
-            ("exclusiveMaximum", "less than"),
-        )
-        if key in schema
-    ]
-    return " and ".join(said)
+    said = [str(w).format(value=schema[k]) for k, w in template(lang, "ask.bounds").items() if k in schema]
+    return f" {say(lang, 'ask.and')} ".join(said)
 
 
-def problem_line(form_field: FormField, problem: str) -> str:
+def problem_line(form_field: FormField, problem: str, lang: Language | None = None) -> str:
+    lang = lang or Language.load()
+    field = form_field.words
+    # (the problem is what the schema's validation said: pydantic's messages, in English)
     if form_field.kind == "integer" and "fractional part" in problem:  # pydantic's int_from_float
-        return f"That is not a possible {form_field.words}: it must be a whole number."
-    if form_field.kind in ("integer", "number") and bounds(form_field) and " than " in problem:
-        return f"That is not a possible {form_field.words}: it must be {bounds(form_field)}."
+        return say(lang, "ask.not_whole", field=field)
+    if form_field.kind in ("integer", "number") and bounds(form_field, lang) and " than " in problem:
+        return say(lang, "ask.out_of_bounds", field=field, bounds=bounds(form_field, lang))
     if form_field.kind == "enum":
-        return f"I can only take {_join([str(v) for v in form_field.enum])} for the {form_field.words}."
+        return say(lang, "ask.only", field=field, options=_join(lang, [str(v) for v in form_field.enum]))
     if form_field.kind == "entity":
-        return f"Sorry, {problem}."
-    return f"That is not a possible {form_field.words}: {problem.lower()}."
+        return say(lang, "ask.entity_problem", problem=problem)
+    return say(lang, "ask.not_possible", field=field, problem=problem.lower())
 
 
 def _options(lexicon: Lexicon, entities: Sequence[Entity]) -> list[str]:
@@ -86,22 +87,28 @@ def _options(lexicon: Lexicon, entities: Sequence[Entity]) -> list[str]:
 
 
 #: What the form's own question is followed by when it is asked again, by the field's kind.
-_HINTS: dict[FieldKind, Callable[[FormField], str]] = {
-    "boolean": lambda f: " Please say yes or no.",
-    "enum": lambda f: f" Please say {_join([str(v) for v in f.enum])}.",
+_HINTS: dict[FieldKind, Callable[[Language, FormField], str]] = {
+    "boolean": lambda lang, f: " " + say(lang, "ask.hint_boolean"),
+    "enum": lambda lang, f: " " + say(lang, "ask.hint_enum", options=_join(lang, [str(v) for v in f.enum])),
 }
 
 
 #: How a field other than the first is asked, by its kind (given the entities' options, if listed).
-_QUESTIONS: dict[FieldKind, Callable[[FormField, list[str]], str]] = {
-    "boolean": lambda f, _options: f"And {f.words}: yes or no?",
-    "enum": lambda f, _options: f"Which {f.words}: {_join([str(v) for v in f.enum])}?",
-    "entity": lambda f, options: f"Which {f.words}: {_join(options)}?" if options else f"Which {f.words}?",
+_QUESTIONS: dict[FieldKind, Callable[[Language, FormField, list[str]], str]] = {
+    "boolean": lambda lang, f, _options: say(lang, "ask.ask_boolean", field=f.words),
+    "enum": lambda lang, f, _options: say(
+        lang, "ask.ask_enum", field=f.words, options=_join(lang, [str(v) for v in f.enum])
+    ),
+    "entity": lambda lang, f, options: (
+        say(lang, "ask.ask_entity", field=f.words, options=_join(lang, options))
+        if options
+        else say(lang, "ask.ask_entity_open", field=f.words)
+    ),
 }
 
 
-def _open_question(form_field: FormField, _options: list[str]) -> str:
-    return f"And what is your {form_field.words}?"
+def _open_question(lang: Language, form_field: FormField, _options: list[str]) -> str:
+    return say(lang, "ask.ask_open", field=form_field.words)
 
 
 def _listed(form_field: FormField, snapshot: Snapshot | None) -> list[Entity]:
@@ -117,13 +124,14 @@ def asking(form: AskForm, name: str, lexicon: Lexicon | None = None) -> tuple[st
     description = form_field.schema.get("description")
     if isinstance(description, str) and description.strip().endswith("?"):
         return description.strip(), []
+    lang = _language(lexicon)
     if form.own_question_for(name):
         hint = _HINTS.get(form_field.kind)
-        return form.question + (hint(form_field) if hint else ""), []
+        return form.question + (hint(lang, form_field) if hint else ""), []
     snapshot = lexicon.snapshot if lexicon is not None else None
     listed = _listed(form_field, snapshot) if form_field.kind == "entity" else []
     options = _options(lexicon, listed) if lexicon is not None and listed else []
-    return _QUESTIONS.get(form_field.kind, _open_question)(form_field, options), listed
+    return _QUESTIONS.get(form_field.kind, _open_question)(lang, form_field, options), listed
 
 
 def question_for(form: AskForm, name: str, lexicon: Lexicon | None = None) -> str:
@@ -139,10 +147,11 @@ def advance(
     options: Sequence[Entity] = (),
 ) -> tuple[FormState, str]:
     """The form once `reading` is applied, and the robot's next line."""
+    lang = _language(lexicon)
     new = state.model_copy(deep=True)
     if reading.cancel:
         new.status, new.asked, new.clarifying = "cancelled", None, None
-        return new, CANCELLED
+        return new, say(lang, "ask.cancelled")
     new.values.update(reading.values)
     for name in reading.values:
         new.tries.pop(name, None)
@@ -155,9 +164,9 @@ def advance(
     lines: list[str] = []
     for name, problem in reading.problems.items():
         if name not in reading.values:
-            lines.append(problem_line(form.field(name), problem))
+            lines.append(problem_line(form.field(name), problem, lang))
     if not reading.understood and state.asked is not None:
-        lines.append(NOT_UNDERSTOOD)
+        lines.append(say(lang, "ask.not_understood"))
     if reading.clarify is not None and reading.clarify.field not in new.given_up:
         new.clarifying, new.asked = reading.clarify, reading.clarify.field
         if lexicon is not None and options:
@@ -165,7 +174,7 @@ def advance(
     missing = _missing(form, new)
     if not missing:
         new.status, new.asked, new.clarifying = "done", None, None
-        return new, DONE if new.values else "OK."
+        return new, say(lang, "ask.done" if new.values else "ask.done_empty")
     if new.clarifying is not None and new.clarifying.field in missing and lexicon is not None:
         offered = [e for e in (lexicon.snapshot.get(i) for i in new.clarifying.candidates) if e is not None]
         if offered:

@@ -10,7 +10,8 @@ from __future__ import annotations
 import json
 
 from dialogue.llm.base import ChatModel, ChatRequest, ChatResult, EarlyAnswer, TurnContext
-from dialogue.reference.lexicon import Lexicon, LexiconCache
+from dialogue.reference.lexicon import Lexicon
+from dialogue.reference.lexicons import LexiconCache
 from dialogue.understanding.language import Language
 from dialogue.understanding.outcome import Outcome
 from dialogue.understanding.readers import Heard, Turn, interpreted, read

@@ -23,6 +23,7 @@ from dialogue.reference.grounding import Kind
 from dialogue.reference.lexicon import Lexicon
 from dialogue.reference.resolution import ANYWHERE, PERSON, resolve_id
 from dialogue.schema import AnswerError, FactClaim
+from dialogue.understanding.replies import say
 from dialogue.understanding.statements.names import clean_name
 
 #: How the object of a claim is read: a KB entity id, words naming a kind (a class of the KB,
@@ -66,7 +67,6 @@ PREDICATES: dict[str, Predicate] = {
 }
 #: The predicate of each KB property the table writes.
 BY_PROPERTY = {p.property: p for p in PREDICATES.values()}
-_SPEAKER_WORDS = frozenset({"me", "i", "myself", "speaker", "user", "the speaker", "the user"})
 
 
 @dataclass(frozen=True)
@@ -89,11 +89,6 @@ class Claim:
     @property
     def asks(self) -> bool:
         return self.object is None
-
-
-#: The reply when a fact would name a speaker who is not a person of the KB (as for intents; the
-#: robot, speaking as `myself`, is no one to learn from).
-UNKNOWN_SPEAKER = "Sorry, I don't know who you are."
 
 
 @dataclass(frozen=True)
@@ -125,7 +120,8 @@ def ground_facts(facts: Sequence[FactClaim], lexicon: Lexicon, speaker: str) -> 
                 raise AnswerError(f"facts[{n}].object {fact.object!r} is not a name: give the name itself")
             claims.append(Claim(subject, spec.name, name, "text"))
             continue
-        if spec.kinds and value not in lexicon.snapshot.entities and value.lower() not in _SPEAKER_WORDS:
+        speaker_said = value.lower() in lexicon.lang.words.speaker_in_fact
+        if spec.kinds and value not in lexicon.snapshot.entities and not speaker_said:
             # words: a kind first ("tea")
             found = resolve_id(lexicon, value, spec.objects).one
             words = " ".join(tokens(value))
@@ -137,7 +133,9 @@ def ground_facts(facts: Sequence[FactClaim], lexicon: Lexicon, speaker: str) -> 
         claims.append(Claim(subject, spec.name, obj))
     who = lexicon.snapshot.get(speaker)
     if (who is None or who.kind != "person") and any(not c.asks or speaker == c.subject for c in claims):
-        return GroundedFacts((), refusal=UNKNOWN_SPEAKER)  # nobody to hold the belief, or to ask about
+        # nobody to hold the belief, or to ask about (as for intents; the robot, speaking as
+        # `myself`, is no one to learn from)
+        return GroundedFacts((), refusal=say(lexicon.lang, "sorry.unknown_speaker"))
     return GroundedFacts(tuple(claims))
 
 
@@ -148,7 +146,7 @@ def _entity(
     text = (value or "").strip()
     # An id first: "myself" is the robot's (ROS4HRI), not the speaker saying "myself".
     if "person" in kinds and (text == speaker or (lexicon.snapshot.get(text) is None
-                                                  and text.lower() in _SPEAKER_WORDS)):
+                                                  and text.lower() in lexicon.lang.words.speaker_in_fact)):
         return speaker, None
     found = resolve_id(lexicon, text, kinds) if text else None
     if found is not None and found.one is not None:

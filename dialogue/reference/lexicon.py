@@ -7,7 +7,6 @@ matching is on whole words (D11).
 
 from __future__ import annotations
 
-import threading
 from collections import defaultdict
 from collections.abc import Callable, Iterable, Iterator, Mapping, Sequence
 from collections.abc import Set as AbstractSet
@@ -17,10 +16,9 @@ from typing import Any
 from dialogue.reference.grounding import Entity, Snapshot
 from dialogue.reference.layered import GONE, Gone, Layered, layered, rebucket
 from dialogue.reference.naming import NO_ENTRY, Entry, Name, Naming, norm, phrase, singular
-from dialogue.reference.synonyms import synonyms
 from dialogue.understanding.language import Language
 
-__all__ = ["Lexicon", "LexiconCache", "Mention", "Name", "norm", "phrase", "singular"]
+__all__ = ["Lexicon", "Mention", "Name", "norm", "phrase", "singular"]
 
 @dataclass(frozen=True)
 class Mention:
@@ -365,46 +363,3 @@ class _Both(AbstractSet[str]):
     def _from_iterable(cls, words: Iterable[str]) -> frozenset[str]:  # type: ignore[override]
         # what `set - both` and the other operators make: a plain frozenset
         return frozenset(words)
-
-
-class LexiconCache:
-    """The lexicons of the last few snapshots (snapshots are immutable, so this is safe to share):
-    a turn that holds a snapshot a little older than the latest still finds its lexicon."""
-
-    def __init__(self, lang: Language) -> None:
-        self.lang = lang
-        self._lock = threading.Lock()
-        self._build = threading.Lock()
-        self._recent: list[Lexicon] = []  # oldest first
-        # The lemma tables and the synonyms file load on first use (a few hundred ms): here, when
-        # an engine is made, rather than inside its first turn's deadline.
-        singular("cups")
-        synonyms(lang, phrase)
-
-    def made(self, snapshot: Snapshot) -> Lexicon | None:
-        """The lexicon of ``snapshot`` if it is made already (cheap: callable on an event loop)."""
-        with self._lock:
-            recent = self._recent
-        return next((lex for lex in reversed(recent) if lex.snapshot is snapshot), None)
-
-    def get(self, snapshot: Snapshot) -> Lexicon:
-        found = self.made(snapshot)
-        if found is not None:
-            return found
-        with self._build:  # one at a time: a turn that needs the lexicon the worker makes waits for it
-            found = self.made(snapshot)
-            if found is not None:
-                return found
-            with self._lock:
-                recent = self._recent
-            # updated from the latest lexicon of an earlier revision (a later one cannot say what
-            # changed since: it would be rebuilt)
-            earlier = [lex for lex in recent if lex.snapshot.revision <= snapshot.revision]
-            lex = Lexicon(snapshot, self.lang, earlier[-1] if earlier else (recent[-1] if recent else None))
-            with self._lock:
-                self._recent = sorted([*recent, lex], key=lambda x: x.snapshot.revision)[-_RECENT:]
-            return lex
-
-
-#: Lexicons a cache keeps.
-_RECENT = 3

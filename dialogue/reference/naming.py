@@ -105,7 +105,7 @@ class Naming:
         for text in (*entity.labels, *entity.class_names):
             words = tokens(text)
             # "food or drink" is no drink; "cheese and onion crisps" are crisps
-            if len(words) > 1 and words[-2] not in {"or", "and"}:
+            if len(words) > 1 and words[-2] not in self.lang.words.coordinators:
                 add(words[-1], "head")
             if len(words) == 2 and all(w.isalpha() for w in words):
                 add("".join(words), "joined")  # "the eyeglass" for the "eye glass" (the converse of names_at)

@@ -18,12 +18,11 @@ from functools import lru_cache
 from lemminflect import getAllLemmas
 
 from dialogue import intents as I
-from dialogue.history import Utterance
 from dialogue.reference.clarify import MAX_OPTIONS
 from dialogue.reference.english import tokens
 from dialogue.reference.grounding import Entity, Kind
 from dialogue.reference.headnoun import resolve_head
-from dialogue.reference.lexicon import Lexicon, Mention, norm
+from dialogue.reference.lexicon import Lexicon, norm
 from dialogue.reference.naming import phrase as name_words
 from dialogue.understanding.language import Language
 
@@ -87,8 +86,9 @@ def said_phrase(lang: Language, words: Sequence[str]) -> str:
     """A phrase as a reply says it back: without its leading determiners, its prepositions kept
     ("my mug in the fridge": "mug in the fridge")."""
     glue = lang.glue
+    leading = lang.words.determiners | glue | lang.words.unsaid_possessives
     out = [w for w in words if w != "please"]
-    while out and (out[0] in lang.words.determiners or out[0] in glue or out[0] in {"his", "her", "their"}):
+    while out and out[0] in leading:
         out.pop(0)
     while out and out[-1] in glue:
         out.pop()
@@ -114,7 +114,7 @@ def resolve(  # noqa: C901
     phrase = " ".join(words)
     words = [w[:-2] if w.endswith("'s") and len(w) > 2 else w for w in words]  # "ines's" names Ines
     normed = norm(words)
-    bases = [compared(w) for w in normed]  # "bigger": big
+    bases = [compared(lang, w) for w in normed]  # "bigger": big
     cover: dict[str, frozenset[int]] = {}  # entity -> the word positions its names span
     own_name: set[str] = set()  # entities a name of the KB's own (not the lexicon file's) occurs for
     content = [i for i in range(len(words)) if not _glue(lang.glue, words, i)]
@@ -137,7 +137,7 @@ def resolve(  # noqa: C901
     # "the ones on the bench": no noun before the preposition, and never the bench itself ("one of
     # the baskets")
     core_end = next((i for i, w in enumerate(words) if w in lang.locative), len(words))
-    only_one = head is None and {"one", "ones"} & set(words[:core_end])
+    only_one = head is None and lang.words.one & set(words[:core_end])
 
     def named(entity: Entity | None) -> bool:
         if entity is None or entity.kind not in kinds:
@@ -185,7 +185,7 @@ def resolve(  # noqa: C901
         matches = called
     if not matches and content:
         matches = _by_label_words(lexicon, [normed[i] for i in content], kinds)
-    if not matches and content and {"one", "ones"} & set(words):
+    if not matches and content and lang.words.one & set(words):
         matches = _by_qualifiers(lexicon, [normed[i] for i in content], kinds)
     if not matches and content:
         matches = resolve_head(lexicon, words, kinds)
@@ -242,9 +242,9 @@ def _settled(near: Sequence[Entity], owner: str | None, own_name: Collection[str
 
 
 @lru_cache(maxsize=4096)
-def compared(word: str) -> str:
+def compared(lang: Language, word: str) -> str:
     """The adjective a comparative or superlative compares by ("the bigger one": big), else the word."""
-    if word.endswith(("er", "est")):
+    if word.endswith(lang.words.compared):
         bases: tuple[str, ...] = getAllLemmas(word).get("ADJ", ())
         if bases and bases[0] != word:
             return bases[0]
@@ -273,7 +273,7 @@ def _contents(lang: Language, words: Sequence[str], normed: Sequence[str]) -> tu
 
 def _by_qualifiers(lexicon: Lexicon, qualifiers: Sequence[str], kinds: Collection[Kind]) -> list[Entity]:
     """ "the orange one": with no noun, the things every qualifier holds for (colour, label words)."""
-    said = [(w, compared(w)) for w in qualifiers]
+    said = [(w, compared(lexicon.lang, w)) for w in qualifiers]
     out = []
     for entity in lexicon.snapshot.entities.values():
         attrs = lexicon.attributes.get(entity.id, frozenset())
@@ -315,107 +315,3 @@ def resolve_id(lexicon: Lexicon, value: str, kinds: Collection[Kind] = ALL_KINDS
     if not content_words(lexicon.lang, words):
         return Resolution(value, ())
     return resolve(lexicon, words, kinds)
-
-
-def pronoun_kinds(lang: Language, words: Sequence[str], kinds: Collection[Kind]) -> frozenset[Kind]:
-    """The kinds a pronoun may refer to among `kinds`: "her" and "him" only ever a person, "it"
-    never one ("take it to her": the thing to the person)."""
-    said = {w for w in words if w not in lang.words.not_said}
-    if said and said <= lang.words.personal:
-        return frozenset(kinds) & PERSON
-    if said and said <= lang.words.neuter:
-        return frozenset(kinds) - PERSON
-    return frozenset(kinds)
-
-
-def antecedent(
-    lexicon: Lexicon,
-    history: Sequence[str | Utterance],
-    kinds: Collection[Kind],
-    *,
-    place: bool = False,
-    speaker: str | None = None,
-) -> Entity | None:
-    """The entity a pronoun refers to: the latest turn's first non-locative unambiguous mention.
-
-    For "there" (`place=True`) mentions after a locative preposition ("on the shelf") come first;
-    for a thing's pronoun they are never it.
-    A mention of several things is narrowed by whose it is said to be ("your ticket" in the robot's
-    words is the ticket of `speaker`, the person now speaking; "my ticket" in a person's is theirs;
-    "Chloe's book") and by where the same turn puts it ("the ticket is on the low table").
-    """
-    for turn in reversed(history):
-        text, owners = _owners(turn, speaker)
-        words = [w[:-2] if w.endswith("'s") and len(w) > 2 else w for w in tokens(text)]
-        mentions = lexicon.mentions(words)
-        places = {e for m in mentions if _after_locative(lexicon.lang, words, m.start) for e in m.entities}
-        found: list[tuple[bool, int, Entity]] = []
-        before: Mention | None = None
-        for mention in mentions:
-            ents = [lexicon.snapshot.get(e) for e in mention.entities]
-            typed = [e for e in ents if e is not None and e.kind in kinds]
-            if len(typed) > 1:
-                owner = _owner_before(lexicon, words, mention.start, owners, before)
-                typed = _described(lexicon, _narrowed(typed, owner, places), words, mention.start)
-            before = mention
-            locative = _after_locative(lexicon.lang, words, mention.start)
-            # "my keys are on the counter, get them": "them" is not where the keys are
-            if len(typed) != 1 or (locative and not place and typed[0].kind != "person"):
-                continue
-            found.append((locative, mention.start, typed[0]))
-        if found:
-            found.sort(key=lambda f: (f[0] != place, f[1]))
-            return found[0][2]
-    return None
-
-
-def _owners(turn: str | Utterance, speaker: str | None) -> tuple[str, dict[str, str]]:
-    """The turn's text and whom its possessives name: "my" is the speaker's in a person's words,
-    "your" the person spoken to in the robot's."""
-    if isinstance(turn, str):
-        return turn, {}
-    if turn.role == "user":
-        return turn.text, {"my": turn.speaker, "our": turn.speaker}
-    if turn.role == "assistant" and speaker is not None:
-        return turn.text, {"your": speaker}
-    return turn.text, {}
-
-
-def _after_locative(lang: Language, words: Sequence[str], start: int) -> bool:
-    return any(w in lang.locative for w in words[max(0, start - 2) : start])
-
-
-def _owner_before(
-    lexicon: Lexicon, words: Sequence[str], start: int, owners: dict[str, str], before: Mention | None
-) -> str | None:
-    """Whose thing the words just before a mention say it is: a possessive ("your") or a person
-    named right before it ("Chloe's book", "chloes book" as a recogniser writes it)."""
-    if before is not None and before.end == start and len(before.entities) == 1:
-        person = lexicon.snapshot.get(next(iter(before.entities)))
-        if person is not None and person.kind == "person":
-            return person.id
-    return next((owners[w] for w in reversed(words[max(0, start - 2) : start]) if w in owners), None)
-
-
-def _described(lexicon: Lexicon, typed: list[Entity], words: Sequence[str], start: int) -> list[Entity]:
-    """Those the words right before the mention describe ("the *red* ball": its colour or label
-    words), when any are."""
-    said: list[str] = []
-    at = start - 1
-    glue, pronouns = lexicon.lang.glue, lexicon.lang.words.pronouns
-    while at >= 0 and len(said) < 3 and words[at] not in glue and words[at] not in pronouns:
-        said.append(words[at])
-        at -= 1
-    if not said:
-        return typed
-    qualifiers = norm(said)
-    fit = [e for e in typed if all(w in lexicon.attributes.get(e.id, frozenset()) for w in qualifiers)]
-    return fit or typed
-
-
-def _narrowed(typed: list[Entity], owner: str | None, places: set[str]) -> list[Entity]:
-    if owner is not None:
-        typed = [e for e in typed if e.owner == owner] or typed
-    if len(typed) > 1 and places:
-        typed = [e for e in typed if e.support in places or e.zone in places] or typed
-    return typed

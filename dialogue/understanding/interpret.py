@@ -17,6 +17,7 @@ from dataclasses import replace
 
 from dialogue import intents as I
 from dialogue.history import Utterance
+from dialogue.reference.antecedent import antecedent
 from dialogue.reference.english import Words, tokens
 from dialogue.reference.grounding import Entity
 from dialogue.reference.lexicon import Lexicon
@@ -24,7 +25,6 @@ from dialogue.reference.resolution import (
     PERSON,
     PLACE,
     ROLE_KINDS,
-    antecedent,
     content_words,
     resolve,
 )  # fmt: skip

@@ -33,7 +33,7 @@ class _Words:
         self.colour_words = said.colour_words
         self.locatives = tuple(" ".join(p) for p in prepositions.having("asked-on"))
         #: Relations beside support and zone a "what is ... X" question may ask about.
-        self.near = tuple(" ".join(p) for p in prepositions.having("asked-near"))
+        self.near = prepositions.having("asked-near")
         #: Leads of an indirect question: "do you know where the keys are", "any idea where the
         #: toolbox is".
         self.indirect = said.indirect
@@ -58,6 +58,24 @@ class _Words:
         self.gone = said.gone
         self.rooms = said.rooms
         self.name_of = said.name_of
+        self.show_me, self.tell_me, self.how_many = said.show_me, said.tell_me, said.how_many
+        self.belong_to, self.in_front, self.are_you = said.belong_to, said.in_front, said.are_you
+        self.what_heads = said.what_heads
+        self.anything = said.anything
+        #: "is" and "are" alone (`be` has their past too).
+        self.is_are = said.is_are
+        self.social_how = said.social_how
+        #: Where "who is at X" asks about.
+        self.who_at = prepositions.words("who-at")
+        self.count_glue, self.count_after = said.count_glue, said.count_after
+        self.seeing_aux, self.you_see, self.not_which_see = said.seeing_aux, said.you_see, said.not_which_see
+        self.name_words, self.not_what_is = said.name_words, said.not_what_is
+        self.front_of = said.front_of
+        self.does = said.does
+        self.demonstratives = lang.words.demonstratives
+        self.got_to, self.did, self.went = said.got_to, said.did, said.went
+        self.where_am_i = said.where_am_i
+        self.where_tail = said.where_tail
         self.whoever = said.whoever
 
 
@@ -76,8 +94,9 @@ def _strip_ends(thing: Words, lead: frozenset[str], tail: frozenset[str]) -> Wor
 def question(lang: Language, words: list[str]) -> Parse | None:  # noqa: C901
     q = lang.derived(_Words)
     w = tuple(words)
-    shown = w[:2] == ("show", "me") and w[2:3] != ("where",)  # ("show me where the lounge is": guiding)
-    if (w[:2] == ("tell", "me") or shown) and len(w) > 2 and w[2] in q.wh | {"about"}:
+    # ("show me where the lounge is": guiding)
+    shown = bool(q.show_me) and w[:2] == q.show_me and w[2:3] != ("where",)
+    if ((q.tell_me and w[:2] == q.tell_me) or shown) and len(w) > 2 and w[2] in q.wh | {"about"}:
         if w[2] == "about":
             return _q("what_is", w, thing=w[3:])
         w = w[2:]
@@ -94,9 +113,10 @@ def question(lang: Language, words: list[str]) -> Parse | None:  # noqa: C901
     head = w[:1]
     if _anybody(q, w):  # "is anybody else here", "is there anyone around"
         return _q("who_see", w)
-    if head == ("whose",) or (head == ("who",) and (w[-2:] == ("belong", "to") or w[1:2] == ("owns",))):
+    belongs = bool(q.belong_to) and w[-2:] == q.belong_to
+    if head == ("whose",) or (head == ("who",) and (belongs or w[1:2] == ("owns",))):
         return _q("whose", w, thing=_owned_thing(q, w))
-    if head in {("what",), ("which",)}:
+    if head and head[0] in q.what_heads:
         return _what(q, w)
     if head == ("who",):
         if "you" in w and "are" in w and "see" not in w:
@@ -111,20 +131,20 @@ def question(lang: Language, words: list[str]) -> Parse | None:  # noqa: C901
         return _q("who_see", w, rest=rest) if rest else _q("who_see", w)
     if head == ("where",):
         return _where(q, w)
-    if starts(w, ("how", "many")):
+    if q.how_many and starts(w, q.how_many):
         return _q("how_many", w, thing=_counted(q, w[2:]))
     for lead in q.sees:
         if starts(w, lead):
             thing = _strip_ends(w[len(lead) :], frozenset(), q.nearby)  # "is there any fruit around"
-            if thing[:1] in {("anything",), ("something",)}:
+            if thing[:1] and thing[0] in q.anything:
                 return _anything(q, w, thing[1:])
             return _q("can_see", w, thing=thing)
-    if head in {("is",), ("are",)} and len(w) > 2 and w[-1] in q.there:
+    if head and head[0] in q.is_are and len(w) > 2 and w[-1] in q.there:
         return _q("can_see", w, thing=w[1:-1])  # "is Maria here?"
-    if head in {("is",), ("are",)} and split_at(w, q.locatives) is not None:
+    if head and head[0] in q.is_are and split_at(w, q.locatives) is not None:
         return _q("can_see", w, thing=w[1:])  # "is the cup on the table?"
     if head == ("how",):
-        social = starts(w, ("how", "are", "you")) or starts(w, ("how", "is", "it", "going"))
+        social = any(starts(w, lead) for lead in q.social_how)
         return _q("how_are_you" if social else "other", w)
     if head and head[0] in q.wh:
         return _q("other", w)
@@ -133,24 +153,21 @@ def question(lang: Language, words: list[str]) -> Parse | None:  # noqa: C901
 
 
 
-_AT = frozenset({"at", "in", "inside", "on", "by"})
-
-
 def _who_at(q: _Words, rest: Words) -> Words:
     """The place of "who is at X", "who is on the shop floor", "who's waiting at reception", "who's
     getting ready in X" (a verb of being somewhere between, with a word of its own), else ()."""
     if not rest[:1] or rest[0] not in q.be:
         return ()
     at = 1
-    if rest[1:2] and rest[1].endswith("ing") and rest[1] not in _AT:
-        at = 3 if rest[2:3] and rest[2] not in _AT else 2
-    return rest[at + 1 :] if rest[at : at + 1] and rest[at] in _AT and len(rest) > at + 1 else ()
+    if rest[1:2] and rest[1].endswith("ing") and rest[1] not in q.who_at:
+        at = 3 if rest[2:3] and rest[2] not in q.who_at else 2
+    return rest[at + 1 :] if rest[at : at + 1] and rest[at] in q.who_at and len(rest) > at + 1 else ()
 
 
 def _name_of(q: _Words, w: Words) -> Parse | None:
     """ "tell me the name of the person in the break room", "what's the name of the man at
     reception": who is there."""
-    if starts(w, ("tell", "me")) or (w[:1] == ("what",) and w[1:2] and w[1] in q.be):
+    if (q.tell_me and starts(w, q.tell_me)) or (w[:1] == ("what",) and w[1:2] and w[1] in q.be):
         rest = w[2:]
     else:
         return None
@@ -159,7 +176,7 @@ def _name_of(q: _Words, w: Words) -> Parse | None:
         return None
     who = rest[len(lead) :]
     who = who[1:] if who[:1] == ("the",) else who
-    if len(who) < 3 or who[0] not in q.whoever or who[1] not in _AT:
+    if len(who) < 3 or who[0] not in q.whoever or who[1] not in q.who_at:
         return None
     return _q("who_in", w, place=who[2:])
 
@@ -170,9 +187,9 @@ def _counted(q: _Words, rest: Words) -> Words:
     at = next((i for i in range(1, len(rest) - 1)
                if rest[i] in q.asking_verbs and rest[i + 1] in q.asked_subjects), None)  # fmt: skip
     if at is None:
-        return tuple(x for x in rest if x not in {"do", "you", "see", "can", "are", "there", "is"})
+        return tuple(x for x in rest if x not in q.count_glue)
     after = rest[at + 2 :]
-    while after[:1] and after[0] in {"got", "see", "have", "left", "here", "around"}:
+    while after[:1] and after[0] in q.count_after:
         after = after[1:]
     thing = rest[:at] + (after if after[:1] and after[0] in q.place_starts else ())
     return _strip_ends(thing, frozenset(), q.count_tail)
@@ -181,7 +198,7 @@ def _counted(q: _Words, rest: Words) -> Words:
 
 
 def _anybody(q: _Words, w: Words) -> bool:
-    if not w[:1] or w[0] not in {"is", "are"}:
+    if not w[:1] or w[0] not in q.is_are:
         return False
     rest = w[2:] if w[1:2] == ("there",) else w[1:]
     return bool(rest) and rest[0] in q.someone and not set(rest[1:]) - q.who_not_a_name - q.else_
@@ -195,41 +212,42 @@ def _what(q: _Words, w: Words) -> Parse:
         return _q("whose", w, thing=rest[:-2])  # "which suitcase is mine": whose each one is
     if w[0] == "which" and 1 < len(rest) < 5 and rest[-2] in q.be and rest[-1] in q.colours:
         return _q("which_see", w, thing=(rest[-1], *rest[:-2]))  # "which marker is red"
-    if _before_you(rest) or "around" in rest:  # "what's in front of you" ("the front bench" is a name)
+    if _before_you(q, rest) or "around" in rest:  # "what's in front of you" ("the front bench" is a name)
         return _q("what_see", w)
     if rest[:1] and rest[0] in q.colour_words:
         return _q(
-            "colour", w, thing=_strip_ends(rest[1:], frozenset({"is", "are"}), frozenset({"is", "are"}))
+            "colour", w, thing=_strip_ends(rest[1:], q.is_are, q.is_are)
         )
-    for sep in q.near:  # "what's next to the window": what the KB puts there
-        found = split_at(("x", *rest), [sep])
+    for near in q.near:  # "what's next to the window": what the KB puts there
+        found = split_at(("x", *rest), [" ".join(near)])
         if found and found[2] and not set(found[0][1:]) - q.on_glue:
-            return _q("what_near", w, place=found[2], relation=tuple(sep.split()))
+            return _q("what_near", w, place=found[2], relation=near)
     for sep in q.locatives:
         found = split_at(("x", *rest), [sep])
         if found and not set(found[0][1:]) - q.on_glue:
             return _q("what_on", w, place=found[2], relation=(sep,))
     for i, word in enumerate(rest):  # "which cups do you see", "what fruit can you see"
-        seeing = word in {"do", "can", "could"} and rest[i + 1 : i + 3] == ("you", "see")
-        if seeing and i > 0 and not set(rest[:i]) & {"is", "are", "else"}:
+        seeing = word in q.seeing_aux and rest[i + 1 : i + 3] == q.you_see
+        if seeing and i > 0 and not set(rest[:i]) & q.not_which_see:
             return _q("which_see", w, thing=rest[:i])
     if set(rest) & q.see_words and "name" not in rest:
         return _q("what_see", w)
-    if rest[:1] in {("is",), ("are",)} and set(rest) & {"name", "called"} and not _someone_elses(q, rest):
+    if rest[:1] and rest[0] in q.is_are and set(rest) & q.name_words and not _someone_elses(q, rest):
         return _q("name", w)
     if (
-        rest[:1] in {("is",), ("are",)}
+        rest[:1]
+        and rest[0] in q.is_are
         and len(rest) > 1
-        and not set(rest) & {"you", "your", "time", "weather"}
+        and not set(rest) & q.not_what_is
     ):
         return _q("what_is", w, thing=rest[1:])
     return _q("other", w)
 
 
-def _before_you(rest: Words) -> bool:
+def _before_you(q: _Words, rest: Words) -> bool:
     """Whether the words ask what is in front of the robot ("in front", "in front of you")."""
-    at = next((i for i in range(len(rest) - 1) if rest[i : i + 2] == ("in", "front")), None)
-    return at is not None and rest[at + 2 :] in {(), ("of", "you"), ("of", "me"), ("of", "us")}
+    at = next((i for i in range(len(rest) - 1) if rest[i : i + 2] == q.in_front), None)
+    return at is not None and (not rest[at + 2 :] or rest[at + 2 :] in q.front_of)
 
 
 def _someone_elses(q: _Words, rest: Words) -> bool:
@@ -251,7 +269,7 @@ def _anything(q: _Words, w: Words, rest: Words) -> Parse:
 def _owned_thing(q: _Words, w: Words) -> Words:
     """The thing of "whose phone is this", "whose is the mug", "who does the cup belong to", "who owns it"."""
     rest = w[1:]
-    if rest[:1] in {("does",), ("do",)} and rest[-2:] == ("belong", "to"):
+    if rest[:1] and rest[0] in q.does and q.belong_to and rest[-2:] == q.belong_to:
         return rest[1:-2]
     if rest[:1] == ("owns",):
         return rest[1:]
@@ -259,18 +277,18 @@ def _owned_thing(q: _Words, w: Words) -> Words:
         return rest[1:]
     # "whose phone is on the bookcase": the verb drops out, the place stays a qualifier.
     thing = tuple(x for x in rest if x not in q.be)
-    return thing if [x for x in thing if x not in {"this", "that", "these", "those"}] else ("it",)
+    return thing if [x for x in thing if x not in q.demonstratives] else ("it",)
 
 
 def _where(q: _Words, w: Words) -> Parse:
     rest = w[1:]
-    if rest[-2:] in {("got", "to"), ("get", "to"), ("gone", "to")}:  # "where's my cup got to"
+    if rest[-2:] in q.got_to:  # "where's my cup got to"
         rest = rest[:-2]
-        if rest[:1] in {("did",), ("has",), ("have",)}:
+        if rest[:1] and rest[0] in q.did:
             rest = ("is", *rest[1:])
     # "where did Uma go?", "where's my jacket gone" ("is" for "has", as said)
-    gone = rest[-1:] == ("gone",) and rest[:1] in {("is",), ("are",)}
-    went = rest[-1:] and rest[-1] in {"go", "gone", "went"} and rest[:1] and rest[0] in {"did", "has", "have"}
+    gone = rest[-1:] == ("gone",) and rest[:1] and rest[0] in q.is_are
+    went = rest[-1:] and rest[-1] in q.went and rest[:1] and rest[0] in q.did
     if gone or went:
         return _q("where", w, thing=rest[1:-1])
     if len(rest) > 1 and rest[-1] in q.gone and rest[0] not in q.asker:
@@ -280,15 +298,13 @@ def _where(q: _Words, w: Words) -> Parse:
         return _q("where", w, thing=placed)
     if len(rest) > 1 and rest[-1] in q.be and rest[0] not in q.be:
         return _q("where", w, thing=rest[:-1])  # the indirect order: "(do you know) where the keys are"
-    if rest in {("am", "i"), ("are", "we")}:
+    if rest in q.where_am_i:
         return _q("where", w, thing=("me",))
-    if rest == ("are", "you"):
+    if q.are_you and rest == q.are_you:
         return _q("where", w, thing=("you",))
     for lead in q.where_leads:
         if starts(rest, lead):
-            thing = _strip_ends(
-                rest[len(lead) :], frozenset(), frozenset({"located", "now", "placed", "kept"})
-            )
+            thing = _strip_ends(rest[len(lead) :], frozenset(), q.where_tail)
             if thing:
                 return _q("where", w, thing=thing)
     return _q("other", w)
@@ -304,4 +320,4 @@ def _placed_thing(q: _Words, rest: Words) -> Words:
     before = [x for x in rest[:at] if x not in q.asker]
     if len(before) > 1 or (before and rest[:1] and rest[0] in q.be):
         return ()
-    return _strip_ends(rest[at + 1 :], frozenset(), q.nearby | {"located", "now", "placed", "kept"})
+    return _strip_ends(rest[at + 1 :], frozenset(), q.nearby | q.where_tail)

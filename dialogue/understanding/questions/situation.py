@@ -8,14 +8,13 @@ from collections.abc import Callable
 
 from lemminflect import getAllLemmas
 
+from dialogue.reference.antecedent import antecedent, pronoun_kinds
 from dialogue.reference.english import Words, tokens
 from dialogue.reference.resolution import (
     ANYWHERE,
     PERSON,
-    antecedent,
     content_words,
     is_pronoun,
-    pronoun_kinds,
     resolve,
 )
 from dialogue.understanding.context import Context

@@ -18,8 +18,9 @@ from __future__ import annotations
 from collections.abc import Sequence
 
 from dialogue.history import Utterance
+from dialogue.reference.antecedent import antecedent
 from dialogue.reference.lexicon import Lexicon
-from dialogue.reference.resolution import PERSON, THING, antecedent, content_words, resolve
+from dialogue.reference.resolution import PERSON, THING, content_words, resolve
 from dialogue.schema import FactClaim
 from dialogue.understanding.said import Text
 from dialogue.understanding.speech.repair import normalise

@@ -11,6 +11,7 @@ from collections.abc import Callable, Collection, Sequence
 
 from lemminflect import getAllLemmas
 
+from dialogue.reference.antecedent import antecedent, pronoun_kinds
 from dialogue.reference.english import Words, tokens
 from dialogue.reference.grounding import Kind
 from dialogue.reference.lexicon import singular
@@ -18,10 +19,8 @@ from dialogue.reference.resolution import (
     ANYWHERE,
     PERSON,
     THING,
-    antecedent,
     content_words,
     is_pronoun,
-    pronoun_kinds,
     resolve,
     said_phrase,
 )

@@ -10,6 +10,7 @@ from collections.abc import Sequence
 from lemminflect import getAllLemmas
 
 from dialogue.history import Utterance
+from dialogue.reference.antecedent import antecedent
 from dialogue.reference.english import Words, tokens
 from dialogue.reference.grounding import Entity
 from dialogue.reference.lexicon import Lexicon
@@ -17,7 +18,6 @@ from dialogue.reference.resolution import (
     PERSON,
     THING,
     ZONE,
-    antecedent,
     content_words,
     is_pronoun,
     resolve,

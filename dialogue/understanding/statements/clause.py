@@ -14,10 +14,11 @@ from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 
 from dialogue.history import Utterance
+from dialogue.reference.antecedent import antecedent
 from dialogue.reference.clarify import question as clarifying_question
 from dialogue.reference.grounding import Entity, Kind
 from dialogue.reference.lexicon import Lexicon
-from dialogue.reference.resolution import PERSON, Resolution, antecedent, content_words, is_pronoun, resolve
+from dialogue.reference.resolution import PERSON, Resolution, content_words, is_pronoun, resolve
 from dialogue.schema import FactClaim
 from dialogue.understanding.replies import say
 

@@ -68,6 +68,21 @@ class _Words:
         #: Greetings said before more words in the same clause, longest first ("hi there my name
         #: is..."); "morning", "evening" and "welcome" may be what a statement is about.
         self.openings = [g for g in lang.social.greetings_longest_first if g not in said.greeting_topics]
+        #: Words said last that are not part of the statement ("..., please").
+        self.trailing = said.trailing
+        #: "Bob is my name", "I am Bob", "his name is Rob", "it is Rob", "this is Maria".
+        self.name_last, self.i_am, self.it_is = said.name_last, said.i_am, said.it_is
+        self.their_name, self.name_is = said.their_name, said.name_is
+        self.introducing = said.introducing
+        #: "the bike belongs to me", "I own the bike".
+        self.belongs_to, self.to_me, self.i_own = said.belongs_to, said.to_me, said.i_own
+        #: Words between the verb and the place that say when ("the keys are usually in the drawer").
+        self.when = said.when
+
+
+def _starts(words: Words, lead: Words) -> bool:
+    """Whether the words start with the phrase (never with a phrase the language leaves empty)."""
+    return bool(lead) and words[: len(lead)] == lead
 
 
 def _holds_people(entity: Entity) -> bool:
@@ -132,7 +147,7 @@ class Statements(Likings):
     def _lead(self, words: list[str]) -> Words:
         while words and (words[0] in self.said.leads or tuple(words[:3]) == self.said.by_the_way):
             words = words[3:] if tuple(words[:3]) == self.said.by_the_way else words[1:]
-        while len(words) > 1 and words[-1] in {"please", "thanks"}:
+        while len(words) > 1 and words[-1] in self.said.trailing:
             words = words[:-1]
         return tuple(words)
 
@@ -163,21 +178,24 @@ class Statements(Likings):
                 if not (given_name(self.lang, rest) if surely else self._name_like(rest, clause)):
                     raise Unclaimed  # "my name is not important", "call me later"
                 return [self._named(self.speaker, rest, clause)]
-        if w[-3:] == ("is", "my", "name") and given_name(self.lang, w[:-3]):  # "Bob is my name"
-            return [self._named(self.speaker, w[:-3], clause)]
-        if w[:2] == ("i", "am") and self._name_like(w[2:], clause):
-            return [self._named(self.speaker, w[2:], clause)]
-        if w[:2] in {("his", "name"), ("her", "name"), ("their", "name")} and w[2:3] in {("is",), ("'s",)}:
+        said = self.said
+        last = len(said.name_last)
+        if last and w[-last:] == said.name_last and given_name(self.lang, w[:-last]):  # "Bob is my name"
+            return [self._named(self.speaker, w[:-last], clause)]
+        if _starts(w, said.i_am) and self._name_like(w[len(said.i_am) :], clause):
+            return [self._named(self.speaker, w[len(said.i_am) :], clause)]
+        if w[:2] in said.their_name and w[2:3] and w[2] in said.name_is:
             return [self._named(self._stranger(), w[3:], clause)]
-        if w[:2] in {("this", "is"), ("here", "is"), ("meet",)} or w[:1] == ("meet",):
-            rest = w[2:] if w[0] != "meet" else w[1:]
+        introducing = next((lead for lead in said.introducing if _starts(w, lead)), None)
+        if introducing is not None:
+            rest = w[len(introducing) :]
             if rest[:1] == ("my",) and rest[1:2] and rest[1] in self.said.friends:
                 rest = rest[2:]
             if self._name_like(rest, clause) and not self._known_words(rest):
                 who = self.speaker if self._asked_name() else self._stranger()
                 return [self._named(who, rest, clause)]
             return None
-        answer = w[2:] if w[:2] == ("it", "is") else w
+        answer = w[len(said.it_is) :] if _starts(w, said.it_is) else w
         if (correcting or self._asked_name()) and self._name_like(answer, clause):
             who = self._last_named() if correcting else self.speaker
             return [self._named(who, answer, clause)]
@@ -230,12 +248,14 @@ class Statements(Likings):
         if len(w) > 2 and w[-1] == "mine" and w[-2] in self.said.be:
             thing, _ = self._entity(w[:-2], _THING)
             return [fact(thing, "belongsTo", self.speaker)]
-        for verb in (("belongs", "to"), ("belong", "to")):
-            for i in range(1, len(w) - 2):
-                if w[i : i + 2] == verb:
-                    owner = ME if w[i + 2 :] in {("me",), ("myself",)} else self._person(w[i + 2 :])
+        for verb in self.said.belongs_to:
+            n = len(verb)
+            for i in range(1, len(w) - n):
+                if w[i : i + n] == verb:
+                    whom = w[i + n :]
+                    owner = ME if len(whom) == 1 and whom[0] in self.said.to_me else self._person(whom)
                     if owner is None:
-                        called = " ".join(w[i + 2 :]).title()
+                        called = " ".join(whom).title()
                         raise Refused(say(self.lang, "sorry.no_one_called", name=called))
                     thing, _ = self._entity(w[:i], _THING)
                     return [fact(thing, "belongsTo", self.speaker if owner == ME else owner)]
@@ -247,14 +267,14 @@ class Statements(Likings):
             if owner is not None:
                 thing, _ = self._entity(w[:-2], _THING)
                 return [fact(thing, "belongsTo", owner)]
-        if w[:2] == ("i", "own") and w[2:]:
-            thing, _ = self._entity(w[2:], _THING)
+        if _starts(w, self.said.i_own) and w[len(self.said.i_own) :]:
+            thing, _ = self._entity(w[len(self.said.i_own) :], _THING)
             return [fact(thing, "belongsTo", self.speaker)]
         return None
 
     def _location(self, w: Words, clause: Said) -> list[FactClaim] | None:
-        if w[:2] == ("i", "am"):
-            return self._where(("me",), w[2:], people_in=True)
+        if _starts(w, self.said.i_am):
+            return self._where(("me",), w[len(self.said.i_am) :], people_in=True)
         if w[:1] == ("i",) and len(w) > 3:
             verb = 2 if w[1] == "have" else 1
             return self._placed(w[verb + 1 :]) if w[verb] in self.said.put else None
@@ -269,7 +289,7 @@ class Statements(Likings):
         """ "(the keys are) in the drawer": the place after the verb. With `people_in` ("I'm in
         the kitchen", "I'm on the sofa") only a zone or furniture the KB knows is a place; other
         words are an idiom ("I'm on my way", "I'm in trouble", "I'm on the phone")."""
-        rest = rest[1:] if rest[:1] in {("now",), ("still",), ("usually",), ("always",)} else rest
+        rest = rest[1:] if rest[:1] and rest[0] in self.said.when else rest
         for prep, predicate in self.said.states.items():
             place = rest[len(prep) :]
             if rest[: len(prep)] == prep and place and people_in:

@@ -37,6 +37,16 @@ class _Words:
         self.appraised = said.appraised
         #: Words that start a clause inside the object ("I like the way you talk").
         self.clause = said.clause
+        #: What negates the verb ("I do not like", "Bo doesn't like"): a phrase, or one word.
+        self.negation = said.negation
+        self.negated = said.negated
+        #: "tea is my favourite": what comes between the thing and `favourite`.
+        self.is_my = said.is_my
+        #: Words of degree around the thing liked ("very much", "a lot", "too").
+        self.degree = said.degree
+        #: Words before a thing of the situation ("the radio", "my mug"), and that name the robot.
+        self.determined = said.determined
+        self.robot = said.robot
 
 
 class Likings(ClauseReader):
@@ -55,9 +65,10 @@ class Likings(ClauseReader):
             return [fact(self.speaker, "likes", self._liked(favourite))]
         for cut in range(1, min(len(w) - 1, 4)):  # the subject: one to three words
             verb, negated = cut, False
-            if w[cut : cut + 2] in {("do", "not"), ("does", "not")}:
-                verb, negated = cut + 2, True
-            elif w[cut] == "don't":
+            negation = next((n for n in self.liked.negation if w[cut : cut + len(n)] == n), None)
+            if negation is not None:
+                verb, negated = cut + len(negation), True
+            elif w[cut] in self.liked.negated:
                 verb, negated = cut + 1, True
             if verb + 1 >= len(w):
                 continue
@@ -80,23 +91,23 @@ class Likings(ClauseReader):
         if w[:2] in {("my", f) for f in self.liked.favourite} and "is" in w[2:4]:
             return w[w.index("is", 2) + 1 :] or None
         for i in range(1, len(w) - 2):
-            if w[i : i + 2] == ("is", "my") and w[i + 2] in self.liked.favourite:
+            if self.liked.is_my and w[i : i + 2] == self.liked.is_my and w[i + 2] in self.liked.favourite:
                 return w[:i]
         return None
 
     def _liked(self, words: Words) -> str:
         """A thing of the situation when the phrase names one with a determiner ("the radio"), else
         the words of a kind ("tea", "apples"), found among the KB's classes when learnt."""
-        words = tuple(w for w in words if w not in {"very", "much", "really", "so", "a", "lot", "too"})
+        words = tuple(w for w in words if w not in self.liked.degree)
         if words and words[0].endswith("ing") and "VERB" in getAllLemmas(words[0]):
             raise Unclaimed  # "I hate marking lab reports": an activity, no thing or kind of the KB
         liked = self.liked
         happening = words[:1] and words[0] in liked.happenings
         if not words or happening or words in liked.appraised or liked.clause & set(words[1:]):
             raise Unclaimed  # "I like it when you dance", "I like to dance", "I like that": no thing
-        if words and words[0] in {"the", "this", "that", "my", "your", "his", "her"}:
+        if words and words[0] in liked.determined:
             return self._entity(words, ANYWHERE)[0]
-        if words in {("you",), ("yours",)}:
+        if len(words) == 1 and words[0] in liked.robot:
             return self.snapshot.robot
         person = self._person(words) if words[:1] != ("it",) else None
         if person is not None:

@@ -30,6 +30,9 @@ class AskWords(Table):
     not_negators: WordSet = frozenset()
     lead_ins: WordSet = frozenset()
     self_: WordSet = Field(default=frozenset(), validation_alias="self")
+    kept_lead_ins: WordSet = frozenset()
+    owned: WordSet = frozenset()
+    unqualifying: WordSet = frozenset()
     ordinals: dict[str, int] = {}
     lead_in_text: Pattern = re.compile("")
     question_back: Pattern = re.compile(r"(?!)")

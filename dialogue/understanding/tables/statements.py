@@ -26,6 +26,12 @@ class LikingWords(Table):
     appraised: PhraseSet = frozenset()
     clause: WordSet = frozenset()
     leads: dict[str, str] = {}
+    negation: Phrases = ()
+    negated: WordSet = frozenset()
+    is_my: Phrase = ()
+    degree: WordSet = frozenset()
+    determined: WordSet = frozenset()
+    robot: WordSet = frozenset()
 
 
 class NameWords(Table):
@@ -51,5 +57,16 @@ class StatementWords(Table):
     name_leads: Phrases = ()
     pointed: PhraseSet = frozenset()
     greeting_topics: Phrases = ()
+    trailing: WordSet = frozenset()
+    name_last: Phrase = ()
+    i_am: Phrase = ()
+    it_is: Phrase = ()
+    their_name: PhraseSet = frozenset()
+    name_is: WordSet = frozenset()
+    introducing: Phrases = ()
+    belongs_to: Phrases = ()
+    to_me: WordSet = frozenset()
+    i_own: Phrase = ()
+    when: WordSet = frozenset()
     likings: LikingWords = LikingWords()
     names: NameWords = NameWords()

@@ -57,6 +57,14 @@ class ClosedWords(Table):
     core_end: WordSet = frozenset()
     not_said: WordSet = frozenset()
     head_noun: HeadNounWords = HeadNounWords()
+    unsaid_possessives: WordSet = frozenset()
+    one: WordSet = frozenset()
+    compared: WordList = ()
+    speaker_possessives: WordList = ()
+    addressee_possessives: WordList = ()
+    coordinators: WordSet = frozenset()
+    speaker_in_answer: frozenset[str] = frozenset()
+    speaker_in_fact: frozenset[str] = frozenset()
 
     @cached_property
     def spoken_numbers(self) -> dict[str, Words]:

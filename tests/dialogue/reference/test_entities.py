@@ -6,7 +6,8 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from dialogue.reference.grounding import Entity, Grounder, Snapshot, build_snapshot
-from dialogue.reference.lexicon import Lexicon, LexiconCache
+from dialogue.reference.lexicon import Lexicon
+from dialogue.reference.lexicons import LexiconCache
 from kb import KB
 from tests.dialogue.conftest import english
 
