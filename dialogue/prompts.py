@@ -18,20 +18,11 @@ from dialogue.history import Utterance
 from dialogue.intents import CATALOGUE, EXTRACTABLE
 from dialogue.llm.base import ChatMessage, TurnContext
 from dialogue.locales import is_english, language_name
+from dialogue.schema import FREE_FORM_OBJECT as FREE_FORM_OBJECT
+from dialogue.schema import intent_keys, short_name
 from dialogue.situation import describe
 
 TEMPLATE_NAMES = ("system", "turn", "repair", "language")
-
-#: Which answer keys each intent uses; free-form roles travel in `input` (see dialogue.schema).
-FREE_FORM_OBJECT = frozenset(
-    {
-        "__intent_say__",
-        "__intent_start_activity__",
-        "__intent_stop_activity__",
-        "__intent_perform_motion__",
-        "__intent_present_content__",
-    }
-)
 
 
 class PromptError(DialogueError, ValueError):
@@ -59,18 +50,13 @@ def render(template: string.Template, values: Mapping[str, str]) -> str:
 
 
 def intent_list(intents: Sequence[str] = EXTRACTABLE) -> str:
+    """One line per intent type: the short name a model writes (which says what it does) and its keys,
+    required first, an optional one with "?"."""
     lines = []
     for value in intents:
-        spec = CATALOGUE[value]
-        keys = []
-        for role in spec.roles:
-            if role == "other_data":
-                continue
-            key = "input" if role == "object" and value in FREE_FORM_OBJECT else role
-            optional = "" if role in spec.required else " (optional)"
-            keys.append(key + optional)
-        needs = f" Keys: {', '.join(keys)}." if keys else ""
-        lines.append(f"- {value}: {spec.meaning}.{needs}")
+        required = len([r for r in CATALOGUE[value].required if r != "other_data"])
+        keys = [key if i < required else f"{key}?" for i, key in enumerate(intent_keys(value))]
+        lines.append(f"- {short_name(value)}" + (f": {', '.join(keys)}" if keys else ""))
     return "\n".join(lines)
 
 
@@ -112,7 +98,7 @@ class PromptSet:
 
     def messages(self, context: TurnContext, intents: Sequence[str] = EXTRACTABLE) -> tuple[ChatMessage, ...]:
         situation = describe(context.snapshot, context.speaker, context.focus).text
-        turn = render(self.turn, {"situation": situation, "user_id": context.speaker, "input": context.text})
+        turn = render(self.turn, {"situation": situation, "input": context.text})
         turn += self.language_line(context.locale)
         return (
             ChatMessage("system", self.system_prompt(context.robot_name, intents)),

@@ -4,6 +4,13 @@ The shape follows the ROS4HRI tutorial (`verbal_ack` + `user_intent`), with one 
 the free-form value of an intent (the words to SAY, an activity/motion/content name), so that
 `object`, `recipient` and `goal` are always KB ids and can be enums of the turn's candidate ids.
 Small models ignore enums, so every answer is validated again and resolved against the KB.
+
+The schema offered to a model is as short to write as the answer allows, since a grammar-constrained
+small model writes every token the grammar leaves open: an intent type by its short name ("grab_object"
+for `__intent_grab_object__`), each intent with only the keys its type takes, several intents as a
+list in `user_intent`, and no optional key, so the answer ends after its last required key. What is
+parsed is wider: the tutorial's full type names and `user_intents`, which other backends (the rules)
+and users' own models may write.
 """
 
 from __future__ import annotations
@@ -13,13 +20,44 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any, TypeVar
 
-from pydantic import BaseModel, ConfigDict, Field, ValidationError
+from pydantic import BaseModel, ConfigDict, Field, ValidationError, field_validator, model_validator
 
 from dialogue.errors import DialogueError
-from dialogue.intents import EXTRACTABLE
+from dialogue.intents import CATALOGUE, EXTRACTABLE
 
 #: Referent fields of `user_intent`; their values must be KB entity ids.
 REFERENT_FIELDS = ("object", "recipient", "goal")
+#: Intents whose `object` is free-form text, written in `input` (the words to SAY, an activity name).
+FREE_FORM_OBJECT = frozenset(
+    {
+        "__intent_say__",
+        "__intent_start_activity__",
+        "__intent_stop_activity__",
+        "__intent_perform_motion__",
+        "__intent_present_content__",
+    }
+)
+#: The order of an intent's keys in the schema: "type" first, what is acted on next.
+_KEY_ORDER = ("object", "input", "recipient", "goal")
+
+
+def short_name(intent: str) -> str:
+    """The name a model writes for an intent type: "grab_object" for `__intent_grab_object__`."""
+    return intent.removeprefix("__intent_").removesuffix("__")
+
+
+def full_name(name: str) -> str:
+    """The catalogue's value of a short name; any other text (a full name, an unknown one) as it is."""
+    full = f"__intent_{name}__"
+    return full if full in CATALOGUE else name
+
+
+def intent_keys(intent: str) -> tuple[str, ...]:
+    """The answer keys of an intent type (its roles; free-form text in `input`), required ones first
+    in the prompt, in `_KEY_ORDER` in the schema."""
+    spec = CATALOGUE[intent]
+    roles = [r for r in spec.roles if r != "other_data"]
+    return tuple("input" if r == "object" and intent in FREE_FORM_OBJECT else r for r in roles)
 
 
 class UserIntent(BaseModel):
@@ -34,6 +72,11 @@ class UserIntent(BaseModel):
     input: str | None = None
     #: Not in the JSON schema offered to LLMs (kept small); offline models may set it.
     confidence: float | None = Field(default=None, ge=0.0, le=1.0)
+
+    @field_validator("type")
+    @classmethod
+    def _full_type(cls, value: str | None) -> str | None:
+        return None if value is None else full_name(value)
 
 
 #: Most intents one answer may carry ("go to the kitchen, take the plate and bring it to me").
@@ -59,7 +102,8 @@ class ChatbotResponse(BaseModel):
     """The whole answer: a short spoken reply and the intents, in the order they are to be done.
 
     `user_intent` is the ROS4HRI tutorial's single intent; `user_intents`, when given and not empty,
-    is the ordered list of every intent of a compound request and takes its place.
+    is the ordered list of every intent of a compound request and takes its place. A list written
+    in `user_intent` (the schema's way of saying several) is that list.
     """
 
     model_config = ConfigDict(extra="ignore")
@@ -69,6 +113,16 @@ class ChatbotResponse(BaseModel):
     user_intents: list[UserIntent] | None = Field(default=None, max_length=MAX_INTENTS)
     #: What the person told (or asked) about the world, learnt by dialogue.memory.
     facts: list[FactClaim] | None = Field(default=None, max_length=MAX_FACTS)
+
+    @model_validator(mode="before")
+    @classmethod
+    def _several_in_user_intent(cls, value: Any) -> Any:
+        if isinstance(value, dict) and isinstance(value.get("user_intent"), list):
+            several = value["user_intent"]
+            value = {**value, "user_intent": several[0] if several else None}
+            if not value.get("user_intents"):
+                value["user_intents"] = several
+        return value
 
     def wishes(self) -> list[UserIntent]:
         """Every intent of the answer, in order (the list, else the single intent)."""
@@ -140,20 +194,23 @@ def _nullable_string() -> dict[str, Any]:
     return {"anyOf": [{"type": "string", "maxLength": MAX_TEXT}, {"type": "null"}]}
 
 
+def _intent(intent: str, candidates: SchemaCandidates) -> dict[str, Any]:
+    """One intent type's object: its short name, then only the keys it takes (each may be null)."""
+    referents = {"object": candidates.objects, "recipient": candidates.recipients, "goal": candidates.goals}
+    keys = intent_keys(intent)
+    properties: dict[str, Any] = {"type": {"const": short_name(intent)}}
+    for key in sorted(keys, key=_KEY_ORDER.index):
+        properties[key] = _nullable_string() if key == "input" else _nullable_enum(referents[key])
+    return {"type": "object", "properties": properties, "required": list(properties)}
+
+
 def turn_schema(candidates: SchemaCandidates, intents: Sequence[str] = EXTRACTABLE) -> dict[str, Any]:
-    """The JSON schema of this turn's answer: intent types and referents are closed enums (D10)."""
-    user_intent = {
-        "type": "object",
-        "properties": {
-            "type": {"enum": list(intents)},
-            "object": _nullable_enum(candidates.objects),
-            "recipient": _nullable_enum(candidates.recipients),
-            "goal": _nullable_enum(candidates.goals),
-            "input": _nullable_string(),
-        },
-        "required": ["type", "object", "recipient", "goal", "input"],
-    }
-    many = {"type": "array", "items": user_intent, "minItems": 2, "maxItems": MAX_INTENTS}
+    """The JSON schema of this turn's answer: intent types and referents are closed enums (D10).
+
+    Every key is required and none is optional, so a grammar made from it ends the answer after
+    `facts` (a small model otherwise goes on writing optional keys: ~200 tokens a turn)."""
+    one = {"anyOf": [_intent(intent, candidates) for intent in intents]}
+    many = {"type": "array", "items": one, "minItems": 2, "maxItems": MAX_INTENTS}
     fact = {
         "type": "object",
         "properties": {
@@ -170,11 +227,10 @@ def turn_schema(candidates: SchemaCandidates, intents: Sequence[str] = EXTRACTAB
         "type": "object",
         "properties": {
             "verbal_ack": _nullable_string(),
-            "user_intent": {"anyOf": [user_intent, {"type": "null"}]},
-            # Optional, for compound requests only: every intent in order (the first is user_intent).
-            "user_intents": {"anyOf": [many, {"type": "null"}]},
-            # Optional: what the person told about themself or the world (dialogue.memory).
-            "facts": {"anyOf": [facts, {"type": "null"}]},
+            # One intent, several in order (a compound request), or none.
+            "user_intent": {"anyOf": [{"type": "null"}, *one["anyOf"], many]},
+            # What the person told about themself or the world (dialogue.memory), mostly null.
+            "facts": {"anyOf": [{"type": "null"}, facts]},
         },
-        "required": ["verbal_ack", "user_intent"],
+        "required": ["verbal_ack", "user_intent", "facts"],
     }

@@ -1,7 +1,9 @@
 """The situation as short natural sentences for the prompt: bounded, deterministic, ids in brackets.
 
 Class names are readable labels and things are named by their label when they have one (D17); the
-id in brackets is what the model must use in intent roles.
+id in brackets is what the model must use in intent roles. Each fact is said once: the things the
+robot sees are listed under the zone they are in, the zone named once for all of them (every token
+of the situation is evaluated again each turn).
 """
 
 from __future__ import annotations
@@ -36,13 +38,14 @@ def noun_phrase(snapshot: Snapshot, entity: Entity) -> str:
     return f"{article(cls or 'thing')} [{entity.id}]"
 
 
-def place_phrase(snapshot: Snapshot, entity: Entity) -> str:
+def place_phrase(snapshot: Snapshot, entity: Entity, zone: bool = True) -> str:
+    """Its colour, support, zone (unless said already: `zone` False) and owner."""
     parts = []
     if entity.colour:
         parts.append(entity.colour)
     if entity.support:
         parts.append(f"on the {snapshot.name_of(entity.support)} [{entity.support}]")
-    if entity.zone:
+    if entity.zone and zone:
         parts.append(f"in the {snapshot.name_of(entity.zone)} [{entity.zone}]")
     owner = snapshot.get(entity.owner) if entity.owner else None
     if owner is not None:  # the model needs it to read "my phone" or "Ines's phone"
@@ -86,17 +89,25 @@ def describe(snapshot: Snapshot, speaker: str, focus: Sequence[Entity] | None = 
         lines.append("You know " + _and([noun_phrase(snapshot, e) for e in absent]) + ", not here now.")
     things = [e for e in pool if e.kind == "thing"]
     # Lines past MAX_LINES are never shown, only counted: they are not rendered.
+    by_zone: dict[str | None, list[Entity]] = {}
     for e in things:
         if e.seen:
-            lines.append(f"You see {noun_phrase(snapshot, e)}{place_phrase(snapshot, e)}."
+            by_zone.setdefault(e.zone, []).append(e)
+    for zone, seen in by_zone.items():
+        where = f" in the {snapshot.name_of(zone)} [{zone}]" if zone else ""
+        lines.append(f"You see{where}:" if len(lines) < MAX_LINES - 1 else None)
+        for e in seen:
+            lines.append(f"- {noun_phrase(snapshot, e)}{place_phrase(snapshot, e, zone=False)}"
                          if len(lines) < MAX_LINES else None)
     zones = [e for e in pool if e.kind == "zone"]
     if zones:
         lines.append("Places: " + _and([noun_phrase(snapshot, e) for e in zones]) + "."
                      if len(lines) < MAX_LINES else None)
-    for e in things:
-        if not e.seen:
-            lines.append(f"You know {noun_phrase(snapshot, e)}{place_phrase(snapshot, e)}, not seen now."
+    unseen = [e for e in things if not e.seen]
+    if unseen:
+        lines.append("You know, not seen now:" if len(lines) < MAX_LINES - 1 else None)
+        for e in unseen:
+            lines.append(f"- {noun_phrase(snapshot, e)}{place_phrase(snapshot, e)}"
                          if len(lines) < MAX_LINES else None)
     kept: list[str] = []
     size = 0

@@ -32,7 +32,8 @@ def fake_ollama() -> Iterator[tuple[str, list[dict[str, Any]]]]:
         if not isinstance(schema, dict) or "user_intent" not in schema.get("properties", {}):
             return {"model": payload["model"], "message": {"role": "assistant", "content": "no schema!"},
                     "done": True, "done_reason": "stop"}
-        intent_schema = next(s for s in schema["properties"]["user_intent"]["anyOf"] if s["type"] == "object")
+        intent_schema = next(s for s in schema["properties"]["user_intent"]["anyOf"]
+                             if "object" in s.get("properties", {}))
         if "cup_1" not in intent_schema["properties"]["object"]["enum"]:
             return {"model": payload["model"], "message": {"role": "assistant", "content": "no cup_1!"},
                     "done": True, "done_reason": "stop"}

@@ -4,6 +4,7 @@ real run needs the local extra and minutes; its figures are the benchmark's, nev
 from __future__ import annotations
 
 import asyncio
+import json
 from typing import Any
 
 import pytest
@@ -12,6 +13,7 @@ from bench import model as bench
 from dialogue import intents as I
 from dialogue.engine import DialogueEngine, EngineConfig
 from dialogue.llm.testing import ScriptedModel
+from dialogue.llm.worker import Completion
 from kb import KB
 from tests.dialogue.conftest import scene_kb
 
@@ -55,3 +57,34 @@ def test_bad_options_are_refused(argv: list[str]) -> None:
     with pytest.raises(SystemExit) as exit_:
         bench.main(argv)
     assert exit_.value.code == 2
+
+
+class FakeRunner:
+    """Bare llama.cpp's place: notes each prompt, answers as told."""
+
+    def __init__(self, answers: list[str]) -> None:
+        self.answers = answers
+        self.prompts: list[tuple[list[dict[str, str]], dict[str, Any]]] = []
+
+    def generate(self, messages: list[dict[str, str]], schema: dict[str, Any], expired: Any) -> Completion:
+        self.prompts.append((messages, schema))
+        return Completion(self.answers[len(self.prompts) - 1], "stop", 700, 12, 500)
+
+
+def test_the_bare_baseline_completes_the_services_own_prompts() -> None:
+    kb: KB = scene_kb("kitchen", *bench.BOB)
+    scripted = ScriptedModel([grab("OK"), grab("OK")])
+    engine = DialogueEngine(kb, scripted, EngineConfig(deadline=30))
+    runner = FakeRunner([json.dumps(grab("OK")), json.dumps(grab("No", "unicorn"))])
+    try:
+        asyncio.run(bench._turns(engine, bench._Timed(scripted), range(2), False))  # type: ignore[arg-type]
+        turns = bench._bare_turns(engine, runner, range(2))
+    finally:
+        kb.close()
+    assert [[m.as_dict() for m in r.messages] for r in scripted.requests] == [m for m, _ in runner.prompts]
+    assert [r.schema for r in scripted.requests] == [s for _, s in runner.prompts]
+    assert [t.valid for t in turns] == [True, False] and not any(t.fell_back for t in turns)
+    report = bench.Report(threads=1)
+    report.add("scripted", bench.CONFIGS["bare"], turns)
+    row = report.table((1.0, 1.0, 1.0), (1.0, 1.0, 1.0)).splitlines()[-1]
+    assert "| baseline: bare llama.cpp, same prompt |" in row and "| 500 + 200 | 12 | 1/2 | 0 |" in row

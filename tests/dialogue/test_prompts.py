@@ -64,9 +64,10 @@ def test_render_is_strict_both_ways() -> None:
 
 def test_intent_list_names_constants_and_keys() -> None:
     text = intent_list()
-    assert "- __intent_grab_object__: pick up a specific object. Keys: object." in text
-    assert "- __intent_say__: say some text. Keys: input, recipient (optional)." in text
-    assert "__raw_user_input__" not in text
+    assert "- grab_object: object\n" in text
+    assert "- say: input, recipient?\n" in text
+    assert "- place_object: recipient, object?\n" in text
+    assert text.endswith("- suspend") and "raw_user_input" not in text
 
 
 def test_repair_message_says_what_was_wrong() -> None:
@@ -76,4 +77,4 @@ def test_repair_message_says_what_was_wrong() -> None:
 
 def test_the_system_prompt_explains_compound_commands(kitchen: KB) -> None:
     system = PromptSet.load().messages(kitchen_context(kitchen))[0].content
-    assert '"user_intents"' in system and "order" in system
+    assert "Several actions" in system and '"user_intent" is their\n  list' in system and "order" in system

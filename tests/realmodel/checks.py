@@ -7,7 +7,7 @@ from typing import Any
 from dialogue.engine import TurnResult
 from dialogue.intents import RAW_USER_INPUT
 from dialogue.reference.grounding import Snapshot
-from dialogue.schema import REFERENT_FIELDS
+from dialogue.schema import REFERENT_FIELDS, full_name
 
 
 def assert_grounded(result: TurnResult, snapshot: Snapshot, speaker: str, text: str) -> None:
@@ -24,6 +24,7 @@ def assert_grounded(result: TurnResult, snapshot: Snapshot, speaker: str, text: 
                 assert value in snapshot.entities or value == speaker, (role, value, result)
 
 
-def user_intent_schema(schema: dict[str, Any]) -> dict[str, Any]:
+def intent_schemas(schema: dict[str, Any]) -> dict[str, dict[str, Any]]:
+    """The properties of each intent object the schema offers, by the catalogue's intent type."""
     variants = schema["properties"]["user_intent"]["anyOf"]
-    return next(v for v in variants if v.get("type") == "object")["properties"]
+    return {full_name(v["properties"]["type"]["const"]): v["properties"] for v in variants if v.get("type") == "object"}

@@ -12,7 +12,7 @@ from dialogue.llm.base import ChatRequest
 from dialogue.llm.llamacpp import LlamaCppModel
 from dialogue.schema import parse_answer
 from tests.dialogue.conftest import scene_kb
-from tests.realmodel.checks import assert_grounded, user_intent_schema
+from tests.realmodel.checks import assert_grounded, intent_schemas
 from tests.realmodel.conftest import REALMODEL
 
 pytestmark = REALMODEL
@@ -34,12 +34,12 @@ def test_output_follows_the_turn_schema(local_model: LlamaCppModel) -> None:
     result = asyncio.run(local_model.chat(request, DEADLINE))
     assert result.done_reason == "stop"
     answer = parse_answer(result.content)  # grammar-constrained: always valid JSON of the schema
-    properties = user_intent_schema(schema)
-    if answer.user_intent is not None:
-        assert answer.user_intent.type in properties["type"]["enum"]
+    offered = intent_schemas(schema)
+    for wish in answer.wishes():
+        assert wish.type in offered, answer
         for role in ("object", "recipient", "goal"):
-            allowed = properties[role].get("enum", [None])
-            assert getattr(answer.user_intent, role) in allowed, (role, answer)
+            allowed = offered[wish.type].get(role, {}).get("enum", [None])
+            assert getattr(wish, role) in allowed, (role, answer)
 
 
 def test_engine_turns_are_grounded_and_on_time(local_model: LlamaCppModel) -> None:
