@@ -130,6 +130,11 @@ def ground_facts(facts: Sequence[FactClaim], lexicon: Lexicon, speaker: str) -> 
         obj, question = _entity(lexicon, speaker, value, spec.objects, f"facts[{n}].object")
         if question is not None:
             return GroundedFacts((), question)
+        if obj == subject:
+            # A small model made to write "facts" on every turn fills it with "the apple isOn the
+            # apple"; no one says that, so it goes back for repair rather than into the memory.
+            raise AnswerError(f"facts[{n}] says {subject!r} {spec.name} itself: "
+                              "give only facts the person said, or null")
         claims.append(Claim(subject, spec.name, obj))
     who = lexicon.snapshot.get(speaker)
     if (who is None or who.kind != "person") and any(not c.asks or speaker == c.subject for c in claims):

@@ -41,6 +41,8 @@ def test_a_fact_with_no_object_is_a_question(home: KB) -> None:
     (("mug_red", "belongsTo", "kitchen"), "facts[0].object 'kitchen' is not the id of a person"),
     ((BOB, "name", "!!!"), "facts[0].object '!!!' is not a name"),
     (("kitchen", "likes", "tea"), "facts[0].subject 'kitchen' is not the id of a person"),
+    (("keys_1", "isIn", "keys_1"), "facts[0] says 'keys_1' isIn itself"),
+    ((BOB, "likes", "me"), "facts[0] says 'person_bob' likes itself"),
 ])
 def test_what_cannot_be_grounded_is_an_answer_error_for_the_repair(
         home: KB, fact: tuple[str, str, str], message: str) -> None:
