@@ -1,6 +1,7 @@
 """Whom a request is said to: a person, not the robot, when it starts with their name and speaks of
 their things ("lily put your book on the shelf": someone present) or is set apart as said to them
-("Zoe, can you pass me the capo?": someone the KB knows, present or called from elsewhere). The robot then does nothing ("I think that was for Zoe.")."""
+("Zoe, can you pass me the capo?": someone the KB knows, present or called from elsewhere). The
+robot then does nothing ("I think that was for Zoe.")."""
 
 from __future__ import annotations
 
