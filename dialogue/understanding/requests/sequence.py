@@ -78,8 +78,10 @@ def compound(reader: Reader, heard: Said, parts: Sequence[Part]) -> Outcome | No
 
 def wished(reader: Reader, heard: Said, before: Sequence[str], outcome: Outcome) -> Outcome:
     """ "I want the pear, can you get it", "Felix needs his glasses, could you grab them": a thing
-    taken that an earlier clause or part (`before`) wished for is brought to whoever wished for it."""
-    for i in range(len(before) - 1, -1, -1) if outcome.intent == I.GRAB_OBJECT else ():
+    taken that an earlier clause or part (`before`) wished for is brought to whoever wished for it;
+    so is one brought with no one said ("Mr Haddad would like the trowel, please bring it")."""
+    taken = outcome.intent == I.GRAB_OBJECT or _brought_to_no_one_said(reader, heard, before, outcome)
+    for i in range(len(before) - 1, -1, -1) if taken else ():
         p = parse(reader.lang, heard.of(before[i]), reader.robot_name)
         if p.act != "command" or p.intent != I.BRING_OBJECT:
             continue
@@ -88,6 +90,17 @@ def wished(reader: Reader, heard: Said, before: Sequence[str], outcome: Outcome)
         if wish.intent == I.BRING_OBJECT and wish.roles.get("object") == outcome.roles.get("object"):
             return wish
     return outcome
+
+
+def _brought_to_no_one_said(reader: Reader, heard: Said, before: Sequence[str], outcome: Outcome) -> bool:
+    """Whether the request after the clauses `before` brings a thing without saying to whom (the
+    speaker only by default: "please bring it")."""
+    if outcome.intent != I.BRING_OBJECT or outcome.roles.get("recipient") != reader.speaker or not before:
+        return False
+    at = heard.text.rfind(before[-1])
+    p = parse(reader.lang, heard.of(heard.text[at + len(before[-1]) :]), reader.robot_name)
+    said = p.slots.get("rest", ())
+    return "recipient" not in p.slots and not set(said) & reader.lang.words.me
 
 
 def _joins(before: Sequence[Outcome], outcome: Outcome) -> bool:
