@@ -3,7 +3,8 @@ situation, each answered by its row of `TALK` ("hello", "thanks", "bye", "what c
 me a joke", "don't go", "if Ana comes, ...").
 
 A greeting is the one that acts (greeting the speaker, or everyone verbally only); a farewell ends
-the conversation; a request negated or under a condition yet to happen is not done now.
+the conversation; a request negated or under a condition yet to happen is not done now; "never
+mind" just after the robot took on a request stops it.
 """
 
 from __future__ import annotations
@@ -15,7 +16,9 @@ from dialogue.reference.english import Words
 from dialogue.understanding.context import Context
 from dialogue.understanding.outcome import Outcome
 from dialogue.understanding.parsed import Parse
-from dialogue.understanding.replies import abilities, goodbye, hello, say
+from dialogue.understanding.replies import abilities, acknowledgement, goodbye, hello, say
+from dialogue.understanding.requests.commands import parse
+from dialogue.understanding.said import Said
 
 
 def greeting(c: Context, p: Parse, overrides: dict[str, Words]) -> Outcome:
@@ -25,7 +28,23 @@ def greeting(c: Context, p: Parse, overrides: dict[str, Words]) -> Outcome:
 
 
 def _negated(c: Context, p: Parse, overrides: dict[str, Words]) -> Outcome:
+    if p.words in c.lang.speech.cancels and _acting(c):  # "actually, never mind" to "Getting it now."
+        roles: dict[str, str] = {}
+        return Outcome(acknowledgement(c.lang, c.snapshot, c.speaker, I.STOP_ACTIVITY, roles, {}),
+                       I.STOP_ACTIVITY, roles)  # fmt: skip
     return Outcome(say(c.lang, "social.wont"))
+
+
+def _acting(c: Context) -> bool:
+    """Whether the robot's last words took on a request the speaker made just before them (it said
+    no question): what it may be doing now."""
+    said = c.history[-2:]
+    if len(said) < 2 or said[0].role != "user" or said[1].role == "user":
+        return False
+    if said[1].text.rstrip().endswith("?"):
+        return False
+    asked = parse(c.lang, Said.read(c.lang, said[0].text), c.robot_name)
+    return asked.act == "command" and asked.intent is not None
 
 
 def _conditional(c: Context, p: Parse, overrides: dict[str, Words]) -> Outcome:

@@ -63,8 +63,8 @@ def how_many_people(lang: Language, snapshot: Snapshot, speaker: str) -> str:
 
 
 def who_is_in(lexicon: Lexicon, words: Sequence[str], speaker: str) -> tuple[str, bool]:
-    """ "Who's at the box office?": the people the KB puts there; and whether the answer is a
-    clarifying question (which office)."""
+    """ "Who's at the box office?": the people the KB puts there, else those in the room it is in,
+    said as such; and whether the answer is a clarifying question (which office)."""
     snapshot, lang = lexicon.snapshot, lexicon.lang
     found = resolve(lexicon, words, frozenset({"zone", "thing"}))
     if found.ambiguous:
@@ -78,6 +78,13 @@ def who_is_in(lexicon: Lexicon, words: Sequence[str], speaker: str) -> tuple[str
     there = [e for e in snapshot.entities.values() if e.kind == "person"
              and (place.id in (e.zone, e.support) or any(r == place.id for _, r in e.relations))]  # fmt: skip
     at = "at" if place.kind == "thing" else "in"
+    zone = snapshot.get(place.zone or "") if at == "at" else None
+    around = [e for e in snapshot.entities.values() if e.kind == "person" and zone is not None
+              and e.zone == zone.id] if not there else []  # fmt: skip
+    if around and zone is not None:  # ("who is at the help desk": no one by it, but in its room)
+        return say(lang, "answers.people_around", place=the(lang, snapshot, place),
+                   zone=the(lang, snapshot, zone), people=listing(lang, _people(lang, around, speaker)),
+                   there=_there(lang, around)), False
     if not there:
         return say(lang, f"answers.no_one_{at}", place=the(lang, snapshot, place)), False
     people = listing(lang, _people(lang, there, speaker))

@@ -1,6 +1,7 @@
-"""Whom a request is said to: a person present, not the robot, when it starts with their name and
-speaks of their things ("lily put your book on the shelf") or is set apart as said to them ("Zoe,
-can you pass me the capo?"). The robot then does nothing ("I think that was for Zoe.")."""
+"""Whom a request is said to: a person, not the robot, when it starts with their name and speaks of
+their things ("lily put your book on the shelf": someone present) or is set apart as said to them
+("Zoe, can you pass me the capo?": someone the KB knows, present or called from elsewhere). The
+robot then does nothing ("I think that was for Zoe.")."""
 
 from __future__ import annotations
 
@@ -24,7 +25,8 @@ def to_someone_else(lexicon: Lexicon, heard: Said, speaker: str, robot_name: str
         return None
     people = [e for e in found[0].entities if lexicon.is_person(e)]
     person = lexicon.snapshot.get(people[0]) if len(people) == 1 else None
-    if person is None or not person.seen or person.id == speaker:
+    # (set apart, the name is called whether they are in sight or not: "Dimitri, can you grab...")
+    if person is None or person.id == speaker:
         return None
     return person.name if parse(lexicon.lang, heard, robot_name).act == "command" else None
 

@@ -216,7 +216,8 @@ def _titled(p: Phrase) -> Ref | None:
 
 def _put_by(p: Phrase) -> Ref | None:
     """ "put the book next to the cup on the shelf" when the cup is not on the shelf: the last
-    place is where to put it (the verb's), the first only says whereabouts on it."""
+    place is where to put it (the verb's), the first only says whereabouts on it; "the round table
+    out on the terrace", where it is, is the round table."""
     if p.role != "recipient" or "zone" not in p.kinds or "person" in p.kinds:
         return None
     words = p.words
@@ -224,7 +225,14 @@ def _put_by(p: Phrase) -> Ref | None:
     if at is None or not content_words(p.refs.lang, words[at + 1 :]):
         return None
     ref = ground(p.refs, words[at + 1 :], p.kinds, p.role, p.owner)
-    return ref if ref.entity is not None else None
+    if ref.entity is None:
+        return None
+    # "the round table out on the terrace": the first place, said with where it is, when it is there
+    head_words = words[:at]
+    while head_words and head_words[-1] in p.refs.lang.words.function_words:  # ("... table out on")
+        head_words = head_words[:-1]
+    head = resolve(p.refs.lexicon, head_words, p.kinds - {"zone"}, owner=p.owner).one
+    return Ref(entity=head) if head is not None and ref.entity.id in {head.support, head.zone} else ref
 
 
 def _many(p: Phrase) -> Ref | None:

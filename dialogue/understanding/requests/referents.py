@@ -84,7 +84,10 @@ class Referents:
                 return {"object": tail, "recipient": head}
         # "give daddy my drawing": words before the thing's phrase are whom, even when no one here is
         # called so; never the speaker by default
-        at = next((i for i in range(1, len(rest)) if rest[i] in self.said.np_start), 0)
+        # ("bring granny her specs": "her" before a noun starts the thing's phrase too)
+        closed = self.said
+        at = next((i for i in range(1, len(rest)) if rest[i] in closed.np_start or (
+            rest[i] in closed.possessives and rest[i + 1 :] and rest[i + 1] not in closed.determiners)), 0)
         head = rest[:at]
         plain = not any(self._whose(w) or w in self.said.modifier_start for w in head)  # not "Omar's hat off"
         if head and plain and rest[0] not in self.said.np_start and content_words(self.lang, head):

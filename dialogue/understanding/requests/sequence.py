@@ -4,7 +4,8 @@ asks for, in order, and what the parts say together.
 Each part is read as a request of its own, with the parts before it as context for its pronouns
 ("take the book and put it in the oven"). A part the robot has no intent for ("... and inspect it",
 "... and count the chairs", "... and tell me how many there are") does not sink the others: they are
-done and the reply says which part cannot be. A thing fetched and then handed on or put somewhere
+done and the reply says which part cannot be. Going to someone and then engaging with them ("go over
+to Jen and have a chat with her") is the engaging. A thing fetched and then handed on or put somewhere
 ("fetch the juice from the fridge and give it to Amara") is taken, not brought to the speaker first.
 """
 
@@ -48,6 +49,9 @@ def compound(reader: Reader, heard: Said, parts: Sequence[Part]) -> Outcome | No
         if outcome.intent is not None and done and (outcome.intent, outcome.roles) == (
             done[-1].intent, done[-1].roles):
             continue  # "go to the shed and wait there": one move
+        if _joins(done[-1:], outcome):
+            done[-1] = outcome  # "go over to Jen and have a chat with her": engaging goes to her
+            continue
         if outcome.intent is not None:
             done.append(outcome)
             if outcome.roles.get("object") in reader.snapshot.entities:
@@ -74,8 +78,10 @@ def compound(reader: Reader, heard: Said, parts: Sequence[Part]) -> Outcome | No
 
 def wished(reader: Reader, heard: Said, before: Sequence[str], outcome: Outcome) -> Outcome:
     """ "I want the pear, can you get it", "Felix needs his glasses, could you grab them": a thing
-    taken that an earlier clause or part (`before`) wished for is brought to whoever wished for it."""
-    for i in range(len(before) - 1, -1, -1) if outcome.intent == I.GRAB_OBJECT else ():
+    taken that an earlier clause or part (`before`) wished for is brought to whoever wished for it;
+    so is one brought with no one said ("Mr Haddad would like the trowel, please bring it")."""
+    taken = outcome.intent == I.GRAB_OBJECT or _brought_to_no_one_said(reader, heard, before, outcome)
+    for i in range(len(before) - 1, -1, -1) if taken else ():
         p = parse(reader.lang, heard.of(before[i]), reader.robot_name)
         if p.act != "command" or p.intent != I.BRING_OBJECT:
             continue
@@ -84,6 +90,25 @@ def wished(reader: Reader, heard: Said, before: Sequence[str], outcome: Outcome)
         if wish.intent == I.BRING_OBJECT and wish.roles.get("object") == outcome.roles.get("object"):
             return wish
     return outcome
+
+
+def _brought_to_no_one_said(reader: Reader, heard: Said, before: Sequence[str], outcome: Outcome) -> bool:
+    """Whether the request after the clauses `before` brings a thing without saying to whom (the
+    speaker only by default: "please bring it")."""
+    if outcome.intent != I.BRING_OBJECT or outcome.roles.get("recipient") != reader.speaker or not before:
+        return False
+    at = heard.text.rfind(before[-1])
+    p = parse(reader.lang, heard.of(heard.text[at + len(before[-1]) :]), reader.robot_name)
+    said = p.slots.get("rest", ())
+    return "recipient" not in p.slots and not set(said) & reader.lang.words.me
+
+
+def _joins(before: Sequence[Outcome], outcome: Outcome) -> bool:
+    """Whether a part engages with the very person the part before went to: the engaging is the
+    request, and going to them is part of it."""
+    went = before[0] if before else None
+    return (went is not None and went.intent == I.MOVE_TO and outcome.intent == I.ENGAGE_WITH
+            and went.roles.get("goal") == outcome.roles.get("recipient"))  # fmt: skip
 
 
 def _asks(reader: Reader, part: Said) -> bool:

@@ -51,6 +51,7 @@ class _Words:
         self.by_the_way = said.by_the_way
         #: A clause starting with one of these asks something: questions are not statements.
         self.asking = said.asking
+        self.relatives = said.relatives
         self.friends = said.friends
         self.put = said.put
         #: Locative prepositions, longest first, and the property each states.
@@ -161,6 +162,9 @@ class Statements(Likings):
     # -- one clause ----------------------------------------------------------------------------
     def _statement(self, w: Words, clause: Said) -> list[FactClaim]:
         if w[0] in self.said.asking:
+            raise Unclaimed
+        verb = next((i for i, word in enumerate(w) if word in self.said.be), 0)
+        if verb > 1 and w[verb - 1] in self.said.relatives:  # ("the one that's mine": no statement)
             raise Unclaimed
         for reader in (self._name, self._preference, self._ownership, self._location):
             facts = reader(w, clause)

@@ -47,6 +47,7 @@ class StatementWords(Table):
     leads: WordSet = frozenset()
     by_the_way: Phrase = ()
     asking: WordSet = frozenset()
+    relatives: WordSet = frozenset()
     friends: WordSet = frozenset()
     put: WordSet = frozenset()
     be: WordSet = frozenset()

@@ -6,6 +6,7 @@ from dialogue.understanding.parsed import Parse
 from dialogue.understanding.talk import TALK
 from kb import KB
 from tests.dialogue.conftest import lexicon_of
+from tests.dialogue.understanding.test_interpret import say
 
 BOB = "person_bob"
 
@@ -28,3 +29,14 @@ def test_the_interpreter_reads_talk_by_its_table(office: KB) -> None:
     assert reader.interpret("thanks a lot").reply == TALK["thanks"](reader, Parse("thanks"), {}).reply
     everyone = TALK["greeting"](reader, Parse("greeting", slots={"everyone": ("everyone",)}), {})
     assert everyone.intent is None and everyone.reply == "Hello everyone!"
+
+
+def test_never_mind_just_after_the_robot_took_on_a_request_stops_it(office: KB) -> None:
+    acting = [("user", "bring me the pear"), ("assistant", "OK, I will bring the pear to you.")]
+    out = say(office, "Actually, never mind.", history=acting)
+    assert (out.intent, out.roles) == (I.STOP_ACTIVITY, {})
+    # after a question, or with no request taken on, there is nothing to stop
+    for history in ([("user", "bring me the mug"), ("assistant", "Which mug do you mean?")],
+                    [("user", "hello"), ("assistant", "Hello Bob!")], []):
+        out = say(office, "never mind", history=history)
+        assert (out.intent, out.reply) == (None, "OK, I won't do that.")

@@ -31,6 +31,11 @@ def test_who_is_at_a_thing_names_whom_the_kb_puts_next_to_it() -> None:
         "person_ina rdf:type Human", 'person_ina rdfs:label "Ina"', "person_ina isIn hall",
         "person_ina isNextTo desk_1", "myself sees person_ina",
         "lamp_1 rdf:type Artifact", 'lamp_1 rdfs:label "lamp"', "lamp_1 isIn hall",
+        "shed rdf:type ZoneOfInterest", 'shed rdfs:label "shed"',
+        "bench_1 rdf:type Artifact", 'bench_1 rdfs:label "bench"', "bench_1 isIn shed",
     )  # fmt: skip
     assert say(kb, "who is sitting at the writing desk?").reply == "At the writing desk, there is Ina."
-    assert say(kb, "who is by the lamp").reply == "I don't know of anyone at the lamp."
+    assert say(kb, "who is by the bench").reply == "I don't know of anyone at the bench."
+    # nobody by it, but someone in its room: said as such
+    assert say(kb, "who is by the lamp").reply == (
+        "I don't know of anyone right at the lamp, but in the hall, where it is, there is Ina.")

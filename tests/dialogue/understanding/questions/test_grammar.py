@@ -170,3 +170,10 @@ def test_show_me_where_is_guiding_not_a_question() -> None:
     assert asked is not None and asked.question == "where"
     shown = question(expanded("show me what is on the table"))
     assert shown is not None and shown.question == "what_on"
+
+
+def test_what_is_on_a_thing_said_with_that_or_asked_to_be_described(office: KB) -> None:
+    for text in ("what's that on the desk", "describe what's on the desk"):
+        asked = question(expanded(text))
+        assert asked is not None and asked.question == "what_on", text
+        assert "stapler" in say(office, text).reply

@@ -13,6 +13,8 @@ from tests.dialogue.understanding.test_interpret import BOB, say
 @pytest.mark.parametrize(
     ("text", "whom"),
     [("Carol, can you pass me the green mug?", "Carol"), ("carol put your mug on the desk", "Carol"),
+     # called from elsewhere: Dan is not in sight
+     ("Dan, can you pass me the green mug?", "Dan"),
      # the robot's own name, the speaker's, more than a name before the comma, or no request after it
      ("Ari, can you pass me the green mug?", None), ("Bob, can you pass me the green mug?", None),
      ("Carol's green mug, can you pass me that?", None), ("Carol, the mug is green", None),

@@ -150,3 +150,10 @@ def test_of_several_things_the_one_the_robot_just_named_is_meant(flat: KB) -> No
     for history in ([("robot", "There is a beach towel and a towel.")], [("robot", "A stool.")],
                     [*listed, ("user", "thanks")]):  # fmt: skip
         assert say(flat, "give me the towel", LEON, history).clarify, history
+
+
+def test_a_place_said_with_where_it_is_is_that_place(office: KB) -> None:
+    for text in ("put the pear on the desk in the office", "put the pear on the desk out in the office"):
+        assert say(office, text).roles == {"object": "pear_1", "recipient": "desk_1"}
+    # next to a thing that is not on it, the last place is where to put it
+    assert say(office, "put the pear next to the laptop on the desk").roles["recipient"] == "desk_1"

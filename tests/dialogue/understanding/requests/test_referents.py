@@ -105,7 +105,7 @@ def test_a_title_with_a_preposition_names_its_thing_whatever_is_said_around_it()
     kb.close()
 
 
-@pytest.mark.parametrize("text", ["give daddy my pear", "bring granny the pear"])
+@pytest.mark.parametrize("text", ["give daddy my pear", "bring granny the pear", "bring granny her pear"])
 def test_whom_a_thing_is_given_to_is_never_the_speaker_by_default(text: str) -> None:
     kb = scene_kb("office")
     out = Interpreter(lexicon_of(kb), "person_bob", ()).interpret(text)
@@ -131,3 +131,10 @@ def test_a_name_the_grammar_cut_at_a_preposition_is_the_thing_called_so() -> Non
     assert out.reply == "OK, I will bring the key card for room 40 to Ravi."
     # a phrase that only starts a name is still the grammar's ("for room" is whom for)
     assert Interpreter(lexicon_of(kb), SPEAKER).interpret("take the key card for Ravi").clarify
+
+
+def test_her_before_a_noun_after_a_name_is_the_named_persons_thing() -> None:
+    kb = scene_kb("office")
+    out = Interpreter(lexicon_of(kb), "person_bob", ()).interpret("bring Carol her pear")
+    assert out.roles == {"object": "pear_1", "recipient": "person_carol"}
+    kb.close()

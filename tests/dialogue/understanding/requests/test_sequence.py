@@ -57,3 +57,20 @@ def test_the_other_request_forms(office: KB) -> None:
     assert (out.intent, out.roles) == (I.BRING_OBJECT, {"object": "pear_1", "recipient": BOB})
     out = say(office, "Carol is sitting by the desk, could you bring her the pear")
     assert (out.intent, out.roles) == (I.BRING_OBJECT, {"object": "pear_1", "recipient": "person_carol"})
+
+
+def test_going_to_someone_and_then_engaging_with_them_is_the_engaging(office: KB) -> None:
+    for text in ("go over to Carol and have a chat with her", "go to Carol and keep her company"):
+        out = say(office, text)
+        assert [(o.intent, o.roles) for o in out.steps()] == [(I.ENGAGE_WITH, {"recipient": "person_carol"})]
+    # going somewhere else first is two steps
+    out = say(office, "go to the desk and talk to Carol")
+    assert [o.intent for o in out.steps()] == [I.MOVE_TO, I.ENGAGE_WITH]
+
+
+def test_a_thing_someone_would_like_brought_with_no_one_said_is_brought_to_them(office: KB) -> None:
+    out = say(office, "Carol would like the stapler, please bring it")
+    assert (out.intent, out.roles) == (I.BRING_OBJECT, {"object": "stapler_1", "recipient": "person_carol"})
+    # said to whom, it goes there
+    out = say(office, "Carol would like the stapler, please bring it to me")
+    assert (out.intent, out.roles) == (I.BRING_OBJECT, {"object": "stapler_1", "recipient": BOB})
