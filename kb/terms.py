@@ -274,8 +274,11 @@ def _plain_statement(statement: str) -> Triple | None:
     """The common statement of three bare words (no quote, no IRI in brackets, no variable), each
     word's term cached; None for anything else, which the general path parses (and refuses with
     its message). Bulk loads are mostly such statements, and cached terms are the KB's own
-    interned objects, so the index compares them by identity."""
-    if '"' in statement or "'" in statement or "<" in statement:
+    interned objects, so the index compares them by identity. A pattern with a variable is left
+    to the general path before any word is cached: queries are compiled once each
+    (``kb.arguments``), and the words of one-off ones (the record of each perceived fact, asked
+    about on every tick) would fill the cache with terms used once."""
+    if '"' in statement or "'" in statement or "<" in statement or "?" in statement or "*" in statement:
         return None
     words = statement.split()
     if len(words) == 4 and words[3] == ".":

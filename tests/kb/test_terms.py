@@ -402,3 +402,12 @@ def test_writing_terms_back_leaves_the_shortening_cache_as_it_was() -> None:
     assert written[0] == "told_0000000000000000" and written[-1] == "told_00000000000007cf"
     assert format_term(URIRef("http://example.org/x#y")) == "<http://example.org/x#y>"
     assert shorten_iri.cache_info().currsize == before
+
+
+def test_patterns_with_variables_leave_the_word_cache_as_it_was() -> None:
+    from kb.terms import _word  # the cache of bare words' terms, for ground statements
+
+    before = _word.cache_info().currsize
+    parsed = [parse_statement(f"told_{n:016x} toldBy ?who") for n in range(2000)]
+    assert parsed[5] == (URIRef(f"{ORO}told_0000000000000005"), URIRef(f"{ORO}toldBy"), Variable("who"))
+    assert _word.cache_info().currsize == before
