@@ -226,6 +226,7 @@ def main(argv: list[str] | None = None) -> int:
     if not args.quick:
         bench_ticks(rows, 2900, "≤ 2 ms at ~60k", with_owlrl=args.full, oxigraph=oxigraph)
         bench_ticks(rows, 30_000, "≤ 0.4 ms at ~100k", with_owlrl=False, oxigraph=oxigraph)
+    bench_query(rows, QueryWorld(1_000), "≤ pyoxigraph", sparql_rounds=10, oxigraph=oxigraph)
     bench_query(rows, QueryWorld(10_000), "≤ 0.5 ms at 10k", sparql_rounds=10, oxigraph=oxigraph)
     bench_query(rows, QueryWorld(10_000, cups=0.09, humans=40, sightings=25), "≤ 0.7 ms",
                 sparql_rounds=10, oxigraph=oxigraph, what=", 9 % cups, 40 × 25 sightings")

@@ -28,6 +28,9 @@ Step = tuple[int, int, int, list[Compiled], list[Compiled], dict[int, "Step"]]
 
 #: Matches of a candidate first pattern looked at to estimate the step after it.
 SAMPLES = 4
+#: Index lookups under which the pattern with the fewest matches is joined first unsampled:
+#: sampling costs a few dozen, and could not save more than the fewest matches cost at most.
+PLAN_FROM = 128
 
 
 class JoinIndex(Protocol):
@@ -107,17 +110,38 @@ def survey(index: JoinIndex, patterns: list[Compiled], binding: Sequence[Node | 
 
 def cheapest(index: JoinIndex, kept: list[Compiled], found: list[Resolved], counts: list[int],
              binding: list[Node | None]) -> int:
-    """The position in ``kept`` of the pattern to join first: the least matches × (1 + the
-    matches of the next step per match). Candidates are tried by count, and one whose matches
-    alone cost more than the best so far is not sampled."""
+    """The position in ``kept`` of the pattern to join first: the least matches × (2 + the
+    matches of the next step per match), each match costing itself and the next step's lookup.
+    Candidates are tried by count, and one that would cost more than the best so far even if
+    each of its matches led nowhere is not sampled (in a small world, most often none but the
+    first)."""
+    order = sorted(range(len(kept)), key=counts.__getitem__)
+    if counts[order[0]] * (2 + _open_bound(kept, counts, order[0], found[order[0]], binding)) <= PLAN_FROM:
+        return order[0]  # the fewest matches cannot cost much: not worth sampling
     best_i, best_cost = -1, 0.0
-    for i in sorted(range(len(kept)), key=counts.__getitem__):
-        if best_i >= 0 and counts[i] >= best_cost:
+    for i in order:
+        if best_i >= 0 and 2 * counts[i] >= best_cost:
             break
-        cost = counts[i] * (1 + _next_step(index, kept, i, found[i], binding))
+        cost = counts[i] * (2 + _next_step(index, kept, i, found[i], binding))
         if best_i < 0 or cost < best_cost:
             best_i, best_cost = i, cost
     return best_i
+
+
+def _open_bound(kept: list[Compiled], counts: list[int], i: int, start: Resolved,
+                binding: Sequence[Node | None]) -> int:
+    """At most how many matches the step after ``kept[i]`` has per match: the fewest matches,
+    now, of a pattern it leaves open (binding more only narrows them); 0 when it leaves none."""
+    (_, vs), (_, vp), (_, vo) = kept[i]
+    s, p, o = start
+    binds = (vs if s is None else -1, vp if p is None else -1, vo if o is None else -1)
+    fewest = -1
+    for j, ((_, a), (_, b), (_, c)) in enumerate(kept):
+        if j != i and ((a >= 0 and a not in binds and binding[a] is None)
+                       or (b >= 0 and b not in binds and binding[b] is None)
+                       or (c >= 0 and c not in binds and binding[c] is None)):
+            fewest = counts[j] if fewest < 0 else min(fewest, counts[j])
+    return max(fewest, 0)
 
 
 def _next_step(index: JoinIndex, kept: list[Compiled], i: int, start: Resolved,
@@ -128,7 +152,7 @@ def _next_step(index: JoinIndex, kept: list[Compiled], i: int, start: Resolved,
             if term is None]
     checks, rest = split(kept[:i] + kept[i + 1:], binding, {slot for _, slot in free})
     if not rest:
-        return 1.0  # every other pattern becomes a check: at most one lookup per match
+        return 0.0  # every other pattern becomes a check: a lookup per match, no step after it
     count, holds = index.count, closed_lookup(index)
     total, looked = 0, 0
     for triple in islice(index.scan(*start), SAMPLES):
