@@ -104,6 +104,9 @@ class TimedIndex:
     def __len__(self) -> int:
         return len(self._index)
 
+    def __contains__(self, triple: Triple) -> bool:
+        return triple in self._index
+
     def canonical(self, term: Node) -> Node:
         return self._index.canonical(term)
 

@@ -1,9 +1,12 @@
-"""Conjunctive pattern matching over a triple index, most selective pattern first.
+"""Conjunctive pattern matching over a triple index.
 
-At every step the join picks, among the patterns left, the one with the fewest matches under
-the bindings made so far (exact counts from the index), so ``?h sees ?o . ?o rdf:type dbr:Cup .
-?h rdf:type Human`` starts from the cups, not from the Human × Cup cross product that rdflib's
-SPARQL engine builds (kb-compat §8.5).
+The first step is the pattern whose matches cost least with the step after them
+(``kb.joinplan``): ``?h sees ?o . ?o rdf:type dbr:Cup . ?h rdf:type Human`` starts from the cups
+when each cup is seen by a couple of agents and each human sees dozens of things, and never
+builds the Human × Cup cross product that rdflib's SPARQL engine does (kb-compat §8.5). Below
+it, each step joins the pattern with the fewest matches under the bindings made so far (exact
+counts from the index), and the patterns a step binds completely are checked on each of its
+matches rather than given a level of their own.
 """
 
 from __future__ import annotations
@@ -11,24 +14,14 @@ from __future__ import annotations
 from collections.abc import Callable, Iterable, Iterator, Sequence
 from dataclasses import dataclass
 from operator import itemgetter
-from typing import Protocol
 
 from rdflib import BNode, Variable
 
 from kb.errors import KbError, TooManyRows
+from kb.joinplan import Compiled, JoinIndex, Resolved, Slot, Step, cheapest, closed_lookup, plan_step, survey
 from kb.terms import Node, Pattern, is_anonymous
 
 Row = tuple[Node, ...]
-
-
-class JoinIndex(Protocol):
-    """What the join reads: a ``TripleIndex``, or a ``kb.deadline.TimedIndex`` over one."""
-
-    def canonical(self, term: Node) -> Node: ...
-
-    def count(self, s: Node | None, p: Node | None, o: Node | None) -> int: ...
-
-    def scan(self, s: Node | None, p: Node | None, o: Node | None) -> Iterator[tuple[Node, Node, Node]]: ...
 
 
 @dataclass(frozen=True)
@@ -73,16 +66,11 @@ def _chosen(seen: list[Variable], vars: Sequence[str]) -> list[Variable]:
     return projection
 
 
-# A compiled pattern: for each position, (constant, -1) or (None, variable slot).
-_Slot = tuple[Node | None, int]
-_Compiled = tuple[_Slot, _Slot, _Slot]
-
-
-def _compile(index: JoinIndex, patterns: Sequence[Pattern], order: Sequence[Variable]) -> list[_Compiled]:
+def _compile(index: JoinIndex, patterns: Sequence[Pattern], order: Sequence[Variable]) -> list[Compiled]:
     slots = {v: i for i, v in enumerate(order)}
-    compiled: list[_Compiled] = []
+    compiled: list[Compiled] = []
     for pattern in patterns:
-        parts: list[_Slot] = []
+        parts: list[Slot] = []
         for term in pattern:
             if isinstance(term, Variable):
                 parts.append((None, slots[term]))
@@ -112,41 +100,29 @@ def _solutions(
     index: JoinIndex, patterns: Sequence[Pattern], order: Sequence[Variable]
 ) -> Iterator[list[Node]]:
     binding: list[Node | None] = [None] * len(order)
-    yield from _solve(index, _compile(index, patterns, order), binding)  # type: ignore[misc]
+    compiled = _compile(index, patterns, order)
+    yield from _solve(index, compiled, binding, closed_lookup(index), {}, plan=True)  # type: ignore[misc]
 
 
 def _solve(
-    index: JoinIndex, patterns: list[_Compiled], binding: list[Node | None]
+    index: JoinIndex, patterns: list[Compiled], binding: list[Node | None],
+    holds_triple: Callable[[Resolved], bool], steps: dict[int, Step], plan: bool = False,
 ) -> Iterator[list[Node | None]]:
-    # Patterns whose terms are all bound are checks: one that fails ends this branch, one that
-    # holds binds nothing and is done. Of the others, the one with the fewest matches is joined.
-    count = index.count
-    kept: list[_Compiled] = []
-    best_i, best_count = -1, -1
-    best: tuple[Node | None, Node | None, Node | None] = (None, None, None)
-    for pattern in patterns:
-        (cs, vs), (cp, vp), (co, vo) = pattern
-        s = cs if vs < 0 else binding[vs]
-        p = cp if vp < 0 else binding[vp]
-        o = co if vo < 0 else binding[vo]
-        n = count(s, p, o)
-        if n == 0:
-            return
-        if s is not None and p is not None and o is not None:
-            continue
-        if best_i < 0 or n < best_count:
-            best_i, best_count, best = len(kept), n, (s, p, o)
-        kept.append(pattern)
-    if best_i < 0:
+    # ``steps`` is shared by the calls for one pattern list (a level's every binding): the same
+    # slots are bound in each, so what a choice leaves to check and to join is worked out once.
+    surveyed = survey(index, patterns, binding)
+    if surveyed is None:
+        return
+    kept, found, counts = surveyed
+    if not kept:
         yield binding
         return
-    (_, vs), (_, vp), (_, vo) = kept[best_i]
-    rest = kept[:best_i] + kept[best_i + 1 :]
-    s, p, o = best
-    # Positions to bind: unbound variables of the chosen pattern.
-    free_s = vs if s is None else -1
-    free_p = vp if p is None else -1
-    free_o = vo if o is None else -1
+    best_i = cheapest(index, kept, found, counts, binding) if plan else counts.index(min(counts))
+    step = steps.get(best_i)
+    if step is None:
+        step = steps[best_i] = plan_step(kept, best_i, found[best_i], binding)
+    free_s, free_p, free_o, checks, rest, after = step
+    s, p, o = found[best_i]
     for ts, tp, to in index.scan(s, p, o):
         # A variable repeated in one pattern (?x knows ?x) must take one value.
         if free_s >= 0:
@@ -159,10 +135,16 @@ def _solve(
             if (free_o == free_s and to != ts) or (free_o == free_p and to != tp):
                 continue
             binding[free_o] = to
-        if rest:
-            yield from _solve(index, rest, binding)
+        # The patterns this step binds completely are checked here, without a level of their own.
+        for (cs, vs), (cp, vp), (co, vo) in checks:
+            if not holds_triple((cs if vs < 0 else binding[vs], cp if vp < 0 else binding[vp],
+                                 co if vo < 0 else binding[vo])):
+                break
         else:
-            yield binding
+            if rest:
+                yield from _solve(index, rest, binding, holds_triple, after)
+            else:
+                yield binding
     for slot in (free_s, free_p, free_o):
         if slot >= 0:
             binding[slot] = None

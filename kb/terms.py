@@ -274,8 +274,11 @@ def _plain_statement(statement: str) -> Triple | None:
     """The common statement of three bare words (no quote, no IRI in brackets, no variable), each
     word's term cached; None for anything else, which the general path parses (and refuses with
     its message). Bulk loads are mostly such statements, and cached terms are the KB's own
-    interned objects, so the index compares them by identity."""
-    if '"' in statement or "'" in statement or "<" in statement:
+    interned objects, so the index compares them by identity. A pattern with a variable is left
+    to the general path before any word is cached: queries are compiled once each
+    (``kb.arguments``), and the words of one-off ones (the record of each perceived fact, asked
+    about on every tick) would fill the cache with terms used once."""
+    if '"' in statement or "'" in statement or "<" in statement or "?" in statement or "*" in statement:
         return None
     words = statement.split()
     if len(words) == 4 and words[3] == ".":
@@ -337,7 +340,12 @@ def is_anonymous(var: Variable) -> bool:
 
 @lru_cache(maxsize=131072)
 def shorten_iri(iri: str) -> str:
-    """ORO terms without prefix, other known namespaces as CURIEs, anything else in full (K17)."""
+    """ORO terms without prefix, other known namespaces as CURIEs, anything else in full (K17).
+    Cached: answers and views of the KB name the same terms again and again."""
+    return _short_form(iri)
+
+
+def _short_form(iri: str) -> str:
     if iri.startswith(ORO):
         local = iri[len(ORO) :]
         # "true", "false" and numbers would read back as literals; "a" reads back as the same name
@@ -390,7 +398,10 @@ def shorten(term: Node) -> Value | None:
 def format_term(term: Node) -> str:
     """A term written back in statement syntax, so it can be reused in a later statement."""
     if isinstance(term, URIRef):
-        short = shorten_iri(str(term))
+        # Not through shorten_iri's cache: a term written back is often one used once (the
+        # record of a perceived fact, checked on every tick), and a process-wide cache filled
+        # with those grew the service by megabytes an hour, long after its vocabulary was in.
+        short = _short_form(str(term))
         return f"<{short}>" if short == str(term) else short
     if isinstance(term, Literal):
         body = str(term).replace("\\", "\\\\").replace('"', '\\"').replace("\n", "\\n")

@@ -391,3 +391,23 @@ def test_formatted_triple_parses_back_to_the_same_terms(s: URIRef, p: URIRef, o:
 def test_any_string_literal_round_trips_through_format_term(text: str) -> None:
     lit = parse_statement(f"x p {format_term(Literal(text))}")[2]
     assert to_python(lit) == text  # type: ignore[arg-type]
+
+
+def test_writing_terms_back_leaves_the_shortening_cache_as_it_was() -> None:
+    # The record of each perceived fact is written into a query once per tick: such terms must
+    # not pile up in the process-wide cache of output forms (it is bounded, but by far more
+    # terms than a vocabulary has, and filling it took an hour of perception).
+    before = shorten_iri.cache_info().currsize
+    written = [format_term(URIRef(f"{ORO}told_{n:016x}")) for n in range(2000)]
+    assert written[0] == "told_0000000000000000" and written[-1] == "told_00000000000007cf"
+    assert format_term(URIRef("http://example.org/x#y")) == "<http://example.org/x#y>"
+    assert shorten_iri.cache_info().currsize == before
+
+
+def test_patterns_with_variables_leave_the_word_cache_as_it_was() -> None:
+    from kb.terms import _word  # the cache of bare words' terms, for ground statements
+
+    before = _word.cache_info().currsize
+    parsed = [parse_statement(f"told_{n:016x} toldBy ?who") for n in range(2000)]
+    assert parsed[5] == (URIRef(f"{ORO}told_0000000000000005"), URIRef(f"{ORO}toldBy"), Variable("who"))
+    assert _word.cache_info().currsize == before
