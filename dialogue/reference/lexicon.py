@@ -10,7 +10,7 @@ from __future__ import annotations
 from collections import defaultdict
 from collections.abc import Callable, Iterable, Iterator, Mapping, Sequence
 from collections.abc import Set as AbstractSet
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 from typing import Any
 
 from dialogue.reference.grounding import Entity, Snapshot
@@ -306,7 +306,7 @@ def _reuse(kept: tuple[Entity, Entry] | None, entity: Entity, naming: Naming) ->
     """The entity's own entry (its names without its kind's), reused while what it is made of holds."""
     if kept is not None and kept[0].labels == entity.labels and kept[0].colour == entity.colour:
         return kept[1]
-    return naming.entry(replace(entity, class_names=()))
+    return naming.entry(entity, kind=False)
 
 
 #: Sources of the names the lexicon file gives (`Name.lexical`).

@@ -37,7 +37,14 @@ def norm(words: Sequence[str]) -> tuple[str, ...]:
 
 def phrase(text: str) -> tuple[str, ...]:
     """A text as normalised words (the form names are indexed in)."""
-    return norm(tokens(text))
+    return norm(_tokens(text))
+
+
+@lru_cache(maxsize=4096)
+def _tokens(text: str) -> tuple[str, ...]:
+    """`tokens` of a name's text, kept: an entity's names and entry read each of its labels and
+    class names some six times over, and a first build does so for every entity of the KB."""
+    return tuple(tokens(text))
 
 
 class Name(NamedTuple):
@@ -80,30 +87,32 @@ class Naming:
         #: Each title to the other words said for it ("mister" for "mr").
         self.titles = {w: tuple(o for o in group if o != w) for group in lang.words.titles for w in group}
 
-    def names(self, entity: Entity) -> list[Name]:  # noqa: C901
+    def names(self, entity: Entity, kind: bool = True) -> list[Name]:  # noqa: C901
+        """Every name of the entity; with ``kind`` False, its own only (none of its class names)."""
         out: list[Name] = []
         seen: set[tuple[str, ...]] = set()
+        class_names = entity.class_names if kind else ()
 
         def add(text: str, source: str) -> None:
-            words = norm(tokens(text))
+            words = norm(_tokens(text))
             if words and words not in seen and not (len(words) == 1 and words[0] in self.determiners):
                 seen.add(words)
                 out.append(Name(words, entity.id, source))
 
         for label in entity.labels:
             add(label, "label")
-            numbered = self.lang.words.other_numbers(tokens(label))
+            numbered = self.lang.words.other_numbers(_tokens(label))
             if numbered is not None:  # "screen two" for "screen 2", "table 9" for "table nine"
                 add(" ".join(numbered), "label")
-            for other in self.otherwise(tokens(label)):
+            for other in self.otherwise(_tokens(label)):
                 add(" ".join(other), "label")
         add(entity.id, "id")
-        for class_name in entity.class_names:
+        for class_name in class_names:
             add(class_name, "class")
         # The head noun of a multi-word name names the thing too: "the mug" for the "green mug",
         # "the remote" for the "TV remote"; the other words stay usable as qualifiers.
-        for text in (*entity.labels, *entity.class_names):
-            words = tokens(text)
+        for text in (*entity.labels, *class_names):
+            words = _tokens(text)
             # "food or drink" is no drink; "cheese and onion crisps" are crisps
             if len(words) > 1 and words[-2] not in self.lang.words.coordinators:
                 add(words[-1], "head")
@@ -118,7 +127,7 @@ class Naming:
         # names (`Name.lexical`).
         syn = self.synonyms
         longest = syn.longest
-        for text in (*entity.labels, *entity.class_names):
+        for text in (*entity.labels, *class_names):
             said = phrase(text)
             # Only the endings a synonym may be: each one tried is a copy (a label of 30,000 words
             # once made every split of it one, minutes of work for every turn).
@@ -155,18 +164,19 @@ class Naming:
             out += [(title, *words[1:]) for title in self.titles[words[0]]]
         return out
 
-    def entry(self, entity: Entity) -> Entry:
-        """What the entity adds to a lexicon's indexes."""
+    def entry(self, entity: Entity, kind: bool = True) -> Entry:
+        """What the entity adds to a lexicon's indexes; with ``kind`` False, its own names and
+        words only (a lexicon indexes its kind's once for all the entities of that kind)."""
         label_words = frozenset(w for label in entity.labels
-                                for said in (tokens(label), *self.otherwise(tokens(label)))
+                                for said in (_tokens(label), *self.otherwise(_tokens(label)))
                                 for w in norm(said))
         words: set[str] = set(label_words)
         if entity.colour:
-            words.update(norm(tokens(entity.colour)))
-        for class_name in entity.class_names:
-            words.update(norm(tokens(class_name)))
+            words.update(phrase(entity.colour))
+        for class_name in entity.class_names if kind else ():
+            words.update(phrase(class_name))
         syn = self.synonyms
         words.update(o[0] for w in tuple(words) for o in syn.of((w,)) if len(o) == 1)
-        names = self.names(entity)
+        names = self.names(entity, kind)
         qualifiers = frozenset(words)
         return Entry(names, qualifiers, label_words, qualifiers.union(*(n.words for n in names)))

@@ -12,9 +12,9 @@ def test_a_small_world_starts_and_answers_right_in_a_fresh_process() -> None:
     # The child refuses to report before the answer names the zone the KB says thing 42 is in.
     out = bench.startup.run((1500,))
     rows = [line.split() for line in out.splitlines() if line.strip()[:1].isdigit()]
-    assert len(rows) == 1 and len(rows[0]) == 6
-    facts, startup, kb_own, _grounding, _ratio, process = (float(v.replace(",", "")) for v in rows[0])
-    assert facts > 1500 and startup > 0 and 0 < kb_own < process
+    assert len(rows) == 1 and len(rows[0]) == 7
+    facts, startup, cpu, kb_own, _grounding, _ratio, process = (float(v.replace(",", "")) for v in rows[0])
+    assert facts > 1500 and startup > 0 and cpu > 0 and 0 < kb_own < process
     assert "load average" in out
 
 
