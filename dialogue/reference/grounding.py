@@ -86,18 +86,23 @@ class Grounder:
         if cached is not None:
             return cached
         with self._build:
-            revision = kb.revision  # before taking the queue: the snapshot holds at least this
-            cached = self.cached(revision)
-            if cached is not None:
-                return cached
             with self._lock:
                 watched = self._watched is kb
             if not watched:
                 self._watch(kb)
-            with self._lock:
-                pending, self._pending = self._pending, ([] if self._unwatch is not None else None)
-                self._pending_size = 0
-                previous = self._cached
+            # The KB moves its revision on before it tells its listeners, all under its lock: read
+            # outside it, a commit's revision could be stamped on a snapshot its changes never reach
+            # (taken from the queue before `_changed` queued them), and that snapshot then passes
+            # for current. Under it, the queue holds every commit up to the revision read.
+            with kb.lock:
+                revision = kb.revision
+                cached = self.cached(revision)
+                if cached is not None:
+                    return cached
+                with self._lock:
+                    pending, self._pending = self._pending, ([] if self._unwatch is not None else None)
+                    self._pending_size = 0
+                    previous = self._cached
             index = self._index
             built = pending is None or index is None or previous is None
             if pending is None or index is None or previous is None:

@@ -196,6 +196,29 @@ def test_a_following_grounder_says_when_it_built_everything_and_only_then(kitche
     grounder.close()
 
 
+def test_a_snapshot_taken_while_a_commit_is_told_holds_that_commit(kitchen: KB) -> None:
+    """The KB moves its revision on before it tells its listeners: a snapshot asked for in between
+    (the grounding's worker, a turn) must not be stamped with that revision without its changes,
+    or it passes for current until the next commit."""
+    grounder = Grounder()
+    grounder.follow(kitchen)
+    until(lambda: grounder.cached(kitchen.revision))
+    taken: list[Snapshot] = []
+
+    def telling(_commit: object) -> None:  # told before the grounder: its changes not queued yet
+        asker = threading.Thread(target=lambda: taken.append(grounder.snapshot(kitchen)), daemon=True)
+        asker.start()
+        asker.join(1)  # a snapshot that does not wait for the commit is taken here
+
+    unwatch = kitchen.on_commit(telling, durable=True)
+    kitchen.update(['cup_1 rdfs:label "blue mug"'])
+    unwatch()
+    until(lambda: taken)
+    assert "blue mug" in grounder.snapshot(kitchen).entities["cup_1"].labels
+    assert all("blue mug" in snap.entities["cup_1"].labels for snap in taken if snap.revision == kitchen.revision)
+    grounder.close()
+
+
 def test_closing_while_a_commit_is_told_deadlocks_nothing(kitchen: KB) -> None:
     """The KB tells its listeners of a commit under its lock, and the grounder takes its own lock
     then; closing (or watching) must not hold the grounder's lock while it waits for the KB's."""
