@@ -18,7 +18,6 @@ from dialogue.history import Utterance
 from dialogue.intents import CATALOGUE, EXTRACTABLE
 from dialogue.llm.base import ChatMessage, TurnContext
 from dialogue.locales import is_english, language_name
-from dialogue.schema import FREE_FORM_OBJECT as FREE_FORM_OBJECT
 from dialogue.schema import intent_keys, short_name
 from dialogue.situation import describe
 

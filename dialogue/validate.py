@@ -11,11 +11,10 @@ from dataclasses import dataclass
 
 from dialogue import intents as I
 from dialogue.memory.claims import Claim, ground_facts
-from dialogue.prompts import FREE_FORM_OBJECT
 from dialogue.reference.clarify import question as clarifying_question
 from dialogue.reference.lexicon import Lexicon
 from dialogue.reference.resolution import ROLE_KINDS, resolve_id
-from dialogue.schema import REFERENT_FIELDS, AnswerError, ChatbotResponse, UserIntent
+from dialogue.schema import FREE_FORM_OBJECT, REFERENT_FIELDS, AnswerError, ChatbotResponse, UserIntent
 from dialogue.understanding.replies import say
 
 MAX_REPLY_CHARS = 600

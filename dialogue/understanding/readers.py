@@ -26,9 +26,8 @@ from dataclasses import dataclass
 
 from dialogue import intents as I
 from dialogue.history import Utterance
-from dialogue.prompts import FREE_FORM_OBJECT
 from dialogue.reference.lexicon import Lexicon
-from dialogue.schema import ChatbotResponse, UserIntent
+from dialogue.schema import FREE_FORM_OBJECT, ChatbotResponse, UserIntent
 from dialogue.understanding.followups.statement import follow_up
 from dialogue.understanding.interpret import Interpreter
 from dialogue.understanding.outcome import Outcome

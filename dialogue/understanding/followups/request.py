@@ -15,11 +15,11 @@ from dataclasses import replace
 
 from dialogue import intents as I
 from dialogue.history import Utterance
-from dialogue.prompts import FREE_FORM_OBJECT
 from dialogue.reference.clarify import describe_options
 from dialogue.reference.english import Words, tokens
 from dialogue.reference.facts import RELATIONS
 from dialogue.reference.resolution import ROLE_KINDS, content_words, resolve
+from dialogue.schema import FREE_FORM_OBJECT
 from dialogue.understanding.context import Reader
 from dialogue.understanding.followups import proposal
 from dialogue.understanding.followups.accepting import accepts
