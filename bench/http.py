@@ -32,7 +32,6 @@ from dataclasses import dataclass
 from typing import Any
 
 import httpx
-import psutil
 from fastapi import FastAPI
 
 from bench.progress import step
@@ -109,11 +108,16 @@ class Server:
     """A server's port, and its process, whose CPU time tells what the requests cost it."""
 
     port: int
-    process: psutil.Process
+    pid: int
 
-    def cpu(self) -> float:
-        """Seconds of CPU (user + system) the server has used so far."""
-        times = self.process.cpu_times()
+    def cpu(self) -> float | None:
+        """Seconds of CPU (user + system) the server has used so far; None without psutil (it comes
+        with the test extra: `situated bench` itself does not need it), shown as "-" in the table."""
+        try:
+            import psutil
+        except ImportError:
+            return None
+        times = psutil.Process(self.pid).cpu_times()
         return float(times.user + times.system)
 
 
@@ -134,7 +138,7 @@ def served(which: str) -> Iterator[Server]:
                     raise RuntimeError(f"the {which} server did not start") from None
                 time.sleep(0.05)
         assert child.pid is not None  # started
-        yield Server(port, psutil.Process(child.pid))
+        yield Server(port, child.pid)
     finally:
         child.terminate()
         child.join(timeout=10)
@@ -203,7 +207,7 @@ def _takes_the_cup(reply: dict[str, Any]) -> bool:
 
 
 async def _load(server: Server, clients: int, seconds: float, path: str, body: dict[str, Any],
-                dialogue: bool) -> tuple[list[float], float, float]:
+                dialogue: bool) -> tuple[list[float], float, float | None]:
     port = server.port
     connections = [await Connection.open(port) for _ in range(clients)]
     requests = []
@@ -234,12 +238,13 @@ async def _load(server: Server, clients: int, seconds: float, path: str, body: d
 
     await asyncio.gather(*(client(c, r, 5) for c, r in zip(connections, requests, strict=True)))
     latencies.clear()
-    cpu = server.cpu()
+    cpu_before = server.cpu()
     start = time.perf_counter()
     stop = start + seconds
     await asyncio.gather(*(client(c, r, 0) for c, r in zip(connections, requests, strict=True)))
     took = time.perf_counter() - start
-    cpu = server.cpu() - cpu
+    cpu_after = server.cpu()
+    cpu = None if cpu_before is None or cpu_after is None else cpu_after - cpu_before
     for connection in connections:
         await connection.close()
     return latencies, took, cpu
