@@ -36,6 +36,7 @@ from dialogue.understanding.outcome import Outcome, Ref
 from dialogue.understanding.parsed import Parse
 from dialogue.understanding.questions import situation
 from dialogue.understanding.replies import acknowledgement, hello, say, then, whose_it_is
+from dialogue.understanding.requests.abilities import asks_ability
 from dialogue.understanding.requests.addressed import to_someone_else
 from dialogue.understanding.requests.commands import parse
 from dialogue.understanding.requests.compound import conjuncts, coordinated
@@ -185,20 +186,12 @@ class Interpreter:
         not_understood = Outcome(say(self.lang, "sorry.not_understood"), understood=False)
         # No act: an answer to the robot's question, or "sorry, I meant screen two" (`FOLLOW_UPS`)
         outcome = followed_up(self, p, heard) or not_understood if p.act == "unknown" else self.act(p)
-        if outcome.intent in _SKILLS and self._ability(heard, p):  # "can you dance?": maybe only asked
+        # "can you dance?": maybe only asked
+        if outcome.intent in _SKILLS and asks_ability(self.lang, heard, p, self.robot_name):
             outcome = replace(outcome, unsure=True)
         ungrounded = p.act == "command" and outcome.intent is None and not outcome.clarify
         failed = not outcome.understood or ungrounded
         return self._clause_by_clause(heard, outcome) if failed else outcome
-
-    def _ability(self, heard: Said, p: Parse) -> bool:
-        """Whether the words ask what the robot can do, of a verb alone or a performance ("can you
-        dance?", "are you able to cook", "can you do a cartwheel"): a question that may ask no more
-        than that."""
-        said = tuple(expanded(self.lang, heard))
-        asked = any(said[: len(a)] == a for a in self.lang.requests.abilities)
-        performed = any(p.words[: len(f)] == f for f in self.lang.requests.performances)
-        return asked and p.act == "command" and (len(p.words) == 1 or performed)
 
     def _unaccounted(self, intent: str, slots: dict[str, Words]) -> bool:
         """Whether a phrase the intent grounds no role of names someone ("salute Olu in the meeting
