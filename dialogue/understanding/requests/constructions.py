@@ -98,11 +98,21 @@ def need(said: Framed) -> Parse | None:
     if len(rest) == 1:
         return said.command(I.BRING_OBJECT, object=(wanted,), recipient=("me",))
     asked = _available(c, tuple(rest[1:]))  # "I'm parched, any tea going?": the tea
+    if not asked and rest[1] in c.anything:  # ("I'm thirsty, anything sugar free to drink?")
+        asked = tuple(rest[1:])
     if asked[:1] and asked[0] in c.anything:  # "is there anything to eat": what meets the need
-        asked = (wanted,)
-    elif set(asked) & c.function_words:
+        asked = (*_qualifiers(said, asked[1:]), wanted)  # (of it, "anything sugar free": those)
+    if set(asked) & c.function_words:
         return None
     return said.command(I.BRING_OBJECT, object=asked, recipient=("me",)) if asked else None
+
+
+def _qualifiers(said: Framed, words: Words) -> Words:
+    """The words that say which of what meets a need is asked for ("sugar free" of "anything sugar
+    free to drink"), without the purpose after them ("to drink")."""
+    requests = said.lang.requests
+    at = next((i for i in range(len(words)) if requests.purpose(words[i:]) is not None), len(words))
+    return words[:at]
 
 
 def _available(c: _Words, words: Words) -> Words:

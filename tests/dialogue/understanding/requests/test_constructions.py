@@ -12,7 +12,10 @@ from tests.dialogue.conftest import english
     [("I'm parched. Any tea going?", ("tea",)), ("im thirsty is there any juice", ("juice",)),
      ("I'm really thirsty, have you got any lemonade left", ("lemonade",)),
      # anything at all: whatever meets the need
-     ("im starving is there anything to eat", ("food",))],
+     ("im starving is there anything to eat", ("food",)),
+     # what is said of it says which: "sugar free" of whatever meets the need
+     ("I'm thirsty, anything sugar free to drink?", ("sugar", "free", "drink")),
+     ("I'm thirsty, is there anything cold?", ("cold", "drink"))],
 )  # fmt: skip
 def test_a_need_with_a_question_of_what_there_is_asks_for_that_thing(text: str, thing: tuple[str, ...]) -> None:
     p = parse(english(), text)
