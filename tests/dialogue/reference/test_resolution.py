@@ -322,3 +322,15 @@ def test_a_cup_named_for_the_drink_it_holds_whether_said_apart_or_in_one_word() 
     assert {e.id for e in resolve(lex, tokens("the tea")).matches} == {"tc", "tm"}
     assert resolve(lex, tokens("the book")).matches == ()  # a bookcase holds no book it is named for
     kb.close()
+
+
+def test_a_thing_whose_own_words_say_the_place_comes_before_one_only_in_that_place() -> None:
+    kb = scene_kb(None,
+        "myself rdf:type Robot", "k rdf:type ZoneOfInterest", 'k rdfs:label "shared kitchen"',
+        "t rdf:type dbr:Table_(furniture)", 't rdfs:label "wobbly kitchen table"', "t isIn k", "myself sees t",
+        "w rdf:type dbr:Table_(furniture)", 'w rdfs:label "worktop"', "w isIn k", "myself sees w",
+    )  # fmt: skip
+    lex = lexicon_of(kb)
+    assert [e.id for e in resolve(lex, tokens("the kitchen table")).matches] == ["t"]
+    assert {e.id for e in resolve(lex, tokens("the table in the kitchen")).matches} == {"t", "w"}  # asked
+    kb.close()
