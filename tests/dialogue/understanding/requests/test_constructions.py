@@ -27,3 +27,15 @@ def test_a_need_with_a_question_of_what_there_is_asks_for_that_thing(text: str, 
 )
 def test_a_question_of_what_there_is_without_a_need_or_a_thing_asks_for_none(text: str) -> None:
     assert parse(english(), text).intent is None
+
+
+@pytest.mark.parametrize(
+    ("text", "thing"),
+    [("Ruby's thirsty, is there any lemonade for her?", ("lemonade",)),
+     ("ruby is starving is there anything to eat", ("food",))],
+)  # fmt: skip
+def test_a_need_of_someone_named_with_a_question_of_what_there_is_is_for_them(text: str, thing: tuple[str, ...]) -> None:
+    p = parse(english(), text)
+    assert (p.intent, p.slots) == (I.BRING_OBJECT, {"object": thing, "recipient": ("ruby",)})
+    # said alone, it is a remark
+    assert parse(english(), "ruby is thirsty").intent is None
