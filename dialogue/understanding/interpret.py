@@ -44,7 +44,7 @@ from dialogue.understanding.requests.ground import ground
 from dialogue.understanding.requests.owners import none_yours, whose
 from dialogue.understanding.requests.referents import Referents, relational
 from dialogue.understanding.requests.sequence import compound, wished
-from dialogue.understanding.requests.terse import terse
+from dialogue.understanding.requests.terse import terse, unasked_thing
 from dialogue.understanding.said import Said, Text
 from dialogue.understanding.speech.clauses import clauses, described, description
 from dialogue.understanding.speech.letters import joined
@@ -171,10 +171,13 @@ class Interpreter:
         last = self.history[-1] if self.history else None
         answering = last is not None and last.role != "user" and last.text.rstrip().endswith("?")
         said = terse(heard, self.lexicon, self.robot_name, answering)
-        if said is None:
+        thing = None if said or answering else unasked_thing(heard, self.lexicon, self.robot_name)
+        if said is None and thing is None:
             return None
         context = (*self.history, Utterance(self.speaker, heard.text))
-        outcome = self.within(context)._single(heard.of(said), terse_read=False)
+        outcome = self.within(context)._single(heard.of(said or str(thing)), terse_read=False)
+        if thing is not None:  # ("Water. Still.": the bottle of still water, proposed)
+            outcome = replace(outcome, unsure=True)
         return outcome if outcome.intent is not None else None
 
     def _single(self, heard: Said, terse_read: bool = True) -> Outcome:
