@@ -48,6 +48,7 @@ class _Words:
         self.available = sorted(words.available, key=len, reverse=True)
         self.available_ends = words.available_ends
         self.anything = words.anything
+        self.asking = frozenset(w for lead in words.available for w in lead)
         self.someone_is = frozenset((w,) for w in words.someone_is)
         self.for_whom = frozenset((w,) for w in lang.prepositions.words("terse-to"))
         self.personal = closed.personal
@@ -110,8 +111,9 @@ def need(said: Framed) -> Parse | None:
     asked = _available(c, tuple(rest[1:]))  # "I'm parched, any tea going?": the tea
     if whose != ("me",) and asked[-2:-1] in c.for_whom and asked[-1] in c.personal:
         asked = asked[:-2]  # ("is there any lemonade for her?": for whoever is thirsty)
-    if not asked and rest[1] in c.anything:  # ("I'm thirsty, anything sugar free to drink?")
-        asked = tuple(rest[1:])
+    at = next((i for i, x in enumerate(rest) if x in c.anything), 0)
+    if not asked and at and set(rest[1:at]) <= c.asking:  # ("I'm thirsty, got anything sugar free?")
+        asked = tuple(rest[at:])
     if asked[:1] and asked[0] in c.anything:  # "is there anything to eat": what meets the need
         asked = (*_qualifiers(said, asked[1:]), wanted)  # (of it, "anything sugar free": those)
     if set(asked) & c.function_words:
