@@ -70,11 +70,14 @@ def unasked_thing(text: Text, lexicon: Lexicon, robot_name: str = "") -> str | N
 def _one_thing(words: Sequence[str], lexicon: Lexicon) -> bool:
     """Whether the words are one thing's names and words, a determiner before them allowed
     ("still water" of the "bottle of still water"), a thing that can be carried."""
+    closed = lexicon.lang.words
+    bare = list(words[1:]) if words[:1] and words[0] in closed.np_start else list(words)
+    if not bare or any(w in closed.any_function_word or not lexicon.knows(w) for w in bare):
+        return False  # (a clause or a request: "bring me the cup", "grab the cup", without a lookup)
     named = _named(words, lexicon)
     one = resolve(lexicon, named, PLACE).one if named is not None else None
     if one is None or not _movable(words, lexicon):
         return False
-    bare = list(words[1:]) if words[0] in lexicon.lang.words.np_start else list(words)
     spans = {i for m in lexicon.mentions(bare) if one.id in m.entities for i in range(m.start, m.end)}
     own = lexicon.attributes.get(one.id, frozenset())
     return all(i in spans or singular(w) in own for i, w in enumerate(bare))  # ("grab the mug": no)
