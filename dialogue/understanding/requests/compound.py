@@ -161,6 +161,9 @@ def _gaps(lang: Language, before: list[str], words: list[str]) -> bool:
     at = next((i for i, w in enumerate(words) if w in roles), None)
     if at is None or not content_words(lang, words[:at]) or not content_words(lang, words[at + 1 :]):
         return False
+    thing = words[1:at] if words[0] in lang.words.np_start else words[:at]
+    if any(w in lang.words.any_function_word for w in thing):
+        return False  # a clause ("..., he has to fill in the form"), no thing
     return words[at] in before
 
 

@@ -27,6 +27,7 @@ def conjuncts(text: str) -> list[Part]:
         ("could you put the cup on the shelf please, and the plate on the table",
          ["could you put the cup on the shelf please", "put the plate on the table"]),
         ("bring the tea and the bun to Bo", []),  # one request of two things
+        ("take the tea to Bo, he has to sign for it", []),  # a remark after it
         ("put the salt and pepper on the table", []),
         ('say "stop and wait" to Carol', []),  # a quotation is one text
         ("go get a book for me", []),
