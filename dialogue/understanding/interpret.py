@@ -124,14 +124,14 @@ class Interpreter:
         corrected = self._corrected(heard)
         if corrected is not None:
             return corrected
+        parts = conjuncts(self.lang, heard)
         for rest in self._from_each_clause(heard):  # ("Milo's mum asked: the thermometer, give to Milo")
             before = heard.text[: len(heard.text) - len(rest.text)]
-            if before and parse(self.lang, heard.of(before), self.robot_name).act == "command":
+            if parts and before and parse(self.lang, heard.of(before), self.robot_name).act == "command":
                 break  # ("bring the tea to Ruby, then the bun to Kaur": both, read as parts below)
             said_terse = self._terse(rest)
             if said_terse is not None:
                 return said_terse
-        parts = conjuncts(self.lang, heard)
         if parts:
             combined = compound(self, heard, parts)
             if combined is not None:

@@ -29,6 +29,9 @@ BOB = "person_bob"
         # after a remark, the clauses to the end
         ("Carol asked: the stapler, give to Carol.", I.BRING_OBJECT,
          {"object": "stapler_1", "recipient": "person_carol"}),
+        # after a need the words of which read as a request, no request of its own said before it
+        ("I need ... how you say ... for the paper ... the stapler, please", I.BRING_OBJECT,
+         {"object": "stapler_1", "recipient": BOB}),
     ],
 )
 def test_terse_requests_are_read_in_the_grammars_order(office: KB, text: str, intent: str, roles: dict) -> None:
