@@ -153,6 +153,23 @@ class Naming:
                 return word[k:]
         return None
 
+    def _compound_modifiers(self, labels: Sequence[str]) -> list[str]:
+        """The food or drink a label's closed compound of a container starts with ("tea" of the
+        "china teacup"): a word of its label as "tea" is of the "big tea mug", so that "my tea"
+        names the teacup as it names the tea mug (`words.toml`: `held`; "the book" never names a
+        "bookcase")."""
+        out = []
+        held = self.lang.words.held
+        for label in labels:
+            words = _tokens(label)
+            tail = self._compound_head(words[-1]) if words else None
+            if tail is None or tail not in self.lang.words.containers:
+                continue
+            modifier = words[-1][: -len(tail)]
+            if any(len(kind) == 1 and kind[0] in held for kind in self.synonyms.broader_than((modifier,))):
+                out.append(modifier)
+        return out
+
     def otherwise(self, words: Sequence[str]) -> list[tuple[str, ...]]:
         """Other ways a label is said: a possessive without its apostrophe, as a recogniser or a
         typist writes it ("hygienists room", "hygienist room" for the "hygienist's room"), and a title
@@ -167,9 +184,10 @@ class Naming:
     def entry(self, entity: Entity, kind: bool = True) -> Entry:
         """What the entity adds to a lexicon's indexes; with ``kind`` False, its own names and
         words only (a lexicon indexes its kind's once for all the entities of that kind)."""
-        label_words = frozenset(w for label in entity.labels
-                                for said in (_tokens(label), *self.otherwise(_tokens(label)))
-                                for w in norm(said))
+        label_words = frozenset((*(w for label in entity.labels
+                                   for said in (_tokens(label), *self.otherwise(_tokens(label)))
+                                   for w in norm(said)),
+                                 *self._compound_modifiers(entity.labels)))
         words: set[str] = set(label_words)
         if entity.colour:
             words.update(phrase(entity.colour))

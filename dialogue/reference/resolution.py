@@ -177,6 +177,11 @@ def resolve(  # noqa: C901
             matches = [e for e in everything() if named(e)]
     # "the kitchen table" is the one named so, before a table that is in the kitchen.
     matches = [e for e in matches if all(i in cover[e.id] for i in content)] or matches
+    # (and the "wobbly kitchen table", whose own words say "kitchen", before a worktop in the kitchen;
+    # "the table in the kitchen" says where, which both are)
+    if core_end == len(words):
+        own = [e for e in matches if _own_words(lexicon, e, cover[e.id], content, normed, bases)]
+        matches = own or matches
     # "the desk" is the thing called so, before the "standing desk" it is only the end of.
     said = tuple(normed[i] for i in content)
     called = [e for e in matches if _called(e, whole.get(e.id, ()))]
@@ -213,6 +218,14 @@ def resolve(  # noqa: C901
     seen = [e for e in matches if e.seen] if sight or len(matches) > MAX_OPTIONS else []
     # Sorted last: a class word names thousands of things of which a handful are in sight.
     return Resolution(phrase, tuple(snapshot.in_order(seen or matches)))
+
+
+def _own_words(lexicon: Lexicon, entity: Entity, own: frozenset[int], content: Sequence[int],
+               normed: Sequence[str], bases: Sequence[str]) -> bool:
+    """Whether every content word said is the entity's own (its names, label words, colour, kind),
+    none only the name of where it is or whose."""
+    attrs = lexicon.attributes.get(entity.id, frozenset())
+    return all(i in own or normed[i] in attrs or bases[i] in attrs for i in content)
 
 
 def _named_after(span: frozenset[int] | None, head: int) -> bool:

@@ -36,6 +36,7 @@ from dialogue.understanding.outcome import Outcome, Ref
 from dialogue.understanding.parsed import Parse
 from dialogue.understanding.questions import situation
 from dialogue.understanding.replies import acknowledgement, hello, say, then, whose_it_is
+from dialogue.understanding.requests.abilities import asks_ability
 from dialogue.understanding.requests.addressed import to_someone_else
 from dialogue.understanding.requests.commands import parse
 from dialogue.understanding.requests.compound import conjuncts, coordinated
@@ -43,7 +44,7 @@ from dialogue.understanding.requests.ground import ground
 from dialogue.understanding.requests.owners import none_yours, whose
 from dialogue.understanding.requests.referents import Referents, relational
 from dialogue.understanding.requests.sequence import compound, wished
-from dialogue.understanding.requests.terse import terse
+from dialogue.understanding.requests.terse import terse, unasked_thing
 from dialogue.understanding.said import Said, Text
 from dialogue.understanding.speech.clauses import clauses, described, description
 from dialogue.understanding.speech.letters import joined
@@ -123,11 +124,14 @@ class Interpreter:
         corrected = self._corrected(heard)
         if corrected is not None:
             return corrected
+        parts = conjuncts(self.lang, heard)
         for rest in self._from_each_clause(heard):  # ("Milo's mum asked: the thermometer, give to Milo")
+            before = heard.text[: len(heard.text) - len(rest.text)]
+            if parts and before and parse(self.lang, heard.of(before), self.robot_name).act == "command":
+                break  # ("bring the tea to Ruby, then the bun to Kaur": both, read as parts below)
             said_terse = self._terse(rest)
             if said_terse is not None:
                 return said_terse
-        parts = conjuncts(self.lang, heard)
         if parts:
             combined = compound(self, heard, parts)
             if combined is not None:
@@ -167,10 +171,13 @@ class Interpreter:
         last = self.history[-1] if self.history else None
         answering = last is not None and last.role != "user" and last.text.rstrip().endswith("?")
         said = terse(heard, self.lexicon, self.robot_name, answering)
-        if said is None:
+        thing = None if said or answering else unasked_thing(heard, self.lexicon, self.robot_name)
+        if said is None and thing is None:
             return None
         context = (*self.history, Utterance(self.speaker, heard.text))
-        outcome = self.within(context)._single(heard.of(said), terse_read=False)
+        outcome = self.within(context)._single(heard.of(said or str(thing)), terse_read=False)
+        if thing is not None:  # ("Water. Still.": the bottle of still water, proposed)
+            outcome = replace(outcome, unsure=True)
         return outcome if outcome.intent is not None else None
 
     def _single(self, heard: Said, terse_read: bool = True) -> Outcome:
@@ -185,20 +192,12 @@ class Interpreter:
         not_understood = Outcome(say(self.lang, "sorry.not_understood"), understood=False)
         # No act: an answer to the robot's question, or "sorry, I meant screen two" (`FOLLOW_UPS`)
         outcome = followed_up(self, p, heard) or not_understood if p.act == "unknown" else self.act(p)
-        if outcome.intent in _SKILLS and self._ability(heard, p):  # "can you dance?": maybe only asked
+        # "can you dance?": maybe only asked
+        if outcome.intent in _SKILLS and asks_ability(self.lang, heard, p, self.robot_name):
             outcome = replace(outcome, unsure=True)
         ungrounded = p.act == "command" and outcome.intent is None and not outcome.clarify
         failed = not outcome.understood or ungrounded
         return self._clause_by_clause(heard, outcome) if failed else outcome
-
-    def _ability(self, heard: Said, p: Parse) -> bool:
-        """Whether the words ask what the robot can do, of a verb alone or a performance ("can you
-        dance?", "are you able to cook", "can you do a cartwheel"): a question that may ask no more
-        than that."""
-        said = tuple(expanded(self.lang, heard))
-        asked = any(said[: len(a)] == a for a in self.lang.requests.abilities)
-        performed = any(p.words[: len(f)] == f for f in self.lang.requests.performances)
-        return asked and p.act == "command" and (len(p.words) == 1 or performed)
 
     def _unaccounted(self, intent: str, slots: dict[str, Words]) -> bool:
         """Whether a phrase the intent grounds no role of names someone ("salute Olu in the meeting

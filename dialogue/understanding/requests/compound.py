@@ -118,19 +118,29 @@ def conjuncts(lang: Language, said: Text) -> list[Part]:  # noqa: C901
         start = resume
     ranges.append((start, len(toks)))
     parts: list[tuple[int, int]] = []
+    gapped: set[int] = set()  # parts that say again the verb of the part before them
     for s, e in ranges:
         if s >= e:
             continue
         piece = text[toks[s][1] : toks[e - 1][2]]
-        if parts and _verb(lang, heard.of(piece), later=True) is None:  # "the cereals and the milk": one
-            parts[-1] = (parts[-1][0], e)
+        if parts and _verb(lang, heard.of(piece), later=True) is None:
+            b, f = parts[-1]
+            before = [w for w, _, _ in toks[b:f]]
+            said_before = _verb(lang, heard.of(text[toks[b][1] : toks[f - 1][2]]))
+            if said_before is not None and _gaps(lang, before, [w for w, _, _ in toks[s:e]]):
+                gapped.add(len(parts))
+                parts.append((s, e))
+            else:  # "the cereals and the milk": one
+                parts[-1] = (parts[-1][0], e)
         else:
             parts.append((s, e))
     if len(parts) < 2:
         return []
-    out = []
+    out: list[Part] = []
     for n, (s, e) in enumerate(parts):
         piece = text[toks[s][1] : toks[e - 1][2]].strip(" ,;")
+        if n in gapped and out[-1].verb is not None:  # "... and then the bun to Mrs Kaur": bring it
+            piece = f"{out[-1].verb} {piece}"
         verb = _verb(lang, heard.of(piece), later=n > 0)
         # ("go to the x-ray room and get it ready": no intent says the getting ready)
         words = normalise(lang, heard.of(piece))
@@ -139,6 +149,22 @@ def conjuncts(lang: Language, said: Text) -> list[Part]:  # noqa: C901
         no_intent = verb in c.no_intent_verbs or result or unknown
         out.append(Part(piece, verb, no_intent, _away(lang, heard.of(piece))))
     return out
+
+
+def _gaps(lang: Language, before: list[str], words: list[str]) -> bool:
+    """Whether a part with no verb says the request before it again for another thing: "bring the
+    lemonade to Ruby and then the bun to Mrs Kaur", "put the cup on the shelf and the plate on the
+    table" (a thing, then the preposition of the same role the part before said, then whom or where;
+    the caller knows the part before starts with a verb); "bring the cereals and the milk to the
+    table" is one request of two things."""
+    roles = lang.prepositions.words("terse-to") | lang.prepositions.words("terse-place")
+    at = next((i for i, w in enumerate(words) if w in roles), None)
+    if at is None or not content_words(lang, words[:at]) or not content_words(lang, words[at + 1 :]):
+        return False
+    thing = words[1:at] if words[0] in lang.words.np_start else words[:at]
+    if any(w in lang.words.any_function_word for w in thing):
+        return False  # a clause ("..., he has to fill in the form"), no thing
+    return words[at] in before
 
 
 def _away(lang: Language, text: Text) -> bool:

@@ -15,7 +15,7 @@ from collections.abc import Sequence
 
 from dialogue.reference.english import Words
 from dialogue.reference.grounding import Kind
-from dialogue.reference.lexicon import Lexicon
+from dialogue.reference.lexicon import Lexicon, singular
 from dialogue.reference.resolution import PERSON, PLACE, ZONE, resolve
 from dialogue.reference.snapshot import fixed
 from dialogue.understanding.requests.frames import verbs
@@ -39,8 +39,8 @@ def terse(text: Text, lexicon: Lexicon, robot_name: str = "", answering: bool = 
     if not words:
         return None
     at = next((i for i, w in enumerate(words) if asked_verb(lang, w) in verbs(lang)), None)
-    if at is not None and asked and _all_named(words, lexicon):
-        at = None  # ("sticks, please": the drumsticks, not "stick" said as a verb)
+    if at is not None and ((asked and _all_named(words, lexicon)) or _one_thing(words, lexicon)):
+        at = None  # ("sticks, please": the drumsticks, not "stick" said as a verb; "the still water")
     if at is None:
         return _verbless(words, lexicon) or (None if answering else _handed(words, lexicon, asked))
     verb, front, rest = asked_verb(lang, words[at]) or words[at], words[:at], words[at + 1 :]
@@ -53,6 +53,34 @@ def terse(text: Text, lexicon: Lexicon, robot_name: str = "", answering: bool = 
     if motion and _a_place(rest, lexicon):
         return " ".join((verb, "to", *rest))  # "go workstand", "back yard, go"
     return " ".join((verb, *rest)) if front or (subject and at == 0) else None
+
+
+def unasked_thing(text: Text, lexicon: Lexicon, robot_name: str = "") -> str | None:
+    """ "Water. Still.": words that read as a verb ("water") but all describe one thing the robot
+    could bring, with no politeness to say they ask for it: the bringing a question may propose (never
+    an activity of watering); None otherwise."""
+    lang = lexicon.lang
+    said = normalise(lang, text)
+    words = strip_politeness(lang, said, robot_name)
+    if len(words) < len(said) or not any(asked_verb(lang, w) in verbs(lang) for w in words):
+        return None
+    return _handed(words, lexicon, asked=True) if _one_thing(words, lexicon) else None
+
+
+def _one_thing(words: Sequence[str], lexicon: Lexicon) -> bool:
+    """Whether the words are one thing's names and words, a determiner before them allowed
+    ("still water" of the "bottle of still water"), a thing that can be carried."""
+    closed = lexicon.lang.words
+    bare = list(words[1:]) if words[:1] and words[0] in closed.np_start else list(words)
+    if not bare or any(w in closed.any_function_word or not lexicon.knows(w) for w in bare):
+        return False  # (a clause or a request: "bring me the cup", "grab the cup", without a lookup)
+    named = _named(words, lexicon)
+    one = resolve(lexicon, named, PLACE).one if named is not None else None
+    if one is None or not _movable(words, lexicon):
+        return False
+    spans = {i for m in lexicon.mentions(bare) if one.id in m.entities for i in range(m.start, m.end)}
+    own = lexicon.attributes.get(one.id, frozenset())
+    return all(i in spans or singular(w) in own for i, w in enumerate(bare))  # ("grab the mug": no)
 
 
 def _verbless(words: list[str], lexicon: Lexicon) -> str | None:
@@ -72,7 +100,8 @@ def _handed(words: list[str], lexicon: Lexicon, asked: bool) -> str | None:
     to = lexicon.lang.prepositions.words("terse-to")
     at = next((i for i, w in enumerate(words) if w in to), None)
     if at is None:
-        thing = _named(words, lexicon) if asked and _all_named(words, lexicon) else None
+        said = asked and (_all_named(words, lexicon) or _one_thing(words, lexicon))
+        thing = _named(words, lexicon) if said else None
         return " ".join(("bring", "me", *thing)) if thing and _movable(thing, lexicon) else None
     thing = _named(words[:at], lexicon) if at and _all_named(words[:at], lexicon) else None
     if thing is None or resolve(lexicon, words[at + 1 :], PERSON).one is None:

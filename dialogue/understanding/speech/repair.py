@@ -142,11 +142,24 @@ def repair(lang: Language, words: list[str]) -> tuple[list[str], list[str]]:
             request = strip_politeness(lang, after)
             if request and asked_verb(lang, request[0]) in verbs(lang):
                 return words[:start], after
+            again = _said_again(lang, request)
+            if again:  # "give this banana to... no, the pear, give the pear to Diego"
+                return words[:start], again
             if request and (request[0] in said.np_start or request[0] in said.place_words):
                 fixed = _rephrased(said, words[:start], request)
                 if fixed is not None:
                     return words[:start], fixed
     return words, words
+
+
+def _said_again(lang: Language, phrase: list[str]) -> list[str]:
+    """The request a repair's noun phrase is followed by ("no, the pear, give the pear to Diego": the
+    request said again whole), else []."""
+    if not phrase or phrase[0] not in lang.words.np_start:
+        return []
+    starts = lang.requests.compound.object_start
+    return next((phrase[k:] for k in range(2, len(phrase) - 1)
+                 if asked_verb(lang, phrase[k]) in verbs(lang) and phrase[k + 1] in starts), [])  # fmt: skip
 
 
 def _rephrased(said: _Repairs, before: list[str], phrase: list[str]) -> list[str] | None:
@@ -165,10 +178,13 @@ def _rephrased(said: _Repairs, before: list[str], phrase: list[str]) -> list[str
         end = next((j for j in range(at + 1, len(before)) if before[j] in said.place_words), len(before))
         if _head(said, before[at:end]) == phrase[-1] and phrase[-1] not in {"one", "ones"}:
             return [*before[:at], *phrase, *before[end:]]
-    head = _head(said, before[starts[-1] :])
+    # (the last, with the place or person said after it: "give the banana to Diego no the pear")
+    last = starts[-1]
+    end = next((j for j in range(last + 1, len(before)) if before[j] in said.place_words), len(before))
+    head = _head(said, before[last:end])
     if head is None or head in np_start:
         return None
-    return [*before[: starts[-1]], *(head if w in {"one", "ones"} else w for w in phrase)]
+    return [*before[:last], *(head if w in {"one", "ones"} else w for w in phrase), *before[end:]]
 
 
 def _head(said: _Repairs, phrase: list[str]) -> str | None:

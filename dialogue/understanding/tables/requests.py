@@ -27,6 +27,7 @@ class ConstructionWords(Table):
     available: Phrases = ()
     available_ends: WordSet = frozenset()
     anything: WordSet = frozenset()
+    someone_is: WordSet = frozenset()
 
 
 class CompoundWords(Table):

@@ -307,3 +307,30 @@ def test_a_thing_with_no_label_is_not_called_by_a_class_it_is_a_kind_of() -> Non
     )  # fmt: skip
     assert sorted(ids(kb, "the plant")) == ["pear_1", "plant_1"]  # a pear is no more "the plant"
     kb.close()
+
+
+def test_a_cup_named_for_the_drink_it_holds_whether_said_apart_or_in_one_word() -> None:
+    kb = scene_kb(None,
+        "myself rdf:type Robot", "ed rdf:type Human", 'ed rdfs:label "Edna"', "hal rdf:type Human",
+        "tc rdf:type dbr:Cup", 'tc rdfs:label "china teacup"', "tc belongsTo ed", "myself sees tc",
+        "tm rdf:type dbr:Cup", 'tm rdfs:label "big tea mug"', "tm belongsTo hal", "myself sees tm",
+        "bc rdf:type Artifact", 'bc rdfs:label "bookcase"', "myself sees bc",
+    )  # fmt: skip
+    lex = lexicon_of(kb)
+    assert [e.id for e in resolve(lex, tokens("my tea"), owner="ed").matches] == ["tc"]
+    assert {e.id for e in resolve(lex, tokens("the cup of tea")).matches} == {"tc", "tm"}  # asked
+    assert {e.id for e in resolve(lex, tokens("the tea")).matches} == {"tc", "tm"}
+    assert resolve(lex, tokens("the book")).matches == ()  # a bookcase holds no book it is named for
+    kb.close()
+
+
+def test_a_thing_whose_own_words_say_the_place_comes_before_one_only_in_that_place() -> None:
+    kb = scene_kb(None,
+        "myself rdf:type Robot", "k rdf:type ZoneOfInterest", 'k rdfs:label "shared kitchen"',
+        "t rdf:type dbr:Table_(furniture)", 't rdfs:label "wobbly kitchen table"', "t isIn k", "myself sees t",
+        "w rdf:type dbr:Table_(furniture)", 'w rdfs:label "worktop"', "w isIn k", "myself sees w",
+    )  # fmt: skip
+    lex = lexicon_of(kb)
+    assert [e.id for e in resolve(lex, tokens("the kitchen table")).matches] == ["t"]
+    assert {e.id for e in resolve(lex, tokens("the table in the kitchen")).matches} == {"t", "w"}  # asked
+    kb.close()

@@ -45,6 +45,15 @@ def test_a_performance_asked_of_the_robots_skills_is_proposed_not_acted_on(studi
     assert say(studio, "can you start the quiz", speaker=JO).intent == I.START_ACTIVITY
 
 
+@pytest.mark.parametrize("text", ["can you cook dinner?", "can you do the washing up", "can you do my homework lol"])
+def test_a_chore_asked_of_the_robots_skills_is_proposed_not_started(studio: KB, text: str) -> None:
+    assert _asked(studio, text).reply.startswith("Shall I")
+    # said as a request, the chore is started
+    assert say(studio, text.removeprefix("can you "), speaker=JO).intent == I.START_ACTIVITY
+    # said after the robot's name, still a question
+    assert _asked(studio, f"ari {text}").reply.startswith("Shall I")
+
+
 def test_a_person_named_where_the_reading_has_no_role_for_them_is_proposed(studio: KB) -> None:
     out = _asked(studio, "salute Tam in the hall")
     assert out.reply == "Shall I salute?"

@@ -22,6 +22,12 @@ def conjuncts(text: str) -> list[Part]:
         ("go to the bathroom take the rag", ["go to the bathroom", "take the rag"]),
         ("go to the sofa and search for the pillow", ["go to the sofa", "search for the pillow"]),
         ("bring me the cereals and the milk", []),  # one command, two things
+        # a part with no verb that says the request before it again for another thing: that verb
+        ("bring the tea to Ana and then the bun to Bo", ["bring the tea to Ana", "bring the bun to Bo"]),
+        ("could you put the cup on the shelf please, and the plate on the table",
+         ["could you put the cup on the shelf please", "put the plate on the table"]),
+        ("bring the tea and the bun to Bo", []),  # one request of two things
+        ("take the tea to Bo, he has to sign for it", []),  # a remark after it
         ("put the salt and pepper on the table", []),
         ('say "stop and wait" to Carol', []),  # a quotation is one text
         ("go get a book for me", []),
@@ -126,3 +132,12 @@ def test_a_part_asking_for_a_state_is_kept_in_the_reply(office: KB) -> None:
 def test_a_part_whose_verb_no_frame_knows_is_one_the_robot_cannot_do() -> None:
     parts = conjuncts("greet Ana and offer her a coffee")
     assert [(p.verb, p.no_intent) for p in parts] == [("greet", False), ("offer", True)]
+
+
+@pytest.mark.parametrize("joint", [" and then ", ", then ", " please, and "])
+def test_a_request_said_again_for_another_thing_without_its_verb_is_both(office: KB, joint: str) -> None:
+    out = say(office, f"could you bring the pear to Carol{joint}the stapler to Dan")
+    assert [(o.intent, o.roles) for o in out.steps()] == [
+        (I.BRING_OBJECT, {"object": "pear_1", "recipient": "person_carol"}),
+        (I.BRING_OBJECT, {"object": "stapler_1", "recipient": "person_dan"}),
+    ]

@@ -12,7 +12,11 @@ from tests.dialogue.conftest import english
     [("I'm parched. Any tea going?", ("tea",)), ("im thirsty is there any juice", ("juice",)),
      ("I'm really thirsty, have you got any lemonade left", ("lemonade",)),
      # anything at all: whatever meets the need
-     ("im starving is there anything to eat", ("food",))],
+     ("im starving is there anything to eat", ("food",)),
+     # what is said of it says which: "sugar free" of whatever meets the need
+     ("I'm thirsty, anything sugar free to drink?", ("sugar", "free", "drink")),
+     ("I'm thirsty, is there anything cold?", ("cold", "drink")),
+     ("I'm parched, got anything low-sugar to drink?", ("low", "sugar", "drink"))],
 )  # fmt: skip
 def test_a_need_with_a_question_of_what_there_is_asks_for_that_thing(text: str, thing: tuple[str, ...]) -> None:
     p = parse(english(), text)
@@ -24,3 +28,15 @@ def test_a_need_with_a_question_of_what_there_is_asks_for_that_thing(text: str, 
 )
 def test_a_question_of_what_there_is_without_a_need_or_a_thing_asks_for_none(text: str) -> None:
     assert parse(english(), text).intent is None
+
+
+@pytest.mark.parametrize(
+    ("text", "thing"),
+    [("Ruby's thirsty, is there any lemonade for her?", ("lemonade",)),
+     ("ruby is starving is there anything to eat", ("food",))],
+)  # fmt: skip
+def test_a_need_of_someone_named_with_a_question_of_what_there_is_is_for_them(text: str, thing: tuple[str, ...]) -> None:
+    p = parse(english(), text)
+    assert (p.intent, p.slots) == (I.BRING_OBJECT, {"object": thing, "recipient": ("ruby",)})
+    # said alone, it is a remark
+    assert parse(english(), "ruby is thirsty").intent is None

@@ -6,7 +6,8 @@ from dialogue import intents as I
 from dialogue.understanding.interpret import Interpreter
 from dialogue.understanding.requests.terse import terse
 from kb import KB
-from tests.dialogue.conftest import lexicon_of
+from tests.dialogue.conftest import lexicon_of, scene_kb
+from tests.dialogue.understanding.test_interpret import say
 
 BOB = "person_bob"
 
@@ -28,6 +29,9 @@ BOB = "person_bob"
         # after a remark, the clauses to the end
         ("Carol asked: the stapler, give to Carol.", I.BRING_OBJECT,
          {"object": "stapler_1", "recipient": "person_carol"}),
+        # after a need the words of which read as a request, no request of its own said before it
+        ("I need ... how you say ... for the paper ... the stapler, please", I.BRING_OBJECT,
+         {"object": "stapler_1", "recipient": BOB}),
     ],
 )
 def test_terse_requests_are_read_in_the_grammars_order(office: KB, text: str, intent: str, roles: dict) -> None:
@@ -62,3 +66,20 @@ def test_a_request_with_its_verb_and_politeness_is_not_read_as_a_thing_alone(off
 def test_a_thing_said_to_the_robots_question_is_the_answer_not_a_request(office: KB) -> None:
     assert terse("stapler, please", lexicon_of(office), "ari") == "bring me stapler"
     assert terse("stapler, please", lexicon_of(office), "ari", answering=True) is None
+
+
+def test_words_that_all_describe_one_thing_are_no_verb_of_an_activity() -> None:
+    kb = scene_kb(None,
+        "myself rdf:type Robot", "ann rdf:type Human", 'ann rdfs:label "Ann"', "myself sees ann",
+        "w1 rdf:type dbr:Bottle", 'w1 rdfs:label "bottle of still water"', "w1 isMovable true", "myself sees w1",
+        "w2 rdf:type dbr:Bottle", 'w2 rdfs:label "bottle of sparkling water"', "w2 isMovable true",
+        "myself sees w2",
+    )  # fmt: skip
+    # asked for with politeness: brought
+    out = say(kb, "still water, please", speaker="ann")
+    assert (out.intent, out.roles) == (I.BRING_OBJECT, {"object": "w1", "recipient": "ann"})
+    # said bare, the bringing is only proposed, never an activity of watering
+    for text in ("Water. Still.", "the still water"):
+        out = say(kb, text, speaker="ann")
+        assert out.intent is None and out.reply == "Shall I bring the bottle of still water to you?"
+    kb.close()

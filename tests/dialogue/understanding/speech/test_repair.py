@@ -23,6 +23,10 @@ def cleaned(text: str) -> Cleaned:
         ("fetch the tea sorry i mean the coffee", "fetch the coffee"),
         # of another head, the last phrase, as before
         ("put the pen on the desk sorry i mean the shelf", "put the pen on the shelf"),
+        # the whom said after it stays
+        ("give the banana to diego no the pear", "give the pear to diego"),
+        # a phrase and then the request said again whole: that request
+        ("could you give this banana to no the pear give the pear to diego", "give the pear to diego"),
     ],
 )
 def test_a_phrase_said_again_replaces_the_one_of_its_head(text: str, meant: str) -> None:
