@@ -28,6 +28,23 @@ class ConstructionWords(Table):
     available_ends: WordSet = frozenset()
     anything: WordSet = frozenset()
     someone_is: WordSet = frozenset()
+    needy: PhraseSet = frozenset()
+    going_wants: PhraseSet = frozenset()
+    going_verbs: WordSet = frozenset()
+    speakers: WordSet = frozenset()
+    a_hand: Phrase = ()
+    a_hand_particles: WordSet = frozenset()
+    enough_lead: Phrase = ()
+    enough: WordSet = frozenset()
+    helped_to: Phrases = ()
+    copulas: WordSet = frozenset()
+    subject_ends: WordSet = frozenset()
+    quote_skipped: WordSet = frozenset()
+    goodbyes: WordSet = frozenset()
+    goodbye: str = ""
+    telling: WordSet = frozenset()
+    told_marks: Phrases = ()
+    groups: WordSet = frozenset()
 
 
 class CompoundWords(Table):
