@@ -78,6 +78,11 @@ class ToldQuestionWords(Table):
     pronoun_of: dict[str, Phrase] = {}
     where: Phrases = ()
     where_end: WordSet = frozenset()
+    name_of: Phrase = ()
+    what_is: Phrase = ()
+    what_do: WordSet = frozenset()
+    speaker: PhraseSet = frozenset()
+    spoken_of: PhraseSet = frozenset()
 
 
 class QuestionWords(Table):
