@@ -74,6 +74,8 @@ class ReferentWords(Table):
     beneficiary: WordSet = frozenset()
     every: WordSet = frozenset()
     some: WordSet = frozenset()
+    some_glue: WordSet = frozenset()
+    person_objects: WordSet = frozenset()
 
 
 class RequestWords(Table):
