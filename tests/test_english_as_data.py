@@ -21,6 +21,7 @@ CLEAN = (
     "dialogue/understanding/questions/told.py",
     "dialogue/understanding/requests/constructions.py",
     "dialogue/understanding/requests/referents.py",
+    "dialogue/understanding/speech/clauses.py",
     "dialogue/understanding/statements/grammar.py",
     "dialogue/understanding/statements/likings.py",
 )
@@ -63,7 +64,6 @@ BUDGET = {
     "dialogue/understanding/requests/terse.py": 3,
     "dialogue/understanding/requests/timing.py": 2,
     "dialogue/understanding/requests/vocabulary.py": 1,
-    "dialogue/understanding/speech/clauses.py": 5,
     "dialogue/understanding/speech/plain.py": 2,
     "dialogue/understanding/speech/repair.py": 2,
     "dialogue/understanding/speech/spelling.py": 3,

@@ -28,6 +28,10 @@ class ClauseWords(Table):
     describing: Phrases = ()
     thinking: Phrases = ()
     put: WordSet = frozenset()
+    not_before_ask: WordSet = frozenset()
+    not_after_you: WordSet = frozenset()
+    third_person: WordSet = frozenset()
+    agreeing: WordSet = frozenset()
 
 
 class SpellingWords(Table):
