@@ -45,6 +45,10 @@ class Grammar:
         self.greetings = social.greetings_longest_first
         self.attention = social.attention
         self.social = social.social
+        self.thanks = social.thanks
+        self.thank_you = social.thank_you
+        self.after_no = social.after_no
+        self.welcome_back = social.welcome_back
         #: Talk the robot answers in words alone, each act by its phrases.
         self.talk: tuple[tuple[Act, frozenset[tuple[str, ...]]], ...] = (
             ("farewell", social.farewells), ("abilities", social.abilities), ("joke", social.jokes))
