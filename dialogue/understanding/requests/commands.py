@@ -35,9 +35,9 @@ def parse(lang: Language, said: Text, robot_name: str = "") -> Parse:
     words[0] = verb_lemma(lang, words[0])  # "(would you mind) picking up the cup"
     if words[0] == "no" and len(words) > 1 and words[1] not in g.after_no:
         words = strip_politeness(lang, words[1:], robot_name)
-    if len(words) > 1 and words[0] in g.halts and negation(words[1:]):  # "stop, don't go"
+    if len(words) > 1 and words[0] in g.halts and negation(g, words[1:]):  # "stop, don't go"
         words = words[1:]
-    if words and negation(words):
+    if words and negation(g, words):
         return Parse("negated", words=tuple(words))
     if any(tuple(words[: len(a)]) == a for a in lang.followups.again):  # "do the same with the blue one"
         return Parse("unknown", words=tuple(words))

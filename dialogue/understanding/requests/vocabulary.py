@@ -29,6 +29,8 @@ class Grammar:
         self.away = frozenset(said.away)
         self.durations = said.durations
         self.halts = said.halts
+        self.negators = said.negators
+        self.negation = said.negation
         self.if_modals = said.if_modals
         self.conditions = said.conditions
         self.not_conditions = said.not_conditions

@@ -98,6 +98,8 @@ class RequestWords(Table):
     not_conditions: WordSet = frozenset()
     your_time: WordSet = frozenset()
     halts: WordSet = frozenset()
+    negators: WordSet = frozenset()
+    negation: Phrase = ()
     manner: WordSet = frozenset()
     wants: Phrases = ()
     want_verbs: WordSet = frozenset()
