@@ -48,6 +48,9 @@ class _Words:
         self.some = said.some
         self.some_glue = said.some_glue
         self.person_objects = said.person_objects
+        self.pronoun_like = said.pronoun_like
+        self.pronoun_glue = said.pronoun_glue
+        self.one = closed.one
         self.coordinators = closed.coordinators
         self.speaker_possessives = frozenset(closed.speaker_possessives)
         self.determiners = closed.determiners

@@ -76,6 +76,8 @@ class ReferentWords(Table):
     some: WordSet = frozenset()
     some_glue: WordSet = frozenset()
     person_objects: WordSet = frozenset()
+    pronoun_glue: WordSet = frozenset()
+    pronoun_like: WordSet = frozenset()
 
 
 class RequestWords(Table):
