@@ -77,6 +77,7 @@ class ReferentWords(Table):
     some_glue: WordSet = frozenset()
     person_objects: WordSet = frozenset()
     pronoun_glue: WordSet = frozenset()
+    placed_pronouns: WordSet = frozenset()
     pronoun_like: WordSet = frozenset()
 
 
