@@ -58,7 +58,7 @@ BUDGET = {
     "dialogue/understanding/followups/correction.py": 1,
     "dialogue/understanding/followups/request.py": 3,
     "dialogue/understanding/followups/statement.py": 1,
-    "dialogue/understanding/interpret.py": 5,
+    "dialogue/understanding/interpret.py": 3,
     "dialogue/understanding/questions/answers.py": 1,
     "dialogue/understanding/questions/situation.py": 2,
     "dialogue/understanding/requests/frames.py": 3,

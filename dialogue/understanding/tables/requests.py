@@ -87,6 +87,8 @@ class RequestWords(Table):
     here: Phrases = ()
     there: Phrases = ()
     somewhere: WordSet = frozenset()
+    brought_here: PhraseSet = frozenset()
+    said_there: PhraseSet = frozenset()
     adjuncts: Phrases = ()
     away: Phrases = ()
     durations: Phrases = ()
