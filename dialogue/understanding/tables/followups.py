@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from dialogue.understanding.tables.base import (
+    Phrase,
     Phrases,
     PhraseSet,
     Table,
@@ -33,3 +34,6 @@ class FollowupWords(Table):
     emphasis: WordSet = frozenset()
     both: PhraseSet = frozenset()
     joining: WordSet = frozenset()
+    articles: WordSet = frozenset()
+    offered_request: Phrase = ()
+    continued_to: str = ""
