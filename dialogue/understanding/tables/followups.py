@@ -35,5 +35,6 @@ class FollowupWords(Table):
     both: PhraseSet = frozenset()
     joining: WordSet = frozenset()
     articles: WordSet = frozenset()
+    the_other: Phrase = ()
     offered_request: Phrase = ()
     continued_to: str = ""
