@@ -58,6 +58,8 @@ class SituationQuestionWords(Table):
     seeing_aux: WordSet = frozenset()
     you_see: Phrase = ()
     not_which_see: WordSet = frozenset()
+    where_me: str = ""
+    where_you: str = ""
     name_words: WordSet = frozenset()
     not_what_is: WordSet = frozenset()
     does: WordSet = frozenset()
