@@ -9,6 +9,7 @@ from dialogue.understanding.tables.base import (
     Phrases,
     PhraseSet,
     Table,
+    WordList,
     Words,
     WordSet,
 )
@@ -60,6 +61,9 @@ class SpeechWords(Table):
     auxiliaries: WordSet = frozenset()
     homophones: Phrases = ()
     not_nouns: WordSet = frozenset()
+    its: str = ""
+    it_is: Phrase = ()
+    participle_endings: WordList = ()
     numbering: WordSet = frozenset()
     my_after: WordSet = frozenset()
     wishing: WordSet = frozenset()
