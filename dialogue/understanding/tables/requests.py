@@ -60,9 +60,14 @@ class CompoundWords(Table):
 
 
 class TerseWords(Table):
-    """`requests.toml` [terse]: terse requests."""
+    """`requests.toml` [terse]: terse requests, and the requests they are read as (templates)."""
 
     subjects: WordSet = frozenset()
+    moving: str = ""
+    going: str = ""
+    putting: str = ""
+    handed_me: str = ""
+    handed: str = ""
 
 
 class ReferentWords(Table):
