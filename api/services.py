@@ -294,7 +294,8 @@ def start_services(settings: Settings, kb: KB | None = None, model: ChatModel | 
     services.reconciler = Reconciler(dialogues.engine.memory)
     services.reconciler.start()
     services.initiative = Initiative(the_kb, bus, InitiativeConfig(settings.memory.greet,
-                                                                   settings.memory.greet_interval))
+                                                                   settings.memory.greet_interval),
+                                     language=dialogues.engine.language)
     services.initiative.start()
     _webhooks(settings, bus, services)
     if journal is not None:

@@ -26,6 +26,8 @@ from rdflib import URIRef
 from dialogue import intents as I
 from dialogue.follower import CommitFollower
 from dialogue.pushed.bus import IntentBus
+from dialogue.understanding.language import Language
+from dialogue.understanding.replies import say
 from kb.protocol import KnowledgeBase
 from kb.terms import ORO, format_term, parse_name, shorten
 
@@ -50,9 +52,11 @@ class Initiative(CommitFollower[str]):
     greets them on a bus. `join` waits until every engagement queued so far was reached out to."""
 
     def __init__(self, kb: KnowledgeBase, bus: IntentBus, config: InitiativeConfig | None = None,
-                 clock: Callable[[], float] = time.monotonic) -> None:
+                 clock: Callable[[], float] = time.monotonic, language: Language | None = None) -> None:
         super().__init__(kb, "initiative", _engaged, self.engaged, MAX_PENDING)
         self.bus = bus
+        #: The language of the greetings (`replies.toml` [social]), as the engine's.
+        self.language = language or Language.load()
         self.config = config or InitiativeConfig()
         self.clock = clock
         self._greeted: dict[str, float] = {}
@@ -80,10 +84,10 @@ class Initiative(CommitFollower[str]):
         term = format_term(parse_name(person, "person"))
         names = sorted(str(r["l"]) for r in self.kb.find([f"{term} rdfs:label ?l"]))
         if not names:
-            return "Hello!"
+            return say(self.language, "social.hello")
         if self.kb.exist([f"{term} lastSpokeAt ?t"]):
-            return f"Hello {names[0]}, nice to see you again!"
-        return f"Hello {names[0]}!"
+            return say(self.language, "social.hello_again", name=names[0])
+        return say(self.language, "social.hello_you", name=names[0])
 
 
 def _engaged(commit: Any) -> Iterator[str]:

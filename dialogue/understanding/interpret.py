@@ -297,7 +297,8 @@ class Interpreter:
             who = tuple(w for w in slots.get("object", ()) if w not in relational(self.lang))
             # (never to a person: "take them to her" carries them to her)
             if self.refs.person_as_object(who) is not None and who:
-                if self.refs.a_person(slots["recipient"]) or slots["recipient"] in {("here",), ("there",)}:
+                to = slots["recipient"]
+                if self.refs.a_person(to) or to in self.lang.requests.brought_here:
                     # "bring Sam here": a person brought to a person is no intent the rules have
                     return Outcome(say(self.lang, "sorry.not_understood"), understood=False)
                 intent, slots = I.GUIDE, {"recipient": who, "goal": slots["recipient"]}
@@ -334,7 +335,7 @@ class Interpreter:
         spec = I.CATALOGUE[intent]
         for role, kinds in ROLE_KINDS.get(intent, {}).items():
             words = slots.get(role, ())
-            if not content_words(self.lang, words) and words not in {("there",), ("over", "there")}:
+            if not content_words(self.lang, words) and words not in self.lang.requests.said_there:
                 if role in spec.required and set(words) & self.lang.words.demonstratives:
                     # "bring me that one": what is pointed at, which the words do not say
                     return Outcome(say(self.lang, "sorry.not_understood"), understood=False)

@@ -111,7 +111,7 @@ def _the_other(earlier: Reader, fragment: Words, said: Words, was: str,
     other, one = lang.followups.other, lang.followups.one
     if not set(fragment) & other or not set(content_words(lang, fragment)) <= other | one:
         return None
-    named = resolve(earlier.lexicon, _instead(lang, ("the", "one"), said), kinds).matches
+    named = resolve(earlier.lexicon, _instead(lang, lang.followups.the_other, said), kinds).matches
     others = [e for e in named if e.id != was]
     return tuple(tokens(others[0].id)) if len(others) == 1 and len(named) == 2 else None
 

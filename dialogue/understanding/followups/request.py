@@ -207,7 +207,7 @@ def _merged(lang: Language, fragment: Words, first: Outcome) -> Words:
     """The fragment with the pending request's phrase: "the red one" and "the cup" make "the red
     cup"; prepositions stay ("the novel" + "book from the shelf" keeps "book" as the head)."""
     if first.open_phrase:
-        phrase = tuple(w for w in first.open_phrase if w not in {"the", "a", "an"})
+        phrase = tuple(w for w in first.open_phrase if w not in lang.followups.articles)
         if not set(fragment) & lang.followups.one:
             return (*fragment, *phrase)
         return tuple(x for w in fragment for x in (phrase if w in lang.followups.one else (w,)))
@@ -239,7 +239,7 @@ def _offered(lang: Language, asked: list[str]) -> list[str]:
             return [lang.followups.swapped.get(w, w) for w in asked[at + len(lead) :]]
     for lead in lang.followups.offers_a_thing:  # "Would you like a towel?"
         if tuple(asked[: len(lead)]) == lead and asked[len(lead) :]:
-            return ["bring", "me", *asked[len(lead) :]]
+            return [*lang.followups.offered_request, *asked[len(lead) :]]
     return []
 
 
@@ -280,10 +280,11 @@ def continuation(reader: Reader, p: Parse, heard: Said) -> Outcome | None:
     lang = reader.lexicon.lang
     words = tuple(strip_politeness(lang, plain(lang, heard)))
     found = where_it_goes(lang, words)
-    if found is None and "to" in words[1:-1]:  # said without its verb
-        at = words.index("to")
-        found = words[:at], ("to",), words[at + 1 :]
-    if found is None or found[1] != ("to",):
+    to = lang.followups.continued_to
+    if found is None and to in words[1:-1]:  # said without its verb
+        at = words.index(to)
+        found = words[:at], (to,), words[at + 1 :]
+    if found is None or found[1] != (to,):
         return None
     asked = [i for i, u in enumerate(reader.history) if u.role == "user"]
     if not asked:
@@ -293,7 +294,7 @@ def continuation(reader: Reader, p: Parse, heard: Said) -> Outcome | None:
         return None
     thing, _, place = found
     again = Parse("command", I.BRING_OBJECT, {"object": thing, "recipient": place}, words=(*thing, *place),
-                  marks={"recipient": "to"})  # fmt: skip
+                  marks={"recipient": to})  # fmt: skip
     outcome = reader.act(again)
     return outcome.followed_up() if outcome.intent is not None else None
 

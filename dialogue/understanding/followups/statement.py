@@ -36,7 +36,7 @@ def follow_up(text: Text, lexicon: Lexicon, speaker: str, history: Sequence[Utte
     fragment: Words = tuple(w for w in normalise(lexicon.lang, text) if w not in said.emphasis)
     if not fragment:
         return None
-    head = tuple(w for w in phrase if w not in {"the", "a", "an"})
+    head = tuple(w for w in phrase if w not in said.articles)
     if set(fragment) & said.one:  # "the red one": the phrase's words in place of "one"
         merged = tuple(x for w in fragment for x in (head if w in said.one else (w,)))
     else:

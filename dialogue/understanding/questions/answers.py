@@ -94,8 +94,9 @@ def who_is_in(lexicon: Lexicon, words: Sequence[str], speaker: str) -> tuple[str
 
 def where_is(lexicon: Lexicon, words: Sequence[str], speaker: str, owner: str | None = None) -> str:
     snapshot, lang = lexicon.snapshot, lexicon.lang
-    if tuple(words) in {("me",), ("you",)}:
-        me = words[0] == "me"
+    asked = lang.questions.situation
+    if len(words) == 1 and words[0] in (asked.where_me, asked.where_you):
+        me = words[0] == asked.where_me
         entity = snapshot.get(speaker if me else snapshot.robot)
         where = location(lang, snapshot, entity) if entity is not None else ""
         if where:

@@ -48,15 +48,17 @@ class Asking:
         unplaced = self._unplaced(w)
         if unplaced is not None:
             return [FactClaim(subject=unplaced, predicate="isIn", object=None)]
-        if w[:5] == ("what", "is", "the", "name", "of") and w[5:]:  # "what is the name of Alice?"
-            who = self._person(w[5:])
+        name_of = self.said.name_of
+        if name_of and w[: len(name_of)] == name_of and w[len(name_of) :]:  # "what is the name of Alice?"
+            who = self._person(w[len(name_of) :])
             return [FactClaim(subject=who, predicate="name", object=None)] if who is not None else None
-        if w[:2] == ("what", "is") and w[-1:] == ("name",) and len(w) > 3:  # "what is her name?"
-            whose = w[2:-1]
+        what_is = self.said.what_is
+        if what_is and w[: len(what_is)] == what_is and w[-1:] == ("name",) and len(w) > len(what_is) + 1:
+            whose = w[len(what_is) : -1]  # "what is her name?"
             pronoun = self.pronoun_of.get(whose)
             who = self._person(pronoun) if pronoun is not None else self._owner(whose)
             return [FactClaim(subject=who, predicate="name", object=None)] if who is not None else None
-        if w[:1] != ("what",) or len(w) < 4 or w[1] not in {"do", "does", "don't"}:
+        if w[:1] != ("what",) or len(w) < 4 or w[1] not in self.said.what_do:
             return None
         negated = w[1] == "don't" or w[-2:-1] == ("not",)
         verb = w[-1]
@@ -92,9 +94,9 @@ class Asking:
         return self._person((*words[:-1], words[-1][:-2]))
 
     def _person(self, words: Words) -> str | None:
-        if words in {("i",), ("me",)}:
+        if words in self.said.speaker:
             return self.speaker
-        if words in {("he",), ("she",), ("they",)}:
+        if words in self.said.spoken_of:
             found = antecedent(self.lexicon, self.history, PERSON, speaker=self.speaker)
             return found.id if found is not None else None
         if not content_words(self.lang, words):

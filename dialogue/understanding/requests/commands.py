@@ -33,11 +33,11 @@ def parse(lang: Language, said: Text, robot_name: str = "") -> Parse:
     if not words:
         return Parse("unknown", words=())
     words[0] = verb_lemma(lang, words[0])  # "(would you mind) picking up the cup"
-    if words[0] == "no" and len(words) > 1 and words[1] not in {"need", "more", "thanks", "thank"}:
+    if words[0] == "no" and len(words) > 1 and words[1] not in g.after_no:
         words = strip_politeness(lang, words[1:], robot_name)
-    if len(words) > 1 and words[0] in g.halts and negation(words[1:]):  # "stop, don't go"
+    if len(words) > 1 and words[0] in g.halts and negation(g, words[1:]):  # "stop, don't go"
         words = words[1:]
-    if words and negation(words):
+    if words and negation(g, words):
         return Parse("negated", words=tuple(words))
     if any(tuple(words[: len(a)]) == a for a in lang.followups.again):  # "do the same with the blue one"
         return Parse("unknown", words=tuple(words))
@@ -45,9 +45,10 @@ def parse(lang: Language, said: Text, robot_name: str = "") -> Parse:
         return Parse("conditional", words=tuple(words))
     if not words:
         return Parse("unknown", words=())
-    if words[0] in {"thanks", "thank"} or words == ["cheers"]:
+    if words[0] in g.thanks or words == ["cheers"]:
         # "thanks, now put it on the shelf": the thanks is a preamble to the request
-        tail = strip_politeness(lang, words[2:] if words[:2] == ["thank", "you"] else words[1:], robot_name)
+        full = len(g.thank_you) if g.thank_you and tuple(words[: len(g.thank_you)]) == g.thank_you else 1
+        tail = strip_politeness(lang, words[full:], robot_name)
         # "thanks, bye": the leave-taking is what is answered
         return _talk(g, tail, robot_name) or _request(lang, heard, tail) or _aside("thanks", words, tail)
     if tuple(words) in g.social and words[:1] != ["how"]:
@@ -56,7 +57,7 @@ def parse(lang: Language, said: Text, robot_name: str = "") -> Parse:
     if talk is not None:
         return talk
     # "welcome Lucia" asks the robot to greet her; "welcome back" is a greeting.
-    welcoming = words[0] == "welcome" and words[1:] and words[1] not in {"back", "home", "to", "everyone"}
+    welcoming = words[0] == "welcome" and words[1:] and words[1] not in g.welcome_back
     for greeting in () if welcoming else g.greetings:
         if starts(words, greeting):
             polite = strip_politeness(lang, words[len(greeting) :], robot_name)

@@ -60,6 +60,25 @@ class _Words:
         self.np_start = closed.np_start
         self.function_words = closed.any_function_word
         self.me = closed.me
+        self.objects = closed.objects
+        self.needy = words.needy
+        self.going_wants = words.going_wants
+        self.going_verbs = words.going_verbs
+        self.speakers = words.speakers
+        self.a_hand = words.a_hand
+        self.a_hand_particles = words.a_hand_particles
+        self.enough_lead = words.enough_lead
+        self.enough = words.enough
+        #: The separators of `split_at`, as it takes them.
+        self.helped_to = [" ".join(p) for p in words.helped_to]
+        self.copulas = words.copulas
+        self.subject_ends = words.subject_ends
+        self.quote_skipped = words.quote_skipped
+        self.goodbyes = words.goodbyes
+        self.goodbye = words.goodbye
+        self.telling = words.telling
+        self.told_marks = [" ".join(p) for p in words.told_marks]
+        self.groups = words.groups
 
 
 @dataclass(frozen=True)
@@ -94,7 +113,7 @@ def need(said: Framed) -> Parse | None:
     c = said.lang.derived(_Words)
     w = said.words
     whose: Words = ("me",)
-    if w[:2] in {("i", "am"), ("we", "are")}:
+    if w[:2] in c.needy:
         w = w[2:]
     elif _someone(c, w[:1]) and w[1:2] in c.someone_is:  # "Ruby is thirsty"
         whose, w = w[:1], w[2:]
@@ -151,12 +170,13 @@ def going(said: Framed) -> Parse | None:
     c = said.lang.derived(_Words)
     w = said.words
     for i in range(len(w) - 4):
-        wants = w[i] in c.want_verbs or w[i : i + 2] in {("would", "like"), ("has", "to"), ("have", "to")}
+        wants = w[i] in c.want_verbs or w[i : i + 2] in c.going_wants
         at = i + (2 if w[i] == "would" else 1)
-        goes = w[at : at + 1] == ("to",) and w[at + 1 : at + 2] in {("go",), ("get",)}
+        goes = w[at : at + 1] == ("to",) and at + 1 < len(w) and w[at + 1] in c.going_verbs
         if wants and goes and w[at + 2 : at + 3] == ("to",) and w[at + 3 :]:
             who = w[:i]
-            return said.command(I.GUIDE, recipient=("me",) if who in {(), ("i",), ("we",)} else who,
+            mine = not who or (len(who) == 1 and who[0] in c.speakers)
+            return said.command(I.GUIDE, recipient=("me",) if mine else who,
                                 goal=w[at + 3 :])  # fmt: skip
     return None
 
@@ -167,7 +187,7 @@ def wanting(said: Framed) -> Parse | None:
     for lead in c.wants:
         if starts(said.words, lead) and len(said.words) > len(lead):
             wanted = said.words[len(lead) :]
-            if wanted[:1] != ("to",) and wanted[:2] != ("a", "hand"):  # "give me a hand to the door"
+            if wanted[:1] != ("to",) and wanted[: len(c.a_hand)] != c.a_hand:  # "give me a hand to the door"
                 return said.command(I.BRING_OBJECT, object=wanted, recipient=("me",))
     return None
 
@@ -184,14 +204,15 @@ def their_wish(said: Framed) -> Parse | None:
         wanted = w[i + len(lead) :]
         person = who in {(x,) for x in c.wishers} or not set(who) & (c.not_wishers | c.wishers | c.me)
         if person and wanted and wanted[0] != "to":
-            return said.command(I.BRING_OBJECT, object=wanted, recipient=_pronoun(who))
+            return said.command(I.BRING_OBJECT, object=wanted, recipient=_pronoun(c, who))
         return None
     return None
 
 
-def _pronoun(who: Words) -> Words:
+def _pronoun(c: _Words, who: Words) -> Words:
     """ "he", "she", "they" refer to someone the conversation named."""
-    return {"he": ("him",), "she": ("her",), "they": ("them",)}.get(who[0], who) if len(who) == 1 else who
+    said = c.objects.get(who[0]) if len(who) == 1 else None
+    return (said,) if said is not None else who
 
 
 def belonging(said: Framed) -> Parse | None:
@@ -225,7 +246,8 @@ def where_it_goes(lang: Language, w: Words) -> tuple[Words, Words, Words] | None
 
 def enough(said: Framed) -> Parse | None:
     """ "that is enough (now)": stop."""
-    if said.words[:2] == ("that", "is") and "enough" in said.words:
+    c = said.lang.derived(_Words)
+    if said.words[: len(c.enough_lead)] == c.enough_lead and set(said.words) & c.enough:
         return said.command(I.STOP_ACTIVITY)
     return None
 
@@ -233,12 +255,13 @@ def enough(said: Framed) -> Parse | None:
 # -- after a verb ---------------------------------------------------------------------------------
 def a_hand(said: Framed) -> Parse | None:
     """ "give George a hand getting to the courtyard" is helping him get there."""
-    rest = said.rest
-    at = next((i for i in range(len(rest) - 1) if rest[i : i + 2] == ("a", "hand")), None)
+    c = said.lang.derived(_Words)
+    rest, hand = said.rest, c.a_hand
+    at = next((i for i in range(len(rest) - 1) if rest[i : i + len(hand)] == hand), None)
     if at is None or at == 0:
         return None
-    after = rest[at + 2 :]
-    after = after[1:] if after[:1] in {("getting",), ("with",)} else after
+    after = rest[at + len(hand) :]
+    after = after[1:] if after[:1] and after[0] in c.a_hand_particles else after
     return helping(Framed(said.lang, "help", (*rest[:at], *after), said.words, said.original))
 
 
@@ -254,7 +277,7 @@ def company(said: Framed) -> Parse | None:
 def helping(said: Framed) -> Parse | None:
     """ "help me get to the bathroom", "help Ana find the way to the exit": take them there (the
     way said after the person is no part of their name)."""
-    found = split_at(said.rest, ["get to", "to"]) if "to" in said.rest else None
+    found = split_at(said.rest, said.lang.derived(_Words).helped_to)
     if found is None or not found[0] or not found[2]:
         return None
     who = found[0]
@@ -270,7 +293,7 @@ def showing(said: Framed) -> Parse | None:
     if "where" in said.rest[1:]:
         at = said.rest.index("where")
         place = said.rest[at + 1 :]
-        place = place[:-1] if place[-1:] in {("is",), ("are",)} else place
+        place = place[:-1] if place[-1:] and place[-1] in c.copulas else place
         return said.command(I.GUIDE, recipient=said.rest[:at] or ("me",), goal=place) if place else None
     if "way" in said.rest or "to" in said.rest or set(said.rest[-1:]) & c.shown:
         return None  # ("show Ana out": guiding her, not where she is)
@@ -336,7 +359,7 @@ def _subject_phrase(c: _Words, rest: Words, i: int) -> bool:
     for k in range(i + 2, min(len(rest), i + 1 + _SUBJECT_WORDS)):
         if rest[k] in c.verbs_of_any or finite(rest[k], third_person=True):
             return True
-        if rest[k] in {"that", "to", "and", "or"}:
+        if rest[k] in c.subject_ends:
             return False
     return False
 
@@ -350,14 +373,14 @@ def speech(said: Framed) -> Parse:
         # The quoted words are the text; the recipient is found outside the quotes only.
         outside = expanded(said.lang, original.text[: quoted.start()] + " " + original.text[quoted.end() :])
         rest = tuple(outside[outside.index(verb) + 1 :]) if verb in outside else ()
-        rest = tuple(x for x in rest if x not in {"that", "please"})
+        rest = tuple(x for x in rest if x not in c.quote_skipped)
         recipient = rest[1:] if rest[:1] == ("to",) else rest
         return said.command(I.SAY, text=quoted.group(1).strip(), recipient=recipient)
     unknown = Parse("unknown", words=(verb, *rest))
-    if rest[:1] and rest[0] in {"goodbye", "bye"} and "to" in rest:
-        return said.command(I.SAY, text="goodbye", recipient=rest[rest.index("to") + 1 :])
-    if verb in {"tell", "inform", "remind", "ask"}:
-        found = split_at(rest, ["that", "to", "about"])
+    if rest[:1] and rest[0] in c.goodbyes and "to" in rest:
+        return said.command(I.SAY, text=c.goodbye, recipient=rest[rest.index("to") + 1 :])
+    if verb in c.telling:
+        found = split_at(rest, c.told_marks)
         clause = _clause_start(c, rest) if verb != "ask" else None
         if clause is not None and (found is None or clause < len(found[0])):
             # "tell Noor it's time to go": the message is a clause of its own, its "to" is its own
@@ -374,7 +397,7 @@ def speech(said: Framed) -> Parse:
             recipient, text = rest[:n], rest[n:]
         if recipient[:1] and recipient[0] in c.me:  # "tell me a joke": small talk, not a SAY intent
             return unknown
-        if len(recipient) == 2 and recipient[0] in {"the", "all"} and _plural(recipient[1]):
+        if len(recipient) == 2 and recipient[0] in c.groups and _plural(recipient[1]):
             return unknown  # "tell the kids": several people, whom one intent cannot say
 
         if not text:  # "tell Maria": the interpreter asks what to say

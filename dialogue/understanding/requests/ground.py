@@ -94,8 +94,8 @@ def _someone_there(p: Phrase) -> Ref | None:
 def _pronoun(p: Phrase) -> Ref | None:
     """ "it", "him", "there": the one the request or the conversation names, else which is meant."""
     refs = p.refs
-    bare = {w for w in p.words if w not in {"the", "over", "please"}}
-    if not (is_pronoun(refs.lang, p.words) or (bare and bare <= {"him", "her", "there"})):
+    bare = {w for w in p.words if w not in refs.said.pronoun_glue}
+    if not (is_pronoun(refs.lang, p.words) or (bare and bare <= refs.said.pronoun_like)):
         return None
     kinds = pronoun_kinds(refs.lang, p.words, p.kinds)
     if not kinds:  # "go and get him": a person where the request wants a thing
@@ -274,7 +274,7 @@ def _another_kind(p: Phrase) -> Ref | None:
 
 def _ones(p: Phrase) -> Ref | None:
     """ "the ones on the bench": which ones the conversation means, not that no bench is here."""
-    return p.not_understood() if {"one", "ones"} & set(p.words) else None
+    return p.not_understood() if p.refs.said.one & set(p.words) else None
 
 
 #: The steps of grounding, in the order they are tried.

@@ -110,7 +110,7 @@ def _apposed(lang: Language, words: Words) -> Words:
 def _placed_pronoun(lang: Language, words: Words) -> Words:
     """ "it off the shelf", "them from the table": the pronoun; where it is only says where to take it
     from (the thing is the one the conversation named)."""
-    if len(words) > 2 and words[0] in {"it", "them"} and words[1] in lang.support:
+    if len(words) > 2 and words[0] in lang.requests.referents.placed_pronouns and words[1] in lang.support:
         return words[:1]
     return words
 

@@ -46,6 +46,13 @@ class _Words:
         self.beneficiary = said.beneficiary
         #: Words that say how much of a thing, not which ("get me some", "bring me a couple").
         self.some = said.some
+        self.some_glue = said.some_glue
+        self.person_objects = said.person_objects
+        self.pronoun_like = said.pronoun_like
+        self.pronoun_glue = said.pronoun_glue
+        self.one = closed.one
+        self.coordinators = closed.coordinators
+        self.speaker_possessives = frozenset(closed.speaker_possessives)
         self.determiners = closed.determiners
         self.function_words = closed.any_function_word
         self.many = closed.many
@@ -77,7 +84,7 @@ class Referents:
             people = content_words(self.lang, head)
             named = set(people) <= self.said.me or resolve(self.lexicon, head, PERSON).one is not None
             # "bring him the bottle": a person pronoun the conversation resolves.
-            said = set(people) <= {"him", "her", "them"} and self.person_as_object(head) is not None
+            said = set(people) <= self.said.person_objects and self.person_as_object(head) is not None
             # "bring her the muffin": "her" before a determiner is no possessive, whoever she is
             said = said or (set(head) <= self.said.personal and tail[0] in self.said.determiners)
             if people and (named or said):
@@ -108,7 +115,7 @@ class Referents:
     def every(self, words: Words) -> list[Words]:
         """ "all the plates", "both cups": each thing the phrase names, as its id ([] when the phrase
         is not quantified, or names nothing)."""
-        if not set(words) & self.said.every or set(words) & {"and", "or"}:
+        if not set(words) & self.said.every or set(words) & self.said.coordinators:
             return []
         rest = tuple(w for w in words if w not in self.said.every and w != "of")
         return [tuple(tokens(e.id)) for e in resolve(self.lexicon, rest, THING).matches]
@@ -180,7 +187,7 @@ class Referents:
         content = content_words(self.lang, words)
         if content and set(content) <= self.said.me:
             return self.snapshot.get(self.speaker) or Entity(self.speaker, "you", (), (), (), "person", True)
-        if content and set(content) <= {"him", "her", "them"}:
+        if content and set(content) <= self.said.person_objects:
             # "them" is people only when no thing was spoken of ("take them to her": the specs)
             if not set(content) <= self.said.personal and antecedent(self.lexicon, self.history, THING):
                 return None
@@ -192,7 +199,7 @@ class Referents:
     def some_of(self, words: Words) -> Words:
         """ "some", "one", "a couple" said for a thing: the thing the conversation just named ("I
         need biscuits, can you get me some"), as its id; the words as they are when none was."""
-        if not set(words) <= self.said.some | {"a", "of", "them"} or not set(words) & self.said.some:
+        if not set(words) <= self.said.some | self.said.some_glue or not set(words) & self.said.some:
             return words
         found = antecedent(self.lexicon, self.history, THING, speaker=self.speaker)
         return tuple(tokens(found.id)) if found is not None else words
@@ -203,7 +210,7 @@ class Referents:
         said = [w for w in words if w in self.said.possessives]
         if not said or not content_words(self.lang, rest):
             return words, None
-        if said[0] in {"my", "our"}:
+        if said[0] in self.said.speaker_possessives:
             return rest, self.speaker
         if said[0] == "your":
             return rest, self.snapshot.robot

@@ -51,7 +51,8 @@ def terse(text: Text, lexicon: Lexicon, robot_name: str = "", answering: bool = 
         rest = [*named, *rest]
     motion = verb in lang.requests.terse_motion and rest and rest[0] not in lang.words.any_function_word
     if motion and _a_place(rest, lexicon):
-        return " ".join((verb, "to", *rest))  # "go workstand", "back yard, go"
+        # "go workstand", "back yard, go"
+        return lang.requests.terse.moving.format(verb=verb, place=" ".join(rest))
     return " ".join((verb, *rest)) if front or (subject and at == 0) else None
 
 
@@ -86,12 +87,12 @@ def _one_thing(words: Sequence[str], lexicon: Lexicon) -> bool:
 def _verbless(words: list[str], lexicon: Lexicon) -> str | None:
     """ "dining room": go there; "sunflowers into tall vase": put them there."""
     if _a_place(words, lexicon, ZONE):  # a place alone is a room or area, never a thing
-        return " ".join(("go", "to", *words))
+        return lexicon.lang.requests.terse.going.format(place=" ".join(words))
     placing = lexicon.lang.prepositions.words("terse-place")
     at = next((i for i, w in enumerate(words) if w in placing), None)
     if at is None or at == 0 or _named(words[:at], lexicon) is None:
         return None
-    return " ".join(("put", *words))
+    return lexicon.lang.requests.terse.putting.format(words=" ".join(words))
 
 
 def _handed(words: list[str], lexicon: Lexicon, asked: bool) -> str | None:
@@ -102,11 +103,12 @@ def _handed(words: list[str], lexicon: Lexicon, asked: bool) -> str | None:
     if at is None:
         said = asked and (_all_named(words, lexicon) or _one_thing(words, lexicon))
         thing = _named(words, lexicon) if said else None
-        return " ".join(("bring", "me", *thing)) if thing and _movable(thing, lexicon) else None
+        handed_me = lexicon.lang.requests.terse.handed_me
+        return handed_me.format(thing=" ".join(thing)) if thing and _movable(thing, lexicon) else None
     thing = _named(words[:at], lexicon) if at and _all_named(words[:at], lexicon) else None
     if thing is None or resolve(lexicon, words[at + 1 :], PERSON).one is None:
         return None
-    return " ".join(("bring", *thing, "to", *words[at + 1 :]))
+    return lexicon.lang.requests.terse.handed.format(thing=" ".join(thing), person=" ".join(words[at + 1 :]))
 
 
 def _all_named(words: Sequence[str], lexicon: Lexicon) -> bool:

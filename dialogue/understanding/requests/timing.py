@@ -13,8 +13,8 @@ from dialogue.understanding.speech.plain import starts, strip_politeness
 from dialogue.understanding.speech.repair import asked_verb
 
 
-def negation(words: Sequence[str]) -> bool:
-    return words[0] in {"don't", "never", "no"} or starts(words, ["do", "not"])
+def negation(g: Grammar, words: Sequence[str]) -> bool:
+    return words[0] in g.negators or (bool(g.negation) and starts(words, g.negation))
 
 
 def conditional(g: Grammar, words: Sequence[str]) -> bool:

@@ -29,6 +29,8 @@ class Grammar:
         self.away = frozenset(said.away)
         self.durations = said.durations
         self.halts = said.halts
+        self.negators = said.negators
+        self.negation = said.negation
         self.if_modals = said.if_modals
         self.conditions = said.conditions
         self.not_conditions = said.not_conditions
@@ -45,6 +47,10 @@ class Grammar:
         self.greetings = social.greetings_longest_first
         self.attention = social.attention
         self.social = social.social
+        self.thanks = social.thanks
+        self.thank_you = social.thank_you
+        self.after_no = social.after_no
+        self.welcome_back = social.welcome_back
         #: Talk the robot answers in words alone, each act by its phrases.
         self.talk: tuple[tuple[Act, frozenset[tuple[str, ...]]], ...] = (
             ("farewell", social.farewells), ("abilities", social.abilities), ("joke", social.jokes))

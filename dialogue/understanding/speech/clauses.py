@@ -64,6 +64,11 @@ class _Clauses:
         self.function_words = closed.any_function_word
         self.determiners = closed.determiners
         self.owners = closed.owners
+        self.not_before_ask = said.not_before_ask
+        self.not_after_you = said.not_after_you
+        self.third_person = said.third_person | said.indefinite
+        self.agreeing = said.agreeing
+        self.one = closed.one
 
 
 def clauses(lang: Language, text: Text) -> list[str]:
@@ -104,7 +109,7 @@ def _starts_clause(said: _Clauses, words: list[list[str]], i: int) -> bool:
         after = flat[len(asked) : len(asked) + 1]
         if asked[-1] == "you" and (not after or after[0] in said.subjects - {"you"}):
             return False  # a tag: "pick up my frame would you (it's fallen over)"
-        return before not in {"you", "i", "that", "if", "and", "or"}
+        return before not in said.not_before_ask
     told = i > 1 and words[i - 2][-1] in said.telling
     if before in said.takes_clause or before in said.auxiliaries or told or len(flat) < 2:
         return False  # "I think it's...", "tell him she's here"; "can I have": a question's order
@@ -143,8 +148,8 @@ def _verb_lemma_itself(word: str) -> bool:
 def _subject_verb(said: _Clauses, subject: str, verb: str) -> bool:
     """Whether a subject pronoun and the word after it start a clause ("she is", "I can't")."""
     if subject == "you":
-        return verb in said.auxiliaries and verb not in {"do", "does", "did", "just", "really", "also"}
-    third = subject in {"he", "she", "it"} | said.indefinite
+        return verb in said.auxiliaries and verb not in said.not_after_you
+    third = subject in said.third_person
     return verb in said.auxiliaries or finite(verb, third_person=third)
 
 
@@ -155,7 +160,7 @@ def _agrees(said: _Clauses, flat: list[str], k: int) -> bool:
     verb, after = flat[k], flat[k + 1] if k + 1 < len(flat) else ""
     if after == "you" and verb in said.auxiliaries:
         return False  # "(pick up) my frame would you": a tag question's order, no subject before it
-    if verb in {"is", "was", "has"}:
+    if verb in said.agreeing:
         return True
     lemmas = getAllLemmas(verb)
     if not finite(verb, third_person=True):
@@ -193,7 +198,7 @@ def description(lang: Language, text: Text) -> Words | None:
         return None
     rest = tuple(words[said:])
     located = rest[:1] and rest[0] in clause.modifier_start and len(rest) > 1
-    one = rest[:1] and rest[0] in clause.np_start and ("one" in rest or "ones" in rest)
+    one = rest[:1] and rest[0] in clause.np_start and bool(set(rest) & clause.one)
     whose = len(rest) == 1 and (rest[0].endswith("'s") or rest[0] in clause.owners)  # "it's Carla's"
     return rest if located or one or whose else None
 
@@ -208,4 +213,4 @@ def described(lang: Language, thing: Words, said: Words) -> Words:
         return (lang.words.owners.get(said[0], said[0]), *(w for w in thing if w not in np_start))
     lead = tuple(w for w in thing if w in np_start)
     head = tuple(w for w in thing if w not in np_start)
-    return (*lead, *(x for w in said[1:] for x in (head if w in {"one", "ones"} else (w,))))
+    return (*lead, *(x for w in said[1:] for x in (head if w in lang.words.one else (w,))))

@@ -61,6 +61,8 @@ class _Speech:
         self.wishing = speech.wishing
         self.durations = lang.requests.durations
         self.polite_prefixes = speech.polite_prefixes
+        self.its, self.it_is = speech.its, speech.it_is
+        self.participle_endings = speech.participle_endings
         self.is_it_is = lru_cache(maxsize=4096)(self._is_it_is)
         self.openings = lru_cache(maxsize=64)(self._openings)
 
@@ -76,7 +78,7 @@ class _Speech:
         if len(after) == 1 and nxt.endswith("'s"):  # "its Carla's": whose it is
             return True
         lemmas = getAllLemmas(nxt)
-        if nxt.endswith(("ed", "ing", "en")) and "VERB" in lemmas and "NOUN" not in lemmas:
+        if nxt.endswith(self.participle_endings) and "VERB" in lemmas and "NOUN" not in lemmas:
             return True
         return len(after) == 1 and "ADJ" in lemmas
 
@@ -108,8 +110,8 @@ def _expanded(u: Said) -> Words:
     for i, w in enumerate(words):
         if i > 0 and said.numbering_word(w, words[i + 1] if i + 1 < len(words) else ""):
             continue  # "screen number two", "room no 4": the number names it
-        if w == "its" and said.is_it_is(tuple(words[i + 1 : i + 3])):
-            out += ["it", "is"]
+        if w == said.its and said.is_it_is(tuple(words[i + 1 : i + 3])):
+            out += said.it_is
         elif w in said.chat and i > 0 and words[i - 1] in said.np_start:
             out.append(w)  # "the atm": the cash machine, not "at the moment"
         else:

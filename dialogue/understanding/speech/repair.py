@@ -43,6 +43,8 @@ class _Repairs:
         #: Prepositions that start a place said again ("...on the trolley no on the desk").
         self.place_words = frozenset(w for p in lang.prepositions.having("place") for w in p[:1])
         self.np_start = lang.words.np_start
+        #: "one", "ones": said for the head of a phrase said before ("no, the blue one").
+        self.one = lang.words.one
         self.modifier_start = lang.modifier_start
         self.fillers = speech.fillers
         self.lead_fillers = speech.lead_fillers
@@ -176,7 +178,7 @@ def _rephrased(said: _Repairs, before: list[str], phrase: list[str]) -> list[str
     # the blue suitcase": the suitcase, not the rack), else the last.
     for at in reversed(starts):
         end = next((j for j in range(at + 1, len(before)) if before[j] in said.place_words), len(before))
-        if _head(said, before[at:end]) == phrase[-1] and phrase[-1] not in {"one", "ones"}:
+        if _head(said, before[at:end]) == phrase[-1] and phrase[-1] not in said.one:
             return [*before[:at], *phrase, *before[end:]]
     # (the last, with the place or person said after it: "give the banana to Diego no the pear")
     last = starts[-1]
@@ -184,7 +186,7 @@ def _rephrased(said: _Repairs, before: list[str], phrase: list[str]) -> list[str
     head = _head(said, before[last:end])
     if head is None or head in np_start:
         return None
-    return [*before[:last], *(head if w in {"one", "ones"} else w for w in phrase), *before[end:]]
+    return [*before[:last], *(head if w in said.one else w for w in phrase), *before[end:]]
 
 
 def _head(said: _Repairs, phrase: list[str]) -> str | None:

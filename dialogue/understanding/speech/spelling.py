@@ -62,7 +62,7 @@ class _Slips:
         self.asked = speech.spelling.asked
         self.slips = speech.preposition_slips
         #: Who a preposition may introduce without an article ("four me": for me; "2 him").
-        self.people = closed.me | {"him", "her", "them"}
+        self.people = closed.me | lang.requests.referents.person_objects
         #: Particles of the way after which a preposition says where ("show him through two surgery
         #: one").
         groups = lang.frames.groups

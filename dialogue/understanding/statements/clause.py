@@ -69,9 +69,9 @@ class ClauseReader:
         self.history = tuple(history)
 
     def _person(self, words: Words) -> str | None:
-        if words == ("i",):
+        if words in self.lang.statements.speaker_subject:
             return self.speaker
-        if words in {("he",), ("she",)}:
+        if words in self.lang.statements.spoken_of:
             found = antecedent(self.lexicon, self.history, PERSON, speaker=self.speaker)
             return found.id if found is not None else None
         if not content_words(self.lang, words) or not all(w.isalpha() for w in words):
@@ -86,7 +86,7 @@ class ClauseReader:
         """One entity of `kinds` the phrase names, and whose it is said to be ("my keys"). With
         `fits`, only an entity it accepts: any other phrase, or a pronoun, is not this grammar's."""
         self.open_phrase, words = words, self.overrides.get(words, words)
-        if "person" in kinds and words in {("me",), ("i",)}:
+        if "person" in kinds and words in self.lang.statements.speaker_person:
             return self.speaker, None
         possessives = self.lang.words.possessives
         said = [w for w in words if w in possessives]

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from dialogue.understanding.tables.base import (
+    Phrase,
     Phrases,
     PhraseSet,
     Table,
@@ -33,3 +34,7 @@ class FollowupWords(Table):
     emphasis: WordSet = frozenset()
     both: PhraseSet = frozenset()
     joining: WordSet = frozenset()
+    articles: WordSet = frozenset()
+    the_other: Phrase = ()
+    offered_request: Phrase = ()
+    continued_to: str = ""

@@ -58,6 +58,8 @@ class SituationQuestionWords(Table):
     seeing_aux: WordSet = frozenset()
     you_see: Phrase = ()
     not_which_see: WordSet = frozenset()
+    where_me: str = ""
+    where_you: str = ""
     name_words: WordSet = frozenset()
     not_what_is: WordSet = frozenset()
     does: WordSet = frozenset()
@@ -78,6 +80,11 @@ class ToldQuestionWords(Table):
     pronoun_of: dict[str, Phrase] = {}
     where: Phrases = ()
     where_end: WordSet = frozenset()
+    name_of: Phrase = ()
+    what_is: Phrase = ()
+    what_do: WordSet = frozenset()
+    speaker: PhraseSet = frozenset()
+    spoken_of: PhraseSet = frozenset()
 
 
 class QuestionWords(Table):

@@ -28,6 +28,23 @@ class ConstructionWords(Table):
     available_ends: WordSet = frozenset()
     anything: WordSet = frozenset()
     someone_is: WordSet = frozenset()
+    needy: PhraseSet = frozenset()
+    going_wants: PhraseSet = frozenset()
+    going_verbs: WordSet = frozenset()
+    speakers: WordSet = frozenset()
+    a_hand: Phrase = ()
+    a_hand_particles: WordSet = frozenset()
+    enough_lead: Phrase = ()
+    enough: WordSet = frozenset()
+    helped_to: Phrases = ()
+    copulas: WordSet = frozenset()
+    subject_ends: WordSet = frozenset()
+    quote_skipped: WordSet = frozenset()
+    goodbyes: WordSet = frozenset()
+    goodbye: str = ""
+    telling: WordSet = frozenset()
+    told_marks: Phrases = ()
+    groups: WordSet = frozenset()
 
 
 class CompoundWords(Table):
@@ -43,9 +60,14 @@ class CompoundWords(Table):
 
 
 class TerseWords(Table):
-    """`requests.toml` [terse]: terse requests."""
+    """`requests.toml` [terse]: terse requests, and the requests they are read as (templates)."""
 
     subjects: WordSet = frozenset()
+    moving: str = ""
+    going: str = ""
+    putting: str = ""
+    handed_me: str = ""
+    handed: str = ""
 
 
 class ReferentWords(Table):
@@ -57,6 +79,11 @@ class ReferentWords(Table):
     beneficiary: WordSet = frozenset()
     every: WordSet = frozenset()
     some: WordSet = frozenset()
+    some_glue: WordSet = frozenset()
+    person_objects: WordSet = frozenset()
+    pronoun_glue: WordSet = frozenset()
+    placed_pronouns: WordSet = frozenset()
+    pronoun_like: WordSet = frozenset()
 
 
 class RequestWords(Table):
@@ -65,6 +92,8 @@ class RequestWords(Table):
     here: Phrases = ()
     there: Phrases = ()
     somewhere: WordSet = frozenset()
+    brought_here: PhraseSet = frozenset()
+    said_there: PhraseSet = frozenset()
     adjuncts: Phrases = ()
     away: Phrases = ()
     durations: Phrases = ()
@@ -79,6 +108,8 @@ class RequestWords(Table):
     not_conditions: WordSet = frozenset()
     your_time: WordSet = frozenset()
     halts: WordSet = frozenset()
+    negators: WordSet = frozenset()
+    negation: Phrase = ()
     manner: WordSet = frozenset()
     wants: Phrases = ()
     want_verbs: WordSet = frozenset()

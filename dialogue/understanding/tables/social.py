@@ -5,9 +5,11 @@ from __future__ import annotations
 from functools import cached_property
 
 from dialogue.understanding.tables.base import (
+    Phrase,
     Phrases,
     PhraseSet,
     Table,
+    WordSet,
 )
 
 
@@ -20,6 +22,10 @@ class SocialWords(Table):
     farewells: PhraseSet = frozenset()
     abilities: PhraseSet = frozenset()
     jokes: PhraseSet = frozenset()
+    thanks: WordSet = frozenset()
+    thank_you: Phrase = ()
+    after_no: WordSet = frozenset()
+    welcome_back: WordSet = frozenset()
 
     @cached_property
     def greetings_longest_first(self) -> Phrases:

@@ -9,6 +9,7 @@ from dialogue.understanding.tables.base import (
     Phrases,
     PhraseSet,
     Table,
+    WordList,
     Words,
     WordSet,
 )
@@ -28,6 +29,10 @@ class ClauseWords(Table):
     describing: Phrases = ()
     thinking: Phrases = ()
     put: WordSet = frozenset()
+    not_before_ask: WordSet = frozenset()
+    not_after_you: WordSet = frozenset()
+    third_person: WordSet = frozenset()
+    agreeing: WordSet = frozenset()
 
 
 class SpellingWords(Table):
@@ -56,6 +61,9 @@ class SpeechWords(Table):
     auxiliaries: WordSet = frozenset()
     homophones: Phrases = ()
     not_nouns: WordSet = frozenset()
+    its: str = ""
+    it_is: Phrase = ()
+    participle_endings: WordList = ()
     numbering: WordSet = frozenset()
     my_after: WordSet = frozenset()
     wishing: WordSet = frozenset()

@@ -47,6 +47,7 @@ class ClosedWords(Table):
     demonstratives: WordSet = frozenset()
     np_start: WordSet = frozenset()
     owners: dict[str, str] = {}
+    objects: dict[str, str] = {}
     sides: dict[str, str] = {}
     wh: WordSet = frozenset()
     titles: Phrases = ()
