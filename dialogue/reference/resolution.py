@@ -15,8 +15,6 @@ from collections.abc import Collection, Sequence
 from dataclasses import dataclass
 from functools import lru_cache
 
-from lemminflect import getAllLemmas
-
 from dialogue import intents as I
 from dialogue.reference.clarify import MAX_OPTIONS
 from dialogue.reference.english import tokens
@@ -25,6 +23,7 @@ from dialogue.reference.headnoun import resolve_head
 from dialogue.reference.lexicon import Lexicon, norm
 from dialogue.reference.naming import phrase as name_words
 from dialogue.understanding.language import Language
+from dialogue.understanding.lemmas import lemmas_of
 
 #: The ontology's class of what a bottle, a can or a packet holds.
 FOOD_OR_DRINK = "cyc:FoodOrDrink"
@@ -258,7 +257,7 @@ def _settled(near: Sequence[Entity], owner: str | None, own_name: Collection[str
 def compared(lang: Language, word: str) -> str:
     """The adjective a comparative or superlative compares by ("the bigger one": big), else the word."""
     if word.endswith(lang.words.compared):
-        bases: tuple[str, ...] = getAllLemmas(word).get("ADJ", ())
+        bases: tuple[str, ...] = lemmas_of(word).get("ADJ", ())
         if bases and bases[0] != word:
             return bases[0]
     return word
