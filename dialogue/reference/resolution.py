@@ -99,7 +99,7 @@ def is_pronoun(lang: Language, words: Sequence[str]) -> bool:
     return len(content) == 1 and content[0] in lang.words.pronouns
 
 
-def resolve(  # noqa: C901
+def resolve(
     lexicon: Lexicon,
     words: Sequence[str],
     kinds: Collection[Kind] = ALL_KINDS,
@@ -108,7 +108,20 @@ def resolve(  # noqa: C901
     sight: bool = True,
 ) -> Resolution:
     """Entities of the given kinds that the phrase names (see the module docstring); with `sight`
-    False, the things in sight are not preferred among a few (a thing to fetch: which is asked)."""
+    False, the things in sight are not preferred among a few (a thing to fetch: which is asked).
+    Read once per snapshot (`Lexicon.analysed`): the requests' reader asks of the same phrase
+    whether it is a person, a place and a thing, and the answer grounding asks again."""
+    key = (resolve, tuple(words), frozenset(kinds), owner, sight)
+    return lexicon.analysed(key, lambda: _resolve(lexicon, words, kinds, owner, sight), _weight)
+
+
+def _weight(resolution: Resolution) -> int:
+    return 1 + len(resolution.matches)
+
+
+def _resolve(  # noqa: C901
+    lexicon: Lexicon, words: Sequence[str], kinds: Collection[Kind], owner: str | None, sight: bool
+) -> Resolution:
     lang = lexicon.lang
     phrase = " ".join(words)
     words = [w[:-2] if w.endswith("'s") and len(w) > 2 else w for w in words]  # "ines's" names Ines
