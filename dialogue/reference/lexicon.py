@@ -8,10 +8,10 @@ matching is on whole words (D11).
 from __future__ import annotations
 
 from collections import defaultdict
-from collections.abc import Callable, Iterable, Iterator, Mapping, Sequence
+from collections.abc import Callable, Hashable, Iterable, Iterator, Mapping, Sequence
 from collections.abc import Set as AbstractSet
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, TypeVar, cast
 
 from dialogue.reference.grounding import Entity, Snapshot
 from dialogue.reference.layered import GONE, Gone, Layered, layered, rebucket
@@ -19,6 +19,8 @@ from dialogue.reference.naming import NO_ENTRY, Entry, Name, Naming, norm, phras
 from dialogue.understanding.language import Language
 
 __all__ = ["Lexicon", "Mention", "Name", "norm", "phrase", "singular"]
+
+T = TypeVar("T")
 
 @dataclass(frozen=True)
 class Mention:
@@ -57,6 +59,9 @@ class Lexicon:
         self._kinds: dict[tuple[str, ...], Entry] = previous._kinds if previous is not None else {}
         #: The names of a kind word, one per entity of its kinds, made when first looked up.
         self._found: dict[tuple[str, ...], tuple[frozenset[tuple[str, ...]], list[Name]]] = {}
+        #: What was read off this version's names (`analysed`): never carried to the next version.
+        self._analyses: dict[Hashable, Any] = {}
+        self._analysed_weight = 0
         changed = snapshot.changed_since(previous.snapshot.revision) if previous is not None else None
         if previous is not None and changed is not None:
             self._update(previous, changed)
@@ -285,6 +290,24 @@ class Lexicon:
             i += length
         return out
 
+    def analysed(self, key: Hashable, make: Callable[[], T], size: Callable[[T], int] = lambda _: 1) -> T:
+        """What `make` reads off this version's names (a phrase's referents), made once per `key`:
+        the same phrase read again by another reader of the turn, or by a later turn of the same
+        snapshot, is looked up. `make` must read nothing but this lexicon and what `key` holds.
+        Bounded: what is kept weighs at most `_MAX_ANALYSES` by `size` (cleared when it would
+        weigh more: a class word's referents may be thousands of entities), and a lexicon is one
+        snapshot's, so nothing kept outlives the snapshot's revision."""
+        made = self._analyses.get(key, _NOT_MADE)
+        if made is _NOT_MADE:
+            made = make()
+            weight = size(made)
+            if self._analysed_weight + weight > _MAX_ANALYSES:
+                self._analyses, self._analysed_weight = {}, 0
+            if weight <= _MAX_ANALYSES:
+                self._analyses[key] = made
+                self._analysed_weight += weight
+        return cast(T, made)
+
     def knows_word(self, word: str) -> bool:
         return singular(word) in self._lengths
 
@@ -313,6 +336,11 @@ def _reuse(kept: tuple[Entity, Entry] | None, entity: Entity, naming: Naming) ->
 _LEXICAL = frozenset({"synonym", "kind"})
 #: Names of kind words kept between lookups, in all.
 _MAX_FOUND = 200_000
+#: What the analyses a lexicon keeps may weigh (`Lexicon.analysed`): for phrases' referents,
+#: each phrase and each entity it names is 1 (some hundred phrases, or one class word's thousands).
+_MAX_ANALYSES = 4096
+#: What `Lexicon.analysed` holds for an analysis not made yet (an analysis may be None).
+_NOT_MADE = object()
 
 
 class _Attributes(Mapping[str, AbstractSet[str]]):

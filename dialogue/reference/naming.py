@@ -11,12 +11,13 @@ from collections.abc import Sequence
 from functools import lru_cache
 from typing import NamedTuple
 
-from lemminflect import getAllLemmas, getLemma
+from lemminflect import getLemma
 
 from dialogue.reference.english import tokens, word_set
 from dialogue.reference.snapshot import Entity
 from dialogue.reference.synonyms import Synonyms, synonyms
 from dialogue.understanding.language import Language
+from dialogue.understanding.lemmas import lemmas_of
 
 #: Function words ending in -s that a noun lemmatiser would "singularise" ("was" -> "wa").
 _NOT_PLURAL = word_set("is was has does this his us yes its as thus plus whereas always sometimes perhaps")
@@ -149,7 +150,7 @@ class Naming:
         turn."""
         for size in self.head_sizes:
             k = len(word) - size
-            if k >= 3 and word[k:] in self.compound_heads and getAllLemmas(word[:k]):
+            if k >= 3 and word[k:] in self.compound_heads and lemmas_of(word[:k]):
                 return word[k:]
         return None
 

@@ -15,8 +15,6 @@ from collections.abc import Collection, Sequence
 from dataclasses import dataclass
 from functools import lru_cache
 
-from lemminflect import getAllLemmas
-
 from dialogue import intents as I
 from dialogue.reference.clarify import MAX_OPTIONS
 from dialogue.reference.english import tokens
@@ -25,6 +23,7 @@ from dialogue.reference.headnoun import resolve_head
 from dialogue.reference.lexicon import Lexicon, norm
 from dialogue.reference.naming import phrase as name_words
 from dialogue.understanding.language import Language
+from dialogue.understanding.lemmas import lemmas_of
 
 #: The ontology's class of what a bottle, a can or a packet holds.
 FOOD_OR_DRINK = "cyc:FoodOrDrink"
@@ -100,7 +99,7 @@ def is_pronoun(lang: Language, words: Sequence[str]) -> bool:
     return len(content) == 1 and content[0] in lang.words.pronouns
 
 
-def resolve(  # noqa: C901
+def resolve(
     lexicon: Lexicon,
     words: Sequence[str],
     kinds: Collection[Kind] = ALL_KINDS,
@@ -109,7 +108,20 @@ def resolve(  # noqa: C901
     sight: bool = True,
 ) -> Resolution:
     """Entities of the given kinds that the phrase names (see the module docstring); with `sight`
-    False, the things in sight are not preferred among a few (a thing to fetch: which is asked)."""
+    False, the things in sight are not preferred among a few (a thing to fetch: which is asked).
+    Read once per snapshot (`Lexicon.analysed`): the requests' reader asks of the same phrase
+    whether it is a person, a place and a thing, and the answer grounding asks again."""
+    key = (resolve, tuple(words), frozenset(kinds), owner, sight)
+    return lexicon.analysed(key, lambda: _resolve(lexicon, words, kinds, owner, sight), _weight)
+
+
+def _weight(resolution: Resolution) -> int:
+    return 1 + len(resolution.matches)
+
+
+def _resolve(  # noqa: C901
+    lexicon: Lexicon, words: Sequence[str], kinds: Collection[Kind], owner: str | None, sight: bool
+) -> Resolution:
     lang = lexicon.lang
     phrase = " ".join(words)
     words = [w[:-2] if w.endswith("'s") and len(w) > 2 else w for w in words]  # "ines's" names Ines
@@ -258,7 +270,7 @@ def _settled(near: Sequence[Entity], owner: str | None, own_name: Collection[str
 def compared(lang: Language, word: str) -> str:
     """The adjective a comparative or superlative compares by ("the bigger one": big), else the word."""
     if word.endswith(lang.words.compared):
-        bases: tuple[str, ...] = getAllLemmas(word).get("ADJ", ())
+        bases: tuple[str, ...] = lemmas_of(word).get("ADJ", ())
         if bases and bases[0] != word:
             return bases[0]
     return word

@@ -6,8 +6,6 @@ from __future__ import annotations
 
 from collections.abc import Callable
 
-from lemminflect import getAllLemmas
-
 from dialogue.reference.antecedent import antecedent, pronoun_kinds
 from dialogue.reference.english import Words, tokens
 from dialogue.reference.resolution import (
@@ -19,6 +17,7 @@ from dialogue.reference.resolution import (
 )
 from dialogue.understanding.context import Context
 from dialogue.understanding.language import Language
+from dialogue.understanding.lemmas import lemmas_of
 from dialogue.understanding.outcome import Outcome
 from dialogue.understanding.parsed import Parse
 from dialogue.understanding.questions import answers
@@ -38,7 +37,7 @@ def _what_see(c: Context, thing: Words, owner: str | None, p: Parse) -> Outcome:
 def _who_see(c: Context, thing: Words, owner: str | None, p: Parse) -> Outcome:
     # "who else lives here", "who am I": a verb besides being and seeing asks something else ("who
     # else is down the allotment": a place the KB may not name, still who is there)
-    if any(not c.lexicon.knows(w) and "VERB" in getAllLemmas(w) for w in p.slots.get("rest", ())):
+    if any(not c.lexicon.knows(w) and "VERB" in lemmas_of(w) for w in p.slots.get("rest", ())):
         return _no_answer(c)
     return Outcome(answers.who_do_you_see(c.lang, c.snapshot, c.speaker))
 

@@ -9,11 +9,10 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from lemminflect import getAllLemmas
-
 from dialogue.reference.english import Words
 from dialogue.reference.resolution import content_words
 from dialogue.understanding.language import Language
+from dialogue.understanding.lemmas import lemmas_of
 from dialogue.understanding.requests.frames import known_verbs, verbs
 from dialogue.understanding.said import Said, Text
 from dialogue.understanding.speech.plain import QUOTED, starts, strip_politeness
@@ -77,7 +76,7 @@ def _verb(lang: Language, text: Text, later: bool = False) -> str | None:
     if known is not None or not later or len(words) < 2:
         return known
     c = lang.derived(_Words)
-    verb = words[0] in getAllLemmas(words[0]).get("VERB", ())  # a verb as said to do it, not "chairs"
+    verb = words[0] in lemmas_of(words[0]).get("VERB", ())  # a verb as said to do it, not "chairs"
     return words[0] if verb and words[1] in c.object_start else None
 
 

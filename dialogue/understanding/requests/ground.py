@@ -9,8 +9,6 @@ from __future__ import annotations
 
 from collections.abc import Callable, Collection, Sequence
 
-from lemminflect import getAllLemmas
-
 from dialogue.reference.antecedent import antecedent, pronoun_kinds
 from dialogue.reference.english import Words, tokens
 from dialogue.reference.grounding import Kind
@@ -25,6 +23,7 @@ from dialogue.reference.resolution import (
     said_phrase,
 )
 from dialogue.reference.snapshot import fixed
+from dialogue.understanding.lemmas import lemmas_of
 from dialogue.understanding.outcome import Outcome, Ref
 from dialogue.understanding.replies import say, the
 from dialogue.understanding.requests.compound import alternatives
@@ -337,7 +336,7 @@ def _unknown_just_said(refs: Referents) -> bool:
     if last is None or last.role != "user":
         return False
     return any(
-        not refs.lexicon.knows(w) and "NOUN" in getAllLemmas(w)
+        not refs.lexicon.knows(w) and "NOUN" in lemmas_of(w)
         for w in tokens(last.text)
         if w.isalpha() and w not in refs.said.function_words | refs.said.accounted
     )

@@ -7,8 +7,6 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
-from lemminflect import getAllLemmas
-
 from dialogue.history import Utterance
 from dialogue.reference.antecedent import antecedent
 from dialogue.reference.english import Words, tokens
@@ -23,6 +21,7 @@ from dialogue.reference.resolution import (
     resolve,
 )
 from dialogue.understanding.language import Language
+from dialogue.understanding.lemmas import lemmas_of
 
 
 def relational(lang: Language) -> frozenset[str]:
@@ -224,7 +223,7 @@ class Referents:
         """The words of a phrase that nothing accounts for: no name or qualifier of the KB, no word of
         English (lemminflect's lexicon), no number or function word ("bk", "thingummy")."""
         return [w for w in content if not self.lexicon.knows(w) and w not in self.said.accounted
-                and w not in self.said.function_words and not getAllLemmas(w.removesuffix("'s"))]  # fmt: skip
+                and w not in self.said.function_words and not lemmas_of(w.removesuffix("'s"))]  # fmt: skip
 
     def unnamed(self, content: Sequence[str]) -> list[str]:
         """The words of a phrase no name or qualifier of the KB accounts for, English or not ("bunny"

@@ -20,10 +20,11 @@ import re
 from functools import lru_cache
 from itertools import pairwise
 
-from lemminflect import getAllLemmas, getInflection
+from lemminflect import getInflection
 
 from dialogue.reference.english import Words, lowered
 from dialogue.understanding.language import Language
+from dialogue.understanding.lemmas import lemmas_of
 from dialogue.understanding.said import Said, Text
 from dialogue.understanding.speech.plain import expanded, strip_politeness
 
@@ -130,7 +131,7 @@ def _starts_clause(said: _Clauses, words: list[list[str]], i: int) -> bool:
         closed = function_words | said.determiners
         return any(_agrees(said, flat, k) for k in (2, 3) if not set(flat[1:k]) & closed)
     # "Omar wants a word": a word that is a name or a noun, then its verb
-    noun = not set(getAllLemmas(first)) - {"NOUN", "PROPN"}
+    noun = not set(lemmas_of(first)) - {"NOUN", "PROPN"}
     return first.isalpha() and first not in said.auxiliaries and noun and _agrees(said, flat, 1)
 
 
@@ -142,7 +143,7 @@ def _bare_verb(said: _Clauses, word: str) -> bool:
 @lru_cache(maxsize=4096)
 def _verb_lemma_itself(word: str) -> bool:
     """Whether the word is a verb's lemma ("go", "put"; not "went")."""
-    return word in getAllLemmas(word).get("VERB", ())
+    return word in lemmas_of(word).get("VERB", ())
 
 
 def _subject_verb(said: _Clauses, subject: str, verb: str) -> bool:
@@ -162,19 +163,19 @@ def _agrees(said: _Clauses, flat: list[str], k: int) -> bool:
         return False  # "(pick up) my frame would you": a tag question's order, no subject before it
     if verb in said.agreeing:
         return True
-    lemmas = getAllLemmas(verb)
+    lemmas = lemmas_of(verb)
     if not finite(verb, third_person=True):
         return False
     # "the class starts soon", "the baby needs a nap"; but "the reading glasses (on the table)" is
     # a plural noun: one that may be either is a verb only before an adverb or an object
-    adverb = after not in said.function_words and set(getAllLemmas(after)) == {"ADV"}
+    adverb = after not in said.function_words and set(lemmas_of(after)) == {"ADV"}
     return "NOUN" not in lemmas or after in said.np_start or adverb
 
 
 @lru_cache(maxsize=4096)
 def finite(word: str, third_person: bool) -> bool:
     """Whether the word is a verb in a tense ("wants", "started"; "want" too after "I", "we"...)."""
-    for lemma in getAllLemmas(word).get("VERB", ()):
+    for lemma in lemmas_of(word).get("VERB", ()):
         forms = {*getInflection(lemma, "VBZ"), *getInflection(lemma, "VBD")} if third_person else set()
         forms |= set() if third_person else {lemma, *getInflection(lemma, "VBD")}
         if word in forms:

@@ -11,10 +11,9 @@ import re
 from collections.abc import Sequence
 from functools import lru_cache
 
-from lemminflect import getAllLemmas
-
 from dialogue.reference.english import Words, lowered
 from dialogue.understanding.language import Language
+from dialogue.understanding.lemmas import lemmas_of
 from dialogue.understanding.said import Said, Text
 
 QUOTED = re.compile(r"[\"\u201c\u201d]([^\"\u201c\u201d]+)[\"\u201c\u201d]")
@@ -77,7 +76,7 @@ class _Speech:
             return True
         if len(after) == 1 and nxt.endswith("'s"):  # "its Carla's": whose it is
             return True
-        lemmas = getAllLemmas(nxt)
+        lemmas = lemmas_of(nxt)
         if nxt.endswith(self.participle_endings) and "VERB" in lemmas and "NOUN" not in lemmas:
             return True
         return len(after) == 1 and "ADJ" in lemmas

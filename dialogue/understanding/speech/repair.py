@@ -9,10 +9,11 @@ import re
 from dataclasses import dataclass
 from functools import lru_cache
 
-from lemminflect import getAllLemmas, getInflection
+from lemminflect import getInflection
 
 from dialogue.reference.english import Words
 from dialogue.understanding.language import Language
+from dialogue.understanding.lemmas import lemmas_of
 from dialogue.understanding.requests.frames import known_verbs, verbs
 from dialogue.understanding.said import Said, Text
 from dialogue.understanding.speech.plain import (
@@ -59,7 +60,7 @@ def verb_lemma(lang: Language, word: str) -> str:
     known = known_verbs(lang)
     if word in known or word in lang.speech.auxiliaries:
         return word
-    lemmas: tuple[str, ...] = getAllLemmas(word).get("VERB", ())
+    lemmas: tuple[str, ...] = lemmas_of(word).get("VERB", ())
     return next((lemma for lemma in lemmas if lemma in known), word)
 
 

@@ -20,7 +20,6 @@ from collections.abc import Collection
 from functools import lru_cache
 
 from jellyfish import metaphone
-from lemminflect import getAllLemmas
 from rapidfuzz import process
 from rapidfuzz.distance import OSA
 
@@ -28,6 +27,7 @@ from dialogue.reference.english import Words
 from dialogue.reference.grounding import Entity, Kind
 from dialogue.reference.lexicon import Lexicon
 from dialogue.reference.resolution import resolve
+from dialogue.understanding.lemmas import lemmas_of
 from dialogue.understanding.speech.spelling import SHORTEST_KEY, typing_cost
 
 #: At most this many letters apart (optimal string alignment) for a word heard for another.
@@ -113,4 +113,4 @@ def _longer(word: str, lexicon: Lexicon) -> list[str]:
     attributes = lexicon.attributes
     said = {w for e in lexicon.snapshot.visible() for w in attributes.get(e.id, ())}
     return [w for w in said if w.startswith(word) and len(w) >= len(word) + _CLIPPED
-            and not getAllLemmas(w[len(word) :])]  # fmt: skip
+            and not lemmas_of(w[len(word) :])]  # fmt: skip

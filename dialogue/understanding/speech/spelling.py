@@ -25,13 +25,14 @@ from collections.abc import Iterable, Iterator
 from dataclasses import dataclass
 
 from jellyfish import metaphone
-from lemminflect import getAllLemmas, getInflection
+from lemminflect import getInflection
 from rapidfuzz import process
 from rapidfuzz.distance import OSA
 
 from dialogue.reference.english import lowered, phrases
 from dialogue.reference.lexicon import Lexicon, singular
 from dialogue.understanding.language import Language
+from dialogue.understanding.lemmas import lemmas_of
 from dialogue.understanding.requests.frames import frames
 from dialogue.understanding.said import Said, Taken, Text
 from dialogue.understanding.speech.heardnames import heard_name
@@ -180,7 +181,7 @@ def _run_together(lang: Language, word: str) -> str | None:
     """Two words of the grammar typed as one ("goto", "infront", "bringme"), when only one cut makes
     two of them ("someones" is someone's, not "some ones")."""
     grammar = grammar_words(lang)
-    if word.endswith("s") and (word[:-1] in grammar or getAllLemmas(word[:-1])):
+    if word.endswith("s") and (word[:-1] in grammar or lemmas_of(word[:-1])):
         return None
     cuts = [(word[:k], word[k:]) for k in range(_PART, len(word) - _PART + 1)]
     found = [f"{a} {b}" for a, b in cuts if a in grammar and b in grammar]
@@ -191,7 +192,7 @@ def _suspect(word: str, lexicon: Lexicon) -> bool:
     """Whether nothing accounts for the word: not the grammar's, not the KB's, not English."""
     if len(word) < 3 or not word.isalpha() or word in grammar_words(lexicon.lang) or lexicon.knows(word):
         return False
-    return not getAllLemmas(word)
+    return not lemmas_of(word)
 
 
 def _meant(word: str, lexicon: Lexicon) -> str | None:

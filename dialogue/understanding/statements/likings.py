@@ -9,11 +9,10 @@ dance", "I like to dance", "I hate waiting") or a bare "that" is no statement.
 
 from __future__ import annotations
 
-from lemminflect import getAllLemmas
-
 from dialogue.reference.resolution import ANYWHERE
 from dialogue.schema import FactClaim
 from dialogue.understanding.language import Language
+from dialogue.understanding.lemmas import lemmas_of
 from dialogue.understanding.said import Said
 from dialogue.understanding.statements.clause import ClauseReader, Unclaimed, Words, fact
 
@@ -99,7 +98,7 @@ class Likings(ClauseReader):
         """A thing of the situation when the phrase names one with a determiner ("the radio"), else
         the words of a kind ("tea", "apples"), found among the KB's classes when learnt."""
         words = tuple(w for w in words if w not in self.liked.degree)
-        if words and words[0].endswith("ing") and "VERB" in getAllLemmas(words[0]):
+        if words and words[0].endswith("ing") and "VERB" in lemmas_of(words[0]):
             raise Unclaimed  # "I hate marking lab reports": an activity, no thing or kind of the KB
         liked = self.liked
         happening = words[:1] and words[0] in liked.happenings

@@ -11,9 +11,10 @@ when they had no casing ("bob" -> "Bob"), and never longer than `MAX_NAME`.
 
 from __future__ import annotations
 
-from lemminflect import getAllLemmas, getInflection
+from lemminflect import getInflection
 
 from dialogue.understanding.language import Language
+from dialogue.understanding.lemmas import lemmas_of
 
 Words = tuple[str, ...]
 #: Longest name a person may give (characters).
@@ -55,7 +56,7 @@ def given_name(lang: Language, words: Words) -> bool:
 
 def _descriptive(word: str) -> bool:
     """An adjective, an adverb, or a verb's past participle ("lost", "bored"): how someone is."""
-    lemmas = getAllLemmas(word)
+    lemmas = lemmas_of(word)
     if _NOT_NAME_POS & set(lemmas):
         return True
     return any(word in getInflection(verb, tag="VBN") for verb in lemmas.get("VERB", ()))

@@ -197,3 +197,34 @@ def _count_compound_head_lookups(monkeypatch: pytest.MonkeyPatch) -> _CountedHea
 
     monkeypatch.setattr(Naming, "__init__", counting)
     return counted
+
+
+def test_an_analysis_is_made_once_per_key_and_lexicon(office: KB) -> None:
+    lex = Lexicon(build_snapshot(office), english())
+    made: list[str] = []
+
+    def make(what: str) -> str:
+        made.append(what)
+        return what.upper()
+
+    assert lex.analysed(("k", 1), lambda: make("a")) == "A"
+    assert lex.analysed(("k", 1), lambda: make("b")) == "A"  # kept: not made again
+    assert lex.analysed(("k", 2), lambda: make("c")) == "C"
+    assert made == ["a", "c"]
+    assert lex.analysed(("none",), lambda: None) is None
+    assert lex.analysed(("none",), lambda: make("d")) is None  # (None is an analysis too)
+    # the next snapshot's lexicon starts with none of them
+    office.update(["mug_green isOn desk_1"])
+    after = Lexicon(build_snapshot(office), english(), previous=lex)
+    assert after.analysed(("k", 1), lambda: make("e")) == "E"
+
+
+def test_analyses_kept_are_bounded_by_their_weight(office: KB, monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.setattr("dialogue.reference.lexicon._MAX_ANALYSES", 3)
+    lex = Lexicon(build_snapshot(office), english())
+    for i in range(10):
+        lex.analysed(i, lambda i=i: i)  # type: ignore[misc]
+    assert len(lex._analyses) <= 3
+    assert lex.analysed(9, lambda: -1) == 9  # the latest is kept
+    heavy = lex.analysed("heavy", lambda: "x" * 5, len)  # weighs more than may be kept: not kept
+    assert heavy == "xxxxx" and lex.analysed("heavy", lambda: "y", len) == "y"

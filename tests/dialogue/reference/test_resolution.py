@@ -334,3 +334,15 @@ def test_a_thing_whose_own_words_say_the_place_comes_before_one_only_in_that_pla
     assert [e.id for e in resolve(lex, tokens("the kitchen table")).matches] == ["t"]
     assert {e.id for e in resolve(lex, tokens("the table in the kitchen")).matches} == {"t", "w"}  # asked
     kb.close()
+
+
+def test_a_phrase_is_resolved_once_per_snapshot_and_kinds(kitchen: KB) -> None:
+    lex = lexicon_of(kitchen)
+    words = tokens("the cup on the table")
+    first = resolve(lex, words, THING)
+    assert [e.id for e in first.matches] == ["cup_1"]
+    assert resolve(lex, list(words), THING) is first  # the same phrase asked again: looked up
+    assert resolve(lex, words, PERSON).matches == ()  # other kinds: read anew
+    assert resolve(lex, words, THING, owner="someone") is not first
+    again = resolve(lexicon_of(kitchen), words, THING)  # another snapshot's lexicon: read anew
+    assert again is not first and again == first
