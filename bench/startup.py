@@ -36,6 +36,7 @@ CAP = 600.0
 
 def child(size: int) -> dict[str, Any]:
     from dialogue.engine import DialogueEngine
+    from kb.gcpause import settle
 
     gc.collect()
     empty = rss_mb()
@@ -46,7 +47,7 @@ def child(size: int) -> dict[str, Any]:
     expected = kb.label(zone)
     start, start_cpu = time.perf_counter(), time.process_time()
     engine = DialogueEngine(kb)
-    engine.follow()
+    engine.follow(built=settle)  # as the service's engine (api.services)
 
     async def first_right() -> str:
         while True:

@@ -14,6 +14,7 @@ from __future__ import annotations
 from collections import Counter
 from collections.abc import Iterable
 from dataclasses import dataclass
+from typing import Any
 
 from dialogue.reference.facts import PERSON_CLASSES, ROBOT_ID, ZONE_CLASSES, Change, Facts, Triple
 from dialogue.reference.layered import GONE, Layered, SortedChunks
@@ -43,6 +44,9 @@ _KINDS: tuple[tuple[frozenset[str], Kind], ...] = (
 
 _Strings = tuple[str, ...]
 
+#: The classes of what is never an entity: schema terms and the ontology's values.
+_NOT_ENTITIES = SCHEMA_TYPES | VALUE_CLASSES
+
 
 @dataclass(frozen=True, slots=True)
 class _Core:
@@ -65,7 +69,9 @@ class EntityIndex:
     def __init__(self, kb: KnowledgeBase, lang: str = "en") -> None:
         self.kb = kb
         self.lang = lang
-        self.facts = Facts.load(kb)
+        # The labels are read once, for the facts (who is named) and for each term's own labels.
+        labelled = kb.find("?x rdfs:label ?l")
+        self.facts = Facts.load(kb, labelled)
         self._cores: dict[str, _Core | None] = {}  # None: not a term the KB can describe
         self._labels: dict[str, tuple[str, ...]] = {}
         self._display: dict[str, str] = {}
@@ -97,19 +103,19 @@ class EntityIndex:
         #: (rank, id) of every entity, sorted; shared by the snapshots it did not change in.
         self.order: SortedChunks[tuple[int, str]] | None = None  # None: built at the end of __init__
         self.skipped: set[str] = set()
-        self._prefetch()
+        self._prefetch(labelled)
         for term in sorted(self.facts.candidates()):
             self.update(term)
         self._bulk = None
         self.order = SortedChunks((rank, term) for term, rank in self._rank.items())
 
-    def _prefetch(self) -> None:
+    def _prefetch(self, labelled: list[dict[str, Any]]) -> None:
         """Every term's classes and labels at once: a few questions about the whole KB rather than
         a few per entity (the per-question cost dominated a first build: seconds at 100k)."""
         kb = self.kb
         self._bulk = (kb.all_classes(), kb.all_classes(direct=True), kb.all_labels(self.lang))
         labels: dict[str, list[str]] = {}
-        for row in kb.find("?x rdfs:label ?l"):  # sorted: each term's labels in the order `labels` gives
+        for row in labelled:  # sorted: each term's labels in the order `labels` gives
             if isinstance(row["l"], str):
                 labels.setdefault(row["x"], []).append(row["l"])
         self._labels = {term: tuple(dict.fromkeys(found)) for term, found in labels.items()}
@@ -260,7 +266,7 @@ class EntityIndex:
         except KbError:
             self._cores[term] = None  # a literal used as a place ("x isIn 'garden'") is not an entity
             return None
-        if set(all_classes) & (SCHEMA_TYPES | VALUE_CLASSES) or term in VALUE_TERMS:
+        if not _NOT_ENTITIES.isdisjoint(all_classes) or term in VALUE_TERMS:
             schema = _Core((), (), (), "thing", readable_id(term), schema=True, typed=True)
             self._cores[term] = schema
             return schema
@@ -268,9 +274,12 @@ class EntityIndex:
             self.kb.classesof(term, direct=True)
         classes, class_names = self._classes(tuple(all_classes), tuple(asserted))
         if classes:
-            self._members.setdefault(classes, set()).add(term)
-            for klass in classes:
-                self._users.setdefault(klass, set()).add(classes)
+            members = self._members.get(classes)
+            if members is None:  # the first term of these classes: each class is used by them
+                members = self._members[classes] = set()
+                for klass in classes:
+                    self._users.setdefault(klass, set()).add(classes)
+            members.add(term)
         own = tuple(dict.fromkeys([self.display(term), *labels])) if labels else ()
         kinds = (k for cs, k in _KINDS if cs.intersection(all_classes))
         kind: Kind = "robot" if term == ROBOT_ID else next(kinds, "thing")

@@ -70,13 +70,14 @@ class Facts:
         self.tables: dict[str, dict[str, set[str]]] = {name: {} for name in _TABLES.values()}
 
     @classmethod
-    def load(cls, kb: KnowledgeBase) -> Facts:
-        """From the whole KB: the baseline the commits are applied to (and a full rebuild)."""
+    def load(cls, kb: KnowledgeBase, labelled: list[dict[str, Any]] | None = None) -> Facts:
+        """From the whole KB: the baseline the commits are applied to (and a full rebuild).
+        ``labelled``: the rows of ``?x rdfs:label ?l`` when the caller has read them already."""
         facts = cls()
         facts.seen = {str(r["x"]) for r in kb.find(f"{ROBOT_ID} sees ?x")}
         facts.people = {str(r["x"]) for c in sorted(PERSON_CLASSES) for r in kb.find(f"?x rdf:type {c}")}
         facts.zones = {str(r["x"]) for c in sorted(ZONE_CLASSES) for r in kb.find(f"?x rdf:type {c}")}
-        for row in kb.find("?x rdfs:label ?l"):
+        for row in kb.find("?x rdfs:label ?l") if labelled is None else labelled:
             facts.labelled.setdefault(str(row["x"]), set()).add(str(row["l"]))
         for prop, name in _TABLES.items():
             table = facts.tables[name]

@@ -105,31 +105,36 @@ class Grounder:
                     previous = self._cached
             index = self._index
             built = pending is None or index is None or previous is None
-            if pending is None or index is None or previous is None:
-                with paused(BULK):  # hundreds of thousands of objects made to last: no collection pass
+            # A full build makes hundreds of thousands of objects to last (the index, the snapshot,
+            # its lexicon): one pause of the collector for all of it, and what `built` does (the
+            # service settles them, `gcpause.settle`) done before the collector is back, so no
+            # pass walks them first (one did after the index and again after the lexicon).
+            with paused(BULK if built else 0):
+                if pending is None or index is None or previous is None:
                     index = self._index = EntityIndex(kb, self.lang)
                     snap = index.freeze(revision)
-            else:
-                changed: set[str] = set()
-                for added, removed in pending:
-                    changed |= index.apply(added, removed)
-                steps = (*previous.changed, (previous.revision, frozenset(changed)))[-MAX_STEPS:]
-                snap = index.freeze(revision, steps)
-            if self._then is not None:
-                with paused(BULK if built else 0):
+                else:
+                    changed: set[str] = set()
+                    for added, removed in pending:
+                        changed |= index.apply(added, removed)
+                    steps = (*previous.changed, (previous.revision, frozenset(changed)))[-MAX_STEPS:]
+                    snap = index.freeze(revision, steps)
+                if self._then is not None:
                     self._then(snap)
-            with self._lock:
-                self._cached = snap
-                settled = self._built
-        if built and settled is not None:
-            settled()
+                with self._lock:
+                    settled = self._built
+                if built and settled is not None:
+                    settled()
+                with self._lock:
+                    self._cached = snap
         return snap
 
     def follow(self, kb: KnowledgeBase, built: Callable[[], object] | None = None) -> None:
         """Keep the snapshot of ``kb`` current on a worker thread, from now on: the first one is
         built there (a turn that comes before it is done waits for it), then each commit is taken
         up as it comes. A KB that reports no commits is grounded turn by turn, as without.
-        ``built`` is called after each full build (the service settles what it made)."""
+        ``built`` is called after each full build, before the cyclic collector runs again (the
+        service settles what it made: no pass walks it first), under the grounder's build lock."""
         with self._lock:
             self._built = built
             watched = self._watched is kb

@@ -33,7 +33,7 @@ def singular(word: str) -> str:
 
 
 def norm(words: Sequence[str]) -> tuple[str, ...]:
-    return tuple(singular(w) for w in words)
+    return tuple(map(singular, words))  # (no generator frame: a first build norms every name)
 
 
 def phrase(text: str) -> tuple[str, ...]:

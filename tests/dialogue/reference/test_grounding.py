@@ -1,3 +1,4 @@
+import gc
 import threading
 import time
 
@@ -193,6 +194,19 @@ def test_a_following_grounder_says_when_it_built_everything_and_only_then(kitche
     kitchen.update(['dbr:Pear rdfs:subClassOf dbr:Apple'])  # a TBox change: everything again
     until(lambda: grounder.cached(kitchen.revision) is not None)
     assert len(builds) == 2 and builds[-1] == kitchen.revision
+    grounder.close()
+
+
+def test_a_full_build_is_settled_before_the_collector_runs_again(kitchen: KB) -> None:
+    """The service settles (freezes) what a full build made: done while the collector is still
+    paused, no collection pass walks it first."""
+    collecting: list[bool] = []
+    grounder = Grounder()
+    assert gc.isenabled()
+    grounder.follow(kitchen, built=lambda: collecting.append(gc.isenabled()))
+    until(lambda: grounder.cached(kitchen.revision) is not None)
+    assert collecting == [False]  # called during the build's pause,
+    assert gc.isenabled()  # which ended with it
     grounder.close()
 
 
