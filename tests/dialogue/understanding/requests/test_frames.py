@@ -322,6 +322,13 @@ def test_say_hello_alone_greets_someone_the_interpreter_finds() -> None:
     assert parse("say hello world").intent == I.SAY  # words to say, not a greeting of no one
 
 
+@pytest.mark.parametrize("text", ["say good morning to Lars", "say g'day to Raj", "Say good evening to Ann"])
+def test_a_greeting_said_to_someone_greets_them(text: str) -> None:
+    p = parse(text)
+    assert (p.intent, set(p.slots)) == (I.GREET, {"recipient"})
+    assert parse("say good night to Raj").intent == I.SAY  # a parting, said as words
+
+
 def test_what_the_waiting_is_for_is_an_adjunct() -> None:
     p = parse("wait there for the delivery van")
     assert (p.intent, p.slots, p.adjuncts) == (I.MOVE_TO, {"goal": ("there",)}, (("for", "the", "delivery", "van"),))
