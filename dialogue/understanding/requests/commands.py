@@ -135,6 +135,11 @@ def _joined(g: Grammar, words: list[str]) -> Words:
     return tuple(out)
 
 
+def _np_next(lang: Language, rest: Words) -> bool:
+    """Whether a noun phrase starts after the first word ("carry me *the* box")."""
+    return len(rest) > 1 and rest[1] in lang.words.np_start
+
+
 def _fit(row: Row, said: Framed) -> Parse | None:  # noqa: C901
     """The row's reading of what follows the verb, or None when the row does not fit it."""
     frame, rest = row.frame, said.rest
@@ -142,6 +147,9 @@ def _fit(row: Row, said: Framed) -> Parse | None:  # noqa: C901
     if frame.special is not None:
         return frame.special(said)
     if frame.intent is None and not frame.serial:  # a verb no intent says ("hand out the sheets")
+        only = frame.only
+        if only is not None and not (rest[:1] and rest[0] in only and not _np_next(said.lang, rest)):
+            return None  # "carry me" has no intent, "carry the box", "carry me the box" other frames'
         return Parse("unknown", words=said.words)
     if frame.serial:  # "go get the cup", "come say hello to Ana"
         lang = said.lang

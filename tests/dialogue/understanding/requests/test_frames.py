@@ -344,3 +344,10 @@ def test_an_activity_is_kicked_off_and_whom_it_is_for_is_not_its_name() -> None:
 def test_an_activity_said_only_by_what_was_done_before_is_none(office: KB, text: str) -> None:
     out = say(office, text)
     assert out.intent is None and out.more == ()
+
+
+def test_carrying_the_speaker_is_no_request_of_the_robots() -> None:
+    assert parse("can you carry me to my room").intent is None
+    assert parse("lift me up").intent is None
+    assert parse("carry me the box").intent == I.BRING_OBJECT  # whom for, then what
+    assert parse("carry the box to the hall").intent == I.BRING_OBJECT
