@@ -1,4 +1,4 @@
-"""The small constructions of requests: a need said with a question of what there is."""
+"""Needs said before any verb: a need said with a question of what there is."""
 
 import pytest
 

@@ -1,0 +1,66 @@
+"""Needs said before any verb ("I'm parched", "we are starving", "Ruby's thirsty, is there any
+lemonade?"): something of the class that meets the need, brought to whoever has it."""
+
+from __future__ import annotations
+
+from dialogue import intents as I
+from dialogue.reference.english import Words
+from dialogue.understanding.parsed import Parse
+from dialogue.understanding.requests.constructions import ConstructionWords, Framed
+
+
+def need(said: Framed) -> Parse | None:
+    """ "I'm really parched", "we are starving": something of the class that meets the need."""
+    c = said.lang.derived(ConstructionWords)
+    w = said.words
+    whose: Words = ("me",)
+    if w[:2] in c.needy:
+        w = w[2:]
+    elif _someone(c, w[:1]) and w[1:2] in c.someone_is:  # "Ruby is thirsty"
+        whose, w = w[:1], w[2:]
+    elif w[:1] and _someone(c, (w[0].removesuffix("'s"),)) and w[0].endswith("'s"):  # "Ruby's thirsty"
+        whose, w = (w[0].removesuffix("'s"),), w[1:]
+    else:
+        return None
+    rest = [x for x in w if x not in c.intensifiers]
+    wanted = c.needs.get(rest[0]) if rest else None
+    if wanted is None:
+        return None
+    if len(rest) == 1:  # (of someone else, a remark: what to bring them is asked for after it)
+        return said.command(I.BRING_OBJECT, object=(wanted,), recipient=whose) if whose == ("me",) else None
+    asked = _available(c, tuple(rest[1:]))  # "I'm parched, any tea going?": the tea
+    if whose != ("me",) and asked[-2:-1] in c.for_whom and asked[-1] in c.personal:
+        asked = asked[:-2]  # ("is there any lemonade for her?": for whoever is thirsty)
+    at = next((i for i, x in enumerate(rest) if x in c.anything), 0)
+    if not asked and at and set(rest[1:at]) <= c.asking:  # ("I'm thirsty, got anything sugar free?")
+        asked = tuple(rest[at:])
+    if asked[:1] and asked[0] in c.anything:  # "is there anything to eat": what meets the need
+        asked = (*_qualifiers(said, asked[1:]), wanted)  # (of it, "anything sugar free": those)
+    if set(asked) & c.function_words:
+        return None
+    return said.command(I.BRING_OBJECT, object=asked, recipient=whose) if asked else None
+
+
+def _someone(c: ConstructionWords, words: Words) -> bool:
+    """Whether a word alone may be who has a need ("Ruby"): no function word."""
+    return len(words) == 1 and words[0] not in c.function_words
+
+
+def _qualifiers(said: Framed, words: Words) -> Words:
+    """The words that say which of what meets a need is asked for ("sugar free" of "anything sugar
+    free to drink"), without the purpose after them ("to drink")."""
+    requests = said.lang.requests
+    at = next((i for i in range(len(words)) if requests.purpose(words[i:]) is not None), len(words))
+    return words[:at]
+
+
+def _available(c: ConstructionWords, words: Words) -> Words:
+    """What a question of what there is asks about ("is there any juice", "any tea going"); ()
+    when the words are no such question."""
+    lead = next((a for a in c.available if words[: len(a)] == a), None)
+    if lead is None:
+        return ()
+    asked = words[len(lead) :]
+    while asked and asked[-1] in c.available_ends:
+        asked = asked[:-1]
+    return asked
