@@ -35,6 +35,11 @@ class ConstructionWords:
         self.subjects = words.subjects
         #: Verbs that follow a subject whatever it is.
         self.verbs_of_any = words.verbs_of_any
+        self.asked_whether = words.asked_whether
+        self.asked_of = words.asked_of
+        self.asked_not_after = words.asked_not_after
+        self.asked_as_you = {verb: tuple(said.split()) for verb, said in words.asked_as_you.items()}
+        self.asked_plain = words.asked_plain
         self.adjuncts = said.all_adjuncts
         self.done = said.done
         self.everyone = said.everyone

@@ -84,8 +84,8 @@ def speech(said: Framed) -> Parse:
             text = ("please", *text) if sep == "to" else text
             if sep == "about" or (verb == "ask" and sep != "to"):
                 return unknown
-        elif verb == "ask":  # "ask Ana if she wants tea": a question to put, not words to say
-            return unknown
+        elif verb == "ask":  # "ask Ana if she wants tea": a question put to her, when it can be
+            return _question_put(said, c, rest) or unknown
         else:  # "tell Maria", "tell my mum": a name, or a determiner and its noun
             n = 2 if rest[:1] and rest[0] in c.np_start else 1
             recipient, text = rest[:n], rest[n:]
@@ -122,3 +122,22 @@ def _said_to(said: Framed, rest: Words) -> Parse:
     if not text:
         return said.command(I.SAY, recipient=recipient)
     return said.command(I.SAY, text=message(said.lang, said.original, text), recipient=recipient)
+
+
+def _question_put(said: Framed, c: ConstructionWords, rest: Words) -> Parse | None:
+    """ "ask Ollie if he wants a sausage": "do you want a sausage?" said to Ollie; None when the
+    question cannot be put to them as "you" ("ask Ana if the taxi is here")."""
+    at = next((i for i, w in enumerate(rest) if w in c.asked_whether), None)
+    if at is None or at == 0 or len(rest) < at + 4 or rest[at + 1] not in c.asked_of:
+        return None
+    verb, after = rest[at + 2], rest[at + 3 :]
+    if set(after) & c.asked_not_after:
+        return None
+    if verb in c.asked_as_you:
+        question = (*c.asked_as_you[verb], *after)
+    else:
+        lemmas = getLemma(verb, "VERB")
+        if not lemmas or lemmas[0] == verb or verb in c.verbs_of_any:
+            return None  # no verb of the third person ("if he wanted"): not put as said
+        question = (*c.asked_plain, lemmas[0], *after)
+    return said.command(I.SAY, text=" ".join(question) + "?", recipient=rest[:at])

@@ -182,7 +182,7 @@ def test_without_the_row_the_verb_is_not_understood(office: KB) -> None:
         ("carry the vase into the garage", "command", I.BRING_OBJECT, {"object": ("the", "vase"),
                                                                        "recipient": ("the", "garage")}),
         ("ask Ann to close the gate", "command", I.SAY, {"recipient": ("ann",)}),
-        ("ask Ann if she wants tea", "unknown", None, {}),
+        ("ask Ann if she wants tea", "command", I.SAY, {"recipient": ("ann",)}),  # "do you want tea?"
         ("bring me something to drink", "command", I.BRING_OBJECT, {"object": ("something", "to", "drink"),
                                                                     "recipient": ("me",)}),
         ("would you be able to pick up the vase", "command", I.GRAB_OBJECT, {"object": ("the", "vase")}),
