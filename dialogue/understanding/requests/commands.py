@@ -15,6 +15,7 @@ from dialogue.understanding.parsed import Act, Parse
 from dialogue.understanding.questions.grammar import question as _question
 from dialogue.understanding.requests.constructions import Framed
 from dialogue.understanding.requests.frames import Row, verb_index
+from dialogue.understanding.requests.needs import chore_needed
 from dialogue.understanding.requests.timing import conditional, later, negation, when
 from dialogue.understanding.requests.vocabulary import Grammar
 from dialogue.understanding.said import Said, Text
@@ -104,6 +105,11 @@ def command(lang: Language, original: Said, words: list[str]) -> Parse:
     """The request the words make: the first construction or verb frame that fits them."""
     g = lang.derived(Grammar)
     w = _joined(g, words)
+    chore = chore_needed(lang, w)
+    if chore is not None:  # "the parcel needs taking to Lars": the taking, if a frame reads it
+        asked = command(lang, original, list(chore))
+        if asked.act == "command":
+            return asked
     said = Framed(lang, "", w, w, original)
     for construction in g.constructions:
         found = construction(said)

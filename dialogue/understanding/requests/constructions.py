@@ -35,6 +35,8 @@ class ConstructionWords:
         self.subjects = words.subjects
         #: Verbs that follow a subject whatever it is.
         self.verbs_of_any = words.verbs_of_any
+        self.needs_doing = words.needs_doing
+        self.doing = words.doing
         self.asked_whether = words.asked_whether
         self.asked_of = words.asked_of
         self.asked_not_after = words.asked_not_after

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 from dialogue import intents as I
 from dialogue.reference.english import Words
+from dialogue.understanding.language import Language
 from dialogue.understanding.parsed import Parse
 from dialogue.understanding.requests.constructions import ConstructionWords, Framed
 
@@ -64,3 +65,17 @@ def _available(c: ConstructionWords, words: Words) -> Words:
     while asked and asked[-1] in c.available_ends:
         asked = asked[:-1]
     return asked
+
+
+def chore_needed(lang: Language, words: Words) -> Words | None:
+    """ "the kickboard needs putting back on the shelf": the chore as a request ("putting the
+    kickboard back on the shelf"), the thing after its verb; None when the words say no such need."""
+    c = lang.derived(ConstructionWords)
+    if not words or words[0] not in c.np_start:
+        return None
+    at = next((i for i, w in enumerate(words) if w in c.needs_doing), None)
+    if at is None or at + 1 >= len(words) or not c.doing or not words[at + 1].endswith(c.doing):
+        return None
+    if set(words[1:at]) & c.function_words:
+        return None  # "the man with the parcel needs..." is said of someone, not a thing
+    return (words[at + 1], *words[:at], *words[at + 2 :])

@@ -45,6 +45,8 @@ class ConstructionWords(Table):
     telling: WordSet = frozenset()
     told_marks: Phrases = ()
     groups: WordSet = frozenset()
+    needs_doing: WordSet = frozenset()
+    doing: str = ""
     asked_whether: WordSet = frozenset()
     asked_of: WordSet = frozenset()
     asked_not_after: WordSet = frozenset()

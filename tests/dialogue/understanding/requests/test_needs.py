@@ -40,3 +40,22 @@ def test_a_need_of_someone_named_with_a_question_of_what_there_is_is_for_them(te
     assert (p.intent, p.slots) == (I.BRING_OBJECT, {"object": thing, "recipient": ("ruby",)})
     # said alone, it is a remark
     assert parse(english(), "ruby is thirsty").intent is None
+
+
+@pytest.mark.parametrize(
+    ("text", "intent", "slots"),
+    [("The kickboard needs putting back on the kit shelf.", I.PLACE_OBJECT,
+      {"object": ("the", "kickboard"), "recipient": ("the", "kit", "shelf")}),
+     ("the small parcel needs taking to Lars", I.BRING_OBJECT,
+      {"object": ("the", "small", "parcel"), "recipient": ("lars",)}),
+     ("the road atlas wants putting on the table", I.PLACE_OBJECT,
+      {"object": ("the", "road", "atlas"), "recipient": ("the", "table")})],
+)  # fmt: skip
+def test_a_thing_said_to_need_a_chore_asks_for_the_chore(text: str, intent: str, slots: dict[str, tuple[str, ...]]) -> None:
+    p = parse(english(), text)
+    assert (p.intent, p.slots) == (intent, slots)
+
+
+def test_a_need_of_someone_or_of_no_chore_read_is_no_chore() -> None:
+    assert parse(english(), "the man with the hat needs taking to the exit").intent is None
+    assert parse(english(), "the kettle needs descaling").intent is None
