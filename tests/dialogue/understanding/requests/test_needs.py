@@ -11,6 +11,8 @@ from tests.dialogue.conftest import english
     ("text", "thing"),
     [("I'm parched. Any tea going?", ("tea",)), ("im thirsty is there any juice", ("juice",)),
      ("I'm really thirsty, have you got any lemonade left", ("lemonade",)),
+     # said with a sigh first, and "ever so" as much as "so"
+     ("Oh dear, I'm ever so thirsty, is there any juice about?", ("juice",)),
      # anything at all: whatever meets the need
      ("im starving is there anything to eat", ("food",)),
      # what is said of it says which: "sugar free" of whatever meets the need
