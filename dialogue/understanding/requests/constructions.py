@@ -37,6 +37,8 @@ class ConstructionWords:
         self.verbs_of_any = words.verbs_of_any
         self.needs_doing = words.needs_doing
         self.doing = words.doing
+        self.after = words.after
+        self.after_ends = sorted(words.after_ends, key=len, reverse=True)
         self.asked_whether = words.asked_whether
         self.asked_of = words.asked_of
         self.asked_not_after = words.asked_not_after

@@ -67,8 +67,8 @@ SPECIALS: dict[str, Special] = {
     "helping": C.helping, "a_hand": C.a_hand, "showing": C.showing, "asking": C.asking, "company": C.company,
 }  # fmt: skip
 WHOLE_UTTERANCE: dict[str, Special] = {
-    "need": needs.need, "going": C.going, "wanting": C.wanting, "their_wish": C.their_wish,
-    "belonging": C.belonging, "enough": C.enough,
+    "need": needs.need, "their_pursuit": needs.their_pursuit, "going": C.going, "wanting": C.wanting,
+    "their_wish": C.their_wish, "belonging": C.belonging, "enough": C.enough,
 }  # fmt: skip
 
 

@@ -1,5 +1,6 @@
 """Needs said before any verb ("I'm parched", "we are starving", "Ruby's thirsty, is there any
-lemonade?"): something of the class that meets the need, brought to whoever has it."""
+lemonade?", "Freya's after her goggles"): something of the class that meets the need, or the thing
+said, brought to whoever has it; and a thing said to need a chore ("the parcel needs taking to Lars")."""
 
 from __future__ import annotations
 
@@ -79,3 +80,23 @@ def chore_needed(lang: Language, words: Words) -> Words | None:
     if set(words[1:at]) & c.function_words:
         return None  # "the man with the parcel needs..." is said of someone, not a thing
     return (words[at + 1], *words[:at], *words[at + 2 :])
+
+
+def their_pursuit(said: Framed) -> Parse | None:
+    """ "Freya's after her goggles": the goggles, brought to Freya; of "a drink, the cola I
+    reckon", the thing said last ("the cola")."""
+    c = said.lang.derived(ConstructionWords)
+    w = said.words
+    if len(w) < 3 or not w[0].endswith("'s") or w[1] not in c.after:
+        return None
+    who = (w[0].removesuffix("'s"),)
+    if not _someone(c, who):
+        return None
+    asked = w[2:]
+    ended = True
+    while ended:
+        end = next((e for e in c.after_ends if len(asked) > len(e) and asked[-len(e) :] == e), None)
+        ended = end is not None
+        asked = asked[: -len(end)] if end is not None else asked
+    last = max((i for i, x in enumerate(asked) if i and x in c.np_start), default=0)
+    return said.command(I.BRING_OBJECT, object=asked[last:], recipient=who)

@@ -47,6 +47,8 @@ class ConstructionWords(Table):
     groups: WordSet = frozenset()
     needs_doing: WordSet = frozenset()
     doing: str = ""
+    after: WordSet = frozenset()
+    after_ends: Phrases = ()
     asked_whether: WordSet = frozenset()
     asked_of: WordSet = frozenset()
     asked_not_after: WordSet = frozenset()

@@ -61,3 +61,14 @@ def test_a_thing_said_to_need_a_chore_asks_for_the_chore(text: str, intent: str,
 def test_a_need_of_someone_or_of_no_chore_read_is_no_chore() -> None:
     assert parse(english(), "the man with the hat needs taking to the exit").intent is None
     assert parse(english(), "the kettle needs descaling").intent is None
+
+
+@pytest.mark.parametrize(
+    ("text", "thing", "whom"),
+    [("Freya's after her goggles, can you sort that out?", ("her", "goggles"), ("freya",)),
+     ("Lucia's after a drink, the cola I reckon.", ("the", "cola"), ("lucia",))],
+)  # fmt: skip
+def test_someone_after_a_thing_is_brought_it(text: str, thing: tuple[str, ...], whom: tuple[str, ...]) -> None:
+    p = parse(english(), text)
+    assert (p.intent, p.slots) == (I.BRING_OBJECT, {"object": thing, "recipient": whom})
+    assert parse(english(), "it's after six").intent is None  # no one's, a time
