@@ -15,6 +15,7 @@ from dialogue.understanding.parsed import Act, Parse
 from dialogue.understanding.questions.grammar import question as _question
 from dialogue.understanding.requests.constructions import Framed
 from dialogue.understanding.requests.frames import Row, verb_index
+from dialogue.understanding.requests.needs import chore_needed
 from dialogue.understanding.requests.timing import conditional, later, negation, when
 from dialogue.understanding.requests.vocabulary import Grammar
 from dialogue.understanding.said import Said, Text
@@ -104,6 +105,11 @@ def command(lang: Language, original: Said, words: list[str]) -> Parse:
     """The request the words make: the first construction or verb frame that fits them."""
     g = lang.derived(Grammar)
     w = _joined(g, words)
+    chore = chore_needed(lang, w)
+    if chore is not None:  # "the parcel needs taking to Lars": the taking, if a frame reads it
+        asked = command(lang, original, list(chore))
+        if asked.act == "command":
+            return asked
     said = Framed(lang, "", w, w, original)
     for construction in g.constructions:
         found = construction(said)
@@ -135,6 +141,11 @@ def _joined(g: Grammar, words: list[str]) -> Words:
     return tuple(out)
 
 
+def _np_next(lang: Language, rest: Words) -> bool:
+    """Whether a noun phrase starts after the first word ("carry me *the* box")."""
+    return len(rest) > 1 and rest[1] in lang.words.np_start
+
+
 def _fit(row: Row, said: Framed) -> Parse | None:  # noqa: C901
     """The row's reading of what follows the verb, or None when the row does not fit it."""
     frame, rest = row.frame, said.rest
@@ -142,6 +153,9 @@ def _fit(row: Row, said: Framed) -> Parse | None:  # noqa: C901
     if frame.special is not None:
         return frame.special(said)
     if frame.intent is None and not frame.serial:  # a verb no intent says ("hand out the sheets")
+        only = frame.only
+        if only is not None and not (rest[:1] and rest[0] in only and not _np_next(said.lang, rest)):
+            return None  # "carry me" has no intent, "carry the box", "carry me the box" other frames'
         return Parse("unknown", words=said.words)
     if frame.serial:  # "go get the cup", "come say hello to Ana"
         lang = said.lang

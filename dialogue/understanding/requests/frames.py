@@ -24,6 +24,7 @@ from dialogue.reference.english import Words, phrases, word_set
 from dialogue.understanding.language import Language, LanguageError
 from dialogue.understanding.parsed import Parse
 from dialogue.understanding.requests import constructions as C
+from dialogue.understanding.requests import needs, telling
 from dialogue.understanding.tables.frames import FrameRow
 
 #: How a frame makes the free-form text of its intent from (its language, the verb, the words after it).
@@ -62,12 +63,12 @@ def _stopping(lang: Language, verb: str, rest: Words) -> str | None:
 TEXTS: dict[str, Text] = {"verb": _verb, "activity": _activity, "doing": _doing, "stopping": _stopping}
 #: The constructions a frame may name (`special`), and those tried before any verb is read.
 SPECIALS: dict[str, Special] = {
-    "everyone": C.everyone, "speech": C.speech, "letting_know": C.letting_know, "helping": C.helping,
-    "a_hand": C.a_hand, "showing": C.showing, "asking": C.asking, "company": C.company,
+    "everyone": C.everyone, "speech": telling.speech, "letting_know": telling.letting_know,
+    "helping": C.helping, "a_hand": C.a_hand, "showing": C.showing, "asking": C.asking, "company": C.company,
 }  # fmt: skip
 WHOLE_UTTERANCE: dict[str, Special] = {
-    "need": C.need, "going": C.going, "wanting": C.wanting, "their_wish": C.their_wish,
-    "belonging": C.belonging, "enough": C.enough,
+    "need": needs.need, "their_pursuit": needs.their_pursuit, "going": C.going, "wanting": C.wanting,
+    "their_wish": C.their_wish, "belonging": C.belonging, "enough": C.enough,
 }  # fmt: skip
 
 

@@ -45,6 +45,15 @@ class ConstructionWords(Table):
     telling: WordSet = frozenset()
     told_marks: Phrases = ()
     groups: WordSet = frozenset()
+    needs_doing: WordSet = frozenset()
+    doing: str = ""
+    after: WordSet = frozenset()
+    after_ends: Phrases = ()
+    asked_whether: WordSet = frozenset()
+    asked_of: WordSet = frozenset()
+    asked_not_after: WordSet = frozenset()
+    asked_as_you: dict[str, str] = {}
+    asked_plain: Phrase = ()
 
 
 class CompoundWords(Table):

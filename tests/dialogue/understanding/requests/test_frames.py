@@ -182,7 +182,7 @@ def test_without_the_row_the_verb_is_not_understood(office: KB) -> None:
         ("carry the vase into the garage", "command", I.BRING_OBJECT, {"object": ("the", "vase"),
                                                                        "recipient": ("the", "garage")}),
         ("ask Ann to close the gate", "command", I.SAY, {"recipient": ("ann",)}),
-        ("ask Ann if she wants tea", "unknown", None, {}),
+        ("ask Ann if she wants tea", "command", I.SAY, {"recipient": ("ann",)}),  # "do you want tea?"
         ("bring me something to drink", "command", I.BRING_OBJECT, {"object": ("something", "to", "drink"),
                                                                     "recipient": ("me",)}),
         ("would you be able to pick up the vase", "command", I.GRAB_OBJECT, {"object": ("the", "vase")}),
@@ -322,6 +322,13 @@ def test_say_hello_alone_greets_someone_the_interpreter_finds() -> None:
     assert parse("say hello world").intent == I.SAY  # words to say, not a greeting of no one
 
 
+@pytest.mark.parametrize("text", ["say good morning to Lars", "say g'day to Raj", "Say good evening to Ann"])
+def test_a_greeting_said_to_someone_greets_them(text: str) -> None:
+    p = parse(text)
+    assert (p.intent, set(p.slots)) == (I.GREET, {"recipient"})
+    assert parse("say good night to Raj").intent == I.SAY  # a parting, said as words
+
+
 def test_what_the_waiting_is_for_is_an_adjunct() -> None:
     p = parse("wait there for the delivery van")
     assert (p.intent, p.slots, p.adjuncts) == (I.MOVE_TO, {"goal": ("there",)}, (("for", "the", "delivery", "van"),))
@@ -337,3 +344,10 @@ def test_an_activity_is_kicked_off_and_whom_it_is_for_is_not_its_name() -> None:
 def test_an_activity_said_only_by_what_was_done_before_is_none(office: KB, text: str) -> None:
     out = say(office, text)
     assert out.intent is None and out.more == ()
+
+
+def test_carrying_the_speaker_is_no_request_of_the_robots() -> None:
+    assert parse("can you carry me to my room").intent is None
+    assert parse("lift me up").intent is None
+    assert parse("carry me the box").intent == I.BRING_OBJECT  # whom for, then what
+    assert parse("carry the box to the hall").intent == I.BRING_OBJECT

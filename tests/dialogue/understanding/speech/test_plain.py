@@ -166,6 +166,13 @@ def test_a_lead_and_a_thanks_of_their_own_are_politeness() -> None:
         # what adds a request to the ones before it changes nothing of it
         ("bring theo the biscuit tin as well", "bring theo the biscuit tin"),
         ("fetch me the saw too please", "fetch me the saw"),
+        # "real quick" is how soon, all of it
+        ("grab me a cola real quick", "grab me a cola"),
+        ("bring me the pump right quick", "bring me the pump"),
+        # a chore said of someone is asked of the robot
+        ("someone needs to put the flip flops in the crate", "put the flip flops in the crate"),
+        ("somebody ought to put the sack on the trolley", "put the sack on the trolley"),
+        ("could somebody let dmitri know the showers are leaking", "let dmitri know the showers are leaking"),
     ],
 )
 def test_what_politeness_leaves_of_a_request(text: str, words: str) -> None:
