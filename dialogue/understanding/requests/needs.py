@@ -20,7 +20,7 @@ def need(said: Framed) -> Parse | None:
         w = w[2:]
     elif _someone(c, w[:1]) and w[1:2] in c.someone_is:  # "Ruby is thirsty"
         whose, w = w[:1], w[2:]
-    elif w[:1] and _someone(c, (w[0].removesuffix("'s"),)) and w[0].endswith("'s"):  # "Ruby's thirsty"
+    elif w[:1] and w[0].endswith("'s") and _someone(c, (w[0].removesuffix("'s"),)):  # "Ruby's thirsty"
         whose, w = (w[0].removesuffix("'s"),), w[1:]
     else:
         return None
@@ -93,10 +93,7 @@ def their_pursuit(said: Framed) -> Parse | None:
     if not _someone(c, who):
         return None
     asked = w[2:]
-    ended = True
-    while ended:
-        end = next((e for e in c.after_ends if len(asked) > len(e) and asked[-len(e) :] == e), None)
-        ended = end is not None
-        asked = asked[: -len(end)] if end is not None else asked
+    while (end := next((e for e in c.after_ends if len(asked) > len(e) and asked[-len(e) :] == e), None)):
+        asked = asked[: -len(end)]
     last = max((i for i, x in enumerate(asked) if i and x in c.np_start), default=0)
     return said.command(I.BRING_OBJECT, object=asked[last:], recipient=who)

@@ -27,16 +27,12 @@ def _plural(word: str) -> bool:
     return bool(lemmas) and lemmas[0] != word
 
 
-
-
 def _clause_start(c: ConstructionWords, rest: Words) -> int | None:
     """Where a clause with a subject of its own starts after the person told, if one does: a subject
     pronoun ("tell Noor *it*'s time"), or a noun phrase and its verb ("tell Kasia *her courgettes
     are* ready", "tell Ana *the taxi is* here")."""
     starts = (i for i in range(1, len(rest) - 1) if rest[i] in c.subjects or _subject_phrase(c, rest, i))
     return next(starts, None)
-
-
 
 
 #: At most this many words of a subject before its verb ("the customer for the grey car has...").
