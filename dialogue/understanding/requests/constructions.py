@@ -18,7 +18,7 @@ from dialogue.understanding.said import Said
 from dialogue.understanding.speech.plain import split_at, starts
 
 
-class ConstructionWords:
+class ConstructionGrammar:
     """The language's words of the small constructions (made once per language)."""
 
     def __init__(self, lang: Language) -> None:
@@ -103,11 +103,11 @@ class Framed:
 
     def command(self, intent: str, text: str | None = None, **slots: Words) -> Parse:
         if "recipient" in slots:  # "tell Ana from me that...": whom, not on whose behalf
-            slots["recipient"] = _without_adjunct(self.lang.derived(ConstructionWords), slots["recipient"])
+            slots["recipient"] = _without_adjunct(self.lang.derived(ConstructionGrammar), slots["recipient"])
         return Parse("command", intent, dict(slots), text=text, words=self.words)
 
 
-def _without_adjunct(c: ConstructionWords, words: Words) -> Words:
+def _without_adjunct(c: ConstructionGrammar, words: Words) -> Words:
     """The words without an adjunct at their end ("ana from me", "ana on my behalf")."""
     found = next((a for a in c.adjuncts if len(words) > len(a) and words[-len(a) :] == a), None)
     return words[: -len(found)] if found is not None else words
@@ -116,7 +116,7 @@ def _without_adjunct(c: ConstructionWords, words: Words) -> Words:
 # -- before any verb: what the whole utterance says ----------------------------------------------
 def going(said: Framed) -> Parse | None:
     """ "I want to go to X", "Ellen needs to get to X": take them there."""
-    c = said.lang.derived(ConstructionWords)
+    c = said.lang.derived(ConstructionGrammar)
     w = said.words
     for i in range(len(w) - 4):
         wants = w[i] in c.want_verbs or w[i : i + 2] in c.going_wants
@@ -132,7 +132,7 @@ def going(said: Framed) -> Parse | None:
 
 def wanting(said: Framed) -> Parse | None:
     """ "I would like the apple", "can I have a tea": bring it to the speaker."""
-    c = said.lang.derived(ConstructionWords)
+    c = said.lang.derived(ConstructionGrammar)
     for lead in c.wants:
         if starts(said.words, lead) and len(said.words) > len(lead):
             wanted = said.words[len(lead) :]
@@ -143,7 +143,7 @@ def wanting(said: Framed) -> Parse | None:
 
 def their_wish(said: Framed) -> Parse | None:
     """ "Ahmed would like the photo album", "he needs his glasses": bring it to them."""
-    c = said.lang.derived(ConstructionWords)
+    c = said.lang.derived(ConstructionGrammar)
     w = said.words
     for i in range(1, min(len(w), 4)):
         who = w[:i]
@@ -158,7 +158,7 @@ def their_wish(said: Framed) -> Parse | None:
     return None
 
 
-def _pronoun(c: ConstructionWords, who: Words) -> Words:
+def _pronoun(c: ConstructionGrammar, who: Words) -> Words:
     """ "he", "she", "they" refer to someone the conversation named."""
     said = c.objects.get(who[0]) if len(who) == 1 else None
     return (said,) if said is not None else who
@@ -166,7 +166,7 @@ def _pronoun(c: ConstructionWords, who: Words) -> Words:
 
 def belonging(said: Framed) -> Parse | None:
     """ "the butter goes back in the fridge", "this belongs on the shelf": put it there."""
-    c = said.lang.derived(ConstructionWords)
+    c = said.lang.derived(ConstructionGrammar)
     found = where_it_goes(said.lang, said.words)
     if found is None or found[1] in c.not_put:  # "goes to town" is no place to put it
         return None
@@ -178,7 +178,7 @@ def belonging(said: Framed) -> Parse | None:
 def where_it_goes(lang: Language, w: Words) -> tuple[Words, Words, Words] | None:
     """ "the butter goes back in the fridge", "the soup goes to table two": the thing, the
     preposition and the place; None when the words say no such thing."""
-    c = lang.derived(ConstructionWords)
+    c = lang.derived(ConstructionGrammar)
     for i in range(1, min(len(w) - 2, 6)):
         lead = next((p for p in c.goes if w[i : i + len(p)] == p), None)
         if lead is None:
@@ -195,7 +195,7 @@ def where_it_goes(lang: Language, w: Words) -> tuple[Words, Words, Words] | None
 
 def enough(said: Framed) -> Parse | None:
     """ "that is enough (now)": stop."""
-    c = said.lang.derived(ConstructionWords)
+    c = said.lang.derived(ConstructionGrammar)
     if said.words[: len(c.enough_lead)] == c.enough_lead and set(said.words) & c.enough:
         return said.command(I.STOP_ACTIVITY)
     return None
@@ -204,7 +204,7 @@ def enough(said: Framed) -> Parse | None:
 # -- after a verb ---------------------------------------------------------------------------------
 def a_hand(said: Framed) -> Parse | None:
     """ "give George a hand getting to the courtyard" is helping him get there."""
-    c = said.lang.derived(ConstructionWords)
+    c = said.lang.derived(ConstructionGrammar)
     rest, hand = said.rest, c.a_hand
     at = next((i for i in range(len(rest) - 1) if rest[i : i + len(hand)] == hand), None)
     if at is None or at == 0:
@@ -226,7 +226,7 @@ def company(said: Framed) -> Parse | None:
 def helping(said: Framed) -> Parse | None:
     """ "help me get to the bathroom", "help Ana find the way to the exit": take them there (the
     way said after the person is no part of their name)."""
-    found = split_at(said.rest, said.lang.derived(ConstructionWords).helped_to)
+    found = split_at(said.rest, said.lang.derived(ConstructionGrammar).helped_to)
     if found is None or not found[0] or not found[2]:
         return None
     who = found[0]
@@ -238,7 +238,7 @@ def helping(said: Framed) -> Parse | None:
 def showing(said: Framed) -> Parse | None:
     """ "show me the scissors" asks where they are; "show me the way (to X)" is guiding, and so is
     "show George where the lounge is"."""
-    c = said.lang.derived(ConstructionWords)
+    c = said.lang.derived(ConstructionGrammar)
     if "where" in said.rest[1:]:
         at = said.rest.index("where")
         place = said.rest[at + 1 :]
@@ -254,7 +254,7 @@ def showing(said: Framed) -> Parse | None:
 
 def everyone(said: Framed) -> Parse | None:
     """ "greet everyone": no one recipient, a greeting said aloud."""
-    c = said.lang.derived(ConstructionWords)
+    c = said.lang.derived(ConstructionGrammar)
     if said.rest in c.everyone:
         return Parse("greeting", words=said.words, slots={"everyone": said.rest})
     return None
@@ -262,7 +262,7 @@ def everyone(said: Framed) -> Parse | None:
 
 def asking(said: Framed) -> Parse | None:
     """ "do you like music" is a yes/no question, "do the dishes" a request."""
-    c = said.lang.derived(ConstructionWords)
+    c = said.lang.derived(ConstructionGrammar)
     if said.rest[:1] and said.rest[0] not in c.done:
         return Parse("unknown", words=said.words)
     return None

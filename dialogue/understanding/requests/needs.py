@@ -8,12 +8,12 @@ from dialogue import intents as I
 from dialogue.reference.english import Words
 from dialogue.understanding.language import Language
 from dialogue.understanding.parsed import Parse
-from dialogue.understanding.requests.constructions import ConstructionWords, Framed
+from dialogue.understanding.requests.constructions import ConstructionGrammar, Framed
 
 
 def need(said: Framed) -> Parse | None:
     """ "I'm really parched", "we are starving": something of the class that meets the need."""
-    c = said.lang.derived(ConstructionWords)
+    c = said.lang.derived(ConstructionGrammar)
     w = said.words
     whose: Words = ("me",)
     if w[:2] in c.needy:
@@ -43,7 +43,7 @@ def need(said: Framed) -> Parse | None:
     return said.command(I.BRING_OBJECT, object=asked, recipient=whose) if asked else None
 
 
-def _someone(c: ConstructionWords, words: Words) -> bool:
+def _someone(c: ConstructionGrammar, words: Words) -> bool:
     """Whether a word alone may be who has a need ("Ruby"): no function word."""
     return len(words) == 1 and words[0] not in c.function_words
 
@@ -56,7 +56,7 @@ def _qualifiers(said: Framed, words: Words) -> Words:
     return words[:at]
 
 
-def _available(c: ConstructionWords, words: Words) -> Words:
+def _available(c: ConstructionGrammar, words: Words) -> Words:
     """What a question of what there is asks about ("is there any juice", "any tea going"); ()
     when the words are no such question."""
     lead = next((a for a in c.available if words[: len(a)] == a), None)
@@ -71,7 +71,7 @@ def _available(c: ConstructionWords, words: Words) -> Words:
 def chore_needed(lang: Language, words: Words) -> Words | None:
     """ "the kickboard needs putting back on the shelf": the chore as a request ("putting the
     kickboard back on the shelf"), the thing after its verb; None when the words say no such need."""
-    c = lang.derived(ConstructionWords)
+    c = lang.derived(ConstructionGrammar)
     if not words or words[0] not in c.np_start:
         return None
     at = next((i for i, w in enumerate(words) if w in c.needs_doing), None)
@@ -85,7 +85,7 @@ def chore_needed(lang: Language, words: Words) -> Words | None:
 def their_pursuit(said: Framed) -> Parse | None:
     """ "Freya's after her goggles": the goggles, brought to Freya; of "a drink, the cola I
     reckon", the thing said last ("the cola")."""
-    c = said.lang.derived(ConstructionWords)
+    c = said.lang.derived(ConstructionGrammar)
     w = said.words
     if len(w) < 3 or not w[0].endswith("'s") or w[1] not in c.after:
         return None

@@ -8,7 +8,7 @@ from lemminflect import getLemma
 from dialogue import intents as I
 from dialogue.reference.english import Words
 from dialogue.understanding.parsed import Parse
-from dialogue.understanding.requests.constructions import ConstructionWords, Framed
+from dialogue.understanding.requests.constructions import ConstructionGrammar, Framed
 from dialogue.understanding.speech.clauses import finite
 from dialogue.understanding.speech.plain import QUOTED, expanded, message, original_text, split_at
 
@@ -27,7 +27,7 @@ def _plural(word: str) -> bool:
     return bool(lemmas) and lemmas[0] != word
 
 
-def _clause_start(c: ConstructionWords, rest: Words) -> int | None:
+def _clause_start(c: ConstructionGrammar, rest: Words) -> int | None:
     """Where a clause with a subject of its own starts after the person told, if one does: a subject
     pronoun ("tell Noor *it*'s time"), or a noun phrase and its verb ("tell Kasia *her courgettes
     are* ready", "tell Ana *the taxi is* here")."""
@@ -39,7 +39,7 @@ def _clause_start(c: ConstructionWords, rest: Words) -> int | None:
 _SUBJECT_WORDS = 6
 
 
-def _subject_phrase(c: ConstructionWords, rest: Words, i: int) -> bool:
+def _subject_phrase(c: ConstructionGrammar, rest: Words, i: int) -> bool:
     """Whether a noun phrase starts at i and its verb follows it ("her courgettes are", "the film
     starts", "the customer for the grey car has")."""
     if (rest[i] not in c.np_start and rest[i] != "her") or i + 1 >= len(rest):
@@ -56,7 +56,7 @@ def _subject_phrase(c: ConstructionWords, rest: Words, i: int) -> bool:
 
 def speech(said: Framed) -> Parse:
     """What to say, to whom: quoted words kept as they are, "tell X that/to...", "say X to Y"."""
-    c = said.lang.derived(ConstructionWords)
+    c = said.lang.derived(ConstructionGrammar)
     verb, rest, original = said.verb, said.rest, said.original
     quoted = QUOTED.search(original.text)
     if quoted:
@@ -108,7 +108,7 @@ def _said_to(said: Framed, rest: Words) -> Parse:
     """ "(say) to Sandeep that the film starts soon", "(say) to Ana it's time": the person, then the
     message ("that" or a clause of its own starts it)."""
     found = split_at(rest, ["that"])
-    clause = _clause_start(said.lang.derived(ConstructionWords), rest)
+    clause = _clause_start(said.lang.derived(ConstructionGrammar), rest)
     if found is not None and (clause is None or len(found[0]) <= clause):
         recipient, text = found[0], found[2]
     elif clause is not None:
@@ -120,7 +120,7 @@ def _said_to(said: Framed, rest: Words) -> Parse:
     return said.command(I.SAY, text=message(said.lang, said.original, text), recipient=recipient)
 
 
-def _question_put(said: Framed, c: ConstructionWords, rest: Words) -> Parse | None:
+def _question_put(said: Framed, c: ConstructionGrammar, rest: Words) -> Parse | None:
     """ "ask Ollie if he wants a sausage": "do you want a sausage?" said to Ollie; None when the
     question cannot be put to them as "you" ("ask Ana if the taxi is here")."""
     at = next((i for i, w in enumerate(rest) if w in c.asked_whether), None)
