@@ -1,4 +1,4 @@
-"""The single write path: batches, functional replacement, lifespans, expiry and events.
+"""The single write path: batches, functional replacement, lifespans and events.
 
 Every change to the KB goes through ``Writer.commit`` under the KB lock: the batch is applied to
 each target model, the revision moves on once, subscriptions are evaluated against the result,
@@ -19,22 +19,20 @@ from rdflib.namespace import OWL, RDF
 
 from kb.batch import ACTIVE_CONCEPT, Batch, last_functional_wins
 from kb.deadline import Deadline, timed
-from kb.errors import KbError, ReasoningTooLarge, StorageFull
+from kb.errors import KbError, ReasoningTooLarge
 from kb.events import Delivery, Firing, Subscriptions
 from kb.gcpause import paused
 from kb.lifespan import Expiries
 from kb.modelbounds import ModelBounds
 from kb.models import ALL_MODELS, Delta, Model, Models, ModelsState
 from kb.query import Query, Row, holds_row, rows_in
+from kb.reaper import Reaper
 from kb.reasonbudget import ReasoningBounds, StepBudget
-from kb.status import StatusCell
 from kb.summary import Summary, summarise
 from kb.tboxbudget import TBoxBounds
 from kb.terms import Triple, shorten
 
 log = logging.getLogger(__name__)
-
-MAX_EXPIRY_BACKOFF = 30.0  # seconds between attempts to retract expired statements that keep failing
 
 Render = Callable[[Query, set[Row]], list[dict[str, Any]]]
 
@@ -86,10 +84,8 @@ class Writer:
         self._gates: list[Gate] = []
         self._durable_count = 0
         self._active_listeners: list[ActiveListener] = []
-        self._reaper: threading.Thread | None = None
-        self._wake = threading.Event()
-        self._closed = threading.Event()
-        self.expiry_status = StatusCell()  # the lifespan reaper's, for /health
+        self.reaper = Reaper(lock, self.expiries, self.expire, clock)
+        self.expiry_status = self.reaper.status  # for /health
         self.summary: Summary = summarise(0, models)  # replaced at each change; read without the lock
 
     # --- listeners -----------------------------------------------------------------------
@@ -206,7 +202,7 @@ class Writer:
         self._publish(commit, undo)
         self.models.prune_terms()
         if expiries:
-            self._ensure_reaper()
+            self.reaper.wake()
         firings = self._evaluate(deltas)
         active_after = self._active_concepts()
         if active_after != active_before:
@@ -373,7 +369,7 @@ class Writer:
                 else:
                     self.expiries.discard(model, triple)
             if any(at > 0 for _triple, at in expiries):
-                self._ensure_reaper()
+                self.reaper.wake()
             self.revision = revision if revision is not None else self.revision + 1
             self._summarise()
 
@@ -402,39 +398,8 @@ class Writer:
             firing.deliver()
         return commit
 
-    def _ensure_reaper(self) -> None:
-        if self._reaper is None and not self._closed.is_set():
-            self._reaper = threading.Thread(target=self._reap, name="kb-expiry", daemon=True)
-            self._reaper.start()
-        self._wake.set()
-
-    def _reap(self) -> None:
-        while not self._closed.is_set():
-            with self.lock:
-                due = self.expiries.next_due()
-            delay = 1.0 if due is None else min(1.0, max(0.0, due - self._clock()))
-            self._wake.wait(delay)
-            self._wake.clear()
-            if not self._closed.is_set():
-                try:
-                    self.expire()
-                except (KbError, OSError) as exc:  # e.g. a full disk: the statements stay due
-                    delay = min(MAX_EXPIRY_BACKOFF, 2.0 ** self.expiry_status.get().failures)
-                    code = "storage_full" if isinstance(exc, StorageFull) else "expiry_failed"
-                    self.expiry_status.failed(code, f"expired statements could not be retracted "
-                                                    f"({exc}); retrying in {delay:g} s", retry_in=delay)
-                    log.warning("expired statements could not be retracted; retrying in %g s: %s", delay, exc)
-                    self._closed.wait(delay)
-                else:
-                    if not self.expiry_status.get().ok:
-                        self.expiry_status.succeeded()
-
     def close(self) -> None:
-        self._closed.set()
-        self._wake.set()
-        if self._reaper is not None:
-            self._reaper.join(timeout=2.0)
-            self._reaper = None
+        self.reaper.close()
 
 
 @dataclass
