@@ -38,6 +38,8 @@ class _Words:
         #: Leads of an indirect question: "do you know where the keys are", "any idea where the
         #: toolbox is".
         self.indirect = said.indirect
+        self.describe, self.described = said.describe, said.described
+        self.determiners = lang.words.determiners
         self.be = said.be
         self.someone = said.someone
         self.else_ = said.else_
@@ -106,6 +108,7 @@ def question(lang: Language, words: list[str]) -> Parse | None:  # noqa: C901
         if starts(w, lead) and w[len(lead) : len(lead) + 1] and w[len(lead)] in q.wh:
             w = w[len(lead) :]
             break
+    w = _described(q, w)  # "describe the objects on the bench": what is on it
     named = _name_of(q, w)
     if named is not None:  # "tell me the name of the person in the break room"
         return named
@@ -157,6 +160,19 @@ def question(lang: Language, words: list[str]) -> Parse | None:  # noqa: C901
     return None
 
 
+
+
+def _described(q: _Words, w: Words) -> Words:
+    """The question "describe the objects on the bench" or "list the people in the foyer" asks, in
+    its own words ("what is on the bench", "who is in the foyer"), when the words after what is
+    described say where; else the words unchanged."""
+    lead = next((lead for lead in q.describe if starts(w, lead)), None)
+    if lead is None:
+        return w
+    rest = w[len(lead) :]
+    rest = rest[1:] if rest[:1] and rest[0] in q.determiners else rest
+    asked = q.described.get(rest[0]) if rest else None
+    return (*asked, *rest[1:]) if asked and split_at(rest, q.locatives) is not None else w
 
 
 def _who_at(q: _Words, rest: Words) -> Words:

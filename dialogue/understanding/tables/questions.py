@@ -25,6 +25,8 @@ class SituationQuestionWords(Table):
     see_words: WordSet = frozenset()
     colour_words: WordSet = frozenset()
     indirect: Phrases = ()
+    describe: Phrases = ()
+    described: dict[str, Phrase] = {}
     be: WordSet = frozenset()
     someone: WordSet = frozenset()
     else_: WordSet = Field(default=frozenset(), validation_alias="else")

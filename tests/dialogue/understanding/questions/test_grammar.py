@@ -199,3 +199,21 @@ def test_questions_said_indirectly_ask_what_is_there(text: str, thing: tuple[str
 def test_having_to_do_something_is_no_question_of_what_is_there(text: str) -> None:
     p = question(expanded(text))
     assert p is None or p.question != "can_see"
+
+
+@pytest.mark.parametrize(
+    ("text", "kind"),
+    [
+        ("describe the objects lying on the bench", "what_on"),
+        ("list the things on the shelf", "what_on"),
+        ("describe the people in the foyer", "who_in"),
+    ],
+)
+def test_describing_what_is_somewhere_asks_what_or_who_is_there(text: str, kind: str) -> None:
+    p = question(expanded(text))
+    assert p is not None and p.question == kind
+
+
+def test_describing_a_thing_alone_is_no_question_of_what_is_there() -> None:
+    p = question(expanded("describe the bench"))
+    assert p is None or p.question not in {"what_on", "who_in"}
