@@ -243,7 +243,8 @@ class DialogueEngine:
         focus = Focus(snapshot, speaker, self.config.max_snapshot_entities,
                       lambda: mentioned(lexicon, said.tokens),
                       then=lambda shown: recorder.shown([e.kind for e in shown], [e.id for e in shown]))
-        context = TurnContext(text, speaker, snapshot, history, locale, self.config.robot_name, focus,
+        robot_name = snapshot.robot_name(self.config.robot_name)
+        context = TurnContext(text, speaker, snapshot, history, locale, robot_name, focus,
                               lexicon, said)
         return _Turn(text, speaker, locale, context, lexicon, recorder)
 

@@ -243,6 +243,10 @@ class EntityIndex:
                 shown = self.kb.label(term, self.lang) if self.labels(term) else readable_id(term)
             elif not self.labels(term):  # only labels that are no text: named by its id, as `label` would
                 shown = readable_id(term)
+            if shown == term and self.labels(term):
+                # A label in the language that only spells the id out (the ontology's "myself"@en)
+                # names nothing: a scene's own label of no language ("Pip") is the name.
+                shown = self.kb.label(term)
             self._display[term] = shown
         return self._display[term]
 

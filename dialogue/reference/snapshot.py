@@ -171,6 +171,11 @@ class Snapshot:
             return entity.name
         return self.names.get(term) or readable_id(term)
 
+    def robot_name(self, default: str) -> str:
+        """The robot's own name, its label in the KB ("Pip"); `default` when it has none but its id."""
+        robot = self.entities.get(self.robot)
+        return robot.name if robot is not None and robot.name != robot.id else default
+
     def order_key(self, entity_id: str) -> tuple[int, str]:
         """Sort key of the deterministic order (unknown ids last)."""
         entity = self.entities.get(entity_id)

@@ -39,7 +39,7 @@ from dialogue.understanding.replies import acknowledgement, hello, say, then, wh
 from dialogue.understanding.requests.abilities import asks_ability
 from dialogue.understanding.requests.addressed import to_someone_else
 from dialogue.understanding.requests.commands import parse
-from dialogue.understanding.requests.compound import conjuncts, coordinated
+from dialogue.understanding.requests.compound import adds_on, conjuncts, coordinated, two_named
 from dialogue.understanding.requests.ground import ground
 from dialogue.understanding.requests.owners import none_yours, whose
 from dialogue.understanding.requests.referents import Referents, relational
@@ -127,8 +127,9 @@ class Interpreter:
         parts = conjuncts(self.lang, heard)
         for rest in self._from_each_clause(heard):  # ("Milo's mum asked: the thermometer, give to Milo")
             before = heard.text[: len(heard.text) - len(rest.text)]
-            if parts and before and parse(self.lang, heard.of(before), self.robot_name).act == "command":
-                break  # ("bring the tea to Ruby, then the bun to Kaur": both, read as parts below)
+            more = parts or adds_on(self.lang, tuple(expanded(self.lang, rest)))
+            if before and more and parse(self.lang, heard.of(before), self.robot_name).act == "command":
+                break  # ("bring the tea to Ruby, then the bun to Kaur": both; "bring X please and then Y")
             said_terse = self._terse(rest)
             if said_terse is not None:
                 return said_terse
@@ -275,11 +276,13 @@ class Interpreter:
             things = []
         if role == "object" and not things and role not in overrides:
             things = self.refs.every(p.slots.get(role, ()))  # "all the plates": each plate there is
-        if whole.intent is not None or whole.clarify or not things:
+        if whole.clarify or not things or (whole.intent is not None and len(things) == 1):
             return whole
         if len(things) == 1:
             return self._one_command(p, {**overrides, role: things[0]})
         each = [self._one_command(p, {**overrides, role: t}) for t in things]
+        if whole.intent is not None and not two_named(self.lang, self.snapshot, role, (whole, *each)):
+            return whole
         if any(o.intent is None for o in each):
             return next(o for o in each if o.intent is None)
         return replace(each[0], reply=then(self.lang, [o.reply for o in each]), more=tuple(each[1:]))

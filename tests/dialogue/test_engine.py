@@ -57,6 +57,14 @@ def test_questions_get_a_reply_and_no_intent(kitchen: KB) -> None:
     assert result.intents == () and "table" in result.response
 
 
+def test_the_robot_answers_to_its_name_in_the_kb(kitchen: KB) -> None:
+    kitchen.add(['myself rdfs:label "Pip"'])
+    engine = DialogueEngine(kitchen)
+    assert turn(engine, "what's your name?").response == "My name is Pip."
+    # said first, its name is a vocative, not a thing the question is about
+    assert turn(engine, "pip where is the apple").response == turn(engine, "where is the apple").response
+
+
 def test_deadline_answers_in_time_when_the_model_is_slow(kitchen: KB) -> None:
     # The model would answer after 30 s; the turn gives up at 0.3 s. The margin is generous (a busy
     # machine), yet far from the model's delay: the assert tells the deadline was kept, not speed.

@@ -13,6 +13,7 @@ from dialogue.reference.resolution import ALL_KINDS, PERSON, content_words, reso
 from dialogue.understanding.inflection import is_plural, plural_of
 from dialogue.understanding.language import Language
 from dialogue.understanding.replies import (
+    MAX_LISTED,
     article,
     capitalised,
     indefinite,
@@ -32,7 +33,11 @@ MAX_PLACES = 3
 
 def what_do_you_see(lang: Language, snapshot: Snapshot, speaker: str = "") -> str:
     you = say(lang, "naming.you")
-    things = told_apart(lang, [e for e in snapshot.visible() if e.kind == "thing"], snapshot)
+    seen = [e for e in snapshot.visible() if e.kind == "thing"]
+    if len(seen) > MAX_LISTED:
+        # A list cut short names what the others are on first: the sofa, not the cardigan on it.
+        seen.sort(key=lambda e: not snapshot.placed_at(e.id))
+    things = told_apart(lang, seen, snapshot)
     people = [you if e.id == speaker else indefinite(lang, e)
               for e in snapshot.visible() if e.kind == "person"]  # fmt: skip
     if not things and not people:

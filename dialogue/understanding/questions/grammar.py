@@ -25,6 +25,7 @@ class _Words:
         self.wh = lang.words.wh
         self.colours = lang.words.colours
         self.sees = said.sees
+        self.not_seen_before = said.not_seen_before
         self.where_leads = said.where_leads
         self.on_glue = said.on_glue
         self.who_not_a_name = said.who_not_a_name
@@ -37,6 +38,8 @@ class _Words:
         #: Leads of an indirect question: "do you know where the keys are", "any idea where the
         #: toolbox is".
         self.indirect = said.indirect
+        self.describe, self.described = said.describe, said.described
+        self.determiners = lang.words.determiners
         self.be = said.be
         self.someone = said.someone
         self.else_ = said.else_
@@ -45,6 +48,7 @@ class _Words:
         self.others = said.others
         #: Words that ask whether someone is there ("is Maria about?").
         self.there = said.there
+        self.there_after = said.there_after
         #: The verb of a question's own clause after what it counts ("how many cans *have* we got").
         self.asking_verbs = said.asking_verbs
         self.asked_subjects = said.asked_subjects
@@ -104,6 +108,7 @@ def question(lang: Language, words: list[str]) -> Parse | None:  # noqa: C901
         if starts(w, lead) and w[len(lead) : len(lead) + 1] and w[len(lead)] in q.wh:
             w = w[len(lead) :]
             break
+    w = _described(q, w)  # "describe the objects on the bench": what is on it
     named = _name_of(q, w)
     if named is not None:  # "tell me the name of the person in the break room"
         return named
@@ -135,14 +140,18 @@ def question(lang: Language, words: list[str]) -> Parse | None:  # noqa: C901
         return _q("how_many", w, thing=_counted(q, w[2:]))
     for lead in q.sees:
         if starts(w, lead):
+            if w[len(lead) : len(lead) + 1] and w[len(lead)] in q.not_seen_before:
+                break  # "do you have to go": a duty, nothing seen
             thing = _strip_ends(w[len(lead) :], frozenset(), q.nearby)  # "is there any fruit around"
             if thing[:1] and thing[0] in q.anything:
                 return _anything(q, w, thing[1:])
             return _q("can_see", w, thing=thing)
-    if head and head[0] in q.is_are and len(w) > 2 and w[-1] in q.there:
-        return _q("can_see", w, thing=w[1:-1])  # "is Maria here?"
+    here = w[:-1] if len(w) > 3 and w[-1] in q.there_after else w  # ("is Yuki here yet?")
+    if head and head[0] in q.is_are and len(here) > 2 and here[-1] in q.there:
+        return _q("can_see", w, thing=here[1:-1])  # "is Maria here?"
     if head and head[0] in q.is_are and split_at(w, q.locatives) is not None:
-        return _q("can_see", w, thing=w[1:])  # "is the cup on the table?"
+        # "is the cup (still) on the table?"
+        return _q("can_see", w, thing=tuple(x for x in w[1:] if x not in q.there_after))
     if head == ("how",):
         social = any(starts(w, lead) for lead in q.social_how)
         return _q("how_are_you" if social else "other", w)
@@ -151,6 +160,19 @@ def question(lang: Language, words: list[str]) -> Parse | None:  # noqa: C901
     return None
 
 
+
+
+def _described(q: _Words, w: Words) -> Words:
+    """The question "describe the objects on the bench" or "list the people in the foyer" asks, in
+    its own words ("what is on the bench", "who is in the foyer"), when the words after what is
+    described say where; else the words unchanged."""
+    lead = next((lead for lead in q.describe if starts(w, lead)), None)
+    if lead is None:
+        return w
+    rest = w[len(lead) :]
+    rest = rest[1:] if rest[:1] and rest[0] in q.determiners else rest
+    asked = q.described.get(rest[0]) if rest else None
+    return (*asked, *rest[1:]) if asked and split_at(rest, q.locatives) is not None else w
 
 
 def _who_at(q: _Words, rest: Words) -> Words:

@@ -257,8 +257,10 @@ def _segments(g: Grammar, rest: Words, row: Row) -> tuple[Words, dict[str, Words
     i = 0
     while i < len(rest):
         marker = next((m for m in row.slots if rest[i : i + len(m[0])] == m[0] and m[1] not in slots), None)
-        if marker is not None and marker[0][0] in g.goal_particles and not _phrase_at(g, rest, i + 1):
-            marker = None  # "go down to the cellar": a particle; "go down the garden": where to
+        said = marker[0] if marker is not None else ()
+        particle = bool(said) and (said[0] in g.goal_particles or said in {(w,) for w in row.particles})
+        if particle and not _phrase_at(g, rest, i + 1):
+            marker = None  # "go down to the cellar", "put it over by the door": a particle
         if marker is not None and g.purpose(rest[i : i + 2]) is None:  # "something to eat" is no recipient
             current = slots[marker[1]] = []
             marks[marker[1]] = " ".join(marker[0])

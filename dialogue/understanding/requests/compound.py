@@ -7,12 +7,15 @@ of the grammar, and before an imperative verb that starts a new command without 
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
 
-from dialogue.reference.english import Words
+from dialogue.reference.english import Words, tokens
+from dialogue.reference.grounding import Snapshot
 from dialogue.reference.resolution import content_words
 from dialogue.understanding.language import Language
 from dialogue.understanding.lemmas import lemmas_of
+from dialogue.understanding.outcome import Outcome
 from dialogue.understanding.requests.frames import known_verbs, verbs
 from dialogue.understanding.said import Said, Text
 from dialogue.understanding.speech.plain import QUOTED, starts, strip_politeness
@@ -194,7 +197,8 @@ def alternatives(lang: Language, words: Words) -> list[Words]:
 
 
 def coordinated(lang: Language, words: Words) -> list[Words]:
-    """ "the cereals and the milk" -> ["the cereals", "the milk"]; [] when there is no "and"."""
+    """ "the cereals and the milk" -> ["the cereals", "the milk"]; [] when there is no "and". Each
+    without its politeness ("the pills please and then the water": "the pills", "the water")."""
     if "and" not in words:
         return []
     out: list[Words] = []
@@ -206,4 +210,29 @@ def coordinated(lang: Language, words: Words) -> list[Words]:
         else:
             current.append(w)
     out.append(tuple(current))
+    out = [tuple(strip_politeness(lang, list(t))) for t in out]
     return out if all(content_words(lang, t) for t in out) else []
+
+
+def two_named(lang: Language, snapshot: Snapshot, role: str, read: Sequence[Outcome]) -> bool:
+    """Whether "X and Y" names a thing each though the whole phrase found one of them ("the
+    painkillers and the glass of water": the glass, its words found in the phrase): each part found
+    a thing of its own, the whole's among them, and no name of the whole's says "and" itself
+    ("the salt and pepper mill"). `read`: the whole phrase's reading, then each part's."""
+    whole, *each = [snapshot.get(o.roles.get(role, "")) for o in read]
+    ids = {e.id for e in each if e is not None}
+    if whole is None or len(ids) < len(each) or whole.id not in ids:
+        return False
+    return not any(coordinated(lang, tuple(tokens(n))) for n in whole.labels)
+
+
+def adds_on(lang: Language, words: Words) -> bool:
+    """Whether a clause opens with a conjunction, after any politeness ("please and then the glass of
+    water"): it adds to the request before it rather than being one of its own."""
+    c = lang.derived(_Words)
+    for word in words:
+        if word in c.conjunctions:
+            return True
+        if strip_politeness(lang, [word]):
+            return False
+    return False

@@ -18,6 +18,7 @@ from dialogue.reference.grounding import Kind
 from dialogue.reference.lexicon import Lexicon, singular
 from dialogue.reference.resolution import PERSON, PLACE, ZONE, resolve
 from dialogue.reference.snapshot import fixed
+from dialogue.understanding.requests.compound import coordinated
 from dialogue.understanding.requests.frames import verbs
 from dialogue.understanding.said import Text
 from dialogue.understanding.speech.plain import strip_politeness
@@ -39,7 +40,8 @@ def terse(text: Text, lexicon: Lexicon, robot_name: str = "", answering: bool = 
     if not words:
         return None
     at = next((i for i, w in enumerate(words) if asked_verb(lang, w) in verbs(lang)), None)
-    if at is not None and ((asked and _all_named(words, lexicon)) or _one_thing(words, lexicon)):
+    if at is not None and ((asked and _all_named(words, lexicon)) or _one_thing(words, lexicon)
+                           or _each_named(words, lexicon)):
         at = None  # ("sticks, please": the drumsticks, not "stick" said as a verb; "the still water")
     if at is None:
         return _verbless(words, lexicon) or (None if answering else _handed(words, lexicon, asked))
@@ -100,6 +102,11 @@ def _handed(words: list[str], lexicon: Lexicon, asked: bool) -> str | None:
     Maud": to the one person said after the thing."""
     to = lexicon.lang.prepositions.words("terse-to")
     at = next((i for i, w in enumerate(words) if w in to), None)
+    parts = coordinated(lexicon.lang, tuple(words)) if at is None else []
+    if parts:  # "painkillers please and then the glass of water": each brought, politeness between
+        asked = asked or sum(map(len, parts)) + len(parts) - 1 < len(words)
+        each = _each_named(words, lexicon) and all(_movable(p, lexicon) for p in parts)
+        return lexicon.lang.requests.terse.handed_me.format(thing=" ".join(words)) if asked and each else None
     if at is None:
         said = asked and (_all_named(words, lexicon) or _one_thing(words, lexicon))
         thing = _named(words, lexicon) if said else None
@@ -116,6 +123,13 @@ def _all_named(words: Sequence[str], lexicon: Lexicon) -> bool:
     map"), no word of a request besides ("grab Ines's phone")."""
     bare = list(words[1:]) if words[:1] and words[0] in lexicon.lang.words.np_start else list(words)
     return sum(m.end - m.start for m in lexicon.mentions(bare)) == len(bare) > 0
+
+
+def _each_named(words: Sequence[str], lexicon: Lexicon) -> bool:
+    """Whether the words are things the KB names joined by "and" ("the juice and the glass of water"),
+    politeness between them allowed."""
+    parts = coordinated(lexicon.lang, tuple(words))
+    return bool(parts) and all(_all_named(p, lexicon) for p in parts)
 
 
 def _movable(words: Sequence[str], lexicon: Lexicon) -> bool:

@@ -39,7 +39,7 @@ class _Repairs:
         self.marker_starts = frozenset(m[0] for m in speech.repairs)
         #: The markers a word may start, in the order they are tried ("no" alone last).
         self.markers_at: dict[str, tuple[Words, ...]] = {}
-        for marker in (*speech.repairs, ("no",)):
+        for marker in (*speech.repairs, *speech.repairs_alone):
             self.markers_at[marker[0]] = (*self.markers_at.get(marker[0], ()), marker)
         #: Prepositions that start a place said again ("...on the trolley no on the desk").
         self.place_words = frozenset(w for p in lang.prepositions.having("place") for w in p[:1])

@@ -17,6 +17,7 @@ class SituationQuestionWords(Table):
     """`questions.toml` [situation]: the words of questions about the situation."""
 
     sees: Phrases = ()
+    not_seen_before: WordSet = frozenset()
     where_leads: Phrases = ()
     on_glue: WordSet = frozenset()
     who_not_a_name: WordSet = frozenset()
@@ -24,6 +25,8 @@ class SituationQuestionWords(Table):
     see_words: WordSet = frozenset()
     colour_words: WordSet = frozenset()
     indirect: Phrases = ()
+    describe: Phrases = ()
+    described: dict[str, Phrase] = {}
     be: WordSet = frozenset()
     someone: WordSet = frozenset()
     else_: WordSet = Field(default=frozenset(), validation_alias="else")
@@ -31,6 +34,7 @@ class SituationQuestionWords(Table):
     nearby: WordSet = frozenset()
     others: WordSet = frozenset()
     there: WordSet = frozenset()
+    there_after: WordSet = frozenset()
     asking_verbs: WordSet = frozenset()
     asked_subjects: WordSet = frozenset()
     count_tail: WordSet = frozenset()

@@ -52,6 +52,7 @@ class SpeechWords(Table):
     asking: WordSet = frozenset()
     lead_fillers: WordSet = frozenset()
     repairs: Phrases = ()
+    repairs_alone: Phrases = ()
     cancels: Phrases = ()
     polite_prefixes: Phrases = ()
     robot_suffixes: Phrases = ()

@@ -34,3 +34,10 @@ def test_movable_follows_the_kb() -> None:
     entity = build_snapshot(kb).get("x")
     assert entity is not None and entity.movable is False
     kb.close()
+
+
+def test_the_robots_name_is_its_scene_label_not_the_ontologys_myself() -> None:
+    named = build_snapshot(scene_kb(None, "myself rdf:type Robot", 'myself rdfs:label "Pip"'))
+    assert named.robot_name("robot") == "Pip"
+    # the ontology alone labels it "myself"@en, its id: no name of its own
+    assert build_snapshot(scene_kb(None, "myself rdf:type Robot")).robot_name("robot") == "robot"

@@ -39,3 +39,12 @@ def test_who_is_at_a_thing_names_whom_the_kb_puts_next_to_it() -> None:
     # nobody by it, but someone in its room: said as such
     assert say(kb, "who is by the lamp").reply == (
         "I don't know of anyone right at the lamp, but in the hall, where it is, there is Ina.")
+
+
+def test_what_you_see_cut_short_names_what_things_are_on_first() -> None:
+    small = [f for n in range(14) for f in (f"t{n:02} rdf:type Artifact", f't{n:02} rdfs:label "trinket {n}"',
+                                           f"t{n:02} isOn zsofa", f"myself sees t{n:02}")]  # fmt: skip
+    kb = scene_kb(None, "myself rdf:type Robot", "zsofa rdf:type dbr:Couch", 'zsofa rdfs:label "sofa"',
+                  "myself sees zsofa", *small)  # fmt: skip
+    reply = say(kb, "what can you see?").reply
+    assert reply.startswith("I see the sofa, ") and reply.endswith("and 3 more things.")

@@ -177,3 +177,43 @@ def test_what_is_on_a_thing_said_with_that_or_asked_to_be_described(office: KB) 
         asked = question(expanded(text))
         assert asked is not None and asked.question == "what_on", text
         assert "stapler" in say(office, text).reply
+
+
+@pytest.mark.parametrize(
+    ("text", "thing"),
+    [
+        # whether there is any, said of the household
+        ("do we still have nachos", ("nachos",)),
+        ("have we got any tape", ("any", "tape")),
+        # when, said after someone's being here or a thing's place
+        ("is Yuki here yet", ("yuki",)),
+        ("is my fleece still on the chair", ("my", "fleece", "on", "the", "chair")),
+    ],
+)
+def test_questions_said_indirectly_ask_what_is_there(text: str, thing: tuple[str, ...]) -> None:
+    p = question(expanded(text))
+    assert p is not None and (p.question, p.slots["thing"]) == ("can_see", thing)
+
+
+@pytest.mark.parametrize("text", ["do you have to go", "do we still have to wait"])
+def test_having_to_do_something_is_no_question_of_what_is_there(text: str) -> None:
+    p = question(expanded(text))
+    assert p is None or p.question != "can_see"
+
+
+@pytest.mark.parametrize(
+    ("text", "kind"),
+    [
+        ("describe the objects lying on the bench", "what_on"),
+        ("list the things on the shelf", "what_on"),
+        ("describe the people in the foyer", "who_in"),
+    ],
+)
+def test_describing_what_is_somewhere_asks_what_or_who_is_there(text: str, kind: str) -> None:
+    p = question(expanded(text))
+    assert p is not None and p.question == kind
+
+
+def test_describing_a_thing_alone_is_no_question_of_what_is_there() -> None:
+    p = question(expanded("describe the bench"))
+    assert p is None or p.question not in {"what_on", "who_in"}

@@ -469,3 +469,17 @@ def test_a_farewell_is_read_said_to_the_robot_or_after_thanks(text: str) -> None
 
 def test_a_name_after_a_farewell_that_is_not_the_robots_is_no_farewell() -> None:
     assert parse("goodbye Ana", robot_name="Robbie").act != "farewell"
+
+
+@pytest.mark.parametrize(
+    ("text", "thing", "place"),
+    [
+        ("lay the towel over the bench", "towel", "bench"),
+        ("hang the coat over the chair", "coat", "chair"),
+        ("put the towel over by the bench", "towel", "bench"),  # a particle before a preposition
+        ("put the towel back over on the bench", "towel", "bench"),
+    ],
+)
+def test_over_says_where_a_thing_is_put_unless_a_particle(text: str, thing: str, place: str) -> None:
+    p = parse(text)
+    assert (p.intent, p.slots["object"], p.slots["recipient"]) == (I.PLACE_OBJECT, ("the", thing), ("the", place))

@@ -6,7 +6,7 @@ from dialogue import intents as I
 from dialogue.understanding.requests import compound
 from dialogue.understanding.requests.compound import Part
 from kb import KB
-from tests.dialogue.conftest import english
+from tests.dialogue.conftest import english, scene_kb
 from tests.dialogue.understanding.test_interpret import say
 
 
@@ -141,3 +141,31 @@ def test_a_request_said_again_for_another_thing_without_its_verb_is_both(office:
         (I.BRING_OBJECT, {"object": "pear_1", "recipient": "person_carol"}),
         (I.BRING_OBJECT, {"object": "stapler_1", "recipient": "person_dan"}),
     ]
+
+
+def _study() -> KB:
+    return scene_kb(
+        None, "myself rdf:type Robot", "person_bob rdf:type Human", 'person_bob rdfs:label "Bob"',
+        "pills rdf:type Box", 'pills rdfs:label "painkillers"', "myself sees pills",
+        "glass rdf:type Glass", 'glass rdfs:label "glass of water"', "myself sees glass",
+        "mill rdf:type Artifact", 'mill rdfs:label "salt and pepper mill"', "myself sees mill",
+        "salt rdf:type Artifact", 'salt rdfs:label "salt"', "myself sees salt",
+    )  # fmt: skip
+
+
+@pytest.mark.parametrize(
+    ("text", "objects"),
+    [
+        # a name found inside "X and Y" is one of two things, not all that was asked for
+        ("bring me the painkillers and the glass of water", ["pills", "glass"]),
+        ("bring me the painkillers please and then the glass of water", ["pills", "glass"]),
+        ("painkillers please and then the glass of water", ["pills", "glass"]),  # said without a verb
+        ("the glass of water and the painkillers, please", ["glass", "pills"]),
+        # a name that says "and" itself is one thing
+        ("bring me the salt and pepper mill", ["mill"]),
+    ],
+)
+def test_two_things_joined_by_and_are_each_brought(text: str, objects: list[str]) -> None:
+    out = say(_study(), text, speaker="person_bob")
+    assert [o.roles["object"] for o in out.steps()] == objects
+    assert {o.intent for o in out.steps()} == {I.BRING_OBJECT}

@@ -65,3 +65,15 @@ def test_the_right_thing_is_placed_after_the_repair(office: KB) -> None:
 )  # fmt: skip
 def test_a_word_cut_off_and_said_again_in_full_is_said_once(text: str, said: str) -> None:
     assert restarted(text) == said
+
+
+@pytest.mark.parametrize(
+    ("text", "meant"),
+    [
+        # "nah" alone marks a repair as "no" does: the request after it with another verb replaces it
+        ("Put the juice in the - nah, give the juice to Doreen.", "give the juice to doreen"),
+        ("put the juice on the nah on the table", "put the juice on the table"),
+    ],
+)
+def test_nah_marks_a_self_repair_as_no_does(text: str, meant: str) -> None:
+    assert cleaned(text).text.rstrip(" .") == meant
