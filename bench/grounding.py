@@ -149,7 +149,7 @@ def spells(size: int, spells: tuple[int, ...] = SPELLS, repeats: int = SPELL_REP
     engine.follow(built=settle)  # as the service's engine does
     behind: list[int] = []  # spells after which the worker had not caught up in `SETTLE` s
 
-    async def turn_after(spell_ticks: int) -> float:
+    async def turn_after(spell_ticks: int) -> tuple[float, float]:
         for _ in range(spell_ticks):
             add, remove = next(ticks)
             kb.apply(add=add, remove=remove)
@@ -162,27 +162,28 @@ def spells(size: int, spells: tuple[int, ...] = SPELLS, repeats: int = SPELL_REP
         if not kb.find("thing_42 isIn ?z"):  # a tick retracted its place: the turn is about it
             add = [*add, "thing_42 isIn zone_0"]
         kb.apply(add=add, remove=remove)
-        start = time.perf_counter()
+        start, start_cpu = time.perf_counter(), time.process_time()
         result = await engine.turn(SPELL_TURN, speaker=SPEAKER)
-        took = (time.perf_counter() - start) * 1000
+        took, cpu = (time.perf_counter() - start) * 1000, (time.process_time() - start_cpu) * 1000
         if not result.intents or result.intents[0].data.get("object") != "thing_42":
             raise RuntimeError(f"the turn after a spell did not bring thing 42: {result}")
-        return took
+        return took, cpu
 
     async def measure_spells() -> list[str]:
         step("grounding", f"the first snapshot ({facts:,} asserted), built by the grounding's worker")
         await asyncio.to_thread(engine.ground)  # not what is measured: minutes at 300k on a busy machine
         step("grounding", f"baseline: {4 * repeats} turns right after one tick")
         await turn_after(1)
-        base = statistics.median([await turn_after(1) for _ in range(4 * repeats)])
+        baseline = [await turn_after(1) for _ in range(4 * repeats)]
+        base, base_cpu = (statistics.median(t[i] for t in baseline) for i in (0, 1))
         rows = []
         for minutes in spells:
             step("grounding", f"{repeats} turns after {minutes} min of 10 Hz perception")
             behind.clear()
             times = [await turn_after(minutes * TICKS_PER_MINUTE) for _ in range(repeats)]
-            med = statistics.median(times)
-            rows.append(f"  {facts:>9,} {minutes:>7} {med:9.2f} {max(times):9.2f} {base:10.2f}"
-                        f" {len(behind):>6}/{repeats}")
+            med, cpu = (statistics.median(t[i] for t in times) for i in (0, 1))
+            rows.append(f"  {facts:>9,} {minutes:>7} {med:9.2f} {max(t[0] for t in times):9.2f} {cpu:9.2f}"
+                        f" {base:10.2f} {base_cpu:9.2f} {len(behind):>6}/{repeats}")
             step("grounding", rows[-1].strip())
         return rows
 
@@ -199,8 +200,9 @@ def spells_table(sizes: tuple[int, ...], minutes: tuple[int, ...] = SPELLS,
     load = ", ".join(f"{x:.2f}" for x in os.getloadavg())
     return "\n".join([
         f"quiet spells: a whole rules turn ({SPELL_TURN!r}) after minutes of 10 Hz perception with nobody"
-        " speaking (ms; median and slowest of the repeats); baseline: the same turn right after one tick",
-        "  statements minutes    median   slowest   baseline  behind",
+        " speaking (ms; median and slowest of the repeats, wall; cpu: the process's CPU time, every thread's,"
+        " median); baseline: the same turn right after one tick",
+        "  statements minutes    median   slowest       cpu   baseline  base cpu  behind",
         *rows,
         f"  (behind: spells after which the grounding had not caught up in {SETTLE:g} s, its turn paying the"
         " rest;",
@@ -233,13 +235,19 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--rounds", type=int, default=200, help="turns after a tick per case (default 200)")
     parser.add_argument("--spells", action="store_true",
                         help="also the first turn after quiet spells, at 100k and 300k (minutes)")
+    parser.add_argument("--spell-sizes", default="100000,300000",
+                        help="the worlds of --spells, statements, comma-separated")
     args = parser.parse_args(argv)
     if args.rounds < 1:
         parser.error(f"--rounds must be at least 1, not {args.rounds}")
+    try:
+        spell_sizes = tuple(int(n) for n in args.spell_sizes.split(","))
+    except ValueError:
+        parser.error(f"--spell-sizes takes numbers separated by commas, not {args.spell_sizes!r}")
     sizes = (10_000,) if args.quick else (10_000, 100_000, *((1_000_000,) if args.million else ()))
     print(run(sizes, 20 if args.quick else args.rounds, 2 if args.quick else 3))
     if args.spells:
-        print(spells_table((10_000,), (1, 5), 2) if args.quick else spells_table((100_000, 300_000)))
+        print(spells_table((10_000,), (1, 5), 2) if args.quick else spells_table(spell_sizes))
     return 0
 
 

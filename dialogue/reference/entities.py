@@ -12,12 +12,12 @@ Entities with the same classes share one tuple of classes and one of class names
 from __future__ import annotations
 
 from collections import Counter
-from collections.abc import Iterable
+from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
 from typing import Any
 
 from dialogue.reference.facts import PERSON_CLASSES, ROBOT_ID, ZONE_CLASSES, Change, Facts, Triple
-from dialogue.reference.layered import GONE, Layered, SortedChunks
+from dialogue.reference.layered import GONE, Gone, Layered, SortedChunks, layered, rebucket
 from dialogue.reference.snapshot import (
     IGNORED_CLASSES,
     ROBOT_CLASSES,
@@ -97,8 +97,13 @@ class EntityIndex:
         self._touched: set[str] = set()  # entities changed since
         self._contents: dict[str, set[str]] = {}  # place -> entities on it or in it
         self._located: dict[str, tuple[str | None, ...]] = {}  # entity -> (support, zone, *containers)
-        self._frozen_contents: Layered[str, frozenset[str]] | None = None
-        self._moved: set[str] = set()  # places whose contents changed since the last snapshot
+        self._frozen_contents: Layered[str, Mapping[str, None]] | None = None
+        #: What each place gained (None) or lost (GONE) since the last snapshot: a zone holds a
+        #: tenth of the world, and copying its contents for every thing moved in or out made each
+        #: tick cost the zone's size (issue 32: milliseconds at 300k).
+        self._moved: dict[str, dict[str, Gone | None]] = {}
+        self._frozen_names: Layered[str, str] | None = None
+        self._renamed: dict[str, str | Gone] = {}  # `names` changed since the last snapshot
         self._rank: dict[str, int] = {}
         #: (rank, id) of every entity, sorted; shared by the snapshots it did not change in.
         self.order: SortedChunks[tuple[int, str]] | None = None  # None: built at the end of __init__
@@ -143,7 +148,7 @@ class EntityIndex:
                 deep |= self._members.get(classes, set())
             shallow |= self._hue_users.get(term, set())
             if term in self.names:
-                self.names[term] = self.display(term)
+                self.names[term] = self._renamed[term] = self.display(term)
         for term in deep:
             self._drop_core(term)
         for term in deep | shallow:
@@ -187,15 +192,20 @@ class EntityIndex:
         else:
             self._frozen = self._frozen.evolve({t: self.entities.get(t, GONE) for t in self._touched})
         self._touched = set()
-        contents = {place: frozenset(self._contents.get(place, ())) or GONE for place in self._moved}
-        if self._frozen_contents is None:
-            self._frozen_contents = Layered({p: frozenset(ids) for p, ids in self._contents.items()})
+        held, moved = self._frozen_contents, self._moved
+        if held is None:
+            self._frozen_contents = Layered({p: layered(dict.fromkeys(i)) for p, i in self._contents.items()})
         else:
-            self._frozen_contents = self._frozen_contents.evolve(contents)
-        self._moved = set()
+            self._frozen_contents = held.evolve({p: rebucket(held.get(p), ids) for p, ids in moved.items()})
+        self._moved = {}
+        if self._frozen_names is None:
+            self._frozen_names = Layered(dict(self.names))
+        else:
+            self._frozen_names = self._frozen_names.evolve(self._renamed)
+        self._renamed = {}
         assert self.order is not None  # built with the index
         table = EntityTable(self._frozen, self.order)
-        return Snapshot(revision=revision, entities=table, names=dict(self.names),
+        return Snapshot(revision=revision, entities=table, names=self._frozen_names,
                         skipped=frozenset(self.skipped), changed=changed, contents=self._frozen_contents)
 
     # --- names and classes ---------------------------------------------------------------------
@@ -326,11 +336,13 @@ class EntityIndex:
                 held.discard(term)
                 if not held:
                     del self._contents[place]
-                self._moved.add(place)
+                if self._frozen_contents is not None:  # (a first build's are all new)
+                    self._moved.setdefault(place, {})[term] = GONE
         for place in places:
             if place is not None and place not in old:
                 self._contents.setdefault(place, set()).add(term)
-                self._moved.add(place)
+                if self._frozen_contents is not None:
+                    self._moved.setdefault(place, {})[term] = None
         if not any(places):
             self._located.pop(term, None)
         else:
@@ -361,12 +373,13 @@ class EntityIndex:
                 self._refs[value] -= 1
                 if not self._refs[value]:
                     del self._refs[value]
-                    self.names.pop(value, None)
+                    if self.names.pop(value, None) is not None:
+                        self._renamed[value] = GONE
         for value in shown:
             if value is not None:
                 self._refs[value] += 1
                 if value not in self.names:
-                    self.names[value] = self.display(value)
+                    self.names[value] = self._renamed[value] = self.display(value)
         if any(v is not None for v in shown):
             self._placed[term] = shown
         else:

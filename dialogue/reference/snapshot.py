@@ -151,8 +151,9 @@ class Snapshot:
     #: revisions be updated rather than rebuilt. Empty: built from scratch.
     changed: tuple[tuple[int, frozenset[str]], ...] = field(default=(), compare=False)
     #: Place id -> ids of the entities whose support or zone it is ("what is on the shelf"
-    #: without looking at every entity). None: not kept (a snapshot made by hand).
-    contents: Mapping[str, frozenset[str]] | None = None
+    #: without looking at every entity), each a set as a mapping to None (layered once large: a
+    #: zone's is shared with the previous snapshot's). None: not kept (a snapshot made by hand).
+    contents: Mapping[str, Mapping[str, None]] | None = None
 
     def changed_since(self, revision: int) -> frozenset[str] | None:
         """Ids of the entities that changed since the snapshot at `revision`; None if unknown."""

@@ -28,6 +28,14 @@ def test_quiet_spells_have_a_row_per_spell_beside_the_turn_after_one_tick() -> N
     out = bench.grounding.spells_table((1500,), (1,), 1)
     rows = [line.split() for line in out.splitlines() if line.strip()[:1].isdigit()]
     assert [row[1] for row in rows] == ["1"]
-    assert all(len(row) == 6 and all(float(v.replace(",", "")) > 0 for v in row[:5]) for row in rows)
-    assert all(row[5] in ("0/1", "1/1") for row in rows)  # whether the worker was behind after the spell
-    assert "baseline" in out and "load average" in out
+    # statements, minutes, median, slowest, cpu, baseline, baseline cpu, behind
+    assert all(len(row) == 8 and all(float(v.replace(",", "")) > 0 for v in row[:7]) for row in rows)
+    assert all(row[7] in ("0/1", "1/1") for row in rows)  # whether the worker was behind after the spell
+    assert "baseline" in out and "cpu" in out and "load average" in out
+
+
+def test_bad_spell_sizes_are_refused(capsys: pytest.CaptureFixture[str]) -> None:
+    with pytest.raises(SystemExit) as exc:
+        cli(["bench", "grounding", "--quick", "--rounds", "1", "--spells", "--spell-sizes", "300k"])
+    assert exc.value.code == 2
+    assert "--spell-sizes takes numbers separated by commas, not '300k'" in capsys.readouterr().err
