@@ -44,6 +44,7 @@ from dialogue.understanding.requests.ground import ground
 from dialogue.understanding.requests.owners import none_yours, whose
 from dialogue.understanding.requests.referents import Referents, relational
 from dialogue.understanding.requests.sequence import compound, wished
+from dialogue.understanding.requests.skills import unskilled
 from dialogue.understanding.requests.terse import terse, unasked_thing
 from dialogue.understanding.said import Said, Text
 from dialogue.understanding.speech.clauses import clauses, described, description
@@ -266,7 +267,7 @@ class Interpreter:
     def _command(self, p: Parse, overrides: dict[str, Words]) -> Outcome:
         if p.intent is None:
             return Outcome(say(self.lang, "sorry.not_understood"), understood=False)
-        whole = self._one_command(p, overrides)
+        whole = unskilled(self.lang, p) or self._one_command(p, overrides)
         # "bring me the bread and the jam", "greet Ana and Tom": one intent per thing or person
         # named, in order (people only where a role is a person's: one cup goes to one person).
         role = "object" if "object" in p.slots else "recipient"

@@ -138,6 +138,9 @@ class RequestWords(Table):
     no_intent_verbs: WordSet = frozenset()
     abilities: Phrases = ()
     performances: Phrases = ()
+    skill_verbs: WordSet = frozenset()
+    skills: Phrases = ()
+    starting: WordSet = frozenset()
     needs: dict[str, str] = {}
     purposes: dict[str, Phrase] = {}
     constructions: ConstructionWords = ConstructionWords()
