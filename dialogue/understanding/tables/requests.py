@@ -62,6 +62,7 @@ class CompoundWords(Table):
     conjunctions: WordSet = frozenset()
     bare_verbs: WordSet = frozenset()
     serial: WordSet = frozenset()
+    fetching: WordSet = frozenset()
     greeting: PhraseSet = frozenset()
     object_start: WordSet = frozenset()
     no_cut_after: WordSet = frozenset()
