@@ -142,6 +142,7 @@ class RequestWords(Table):
     skill_verbs: WordSet = frozenset()
     skills: Phrases = ()
     starting: WordSet = frozenset()
+    placing_carriers: WordSet = frozenset()
     needs: dict[str, str] = {}
     purposes: dict[str, Phrase] = {}
     constructions: ConstructionWords = ConstructionWords()
