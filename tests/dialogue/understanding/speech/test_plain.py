@@ -246,3 +246,18 @@ def test_a_word_searched_for_mid_request_is_dropped(text: str, words: str) -> No
 def test_a_word_searched_for_is_no_question_about_a_name(office: KB) -> None:
     out = say(office, "pick up the... what's it called... the thingy, the pear")
     assert (out.intent, out.roles) == (I.GRAB_OBJECT, {"object": "pear_1"})
+
+
+@pytest.mark.parametrize(
+    ("text", "words"),
+    [("take it ower tae her", "take it over to her"), ("gie her the orange juice", "give her the orange juice"),
+     ("gonnae bring us the kettle", "will you bring us the kettle"), ("haud on", "hold on")],
+)  # fmt: skip
+def test_scots_words_are_the_english_they_say(text: str, words: str) -> None:
+    assert " ".join(plain.expanded(english(), text)) == words
+
+
+def test_scots_to_is_never_the_tea(office: KB) -> None:
+    office.update(['tea_1 rdf:type Artifact', 'tea_1 rdfs:label "box of teabags"', "myself sees tea_1"])
+    out = say(office, "Carol's wanting the pear, take it ower tae her.")
+    assert (out.intent, out.roles) == (I.BRING_OBJECT, {"object": "pear_1", "recipient": "person_carol"})
