@@ -483,3 +483,9 @@ def test_a_name_after_a_farewell_that_is_not_the_robots_is_no_farewell() -> None
 def test_over_says_where_a_thing_is_put_unless_a_particle(text: str, thing: str, place: str) -> None:
     p = parse(text)
     assert (p.intent, p.slots["object"], p.slots["recipient"]) == (I.PLACE_OBJECT, ("the", thing), ("the", place))
+
+
+@pytest.mark.parametrize("text", ["yo robot. yo. stop", "hey robot, hey, stop"])
+def test_a_call_for_attention_said_again_is_no_greeting_of_the_request_after_it(text: str) -> None:
+    p = commands.parse(english(), text)
+    assert (p.act, p.intent) == ("command", I.STOP_ACTIVITY)
