@@ -173,6 +173,10 @@ def test_a_lead_and_a_thanks_of_their_own_are_politeness() -> None:
         ("someone needs to put the flip flops in the crate", "put the flip flops in the crate"),
         ("somebody ought to put the sack on the trolley", "put the sack on the trolley"),
         ("could somebody let dmitri know the showers are leaking", "let dmitri know the showers are leaking"),
+        # formal and old-fashioned openings
+        ("but i wonder whether you might fetch my coat from the chair", "fetch my coat from the chair"),
+        ("might you pick up that pencil", "pick up that pencil"),
+        ("would you be good enough to escort ben to the hallway", "escort ben to the hallway"),
     ],
 )
 def test_what_politeness_leaves_of_a_request(text: str, words: str) -> None:
