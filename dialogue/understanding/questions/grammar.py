@@ -29,6 +29,7 @@ class _Words:
         self.where_leads = said.where_leads
         self.on_glue = said.on_glue
         self.who_not_a_name = said.who_not_a_name
+        self.who_pointing = said.who_pointing
         self.who_sees = said.who_sees | said.who_not_a_name | said.else_
         self.see_words = said.see_words
         self.colour_words = said.colour_words
@@ -181,7 +182,9 @@ def _who_at(q: _Words, rest: Words) -> Words:
     if not rest[:1] or rest[0] not in q.be:
         return ()
     at = 1
-    if rest[1:2] and rest[1].endswith("ing") and rest[1] not in q.who_at:
+    if rest[1:2] and rest[1] in q.who_pointing:  # "who's that at the long table": who is there
+        at = 2
+    elif rest[1:2] and rest[1].endswith("ing") and rest[1] not in q.who_at:
         at = 3 if rest[2:3] and rest[2] not in q.who_at else 2
     return rest[at + 1 :] if rest[at : at + 1] and rest[at] in q.who_at and len(rest) > at + 1 else ()
 
