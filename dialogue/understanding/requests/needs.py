@@ -16,8 +16,9 @@ def need(said: Framed) -> Parse | None:
     c = said.lang.derived(ConstructionGrammar)
     w = said.words
     whose: Words = ("me",)
-    if w[:2] in c.needy:
-        w = w[2:]
+    needy = next((n for n in c.needy if w[: len(n)] == n), None)
+    if needy is not None:
+        w = w[len(needy) :]
     elif _someone(c, w[:1]) and w[1:2] in c.someone_is:  # "Ruby is thirsty"
         whose, w = w[:1], w[2:]
     elif w[:1] and w[0].endswith("'s") and _someone(c, (w[0].removesuffix("'s"),)):  # "Ruby's thirsty"

@@ -18,7 +18,10 @@ from tests.dialogue.conftest import english
      # what is said of it says which: "sugar free" of whatever meets the need
      ("I'm thirsty, anything sugar free to drink?", ("sugar", "free", "drink")),
      ("I'm thirsty, is there anything cold?", ("cold", "drink")),
-     ("I'm parched, got anything low-sugar to drink?", ("low", "sugar", "drink"))],
+     ("I'm parched, got anything low-sugar to drink?", ("low", "sugar", "drink")),
+     # said by a symptom of it
+     ("my throat's dry, any juice going?", ("juice",)),
+     ("My mouth's gone awfully dry, is there any water about?", ("water",))],
 )  # fmt: skip
 def test_a_need_with_a_question_of_what_there_is_asks_for_that_thing(text: str, thing: tuple[str, ...]) -> None:
     p = parse(english(), text)
