@@ -57,6 +57,7 @@ class _Words:
         self.count_tail = said.count_tail
         self.place_starts = prepositions.words("place-start")
         self.purpose = lang.requests.purpose
+        self.available = frozenset(lang.requests.constructions.available)
         self.seen_by_anyone = said.seen_by_anyone
         self.placing = said.placing
         self.asker = said.asker
@@ -145,6 +146,8 @@ def question(lang: Language, words: list[str]) -> Parse | None:  # noqa: C901
                 break  # "do you have to go": a duty, nothing seen
             thing = _strip_ends(w[len(lead) :], frozenset(), q.nearby)  # "is there any fruit around"
             if thing[:1] and thing[0] in q.anything:
+                if q.purpose(thing[1:3]) is not None and not thing[3:] and lead in q.available:
+                    return None  # "is there anything to eat": a need (requests/needs), no question
                 return _anything(q, w, thing[1:])
             return _q("can_see", w, thing=thing)
     here = w[:-1] if len(w) > 3 and w[-1] in q.there_after else w  # ("is Yuki here yet?")

@@ -75,3 +75,12 @@ def test_someone_after_a_thing_is_brought_it(text: str, thing: tuple[str, ...], 
     p = parse(english(), text)
     assert (p.intent, p.slots) == (I.BRING_OBJECT, {"object": thing, "recipient": whom})
     assert parse(english(), "it's after six").intent is None  # no one's, a time
+
+
+@pytest.mark.parametrize(("text", "thing"), [("is there anything to eat", ("food",)), ("is there anything to drink?", ("drink",))])
+def test_a_question_of_anything_for_a_need_asks_for_what_meets_it(text: str, thing: tuple[str, ...]) -> None:
+    p = parse(english(), text)
+    assert (p.intent, p.slots) == (I.BRING_OBJECT, {"object": thing, "recipient": ("me",)})
+    # where it is asked, or whether the robot sees it, it is a question
+    assert parse(english(), f"{text.rstrip('?')} on the desk").act == "question"
+    assert parse(english(), "do you see anything to eat").act == "question"
