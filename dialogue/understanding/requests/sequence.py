@@ -24,6 +24,7 @@ from dialogue.understanding.outcome import Outcome, Ref
 from dialogue.understanding.replies import acknowledgement, said_back, say, then
 from dialogue.understanding.requests.commands import parse
 from dialogue.understanding.requests.compound import Part
+from dialogue.understanding.requests.skills import skilled
 from dialogue.understanding.said import Said
 
 #: What a thing carried on to someone or somewhere is, carried first: taken.
@@ -46,7 +47,8 @@ def compound(reader: Reader, heard: Said, parts: Sequence[Part]) -> Outcome | No
         if part.aside and n < len(parts) - 1:
             aside = True  # "move out of the way and go to the door": the going does it
             continue
-        outcome = within.part(heard.of(part.text))
+        said = heard.of(part.text)
+        outcome = within.part(said)
         if n == 1 and parts[0].verb is None:  # "I want the pear, can you get it": brought to me
             outcome = wished(reader, heard, [parts[0].text], outcome)
         if outcome.intent is not None and done and (outcome.intent, outcome.roles) == (
@@ -63,7 +65,7 @@ def compound(reader: Reader, heard: Said, parts: Sequence[Part]) -> Outcome | No
                 context.append(Utterance(reader.speaker, outcome.roles["object"]))
         elif outcome.clarify:
             return outcome  # ask about this part first: nothing is done until it is clear
-        elif part.no_intent or (done and _asks(reader, heard.of(part.text))):
+        elif part.no_intent or _unskilled(reader, said) or (done and _asks(reader, said)):
             # ("go to the kitchen and tell me what's there": answered now, it would answer wrong)
             cannot.append(part.text)
         else:  # a part that fails says why; one not understood makes the whole not understood
@@ -113,6 +115,11 @@ def _joins(before: Sequence[Outcome], outcome: Outcome) -> bool:
     went = before[0] if before else None
     return (went is not None and went.intent == I.MOVE_TO and outcome.intent == I.ENGAGE_WITH
             and went.roles.get("goal") == outcome.roles.get("recipient"))  # fmt: skip
+
+
+def _unskilled(reader: Reader, part: Said) -> bool:
+    """Whether a part asks for an activity the robot has no skill for ("... and wash it")."""
+    return not skilled(reader.lang, parse(reader.lang, part, reader.robot_name))
 
 
 def _asks(reader: Reader, part: Said) -> bool:

@@ -93,3 +93,9 @@ def test_a_thing_someone_would_like_brought_with_no_one_said_is_brought_to_them(
     # said to whom, it goes there
     out = say(office, "Carol would like the stapler, please bring it to me")
     assert (out.intent, out.roles) == (I.BRING_OBJECT, {"object": "stapler_1", "recipient": BOB})
+
+
+def test_a_part_beyond_the_robots_skills_does_not_sink_the_others(office: KB) -> None:
+    out = say(office, "pick up the pear and iron it")
+    assert [(o.intent, o.roles) for o in out.steps()] == [(I.GRAB_OBJECT, {"object": "pear_1"})]
+    assert out.reply == "OK, I will pick up the pear. I can't iron it myself."
