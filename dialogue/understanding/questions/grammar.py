@@ -310,6 +310,8 @@ def _owned_thing(q: _Words, w: Words) -> Words:
 
 def _where(q: _Words, w: Words) -> Parse:
     rest = w[1:]
+    while len(rest) > 3 and rest[-1] in q.where_tail and rest[-3:-1] in q.got_to:
+        rest = rest[:-1]  # ("where's the remote got to now")
     if rest[-2:] in q.got_to:  # "where's my cup got to"
         rest = rest[:-2]
         if rest[:1] and rest[0] in q.did:

@@ -78,6 +78,7 @@ def test_where_has_a_thing_gone_said_with_is(office: KB) -> None:
     ("text", "thing"),
     [
         ("where did we put the stapler", ("the", "stapler")),
+        ("where's the remote got to now", ("the", "remote")),
         ("where'd I leave my umbrella", ("my", "umbrella")),
         ("where would I find a pear", ("a", "pear")),
         ("please where I can find the laptop", ("the", "laptop")),
