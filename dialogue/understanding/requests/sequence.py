@@ -43,6 +43,8 @@ def compound(reader: Reader, heard: Said, parts: Sequence[Part]) -> Outcome | No
         within = reader.within((*reader.history, *context))
         context.append(Utterance(reader.speaker, part.text))
         if n == 0 and part.verb is None:
+            if _asks(reader, heard.of(part.text)):
+                return None  # "where have they gone and put my stick": one question, no parts
             continue  # a preamble ("hey there", "thanks", "the denim jacket"): context for the rest
         if part.aside and n < len(parts) - 1:
             aside = True  # "move out of the way and go to the door": the going does it

@@ -99,3 +99,8 @@ def test_a_part_beyond_the_robots_skills_does_not_sink_the_others(office: KB) ->
     out = say(office, "pick up the pear and iron it")
     assert [(o.intent, o.roles) for o in out.steps()] == [(I.GRAB_OBJECT, {"object": "pear_1"})]
     assert out.reply == "OK, I will pick up the pear. I can't iron it myself."
+
+
+def test_a_question_with_a_verb_after_and_is_one_question(office: KB) -> None:
+    out = say(office, "now then, where have they gone and put the pear?")
+    assert out.intent is None and not out.clarify and "desk" in out.reply
