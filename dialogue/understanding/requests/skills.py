@@ -29,7 +29,8 @@ def skilled(lang: Language, p: Parse) -> bool:
 
 def unskilled(lang: Language, p: Parse) -> Outcome | None:
     """ "Fold all the towels for me": the robot says it cannot, and starts nothing; None when the
-    request is not an activity beyond its skills."""
+    request is not an activity beyond its skills. The rules do not claim to have understood it: the
+    words may say what they cannot read ("water jug to Edith"), which a model behind them may."""
     if skilled(lang, p):
         return None
-    return Outcome(say(lang, "request.cannot", action=said_back(lang, " ".join(p.words))))
+    return Outcome(say(lang, "request.cannot", action=said_back(lang, " ".join(p.words))), understood=False)
