@@ -57,12 +57,11 @@ def parse(lang: Language, said: Text, robot_name: str = "") -> Parse:
     talk = _talk(g, words, robot_name)
     if talk is not None:
         return talk
-    # "welcome Lucia" asks the robot to greet her; "welcome back" is a greeting.
-    welcoming = words[0] == "welcome" and words[1:] and words[1] not in g.welcome_back
-    for greeting in () if welcoming else g.greetings:
+    for greeting in () if _welcoming(g, words) else g.greetings:
         if starts(words, greeting):
             rest = _after_greeting(lang, words[len(greeting) :], robot_name)
             again = next((a for a in g.greetings if starts(rest, a) and len(rest) > len(a)), ())
+            again = () if _welcoming(g, rest) else again  # ("hey Tiago, welcome Mr Dubois")
             rest = _after_greeting(lang, rest[len(again) :], robot_name) if again else rest
             if tuple(rest) in g.social:
                 return Parse("greeting", words=tuple(words))
@@ -73,6 +72,11 @@ def parse(lang: Language, said: Text, robot_name: str = "") -> Parse:
                 return replace(after, greeted=True)
             return after or _aside("greeting", words, rest)
     return _question(lang, words) or command(lang, heard, words)
+
+
+def _welcoming(g: Grammar, words: list[str]) -> bool:
+    """ "welcome Lucia" asks the robot to greet her; "welcome back" is a greeting."""
+    return words[:1] == ["welcome"] and len(words) > 1 and words[1] not in g.welcome_back
 
 
 def _after_greeting(lang: Language, words: list[str], robot_name: str) -> list[str]:
