@@ -21,13 +21,7 @@ from dialogue.reference.antecedent import antecedent
 from dialogue.reference.english import Words, tokens
 from dialogue.reference.grounding import Entity
 from dialogue.reference.lexicon import Lexicon
-from dialogue.reference.resolution import (
-    PERSON,
-    PLACE,
-    ROLE_KINDS,
-    content_words,
-    resolve,
-)  # fmt: skip
+from dialogue.reference.resolution import PERSON, PLACE, ROLE_KINDS, content_words, resolve
 from dialogue.understanding.followups.accepting import accepts
 from dialogue.understanding.followups.correction import correction, opens_correction
 from dialogue.understanding.followups.proposal import proposed
@@ -38,12 +32,14 @@ from dialogue.understanding.questions import situation
 from dialogue.understanding.replies import acknowledgement, hello, say, then, whose_it_is
 from dialogue.understanding.requests.abilities import asks_ability
 from dialogue.understanding.requests.addressed import to_someone_else
+from dialogue.understanding.requests.carrying import carried_onto
 from dialogue.understanding.requests.commands import parse
 from dialogue.understanding.requests.compound import adds_on, conjuncts, coordinated, two_named
 from dialogue.understanding.requests.ground import ground
 from dialogue.understanding.requests.owners import none_yours, whose
 from dialogue.understanding.requests.referents import Referents, relational
 from dialogue.understanding.requests.sequence import compound, wished
+from dialogue.understanding.requests.skills import unskilled
 from dialogue.understanding.requests.terse import terse, unasked_thing
 from dialogue.understanding.said import Said, Text
 from dialogue.understanding.speech.clauses import clauses, described, description
@@ -266,7 +262,7 @@ class Interpreter:
     def _command(self, p: Parse, overrides: dict[str, Words]) -> Outcome:
         if p.intent is None:
             return Outcome(say(self.lang, "sorry.not_understood"), understood=False)
-        whole = self._one_command(p, overrides)
+        whole = unskilled(self.lang, p) or self._one_command(p, overrides)
         # "bring me the bread and the jam", "greet Ana and Tom": one intent per thing or person
         # named, in order (people only where a role is a person's: one cup goes to one person).
         role = "object" if "object" in p.slots else "recipient"
@@ -368,6 +364,7 @@ class Interpreter:
         # ("in the centre of the table" is put on the table).
         place = slots.get("recipient", ())
         said = None if set(place) & self.lang.words.parts and "of" in place else p.marks.get("recipient")
+        intent = carried_onto(self.lang, self.snapshot, p, intent, roles)  # "take it to the table"
         reply = acknowledgement(self.lang, self.snapshot, self.speaker, intent, roles, refs, said,
                                 self.lexicon.shares_name)
         if intent == I.GREET and roles.get("recipient") == self.speaker:  # "say hello": to the speaker

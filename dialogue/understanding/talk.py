@@ -13,6 +13,7 @@ from collections.abc import Callable
 
 from dialogue import intents as I
 from dialogue.reference.english import Words
+from dialogue.reference.resolution import PERSON, resolve
 from dialogue.understanding.context import Context
 from dialogue.understanding.outcome import Outcome
 from dialogue.understanding.parsed import Parse
@@ -48,7 +49,21 @@ def _acting(c: Context) -> bool:
 
 
 def _conditional(c: Context, p: Parse, overrides: dict[str, Words]) -> Outcome:
-    return Outcome(say(c.lang, "social.later"))  # the rules act now or never: asked again, then
+    # the rules act now or never: asked again, then
+    awaited = _awaited(c, p.words)
+    if awaited is not None:  # "When Kwame gets here, ...": whom the robot cannot wait for
+        return Outcome(say(c.lang, "social.later_someone", name=c.snapshot.name_of(awaited)))
+    return Outcome(say(c.lang, "social.later"))
+
+
+def _awaited(c: Context, words: Words) -> str | None:
+    """The person a condition waits for, named first in it ("when Marta's back", "once Ana arrives",
+    "if Declan comes by"), if the KB knows them."""
+    # (the first word, else: "if")
+    said = next((w for w in c.lang.requests.conditions if words[: len(w)] == w), words[:1])
+    first = words[len(said) : len(said) + 1]
+    person = resolve(c.lexicon, first, PERSON).one if first else None
+    return person.id if person is not None and person.id != c.speaker else None
 
 
 def _thanks(c: Context, p: Parse, overrides: dict[str, Words]) -> Outcome:

@@ -29,6 +29,7 @@ class _Words:
         self.where_leads = said.where_leads
         self.on_glue = said.on_glue
         self.who_not_a_name = said.who_not_a_name
+        self.who_pointing = said.who_pointing
         self.who_sees = said.who_sees | said.who_not_a_name | said.else_
         self.see_words = said.see_words
         self.colour_words = said.colour_words
@@ -56,6 +57,7 @@ class _Words:
         self.count_tail = said.count_tail
         self.place_starts = prepositions.words("place-start")
         self.purpose = lang.requests.purpose
+        self.available = frozenset(lang.requests.constructions.available)
         self.seen_by_anyone = said.seen_by_anyone
         self.placing = said.placing
         self.asker = said.asker
@@ -144,6 +146,8 @@ def question(lang: Language, words: list[str]) -> Parse | None:  # noqa: C901
                 break  # "do you have to go": a duty, nothing seen
             thing = _strip_ends(w[len(lead) :], frozenset(), q.nearby)  # "is there any fruit around"
             if thing[:1] and thing[0] in q.anything:
+                if q.purpose(thing[1:3]) is not None and not thing[3:] and lead in q.available:
+                    return None  # "is there anything to eat": a need (requests/needs), no question
                 return _anything(q, w, thing[1:])
             return _q("can_see", w, thing=thing)
     here = w[:-1] if len(w) > 3 and w[-1] in q.there_after else w  # ("is Yuki here yet?")
@@ -181,7 +185,9 @@ def _who_at(q: _Words, rest: Words) -> Words:
     if not rest[:1] or rest[0] not in q.be:
         return ()
     at = 1
-    if rest[1:2] and rest[1].endswith("ing") and rest[1] not in q.who_at:
+    if rest[1:2] and rest[1] in q.who_pointing:  # "who's that at the long table": who is there
+        at = 2
+    elif rest[1:2] and rest[1].endswith("ing") and rest[1] not in q.who_at:
         at = 3 if rest[2:3] and rest[2] not in q.who_at else 2
     return rest[at + 1 :] if rest[at : at + 1] and rest[at] in q.who_at and len(rest) > at + 1 else ()
 
@@ -304,6 +310,8 @@ def _owned_thing(q: _Words, w: Words) -> Words:
 
 def _where(q: _Words, w: Words) -> Parse:
     rest = w[1:]
+    while len(rest) > 3 and rest[-1] in q.where_tail and rest[-3:-1] in q.got_to:
+        rest = rest[:-1]  # ("where's the remote got to now")
     if rest[-2:] in q.got_to:  # "where's my cup got to"
         rest = rest[:-2]
         if rest[:1] and rest[0] in q.did:

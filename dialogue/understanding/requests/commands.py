@@ -57,12 +57,12 @@ def parse(lang: Language, said: Text, robot_name: str = "") -> Parse:
     talk = _talk(g, words, robot_name)
     if talk is not None:
         return talk
-    # "welcome Lucia" asks the robot to greet her; "welcome back" is a greeting.
-    welcoming = words[0] == "welcome" and words[1:] and words[1] not in g.welcome_back
-    for greeting in () if welcoming else g.greetings:
+    for greeting in () if _welcoming(g, words) else g.greetings:
         if starts(words, greeting):
-            polite = strip_politeness(lang, words[len(greeting) :], robot_name)
-            rest = strip_vocative(lang, polite, robot_name)
+            rest = _after_greeting(lang, words[len(greeting) :], robot_name)
+            again = next((a for a in g.greetings if starts(rest, a) and len(rest) > len(a)), ())
+            again = () if _welcoming(g, rest) else again  # ("hey Tiago, welcome Mr Dubois")
+            rest = _after_greeting(lang, rest[len(again) :], robot_name) if again else rest
             if tuple(rest) in g.social:
                 return Parse("greeting", words=tuple(words))
             # "Good morning Maria" is still a greeting; "hi, grab the cup" is a request; "hello
@@ -72,6 +72,17 @@ def parse(lang: Language, said: Text, robot_name: str = "") -> Parse:
                 return replace(after, greeted=True)
             return after or _aside("greeting", words, rest)
     return _question(lang, words) or command(lang, heard, words)
+
+
+def _welcoming(g: Grammar, words: list[str]) -> bool:
+    """ "welcome Lucia" asks the robot to greet her; "welcome back" is a greeting."""
+    return words[:1] == ["welcome"] and len(words) > 1 and words[1] not in g.welcome_back
+
+
+def _after_greeting(lang: Language, words: list[str], robot_name: str) -> list[str]:
+    """What follows a greeting, its politeness and the name it calls ("yo robot. yo. stop": a call
+    for attention said again is one too)."""
+    return strip_vocative(lang, strip_politeness(lang, words, robot_name), robot_name)
 
 
 def _talk(g: Grammar, words: list[str], robot_name: str) -> Parse | None:

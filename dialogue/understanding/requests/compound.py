@@ -109,7 +109,8 @@ def conjuncts(lang: Language, said: Text) -> list[Part]:  # noqa: C901
             nxt = toks[i + 1][0] if i + 1 < len(toks) else ""
             # "...he is at the door go say hi to him": "go" or "come" before a verb starts a request too
             serial = word in c.serial and asked_verb(lang, nxt) in verbs(lang)
-            if nxt in c.object_start or serial:
+            said_after = content_words(lang, [w for w, _, _ in toks[i + 1 :]])  # ("where did it get to")
+            if (nxt in c.object_start and said_after) or serial:
                 cuts.append((i, i))
     if not cuts:
         return []

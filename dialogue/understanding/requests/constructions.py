@@ -67,7 +67,7 @@ class ConstructionGrammar:
         self.function_words = closed.any_function_word
         self.me = closed.me
         self.objects = closed.objects
-        self.needy = words.needy
+        self.needy = tuple(sorted(words.needy, key=len, reverse=True))  # (longest first)
         self.going_wants = words.going_wants
         self.going_verbs = words.going_verbs
         self.speakers = words.speakers

@@ -16,14 +16,15 @@ def need(said: Framed) -> Parse | None:
     c = said.lang.derived(ConstructionGrammar)
     w = said.words
     whose: Words = ("me",)
-    if w[:2] in c.needy:
-        w = w[2:]
+    needy = next((n for n in c.needy if w[: len(n)] == n), None)
+    if needy is not None:
+        w = w[len(needy) :]
     elif _someone(c, w[:1]) and w[1:2] in c.someone_is:  # "Ruby is thirsty"
         whose, w = w[:1], w[2:]
     elif w[:1] and w[0].endswith("'s") and _someone(c, (w[0].removesuffix("'s"),)):  # "Ruby's thirsty"
         whose, w = (w[0].removesuffix("'s"),), w[1:]
     else:
-        return None
+        return _anything_for(said, c, w)
     rest = [x for x in w if x not in c.intensifiers]
     wanted = c.needs.get(rest[0]) if rest else None
     if wanted is None:
@@ -41,6 +42,15 @@ def need(said: Framed) -> Parse | None:
     if set(asked) & c.function_words:
         return None
     return said.command(I.BRING_OBJECT, object=asked, recipient=whose) if asked else None
+
+
+def _anything_for(said: Framed, c: ConstructionGrammar, w: Words) -> Parse | None:
+    """ "is there anything to eat": what meets the need its purpose says, brought to the speaker."""
+    asked = _available(c, w)
+    wanted = said.lang.requests.purpose(asked[1:3]) if asked[:1] and asked[0] in c.anything else None
+    if wanted is None or asked[3:]:
+        return None
+    return said.command(I.BRING_OBJECT, object=wanted, recipient=("me",))
 
 
 def _someone(c: ConstructionGrammar, words: Words) -> bool:

@@ -5,8 +5,10 @@ Each part is read as a request of its own, with the parts before it as context f
 ("take the book and put it in the oven"). A part the robot has no intent for ("... and inspect it",
 "... and count the chairs", "... and tell me how many there are") does not sink the others: they are
 done and the reply says which part cannot be. Going to someone and then engaging with them ("go over
-to Jen and have a chat with her") is the engaging. A thing fetched and then handed on or put somewhere
-("fetch the juice from the fridge and give it to Amara") is taken, not brought to the speaker first.
+to Jen and have a chat with her") is the engaging. A thing fetched and then handed on to someone
+("fetch the juice from the fridge and give it to Amara") is one bringing; taken and then carried on
+("pick up the book and bring it to me", "bring the mug and put it on the tray") it is taken, not
+brought to the speaker first.
 """
 
 from __future__ import annotations
@@ -22,6 +24,7 @@ from dialogue.understanding.outcome import Outcome, Ref
 from dialogue.understanding.replies import acknowledgement, said_back, say, then
 from dialogue.understanding.requests.commands import parse
 from dialogue.understanding.requests.compound import Part
+from dialogue.understanding.requests.skills import skilled
 from dialogue.understanding.said import Said
 
 #: What a thing carried on to someone or somewhere is, carried first: taken.
@@ -32,6 +35,7 @@ def compound(reader: Reader, heard: Said, parts: Sequence[Part]) -> Outcome | No
     """Every part read in order: the intents, or the question about a part that must come first, or
     None when a part is not understood (the whole is then read otherwise)."""
     done: list[Outcome] = []
+    verbs: list[str | None] = []  # the verb of each part done
     cannot: list[str] = []
     context: list[Utterance] = []
     aside = False
@@ -39,34 +43,38 @@ def compound(reader: Reader, heard: Said, parts: Sequence[Part]) -> Outcome | No
         within = reader.within((*reader.history, *context))
         context.append(Utterance(reader.speaker, part.text))
         if n == 0 and part.verb is None:
+            if _asks(reader, heard.of(part.text)):
+                return None  # "where have they gone and put my stick": one question, no parts
             continue  # a preamble ("hey there", "thanks", "the denim jacket"): context for the rest
         if part.aside and n < len(parts) - 1:
             aside = True  # "move out of the way and go to the door": the going does it
             continue
-        outcome = within.part(heard.of(part.text))
+        said = heard.of(part.text)
+        outcome = within.part(said)
         if n == 1 and parts[0].verb is None:  # "I want the pear, can you get it": brought to me
             outcome = wished(reader, heard, [parts[0].text], outcome)
         if outcome.intent is not None and done and (outcome.intent, outcome.roles) == (
             done[-1].intent, done[-1].roles):
             continue  # "go to the shed and wait there": one move
         if _joins(done[-1:], outcome):
-            done[-1] = outcome  # "go over to Jen and have a chat with her": engaging goes to her
+            done[-1], verbs[-1] = outcome, part.verb  # "go over to Jen and have a chat with her"
             continue
         if outcome.intent is not None:
             done.append(outcome)
+            verbs.append(part.verb)
             if outcome.roles.get("object") in reader.snapshot.entities:
                 # "get the teddy off the bench and give it to Zara": "it" is what was taken
                 context.append(Utterance(reader.speaker, outcome.roles["object"]))
         elif outcome.clarify:
             return outcome  # ask about this part first: nothing is done until it is clear
-        elif part.no_intent or (done and _asks(reader, heard.of(part.text))):
+        elif part.no_intent or _unskilled(reader, said) or (done and _asks(reader, said)):
             # ("go to the kitchen and tell me what's there": answered now, it would answer wrong)
             cannot.append(part.text)
         else:  # a part that fails says why; one not understood makes the whole not understood
             return outcome if outcome.understood else None
     if not done or (aside and not {o.intent for o in done} & {I.MOVE_TO, I.GUIDE}):
         return None  # (out of the way, then no going anywhere: not understood)
-    done = _taken_first(reader, done)
+    done = _taken_first(reader, _fetched_for(reader, done, verbs))
     lang = reader.lang
     acks = [then(lang, [o.reply for o in done])]
     unable = [say(lang, "request.cannot", action=said_back(lang, c)) for c in cannot]
@@ -111,9 +119,29 @@ def _joins(before: Sequence[Outcome], outcome: Outcome) -> bool:
             and went.roles.get("goal") == outcome.roles.get("recipient"))  # fmt: skip
 
 
+def _unskilled(reader: Reader, part: Said) -> bool:
+    """Whether a part asks for an activity the robot has no skill for ("... and wash it")."""
+    return not skilled(reader.lang, parse(reader.lang, part, reader.robot_name))
+
+
 def _asks(reader: Reader, part: Said) -> bool:
     """Whether a part asks a question about the situation ("tell me how many mugs there are")."""
     return parse(reader.lang, part, reader.robot_name).act == "question"
+
+
+def _fetched_for(reader: Reader, done: list[Outcome], verbs: list[str | None]) -> list[Outcome]:
+    """ "fetch the flask and then take it to Theo", "get the secateurs off the shelf and hand them to
+    Margit": a thing fetched, then brought on to someone, is one bringing to them."""
+    fetching = reader.lang.requests.compound.fetching
+    out: list[Outcome] = []
+    for i, o in enumerate(done):
+        after = done[i + 1] if i + 1 < len(done) else None
+        thing = o.roles.get("object")
+        fetched = verbs[i] in fetching and o.intent in {I.GRAB_OBJECT, I.BRING_OBJECT}
+        if not (fetched and after is not None and after.intent == I.BRING_OBJECT and thing is not None
+                and after.roles.get("object") == thing):  # fmt: skip
+            out.append(o)
+    return out
 
 
 def _taken_first(reader: Reader, done: list[Outcome]) -> list[Outcome]:

@@ -21,6 +21,7 @@ class SituationQuestionWords(Table):
     where_leads: Phrases = ()
     on_glue: WordSet = frozenset()
     who_not_a_name: WordSet = frozenset()
+    who_pointing: WordSet = frozenset()
     who_sees: WordSet = frozenset()
     see_words: WordSet = frozenset()
     colour_words: WordSet = frozenset()

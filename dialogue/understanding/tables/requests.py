@@ -62,6 +62,7 @@ class CompoundWords(Table):
     conjunctions: WordSet = frozenset()
     bare_verbs: WordSet = frozenset()
     serial: WordSet = frozenset()
+    fetching: WordSet = frozenset()
     greeting: PhraseSet = frozenset()
     object_start: WordSet = frozenset()
     no_cut_after: WordSet = frozenset()
@@ -138,6 +139,10 @@ class RequestWords(Table):
     no_intent_verbs: WordSet = frozenset()
     abilities: Phrases = ()
     performances: Phrases = ()
+    skill_verbs: WordSet = frozenset()
+    skills: Phrases = ()
+    starting: WordSet = frozenset()
+    placing_carriers: WordSet = frozenset()
     needs: dict[str, str] = {}
     purposes: dict[str, Phrase] = {}
     constructions: ConstructionWords = ConstructionWords()

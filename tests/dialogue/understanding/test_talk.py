@@ -1,5 +1,7 @@
 """Social talk: each act that is neither a request nor a question, answered by its row of `TALK`."""
 
+import pytest
+
 from dialogue import intents as I
 from dialogue.understanding.interpret import ACTS, Interpreter
 from dialogue.understanding.parsed import Parse
@@ -40,3 +42,16 @@ def test_never_mind_just_after_the_robot_took_on_a_request_stops_it(office: KB) 
                     [("user", "hello"), ("assistant", "Hello Bob!")], []):
         out = say(office, "never mind", history=history)
         assert (out.intent, out.reply) == (None, "OK, I won't do that.")
+
+
+@pytest.mark.parametrize(
+    "text", ["When Carol gets here, give her the pear.", "when carol's back, bring her the pear", "if Carol comes by, give her the pear"]
+)
+def test_a_condition_that_waits_for_someone_names_them(office: KB, text: str) -> None:
+    out = say(office, text)
+    assert out.intent is None and out.reply == "I can't wait for Carol myself: tell me again when Carol is here."
+
+
+def test_a_condition_that_waits_for_no_one_known_says_it_waits(office: KB) -> None:
+    out = say(office, "when the bell rings, give Carol the pear")
+    assert out.intent is None and out.reply == "I can't wait for that myself: tell me again when it happens."

@@ -78,6 +78,7 @@ def test_where_has_a_thing_gone_said_with_is(office: KB) -> None:
     ("text", "thing"),
     [
         ("where did we put the stapler", ("the", "stapler")),
+        ("where's the remote got to now", ("the", "remote")),
         ("where'd I leave my umbrella", ("my", "umbrella")),
         ("where would I find a pear", ("a", "pear")),
         ("please where I can find the laptop", ("the", "laptop")),
@@ -117,6 +118,9 @@ def test_where_is_it_with_nothing_spoken_of_is_not_answered(office: KB) -> None:
         ("who is at the desk", ("the", "desk")),
         ("tell me the name of the person in the office", ("the", "office")),
         ("what's the name of the man in the hallway", ("the", "hallway")),
+        # a pointing word or a particle before the place
+        ("who's that in the kitchen", ("the", "kitchen")),
+        ("who is over by the desk", ("the", "desk")),
     ],
 )
 def test_who_questions_about_a_place_ask_who_is_there(text: str, place: tuple[str, ...]) -> None:

@@ -50,6 +50,10 @@ def conjuncts(text: str) -> list[Part]:
         ("put the mug and saucer on the tray", []),
         # a phrase that says the order opens the later part, which is a request of its own
         ("take the pear, and after that go to the desk", ["take the pear", "after that go to the desk"]),
+        # a verb with nothing said after its preposition starts no request ("get to": went)
+        ("where did the ball of twine get to", []),
+        # a verb after a subject, a modal and an adverb is that clause's own
+        ("pick up the sheet. I'd only put my back out", []),
     ],
 )
 def test_parts(text: str, parts: list[str]) -> None:

@@ -18,7 +18,10 @@ from tests.dialogue.conftest import english
      # what is said of it says which: "sugar free" of whatever meets the need
      ("I'm thirsty, anything sugar free to drink?", ("sugar", "free", "drink")),
      ("I'm thirsty, is there anything cold?", ("cold", "drink")),
-     ("I'm parched, got anything low-sugar to drink?", ("low", "sugar", "drink"))],
+     ("I'm parched, got anything low-sugar to drink?", ("low", "sugar", "drink")),
+     # said by a symptom of it
+     ("my throat's dry, any juice going?", ("juice",)),
+     ("My mouth's gone awfully dry, is there any water about?", ("water",))],
 )  # fmt: skip
 def test_a_need_with_a_question_of_what_there_is_asks_for_that_thing(text: str, thing: tuple[str, ...]) -> None:
     p = parse(english(), text)
@@ -72,3 +75,12 @@ def test_someone_after_a_thing_is_brought_it(text: str, thing: tuple[str, ...], 
     p = parse(english(), text)
     assert (p.intent, p.slots) == (I.BRING_OBJECT, {"object": thing, "recipient": whom})
     assert parse(english(), "it's after six").intent is None  # no one's, a time
+
+
+@pytest.mark.parametrize(("text", "thing"), [("is there anything to eat", ("food",)), ("is there anything to drink?", ("drink",))])
+def test_a_question_of_anything_for_a_need_asks_for_what_meets_it(text: str, thing: tuple[str, ...]) -> None:
+    p = parse(english(), text)
+    assert (p.intent, p.slots) == (I.BRING_OBJECT, {"object": thing, "recipient": ("me",)})
+    # where it is asked, or whether the robot sees it, it is a question
+    assert parse(english(), f"{text.rstrip('?')} on the desk").act == "question"
+    assert parse(english(), "do you see anything to eat").act == "question"

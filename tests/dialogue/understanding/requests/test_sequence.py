@@ -1,5 +1,7 @@
 """A compound request read part by part: what cannot be done is said, what is carried on is taken."""
 
+import pytest
+
 from dialogue import intents as I
 from kb import KB
 from tests.dialogue.understanding.test_interpret import BOB, say
@@ -17,13 +19,30 @@ def test_a_question_after_an_action_is_not_answered_now(office: KB) -> None:
     assert "can't tell you what is on it" in out.reply  # said back to the speaker
 
 
-def test_a_thing_fetched_and_handed_on_is_taken_first(office: KB) -> None:
-    out = say(office, "fetch the pear from the desk and give it to Carol")
+@pytest.mark.parametrize(
+    "text", ["fetch the pear from the desk and give it to Carol", "get the pear off the desk and hand it to Carol",
+             "Fetch the pear and then take it to Carol."],
+)  # fmt: skip
+def test_a_thing_fetched_and_handed_on_to_someone_is_one_bringing(office: KB, text: str) -> None:
+    out = say(office, text)
+    assert [(o.intent, o.roles) for o in out.steps()] == [
+        (I.BRING_OBJECT, {"object": "pear_1", "recipient": "person_carol"})]
+    assert out.reply == "OK, I will bring the pear to Carol."
+
+
+@pytest.mark.parametrize("text", ["pick up the pear and give it to Carol", "grab the pear, then bring it to Carol"])
+def test_a_thing_taken_and_handed_on_is_taken_first(office: KB, text: str) -> None:
+    out = say(office, text)
     assert [(o.intent, o.roles) for o in out.steps()] == [
         (I.GRAB_OBJECT, {"object": "pear_1"}),
         (I.BRING_OBJECT, {"object": "pear_1", "recipient": "person_carol"}),
     ]
     assert out.reply.startswith("OK, I will pick up the pear.")
+
+
+def test_a_thing_fetched_and_put_somewhere_is_taken_first(office: KB) -> None:
+    out = say(office, "fetch the pear and put it on the desk")
+    assert [o.intent for o in out.steps()] == [I.GRAB_OBJECT, I.PLACE_OBJECT]
 
 
 def test_a_thing_fetched_for_the_speaker_alone_is_brought(office: KB) -> None:
@@ -74,3 +93,14 @@ def test_a_thing_someone_would_like_brought_with_no_one_said_is_brought_to_them(
     # said to whom, it goes there
     out = say(office, "Carol would like the stapler, please bring it to me")
     assert (out.intent, out.roles) == (I.BRING_OBJECT, {"object": "stapler_1", "recipient": BOB})
+
+
+def test_a_part_beyond_the_robots_skills_does_not_sink_the_others(office: KB) -> None:
+    out = say(office, "pick up the pear and iron it")
+    assert [(o.intent, o.roles) for o in out.steps()] == [(I.GRAB_OBJECT, {"object": "pear_1"})]
+    assert out.reply == "OK, I will pick up the pear. I can't iron it myself."
+
+
+def test_a_question_with_a_verb_after_and_is_one_question(office: KB) -> None:
+    out = say(office, "now then, where have they gone and put the pear?")
+    assert out.intent is None and not out.clarify and "desk" in out.reply

@@ -173,6 +173,10 @@ def test_a_lead_and_a_thanks_of_their_own_are_politeness() -> None:
         ("someone needs to put the flip flops in the crate", "put the flip flops in the crate"),
         ("somebody ought to put the sack on the trolley", "put the sack on the trolley"),
         ("could somebody let dmitri know the showers are leaking", "let dmitri know the showers are leaking"),
+        # formal and old-fashioned openings
+        ("but i wonder whether you might fetch my coat from the chair", "fetch my coat from the chair"),
+        ("might you pick up that pencil", "pick up that pencil"),
+        ("would you be good enough to escort ben to the hallway", "escort ben to the hallway"),
     ],
 )
 def test_what_politeness_leaves_of_a_request(text: str, words: str) -> None:
@@ -246,3 +250,18 @@ def test_a_word_searched_for_mid_request_is_dropped(text: str, words: str) -> No
 def test_a_word_searched_for_is_no_question_about_a_name(office: KB) -> None:
     out = say(office, "pick up the... what's it called... the thingy, the pear")
     assert (out.intent, out.roles) == (I.GRAB_OBJECT, {"object": "pear_1"})
+
+
+@pytest.mark.parametrize(
+    ("text", "words"),
+    [("take it ower tae her", "take it over to her"), ("gie her the orange juice", "give her the orange juice"),
+     ("gonnae bring us the kettle", "will you bring us the kettle"), ("haud on", "hold on")],
+)  # fmt: skip
+def test_scots_words_are_the_english_they_say(text: str, words: str) -> None:
+    assert " ".join(plain.expanded(english(), text)) == words
+
+
+def test_scots_to_is_never_the_tea(office: KB) -> None:
+    office.update(['tea_1 rdf:type Artifact', 'tea_1 rdfs:label "box of teabags"', "myself sees tea_1"])
+    out = say(office, "Carol's wanting the pear, take it ower tae her.")
+    assert (out.intent, out.roles) == (I.BRING_OBJECT, {"object": "pear_1", "recipient": "person_carol"})

@@ -1,0 +1,36 @@
+"""Whether the robot has a skill for an activity it is asked to do ("tidy the shelves", "play a
+game"), or says it cannot ("fold the towels", "iron the bathrobe", "play us something on the piano",
+"do my exercises for me"): which activities are the robot's is the language's data
+(`requests.toml`: `skill_verbs`, `skills`, `starting`)."""
+
+from __future__ import annotations
+
+from dialogue import intents as I
+from dialogue.understanding.language import Language
+from dialogue.understanding.outcome import Outcome
+from dialogue.understanding.parsed import Parse
+from dialogue.understanding.replies import said_back, say
+
+
+def skilled(lang: Language, p: Parse) -> bool:
+    """Whether an activity asked for is one the robot can do: asked to start (any), said by a verb
+    of its chores, or named by a word of its activities that is not said to be the speaker's own."""
+    said = p.slots.get("activity")
+    if p.intent != I.START_ACTIVITY or said is None or not p.words:
+        return True
+    r = lang.requests
+    if p.words[0] in r.starting or p.words[0] in r.skill_verbs:
+        return True
+    theirs = said[:1] == (lang.words.owners.get("mine"),)  # "do my exercises for me": theirs to do
+    words = p.words
+    named = any(words[i : i + len(s)] == s for s in r.skills for i in range(len(words)))
+    return named and not theirs
+
+
+def unskilled(lang: Language, p: Parse) -> Outcome | None:
+    """ "Fold all the towels for me": the robot says it cannot, and starts nothing; None when the
+    request is not an activity beyond its skills. The rules do not claim to have understood it: the
+    words may say what they cannot read ("water jug to Edith"), which a model behind them may."""
+    if skilled(lang, p):
+        return None
+    return Outcome(say(lang, "request.cannot", action=said_back(lang, " ".join(p.words))), understood=False)

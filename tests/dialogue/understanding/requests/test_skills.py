@@ -1,0 +1,30 @@
+"""Which activities are the robot's: its chores, its games and shows, anything asked to start; the
+rest it says it cannot do and starts nothing."""
+
+import pytest
+
+from dialogue.understanding.requests.commands import parse
+from dialogue.understanding.requests.skills import skilled, unskilled
+from tests.dialogue.conftest import english
+
+
+@pytest.mark.parametrize(
+    "text",
+    ["tidy up the kids room", "can you hoover the foyer", "play hide and seek with me", "let's do some chair exercises",
+     "kick off story time for the little ones", "start counting my reps", "start watering the plants",
+     "Please make the bed", "follow me"],
+)  # fmt: skip
+def test_the_robots_activities_are_started(text: str) -> None:
+    assert skilled(english(), parse(english(), text))
+
+
+@pytest.mark.parametrize(
+    ("text", "said"),
+    [("Fold all the towels for me.", "I can't fold all the towels for you myself."),
+     ("Water the tomatoes in the raised beds.", "I can't water the tomatoes in the raised beds myself."),
+     ("Play us something on the piano, would you?", "I can't play you something on the piano myself."),
+     ("can you do my exercises for me", "I can't do your exercises for you myself.")],
+)  # fmt: skip
+def test_an_activity_the_robot_has_no_skill_for_is_said_to_be_beyond_it(text: str, said: str) -> None:
+    outcome = unskilled(english(), parse(english(), text))
+    assert outcome is not None and outcome.intent is None and outcome.reply == said
