@@ -10,6 +10,9 @@ holds
     spans      each token with its start and end (`marked` less the marks)
     tokens     the tokens alone
     taken      what words were taken for: each slip corrected, with the word it was read as
+    written    the words as written: the text cut at white space, casing and punctuation kept
+               (`unquoted`: with double quotes read as white space), for what keeps the casing
+    quoted     where the text quotes (each quote's start and end in the text)
 
 and the forms the stages derive from it (`form`: the speech forms expanded, the plain words, the
 normalised words, the clauses, the text with its self-repairs resolved), each made once. The texts a
@@ -22,6 +25,7 @@ language's data and the text alone, never of the KB: the same words read the sam
 
 from __future__ import annotations
 
+import re
 from collections.abc import Callable
 from dataclasses import dataclass
 from functools import cached_property
@@ -31,6 +35,10 @@ from dialogue.reference.english import MARKS, Words, spans
 from dialogue.understanding.language import Language
 
 T = TypeVar("T")
+#: A quote: the words between double quotes, straight or curly.
+QUOTED = re.compile(r"[\"\u201c\u201d]([^\"\u201c\u201d]+)[\"\u201c\u201d]")
+#: Double quotes, read as white space where the words are taken as written ('"Bob" Smith').
+_DOUBLE_QUOTES = str.maketrans({q: " " for q in '"“”«»'})
 #: What `Said.form` holds for a form not made yet (a form may be None).
 _NOT_MADE = object()
 
@@ -99,6 +107,18 @@ class Said:
     @cached_property
     def tokens(self) -> Words:
         return tuple(w for w, _, _ in self.spans)
+
+    @cached_property
+    def written(self) -> Words:
+        return tuple(self.text.split())
+
+    @cached_property
+    def unquoted(self) -> Words:
+        return tuple(self.text.translate(_DOUBLE_QUOTES).split())
+
+    @cached_property
+    def quoted(self) -> tuple[tuple[int, int], ...]:
+        return tuple(m.span() for m in QUOTED.finditer(self.text))
 
     @property
     def guessed(self) -> bool:

@@ -9,8 +9,9 @@ from dialogue import intents as I
 from dialogue.reference.english import Words
 from dialogue.understanding.parsed import Parse
 from dialogue.understanding.requests.constructions import ConstructionGrammar, Framed
+from dialogue.understanding.said import QUOTED
 from dialogue.understanding.speech.clauses import finite
-from dialogue.understanding.speech.plain import QUOTED, expanded, message, original_text, split_at
+from dialogue.understanding.speech.plain import expanded, message, original_text, split_at
 
 
 def letting_know(said: Framed) -> Parse | None:

@@ -7,7 +7,6 @@ dialogue.understanding.speech.repair.
 
 from __future__ import annotations
 
-import re
 from collections.abc import Sequence
 from functools import lru_cache
 
@@ -15,8 +14,6 @@ from dialogue.reference.english import Words, lowered
 from dialogue.understanding.language import Language
 from dialogue.understanding.lemmas import lemmas_of
 from dialogue.understanding.said import Said, Text
-
-QUOTED = re.compile(r"[\"\u201c\u201d]([^\"\u201c\u201d]+)[\"\u201c\u201d]")
 
 
 class _Speech:

@@ -37,7 +37,6 @@ from dialogue.understanding.requests.frames import frames
 from dialogue.understanding.said import Said, Taken, Text
 from dialogue.understanding.speech.heardnames import heard_name
 from dialogue.understanding.speech.homophones import misheard
-from dialogue.understanding.speech.plain import QUOTED
 
 _FAR_KEY = 1.5
 #: Two letters typed in the wrong order, the commonest slip of fast typing ("teh"): a little cheaper
@@ -90,7 +89,7 @@ def corrected(spoken: Text, lexicon: Lexicon) -> Spelled:
     slips = lexicon.lang.derived(_Slips)
     u = Said.read(lexicon.lang, spoken)
     text = u.text
-    quoted = [m.span() for m in QUOTED.finditer(text)]
+    quoted = u.quoted
     fixes: list[tuple[int, int, Taken]] = []
     words = u.spans
     said = [w for w, _, _ in words]

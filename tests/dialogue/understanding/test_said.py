@@ -115,3 +115,12 @@ def test_the_engine_and_the_rules_share_the_reading_of_a_turn(
     result = asyncio.run(engine.turn(text, speaker=BOB, history=list(utterances(history))))
     assert result.backend == "rules"
     assert scanned[text] == 1  # (what the turn names, for the prompt's share of the KB, and every reader)
+
+
+def test_the_words_as_written_and_the_quotes_are_the_utterances() -> None:
+    """What keeps the casing or the quotes reads it off the utterance, not off its text again."""
+    said = Said(language(), 'say “Stop now” to  "Bob" O\'Brien')
+    assert said.written == ("say", "“Stop", "now”", "to", '"Bob"', "O'Brien")
+    assert said.unquoted == ("say", "Stop", "now", "to", "Bob", "O'Brien")
+    assert [said.text[a:b] for a, b in said.quoted] == ["“Stop now”", '"Bob"']
+    assert said.word("Bob").written == ("Bob",)
