@@ -206,10 +206,10 @@ class Statements(Likings):
         return None
 
     def _name_like(self, words: Words, clause: Said) -> bool:
-        return name_like(self.lang, words, original_text(self.lang, clause, list(words)))
+        return name_like(self.lang, words, clause.of(original_text(self.lang, clause, list(words))))
 
     def _named(self, who: str, words: Words, clause: Said) -> FactClaim:
-        name = clean_name(original_text(self.lang, clause, list(words)))
+        name = clean_name(clause.of(original_text(self.lang, clause, list(words))))
         if not name:
             raise Unclaimed  # longer than any name
         return fact(who, "name", name)
