@@ -20,6 +20,7 @@ from dialogue.reference.english import tokens
 from dialogue.reference.grounding import Entity, Snapshot
 from dialogue.understanding.language import Language, LanguageError
 from dialogue.understanding.outcome import Ref
+from dialogue.understanding.said import Said
 
 #: At most this many names in a list (the rest are counted: "3 more things").
 MAX_LISTED = 12
@@ -164,11 +165,11 @@ def hello(lang: Language, snapshot: Snapshot, speaker: str) -> str:
     return say(lang, "social.hello")
 
 
-def said_back(lang: Language, text: str) -> str:
+def said_back(lang: Language, said: Said) -> str:
     """The speaker's words as the robot says them back to the speaker ("tell me where my keys are"
     -> "tell you where your keys are")."""
     back: dict[str, str] = template(lang, "naming.back")
-    return " ".join(back.get(w.lower(), w) for w in text.split())
+    return " ".join(back.get(w.lower(), w) for w in said.written)
 
 
 def whose_it_is(lang: Language, snapshot: Snapshot, entity: Entity, speaker: str) -> str:

@@ -32,7 +32,7 @@ def compound(reader: Reader, heard: Said, parts: Sequence[Part]) -> Outcome | No
     """Every part read in order: the intents, or the question about a part that must come first, or
     None when a part is not understood (the whole is then read otherwise)."""
     done: list[Outcome] = []
-    cannot: list[str] = []
+    cannot: list[Said] = []
     context: list[Utterance] = []
     aside = False
     for n, part in enumerate(parts):
@@ -61,7 +61,7 @@ def compound(reader: Reader, heard: Said, parts: Sequence[Part]) -> Outcome | No
             return outcome  # ask about this part first: nothing is done until it is clear
         elif part.no_intent or (done and _asks(reader, heard.of(part.text))):
             # ("go to the kitchen and tell me what's there": answered now, it would answer wrong)
-            cannot.append(part.text)
+            cannot.append(heard.of(part.text))
         else:  # a part that fails says why; one not understood makes the whole not understood
             return outcome if outcome.understood else None
     if not done or (aside and not {o.intent for o in done} & {I.MOVE_TO, I.GUIDE}):
