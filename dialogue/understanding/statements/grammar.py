@@ -55,7 +55,7 @@ class _Words:
         self.friends = said.friends
         self.put = said.put
         #: Locative prepositions, longest first, and the property each states.
-        self.states = {tuple(p.split()): state for p, state in lang.prepositions.column("states").items()}
+        self.states = lang.prepositions.phrase_column("states")
         self.be = said.be
         self.polite = said.polite
         self.no = said.no
