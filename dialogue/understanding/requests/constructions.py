@@ -42,7 +42,7 @@ class ConstructionGrammar:
         self.asked_whether = words.asked_whether
         self.asked_of = words.asked_of
         self.asked_not_after = words.asked_not_after
-        self.asked_as_you = {verb: tuple(said.split()) for verb, said in words.asked_as_you.items()}
+        self.asked_as_you = words.asked_as_you
         self.asked_plain = words.asked_plain
         self.adjuncts = said.all_adjuncts
         self.done = said.done
