@@ -21,7 +21,6 @@ caller may leave to a model (dialogue.llm.hybrid); one to a grammar word is not.
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Iterator
 from dataclasses import dataclass
 
 from jellyfish import metaphone
@@ -37,6 +36,7 @@ from dialogue.understanding.requests.frames import frames
 from dialogue.understanding.said import Said, Taken, Text
 from dialogue.understanding.speech.heardnames import heard_name
 from dialogue.understanding.speech.homophones import misheard
+from dialogue.understanding.tables.base import words_in
 
 _FAR_KEY = 1.5
 #: Two letters typed in the wrong order, the commonest slip of fast typing ("teh"): a little cheaper
@@ -321,19 +321,9 @@ def _grammar_tables(lang: Language) -> tuple[object, ...]:
 def _grammar_words(lang: Language) -> frozenset[str]:
     found: set[str] = set()
     for table in _grammar_tables(lang):
-        found.update(_strings(table))
+        found.update(words_in(table))
     for frame in frames(lang):
         texts = (frame.verbs, frame.particles, *frame.slots.values())
         found.update(w for text in texts for p in phrases(text) for w in p)
     return frozenset(w for w in found if w.isalpha())
 
-
-def _strings(value: object) -> Iterator[str]:
-    if isinstance(value, str):
-        yield from value.replace("|", " ").split()
-    elif isinstance(value, dict):
-        yield from _strings(tuple(value))
-        yield from _strings(tuple(value.values()))
-    elif isinstance(value, Iterable) and isinstance(value, (frozenset, set, tuple, list)):
-        for item in value:
-            yield from _strings(item)
