@@ -65,8 +65,7 @@ class _Slips:
         self.people = closed.me | lang.requests.referents.person_objects
         #: Particles of the way after which a preposition says where ("show him through two surgery
         #: one").
-        groups = lang.frames.groups
-        particles = frozenset(groups.get("motion", "").split()) | frozenset(groups.get("carry", "").split())
+        particles = lang.frames.group_words("motion") | lang.frames.group_words("carry")
         self.way = particles | lang.prepositions.words("path")
         self.np_start = closed.np_start
         self.numbers = closed.numbers
