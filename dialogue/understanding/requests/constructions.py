@@ -76,14 +76,14 @@ class ConstructionGrammar:
         self.enough_lead = words.enough_lead
         self.enough = words.enough
         #: The separators of `split_at`, as it takes them.
-        self.helped_to = [" ".join(p) for p in words.helped_to]
+        self.helped_to = words.helped_to
         self.copulas = words.copulas
         self.subject_ends = words.subject_ends
         self.quote_skipped = words.quote_skipped
         self.goodbyes = words.goodbyes
         self.goodbye = words.goodbye
         self.telling = words.telling
-        self.told_marks = [" ".join(p) for p in words.told_marks]
+        self.told_marks = words.told_marks
         self.groups = words.groups
 
 

@@ -98,7 +98,7 @@ def speech(said: Framed) -> Parse:
         return said.command(I.SAY, text=said_text, recipient=recipient)
     if rest[:1] == ("to",):  # "say to Sandeep that the film starts soon": to whom, then what
         return _said_to(said, rest[1:])
-    found = split_at(rest, ["to"])
+    found = split_at(rest, [("to",)])
     text_words, recipient = (found[0], found[2]) if found is not None else (rest, ())
     if not text_words:
         return unknown
@@ -108,7 +108,7 @@ def speech(said: Framed) -> Parse:
 def _said_to(said: Framed, rest: Words) -> Parse:
     """ "(say) to Sandeep that the film starts soon", "(say) to Ana it's time": the person, then the
     message ("that" or a clause of its own starts it)."""
-    found = split_at(rest, ["that"])
+    found = split_at(rest, [("that",)])
     clause = _clause_start(said.lang.derived(ConstructionGrammar), rest)
     if found is not None and (clause is None or len(found[0]) <= clause):
         recipient, text = found[0], found[2]
