@@ -172,7 +172,7 @@ def belonging(said: Framed) -> Parse | None:
         return None
     thing, place, where = found
     parse = said.command(I.PLACE_OBJECT, object=thing, recipient=where)
-    return replace(parse, marks={"recipient": " ".join(place)})
+    return replace(parse, marks={"recipient": place})
 
 
 def where_it_goes(lang: Language, w: Words) -> tuple[Words, Words, Words] | None:
