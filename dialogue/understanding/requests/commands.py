@@ -110,7 +110,7 @@ def command(lang: Language, original: Said, words: list[str]) -> Parse:
         asked = command(lang, original, list(chore))
         if asked.act == "command":
             return asked
-    said = Framed(lang, "", w, w, original)
+    said = Framed(lang, (), w, w, original)
     for construction in g.constructions:
         found = construction(said)
         if found is not None:
@@ -122,7 +122,7 @@ def command(lang: Language, original: Said, words: list[str]) -> Parse:
             continue
         # what to say is said as it was ("out of paper"), the roles of a frame read joined
         rest = tuple(words[len(verb) :]) if row.frame.special is not None else w[len(verb) :]
-        found = _fit(row, Framed(lang, " ".join(verb), rest, w, original))
+        found = _fit(row, Framed(lang, verb, rest, w, original))
         if found is not None:
             return found
     return Parse("unknown", words=w)

@@ -93,8 +93,9 @@ class Framed:
 
     #: The language the words are read in.
     lang: Language
-    #: The verb phrase as the table has it ("pick", "get hold of"; "" before any verb is read).
-    verb: str
+    #: The verb phrase's words as the table has them ("pick", "get hold of"; none before any verb is
+    #: read).
+    verb: Words
     #: The words after the verb phrase (all the words when `verb` is "").
     rest: Words
     #: All the utterance's words, and the original text (for quotes and casing).
@@ -211,7 +212,7 @@ def a_hand(said: Framed) -> Parse | None:
         return None
     after = rest[at + len(hand) :]
     after = after[1:] if after[:1] and after[0] in c.a_hand_particles else after
-    return helping(Framed(said.lang, "help", (*rest[:at], *after), said.words, said.original))
+    return helping(Framed(said.lang, ("help",), (*rest[:at], *after), said.words, said.original))
 
 
 def company(said: Framed) -> Parse | None:

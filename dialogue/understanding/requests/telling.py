@@ -19,7 +19,7 @@ def letting_know(said: Framed) -> Parse | None:
     if "know" not in said.rest:
         return None
     told = tuple(x for x in said.rest if x != "know")
-    return speech(Framed(said.lang, "tell", told, said.words, said.original))
+    return speech(Framed(said.lang, ("tell",), told, said.words, said.original))
 
 
 def _plural(word: str) -> bool:
@@ -58,7 +58,7 @@ def _subject_phrase(c: ConstructionGrammar, rest: Words, i: int) -> bool:
 def speech(said: Framed) -> Parse:
     """What to say, to whom: quoted words kept as they are, "tell X that/to...", "say X to Y"."""
     c = said.lang.derived(ConstructionGrammar)
-    verb, rest, original = said.verb, said.rest, said.original
+    verb, rest, original = " ".join(said.verb), said.rest, said.original
     quoted = QUOTED.search(original.text)
     if quoted:
         # The quoted words are the text; the recipient is found outside the quotes only.
