@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import asyncio
 from collections import Counter
+from decimal import Decimal
 
 import pytest
 
@@ -124,3 +125,9 @@ def test_the_words_as_written_and_the_quotes_are_the_utterances() -> None:
     assert said.unquoted == ("say", "Stop", "now", "to", "Bob", "O'Brien")
     assert [said.text[a:b] for a, b in said.quoted] == ["“Stop now”", '"Bob"']
     assert said.word("Bob").written == ("Bob",)
+
+
+def test_the_ids_as_typed_and_the_numbers_said_are_the_utterances() -> None:
+    said = Said(language(), "put cup_1 on dbr:Table_(furniture), minus three and a half, the red one")
+    assert said.typed[:3] == ("put", "cup_1", "on") and "dbr:Table_(furniture)" in said.typed
+    assert said.numbers == (Decimal("-3.5"),)
