@@ -33,7 +33,7 @@ from dialogue.speakers import NOT_PEOPLE, NotAPerson, check_speaker, person_stat
 from kb import KbError
 from kb.protocol import KnowledgeBase
 from kb.terms import format_term, format_triple, parse_name
-from kb.unicode import carried
+from kb.unicode import carried_line
 
 log = logging.getLogger(__name__)
 
@@ -81,7 +81,7 @@ def note(record: TurnRecord) -> str | None:
     told = [c for c in result.claims if not c.asks]
     if not acted and not told:
         return None
-    quote = " ".join(carried(record.text).split())
+    quote = carried_line(record.text)
     quote = quote if len(quote) <= MAX_QUOTE else quote[: MAX_QUOTE - 1] + "…"
     day = datetime.fromtimestamp(record.at, UTC).date().isoformat()
     return f'{day}: {"said" if told and not acted else "asked"} "{quote}"'
