@@ -13,8 +13,10 @@ shrinks and the issue's figures can be recounted on any commit (`python -m tests
   capital and ends a sentence, outside `understanding/replies.py`, not a docstring, not what an
   exception or a log says;
 - a *re-tokenisation*: a `.split()` on white space or a regex's `findall`/`split` in a stage of the
-  understanding (understanding/, reference/ but its tokeniser, memory/, ask/), which reads the
-  utterance object rather than its raw text;
+  understanding (understanding/, reference/, memory/, ask/), which reads the utterance object rather
+  than its raw text; the tokeniser and the utterance object themselves, and what reads data rather
+  than an utterance (the language's tables, the lexicon's synonyms file, the KB's ids in the
+  snapshot), are not stages;
 - a *clause splitter*: a function whose name says it cuts clauses, or a split on a conjunction.
 """
 
@@ -112,11 +114,14 @@ _SENTENCE = re.compile(r"^[A-Z][^\n]*\b[a-z]+\b[^\n]*[.?!]$")
 _LETTERS = re.compile(r"[a-z]{2,}")
 _CLAUSES = re.compile(r"(split|cut).*clause|clause.*(split|cut)|^_?clauses$")
 _STAGES = ("dialogue/understanding/", "dialogue/reference/", "dialogue/memory/", "dialogue/ask/")
-#: The tokeniser, and what reads the language's files (its phrases are data, not an utterance).
+#: The tokeniser, and what reads the language's files (its phrases are data, not an utterance) or the
+#: KB's (an id made readable: `cup_1` -> "cup 1").
 _TOKENISERS = (
     "dialogue/reference/english.py",
     "dialogue/understanding/said.py",
     "dialogue/understanding/tables/",
+    "dialogue/reference/synonyms.py",
+    "dialogue/reference/snapshot.py",
 )
 
 

@@ -124,3 +124,16 @@ def test_english_in_code_is_found(tmp_path: Path) -> None:
     )
     kinds = Counter(f.kind for f in findings(tmp_path))
     assert kinds == {"word table": 2, "spatial table": 1, "reply sentence": 2}
+
+
+def test_no_stage_of_the_understanding_re_tokenises(found: list[Finding]) -> None:
+    """Every stage reads the utterance object (dialogue.understanding.said), not its text again."""
+    assert not [str(f) for f in found if f.kind == "re-tokenisation"]
+
+
+def test_a_stage_cutting_a_text_again_is_found(tmp_path: Path) -> None:
+    stage = tmp_path / "dialogue" / "understanding"
+    stage.mkdir(parents=True)
+    (stage / "x.py").write_text("import re\ndef f(text: str) -> list[str]:\n    return text.split() + re.findall('a', text)\n")
+    assert Counter(f.kind for f in findings(tmp_path)) == {"re-tokenisation": 2}
+
