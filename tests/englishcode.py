@@ -4,8 +4,9 @@ shrinks and the issue's figures can be recounted on any commit (`python -m tests
 
 - a *word table*: a literal collection (set, frozenset, tuple, list, dict; at module level or in a
   function, a `x in ("a", "b")` included) of two or more lower-case words, where not every word is
-  one of the code's own names (the values of a `Literal[...]`, the kinds, roles and keys the code
-  passes around rather than hears);
+  one of the code's own names (the values of a `Literal[...]` of the module or of a name it imports
+  from another module of the project — an alias, or a class whose fields are typed so —, the kinds,
+  roles and keys the code passes around rather than hears);
 - a *spatial-preposition table*: a word table with two or more of the spatial prepositions;
 - an *English regex*: a regular expression (`re.compile`, `re.search`...) whose pattern spells a
   lower-case word of two letters or more outside its escapes and character classes;
@@ -170,6 +171,37 @@ def _literal_names(tree: ast.AST) -> set[str]:
     return names
 
 
+def _imported_literal_names(tree: ast.Module, root: Path) -> set[str]:
+    """The `Literal` values of the names a module imports from the project's other modules: an
+    alias (`Kind = Literal[...]`), or a class whose fields are typed with one (`Parse.act`)."""
+    names: set[str] = set()
+    for node in tree.body:
+        if not isinstance(node, ast.ImportFrom) or not node.module or node.level:
+            continue
+        path = root / (node.module.replace(".", "/") + ".py")
+        if not path.is_file():
+            continue
+        # each name the module defines, with the Literal values in its definition and the names
+        # that definition refers to (a class's fields typed with an alias of the module)
+        defined: dict[str, tuple[set[str], set[str]]] = {}
+        for statement in ast.parse(path.read_text(encoding="utf-8")).body:
+            targets: list[str] = []
+            if isinstance(statement, ast.ClassDef):
+                targets = [statement.name]
+            elif isinstance(statement, ast.Assign):
+                targets = [t.id for t in statement.targets if isinstance(t, ast.Name)]
+            elif isinstance(statement, ast.AnnAssign) and isinstance(statement.target, ast.Name):
+                targets = [statement.target.id]
+            refers = {n.id for n in ast.walk(statement) if isinstance(n, ast.Name)}
+            for target in targets:
+                defined[target] = (_literal_names(statement), refers)
+        for alias in node.names:
+            values, refers = defined.get(alias.name, (set(), set()))
+            names |= values
+            names.update(v for r in refers & defined.keys() - {alias.name} for v in defined[r][0])
+    return names
+
+
 def _pattern(node: ast.Call) -> str | None:
     f = node.func
     if (
@@ -297,7 +329,7 @@ def _call(node: ast.Call, rel: str, stage: bool) -> Iterator[Finding]:
 def scan(path: Path, root: Path = ROOT) -> Iterator[Finding]:
     rel = path.relative_to(root).as_posix()
     tree = ast.parse(path.read_text(encoding="utf-8"))
-    code = CODE_NAMES | _literal_names(tree)
+    code = CODE_NAMES | _literal_names(tree) | _imported_literal_names(tree, root)
     skipped = _docstrings(tree) | _unsaid(tree)
     stage = rel.startswith(_STAGES) and not rel.startswith(_TOKENISERS)
     replies = not rel.endswith("understanding/replies.py")
