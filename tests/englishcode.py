@@ -9,7 +9,8 @@ shrinks and the issue's figures can be recounted on any commit (`python -m tests
   roles and keys the code passes around rather than hears);
 - a *spatial-preposition table*: a word table with two or more of the spatial prepositions;
 - an *English regex*: a regular expression (`re.compile`, `re.search`...) whose pattern spells a
-  lower-case word of two letters or more outside its escapes and character classes;
+  lower-case word of two letters or more outside its escapes and character classes, but in a module
+  that reads machine text rather than words someone said (`MACHINE_TEXT`);
 - a *reply sentence*: a string (an f-string included) of three words or more that starts with a
   capital and ends a sentence, outside `understanding/replies.py`, not a docstring, not what an
   exception or a log says;
@@ -108,6 +109,11 @@ CODE_NAMES = frozenset(
         "json",
     ]
 )
+#: Modules whose regexes read machine text, not words someone said, with what they read.
+MACHINE_TEXT = {
+    "dialogue/llm/llamabuild.py": "the CPU's flags (avx2, fma...)",
+    "dialogue/trace/urlsecrets.py": "a URL's query keys (token, key, secret...)",
+}
 _REGEX_CALLS = frozenset(
     {"compile", "search", "match", "fullmatch", "sub", "subn", "split", "findall", "finditer"}
 )
@@ -307,7 +313,7 @@ def _table(node: ast.AST, code: frozenset[str] | set[str], rows: set[int], rel: 
 
 def _call(node: ast.Call, rel: str, stage: bool) -> Iterator[Finding]:
     pattern = _pattern(node)
-    if pattern is not None and _english_in_pattern(pattern):
+    if pattern is not None and rel not in MACHINE_TEXT and _english_in_pattern(pattern):
         yield Finding("english regex", rel, node.lineno, pattern[:70])
     f = node.func
     if not isinstance(f, ast.Attribute):

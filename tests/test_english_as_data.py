@@ -146,3 +146,8 @@ def test_literal_values_imported_from_another_module_are_the_codes_names(tmp_pat
         'B = frozenset({"greeting", "cheers"})\n'
     )
     assert [f.line for f in findings(tmp_path) if f.path == "dialogue/x.py"] == [3]
+
+
+def test_no_regex_of_dialogue_spells_english(found: list[Finding]) -> None:
+    """A pattern of words is the language folder's; the regexes left read machine text."""
+    assert not [str(f) for f in found if f.kind == "english regex"]
