@@ -48,7 +48,6 @@ NAMES = {
     ("dialogue/memory/claims.py", "likes, dislikes"): "the KB's properties",
     ("dialogue/memory/learn.py", "adopted, known, believed, perceived, disputed, unknown ..."): "outcomes",
     ("dialogue/memory/learn.py", "add, remove"): "a batch's operations",
-    ("dialogue/memory/people.py", "subject, predicate, object, by, at, words"): "a note's JSON keys",
     ("dialogue/memory/people.py", "person, summary, told"): "a note's JSON keys",
     ("dialogue/memory/replies.py", "adopted, known, believed"): "outcomes",
     ("dialogue/memory/replies.py", "likes, dislikes"): "the KB's properties",
@@ -57,7 +56,6 @@ NAMES = {
     # refers to them by: a key shared by the KB's side and the language's, not words heard.
     ("dialogue/reference/facts.py", "next to, near, under, above, behind, behind ..."): "relation keys",
     ("dialogue/reference/facts.py", "above, behind, near, under"): "relation keys",
-    ("dialogue/memory/people.py", "at, by"): "a note's JSON keys",
     ("dialogue/reference/lexicon.py", "norm, phrase, singular"): "__all__",
     ("dialogue/reference/lexicon.py", "synonym, kind"): "name sources",
     ("dialogue/reference/naming.py", "synonym, kind"): "name sources",

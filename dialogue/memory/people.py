@@ -18,7 +18,7 @@ import asyncio
 import logging
 import threading
 from collections import OrderedDict
-from dataclasses import dataclass
+from dataclasses import asdict, dataclass
 from datetime import UTC, datetime
 from functools import lru_cache
 from typing import Any
@@ -224,8 +224,10 @@ class People:
 
 
 def _told(fact: Told) -> dict[str, Any]:
-    return {"subject": fact.subject, "predicate": fact.predicate, "object": fact.object, "by": fact.by,
-            "at": fact.at, "words": fact.words}
+    """A fact told as the people route shows it: its fields, less the record it is kept in."""
+    shown = asdict(fact)
+    del shown["record"]
+    return shown
 
 
 @lru_cache(maxsize=4096)
