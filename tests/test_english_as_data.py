@@ -69,7 +69,6 @@ BUDGET = {
 }
 #: Sentences still written in Python outside the reply templates, per module, with why.
 SENTENCES = {
-    "dialogue/engine.py": 1,  # the engine's reply when no model answers in time
     "dialogue/situation.py": 4,  # the model's prompt, not a reply (prompts/ holds its templates)
     "dialogue/llm/llamabuild.py": 1,  # a probe message to a model being built
 }
