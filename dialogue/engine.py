@@ -49,12 +49,17 @@ from kb.unicode import check_text
 log = logging.getLogger(__name__)
 
 MAX_SCHEMA_IDS = 60
-SORRY = "Sorry, I can't answer right now."
 NO_ANSWER_IN_TIME = "no answer by the turn's deadline"
 RULES_ENGLISH_ONLY = "the offline rules understand English only; a model backend (hybrid:...) reads locale {}"
 
 
 _SUPPORT_CLASSES = frozenset({"PhysicalSupport", "cyc:FurniturePiece", "cyc:Object-SupportingFurniture"})
+
+
+def sorry(lang: Language | None = None) -> str:
+    """What the engine says when no answer comes in time (the `sorry.cannot_answer_now` template of
+    `lang`, by default the packaged English)."""
+    return say(lang or Language.load(), "sorry.cannot_answer_now")
 
 
 def _is_support(entity: Entity, held: set[str]) -> bool:
@@ -220,11 +225,18 @@ class DialogueEngine:
         return replace(result, response=" ".join(p for p in (kept, said) if p))
 
     def fallback(
-        self, text: str, speaker: str, locale: str | None, error: str, reply: str = SORRY
+        self, text: str, speaker: str, locale: str | None, error: str, reply: str | None = None
     ) -> TurnResult:
+        """The turn as raw user input, with `reply` (by default `sorry`)."""
         log.warning("dialogue turn fell back to raw user input: %s", error)
         raw = I.raw_user_input(text, source=speaker, locale=locale)
-        return TurnResult(reply, (raw,), error or "unknown error", backend="fallback")
+        said = self.sorry if reply is None else reply
+        return TurnResult(said, (raw,), error or "unknown error", backend="fallback")
+
+    @property
+    def sorry(self) -> str:
+        """What the engine says when no answer comes in time."""
+        return sorry(self.language)
 
     def prepare(
         self,

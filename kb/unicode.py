@@ -72,6 +72,12 @@ def carried(text: str) -> str:
     return _UNCARRIED.sub("", text)
 
 
+def carried_line(text: str) -> str:
+    """``carried`` on one line: each run of white space one space (a quote of what someone said,
+    kept in a record of one line)."""
+    return " ".join(carried(text).split())
+
+
 def check_terms(terms: Iterable[object], what: str) -> None:
     """``check_text`` and ``check_carried`` on each RDF term (a literal's datatype and language
     included), ``check_iri`` on each IRI (a datatype included)."""

@@ -4,17 +4,21 @@ shrinks and the issue's figures can be recounted on any commit (`python -m tests
 
 - a *word table*: a literal collection (set, frozenset, tuple, list, dict; at module level or in a
   function, a `x in ("a", "b")` included) of two or more lower-case words, where not every word is
-  one of the code's own names (the values of a `Literal[...]`, the kinds, roles and keys the code
-  passes around rather than hears);
+  one of the code's own names (the values of a `Literal[...]` of the module or of a name it imports
+  from another module of the project — an alias, or a class whose fields are typed so —, the kinds,
+  roles and keys the code passes around rather than hears);
 - a *spatial-preposition table*: a word table with two or more of the spatial prepositions;
 - an *English regex*: a regular expression (`re.compile`, `re.search`...) whose pattern spells a
-  lower-case word of two letters or more outside its escapes and character classes;
+  lower-case word of two letters or more outside its escapes and character classes, but in a module
+  that reads machine text rather than words someone said (`MACHINE_TEXT`);
 - a *reply sentence*: a string (an f-string included) of three words or more that starts with a
   capital and ends a sentence, outside `understanding/replies.py`, not a docstring, not what an
   exception or a log says;
 - a *re-tokenisation*: a `.split()` on white space or a regex's `findall`/`split` in a stage of the
-  understanding (understanding/, reference/ but its tokeniser, memory/, ask/), which reads the
-  utterance object rather than its raw text;
+  understanding (understanding/, reference/, memory/, ask/), which reads the utterance object rather
+  than its raw text; the tokeniser and the utterance object themselves, and what reads data rather
+  than an utterance (the language's tables, the lexicon's synonyms file, the KB's ids in the
+  snapshot), are not stages;
 - a *clause splitter*: a function whose name says it cuts clauses, or a split on a conjunction.
 """
 
@@ -105,6 +109,11 @@ CODE_NAMES = frozenset(
         "json",
     ]
 )
+#: Modules whose regexes read machine text, not words someone said, with what they read.
+MACHINE_TEXT = {
+    "dialogue/llm/llamabuild.py": "the CPU's flags (avx2, fma...)",
+    "dialogue/trace/urlsecrets.py": "a URL's query keys (token, key, secret...)",
+}
 _REGEX_CALLS = frozenset(
     {"compile", "search", "match", "fullmatch", "sub", "subn", "split", "findall", "finditer"}
 )
@@ -112,11 +121,14 @@ _SENTENCE = re.compile(r"^[A-Z][^\n]*\b[a-z]+\b[^\n]*[.?!]$")
 _LETTERS = re.compile(r"[a-z]{2,}")
 _CLAUSES = re.compile(r"(split|cut).*clause|clause.*(split|cut)|^_?clauses$")
 _STAGES = ("dialogue/understanding/", "dialogue/reference/", "dialogue/memory/", "dialogue/ask/")
-#: The tokeniser, and what reads the language's files (its phrases are data, not an utterance).
+#: The tokeniser, and what reads the language's files (its phrases are data, not an utterance) or the
+#: KB's (an id made readable: `cup_1` -> "cup 1").
 _TOKENISERS = (
     "dialogue/reference/english.py",
     "dialogue/understanding/said.py",
     "dialogue/understanding/tables/",
+    "dialogue/reference/synonyms.py",
+    "dialogue/reference/snapshot.py",
 )
 
 
@@ -162,6 +174,37 @@ def _literal_names(tree: ast.AST) -> set[str]:
                 for c in ast.walk(node.slice)
                 if isinstance(c, ast.Constant) and isinstance(c.value, str)
             )
+    return names
+
+
+def _imported_literal_names(tree: ast.Module, root: Path) -> set[str]:
+    """The `Literal` values of the names a module imports from the project's other modules: an
+    alias (`Kind = Literal[...]`), or a class whose fields are typed with one (`Parse.act`)."""
+    names: set[str] = set()
+    for node in tree.body:
+        if not isinstance(node, ast.ImportFrom) or not node.module or node.level:
+            continue
+        path = root / (node.module.replace(".", "/") + ".py")
+        if not path.is_file():
+            continue
+        # each name the module defines, with the Literal values in its definition and the names
+        # that definition refers to (a class's fields typed with an alias of the module)
+        defined: dict[str, tuple[set[str], set[str]]] = {}
+        for statement in ast.parse(path.read_text(encoding="utf-8")).body:
+            targets: list[str] = []
+            if isinstance(statement, ast.ClassDef):
+                targets = [statement.name]
+            elif isinstance(statement, ast.Assign):
+                targets = [t.id for t in statement.targets if isinstance(t, ast.Name)]
+            elif isinstance(statement, ast.AnnAssign) and isinstance(statement.target, ast.Name):
+                targets = [statement.target.id]
+            refers = {n.id for n in ast.walk(statement) if isinstance(n, ast.Name)}
+            for target in targets:
+                defined[target] = (_literal_names(statement), refers)
+        for alias in node.names:
+            values, refers = defined.get(alias.name, (set(), set()))
+            names |= values
+            names.update(v for r in refers & defined.keys() - {alias.name} for v in defined[r][0])
     return names
 
 
@@ -270,7 +313,7 @@ def _table(node: ast.AST, code: frozenset[str] | set[str], rows: set[int], rel: 
 
 def _call(node: ast.Call, rel: str, stage: bool) -> Iterator[Finding]:
     pattern = _pattern(node)
-    if pattern is not None and _english_in_pattern(pattern):
+    if pattern is not None and rel not in MACHINE_TEXT and _english_in_pattern(pattern):
         yield Finding("english regex", rel, node.lineno, pattern[:70])
     f = node.func
     if not isinstance(f, ast.Attribute):
@@ -292,7 +335,7 @@ def _call(node: ast.Call, rel: str, stage: bool) -> Iterator[Finding]:
 def scan(path: Path, root: Path = ROOT) -> Iterator[Finding]:
     rel = path.relative_to(root).as_posix()
     tree = ast.parse(path.read_text(encoding="utf-8"))
-    code = CODE_NAMES | _literal_names(tree)
+    code = CODE_NAMES | _literal_names(tree) | _imported_literal_names(tree, root)
     skipped = _docstrings(tree) | _unsaid(tree)
     stage = rel.startswith(_STAGES) and not rel.startswith(_TOKENISERS)
     replies = not rel.endswith("understanding/replies.py")

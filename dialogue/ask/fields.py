@@ -22,14 +22,13 @@ from dataclasses import dataclass, field
 from decimal import Decimal
 from typing import Any
 
-from text_to_num import alpha2digit
-
 from dialogue.ask.form import FieldKind, FormField
 from dialogue.reference.english import tokens
 from dialogue.reference.grounding import Entity, Snapshot
 from dialogue.reference.lexicon import Lexicon, norm, singular
 from dialogue.reference.resolution import ALL_KINDS, resolve
 from dialogue.understanding.language import Language
+from dialogue.understanding.said import Said
 
 
 class _Words:
@@ -37,7 +36,6 @@ class _Words:
 
     def __init__(self, lang: Language) -> None:
         said = lang.ask
-        self.code = lang.code
         self.yes = said.yes
         self.no = said.no
         #: No-words that turn a yes-word next to them into a no ("certainly not", "not true").
@@ -48,11 +46,6 @@ class _Words:
         #: A question back ("why do you want to know", "what do you mean", "pardon"), never a free
         #: string.
         self.question_back = said.question_back
-        self.number = said.number
-        #: "one" after a determiner is a pronoun ("the red one", "that one"), not a number.
-        self.pronoun_one = said.pronoun_one
-        self.thousands = said.thousands
-        self.half = said.half
         self.field_value = said.field_value
         #: Lead-in words kept in an answer's noun phrase ("my one", "the red one"), the one that
         #: makes it the speaker's, and those that say nothing of the choices offered.
@@ -77,15 +70,14 @@ class Clause:
     words: tuple[str, ...]
     #: Exact: a float would turn 400 nines into infinity and round 10**24 (``_number`` decides).
     numbers: tuple[Decimal, ...]
+    #: The words as typed, an id whole ("cup_1").
+    typed: tuple[str, ...] = ()
 
     @classmethod
     def of(cls, lang: Language, text: str) -> Clause:
         """The clause of `text`, its numbers read in `lang` (in words by text2num: "twenty-three")."""
-        said = lang.derived(_Words)
-        digits = alpha2digit(said.pronoun_one.sub("\\1\\2\u2060", text), said.code, threshold=0)
-        digits = said.half.sub(r"\1.5", said.thousands.sub("", digits))
-        numbers = tuple((-1 if m.group(1) else 1) * Decimal(m.group(2)) for m in said.number.finditer(digits))
-        return cls(text.strip(), tuple(tokens(text)), numbers)
+        said = Said(lang, text)
+        return cls(text.strip(), said.tokens, said.numbers, said.typed)
 
     def has(self, words: Sequence[str]) -> int | None:
         """Where `words` (singular or plural) occur in the clause, or None."""
@@ -220,7 +212,7 @@ def find_entity(form_field: FormField, clause: Clause, ctx: ReadContext) -> Foun
     # An id typed as it is, used only when no noun phrase names a choice: an id may also be a word
     # ("cup" in the demo scene), and "the blue cup" means the blue one whatever the others are called.
     self_ = answer.self_
-    typed = next((w for w in re.findall(r"[\w:.\-()]+", clause.text) if w in ids and w not in self_), None)
+    typed = next((w for w in clause.typed if w in ids and w not in self_), None)
     if offered:
         for word, index in answer.ordinals.items():
             if word in clause.words:

@@ -26,7 +26,7 @@ from dialogue import intents as I
 from dialogue.ask.form import AskForm, FormState, parse_configuration
 from dialogue.ask.model import AskPrompts, ask_schema, entity_ids, parse_ask_answer, reading_of
 from dialogue.ask.progress import advance, opening_state, question_for
-from dialogue.engine import NO_ANSWER_IN_TIME, RULES_ENGLISH_ONLY, SORRY, DialogueEngine, TurnResult
+from dialogue.engine import NO_ANSWER_IN_TIME, RULES_ENGLISH_ONLY, DialogueEngine, TurnResult
 from dialogue.history import Utterance, role_of
 from dialogue.llm.base import ChatMessage, ChatModel, ChatRequest, ModelError, TurnContext
 from dialogue.locales import is_english, normalise_locale
@@ -243,4 +243,4 @@ class AskRole:
                     repair = (ChatMessage("assistant", result.content), self.prompts.repair_message(str(exc)))
                     request = ChatRequest((*messages, *repair), schema, context, repair=True)
         why = f"{model.name} gave no valid answer twice: " + " | then: ".join(errors)
-        return engine.fallback(context.text, context.speaker, context.locale, why, reply=SORRY)
+        return engine.fallback(context.text, context.speaker, context.locale, why, reply=engine.sorry)

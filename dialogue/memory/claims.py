@@ -24,6 +24,7 @@ from dialogue.reference.lexicon import Lexicon
 from dialogue.reference.resolution import ANYWHERE, PERSON, resolve_id
 from dialogue.schema import AnswerError, FactClaim
 from dialogue.understanding.replies import say
+from dialogue.understanding.said import Said
 from dialogue.understanding.statements.names import clean_name
 
 #: How the object of a claim is read: a KB entity id, words naming a kind (a class of the KB,
@@ -115,7 +116,7 @@ def ground_facts(facts: Sequence[FactClaim], lexicon: Lexicon, speaker: str) -> 
             claims.append(Claim(subject, spec.name, None))
             continue
         if spec.objects is None:
-            name = clean_name(value)
+            name = clean_name(Said(lexicon.lang, value))
             if not name or value in lexicon.snapshot.entities:
                 raise AnswerError(f"facts[{n}].object {fact.object!r} is not a name: give the name itself")
             claims.append(Claim(subject, spec.name, name, "text"))

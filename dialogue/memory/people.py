@@ -18,7 +18,7 @@ import asyncio
 import logging
 import threading
 from collections import OrderedDict
-from dataclasses import dataclass
+from dataclasses import asdict, dataclass
 from datetime import UTC, datetime
 from functools import lru_cache
 from typing import Any
@@ -33,7 +33,7 @@ from dialogue.speakers import NOT_PEOPLE, NotAPerson, check_speaker, person_stat
 from kb import KbError
 from kb.protocol import KnowledgeBase
 from kb.terms import format_term, format_triple, parse_name
-from kb.unicode import carried
+from kb.unicode import carried_line
 
 log = logging.getLogger(__name__)
 
@@ -81,7 +81,7 @@ def note(record: TurnRecord) -> str | None:
     told = [c for c in result.claims if not c.asks]
     if not acted and not told:
         return None
-    quote = " ".join(carried(record.text).split())
+    quote = carried_line(record.text)
     quote = quote if len(quote) <= MAX_QUOTE else quote[: MAX_QUOTE - 1] + "…"
     day = datetime.fromtimestamp(record.at, UTC).date().isoformat()
     return f'{day}: {"said" if told and not acted else "asked"} "{quote}"'
@@ -224,8 +224,10 @@ class People:
 
 
 def _told(fact: Told) -> dict[str, Any]:
-    return {"subject": fact.subject, "predicate": fact.predicate, "object": fact.object, "by": fact.by,
-            "at": fact.at, "words": fact.words}
+    """A fact told as the people route shows it: its fields, less the record it is kept in."""
+    shown = asdict(fact)
+    del shown["record"]
+    return shown
 
 
 @lru_cache(maxsize=4096)

@@ -7,7 +7,7 @@ superclasses, readable class ids) and from the language's lexicon file's other w
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
 from functools import lru_cache
 from typing import NamedTuple
 
@@ -88,7 +88,7 @@ class Naming:
         #: Each title to the other words said for it ("mister" for "mr").
         self.titles = {w: tuple(o for o in group if o != w) for group in lang.words.titles for w in group}
 
-    def names(self, entity: Entity, kind: bool = True) -> list[Name]:  # noqa: C901
+    def names(self, entity: Entity, kind: bool = True) -> list[Name]:
         """Every name of the entity; with ``kind`` False, its own only (none of its class names)."""
         out: list[Name] = []
         seen: set[tuple[str, ...]] = set()
@@ -122,25 +122,28 @@ class Naming:
             tail = self._compound_head(words[-1]) if words else None
             if tail is not None:  # "the bench" for the "workbench", yielding to a bench of the KB's own
                 add(" ".join((*words[:-1], tail)) if len(words) > 1 else tail, "kind")
-        # Other ways of saying a name or its ending ("cell phone" for the "mobile phone", "the fridge"
-        # for the "kitchen refrigerator"), and the general names of its kind ("the bag" for the
-        # "handbag", "a drink" for the "lemonade"): the lexicon file's, which yield to the KB's own
-        # names (`Name.lexical`).
-        syn = self.synonyms
-        longest = syn.longest
         for text in (*entity.labels, *class_names):
-            said = phrase(text)
-            # Only the endings a synonym may be: each one tried is a copy (a label of 30,000 words
-            # once made every split of it one, minutes of work for every turn).
-            for k in range(max(0, len(said) - longest), len(said)):
-                for other in syn.of(said[k:]):
-                    add(" ".join((*said[:k], *other)), "synonym")
-                    if k:
-                        add(" ".join(other), "synonym")
-                alike = (said[k:], *syn.of(said[k:]))
-                for general in (g for o in alike for g in syn.broader_than(o)):
-                    add(" ".join(general), "kind")
+            for name, source in self._lexical(text):
+                add(name, source)
         return out
+
+    def _lexical(self, text: str) -> Iterator[tuple[str, str]]:
+        """Other ways of saying a name or its ending ("cell phone" for the "mobile phone", "the
+        fridge" for the "kitchen refrigerator"), and the general names of its kind ("the bag" for
+        the "handbag", "a drink" for the "lemonade"): the lexicon file's, which yield to the KB's
+        own names (`Name.lexical`)."""
+        syn = self.synonyms
+        said = phrase(text)
+        # Only the endings a synonym may be: each one tried is a copy (a label of 30,000 words
+        # once made every split of it one, minutes of work for every turn).
+        for k in range(max(0, len(said) - syn.longest), len(said)):
+            for other in syn.of(said[k:]):
+                yield " ".join((*said[:k], *other)), "synonym"
+                if k:
+                    yield " ".join(other), "synonym"
+            alike = (said[k:], *syn.of(said[k:]))
+            for general in (g for o in alike for g in syn.broader_than(o)):
+                yield " ".join(general), "kind"
 
     def _compound_head(self, word: str) -> str | None:
         """The general noun a closed compound ends with ("workbench": "bench"), if it is one of the

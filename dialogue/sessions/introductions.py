@@ -28,6 +28,7 @@ from typing import Any, Protocol
 from dialogue.reference.english import tokens
 from dialogue.understanding.language import Language
 from dialogue.understanding.replies import say
+from dialogue.understanding.said import Said
 from dialogue.understanding.statements.names import clean_name, given_name, name_like
 
 #: The class of the people a name is looked up among, and the prefix of a new person's id.
@@ -69,8 +70,9 @@ def told_name(lang: Language, answer: str) -> str:
         return ""
     # The name's words as written (their casing tells names apart), the last ones of the answer.
     written = " ".join(re.findall(r"\S+", answer)[-len(words):]).strip(" .,!?;:")
-    name = clean_name(written)
-    if not name or not (given_name(lang, words) if surely else name_like(lang, words, written)):
+    told = Said(lang, written)
+    name = clean_name(told)
+    if not name or not (given_name(lang, words) if surely else name_like(lang, words, told)):
         return ""
     return name
 

@@ -34,7 +34,7 @@ from dataclasses import replace
 from functools import partial
 from typing import Literal, ParamSpec, TypeVar
 
-from dialogue.engine import SORRY, DialogueEngine, TurnResult
+from dialogue.engine import DialogueEngine, TurnResult
 from dialogue.errors import DialogueExists, SessionError, UnknownDialogue
 from dialogue.history import ASSISTANT_USER_ID, SYSTEM_USER_ID, History, Utterance
 from dialogue.roles import Roles
@@ -305,7 +305,7 @@ class DialogueManager:
             state = await self._off_loop(self.get, dialogue_id)
         except StoreUnavailable as exc:  # the turn still answers, politely, in its time
             return self.engine.fallback(text, user_id, locale, f"the dialogue cannot be read: {exc}",
-                                        reply=SORRY if response_expected else "")
+                                        reply=None if response_expected else "")
         kept = self._kept(state, history)
         if not response_expected:
             if not text.strip():  # nothing said: nothing to record

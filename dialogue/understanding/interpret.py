@@ -363,7 +363,9 @@ class Interpreter:
         # The place said back with the preposition it was said with, unless a part of it was named
         # ("in the centre of the table" is put on the table).
         place = slots.get("recipient", ())
-        said = None if set(place) & self.lang.words.parts and "of" in place else p.marks.get("recipient")
+        mark = p.marks.get("recipient")
+        part_named = set(place) & self.lang.words.parts and "of" in place
+        said = " ".join(mark) if mark is not None and not part_named else None
         intent = carried_onto(self.lang, self.snapshot, p, intent, roles)  # "take it to the table"
         reply = acknowledgement(self.lang, self.snapshot, self.speaker, intent, roles, refs, said,
                                 self.lexicon.shares_name)

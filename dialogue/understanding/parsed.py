@@ -31,6 +31,6 @@ class Parse:
     #: the speaker); the interpreter may take them from the conversation instead.
     implicit: frozenset[str] = frozenset()
     #: The preposition that introduced each role's phrase ("beside" for "next to the laptop").
-    marks: dict[str, str] = field(default_factory=dict)
+    marks: dict[str, Words] = field(default_factory=dict)
     #: A question said after a greeting ("hello robot, what's your name"): greet, then answer.
     greeted: bool = False

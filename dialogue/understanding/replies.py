@@ -16,7 +16,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from dialogue import intents as I
-from dialogue.reference.english import tokens
+from dialogue.reference.english import Words, tokens
 from dialogue.reference.grounding import Entity, Snapshot
 from dialogue.understanding.language import Language, LanguageError
 from dialogue.understanding.outcome import Ref
@@ -164,11 +164,11 @@ def hello(lang: Language, snapshot: Snapshot, speaker: str) -> str:
     return say(lang, "social.hello")
 
 
-def said_back(lang: Language, text: str) -> str:
-    """The speaker's words as the robot says them back to the speaker ("tell me where my keys are"
-    -> "tell you where your keys are")."""
+def said_back(lang: Language, words: Words) -> str:
+    """The speaker's words (as written: `Said.written`) as the robot says them back to the speaker
+    ("tell me where my keys are" -> "tell you where your keys are")."""
     back: dict[str, str] = template(lang, "naming.back")
-    return " ".join(back.get(w.lower(), w) for w in text.split())
+    return " ".join(back.get(w.lower(), w) for w in words)
 
 
 def whose_it_is(lang: Language, snapshot: Snapshot, entity: Entity, speaker: str) -> str:

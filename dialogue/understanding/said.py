@@ -10,6 +10,11 @@ holds
     spans      each token with its start and end (`marked` less the marks)
     tokens     the tokens alone
     taken      what words were taken for: each slip corrected, with the word it was read as
+    written    the words as written: the text cut at white space, casing and punctuation kept
+               (`unquoted`: with double quotes read as white space), for what keeps the casing
+    quoted     where the text quotes (each quote's start and end in the text)
+    typed      the words as typed, an id whole ("cup_1", "dbr:Table_(furniture)")
+    numbers    the numbers the words say, in digits or in words ("twenty-three", "minus three")
 
 and the forms the stages derive from it (`form`: the speech forms expanded, the plain words, the
 normalised words, the clauses, the text with its self-repairs resolved), each made once. The texts a
@@ -22,15 +27,25 @@ language's data and the text alone, never of the KB: the same words read the sam
 
 from __future__ import annotations
 
+import re
 from collections.abc import Callable
 from dataclasses import dataclass
+from decimal import Decimal
 from functools import cached_property
 from typing import Any, TypeVar, cast
+
+from text_to_num import alpha2digit
 
 from dialogue.reference.english import MARKS, Words, spans
 from dialogue.understanding.language import Language
 
 T = TypeVar("T")
+#: A quote: the words between double quotes, straight or curly.
+QUOTED = re.compile(r"[\"\u201c\u201d]([^\"\u201c\u201d]+)[\"\u201c\u201d]")
+#: Double quotes, read as white space where the words are taken as written ('"Bob" Smith').
+_DOUBLE_QUOTES = str.maketrans({q: " " for q in '"“”«»'})
+#: A word as typed, an id whole.
+_TYPED = re.compile(r"[\w:.\-()]+")
 #: What `Said.form` holds for a form not made yet (a form may be None).
 _NOT_MADE = object()
 
@@ -99,6 +114,31 @@ class Said:
     @cached_property
     def tokens(self) -> Words:
         return tuple(w for w, _, _ in self.spans)
+
+    @cached_property
+    def written(self) -> Words:
+        return tuple(self.text.split())
+
+    @cached_property
+    def unquoted(self) -> Words:
+        return tuple(self.text.translate(_DOUBLE_QUOTES).split())
+
+    @cached_property
+    def quoted(self) -> tuple[tuple[int, int], ...]:
+        return tuple(m.span() for m in QUOTED.finditer(self.text))
+
+    @cached_property
+    def typed(self) -> Words:
+        return tuple(_TYPED.findall(self.text))
+
+    @cached_property
+    def numbers(self) -> tuple[Decimal, ...]:
+        """Exact: a float would turn 400 nines into infinity and round 10**24. "One" after a
+        determiner is a pronoun ("the red one"), never a number."""
+        said = self.lang.ask
+        digits = alpha2digit(said.pronoun_one.sub("\\1\\2\u2060", self.text), self.lang.code, threshold=0)
+        digits = said.half.sub(r"\1.5", said.thousands.sub("", digits))
+        return tuple((-1 if m.group(1) else 1) * Decimal(m.group(2)) for m in said.number.finditer(digits))
 
     @property
     def guessed(self) -> bool:

@@ -17,7 +17,7 @@ from kb.errors import InvalidCharacter, InvalidUnicode
 from kb.formats import EXPORTS
 from kb.rdfio import parse_data
 from kb.terms import ORO, format_triple
-from kb.unicode import check_text
+from kb.unicode import carried_line, check_text
 from scene.scene import Entity, Kind
 from scene.sync import entity_from_json, scene_from_json
 
@@ -192,3 +192,7 @@ def test_a_datatype_iri_holding_an_ampersand_is_refused(kb: KB) -> None:
     assert (kb.revision, kb.export("nt")) == before
     kb.load_data('<http://x.org/a?a=1&b=2> <http://x.org/b> <http://x.org/o?a=1&b=2> .', "turtle")  # elsewhere: fine
     assert len(parse_data(kb.export("xml"), "xml")) == 2
+
+
+def test_a_carried_line_is_the_text_carried_on_one_line() -> None:
+    assert carried_line("  bring\tme\n the \x07cup  ") == "bring me the cup"

@@ -294,7 +294,7 @@ def continuation(reader: Reader, p: Parse, heard: Said) -> Outcome | None:
         return None
     thing, _, place = found
     again = Parse("command", I.BRING_OBJECT, {"object": thing, "recipient": place}, words=(*thing, *place),
-                  marks={"recipient": to})  # fmt: skip
+                  marks={"recipient": (to,)})  # fmt: skip
     outcome = reader.act(again)
     return outcome.followed_up() if outcome.intent is not None else None
 

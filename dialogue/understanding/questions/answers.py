@@ -7,6 +7,7 @@ from collections.abc import Callable, Sequence
 
 from dialogue.reference.clarify import describe_options
 from dialogue.reference.clarify import question as clarifying_question
+from dialogue.reference.english import Words
 from dialogue.reference.grounding import Entity, Snapshot
 from dialogue.reference.lexicon import Lexicon, singular
 from dialogue.reference.resolution import ALL_KINDS, PERSON, content_words, resolve, said_phrase
@@ -205,7 +206,7 @@ def _on(lang: Language, snapshot: Snapshot, place: Entity, asked: str = "") -> s
     return " ".join(sentences)
 
 
-def is_there(lexicon: Lexicon, words: Sequence[str], speaker: str, locatives: Sequence[str]) -> str | None:
+def is_there(lexicon: Lexicon, words: Sequence[str], speaker: str, locatives: Sequence[Words]) -> str | None:
     """ "Is Marcus in the kitchen?": where the KB puts a person, said first ("No, as far as I know
     Marcus is in the study."), or that the robot sees them but knows no place ("I can see Bo, but I
     don't know whether they are in the kitchen."); None when the words are not one person and one

@@ -33,7 +33,7 @@ class _Words:
         self.who_sees = said.who_sees | said.who_not_a_name | said.else_
         self.see_words = said.see_words
         self.colour_words = said.colour_words
-        self.locatives = tuple(" ".join(p) for p in prepositions.having("asked-on"))
+        self.locatives = prepositions.having("asked-on")
         #: Relations beside support and zone a "what is ... X" question may ask about.
         self.near = prepositions.having("asked-near")
         #: Leads of an indirect question: "do you know where the keys are", "any idea where the
@@ -247,13 +247,13 @@ def _what(q: _Words, w: Words) -> Parse:
             "colour", w, thing=_strip_ends(rest[1:], q.is_are, q.is_are)
         )
     for near in q.near:  # "what's next to the window": what the KB puts there
-        found = split_at(("x", *rest), [" ".join(near)])
+        found = split_at(("x", *rest), [near])
         if found and found[2] and not set(found[0][1:]) - q.on_glue:
             return _q("what_near", w, place=found[2], relation=near)
     for sep in q.locatives:
         found = split_at(("x", *rest), [sep])
         if found and not set(found[0][1:]) - q.on_glue:
-            return _q("what_on", w, place=found[2], relation=(sep,))
+            return _q("what_on", w, place=found[2], relation=(" ".join(sep),))
     for i, word in enumerate(rest):  # "which cups do you see", "what fruit can you see"
         seeing = word in q.seeing_aux and rest[i + 1 : i + 3] == q.you_see
         if seeing and i > 0 and not set(rest[:i]) & q.not_which_see:

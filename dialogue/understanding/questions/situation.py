@@ -72,7 +72,7 @@ class _Locatives:
     """The prepositions a question puts someone somewhere with ("is Marcus *in* the kitchen")."""
 
     def __init__(self, lang: Language) -> None:
-        self.said = tuple(" ".join(p) for p in lang.prepositions.having("asked-on"))
+        self.said = lang.prepositions.having("asked-on")
 
 
 def _what_is(c: Context, thing: Words, owner: str | None, p: Parse) -> Outcome:

@@ -121,7 +121,7 @@ def command(lang: Language, original: Said, words: list[str]) -> Parse:
         asked = command(lang, original, list(chore))
         if asked.act == "command":
             return asked
-    said = Framed(lang, "", w, w, original)
+    said = Framed(lang, (), w, w, original)
     for construction in g.constructions:
         found = construction(said)
         if found is not None:
@@ -133,7 +133,7 @@ def command(lang: Language, original: Said, words: list[str]) -> Parse:
             continue
         # what to say is said as it was ("out of paper"), the roles of a frame read joined
         rest = tuple(words[len(verb) :]) if row.frame.special is not None else w[len(verb) :]
-        found = _fit(row, Framed(lang, " ".join(verb), rest, w, original))
+        found = _fit(row, Framed(lang, verb, rest, w, original))
         if found is not None:
             return found
     return Parse("unknown", words=w)
@@ -198,7 +198,7 @@ def _fit(row: Row, said: Framed) -> Parse | None:  # noqa: C901
         if at is not None and frame.here not in slots:  # "put it somewhere safe": where is asked
             direct, slots[frame.here] = direct[:at], direct[at:]
     if "extra" in slots:  # what a role the intent does not ground says is an adjunct ("for the van")
-        adjuncts = (*adjuncts, (marks.pop("extra"), *slots.pop("extra")))
+        adjuncts = (*adjuncts, (" ".join(marks.pop("extra")), *slots.pop("extra")))
     direct = _without_particles(g, direct, row)
     if direct[-1:] and direct[-1] in g.results:  # "get the room ready": no intent of the robot's
         return Parse("unknown", words=said.words)
@@ -206,12 +206,12 @@ def _fit(row: Row, said: Framed) -> Parse | None:  # noqa: C901
         return None  # "get out of my way": where not to be is all it says (no thing to get)
     if not direct and frame.direct is not None:
         direct = _second_phrase(g, slots)  # "bring to Ana the tray"
-    if frame.dative is not None and direct[:1] and direct[0] in g.me and marks.get("recipient") == "to":
+    if frame.dative is not None and direct[:1] and direct[0] in g.me and marks.get("recipient") == ("to",):
         # "bring me the keys to the red car": the keys of the car, brought to the speaker
         direct = (*direct[1:], "to", *slots.pop("recipient"))
         slots["recipient"] = ("me",)
         del marks["recipient"]
-    elif frame.dative is not None and direct[:1] and direct[0] in g.me and marks.get("recipient") == "for":
+    elif frame.dative is not None and direct[:1] and direct[0] in g.me and marks.get("recipient") == ("for",):
         # "pass me the drill for Marcus", "get me a cloth for the spill": the speaker is handed it,
         # whoever or whatever it is for
         adjuncts = (*adjuncts, ("for", *slots.pop("recipient")))
@@ -257,13 +257,13 @@ def _own_phrase_after(g: Grammar, direct: Words) -> bool:
     return any(direct[i] in g.own_phrase and direct[i - 1] not in g.modifier_start for i in starts)
 
 
-def _segments(g: Grammar, rest: Words, row: Row) -> tuple[Words, dict[str, Words], dict[str, str]]:
+def _segments(g: Grammar, rest: Words, row: Row) -> tuple[Words, dict[str, Words], dict[str, Words]]:
     """The words before any of the row's prepositions (the direct role's), and each role's phrase:
     from its preposition to the next role's (a role's preposition said again stays in its phrase:
     "put the cup on the tray on the table"), and the preposition of each."""
     direct: list[str] = []
     slots: dict[str, list[str]] = {}
-    marks: dict[str, str] = {}
+    marks: dict[str, Words] = {}
     current = direct
     i = 0
     while i < len(rest):
@@ -274,19 +274,20 @@ def _segments(g: Grammar, rest: Words, row: Row) -> tuple[Words, dict[str, Words
             marker = None  # "go down to the cellar", "put it over by the door": a particle
         if marker is not None and g.purpose(rest[i : i + 2]) is None:  # "something to eat" is no recipient
             current = slots[marker[1]] = []
-            marks[marker[1]] = " ".join(marker[0])
+            marks[marker[1]] = marker[0]
             i += len(marker[0])
             continue
         current.append(rest[i])
         i += 1
     # "take the calculator to": a role cut short is still said (asked for), never dropped
-    cut = {r for r, words in slots.items() if not words and marks[r] in g.cut_short and current is words}
+    cut = {r for r, words in slots.items()
+           if not words and " ".join(marks[r]) in g.cut_short and current is words}  # fmt: skip
     return tuple(direct), {role: tuple(words) for role, words in slots.items() if words or role in cut}, marks
 
 
 
 
-def _which_one_back(direct: Words, slots: dict[str, Words], marks: dict[str, str], row: Row) -> Words:
+def _which_one_back(direct: Words, slots: dict[str, Words], marks: dict[str, Words], row: Row) -> Words:
     """ "put the goggles on the front bench back on the shelf": a place said before "back" and the
     role's preposition again says which thing (the goggles on the front bench), the one after it
     where the thing goes. The direct phrase with its modifier; the role's phrase is cut to the
@@ -296,8 +297,8 @@ def _which_one_back(direct: Words, slots: dict[str, Words], marks: dict[str, str
         for i in range(1, len(words) - len(preposition)):
             if words[i] == "back" and words[i + 1 : i + 1 + len(preposition)] == preposition:
                 slots[role] = words[i + 1 + len(preposition) :]
-                first, marks[role] = marks[role], " ".join(preposition)
-                return (*direct, *first.split(), *words[:i])
+                first, marks[role] = marks[role], preposition
+                return (*direct, *first, *words[:i])
     return direct
 
 

@@ -17,8 +17,8 @@ from dialogue.understanding.language import Language
 from dialogue.understanding.lemmas import lemmas_of
 from dialogue.understanding.outcome import Outcome
 from dialogue.understanding.requests.frames import known_verbs, verbs
-from dialogue.understanding.said import Said, Text
-from dialogue.understanding.speech.plain import QUOTED, starts, strip_politeness
+from dialogue.understanding.said import QUOTED, Said, Text
+from dialogue.understanding.speech.plain import starts, strip_politeness
 from dialogue.understanding.speech.repair import asked_verb, normalise, strip_vocative
 
 

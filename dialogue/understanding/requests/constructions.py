@@ -42,7 +42,7 @@ class ConstructionGrammar:
         self.asked_whether = words.asked_whether
         self.asked_of = words.asked_of
         self.asked_not_after = words.asked_not_after
-        self.asked_as_you = {verb: tuple(said.split()) for verb, said in words.asked_as_you.items()}
+        self.asked_as_you = words.asked_as_you
         self.asked_plain = words.asked_plain
         self.adjuncts = said.all_adjuncts
         self.done = said.done
@@ -76,14 +76,14 @@ class ConstructionGrammar:
         self.enough_lead = words.enough_lead
         self.enough = words.enough
         #: The separators of `split_at`, as it takes them.
-        self.helped_to = [" ".join(p) for p in words.helped_to]
+        self.helped_to = words.helped_to
         self.copulas = words.copulas
         self.subject_ends = words.subject_ends
         self.quote_skipped = words.quote_skipped
         self.goodbyes = words.goodbyes
         self.goodbye = words.goodbye
         self.telling = words.telling
-        self.told_marks = [" ".join(p) for p in words.told_marks]
+        self.told_marks = words.told_marks
         self.groups = words.groups
 
 
@@ -93,8 +93,9 @@ class Framed:
 
     #: The language the words are read in.
     lang: Language
-    #: The verb phrase as the table has it ("pick", "get hold of"; "" before any verb is read).
-    verb: str
+    #: The verb phrase's words as the table has them ("pick", "get hold of"; none before any verb is
+    #: read).
+    verb: Words
     #: The words after the verb phrase (all the words when `verb` is "").
     rest: Words
     #: All the utterance's words, and the original text (for quotes and casing).
@@ -172,7 +173,7 @@ def belonging(said: Framed) -> Parse | None:
         return None
     thing, place, where = found
     parse = said.command(I.PLACE_OBJECT, object=thing, recipient=where)
-    return replace(parse, marks={"recipient": " ".join(place)})
+    return replace(parse, marks={"recipient": place})
 
 
 def where_it_goes(lang: Language, w: Words) -> tuple[Words, Words, Words] | None:
@@ -211,7 +212,7 @@ def a_hand(said: Framed) -> Parse | None:
         return None
     after = rest[at + len(hand) :]
     after = after[1:] if after[:1] and after[0] in c.a_hand_particles else after
-    return helping(Framed(said.lang, "help", (*rest[:at], *after), said.words, said.original))
+    return helping(Framed(said.lang, ("help",), (*rest[:at], *after), said.words, said.original))
 
 
 def company(said: Framed) -> Parse | None:

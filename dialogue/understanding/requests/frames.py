@@ -27,8 +27,9 @@ from dialogue.understanding.requests import constructions as C
 from dialogue.understanding.requests import needs, telling
 from dialogue.understanding.tables.frames import FrameRow
 
-#: How a frame makes the free-form text of its intent from (its language, the verb, the words after it).
-Text = Callable[[Language, str, Words], str | None]
+#: How a frame makes the free-form text of its intent from (its language, the verb's words, the words
+#: after it).
+Text = Callable[[Language, Words, Words], str | None]
 Special = Callable[[C.Framed], Parse | None]
 
 
@@ -36,11 +37,11 @@ def _named(name: str) -> Text:
     return lambda lang, verb, rest: name
 
 
-def _verb(lang: Language, verb: str, rest: Words) -> str:
-    return verb
+def _verb(lang: Language, verb: Words, rest: Words) -> str:
+    return " ".join(verb)
 
 
-def _activity(lang: Language, verb: str, rest: Words) -> str | None:
+def _activity(lang: Language, verb: Words, rest: Words) -> str | None:
     """ "play a game with me" -> "play_game"; "start (to) vacuum" -> "vacuum"."""
     words = rest[1:] if rest[:1] == ("to",) else rest
     words = words[: words.index("for")] if "for" in words[1:] else words  # ("story time for the little ones")
@@ -50,12 +51,12 @@ def _activity(lang: Language, verb: str, rest: Words) -> str | None:
     return "_".join(said) or None
 
 
-def _doing(lang: Language, verb: str, rest: Words) -> str | None:
+def _doing(lang: Language, verb: Words, rest: Words) -> str | None:
     """ "water the plants" -> "water_plants": the verb names the activity."""
-    return _activity(lang, verb, (*verb.split(), *rest))
+    return _activity(lang, verb, (*verb, *rest))
 
 
-def _stopping(lang: Language, verb: str, rest: Words) -> str | None:
+def _stopping(lang: Language, verb: Words, rest: Words) -> str | None:
     return "_".join(w for w in rest if w not in lang.requests.stop_filler) or None
 
 

@@ -150,8 +150,8 @@ class Referents:
         return resolve(self.lexicon, words, PERSON).one is not None
 
     def named_across(
-        self, slots: dict[str, Words], marks: dict[str, str]
-    ) -> tuple[dict[str, Words], dict[str, str]]:
+        self, slots: dict[str, Words], marks: dict[str, Words]
+    ) -> tuple[dict[str, Words], dict[str, Words]]:
         """ "take the key card for room 309 to Mrs Okafor": a thing whose name the grammar cut at a
         role's preposition is the thing called so, and the role is what follows its name (said
         after a preposition of its own), when the words up to there are exactly one name."""
@@ -161,7 +161,7 @@ class Referents:
             if role == "object" or mark is None or not thing:
                 continue
             for end in range(len(words), 0, -1):
-                named = (*thing, *mark.split(), *words[:end])
+                named = (*thing, *mark, *words[:end])
                 bare = named[1:] if named[0] in self.said.np_start else named
                 found = self.lexicon.mentions(bare)
                 if len(found) != 1 or (found[0].start, found[0].end) != (0, len(bare)):
@@ -171,7 +171,7 @@ class Referents:
                 rest, out = words[end:], {**slots, "object": named}
                 kept = {r: m for r, m in marks.items() if r != role}
                 if rest and rest[0] in self.said.function_words and rest[1:]:  # "... to Mrs Okafor"
-                    out[role], kept[role] = rest[1:], rest[0]
+                    out[role], kept[role] = rest[1:], (rest[0],)
                 else:  # (the role said only as part of the name: read as the grammar cut it)
                     break
                 return out, kept

@@ -36,7 +36,7 @@ def compound(reader: Reader, heard: Said, parts: Sequence[Part]) -> Outcome | No
     None when a part is not understood (the whole is then read otherwise)."""
     done: list[Outcome] = []
     verbs: list[str | None] = []  # the verb of each part done
-    cannot: list[str] = []
+    cannot: list[Said] = []
     context: list[Utterance] = []
     aside = False
     for n, part in enumerate(parts):
@@ -69,7 +69,7 @@ def compound(reader: Reader, heard: Said, parts: Sequence[Part]) -> Outcome | No
             return outcome  # ask about this part first: nothing is done until it is clear
         elif part.no_intent or _unskilled(reader, said) or (done and _asks(reader, said)):
             # ("go to the kitchen and tell me what's there": answered now, it would answer wrong)
-            cannot.append(part.text)
+            cannot.append(heard.of(part.text))
         else:  # a part that fails says why; one not understood makes the whole not understood
             return outcome if outcome.understood else None
     if not done or (aside and not {o.intent for o in done} & {I.MOVE_TO, I.GUIDE}):
@@ -77,7 +77,7 @@ def compound(reader: Reader, heard: Said, parts: Sequence[Part]) -> Outcome | No
     done = _taken_first(reader, _fetched_for(reader, done, verbs))
     lang = reader.lang
     acks = [then(lang, [o.reply for o in done])]
-    unable = [say(lang, "request.cannot", action=said_back(lang, c)) for c in cannot]
+    unable = [say(lang, "request.cannot", action=said_back(lang, c.written)) for c in cannot]
     whole = replace(done[0], reply=" ".join([*acks, *unable]), more=tuple(done[1:]))
     if whole.doubts:  # each part said back in the question
         return proposed(lang, whole, [o.reply for o in done], unable)

@@ -33,4 +33,4 @@ def unskilled(lang: Language, p: Parse) -> Outcome | None:
     words may say what they cannot read ("water jug to Edith"), which a model behind them may."""
     if skilled(lang, p):
         return None
-    return Outcome(say(lang, "request.cannot", action=said_back(lang, " ".join(p.words))), understood=False)
+    return Outcome(say(lang, "request.cannot", action=said_back(lang, p.words)), understood=False)

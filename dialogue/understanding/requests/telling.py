@@ -9,8 +9,9 @@ from dialogue import intents as I
 from dialogue.reference.english import Words
 from dialogue.understanding.parsed import Parse
 from dialogue.understanding.requests.constructions import ConstructionGrammar, Framed
+from dialogue.understanding.said import QUOTED
 from dialogue.understanding.speech.clauses import finite
-from dialogue.understanding.speech.plain import QUOTED, expanded, message, original_text, split_at
+from dialogue.understanding.speech.plain import expanded, message, original_text, split_at
 
 
 def letting_know(said: Framed) -> Parse | None:
@@ -18,7 +19,7 @@ def letting_know(said: Framed) -> Parse | None:
     if "know" not in said.rest:
         return None
     told = tuple(x for x in said.rest if x != "know")
-    return speech(Framed(said.lang, "tell", told, said.words, said.original))
+    return speech(Framed(said.lang, ("tell",), told, said.words, said.original))
 
 
 def _plural(word: str) -> bool:
@@ -57,7 +58,7 @@ def _subject_phrase(c: ConstructionGrammar, rest: Words, i: int) -> bool:
 def speech(said: Framed) -> Parse:
     """What to say, to whom: quoted words kept as they are, "tell X that/to...", "say X to Y"."""
     c = said.lang.derived(ConstructionGrammar)
-    verb, rest, original = said.verb, said.rest, said.original
+    verb, rest, original = " ".join(said.verb), said.rest, said.original
     quoted = QUOTED.search(original.text)
     if quoted:
         # The quoted words are the text; the recipient is found outside the quotes only.
@@ -97,7 +98,7 @@ def speech(said: Framed) -> Parse:
         return said.command(I.SAY, text=said_text, recipient=recipient)
     if rest[:1] == ("to",):  # "say to Sandeep that the film starts soon": to whom, then what
         return _said_to(said, rest[1:])
-    found = split_at(rest, ["to"])
+    found = split_at(rest, [("to",)])
     text_words, recipient = (found[0], found[2]) if found is not None else (rest, ())
     if not text_words:
         return unknown
@@ -107,7 +108,7 @@ def speech(said: Framed) -> Parse:
 def _said_to(said: Framed, rest: Words) -> Parse:
     """ "(say) to Sandeep that the film starts soon", "(say) to Ana it's time": the person, then the
     message ("that" or a clause of its own starts it)."""
-    found = split_at(rest, ["that"])
+    found = split_at(rest, [("that",)])
     clause = _clause_start(said.lang.derived(ConstructionGrammar), rest)
     if found is not None and (clause is None or len(found[0]) <= clause):
         recipient, text = found[0], found[2]

@@ -58,7 +58,7 @@ class Grammar:
         self.paths = lang.prepositions.words("path")
         #: Two-word prepositions read as one word, so that their "to" is never taken for a
         #: recipient's ("next to": "beside").
-        self.joined = {tuple(p.split()): one for p, one in lang.prepositions.column("reads_as").items()}
+        self.joined = lang.prepositions.phrase_column("reads_as")
         #: Prepositions that never end a request as a particle: a role said with one and nothing
         #: after it was cut short ("give it to"), where "come in", "hold on" end with a particle.
         self.cut_short = lang.prepositions.words("cut-short")

@@ -7,7 +7,6 @@ dialogue.understanding.speech.repair.
 
 from __future__ import annotations
 
-import re
 from collections.abc import Sequence
 from functools import lru_cache
 
@@ -15,8 +14,6 @@ from dialogue.reference.english import Words, lowered
 from dialogue.understanding.language import Language
 from dialogue.understanding.lemmas import lemmas_of
 from dialogue.understanding.said import Said, Text
-
-QUOTED = re.compile(r"[\"\u201c\u201d]([^\"\u201c\u201d]+)[\"\u201c\u201d]")
 
 
 class _Speech:
@@ -256,11 +253,10 @@ def _for_someone(said: _Speech, words: list[str]) -> bool:
     return False
 
 
-def split_at(words: Sequence[str], separators: Sequence[str]) -> tuple[Words, str, Words] | None:
+def split_at(words: Sequence[str], separators: Sequence[Words]) -> tuple[Words, str, Words] | None:
     """First occurrence (after position 0) of any separator phrase: (before, separator, after)."""
-    seps = [tuple(s.split()) for s in separators]
     for i in range(1, len(words)):
-        for sep in seps:
+        for sep in separators:
             if tuple(words[i : i + len(sep)]) == sep:
                 return tuple(words[:i]), " ".join(sep), tuple(words[i + len(sep) :])
     return None

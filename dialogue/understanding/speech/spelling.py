@@ -21,7 +21,6 @@ caller may leave to a model (dialogue.llm.hybrid); one to a grammar word is not.
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Iterator
 from dataclasses import dataclass
 
 from jellyfish import metaphone
@@ -37,7 +36,7 @@ from dialogue.understanding.requests.frames import frames
 from dialogue.understanding.said import Said, Taken, Text
 from dialogue.understanding.speech.heardnames import heard_name
 from dialogue.understanding.speech.homophones import misheard
-from dialogue.understanding.speech.plain import QUOTED
+from dialogue.understanding.tables.base import words_in
 
 _FAR_KEY = 1.5
 #: Two letters typed in the wrong order, the commonest slip of fast typing ("teh"): a little cheaper
@@ -66,8 +65,7 @@ class _Slips:
         self.people = closed.me | lang.requests.referents.person_objects
         #: Particles of the way after which a preposition says where ("show him through two surgery
         #: one").
-        groups = lang.frames.groups
-        particles = frozenset(groups.get("motion", "").split()) | frozenset(groups.get("carry", "").split())
+        particles = lang.frames.group_words("motion") | lang.frames.group_words("carry")
         self.way = particles | lang.prepositions.words("path")
         self.np_start = closed.np_start
         self.numbers = closed.numbers
@@ -90,7 +88,7 @@ def corrected(spoken: Text, lexicon: Lexicon) -> Spelled:
     slips = lexicon.lang.derived(_Slips)
     u = Said.read(lexicon.lang, spoken)
     text = u.text
-    quoted = [m.span() for m in QUOTED.finditer(text)]
+    quoted = u.quoted
     fixes: list[tuple[int, int, Taken]] = []
     words = u.spans
     said = [w for w, _, _ in words]
@@ -322,19 +320,9 @@ def _grammar_tables(lang: Language) -> tuple[object, ...]:
 def _grammar_words(lang: Language) -> frozenset[str]:
     found: set[str] = set()
     for table in _grammar_tables(lang):
-        found.update(_strings(table))
+        found.update(words_in(table))
     for frame in frames(lang):
         texts = (frame.verbs, frame.particles, *frame.slots.values())
         found.update(w for text in texts for p in phrases(text) for w in p)
     return frozenset(w for w in found if w.isalpha())
 
-
-def _strings(value: object) -> Iterator[str]:
-    if isinstance(value, str):
-        yield from value.replace("|", " ").split()
-    elif isinstance(value, dict):
-        yield from _strings(tuple(value))
-        yield from _strings(tuple(value.values()))
-    elif isinstance(value, Iterable) and isinstance(value, (frozenset, set, tuple, list)):
-        for item in value:
-            yield from _strings(item)

@@ -55,7 +55,7 @@ class _Words:
         self.friends = said.friends
         self.put = said.put
         #: Locative prepositions, longest first, and the property each states.
-        self.states = {tuple(p.split()): state for p, state in lang.prepositions.column("states").items()}
+        self.states = lang.prepositions.phrase_column("states")
         self.be = said.be
         self.polite = said.polite
         self.no = said.no
@@ -206,10 +206,10 @@ class Statements(Likings):
         return None
 
     def _name_like(self, words: Words, clause: Said) -> bool:
-        return name_like(self.lang, words, original_text(self.lang, clause, list(words)))
+        return name_like(self.lang, words, clause.of(original_text(self.lang, clause, list(words))))
 
     def _named(self, who: str, words: Words, clause: Said) -> FactClaim:
-        name = clean_name(original_text(self.lang, clause, list(words)))
+        name = clean_name(clause.of(original_text(self.lang, clause, list(words))))
         if not name:
             raise Unclaimed  # longer than any name
         return fact(who, "name", name)

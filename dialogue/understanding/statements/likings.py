@@ -26,7 +26,7 @@ class _Words:
         self.like = said.like
         self.hate = said.hate
         #: Whole leads that say a liking of what follows ("I'm fond of tea", "I'm not a fan of coffee").
-        self.leads = {tuple(lead.split()): predicate for lead, predicate in said.leads.items()}
+        self.leads = said.leads
         self.favourite = said.favourite
         #: What a preference is over ("I prefer tea to coffee").
         self.over = said.over

@@ -15,36 +15,36 @@ from lemminflect import getInflection
 
 from dialogue.understanding.language import Language
 from dialogue.understanding.lemmas import lemmas_of
+from dialogue.understanding.said import Said
 
 Words = tuple[str, ...]
 #: Longest name a person may give (characters).
 MAX_NAME = 60
 #: Parts of speech a lower-case word of a name is not.
 _NOT_NAME_POS = frozenset({"ADJ", "ADV", "AUX"})
-_QUOTES = str.maketrans({q: " " for q in "\"“”«»"})
 #: Single quotes quote a name only at its words' edges ("'Bobby'"; "O'Brien" keeps its own).
 _SINGLE_QUOTES = "'‘’`"
 
 
-def clean_name(text: str) -> str:
+def clean_name(told: Said) -> str:
     """A name as told ("bob" -> "Bob", "mary jane" -> "Mary Jane", '"Bob" Smith' -> "Bob Smith";
     casing kept when it has any), or "" when it is no name (no letters, or too long)."""
-    words = (w.strip(_SINGLE_QUOTES) for w in text.translate(_QUOTES).split())
+    words = (w.strip(_SINGLE_QUOTES) for w in told.unquoted)
     name = " ".join(w for w in words if w).strip(" .,!?;:")
     if not name or len(name) > MAX_NAME or not any(c.isalpha() for c in name):
         return ""
     return name if name != name.lower() else name.title()
 
 
-def name_like(lang: Language, words: Words, original: str) -> bool:
+def name_like(lang: Language, words: Words, original: Said) -> bool:
     """Whether the words of "I'm X" are a name: one to three words, none a function word, and
     (for lower-case speech-recogniser text) none an adjective, adverb, participle or number."""
     # ("I'm peckish": a need the rules' grammar reads, whatever a lemmatiser knows of the word)
     needs, not_names = lang.requests.needs, lang.statements.names.not_names
     if not 1 <= len(words) <= 3 or any(w in not_names or w in needs or not w.isalpha() for w in words):
         return False
-    if original != original.lower():  # written casing tells names apart: "I'm Frank", "I'm frank"
-        return all(part[:1].isupper() for part in original.split())
+    if original.text != original.text.lower():  # written casing tells names apart: "I'm Frank", "I'm frank"
+        return all(part[:1].isupper() for part in original.written)
     closed = lang.words.any_function_word
     return not any(w in closed or _descriptive(w) for w in words) and not words[0].endswith("ing")
 

@@ -4,6 +4,7 @@ in a file ("a b c", "a b|c"), and the base of every table."""
 from __future__ import annotations
 
 import re
+from collections.abc import Iterable, Iterator
 from typing import Annotated, Any
 
 from pydantic import BaseModel, BeforeValidator, ConfigDict
@@ -30,6 +31,18 @@ def _phrases(value: Any) -> Any:
 def _phrase(value: Any) -> Any:
     """ "what is" -> ("what", "is")."""
     return tuple(value.split()) if isinstance(value, str) else value
+
+
+def words_in(value: object) -> Iterator[str]:
+    """Every word of a table's values, however nested ("a b|c", a dict's keys and values, phrases)."""
+    if isinstance(value, str):
+        yield from value.replace("|", " ").split()
+    elif isinstance(value, dict):
+        yield from words_in(tuple(value))
+        yield from words_in(tuple(value.values()))
+    elif isinstance(value, Iterable) and isinstance(value, (frozenset, set, tuple, list)):
+        for item in value:
+            yield from words_in(item)
 
 
 WordSet = Annotated[frozenset[str], BeforeValidator(_words)]

@@ -42,3 +42,7 @@ class FrameTable(Table):
     constructions: tuple[str, ...] = ()
     groups: dict[str, str] = {}
     frame: tuple[FrameRow, ...] = ()
+
+    def group_words(self, name: str) -> frozenset[str]:
+        """The words of a group of single words ("out over back"), none for a group it lacks."""
+        return frozenset(self.groups.get(name, "").split())

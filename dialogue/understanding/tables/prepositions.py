@@ -52,3 +52,8 @@ class Prepositions(Table):
     def column(self, name: str) -> dict[str, Any]:
         """Each preposition that has a value in a column, with it ("said_back": "beside" -> "next to")."""
         return {p: v for p, row in self.prepositions.items() if (v := getattr(row, name))}
+
+    def phrase_column(self, name: str) -> dict[Words, Any]:
+        """A column keyed by each preposition's words ("next to" -> ("next", "to")): what a stage
+        matches against the words of an utterance."""
+        return {tuple(p.split()): v for p, v in self.column(name).items()}

@@ -52,7 +52,7 @@ class ConstructionWords(Table):
     asked_whether: WordSet = frozenset()
     asked_of: WordSet = frozenset()
     asked_not_after: WordSet = frozenset()
-    asked_as_you: dict[str, str] = {}
+    asked_as_you: dict[str, Phrase] = {}
     asked_plain: Phrase = ()
 
 

@@ -25,7 +25,7 @@ class LikingWords(Table):
     happenings: WordSet = frozenset()
     appraised: PhraseSet = frozenset()
     clause: WordSet = frozenset()
-    leads: dict[str, str] = {}
+    leads: dict[Phrase, str] = {}
     negation: Phrases = ()
     negated: WordSet = frozenset()
     is_my: Phrase = ()

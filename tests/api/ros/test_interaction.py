@@ -14,8 +14,10 @@ from pathlib import Path
 from typing import Any
 
 from api.settings import Settings
-from dialogue.engine import SORRY
+from dialogue.engine import sorry
 from tests.api.ros.conftest import Probe, RosNode
+
+SORRY = sorry()  # what the engine says when no answer comes in time
 
 INTERACTION = "/chatbot/dialogue_interaction"
 DI = "chatbot_msgs/srv/DialogueInteraction"

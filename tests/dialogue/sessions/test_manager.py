@@ -5,7 +5,7 @@ import pytest
 
 from dialogue import intents as I
 from dialogue.ask import AskError
-from dialogue.engine import NO_ANSWER_IN_TIME, SORRY, DialogueEngine, EngineConfig, TurnResult
+from dialogue.engine import NO_ANSWER_IN_TIME, DialogueEngine, EngineConfig, TurnResult, sorry
 from dialogue.history import ASSISTANT_USER_ID, SYSTEM_USER_ID, Utterance
 from dialogue.llm.base import ChatRequest
 from dialogue.llm.testing import FunctionModel, ScriptedModel
@@ -19,6 +19,8 @@ from dialogue.sessions.manager import (
 )
 from dialogue.sessions.rolestate import Progress
 from kb import KB, KbError
+
+SORRY = sorry()  # what the engine says when no answer comes in time
 
 
 def test_default_dialogue_always_exists(kitchen: KB) -> None:

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import asyncio
 from collections import Counter
+from decimal import Decimal
 
 import pytest
 
@@ -115,3 +116,18 @@ def test_the_engine_and_the_rules_share_the_reading_of_a_turn(
     result = asyncio.run(engine.turn(text, speaker=BOB, history=list(utterances(history))))
     assert result.backend == "rules"
     assert scanned[text] == 1  # (what the turn names, for the prompt's share of the KB, and every reader)
+
+
+def test_the_words_as_written_and_the_quotes_are_the_utterances() -> None:
+    """What keeps the casing or the quotes reads it off the utterance, not off its text again."""
+    said = Said(language(), 'say “Stop now” to  "Bob" O\'Brien')
+    assert said.written == ("say", "“Stop", "now”", "to", '"Bob"', "O'Brien")
+    assert said.unquoted == ("say", "Stop", "now", "to", "Bob", "O'Brien")
+    assert [said.text[a:b] for a, b in said.quoted] == ["“Stop now”", '"Bob"']
+    assert said.word("Bob").written == ("Bob",)
+
+
+def test_the_ids_as_typed_and_the_numbers_said_are_the_utterances() -> None:
+    said = Said(language(), "put cup_1 on dbr:Table_(furniture), minus three and a half, the red one")
+    assert said.typed[:3] == ("put", "cup_1", "on") and "dbr:Table_(furniture)" in said.typed
+    assert said.numbers == (Decimal("-3.5"),)

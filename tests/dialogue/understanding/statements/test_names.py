@@ -2,13 +2,17 @@
 
 from __future__ import annotations
 
+from dialogue.understanding.said import Said
 from dialogue.understanding.statements import names
-from dialogue.understanding.statements.names import clean_name
 from tests.dialogue.conftest import english
 
 
+def clean_name(told: str) -> str:
+    return names.clean_name(Said(english(), told))
+
+
 def name_like(words: tuple[str, ...], original: str) -> bool:
-    return names.name_like(english(), words, original)
+    return names.name_like(english(), words, Said(english(), original))
 
 
 def given_name(words: tuple[str, ...]) -> bool:
