@@ -32,7 +32,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from decimal import Decimal
 from functools import cached_property
-from typing import Any, TypeVar, cast
+from typing import Any, TypeVar
 
 from text_to_num import alpha2digit
 
@@ -46,8 +46,6 @@ QUOTED = re.compile(r"[\"\u201c\u201d]([^\"\u201c\u201d]+)[\"\u201c\u201d]")
 _DOUBLE_QUOTES = str.maketrans({q: " " for q in '"“”«»'})
 #: A word as typed, an id whole.
 _TYPED = re.compile(r"[\w:.\-()]+")
-#: What `Said.form` holds for a form not made yet (a form may be None).
-_NOT_MADE = object()
 
 
 @dataclass(frozen=True)
@@ -147,10 +145,11 @@ class Said:
 
     def form(self, make: Callable[[Said], T]) -> T:
         """A form of the words (`make` of this text, immutable), made on first use."""
-        made = self._forms.get(make, _NOT_MADE)
-        if made is _NOT_MADE:
+        try:  # (a subscript, no other call: the stages ask for the same forms ~25 times a turn)
+            made: T = self._forms[make]
+        except KeyError:
             made = self._forms[make] = make(self)
-        return cast(T, made)
+        return made
 
 
 #: What a stage reads: a text of the turn, or a text read on its own.
