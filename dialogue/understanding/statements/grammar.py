@@ -28,7 +28,7 @@ from dialogue.understanding.language import Language
 from dialogue.understanding.replies import say
 from dialogue.understanding.said import Said, Text
 from dialogue.understanding.speech.clauses import clauses as run_on_clauses
-from dialogue.understanding.speech.plain import original_text
+from dialogue.understanding.speech.plain import Prefixes, original_text
 from dialogue.understanding.speech.repair import asked_verb, normalise
 from dialogue.understanding.statements.clause import Refused, Told, Unclaimed, Words, fact
 from dialogue.understanding.statements.likings import Likings
@@ -68,7 +68,8 @@ class _Words:
         self.pointed = said.pointed
         #: Greetings said before more words in the same clause, longest first ("hi there my name
         #: is..."); "morning", "evening" and "welcome" may be what a statement is about.
-        self.openings = [g for g in lang.social.greetings_longest_first if g not in said.greeting_topics]
+        self.greetings = Prefixes(lang.social.greetings_longest_first)
+        self.openings = Prefixes(g for g in self.greetings if g not in said.greeting_topics)
         #: Words said last that are not part of the statement ("..., please").
         self.trailing = said.trailing
         #: "Bob is my name", "I am Bob", "his name is Rob", "it is Rob", "this is Maria".
@@ -93,7 +94,7 @@ def _holds_people(entity: Entity) -> bool:
 def _after_greeting(lang: Language, words: Words) -> Words | None:
     """The words after a greeting that opens them, when more follows it."""
     openings = lang.derived(_Words).openings
-    found = next((g for g in openings if words[: len(g)] == g and len(words) > len(g)), None)
+    found = next((g for g in openings.of(words) if len(words) > len(g)), None)
     return words[len(found) :] if found is not None else None
 
 
@@ -156,8 +157,7 @@ class Statements(Likings):
         social = self.lang.social.social
         if words in social:
             return True
-        return any(words[: len(g)] == g and words[len(g) :] in social | {()}
-                   for g in self.lang.social.greetings_longest_first)  # fmt: skip
+        return any(words[len(g) :] in social | {()} for g in self.said.greetings.of(words))
 
     # -- one clause ----------------------------------------------------------------------------
     def _statement(self, w: Words, clause: Said) -> list[FactClaim]:
