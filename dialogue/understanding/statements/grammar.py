@@ -20,6 +20,7 @@ a zone or furniture the KB knows ("I'm on my way", "I'm on the phone").
 from __future__ import annotations
 
 import re
+from functools import cached_property
 
 from dialogue.reference.grounding import Entity, Kind
 from dialogue.reference.resolution import PLACE
@@ -101,9 +102,9 @@ def _after_greeting(lang: Language, words: Words) -> Words | None:
 class Statements(Likings):
     """Reads statements against a lexicon, for one speaker and the dialogue's history."""
 
-    @property
+    @cached_property
     def said(self) -> _Words:
-        """The language's words of statements."""
+        """The language's words of statements (asked ~18 times a turn: looked up once per reader)."""
         return self.lang.derived(_Words)
 
 
