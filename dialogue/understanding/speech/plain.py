@@ -157,8 +157,9 @@ def unrepeated(words: list[str]) -> list[str]:
     out: list[str] = []
     for w in words:
         out.append(w)
+        size = len(out)
         for n in (1, 2, 3):
-            if len(out) >= 2 * n and out[-n:] == out[-2 * n : -n] and not out[-1].isdigit():
+            if size >= 2 * n and out[-n:] == out[-2 * n : -n] and not out[-1].isdigit():
                 del out[-n:]
                 break
     return out
