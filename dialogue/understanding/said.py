@@ -92,7 +92,11 @@ class Said:
         said = self._turn.get(token)
         if said is None:
             said = Said(self.lang, token, self.taken, self._turn)
-            said.__dict__["marked"] = ((token, 0, len(token)),)  # (what scanning it would give)
+            # What scanning it would give, set at once (each of the three, made on first use, is
+            # four calls through cached_property's lock: a turn reads its words one by one).
+            marked = ((token, 0, len(token)),)
+            spanned = () if token in MARKS else marked
+            said.__dict__.update(marked=marked, spans=spanned, tokens=(token,) if spanned else ())
         return said
 
     def rewritten(self, text: str, taken: tuple[Taken, ...] = ()) -> Said:
