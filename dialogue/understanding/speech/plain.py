@@ -132,7 +132,8 @@ def without_fillers(lang: Language, words: list[str]) -> list[str]:
     drop: set[int] = set()
     for i in range(1, len(words)):  # "pick up the... what's it called... the tongs"
         found = said.searching.first(words, i)
-        drop.update(range(i, i + len(found)) if found else ())
+        if found:
+            drop.update(range(i, i + len(found)))
     for i in range(1, len(words) - 1):
         nxt = words[i + 2] if i + 2 < len(words) else ""
         pair = tuple(words[i : i + 2]) in said.filler_pairs
@@ -242,8 +243,11 @@ class Prefixes:
 
     def first(self, words: Sequence[str], at: int = 0) -> Words | None:
         """The first prefix of the table the words start with (from the word at `at`), if any."""
-        found = self.of(words, at)
-        return found[0] if found else None
+        head = words[at : at + 1]  # (as `of`, without its call: asked at every word of some stages)
+        if self._scan or (head and head[0] in self._by_first):
+            found = self.of(words, at)
+            return found[0] if found else None
+        return None
 
 
 def strip_politeness(lang: Language, words: list[str], robot_name: str = "") -> list[str]:
