@@ -117,8 +117,9 @@ def _serve_options(serve: argparse.ArgumentParser) -> None:
     _ontology_option(serve)
     serve.add_argument("--llm", help="model backend: rules (default), ollama:MODEL[@URL], openai:MODEL@URL, "
                                      "openai-json:MODEL@URL (llama.cpp's server), llamacpp:PATH.gguf or "
-                                     "llamacpp:smollm2 (the 'local' extra), hybrid:SPEC (rules first, the "
-                                     "model SPEC only when they do not understand)")
+                                     "llamacpp:smollm2 (the 'local' extra; '?threads=N' for N llama.cpp "
+                                     "threads), hybrid:SPEC (rules first, the model SPEC only when they do "
+                                     "not understand)")
     serve.add_argument("--token", help="require 'Authorization: Bearer TOKEN' for writes")
     serve.add_argument("--config", type=Path, help="TOML or JSON settings file (or $SITUATED_CONFIG)")
     serve.add_argument("--store", help="keep the KB in a SPARQL 1.1 store, e.g. "

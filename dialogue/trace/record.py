@@ -241,16 +241,17 @@ class TraceRecorder:
         results: str | None = None,
     ) -> TurnTrace:
         trace = self.trace
-        trace.response, trace.backend, trace.answered_by = clip(response), backend, answered_by
-        trace.intents, trace.error_msg, trace.clarify = list(intents), clip(error_msg), clarify
-        trace.dialogue_terminal, trace.results = dialogue_terminal, results
-        trace.repaired = bool(trace.validation_errors) and answered_by == "model" and not error_msg
         if not trace.stages or trace.stages[-1].name != "total":
             trace.stages.append(Stage(name="total", ms=_ms(self._start)))
-        # What the recorder could still change is copied, one level deep (a deep copy of the
-        # pydantic models was a tenth of a rules turn): its lists, and each exchange.
-        kept = ("stages", "validation_errors", "notes", "intents")
-        lists = {name: list(getattr(trace, name)) for name in kept}
-        exchanges = [exchange.model_copy() for exchange in trace.exchanges]
-        snapshot = trace.snapshot.model_copy() if trace.snapshot is not None else None
-        return trace.model_copy(update={**lists, "exchanges": exchanges, "snapshot": snapshot})
+        # The turn's outcome is set on the one copy made (each attribute set on a pydantic model is
+        # three calls), and what the recorder could still change is copied, one level deep (a deep
+        # copy of the pydantic models was a tenth of a rules turn): its lists, and each exchange.
+        return trace.model_copy(update={
+            "response": clip(response), "backend": backend, "answered_by": answered_by,
+            "intents": list(intents), "error_msg": clip(error_msg), "clarify": clarify,
+            "dialogue_terminal": dialogue_terminal, "results": results,
+            "repaired": bool(trace.validation_errors) and answered_by == "model" and not error_msg,
+            "stages": list(trace.stages), "validation_errors": list(trace.validation_errors),
+            "notes": list(trace.notes), "exchanges": [exchange.model_copy() for exchange in trace.exchanges],
+            "snapshot": trace.snapshot.model_copy() if trace.snapshot is not None else None,
+        })  # fmt: skip

@@ -41,6 +41,7 @@ from dialogue.understanding.requests.referents import Referents, relational
 from dialogue.understanding.requests.sequence import compound, wished
 from dialogue.understanding.requests.skills import unskilled
 from dialogue.understanding.requests.terse import terse, unasked_thing
+from dialogue.understanding.requests.vocabulary import Grammar
 from dialogue.understanding.said import Said, Text
 from dialogue.understanding.speech.clauses import clauses, described, description
 from dialogue.understanding.speech.letters import joined
@@ -155,7 +156,7 @@ class Interpreter:
     def _conditioned(self, heard: Said) -> bool:
         """Whether the words start with a condition ("if Ana comes", "when the bell goes")."""
         said = tuple(expanded(self.lang, heard))
-        return said[:1] == ("if",) or any(said[: len(c)] == c for c in self.lang.requests.conditions)
+        return said[:1] == ("if",) or bool(self.lang.derived(Grammar).conditions.of(said))
 
     def part(self, heard: Said) -> Outcome:
         """One part of a compound request, read as a request of its own."""

@@ -32,7 +32,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from decimal import Decimal
 from functools import cached_property
-from typing import Any, TypeVar, cast
+from typing import Any, TypeVar
 
 from text_to_num import alpha2digit
 
@@ -46,8 +46,6 @@ QUOTED = re.compile(r"[\"\u201c\u201d]([^\"\u201c\u201d]+)[\"\u201c\u201d]")
 _DOUBLE_QUOTES = str.maketrans({q: " " for q in '"“”«»'})
 #: A word as typed, an id whole.
 _TYPED = re.compile(r"[\w:.\-()]+")
-#: What `Said.form` holds for a form not made yet (a form may be None).
-_NOT_MADE = object()
 
 
 @dataclass(frozen=True)
@@ -94,7 +92,11 @@ class Said:
         said = self._turn.get(token)
         if said is None:
             said = Said(self.lang, token, self.taken, self._turn)
-            said.__dict__["marked"] = ((token, 0, len(token)),)  # (what scanning it would give)
+            # What scanning it would give, set at once (each of the three, made on first use, is
+            # four calls through cached_property's lock: a turn reads its words one by one).
+            marked = ((token, 0, len(token)),)
+            spanned = () if token in MARKS else marked
+            said.__dict__.update(marked=marked, spans=spanned, tokens=(token,) if spanned else ())
         return said
 
     def rewritten(self, text: str, taken: tuple[Taken, ...] = ()) -> Said:
@@ -147,10 +149,11 @@ class Said:
 
     def form(self, make: Callable[[Said], T]) -> T:
         """A form of the words (`make` of this text, immutable), made on first use."""
-        made = self._forms.get(make, _NOT_MADE)
-        if made is _NOT_MADE:
+        try:  # (a subscript, no other call: the stages ask for the same forms ~25 times a turn)
+            made: T = self._forms[make]
+        except KeyError:
             made = self._forms[make] = make(self)
-        return cast(T, made)
+        return made
 
 
 #: What a stage reads: a text of the turn, or a text read on its own.

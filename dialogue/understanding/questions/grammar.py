@@ -14,7 +14,7 @@ from __future__ import annotations
 from dialogue.reference.english import Words
 from dialogue.understanding.language import Language
 from dialogue.understanding.parsed import Parse
-from dialogue.understanding.speech.plain import split_at, starts
+from dialogue.understanding.speech.plain import Prefixes, split_at, starts
 
 
 class _Words:
@@ -24,7 +24,7 @@ class _Words:
         said, prepositions = lang.questions.situation, lang.prepositions
         self.wh = lang.words.wh
         self.colours = lang.words.colours
-        self.sees = said.sees
+        self.sees = Prefixes(said.sees)
         self.not_seen_before = said.not_seen_before
         self.where_leads = said.where_leads
         self.on_glue = said.on_glue
@@ -38,7 +38,7 @@ class _Words:
         self.near = prepositions.having("asked-near")
         #: Leads of an indirect question: "do you know where the keys are", "any idea where the
         #: toolbox is".
-        self.indirect = said.indirect
+        self.indirect = Prefixes(said.indirect)
         self.describe, self.described = said.describe, said.described
         self.determiners = lang.words.determiners
         self.be = said.be
@@ -58,19 +58,19 @@ class _Words:
         self.place_starts = prepositions.words("place-start")
         self.purpose = lang.requests.purpose
         self.available = frozenset(lang.requests.constructions.available)
-        self.seen_by_anyone = said.seen_by_anyone
+        self.seen_by_anyone = Prefixes(said.seen_by_anyone)
         self.placing = said.placing
         self.asker = said.asker
         self.gone = said.gone
         self.rooms = said.rooms
-        self.name_of = said.name_of
+        self.name_of = Prefixes(said.name_of)
         self.show_me, self.tell_me, self.how_many = said.show_me, said.tell_me, said.how_many
         self.belong_to, self.in_front, self.are_you = said.belong_to, said.in_front, said.are_you
         self.what_heads = said.what_heads
         self.anything = said.anything
         #: "is" and "are" alone (`be` has their past too).
         self.is_are = said.is_are
-        self.social_how = said.social_how
+        self.social_how = Prefixes(said.social_how)
         #: Where "who is at X" asks about.
         self.who_at = prepositions.words("who-at")
         self.count_glue, self.count_after = said.count_glue, said.count_after
@@ -106,16 +106,16 @@ def question(lang: Language, words: list[str]) -> Parse | None:  # noqa: C901
         if w[2] == "about":
             return _q("what_is", w, thing=w[3:])
         w = w[2:]
-    for lead in q.indirect:
-        if starts(w, lead) and w[len(lead) : len(lead) + 1] and w[len(lead)] in q.wh:
+    for lead in q.indirect.of(w):
+        if w[len(lead) : len(lead) + 1] and w[len(lead)] in q.wh:
             w = w[len(lead) :]
             break
     w = _described(q, w)  # "describe the objects on the bench": what is on it
     named = _name_of(q, w)
     if named is not None:  # "tell me the name of the person in the break room"
         return named
-    for lead in q.seen_by_anyone:  # "has anyone seen my keys": where they are
-        if starts(w, lead) and _strip_ends(w[len(lead) :], frozenset(), q.nearby):
+    for lead in q.seen_by_anyone.of(w):  # "has anyone seen my keys": where they are
+        if _strip_ends(w[len(lead) :], frozenset(), q.nearby):
             return _q("where", w, thing=_strip_ends(w[len(lead) :], frozenset(), q.nearby))
     head = w[:1]
     if _anybody(q, w):  # "is anybody else here", "is there anyone around"
@@ -157,7 +157,7 @@ def question(lang: Language, words: list[str]) -> Parse | None:  # noqa: C901
         # "is the cup (still) on the table?"
         return _q("can_see", w, thing=tuple(x for x in w[1:] if x not in q.there_after))
     if head == ("how",):
-        social = any(starts(w, lead) for lead in q.social_how)
+        social = bool(q.social_how.of(w))
         return _q("how_are_you" if social else "other", w)
     if head and head[0] in q.wh:
         return _q("other", w)
@@ -199,7 +199,7 @@ def _name_of(q: _Words, w: Words) -> Parse | None:
         rest = w[2:]
     else:
         return None
-    lead = next((lead for lead in q.name_of if starts(rest, lead)), None)
+    lead = q.name_of.first(rest)
     if lead is None:
         return None
     who = rest[len(lead) :]

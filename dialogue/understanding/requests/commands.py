@@ -40,7 +40,7 @@ def parse(lang: Language, said: Text, robot_name: str = "") -> Parse:
         words = words[1:]
     if words and negation(g, words):
         return Parse("negated", words=tuple(words))
-    if any(tuple(words[: len(a)]) == a for a in lang.followups.again):  # "do the same with the blue one"
+    if g.again.of(words):  # "do the same with the blue one"
         return Parse("unknown", words=tuple(words))
     if conditional(g, words) or later(lang, words):  # "if Declan comes by, give him the menu"
         return Parse("conditional", words=tuple(words))
@@ -358,7 +358,7 @@ def _adjuncts(g: Grammar, rest: Words, row: Row) -> tuple[Words, tuple[Words, ..
 
 def _adjunct_end(g: Grammar, rest: Words, i: int, own: set[str]) -> int:
     word = rest[i]
-    lasting = next((len(p) for p in g.durations if rest[i : i + len(p)] == p), 0)
+    lasting = len(g.durations.first(rest, i) or ())
     if lasting:  # "wait in the hall for now", "bring the fan for now"
         return i + lasting
     by_doing = word == "by" and i + 1 < len(rest) and rest[i + 1].endswith("ing")  # "by crossing the hall"

@@ -18,7 +18,7 @@ from dialogue.understanding.lemmas import lemmas_of
 from dialogue.understanding.outcome import Outcome
 from dialogue.understanding.requests.frames import known_verbs, verbs
 from dialogue.understanding.said import QUOTED, Said, Text
-from dialogue.understanding.speech.plain import starts, strip_politeness
+from dialogue.understanding.speech.plain import Prefixes, strip_politeness
 from dialogue.understanding.speech.repair import asked_verb, normalise, strip_vocative
 
 
@@ -43,7 +43,7 @@ class _Words:
         self.a_bit = said.a_bit
         self.away = lang.requests.away
         self.chat = lang.speech.chat
-        self.greetings = lang.social.greetings_longest_first
+        self.greetings = Prefixes(lang.social.greetings_longest_first)
         self.no_intent_verbs = lang.requests.no_intent_verbs
         self.results = lang.requests.results
 
@@ -67,9 +67,10 @@ class Part:
 def _verb(lang: Language, text: Text, later: bool = False) -> str | None:
     """The verb a part starts with; of a later part, also one no frame knows, said before what it
     is done to ("... and *inspect* it", "... and *count* the chairs")."""
+    c = lang.derived(_Words)
     words = strip_politeness(lang, normalise(lang, text))
-    for greeting in lang.social.greetings_longest_first:  # "hey robot take the book"
-        if starts(words, greeting) and len(words) > len(greeting):
+    for greeting in c.greetings.of(words):  # "hey robot take the book"
+        if len(words) > len(greeting):
             words = strip_politeness(lang, words[len(greeting) :])
             break
     words = strip_vocative(lang, words)
@@ -78,7 +79,6 @@ def _verb(lang: Language, text: Text, later: bool = False) -> str | None:
     known = asked_verb(lang, words[0])
     if known is not None or not later or len(words) < 2:
         return known
-    c = lang.derived(_Words)
     verb = words[0] in lemmas_of(words[0]).get("VERB", ())  # a verb as said to do it, not "chairs"
     return words[0] if verb and words[1] in c.object_start else None
 

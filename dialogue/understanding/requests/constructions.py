@@ -15,7 +15,7 @@ from dialogue.reference.english import Words
 from dialogue.understanding.language import Language
 from dialogue.understanding.parsed import Parse
 from dialogue.understanding.said import Said
-from dialogue.understanding.speech.plain import split_at, starts
+from dialogue.understanding.speech.plain import Prefixes, split_at
 
 
 class ConstructionGrammar:
@@ -25,7 +25,7 @@ class ConstructionGrammar:
         said, closed, words = lang.requests, lang.words, lang.requests.constructions
         #: Prepositions of a place a thing goes, longest first; "to" and "at" say no place to put it
         #: ("goes to town"), only one to take it to after a request to take another thing there.
-        self.places = lang.prepositions.longest_first("place")
+        self.places = Prefixes(lang.prepositions.longest_first("place"))
         self.not_put = frozenset(lang.prepositions.having("no-put"))
         #: Subjects that never name a thing to put ("I go in the morning", "you belong here").
         self.not_things = words.not_things
@@ -47,7 +47,7 @@ class ConstructionGrammar:
         self.adjuncts = said.all_adjuncts
         self.done = said.done
         self.everyone = said.everyone
-        self.goes = said.goes
+        self.goes = Prefixes(said.goes)
         self.goes_particles = said.goes_particles
         self.intensifiers = said.intensifiers
         self.needs = said.needs
@@ -58,9 +58,9 @@ class ConstructionGrammar:
         self.someone_is = frozenset((w,) for w in words.someone_is)
         self.for_whom = frozenset((w,) for w in lang.prepositions.words("terse-to"))
         self.personal = closed.personal
-        self.wants = said.wants
+        self.wants = Prefixes(said.wants)
         self.want_verbs = said.want_verbs
-        self.their_wants = said.their_wants
+        self.their_wants = Prefixes(said.their_wants)
         self.wishers = said.wishers
         self.not_wishers = said.not_wishers
         self.np_start = closed.np_start
@@ -134,8 +134,8 @@ def going(said: Framed) -> Parse | None:
 def wanting(said: Framed) -> Parse | None:
     """ "I would like the apple", "can I have a tea": bring it to the speaker."""
     c = said.lang.derived(ConstructionGrammar)
-    for lead in c.wants:
-        if starts(said.words, lead) and len(said.words) > len(lead):
+    for lead in c.wants.of(said.words):
+        if len(said.words) > len(lead):
             wanted = said.words[len(lead) :]
             if wanted[:1] != ("to",) and wanted[: len(c.a_hand)] != c.a_hand:  # "give me a hand to the door"
                 return said.command(I.BRING_OBJECT, object=wanted, recipient=("me",))
@@ -148,7 +148,7 @@ def their_wish(said: Framed) -> Parse | None:
     w = said.words
     for i in range(1, min(len(w), 4)):
         who = w[:i]
-        lead = next((p for p in c.their_wants if w[i : i + len(p)] == p), None)
+        lead = c.their_wants.first(w, i)
         if lead is None:
             continue
         wanted = w[i + len(lead) :]
@@ -181,13 +181,13 @@ def where_it_goes(lang: Language, w: Words) -> tuple[Words, Words, Words] | None
     preposition and the place; None when the words say no such thing."""
     c = lang.derived(ConstructionGrammar)
     for i in range(1, min(len(w) - 2, 6)):
-        lead = next((p for p in c.goes if w[i : i + len(p)] == p), None)
+        lead = c.goes.first(w, i)
         if lead is None:
             continue
         thing, rest = w[:i], w[i + len(lead) :]
         while rest[:1] and rest[0] in c.goes_particles:
             rest = rest[1:]
-        place = next((p for p in c.places if rest[: len(p)] == p), None)
+        place = c.places.first(rest)
         if place is None or not rest[len(place) :] or thing[0] in c.not_things:
             return None
         return thing, place, rest[len(place) :]

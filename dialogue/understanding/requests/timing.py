@@ -20,7 +20,7 @@ def negation(g: Grammar, words: Sequence[str]) -> bool:
 def conditional(g: Grammar, words: Sequence[str]) -> bool:
     """Whether the request is said under a condition of something to happen first ("if I nod off,
     could you..."), not a polite "if" ("if you could...", "if I could have the bill")."""
-    if words[:1] != ["if"] or len(words) < 4 or any(starts(words, p) for p in g.polite_if):
+    if words[:1] != ["if"] or len(words) < 4 or g.polite_if.of(words):
         return False
     return words[2] not in g.if_modals
 
@@ -33,10 +33,10 @@ def later(lang: Language, words: list[str]) -> bool:
     """Whether a request is said after a condition yet to happen ("when the bell goes, could you...",
     "after lunch take me to the day room", "when the train stops get my rucksack down")."""
     g = lang.derived(Grammar)
-    said = next((c for c in g.conditions if starts(words, c)), None)
+    said = g.conditions.first(words)
     if said is None or len(words) < len(said) + 2 or words[len(said)] in g.not_conditions:
         return False
-    if any(starts(words, polite) for polite in g.adjuncts):  # "when you get a chance, ..."
+    if any(starts(words, p) for p in g.adjuncts_by_first.get(words[0], ())):  # "when you get a chance"
         return False
     clause = words[len(said) : len(said) + _YOUR_TIME]
     if clause[:1] == ["you"] and set(clause) & g.your_time:  # "when you've got a minute, ..."
@@ -52,8 +52,8 @@ def later(lang: Language, words: list[str]) -> bool:
 def when(g: Grammar, adjuncts: tuple[Words, ...]) -> bool:
     """Whether a clause of time after the request says when it is to be done, later ("say hi to her
     *when she comes in*"), rather than how long or while what ("while he waits")."""
-    return any(starts(a, c) and len(a) > len(c) and a[len(c)] in g.their_subjects
-               for a in adjuncts for c in g.conditions) or any(_absent(g, a) for a in adjuncts)  # fmt: skip
+    return any(len(a) > len(c) and a[len(c)] in g.their_subjects for a in adjuncts
+               for c in g.conditions.of(a)) or any(_absent(g, a) for a in adjuncts)  # fmt: skip
 
 
 #: How many words of a clause of time may say the speaker is away ("while we are both out").

@@ -7,6 +7,7 @@ from dialogue.reference.english import Words
 from dialogue.understanding.language import Language
 from dialogue.understanding.parsed import Act
 from dialogue.understanding.requests.frames import Special, constructions
+from dialogue.understanding.speech.plain import Prefixes
 
 
 class Grammar:
@@ -27,16 +28,16 @@ class Grammar:
         for phrase in self.adjuncts:
             self.adjuncts_by_first[phrase[0]] = (*self.adjuncts_by_first.get(phrase[0], ()), phrase)
         self.away = frozenset(said.away)
-        self.durations = said.durations
+        self.durations = Prefixes(said.durations)
         self.halts = said.halts
         self.negators = said.negators
         self.negation = said.negation
         self.if_modals = said.if_modals
-        self.conditions = said.conditions
+        self.conditions = Prefixes(said.conditions)
         self.not_conditions = said.not_conditions
         self.your_time = said.your_time
         self.manner = said.manner
-        self.polite_if = said.polite_if
+        self.polite_if = Prefixes(said.polite_if)
         self.results = said.results
         self.their_subjects = said.their_subjects
         self.time_conjunctions = said.time_conjunctions
@@ -44,7 +45,9 @@ class Grammar:
         self.absent_speakers = said.absent_speakers
         self.absences = said.absences
         self.purpose = said.purpose
-        self.greetings = social.greetings_longest_first
+        self.greetings = Prefixes(social.greetings_longest_first)
+        #: "do the same with the blue one": a follow-up, no request of its own.
+        self.again = Prefixes(lang.followups.again)
         self.attention = social.attention
         self.social = social.social
         self.thanks = social.thanks

@@ -7,7 +7,7 @@ dialogue.understanding.speech.repair.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Iterable, Iterator, Sequence
 from functools import lru_cache
 
 from dialogue.reference.english import Words, lowered
@@ -28,7 +28,7 @@ class _Speech:
         self.np_start = closed.np_start
         self.fillers = speech.fillers
         self.filler_pairs = speech.filler_pairs
-        self.searching = speech.searching
+        self.searching = Prefixes(speech.searching)
         self.asking = speech.asking
         self.wh_or_asking = closed.wh | speech.asking
         self.numbering = speech.numbering
@@ -55,7 +55,7 @@ class _Speech:
         #: bill", "can we have two coffees"), when a noun phrase follows them ("can we get over to
         #: the desk" goes).
         self.wishing = speech.wishing
-        self.durations = lang.requests.durations
+        self.durations = Prefixes(lang.requests.durations)
         self.polite_prefixes = speech.polite_prefixes
         self.its, self.it_is = speech.its, speech.it_is
         self.participle_endings = speech.participle_endings
@@ -131,8 +131,9 @@ def without_fillers(lang: Language, words: list[str]) -> list[str]:
     words = [w for w in words if w not in said.fillers]
     drop: set[int] = set()
     for i in range(1, len(words)):  # "pick up the... what's it called... the tongs"
-        found = next((s for s in said.searching if tuple(words[i : i + len(s)]) == s), None)
-        drop.update(range(i, i + len(found)) if found else ())
+        found = said.searching.first(words, i)
+        if found:
+            drop.update(range(i, i + len(found)))
     for i in range(1, len(words) - 1):
         nxt = words[i + 2] if i + 2 < len(words) else ""
         pair = tuple(words[i : i + 2]) in said.filler_pairs
@@ -157,8 +158,9 @@ def unrepeated(words: list[str]) -> list[str]:
     out: list[str] = []
     for w in words:
         out.append(w)
+        size = len(out)
         for n in (1, 2, 3):
-            if len(out) >= 2 * n and out[-n:] == out[-2 * n : -n] and not out[-1].isdigit():
+            if size >= 2 * n and out[-n:] == out[-2 * n : -n] and not out[-1].isdigit():
                 del out[-n:]
                 break
     return out
@@ -211,6 +213,43 @@ def starts(words: Sequence[str], prefix: Sequence[str]) -> bool:
     return len(prefix) <= len(words) and tuple(words[: len(prefix)]) == tuple(prefix)
 
 
+class Prefixes:
+    """A table of word sequences, indexed by their first word (made once, with a language's derived
+    tables): which of them a text starts with, in the table's order, looked up rather than each
+    one tested (tested one by one, the prefix tables cost ~350 calls of a ~2,900-call rules turn)."""
+
+    def __init__(self, table: Iterable[Sequence[str]]) -> None:
+        self.table: tuple[Words, ...] = tuple(tuple(p) for p in table)
+        self._by_first: dict[str, list[Words]] = {}
+        for p in self.table:
+            self._by_first.setdefault(p[0] if p else "", []).append(p)
+        #: An empty prefix starts every text: such a table is scanned, to keep the table's order.
+        self._scan = "" in self._by_first
+
+    def __iter__(self) -> Iterator[Words]:
+        return iter(self.table)
+
+    def __len__(self) -> int:
+        return len(self.table)
+
+    def of(self, words: Sequence[str], at: int = 0) -> list[Words]:
+        """The prefixes the words start with (from the word at `at`), in the table's order."""
+        if self._scan:
+            return [p for p in self.table if tuple(words[at : at + len(p)]) == p]
+        head = words[at : at + 1]  # (a slice and a test, no call: most words start no prefix)
+        if not head or head[0] not in self._by_first:
+            return []
+        return [p for p in self._by_first[head[0]] if tuple(words[at : at + len(p)]) == p]
+
+    def first(self, words: Sequence[str], at: int = 0) -> Words | None:
+        """The first prefix of the table the words start with (from the word at `at`), if any."""
+        head = words[at : at + 1]  # (as `of`, without its call: asked at every word of some stages)
+        if self._scan or (head and head[0] in self._by_first):
+            found = self.of(words, at)
+            return found[0] if found else None
+        return None
+
+
 def strip_politeness(lang: Language, words: list[str], robot_name: str = "") -> list[str]:
     said = lang.derived(_Speech)
     openings = said.openings(robot_name)
@@ -247,7 +286,7 @@ def _asking(said: _Speech, opening: Words, after: list[str]) -> bool:
 def _for_someone(said: _Speech, words: list[str]) -> bool:
     """Whether the words name whom or where a thing is for ("to Ana", "for table 4"; "for now" not)."""
     for i, w in enumerate(words):
-        lasting = any(tuple(words[i : i + len(d)]) == d for d in said.durations)
+        lasting = bool(said.durations.of(words, i))
         if w == "to" or (w == "for" and not lasting):
             return True
     return False

@@ -20,6 +20,7 @@ a zone or furniture the KB knows ("I'm on my way", "I'm on the phone").
 from __future__ import annotations
 
 import re
+from functools import cached_property
 
 from dialogue.reference.grounding import Entity, Kind
 from dialogue.reference.resolution import PLACE
@@ -28,7 +29,7 @@ from dialogue.understanding.language import Language
 from dialogue.understanding.replies import say
 from dialogue.understanding.said import Said, Text
 from dialogue.understanding.speech.clauses import clauses as run_on_clauses
-from dialogue.understanding.speech.plain import original_text
+from dialogue.understanding.speech.plain import Prefixes, original_text
 from dialogue.understanding.speech.repair import asked_verb, normalise
 from dialogue.understanding.statements.clause import Refused, Told, Unclaimed, Words, fact
 from dialogue.understanding.statements.likings import Likings
@@ -68,7 +69,8 @@ class _Words:
         self.pointed = said.pointed
         #: Greetings said before more words in the same clause, longest first ("hi there my name
         #: is..."); "morning", "evening" and "welcome" may be what a statement is about.
-        self.openings = [g for g in lang.social.greetings_longest_first if g not in said.greeting_topics]
+        self.greetings = Prefixes(lang.social.greetings_longest_first)
+        self.openings = Prefixes(g for g in self.greetings if g not in said.greeting_topics)
         #: Words said last that are not part of the statement ("..., please").
         self.trailing = said.trailing
         #: "Bob is my name", "I am Bob", "his name is Rob", "it is Rob", "this is Maria".
@@ -93,16 +95,16 @@ def _holds_people(entity: Entity) -> bool:
 def _after_greeting(lang: Language, words: Words) -> Words | None:
     """The words after a greeting that opens them, when more follows it."""
     openings = lang.derived(_Words).openings
-    found = next((g for g in openings if words[: len(g)] == g and len(words) > len(g)), None)
+    found = next((g for g in openings.of(words) if len(words) > len(g)), None)
     return words[len(found) :] if found is not None else None
 
 
 class Statements(Likings):
     """Reads statements against a lexicon, for one speaker and the dialogue's history."""
 
-    @property
+    @cached_property
     def said(self) -> _Words:
-        """The language's words of statements."""
+        """The language's words of statements (asked ~18 times a turn: looked up once per reader)."""
         return self.lang.derived(_Words)
 
 
@@ -156,8 +158,7 @@ class Statements(Likings):
         social = self.lang.social.social
         if words in social:
             return True
-        return any(words[: len(g)] == g and words[len(g) :] in social | {()}
-                   for g in self.lang.social.greetings_longest_first)  # fmt: skip
+        return any(words[len(g) :] in social | {()} for g in self.said.greetings.of(words))
 
     # -- one clause ----------------------------------------------------------------------------
     def _statement(self, w: Words, clause: Said) -> list[FactClaim]:

@@ -9,6 +9,8 @@ dance", "I like to dance", "I hate waiting") or a bare "that" is no statement.
 
 from __future__ import annotations
 
+from functools import cached_property
+
 from dialogue.reference.resolution import ANYWHERE
 from dialogue.schema import FactClaim
 from dialogue.understanding.language import Language
@@ -49,9 +51,9 @@ class _Words:
 
 
 class Likings(ClauseReader):
-    @property
+    @cached_property
     def liked(self) -> _Words:
-        """The language's words of likings."""
+        """The language's words of likings (asked ~18 times a turn: looked up once per reader)."""
         return self.lang.derived(_Words)
 
     def _preference(self, w: Words, clause: Said) -> list[FactClaim] | None:

@@ -111,6 +111,48 @@ def test_bad_llamacpp_specs(rest: str, package: str | None, message: str, monkey
         parse_spec(f"llamacpp:{rest}")
 
 
+def test_threads_option_reaches_the_worker(gguf: Path, fake: FakeControl, monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.setattr(spec, "llama_cpp_available", lambda: True)
+    monkeypatch.setattr(spec, "LlamaCppModel", partial(LlamaCppModel, worker_setup=partial(
+        fakellama.install, str(fake.folder))))  # fmt: skip
+    backend = parse_spec(f"hybrid:llamacpp:{gguf}?threads=2")
+    assert isinstance(backend.model, HybridModel)
+    model = backend.model.inner
+    assert isinstance(model, LlamaCppModel) and model.path == gguf and model.n_threads == 2
+    try:
+        asyncio.run(model.preload())
+        (load,) = fake.events("load")
+        assert load["n_threads"] == 2
+    finally:
+        model.close()
+    default = parse_spec(f"llamacpp:{gguf}").model
+    assert isinstance(default, LlamaCppModel) and default.n_threads == 1
+    default.close()
+
+
+@pytest.mark.parametrize(
+    ("options", "message"),
+    [
+        ("threads=0", r"threads must be a whole number from 1 to 256, got '0'"),
+        ("threads=two", r"threads must be a whole number from 1 to 256, got 'two'"),
+        ("threads=-2", r"threads must be a whole number"),
+        ("threads=999", r"threads must be a whole number"),
+        ("threads=", r"threads must be a whole number"),
+        ("threads", r"unknown option 'threads' after '\?'; the one option is 'threads=N'"),
+        ("ctx=4096", r"unknown option 'ctx=4096'"),
+        ("threads=2&threads=3", r"got '2&threads=3'"),
+    ],
+)
+def test_bad_threads_options_say_what_is_wrong(
+    options: str, message: str, gguf: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    monkeypatch.setattr(spec, "llama_cpp_available", lambda: True)
+    with pytest.raises(SpecError, match=message):
+        parse_spec(f"llamacpp:{gguf}?{options}")
+    with pytest.raises(SpecError, match=message):
+        parse_spec(f"llamacpp:smollm2?{options}")
+
+
 def test_spec_without_llama_cpp_says_how_to_install(monkeypatch: pytest.MonkeyPatch) -> None:
     monkeypatch.setattr(spec, "llama_cpp_available", lambda: False)
     with pytest.raises(SpecError, match=r"llama-cpp-python.*pip install -e '\.\[local\]'"):

@@ -11,6 +11,6 @@ def test_the_words_are_gathered_once_per_language() -> None:
 
 def test_they_are_the_language_s_own() -> None:
     g = english().derived(Grammar)
-    assert g.conditions == english().requests.conditions
+    assert g.conditions.table == english().requests.conditions
     assert ("next",) not in g.joined and g.joined[("next", "to")] == "beside"
     assert [act for act, _ in g.talk] == ["farewell", "abilities", "joke"]
