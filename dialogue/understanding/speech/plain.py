@@ -108,11 +108,19 @@ def _expanded(u: Said) -> Words:
             continue  # "screen number two", "room no 4": the number names it
         if w == said.its and said.is_it_is(tuple(words[i + 1 : i + 3])):
             out += said.it_is
-        elif w in said.chat and i > 0 and words[i - 1] in said.np_start:
-            out.append(w)  # "the atm": the cash machine, not "at the moment"
+        elif w in said.chat and i > 0 and (words[i - 1] in said.np_start or _capitalised(u, i)):
+            # "the atm": the cash machine, not "at the moment"; "bring the pear to Fae": a name
+            # written as one, not Scots "from"
+            out.append(w)
         else:
             out += said.written.get(w, (w,))
     return tuple(out)
+
+
+def _capitalised(u: Said, i: int) -> bool:
+    """Whether the `i`-th token was written with a capital (a recogniser writes none)."""
+    start = u.spans[i][1]
+    return u.text[start : start + 1].isupper()
 
 
 def plain(lang: Language, text: Text) -> list[str]:

@@ -267,6 +267,15 @@ def test_scots_to_is_never_the_tea(office: KB) -> None:
     assert (out.intent, out.roles) == (I.BRING_OBJECT, {"object": "pear_1", "recipient": "person_carol"})
 
 
+def test_a_chat_word_written_with_a_capital_is_a_name(office: KB) -> None:
+    # "Fae" and "Tae" are names as well as Scots words: written with a capital, the name
+    assert plain.expanded(english(), "bring the pear to Fae") == ["bring", "the", "pear", "to", "fae"]
+    assert plain.expanded(english(), "bring the pear tae her") == ["bring", "the", "pear", "to", "her"]
+    office.update(["person_fae rdf:type Human", 'person_fae rdfs:label "Fae"', "myself sees person_fae"])
+    out = say(office, "bring the pear to Fae")
+    assert (out.intent, out.roles) == (I.BRING_OBJECT, {"object": "pear_1", "recipient": "person_fae"})
+
+
 def test_prefixes_are_the_ones_the_words_start_with_in_the_table_s_order() -> None:
     table = plain.Prefixes([("hello", "there"), ("hi",), ("hello",), ("good", "morning")])
     words = ["hello", "there", "robot"]
