@@ -7,6 +7,7 @@ from __future__ import annotations
 
 from dialogue import intents as I
 from dialogue.understanding.language import Language
+from dialogue.understanding.lemmas import lemmas_of
 from dialogue.understanding.outcome import Outcome
 from dialogue.understanding.parsed import Parse
 from dialogue.understanding.replies import said_back, say
@@ -19,7 +20,9 @@ def skilled(lang: Language, p: Parse) -> bool:
     if p.intent != I.START_ACTIVITY or said is None or not p.words:
         return True
     r = lang.requests
-    if p.words[0] in r.starting or p.words[0] in r.skill_verbs:
+    verb = p.words[0]
+    # "vacuuming the floor please": the verb's lemma is the skill's ("vacuum")
+    if any(v in r.starting or v in r.skill_verbs for v in (verb, *lemmas_of(verb).get("VERB", ()))):
         return True
     theirs = said[:1] == (lang.words.owners.get("mine"),)  # "do my exercises for me": theirs to do
     words = p.words

@@ -12,7 +12,8 @@ from tests.dialogue.conftest import english
     "text",
     ["tidy up the kids room", "can you hoover the foyer", "play hide and seek with me", "let's do some chair exercises",
      "kick off story time for the little ones", "start counting my reps", "start watering the plants",
-     "Please make the bed", "follow me"],
+     "Please make the bed", "follow me", "vacuuming the floor please", "cleaning the office please",
+     "exercise with me"],
 )  # fmt: skip
 def test_the_robots_activities_are_started(text: str) -> None:
     assert skilled(english(), parse(english(), text))
