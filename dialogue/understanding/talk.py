@@ -15,6 +15,7 @@ from dialogue import intents as I
 from dialogue.reference.english import Words
 from dialogue.reference.resolution import PERSON, resolve
 from dialogue.understanding.context import Context
+from dialogue.understanding.lemmas import lemmas_of
 from dialogue.understanding.outcome import Outcome
 from dialogue.understanding.parsed import Parse
 from dialogue.understanding.replies import abilities, acknowledgement, goodbye, hello, say
@@ -62,8 +63,16 @@ def _awaited(c: Context, words: Words) -> str | None:
     # (the first word, else: "if")
     said = next((w for w in c.lang.requests.conditions if words[: len(w)] == w), words[:1])
     first = words[len(said) : len(said) + 1]
-    person = resolve(c.lexicon, first, PERSON).one if first else None
+    if not first or not _arrives(c, words[len(said) + 1 :]):
+        return None  # ("when Carol leaves": no one to wait for)
+    person = resolve(c.lexicon, first, PERSON).one
     return person.id if person is not None and person.id != c.speaker else None
+
+
+def _arrives(c: Context, rest: Words) -> bool:
+    """Whether the words after a person say they arrive ("gets here", "arrives", "'s back")."""
+    said = (rest[0], *lemmas_of(rest[0]).get("VERB", ())) if rest else ()
+    return any(a[0] in said and rest[1 : len(a)] == a[1:] for a in c.lang.requests.arrivals)
 
 
 def _thanks(c: Context, p: Parse, overrides: dict[str, Words]) -> Outcome:

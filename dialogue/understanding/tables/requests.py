@@ -115,6 +115,7 @@ class RequestWords(Table):
     polite_if: Phrases = ()
     if_modals: WordSet = frozenset()
     conditions: Phrases = ()
+    arrivals: Phrases = ()
     not_conditions: WordSet = frozenset()
     your_time: WordSet = frozenset()
     halts: WordSet = frozenset()

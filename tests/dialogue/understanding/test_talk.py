@@ -45,13 +45,19 @@ def test_never_mind_just_after_the_robot_took_on_a_request_stops_it(office: KB) 
 
 
 @pytest.mark.parametrize(
-    "text", ["When Carol gets here, give her the pear.", "when carol's back, bring her the pear", "if Carol comes by, give her the pear"]
+    "text", ["When Carol gets here, give her the pear.", "when carol's back, bring her the pear", "if Carol comes by, give her the pear",
+             "once Carol arrives, give her the pear", "When Carol turns up, give her the pear"]
 )
 def test_a_condition_that_waits_for_someone_names_them(office: KB, text: str) -> None:
     out = say(office, text)
     assert out.intent is None and out.reply == "I can't wait for Carol myself: tell me again when Carol is here."
 
 
-def test_a_condition_that_waits_for_no_one_known_says_it_waits(office: KB) -> None:
-    out = say(office, "when the bell rings, give Carol the pear")
+@pytest.mark.parametrize(
+    "text", ["when the bell rings, give Carol the pear", "when Carol leaves, bring the pear to Dan",
+             "after Carol has gone home, bring me the pear"]
+)
+def test_a_condition_that_waits_for_no_one_known_says_it_waits(office: KB, text: str) -> None:
+    # (Carol leaving is no one to wait for: the robot would be told to wait for her to be here)
+    out = say(office, text)
     assert out.intent is None and out.reply == "I can't wait for that myself: tell me again when it happens."
