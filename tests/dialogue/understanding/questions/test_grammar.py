@@ -189,6 +189,8 @@ def test_what_is_on_a_thing_said_with_that_or_asked_to_be_described(office: KB) 
         # whether there is any, said of the household
         ("do we still have nachos", ("nachos",)),
         ("have we got any tape", ("any", "tape")),
+        ("is there still any water", ("any", "water")),
+        ("are there still biscuits", ("biscuits",)),
         # when, said after someone's being here or a thing's place
         ("is Yuki here yet", ("yuki",)),
         ("is my fleece still on the chair", ("my", "fleece", "on", "the", "chair")),
