@@ -124,7 +124,7 @@ def _llamacpp_threads(options: str, spec: str) -> int:
     if key != "threads" or not sep:
         raise SpecError(f"bad backend spec {spec!r}: unknown option {options!r} after '?'; "
                         "the one option is 'threads=N'")  # fmt: skip
-    if not value.isdigit() or not 1 <= int(value) <= MAX_THREADS:
+    if not (value.isascii() and value.isdigit()) or not 1 <= int(value) <= MAX_THREADS:
         raise SpecError(f"bad backend spec {spec!r}: threads must be a whole number from 1 to "
                         f"{MAX_THREADS}, got {value!r}")  # fmt: skip
     return int(value)

@@ -141,6 +141,7 @@ def test_threads_option_reaches_the_worker(gguf: Path, fake: FakeControl, monkey
         ("threads", r"unknown option 'threads' after '\?'; the one option is 'threads=N'"),
         ("ctx=4096", r"unknown option 'ctx=4096'"),
         ("threads=2&threads=3", r"got '2&threads=3'"),
+        ("threads=\u00b2", r"threads must be a whole number"),  # a superscript two: a digit to str.isdigit
     ],
 )
 def test_bad_threads_options_say_what_is_wrong(
