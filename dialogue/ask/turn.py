@@ -207,7 +207,7 @@ class AskRole:
             form,
             state,
             ids,
-            robot_name=engine.config.robot_name,
+            robot_name=context.robot_name,
             speaker=context.speaker,
             text=context.text,
             history=context.history,

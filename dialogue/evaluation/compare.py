@@ -256,11 +256,11 @@ async def _passes(
                 snapshot, _lexicon = await asyncio.to_thread(engine.ground)
                 started = time.perf_counter()
                 if side is comparison.tutorial:
-                    context = TurnContext(
-                        case.input, case.speaker, snapshot, case.history, None, config.robot_name
-                    )
+                    # the robot's name as the engine's turns have it: the scene's label of `myself`
+                    robot_name = snapshot.robot_name(config.robot_name)
+                    context = TurnContext(case.input, case.speaker, snapshot, case.history, None, robot_name)
                     environment = await asyncio.to_thread(environment_lines, kb)
-                    messages = tutorial_messages(case, environment, config.robot_name)
+                    messages = tutorial_messages(case, environment, robot_name)
                     request = ChatRequest(messages, TUTORIAL_SCHEMA, context)
                     result = await tutorial_turn(prompted, request, deadline)
                 else:

@@ -251,3 +251,14 @@ def test_results_are_json_and_exact_or_the_robot_asks_again(cups: KB) -> None:
     assert json.loads(ok.results or "") == {"amount": 2.5}
     (done,) = talk(manager, started.id, "1,000,000,000,000,000,000,000,000")
     assert done.dialogue_terminal and json.loads(done.results or "") == {"amount": 2.5, "n": 10**24}
+
+
+def test_the_model_is_told_the_robots_name_from_the_kb(cups: KB) -> None:
+    # the same name the rules answer with: the scene's label of `myself`, not the configured one
+    cups.update(['myself rdfs:label "Pebble"'])
+    model = ScriptedModel([answer({"age": 34, "cup": "cup_blue"}, "Thanks!")])
+    manager = DialogueManager(DialogueEngine(cups, model))
+    d = manager.start(ASK_ROLE, configuration=CONFIG)
+    talk(manager, d.id, "Thirty-four, and the blue one.")
+    system = model.requests[0].messages[0]
+    assert system.role == "system" and system.content.startswith("You are Pebble, a social robot.")
