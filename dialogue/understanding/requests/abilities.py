@@ -1,6 +1,8 @@
 """Whether a request may only ask what the robot can do ("can you dance?", "are you able to cook",
 "can you do a cartwheel", "Pip, can you cook dinner?"): a question of a verb alone or of a
-performance or chore (`requests.toml`: `abilities`, `performances`), which the rules only propose."""
+performance or chore (`requests.toml`: `abilities`, `performances`), which the rules only propose
+("Shall I dance?") — unless it is an activity beyond the robot's skills (`requests/skills`: "I can't
+cook dinner myself")."""
 
 from __future__ import annotations
 

@@ -145,8 +145,9 @@ def _fetched_for(reader: Reader, done: list[Outcome], verbs: list[str | None]) -
 
 
 def _taken_first(reader: Reader, done: list[Outcome]) -> list[Outcome]:
-    """ "fetch the juice and give it to Amara", "bring the mug and put it on the tray": a thing
-    brought to the speaker and then carried on elsewhere is taken first, not brought."""
+    """ "bring the mug and put it on the tray", "bring me the box and then take it to Ana": a thing
+    brought to the speaker and then carried on elsewhere is taken first, not brought ("fetch the
+    juice and give it to Amara" is one bringing already: `_fetched_for`)."""
     out = list(done)
     for i in range(len(out) - 1):
         first, after = out[i], out[i + 1]
