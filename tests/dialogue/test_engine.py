@@ -62,7 +62,8 @@ def test_the_robot_answers_to_its_name_in_the_kb(kitchen: KB) -> None:
     engine = DialogueEngine(kitchen)
     assert turn(engine, "what's your name?").response == "My name is Pip."
     # said first, its name is a vocative, not a thing the question is about
-    assert turn(engine, "pip where is the apple").response == turn(engine, "where is the apple").response
+    answer = turn(engine, "pip where is the apple").response
+    assert "table" in answer and answer == turn(engine, "where is the apple").response
 
 
 def test_deadline_answers_in_time_when_the_model_is_slow(kitchen: KB) -> None:
