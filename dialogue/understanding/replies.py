@@ -56,9 +56,16 @@ def the(lang: Language, snapshot: Snapshot, entity: Entity, speaker: str = "", a
         return entity.name if entity.labels else say(lang, "naming.a_person")
     if entity.colour and not entity.labels and entity.colour not in entity.name:
         return say(lang, "naming.the_coloured", colour=entity.colour, name=entity.name)
-    if entity.labels and _numbered(lang, entity.name):
-        return entity.name  # "screen 2", "gate nine": a name of its own, said without "the"
+    if entity.labels and (_numbered(lang, entity.name) or _possessive(entity.name)):
+        # "screen 2", "gate nine", "Walter's armchair": a name of its own, said without "the"
+        return entity.name
     return say(lang, "naming.the", name=entity.name)
+
+
+def _possessive(name: str) -> bool:
+    """Whether a name starts with someone's ("Walter's armchair"): it takes no article."""
+    first = name.partition(" ")[0]
+    return first[:1].isupper() and first.endswith(("'s", "\u2019s"))
 
 
 def _numbered(lang: Language, name: str) -> bool:
