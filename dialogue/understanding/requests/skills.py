@@ -24,7 +24,9 @@ def skilled(lang: Language, p: Parse) -> bool:
     # "vacuuming the floor please": the verb's lemma is the skill's ("vacuum")
     if any(v in r.starting or v in r.skill_verbs for v in (verb, *lemmas_of(verb).get("VERB", ()))):
         return True
-    theirs = said[:1] == (lang.words.owners.get("mine"),)  # "do my exercises for me": theirs to do
+    # "do my / our / her exercises for me": someone else's to do; "do your exercises": the robot's
+    owned = {w for key, w in lang.words.owners.items() if key != "yours"}
+    theirs = bool(said[:1]) and said[0] in owned
     words = p.words
     named = any(words[i : i + len(s)] == s for s in r.skills for i in range(len(words)))
     return named and not theirs

@@ -24,7 +24,8 @@ def test_the_robots_activities_are_started(text: str) -> None:
     [("Fold all the towels for me.", "I can't fold all the towels for you myself."),
      ("Water the tomatoes in the raised beds.", "I can't water the tomatoes in the raised beds myself."),
      ("Play us something on the piano, would you?", "I can't play you something on the piano myself."),
-     ("can you do my exercises for me", "I can't do your exercises for you myself.")],
+     ("can you do my exercises for me", "I can't do your exercises for you myself."),
+     ("do our exercises for us", "I can't do your exercises for you myself.")],
 )  # fmt: skip
 def test_an_activity_the_robot_has_no_skill_for_is_said_to_be_beyond_it(text: str, said: str) -> None:
     outcome = unskilled(english(), parse(english(), text))
