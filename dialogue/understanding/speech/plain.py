@@ -28,6 +28,7 @@ class _Speech:
         self.np_start = closed.np_start
         self.fillers = speech.fillers
         self.filler_pairs = speech.filler_pairs
+        self.filler_pairs_before_verb = speech.filler_pairs_before_verb
         self.searching = Prefixes(speech.searching)
         self.asking = speech.asking
         self.wh_or_asking = closed.wh | speech.asking
@@ -144,7 +145,9 @@ def without_fillers(lang: Language, words: list[str]) -> list[str]:
             drop.update(range(i, i + len(found)))
     for i in range(1, len(words) - 1):
         nxt = words[i + 2] if i + 2 < len(words) else ""
-        pair = tuple(words[i : i + 2]) in said.filler_pairs
+        two = tuple(words[i : i + 2])
+        before_verb = two in said.filler_pairs_before_verb and bool(lemmas_of(nxt).get("VERB"))
+        pair = two in said.filler_pairs or before_verb
         if pair and words[i - 1] not in said.asking and nxt not in said.wh_or_asking:
             drop.update((i, i + 1))
     return [w for i, w in enumerate(words) if i not in drop]

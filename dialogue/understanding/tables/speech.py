@@ -48,6 +48,7 @@ class SpeechWords(Table):
 
     fillers: WordSet = frozenset()
     filler_pairs: PhraseSet = frozenset()
+    filler_pairs_before_verb: PhraseSet = frozenset()
     searching: Phrases = ()
     asking: WordSet = frozenset()
     lead_fillers: WordSet = frozenset()

@@ -292,3 +292,13 @@ def test_a_table_with_an_empty_prefix_keeps_its_order() -> None:
     table = plain.Prefixes([("hi",), (), ("hello",)])
     assert table.of(["hello"]) == [(), ("hello",)] and table.of(["hi"]) == [("hi",), ()]
     assert table.of([]) == [()]
+
+
+@pytest.mark.parametrize(
+    ("text", "words"),
+    [("where have they gone and put my stick", "where have they put my stick"),
+     ("she has been and bought milk", "she has bought milk"),
+     ("once carol has gone and dan is back", "once carol has gone and dan is back")],  # two events
+)  # fmt: skip
+def test_gone_and_is_a_filler_only_before_a_verb(text: str, words: str) -> None:
+    assert " ".join(plain.without_fillers(english(), text.split())) == words
