@@ -16,12 +16,16 @@ builds in memory.
 
 from __future__ import annotations
 
+import gc
 import sys
 import threading
 from collections.abc import Callable
+from pathlib import Path
 from types import FrameType
 from typing import Any
 
+import pyparsing
+import rdflib
 from rdflib.plugins.sparql.parser import parseQuery, parseUpdate
 
 from kb.deadline import Deadline
@@ -31,6 +35,9 @@ from kb.errors import QueryTimeout
 _CHECK_EVERY = 256
 
 Parser = Callable[[str], Any]
+
+#: Where the parser's own code is: pyparsing's grammar engine and rdflib's.
+_PARSER_FILES = tuple(str(Path(module.__file__ or "").parent) for module in (pyparsing, rdflib))
 
 
 class _Grammar:
@@ -68,13 +75,12 @@ def parse(text: str, parser: Parser, deadline: Deadline | None = None) -> Any:
 
 def _within(deadline: Deadline, parser: Parser, text: str) -> Any:
     calls = 0
-    check = deadline.check
 
     def trace(frame: FrameType, event: str, arg: Any) -> None:
         nonlocal calls
         calls += 1
-        if not calls % _CHECK_EVERY:
-            check()  # QueryTimeout ends the parse (and the tracing)
+        if not calls % _CHECK_EVERY and not deadline.remaining() and _in_the_parse(frame):
+            raise QueryTimeout(deadline.seconds)  # ends the parse (and the tracing)
 
     previous = sys.gettrace()
     sys.settrace(trace)  # this thread only; 'call' events only (no local trace function)
@@ -82,5 +88,22 @@ def _within(deadline: Deadline, parser: Parser, text: str) -> Any:
         tree = parser(text)
     finally:
         sys.settrace(previous)
-    check()  # a parse that swallowed the error still counts
+    deadline.check()  # a parse that swallowed the error still counts
     return tree
+
+
+def _in_the_parse(frame: FrameType) -> bool:
+    """Whether a call is the parser's own, where an error stops the parse. Python also runs code
+    in the middle of a parse that is not the parse's: finalizers, weak reference and garbage
+    collector callbacks (a profiler's, a test plugin's), in whatever frame allocated. What they
+    raise is printed and dropped, and a trace function that raised is removed: stopped there, the
+    parse would run on to its end unwatched."""
+    if not frame.f_code.co_filename.startswith(_PARSER_FILES):
+        return False
+    callbacks = {code for callback in gc.callbacks if (code := getattr(callback, "__code__", None))}
+    caller: FrameType | None = frame
+    while callbacks and caller is not None:
+        if caller.f_code in callbacks:
+            return False
+        caller = caller.f_back
+    return True

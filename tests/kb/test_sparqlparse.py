@@ -9,15 +9,19 @@ Bounds on time are generous (the machine is shared).
 
 from __future__ import annotations
 
+import gc
 import subprocess
 import sys
 import threading
 import time
 from pathlib import Path
+from typing import Any
 
 import pytest
+from rdflib.plugins.sparql.parser import parseQuery
 
-from kb import KB
+from kb import KB, sparqlparse
+from kb.deadline import Deadline
 from kb.errors import QueryTimeout, QueryTooLarge
 from kb.sparql import MAX_QUERY_CHARS
 
@@ -115,3 +119,33 @@ def test_a_slow_parse_holds_neither_the_kb_nor_a_writer(kb: KB) -> None:
     wrote = time.monotonic() - start
     thread.join()
     assert failed and wrote < 1.0, f"a write waited {wrote:.1f} s behind a query's parse"
+
+
+def test_a_parse_past_its_deadline_is_stopped_in_its_own_code_not_in_a_gc_callback(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    # The collector runs its callbacks (a profiler's, hypothesis's) and finalizers in whatever
+    # frame allocated: stopped there, the error would be dropped, the tracing removed, and the
+    # parse run on to its end.
+    deadline = Deadline(60)
+
+    def callback(phase: str, info: dict[str, Any]) -> None:
+        if phase == "start":
+            deadline._at = 0.0  # the budget runs out during a collection in the parse
+
+    parsed: list[bool] = []
+
+    def parser(text: str) -> Any:
+        gc.collect()
+        tree = parseQuery(text)
+        parsed.append(True)
+        return tree
+
+    monkeypatch.setattr(sparqlparse, "_CHECK_EVERY", 1)  # the clock looked at on every call
+    gc.callbacks.append(callback)
+    try:
+        with pytest.raises(QueryTimeout):
+            sparqlparse.parse("SELECT ?x WHERE { VALUES ?x { " + "1 " * 2_000 + "} }", parser, deadline)
+    finally:
+        gc.callbacks.remove(callback)
+    assert parsed == []  # stopped inside the parse, not after it
