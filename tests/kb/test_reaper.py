@@ -4,22 +4,15 @@ from __future__ import annotations
 
 import threading
 import time
-from collections.abc import Callable
 
 from rdflib import URIRef
 
 from kb.errors import StorageFull
 from kb.lifespan import Expiries
 from kb.reaper import Reaper
+from tests.waiting import until
 
 TRIPLE = (URIRef("urn:p"), URIRef("urn:sees"), URIRef("urn:q"))
-
-
-def _wait(condition: Callable[[], bool], seconds: float = 10.0) -> bool:
-    deadline = time.monotonic() + seconds
-    while not condition() and time.monotonic() < deadline:
-        time.sleep(0.01)
-    return condition()
 
 
 def test_it_expires_a_statement_when_its_lifespan_ends() -> None:
@@ -28,7 +21,7 @@ def test_it_expires_a_statement_when_its_lifespan_ends() -> None:
     expiries.set("default", TRIPLE, time.time() + 0.05)
     reaper.wake()
     try:
-        assert _wait(lambda: popped == [("default", TRIPLE)])
+        until(lambda: popped == [("default", TRIPLE)])
         assert reaper.status.get().ok
     finally:
         reaper.close()
@@ -44,11 +37,11 @@ def test_a_failing_retraction_is_reported_then_cleared_when_it_succeeds() -> Non
     reaper = Reaper(threading.RLock(), Expiries(), expire, time.time)
     reaper.wake()
     try:
-        assert _wait(lambda: not reaper.status.get().ok)
+        until(lambda: not reaper.status.get().ok)
         status = reaper.status.get()
         assert status.code == "storage_full" and status.retry_in == 1.0
         failing[0] = False
-        assert _wait(lambda: reaper.status.get().ok, seconds=15.0)
+        until(lambda: reaper.status.get().ok)
     finally:
         reaper.close()
 
