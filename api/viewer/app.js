@@ -8,6 +8,8 @@ import { describe, isRecord, keyOf } from "./provenance.js";
 import { breakable, el, isQuestion, statementOf, termButton } from "./ui.js";
 
 const ROOT = "myself";
+const RETRY_FIRST_MS = 500;
+const RETRY_LAST_MS = 8000;
 // The speaker when none is given: ROS4HRI's nobody, which the service never adds to the KB.
 const NOBODY = "__unknown_agent__";
 
@@ -21,6 +23,7 @@ class Viewer {
     this.events = null;
     this.pending = new Set();
     this.flushTimer = null;
+    this.retryDelay = RETRY_FIRST_MS;
   }
 
   async start() {
@@ -164,13 +167,22 @@ class Viewer {
     this.flushTimer = null;
     const ids = [...this.pending];
     this.pending.clear();
-    await this.concepts.refresh(ids);
+    this.retryLater(await this.concepts.refresh(ids));
   }
 
   async resync() {
     const ids = new Set(this.graph.nodes.keys());
     if (this.selected) ids.add(this.selected);
-    await this.concepts.refresh([...ids]);
+    this.retryLater(await this.concepts.refresh([...ids]));
+  }
+
+  // Terms whose refresh failed are read again, later and later while the service stays busy, and
+  // the wait starts over once a refresh succeeds.
+  retryLater(failed) {
+    if (!failed.length) { this.retryDelay = RETRY_FIRST_MS; return; }
+    for (const id of failed) this.pending.add(id);
+    if (this.flushTimer === null) this.flushTimer = setTimeout(() => this.flush(), this.retryDelay);
+    this.retryDelay = Math.min(this.retryDelay * 2, RETRY_LAST_MS);
   }
 
   // ---- forms ---------------------------------------------------------------------------------

@@ -99,14 +99,18 @@ export class Concepts {
     });
   }
 
+  // Resolves to the ids that could not be read (the service was busy or unreachable), for the
+  // caller to try again: a change whose refresh failed would otherwise stay undrawn.
   refresh(ids) {
     return this.serial(async () => {
+      const failed = [];
       for (const id of ids) {
         let info;
         try {
           info = await this.load(id);
         } catch {
-          continue;  // gone or unreachable; the next resync tries again
+          failed.push(id);
+          continue;
         }
         if (!this.graph.hasNode(id)) { this.onChange(id); continue; }
         if (!exists(info.details) && id !== this.root) {
@@ -119,6 +123,7 @@ export class Concepts {
         this.onChange(id);
       }
       this.prune();
+      return failed;
     });
   }
 

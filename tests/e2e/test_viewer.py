@@ -109,6 +109,30 @@ def test_facts_added_elsewhere_and_here_appear_live_and_removals_too(service: Se
     expect(page.locator("#facts tbody tr", has_text="person_bob")).to_have_count(0)
 
 
+def test_a_change_whose_refresh_fails_is_read_again_and_drawn(service: Service, open_viewer: Opener) -> None:
+    page, watch = open_viewer(service)
+    node(page, "cup_1").wait_for()
+    refused: list[str] = []
+
+    def busy_once(route: Any) -> None:
+        # The first read of each end of the new fact meets a busy service, as on a loaded machine.
+        term = route.request.url.split("/kb/details/")[1].split("?")[0]
+        if term not in refused:
+            refused.append(term)
+            route.fulfill(status=503, content_type="application/json",
+                          body=json.dumps({"status": 503, "code": "busy", "message": "busy", "details": {}}))
+        else:
+            route.continue_()
+
+    for term in ("cup_1", "person_alice"):
+        page.route(f"**/kb/details/{term}?*", busy_once)
+    service.revise(["cup_1 isNextTo person_alice"])
+    edge(page, "cup_1", "isNextTo", "person_alice").wait_for()
+    assert sorted(refused) == ["cup_1", "person_alice"]
+    # The refused read is the one failure the page reported; nothing else went wrong.
+    assert [e for e in watch.errors if "503" not in e] == []
+
+
 def test_chat_shows_reply_and_intents(service: Service, open_viewer: Opener) -> None:
     page, _ = open_viewer(service)
     page.fill("#user-id", "person_alice")
