@@ -18,6 +18,7 @@ from dialogue.reference.grounding import Entity, Kind
 from dialogue.reference.lexicon import Lexicon, norm, phrase, singular
 from dialogue.reference.synonyms import synonyms
 from dialogue.understanding.language import Language
+from dialogue.understanding.lemmas import lemmas_of
 
 
 @dataclass(frozen=True)
@@ -38,6 +39,9 @@ class _Words:
     support: frozenset[str]
     colours: frozenset[str]
     parts: frozenset[str]
+    containers: frozenset[str]
+    #: Words of a label that never name what a container holds: its colour, size, material.
+    not_contents: frozenset[str]
     #: Prepositions of a thing nearby, and the relations of the KB (`isNextTo`, `near`,
     #: `isBelow`...) that say it ("the printer by the window").
     beside: dict[str, frozenset[str]]
@@ -58,6 +62,8 @@ def _words(lang: Language) -> _Words:
         support=lang.support,
         colours=closed.colours,
         parts=closed.parts,
+        containers=closed.containers,
+        not_contents=closed.colours | closed.positions | head.qualifiers | closed.materials,
         beside=lang.prepositions.column("evidence"),
         joined=frozenset(lang.prepositions.having("beside")),
     )
@@ -225,23 +231,48 @@ def _evidence(lexicon: Lexicon, lang: _Words, entity: Entity, phrase: _Phrase, n
                 return None  # "Dan's mug" when the mug is known to be Bob's
             score += 1
     for prep, np in phrase.modifiers:
-        if prep in lang.beside:
-            score += _nearby(lexicon, entity, lang.beside[prep], _entities(lexicon, np))
-            continue
-        if prep not in lang.support:
-            continue
-        places = _entities(lexicon, np)
-        if not places:
-            continue  # a place the KB does not know: nothing to check
-        known = {p.id for p in places if p.kind != "zone"}, {p.id for p in places if p.kind == "zone"}
-        if known[0] & {o for p, o in entity.relations if p == "in"}:
-            score += 1  # "the ball in the toy box": a container it is known to be in
-            continue
-        for fact, candidates in ((entity.support, known[0]), (entity.zone, known[1])):
-            if fact is None or not candidates:
-                continue
-            if fact in candidates:
-                score += 1
-            else:
-                return None  # "the cup on the table" when the cup is known to be on the shelf
+        held = _modifier(lexicon, lang, entity, phrase.core[-1], prep, np)
+        if held is None:
+            return None
+        score += held
     return score
+
+
+def _modifier(
+    lexicon: Lexicon, lang: _Words, entity: Entity, head: str, prep: str, np: Sequence[str]
+) -> int | None:
+    """One modifier of the phrase: 1 when it holds for the entity, 0 when nothing is known either way,
+    None when it contradicts a known fact."""
+    if prep == "of" and head in lang.containers:
+        return _holds(lexicon, lang, entity, head, np)
+    if prep in lang.beside:
+        return _nearby(lexicon, entity, lang.beside[prep], _entities(lexicon, np))
+    if prep not in lang.support:
+        return 0
+    places = _entities(lexicon, np)
+    if not places:
+        return 0  # a place the KB does not know: nothing to check
+    known = {p.id for p in places if p.kind != "zone"}, {p.id for p in places if p.kind == "zone"}
+    if known[0] & {o for p, o in entity.relations if p == "in"}:
+        return 1  # "the ball in the toy box": a container it is known to be in
+    score = 0
+    for fact, candidates in ((entity.support, known[0]), (entity.zone, known[1])):
+        if fact is None or not candidates:
+            continue
+        if fact not in candidates:
+            return None  # "the cup on the table" when the cup is known to be on the shelf
+        score += 1
+    return score
+
+
+def _holds(lexicon: Lexicon, lang: _Words, entity: Entity, container: str, np: Sequence[str]) -> int | None:
+    """ "the box of tissues": 1 when the entity's own words say it holds that, None when its label
+    names other contents (the "coin tin" is no box of tissues), 0 when nothing is known either way
+    (a "red bottle" may be the bottle of water: the open world)."""
+    said = [w for w in norm(np) if w not in lang.determiners]
+    if set(said) & lexicon.attributes.get(entity.id, frozenset()):
+        return 1
+    own = {w for label in entity.labels for w in norm(tokens(label))}
+    others = own - lang.not_contents - {container, *said}
+    # An adjective of the label says what the container is like ("insulated flask"), not what it holds.
+    return None if any("ADJ" not in lemmas_of(w) for w in others) else 0

@@ -38,6 +38,7 @@ class ClosedWords(Table):
     positions: WordSet = frozenset()
     parts: WordSet = frozenset()
     containers: WordSet = frozenset()
+    materials: WordSet = frozenset()
     held: WordSet = frozenset()
     compound_heads: WordSet = frozenset()
     measures: WordSet = frozenset()

@@ -151,3 +151,33 @@ def test_a_word_none_of_the_candidates_has_does_not_pick_the_one_the_robot_sees(
     assert out.intent is None and not out.understood
     assert say(kb, "go to the x ray room").roles == {"goal": "room_x"}
     kb.close()
+
+
+def _containers() -> KB:
+    return scene_kb(
+        None,
+        "tin_1 rdf:type Box", 'tin_1 rdfs:label "coin tin"', "myself sees tin_1",
+        "bottle_1 rdf:type dbr:Bottle", 'bottle_1 rdfs:label "red plastic bottle"', "myself sees bottle_1",
+    )  # fmt: skip
+
+
+@pytest.mark.parametrize("text", ["a box of tissues", "a box of tumble dryer sheets"])
+def test_a_container_whose_label_names_other_contents_is_not_a_container_of_this(text: str) -> None:
+    kb = _containers()
+    try:
+        assert resolve_head(lexicon_of(kb), text.split(), THING) == []
+        out = say(kb, f"get me {text}")
+        assert out.intent is None, out.reply
+    finally:
+        kb.close()
+
+
+def test_a_container_of_what_its_label_says_or_of_what_nothing_contradicts_is_named() -> None:
+    kb = _containers()
+    try:
+        lex = lexicon_of(kb)
+        assert [e.id for e in resolve_head(lex, ["the", "box", "of", "coins"], THING)] == ["tin_1"]
+        # Colour, material: what the bottle is like, not what it holds (the open world: it may hold water).
+        assert [e.id for e in resolve_head(lex, ["the", "bottle", "of", "water"], THING)] == ["bottle_1"]
+    finally:
+        kb.close()
