@@ -14,7 +14,8 @@ from __future__ import annotations
 from dialogue.reference.english import Words
 from dialogue.understanding.language import Language
 from dialogue.understanding.parsed import Parse
-from dialogue.understanding.speech.plain import Prefixes, split_at, starts
+from dialogue.understanding.speech.plain import split_at, starts
+from dialogue.understanding.tables.prefixes import Prefixes
 
 
 class _Words:

@@ -18,8 +18,9 @@ from dialogue.understanding.lemmas import lemmas_of
 from dialogue.understanding.outcome import Outcome
 from dialogue.understanding.requests.frames import known_verbs, verbs
 from dialogue.understanding.said import QUOTED, Said, Text
-from dialogue.understanding.speech.plain import Prefixes, strip_politeness
+from dialogue.understanding.speech.plain import strip_politeness
 from dialogue.understanding.speech.repair import asked_verb, normalise, strip_vocative
+from dialogue.understanding.tables.prefixes import Prefixes
 
 
 class _Words:
