@@ -19,7 +19,7 @@ from dialogue.understanding.requests.needs import chore_needed
 from dialogue.understanding.requests.timing import conditional, later, negation, when
 from dialogue.understanding.requests.vocabulary import Grammar
 from dialogue.understanding.said import Said, Text
-from dialogue.understanding.speech.plain import starts, strip_politeness
+from dialogue.understanding.speech.plain import strip_politeness
 from dialogue.understanding.speech.repair import normalise, strip_vocative, verb_lemma
 
 __all__ = ["Parse", "Words", "parse"]
@@ -57,20 +57,20 @@ def parse(lang: Language, said: Text, robot_name: str = "") -> Parse:
     talk = _talk(g, words, robot_name)
     if talk is not None:
         return talk
-    for greeting in () if _welcoming(g, words) else g.greetings:
-        if starts(words, greeting):
-            rest = _after_greeting(lang, words[len(greeting) :], robot_name)
-            again = next((a for a in g.greetings if starts(rest, a) and len(rest) > len(a)), ())
-            again = () if _welcoming(g, rest) else again  # ("hey Tiago, welcome Mr Dubois")
-            rest = _after_greeting(lang, rest[len(again) :], robot_name) if again else rest
-            if tuple(rest) in g.social:
-                return Parse("greeting", words=tuple(words))
-            # "Good morning Maria" is still a greeting; "hi, grab the cup" is a request; "hello
-            # robot, what's your name" a greeting and a question.
-            after = _request(lang, heard, rest)
-            if after is not None and after.act == "question" and greeting not in g.attention:
-                return replace(after, greeted=True)
-            return after or _aside("greeting", words, rest)
+    greeting = None if _welcoming(g, words) else g.greetings.first(words)
+    if greeting is not None:
+        rest = _after_greeting(lang, words[len(greeting) :], robot_name)
+        again = next((a for a in g.greetings.of(rest) if len(rest) > len(a)), ())
+        again = () if _welcoming(g, rest) else again  # ("hey Tiago, welcome Mr Dubois")
+        rest = _after_greeting(lang, rest[len(again) :], robot_name) if again else rest
+        if tuple(rest) in g.social:
+            return Parse("greeting", words=tuple(words))
+        # "Good morning Maria" is still a greeting; "hi, grab the cup" is a request; "hello
+        # robot, what's your name" a greeting and a question.
+        after = _request(lang, heard, rest)
+        if after is not None and after.act == "question" and greeting not in g.attention:
+            return replace(after, greeted=True)
+        return after or _aside("greeting", words, rest)
     return _question(lang, words) or command(lang, heard, words)
 
 
