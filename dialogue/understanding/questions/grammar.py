@@ -40,7 +40,7 @@ class _Words:
         #: Leads of an indirect question: "do you know where the keys are", "any idea where the
         #: toolbox is".
         self.indirect = Prefixes(said.indirect)
-        self.describe, self.described = said.describe, said.described
+        self.describe, self.described = Prefixes(said.describe), said.described
         self.determiners = lang.words.determiners
         self.be = said.be
         self.someone = said.someone
@@ -141,16 +141,15 @@ def question(lang: Language, words: list[str]) -> Parse | None:  # noqa: C901
         return _where(q, w)
     if q.how_many and starts(w, q.how_many):
         return _q("how_many", w, thing=_counted(q, w[2:]))
-    for lead in q.sees:
-        if starts(w, lead):
-            if w[len(lead) : len(lead) + 1] and w[len(lead)] in q.not_seen_before:
-                break  # "do you have to go": a duty, nothing seen
-            thing = _strip_ends(w[len(lead) :], frozenset(), q.nearby)  # "is there any fruit around"
-            if thing[:1] and thing[0] in q.anything:
-                if q.purpose(thing[1:3]) is not None and not thing[3:] and lead in q.available:
-                    return None  # "is there anything to eat": a need (requests/needs), no question
-                return _anything(q, w, thing[1:])
-            return _q("can_see", w, thing=thing)
+    seeing = q.sees.first(w)
+    # ("do you have to go": a duty, nothing seen)
+    if seeing is not None and not (w[len(seeing) : len(seeing) + 1] and w[len(seeing)] in q.not_seen_before):
+        thing = _strip_ends(w[len(seeing) :], frozenset(), q.nearby)  # "is there any fruit around"
+        if thing[:1] and thing[0] in q.anything:
+            if q.purpose(thing[1:3]) is not None and not thing[3:] and seeing in q.available:
+                return None  # "is there anything to eat": a need (requests/needs), no question
+            return _anything(q, w, thing[1:])
+        return _q("can_see", w, thing=thing)
     here = w[:-1] if len(w) > 3 and w[-1] in q.there_after else w  # ("is Yuki here yet?")
     if head and head[0] in q.is_are and len(here) > 2 and here[-1] in q.there:
         return _q("can_see", w, thing=here[1:-1])  # "is Maria here?"
@@ -171,7 +170,7 @@ def _described(q: _Words, w: Words) -> Words:
     """The question "describe the objects on the bench" or "list the people in the foyer" asks, in
     its own words ("what is on the bench", "who is in the foyer"), when the words after what is
     described say where; else the words unchanged."""
-    lead = next((lead for lead in q.describe if starts(w, lead)), None)
+    lead = q.describe.first(w)
     if lead is None:
         return w
     rest = w[len(lead) :]
