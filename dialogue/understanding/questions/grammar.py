@@ -11,6 +11,9 @@ answer is computed from the KB snapshot in dialogue.understanding.questions.answ
 
 from __future__ import annotations
 
+from collections.abc import Callable
+from typing import Literal
+
 from dialogue.reference.english import Words
 from dialogue.understanding.language import Language
 from dialogue.understanding.parsed import Parse
@@ -98,72 +101,133 @@ def _strip_ends(thing: Words, lead: frozenset[str], tail: frozenset[str]) -> Wor
     return thing
 
 
-def question(lang: Language, words: list[str]) -> Parse | None:  # noqa: C901
+def question(lang: Language, words: list[str]) -> Parse | None:
+    """The question the words ask, read by the first of `_STEPS` that takes them; None when they
+    ask none."""
     q = lang.derived(_Words)
     w = tuple(words)
-    # ("show me where the lounge is": guiding)
-    shown = bool(q.show_me) and w[:2] == q.show_me and w[2:3] != ("where",)
-    if ((q.tell_me and w[:2] == q.tell_me) or shown) and len(w) > 2 and w[2] in q.wh | {"about"}:
-        if w[2] == "about":
-            return _q("what_is", w, thing=w[3:])
-        w = w[2:]
-    for lead in q.indirect.of(w):
-        if w[len(lead) : len(lead) + 1] and w[len(lead)] in q.wh:
-            w = w[len(lead) :]
-            break
-    w = _described(q, w)  # "describe the objects on the bench": what is on it
-    named = _name_of(q, w)
-    if named is not None:  # "tell me the name of the person in the break room"
-        return named
-    for lead in q.seen_by_anyone.of(w):  # "has anyone seen my keys": where they are
-        if _strip_ends(w[len(lead) :], frozenset(), q.nearby):
-            return _q("where", w, thing=_strip_ends(w[len(lead) :], frozenset(), q.nearby))
-    head = w[:1]
-    if _anybody(q, w):  # "is anybody else here", "is there anyone around"
-        return _q("who_see", w)
-    belongs = bool(q.belong_to) and w[-2:] == q.belong_to
-    if head == ("whose",) or (head == ("who",) and (belongs or w[1:2] == ("owns",))):
-        return _q("whose", w, thing=_owned_thing(q, w))
-    if head and head[0] in q.what_heads:
-        return _what(q, w)
-    if head == ("who",):
-        if "you" in w and "are" in w and "see" not in w:
-            return _q("name", w)
-        if w[1:2] == ("is",) and w[2:] and w[2] not in q.who_not_a_name and not _who_at(q, w[1:]):
-            return _q("what_is", w, thing=w[2:])
-        at = _who_at(q, w[1:])  # "who's at the box office", "who is waiting at reception"
-        if at:
-            return _q("who_in", w, place=at)
-        # ("who else is down the allotment today": words besides the seeing question's, for the KB to know)
-        rest = tuple(x for x in w[1:] if x not in q.who_sees)
-        return _q("who_see", w, rest=rest) if rest else _q("who_see", w)
-    if head == ("where",):
-        return _where(q, w)
-    if q.how_many and starts(w, q.how_many):
-        return _q("how_many", w, thing=_counted(q, w[2:]))
-    seeing = q.sees.first(w)
-    # ("do you have to go": a duty, nothing seen)
-    if seeing is not None and not (w[len(seeing) : len(seeing) + 1] and w[len(seeing)] in q.not_seen_before):
-        thing = _strip_ends(w[len(seeing) :], frozenset(), q.nearby)  # "is there any fruit around"
-        if thing[:1] and thing[0] in q.anything:
-            if q.purpose(thing[1:3]) is not None and not thing[3:] and seeing in q.available:
-                return None  # "is there anything to eat": a need (requests/needs), no question
-            return _anything(q, w, thing[1:])
-        return _q("can_see", w, thing=thing)
-    here = w[:-1] if len(w) > 3 and w[-1] in q.there_after else w  # ("is Yuki here yet?")
-    if head and head[0] in q.is_are and len(here) > 2 and here[-1] in q.there:
-        return _q("can_see", w, thing=here[1:-1])  # "is Maria here?"
-    if head and head[0] in q.is_are and split_at(w, q.locatives) is not None:
-        # "is the cup (still) on the table?"
-        return _q("can_see", w, thing=tuple(x for x in w[1:] if x not in q.there_after))
-    if head == ("how",):
-        social = bool(q.social_how.of(w))
-        return _q("how_are_you" if social else "other", w)
-    if head and head[0] in q.wh:
-        return _q("other", w)
+    if _telling(q, w) and w[2] == "about":
+        return _q("what_is", w, thing=w[3:])
+    w = _described(q, _indirect(q, _told(q, w)))  # "describe the objects on the bench": what is on it
+    for step in _STEPS:
+        found = step(q, w)
+        if found is not None:
+            return None if found is False else found
     return None
 
 
+#: What a step makes of the words: the question, None when they are not its kind of question (the
+#: next step reads them), False when they are no question at all ("is there anything to eat").
+_Read = Parse | Literal[False] | None
+
+
+def _telling(q: _Words, w: Words) -> bool:
+    """Whether the words ask to be told or shown a wh-question ("tell me where...", "show me
+    what..."; "show me where the lounge is" is guiding)."""
+    shown = bool(q.show_me) and w[:2] == q.show_me and w[2:3] != ("where",)
+    return bool((q.tell_me and w[:2] == q.tell_me) or shown) and len(w) > 2 and w[2] in q.wh | {"about"}
+
+
+def _told(q: _Words, w: Words) -> Words:
+    """ "tell me where the keys are": the question itself."""
+    return w[2:] if _telling(q, w) else w
+
+
+def _indirect(q: _Words, w: Words) -> Words:
+    """ "do you know where the keys are": the question itself."""
+    for lead in q.indirect.of(w):
+        if w[len(lead) : len(lead) + 1] and w[len(lead)] in q.wh:
+            return w[len(lead) :]
+    return w
+
+
+def _seen_by_anyone(q: _Words, w: Words) -> _Read:
+    """ "has anyone seen my keys": where they are."""
+    for lead in q.seen_by_anyone.of(w):
+        if _strip_ends(w[len(lead) :], frozenset(), q.nearby):
+            return _q("where", w, thing=_strip_ends(w[len(lead) :], frozenset(), q.nearby))
+    return None
+
+
+def _anybody_here(q: _Words, w: Words) -> _Read:
+    """ "is anybody else here", "is there anyone around"."""
+    return _q("who_see", w) if _anybody(q, w) else None
+
+
+def _whose(q: _Words, w: Words) -> _Read:
+    head = w[:1]
+    belongs = bool(q.belong_to) and w[-2:] == q.belong_to
+    if head == ("whose",) or (head == ("who",) and (belongs or w[1:2] == ("owns",))):
+        return _q("whose", w, thing=_owned_thing(q, w))
+    return None
+
+
+def _what_heads(q: _Words, w: Words) -> _Read:
+    return _what(q, w) if w[:1] and w[0] in q.what_heads else None
+
+
+def _who(q: _Words, w: Words) -> _Read:
+    if w[:1] != ("who",):
+        return None
+    if "you" in w and "are" in w and "see" not in w:
+        return _q("name", w)
+    if w[1:2] == ("is",) and w[2:] and w[2] not in q.who_not_a_name and not _who_at(q, w[1:]):
+        return _q("what_is", w, thing=w[2:])
+    at = _who_at(q, w[1:])  # "who's at the box office", "who is waiting at reception"
+    if at:
+        return _q("who_in", w, place=at)
+    # ("who else is down the allotment today": words besides the seeing question's, for the KB to know)
+    rest = tuple(x for x in w[1:] if x not in q.who_sees)
+    return _q("who_see", w, rest=rest) if rest else _q("who_see", w)
+
+
+def _where_head(q: _Words, w: Words) -> _Read:
+    return _where(q, w) if w[:1] == ("where",) else None
+
+
+def _how_many(q: _Words, w: Words) -> _Read:
+    if q.how_many and starts(w, q.how_many):
+        return _q("how_many", w, thing=_counted(q, w[2:]))
+    return None
+
+
+def _seen(q: _Words, w: Words) -> _Read:
+    """ "do you see the cup", "is there any fruit around", "is there anything on the table"."""
+    seeing = q.sees.first(w)
+    # ("do you have to go": a duty, nothing seen)
+    if seeing is None or (w[len(seeing) : len(seeing) + 1] and w[len(seeing)] in q.not_seen_before):
+        return None
+    thing = _strip_ends(w[len(seeing) :], frozenset(), q.nearby)  # "is there any fruit around"
+    if thing[:1] and thing[0] in q.anything:
+        if q.purpose(thing[1:3]) is not None and not thing[3:] and seeing in q.available:
+            return False  # "is there anything to eat": a need (requests/needs), no question
+        return _anything(q, w, thing[1:])
+    return _q("can_see", w, thing=thing)
+
+
+def _here(q: _Words, w: Words) -> _Read:
+    """ "is Maria here?", "is Yuki here yet?"."""
+    here = w[:-1] if len(w) > 3 and w[-1] in q.there_after else w
+    if w[:1] and w[0] in q.is_are and len(here) > 2 and here[-1] in q.there:
+        return _q("can_see", w, thing=here[1:-1])
+    return None
+
+
+def _still_on(q: _Words, w: Words) -> _Read:
+    """ "is the cup (still) on the table?"."""
+    if w[:1] and w[0] in q.is_are and split_at(w, q.locatives) is not None:
+        return _q("can_see", w, thing=tuple(x for x in w[1:] if x not in q.there_after))
+    return None
+
+
+def _how(q: _Words, w: Words) -> _Read:
+    if w[:1] != ("how",):
+        return None
+    return _q("how_are_you" if q.social_how.of(w) else "other", w)
+
+
+def _other(q: _Words, w: Words) -> _Read:
+    return _q("other", w) if w[:1] and w[0] in q.wh else None
 
 
 def _described(q: _Words, w: Words) -> Words:
@@ -221,8 +285,6 @@ def _counted(q: _Words, rest: Words) -> Words:
         after = after[1:]
     thing = rest[:at] + (after if after[:1] and after[0] in q.place_starts else ())
     return _strip_ends(thing, frozenset(), q.count_tail)
-
-
 
 
 def _anybody(q: _Words, w: Words) -> bool:
@@ -351,3 +413,10 @@ def _placed_thing(q: _Words, rest: Words) -> Words:
     if len(before) > 1 or (before and rest[:1] and rest[0] in q.be):
         return ()
     return _strip_ends(rest[at + 1 :], frozenset(), q.nearby | q.where_tail)
+
+
+#: The kinds of question, in the order they are tried.
+_STEPS: tuple[Callable[[_Words, Words], _Read], ...] = (
+    _name_of, _seen_by_anyone, _anybody_here, _whose, _what_heads, _who, _where_head, _how_many,
+    _seen, _here, _still_on, _how, _other,
+)  # fmt: skip
