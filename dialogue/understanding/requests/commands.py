@@ -15,7 +15,7 @@ from dialogue.understanding.parsed import Act, Parse
 from dialogue.understanding.questions.grammar import question as _question
 from dialogue.understanding.requests.adjuncts import adjuncts_of
 from dialogue.understanding.requests.constructions import Framed
-from dialogue.understanding.requests.frames import Row, verb_index
+from dialogue.understanding.requests.frames import Frame, Row, verb_index
 from dialogue.understanding.requests.needs import chore_needed
 from dialogue.understanding.requests.timing import conditional, later, negation, when
 from dialogue.understanding.requests.vocabulary import Grammar
@@ -158,46 +158,22 @@ def _np_next(lang: Language, rest: Words) -> bool:
     return len(rest) > 1 and rest[1] in lang.words.np_start
 
 
-def _fit(row: Row, said: Framed) -> Parse | None:  # noqa: C901
+def _fit(row: Row, said: Framed) -> Parse | None:
     """The row's reading of what follows the verb, or None when the row does not fit it."""
-    frame, rest = row.frame, said.rest
-    g = said.lang.derived(Grammar)
-    if frame.special is not None:
-        return frame.special(said)
-    if frame.intent is None and not frame.serial:  # a verb no intent says ("hand out the sheets")
-        only = frame.only
-        if only is not None and not (rest[:1] and rest[0] in only and not _np_next(said.lang, rest)):
-            return None  # "carry me" has no intent, "carry the box", "carry me the box" other frames'
-        return Parse("unknown", words=said.words)
-    if frame.serial:  # "go get the cup", "come say hello to Ana"
-        lang = said.lang
-        serial = rest and verb_lemma(lang, rest[0]) in verb_index(lang)
-        return command(lang, said.original, list(rest)) if serial else None
-    if frame.whole and rest:
+    frame = row.frame
+    if frame.special is not None or frame.intent is None or frame.serial:
+        return _unframed(row, said)
+    if frame.whole and said.rest:
         return None
-    rest, adjuncts = adjuncts_of(g, rest, row)
+    g = said.lang.derived(Grammar)
+    rest, adjuncts = adjuncts_of(g, said.rest, row)
     if when(g, adjuncts):  # "say hi to her when she comes in": not now
         return Parse("conditional", words=said.words)
     direct, slots, marks = _segments(g, rest, row)
     if direct:
         direct = _which_one_back(direct, slots, marks, row)
     if frame.here is not None and not (frame.dative and direct[:1] and direct[0] in g.me):
-        # ("fetch me that lamp over there": there is where the lamp is)
-        # "leave it over there", "come here", "lead the way"; dropped when the place is also named
-        # ("lead the way to the lobby").
-        # ("wait for me there": what for says no place, the pointing word after it does)
-        aside = "extra" if not direct and "extra" in slots else None
-        words = slots[aside] if aside is not None else direct
-        pointed = next((p for p in g.pointing if words[-len(p[0]) :] == p[0]), None)
-        if pointed is not None and not (frame.there_only and pointed[1] != ("there",)):
-            if aside is None:
-                direct = direct[: -len(pointed[0])]
-            else:
-                slots[aside] = words[: -len(pointed[0])]
-            slots.setdefault(frame.here, pointed[1])
-        at = next((i for i, w in enumerate(direct) if i and w in g.somewhere), None)
-        if at is not None and frame.here not in slots:  # "put it somewhere safe": where is asked
-            direct, slots[frame.here] = direct[:at], direct[at:]
+        direct = _here_or_there(g, frame, frame.here, direct, slots)
     if "extra" in slots:  # what a role the intent does not ground says is an adjunct ("for the van")
         adjuncts = (*adjuncts, (" ".join(marks.pop("extra")), *slots.pop("extra")))
     direct = _without_particles(g, direct, row)
@@ -207,25 +183,96 @@ def _fit(row: Row, said: Framed) -> Parse | None:  # noqa: C901
         return None  # "get out of my way": where not to be is all it says (no thing to get)
     if not direct and frame.direct is not None:
         direct = _second_phrase(g, slots)  # "bring to Ana the tray"
-    if frame.dative is not None and direct[:1] and direct[0] in g.me and marks.get("recipient") == ("to",):
+    direct, adjuncts = _handed_me(g, frame, direct, slots, marks, adjuncts)
+    if frame.dative is not None and "recipient" not in slots and direct:
+        dative = _dative(g, frame, said, direct, slots, adjuncts)
+        if isinstance(dative, Parse):
+            return dative
+        direct = dative
+    return _roles(frame, said, direct, slots, marks, adjuncts)
+
+
+def _unframed(row: Row, said: Framed) -> Parse | None:
+    """A row whose frame reads no roles: a function of its own, a verb no intent says, or a verb
+    before another ("go get the cup")."""
+    frame, rest = row.frame, said.rest
+    if frame.special is not None:
+        return frame.special(said)
+    if frame.intent is None and not frame.serial:  # a verb no intent says ("hand out the sheets")
+        only = frame.only
+        if only is not None and not (rest[:1] and rest[0] in only and not _np_next(said.lang, rest)):
+            return None  # "carry me" has no intent, "carry the box", "carry me the box" other frames'
+        return Parse("unknown", words=said.words)
+    # "go get the cup", "come say hello to Ana"
+    lang = said.lang
+    serial = rest and verb_lemma(lang, rest[0]) in verb_index(lang)
+    return command(lang, said.original, list(rest)) if serial else None
+
+
+def _here_or_there(g: Grammar, frame: Frame, here: str, direct: Words, slots: dict[str, Words]) -> Words:
+    """The role `here`, which a bare "here" or "there" fills ("leave it over there", "come here",
+    "lead the way"; dropped when the place is also named: "lead the way to the lobby"), or
+    "somewhere" does; the direct words without it."""
+    # ("fetch me that lamp over there": there is where the lamp is)
+    # ("wait for me there": what for says no place, the pointing word after it does)
+    aside = "extra" if not direct and "extra" in slots else None
+    words = slots[aside] if aside is not None else direct
+    pointed = next((p for p in g.pointing if words[-len(p[0]) :] == p[0]), None)
+    if pointed is not None and not (frame.there_only and pointed[1] != ("there",)):
+        if aside is None:
+            direct = direct[: -len(pointed[0])]
+        else:
+            slots[aside] = words[: -len(pointed[0])]
+        slots.setdefault(here, pointed[1])
+    at = next((i for i, w in enumerate(direct) if i and w in g.somewhere), None)
+    if at is not None and here not in slots:  # "put it somewhere safe": where is asked
+        direct, slots[here] = direct[:at], direct[at:]
+    return direct
+
+
+def _handed_me(
+    g: Grammar, frame: Frame, direct: Words, slots: dict[str, Words], marks: dict[str, Words],
+    adjuncts: tuple[Words, ...],
+) -> tuple[Words, tuple[Words, ...]]:  # fmt: skip
+    """ "bring me the keys to the red car", "pass me the drill for Marcus": the speaker is the
+    recipient, what follows "to" or "for" part of the thing or whom it is for."""
+    if frame.dative is None or not (direct[:1] and direct[0] in g.me):
+        return direct, adjuncts
+    if marks.get("recipient") == ("to",):
         # "bring me the keys to the red car": the keys of the car, brought to the speaker
         direct = (*direct[1:], "to", *slots.pop("recipient"))
         slots["recipient"] = ("me",)
         del marks["recipient"]
-    elif frame.dative is not None and direct[:1] and direct[0] in g.me and marks.get("recipient") == ("for",):
+    elif marks.get("recipient") == ("for",):
         # "pass me the drill for Marcus", "get me a cloth for the spill": the speaker is handed it,
         # whoever or whatever it is for
         adjuncts = (*adjuncts, ("for", *slots.pop("recipient")))
         slots["recipient"], direct = ("me",), direct[1:]
         del marks["recipient"]
-    if frame.dative is not None and "recipient" not in slots and direct:
-        # "get Ines her phone": someone, then a noun phrase of its own
-        before = frame.dative == "before" and _someone(g, direct[0]) and _own_phrase_after(g, direct)
-        if direct[0] in g.me:  # "get me a cup"
-            slots["recipient"], direct = ("me",), direct[1:]
-        elif frame.dative == "any" or before:  # "give Ines her phone": the interpreter splits it
-            return Parse("command", frame.intent, {"rest": direct}, words=said.words, double_object=True,
-                         adjuncts=adjuncts)  # fmt: skip
+    return direct, adjuncts
+
+
+def _dative(
+    g: Grammar, frame: Frame, said: Framed, direct: Words, slots: dict[str, Words],
+    adjuncts: tuple[Words, ...],
+) -> Parse | Words:  # fmt: skip
+    """ "get me a cup", "give Ines her phone": the recipient said first; the direct words after it,
+    or a double object the interpreter splits."""
+    # "get Ines her phone": someone, then a noun phrase of its own
+    before = frame.dative == "before" and _someone(g, direct[0]) and _own_phrase_after(g, direct)
+    if direct[0] in g.me:  # "get me a cup"
+        slots["recipient"], direct = ("me",), direct[1:]
+    elif frame.dative == "any" or before:  # "give Ines her phone": the interpreter splits it
+        return Parse("command", frame.intent, {"rest": direct}, words=said.words, double_object=True,
+                     adjuncts=adjuncts)  # fmt: skip
+    return direct
+
+
+def _roles(
+    frame: Frame, said: Framed, direct: Words, slots: dict[str, Words], marks: dict[str, Words],
+    adjuncts: tuple[Words, ...],
+) -> Parse | None:  # fmt: skip
+    """The request with its roles, or None when the frame's roles are not what was said."""
     if direct and frame.direct is None:
         return None
     if direct and frame.direct is not None:
@@ -239,8 +286,6 @@ def _fit(row: Row, said: Framed) -> Parse | None:  # noqa: C901
     text = frame.text(said.lang, said.verb, said.rest) if frame.text is not None else None
     return Parse("command", frame.intent, slots, text=text, words=said.words, adjuncts=adjuncts,
                  implicit=implicit, marks=marks)  # fmt: skip
-
-
 
 
 def _someone(g: Grammar, word: str) -> bool:
