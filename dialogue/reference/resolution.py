@@ -13,7 +13,6 @@ from __future__ import annotations
 
 from collections.abc import Collection, Sequence
 from dataclasses import dataclass
-from functools import lru_cache
 
 from dialogue import intents as I
 from dialogue.reference.clarify import MAX_OPTIONS
@@ -22,8 +21,8 @@ from dialogue.reference.grounding import Entity, Kind
 from dialogue.reference.headnoun import resolve_head
 from dialogue.reference.lexicon import Lexicon, norm
 from dialogue.reference.naming import phrase as name_words
+from dialogue.reference.unnamed import by_label_words, by_qualifiers, compared, thing_held, thing_measured
 from dialogue.understanding.language import Language
-from dialogue.understanding.lemmas import lemmas_of
 
 #: The ontology's class of what a bottle, a can or a packet holds.
 FOOD_OR_DRINK = "cyc:FoodOrDrink"
@@ -267,9 +266,9 @@ def _otherwise(r: _Read, matches: list[Entity], owner: str | None) -> list[Entit
 def _by_words(r: _Read) -> list[Entity]:
     """The entities the content words say by their labels' words, qualifiers or head noun."""
     lexicon, content = r.lexicon, [r.normed[i] for i in r.content]
-    matches = _by_label_words(lexicon, content, r.kinds)
+    matches = by_label_words(lexicon, content, r.kinds)
     if not matches and lexicon.lang.words.one & set(r.words):
-        matches = _by_qualifiers(lexicon, content, r.kinds)
+        matches = by_qualifiers(lexicon, content, r.kinds)
     if not matches:
         matches = resolve_head(lexicon, r.words, r.kinds)
     return matches
@@ -280,10 +279,10 @@ def _measured(r: _Read, owner: str | None) -> list[Entity]:
     a container holds: "a bottle of umbrella" is nothing)."""
     lang = r.lexicon.lang
     matches: list[Entity] = []
-    counted = _counted(lang, r.words)
+    counted = thing_measured(lang, r.words)
     if counted:
         matches = list(resolve(r.lexicon, counted, r.kinds, owner=owner).matches)
-    contents = _contents(lang, r.words, r.normed) if not matches else ()
+    contents = thing_held(lang, r.words, r.normed) if not matches else ()
     if contents:
         held = resolve(r.lexicon, contents, r.kinds, owner=owner).matches
         matches = [e for e in held if FOOD_OR_DRINK in e.classes]
@@ -342,47 +341,6 @@ def _settled(near: Sequence[Entity], owner: str | None, own_name: Collection[str
     return any(e.id in own_name for e in near) or not own_name
 
 
-@lru_cache(maxsize=4096)
-def compared(lang: Language, word: str) -> str:
-    """The adjective a comparative or superlative compares by ("the bigger one": big), else the word."""
-    if word.endswith(lang.words.compared):
-        bases: tuple[str, ...] = lemmas_of(word).get("ADJ", ())
-        if bases and bases[0] != word:
-            return bases[0]
-    return word
-
-
-def _counted(lang: Language, words: Sequence[str]) -> tuple[str, ...]:
-    """ "a pair of glasses" -> "glasses": what a measure of it names; () when no measure is said."""
-    measures = lang.words.measures
-    at = next((i for i in range(len(words) - 2) if words[i] in measures and words[i + 1] == "of"), None)
-    return () if at is None else tuple(words[at + 2 :])
-
-
-def _contents(lang: Language, words: Sequence[str], normed: Sequence[str]) -> tuple[str, ...]:
-    """ "the beer cans" -> "the beer", "a can of beer" -> "beer": what a container named by a word
-    the KB has no thing for holds (the caller tried the container first); () when there is none."""
-    for i, word in enumerate(normed):
-        if word not in lang.words.containers:
-            continue
-        if words[i + 1 : i + 2] == ["of"] and words[i + 2 :]:
-            return tuple(words[i + 2 :])
-        if i > 0 and words[i - 1] not in lang.glue:
-            return (*words[:i], *words[i + 1 :])
-    return ()
-
-
-def _by_qualifiers(lexicon: Lexicon, qualifiers: Sequence[str], kinds: Collection[Kind]) -> list[Entity]:
-    """ "the orange one": with no noun, the things every qualifier holds for (colour, label words)."""
-    said = [(w, compared(lexicon.lang, w)) for w in qualifiers]
-    out = []
-    for entity in lexicon.snapshot.entities.values():
-        attrs = lexicon.attributes.get(entity.id, frozenset())
-        if entity.kind in kinds and all(w in attrs or base in attrs for w, base in said):
-            out.append(entity)
-    return out
-
-
 def _head(lang: Language, words: Sequence[str], content: Sequence[int]) -> int | None:
     """The index of the head noun: the last content word before a preposition ends the core."""
     core_end = lang.locative | lang.words.core_end
@@ -392,19 +350,6 @@ def _head(lang: Language, words: Sequence[str], content: Sequence[int]) -> int |
             break
         head = i
     return head
-
-
-def _by_label_words(lexicon: Lexicon, content: Sequence[str], kinds: Collection[Kind]) -> list[Entity]:
-    """ "the teddy" for the "teddy bear", "the flathead" for the "flathead screwdriver": when no name
-    occurs, a part of a label still names the thing if every other word qualifies it."""
-    candidates = dict.fromkeys(e for w in content for e in lexicon.by_label_word.get(w, ()))
-    out = []
-    for entity_id in candidates:
-        entity = lexicon.snapshot.get(entity_id)
-        attrs = lexicon.attributes.get(entity_id, frozenset())
-        if entity is not None and entity.kind in kinds and all(w in attrs for w in content):
-            out.append(entity)
-    return lexicon.snapshot.in_order(out)
 
 
 def resolve_id(lexicon: Lexicon, value: str, kinds: Collection[Kind] = ALL_KINDS) -> Resolution:
