@@ -23,6 +23,8 @@ CLEAN = (
     "dialogue/understanding/questions/answers.py",
     "dialogue/understanding/questions/grammar.py",
     "dialogue/understanding/questions/told.py",
+    "dialogue/understanding/questions/vocabulary.py",
+    "dialogue/understanding/requests/adjuncts.py",
     "dialogue/understanding/requests/commands.py",
     "dialogue/understanding/requests/constructions.py",
     "dialogue/understanding/requests/needs.py",

@@ -13,7 +13,6 @@ from __future__ import annotations
 
 from collections.abc import Collection, Sequence
 from dataclasses import dataclass
-from functools import lru_cache
 
 from dialogue import intents as I
 from dialogue.reference.clarify import MAX_OPTIONS
@@ -22,8 +21,8 @@ from dialogue.reference.grounding import Entity, Kind
 from dialogue.reference.headnoun import resolve_head
 from dialogue.reference.lexicon import Lexicon, norm
 from dialogue.reference.naming import phrase as name_words
+from dialogue.reference.unnamed import by_label_words, by_qualifiers, compared, thing_held, thing_measured
 from dialogue.understanding.language import Language
-from dialogue.understanding.lemmas import lemmas_of
 
 #: The ontology's class of what a bottle, a can or a packet holds.
 FOOD_OR_DRINK = "cyc:FoodOrDrink"
@@ -119,19 +118,62 @@ def _weight(resolution: Resolution) -> int:
     return 1 + len(resolution.matches)
 
 
-def _resolve(  # noqa: C901
+@dataclass(slots=True)
+class _Read:
+    """A phrase as resolution reads it (once): its words ("ines's" as "ines"), their normalised and
+    compared forms ("bigger": big), where its content words are, and the KB's names found in it."""
+
+    lexicon: Lexicon
+    kinds: Collection[Kind]
+    phrase: str
+    words: list[str]
+    normed: Sequence[str]
+    bases: list[str]
+    content: list[int]
+    #: entity -> the word positions its names span
+    cover: dict[str, frozenset[int]]
+    #: entities a name of the KB's own (not the lexicon file's) occurs for
+    own_name: set[str]
+    #: entity -> the sources of its names that are all the words said
+    whole: dict[str, set[str]]
+    head: int | None
+    #: Where the phrase's core ends: at its first locative ("the ones on the bench").
+    core_end: int
+
+
+def _resolve(
     lexicon: Lexicon, words: Sequence[str], kinds: Collection[Kind], owner: str | None, sight: bool
 ) -> Resolution:
+    """The sieves in order: the things whose names the words say, narrowed to those named most
+    closely; else what the words say otherwise (label words, qualifiers, a head noun, a measure or
+    a container's contents); then the preferred among them."""
+    r = _read(lexicon, words, kinds)
+    matches = _narrowed(r, _candidates(r, owner, sight))
+    matches = _otherwise(r, matches, owner)
+    return _preferred(r, matches, owner, sight)
+
+
+def _read(lexicon: Lexicon, said: Sequence[str], kinds: Collection[Kind]) -> _Read:
     lang = lexicon.lang
-    phrase = " ".join(words)
-    words = [w[:-2] if w.endswith("'s") and len(w) > 2 else w for w in words]  # "ines's" names Ines
+    words = [w[:-2] if w.endswith("'s") and len(w) > 2 else w for w in said]  # "ines's" names Ines
     normed = norm(words)
-    bases = [compared(lang, w) for w in normed]  # "bigger": big
-    cover: dict[str, frozenset[int]] = {}  # entity -> the word positions its names span
-    own_name: set[str] = set()  # entities a name of the KB's own (not the lexicon file's) occurs for
     content = [i for i in range(len(words)) if not _glue(lang.glue, words, i)]
-    said_whole = frozenset(content)
-    whole: dict[str, set[str]] = {}  # entity -> the sources of its names that are all the words said
+    cover, own_name, whole = _covered(lexicon, words, frozenset(content))
+    # "the ones on the bench": no noun before the preposition, and never the bench itself ("one of
+    # the baskets")
+    core_end = next((i for i, w in enumerate(words) if w in lang.locative), len(words))
+    return _Read(lexicon, kinds, " ".join(said), words, normed, [compared(lang, w) for w in normed], content,
+                 cover, own_name, whole, _head(lang, words, content), core_end)  # fmt: skip
+
+
+def _covered(
+    lexicon: Lexicon, words: list[str], said_whole: frozenset[int]
+) -> tuple[dict[str, frozenset[int]], set[str], dict[str, set[str]]]:
+    """The KB's names found in the words: the positions each entity's names span, the entities a
+    name of the KB's own names, and the sources of the names that are all the words said."""
+    cover: dict[str, frozenset[int]] = {}
+    own_name: set[str] = set()
+    whole: dict[str, set[str]] = {}
     for start in range(len(words)):
         spans: dict[int, frozenset[int]] = {}  # shared: a class word's name is thousands of things'
         for name in lexicon.names_at(words, start):
@@ -144,92 +186,125 @@ def _resolve(  # noqa: C901
                 own_name.add(name.entity)
             if span == said_whole:
                 whole.setdefault(name.entity, set()).add(name.source)
-    snapshot = lexicon.snapshot
-    head = _head(lang, words, content)
-    # "the ones on the bench": no noun before the preposition, and never the bench itself ("one of
-    # the baskets")
-    core_end = next((i for i, w in enumerate(words) if w in lang.locative), len(words))
-    only_one = head is None and lang.words.one & set(words[:core_end])
+    return cover, own_name, whole
 
-    def named(entity: Entity | None) -> bool:
-        if entity is None or entity.kind not in kinds:
-            return False
-        own = cover[entity.id]
-        if not any(i in own for i in content):
-            return False
-        rest = [i for i in content if i not in own]
-        if not rest:  # every word is the thing's own name: no qualifier or context to look up
-            return True
-        attrs = lexicon.attributes.get(entity.id, frozenset())
-        # "the seed shelf" is a shelf: the head is the thing's own word, never its support's.
-        if head is not None and head not in own and normed[head] not in attrs:
-            return False
-        context: frozenset[int] = frozenset()
-        inside = tuple(o for prep, o in entity.relations if prep == "in")
-        for other in (entity.support, entity.zone, entity.owner, *inside):
-            if other is not None:
-                context |= cover.get(other, frozenset())
-        return all(i in context or normed[i] in attrs or bases[i] in attrs for i in rest)
 
-    # A class word names thousands of things of which a handful are in sight or the speaker's:
-    # those are tried first, and the rest only when they cannot settle the answer (see _settled).
-    def everything() -> list[Entity]:
-        return snapshot.among(cover, kinds)
+def _named(r: _Read, entity: Entity | None) -> bool:
+    """Whether the phrase names the entity: one of its names said, every other content word its
+    own or its context's (where it is, whose it is)."""
+    if entity is None or entity.kind not in r.kinds:
+        return False
+    own = r.cover[entity.id]
+    if not any(i in own for i in r.content):
+        return False
+    rest = [i for i in r.content if i not in own]
+    if not rest:  # every word is the thing's own name: no qualifier or context to look up
+        return True
+    attrs = r.lexicon.attributes.get(entity.id, frozenset())
+    # "the seed shelf" is a shelf: the head is the thing's own word, never its support's.
+    if r.head is not None and r.head not in own and r.normed[r.head] not in attrs:
+        return False
+    context: frozenset[int] = frozenset()
+    inside = tuple(o for prep, o in entity.relations if prep == "in")
+    for other in (entity.support, entity.zone, entity.owner, *inside):
+        if other is not None:
+            context |= r.cover.get(other, frozenset())
+    return all(i in context or r.normed[i] in attrs or r.bases[i] in attrs for i in rest)
 
+
+def _candidates(r: _Read, owner: str | None, sight: bool) -> list[Entity]:
+    """The entities the phrase names. A class word names thousands of things of which a handful
+    are in sight or the speaker's: those are tried first, and the rest only when they cannot settle
+    the answer (see _settled)."""
+    snapshot = r.lexicon.snapshot
     # A few things named, to fetch or one of them called just what is said: all of them.
-    if (not sight or whole) and len(cover) <= FEW_NAMED:
-        matches = [e for e in everything() if named(e)]
+    if (not sight or r.whole) and len(r.cover) <= FEW_NAMED:
+        return [e for e in snapshot.among(r.cover, r.kinds) if _named(r, e)]
+    if owner is None:  # the things in sight, without looking at the others
+        near = snapshot.seen_among(r.cover)
     else:
-        if owner is None:  # the things in sight, without looking at the others
-            near = snapshot.seen_among(cover)
-        else:
-            near = [e for e in everything() if e.seen or (owner is not None and e.owner == owner)]
-        matches = [e for e in near if named(e)]
-        if not _settled(matches, owner, own_name):
-            matches = [e for e in everything() if named(e)]
+        near = [e for e in snapshot.among(r.cover, r.kinds)
+                if e.seen or (owner is not None and e.owner == owner)]  # fmt: skip
+    matches = [e for e in near if _named(r, e)]
+    if not _settled(matches, owner, r.own_name):
+        matches = [e for e in snapshot.among(r.cover, r.kinds) if _named(r, e)]
+    return matches
+
+
+def _narrowed(r: _Read, matches: list[Entity]) -> list[Entity]:
+    """Of the entities named, those named most closely."""
     # "the kitchen table" is the one named so, before a table that is in the kitchen.
-    matches = [e for e in matches if all(i in cover[e.id] for i in content)] or matches
+    matches = [e for e in matches if all(i in r.cover[e.id] for i in r.content)] or matches
     # (and the "wobbly kitchen table", whose own words say "kitchen", before a worktop in the kitchen;
     # "the table in the kitchen" says where, which both are)
-    if core_end == len(words):
-        own = [e for e in matches if _own_words(lexicon, e, cover[e.id], content, normed, bases)]
+    if r.core_end == len(r.words):
+        own = [e for e in matches if _own_words(r.lexicon, e, r.cover[e.id], r.content, r.normed, r.bases)]
         matches = own or matches
     # "the desk" is the thing called so, before the "standing desk" it is only the end of.
-    said = tuple(normed[i] for i in content)
-    called = [e for e in matches if _called(e, whole.get(e.id, ()))]
+    said = tuple(r.normed[i] for i in r.content)
+    called = [e for e in matches if _called(e, r.whole.get(e.id, ()))]
     # (unless another is called so too but for its colour: "the cup" of a cup and a red cup is asked)
     if called and not any(e not in called and name_words(e.name) == said for e in matches):
         matches = called
-    if not matches and content:
-        matches = _by_label_words(lexicon, [normed[i] for i in content], kinds)
-    if not matches and content and lang.words.one & set(words):
-        matches = _by_qualifiers(lexicon, [normed[i] for i in content], kinds)
-    if not matches and content:
-        matches = resolve_head(lexicon, words, kinds)
+    return matches
+
+
+def _otherwise(r: _Read, matches: list[Entity], owner: str | None) -> list[Entity]:
+    """When no name of the KB settles it, what the words say otherwise."""
+    lang = r.lexicon.lang
+    if not matches and r.content:
+        matches = _by_words(r)
     # "the bread on the bread shelf": the shelf is where, not what ("the side of the bath" is the
     # bath; "a tin of soup", "a pair of goggles" are read below without the measure)
-    if head is not None and words[head] not in lang.words.parts | lang.words.positions:
-        matches = [e for e in matches if not _named_after(cover.get(e.id), head)]
-    counted = _counted(lang, words) if not matches and content else ()
-    if counted:  # "a pair of 3D glasses": the glasses
-        matches = list(resolve(lexicon, counted, kinds, owner=owner).matches)
-    contents = _contents(lang, words, normed) if not matches and content else ()
-    if contents:  # what a container holds is food or drink ("a bottle of umbrella" is nothing)
-        held = resolve(lexicon, contents, kinds, owner=owner).matches
+    if r.head is not None and r.words[r.head] not in lang.words.parts | lang.words.positions:
+        matches = [e for e in matches if not _named_after(r.cover.get(e.id), r.head)]
+    if not matches and r.content:
+        matches = _measured(r, owner)
+    return matches
+
+
+def _by_words(r: _Read) -> list[Entity]:
+    """The entities the content words say by their labels' words, qualifiers or head noun."""
+    lexicon, content = r.lexicon, [r.normed[i] for i in r.content]
+    matches = by_label_words(lexicon, content, r.kinds)
+    if not matches and lexicon.lang.words.one & set(r.words):
+        matches = by_qualifiers(lexicon, content, r.kinds)
+    if not matches:
+        matches = resolve_head(lexicon, r.words, r.kinds)
+    return matches
+
+
+def _measured(r: _Read, owner: str | None) -> list[Entity]:
+    """A measure's thing ("a pair of 3D glasses": the glasses), or a container's food or drink (what
+    a container holds: "a bottle of umbrella" is nothing)."""
+    lang = r.lexicon.lang
+    matches: list[Entity] = []
+    counted = thing_measured(lang, r.words)
+    if counted:
+        matches = list(resolve(r.lexicon, counted, r.kinds, owner=owner).matches)
+    contents = thing_held(lang, r.words, r.normed) if not matches else ()
+    if contents:
+        held = resolve(r.lexicon, contents, r.kinds, owner=owner).matches
         matches = [e for e in held if FOOD_OR_DRINK in e.classes]
+    return matches
+
+
+def _preferred(r: _Read, matches: list[Entity], owner: str | None, sight: bool) -> Resolution:
+    """The matches, the preferred among them when some are."""
+    only_one = r.head is None and r.lexicon.lang.words.one & set(r.words[: r.core_end])
     if only_one:  # whatever found them, the place a "one" is said to be at is not that one
-        matches = [e for e in matches if not cover.get(e.id) or min(cover[e.id]) <= core_end]
+        matches = [e for e in matches if not r.cover.get(e.id) or min(r.cover[e.id]) <= r.core_end]
     # Ownership only narrows: "my cup" still means the cup when nobody's cups are recorded.
     owned = [e for e in matches if owner is not None and e.owner == owner]
     matches = owned or matches
     # "the bathroom" is the room labelled so, not the toilets the lexicon file says it may be.
-    matches = [e for e in matches if e.id in own_name] or matches
+    matches = [e for e in matches if e.id in r.own_name] or matches
     # Without `sight`, sight narrows only a word that names more things than a question can list:
     # of two towels, the one in sight is not "the towel" to fetch (which is asked), of hundreds of
     # apples it is.
     seen = [e for e in matches if e.seen] if sight or len(matches) > MAX_OPTIONS else []
     # Sorted last: a class word names thousands of things of which a handful are in sight.
-    return Resolution(phrase, tuple(snapshot.in_order(seen or matches)))
+    return Resolution(r.phrase, tuple(r.lexicon.snapshot.in_order(seen or matches)))
 
 
 def _own_words(lexicon: Lexicon, entity: Entity, own: frozenset[int], content: Sequence[int],
@@ -266,47 +341,6 @@ def _settled(near: Sequence[Entity], owner: str | None, own_name: Collection[str
     return any(e.id in own_name for e in near) or not own_name
 
 
-@lru_cache(maxsize=4096)
-def compared(lang: Language, word: str) -> str:
-    """The adjective a comparative or superlative compares by ("the bigger one": big), else the word."""
-    if word.endswith(lang.words.compared):
-        bases: tuple[str, ...] = lemmas_of(word).get("ADJ", ())
-        if bases and bases[0] != word:
-            return bases[0]
-    return word
-
-
-def _counted(lang: Language, words: Sequence[str]) -> tuple[str, ...]:
-    """ "a pair of glasses" -> "glasses": what a measure of it names; () when no measure is said."""
-    measures = lang.words.measures
-    at = next((i for i in range(len(words) - 2) if words[i] in measures and words[i + 1] == "of"), None)
-    return () if at is None else tuple(words[at + 2 :])
-
-
-def _contents(lang: Language, words: Sequence[str], normed: Sequence[str]) -> tuple[str, ...]:
-    """ "the beer cans" -> "the beer", "a can of beer" -> "beer": what a container named by a word
-    the KB has no thing for holds (the caller tried the container first); () when there is none."""
-    for i, word in enumerate(normed):
-        if word not in lang.words.containers:
-            continue
-        if words[i + 1 : i + 2] == ["of"] and words[i + 2 :]:
-            return tuple(words[i + 2 :])
-        if i > 0 and words[i - 1] not in lang.glue:
-            return (*words[:i], *words[i + 1 :])
-    return ()
-
-
-def _by_qualifiers(lexicon: Lexicon, qualifiers: Sequence[str], kinds: Collection[Kind]) -> list[Entity]:
-    """ "the orange one": with no noun, the things every qualifier holds for (colour, label words)."""
-    said = [(w, compared(lexicon.lang, w)) for w in qualifiers]
-    out = []
-    for entity in lexicon.snapshot.entities.values():
-        attrs = lexicon.attributes.get(entity.id, frozenset())
-        if entity.kind in kinds and all(w in attrs or base in attrs for w, base in said):
-            out.append(entity)
-    return out
-
-
 def _head(lang: Language, words: Sequence[str], content: Sequence[int]) -> int | None:
     """The index of the head noun: the last content word before a preposition ends the core."""
     core_end = lang.locative | lang.words.core_end
@@ -316,19 +350,6 @@ def _head(lang: Language, words: Sequence[str], content: Sequence[int]) -> int |
             break
         head = i
     return head
-
-
-def _by_label_words(lexicon: Lexicon, content: Sequence[str], kinds: Collection[Kind]) -> list[Entity]:
-    """ "the teddy" for the "teddy bear", "the flathead" for the "flathead screwdriver": when no name
-    occurs, a part of a label still names the thing if every other word qualifies it."""
-    candidates = dict.fromkeys(e for w in content for e in lexicon.by_label_word.get(w, ()))
-    out = []
-    for entity_id in candidates:
-        entity = lexicon.snapshot.get(entity_id)
-        attrs = lexicon.attributes.get(entity_id, frozenset())
-        if entity is not None and entity.kind in kinds and all(w in attrs for w in content):
-            out.append(entity)
-    return lexicon.snapshot.in_order(out)
 
 
 def resolve_id(lexicon: Lexicon, value: str, kinds: Collection[Kind] = ALL_KINDS) -> Resolution:

@@ -17,27 +17,23 @@ from dataclasses import replace
 
 from dialogue import intents as I
 from dialogue.history import Utterance
-from dialogue.reference.antecedent import antecedent
-from dialogue.reference.english import Words, tokens
-from dialogue.reference.grounding import Entity
+from dialogue.reference.english import Words
 from dialogue.reference.lexicon import Lexicon
-from dialogue.reference.resolution import PERSON, PLACE, ROLE_KINDS, content_words, resolve
+from dialogue.reference.resolution import PERSON, ROLE_KINDS
 from dialogue.understanding.followups.accepting import accepts
 from dialogue.understanding.followups.correction import correction, opens_correction
 from dialogue.understanding.followups.proposal import proposed
 from dialogue.understanding.followups.request import follow_up, followed_up, said_first
-from dialogue.understanding.outcome import Outcome, Ref
+from dialogue.understanding.outcome import SPELT_CONFIDENCE, Outcome
 from dialogue.understanding.parsed import Parse
 from dialogue.understanding.questions import situation
-from dialogue.understanding.replies import acknowledgement, hello, say, then, whose_it_is
+from dialogue.understanding.replies import hello, say, then
 from dialogue.understanding.requests.abilities import asks_ability
 from dialogue.understanding.requests.addressed import to_someone_else
-from dialogue.understanding.requests.carrying import carried_onto
 from dialogue.understanding.requests.commands import parse
 from dialogue.understanding.requests.compound import adds_on, conjuncts, coordinated, two_named
-from dialogue.understanding.requests.ground import ground
-from dialogue.understanding.requests.owners import none_yours, whose
-from dialogue.understanding.requests.referents import Referents, relational
+from dialogue.understanding.requests.referents import Referents
+from dialogue.understanding.requests.roles import one_command
 from dialogue.understanding.requests.sequence import compound, wished
 from dialogue.understanding.requests.skills import unskilled
 from dialogue.understanding.requests.terse import terse, unasked_thing
@@ -50,16 +46,6 @@ from dialogue.understanding.speech.repair import cleaned, restarted
 from dialogue.understanding.speech.spelling import corrected
 from dialogue.understanding.talk import TALK
 
-#: How sure the rules are of a turn in which they corrected a slip ("plase", "thremos").
-SPELT_CONFIDENCE = 0.7
-#: The question that asks for a role not said (`replies.toml` [request]), by intent and role, and
-#: by role alone.
-_ASKED = {
-    (I.PLACE_OBJECT, "recipient"): "request.where_put", (I.MOVE_TO, "goal"): "request.where_go",
-    (I.GUIDE, "goal"): "request.where_take", (I.SAY, "object"): "request.what_say",
-    (I.GUIDE, "recipient"): "request.who_take",
-    (I.START_ACTIVITY, "object"): "request.which_activity",
-}  # fmt: skip
 #: What a question of ability may ask of a verb alone ("can you dance?", "can you cook?"): a skill.
 _SKILLS = frozenset({I.PERFORM_MOTION, I.START_ACTIVITY})
 #: Acts a correction of the request just made may read as ("make that the study": an activity;
@@ -197,21 +183,6 @@ class Interpreter:
         failed = not outcome.understood or ungrounded
         return self._clause_by_clause(heard, outcome) if failed else outcome
 
-    def _unaccounted(self, intent: str, slots: dict[str, Words]) -> bool:
-        """Whether a phrase the intent grounds no role of names someone ("salute Olu in the meeting
-        room", "water jug to Edith"): words the reading cannot account for."""
-        grounded = ROLE_KINDS.get(intent, {})
-        if intent == I.STOP_ACTIVITY:  # whatever is said to be stopped, the robot stops
-            return False
-        for role, words in slots.items():
-            if role in grounded or role == "rest":
-                continue
-            words = words[: words.index("for")] if "for" in words else words  # ("the tour for Jonas": his)
-            named = (resolve(self.lexicon, (w,), PERSON).one for w in content_words(self.lang, words))
-            if any(person is not None for person in named):
-                return True
-        return False
-
     def _clause_by_clause(self, heard: Said, whole: Outcome) -> Outcome:
         """ "The denim jacket. Pick it up." or "Felix wants the remote, can you hand it to him?": when
         the whole utterance is not one request, the last clause that is one is read with the clauses
@@ -263,7 +234,7 @@ class Interpreter:
     def _command(self, p: Parse, overrides: dict[str, Words]) -> Outcome:
         if p.intent is None:
             return Outcome(say(self.lang, "sorry.not_understood"), understood=False)
-        whole = unskilled(self.lang, p) or self._one_command(p, overrides)
+        whole = unskilled(self.lang, p) or one_command(self, p, overrides)
         # "bring me the bread and the jam", "greet Ana and Tom": one intent per thing or person
         # named, in order (people only where a role is a person's: one cup goes to one person).
         role = "object" if "object" in p.slots else "recipient"
@@ -276,120 +247,13 @@ class Interpreter:
         if whole.clarify or not things or (whole.intent is not None and len(things) == 1):
             return whole
         if len(things) == 1:
-            return self._one_command(p, {**overrides, role: things[0]})
-        each = [self._one_command(p, {**overrides, role: t}) for t in things]
+            return one_command(self, p, {**overrides, role: things[0]})
+        each = [one_command(self, p, {**overrides, role: t}) for t in things]
         if whole.intent is not None and not two_named(self.lang, self.snapshot, role, (whole, *each)):
             return whole
         if any(o.intent is None for o in each):
             return next(o for o in each if o.intent is None)
         return replace(each[0], reply=then(self.lang, [o.reply for o in each]), more=tuple(each[1:]))
-
-    def _one_command(self, p: Parse, overrides: dict[str, Words]) -> Outcome:  # noqa: C901
-        intent = p.intent or ""
-        slots = {**p.slots, **overrides}
-        if "object" not in overrides:  # ("the key card for room 309": one name, not a recipient)
-            slots, marks = self.refs.named_across(slots, p.marks)
-            p = replace(p, marks=marks)
-        if p.double_object and "rest" in slots:
-            slots = {**self.refs.split_double_object(slots.pop("rest")), **overrides}
-        if intent in {I.BRING_OBJECT, I.PLACE_OBJECT} and "recipient" in slots:
-            # "take Maria to the kitchen", "walk Mr Ito back to the car park": guiding, not carrying
-            who = tuple(w for w in slots.get("object", ()) if w not in relational(self.lang))
-            # (never to a person: "take them to her" carries them to her)
-            if self.refs.person_as_object(who) is not None and who:
-                to = slots["recipient"]
-                if self.refs.a_person(to) or to in self.lang.requests.brought_here:
-                    # "bring Sam here": a person brought to a person is no intent the rules have
-                    return Outcome(say(self.lang, "sorry.not_understood"), understood=False)
-                intent, slots = I.GUIDE, {"recipient": who, "goal": slots["recipient"]}
-            elif intent == I.PLACE_OBJECT and (
-                self.refs.named_person(slots["recipient"]) or self.refs.an_owner(slots["recipient"])
-            ):
-                intent = I.BRING_OBJECT  # "return the stapler to Carol", "... to its owner": to a person
-        if intent == I.BRING_OBJECT and self.refs.a_place(slots.get("object", ())):
-            # "I need the lifts": a place is where to be taken, not a thing to carry
-            intent, slots = I.GUIDE, {"recipient": slots.get("recipient", ("me",)), "goal": slots["object"]}
-        if intent == I.GUIDE and self.refs.named_person(slots.get("goal", ())):
-            # "take me to Marcus": to where he is (unknown: no place, said so by the grounding)
-            person = resolve(self.lexicon, slots["goal"], PERSON).one
-            if person is not None and person.zone and not self.refs.a_place(slots["goal"]):
-                slots["goal"] = tuple(tokens(person.zone))
-        if intent == I.GUIDE and "goal" in p.implicit and "goal" not in overrides:
-            there = antecedent(self.lexicon, self.history, PLACE, place=True, speaker=self.speaker)
-            if there is None:  # "take me", "escort Carla", with no place spoken of: asked (whom named)
-                slots.pop("goal", None)
-        if intent == I.GREET and "recipient" in p.implicit and "recipient" not in overrides:
-            # "this is Callum, say hello": whom the same utterance introduced, else the speaker
-            person = antecedent(self.lexicon, self._this_turn(), PERSON, speaker=self.speaker)
-            slots["recipient"] = tuple(tokens(person.id)) if person is not None else ("me",)
-        implicit = "recipient" in p.implicit or not content_words(self.lang, slots.get("recipient", ()))
-        if intent == I.GUIDE and slots.get("goal") == ("there",) and implicit:
-            # "Ellen needs the utility room, lead the way": the person just spoken of, else the speaker.
-            person = antecedent(self.lexicon, self.history, PERSON, speaker=self.speaker)
-            slots["recipient"] = tuple(tokens(person.id)) if person is not None else ("me",)
-        if "object" in slots:  # "I need biscuits, can you get me some": some of those
-            slots["object"] = self.refs.some_of(slots["object"])
-        roles: dict[str, str] = {}
-        refs: dict[str, Ref] = {}
-        mine: list[Entity] = []  # things said to be the speaker's ("my book")
-        spec = I.CATALOGUE[intent]
-        for role, kinds in ROLE_KINDS.get(intent, {}).items():
-            words = slots.get(role, ())
-            if not content_words(self.lang, words) and words not in self.lang.requests.said_there:
-                if role in spec.required and set(words) & self.lang.words.demonstratives:
-                    # "bring me that one": what is pointed at, which the words do not say
-                    return Outcome(say(self.lang, "sorry.not_understood"), understood=False)
-                if role in spec.required:
-                    return self._missing(intent, role, p, roles.get("recipient"))
-                continue
-            if content_words(self.lang, words)[:1] in ([w] for w in self.lang.words.indefinite):
-                # "guide somebody there", "put it somewhere safe": who or where is asked
-                return self._missing(intent, role, p, roles.get("recipient"))
-            owned = self.refs.possessive(words, slots) if role == "object" else whose(self, words, kinds)
-            words, owner = owned
-            others = [w for r, w in slots.items() if r != role]
-            ref = ground(self.refs, words, kinds, role, owner, others)
-            if ref.problem is not None:
-                return none_yours(self, ref.problem, words, kinds) if owner == self.speaker else ref.problem
-            refs[role] = ref
-            roles[role] = self.speaker if ref.speaker else (ref.entity.id if ref.entity else "")
-            # "my stapler" (not "the folder on my desk": whose the desk is)
-            said_mine = slots.get(role, ())[:1] == (self.lang.words.owners.get("mine"),)
-            if said_mine and owner == self.speaker and ref.entity is not None and ref.entity.kind == "thing":
-                mine.append(ref.entity)
-        if p.text is not None:
-            roles["object"] = p.text
-        elif intent in {I.SAY, I.START_ACTIVITY, I.PERFORM_MOTION, I.PRESENT_CONTENT}:
-            return self._missing(intent, "object", p)
-        # The place said back with the preposition it was said with, unless a part of it was named
-        # ("in the centre of the table" is put on the table).
-        place = slots.get("recipient", ())
-        mark = p.marks.get("recipient")
-        part_named = set(place) & self.lang.words.parts and "of" in place
-        said = " ".join(mark) if mark is not None and not part_named else None
-        intent = carried_onto(self.lang, self.snapshot, p, intent, roles)  # "take it to the table"
-        reply = acknowledgement(self.lang, self.snapshot, self.speaker, intent, roles, refs, said,
-                                self.lexicon.shares_name)
-        if intent == I.GREET and roles.get("recipient") == self.speaker:  # "say hello": to the speaker
-            reply = hello(self.lang, self.snapshot, self.speaker)
-        notes = [whose_it_is(self.lang, self.snapshot, e, self.speaker)
-                 for e in mine if e.owner != self.speaker]  # fmt: skip
-        reply = " ".join([*notes, reply])  # "my book" that is Marcus's: said before acting
-        if any(ref.guessed for ref in refs.values()):  # "go to bay mine": a guess, less sure
-            return Outcome(reply, intent, roles, SPELT_CONFIDENCE, guessed=True)
-        return replace(self._intent(intent, roles, reply), unsure=self._unaccounted(intent, slots))
-
-    def _this_turn(self) -> tuple[Utterance, ...]:
-        """What the speaker said since the robot last spoke (the earlier clauses of this turn)."""
-        said = [i for i, u in enumerate(self.history) if u.role == "assistant"]
-        return self.history[said[-1] + 1 :] if said else self.history
-
-    def _missing(self, intent: str, role: str, p: Parse, whom: str | None = None) -> Outcome:
-        # ("show Ana in": where to take her, not "you")
-        you = whom in {None, self.speaker}
-        them = say(self.lang, "naming.you") if you else self.snapshot.name_of(whom or "")
-        key = _ASKED.get((intent, role)) or _EXACTLY.get(role, "request.what_exactly")
-        return Outcome(say(self.lang, key, whom=them), clarify=True, open_role=role)
 
     def _intent(self, intent: str, roles: dict[str, str], reply: str, confidence: float = 0.9) -> Outcome:
         return Outcome(reply, intent, roles, confidence)

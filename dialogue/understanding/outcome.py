@@ -7,6 +7,9 @@ from dataclasses import dataclass, field, replace
 from dialogue.reference.english import Words
 from dialogue.reference.grounding import Entity
 
+#: How sure the rules are of a turn in which they corrected a slip ("plase", "thremos").
+SPELT_CONFIDENCE = 0.7
+
 
 @dataclass(frozen=True)
 class Outcome:

@@ -20,6 +20,7 @@ from dialogue.understanding.outcome import Outcome
 from dialogue.understanding.parsed import Parse
 from dialogue.understanding.replies import abilities, acknowledgement, goodbye, hello, say
 from dialogue.understanding.requests.commands import parse
+from dialogue.understanding.requests.vocabulary import Grammar
 from dialogue.understanding.said import Said
 
 
@@ -60,8 +61,8 @@ def _conditional(c: Context, p: Parse, overrides: dict[str, Words]) -> Outcome:
 def _awaited(c: Context, words: Words) -> str | None:
     """The person a condition waits for, named first in it ("when Marta's back", "once Ana arrives",
     "if Declan comes by"), if the KB knows them."""
-    # (the first word, else: "if")
-    said = next((w for w in c.lang.requests.conditions if words[: len(w)] == w), words[:1])
+    said = c.lang.derived(Grammar).conditions.first(words)
+    said = words[:1] if said is None else said  # (the first word, else: "if")
     first = words[len(said) : len(said) + 1]
     if not first or not _arrives(c, words[len(said) + 1 :]):
         return None  # ("when Carol leaves": no one to wait for)

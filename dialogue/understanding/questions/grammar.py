@@ -11,78 +11,14 @@ answer is computed from the KB snapshot in dialogue.understanding.questions.answ
 
 from __future__ import annotations
 
+from collections.abc import Callable
+from typing import Literal
+
 from dialogue.reference.english import Words
 from dialogue.understanding.language import Language
 from dialogue.understanding.parsed import Parse
-from dialogue.understanding.speech.plain import Prefixes, split_at, starts
-
-
-class _Words:
-    """The language's words of questions about the situation (made once per language)."""
-
-    def __init__(self, lang: Language) -> None:
-        said, prepositions = lang.questions.situation, lang.prepositions
-        self.wh = lang.words.wh
-        self.colours = lang.words.colours
-        self.sees = Prefixes(said.sees)
-        self.not_seen_before = said.not_seen_before
-        self.where_leads = said.where_leads
-        self.on_glue = said.on_glue
-        self.who_not_a_name = said.who_not_a_name
-        self.who_pointing = said.who_pointing
-        self.who_sees = said.who_sees | said.who_not_a_name | said.else_
-        self.see_words = said.see_words
-        self.colour_words = said.colour_words
-        self.locatives = prepositions.having("asked-on")
-        #: Relations beside support and zone a "what is ... X" question may ask about.
-        self.near = prepositions.having("asked-near")
-        #: Leads of an indirect question: "do you know where the keys are", "any idea where the
-        #: toolbox is".
-        self.indirect = Prefixes(said.indirect)
-        self.describe, self.described = said.describe, said.described
-        self.determiners = lang.words.determiners
-        self.be = said.be
-        self.someone = said.someone
-        self.else_ = said.else_
-        self.owners = said.owners
-        self.nearby = said.nearby
-        self.others = said.others
-        #: Words that ask whether someone is there ("is Maria about?").
-        self.there = said.there
-        self.there_after = said.there_after
-        #: The verb of a question's own clause after what it counts ("how many cans *have* we got").
-        self.asking_verbs = said.asking_verbs
-        self.asked_subjects = said.asked_subjects
-        #: Words after a counted thing that only say where or in all ("here", "left", "altogether").
-        self.count_tail = said.count_tail
-        self.place_starts = prepositions.words("place-start")
-        self.purpose = lang.requests.purpose
-        self.available = frozenset(lang.requests.constructions.available)
-        self.seen_by_anyone = Prefixes(said.seen_by_anyone)
-        self.placing = said.placing
-        self.asker = said.asker
-        self.gone = said.gone
-        self.rooms = said.rooms
-        self.name_of = Prefixes(said.name_of)
-        self.show_me, self.tell_me, self.how_many = said.show_me, said.tell_me, said.how_many
-        self.belong_to, self.in_front, self.are_you = said.belong_to, said.in_front, said.are_you
-        self.what_heads = said.what_heads
-        self.anything = said.anything
-        #: "is" and "are" alone (`be` has their past too).
-        self.is_are = said.is_are
-        self.social_how = Prefixes(said.social_how)
-        #: Where "who is at X" asks about.
-        self.who_at = prepositions.words("who-at")
-        self.count_glue, self.count_after = said.count_glue, said.count_after
-        self.seeing_aux, self.you_see, self.not_which_see = said.seeing_aux, said.you_see, said.not_which_see
-        self.name_words, self.not_what_is = said.name_words, said.not_what_is
-        self.front_of = said.front_of
-        self.does = said.does
-        self.demonstratives = lang.words.demonstratives
-        self.got_to, self.did, self.went = said.got_to, said.did, said.went
-        self.where_am_i = said.where_am_i
-        self.where_tail = said.where_tail
-        self.whoever = said.whoever
+from dialogue.understanding.questions.vocabulary import QuestionWords
+from dialogue.understanding.speech.plain import split_at, starts
 
 
 def _q(kind: str, w: Words, **slots: Words) -> Parse:
@@ -97,80 +33,140 @@ def _strip_ends(thing: Words, lead: frozenset[str], tail: frozenset[str]) -> Wor
     return thing
 
 
-def question(lang: Language, words: list[str]) -> Parse | None:  # noqa: C901
-    q = lang.derived(_Words)
+def question(lang: Language, words: list[str]) -> Parse | None:
+    """The question the words ask, read by the first of `_STEPS` that takes them; None when they
+    ask none."""
+    q = lang.derived(QuestionWords)
     w = tuple(words)
-    # ("show me where the lounge is": guiding)
-    shown = bool(q.show_me) and w[:2] == q.show_me and w[2:3] != ("where",)
-    if ((q.tell_me and w[:2] == q.tell_me) or shown) and len(w) > 2 and w[2] in q.wh | {"about"}:
-        if w[2] == "about":
-            return _q("what_is", w, thing=w[3:])
-        w = w[2:]
-    for lead in q.indirect.of(w):
-        if w[len(lead) : len(lead) + 1] and w[len(lead)] in q.wh:
-            w = w[len(lead) :]
-            break
-    w = _described(q, w)  # "describe the objects on the bench": what is on it
-    named = _name_of(q, w)
-    if named is not None:  # "tell me the name of the person in the break room"
-        return named
-    for lead in q.seen_by_anyone.of(w):  # "has anyone seen my keys": where they are
-        if _strip_ends(w[len(lead) :], frozenset(), q.nearby):
-            return _q("where", w, thing=_strip_ends(w[len(lead) :], frozenset(), q.nearby))
-    head = w[:1]
-    if _anybody(q, w):  # "is anybody else here", "is there anyone around"
-        return _q("who_see", w)
-    belongs = bool(q.belong_to) and w[-2:] == q.belong_to
-    if head == ("whose",) or (head == ("who",) and (belongs or w[1:2] == ("owns",))):
-        return _q("whose", w, thing=_owned_thing(q, w))
-    if head and head[0] in q.what_heads:
-        return _what(q, w)
-    if head == ("who",):
-        if "you" in w and "are" in w and "see" not in w:
-            return _q("name", w)
-        if w[1:2] == ("is",) and w[2:] and w[2] not in q.who_not_a_name and not _who_at(q, w[1:]):
-            return _q("what_is", w, thing=w[2:])
-        at = _who_at(q, w[1:])  # "who's at the box office", "who is waiting at reception"
-        if at:
-            return _q("who_in", w, place=at)
-        # ("who else is down the allotment today": words besides the seeing question's, for the KB to know)
-        rest = tuple(x for x in w[1:] if x not in q.who_sees)
-        return _q("who_see", w, rest=rest) if rest else _q("who_see", w)
-    if head == ("where",):
-        return _where(q, w)
-    if q.how_many and starts(w, q.how_many):
-        return _q("how_many", w, thing=_counted(q, w[2:]))
-    for lead in q.sees:
-        if starts(w, lead):
-            if w[len(lead) : len(lead) + 1] and w[len(lead)] in q.not_seen_before:
-                break  # "do you have to go": a duty, nothing seen
-            thing = _strip_ends(w[len(lead) :], frozenset(), q.nearby)  # "is there any fruit around"
-            if thing[:1] and thing[0] in q.anything:
-                if q.purpose(thing[1:3]) is not None and not thing[3:] and lead in q.available:
-                    return None  # "is there anything to eat": a need (requests/needs), no question
-                return _anything(q, w, thing[1:])
-            return _q("can_see", w, thing=thing)
-    here = w[:-1] if len(w) > 3 and w[-1] in q.there_after else w  # ("is Yuki here yet?")
-    if head and head[0] in q.is_are and len(here) > 2 and here[-1] in q.there:
-        return _q("can_see", w, thing=here[1:-1])  # "is Maria here?"
-    if head and head[0] in q.is_are and split_at(w, q.locatives) is not None:
-        # "is the cup (still) on the table?"
-        return _q("can_see", w, thing=tuple(x for x in w[1:] if x not in q.there_after))
-    if head == ("how",):
-        social = bool(q.social_how.of(w))
-        return _q("how_are_you" if social else "other", w)
-    if head and head[0] in q.wh:
-        return _q("other", w)
+    if _telling(q, w) and w[2] == "about":
+        return _q("what_is", w, thing=w[3:])
+    w = _described(q, _indirect(q, _told(q, w)))  # "describe the objects on the bench": what is on it
+    for step in _STEPS:
+        found = step(q, w)
+        if found is not None:
+            return None if found is False else found
     return None
 
 
+#: What a step makes of the words: the question, None when they are not its kind of question (the
+#: next step reads them), False when they are no question at all ("is there anything to eat").
+_Read = Parse | Literal[False] | None
 
 
-def _described(q: _Words, w: Words) -> Words:
+def _telling(q: QuestionWords, w: Words) -> bool:
+    """Whether the words ask to be told or shown a wh-question ("tell me where...", "show me
+    what..."; "show me where the lounge is" is guiding)."""
+    shown = bool(q.show_me) and w[:2] == q.show_me and w[2:3] != ("where",)
+    return bool((q.tell_me and w[:2] == q.tell_me) or shown) and len(w) > 2 and w[2] in q.wh | {"about"}
+
+
+def _told(q: QuestionWords, w: Words) -> Words:
+    """ "tell me where the keys are": the question itself."""
+    return w[2:] if _telling(q, w) else w
+
+
+def _indirect(q: QuestionWords, w: Words) -> Words:
+    """ "do you know where the keys are": the question itself."""
+    for lead in q.indirect.of(w):
+        if w[len(lead) : len(lead) + 1] and w[len(lead)] in q.wh:
+            return w[len(lead) :]
+    return w
+
+
+def _seen_by_anyone(q: QuestionWords, w: Words) -> _Read:
+    """ "has anyone seen my keys": where they are."""
+    for lead in q.seen_by_anyone.of(w):
+        if _strip_ends(w[len(lead) :], frozenset(), q.nearby):
+            return _q("where", w, thing=_strip_ends(w[len(lead) :], frozenset(), q.nearby))
+    return None
+
+
+def _anybody_here(q: QuestionWords, w: Words) -> _Read:
+    """ "is anybody else here", "is there anyone around"."""
+    return _q("who_see", w) if _anybody(q, w) else None
+
+
+def _whose(q: QuestionWords, w: Words) -> _Read:
+    head = w[:1]
+    belongs = bool(q.belong_to) and w[-2:] == q.belong_to
+    if head == ("whose",) or (head == ("who",) and (belongs or w[1:2] == ("owns",))):
+        return _q("whose", w, thing=_owned_thing(q, w))
+    return None
+
+
+def _what_heads(q: QuestionWords, w: Words) -> _Read:
+    return _what(q, w) if w[:1] and w[0] in q.what_heads else None
+
+
+def _who(q: QuestionWords, w: Words) -> _Read:
+    if w[:1] != ("who",):
+        return None
+    if "you" in w and "are" in w and "see" not in w:
+        return _q("name", w)
+    if w[1:2] == ("is",) and w[2:] and w[2] not in q.who_not_a_name and not _who_at(q, w[1:]):
+        return _q("what_is", w, thing=w[2:])
+    at = _who_at(q, w[1:])  # "who's at the box office", "who is waiting at reception"
+    if at:
+        return _q("who_in", w, place=at)
+    # ("who else is down the allotment today": words besides the seeing question's, for the KB to know)
+    rest = tuple(x for x in w[1:] if x not in q.who_sees)
+    return _q("who_see", w, rest=rest) if rest else _q("who_see", w)
+
+
+def _where_head(q: QuestionWords, w: Words) -> _Read:
+    return _where(q, w) if w[:1] == ("where",) else None
+
+
+def _how_many(q: QuestionWords, w: Words) -> _Read:
+    if q.how_many and starts(w, q.how_many):
+        return _q("how_many", w, thing=_counted(q, w[2:]))
+    return None
+
+
+def _seen(q: QuestionWords, w: Words) -> _Read:
+    """ "do you see the cup", "is there any fruit around", "is there anything on the table"."""
+    seeing = q.sees.first(w)
+    # ("do you have to go": a duty, nothing seen)
+    if seeing is None or (w[len(seeing) : len(seeing) + 1] and w[len(seeing)] in q.not_seen_before):
+        return None
+    thing = _strip_ends(w[len(seeing) :], frozenset(), q.nearby)  # "is there any fruit around"
+    if thing[:1] and thing[0] in q.anything:
+        if q.purpose(thing[1:3]) is not None and not thing[3:] and seeing in q.available:
+            return False  # "is there anything to eat": a need (requests/needs), no question
+        return _anything(q, w, thing[1:])
+    return _q("can_see", w, thing=thing)
+
+
+def _here(q: QuestionWords, w: Words) -> _Read:
+    """ "is Maria here?", "is Yuki here yet?"."""
+    here = w[:-1] if len(w) > 3 and w[-1] in q.there_after else w
+    if w[:1] and w[0] in q.is_are and len(here) > 2 and here[-1] in q.there:
+        return _q("can_see", w, thing=here[1:-1])
+    return None
+
+
+def _still_on(q: QuestionWords, w: Words) -> _Read:
+    """ "is the cup (still) on the table?"."""
+    if w[:1] and w[0] in q.is_are and split_at(w, q.locatives) is not None:
+        return _q("can_see", w, thing=tuple(x for x in w[1:] if x not in q.there_after))
+    return None
+
+
+def _how(q: QuestionWords, w: Words) -> _Read:
+    if w[:1] != ("how",):
+        return None
+    return _q("how_are_you" if q.social_how.of(w) else "other", w)
+
+
+def _other(q: QuestionWords, w: Words) -> _Read:
+    return _q("other", w) if w[:1] and w[0] in q.wh else None
+
+
+def _described(q: QuestionWords, w: Words) -> Words:
     """The question "describe the objects on the bench" or "list the people in the foyer" asks, in
     its own words ("what is on the bench", "who is in the foyer"), when the words after what is
     described say where; else the words unchanged."""
-    lead = next((lead for lead in q.describe if starts(w, lead)), None)
+    lead = q.describe.first(w)
     if lead is None:
         return w
     rest = w[len(lead) :]
@@ -179,7 +175,7 @@ def _described(q: _Words, w: Words) -> Words:
     return (*asked, *rest[1:]) if asked and split_at(rest, q.locatives) is not None else w
 
 
-def _who_at(q: _Words, rest: Words) -> Words:
+def _who_at(q: QuestionWords, rest: Words) -> Words:
     """The place of "who is at X", "who is on the shop floor", "who's waiting at reception", "who's
     getting ready in X" (a verb of being somewhere between, with a word of its own), else ()."""
     if not rest[:1] or rest[0] not in q.be:
@@ -192,7 +188,7 @@ def _who_at(q: _Words, rest: Words) -> Words:
     return rest[at + 1 :] if rest[at : at + 1] and rest[at] in q.who_at and len(rest) > at + 1 else ()
 
 
-def _name_of(q: _Words, w: Words) -> Parse | None:
+def _name_of(q: QuestionWords, w: Words) -> Parse | None:
     """ "tell me the name of the person in the break room", "what's the name of the man at
     reception": who is there."""
     if (q.tell_me and starts(w, q.tell_me)) or (w[:1] == ("what",) and w[1:2] and w[1] in q.be):
@@ -209,7 +205,7 @@ def _name_of(q: _Words, w: Words) -> Parse | None:
     return _q("who_in", w, place=who[2:])
 
 
-def _counted(q: _Words, rest: Words) -> Words:
+def _counted(q: QuestionWords, rest: Words) -> Words:
     """What "how many" counts: the words before the question's own clause ("watering cans (have we
     got)", "cups (can you see)", "chairs (are there) in the hall")."""
     at = next((i for i in range(1, len(rest) - 1)
@@ -223,16 +219,14 @@ def _counted(q: _Words, rest: Words) -> Words:
     return _strip_ends(thing, frozenset(), q.count_tail)
 
 
-
-
-def _anybody(q: _Words, w: Words) -> bool:
+def _anybody(q: QuestionWords, w: Words) -> bool:
     if not w[:1] or w[0] not in q.is_are:
         return False
     rest = w[2:] if w[1:2] == ("there",) else w[1:]
     return bool(rest) and rest[0] in q.someone and not set(rest[1:]) - q.who_not_a_name - q.else_
 
 
-def _what(q: _Words, w: Words) -> Parse:
+def _what(q: QuestionWords, w: Words) -> Parse:
     rest = w[1:]
     if w[0] == "which" and len(rest) > 3 and rest[0] in q.rooms and rest[1] in q.be and rest[-1] == "in":
         return _q("where", w, thing=rest[2:-1])  # "which room is the novel in"
@@ -272,18 +266,18 @@ def _what(q: _Words, w: Words) -> Parse:
     return _q("other", w)
 
 
-def _before_you(q: _Words, rest: Words) -> bool:
+def _before_you(q: QuestionWords, rest: Words) -> bool:
     """Whether the words ask what is in front of the robot ("in front", "in front of you")."""
     at = next((i for i in range(len(rest) - 1) if rest[i : i + 2] == q.in_front), None)
     return at is not None and (not rest[at + 2 :] or rest[at + 2 :] in q.front_of)
 
 
-def _someone_elses(q: _Words, rest: Words) -> bool:
+def _someone_elses(q: QuestionWords, rest: Words) -> bool:
     """ "what is her name", "what is the name of Alice": a name, but not the robot's."""
     return bool(set(rest) & q.others) or any(x.endswith("'s") for x in rest) or "of" in rest
 
 
-def _anything(q: _Words, w: Words, rest: Words) -> Parse:
+def _anything(q: QuestionWords, w: Words, rest: Words) -> Parse:
     """ "is there anything on the table", "do you see anything to eat", "can you see anything"."""
     wanted = q.purpose(rest[:2])
     if wanted is not None:
@@ -294,7 +288,7 @@ def _anything(q: _Words, w: Words, rest: Words) -> Parse:
     return _q("what_see", w)
 
 
-def _owned_thing(q: _Words, w: Words) -> Words:
+def _owned_thing(q: QuestionWords, w: Words) -> Words:
     """The thing of "whose phone is this", "whose is the mug", "who does the cup belong to", "who owns it"."""
     rest = w[1:]
     if rest[:1] and rest[0] in q.does and q.belong_to and rest[-2:] == q.belong_to:
@@ -308,7 +302,7 @@ def _owned_thing(q: _Words, w: Words) -> Words:
     return thing if [x for x in thing if x not in q.demonstratives] else ("it",)
 
 
-def _where(q: _Words, w: Words) -> Parse:
+def _where(q: QuestionWords, w: Words) -> Parse:
     rest = w[1:]
     while len(rest) > 3 and rest[-1] in q.where_tail and rest[-3:-1] in q.got_to:
         rest = rest[:-1]  # ("where's the remote got to now")
@@ -340,7 +334,7 @@ def _where(q: _Words, w: Words) -> Parse:
     return _q("other", w)
 
 
-def _placed_thing(q: _Words, rest: Words) -> Words:
+def _placed_thing(q: QuestionWords, rest: Words) -> Words:
     """The thing of "where did we put X", "where would I find X", "where Dana left her X": the
     words after a verb of putting or finding, when only an auxiliary and who did it (a pronoun, or
     one word: a name) come before it; () otherwise."""
@@ -351,3 +345,10 @@ def _placed_thing(q: _Words, rest: Words) -> Words:
     if len(before) > 1 or (before and rest[:1] and rest[0] in q.be):
         return ()
     return _strip_ends(rest[at + 1 :], frozenset(), q.nearby | q.where_tail)
+
+
+#: The kinds of question, in the order they are tried.
+_STEPS: tuple[Callable[[QuestionWords, Words], _Read], ...] = (
+    _name_of, _seen_by_anyone, _anybody_here, _whose, _what_heads, _who, _where_head, _how_many,
+    _seen, _here, _still_on, _how, _other,
+)  # fmt: skip

@@ -13,13 +13,14 @@ from dialogue.reference.english import Words
 from dialogue.understanding.language import Language
 from dialogue.understanding.parsed import Act, Parse
 from dialogue.understanding.questions.grammar import question as _question
+from dialogue.understanding.requests.adjuncts import adjuncts_of
 from dialogue.understanding.requests.constructions import Framed
-from dialogue.understanding.requests.frames import Row, verb_index
+from dialogue.understanding.requests.frames import Frame, Row, verb_index
 from dialogue.understanding.requests.needs import chore_needed
 from dialogue.understanding.requests.timing import conditional, later, negation, when
 from dialogue.understanding.requests.vocabulary import Grammar
 from dialogue.understanding.said import Said, Text
-from dialogue.understanding.speech.plain import starts, strip_politeness
+from dialogue.understanding.speech.plain import strip_politeness
 from dialogue.understanding.speech.repair import normalise, strip_vocative, verb_lemma
 
 __all__ = ["Parse", "Words", "parse"]
@@ -57,20 +58,20 @@ def parse(lang: Language, said: Text, robot_name: str = "") -> Parse:
     talk = _talk(g, words, robot_name)
     if talk is not None:
         return talk
-    for greeting in () if _welcoming(g, words) else g.greetings:
-        if starts(words, greeting):
-            rest = _after_greeting(lang, words[len(greeting) :], robot_name)
-            again = next((a for a in g.greetings if starts(rest, a) and len(rest) > len(a)), ())
-            again = () if _welcoming(g, rest) else again  # ("hey Tiago, welcome Mr Dubois")
-            rest = _after_greeting(lang, rest[len(again) :], robot_name) if again else rest
-            if tuple(rest) in g.social:
-                return Parse("greeting", words=tuple(words))
-            # "Good morning Maria" is still a greeting; "hi, grab the cup" is a request; "hello
-            # robot, what's your name" a greeting and a question.
-            after = _request(lang, heard, rest)
-            if after is not None and after.act == "question" and greeting not in g.attention:
-                return replace(after, greeted=True)
-            return after or _aside("greeting", words, rest)
+    greeting = None if _welcoming(g, words) else g.greetings.first(words)
+    if greeting is not None:
+        rest = _after_greeting(lang, words[len(greeting) :], robot_name)
+        again = next((a for a in g.greetings.of(rest) if len(rest) > len(a)), ())
+        again = () if _welcoming(g, rest) else again  # ("hey Tiago, welcome Mr Dubois")
+        rest = _after_greeting(lang, rest[len(again) :], robot_name) if again else rest
+        if tuple(rest) in g.social:
+            return Parse("greeting", words=tuple(words))
+        # "Good morning Maria" is still a greeting; "hi, grab the cup" is a request; "hello
+        # robot, what's your name" a greeting and a question.
+        after = _request(lang, heard, rest)
+        if after is not None and after.act == "question" and greeting not in g.attention:
+            return replace(after, greeted=True)
+        return after or _aside("greeting", words, rest)
     return _question(lang, words) or command(lang, heard, words)
 
 
@@ -157,46 +158,22 @@ def _np_next(lang: Language, rest: Words) -> bool:
     return len(rest) > 1 and rest[1] in lang.words.np_start
 
 
-def _fit(row: Row, said: Framed) -> Parse | None:  # noqa: C901
+def _fit(row: Row, said: Framed) -> Parse | None:
     """The row's reading of what follows the verb, or None when the row does not fit it."""
-    frame, rest = row.frame, said.rest
-    g = said.lang.derived(Grammar)
-    if frame.special is not None:
-        return frame.special(said)
-    if frame.intent is None and not frame.serial:  # a verb no intent says ("hand out the sheets")
-        only = frame.only
-        if only is not None and not (rest[:1] and rest[0] in only and not _np_next(said.lang, rest)):
-            return None  # "carry me" has no intent, "carry the box", "carry me the box" other frames'
-        return Parse("unknown", words=said.words)
-    if frame.serial:  # "go get the cup", "come say hello to Ana"
-        lang = said.lang
-        serial = rest and verb_lemma(lang, rest[0]) in verb_index(lang)
-        return command(lang, said.original, list(rest)) if serial else None
-    if frame.whole and rest:
+    frame = row.frame
+    if frame.special is not None or frame.intent is None or frame.serial:
+        return _unframed(row, said)
+    if frame.whole and said.rest:
         return None
-    rest, adjuncts = _adjuncts(g, rest, row)
+    g = said.lang.derived(Grammar)
+    rest, adjuncts = adjuncts_of(g, said.rest, row)
     if when(g, adjuncts):  # "say hi to her when she comes in": not now
         return Parse("conditional", words=said.words)
     direct, slots, marks = _segments(g, rest, row)
     if direct:
         direct = _which_one_back(direct, slots, marks, row)
     if frame.here is not None and not (frame.dative and direct[:1] and direct[0] in g.me):
-        # ("fetch me that lamp over there": there is where the lamp is)
-        # "leave it over there", "come here", "lead the way"; dropped when the place is also named
-        # ("lead the way to the lobby").
-        # ("wait for me there": what for says no place, the pointing word after it does)
-        aside = "extra" if not direct and "extra" in slots else None
-        words = slots[aside] if aside is not None else direct
-        pointed = next((p for p in g.pointing if words[-len(p[0]) :] == p[0]), None)
-        if pointed is not None and not (frame.there_only and pointed[1] != ("there",)):
-            if aside is None:
-                direct = direct[: -len(pointed[0])]
-            else:
-                slots[aside] = words[: -len(pointed[0])]
-            slots.setdefault(frame.here, pointed[1])
-        at = next((i for i, w in enumerate(direct) if i and w in g.somewhere), None)
-        if at is not None and frame.here not in slots:  # "put it somewhere safe": where is asked
-            direct, slots[frame.here] = direct[:at], direct[at:]
+        direct = _here_or_there(g, frame, frame.here, direct, slots)
     if "extra" in slots:  # what a role the intent does not ground says is an adjunct ("for the van")
         adjuncts = (*adjuncts, (" ".join(marks.pop("extra")), *slots.pop("extra")))
     direct = _without_particles(g, direct, row)
@@ -206,25 +183,96 @@ def _fit(row: Row, said: Framed) -> Parse | None:  # noqa: C901
         return None  # "get out of my way": where not to be is all it says (no thing to get)
     if not direct and frame.direct is not None:
         direct = _second_phrase(g, slots)  # "bring to Ana the tray"
-    if frame.dative is not None and direct[:1] and direct[0] in g.me and marks.get("recipient") == ("to",):
+    direct, adjuncts = _handed_me(g, frame, direct, slots, marks, adjuncts)
+    if frame.dative is not None and "recipient" not in slots and direct:
+        dative = _dative(g, frame, said, direct, slots, adjuncts)
+        if isinstance(dative, Parse):
+            return dative
+        direct = dative
+    return _roles(frame, said, direct, slots, marks, adjuncts)
+
+
+def _unframed(row: Row, said: Framed) -> Parse | None:
+    """A row whose frame reads no roles: a function of its own, a verb no intent says, or a verb
+    before another ("go get the cup")."""
+    frame, rest = row.frame, said.rest
+    if frame.special is not None:
+        return frame.special(said)
+    if frame.intent is None and not frame.serial:  # a verb no intent says ("hand out the sheets")
+        only = frame.only
+        if only is not None and not (rest[:1] and rest[0] in only and not _np_next(said.lang, rest)):
+            return None  # "carry me" has no intent, "carry the box", "carry me the box" other frames'
+        return Parse("unknown", words=said.words)
+    # "go get the cup", "come say hello to Ana"
+    lang = said.lang
+    serial = rest and verb_lemma(lang, rest[0]) in verb_index(lang)
+    return command(lang, said.original, list(rest)) if serial else None
+
+
+def _here_or_there(g: Grammar, frame: Frame, here: str, direct: Words, slots: dict[str, Words]) -> Words:
+    """The role `here`, which a bare "here" or "there" fills ("leave it over there", "come here",
+    "lead the way"; dropped when the place is also named: "lead the way to the lobby"), or
+    "somewhere" does; the direct words without it."""
+    # ("fetch me that lamp over there": there is where the lamp is)
+    # ("wait for me there": what for says no place, the pointing word after it does)
+    aside = "extra" if not direct and "extra" in slots else None
+    words = slots[aside] if aside is not None else direct
+    pointed = next((p for p in g.pointing if words[-len(p[0]) :] == p[0]), None)
+    if pointed is not None and not (frame.there_only and pointed[1] != ("there",)):
+        if aside is None:
+            direct = direct[: -len(pointed[0])]
+        else:
+            slots[aside] = words[: -len(pointed[0])]
+        slots.setdefault(here, pointed[1])
+    at = next((i for i, w in enumerate(direct) if i and w in g.somewhere), None)
+    if at is not None and here not in slots:  # "put it somewhere safe": where is asked
+        direct, slots[here] = direct[:at], direct[at:]
+    return direct
+
+
+def _handed_me(
+    g: Grammar, frame: Frame, direct: Words, slots: dict[str, Words], marks: dict[str, Words],
+    adjuncts: tuple[Words, ...],
+) -> tuple[Words, tuple[Words, ...]]:  # fmt: skip
+    """ "bring me the keys to the red car", "pass me the drill for Marcus": the speaker is the
+    recipient, what follows "to" or "for" part of the thing or whom it is for."""
+    if frame.dative is None or not (direct[:1] and direct[0] in g.me):
+        return direct, adjuncts
+    if marks.get("recipient") == ("to",):
         # "bring me the keys to the red car": the keys of the car, brought to the speaker
         direct = (*direct[1:], "to", *slots.pop("recipient"))
         slots["recipient"] = ("me",)
         del marks["recipient"]
-    elif frame.dative is not None and direct[:1] and direct[0] in g.me and marks.get("recipient") == ("for",):
+    elif marks.get("recipient") == ("for",):
         # "pass me the drill for Marcus", "get me a cloth for the spill": the speaker is handed it,
         # whoever or whatever it is for
         adjuncts = (*adjuncts, ("for", *slots.pop("recipient")))
         slots["recipient"], direct = ("me",), direct[1:]
         del marks["recipient"]
-    if frame.dative is not None and "recipient" not in slots and direct:
-        # "get Ines her phone": someone, then a noun phrase of its own
-        before = frame.dative == "before" and _someone(g, direct[0]) and _own_phrase_after(g, direct)
-        if direct[0] in g.me:  # "get me a cup"
-            slots["recipient"], direct = ("me",), direct[1:]
-        elif frame.dative == "any" or before:  # "give Ines her phone": the interpreter splits it
-            return Parse("command", frame.intent, {"rest": direct}, words=said.words, double_object=True,
-                         adjuncts=adjuncts)  # fmt: skip
+    return direct, adjuncts
+
+
+def _dative(
+    g: Grammar, frame: Frame, said: Framed, direct: Words, slots: dict[str, Words],
+    adjuncts: tuple[Words, ...],
+) -> Parse | Words:  # fmt: skip
+    """ "get me a cup", "give Ines her phone": the recipient said first; the direct words after it,
+    or a double object the interpreter splits."""
+    # "get Ines her phone": someone, then a noun phrase of its own
+    before = frame.dative == "before" and _someone(g, direct[0]) and _own_phrase_after(g, direct)
+    if direct[0] in g.me:  # "get me a cup"
+        slots["recipient"], direct = ("me",), direct[1:]
+    elif frame.dative == "any" or before:  # "give Ines her phone": the interpreter splits it
+        return Parse("command", frame.intent, {"rest": direct}, words=said.words, double_object=True,
+                     adjuncts=adjuncts)  # fmt: skip
+    return direct
+
+
+def _roles(
+    frame: Frame, said: Framed, direct: Words, slots: dict[str, Words], marks: dict[str, Words],
+    adjuncts: tuple[Words, ...],
+) -> Parse | None:  # fmt: skip
+    """The request with its roles, or None when the frame's roles are not what was said."""
     if direct and frame.direct is None:
         return None
     if direct and frame.direct is not None:
@@ -238,8 +286,6 @@ def _fit(row: Row, said: Framed) -> Parse | None:  # noqa: C901
     text = frame.text(said.lang, said.verb, said.rest) if frame.text is not None else None
     return Parse("command", frame.intent, slots, text=text, words=said.words, adjuncts=adjuncts,
                  implicit=implicit, marks=marks)  # fmt: skip
-
-
 
 
 def _someone(g: Grammar, word: str) -> bool:
@@ -335,60 +381,3 @@ def _without_particles(g: Grammar, words: Words, row: Row) -> Words:
 
 def _before_preposition(g: Grammar, words: list[str], i: int) -> bool:
     return i + 1 < len(words) and words[i + 1] in g.modifier_start
-
-
-def _adjuncts(g: Grammar, rest: Words, row: Row) -> tuple[Words, tuple[Words, ...]]:
-    """The words without their adjuncts ("through the main door", "on my behalf", "when you can",
-    "carefully"), and the adjuncts. A phrase starting with one of the row's own prepositions is
-    one of its roles, not an adjunct."""
-    own = {m[0][0] for m in row.slots}
-    out: list[str] = []
-    found: list[Words] = []
-    i = 0
-    while i < len(rest):
-        end = _adjunct_end(g, rest, i, own)
-        if end > i:
-            found.append(rest[i:end])
-            i = end
-        else:
-            out.append(rest[i])
-            i += 1
-    return tuple(out), tuple(found)
-
-
-def _adjunct_end(g: Grammar, rest: Words, i: int, own: set[str]) -> int:
-    word = rest[i]
-    lasting = len(g.durations.first(rest, i) or ())
-    if lasting:  # "wait in the hall for now", "bring the fan for now"
-        return i + lasting
-    by_doing = word == "by" and i + 1 < len(rest) and rest[i + 1].endswith("ing")  # "by crossing the hall"
-    # "down the hall to the garage": the way, when the place comes after it
-    way = word in g.goal_particles & own and bool(set(rest[i + 1 :]) & (own - g.goal_particles))
-    # "take Aisha down the corridor to the staff room": the way, between the thing or person and
-    # where they go, for a verb of carrying or guiding too
-    particle = i > 0 and word in g.goal_particles
-    way = way or (particle and rest[i + 1 : i + 2] != () and rest[i + 1] in g.np_start
-                  and bool(set(rest[i + 2 :]) & (own - g.goal_particles)))  # fmt: skip
-    if word in own and not by_doing and not way:
-        return i
-    said_how = _said_how(g, rest, i)
-    if said_how:
-        return i + said_how
-    if word in g.paths or by_doing or way:
-        end, stop = i + 1, (own - g.goal_particles) | g.paths
-        while end < len(rest) and rest[end] not in stop and not _said_how(g, rest, end):
-            end += 1
-        # "through the main door" has a phrase; "walk through to the lounge" is a particle.
-        return end if end > i + 1 else i
-    return i
-
-
-def _said_how(g: Grammar, rest: Words, i: int) -> int:
-    """The length of the phrase of manner or time that starts at i ("when you can", "carefully", a
-    clause of time to the end: "while he waits"), or 0."""
-    if rest[i] in g.manner:
-        return 1
-    subject = rest[i + 1] if i + 1 < len(rest) else ""
-    if i > 0 and (rest[i] in g.while_ or (rest[i] in g.time_conjunctions and subject in g.their_subjects)):
-        return len(rest) - i
-    return next((len(p) for p in g.adjuncts_by_first.get(rest[i], ()) if rest[i : i + len(p)] == p), 0)

@@ -18,8 +18,9 @@ from dialogue.understanding.lemmas import lemmas_of
 from dialogue.understanding.outcome import Outcome
 from dialogue.understanding.requests.frames import known_verbs, verbs
 from dialogue.understanding.said import QUOTED, Said, Text
-from dialogue.understanding.speech.plain import Prefixes, strip_politeness
+from dialogue.understanding.speech.plain import strip_politeness
 from dialogue.understanding.speech.repair import asked_verb, normalise, strip_vocative
+from dialogue.understanding.tables.prefixes import Prefixes
 
 
 class _Words:
@@ -83,17 +84,37 @@ def _verb(lang: Language, text: Text, later: bool = False) -> str | None:
     return words[0] if verb and words[1] in c.object_start else None
 
 
-def conjuncts(lang: Language, said: Text) -> list[Part]:  # noqa: C901
+def conjuncts(lang: Language, said: Text) -> list[Part]:
     """The commands of a compound request in order, or [] when the text is one request."""
     heard = Said.read(lang, said)
-    text = heard.text
-    if QUOTED.search(text):  # "say 'stop and wait' to Tom": the quote is one text
+    if QUOTED.search(heard.text):  # "say 'stop and wait' to Tom": the quote is one text
         return []
     c = lang.derived(_Words)
     # (a conjunction as chat writes it: "get my bag n bring it over")
     toks = [(_one_word(c, word), start, end) for word, start, end in heard.marked]
+    cuts = _cuts(lang, c, toks)
+    if not cuts:
+        return []
+    parts, gapped = _joined_parts(lang, heard, toks, _ranges(cuts, len(toks)))
+    if len(parts) < 2:
+        return []
+    out: list[Part] = []
+    for n, (s, e) in enumerate(parts):
+        piece = heard.text[toks[s][1] : toks[e - 1][2]].strip(" ,;")
+        if n in gapped and out[-1].verb is not None:  # "... and then the bun to Mrs Kaur": bring it
+            piece = f"{out[-1].verb} {piece}"
+        out.append(_part(lang, c, heard.of(piece), piece, later=n > 0))
+    return out
+
+
+#: A token as `Said.marked` gives it: (word, start, end) in the text.
+_Token = tuple[str, int, int]
+
+
+def _cuts(lang: Language, c: _Words, toks: list[_Token]) -> list[tuple[int, int]]:
+    """Where the text is cut: (index of the first word of the new part, index after the cut)."""
     no_cut_after = c.no_cut_after | verbs(lang) | c.conjunctions
-    cuts: list[tuple[int, int]] = []  # (index of the first word of the new part, index after the cut)
+    cuts: list[tuple[int, int]] = []
     for i, (word, _, _) in enumerate(toks):
         if i == 0:
             continue
@@ -105,21 +126,39 @@ def conjuncts(lang: Language, said: Text) -> list[Part]:  # noqa: C901
                 cuts.append((i, j))
         elif _greeting_at(c, toks, i) and toks[i - 1][0] not in no_cut_after:
             cuts.append((i, i))  # "Agnes is here say hi"
-        elif word in c.bare_verbs and toks[i - 1][0] not in no_cut_after:
-            nxt = toks[i + 1][0] if i + 1 < len(toks) else ""
-            # "...he is at the door go say hi to him": "go" or "come" before a verb starts a request too
-            serial = word in c.serial and asked_verb(lang, nxt) in verbs(lang)
-            said_after = content_words(lang, [w for w, _, _ in toks[i + 1 :]])  # ("where did it get to")
-            if (nxt in c.object_start and said_after) or serial:
-                cuts.append((i, i))
-    if not cuts:
-        return []
-    ranges: list[tuple[int, int]] = []  # token ranges of the parts
+        elif word in c.bare_verbs and toks[i - 1][0] not in no_cut_after and _bare_verb_at(lang, c, toks, i):
+            cuts.append((i, i))
+    return cuts
+
+
+def _bare_verb_at(lang: Language, c: _Words, toks: list[_Token], i: int) -> bool:
+    """Whether the bare verb at i starts a request: before what it is done to, or before a verb."""
+    word = toks[i][0]
+    nxt = toks[i + 1][0] if i + 1 < len(toks) else ""
+    # "...he is at the door go say hi to him": "go" or "come" before a verb starts a request too
+    serial = word in c.serial and asked_verb(lang, nxt) in verbs(lang)
+    said_after = content_words(lang, [w for w, _, _ in toks[i + 1 :]])  # ("where did it get to")
+    return bool(nxt in c.object_start and said_after) or serial
+
+
+def _ranges(cuts: list[tuple[int, int]], size: int) -> list[tuple[int, int]]:
+    """The token ranges of the parts the cuts leave."""
+    ranges: list[tuple[int, int]] = []
     start = 0
     for end, resume in cuts:
         ranges.append((start, end))
         start = resume
-    ranges.append((start, len(toks)))
+    ranges.append((start, size))
+    return ranges
+
+
+def _joined_parts(
+    lang: Language, heard: Said, toks: list[_Token], ranges: list[tuple[int, int]]
+) -> tuple[list[tuple[int, int]], set[int]]:
+    """The parts, a part with no verb of its own joined to the one before it ("the cereals and the
+    milk": one), unless it says that part's verb again for another thing (gapped: the parts'
+    numbers)."""
+    text = heard.text
     parts: list[tuple[int, int]] = []
     gapped: set[int] = set()  # parts that say again the verb of the part before them
     for s, e in ranges:
@@ -137,21 +176,17 @@ def conjuncts(lang: Language, said: Text) -> list[Part]:  # noqa: C901
                 parts[-1] = (parts[-1][0], e)
         else:
             parts.append((s, e))
-    if len(parts) < 2:
-        return []
-    out: list[Part] = []
-    for n, (s, e) in enumerate(parts):
-        piece = text[toks[s][1] : toks[e - 1][2]].strip(" ,;")
-        if n in gapped and out[-1].verb is not None:  # "... and then the bun to Mrs Kaur": bring it
-            piece = f"{out[-1].verb} {piece}"
-        verb = _verb(lang, heard.of(piece), later=n > 0)
-        # ("go to the x-ray room and get it ready": no intent says the getting ready)
-        words = normalise(lang, heard.of(piece))
-        result = verb is not None and bool(words) and words[-1] in c.results
-        unknown = verb is not None and verb not in known_verbs(lang)  # "... and count the chairs"
-        no_intent = verb in c.no_intent_verbs or result or unknown
-        out.append(Part(piece, verb, no_intent, _away(lang, heard.of(piece))))
-    return out
+    return parts, gapped
+
+
+def _part(lang: Language, c: _Words, said: Said, piece: str, later: bool) -> Part:
+    verb = _verb(lang, said, later=later)
+    # ("go to the x-ray room and get it ready": no intent says the getting ready)
+    words = normalise(lang, said)
+    result = verb is not None and bool(words) and words[-1] in c.results
+    unknown = verb is not None and verb not in known_verbs(lang)  # "... and count the chairs"
+    no_intent = verb in c.no_intent_verbs or result or unknown
+    return Part(piece, verb, no_intent, _away(lang, said))
 
 
 def _gaps(lang: Language, before: list[str], words: list[str]) -> bool:

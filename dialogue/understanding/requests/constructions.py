@@ -15,7 +15,8 @@ from dialogue.reference.english import Words
 from dialogue.understanding.language import Language
 from dialogue.understanding.parsed import Parse
 from dialogue.understanding.said import Said
-from dialogue.understanding.speech.plain import Prefixes, split_at
+from dialogue.understanding.speech.plain import split_at
+from dialogue.understanding.tables.prefixes import Prefixes
 
 
 class ConstructionGrammar:

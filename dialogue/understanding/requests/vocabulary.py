@@ -7,7 +7,7 @@ from dialogue.reference.english import Words
 from dialogue.understanding.language import Language
 from dialogue.understanding.parsed import Act
 from dialogue.understanding.requests.frames import Special, constructions
-from dialogue.understanding.speech.plain import Prefixes
+from dialogue.understanding.tables.prefixes import Prefixes
 
 
 class Grammar:

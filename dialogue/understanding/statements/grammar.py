@@ -29,11 +29,12 @@ from dialogue.understanding.language import Language
 from dialogue.understanding.replies import say
 from dialogue.understanding.said import Said, Text
 from dialogue.understanding.speech.clauses import clauses as run_on_clauses
-from dialogue.understanding.speech.plain import Prefixes, original_text
+from dialogue.understanding.speech.plain import original_text
 from dialogue.understanding.speech.repair import asked_verb, normalise
 from dialogue.understanding.statements.clause import Refused, Told, Unclaimed, Words, fact
 from dialogue.understanding.statements.likings import Likings
 from dialogue.understanding.statements.names import clean_name, given_name, name_like
+from dialogue.understanding.tables.prefixes import Prefixes
 
 __all__ = ["Statements", "Told", "Words"]
 

@@ -276,24 +276,6 @@ def test_a_chat_word_written_with_a_capital_is_a_name(office: KB) -> None:
     assert (out.intent, out.roles) == (I.BRING_OBJECT, {"object": "pear_1", "recipient": "person_fae"})
 
 
-def test_prefixes_are_the_ones_the_words_start_with_in_the_table_s_order() -> None:
-    table = plain.Prefixes([("hello", "there"), ("hi",), ("hello",), ("good", "morning")])
-    words = ["hello", "there", "robot"]
-    assert table.of(words) == [("hello", "there"), ("hello",)]
-    assert table.of(words) == [p for p in table if plain.starts(words, p)]
-    assert table.first(["hello"]) == ("hello",)  # "hello there" is longer than the words
-    assert table.of(["say", "good", "morning"], at=1) == [("good", "morning")]
-    assert table.of(["say", "good"], at=1) == [] and table.first(["say"], at=1) is None
-    assert table.of([]) == [] and table.first(["bye"]) is None
-    assert list(table) == list(table.table) and len(table) == 4
-
-
-def test_a_table_with_an_empty_prefix_keeps_its_order() -> None:
-    table = plain.Prefixes([("hi",), (), ("hello",)])
-    assert table.of(["hello"]) == [(), ("hello",)] and table.of(["hi"]) == [("hi",), ()]
-    assert table.of([]) == [()]
-
-
 @pytest.mark.parametrize(
     ("text", "words"),
     [("where have they gone and put my stick", "where have they put my stick"),
