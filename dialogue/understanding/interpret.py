@@ -39,7 +39,7 @@ from dialogue.understanding.requests.ground import ground
 from dialogue.understanding.requests.owners import none_yours, whose
 from dialogue.understanding.requests.referents import Referents, relational
 from dialogue.understanding.requests.sequence import compound, wished
-from dialogue.understanding.requests.skills import unskilled
+from dialogue.understanding.requests.skills import no_intent, unskilled
 from dialogue.understanding.requests.terse import terse, unasked_thing
 from dialogue.understanding.requests.vocabulary import Grammar
 from dialogue.understanding.said import Said, Text
@@ -189,7 +189,9 @@ class Interpreter:
                 return accepted
         not_understood = Outcome(say(self.lang, "sorry.not_understood"), understood=False)
         # No act: an answer to the robot's question, or "sorry, I meant screen two" (`FOLLOW_UPS`)
-        outcome = followed_up(self, p, heard) or not_understood if p.act == "unknown" else self.act(p)
+        # ("plug the lamp in": no intent of the robot's says it, and it says so)
+        said = followed_up(self, p, heard) or no_intent(self.lang, p) or not_understood
+        outcome = said if p.act == "unknown" else self.act(p)
         # "can you dance?": maybe only asked
         if outcome.intent in _SKILLS and asks_ability(self.lang, heard, p, self.robot_name):
             outcome = replace(outcome, unsure=True)

@@ -15,6 +15,7 @@ from dialogue.understanding.parsed import Act, Parse
 from dialogue.understanding.questions.grammar import question as _question
 from dialogue.understanding.requests.constructions import Framed
 from dialogue.understanding.requests.frames import Row, verb_index
+from dialogue.understanding.requests.motions import as_motion
 from dialogue.understanding.requests.needs import chore_needed
 from dialogue.understanding.requests.timing import conditional, later, negation, when
 from dialogue.understanding.requests.vocabulary import Grammar
@@ -135,7 +136,7 @@ def command(lang: Language, original: Said, words: list[str]) -> Parse:
         rest = tuple(words[len(verb) :]) if row.frame.special is not None else w[len(verb) :]
         found = _fit(row, Framed(lang, verb, rest, w, original))
         if found is not None:
-            return found
+            return as_motion(lang, found)
     return Parse("unknown", words=w)
 
 
