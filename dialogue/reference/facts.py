@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from collections.abc import Iterable
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, Literal
 
 from rdflib import BNode
 
@@ -36,10 +36,12 @@ RELATIONS: tuple[tuple[str, str], ...] = (
     ("behind", "behind"), ("inFrontOf", "in front of"), ("leftOf", "to the left of"),
     ("rightOf", "to the right of"),
 )  # fmt: skip
+#: What a person is to another in their family: the relations the language's kin words name.
+Kin = Literal["child", "parent", "spouse", "sibling"]
 #: Family relations, in the spellings scenes and ontologies use for them (ORO defines none), in one
 #: table: each property -> what its object is to its subject and what its subject is to its object
 #: ("ana isParentOf ben": ben is ana's child, ana is ben's parent).
-KIN: dict[str, tuple[str, str]] = {
+KIN: dict[str, tuple[Kin, Kin]] = {
     "isParentOf": ("child", "parent"), "parentOf": ("child", "parent"), "hasChild": ("child", "parent"),
     "isChildOf": ("parent", "child"), "childOf": ("parent", "child"), "hasParent": ("parent", "child"),
     "isSpouseOf": ("spouse", "spouse"), "spouseOf": ("spouse", "spouse"), "hasSpouse": ("spouse", "spouse"),

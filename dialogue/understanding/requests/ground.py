@@ -75,8 +75,8 @@ def _family(p: Phrase) -> Ref | None:
     one or several ("Who is your wife?"), never guessed."""
     refs = p.refs
     word = kin_word(refs.lang, p.words) if "person" in p.kinds else None
-    if word is None:
-        return None
+    if word is None or p.resolved.matches:
+        return None  # (someone the KB calls "grandma" is called so)
     found = relatives(refs.lang, refs.snapshot, refs.speaker, word)
     one = refs.snapshot.get(found[0]) if len(found) == 1 else None
     if one is not None:

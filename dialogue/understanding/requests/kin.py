@@ -26,7 +26,7 @@ def kin_word(lang: Language, words: Words) -> str | None:
 def relatives(lang: Language, snapshot: Snapshot, speaker: str, word: str) -> list[str]:
     """Whom the KB relates to the speaker as the kin word says, in id order (none, one or several)."""
     found = {speaker}
-    for relation in lang.words.kin[word].split():
+    for relation in lang.words.kin[word]:
         found = {other for who in found if (e := snapshot.get(who)) is not None
                  for rel, other in e.kin if rel == relation and other != speaker}  # fmt: skip
     return sorted(found)
