@@ -188,10 +188,9 @@ class Interpreter:
             if accepted is not None:
                 return accepted
         not_understood = Outcome(say(self.lang, "sorry.not_understood"), understood=False)
-        # No act: an answer to the robot's question, or "sorry, I meant screen two" (`FOLLOW_UPS`)
-        # ("plug the lamp in": no intent of the robot's says it, and it says so)
-        said = followed_up(self, p, heard) or no_intent(self.lang, p) or not_understood
-        outcome = said if p.act == "unknown" else self.act(p)
+        # No act: an answer to the robot's question (`FOLLOW_UPS`), else an action with no intent
+        outcome = self.act(p) if p.act != "unknown" else (
+            followed_up(self, p, heard) or no_intent(self.lang, p) or not_understood)
         # "can you dance?": maybe only asked
         if outcome.intent in _SKILLS and asks_ability(self.lang, heard, p, self.robot_name):
             outcome = replace(outcome, unsure=True)
