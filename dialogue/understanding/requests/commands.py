@@ -15,6 +15,7 @@ from dialogue.understanding.parsed import Act, Parse
 from dialogue.understanding.questions.grammar import question as _question
 from dialogue.understanding.requests.constructions import Framed
 from dialogue.understanding.requests.frames import Row, verb_index
+from dialogue.understanding.requests.kin import kin_word
 from dialogue.understanding.requests.motions import as_motion
 from dialogue.understanding.requests.needs import chore_needed
 from dialogue.understanding.requests.timing import conditional, later, negation, when
@@ -220,7 +221,9 @@ def _fit(row: Row, said: Framed) -> Parse | None:  # noqa: C901
         del marks["recipient"]
     if frame.dative is not None and "recipient" not in slots and direct:
         # "get Ines her phone": someone, then a noun phrase of its own
-        before = frame.dative == "before" and _someone(g, direct[0]) and _own_phrase_after(g, direct)
+        # ("take my husband his phone": the speaker's kin are someone too)
+        someone = _someone(g, direct[0]) or kin_word(said.lang, direct[:2]) is not None
+        before = frame.dative == "before" and someone and _own_phrase_after(g, direct)
         if direct[0] in g.me:  # "get me a cup"
             slots["recipient"], direct = ("me",), direct[1:]
         elif frame.dative == "any" or before:  # "give Ines her phone": the interpreter splits it
