@@ -182,6 +182,7 @@ class EntityIndex:
             support=support, zone=zone, colour=self.display(hue) if hue else None,
             engagement=facts.value("engagement", term), owner=facts.value("owner", term), relations=relations,
             movable=_boolean(facts.value("movable", term)),
+            kin=facts.kin(term) if core.kind == "person" else (),
         )  # fmt: skip
         self._reorder(term, rank(self.entities[term]))
         self._locate(term, (support, zone, *(other for prep, other in relations if prep == "in")))

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from collections.abc import Iterable
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, Literal
 
 from rdflib import BNode
 
@@ -36,6 +36,18 @@ RELATIONS: tuple[tuple[str, str], ...] = (
     ("behind", "behind"), ("inFrontOf", "in front of"), ("leftOf", "to the left of"),
     ("rightOf", "to the right of"),
 )  # fmt: skip
+#: What a person is to another in their family: the relations the language's kin words name.
+Kin = Literal["child", "parent", "spouse", "sibling"]
+#: Family relations, in the spellings scenes and ontologies use for them (ORO defines none), in one
+#: table: each property -> what its object is to its subject and what its subject is to its object
+#: ("ana isParentOf ben": ben is ana's child, ana is ben's parent).
+KIN: dict[str, tuple[Kin, Kin]] = {
+    "isParentOf": ("child", "parent"), "parentOf": ("child", "parent"), "hasChild": ("child", "parent"),
+    "isChildOf": ("parent", "child"), "childOf": ("parent", "child"), "hasParent": ("parent", "child"),
+    "isSpouseOf": ("spouse", "spouse"), "spouseOf": ("spouse", "spouse"), "hasSpouse": ("spouse", "spouse"),
+    "isMarriedTo": ("spouse", "spouse"), "hasSibling": ("sibling", "sibling"),
+    "isSiblingOf": ("sibling", "sibling"), "siblingOf": ("sibling", "sibling"),
+}  # fmt: skip
 #: Predicates whose change means an entity's classes or names must be asked again.
 DEEP = frozenset({"rdf:type", "rdfs:label"})
 #: Tables whose chosen value is a place, named in the snapshot's `names`.
@@ -43,7 +55,7 @@ PLACES = ("support", "zone")
 
 Triple = tuple[Any, Any, Any]
 #: Every property kept in a table, by the table's name (relations by their property).
-_TABLES = {**PROPERTIES, **{prop: prop for prop, _prep in RELATIONS}}
+_TABLES = {**PROPERTIES, **{prop: prop for prop, _prep in RELATIONS}, **{prop: prop for prop in KIN}}
 
 
 @dataclass
@@ -111,6 +123,16 @@ class Facts:
                         for other in sorted(tables[prop][term]))  # fmt: skip
         return inside + related if related else inside
 
+    def kin(self, term: str) -> tuple[tuple[str, str], ...]:
+        """The person's family as the KB relates it, either way round: (what they are to the person,
+        who), by property, each by sorted text."""
+        tables = self.tables
+        forward = [(ahead, other) for prop, (ahead, _back) in KIN.items()
+                   for other in tables[prop].get(term, ())]  # fmt: skip
+        backward = [(back, subject) for prop, (_ahead, back) in KIN.items()
+                    for subject, objects in tables[prop].items() if term in objects]  # fmt: skip
+        return tuple(sorted(set(forward + backward)))
+
     def is_candidate(self, term: str) -> bool:
         """Worth considering as an entity: seen, a person, a place, located, named, or the robot.
         Of the named ones, schema terms and the ontology's values (colours, sizes, postures) are
@@ -166,6 +188,8 @@ class Facts:
         if not values:
             del table[s]
         change.shallow.add(s)
+        if p in KIN:  # (the object's family changed too)
+            change.shallow.add(o)
 
 
 def _set(members: set[str], term: str, present: bool) -> None:

@@ -77,6 +77,8 @@ class Entity:
     relations: tuple[tuple[str, str], ...] = ()
     #: Whether it can be picked up and carried (`isMovable`); None when the KB does not say.
     movable: bool | None = None
+    #: A person's family as the KB relates it (`facts.KIN`): (what they are to this person, who).
+    kin: tuple[tuple[str, str], ...] = ()
 
 
 #: The ontology's class of furniture: it stays where it is unless the KB says it can be moved.

@@ -35,7 +35,7 @@ from dialogue.understanding.requests.compound import adds_on, conjuncts, coordin
 from dialogue.understanding.requests.referents import Referents
 from dialogue.understanding.requests.roles import one_command
 from dialogue.understanding.requests.sequence import compound, wished
-from dialogue.understanding.requests.skills import unskilled
+from dialogue.understanding.requests.skills import no_intent, unskilled
 from dialogue.understanding.requests.terse import terse, unasked_thing
 from dialogue.understanding.requests.vocabulary import Grammar
 from dialogue.understanding.said import Said, Text
@@ -174,8 +174,9 @@ class Interpreter:
             if accepted is not None:
                 return accepted
         not_understood = Outcome(say(self.lang, "sorry.not_understood"), understood=False)
-        # No act: an answer to the robot's question, or "sorry, I meant screen two" (`FOLLOW_UPS`)
-        outcome = followed_up(self, p, heard) or not_understood if p.act == "unknown" else self.act(p)
+        # No act: an answer to the robot's question (`FOLLOW_UPS`), else an action with no intent
+        outcome = self.act(p) if p.act != "unknown" else (
+            followed_up(self, p, heard) or no_intent(self.lang, p) or not_understood)
         # "can you dance?": maybe only asked
         if outcome.intent in _SKILLS and asks_ability(self.lang, heard, p, self.robot_name):
             outcome = replace(outcome, unsure=True)

@@ -24,6 +24,7 @@ from dialogue.understanding.context import Reader
 from dialogue.understanding.followups import proposal
 from dialogue.understanding.followups.accepting import accepts
 from dialogue.understanding.followups.correction import correction
+from dialogue.understanding.followups.offers import chosen_offered, offer
 from dialogue.understanding.language import Language
 from dialogue.understanding.outcome import Outcome
 from dialogue.understanding.parsed import Parse
@@ -49,7 +50,7 @@ def follow_up(reader: Reader, p: Parse, heard: Said) -> Outcome | None:
     confirmed = proposal.answered(reader, answer)
     if confirmed is not None:  # "yes" or "no" to "Shall I bring the soap to Jordan?"
         return confirmed
-    accepted = offer(reader, question, said)
+    accepted = offer(reader, question, said) or chosen_offered(reader, question, heard)
     if accepted is not None:
         return accepted
     found = _pending(reader, spoken, heard)
@@ -216,31 +217,6 @@ def _merged(lang: Language, fragment: Words, first: Outcome) -> Words:
         if fragment[: len(loc)] == loc:
             return fragment[len(loc) :]
     return fragment
-
-
-def offer(reader: Reader, question: Utterance, said: list[str]) -> Outcome | None:
-    """ "yes please" to "Would you like me to bring you a basket?": the request the robot offered,
-    in the words of the person who accepts it ("bring me a basket")."""
-    lang = reader.lexicon.lang
-    if not accepts(lang, said):
-        return None
-    request = _offered(lang, expanded(lang, question.text.rstrip(" ?")))
-    outcome = reader.act(parse(lang, " ".join(request), reader.robot_name)) if request else None
-    if outcome is None or outcome.intent is None:
-        return None
-    return outcome.followed_up()
-
-
-def _offered(lang: Language, asked: list[str]) -> list[str]:
-    """The request an offer makes, in the words of the person offered it ([] when it makes none)."""
-    for lead in lang.followups.offers:
-        at = next((i for i in range(len(asked)) if tuple(asked[i : i + len(lead)]) == lead), None)
-        if at is not None:
-            return [lang.followups.swapped.get(w, w) for w in asked[at + len(lead) :]]
-    for lead in lang.followups.offers_a_thing:  # "Would you like a towel?"
-        if tuple(asked[: len(lead)]) == lead and asked[len(lead) :]:
-            return [*lang.followups.offered_request, *asked[len(lead) :]]
-    return []
 
 
 def confirmation(earlier: Reader, pending: Parse, first: Outcome, question: Utterance,

@@ -16,6 +16,8 @@ from dialogue.understanding.questions.grammar import question as _question
 from dialogue.understanding.requests.adjuncts import adjuncts_of
 from dialogue.understanding.requests.constructions import Framed
 from dialogue.understanding.requests.frames import Frame, Row, verb_index
+from dialogue.understanding.requests.kin import kin_word
+from dialogue.understanding.requests.motions import as_motion
 from dialogue.understanding.requests.needs import chore_needed
 from dialogue.understanding.requests.timing import conditional, later, negation, when
 from dialogue.understanding.requests.vocabulary import Grammar
@@ -136,7 +138,7 @@ def command(lang: Language, original: Said, words: list[str]) -> Parse:
         rest = tuple(words[len(verb) :]) if row.frame.special is not None else w[len(verb) :]
         found = _fit(row, Framed(lang, verb, rest, w, original))
         if found is not None:
-            return found
+            return as_motion(lang, found)
     return Parse("unknown", words=w)
 
 
@@ -259,7 +261,9 @@ def _dative(
     """ "get me a cup", "give Ines her phone": the recipient said first; the direct words after it,
     or a double object the interpreter splits."""
     # "get Ines her phone": someone, then a noun phrase of its own
-    before = frame.dative == "before" and _someone(g, direct[0]) and _own_phrase_after(g, direct)
+    # ("take my husband his phone": the speaker's kin are someone too)
+    someone = _someone(g, direct[0]) or kin_word(said.lang, direct[:2]) is not None
+    before = frame.dative == "before" and someone and _own_phrase_after(g, direct)
     if direct[0] in g.me:  # "get me a cup"
         slots["recipient"], direct = ("me",), direct[1:]
     elif frame.dative == "any" or before:  # "give Ines her phone": the interpreter splits it

@@ -27,6 +27,7 @@ from dialogue.understanding.lemmas import lemmas_of
 from dialogue.understanding.outcome import Outcome, Ref
 from dialogue.understanding.replies import say, the
 from dialogue.understanding.requests.compound import alternatives
+from dialogue.understanding.requests.kin import kin_word, relatives
 from dialogue.understanding.requests.phrase import Phrase, prepared
 from dialogue.understanding.requests.referents import Referents
 from dialogue.understanding.speech.sounds import clipped as said_short
@@ -67,6 +68,21 @@ def _the_speaker(p: Phrase) -> Ref | None:
     if "person" in p.kinds and p.content and set(p.content) <= p.refs.said.me | {"here"}:
         return Ref(speaker=True)
     return None
+
+
+def _family(p: Phrase) -> Ref | None:
+    """ "my wife", "Dad": the one person the KB relates to the speaker so; asked when it names no
+    one or several ("Who is your wife?"), never guessed."""
+    refs = p.refs
+    word = kin_word(refs.lang, p.words) if "person" in p.kinds else None
+    if word is None or p.resolved.matches:
+        return None  # (someone the KB calls "grandma" is called so)
+    found = relatives(refs.lang, refs.snapshot, refs.speaker, word)
+    one = refs.snapshot.get(found[0]) if len(found) == 1 else None
+    if one is not None:
+        return Ref(entity=one)
+    asked = say(refs.lang, "request.who_kin", kin=word)
+    return Ref(problem=Outcome(asked, clarify=True, open_role=p.role))
 
 
 def _someone_there(p: Phrase) -> Ref | None:
@@ -266,6 +282,8 @@ def _another_kind(p: Phrase) -> Ref | None:
     only by how the speaker is related to them."""
     others = ANYWHERE - p.kinds
     other = resolve(p.refs.lexicon, p.words, others).matches if others else ()
+    # ("bring me the tool": the "tool shed" is not what is meant, and no tool is seen)
+    other = tuple(e for e in other if e.kind != "zone" or p.refs.headed(p.words, e))
     if other or ("person" in p.kinds and p.words[:1] and p.words[0] in p.refs.said.possessives):
         return p.not_understood()
     return None
@@ -278,8 +296,9 @@ def _ones(p: Phrase) -> Ref | None:
 
 #: The steps of grounding, in the order they are tried.
 STEPS: tuple[Callable[[Phrase], Ref | None], ...] = (
-    _the_speaker, _someone_there, _pronoun, _addressed, _owner, _named, _slipped, _clipped, _qualified,
-    _just_named, _ambiguous, _placed, _titled, _put_by, _many, _either, _whereabouts, _another_kind, _ones,
+    _the_speaker, _family, _someone_there, _pronoun, _addressed, _owner, _named, _slipped, _clipped,
+    _qualified, _just_named, _ambiguous, _placed, _titled, _put_by, _many, _either, _whereabouts,
+    _another_kind, _ones,
 )  # fmt: skip
 
 

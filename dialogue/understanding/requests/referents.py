@@ -12,6 +12,7 @@ from dialogue.reference.antecedent import antecedent
 from dialogue.reference.english import Words, tokens
 from dialogue.reference.grounding import Entity
 from dialogue.reference.lexicon import Lexicon
+from dialogue.reference.naming import phrase, singular
 from dialogue.reference.resolution import (
     PERSON,
     THING,
@@ -22,6 +23,7 @@ from dialogue.reference.resolution import (
 )
 from dialogue.understanding.language import Language
 from dialogue.understanding.lemmas import lemmas_of
+from dialogue.understanding.requests.kin import kin_word
 
 
 def relational(lang: Language) -> frozenset[str]:
@@ -82,6 +84,7 @@ class Referents:
                 continue  # "fetch Marco's jacket": whose the thing is, not to whom
             people = content_words(self.lang, head)
             named = set(people) <= self.said.me or resolve(self.lexicon, head, PERSON).one is not None
+            named = named or kin_word(self.lang, head) is not None  # "bring my wife her phone"
             # "bring him the bottle": a person pronoun the conversation resolves.
             said = set(people) <= self.said.person_objects and self.person_as_object(head) is not None
             # "bring her the muffin": "her" before a determiner is no possessive, whoever she is
@@ -135,7 +138,14 @@ class Referents:
             return False
         if resolve(self.lexicon, words, THING).matches:
             return False
-        return resolve(self.lexicon, words, ZONE).one is not None
+        zone = resolve(self.lexicon, words, ZONE).one
+        return zone is not None and self.headed(words, zone)
+
+    def headed(self, words: Words, entity: Entity) -> bool:
+        """Whether the phrase's last word is the head of the entity's name: "the lifts" of the lifts,
+        not "the tool" of the "tool shed", whose name only holds the word."""
+        content, name = content_words(self.lang, words), phrase(entity.name)
+        return bool(content) and bool(name) and singular(name[-1]) == singular(content[-1])
 
     def a_person(self, words: Words) -> bool:
         """Whether the phrase is someone: a person's name, a person pronoun or the speaker."""

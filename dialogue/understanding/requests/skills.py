@@ -1,11 +1,15 @@
-"""Whether the robot has a skill for an activity it is asked to do ("tidy the shelves", "play a
-game"), or says it cannot ("fold the towels", "iron the bathrobe", "play us something on the piano",
-"do my exercises for me"): which activities are the robot's is the language's data
-(`requests.toml`: `skill_verbs`, `skills`, `starting`)."""
+"""Whether the robot has a skill for what it is asked to do ("tidy the shelves", "play a game"), or
+says it cannot: an activity beyond it ("fold the towels", "iron the bathrobe", "play us something on
+the piano", "do my exercises for me"), a thing fixed to a wall or a ceiling rather than put there
+("hang the calendar on the wall"), or an action it has no intent for, said alone ("plug the lamp
+in", "pin the calendar up"). Which activities are the robot's, what things are fixed to and which
+actions it has no intent for are the language's data (`requests.toml`: `skill_verbs`, `skills`,
+`starting`, `fixtures`, `no_intent_verbs`)."""
 
 from __future__ import annotations
 
 from dialogue import intents as I
+from dialogue.reference.resolution import content_words
 from dialogue.understanding.language import Language
 from dialogue.understanding.lemmas import lemmas_of
 from dialogue.understanding.outcome import Outcome
@@ -14,8 +18,11 @@ from dialogue.understanding.replies import said_back, say
 
 
 def skilled(lang: Language, p: Parse) -> bool:
-    """Whether an activity asked for is one the robot can do: asked to start (any), said by a verb
-    of its chores, or named by a word of its activities that is not said to be the speaker's own."""
+    """Whether what is asked for is one the robot can do: no placing on a fixture, and an activity
+    asked to start (any), said by a verb of its chores, or named by a word of its activities that is
+    not said to be the speaker's own."""
+    if p.intent == I.PLACE_OBJECT:
+        return not _on_fixture(lang, p)
     said = p.slots.get("activity")
     if p.intent != I.START_ACTIVITY or said is None or not p.words:
         return True
@@ -32,10 +39,27 @@ def skilled(lang: Language, p: Parse) -> bool:
     return named and not theirs
 
 
+def _on_fixture(lang: Language, p: Parse) -> bool:
+    """Whether the place of a placing is one things are fixed to ("on the wall")."""
+    place = content_words(lang, p.slots.get("recipient", ()))
+    return bool(place) and place[-1] in lang.requests.fixtures
+
+
 def unskilled(lang: Language, p: Parse) -> Outcome | None:
     """ "Fold all the towels for me": the robot says it cannot, and starts nothing; None when the
-    request is not an activity beyond its skills. The rules do not claim to have understood it: the
-    words may say what they cannot read ("water jug to Edith"), which a model behind them may."""
+    request is not beyond its skills. The rules do not claim to have understood it: the words may
+    say what they cannot read ("water jug to Edith"), which a model behind them may."""
     if skilled(lang, p):
+        return None
+    return Outcome(say(lang, "request.cannot", action=said_back(lang, p.words)), understood=False)
+
+
+def no_intent(lang: Language, p: Parse) -> Outcome | None:
+    """ "Plug the lamp in": a request no frame reads whose verb is an action the robot has no intent
+    for is said to be beyond it, not misunderstood; None for any other words."""
+    if p.act != "unknown" or len(p.words) < 2:
+        return None
+    verb = p.words[0]
+    if not {verb, *lemmas_of(verb).get("VERB", ())} & lang.requests.no_intent_verbs:
         return None
     return Outcome(say(lang, "request.cannot", action=said_back(lang, p.words)), understood=False)

@@ -19,6 +19,7 @@ class FollowupWords(Table):
     one: WordSet = frozenset()
     offers: Phrases = ()
     offers_a_thing: Phrases = ()
+    choosing: Phrases = ()
     swapped: dict[str, str] = {}
     confirms: Phrases = ()
     accepting: WordSet = frozenset()

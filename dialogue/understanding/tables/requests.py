@@ -138,6 +138,7 @@ class RequestWords(Table):
     activity_anaphora: WordSet = frozenset()
     results: WordSet = frozenset()
     no_intent_verbs: WordSet = frozenset()
+    fixtures: WordSet = frozenset()
     abilities: Phrases = ()
     performances: Phrases = ()
     skill_verbs: WordSet = frozenset()

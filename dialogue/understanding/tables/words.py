@@ -66,6 +66,8 @@ class ClosedWords(Table):
     speaker_possessives: WordList = ()
     addressee_possessives: WordList = ()
     coordinators: WordSet = frozenset()
+    kin: dict[str, WordList] = {}
+    kin_bare: WordSet = frozenset()
     speaker_in_answer: frozenset[str] = frozenset()
     speaker_in_fact: frozenset[str] = frozenset()
 

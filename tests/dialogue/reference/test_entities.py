@@ -208,3 +208,18 @@ def test_a_named_thing_nobody_has_placed_is_an_entity_and_the_ontologys_values_a
     # ontology: values, never things.
     values = {"red", "large", "sitting", "engaged", "unknownLocation", "current_world_state"}
     assert not values & set(build_snapshot(kb).entities)
+
+
+def test_a_persons_family_is_kept_either_way_round_as_commits_change_it() -> None:
+    kb = KB()
+    kb.update([*BASE, "person_bo rdf:type Human", 'person_bo rdfs:label "Bo"', "person_ann isParentOf person_bo"])
+    grounder = Grounder()
+    snap = grounder.snapshot(kb)
+    assert snap.entities["person_ann"].kin == (("child", "person_bo"),)
+    assert snap.entities["person_bo"].kin == (("parent", "person_ann"),)  # (no property of Bo's says it)
+    kb.apply(add=["person_bo hasSpouse person_ann"], remove=["person_ann isParentOf person_bo"])
+    snap = grounder.snapshot(kb)
+    assert snap.entities["person_ann"].kin == (("spouse", "person_bo"),)
+    assert snap.entities["person_bo"].kin == (("spouse", "person_ann"),)
+    assert build_snapshot(kb).entities["person_ann"] == snap.entities["person_ann"]
+    assert snap.entities["table_1"].kin == ()

@@ -492,3 +492,17 @@ def test_a_call_for_attention_said_again_is_no_greeting_of_the_request_after_it(
     # a welcoming after the greeting is a request to greet someone, never a greeting said again
     p = commands.parse(english(), "hey tiago welcome mr dubois")
     assert (p.act, p.intent, p.slots) == ("command", I.GREET, {"recipient": ("mr", "dubois")})
+
+
+@pytest.mark.parametrize(
+    ("text", "rest"),
+    [("take my husband his phone", ("my", "husband", "his", "phone")),
+     ("get our youngest her coat", ("our", "youngest", "her", "coat"))],
+)  # fmt: skip
+def test_the_speakers_kin_before_a_phrase_of_its_own_is_a_double_object(text: str, rest: tuple[str, ...]) -> None:
+    p = parse(text)
+    assert (p.intent, p.slots, p.double_object) == (I.BRING_OBJECT, {"rest": rest}, True)
+
+
+def test_the_speakers_own_thing_is_no_double_object() -> None:
+    assert parse("take my phone to the table").double_object is False

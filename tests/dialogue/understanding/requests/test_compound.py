@@ -37,6 +37,9 @@ def conjuncts(text: str) -> list[Part]:
         ("omar is in the shed tell him lunch is ready", ["omar is in the shed", "tell him lunch is ready"]),
         # "and" as chat writes it; other chat words cut nothing ("cn u go...": "u" is "you")
         ("fetch the tray n put it on the shelf", ["fetch the tray", "put it on the shelf"]),
+        # a verb after a subject with its auxiliary says what they did or will do: no command
+        ("I've put the keys by the kettle", []),
+        ("I'll take the orange juice, ta", []),
         ("cn u go to the shed", ["cn u", "go to the shed"]),
         # an action the robot has no intent for is a part of its own, kept in the reply
         ("go to the shed and see if the hose is there", ["go to the shed", "see if the hose is there"]),
