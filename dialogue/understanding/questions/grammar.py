@@ -14,6 +14,8 @@ from __future__ import annotations
 from dialogue.reference.english import Words
 from dialogue.understanding.language import Language
 from dialogue.understanding.parsed import Parse
+from dialogue.understanding.questions.presence import presence
+from dialogue.understanding.questions.recalled import recalled
 from dialogue.understanding.speech.plain import Prefixes, split_at, starts
 
 
@@ -110,6 +112,9 @@ def question(lang: Language, words: list[str]) -> Parse | None:  # noqa: C901
         if w[len(lead) : len(lead) + 1] and w[len(lead)] in q.wh:
             w = w[len(lead) :]
             break
+    asked = recalled(lang, w)  # "what did I ask you for?", "what's left?"
+    if asked is not None:
+        return asked
     w = _described(q, w)  # "describe the objects on the bench": what is on it
     named = _name_of(q, w)
     if named is not None:  # "tell me the name of the person in the break room"
@@ -150,7 +155,11 @@ def question(lang: Language, words: list[str]) -> Parse | None:  # noqa: C901
                     return None  # "is there anything to eat": a need (requests/needs), no question
                 return _anything(q, w, thing[1:])
             return _q("can_see", w, thing=thing)
-    here = w[:-1] if len(w) > 3 and w[-1] in q.there_after else w  # ("is Yuki here yet?")
+    came = presence(lang, w)  # "has Frances arrived?", "did Tom leave?"
+    if came is not None:
+        return came
+    # ("is Yuki here yet?", "is Blessing still here?")
+    here = (*w[:2], *(x for x in w[2:] if x not in q.there_after)) if len(w) > 3 else w
     if head and head[0] in q.is_are and len(here) > 2 and here[-1] in q.there:
         return _q("can_see", w, thing=here[1:-1])  # "is Maria here?"
     if head and head[0] in q.is_are and split_at(w, q.locatives) is not None:
