@@ -30,6 +30,7 @@ class FollowupWords(Table):
     again: Phrases = ()
     additive: Phrases = ()
     additive_leads: Phrases = ()
+    additive_alone: Phrases = ()
     softening: WordSet = frozenset()
     emphasis: WordSet = frozenset()
     both: PhraseSet = frozenset()
