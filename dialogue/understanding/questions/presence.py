@@ -16,9 +16,9 @@ from dialogue.understanding.language import Language
 from dialogue.understanding.parsed import Parse
 from dialogue.understanding.replies import location, say, the
 
-#: The slot of the parse that says which way the question asks ("come" or "gone").
-WAY = "way"
-COME, GONE = ("come",), ("gone",)
+#: The question kinds: whether someone has come, and whether someone has gone.
+ARRIVED = "arrived"
+DEPARTED = "departed"
 
 
 class _Words:
@@ -28,8 +28,9 @@ class _Words:
         said = lang.questions.situation
         self.asking = said.presence_asking
         self.after = said.there_after
-        ways = [(phrase, COME) for phrase in said.arrived] + [(phrase, GONE) for phrase in said.departed]
-        self.ways = sorted(ways, key=lambda way: -len(way[0]))
+        come = [(phrase, ARRIVED) for phrase in said.arrived]
+        gone = [(phrase, DEPARTED) for phrase in said.departed]
+        self.ways = sorted([*come, *gone], key=lambda way: -len(way[0]))
 
 
 def presence(lang: Language, w: Words) -> Parse | None:
@@ -42,16 +43,15 @@ def presence(lang: Language, w: Words) -> Parse | None:
     while len(said) > 2 and said[-1] in p.after:  # ("is Marta back yet?")
         said = said[:-1]
     for phrase, way in p.ways:
-        who = said[1 : len(said) - len(phrase)]
         if len(said) > len(phrase) + 1 and said[-len(phrase) :] == phrase:
-            who = tuple(x for x in who if x not in p.after)  # ("has Tom already left?")
+            who = tuple(x for x in said[1 : -len(phrase)] if x not in p.after)  # ("has Tom already left?")
             if not who:
                 return None
-            return Parse("question", question="presence", slots={"thing": who, WAY: way}, words=w)
+            return Parse("question", question=way, slots={"thing": who}, words=w)
     return None
 
 
-def answer(lexicon: Lexicon, words: Words, speaker: str, way: Words) -> str | None:
+def answer(lexicon: Lexicon, words: Words, speaker: str, way: str) -> str | None:
     """Whether the person is here, said with their name; None when the words are not one person
     the KB knows (other than the speaker)."""
     snapshot, lang = lexicon.snapshot, lexicon.lang
@@ -61,7 +61,8 @@ def answer(lexicon: Lexicon, words: Words, speaker: str, way: Words) -> str | No
     name, where = the(lang, snapshot, who, speaker), location(lang, snapshot, who)
     there = f" {where}" if where else ""
     if who.seen:
-        return say(lang, "answers.not_gone" if way == GONE else "answers.has_come", name=name, where=there)
+        key = "answers.not_gone" if way == DEPARTED else "answers.has_come"
+        return say(lang, key, name=name, where=there)
     if where:
         return say(lang, "answers.placed_unseen", name=name, where=where)
     return say(lang, "answers.presence_unknown", name=name)

@@ -24,7 +24,7 @@ from dialogue.understanding.questions import answers, presence, recalled
 from dialogue.understanding.replies import say
 
 #: The questions whose subject may be a pronoun or someone spoken of ("where is she").
-_ABOUT = frozenset({"where", "can_see", "what_is", "what_on", "whose", "presence"})
+_ABOUT = frozenset({"where", "can_see", "what_is", "what_on", "whose", presence.ARRIVED, presence.DEPARTED})
 
 #: One kind of question answered: the turn, what it is about, whose that is, and the parse.
 Answer = Callable[[Reader, Words, str | None, Parse], Outcome]
@@ -99,7 +99,7 @@ def _whose(c: Context, thing: Words, owner: str | None, p: Parse) -> Outcome:
 
 
 def _presence(c: Context, thing: Words, owner: str | None, p: Parse) -> Outcome:
-    came = presence.answer(c.lexicon, thing, c.speaker, p.slots.get(presence.WAY, ()))
+    came = presence.answer(c.lexicon, thing, c.speaker, p.question or "")
     return Outcome(came) if came is not None else _no_answer(c)
 
 
@@ -124,7 +124,7 @@ QUESTIONS: dict[str, Answer] = {
     "what_see": _what_see, "who_see": _who_see, "where": _where, "what_on": _what_on,
     "who_in": _who_in, "what_near": _what_near, "can_see": _can_see, "what_is": _what_is,
     "which_see": _which_see, "how_many": _how_many, "colour": _colour, "whose": _whose,
-    "name": _name, "how_are_you": _how_are_you, "presence": _presence,
+    "name": _name, "how_are_you": _how_are_you, presence.ARRIVED: _presence, presence.DEPARTED: _presence,
     "asked_for": _asked_for, "untracked": _untracked,
 }  # fmt: skip
 
