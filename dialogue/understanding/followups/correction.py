@@ -45,9 +45,15 @@ def corrected_first(reader: Reader, p: Parse, heard: Said) -> Outcome | None:
         return None
     if p.act in _CORRECTABLE:
         return correction(reader, p, heard)
-    if p.act == "unknown" and _added(lang, heard) and any(u.role == "user" for u in reader.history):
-        return correction(reader, p, heard) or Outcome(say(lang, "sorry.not_understood"), understood=False)
-    return None
+    added = _added(lang, heard) if p.act == "unknown" else ()
+    if not added or not any(u.role == "user" for u in reader.history):
+        return None
+    corrected = correction(reader, p, heard)
+    if corrected is not None:
+        return corrected
+    # (words the KB does not name, "and the rake goes to the porch", are left to the other follow-ups)
+    named = all(reader.lexicon.knows(w) for w in content_words(lang, added))
+    return Outcome(say(lang, "sorry.not_understood"), understood=False) if named else None
 
 
 #: How many corrections in a row may stand between a correction and the request it corrects.
@@ -156,7 +162,7 @@ def _added(lang: Language, heard: Said) -> Words:
     if end is None:  # "and also the apple": said so by its first words alone
         alone = lang.followups.additive_alone
         lead = next((a for a in alone if len(said) > len(a) and said[: len(a)] == a), ())
-        return said[len(lead) :] if lead else ()
+        return said[len(lead) :] if lead and _a_phrase(lang, said[len(lead) :]) else ()
     phrase = said[: -len(end)]
     lead = next((a for a in lang.followups.additive_leads if phrase[: len(a)] == a), ())
     return phrase[len(lead) :]

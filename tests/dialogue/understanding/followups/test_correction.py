@@ -127,3 +127,10 @@ def test_one_more_whose_role_is_not_clear_is_not_understood(pantry: KB) -> None:
     # never a bringing to the speaker
     out = say(pantry, "oh and the amber jar too", speaker=LEA, history=_after("put the green jar on the shelf"))
     assert out.intent is None and not out.understood, out.reply
+
+
+def test_and_alone_says_one_more_only_before_a_noun_phrase(pantry: KB) -> None:
+    history = _after("give Tam the green jar")
+    out = say(pantry, "and the amber jar", speaker=LEA, history=history)
+    assert (out.intent, out.roles) == (I.BRING_OBJECT, {"object": "jar_2", "recipient": "person_tam"}), out.reply
+    assert say(pantry, "and you?", speaker=LEA, history=history).intent is None
