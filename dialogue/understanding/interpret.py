@@ -21,7 +21,7 @@ from dialogue.reference.english import Words
 from dialogue.reference.lexicon import Lexicon
 from dialogue.reference.resolution import PERSON, ROLE_KINDS
 from dialogue.understanding.followups.accepting import accepts
-from dialogue.understanding.followups.correction import correction, opens_correction
+from dialogue.understanding.followups.correction import corrected_first
 from dialogue.understanding.followups.proposal import proposed
 from dialogue.understanding.followups.request import follow_up, followed_up, said_first
 from dialogue.understanding.outcome import SPELT_CONFIDENCE, Outcome
@@ -48,10 +48,6 @@ from dialogue.understanding.talk import TALK
 
 #: What a question of ability may ask of a verb alone ("can you dance?", "can you cook?"): a skill.
 _SKILLS = frozenset({I.PERFORM_MOTION, I.START_ACTIVITY})
-#: Acts a correction of the request just made may read as ("make that the study": an activity;
-#: "wait, no, on the bookcase": a refusal; "thanks! now the apple too": thanks): read as the
-#: correction when one fits.
-_CORRECTABLE = frozenset({"command", "negated", "thanks"})
 _EXACTLY = {
     "object": "request.what_exactly", "recipient": "request.whom_exactly", "goal": "request.where_exactly",
 }  # fmt: skip
@@ -123,12 +119,9 @@ class Interpreter:
         return self._single(heard, terse_read=False)  # (tried above, before the parts)
 
     def _corrected(self, heard: Said) -> Outcome | None:
-        """ "Actually, make that the study", "wait, no, on the bookcase": a correction of the request
-        just made, though its words read as an activity or a refusal of their own."""
-        if not opens_correction(self.lang, heard):
-            return None
-        p = parse(self.lang, heard, self.robot_name)
-        return correction(self, p, heard) if p.act in _CORRECTABLE else None
+        """ "Actually, make that the study", "wait, no, on the bookcase", "oh and the biscuits too": a
+        correction of the request just made, or one more for it, read before its words alone."""
+        return corrected_first(self, parse(self.lang, heard, self.robot_name), heard)
 
     def _from_each_clause(self, heard: Said) -> list[Said]:
         """The words from the start of each clause to the end: the whole first."""

@@ -13,6 +13,7 @@ from dialogue.understanding.context import Reader
 from dialogue.understanding.language import Language
 from dialogue.understanding.outcome import Outcome
 from dialogue.understanding.parsed import Parse
+from dialogue.understanding.replies import say
 from dialogue.understanding.requests.commands import parse
 from dialogue.understanding.said import Said
 from dialogue.understanding.speech.plain import plain, strip_politeness
@@ -25,6 +26,34 @@ def correction(reader: Reader, p: Parse, heard: Said) -> Outcome | None:
     "no, the other one")."""
     corrected = _corrected(reader, heard, _IN_A_ROW)
     return corrected.outcome.followed_up() if corrected is not None else None
+
+
+#: Acts a correction of the request just made may read as ("make that the study": an activity;
+#: "wait, no, on the bookcase": a refusal; "thanks! now the apple too": thanks): read as the
+#: correction when one fits.
+_CORRECTABLE = frozenset({"command", "negated", "thanks"})
+
+
+def corrected_first(reader: Reader, p: Parse, heard: Said) -> Outcome | None:
+    """What is read as a correction before the words are read as a request of their own: words that
+    open as one ("make that the study": an act `_CORRECTABLE`, when the correction fits), and one
+    more for the request just made ("oh and the biscuits too" after a request: that request for one
+    more thing, or, when which of its roles the phrase replaces is not clear, not understood: never
+    a bringing guessed from the thing alone)."""
+    lang = reader.lexicon.lang
+    if not opens_correction(lang, heard):
+        return None
+    if p.act in _CORRECTABLE:
+        return correction(reader, p, heard)
+    added = _added(lang, heard) if p.act == "unknown" else ()
+    if not added or not any(u.role == "user" for u in reader.history):
+        return None
+    corrected = correction(reader, p, heard)
+    if corrected is not None:
+        return corrected
+    # (words the KB does not name, "and the rake goes to the porch", are left to the other follow-ups)
+    named = all(reader.lexicon.knows(w) for w in content_words(lang, added))
+    return Outcome(say(lang, "sorry.not_understood"), understood=False) if named else None
 
 
 #: How many corrections in a row may stand between a correction and the request it corrects.
@@ -127,12 +156,17 @@ def _added(lang: Language, heard: Said) -> Words:
     """ "Now the apple too", "and Zara as well": the phrase said as one more for the request just
     made (() when the words say none that way)."""
     said = tuple(w for w in plain(lang, heard) if w not in lang.followups.softening)
+    while said[-1:] and said[-1] in lang.followups.interjections:  # ("and the keys too please")
+        said = said[:-1]
     end = next((a for a in lang.followups.additive if len(said) > len(a) and said[-len(a) :] == a), None)
-    if end is None:
-        return ()
+    if end is None:  # "and also the apple": said so by its first words alone
+        alone = lang.followups.additive_alone
+        lead = next((a for a in alone if len(said) > len(a) and said[: len(a)] == a), ())
+        return said[len(lead) :] if lead and _a_phrase(lang, said[len(lead) :]) else ()
     phrase = said[: -len(end)]
     lead = next((a for a in lang.followups.additive_leads if phrase[: len(a)] == a), ())
     return phrase[len(lead) :]
+
 
 
 def _meant(lang: Language, heard: Said) -> tuple[Words, bool]:

@@ -27,7 +27,7 @@ from dialogue.understanding.replies import say, template
 CONFIRMED_CONFIDENCE = 0.8
 
 
-def _action(lang: Language, reply: str) -> str:
+def action_said(lang: Language, reply: str) -> str:
     """An acknowledgement said as the action a question proposes ("OK, I will bring the cup to you."
     -> "bring the cup to you")."""
     for start, instead in template(lang, "confirm.starts"):
@@ -43,9 +43,9 @@ def proposed(
     intent said back (`replies`, one per step; the outcome's own reply when it has one step), then
     what the reply says besides (`after`: "I can't inspect it myself.")."""
     said = list(replies) or [outcome.reply]
-    action = _action(lang, said[0])
+    action = action_said(lang, said[0])
     for reply in said[1:]:
-        action = say(lang, "confirm.then", action=action, next=_action(lang, reply))
+        action = say(lang, "confirm.then", action=action, next=action_said(lang, reply))
     question = " ".join([say(lang, "confirm.question", action=action), *after])
     steps = [replace(o, unsure=False, more=()) for o in outcome.steps()]
     proposal = replace(steps[0], more=tuple(steps[1:]))

@@ -17,6 +17,8 @@ from typing import Literal
 from dialogue.reference.english import Words
 from dialogue.understanding.language import Language
 from dialogue.understanding.parsed import Parse
+from dialogue.understanding.questions.presence import presence
+from dialogue.understanding.questions.recalled import recalled
 from dialogue.understanding.questions.vocabulary import QuestionWords
 from dialogue.understanding.speech.plain import split_at, starts
 
@@ -40,7 +42,11 @@ def question(lang: Language, words: list[str]) -> Parse | None:
     w = tuple(words)
     if _telling(q, w) and w[2] == "about":
         return _q("what_is", w, thing=w[3:])
-    w = _described(q, _indirect(q, _told(q, w)))  # "describe the objects on the bench": what is on it
+    w = _indirect(q, _told(q, w))
+    asked = recalled(lang, w)  # "what did I ask you for?", "what's left?"
+    if asked is not None:
+        return asked
+    w = _described(q, w)  # "describe the objects on the bench": what is on it
     for step in _STEPS:
         found = step(q, w)
         if found is not None:
@@ -137,9 +143,14 @@ def _seen(q: QuestionWords, w: Words) -> _Read:
     return _q("can_see", w, thing=thing)
 
 
+def _came(q: QuestionWords, w: Words) -> _Read:
+    """ "has Frances arrived?", "did Tom leave?"."""
+    return presence(q.lang, w)
+
+
 def _here(q: QuestionWords, w: Words) -> _Read:
-    """ "is Maria here?", "is Yuki here yet?"."""
-    here = w[:-1] if len(w) > 3 and w[-1] in q.there_after else w
+    """ "is Maria here?", "is Yuki here yet?", "is Blessing still here?"."""
+    here = (*w[:2], *(x for x in w[2:] if x not in q.there_after)) if len(w) > 3 else w
     if w[:1] and w[0] in q.is_are and len(here) > 2 and here[-1] in q.there:
         return _q("can_see", w, thing=here[1:-1])
     return None
@@ -350,5 +361,5 @@ def _placed_thing(q: QuestionWords, rest: Words) -> Words:
 #: The kinds of question, in the order they are tried.
 _STEPS: tuple[Callable[[QuestionWords, Words], _Read], ...] = (
     _name_of, _seen_by_anyone, _anybody_here, _whose, _what_heads, _who, _where_head, _how_many,
-    _seen, _here, _still_on, _how, _other,
+    _seen, _came, _here, _still_on, _how, _other,
 )  # fmt: skip

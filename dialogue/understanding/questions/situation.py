@@ -15,19 +15,19 @@ from dialogue.reference.resolution import (
     is_pronoun,
     resolve,
 )
-from dialogue.understanding.context import Context
+from dialogue.understanding.context import Context, Reader
 from dialogue.understanding.language import Language
 from dialogue.understanding.lemmas import lemmas_of
 from dialogue.understanding.outcome import Outcome
 from dialogue.understanding.parsed import Parse
-from dialogue.understanding.questions import answers
+from dialogue.understanding.questions import answers, presence, recalled
 from dialogue.understanding.replies import say
 
 #: The questions whose subject may be a pronoun or someone spoken of ("where is she").
-_ABOUT = frozenset({"where", "can_see", "what_is", "what_on", "whose"})
+_ABOUT = frozenset({"where", "can_see", "what_is", "what_on", "whose", presence.ARRIVED, presence.DEPARTED})
 
 #: One kind of question answered: the turn, what it is about, whose that is, and the parse.
-Answer = Callable[[Context, Words, str | None, Parse], Outcome]
+Answer = Callable[[Reader, Words, str | None, Parse], Outcome]
 
 
 def _what_see(c: Context, thing: Words, owner: str | None, p: Parse) -> Outcome:
@@ -98,6 +98,19 @@ def _whose(c: Context, thing: Words, owner: str | None, p: Parse) -> Outcome:
     return Outcome(answers.whose(c.lexicon, thing, c.speaker, owner))
 
 
+def _presence(c: Context, thing: Words, owner: str | None, p: Parse) -> Outcome:
+    came = presence.answer(c.lexicon, thing, c.speaker, p.question or "")
+    return Outcome(came) if came is not None else _no_answer(c)
+
+
+def _asked_for(r: Reader, thing: Words, owner: str | None, p: Parse) -> Outcome:
+    return recalled.asked_for(r)
+
+
+def _untracked(r: Reader, thing: Words, owner: str | None, p: Parse) -> Outcome:
+    return recalled.untracked(r)
+
+
 def _name(c: Context, thing: Words, owner: str | None, p: Parse) -> Outcome:
     return Outcome(say(c.lang, "social.robot_name", name=c.robot_name))
 
@@ -111,11 +124,12 @@ QUESTIONS: dict[str, Answer] = {
     "what_see": _what_see, "who_see": _who_see, "where": _where, "what_on": _what_on,
     "who_in": _who_in, "what_near": _what_near, "can_see": _can_see, "what_is": _what_is,
     "which_see": _which_see, "how_many": _how_many, "colour": _colour, "whose": _whose,
-    "name": _name, "how_are_you": _how_are_you,
+    "name": _name, "how_are_you": _how_are_you, presence.ARRIVED: _presence, presence.DEPARTED: _presence,
+    "asked_for": _asked_for, "untracked": _untracked,
 }  # fmt: skip
 
 
-def answer(c: Context, p: Parse) -> Outcome:
+def answer(c: Reader, p: Parse) -> Outcome:
     """The answer to a question about the situation, or the reply that says there is none."""
     thing = p.slots.get("thing", ()) or p.slots.get("place", ())
     said = content_words(c.lang, thing)

@@ -12,6 +12,8 @@ class QuestionWords:
 
     def __init__(self, lang: Language) -> None:
         said, prepositions = lang.questions.situation, lang.prepositions
+        #: The language itself, for the steps that read its other tables (presence).
+        self.lang = lang
         self.wh = lang.words.wh
         self.colours = lang.words.colours
         self.sees = Prefixes(said.sees)

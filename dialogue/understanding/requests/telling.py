@@ -91,6 +91,8 @@ def speech(said: Framed) -> Parse:
         if len(recipient) == 2 and recipient[0] in c.groups and _plural(recipient[1]):
             return unknown  # "tell the kids": several people, whom one intent cannot say
 
+        if recipient in c.everyone:  # "tell everyone lunch is ready": said aloud, to all who hear it
+            recipient = ()
         if not text:  # "tell Maria": the interpreter asks what to say
             return said.command(I.SAY, recipient=recipient)
         words = message(said.lang, original, text[1:] if text[0] == "please" else text)

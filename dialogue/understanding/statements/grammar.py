@@ -82,6 +82,9 @@ class _Words:
         self.belongs_to, self.to_me, self.i_own = said.belongs_to, said.to_me, said.i_own
         #: Words between the verb and the place that say when ("the keys are usually in the drawer").
         self.when = said.when
+        #: What an introduction may say besides the name ("I'm Priya, Sam's mum"), not learnt.
+        self.remark_subjects, self.remark_verbs = said.remark_subjects, said.remark_verbs
+        self.apposed = said.apposed
 
 
 def _starts(words: Words, lead: Words) -> bool:
@@ -139,14 +142,34 @@ class Statements(Likings):
                     correcting = True
                     continue
                 try:
-                    told.facts += self._statement(("no", *words) if correcting else words, said.of(clause))
+                    told.facts += self._statement(words, said.of(clause), correcting)
                 except Refused as refusal:
                     refused = refused or refusal
+                except Unclaimed:
+                    if not self._remark(words, told):
+                        raise
         except Unclaimed:
             return None
         if refused is not None:
             return Told(reply=refused.reply, clarify=refused.clarify)
         return told if told.facts else None
+
+    def _remark(self, w: Words, told: Told) -> bool:
+        """Whether a clause that is no statement of its own says what an introduction in the same
+        turn may say besides the name ("I'm Priya, *Sam's mum*", "this is Ben, *he's visiting*"):
+        the KB has no property for it, so it is heard and not learnt."""
+        if not any(f.predicate == "name" for f in told.facts):
+            return False
+        said = self.said
+        if len(w) > 2 and w[0] in said.remark_subjects and w[1] in said.remark_verbs:
+            w = w[2:]
+            if w[:1] and w[0] not in said.apposed and not w[0].endswith("'s"):
+                return w[0] != "not"  # ("he's visiting", not "he's not Ben")
+        elif _starts(w, said.i_am):  # ("I'm Priya, I'm Sam's mum": only who the speaker is to someone)
+            w = w[len(said.i_am) :]
+        w = w[1:] if w[:1] and (w[0] in said.apposed or w[0].endswith("'s")) else w
+        related = w[: w.index("of")] if "of" in w else w
+        return len(related) == 1 and related[0] in said.friends
 
     def _lead(self, words: list[str]) -> Words:
         while words and (words[0] in self.said.leads or tuple(words[:3]) == self.said.by_the_way):
@@ -162,14 +185,18 @@ class Statements(Likings):
         return any(words[len(g) :] in social | {()} for g in self.said.greetings.of(words))
 
     # -- one clause ----------------------------------------------------------------------------
-    def _statement(self, w: Words, clause: Said) -> list[FactClaim]:
+    def _statement(self, w: Words, clause: Said, correcting: bool = False) -> list[FactClaim]:
+        """One clause's facts. After "no" ("no, it's Rob", "no, they're in the drawer") the name
+        reader is told the robot is being corrected; the others read the clause as it is."""
         if w[0] in self.said.asking:
             raise Unclaimed
         verb = next((i for i, word in enumerate(w) if word in self.said.be), 0)
         if verb > 1 and w[verb - 1] in self.said.relatives:  # ("the one that's mine": no statement)
             raise Unclaimed
-        for reader in (self._name, self._preference, self._ownership, self._location):
-            facts = reader(w, clause)
+        named = ("no", *w) if correcting else w
+        readers = ((self._name, named), (self._preference, w), (self._ownership, w), (self._location, w))
+        for reader, words in readers:
+            facts = reader(words, clause)
             if facts is not None:
                 return facts
         raise Unclaimed
@@ -288,7 +315,9 @@ class Statements(Likings):
             if w[i] in self.said.be:
                 if i > 1 and w[0] == asked_verb(self.lang, w[0]):
                     return None  # a request ("tell Ana her taxi is on time"), not a subject ("water is...")
-                return self._where(w[:i], w[i + 1 :])
+                # "(no,) they're in the drawer": the subject pronoun as the thing it stands for
+                subject = (self.lang.words.objects.get(w[0], w[0]),) if i == 1 else w[:i]
+                return self._where(subject, w[i + 1 :])
         return None
 
     def _where(self, thing: Words, rest: Words, people_in: bool = False) -> list[FactClaim] | None:
@@ -296,6 +325,8 @@ class Statements(Likings):
         the kitchen", "I'm on the sofa") only a zone or furniture the KB knows is a place; other
         words are an idiom ("I'm on my way", "I'm in trouble", "I'm on the phone")."""
         rest = rest[1:] if rest[:1] and rest[0] in self.said.when else rest
+        while rest[-1:] and rest[-1] in self.said.when:  # ("it's on the shelf now")
+            rest = rest[:-1]
         for prep, predicate in self.said.states.items():
             place = rest[len(prep) :]
             if rest[: len(prep)] == prep and place and people_in:

@@ -31,6 +31,7 @@ class FollowupWords(Table):
     again: Phrases = ()
     additive: Phrases = ()
     additive_leads: Phrases = ()
+    additive_alone: Phrases = ()
     softening: WordSet = frozenset()
     emphasis: WordSet = frozenset()
     both: PhraseSet = frozenset()

@@ -73,6 +73,12 @@ class SituationQuestionWords(Table):
     went: WordSet = frozenset()
     where_am_i: PhraseSet = frozenset()
     where_tail: WordSet = frozenset()
+    presence_asking: WordSet = frozenset()
+    arrived: Phrases = ()
+    departed: Phrases = ()
+    asked_for: PhraseSet = frozenset()
+    untracked: PhraseSet = frozenset()
+    recall_tail: WordSet = frozenset()
 
 
 class ToldQuestionWords(Table):

@@ -72,5 +72,8 @@ class StatementWords(Table):
     speaker_person: PhraseSet = frozenset()
     i_own: Phrase = ()
     when: WordSet = frozenset()
+    remark_subjects: WordSet = frozenset()
+    remark_verbs: WordSet = frozenset()
+    apposed: WordSet = frozenset()
     likings: LikingWords = LikingWords()
     names: NameWords = NameWords()

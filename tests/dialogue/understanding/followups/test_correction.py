@@ -109,3 +109,28 @@ def test_a_correction_said_with_a_place_preposition_replaces_the_place(pantry: K
     for said in ("I meant on the box", "wait, no, on the box"):
         out = say(pantry, said, speaker=LEA, history=history)
         assert (out.intent, out.roles) == (I.PLACE_OBJECT, {"object": "jar_1", "recipient": "box_1"}), said
+
+
+@pytest.mark.parametrize("text", ["and also the amber jar", "oh and the amber jar too", "plus the amber jar",
+                                  "and the amber jar as well please"])
+def test_one_more_for_the_request_just_made_is_that_request_again(pantry: KB, text: str) -> None:
+    out = say(pantry, text, speaker=LEA, history=_after("give Tam the green jar"))
+    assert (out.intent, out.roles) == (I.BRING_OBJECT, {"object": "jar_2", "recipient": "person_tam"}), out.reply
+
+
+def test_one_more_whose_role_is_not_clear_is_not_understood(pantry: KB) -> None:
+    history = _after("put the green jar in the pantry")  # (a jar is put in a zone, never a zone on a jar)
+    out = say(pantry, "oh and the amber jar too", speaker=LEA, history=history)
+    assert (out.intent, out.roles) == (I.PLACE_OBJECT, {"object": "jar_2", "recipient": "pantry"}), out.reply
+    pantry.update(["shelf_1 rdf:type dbr:Shelf_(storage)", 'shelf_1 rdfs:label "shelf"', "myself sees shelf_1"])
+    # one more thing put on the shelf, or the green jar put on the amber one: neither is guessed, and
+    # never a bringing to the speaker
+    out = say(pantry, "oh and the amber jar too", speaker=LEA, history=_after("put the green jar on the shelf"))
+    assert out.intent is None and not out.understood, out.reply
+
+
+def test_and_alone_says_one_more_only_before_a_noun_phrase(pantry: KB) -> None:
+    history = _after("give Tam the green jar")
+    out = say(pantry, "and the amber jar", speaker=LEA, history=history)
+    assert (out.intent, out.roles) == (I.BRING_OBJECT, {"object": "jar_2", "recipient": "person_tam"}), out.reply
+    assert say(pantry, "and you?", speaker=LEA, history=history).intent is None

@@ -22,3 +22,20 @@ def test_a_question_put_to_someone_is_said_to_them_as_you(text: str, question: s
 @pytest.mark.parametrize("text", ["ask Ana if the taxi is here", "ask Tom if he wants his coat", "ask Ana about it"])
 def test_a_question_that_cannot_be_put_as_you_is_not_claimed(text: str) -> None:
     assert parse(english(), text).intent is None
+
+
+@pytest.mark.parametrize(
+    ("text", "message"),
+    [("tell everyone lunch is ready", "lunch is ready"),
+     ("would you mind telling everybody that lunch is ready", "lunch is ready"),
+     ("let everyone know dinner is at seven", "dinner is at seven")],
+)  # fmt: skip
+def test_a_message_to_everyone_is_said_aloud_to_no_one_person(text: str, message: str) -> None:
+    p = parse(english(), text)
+    assert (p.intent, p.text) == (I.SAY, message)
+    assert not p.slots.get("recipient")
+
+
+def test_a_message_to_one_person_keeps_them(text: str = "could you let Tom know I'm outside") -> None:
+    p = parse(english(), text)
+    assert p.intent == I.SAY and p.slots["recipient"] == ("tom",)

@@ -157,3 +157,39 @@ def test_a_greeting_run_into_the_clause_is_taken_off_it(home: KB) -> None:
     told = Statements(lexicon_of(home), BOB).read("hiya the keys are in the drawer")
     assert told is not None and told.greeted
     assert [(f.subject, f.predicate, f.object) for f in told.facts] == [("keys_1", "isIn", "drawer_1")]
+
+
+@pytest.mark.parametrize(("text", "expected"), [
+    ("no, they're in the drawer", [("keys_1", "isIn", "drawer_1")]),
+    ("nope, they are on the sofa now", [("keys_1", "isOn", "sofa_1")]),
+    ("actually the keys are in the drawer now", [("keys_1", "isIn", "drawer_1")]),
+])  # fmt: skip
+def test_a_correction_of_the_robots_answer_is_told_of_the_thing_it_named(
+    home: KB, text: str, expected: list[tuple[str, ...]]
+) -> None:
+    history = [Utterance(BOB, "where are my keys?"), Utterance(ASSISTANT_USER_ID, "The keys are in the kitchen.")]
+    assert facts(home, text, history) == expected
+
+
+def test_they_with_nothing_spoken_of_is_asked_about(home: KB) -> None:
+    told = Statements(lexicon_of(home), BOB).read("no, they're in the drawer")
+    assert told is not None and not told.facts and told.clarify
+
+
+@pytest.mark.parametrize(("text", "expected"), [
+    ("I'm Bob, Alice's brother", [(BOB, "name", "Bob")]),
+    ("I'm Bob, I'm the father of Ines", [(BOB, "name", "Bob")]),
+    ("this is my colleague Maria, she's visiting", [("person_x", "name", "Maria")]),
+    ("this is Maria, my sister", [("person_x", "name", "Maria")]),
+])  # fmt: skip
+def test_an_introduction_may_say_more_than_the_name(home: KB, text: str, expected: list[tuple[str, ...]]) -> None:
+    assert facts(home, text) == expected
+
+
+@pytest.mark.parametrize("text", [
+    # said of someone without an introduction, or not who they are to someone: left to the other rules
+    "Alice's brother", "she's visiting", "I'm Bob, bring me the mug", "this is Maria, she's not Ines",
+    "I'm Bob, I'm hungry",
+])  # fmt: skip
+def test_what_an_introduction_does_not_say_is_not_taken_for_it(home: KB, text: str) -> None:
+    assert facts(home, text) is None
