@@ -23,7 +23,7 @@ from dialogue.reference.grounding import Entity
 from dialogue.reference.lexicon import Lexicon
 from dialogue.reference.resolution import PERSON, PLACE, ROLE_KINDS, content_words, resolve
 from dialogue.understanding.followups.accepting import accepts
-from dialogue.understanding.followups.correction import correction, opens_correction
+from dialogue.understanding.followups.correction import adds_one_more, correction, opens_correction
 from dialogue.understanding.followups.proposal import proposed
 from dialogue.understanding.followups.request import follow_up, followed_up, said_first
 from dialogue.understanding.outcome import Outcome, Ref
@@ -40,6 +40,7 @@ from dialogue.understanding.requests.owners import none_yours, whose
 from dialogue.understanding.requests.referents import Referents, relational
 from dialogue.understanding.requests.sequence import compound, wished
 from dialogue.understanding.requests.skills import unskilled
+from dialogue.understanding.requests.staying import left_as_is
 from dialogue.understanding.requests.terse import terse, unasked_thing
 from dialogue.understanding.requests.vocabulary import Grammar
 from dialogue.understanding.said import Said, Text
@@ -113,6 +114,10 @@ class Interpreter:
         addressed = to_someone_else(self.lexicon, heard, self.speaker, self.robot_name)
         if addressed is not None:  # "lily put your book on the shelf": Lily is asked, not the robot
             return Outcome(say(self.lang, "request.for_someone_else", name=addressed))
+        if accepts(self.lang, expanded(self.lang, heard)):  # "yes, please do": whole, not in parts
+            accepted = follow_up(self, parse(self.lang, heard, self.robot_name), heard)
+            if accepted is not None:
+                return accepted
         for rest in self._from_each_clause(heard):  # the condition covers every part after it
             if self._conditioned(rest):  # ("if Ana comes, ...", "Ana phoned: when she comes, ...")
                 whole = parse(self.lang, rest, self.robot_name)
@@ -142,7 +147,8 @@ class Interpreter:
         if not opens_correction(self.lang, heard):
             return None
         p = parse(self.lang, heard, self.robot_name)
-        return correction(self, p, heard) if p.act in _CORRECTABLE else None
+        added = p.act == "unknown" and adds_one_more(self.lang, heard)
+        return correction(self, p, heard) if p.act in _CORRECTABLE or added else None
 
     def _from_each_clause(self, heard: Said) -> list[Said]:
         """The words from the start of each clause to the end: the whole first."""
@@ -263,7 +269,7 @@ class Interpreter:
     def _command(self, p: Parse, overrides: dict[str, Words]) -> Outcome:
         if p.intent is None:
             return Outcome(say(self.lang, "sorry.not_understood"), understood=False)
-        whole = unskilled(self.lang, p) or self._one_command(p, overrides)
+        whole = unskilled(self.lang, p) or left_as_is(self, p) or self._one_command(p, overrides)
         # "bring me the bread and the jam", "greet Ana and Tom": one intent per thing or person
         # named, in order (people only where a role is a person's: one cup goes to one person).
         role = "object" if "object" in p.slots else "recipient"
@@ -309,9 +315,10 @@ class Interpreter:
         if intent == I.BRING_OBJECT and self.refs.a_place(slots.get("object", ())):
             # "I need the lifts": a place is where to be taken, not a thing to carry
             intent, slots = I.GUIDE, {"recipient": slots.get("recipient", ("me",)), "goal": slots["object"]}
-        if intent == I.GUIDE and self.refs.named_person(slots.get("goal", ())):
-            # "take me to Marcus": to where he is (unknown: no place, said so by the grounding)
-            person = resolve(self.lexicon, slots["goal"], PERSON).one
+        if intent == I.GUIDE and self.refs.someone_else(slots.get("goal", ())):
+            # "take me to Marcus", "take me to him": to where he is (unknown: no place, said so by
+            # the grounding)
+            person = self.refs.person_as_object(slots["goal"])
             if person is not None and person.zone and not self.refs.a_place(slots["goal"]):
                 slots["goal"] = tuple(tokens(person.zone))
         if intent == I.GUIDE and "goal" in p.implicit and "goal" not in overrides:

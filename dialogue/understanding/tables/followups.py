@@ -29,6 +29,7 @@ class FollowupWords(Table):
     correcting: Phrases = ()
     again: Phrases = ()
     additive: Phrases = ()
+    instead: Phrases = ()
     additive_leads: Phrases = ()
     softening: WordSet = frozenset()
     emphasis: WordSet = frozenset()

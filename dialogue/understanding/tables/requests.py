@@ -52,6 +52,8 @@ class ConstructionWords(Table):
     asked_whether: WordSet = frozenset()
     asked_of: WordSet = frozenset()
     asked_not_after: WordSet = frozenset()
+    asked_own: dict[str, str] = {}
+    asked_yours: str = ""
     asked_as_you: dict[str, Phrase] = {}
     asked_plain: Phrase = ()
 
@@ -104,6 +106,8 @@ class RequestWords(Table):
     somewhere: WordSet = frozenset()
     brought_here: PhraseSet = frozenset()
     said_there: PhraseSet = frozenset()
+    staying: WordSet = frozenset()
+    stays: PhraseSet = frozenset()
     adjuncts: Phrases = ()
     away: Phrases = ()
     durations: Phrases = ()
