@@ -248,11 +248,16 @@ def offer(reader: Reader, question: Utterance, said: list[str]) -> Outcome | Non
 def reaffirmed(reader: Reader, spoken: list[int], question: Utterance, said: list[str]) -> Outcome | None:
     """ "yes" to "Do you mean the blue mug on the coffee table?" or to "Shall I take the tablet out
     there?" asked of a request the rules read whole (the robot that asked may be another system, or
-    was being sure): that reading, when the question names a thing or person of it and no other one
-    but where they are. None when the words do not say yes or the request does not read whole."""
+    was being sure): that reading, when the question proposes or confirms and names no thing or
+    person but those of it (and where they are). None when the words do not say yes or the request
+    does not read whole."""
     lang = reader.lexicon.lang
     if said[:1] == ["no"] or not accepts(lang, said) or len(spoken) < 2:
         return None
+    asked = expanded(lang, question.text.rstrip(" ?"))
+    leads = [*lang.followups.offers, *lang.followups.confirms]
+    if not any(tuple(asked[i : i + len(c)]) == c for c in leads for i in range(len(asked))):
+        return None  # ("Anything else?" "yes": not the request again)
     request = reader.history[spoken[-2]]
     if request.role != "user":
         return None
@@ -263,7 +268,7 @@ def reaffirmed(reader: Reader, spoken: list[int], question: Utterance, said: lis
     words = [w.removesuffix("'s") for w in tokens(question.text)]
     named = [m for m in reader.lexicon.mentions(words)
              if not set(words[max(0, m.start - 2) : m.start]) & lang.locative]  # fmt: skip
-    if not any(m.entities & acted for m in named) or any(not m.entities & acted for m in named):
+    if any(not m.entities & acted for m in named):
         return None  # ("Shall I take it to Maya?" of a request for Teodor: not what was read)
     steps = [replace(o, confidence=min(o.confidence, proposal.CONFIRMED_CONFIDENCE), more=())
              for o in reading.steps()]  # fmt: skip

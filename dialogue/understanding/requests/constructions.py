@@ -42,8 +42,6 @@ class ConstructionGrammar:
         self.asked_whether = words.asked_whether
         self.asked_of = words.asked_of
         self.asked_not_after = words.asked_not_after
-        self.asked_own = words.asked_own
-        self.asked_yours = words.asked_yours
         self.asked_as_you = words.asked_as_you
         self.asked_plain = words.asked_plain
         self.adjuncts = said.all_adjuncts

@@ -121,20 +121,13 @@ def _said_to(said: Framed, rest: Words) -> Parse:
     return said.command(I.SAY, text=message(said.lang, said.original, text), recipient=recipient)
 
 
-def _own_said_yours(c: ConstructionGrammar, subject: str, words: Words) -> Words:
-    """ "if she's done her homework": the subject's own possessive before a word is "your" when
-    the question is put to them ("have you done your homework?")."""
-    own = c.asked_own.get(subject)
-    return tuple(c.asked_yours if w == own and i + 1 < len(words) else w for i, w in enumerate(words))
-
-
 def _question_put(said: Framed, c: ConstructionGrammar, rest: Words) -> Parse | None:
     """ "ask Ollie if he wants a sausage": "do you want a sausage?" said to Ollie; None when the
     question cannot be put to them as "you" ("ask Ana if the taxi is here")."""
     at = next((i for i, w in enumerate(rest) if w in c.asked_whether), None)
     if at is None or at == 0 or len(rest) < at + 4 or rest[at + 1] not in c.asked_of:
         return None
-    verb, after = rest[at + 2], _own_said_yours(c, rest[at + 1], rest[at + 3 :])
+    verb, after = rest[at + 2], rest[at + 3 :]
     if set(after) & c.asked_not_after:
         return None
     if verb in c.asked_as_you:

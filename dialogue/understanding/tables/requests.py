@@ -52,8 +52,6 @@ class ConstructionWords(Table):
     asked_whether: WordSet = frozenset()
     asked_of: WordSet = frozenset()
     asked_not_after: WordSet = frozenset()
-    asked_own: dict[str, str] = {}
-    asked_yours: str = ""
     asked_as_you: dict[str, Phrase] = {}
     asked_plain: Phrase = ()
 
