@@ -36,6 +36,7 @@ from dialogue.understanding.requests.referents import Referents
 from dialogue.understanding.requests.roles import one_command
 from dialogue.understanding.requests.sequence import compound, wished
 from dialogue.understanding.requests.skills import no_intent, unskilled
+from dialogue.understanding.requests.staying import left_as_is
 from dialogue.understanding.requests.terse import terse, unasked_thing
 from dialogue.understanding.requests.vocabulary import Grammar
 from dialogue.understanding.said import Said, Text
@@ -95,6 +96,10 @@ class Interpreter:
         addressed = to_someone_else(self.lexicon, heard, self.speaker, self.robot_name)
         if addressed is not None:  # "lily put your book on the shelf": Lily is asked, not the robot
             return Outcome(say(self.lang, "request.for_someone_else", name=addressed))
+        if accepts(self.lang, expanded(self.lang, heard)):  # "yes, please do": whole, not in parts
+            accepted = follow_up(self, parse(self.lang, heard, self.robot_name), heard)
+            if accepted is not None:
+                return accepted
         for rest in self._from_each_clause(heard):  # the condition covers every part after it
             if self._conditioned(rest):  # ("if Ana comes, ...", "Ana phoned: when she comes, ...")
                 whole = parse(self.lang, rest, self.robot_name)
@@ -228,7 +233,7 @@ class Interpreter:
     def _command(self, p: Parse, overrides: dict[str, Words]) -> Outcome:
         if p.intent is None:
             return Outcome(say(self.lang, "sorry.not_understood"), understood=False)
-        whole = unskilled(self.lang, p) or one_command(self, p, overrides)
+        whole = unskilled(self.lang, p) or left_as_is(self, p) or one_command(self, p, overrides)
         # "bring me the bread and the jam", "greet Ana and Tom": one intent per thing or person
         # named, in order (people only where a role is a person's: one cup goes to one person).
         role = "object" if "object" in p.slots else "recipient"

@@ -6,6 +6,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from dialogue import intents as I
 from dialogue.reference.english import Words, tokens
 from dialogue.reference.grounding import Kind
 from dialogue.reference.resolution import ROLE_KINDS, content_words, resolve
@@ -55,6 +56,10 @@ def corrected_first(reader: Reader, p: Parse, heard: Said) -> Outcome | None:
     named = all(reader.lexicon.knows(w) for w in content_words(lang, added))
     return Outcome(say(lang, "sorry.not_understood"), understood=False) if named else None
 
+
+#: A carrying's roles as the guiding it was read as ("take Daniel to the hallway": Daniel is whom
+#: the robot guides, the hallway where to): the role a correction of its phrase corrects.
+_GUIDED = {"object": "recipient", "recipient": "goal"}
 
 #: How many corrections in a row may stand between a correction and the request it corrects.
 _IN_A_ROW = 3
@@ -106,17 +111,18 @@ def _corrected(reader: Reader, heard: Said, depth: int) -> _Standing | None:
         if placed and role == "object":
             continue  # ("no, on the luggage rack": where it goes, never the thing)
         said = slots.get(role, ())
-        was = before.roles.get(role)
+        out = _GUIDED.get(role, role) if before.intent == I.GUIDE != pending.intent else role
+        was = before.roles.get(out)
         if not content_words(lang, said) or was is None:
             continue
         instead = _the_other(earlier, fragment, said, was, ROLE_KINDS[pending.intent][role])
         replaced = {**standing.replaced, role: instead or _instead(lang, fragment, said)}
         outcome = earlier.act(pending, replaced)
-        now = outcome.roles.get(role)
+        now = outcome.roles.get(out)
         unsettled += outcome.clarify  # (a role the words name several things of)
         if outcome.intent is None or now is None or now == was:
             continue
-        if any(v == now for r, v in outcome.roles.items() if r != role):
+        if any(v == now for r, v in outcome.roles.items() if r != out):
             continue  # the red mug put on the red mug: the other role was meant
         old, new = earlier.snapshot.get(was), earlier.snapshot.get(now)
         if old is None or new is None or old.kind != new.kind:
@@ -152,6 +158,13 @@ def _again(lang: Language, heard: Said) -> bool:
     return any(words[: len(a)] == a for a in lang.followups.again) or bool(_added(lang, heard))
 
 
+def adds_one_more(lang: Language, heard: Said) -> bool:
+    """Whether the words say one more thing for the request just made ("and then the teddy too"):
+    read as the request again before as a request of their own, which would lose its other roles
+    (the teddy brought to the speaker rather than to whom the request brought the book)."""
+    return bool(_added(lang, heard))
+
+
 def _added(lang: Language, heard: Said) -> Words:
     """ "Now the apple too", "and Zara as well": the phrase said as one more for the request just
     made (() when the words say none that way)."""
@@ -181,7 +194,7 @@ def _meant(lang: Language, heard: Said) -> tuple[Words, bool]:
     lead = next((c for c in leads if tuple(words[: len(c)]) == c), None)
     fragment = tuple(words[len(lead) :]) if lead is not None else _not_that(lang, tuple(words))
     if lead is None and not fragment:
-        fragment = _added(lang, heard)  # "now the apple too"
+        fragment = _added(lang, heard) or _said_instead(lang, heard, tuple(words))  # "now the apple too"
     other, one = lang.followups.other, lang.followups.one
     if lead is None and set(words) & other and set(content_words(lang, words)) <= other | one:
         fragment = tuple(words)  # "no, the other one"
@@ -195,6 +208,17 @@ def _meant(lang: Language, heard: Said) -> tuple[Words, bool]:
         if fragment[: len(loc)] == loc and fragment[len(loc) :]:
             return fragment[len(loc) :], True
     return fragment, False
+
+
+def _said_instead(lang: Language, heard: Said, words: Words) -> Words:
+    """ "no wait, take Maya instead": the request said again with one role's phrase, said to be
+    meant instead; that phrase (() when the words say no request with one role)."""
+    end = next((e for e in lang.followups.instead if len(words) > len(e) and words[-len(e) :] == e), None)
+    if end is None:
+        return ()
+    again = parse(lang, heard.of(" ".join(words[: -len(end)])), "")
+    said = [w for w in again.slots.values() if w]
+    return said[0] if again.act == "command" and len(said) == 1 else ()
 
 
 def _a_phrase(lang: Language, words: Words) -> bool:
@@ -218,9 +242,9 @@ def _said_no(lang: Language, heard: Said) -> bool:
 def opens_correction(lang: Language, heard: Said) -> bool:
     """Whether the words open as a correction does ("make that the study", "wait, no, on the
     bookcase", "thanks! now the apple too"): read as one before as a request, a refusal or thanks of
-    their own, if one fits."""
+    their own, if one fits; "take Maya instead", its "no wait" taken as a false start, too."""
     words = tuple(w for w in plain(lang, heard) if w not in lang.followups.softening)
-    opened = _said_no(lang, heard) or bool(_added(lang, heard))
+    opened = _said_no(lang, heard) or bool(_added(lang, heard)) or bool(_said_instead(lang, heard, words))
     return opened or any(words[: len(c)] == c for c in lang.followups.correcting)
 
 

@@ -42,15 +42,18 @@ def follow_up(reader: Reader, p: Parse, heard: Said) -> Outcome | None:
     if not spoken:
         return None
     question = reader.history[spoken[-1]]
-    if question.role != "assistant" or not question.text.rstrip().endswith("?"):
+    asked = _question_asked(question.text)
+    if question.role != "assistant" or asked is None:
         return None
+    question = replace(question, text=asked)  # ("Teodor is outside. Shall I take it there?")
     lang = reader.lexicon.lang
     answer = [lang.followups.no.get(w, w) for w in expanded(lang, heard)]
     said = [w for w in answer if w != "no"]
     confirmed = proposal.answered(reader, answer)
     if confirmed is not None:  # "yes" or "no" to "Shall I bring the soap to Jordan?"
         return confirmed
-    accepted = offer(reader, question, said) or chosen_offered(reader, question, heard)
+    accepted = (offer(reader, question, said) or chosen_offered(reader, question, heard)
+                or reaffirmed(reader, spoken, question, said))
     if accepted is not None:
         return accepted
     found = _pending(reader, spoken, heard)
@@ -82,6 +85,18 @@ def follow_up(reader: Reader, p: Parse, heard: Said) -> Outcome | None:
     if outcome.intent is None and not outcome.clarify:
         return None
     return _asked_again(reader, fragment, outcome) if outcome.clarify else outcome.followed_up()
+
+
+def _question_asked(text: str) -> str | None:
+    """The question the robot's words ask: the last of its sentences that ends with a question mark
+    ("Do you mean Sofia's phone? Yours is in the hallway." asks the first), None when none does.
+    Another system's robot may say more than the question; the answer answers the question."""
+    sentences, start = [], 0
+    for at, mark in enumerate(text):
+        if mark in ".!?" and (at + 1 == len(text) or text[at + 1].isspace()):
+            sentences.append(text[start : at + 1].strip())
+            start = at + 1
+    return next((s for s in reversed(sentences) if s.endswith("?")), None)
 
 
 def _asked_again(reader: Reader, fragment: Words, outcome: Outcome) -> Outcome:
@@ -217,6 +232,36 @@ def _merged(lang: Language, fragment: Words, first: Outcome) -> Words:
         if fragment[: len(loc)] == loc:
             return fragment[len(loc) :]
     return fragment
+
+
+def reaffirmed(reader: Reader, spoken: list[int], question: Utterance, said: list[str]) -> Outcome | None:
+    """ "yes" to "Do you mean the blue mug on the coffee table?" or to "Shall I take the tablet out
+    there?" asked of a request the rules read whole (the robot that asked may be another system, or
+    was being sure): that reading, when the question proposes or confirms and names no thing or
+    person but those of it (and where they are). None when the words do not say yes or the request
+    does not read whole."""
+    lang = reader.lexicon.lang
+    if said[:1] == ["no"] or not accepts(lang, said) or len(spoken) < 2:
+        return None
+    asked = expanded(lang, question.text.rstrip(" ?"))
+    leads = [*lang.followups.offers, *lang.followups.confirms]
+    if not any(tuple(asked[i : i + len(c)]) == c for c in leads for i in range(len(asked))):
+        return None  # ("Anything else?" "yes": not the request again)
+    request = reader.history[spoken[-2]]
+    if request.role != "user":
+        return None
+    reading = reader.within(reader.history[: spoken[-2]]).interpret(request.text)
+    if reading.intent is None or reading.clarify or not reading.understood:
+        return None
+    acted = {v for step in reading.steps() for v in step.roles.values()}
+    words = [w.removesuffix("'s") for w in tokens(question.text)]
+    named = [m for m in reader.lexicon.mentions(words)
+             if not set(words[max(0, m.start - 2) : m.start]) & lang.locative]  # fmt: skip
+    if any(not m.entities & acted for m in named):
+        return None  # ("Shall I take it to Maya?" of a request for Teodor: not what was read)
+    steps = [replace(o, confidence=min(o.confidence, proposal.CONFIRMED_CONFIDENCE), more=())
+             for o in reading.steps()]  # fmt: skip
+    return replace(steps[0], more=tuple(steps[1:]))
 
 
 def confirmation(earlier: Reader, pending: Parse, first: Outcome, question: Utterance,

@@ -16,6 +16,7 @@ from dialogue.reference.lexicon import singular
 from dialogue.reference.resolution import (
     ANYWHERE,
     PERSON,
+    PLACE,
     THING,
     content_words,
     is_pronoun,
@@ -116,7 +117,9 @@ def _pronoun(p: Phrase) -> Ref | None:
     if not kinds:  # "go and get him": a person where the request wants a thing
         return p.not_understood()
     found = refs.named_in(p.said) if kinds == PERSON else None
-    there = bare == {"there"}
+    # "there", and a pronoun where a thing is put ("and put the book next to it" after "I've put
+    # the tin on the coffee table"): the place last spoken of first, not the thing put there
+    there = bare == {"there"} or (p.role == "recipient" and p.kinds == PLACE)
     found = found or antecedent(refs.lexicon, refs.history, kinds, place=there, speaker=refs.speaker)
     if found is None and _unknown_just_said(refs):
         # "my case is by the door, bring it over": "it" is what the KB has no name for

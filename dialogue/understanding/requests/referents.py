@@ -152,6 +152,11 @@ class Referents:
         content = set(content_words(self.lang, words))
         return bool(content) and (content <= self.said.personal | self.said.me or self.named_person(words))
 
+    def someone_else(self, words: Words) -> bool:
+        """Whether the phrase is a person other than the speaker: named, or "him" / "her"."""
+        content = set(content_words(self.lang, words))
+        return (bool(content) and content <= self.said.personal) or self.named_person(words)
+
     def named_person(self, words: Words) -> bool:
         """Whether the phrase names one person of the KB (not a pronoun, not the speaker's "me")."""
         content = content_words(self.lang, words)

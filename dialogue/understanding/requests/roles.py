@@ -82,9 +82,10 @@ def _retargeted(c: Context, intent: str, slots: dict[str, Words]) -> Outcome | t
     if intent == I.BRING_OBJECT and c.refs.a_place(slots.get("object", ())):
         # "I need the lifts": a place is where to be taken, not a thing to carry
         intent, slots = I.GUIDE, {"recipient": slots.get("recipient", ("me",)), "goal": slots["object"]}
-    if intent == I.GUIDE and c.refs.named_person(slots.get("goal", ())):
-        # "take me to Marcus": to where he is (unknown: no place, said so by the grounding)
-        person = resolve(c.lexicon, slots["goal"], PERSON).one
+    if intent == I.GUIDE and c.refs.someone_else(slots.get("goal", ())):
+        # "take me to Marcus", "take me to him": to where he is (unknown: no place, said so by the
+        # grounding)
+        person = c.refs.person_as_object(slots["goal"])
         if person is not None and person.zone and not c.refs.a_place(slots["goal"]):
             slots["goal"] = tuple(tokens(person.zone))
     return intent, slots

@@ -30,6 +30,7 @@ class FollowupWords(Table):
     correcting: Phrases = ()
     again: Phrases = ()
     additive: Phrases = ()
+    instead: Phrases = ()
     additive_leads: Phrases = ()
     additive_alone: Phrases = ()
     softening: WordSet = frozenset()

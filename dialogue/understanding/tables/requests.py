@@ -104,6 +104,8 @@ class RequestWords(Table):
     somewhere: WordSet = frozenset()
     brought_here: PhraseSet = frozenset()
     said_there: PhraseSet = frozenset()
+    staying: WordSet = frozenset()
+    stays: PhraseSet = frozenset()
     adjuncts: Phrases = ()
     away: Phrases = ()
     durations: Phrases = ()

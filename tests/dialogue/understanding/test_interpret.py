@@ -769,3 +769,18 @@ def test_guide_me_goes_to_the_place_just_spoken_of_else_asks_where(office: KB) -
     assert say(office, "guide me").reply == "Where should I take you?"
     asked = say(office, "escort Carol")
     assert asked.clarify and "Carol" in asked.reply
+
+
+def test_take_me_to_him_is_to_where_the_person_last_spoken_of_is() -> None:
+    kb = scene_kb(
+        None,
+        "myself rdf:type Robot",
+        "yard rdf:type ZoneOfInterest", 'yard rdfs:label "yard"',
+        f"{BOB} rdf:type Human", f'{BOB} rdfs:label "Bob"', f"myself sees {BOB}",
+        "person_ted rdf:type Human", 'person_ted rdfs:label "Ted"', "person_ted isIn yard",
+    )  # fmt: skip
+    history = [("user", "where's Ted?"), ("robot", "Ted is in the yard.")]
+    for said in ("take me to him", "can you take me to him"):
+        out = say(kb, said, history=history)
+        assert (out.intent, out.roles) == (I.GUIDE, {"recipient": BOB, "goal": "yard"}), said
+    assert say(kb, "take me to him").intent is None  # no one spoken of

@@ -134,3 +134,34 @@ def test_and_alone_says_one_more_only_before_a_noun_phrase(pantry: KB) -> None:
     out = say(pantry, "and the amber jar", speaker=LEA, history=history)
     assert (out.intent, out.roles) == (I.BRING_OBJECT, {"object": "jar_2", "recipient": "person_tam"}), out.reply
     assert say(pantry, "and you?", speaker=LEA, history=history).intent is None
+
+
+@pytest.fixture
+def hall() -> KB:
+    return scene_kb(
+        None,
+        "myself rdf:type Robot",
+        "hall rdf:type ZoneOfInterest", 'hall rdfs:label "hall"',
+        "study rdf:type ZoneOfInterest", 'study rdfs:label "study"',
+        f"{LEA} rdf:type Human", f'{LEA} rdfs:label "Lea"', f"myself sees {LEA}",
+        "person_tam rdf:type Human", 'person_tam rdfs:label "Tam"', "myself sees person_tam",
+        "person_ivo rdf:type Human", 'person_ivo rdfs:label "Ivo"', "myself sees person_ivo",
+        "book_1 rdf:type dbr:Book", 'book_1 rdfs:label "book"', "myself sees book_1",
+        "scarf_1 rdf:type Cloth", 'scarf_1 rdfs:label "scarf"', "myself sees scarf_1",
+    )  # fmt: skip
+
+
+@pytest.mark.parametrize("said", ["and then the scarf too", "and the scarf as well", "the scarf too"])
+def test_one_more_thing_keeps_the_person_the_request_brought_it_to(hall: KB, said: str) -> None:
+    history = [("user", "bring the book to Tam"), ("robot", "OK, I'm bringing the book to Tam.")]
+    out = say(hall, said, speaker=LEA, history=history)
+    assert (out.intent, out.roles) == (I.BRING_OBJECT, {"object": "scarf_1", "recipient": "person_tam"}), said
+
+
+@pytest.mark.parametrize("said", ["no wait, take Ivo instead", "take Ivo instead"])
+def test_the_request_said_again_with_instead_corrects_whom_it_guides(hall: KB, said: str) -> None:
+    history = [("user", "take Tam to the study"), ("robot", "OK, I'm guiding Tam to the study.")]
+    out = say(hall, said, speaker=LEA, history=history)
+    assert (out.intent, out.roles) == (I.GUIDE, {"recipient": "person_ivo", "goal": "study"}), said
+    # with no request before it, "instead" corrects nothing: Ivo is no thing to take
+    assert say(hall, said, speaker=LEA).intent != I.GUIDE

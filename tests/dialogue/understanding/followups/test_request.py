@@ -241,3 +241,35 @@ def test_an_answer_with_a_word_the_kb_names_nothing_with_is_not_asked_again(work
     # "the left one", a position the KB says nothing of, is still said so and asked again
     out = say(workshop, "the left one", speaker=ANA, history=history)
     assert out.clarify and "left one" in out.reply
+
+
+@pytest.mark.parametrize(
+    ("asked", "answer"),
+    [("Do you mean the rake by the door?", "yes"), ("Shall I fetch the rake for Raf?", "yes go on"),
+     ("Raf is in the shed. Shall I take it out there?", "yes, please do")],
+)  # fmt: skip
+def test_yes_to_another_robots_question_about_a_request_read_whole_is_that_request(
+    workshop: KB, asked: str, answer: str
+) -> None:
+    # (the question is not the one the rules ask: the history comes from another system)
+    history = [("user", "take the rake to Raf"), ("robot", asked)]
+    out = say(workshop, answer, speaker=ANA, history=history)
+    assert (out.intent, out.roles) == (I.BRING_OBJECT, {"object": "rake_1", "recipient": "person_raf"}), asked
+
+
+def test_yes_to_a_question_naming_what_the_request_did_not_is_not_that_request(workshop: KB) -> None:
+    history = [("user", "take the rake to Raf"), ("robot", "Do you mean the red cap?")]
+    assert say(workshop, "yes", speaker=ANA, history=history).intent is None
+    history = [("user", "take the rake to Raf"), ("robot", "Do you mean the rake? Raf is out.")]
+    assert say(workshop, "no", speaker=ANA, history=history).intent is None
+
+
+def test_an_answer_to_a_question_said_before_other_words_answers_the_question(workshop: KB) -> None:
+    history = [("user", "give me the cap"), ("robot", "Do you mean Raf's cap? Yours is the grey one.")]
+    out = say(workshop, "no, mine", speaker=ANA, history=history)
+    assert (out.intent, out.roles) == (I.BRING_OBJECT, {"object": "cap_2", "recipient": ANA})
+
+
+def test_yes_to_a_question_that_neither_proposes_nor_confirms_is_not_the_request_again(workshop: KB) -> None:
+    history = [("user", "take the rake to Raf"), ("robot", "OK, I'm taking the rake to Raf. Anything else?")]
+    assert say(workshop, "yes", speaker=ANA, history=history).intent is None

@@ -157,3 +157,12 @@ def test_a_place_said_with_where_it_is_is_that_place(office: KB) -> None:
         assert say(office, text).roles == {"object": "pear_1", "recipient": "desk_1"}
     # next to a thing that is not on it, the last place is where to put it
     assert say(office, "put the pear next to the laptop on the desk").roles["recipient"] == "desk_1"
+
+
+def test_a_pronoun_where_a_thing_is_put_is_the_place_last_spoken_of(flat: KB) -> None:
+    history = [("user", "put the microphone on the standing desk"),
+               ("robot", "OK, I've put the microphone on the standing desk.")]  # fmt: skip
+    out = say(flat, "and put the guitar picks next to it", speaker=LEON, history=history)
+    assert (out.intent, out.roles) == (I.PLACE_OBJECT, {"object": "picks_1", "recipient": "desk_2"}), out.reply
+    # the thing put is still the thing spoken of: "pick it up" is the microphone
+    assert say(flat, "now pick it up", speaker=LEON, history=history).roles == {"object": "mic_1"}
