@@ -75,7 +75,7 @@ def create_app(settings: Settings | None = None, kb: KB | None = None,
                            allow_methods=["GET", "POST", "DELETE"],
                            allow_headers=["Authorization", "Content-Type", "Accept"],
                            expose_headers=["X-Situated-Turn"])
-    for router in (kb_routes.router, sparql.router, events.router, dialogue.router, rasa.router,
+    for router in (dialogue.router, kb_routes.router, sparql.router, events.router, rasa.router,
                    scene.router, health.router, intents.router, people.router, viewer.router, turns.router,
                    locales.router):
         app.include_router(router)

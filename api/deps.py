@@ -5,7 +5,7 @@ from __future__ import annotations
 from typing import Annotated
 
 from fastapi import Depends, Query
-from fastapi.security import HTTPAuthorizationCredentials
+from fastapi.security import HTTPAuthorizationCredentials, HTTPBearer
 from fastapi.security.utils import get_authorization_scheme_param
 from starlette.requests import HTTPConnection
 
@@ -70,12 +70,21 @@ def presented_token(connection: HTTPConnection) -> str | None:
 PresentedToken = Annotated[str | None, Depends(presented_token)]
 
 
-async def require_read(conn: HTTPConnection, credentials: Credentials) -> None:
-    authorise(services_of(conn).settings, credentials.credentials if credentials else None, write=False)
+class Access(HTTPBearer):
+    """The access check of a route, as one dependency: the bearer token read (what declares the
+    route's security scheme, as ``bearer`` does) and checked in the same call. A check depending on
+    ``Credentials`` was two dependencies, each solved anew per request."""
 
+    def __init__(self, *, write: bool) -> None:
+        super().__init__(auto_error=False, scheme_name=bearer.scheme_name,
+                         description=bearer.model.description)
+        self.write = write
 
-async def require_write(conn: HTTPConnection, credentials: Credentials) -> None:
-    authorise(services_of(conn).settings, credentials.credentials if credentials else None, write=True)
+    async def __call__(self, request: HTTPConnection) -> HTTPAuthorizationCredentials | None:
+        credentials = await super().__call__(request)
+        authorise(services_of(request).settings, credentials.credentials if credentials else None,
+                  write=self.write)
+        return credentials
 
 
 async def require_read_stream(conn: HTTPConnection, credentials: Credentials,
@@ -86,6 +95,6 @@ async def require_read_stream(conn: HTTPConnection, credentials: Credentials,
     authorise(services_of(conn).settings, presented, write=False)
 
 
-ReadAccess = Depends(require_read)
+ReadAccess = Depends(Access(write=False))
 StreamReadAccess = Depends(require_read_stream)
-WriteAccess = Depends(require_write)
+WriteAccess = Depends(Access(write=True))

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from collections import deque
 from collections.abc import Iterable, Iterator
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Literal
 
 Role = Literal["user", "assistant", "system"]
@@ -26,10 +26,12 @@ def role_of(user_id: str) -> Role:
 class Utterance:
     speaker: str
     text: str
+    #: The chat role it was said in, found once: the readers of every turn scan the history by it
+    #: (some 50 utterances, several times a turn).
+    role: Role = field(init=False, repr=False, compare=False)
 
-    @property
-    def role(self) -> Role:
-        return role_of(self.speaker)
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "role", role_of(self.speaker))
 
 
 class History:

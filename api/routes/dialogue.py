@@ -15,7 +15,7 @@ from fastapi import APIRouter, Depends, Request, Response
 from pydantic import AfterValidator, BaseModel, ConfigDict, Field, model_validator
 from starlette.requests import HTTPConnection
 
-from api.deps import ReadAccess, ServicesDep, WriteAccess, services_of
+from api.deps import ReadAccess, WriteAccess, services_of
 from api.errors import ApiError
 from api.limits import check_count, check_length
 from api.turnevents import EVENT_STREAM, turn_events, wants_events
@@ -186,9 +186,13 @@ def _body(result: TurnResult) -> dict[str, Any]:
              responses={200: {"content": {EVENT_STREAM: {"schema": {"type": "string"}}}, "description":
                               "with `Accept: text/event-stream`: `event: ack` ({\"verbal_ack\"}) when the "
                               "model's reply is ready early, then `event: response` (the JSON answer)"}})
-async def interact(dialogue_id: str, body: InteractionRequest, dialogues: Dialogues, services: ServicesDep,
-                   request: Request, response: Response) -> InteractionResponse | Response:
+async def interact(dialogue_id: str, body: InteractionRequest, request: Request,
+                   response: Response) -> InteractionResponse | Response:
     """One DialogueInteraction: the reply and the validated intents, most relevant first."""
+    # The service's parts read off the app's state rather than as dependencies: FastAPI solves each
+    # dependency anew per request, a tenth of this route's own work when the rules answer.
+    services = services_of(request)
+    dialogues = services.dialogues
     assert body.input is not None and body.user_id is not None  # the request model's validator
     check_length(body.input, services.settings.limits.max_input_chars, "input")
     check_length(body.summary or "", services.settings.limits.max_input_chars, "summary")

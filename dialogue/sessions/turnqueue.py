@@ -77,6 +77,14 @@ class TurnQueue:
     async def take(self, key: str, timeout: float) -> Place:
         """The turn's place in dialogue `key`'s queue, taken now (arrival order, whatever happens to the
         turns before it) and waited for at most `timeout` seconds: see `Place.reached`."""
+        if key not in self._locks:
+            # No turn holds the dialogue or waits for it: the place is reached now, without the
+            # task and the rounds of the event loop that waiting for one takes.
+            lock = self._locks[key] = asyncio.Lock()
+            await lock.acquire()  # (a lock no one else has: never waits)
+            reached: asyncio.Future[Literal[True]] = asyncio.get_running_loop().create_future()
+            reached.set_result(True)
+            return Place(reached, lock)
         lock = self._lock(key)
         place = Place(asyncio.ensure_future(lock.acquire()), lock)
         try:

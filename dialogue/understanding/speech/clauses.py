@@ -70,6 +70,11 @@ class _Clauses:
         self.third_person = said.third_person | said.indefinite
         self.agreeing = said.agreeing
         self.one = closed.one
+        # The sets `_starts_clause` reads, made once here rather than on each of a turn's words.
+        self.subjects_but_you = self.subjects - {"you"}
+        self.subjects_or_np_start = self.subjects | self.np_start
+        self.no_subject_start = self.function_words - self.np_start - {"her"}
+        self.closed_in_phrase = self.function_words | self.determiners
 
 
 def clauses(lang: Language, text: Text) -> list[str]:
@@ -93,22 +98,27 @@ def _run_on(u: Said) -> list[str]:
     said = lang.derived(_Clauses)
     toks = u.spans
     words = [expanded(lang, u.word(w)) for w, _, _ in toks]
-    cuts = [i for i in range(1, len(toks)) if _starts_clause(said, words, i)]
+    # Where each word's expansion starts in the words all expanded: each candidate reads the rest.
+    flat = [w for ws in words for w in ws]
+    starts = [0]
+    for ws in words:
+        starts.append(starts[-1] + len(ws))
+    cuts = [i for i in range(1, len(toks)) if _starts_clause(said, words, i, flat[starts[i] :])]
     if not cuts:
         return [text]
     bounds = [0, *cuts, len(toks)]
     return [text[toks[a][1] : toks[b - 1][2]] for a, b in pairwise(bounds) if b > a]
 
 
-def _starts_clause(said: _Clauses, words: list[list[str]], i: int) -> bool:
-    """Whether the i-th word (each word with its contraction expanded) starts a clause."""
-    flat = [w for ws in words[i:] for w in ws]
+def _starts_clause(said: _Clauses, words: list[list[str]], i: int, flat: list[str]) -> bool:
+    """Whether the i-th word (each word with its contraction expanded; `flat`: the words from it on,
+    expanded) starts a clause."""
     before = words[i - 1][-1]
     asks = said.asks_at.get(flat[0], ()) if flat else ()
     asked = next((a for a in asks if tuple(flat[: len(a)]) == a), None)
     if asked is not None:
         after = flat[len(asked) : len(asked) + 1]
-        if asked[-1] == "you" and (not after or after[0] in said.subjects - {"you"}):
+        if asked[-1] == "you" and (not after or after[0] in said.subjects_but_you):
             return False  # a tag: "pick up my frame would you (it's fallen over)"
         return before not in said.not_before_ask
     told = i > 1 and words[i - 2][-1] in said.telling
@@ -117,18 +127,18 @@ def _starts_clause(said: _Clauses, words: list[list[str]], i: int) -> bool:
     first, second = flat[0], flat[1]
     if first in said.hedges and before not in said.subjects and _bare_verb(said, second):
         return True  # "move out of the way a bit *maybe go* over to the counter"
-    tagged = i > 1 and before in said.tags and words[i - 2][-1] not in said.subjects | said.np_start
+    tagged = i > 1 and before in said.tags and words[i - 2][-1] not in said.subjects_or_np_start
     if tagged and _bare_verb(said, first):
         return True  # "you're in the way mate *go* over by the door"
     if first in said.reasons:  # "... because she has to take them before dinner"
         return len(flat) > 2 and second in said.subjects and _subject_verb(said, second, flat[2])
     if first in said.subjects:
         return _subject_verb(said, first, second)
-    np_start, function_words = said.np_start, said.function_words
-    if before in np_start or before in said.modifier_start or first in function_words - np_start - {"her"}:
+    np_start = said.np_start
+    if before in np_start or before in said.modifier_start or first in said.no_subject_start:
         return False
     if first in np_start or first == "her":  # "the bus leaves soon": a phrase of one or two words, its verb
-        closed = function_words | said.determiners
+        closed = said.closed_in_phrase
         return any(_agrees(said, flat, k) for k in (2, 3) if not set(flat[1:k]) & closed)
     # "Omar wants a word": a word that is a name or a noun, then its verb
     noun = not set(lemmas_of(first)) - {"NOUN", "PROPN"}

@@ -68,3 +68,25 @@ def test_failing_late_work_frees_the_place() -> None:
         return after.reached
 
     assert asyncio.run(run())
+
+
+def test_an_idle_dialogues_place_is_reached_without_waiting_for_the_event_loop() -> None:
+    async def run() -> None:
+        queue = TurnQueue()
+        taking = queue.take("d1", timeout=0.0)
+        with pytest.raises(StopIteration) as taken:  # done at its first step: it never yielded
+            taking.send(None)
+        place = taken.value.value
+        assert place.reached
+        waiting = asyncio.ensure_future(queue.take("d1", timeout=5.0))  # the dialogue is held now
+        await asyncio.sleep(0)
+        assert not waiting.done()
+        place.release()
+        second = await waiting
+        assert second.reached
+        second.release()
+        again = await queue.take("d1", timeout=0.0)  # released and idle again: reached at once
+        assert again.reached
+        again.release()
+
+    asyncio.run(run())
