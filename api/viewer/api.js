@@ -11,6 +11,11 @@ export class ApiError extends Error {
   }
 }
 
+// A failure that may pass: the service unreachable (0), too busy (429) or failing (5xx).
+export function passing(err) {
+  return err instanceof ApiError && (err.status === 0 || err.status === 429 || err.status >= 500);
+}
+
 export function getToken() {
   return sessionStorage.getItem(TOKEN_KEY) || "";
 }

@@ -176,6 +176,13 @@ class Viewer {
     this.retryLater(await this.concepts.refresh([...ids]));
   }
 
+  forgetRetries() {
+    if (this.flushTimer !== null) clearTimeout(this.flushTimer);
+    this.flushTimer = null;
+    this.pending.clear();
+    this.retryDelay = RETRY_FIRST_MS;
+  }
+
   // Terms whose refresh failed are read again, later and later while the service stays busy, and
   // the wait starts over once a refresh succeeds.
   retryLater(failed) {
@@ -190,7 +197,11 @@ class Viewer {
   bindControls() {
     const token = $("#token");
     token.value = getToken();
-    token.addEventListener("change", () => { setToken(token.value.trim()); this.connectEvents(); });
+    token.addEventListener("change", () => {
+      setToken(token.value.trim());
+      this.forgetRetries();  // (read again with the new token when its events resync)
+      this.connectEvents();
+    });
 
     $("#goto").addEventListener("submit", (event) => {
       event.preventDefault();

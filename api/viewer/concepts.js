@@ -2,7 +2,7 @@
 // Every change (expand, refresh) re-derives a concept's edges from its current details, so facts
 // that disappeared from the KB disappear from the graph too.
 
-import { api } from "./api.js";
+import { api, passing } from "./api.js";
 import { isRecord, keyOf, toldAbout } from "./provenance.js";
 
 const MAX_NEW_NEIGHBOURS = 25;
@@ -99,8 +99,8 @@ export class Concepts {
     });
   }
 
-  // Resolves to the ids that could not be read (the service was busy or unreachable), for the
-  // caller to try again: a change whose refresh failed would otherwise stay undrawn.
+  // Resolves to the ids that could not be read because the service was busy or unreachable, for
+  // the caller to try again: a change whose refresh failed would otherwise stay undrawn.
   refresh(ids) {
     return this.serial(async () => {
       const failed = [];
@@ -108,8 +108,8 @@ export class Concepts {
         let info;
         try {
           info = await this.load(id);
-        } catch {
-          failed.push(id);
+        } catch (err) {
+          if (passing(err)) failed.push(id);  // (a refusal, 401 or 404, stays one: not retried)
           continue;
         }
         if (!this.graph.hasNode(id)) { this.onChange(id); continue; }

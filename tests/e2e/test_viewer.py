@@ -133,6 +133,33 @@ def test_a_change_whose_refresh_fails_is_read_again_and_drawn(service: Service, 
     assert [e for e in watch.errors if "503" not in e] == []
 
 
+def test_a_refused_read_is_not_tried_again(service: Service, open_viewer: Opener) -> None:
+    page, _ = open_viewer(service)
+    node(page, "cup_1").wait_for()
+    asked: list[str] = []
+
+    def refuse_cup(route: Any) -> None:  # a refusal stays one: no point asking again
+        asked.append("cup_1")
+        route.fulfill(status=403, content_type="application/json",
+                      body=json.dumps({"status": 403, "code": "forbidden", "message": "no", "details": {}}))
+
+    def busy_once(route: Any) -> None:
+        asked.append("person_alice")
+        if asked.count("person_alice") == 1:
+            route.fulfill(status=503, content_type="application/json",
+                          body=json.dumps({"status": 503, "code": "busy", "message": "busy", "details": {}}))
+        else:
+            route.continue_()
+
+    page.route("**/kb/details/cup_1?*", refuse_cup)
+    page.route("**/kb/details/person_alice?*", busy_once)
+    service.revise(["cup_1 isNextTo person_alice"])
+    # The retry reads the terms in the order the change named them: cup_1 would be asked before
+    # person_alice's second read draws the edge.
+    edge(page, "cup_1", "isNextTo", "person_alice").wait_for()
+    assert asked == ["cup_1", "person_alice", "person_alice"]
+
+
 def test_chat_shows_reply_and_intents(service: Service, open_viewer: Opener) -> None:
     page, _ = open_viewer(service)
     page.fill("#user-id", "person_alice")
