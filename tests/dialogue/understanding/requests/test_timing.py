@@ -51,4 +51,6 @@ def test_a_thing_had_when_it_is_ready_is_not_asked_for_now() -> None:
     kb = scene_kb("office")
     assert say(kb, "I'll have my stapler when it's ready").intent is None
     assert say(kb, "I'll have a look").intent is None
+    # not the speaker's own thing: what they will do, or a choice among things offered, not this
+    assert say(kb, "I'll have the stapler").intent is None
     kb.close()
