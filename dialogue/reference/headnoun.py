@@ -52,7 +52,7 @@ class _Words:
 def _words(lang: Language) -> _Words:
     head, closed = lang.words.head_noun, lang.words
     return _Words(
-        qualifiers=closed.positions | head.qualifiers,
+        qualifiers=closed.positions | head.qualifiers | head.postures,
         skip=(closed.determiners - lang.modifier_start) | head.skipped,
         clause=head.clause_words,
         new_phrase=head.new_phrase,

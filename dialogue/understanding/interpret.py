@@ -34,7 +34,7 @@ from dialogue.understanding.requests.commands import parse
 from dialogue.understanding.requests.compound import adds_on, conjuncts, coordinated, two_named
 from dialogue.understanding.requests.referents import Referents
 from dialogue.understanding.requests.roles import one_command
-from dialogue.understanding.requests.sequence import compound, wished
+from dialogue.understanding.requests.sequence import compound, dropped, wished
 from dialogue.understanding.requests.skills import no_intent, unskilled
 from dialogue.understanding.requests.staying import left_as_is
 from dialogue.understanding.requests.terse import terse, unasked_thing
@@ -201,7 +201,7 @@ class Interpreter:
                 if i + 1 < len(said) and p.slots.get("object"):
                     more = description(self.lang, heard.of(said[i + 1]))
                 with_more = {"object": described(self.lang, p.slots["object"], more)} if more else None
-                outcome = reader.act(p, with_more)
+                outcome = dropped(reader, heard.of(said[i]), said[:i], reader.act(p, with_more))
                 if outcome.intent is not None:
                     return wished(self, heard, said[:i], outcome)
                 # A complete request in an earlier clause beats asking about an incomplete later one.

@@ -3,16 +3,16 @@ said with the language's templates (dialogue.understanding.replies)."""
 
 from __future__ import annotations
 
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Collection, Sequence
 
 from dialogue.reference.clarify import describe_options
 from dialogue.reference.clarify import question as clarifying_question
-from dialogue.reference.english import Words
-from dialogue.reference.grounding import Entity, Snapshot
+from dialogue.reference.grounding import Entity, Kind, Snapshot
 from dialogue.reference.lexicon import Lexicon, singular
-from dialogue.reference.resolution import ALL_KINDS, PERSON, content_words, resolve, said_phrase
+from dialogue.reference.resolution import ALL_KINDS, content_words, resolve, said_phrase
 from dialogue.understanding.inflection import is_plural, plural_of
 from dialogue.understanding.language import Language
+from dialogue.understanding.questions.placed import held
 from dialogue.understanding.replies import (
     MAX_LISTED,
     article,
@@ -27,6 +27,9 @@ from dialogue.understanding.replies import (
     told_apart,
 )
 from dialogue.understanding.speech.plain import split_at
+
+#: What a thing may be on or in.
+PLACES: frozenset[Kind] = frozenset({"thing", "zone"})
 
 #: Places described at most in one answer about several ("what is on the shelves").
 MAX_PLACES = 3
@@ -153,6 +156,38 @@ def what_is_on(lexicon: Lexicon, words: Sequence[str], asked: str = "") -> tuple
     return _on(lang, snapshot, place, asked), False
 
 
+def which_are_on(
+    lexicon: Lexicon, kind: Sequence[str], words: Sequence[str], asked: str = ""
+) -> tuple[str, bool] | None:
+    """ "Which oars are on the rack?": the things of the kind asked about that the KB puts on (or
+    in) the place; and whether the answer is a clarifying question (which rack). None when the
+    kind names nothing the KB knows: what it asks, the rules cannot tell."""
+    snapshot, lang = lexicon.snapshot, lexicon.lang
+    of_kind = resolve(lexicon, kind, frozenset({"thing"}), sight=False).matches
+    if not of_kind:
+        return None
+    found = resolve(lexicon, words, frozenset({"thing", "zone"}))
+    if found.ambiguous:
+        return clarifying_question(lang, snapshot, found.matches), True
+    if found.one is None:
+        phrase = " ".join(content_words(lang, words)) or say(lang, "answers.that")
+        return say(lang, "sorry.unknown", phrase=phrase), False
+    place = found.one
+    there = [e for e in of_kind if held(snapshot, e, place.id)]
+    within = place.kind == "zone" or asked in template(lang, "answers.asked_in")
+    if not there:
+        phrase = " ".join(content_words(lang, kind))
+        key = "answers.none_in" if within else "answers.none_on"
+        return say(lang, key, phrase=phrase, place=place.name), False
+    if {e.id for e in there} <= {e.id for e in snapshot.placed_at(place.id)}:
+        return _on(lang, snapshot, place, asked, {e.id for e in there}), False
+    # ("which cups are in the clubhouse": on the bar there, each said where)
+    things = [f"{n} {location(lang, snapshot, e)}".strip()
+              for e, n in zip(there, told_apart(lang, there, snapshot), strict=True)]  # fmt: skip
+    key = "answers.things_in" if within else "answers.things_on"
+    return say(lang, key, place=place.name, things=listing(lang, things), there=_there(lang, there)), False
+
+
 def what_is_near(lexicon: Lexicon, words: Sequence[str], relation: Sequence[str]) -> tuple[str, bool]:
     """ "What's next to the window?": the things a spatial fact puts there; and whether the answer
     is a clarifying question (which window)."""
@@ -189,10 +224,11 @@ def _plural(content: Sequence[str]) -> bool:
     return bool(content) and singular(content[-1]) != content[-1]
 
 
-def _on(lang: Language, snapshot: Snapshot, place: Entity, asked: str = "") -> str:
+def _on(lang: Language, snapshot: Snapshot, place: Entity, asked: str = "",
+        only: Collection[str] = ()) -> str:  # fmt: skip
     """What is on (or in) one place, as a sentence: in a zone, on a support, in a container (the
-    fridge: what `isIn` it)."""
-    held = [e for e in snapshot.placed_at(place.id) if e.kind == "thing"]
+    fridge: what `isIn` it); of the things `only` names when it names any."""
+    held = [e for e in snapshot.placed_at(place.id) if e.kind == "thing" and (not only or e.id in only)]
     inside = [e for e in held if e.zone == place.id or ("in", place.id) in e.relations]
     on = [e for e in held if e.support == place.id]
     held_by = (("answers.things_in", inside), ("answers.things_on", on))
@@ -204,30 +240,6 @@ def _on(lang: Language, snapshot: Snapshot, place: Entity, asked: str = "") -> s
         within = place.kind == "zone" or asked in template(lang, "answers.asked_in")
         return say(lang, "answers.nothing_in" if within else "answers.nothing_on", place=place.name)
     return " ".join(sentences)
-
-
-def is_there(lexicon: Lexicon, words: Sequence[str], speaker: str, locatives: Sequence[Words]) -> str | None:
-    """ "Is Marcus in the kitchen?": where the KB puts a person, said first ("No, as far as I know
-    Marcus is in the study."), or that the robot sees them but knows no place ("I can see Bo, but I
-    don't know whether they are in the kitchen."); None when the words are not one person and one
-    place."""
-    snapshot, lang = lexicon.snapshot, lexicon.lang
-    cut = split_at(words, locatives)
-    if cut is None:
-        return None
-    who = resolve(lexicon, cut[0], PERSON).one
-    place = resolve(lexicon, cut[2], frozenset({"zone", "thing"})).one
-    if who is None or place is None or who.id == speaker:
-        return None
-    name, where = the(lang, snapshot, who, speaker), location(lang, snapshot, who)
-    if not where and who.seen:  # seen, nowhere the KB says: that, and that the place is not known
-        asked = f"{cut[1]} {the(lang, snapshot, place, speaker)}"
-        return say(lang, "answers.seen_unplaced", name=name, where=asked)
-    if not where:
-        return say(lang, "answers.unknown_where_is", name=name)
-    there = place.id in (who.zone, who.support) or ("in", place.id) in who.relations
-    reply = say(lang, "answers.known_there" if there else "answers.known_elsewhere", name=name, where=where)
-    return reply if who.seen else reply + say(lang, "answers.unseen_them")
 
 
 def can_you_see(lexicon: Lexicon, words: Sequence[str], speaker: str, owner: str | None = None) -> str:
@@ -280,13 +292,17 @@ def which_do_you_see(lexicon: Lexicon, words: Sequence[str]) -> str:
 
 def how_many(lexicon: Lexicon, words: Sequence[str]) -> str:
     lang = lexicon.lang
-    found = resolve(lexicon, words, frozenset({"thing", "person"}))
+    # ("how many cups are on the bar": the cups there are counted, the bar only says where)
+    cut = split_at(words, lang.prepositions.having("asked-on"))
+    counted = cut[0] if cut is not None and cut[0] else words
+    place = resolve(lexicon, cut[2], PLACES).one if cut is not None and cut[0] else None
+    found = resolve(lexicon, words if place is None else counted, frozenset({"thing", "person"}))
     phrase = said_phrase(lang, words) or say(lang, "answers.things")
-    seen = [e for e in found.matches if e.seen]
+    seen = [e for e in found.matches if e.seen and (place is None or held(lexicon.snapshot, e, place.id))]
     if not seen:
         return say(lang, "answers.none_seen", phrase=phrase)
     count = number(lang, len(seen))
-    content = content_words(lang, words)
+    content = content_words(lang, counted)
     options = describe_options(lang, lexicon.snapshot, seen) if len(seen) > 1 and content else []
     if options and not any(e.id in o for e, o in zip(seen, options, strict=True)):
         # several of the kind asked about, each as a person tells it apart: "the blue one"

@@ -47,6 +47,7 @@ def question(lang: Language, words: list[str]) -> Parse | None:
     if asked is not None:
         return asked
     w = _described(q, w)  # "describe the objects on the bench": what is on it
+    w = _count_said(q, w)  # "count the canoes in the shed": how many
     for step in _STEPS:
         found = step(q, w)
         if found is not None:
@@ -186,6 +187,26 @@ def _described(q: QuestionWords, w: Words) -> Words:
     return (*asked, *rest[1:]) if asked and split_at(rest, q.locatives) is not None else w
 
 
+def _count_said(q: QuestionWords, w: Words) -> Words:
+    """The question "count the canoes you can see" or "count how many cups there are" asks, in its
+    own words ("how many the canoes you can see"), when a determiner or "how many" follows the
+    lead; else the words unchanged ("count to ten", "count me in")."""
+    lead = q.count.first(w)
+    if lead is None:
+        return w
+    rest = w[len(lead) :]
+    if starts(rest, q.how_many):
+        return rest
+    return (*q.how_many, *rest) if rest[:1] and rest[0] in q.determiners else w
+
+
+def _unposed(q: QuestionWords, words: Words) -> Words:
+    """The words without a verb of how a thing is placed right before where it is ("the phone
+    (lying) on the counter")."""
+    before_place = [i + 1 < len(words) and words[i + 1] in q.place_starts for i in range(len(words))]
+    return tuple(x for x, placed in zip(words, before_place, strict=True) if x not in q.posture or not placed)
+
+
 def _who_at(q: QuestionWords, rest: Words) -> Words:
     """The place of "who is at X", "who is on the shop floor", "who's waiting at reception", "who's
     getting ready in X" (a verb of being somewhere between, with a word of its own), else ()."""
@@ -255,10 +276,9 @@ def _what(q: QuestionWords, w: Words) -> Parse:
         found = split_at(("x", *rest), [near])
         if found and found[2] and not set(found[0][1:]) - q.on_glue:
             return _q("what_near", w, place=found[2], relation=near)
-    for sep in q.locatives:
-        found = split_at(("x", *rest), [sep])
-        if found and not set(found[0][1:]) - q.on_glue:
-            return _q("what_on", w, place=found[2], relation=(" ".join(sep),))
+    placed = _what_placed(q, w, rest)
+    if placed is not None:
+        return placed
     for i, word in enumerate(rest):  # "which cups do you see", "what fruit can you see"
         seeing = word in q.seeing_aux and rest[i + 1 : i + 3] == q.you_see
         if seeing and i > 0 and not set(rest[:i]) & q.not_which_see:
@@ -275,6 +295,30 @@ def _what(q: QuestionWords, w: Words) -> Parse:
     ):
         return _q("what_is", w, thing=rest[1:])
     return _q("other", w)
+
+
+def _what_placed(q: QuestionWords, w: Words, rest: Words) -> Parse | None:
+    """ "what is on the table": what the KB puts there; "which oars are on the rack", "what fruit is
+    lying on the table": those of the kind there."""
+    for sep in q.locatives:
+        found = split_at(("x", *rest), [sep])
+        if found is None:
+            continue
+        if not set(found[0][1:]) - q.on_glue:
+            return _q("what_on", w, place=found[2], relation=(" ".join(sep),))
+        kind = _kind_placed(q, found[0][1:]) if found[2] else ()
+        if kind:
+            return _q("which_on", w, thing=kind, place=found[2], relation=(" ".join(sep),))
+    return None
+
+
+def _kind_placed(q: QuestionWords, before: Words) -> Words:
+    """The kind of "(which) oars are (lying)" before a place: the words before the verb of being,
+    when they are only that and none of them says how or what is seen; else ()."""
+    before = before[:-1] if before[-1:] and before[-1] in q.posture else before
+    if len(before) < 2 or before[-1] not in q.is_are or set(before[:-1]) & (q.on_glue | q.be):
+        return ()
+    return before[:-1]
 
 
 def _before_you(q: QuestionWords, rest: Words) -> bool:
@@ -309,7 +353,7 @@ def _owned_thing(q: QuestionWords, w: Words) -> Words:
     if rest[:1] and rest[0] in q.be:  # "whose is the mug"
         return rest[1:]
     # "whose phone is on the bookcase": the verb drops out, the place stays a qualifier.
-    thing = tuple(x for x in rest if x not in q.be)
+    thing = _unposed(q, tuple(x for x in rest if x not in q.be))
     return thing if [x for x in thing if x not in q.demonstratives] else ("it",)
 
 

@@ -21,6 +21,7 @@ from dialogue.understanding.lemmas import lemmas_of
 from dialogue.understanding.outcome import Outcome
 from dialogue.understanding.parsed import Parse
 from dialogue.understanding.questions import answers, presence, recalled
+from dialogue.understanding.questions import placed as placed_at
 from dialogue.understanding.replies import say
 
 #: The questions whose subject may be a pronoun or someone spoken of ("where is she").
@@ -52,6 +53,14 @@ def _what_on(c: Context, thing: Words, owner: str | None, p: Parse) -> Outcome:
     return Outcome(reply, clarify=clarify)
 
 
+def _which_on(c: Context, thing: Words, owner: str | None, p: Parse) -> Outcome:
+    asked = " ".join(p.slots.get("relation", ()))
+    found = answers.which_are_on(c.lexicon, thing, p.slots.get("place", ()), asked)
+    if found is None:
+        return _no_answer(c)
+    return Outcome(found[0], clarify=found[1])
+
+
 def _who_in(c: Context, thing: Words, owner: str | None, p: Parse) -> Outcome:
     reply, clarify = answers.who_is_in(c.lexicon, thing, c.speaker)
     return Outcome(reply, clarify=clarify)
@@ -64,7 +73,7 @@ def _what_near(c: Context, thing: Words, owner: str | None, p: Parse) -> Outcome
 
 def _can_see(c: Context, thing: Words, owner: str | None, p: Parse) -> Outcome:
     locatives = c.lang.derived(_Locatives).said
-    placed = answers.is_there(c.lexicon, thing, c.speaker, locatives) if owner is None else None
+    placed = placed_at.is_there(c.lexicon, thing, c.speaker, locatives) if owner is None else None
     return Outcome(placed or answers.can_you_see(c.lexicon, thing, c.speaker, owner))
 
 
@@ -122,7 +131,8 @@ def _how_are_you(c: Context, thing: Words, owner: str | None, p: Parse) -> Outco
 #: Each kind of question and its answer (a kind not here has none).
 QUESTIONS: dict[str, Answer] = {
     "what_see": _what_see, "who_see": _who_see, "where": _where, "what_on": _what_on,
-    "who_in": _who_in, "what_near": _what_near, "can_see": _can_see, "what_is": _what_is,
+    "which_on": _which_on, "who_in": _who_in, "what_near": _what_near, "can_see": _can_see,
+    "what_is": _what_is,
     "which_see": _which_see, "how_many": _how_many, "colour": _colour, "whose": _whose,
     "name": _name, "how_are_you": _how_are_you, presence.ARRIVED: _presence, presence.DEPARTED: _presence,
     "asked_for": _asked_for, "untracked": _untracked,

@@ -22,6 +22,9 @@ class QuestionWords:
         self.on_glue = said.on_glue
         self.who_not_a_name = said.who_not_a_name
         self.who_pointing = said.who_pointing
+        #: Verbs of how a thing is placed ("lying", "sitting") between "is" and where.
+        self.posture = said.posture
+        self.count = Prefixes(said.count)
         self.who_sees = said.who_sees | said.who_not_a_name | said.else_
         self.see_words = said.see_words
         self.colour_words = said.colour_words

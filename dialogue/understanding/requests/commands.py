@@ -220,14 +220,16 @@ def _here_or_there(g: Grammar, frame: Frame, here: str, direct: Words, slots: di
     aside = "extra" if not direct and "extra" in slots else None
     words = slots[aside] if aside is not None else direct
     pointed = next((p for p in g.pointing if words[-len(p[0]) :] == p[0]), None)
-    if pointed is not None and not (frame.there_only and pointed[1] != ("there",)):
+    there = pointed is not None and pointed[1] == ("there",)
+    if pointed is not None and not (frame.there_only and not there) and not (frame.here_only and there):
         if aside is None:
             direct = direct[: -len(pointed[0])]
         else:
             slots[aside] = words[: -len(pointed[0])]
         slots.setdefault(here, pointed[1])
     at = next((i for i, w in enumerate(direct) if i and w in g.somewhere), None)
-    if at is not None and here not in slots:  # "put it somewhere safe": where is asked
+    # ("put it somewhere safe": where is asked)
+    if at is not None and here not in slots and not frame.here_only:
         direct, slots[here] = direct[:at], direct[at:]
     return direct
 

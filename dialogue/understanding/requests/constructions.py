@@ -60,6 +60,7 @@ class ConstructionGrammar:
         self.for_whom = frozenset((w,) for w in lang.prepositions.words("terse-to"))
         self.personal = closed.personal
         self.wants = Prefixes(said.wants)
+        self.own_wants, self.own = Prefixes(said.own_wants), said.own
         self.want_verbs = said.want_verbs
         self.their_wants = Prefixes(said.their_wants)
         self.wishers = said.wishers
@@ -135,6 +136,9 @@ def going(said: Framed) -> Parse | None:
 def wanting(said: Framed) -> Parse | None:
     """ "I would like the apple", "can I have a tea": bring it to the speaker."""
     c = said.lang.derived(ConstructionGrammar)
+    for lead in c.own_wants.of(said.words):  # "I'll have my cards": only the speaker's own thing
+        if said.words[len(lead) : len(lead) + 1] and said.words[len(lead)] in c.own:
+            return said.command(I.BRING_OBJECT, object=said.words[len(lead) :], recipient=("me",))
     for lead in c.wants.of(said.words):
         if len(said.words) > len(lead):
             wanted = said.words[len(lead) :]

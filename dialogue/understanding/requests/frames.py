@@ -89,6 +89,8 @@ class Frame:
     here: str | None = None
     #: Only "there" fills it ("wait there": the place spoken of; "wait here" is to stay put).
     there_only: bool = False
+    #: Only "here" fills it ("pop it over here": to the speaker; "over there" is where to put it).
+    here_only: bool = False
     #: The direct words may start with the recipient: "me"/"us" only ("get me a cup"), anyone
     #: ("give Ines her phone": split against the KB by the interpreter), or anyone said before a
     #: noun phrase of its own ("get Ines her phone", but "get the phone").
@@ -136,7 +138,8 @@ def _frame(lang: Language, row: FrameRow) -> Frame:
     return Frame(
         verbs=_expanded(lang, row.verbs), intent=row.intent, direct=row.direct,
         slots={role: _expanded(lang, preps) for role, preps in row.slots.items()},
-        particles=_expanded(lang, row.particles), here=row.here, there_only=row.there_only,
+        particles=_expanded(lang, row.particles), here=row.here,
+        there_only=row.there_only, here_only=row.here_only,
         dative=row.dative, only=only, requires=row.requires, defaults=dict(row.defaults), whole=row.whole,
         text=text, special=SPECIALS[row.special] if row.special is not None else None, serial=row.serial,
     )  # fmt: skip

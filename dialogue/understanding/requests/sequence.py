@@ -18,6 +18,9 @@ from dataclasses import replace
 
 from dialogue import intents as I
 from dialogue.history import Utterance
+from dialogue.reference.antecedent import antecedent
+from dialogue.reference.english import tokens
+from dialogue.reference.resolution import ROLE_KINDS
 from dialogue.understanding.context import Reader
 from dialogue.understanding.followups.proposal import proposed
 from dialogue.understanding.outcome import Outcome, Ref
@@ -52,7 +55,7 @@ def compound(reader: Reader, heard: Said, parts: Sequence[Part]) -> Outcome | No
         said = heard.of(part.text)
         outcome = within.part(said)
         if n == 1 and parts[0].verb is None:  # "I want the pear, can you get it": brought to me
-            outcome = wished(reader, heard, [parts[0].text], outcome)
+            outcome = wished(reader, heard, [parts[0].text], dropped(within, said, [parts[0].text], outcome))
         if outcome.intent is not None and done and (outcome.intent, outcome.roles) == (
             done[-1].intent, done[-1].roles):
             continue  # "go to the shed and wait there": one move
@@ -82,6 +85,20 @@ def compound(reader: Reader, heard: Said, parts: Sequence[Part]) -> Outcome | No
     if whole.doubts:  # each part said back in the question
         return proposed(lang, whole, [o.reply for o in done], unable)
     return whole
+
+
+def dropped(reader: Reader, heard: Said, before: Sequence[str], outcome: Outcome) -> Outcome:
+    """ "The umbrella is mine, you can give to me?": a request that asks what thing (its thing left
+    out) after clauses (`before`) that name one is about that thing, as "it" would be; else the
+    outcome as it was."""
+    if not outcome.clarify or outcome.open_role != "object" or not before:
+        return outcome
+    p = parse(reader.lang, heard, reader.robot_name)
+    kinds = ROLE_KINDS.get(p.intent or "", {}).get("object")
+    if p.act != "command" or p.slots.get("object") or kinds is None:
+        return outcome
+    ref = antecedent(reader.lexicon, before, kinds, speaker=reader.speaker)
+    return outcome if ref is None else reader.act(p, {"object": tuple(tokens(ref.id))})
 
 
 def wished(reader: Reader, heard: Said, before: Sequence[str], outcome: Outcome) -> Outcome:

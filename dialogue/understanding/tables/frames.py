@@ -25,6 +25,7 @@ class FrameRow(Table):
     particles: str = ""
     here: str | None = None
     there_only: bool = False
+    here_only: bool = False
     dative: Literal["me", "any", "before"] | None = None
     only: str | None = None
     requires: tuple[str, ...] = ()

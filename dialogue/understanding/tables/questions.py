@@ -22,6 +22,8 @@ class SituationQuestionWords(Table):
     on_glue: WordSet = frozenset()
     who_not_a_name: WordSet = frozenset()
     who_pointing: WordSet = frozenset()
+    posture: WordSet = frozenset()
+    count: Phrases = ()
     who_sees: WordSet = frozenset()
     see_words: WordSet = frozenset()
     colour_words: WordSet = frozenset()

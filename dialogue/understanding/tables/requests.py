@@ -125,6 +125,8 @@ class RequestWords(Table):
     negation: Phrase = ()
     manner: WordSet = frozenset()
     wants: Phrases = ()
+    own_wants: Phrases = ()
+    own: WordSet = frozenset()
     want_verbs: WordSet = frozenset()
     their_wants: Phrases = ()
     wishers: WordSet = frozenset()

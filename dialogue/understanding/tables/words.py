@@ -18,6 +18,7 @@ class HeadNounWords(Table):
     """`words.toml` [head_noun]: the words of a noun phrase's head, read by dialogue.reference.headnoun."""
 
     qualifiers: WordSet = frozenset()
+    postures: WordSet = frozenset()
     skipped: WordSet = frozenset()
     clause_words: WordSet = frozenset()
     new_phrase: WordSet = frozenset()

@@ -18,6 +18,8 @@ from tests.dialogue.understanding.test_interpret import say
         ("pick up the notebook that is on the shelf", "notebook_1"),  # a relative clause that holds
         ("take the stapler next to the pear", "stapler_1"),  # a relation with no fact either way
         ("grab the bottle of umbrella", None),  # the head is "bottle": nothing is one
+        ("take the notebook lying on the shelf", "notebook_1"),  # how it is placed: no evidence, no head
+        ("grab the stapler sitting on the desk", "stapler_1"),
     ],
 )
 def test_unverifiable_modifiers_do_not_eliminate_a_unique_candidate(office: KB, text: str, obj: str | None) -> None:

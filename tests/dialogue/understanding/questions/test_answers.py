@@ -48,3 +48,39 @@ def test_what_you_see_cut_short_names_what_things_are_on_first() -> None:
                   "myself sees zsofa", *small)  # fmt: skip
     reply = say(kb, "what can you see?").reply
     assert reply.startswith("I see the sofa, ") and reply.endswith("and 3 more things.")
+
+
+def _club() -> KB:
+    return scene_kb(
+        None, "myself rdf:type Robot",
+        "room rdf:type ZoneOfInterest", 'room rdfs:label "clubhouse"', "myself isIn room",
+        "loft rdf:type ZoneOfInterest", 'loft rdfs:label "sail loft"',
+        "bar rdf:type dbr:Table_(furniture)", 'bar rdfs:label "bar"', "bar isIn room", "myself sees bar",
+        "desk rdf:type dbr:Table_(furniture)", 'desk rdfs:label "chart table"', "desk isIn room",
+        "myself sees desk",
+        "cup_b rdf:type dbr:Cup", 'cup_b rdfs:label "blue cup"', "cup_b isOn bar", "myself sees cup_b",
+        "cup_w rdf:type dbr:Cup", 'cup_w rdfs:label "white cup"', "cup_w isOn bar", "myself sees cup_w",
+        "book_1 rdf:type dbr:Book", 'book_1 rdfs:label "race log"', "book_1 isOn desk", "myself sees book_1",
+        "pail rdf:type dbr:Bucket", 'pail rdfs:label "bailer"', "pail isIn loft",
+    )  # fmt: skip
+
+
+def test_which_of_a_kind_are_on_a_place_names_only_those() -> None:
+    kb = _club()
+    assert say(kb, "which cups are on the bar?").reply == "On the bar, there are the blue cup and the white cup."
+    assert say(kb, "which cups are on the chart table?").reply == "I don't know of any cups on the chart table."
+    # in a room, on what stands there: each said where
+    assert say(kb, "which cups are in the clubhouse?").reply == (
+        "In the clubhouse, there are the blue cup on the bar and the white cup on the bar.")  # fmt: skip
+
+
+def test_which_of_a_kind_the_kb_does_not_know_is_not_answered() -> None:
+    outcome = say(_club(), "which gizmos are on the bar?")
+    assert outcome.intent is None and not outcome.understood
+
+
+def test_how_many_on_a_place_counts_only_those_there() -> None:
+    kb = _club()
+    assert say(kb, "how many cups are on the bar?").reply == "I see two cups: the blue cup and the white cup."
+    assert say(kb, "count the cups on the chart table").reply == "I don't see any cups on the chart table."
+    assert say(kb, "how many cups are in the clubhouse?").reply.startswith("I see two cups")

@@ -223,3 +223,49 @@ def test_describing_what_is_somewhere_asks_what_or_who_is_there(text: str, kind:
 def test_describing_a_thing_alone_is_no_question_of_what_is_there() -> None:
     p = question(expanded("describe the bench"))
     assert p is None or p.question not in {"what_on", "who_in"}
+
+
+@pytest.mark.parametrize(
+    ("text", "kind", "thing"),
+    [
+        # a verb of how a thing is placed, before where: the thing is there
+        ("whose phone is lying on the counter", "whose", ("phone", "on", "the", "counter")),
+        ("whose keys are sitting on the bar", "whose", ("keys", "on", "the", "bar")),
+        # "count" said as a command asks how many, when a noun phrase follows it
+        ("count the canoes you can see in the shed", "how_many", ("the", "canoes", "in", "the", "shed")),
+        ("count how many mugs there are", "how_many", ("mugs",)),
+    ],
+)
+def test_placed_and_counted_things_are_asked_about(text: str, kind: str, thing: tuple[str, ...]) -> None:
+    asked = question(text.split())
+    assert asked is not None and asked.question == kind and asked.slots == {"thing": thing}
+
+
+def test_count_without_a_noun_phrase_asks_nothing() -> None:
+    assert question(["count", "to", "ten"]) is None
+    assert question(["count", "me", "in"]) is None
+
+
+@pytest.mark.parametrize(
+    ("text", "kind", "place"),
+    [
+        ("which oars are on the rack", ("oars",), ("the", "rack")),
+        ("which fruit is on the long table", ("fruit",), ("the", "long", "table")),
+        ("what cups are sitting on the shelf", ("cups",), ("the", "shelf")),
+    ],
+)
+def test_which_things_of_a_kind_are_on_a_place(text: str, kind: tuple[str, ...], place: tuple[str, ...]) -> None:
+    asked = question(text.split())
+    assert asked is not None and asked.question == "which_on"
+    assert asked.slots["thing"] == kind and asked.slots["place"] == place
+
+
+def test_what_is_on_a_place_is_not_of_a_kind() -> None:
+    asked = question(["what", "is", "lying", "on", "the", "table"])
+    assert asked is not None and asked.question == "what_on"
+
+
+@pytest.mark.parametrize("text", ["who is down on the slipway", "who is out on the jetty", "who's up in the loft"])
+def test_who_is_down_somewhere_asks_who_is_there(text: str) -> None:
+    asked = question(expanded(text))
+    assert asked is not None and asked.question == "who_in"

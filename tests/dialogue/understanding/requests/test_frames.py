@@ -351,3 +351,23 @@ def test_carrying_the_speaker_is_no_request_of_the_robots() -> None:
     assert parse("lift me up").intent is None
     assert parse("carry me the box").intent == I.BRING_OBJECT  # whom for, then what
     assert parse("carry the box to the hall").intent == I.BRING_OBJECT
+
+
+@pytest.mark.parametrize("text", ["pop the stapler over here, would you", "chuck the stapler over here", "bung the stapler here"])
+def test_a_thing_popped_over_here_is_brought_to_the_speaker(office: KB, text: str) -> None:
+    out = say(office, text)
+    assert (out.intent, out.roles) == (I.BRING_OBJECT, {"object": "stapler_1", "recipient": "person_bob"})
+
+
+def test_a_thing_popped_on_a_place_or_over_there_is_put_there(office: KB) -> None:
+    out = say(office, "pop the stapler on the shelf")
+    assert (out.intent, out.roles) == (I.PLACE_OBJECT, {"object": "stapler_1", "recipient": "shelf_9"})
+    there = say(office, "pop the stapler over there", history=[("user", "what is on the shelf?")])
+    assert there.intent != I.BRING_OBJECT
+    assert say(office, "pop the stapler somewhere safe").intent is None  # where is asked
+
+
+@pytest.mark.parametrize("text", ["introduce yourself to Carol", "Introduce yourself to Carol, please"])
+def test_introducing_itself_to_someone_greets_them(office: KB, text: str) -> None:
+    out = say(office, text)
+    assert (out.intent, out.roles) == (I.GREET, {"recipient": "person_carol"})

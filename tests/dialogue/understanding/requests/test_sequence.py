@@ -104,3 +104,18 @@ def test_a_part_beyond_the_robots_skills_does_not_sink_the_others(office: KB) ->
 def test_a_question_with_a_verb_after_and_is_one_question(office: KB) -> None:
     out = say(office, "now then, where have they gone and put the pear?")
     assert out.intent is None and not out.clarify and "desk" in out.reply
+
+
+@pytest.mark.parametrize(
+    "text",
+    ["the stapler is mine, you can give to me?", "the stapler is mine. could you bring to me", "I like the stapler, give me"],
+)
+def test_a_thing_left_out_after_a_clause_that_names_it_is_that_thing(office: KB, text: str) -> None:
+    out = say(office, text)
+    assert (out.intent, out.roles) == (I.BRING_OBJECT, {"object": "stapler_1", "recipient": BOB})
+
+
+def test_a_thing_left_out_with_no_thing_named_before_is_asked_for(office: KB) -> None:
+    for text in ("Carol is here, give to me", "give to me"):
+        out = say(office, text)
+        assert out.intent is None and out.clarify, text

@@ -42,3 +42,15 @@ def test_the_speakers_absence_yet_to_come_holds_the_request() -> None:
     assert when(g, (("while", "i", "am", "out"),)) and when(g, (("whilst", "we", "are", "both", "away"),))
     # while someone waits, or the robot is out, is now
     assert not when(g, (("while", "i", "wait"),)) and not when(g, (("while", "you", "are", "out"),))
+
+
+def test_a_thing_had_when_it_is_ready_is_not_asked_for_now() -> None:
+    from tests.dialogue.conftest import scene_kb
+    from tests.dialogue.understanding.test_interpret import say
+
+    kb = scene_kb("office")
+    assert say(kb, "I'll have my stapler when it's ready").intent is None
+    assert say(kb, "I'll have a look").intent is None
+    # not the speaker's own thing: what they will do, or a choice among things offered, not this
+    assert say(kb, "I'll have the stapler").intent is None
+    kb.close()

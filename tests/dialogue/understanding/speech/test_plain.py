@@ -177,6 +177,10 @@ def test_a_lead_and_a_thanks_of_their_own_are_politeness() -> None:
         ("but i wonder whether you might fetch my coat from the chair", "fetch my coat from the chair"),
         ("might you pick up that pencil", "pick up that pencil"),
         ("would you be good enough to escort ben to the hallway", "escort ben to the hallway"),
+        # a thing asked for if it is ready, or if it can be: asked for now ("when it's ready" waits)
+        ("bring me my cards now if they're ready", "bring me my cards"),
+        ("fetch the cake if it's ready", "fetch the cake"),
+        ("bring me the bill if possible", "bring me the bill"),
     ],
 )
 def test_what_politeness_leaves_of_a_request(text: str, words: str) -> None:
@@ -190,6 +194,10 @@ def test_what_politeness_leaves_of_a_request(text: str, words: str) -> None:
          {"object": ("the", "pie"), "recipient": ("me",)}),
         ("could we have the menu", I.BRING_OBJECT, {"object": ("the", "menu"), "recipient": ("me",)}),
         ("pass us the salt", I.BRING_OBJECT, {"object": ("the", "salt"), "recipient": ("me",)}),
+        # "I'll have my X", and a need said by what the speaker cannot reach
+        ("i'll have my business cards now if they're ready", I.BRING_OBJECT,
+         {"object": ("my", "business", "cards"), "recipient": ("me",)}),
+        ("i can't reach the watering can", I.BRING_OBJECT, {"object": ("the", "watering", "can"), "recipient": ("me",)}),
     ],
 )  # fmt: skip
 def test_what_we_ask_for_is_brought_to_the_speaker(text: str, intent: str, slots: dict[str, tuple[str, ...]]) -> None:
