@@ -19,7 +19,9 @@ shrinks and the issue's figures can be recounted on any commit (`python -m tests
   than its raw text; the tokeniser and the utterance object themselves, and what reads data rather
   than an utterance (the language's tables, the lexicon's synonyms file, the KB's ids in the
   snapshot), are not stages;
-- a *clause splitter*: a function whose name says it cuts clauses, or a split on a conjunction.
+- a *clause splitter*: a function whose name says it cuts clauses, or a split on a conjunction;
+- a *compared word*: one lower-case word (a string, or the one string of a row) compared with
+  `==`, `!=`, `in` or `not in`, where it is not one of the code's own names.
 """
 
 from __future__ import annotations
@@ -332,6 +334,18 @@ def _call(node: ast.Call, rel: str, stage: bool) -> Iterator[Finding]:
             yield Finding("clause splitter", rel, node.lineno, ast.unparse(node)[:70])
 
 
+def _compared(node: ast.Compare, code: frozenset[str] | set[str], rel: str) -> Iterator[Finding]:
+    """A word compared in code: `w == "not"`, `"of" in w`, `w[:1] == ["of"]` (a one-word row)."""
+    if not any(isinstance(op, (ast.Eq, ast.NotEq, ast.In, ast.NotIn)) for op in node.ops):
+        return
+    for side in (node.left, *node.comparators):
+        row = side.elts if isinstance(side, (ast.Tuple, ast.List)) and len(side.elts) == 1 else [side]
+        for one in row:
+            word = one.value if isinstance(one, ast.Constant) and isinstance(one.value, str) else ""
+            if word not in code and _WORD.fullmatch(word) and " " not in word:
+                yield Finding("compared word", rel, node.lineno, word)
+
+
 def scan(path: Path, root: Path = ROOT) -> Iterator[Finding]:
     rel = path.relative_to(root).as_posix()
     tree = ast.parse(path.read_text(encoding="utf-8"))
@@ -344,6 +358,8 @@ def scan(path: Path, root: Path = ROOT) -> Iterator[Finding]:
         yield from _table(node, code, rows, rel)
         if isinstance(node, ast.Call):
             yield from _call(node, rel, stage)
+        if isinstance(node, ast.Compare):
+            yield from _compared(node, code, rel)
         if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef)) and _CLAUSES.search(node.name):
             yield Finding("clause splitter", rel, node.lineno, node.name)
         if replies and isinstance(node, (ast.Constant, ast.JoinedStr)) and id(node) not in skipped:
@@ -373,6 +389,7 @@ def main(argv: list[str]) -> None:
         "reply sentence",
         "re-tokenisation",
         "clause splitter",
+        "compared word",
     )
     for kind in kinds:
         these = [f for f in found if f.kind == kind]

@@ -28,7 +28,7 @@ from dialogue.understanding.lemmas import lemmas_of
 from dialogue.understanding.outcome import Outcome, Ref
 from dialogue.understanding.replies import say, the
 from dialogue.understanding.requests.compound import alternatives
-from dialogue.understanding.requests.kin import kin_word, relatives
+from dialogue.understanding.requests.kin import kin_word, relatives, said_so
 from dialogue.understanding.requests.phrase import Phrase, prepared
 from dialogue.understanding.requests.referents import Referents
 from dialogue.understanding.speech.sounds import clipped as said_short
@@ -80,7 +80,7 @@ def _family(p: Phrase) -> Ref | None:
         return None  # (someone the KB calls "grandma" is called so)
     found = relatives(refs.lang, refs.snapshot, refs.speaker, word)
     one = refs.snapshot.get(found[0]) if len(found) == 1 else None
-    if one is not None:
+    if one is not None and said_so(refs.lang, one, word):
         return Ref(entity=one)
     asked = say(refs.lang, "request.who_kin", kin=word)
     return Ref(problem=Outcome(asked, clarify=True, open_role=p.role))

@@ -40,9 +40,26 @@ def skilled(lang: Language, p: Parse) -> bool:
 
 
 def _on_fixture(lang: Language, p: Parse) -> bool:
-    """Whether the place of a placing is one things are fixed to ("on the wall")."""
-    place = content_words(lang, p.slots.get("recipient", ()))
-    return bool(place) and place[-1] in lang.requests.fixtures
+    """Whether the place of a placing is one things are fixed to ("hang the calendar on the wall"):
+    its head is a fixture ("on the shelf by the wall" is the shelf's) and the thing is attached to
+    it, by the preposition or by the verb ("put the watering can by the wall" is a placing)."""
+    place = tuple(p.slots.get("recipient", ()))
+    cut = next((i for i, w in enumerate(place) if w in lang.modifier_start), len(place))
+    head = content_words(lang, place[:cut])
+    if not head or head[-1] not in lang.requests.fixtures:
+        return False
+    verb = p.words[:1]
+    hung = bool(verb) and bool({verb[0], *lemmas_of(verb[0]).get("VERB", ())} & lang.requests.hanging)
+    return hung or _attached(lang, p.words, place)
+
+
+def _attached(lang: Language, words: tuple[str, ...], place: tuple[str, ...]) -> bool:
+    """Whether the place is said after a preposition that attaches ("to the ceiling"), where the
+    words say it last."""
+    at = next((i for i in range(len(words) - len(place), -1, -1) if words[i : i + len(place)] == place), None)
+    if at is None:
+        return False
+    return any(words[:at][-len(a) :] == a for a in lang.prepositions.having("attaches"))
 
 
 def unskilled(lang: Language, p: Parse) -> Outcome | None:

@@ -85,6 +85,8 @@ class _Words:
         #: What an introduction may say besides the name ("I'm Priya, Sam's mum"), not learnt.
         self.remark_subjects, self.remark_verbs = said.remark_subjects, said.remark_verbs
         self.apposed = said.apposed
+        self.remark_denials, self.remark_of = said.remark_denials, said.remark_of
+        self.owner_ending = said.owner_ending
 
 
 def _starts(words: Words, lead: Words) -> bool:
@@ -161,14 +163,16 @@ class Statements(Likings):
         if not any(f.predicate == "name" for f in told.facts):
             return False
         said = self.said
+        owner = said.owner_ending
         if len(w) > 2 and w[0] in said.remark_subjects and w[1] in said.remark_verbs:
             w = w[2:]
-            if w[:1] and w[0] not in said.apposed and not w[0].endswith("'s"):
-                return w[0] != "not"  # ("he's visiting", not "he's not Ben")
+            if w[:1] and w[0] not in said.apposed and not (owner and w[0].endswith(owner)):
+                return w[0] not in said.remark_denials  # ("he's visiting", not "he's not Ben")
         elif _starts(w, said.i_am):  # ("I'm Priya, I'm Sam's mum": only who the speaker is to someone)
             w = w[len(said.i_am) :]
-        w = w[1:] if w[:1] and (w[0] in said.apposed or w[0].endswith("'s")) else w
-        related = w[: w.index("of")] if "of" in w else w
+        w = w[1:] if w[:1] and (w[0] in said.apposed or (owner and w[0].endswith(owner))) else w
+        to = next((i for i, word in enumerate(w) if word in said.remark_of), len(w))
+        related = w[:to]
         return len(related) == 1 and related[0] in said.friends
 
     def _lead(self, words: list[str]) -> Words:

@@ -143,6 +143,7 @@ class RequestWords(Table):
     results: WordSet = frozenset()
     no_intent_verbs: WordSet = frozenset()
     fixtures: WordSet = frozenset()
+    hanging: WordSet = frozenset()
     abilities: Phrases = ()
     performances: Phrases = ()
     skill_verbs: WordSet = frozenset()

@@ -75,5 +75,8 @@ class StatementWords(Table):
     remark_subjects: WordSet = frozenset()
     remark_verbs: WordSet = frozenset()
     apposed: WordSet = frozenset()
+    remark_denials: WordSet = frozenset()
+    remark_of: WordSet = frozenset()
+    owner_ending: str = ""
     likings: LikingWords = LikingWords()
     names: NameWords = NameWords()

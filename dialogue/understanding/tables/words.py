@@ -69,6 +69,7 @@ class ClosedWords(Table):
     coordinators: WordSet = frozenset()
     kin: dict[str, WordList] = {}
     kin_bare: WordSet = frozenset()
+    kin_gender: dict[str, str] = {}
     speaker_in_answer: frozenset[str] = frozenset()
     speaker_in_fact: frozenset[str] = frozenset()
 

@@ -48,6 +48,22 @@ def test_a_thing_hung_on_furniture_is_placed() -> None:
 
 
 @pytest.mark.parametrize(
+    "text",
+    ["put the cushion on the shelf by the wall", "put the fruit bowl on the dining table next to the wall",
+     "put the watering can by the wall", "put the vase against the wall"],
+)  # fmt: skip
+def test_a_thing_put_by_a_wall_or_on_furniture_near_one_is_placed(text: str) -> None:
+    assert skilled(english(), parse(english(), text))
+
+
+@pytest.mark.parametrize(
+    "text", ["hang the picture on the wall by the door", "put the clock onto the wall", "hang the calendar by the wall"]
+)
+def test_a_thing_attached_to_a_wall_by_the_preposition_or_the_verb_is_no_placing(text: str) -> None:
+    assert not skilled(english(), parse(english(), text))
+
+
+@pytest.mark.parametrize(
     ("text", "said"),
     [("plug the lamp in", "I can't plug the lamp in myself."), ("pin the calendar up", "I can't pin the calendar up myself."),
      ("turn off the lamp", "I can't turn off the lamp myself.")],
