@@ -104,3 +104,11 @@ def test_a_part_beyond_the_robots_skills_does_not_sink_the_others(office: KB) ->
 def test_a_question_with_a_verb_after_and_is_one_question(office: KB) -> None:
     out = say(office, "now then, where have they gone and put the pear?")
     assert out.intent is None and not out.clarify and "desk" in out.reply
+
+
+@pytest.mark.parametrize("text", ["leave it there and bring me the pear", "ok, leave it there, then bring me the pear"])
+def test_a_thing_left_where_it_is_does_not_sink_the_parts_after_it(office: KB, text: str) -> None:
+    history = [("user", "where is the laptop?"), ("robot", "On the desk.")]
+    out = say(office, text, history=history)
+    assert [(o.intent, o.roles) for o in out.steps()] == [(I.BRING_OBJECT, {"object": "pear_1", "recipient": BOB})]
+    assert out.reply == "OK, I will leave it where it is. OK, I will bring the pear to you."
