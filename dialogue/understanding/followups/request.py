@@ -53,7 +53,7 @@ def follow_up(reader: Reader, p: Parse, heard: Said) -> Outcome | None:
     if confirmed is not None:  # "yes" or "no" to "Shall I bring the soap to Jordan?"
         return confirmed
     accepted = (offer(reader, question, said) or chosen_offered(reader, question, heard)
-                or reaffirmed(reader, spoken, question, said))
+                or reaffirmed(reader, spoken, question, answer))
     if accepted is not None:
         return accepted
     found = _pending(reader, spoken, heard)
@@ -234,18 +234,22 @@ def _merged(lang: Language, fragment: Words, first: Outcome) -> Words:
     return fragment
 
 
-def reaffirmed(reader: Reader, spoken: list[int], question: Utterance, said: list[str]) -> Outcome | None:
+def reaffirmed(reader: Reader, spoken: list[int], question: Utterance, answer: list[str]) -> Outcome | None:
     """ "yes" to "Do you mean the blue mug on the coffee table?" or to "Shall I take the tablet out
     there?" asked of a request the rules read whole (the robot that asked may be another system, or
-    was being sure): that reading, when the question proposes or confirms and names no thing or
-    person but those of it (and where they are). None when the words do not say yes or the request
-    does not read whole."""
+    was being sure): that reading, when the question proposes or confirms, names a thing or person
+    of it (or proposes to act on "it") and names no other (where they are aside). None when the
+    words do not say yes, the request does not read whole, or the question is about something else
+    ("Is that everything?", "Is it ok if I do it later?")."""
     lang = reader.lexicon.lang
-    if said[:1] == ["no"] or not accepts(lang, said) or len(spoken) < 2:
+    said = [w for w in answer if w != "no"]
+    if answer[:1] == ["no"] or not accepts(lang, said) or len(spoken) < 2:
         return None
     asked = expanded(lang, question.text.rstrip(" ?"))
     leads = [*lang.followups.offers, *lang.followups.confirms]
-    if not any(tuple(asked[i : i + len(c)]) == c for c in leads for i in range(len(asked))):
+    at = next((i + len(c) for i in range(len(asked)) for c in leads if tuple(asked[i : i + len(c)]) == c),
+              None)  # fmt: skip
+    if at is None:
         return None  # ("Anything else?" "yes": not the request again)
     request = reader.history[spoken[-2]]
     if request.role != "user":
@@ -259,9 +263,18 @@ def reaffirmed(reader: Reader, spoken: list[int], question: Utterance, said: lis
              if not set(words[max(0, m.start - 2) : m.start]) & lang.locative]  # fmt: skip
     if any(not m.entities & acted for m in named):
         return None  # ("Shall I take it to Maya?" of a request for Teodor: not what was read)
+    if not named and not _on_it(lang, asked[at:], reader.robot_name):
+        return None  # ("Is that everything?" "yes": not the request again)
     steps = [replace(o, confidence=min(o.confidence, proposal.CONFIRMED_CONFIDENCE), more=())
              for o in reading.steps()]  # fmt: skip
     return replace(steps[0], more=tuple(steps[1:]))
+
+
+def _on_it(lang: Language, proposed: list[str], robot_name: str) -> bool:
+    """Whether the words after "Shall I" propose to act on the thing of the request said as "it"
+    ("take it out there"; "do it later" proposes no act)."""
+    p = parse(lang, " ".join(proposed), robot_name)
+    return p.act == "command" and p.slots.get("object", ())[:1] in {(w,) for w in lang.words.pronouns}
 
 
 def confirmation(earlier: Reader, pending: Parse, first: Outcome, question: Utterance,

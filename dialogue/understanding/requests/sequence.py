@@ -28,6 +28,7 @@ from dialogue.understanding.replies import acknowledgement, said_back, say, then
 from dialogue.understanding.requests.commands import parse
 from dialogue.understanding.requests.compound import Part
 from dialogue.understanding.requests.skills import skilled
+from dialogue.understanding.requests.staying import left_as_is
 from dialogue.understanding.said import Said
 
 #: What a thing carried on to someone or somewhere is, carried first: taken.
@@ -40,6 +41,8 @@ def compound(reader: Reader, heard: Said, parts: Sequence[Part]) -> Outcome | No
     done: list[Outcome] = []
     verbs: list[str | None] = []  # the verb of each part done
     cannot: list[Said] = []
+    staying_before: list[str] = []  # the acknowledgements of things left where they are
+    staying_after: list[str] = []
     context: list[Utterance] = []
     aside = False
     for n, part in enumerate(parts):
@@ -53,6 +56,10 @@ def compound(reader: Reader, heard: Said, parts: Sequence[Part]) -> Outcome | No
             aside = True  # "move out of the way and go to the door": the going does it
             continue
         said = heard.of(part.text)
+        stays = left_as_is(within, parse(reader.lang, said, reader.robot_name))
+        if stays is not None:  # "leave it there and bring me the charger": acknowledged, nothing to do
+            (staying_after if done else staying_before).append(stays.reply)
+            continue
         outcome = within.part(said)
         if n == 1 and parts[0].verb is None:  # "I want the pear, can you get it": brought to me
             outcome = wished(reader, heard, [parts[0].text], dropped(within, said, [parts[0].text], outcome))
@@ -79,7 +86,7 @@ def compound(reader: Reader, heard: Said, parts: Sequence[Part]) -> Outcome | No
         return None  # (out of the way, then no going anywhere: not understood)
     done = _taken_first(reader, _fetched_for(reader, done, verbs))
     lang = reader.lang
-    acks = [then(lang, [o.reply for o in done])]
+    acks = [*staying_before, then(lang, [o.reply for o in done]), *staying_after]
     unable = [say(lang, "request.cannot", action=said_back(lang, c.written)) for c in cannot]
     whole = replace(done[0], reply=" ".join([*acks, *unable]), more=tuple(done[1:]))
     if whole.doubts:  # each part said back in the question

@@ -273,3 +273,16 @@ def test_an_answer_to_a_question_said_before_other_words_answers_the_question(wo
 def test_yes_to_a_question_that_neither_proposes_nor_confirms_is_not_the_request_again(workshop: KB) -> None:
     history = [("user", "take the rake to Raf"), ("robot", "OK, I'm taking the rake to Raf. Anything else?")]
     assert say(workshop, "yes", speaker=ANA, history=history).intent is None
+
+
+@pytest.mark.parametrize("asked", ["Is that everything?", "Is that all?", "Is it ok if I do it later?"])
+def test_yes_to_a_question_naming_nothing_of_the_request_is_not_that_request_again(
+    workshop: KB, asked: str
+) -> None:
+    history = [("user", "take the rake to Raf"), ("robot", asked)]
+    assert say(workshop, "yes", speaker=ANA, history=history).intent is None
+
+
+def test_an_answer_starting_with_no_is_not_the_request_again(workshop: KB) -> None:
+    history = [("user", "take the rake to Raf"), ("robot", "Do you mean the rake by the door?")]
+    assert say(workshop, "no, go on", speaker=ANA, history=history).intent is None

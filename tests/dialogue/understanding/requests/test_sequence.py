@@ -119,3 +119,11 @@ def test_a_thing_left_out_with_no_thing_named_before_is_asked_for(office: KB) ->
     for text in ("Carol is here, give to me", "give to me"):
         out = say(office, text)
         assert out.intent is None and out.clarify, text
+
+
+@pytest.mark.parametrize("text", ["leave it there and bring me the pear", "ok, leave it there, then bring me the pear"])
+def test_a_thing_left_where_it_is_does_not_sink_the_parts_after_it(office: KB, text: str) -> None:
+    history = [("user", "where is the laptop?"), ("robot", "On the desk.")]
+    out = say(office, text, history=history)
+    assert [(o.intent, o.roles) for o in out.steps()] == [(I.BRING_OBJECT, {"object": "pear_1", "recipient": BOB})]
+    assert out.reply == "OK, I will leave it where it is. OK, I will bring the pear to you."
