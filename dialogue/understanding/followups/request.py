@@ -242,8 +242,9 @@ def reaffirmed(reader: Reader, spoken: list[int], question: Utterance, answer: l
     words do not say yes, the request does not read whole, or the question is about something else
     ("Is that everything?", "Is it ok if I do it later?")."""
     lang = reader.lexicon.lang
-    said = [w for w in answer if w != "no"]
-    if answer[:1] == ["no"] or not accepts(lang, said) or len(spoken) < 2:
+    nos = frozenset(lang.followups.no.values())  # (the word a "nope" or "nah" is read as)
+    said = [w for w in answer if w not in nos]
+    if answer[:1] and answer[0] in nos or not accepts(lang, said) or len(spoken) < 2:
         return None
     asked = expanded(lang, question.text.rstrip(" ?"))
     leads = [*lang.followups.offers, *lang.followups.confirms]
