@@ -244,7 +244,7 @@ def reaffirmed(reader: Reader, spoken: list[int], question: Utterance, answer: l
     lang = reader.lexicon.lang
     nos = frozenset(lang.followups.no.values())  # (the word a "nope" or "nah" is read as)
     said = [w for w in answer if w not in nos]
-    if answer[:1] and answer[0] in nos or not accepts(lang, said) or len(spoken) < 2:
+    if set(answer[:1]) & nos or not accepts(lang, said) or len(spoken) < 2:
         return None
     asked = expanded(lang, question.text.rstrip(" ?"))
     leads = [*lang.followups.offers, *lang.followups.confirms]
